@@ -1,0 +1,266 @@
+"""The inputs of a planar impact: vehicles, the impact point and plane, measured motion.
+
+All quantities are SI (kg, m, s, rad) in the global x-y frame, angles counter-clockwise
+from +x. Every field may be an array: scalars broadcast against vectors of shape (..., 2),
+so one ``Case`` can hold a single collision or a million Monte Carlo samples of it.
+Unit strings and Brach's (theta, phi, d) inputs are converted before they reach here
+(:mod:`pim.casefile`, :mod:`pim.brach`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+__all__ = ["Vehicle", "Impact", "Case", "Measured"]
+
+
+def _scalar(value, name: str) -> np.ndarray:
+    arr = np.asarray(value, dtype=float)
+    if np.isnan(arr).any():
+        raise ValueError(f"{name} is NaN; it must be a finite number")
+    return arr
+
+
+def _vector(value, name: str, unit: str) -> np.ndarray:
+    arr = np.asarray(value, dtype=float)
+    if arr.ndim == 0 or arr.shape[-1] != 2:
+        raise ValueError(f"{name} must be an [x, y] pair in [{unit}], got shape {arr.shape}")
+    if not np.isfinite(arr).all():
+        raise ValueError(f"{name} must be finite [x, y] values in [{unit}]")
+    return arr
+
+
+def _finite(arr: np.ndarray, name: str, unit: str) -> np.ndarray:
+    if not np.isfinite(arr).all():
+        raise ValueError(f"{name} must be a finite number in [{unit}]")
+    return arr
+
+
+@dataclass(frozen=True, eq=False)
+class Vehicle:
+    """One body of the impact, rigid in the plane.
+
+    Parameters
+    ----------
+    mass : array_like
+        Mass [kg], > 0; ``inf`` (with ``yaw_inertia = inf``) makes a fixed obstacle.
+    yaw_inertia : array_like
+        Yaw moment of inertia about the CG [kg m^2], > 0; ``inf`` for a fixed obstacle.
+    cg : array_like, shape (..., 2)
+        Position of the centre of gravity [m].
+    velocity : array_like, shape (..., 2)
+        Pre-impact velocity of the CG [m/s].
+    yaw_rate : array_like
+        Pre-impact yaw rate [rad/s], counter-clockwise positive.
+    heading : array_like
+        Direction the vehicle's nose points [rad] from +x; used for PDOF and drawing only.
+    length, width : float, optional
+        Outline of the vehicle [m], a rectangle centred on the CG; used for drawing and
+        for the optional outline contact of the simulator, never by the impact equations.
+    """
+
+    mass: np.ndarray
+    yaw_inertia: np.ndarray
+    cg: np.ndarray
+    velocity: np.ndarray = field(default_factory=lambda: np.zeros(2))
+    yaw_rate: np.ndarray = 0.0
+    heading: np.ndarray = 0.0
+    length: float | None = None
+    width: float | None = None
+
+    def __post_init__(self) -> None:
+        set_ = object.__setattr__
+        mass = _scalar(self.mass, "mass")
+        inertia = _scalar(self.yaw_inertia, "yaw_inertia")
+        if (mass <= 0).any():
+            raise ValueError("mass must be > 0 [kg] (or inf for a fixed obstacle)")
+        if (inertia <= 0).any():
+            raise ValueError("yaw_inertia must be > 0 [kg m^2] (or inf for a fixed obstacle)")
+        if (np.isinf(mass) != np.isinf(inertia)).any():
+            raise ValueError("mass and yaw_inertia must both be inf for a fixed obstacle")
+        set_(self, "mass", mass)
+        set_(self, "yaw_inertia", inertia)
+        set_(self, "cg", _vector(self.cg, "cg", "m"))
+        set_(self, "velocity", _vector(self.velocity, "velocity", "m/s"))
+        set_(self, "yaw_rate", _finite(_scalar(self.yaw_rate, "yaw_rate"), "yaw_rate", "rad/s"))
+        set_(self, "heading", _finite(_scalar(self.heading, "heading"), "heading", "rad"))
+        fixed, moving = np.broadcast_arrays(
+            np.isinf(mass), np.abs(self.velocity).sum(-1) + np.abs(self.yaw_rate))
+        if (fixed & (moving != 0)).any():
+            raise ValueError("velocity and yaw_rate of a fixed obstacle must be 0")
+        for name in ("length", "width"):
+            value = getattr(self, name)
+            if value is not None:
+                value = float(value)
+                if not (np.isfinite(value) and value > 0):
+                    raise ValueError(f"{name} must be > 0 [m], got {value}")
+                set_(self, name, value)
+
+    @classmethod
+    def obstacle(cls, cg, heading=0.0, length=None, width=None) -> Vehicle:
+        """A fixed barrier or pole: infinite mass and yaw inertia, at rest."""
+        return cls(mass=np.inf, yaw_inertia=np.inf, cg=cg, velocity=(0.0, 0.0),
+                   yaw_rate=0.0, heading=heading, length=length, width=width)
+
+    @property
+    def fixed(self) -> np.ndarray:
+        """True where the body is a fixed obstacle (infinite mass)."""
+        return np.isinf(self.mass)
+
+    @property
+    def inverse_mass(self) -> np.ndarray:
+        """1 / mass [1/kg], 0 for a fixed obstacle."""
+        return 1.0 / self.mass
+
+    @property
+    def inverse_inertia(self) -> np.ndarray:
+        """1 / yaw_inertia [1/(kg m^2)], 0 for a fixed obstacle."""
+        return 1.0 / self.yaw_inertia
+
+
+@dataclass(frozen=True, eq=False)
+class Impact:
+    """The common impact point C and the contact plane.
+
+    Parameters
+    ----------
+    point : array_like, shape (..., 2)
+        Position of C [m].
+    normal_angle : array_like
+        Gamma [rad]: direction of the unit normal n = (cos Gamma, sin Gamma), which points
+        from vehicle 2 toward vehicle 1. The tangent is t = (-sin Gamma, cos Gamma).
+    restitution : float, optional
+        Default coefficient of restitution epsilon [-] for :func:`pim.solve`.
+    beta : float, optional
+        Default fraction beta [-] of the critical impulse ratio mu0.
+    """
+
+    point: np.ndarray
+    normal_angle: np.ndarray
+    restitution: float | None = None
+    beta: float | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "point", _vector(self.point, "point", "m"))
+        angle = _finite(_scalar(self.normal_angle, "normal_angle"), "normal_angle", "rad")
+        object.__setattr__(self, "normal_angle", angle)
+        if self.restitution is not None:
+            eps = float(self.restitution)
+            if not 0.0 <= eps <= 1.0:
+                raise ValueError(f"restitution must be in [0, 1], got {eps}")
+            object.__setattr__(self, "restitution", eps)
+        if self.beta is not None:
+            beta = float(self.beta)
+            if not np.isfinite(beta):
+                raise ValueError(f"beta must be a finite number (usually in [0, 1]), got {beta}")
+            object.__setattr__(self, "beta", beta)
+
+    @property
+    def normal(self) -> np.ndarray:
+        """Unit normal n, shape (..., 2)."""
+        g = self.normal_angle
+        return np.stack([np.cos(g), np.sin(g)], axis=-1)
+
+    @property
+    def tangent(self) -> np.ndarray:
+        """Unit tangent t = n rotated +90 deg, shape (..., 2)."""
+        g = self.normal_angle
+        return np.stack([-np.sin(g), np.cos(g)], axis=-1)
+
+
+@dataclass(frozen=True, eq=False)
+class Measured:
+    """Measured post-impact motion (the target of :func:`pim.fit`). Any field may be None.
+
+    Parameters
+    ----------
+    velocity1, velocity2 : array_like, shape (2,), optional
+        Post-impact CG velocities [m/s].
+    yaw_rate1, yaw_rate2 : float, optional
+        Post-impact yaw rates [rad/s].
+    """
+
+    velocity1: np.ndarray | None = None
+    velocity2: np.ndarray | None = None
+    yaw_rate1: float | None = None
+    yaw_rate2: float | None = None
+
+    def __post_init__(self) -> None:
+        for name, unit in (("velocity1", "m/s"), ("velocity2", "m/s")):
+            value = getattr(self, name)
+            if value is not None:
+                object.__setattr__(self, name, _vector(value, name, unit))
+        for name in ("yaw_rate1", "yaw_rate2"):
+            value = getattr(self, name)
+            if value is not None:
+                value = float(value)
+                if not np.isfinite(value):
+                    raise ValueError(f"{name} must be a finite number in [rad/s]")
+                object.__setattr__(self, name, value)
+
+
+def _rotate(vec: np.ndarray, angle: float) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    return np.stack([c * vec[..., 0] - s * vec[..., 1], s * vec[..., 0] + c * vec[..., 1]], -1)
+
+
+@dataclass(frozen=True, eq=False)
+class Case:
+    """A two-body planar impact: the inputs of :func:`pim.solve`.
+
+    Parameters
+    ----------
+    vehicle1, vehicle2 : Vehicle
+        The bodies; ``vehicle2`` may be a fixed obstacle (:meth:`Vehicle.obstacle`).
+    impact : Impact
+        Point C and contact-plane angle Gamma (n points from vehicle 2 toward vehicle 1).
+    measured : Measured, optional
+        Measured post-impact motion, for fitting.
+    name, description : str
+        Labels for reports.
+    """
+
+    vehicle1: Vehicle
+    vehicle2: Vehicle
+    impact: Impact
+    measured: Measured | None = None
+    name: str = ""
+    description: str = ""
+
+    def __post_init__(self) -> None:
+        if self.vehicle1.fixed.any():
+            raise ValueError("vehicle1.mass must be finite: only vehicle2 may be a fixed obstacle")
+
+    def transformed(self, rotation: float = 0.0, translation=(0.0, 0.0)) -> Case:
+        """The same scene rotated by ``rotation`` [rad] about the origin, then translated [m]."""
+        shift = np.asarray(translation, dtype=float)
+
+        def move(v: Vehicle) -> Vehicle:
+            return replace(v, cg=_rotate(v.cg, rotation) + shift,
+                           velocity=_rotate(v.velocity, rotation), heading=v.heading + rotation)
+
+        measured = self.measured
+        if measured is not None:
+            measured = replace(
+                measured,
+                velocity1=None if measured.velocity1 is None else _rotate(measured.velocity1, rotation),
+                velocity2=None if measured.velocity2 is None else _rotate(measured.velocity2, rotation),
+            )
+        impact = replace(self.impact, point=_rotate(self.impact.point, rotation) + shift,
+                         normal_angle=self.impact.normal_angle + rotation)
+        return replace(self, vehicle1=move(self.vehicle1), vehicle2=move(self.vehicle2),
+                       impact=impact, measured=measured)
+
+    def swapped(self) -> Case:
+        """The same scene with the vehicles' roles exchanged (n flips: Gamma + pi)."""
+        if self.vehicle2.fixed.any():
+            raise ValueError("vehicle2 is a fixed obstacle; it cannot become vehicle1")
+        measured = self.measured
+        if measured is not None:
+            measured = Measured(measured.velocity2, measured.velocity1,
+                                measured.yaw_rate2, measured.yaw_rate1)
+        impact = replace(self.impact, normal_angle=self.impact.normal_angle + np.pi)
+        return replace(self, vehicle1=self.vehicle2, vehicle2=self.vehicle1, impact=impact,
+                       measured=measured)
