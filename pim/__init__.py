@@ -9,10 +9,25 @@ see the README for the sign conventions and the glossary.
 >>> result.velocity1            # m/s, shape (2,)          # doctest: +SKIP
 """
 
+from importlib import import_module
+
 from .case import Case, Impact, Measured, Vehicle
 from .casefile import list_cases, load_case
 from .solver import Result, solve
 
+# Heavier parts load on first use, so that `import pim` stays fast.
+_LAZY = {
+    "fit": "pim.fit", "FitResult": "pim.fit",
+    "sensitivity": "pim.sensitivity",
+    "uncertainty": "pim.uncertainty", "UncertaintyResult": "pim.uncertainty",
+}
+
 __all__ = ["Case", "Impact", "Measured", "Vehicle", "Result", "solve", "load_case",
-           "list_cases"]
+           "list_cases", *_LAZY]
 __version__ = "0.1.0"
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        return getattr(import_module(_LAZY[name]), name)
+    raise AttributeError(f"module 'pim' has no attribute {name!r}")
