@@ -1,0 +1,31 @@
+"""The one exception of the simulator: a run that does not reproduce an impact."""
+
+from __future__ import annotations
+
+__all__ = ["SimulationError", "FAILURE_KINDS"]
+
+#: Every value :attr:`SimulationError.kind` can take.
+FAILURE_KINDS = ("no_contact", "never_separated", "multiple_contacts", "energy_gained")
+
+
+class SimulationError(RuntimeError):
+    """A simulation that failed to reproduce the impact; never returned silently.
+
+    Attributes
+    ----------
+    kind : str
+        One of :data:`FAILURE_KINDS`: "no_contact" (the engine never processed a contact:
+        tunnelling at large dt, or the bodies do not approach at C), "never_separated" (the
+        contact still pushed after ``settings.max_contact_time``), "multiple_contacts"
+        (more contact points than the scene allows), "energy_gained" (kinetic energy rose
+        beyond ``settings.energy_tolerance``).
+    step : int or None
+        Step at which the failure was found.
+    """
+
+    def __init__(self, kind: str, message: str, step: int | None = None) -> None:
+        if kind not in FAILURE_KINDS:
+            raise ValueError(f"kind must be one of {FAILURE_KINDS}, got {kind!r}")
+        super().__init__(message)
+        self.kind = kind
+        self.step = step

@@ -1,0 +1,299 @@
+"""Step a scene through the impact and report what the engine did.
+
+When is the impact over?
+------------------------
+PIM's impact is instantaneous. The engine processes a contact in a step only while some
+contact point still *approaches* (relative normal velocity below ``-1e-9`` x the speed scale
+of the scene); the pre-solve callback rejects a contact whose points all separate or slide
+tangentially. This is what makes the emulation clean:
+
+* with the default exact placement the whole impulse is applied in the one step in which the
+  contact is found, at the impact configuration, with Chipmunk's Newton restitution and
+  Coulomb friction solved by its iterations; afterwards U_n = -epsilon u_n >= 0, so the next
+  step rejects the contact and the impact has ended (contact duration = one step);
+* epsilon = 0 needs no special case: the contact then neither approaches nor separates
+  (U_n = 0 to round-off) and is rejected, instead of lingering with zero separation speed
+  and having Chipmunk re-apply ("warm start") the stored impulse in later steps;
+* a contact that has not converged (too few iterations, or the engine's own late contact
+  with ``start="detected"`` / outlines) keeps being processed while it approaches.
+
+So the impact ends at the first step, after the contact began, in which no contact was
+processed; velocities are unchanged in that step (no other forces act). The run fails
+(:class:`sim.SimulationError`) when no contact is ever processed, when a contact still
+pushes after ``settings.max_contact_time``, when a step has more contact points than the
+scene allows, or when kinetic energy rises.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import pymunk
+
+import pim
+
+from .errors import SimulationError
+from .result import SimResult, Trajectory
+from .scene import TYPE1, TYPE2, Scene, build_scene, resolve_coefficients
+from .settings import Settings
+
+__all__ = ["simulate", "run_scene", "APPROACH_TOLERANCE"]
+
+#: A contact point approaches when its relative normal velocity is below -this x speed scale.
+APPROACH_TOLERANCE = 1e-9
+
+
+class _Monitor:
+    """Per-step bookkeeping filled by the collision callbacks."""
+
+    __slots__ = ("accepted", "points", "max_points", "too_many", "impulse", "tol", "pin",
+                 "normal", "allowed", "body1", "body2")
+
+    def __init__(self, scene: Scene, settings: Settings) -> None:
+        self.accepted = False
+        self.points = 0
+        self.max_points = 0
+        self.too_many = 0
+        self.impulse = [0.0, 0.0]
+        self.tol = APPROACH_TOLERANCE * scene.speed_scale
+        self.pin = settings.contact == "point" and settings.start == "exact"
+        # engine normal runs from vehicle 1's shape to vehicle 2's: -n
+        self.normal = pymunk.Vec2d(-float(scene.normal[0]), -float(scene.normal[1]))
+        self.allowed = settings.points_allowed
+        self.body1, self.body2 = scene.body1, scene.body2
+
+
+def _pre_solve(arbiter, space, mon: _Monitor) -> None:
+    point_set = arbiter.contact_point_set
+    points = point_set.points
+    count = len(points)
+    mon.points += count
+    normal = point_set.normal
+    b1, b2 = mon.body1, mon.body2
+    approaching = False
+    for p in points:
+        rel = b2.velocity_at_world_point(p.point_b) - b1.velocity_at_world_point(p.point_a)
+        if rel.dot(normal) < -mon.tol:
+            approaching = True
+            break
+    if not approaching:
+        arbiter.process_collision = False
+        return
+    if mon.pin and count == 1:
+        c = points[0].point_b
+        arbiter.contact_point_set = pymunk.ContactPointSet(
+            mon.normal, (pymunk.ContactPoint(c, c, 0.0),))
+    mon.accepted = True
+
+
+def _post_solve(arbiter, space, mon: _Monitor) -> None:
+    j = arbiter.total_impulse          # on the body of shapes[0] = vehicle 1
+    mon.impulse[0] += j.x
+    mon.impulse[1] += j.y
+
+
+def _state(t: float, b1: pymunk.Body, b2: pymunk.Body) -> tuple:
+    p1, v1, p2, v2 = b1.position, b1.velocity, b2.position, b2.velocity
+    return (t, p1.x, p1.y, b1.angle, p2.x, p2.y, b2.angle, v1.x, v1.y, b1.angular_velocity,
+            v2.x, v2.y, b2.angular_velocity)
+
+
+def _kinetic(body: pymunk.Body) -> float:
+    if body.body_type != pymunk.Body.DYNAMIC:
+        return 0.0
+    v = body.velocity
+    return 0.5 * body.mass * (v.x * v.x + v.y * v.y) + 0.5 * body.moment * body.angular_velocity ** 2
+
+
+def _yaw_lever(outline: np.ndarray | None, body: pymunk.Body) -> float:
+    """Mean distance [m] of a uniformly loaded footprint from the CG (radius of gyration
+    without an outline): sets the yaw deceleration of the tyre friction model."""
+    if outline is None:
+        return float(np.sqrt(body.moment / body.mass))
+    hl, hw = outline[0]
+    g = (np.arange(32) + 0.5) / 32 * 2 - 1
+    x, y = np.meshgrid(g * hl, g * hw)
+    return float(np.mean(np.hypot(x, y)))
+
+
+def _tyre_step(body: pymunk.Body, decel: float, yaw_decel: float, dt: float) -> bool:
+    """Slow a body by tyre/ground friction for one step; True if it is at rest."""
+    if body.body_type != pymunk.Body.DYNAMIC:
+        return True
+    v = body.velocity
+    speed = v.length
+    body.velocity = v * max(0.0, 1.0 - decel * dt / speed) if speed > 0 else v
+    w = body.angular_velocity
+    if w != 0.0:
+        body.angular_velocity = w * max(0.0, 1.0 - yaw_decel * dt / abs(w))
+    return body.velocity.length == 0.0 and body.angular_velocity == 0.0
+
+
+def run_scene(scene: Scene, settings: Settings) -> dict:
+    """Step a built scene until the impact has ended (plus ``settings.duration``).
+
+    Returns a dict of the SimResult fields except ``wall_time``, ``settings`` and the
+    coefficients. Raises :class:`sim.SimulationError` on a failed run.
+    """
+    space, b1, b2 = scene.space, scene.body1, scene.body2
+    dt = settings.dt
+    mon = _Monitor(scene, settings)
+    space.on_collision(TYPE1, TYPE2, pre_solve=_pre_solve, post_solve=_post_solve, data=mon)
+
+    if settings.contact == "point":
+        search_end = (0.0 if settings.start == "exact" else dt) + 0.5 * dt
+    else:
+        search_end = settings.max_contact_time
+    record = settings.record
+    states = [_state(scene.start_time, b1, b2)]
+    step = 0
+    contact_steps = 0
+    impact_index = None
+    while True:
+        mon.accepted = False
+        mon.points = 0
+        space.step(dt)
+        step += 1
+        now = scene.start_time + step * dt
+        if mon.points > mon.max_points:
+            mon.max_points = mon.points
+        if mon.accepted:
+            if mon.allowed is not None and mon.points > mon.allowed:
+                raise SimulationError(
+                    "multiple_contacts",
+                    f"{mon.points} contact points in step {step} (t = {now:.6g} s) where the "
+                    f"scene allows {mon.allowed}: the contact is a patch, not PIM's single "
+                    f"point", step)
+            contact_steps += 1
+            if impact_index is None:
+                states.append(_state(now, b1, b2))
+                impact_index = len(states) - 1
+            elif record:
+                states.append(_state(now, b1, b2))
+            if contact_steps * dt > settings.max_contact_time + 0.5 * dt:
+                raise SimulationError(
+                    "never_separated",
+                    f"the contact still pushed after {contact_steps} steps "
+                    f"({contact_steps * dt:.6g} s > max_contact_time = "
+                    f"{settings.max_contact_time:g} s)", step)
+            continue
+        if record:
+            states.append(_state(now, b1, b2))
+        if impact_index is not None:
+            break                      # contact began earlier and is over: separated
+        if now > search_end:
+            raise SimulationError("no_contact", _no_contact_message(scene, settings, now), step)
+
+    velocity1 = np.array(b1.velocity)
+    velocity2 = np.array(b2.velocity)
+    yaw_rate1, yaw_rate2 = b1.angular_velocity, b2.angular_velocity
+    energy_after = _kinetic(b1) + _kinetic(b2)
+    finite = np.isfinite(np.r_[velocity1, velocity2, yaw_rate1, yaw_rate2]).all()
+    limit = scene.energy_before * (1.0 + settings.energy_tolerance) + 1e-12
+    if not finite or energy_after > limit:
+        gain = energy_after - scene.energy_before
+        raise SimulationError(
+            "energy_gained",
+            f"kinetic energy rose from {scene.energy_before:.9g} J to {energy_after:.9g} J "
+            f"(+{gain:.3g} J, {100 * gain / max(scene.energy_before, 1e-300):.3g} %) in the "
+            f"impact" if finite else "the engine returned a non-finite state", step)
+    separation_step = step
+
+    # ---- after separation: free motion (point contact removed), tyre friction -----------
+    if settings.duration > 0:
+        if settings.contact == "point":
+            space.remove(*scene.contact_shapes)
+        coefficient = settings.tyre_coefficient
+        decel = coefficient * settings.gravity
+        yaw1 = yaw2 = 0.0
+        if coefficient > 0:
+            if b1.body_type == pymunk.Body.DYNAMIC:
+                yaw1 = decel * _yaw_lever(scene.outline1, b1) / (b1.moment / b1.mass)
+            if b2.body_type == pymunk.Body.DYNAMIC:
+                yaw2 = decel * _yaw_lever(scene.outline2, b2) / (b2.moment / b2.mass)
+        extra = int(np.ceil(settings.duration / dt - 1e-9))
+        for _ in range(extra):
+            space.step(dt)
+            step += 1
+            rest = False
+            if coefficient > 0:
+                rest = _tyre_step(b1, decel, yaw1, dt) & _tyre_step(b2, decel, yaw2, dt)
+            if record:
+                states.append(_state(scene.start_time + step * dt, b1, b2))
+            if rest:
+                break
+    if not record or states[-1][0] != scene.start_time + step * dt:
+        states.append(_state(scene.start_time + step * dt, b1, b2))
+
+    arr = np.array(states, dtype=float)
+    trajectory = Trajectory(
+        time=arr[:, 0], position1=arr[:, 1:3], angle1=arr[:, 3], position2=arr[:, 4:6],
+        angle2=arr[:, 6], velocity1=arr[:, 7:9], yaw_rate1=arr[:, 9], velocity2=arr[:, 10:12],
+        yaw_rate2=arr[:, 12], impact_index=int(impact_index), outline1=scene.outline1,
+        outline2=scene.outline2, fixed2=scene.fixed2)
+    del separation_step
+    return dict(
+        velocity1=velocity1, velocity2=velocity2, yaw_rate1=float(yaw_rate1),
+        yaw_rate2=float(yaw_rate2), impulse=np.array(mon.impulse),
+        contact_duration=contact_steps * dt, contact_steps=contact_steps,
+        contact_points=mon.max_points, steps=step, energy_before=scene.energy_before,
+        energy_after=energy_after, trajectory=trajectory,
+        final_velocity1=np.array(b1.velocity), final_velocity2=np.array(b2.velocity),
+        final_yaw_rate1=float(b1.angular_velocity), final_yaw_rate2=float(b2.angular_velocity))
+
+
+def _no_contact_message(scene: Scene, settings: Settings, now: float) -> str:
+    if not scene.approach_n < 0:
+        return (f"no contact: the vehicles do not approach at C (u_n = {scene.approach_n:.6g} "
+                f"m/s >= 0), so there is no impact to simulate")
+    travel = abs(scene.approach_n) * settings.dt
+    if settings.contact == "point" and travel > 2 * settings.contact_radius:
+        return (f"no contact found by t = {now:.6g} s: the contact circle tunnelled through "
+                f"(approach speed x dt = {travel:.3g} m > its diameter "
+                f"{2 * settings.contact_radius:.3g} m); reduce dt or raise contact_radius")
+    return f"no contact found by t = {now:.6g} s (the shapes never touched while approaching)"
+
+
+def simulate(case: pim.Case, eps=None, beta=None, settings: Settings | None = None,
+             analytic: pim.Result | None = None) -> SimResult:
+    """Simulate one PIM case with pymunk and return the engine's post-impact state.
+
+    Parameters
+    ----------
+    case : pim.Case
+        A single case (scalar fields).
+    eps : float, optional
+        Coefficient of restitution [-] in [0, 1]; default ``case.impact.restitution``.
+    beta : float, optional
+        Fraction of the critical impulse ratio [-] in [0, 1]; default ``case.impact.beta``,
+        else 1.
+    settings : Settings, optional
+        Step size, iterations and physics switches; default ``Settings()``.
+    analytic : pim.Result, optional
+        ``pim.solve(case, eps, 1.0)`` if already at hand (supplies mu0 for the friction).
+
+    Returns
+    -------
+    SimResult
+        Velocities and yaw rates at separation, the impulse the engine applied, contact
+        duration, steps, wall time (building and stepping the Space, not the analytic
+        reference), energies and the trajectory.
+
+    Raises
+    ------
+    ValueError
+        Bad input (eps or beta outside [0, 1], an array case, missing outlines).
+    SimulationError
+        The run failed: no contact, never separated, multiple contacts, energy gained.
+    """
+    settings = settings or Settings()
+    eps, beta = resolve_coefficients(case, eps, beta)
+    if analytic is None:
+        analytic = pim.solve(case, eps, 1.0)
+    start = time.perf_counter()
+    scene = build_scene(case, eps, beta, settings, analytic=analytic)
+    fields = run_scene(scene, settings)
+    wall = time.perf_counter() - start
+    return SimResult(**fields, wall_time=wall, eps=eps, beta=beta, friction=scene.friction,
+                     settings=settings)
