@@ -89,15 +89,16 @@ def parse(value, kind: str, field: str) -> float:
             raise ValueError(f"{field}: cannot read {value!r} as a quantity") from None
         if not isinstance(quantity, ureg.Quantity):
             quantity = ureg.Quantity(float(quantity), "")
-        if quantity.dimensionality != ureg.Quantity(1, unit or "").dimensionality:
-            expected = dim or "dimensionless"
+        wanted = ureg.Quantity(1, unit or "").dimensionality
+        if quantity.dimensionality != wanted:
+            expected = str(wanted) if dim else "dimensionless"
             raise ValueError(f"{field}: {value!r} has dimension {quantity.dimensionality}, "
                              f"expected {expected} (e.g. {unit or 'a bare number'})")
         number = float(quantity.to(unit or "").magnitude)
     else:
         raise ValueError(f"{field} must be a number or a quantity string, got {value!r}")
     if not np.isfinite(number):
-        raise ValueError(f"{field} must be finite, got {value!r}")
+        raise ValueError(f"{field} must be a finite number, got {value!r}")
     return number
 
 
