@@ -135,7 +135,44 @@ def _check_beta(beta) -> np.ndarray:
     return beta
 
 
-def solve(case: Case, eps=None, beta=None) -> Result:
+#: Batches of at least this many cases take the compiled kernel under backend="auto".
+FAST_PATH_MIN_SIZE = 20_000
+
+
+def _use_kernel(case: Case, eps, beta, backend: str) -> bool:
+    """Whether :func:`solve` should run :mod:`pim.kernel` (imports numba only if so)."""
+    if backend not in ("auto", "numpy", "numba"):
+        raise ValueError(f"backend must be 'auto', 'numpy' or 'numba', got {backend!r}")
+    if backend == "numpy":
+        return False
+    if backend == "auto":
+        v1, v2, imp = case.vehicle1, case.vehicle2, case.impact
+        shape = np.broadcast_shapes(
+            np.shape(v1.mass), np.shape(v1.yaw_inertia), np.shape(v1.cg)[:-1],
+            np.shape(v1.velocity)[:-1], np.shape(v1.yaw_rate), np.shape(v2.mass),
+            np.shape(v2.yaw_inertia), np.shape(v2.cg)[:-1], np.shape(v2.velocity)[:-1],
+            np.shape(v2.yaw_rate), np.shape(imp.point)[:-1], np.shape(imp.normal_angle),
+            np.shape(eps), np.shape(beta))
+        if int(np.prod(shape, dtype=np.int64)) < FAST_PATH_MIN_SIZE:
+            return False
+    try:
+        import numba  # noqa: F401
+    except ImportError:
+        if backend == "numba":
+            raise ValueError("backend='numba' needs numba installed (pip install numba)") from None
+        return False
+    return True
+
+
+def _solve_kernel(case: Case, eps, beta) -> Result:
+    """:func:`solve` on the fused numba kernel (:mod:`pim.kernel`); same results."""
+    from .kernel import solve_case
+
+    return solve_case(case, np.asarray(eps, dtype=float), np.asarray(beta, dtype=float),
+                      SINGULAR_TOLERANCE)
+
+
+def solve(case: Case, eps=None, beta=None, backend: str = "auto") -> Result:
     """Post-impact motion of a planar two-body impact (Brach's PIM).
 
     Parameters
@@ -148,6 +185,12 @@ def solve(case: Case, eps=None, beta=None) -> Result:
     beta : array_like, optional
         Fraction of the critical impulse ratio, mu = beta mu0 [-]; defaults to
         ``case.impact.beta``, else 1. Values outside [0, 1] are computed and flagged.
+    backend : {"auto", "numpy", "numba"}
+        "numpy" is the reference implementation below; "numba" runs the fused parallel
+        kernel of :mod:`pim.kernel`: the same values to round-off, every field at the full
+        broadcast shape, the auxiliary fields (arms, K, approach velocity, n-t impulse
+        components) computed on first read; "auto" takes the kernel for batches of at least
+        ``FAST_PATH_MIN_SIZE`` cases when numba is installed.
 
     Returns
     -------
@@ -168,6 +211,8 @@ def solve(case: Case, eps=None, beta=None) -> Result:
             raise ValueError("eps is required: give it or set impact.restitution in the case")
     if beta is None:
         beta = 1.0 if case.impact.beta is None else case.impact.beta
+    if _use_kernel(case, eps, beta, backend):
+        return _solve_kernel(case, eps, beta)
     eps, beta = _check_eps(eps), _check_beta(beta)
     v1, v2, imp = case.vehicle1, case.vehicle2, case.impact
 

@@ -1,0 +1,436 @@
+"""Fused, parallel compiled kernel of :func:`pim.solve` for large batches of cases.
+
+Closed-form PIM costs a few dozen flops per case, so a batch of millions of cases is limited
+by memory traffic: reading 19 inputs and writing the core outputs. The numpy reference path
+in :mod:`pim.solver` makes one pass over memory per arithmetic operation (about a hundred
+temporaries of N doubles); this module makes one: each case is read once, solved in registers
+and written once, on all cores (numba ``prange``).
+
+The arithmetic mirrors :func:`pim.solver.solve` operation by operation and in the same order
+(no fast-math, no fused multiply-add contraction) and takes sine and cosine from the same C
+library as numpy, so the default kernel gives bitwise the numpy path's values
+(``tests/test_kernel.py``), including the approach flag, the singular-q flag and fixed
+obstacles (inverse mass and inertia 0). With ``fast_trig`` it uses its own branch-free sine
+and cosine (within 1 ulp), about 20 % faster; the results then agree with numpy to round-off
+(normwise 1e-15; elementwise more where outputs come from cancellation). numba is imported only when this module is,
+which :func:`pim.solve` does only when it takes the fast path.
+
+Outputs: the kernel writes only the core outputs (post-impact velocities, yaw rates, impulse,
+mu0 and the two flags), at the full broadcast shape of the inputs, so a batch costs 19 doubles
+read and 9 doubles and 2 bytes written per case. The auxiliary fields of :class:`pim.Result`
+(arms, approach velocity, K, n-t and critical impulse components, normal, tangent) are written
+by a second pass of the same kernel when one of them is first read (:class:`KernelResult`).
+The unit normal and tangent share one buffer ``(-sin G, cos G, sin G)`` of shape (..., 3):
+``normal`` is its view ``[..., 1:]`` and ``tangent`` its view ``[..., :2]`` (read-only).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit, prange
+
+from .solver import Result
+
+__all__ = ["solve_case", "solve_arrays", "stream_copy", "INPUTS", "CORE_VECTORS", "CORE_SCALARS",
+           "AUX"]
+
+#: Input names, in the order :func:`solve_arrays` takes them (vectors have a trailing 2).
+INPUTS = ("mass1", "inertia1", "cg1", "velocity1", "yaw_rate1",
+          "mass2", "inertia2", "cg2", "velocity2", "yaw_rate2",
+          "point", "normal_angle", "eps", "beta")
+VECTOR_INPUTS = ("cg1", "velocity1", "cg2", "velocity2", "point")
+
+#: Core outputs written on every call: vectors (N, 2) and scalars (N,), in kernel order.
+CORE_VECTORS = ("velocity1", "velocity2", "impulse")
+CORE_SCALARS = ("yaw_rate1", "yaw_rate2", "mu0")
+#: Auxiliary outputs, written by a second pass when one of them is first read.
+AUX_VECTORS = ("arm1", "arm2", "approach_velocity")
+AUX_SCALARS = ("impulse_n", "impulse_t", "critical_impulse_n", "critical_impulse_t",
+               "approach_n", "approach_t", "k_nn", "k_nt", "k_tt")
+AUX = AUX_VECTORS + AUX_SCALARS + ("normal", "tangent")
+
+
+#: Angles |Gamma| [rad] up to this take the kernel's own sine and cosine; beyond it the
+#: batch is redone with the C library's (the Cody-Waite reduction below is exact up to here).
+TRIG_LIMIT = 1.0e5
+#: Cases per block of the parallel loop (the inner loop over a block is vectorised).
+BLOCK = 4096
+
+# fdlibm's minimax coefficients of sin and cos on [-pi/4, pi/4] and its split of pi/2.
+_S1, _S2, _S3 = -1.66666666666666324348e-01, 8.33333333332248946124e-03, -1.98412698298579493134e-04
+_S4, _S5, _S6 = 2.75573137070700676789e-06, -2.50507602534068634195e-08, 1.58969099521155010221e-10
+_C1, _C2, _C3 = 4.16666666666666019037e-02, -1.38888888888741095749e-03, 2.48015872894767294178e-05
+_C4, _C5, _C6 = -2.75573143513906633035e-07, 2.08757232129817482790e-09, -1.13596475577881948265e-11
+_INVPIO2 = 6.36619772367581382433e-01
+_PIO2_1, _PIO2_2, _PIO2_2T = 1.57079632673412561417e+00, 6.07710050630396597660e-11, 2.02226624879595063154e-21
+
+
+@njit(inline="always", error_model="numpy")
+def _sincos(x):  # pragma: no cover - compiled
+    """sin x and cos x to within 1 ulp of the C library's for |x| <= TRIG_LIMIT, branch-free.
+
+    x = k pi/2 + y with k = rint(2x/pi), y reduced in three parts (Cody-Waite, fdlibm's
+    constants) and carried as a head y and tail yy; fdlibm's kernels on [-pi/4, pi/4]; the
+    quadrant k mod 4 swaps and negates them. No branches and no library call: about twice as
+    fast as the C library's sin and cos together (LLVM still keeps the loop scalar).
+    """
+    k = np.rint(x * _INVPIO2)
+    r = x - k * _PIO2_1
+    w = k * _PIO2_2
+    t = r
+    r = t - w
+    w = k * _PIO2_2T - ((t - r) - w)
+    y = r - w
+    yy = (r - y) - w
+    z = y * y
+    v = z * y
+    rs = _S2 + z * (_S3 + z * (_S4 + z * (_S5 + z * _S6)))
+    s = y - ((z * (0.5 * yy - v * rs) - yy) - v * _S1)
+    rc = z * (_C1 + z * (_C2 + z * (_C3 + z * (_C4 + z * (_C5 + z * _C6)))))
+    hz = 0.5 * z
+    w2 = 1.0 - hz
+    c = w2 + (((1.0 - w2) - hz) + (z * rc - y * yy))
+    q = np.int64(k) & 3
+    swap = (q & 1) == 1
+    a = c if swap else s
+    b = s if swap else c
+    sin_x = -a if (q & 2) == 2 else a
+    cos_x = -b if ((q + 1) & 2) == 2 else b
+    return sin_x, cos_x
+
+
+@njit(inline="always", error_model="numpy")
+def _case(i, cs, sn, m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, eps, beta, tol, full,
+          cvec, csc, approaching, singular, avec, asc, trig):  # pragma: no cover - compiled
+    """Solve case i given cos and sin of its Gamma; see :func:`pim.solver.solve`."""
+    nx = cs
+    ny = sn
+    tx = -sn
+    ty = cs
+    e = eps[i]
+    b = beta[i]
+    a1 = 1.0 / m1[i]
+    b1 = 1.0 / i1[i]
+    a2 = 1.0 / m2[i]
+    b2 = 1.0 / i2[i]
+    px = pt[i, 0]
+    py = pt[i, 1]
+    r1x = px - cg1[i, 0]
+    r1y = py - cg1[i, 1]
+    r2x = px - cg2[i, 0]
+    r2y = py - cg2[i, 1]
+    v1x = v1[i, 0]
+    v1y = v1[i, 1]
+    v2x = v2[i, 0]
+    v2y = v2[i, 1]
+    om1 = w1[i]
+    om2 = w2[i]
+    # u = (v1 + w1 k x r1) - (v2 + w2 k x r2), with k x r = (-r_y, r_x)
+    ux = (v1x + om1 * -r1y) - (v2x + om2 * -r2y)
+    uy = (v1y + om1 * r1x) - (v2y + om2 * r2x)
+    u_n = ux * nx + uy * ny
+    u_t = ux * tx + uy * ty
+    s1n = r1x * ny - r1y * nx
+    s1t = r1x * ty - r1y * tx
+    s2n = r2x * ny - r2y * nx
+    s2t = r2x * ty - r2y * tx
+    a = a1 + a2
+    k_nn = a + b1 * s1n * s1n + b2 * s2n * s2n
+    k_nt = b1 * s1n * s1t + b2 * s2n * s2t
+    k_tt = a + b1 * s1t * s1t + b2 * s2t * s2t
+    e1 = 1.0 + e
+    det = k_nn * k_tt - k_nt * k_nt
+    pn0 = (-e1 * u_n * k_tt + u_t * k_nt) / det
+    pt0 = (-u_t * k_nn + e1 * u_n * k_nt) / det
+    # K_nn Pn0 + beta K_nt Pt0 = -(1 + eps) u_n + (beta - 1) K_nt Pt0
+    drive = -e1 * u_n
+    excess = (b - 1.0) * k_nt * pt0
+    denom = drive + excess
+    size = np.abs(drive) + np.abs(excess)
+    appr = u_n < 0
+    sing = appr & (np.abs(denom) <= tol * size)
+    scale = drive / denom if appr else 0.0
+    scale = np.nan if sing else scale
+    p_n = scale * pn0
+    p_t = scale * b * pt0
+    ix = p_n * nx + p_t * tx
+    iy = p_n * ny + p_t * ty
+    cvec[0, i, 0] = v1x + a1 * ix
+    cvec[0, i, 1] = v1y + a1 * iy
+    cvec[1, i, 0] = v2x - a2 * ix
+    cvec[1, i, 1] = v2y - a2 * iy
+    cvec[2, i, 0] = ix
+    cvec[2, i, 1] = iy
+    csc[0, i] = om1 + b1 * (r1x * iy - r1y * ix)
+    csc[1, i] = om2 - b2 * (r2x * iy - r2y * ix)
+    csc[2, i] = pt0 / pn0
+    approaching[i] = appr
+    singular[i] = sing
+    if full:
+        avec[0, i, 0] = r1x
+        avec[0, i, 1] = r1y
+        avec[1, i, 0] = r2x
+        avec[1, i, 1] = r2y
+        avec[2, i, 0] = ux
+        avec[2, i, 1] = uy
+        asc[0, i] = p_n
+        asc[1, i] = p_t
+        asc[2, i] = pn0
+        asc[3, i] = pt0
+        asc[4, i] = u_n
+        asc[5, i] = u_t
+        asc[6, i] = k_nn
+        asc[7, i] = k_nt
+        asc[8, i] = k_tt
+        trig[i, 0] = tx
+        trig[i, 1] = cs
+        trig[i, 2] = sn
+    return (0 if (e >= 0.0) & (e <= 1.0) else 1), (0 if np.isfinite(b) else 1)
+
+
+@njit(parallel=True, cache=True, error_model="numpy", fastmath=False)
+def _solve_kernel_fast(m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, gamma, eps, beta, tol, full,
+                  cvec, csc, approaching, singular, avec, asc, trig):  # pragma: no cover
+    """Solve every case with the kernel's own sine and cosine (:func:`_sincos`).
+
+    Writes ``cvec`` (3, N, 2) and ``csc`` (3, N) in the orders of :data:`CORE_VECTORS`,
+    :data:`CORE_SCALARS`, and the flags; with ``full`` also ``avec`` (3, N, 2), ``asc``
+    (9, N) (:data:`AUX_VECTORS`, :data:`AUX_SCALARS`) and ``trig`` (N, 3) =
+    (-sin G, cos G, sin G). Returns the number of eps values outside [0, 1] (or NaN), of
+    non-finite beta values, and of |Gamma| > TRIG_LIMIT (whose results are then not used).
+    """
+    n = gamma.shape[0]
+    blocks = (n + BLOCK - 1) // BLOCK
+    counts = np.zeros((blocks, 3), dtype=np.int64)
+    for blk in prange(blocks):
+        bad_eps = 0
+        bad_beta = 0
+        big = 0
+        for i in range(blk * BLOCK, min(n, (blk + 1) * BLOCK)):
+            g = gamma[i]
+            sn, cs = _sincos(g)
+            big += 0 if np.abs(g) <= TRIG_LIMIT else 1
+            be, bb = _case(i, cs, sn, m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, eps, beta,
+                           tol, full, cvec, csc, approaching, singular, avec, asc, trig)
+            bad_eps += be
+            bad_beta += bb
+        counts[blk, 0] = bad_eps
+        counts[blk, 1] = bad_beta
+        counts[blk, 2] = big
+    total = counts.sum(axis=0)
+    return total[0], total[1], total[2]
+
+
+@njit(parallel=True, cache=True, error_model="numpy", fastmath=False)
+def _solve_kernel_libm(m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, gamma, eps, beta, tol,
+                       full, cvec, csc, approaching, singular, avec, asc,
+                       trig):  # pragma: no cover - compiled
+    """Solve every case with the C library's sine and cosine: bitwise the numpy path's values.
+
+    Same arguments as :func:`_solve_kernel_fast`."""
+    n = gamma.shape[0]
+    bad_eps = 0
+    bad_beta = 0
+    for i in prange(n):
+        g = gamma[i]
+        be, bb = _case(i, np.cos(g), np.sin(g), m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt,
+                       eps, beta, tol, full, cvec, csc, approaching, singular, avec, asc, trig)
+        bad_eps += be
+        bad_beta += bb
+    return bad_eps, bad_beta, 0
+
+
+@njit(parallel=True, cache=True)
+def _copy_kernel(m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, gamma, eps, beta, tol, full,
+                 cvec, csc, approaching, singular, avec, asc, trig):  # pragma: no cover
+    """The memory-traffic floor of :func:`_solve_kernel_libm`: same reads and writes, no arithmetic.
+
+    Every input element is read once (summed) and every output element written once, in the
+    same parallel loop over the same buffers as the solver.
+    """
+    n = gamma.shape[0]
+    for i in prange(n):
+        x = (m1[i] + i1[i] + w1[i] + m2[i] + i2[i] + w2[i] + gamma[i] + eps[i] + beta[i]
+             + cg1[i, 0] + cg1[i, 1] + v1[i, 0] + v1[i, 1] + cg2[i, 0] + cg2[i, 1]
+             + v2[i, 0] + v2[i, 1] + pt[i, 0] + pt[i, 1])
+        for k in range(3):
+            cvec[k, i, 0] = x
+            cvec[k, i, 1] = x
+            csc[k, i] = x
+        approaching[i] = x < 0
+        singular[i] = x > 0
+        if full:
+            for k in range(3):
+                avec[k, i, 0] = x
+                avec[k, i, 1] = x
+                trig[i, k] = x
+            for k in range(9):
+                asc[k, i] = x
+    return 0, 0, 0
+
+
+def _flat(value, shape: tuple, vector: bool) -> np.ndarray:
+    """``value`` broadcast to ``shape`` (+ (2,) for vectors), flattened to (N,) or (N, 2).
+
+    A view when possible (contiguous full arrays, and scalars via stride 0), else a copy.
+    """
+    full = shape + (2,) if vector else shape
+    arr = np.broadcast_to(np.asarray(value, dtype=float), full)
+    return arr.reshape((-1, 2) if vector else (-1,))
+
+
+def broadcast_shape(inputs: dict) -> tuple:
+    """Common shape of the named inputs (vectors without their trailing 2)."""
+    return np.broadcast_shapes(*[np.shape(inputs[k])[:-1] if k in VECTOR_INPUTS
+                                 else np.shape(inputs[k]) for k in INPUTS])
+
+
+def flatten_inputs(inputs: dict, shape: tuple) -> list[np.ndarray]:
+    """The kernel's input arguments from the named inputs (see :data:`INPUTS`)."""
+    return [_flat(inputs[name], shape, name in VECTOR_INPUTS) for name in INPUTS]
+
+
+def allocate(n: int, full: bool) -> list[np.ndarray]:
+    """Output buffers for ``n`` cases (uninitialised: the kernel writes every element)."""
+    m = n if full else 0
+    return [np.empty((len(CORE_VECTORS), n, 2)), np.empty((len(CORE_SCALARS), n)),
+            np.empty(n, dtype=bool), np.empty(n, dtype=bool),
+            np.empty((len(AUX_VECTORS), m, 2)), np.empty((len(AUX_SCALARS), m)),
+            np.empty((m, 3))]
+
+
+def solve_arrays(inputs: dict, tol: float, full: bool = False, copy_only: bool = False,
+                 fast_trig: bool = False) -> dict:
+    """Run the kernel on named inputs (SI; see :data:`INPUTS`) broadcast together.
+
+    Parameters
+    ----------
+    inputs : dict
+        ``mass1 [kg], inertia1 [kg m^2], cg1 [m] (..., 2), velocity1 [m/s] (..., 2),
+        yaw_rate1 [rad/s]``, the same for vehicle 2, ``point [m] (..., 2),
+        normal_angle [rad], eps [-], beta [-]``, in any shapes that broadcast.
+    tol : float
+        Relative tolerance of the singular-q test (``pim.solver.SINGULAR_TOLERANCE``).
+    full : bool
+        Also return the auxiliary fields (:data:`AUX`), not just the core ones.
+    copy_only : bool
+        Run the memory-traffic floor instead: same reads and writes, no arithmetic.
+    fast_trig : bool
+        Use the kernel's own branch-free sine and cosine (:func:`_sincos`, within 1 ulp of
+        the C library's) instead of the C library's, which numpy uses: about 20 % faster,
+        and results then differ from the numpy path by round-off amplified by cancellation
+        (normwise ~1e-15) instead of not at all.
+
+    Returns
+    -------
+    dict
+        The core fields of :class:`pim.Result` (``velocity1/2, impulse, yaw_rate1/2, mu0,
+        approaching, q_singular``; with ``full`` also :data:`AUX`) at the broadcast shape,
+        and ``bad_eps`` / ``bad_beta``: the number of eps outside [0, 1] (or NaN) and of
+        non-finite beta.
+    """
+    shape = broadcast_shape(inputs)
+    n = int(np.prod(shape, dtype=np.int64))
+    args = flatten_inputs(inputs, shape)
+    out = allocate(n, full)
+    kernel = _copy_kernel if copy_only else (_solve_kernel_fast if fast_trig
+                                             else _solve_kernel_libm)
+    bad_eps, bad_beta, big = kernel(*args, float(tol), bool(full), *out)
+    if big:  # some |Gamma| beyond the range of the kernel's own sine and cosine: redo
+        bad_eps, bad_beta, big = _solve_kernel_libm(*args, float(tol), bool(full), *out)
+    cvec, csc, appr, sing, avec, asc, trig = out
+    fields = {name: cvec[k].reshape(shape + (2,)) for k, name in enumerate(CORE_VECTORS)}
+    fields.update({name: csc[k].reshape(shape) for k, name in enumerate(CORE_SCALARS)})
+    fields["approaching"] = appr.reshape(shape)
+    fields["q_singular"] = sing.reshape(shape)
+    if full:
+        fields.update({name: avec[k].reshape(shape + (2,)) for k, name in enumerate(AUX_VECTORS)})
+        fields.update({name: asc[k].reshape(shape) for k, name in enumerate(AUX_SCALARS)})
+        trig = trig.reshape(shape + (3,))
+        trig.flags.writeable = False  # normal and tangent overlap in it
+        fields["normal"] = trig[..., 1:]
+        fields["tangent"] = trig[..., :2]
+    fields["bad_eps"], fields["bad_beta"] = int(bad_eps), int(bad_beta)
+    return fields
+
+
+def stream_copy(inputs: dict, full: bool = False) -> dict:
+    """The memory-copy bound: :func:`solve_arrays` with the arithmetic taken out."""
+    return solve_arrays(inputs, 0.0, full=full, copy_only=True)
+
+
+def case_inputs(case, eps, beta) -> dict:
+    """The kernel's named inputs of a :class:`pim.Case` with eps and beta [-]."""
+    v1, v2, imp = case.vehicle1, case.vehicle2, case.impact
+    return {"mass1": v1.mass, "inertia1": v1.yaw_inertia, "cg1": v1.cg,
+            "velocity1": v1.velocity, "yaw_rate1": v1.yaw_rate, "mass2": v2.mass,
+            "inertia2": v2.yaw_inertia, "cg2": v2.cg, "velocity2": v2.velocity,
+            "yaw_rate2": v2.yaw_rate, "point": imp.point, "normal_angle": imp.normal_angle,
+            "eps": eps, "beta": beta}
+
+
+class _Aux:
+    """Descriptor of an auxiliary field: the first read runs the full kernel once."""
+
+    def __set_name__(self, owner, name):
+        self.name = name
+
+    def __get__(self, obj, owner=None):
+        if obj is None:
+            return self
+        obj._fill_aux()
+        return obj.__dict__[self.name]
+
+
+class KernelResult(Result):
+    """A :class:`pim.Result` from the compiled kernel.
+
+    The core fields (post-impact velocities, yaw rates, impulse, mu0 and the flags
+    ``approaching`` / ``q_singular``) are computed by :func:`solve_case`. The auxiliary
+    fields (:data:`AUX`: arms, approach velocity, K, n-t and critical impulse components,
+    normal, tangent) are computed all together, by one more pass of the kernel, when the
+    first of them is read. Everything else behaves as :class:`pim.Result`.
+    """
+
+    def _fill_aux(self) -> None:
+        if "k_nn" in self.__dict__:
+            return
+        out = solve_arrays(case_inputs(self.case, self.eps, self.beta), self._tol, full=True,
+                           fast_trig=self._fast_trig)
+        self.__dict__.update({name: out[name] for name in AUX})
+
+    def __reduce__(self):
+        # pickle as a plain Result with every field computed
+        from dataclasses import fields
+
+        return _rebuild, (self.__dict__["case"],
+                          {f.name: getattr(self, f.name) for f in fields(Result)})
+
+
+for _name in AUX:
+    _descriptor = _Aux()
+    _descriptor.__set_name__(KernelResult, _name)
+    setattr(KernelResult, _name, _descriptor)
+
+
+def _rebuild(case, values: dict) -> Result:
+    return Result(**values)
+
+
+def solve_case(case, eps, beta, tol: float, fast_trig: bool = False) -> KernelResult:
+    """:func:`pim.solve` of ``case`` on the kernel: a :class:`KernelResult`.
+
+    ``eps`` and ``beta`` are arrays [-]; raises ValueError (as :func:`pim.solve`) when eps is
+    outside [0, 1] or beta is not finite. ``fast_trig``: see :func:`solve_arrays`.
+    """
+    out = solve_arrays(case_inputs(case, eps, beta), tol, fast_trig=fast_trig)
+    bad_eps, bad_beta = out.pop("bad_eps"), out.pop("bad_beta")
+    if bad_eps:
+        raise ValueError(f"eps (coefficient of restitution) must be in [0, 1] "
+                         f"({bad_eps} values are not)")
+    if bad_beta:
+        raise ValueError(f"beta (fraction of mu0) must be a finite number, usually in [0, 1] "
+                         f"({bad_beta} values are not)")
+    result = object.__new__(KernelResult)
+    result.__dict__.update(out, case=case, eps=eps, beta=beta, _tol=tol, _fast_trig=fast_trig)
+    return result

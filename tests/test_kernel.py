@@ -1,0 +1,195 @@
+"""The compiled kernel (pim/kernel.py) against the numpy reference path of pim.solve.
+
+The default kernel uses the same arithmetic in the same order and the same C library sine and
+cosine as numpy, so the two must agree bitwise; the check below allows 1e-12 relative (per
+element) so that it does not depend on that, and the fast-trig variant is held to 1e-12
+normwise (max error over max magnitude), since a 1-ulp sine can be amplified by cancellation
+in single elements. Scenes: random two-vehicle impacts, fixed obstacles, separating contacts
+(no impact), singular q, and broadcast (scalar) inputs.
+"""
+
+import pickle
+
+import numpy as np
+import pytest
+
+import pim
+from pim import kernel
+from pim.solver import SINGULAR_TOLERANCE
+
+FIELDS = ["velocity1", "velocity2", "yaw_rate1", "yaw_rate2", "impulse", "impulse_n",
+          "impulse_t", "critical_impulse_n", "critical_impulse_t", "normal", "tangent", "arm1",
+          "arm2", "approach_velocity", "approach_n", "approach_t", "k_nn", "k_nt", "k_tt", "mu0"]
+DERIVED = ["energy_loss", "delta_v1_magnitude", "pdof1", "pdof2", "separation_n",
+           "crush_energy_tangential", "total_loss_brach"]
+
+
+def random_case(n, seed, fixed=False):
+    """n random scenes, every input varying; a third of them do not approach at C."""
+    rng = np.random.default_rng(seed)
+
+    def vehicle():
+        m = rng.uniform(500, 3000, n)
+        return pim.Vehicle(m, m * rng.uniform(0.8, 2.0, n) ** 2, rng.uniform(-3, 3, (n, 2)),
+                           rng.uniform(-30, 30, (n, 2)), rng.uniform(-3, 3, n),
+                           rng.uniform(-np.pi, np.pi, n))
+
+    v1 = vehicle()
+    if fixed:
+        v2 = pim.Vehicle(np.full(n, np.inf), np.full(n, np.inf), rng.uniform(-3, 3, (n, 2)),
+                         np.zeros((n, 2)), np.zeros(n), rng.uniform(-np.pi, np.pi, n))
+    else:
+        v2 = vehicle()
+    impact = pim.Impact(rng.uniform(-2, 2, (n, 2)), rng.uniform(-20, 20, n))
+    return pim.Case(v1, v2, impact), rng.uniform(0, 1, n), rng.uniform(-0.2, 1.2, n)
+
+
+def assert_same(fast, ref, fields=FIELDS, rtol=1e-12):
+    for name in fields:
+        a = np.asarray(getattr(fast, name))
+        b = np.broadcast_to(getattr(ref, name), a.shape)
+        assert a.shape == b.shape, name
+        np.testing.assert_array_equal(np.isnan(a), np.isnan(b), err_msg=name)
+        ok = ~np.isnan(b)
+        err = np.abs(a[ok] - b[ok])
+        assert np.all(err <= rtol * np.abs(b[ok])), (name, np.max(err / np.abs(b[ok])))
+    np.testing.assert_array_equal(fast.approaching, np.broadcast_to(ref.approaching, a.shape[:1]))
+    np.testing.assert_array_equal(fast.q_singular, np.broadcast_to(ref.q_singular, a.shape[:1]))
+
+
+@pytest.mark.parametrize("fixed", [False, True])
+def test_kernel_equals_numpy_on_random_scenes(fixed):
+    case, eps, beta = random_case(20_000, seed=1 + fixed, fixed=fixed)
+    ref = pim.solve(case, eps, beta, backend="numpy")
+    fast = pim.solve(case, eps, beta, backend="numba")
+    assert isinstance(fast, kernel.KernelResult) and isinstance(fast, pim.Result)
+    assert 0.2 < ref.approaching.mean() < 0.8  # both approaching and separating scenes
+    assert not np.any(fast.impulse[~ref.approaching])  # no impact, no impulse
+    assert_same(fast, ref, FIELDS + DERIVED)
+    if fixed:  # the obstacle does not move
+        assert np.all(fast.velocity2[~fast.q_singular] == 0)
+        assert np.all(fast.yaw_rate2[~fast.q_singular] == 0)
+    assert fast.problems() == ref.problems()
+
+
+def test_auto_backend_takes_the_kernel_for_large_batches_only():
+    case, eps, beta = random_case(pim.solver.FAST_PATH_MIN_SIZE, seed=3)
+    assert isinstance(pim.solve(case, eps, beta), kernel.KernelResult)
+    small, eps, beta = random_case(100, seed=3)
+    assert not isinstance(pim.solve(small, eps, beta), kernel.KernelResult)
+    with pytest.raises(ValueError, match="backend"):
+        pim.solve(small, eps, beta, backend="fortran")
+
+
+def test_singular_q_is_flagged_and_nan_in_both_paths():
+    """beta chosen so that K_nn Pn0 + beta K_nt Pt0 = 0: q = 1/(A - mu B) is singular."""
+    case, eps, _ = random_case(5000, seed=4)
+    ref1 = pim.solve(case, eps, 1.0, backend="numpy")
+    beta = -(ref1.k_nn * ref1.critical_impulse_n) / (ref1.k_nt * ref1.critical_impulse_t)
+    beta = np.where(np.isfinite(beta), beta, 0.5)
+    ref = pim.solve(case, eps, beta, backend="numpy")
+    fast = pim.solve(case, eps, beta, backend="numba")
+    expected = ref1.approaching & np.isfinite(
+        -(ref1.k_nn * ref1.critical_impulse_n) / (ref1.k_nt * ref1.critical_impulse_t))
+    assert ref.q_singular.sum() > 1000
+    np.testing.assert_array_equal(fast.q_singular, ref.q_singular)
+    assert np.all(fast.q_singular <= expected)
+    assert np.all(np.isnan(fast.velocity1[fast.q_singular]))
+    assert_same(fast, ref)
+
+
+def test_broadcast_inputs_and_shapes():
+    """Scalar and (2,) inputs broadcast against a (40, 50) batch, as in the numpy path."""
+    rng = np.random.default_rng(5)
+    shape = (40, 50)
+    v1 = pim.Vehicle(1500.0, 2500.0, (1.5, 0.2), rng.uniform(-20, 20, shape + (2,)),
+                     rng.uniform(-1, 1, shape))
+    v2 = pim.Vehicle.obstacle(cg=(-1.0, 0.0))
+    case = pim.Case(v1, v2, pim.Impact((0.0, 0.0), rng.uniform(-1, 1, (50,))))
+    eps = rng.uniform(0, 1, (40, 1))
+    ref = pim.solve(case, eps, 0.7, backend="numpy")
+    fast = pim.solve(case, eps, 0.7, backend="numba")
+    assert fast.velocity1.shape == shape + (2,) and fast.mu0.shape == shape
+    assert fast.normal.shape == shape + (2,)
+    for name in FIELDS + DERIVED:
+        a, b = np.broadcast_arrays(getattr(fast, name), getattr(ref, name))
+        np.testing.assert_allclose(a, b, rtol=1e-12, atol=0, err_msg=name)
+
+
+def test_fast_trig_variant_agrees_normwise():
+    case, eps, beta = random_case(20_000, seed=6)
+    ref = pim.solve(case, eps, beta, backend="numpy")
+    fast = kernel.solve_case(case, eps, beta, SINGULAR_TOLERANCE, fast_trig=True)
+    for name in FIELDS:
+        a, b = np.asarray(getattr(fast, name)), getattr(ref, name)
+        ok = np.isfinite(b)
+        assert np.max(np.abs(a[ok] - b[ok])) <= 1e-12 * np.max(np.abs(b[ok])), name
+    np.testing.assert_array_equal(fast.approaching, ref.approaching)
+
+
+def test_fast_sine_cosine_within_one_ulp():
+    x = np.concatenate([np.linspace(-10, 10, 200_001), np.pi / 4 * np.arange(-400, 400),
+                        [0.0, -0.0, 1e-300, 3e-9, kernel.TRIG_LIMIT]])
+    sin_x, cos_x = _sincos_array(x)
+    np.testing.assert_array_max_ulp(sin_x, np.sin(x), maxulp=1)
+    np.testing.assert_array_max_ulp(cos_x, np.cos(x), maxulp=1)
+
+
+def _sincos_array(x):
+    from numba import njit
+
+    @njit
+    def run(x, s, c):
+        for i in range(x.size):
+            s[i], c[i] = kernel._sincos(x[i])
+
+    s, c = np.empty_like(x), np.empty_like(x)
+    run(x, s, c)
+    return s, c
+
+
+def test_huge_angles_fall_back_to_library_trig():
+    case, eps, beta = random_case(1000, seed=7)
+    far = pim.Case(case.vehicle1, case.vehicle2,
+                   pim.Impact(case.impact.point, case.impact.normal_angle + 2e7))
+    ref = pim.solve(far, eps, beta, backend="numpy")
+    fast = kernel.solve_case(far, eps, beta, SINGULAR_TOLERANCE, fast_trig=True)
+    np.testing.assert_array_equal(fast.velocity1, ref.velocity1)
+
+
+def test_bad_eps_and_beta_raise_like_the_numpy_path():
+    case, eps, beta = random_case(100, seed=8)
+    bad = eps.copy()
+    bad[7] = 1.5
+    with pytest.raises(ValueError, match="eps"):
+        pim.solve(case, bad, beta, backend="numba")
+    bad[7] = np.nan
+    with pytest.raises(ValueError, match="eps"):
+        pim.solve(case, bad, beta, backend="numba")
+    bad_beta = beta.copy()
+    bad_beta[3] = np.inf
+    with pytest.raises(ValueError, match="beta"):
+        pim.solve(case, eps, bad_beta, backend="numba")
+
+
+def test_auxiliary_fields_are_lazy_and_results_pickle():
+    case, eps, beta = random_case(1000, seed=9)
+    fast = pim.solve(case, eps, beta, backend="numba")
+    assert "k_nn" not in fast.__dict__ and "mu0" in fast.__dict__
+    _ = fast.energy_loss  # needs only core fields
+    assert "k_nn" not in fast.__dict__
+    _ = fast.approach_n
+    assert "k_nn" in fast.__dict__ and fast.normal.flags.writeable is False
+    back = pickle.loads(pickle.dumps(fast))
+    assert type(back) is pim.Result
+    np.testing.assert_array_equal(back.velocity1, fast.velocity1)
+
+
+def test_stream_copy_writes_every_output():
+    case, eps, beta = random_case(1000, seed=10)
+    inputs = kernel.case_inputs(case, eps, beta)
+    core = kernel.stream_copy(inputs)
+    full = kernel.stream_copy(inputs, full=True)
+    x = sum(np.asarray(v, float).reshape(1000, -1).sum(axis=1) for v in inputs.values())
+    np.testing.assert_allclose(core["mu0"], x, rtol=1e-12)
+    np.testing.assert_allclose(full["k_tt"], x, rtol=1e-12)
