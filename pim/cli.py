@@ -110,6 +110,26 @@ def solve(case_name, eps, beta, units, as_json):
         click.echo(f"warning: {text}", err=True)
 
 
+@cli.command()
+@case_argument
+@click.option("--out", "out", type=click.Path(dir_okay=False), required=True,
+              help="Image file to write (.png or .svg).")
+@eps_option
+@beta_option
+def draw(case_name, out, eps, beta):
+    """Draw CASE's geometry and sign conventions (outlines, C, n, t, Gamma, arms, velocities)."""
+    from .casefile import load_case
+    from .drawing import draw_case, save_figure
+    from .solver import solve as solve_case
+
+    case = load_case(case_name)
+    result = None
+    if eps is not None or case.impact.restitution is not None:
+        result = solve_case(case, eps, beta)
+    path = save_figure(draw_case(case, result), out)
+    click.echo(f"wrote {path}")
+
+
 def main(argv=None) -> int:
     """Entry point of the ``pim`` console script; returns the exit code."""
     try:

@@ -1,0 +1,67 @@
+"""The pim command line: solve, cases, draw (text, JSON, files) and its exit codes."""
+
+import json
+from importlib import resources
+
+import pytest
+
+import pim
+from pim.cli import main
+
+
+def test_solve_prints_the_ricsac9_table_in_us_units(capsys):
+    assert main(["solve", "ricsac9", "--units", "us"]) == 0
+    out = capsys.readouterr().out
+    assert "post-impact yaw rate" in out and "-199.70" in out and "87.31" in out
+    assert "mph" in out and "ft lbf" in out
+
+
+def test_solve_json_matches_the_library(capsys):
+    assert main(["solve", "ricsac9", "--eps", "0.5", "--beta", "0.5", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    r = pim.solve(pim.load_case("ricsac9"), 0.5, 0.5)
+    assert data["admissible"] is True and data["problems"] == []
+    assert data["results"]["velocity_x"]["vehicle1"] == pytest.approx(float(r.velocity1[0]))
+    assert data["results"]["velocity_x"]["unit"] == "m/s"
+    assert data["results"]["energy_loss"]["value"] == pytest.approx(float(r.energy_loss) / 1e3)
+
+
+def test_separating_case_warns(tmp_path, capsys):
+    text = (resources.files("pim") / "cases" / "hard-eps0.toml").read_text()
+    path = tmp_path / "apart.toml"
+    path.write_text(text.replace('velocity = ["15 m/s", "0 m/s"]', 'velocity = ["-15 m/s", "0 m/s"]'))
+    assert main(["solve", str(path)]) == 0
+    assert "warning: the vehicles do not approach" in capsys.readouterr().err
+
+
+def test_singular_q_is_an_error(capsys):
+    from tests.test_hard_cases import singular_beta
+
+    beta = singular_beta(pim.load_case("hard-eps0"), 0.0)
+    assert main(["solve", "hard-eps0", "--eps", "0", "--beta", repr(beta)]) == 2
+    assert "q is singular" in capsys.readouterr().err
+
+
+def test_cases_lists_the_bundled_cases(capsys):
+    assert main(["cases"]) == 0
+    out = capsys.readouterr().out
+    for name in ("ricsac9", "ricsac9-brach", "hard-grazing", "hard-pole"):
+        assert name in out
+
+
+def test_draw_writes_an_image(tmp_path):
+    out = tmp_path / "fig" / "conventions.png"
+    assert main(["draw", "ricsac9", "--out", str(out)]) == 0
+    data = out.read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 20000
+    assert not [p for p in out.parent.iterdir() if p.name.startswith(".")]
+
+
+def test_import_is_light():
+    import subprocess
+    import sys
+
+    code = ("import sys, pim; heavy = {'matplotlib', 'pint', 'numba', 'scipy', 'pymunk'}; "
+            "print(sorted(heavy & set(sys.modules)))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"
