@@ -1,0 +1,243 @@
+"""``pim fit``, ``pim sensitivity`` and ``pim plot``: the least-squares optimum, its
+sensitivities and the design sheet's graphs."""
+
+from __future__ import annotations
+
+import click
+
+from ..cli import case_argument, echo_json, json_option, units_option
+
+__all__ = ["fit", "sensitivity", "plot"]
+
+include_yaw_option = click.option(
+    "--include-yaw", is_flag=True,
+    help="Also fit the measured yaw rates, weighted by each vehicle's radius of gyration.")
+fixed_eps_option = click.option("--eps", type=float, default=None,
+                                help="Hold epsilon fixed at this value and fit beta only.")
+fixed_beta_option = click.option("--beta", type=float, default=None,
+                                 help="Hold beta fixed at this value and fit epsilon only.")
+eps_range_option = click.option("--eps-range", type=float, nargs=2, default=(0.0, 1.0),
+                                show_default=True, metavar="MIN MAX",
+                                help="Search range of epsilon (within [0, 1]).")
+beta_range_option = click.option("--beta-range", type=float, nargs=2, default=(0.0, 1.0),
+                                 show_default=True, metavar="MIN MAX",
+                                 help="Search range of beta; the sheet's constraint is "
+                                      "beta <= 1 (wider ranges are flagged).")
+
+
+def _fit(case, include_yaw, eps, beta, eps_range, beta_range):
+    from ..fit import fit as fit_case
+
+    return fit_case(case, include_yaw=include_yaw, bounds=(eps_range, beta_range),
+                    eps=eps, beta=beta)
+
+
+def _describe_bounds(result, units) -> list[str]:
+    from ..units import convert
+
+    fv, uv = convert(1.0, "velocity", units)
+    lines = []
+    for name, side in result.on_bound.items():
+        k = ("eps", "beta").index(name)
+        value = result.bounds[k][0 if side == "lower" else 1]
+        slope = result.gradient[k]
+        lines.append(f"{name} sits on its {side} bound {value:g} (d cost / d {name} = "
+                     f"{slope * fv * fv:.4g} ({uv})^2: the error would keep falling beyond it)")
+    return lines
+
+
+@click.command()
+@case_argument
+@include_yaw_option
+@fixed_eps_option
+@fixed_beta_option
+@eps_range_option
+@beta_range_option
+@units_option
+@json_option
+def fit(case_name, include_yaw, eps, beta, eps_range, beta_range, units, as_json):
+    """Least-squares (epsilon, beta) matching CASE's measured post-impact motion.
+
+    Searches the whole (epsilon, beta) box on a grid, then refines the best minima, so it
+    finds the global optimum. --eps or --beta fits the other parameter alone.
+    """
+    from ..casefile import load_case
+    from ..units import convert
+
+    case = load_case(case_name)
+    result = _fit(case, include_yaw, eps, beta, eps_range, beta_range)
+    if as_json:
+        echo_json(result.to_dict())
+        return
+    solved = result.result
+    fv, uv = convert(1.0, "velocity", units)
+    fw, uw = convert(1.0, "angular_velocity", units)
+    fixed = f" (fixed: {', '.join(result.fixed)})" if result.fixed else ""
+    click.echo(f"{case.name}: least-squares fit of the post-impact "
+               f"{'velocities and yaw rates' if include_yaw else 'velocities'}{fixed}")
+    click.echo(f"  epsilon = {result.eps:.6f}   search range [{result.bounds[0][0]:g}, "
+               f"{result.bounds[0][1]:g}]")
+    click.echo(f"  beta    = {result.beta:.6f}   search range [{result.bounds[1][0]:g}, "
+               f"{result.bounds[1][1]:g}]   (mu = {float(solved.mu):.4f}, "
+               f"mu0 = {float(solved.mu0):.4f})")
+    click.echo(f"  cost    = {result.cost * fv * fv:.6g} ({uv})^2   "
+               f"rms residual = {result.rms * fv:.4g} {uv}")
+    for line in _describe_bounds(result, units):
+        click.echo(f"  note: {line}")
+    if len(result.minima) > 1:
+        click.echo("  other local minima (eps, beta, cost): " + ", ".join(
+            f"({e:.4f}, {b:.4f}, {c * fv * fv:.4g})" for e, b, c in result.minima[1:]))
+    click.echo("")
+    header = f"  {'term':<14} {'model':>10} {'measured':>10} {'residual':>10}  unit"
+    click.echo(header)
+    click.echo("  " + "-" * (len(header) - 2))
+    m = case.measured
+    for name, res in zip(result.residual_names, result.residuals, strict=True):
+        i = int(name[8] if name.startswith("velocity") else name[-1])
+        if name.startswith("velocity"):
+            axis = "xy".index(name[-1])
+            model = float(getattr(solved, f"velocity{i}")[..., axis]) * fv
+            meas = float(getattr(m, f"velocity{i}")[axis]) * fv
+            unit = uv
+        else:
+            model = float(getattr(solved, f"yaw_rate{i}")) * fw
+            meas = float(getattr(m, f"yaw_rate{i}")) * fw
+            unit = uw
+        click.echo(f"  {name:<14} {model:10.4f} {meas:10.4f} {model - meas:10.4f}  {unit}")
+    for text in solved.problems():
+        click.echo(f"warning: {text}", err=True)
+
+
+def _ratio_unit(out_unit: str, in_unit: str) -> str:
+    """Unit of d out / d in, e.g. 1/m, (m/s)/deg; '-' when both are the same."""
+    if out_unit == in_unit:
+        return "-"
+
+    def wrap(u):
+        return f"({u})" if ("/" in u or " " in u) else u
+
+    return f"{'1' if out_unit == '-' else wrap(out_unit)}/{wrap(in_unit)}"
+
+
+def _parse_sigma(items) -> dict:
+    from ..sensitivity import Uncertainty
+    from ..units import parse
+
+    kinds = {"point": "length", "normal_angle": "angle", "mass_fraction": "dimensionless",
+             "inertia_fraction": "dimensionless", "velocity": "velocity",
+             "yaw_rate": "angular_velocity", "measured_velocity": "velocity",
+             "measured_yaw_rate": "angular_velocity"}
+    out = {}
+    for item in items:
+        key, sep, value = item.partition("=")
+        key = key.strip()
+        if not sep or key not in kinds:
+            raise ValueError(f"--sigma must be KEY=VALUE with KEY one of {', '.join(kinds)}; "
+                             f"got {item!r}")
+        out[key] = parse(value.strip(), kinds[key], f"--sigma {key}")
+    return Uncertainty(**out)
+
+
+@click.command()
+@case_argument
+@include_yaw_option
+@click.option("--eps", type=float, default=None,
+              help="Evaluate delta-V at this epsilon instead of fitting.")
+@click.option("--beta", type=float, default=None,
+              help="Evaluate delta-V at this beta instead of fitting.")
+@click.option("--sigma", "sigmas", multiple=True, metavar="KEY=VALUE",
+              help="Override a typical uncertainty, e.g. --sigma point='0.2 m' "
+                   "--sigma normal_angle='3 deg' --sigma mass_fraction=0.05. Keys: point, "
+                   "normal_angle, mass_fraction, inertia_fraction, velocity, yaw_rate, "
+                   "measured_velocity, measured_yaw_rate.")
+@click.option("--top", type=int, default=None, help="Show only the N largest effects.")
+@units_option
+@json_option
+def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
+    """Which uncertain input moves the fitted (epsilon, beta) and delta-V most.
+
+    For each answer, the inputs are ranked by the change that one typical uncertainty
+    (sigma) of the input causes; the derivative per unit is shown too.
+    """
+    from ..casefile import load_case
+    from ..sensitivity import INPUTS, SENSITIVITY_OUTPUTS
+    from ..sensitivity import sensitivity as compute
+    from ..units import convert
+
+    case = load_case(case_name)
+    sens = compute(case, eps=eps, beta=beta, uncertainty=_parse_sigma(sigmas),
+                   include_yaw=include_yaw)
+    if as_json:
+        echo_json(sens.to_dict())
+        return
+
+    def factor(kind):
+        if kind is None:
+            return 1.0, "-"
+        value, unit = convert(1.0, kind, units)
+        return float(value), unit
+
+    how = ("fitted to the measured motion" if sens.fit is not None
+           else "at fixed epsilon, beta (nothing measured)")
+    click.echo(f"{case.name}: sensitivity at epsilon = {sens.eps:.4f}, beta = {sens.beta:.4f} "
+               f"({how})")
+    if sens.active_bounds:
+        click.echo(f"  {', '.join(sens.active_bounds)} on an active bound: held there "
+                   "(derivative 0)")
+    for k, out in enumerate(sens.outputs):
+        label, out_kind = SENSITIVITY_OUTPUTS[out]
+        fo, uo = factor(out_kind)
+        click.echo("")
+        click.echo(f"{label} = {sens.values[k] * fo:.5g} {uo if uo != '-' else ''}".rstrip()
+                   + ("  (includes the refit of epsilon, beta)"
+                      if out.startswith("delta") and sens.fit is not None else ""))
+        if out in sens.active_bounds:
+            click.echo("  held on an active bound: small input changes do not move it")
+            continue
+        rows = []
+        for i in sens.ranked(out)[:top]:
+            in_label, in_kind = INPUTS[sens.inputs[i]]
+            fi, ui = factor(in_kind)
+            rows.append((in_label, f"{sens.sigma[i] * fi:.4g} {ui}",
+                         f"{sens.derivative[k, i] * fo / fi:+.4g}",
+                         _ratio_unit(uo, ui),
+                         f"{sens.effect[k, i] * fo:.4g}"))
+        head = ("input", "sigma", "per unit", "unit", f"per sigma [{uo}]")
+        widths = [max(len(r[c]) for r in [head, *rows]) for c in range(5)]
+        fmt = "  {:<%d}  {:>%d}  {:>%d}  {:<%d}  {:>%d}" % tuple(widths)
+        click.echo(fmt.format(*head))
+        click.echo("  " + "  ".join("-" * w for w in widths))
+        for r in rows:
+            click.echo(fmt.format(*r))
+
+
+@click.command()
+@case_argument
+@click.option("--out", "out_dir", type=click.Path(file_okay=False), required=True,
+              help="Directory for the figures (created if missing).")
+@click.option("--format", "formats", type=click.Choice(["png", "svg", "pdf"]), multiple=True,
+              default=("png", "svg"), show_default=True, help="File format (repeatable).")
+@include_yaw_option
+@eps_range_option
+@beta_range_option
+@units_option
+def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units):
+    """Draw the design sheet's graphs for CASE into --out (PNG and SVG).
+
+    Cost vs epsilon, impulse ratio, impulse on vehicle 2, PDOF, energy loss, post-impact
+    velocities with the measured values, and the cost map over (epsilon, beta).
+    """
+    from ..casefile import load_case
+    from ..fit import _measured_terms
+    from ..plots import write_plots
+
+    case = load_case(case_name)
+    try:
+        _measured_terms(case, include_yaw)
+    except ValueError:
+        result = None
+        click.echo("note: nothing measured; plotting without the fit", err=True)
+    else:
+        result = _fit(case, include_yaw, None, None, eps_range, beta_range)
+    for path in write_plots(case, result, out_dir, formats=formats, units=units):
+        click.echo(str(path))
