@@ -5,7 +5,8 @@ from __future__ import annotations
 __all__ = ["SimulationError", "FAILURE_KINDS"]
 
 #: Every value :attr:`SimulationError.kind` can take.
-FAILURE_KINDS = ("no_contact", "never_separated", "multiple_contacts", "energy_gained")
+FAILURE_KINDS = ("no_contact", "never_separated", "multiple_contacts", "energy_gained",
+                 "not_converged")
 
 
 class SimulationError(RuntimeError):
@@ -18,7 +19,9 @@ class SimulationError(RuntimeError):
         tunnelling at large dt, or the bodies do not approach at C), "never_separated" (the
         contact still pushed after ``settings.max_contact_time``), "multiple_contacts"
         (more contact points than the scene allows), "energy_gained" (kinetic energy rose
-        beyond ``settings.energy_tolerance``).
+        beyond ``settings.energy_tolerance``), "not_converged" (the contact law was not met
+        after a contact step: too few solver iterations, or a sliding contact on which
+        Chipmunk's sequential impulses diverge, see :mod:`sim.convergence`).
     step : int or None
         Step at which the failure was found.
     """

@@ -91,6 +91,10 @@ class SimResult:
     friction : float
         Coulomb coefficient given to the engine's contact [-] (|mu| for beta < 1, a
         sticking value for beta = 1).
+    iterations : int
+        Solver sweeps per step used (automatic unless ``settings.iterations`` is set).
+    contraction_rate : float
+        Predicted error factor per sweep of PIM's contact (:mod:`sim.convergence`).
     settings : Settings
         The settings used.
     trajectory : Trajectory
@@ -115,6 +119,8 @@ class SimResult:
     eps: float
     beta: float
     friction: float
+    iterations: int
+    contraction_rate: float
     settings: Settings
     trajectory: Trajectory
     final_velocity1: np.ndarray

@@ -47,14 +47,14 @@ APPROACH_TOLERANCE = 1e-9
 class _Monitor:
     """Per-step bookkeeping filled by the collision callbacks."""
 
-    __slots__ = ("accepted", "points", "max_points", "too_many", "impulse", "tol", "pin",
-                 "normal", "allowed", "body1", "body2")
+    __slots__ = ("accepted", "points", "max_points", "impulse", "tol", "pin", "normal",
+                 "allowed", "body1", "body2", "before", "residual", "eps", "friction",
+                 "check", "done")
 
     def __init__(self, scene: Scene, settings: Settings) -> None:
         self.accepted = False
         self.points = 0
         self.max_points = 0
-        self.too_many = 0
         self.impulse = [0.0, 0.0]
         self.tol = APPROACH_TOLERANCE * scene.speed_scale
         self.pin = settings.contact == "point" and settings.start == "exact"
@@ -62,6 +62,16 @@ class _Monitor:
         self.normal = pymunk.Vec2d(-float(scene.normal[0]), -float(scene.normal[1]))
         self.allowed = settings.points_allowed
         self.body1, self.body2 = scene.body1, scene.body2
+        self.before = None       # (point_a, point_b, vrn, vrt) of a single-point contact
+        self.residual = 0.0      # worst contact-law residual [m/s] over the contact steps
+        self.eps, self.friction = scene.eps, scene.friction
+        self.check = settings.convergence_tolerance is not None
+        self.done = False        # exact placement: the one impulse has been applied
+
+
+def _relative(mon: _Monitor, point_a, point_b):
+    """Velocity of vehicle 2's point minus vehicle 1's (Chipmunk's b - a) [m/s]."""
+    return mon.body2.velocity_at_world_point(point_b) - mon.body1.velocity_at_world_point(point_a)
 
 
 def _pre_solve(arbiter, space, mon: _Monitor) -> None:
@@ -69,12 +79,13 @@ def _pre_solve(arbiter, space, mon: _Monitor) -> None:
     points = point_set.points
     count = len(points)
     mon.points += count
+    if mon.done:                  # PIM's impact is one impulse: later touches are ignored
+        arbiter.process_collision = False
+        return
     normal = point_set.normal
-    b1, b2 = mon.body1, mon.body2
     approaching = False
     for p in points:
-        rel = b2.velocity_at_world_point(p.point_b) - b1.velocity_at_world_point(p.point_a)
-        if rel.dot(normal) < -mon.tol:
+        if _relative(mon, p.point_a, p.point_b).dot(normal) < -mon.tol:
             approaching = True
             break
     if not approaching:
@@ -82,8 +93,15 @@ def _pre_solve(arbiter, space, mon: _Monitor) -> None:
         return
     if mon.pin and count == 1:
         c = points[0].point_b
-        arbiter.contact_point_set = pymunk.ContactPointSet(
-            mon.normal, (pymunk.ContactPoint(c, c, 0.0),))
+        normal = mon.normal
+        arbiter.contact_point_set = pymunk.ContactPointSet(normal, (pymunk.ContactPoint(c, c, 0.0),))
+        points = arbiter.contact_point_set.points
+    if count == 1:
+        p = points[0]
+        rel = _relative(mon, p.point_a, p.point_b)
+        mon.before = (p.point_a, p.point_b, normal, rel.dot(normal), rel.dot(normal.perpendicular()))
+    else:
+        mon.before = None
     mon.accepted = True
 
 
@@ -91,6 +109,18 @@ def _post_solve(arbiter, space, mon: _Monitor) -> None:
     j = arbiter.total_impulse          # on the body of shapes[0] = vehicle 1
     mon.impulse[0] += j.x
     mon.impulse[1] += j.y
+    if mon.check and mon.before is not None:
+        point_a, point_b, normal, vrn0, vrt0 = mon.before
+        tangent = normal.perpendicular()
+        jn, jt = -j.dot(normal), -j.dot(tangent)     # Chipmunk's accumulated jnAcc, jtAcc
+        rel = _relative(mon, point_a, point_b)
+        vrn, vrt = rel.dot(normal), rel.dot(tangent)
+        residual = abs(vrn + mon.eps * vrn0) if jn > 0 else max(0.0, -vrn - mon.eps * vrn0)
+        if abs(jt) < mon.friction * jn * (1.0 - 1e-9):
+            residual = max(residual, abs(vrt))        # sticking: no tangential velocity
+        elif jt * vrt > 0:
+            residual = max(residual, abs(vrt))        # sliding must oppose the friction
+        mon.residual = max(mon.residual, residual)
 
 
 def _state(t: float, b1: pymunk.Body, b2: pymunk.Body) -> tuple:
@@ -166,6 +196,10 @@ def run_scene(scene: Scene, settings: Settings) -> dict:
                     f"scene allows {mon.allowed}: the contact is a patch, not PIM's single "
                     f"point", step)
             contact_steps += 1
+            if mon.check and mon.residual > settings.convergence_tolerance * scene.speed_scale:
+                raise SimulationError("not_converged", _not_converged_message(scene, mon), step)
+            if mon.pin:
+                mon.done = True
             if impact_index is None:
                 states.append(_state(now, b1, b2))
                 impact_index = len(states) - 1
@@ -177,7 +211,9 @@ def run_scene(scene: Scene, settings: Settings) -> dict:
                     f"the contact still pushed after {contact_steps} steps "
                     f"({contact_steps * dt:.6g} s > max_contact_time = "
                     f"{settings.max_contact_time:g} s)", step)
-            continue
+            if not mon.pin:
+                continue
+            break                      # exact placement: the one impulse is the impact
         if record:
             states.append(_state(now, b1, b2))
         if impact_index is not None:
@@ -233,7 +269,7 @@ def run_scene(scene: Scene, settings: Settings) -> dict:
         yaw_rate2=arr[:, 12], impact_index=int(impact_index), outline1=scene.outline1,
         outline2=scene.outline2, fixed2=scene.fixed2)
     del separation_step
-    return dict(
+    return dict(iterations=scene.iterations, contraction_rate=scene.contraction_rate,
         velocity1=velocity1, velocity2=velocity2, yaw_rate1=float(yaw_rate1),
         yaw_rate2=float(yaw_rate2), impulse=np.array(mon.impulse),
         contact_duration=contact_steps * dt, contact_steps=contact_steps,
@@ -241,6 +277,19 @@ def run_scene(scene: Scene, settings: Settings) -> dict:
         energy_after=energy_after, trajectory=trajectory,
         final_velocity1=np.array(b1.velocity), final_velocity2=np.array(b2.velocity),
         final_yaw_rate1=float(b1.angular_velocity), final_yaw_rate2=float(b2.angular_velocity))
+
+
+def _not_converged_message(scene: Scene, mon: _Monitor) -> str:
+    text = (f"the contact solver did not converge: contact-law residual "
+            f"{mon.residual / scene.speed_scale:.3g} (relative) after {scene.iterations} "
+            f"iterations; predicted error factor per sweep rho = {scene.contraction_rate:.4g}")
+    if scene.beta < 1.0 and scene.contraction_rate >= 1.0:
+        text += (" >= 1: with sliding friction u = |mu| = {:.4g}, |u K_nt| >= K_nn, so "
+                 "Chipmunk's sequential impulses diverge; PIM's sliding impulse cannot be "
+                 "reproduced by this engine at any iteration count").format(scene.friction)
+    else:
+        text += "; raise settings.iterations (or leave it None for automatic)"
+    return text
 
 
 def _no_contact_message(scene: Scene, settings: Settings, now: float) -> str:

@@ -35,6 +35,7 @@ import pymunk
 
 import pim
 
+from .convergence import auto_iterations, contraction_rate
 from .settings import Settings
 
 __all__ = ["Scene", "build_scene", "resolve_coefficients", "outline_corners", "STICK_MARGIN",
@@ -120,6 +121,9 @@ class Scene:
     energy_before: float = 0.0     # [J]
     outline1: np.ndarray | None = None
     outline2: np.ndarray | None = None
+    iterations: int = 0            # solver sweeps per step in use
+    contraction_rate: float = 0.0  # predicted error factor per sweep (sim.convergence)
+    k: tuple = (0.0, 0.0, 0.0)     # K_nn, K_nt, K_tt of PIM's contact [1/kg]
 
 
 def _kinetic(vehicle: pim.Vehicle) -> float:
@@ -169,8 +173,13 @@ def build_scene(case: pim.Case, eps=None, beta=None, settings: Settings | None =
     fixed2 = bool(v2.fixed)
     lead = settings.dt if settings.start == "exact" else settings.lead_steps * settings.dt
 
+    k_nn, k_nt, k_tt = (float(np.asarray(getattr(analytic, k)).reshape(()))
+                        for k in ("k_nn", "k_nt", "k_tt"))
+    rho = contraction_rate(k_nn, k_nt, k_tt, friction, beta >= 1.0)
+    iterations = settings.iterations if settings.iterations is not None else auto_iterations(rho)
+
     space = pymunk.Space()
-    space.iterations = settings.iterations
+    space.iterations = iterations
     space.gravity = (0.0, 0.0)
     space.damping = 1.0
     space.collision_slop = 1e-4 * settings.contact_radius
@@ -241,4 +250,5 @@ def build_scene(case: pim.Case, eps=None, beta=None, settings: Settings | None =
                  eps=eps, beta=beta, friction=friction, start_time=-lead, point=point, normal=n,
                  approach_n=float(np.asarray(analytic.approach_n).reshape(())),
                  speed_scale=speed_scale, energy_before=_kinetic(v1) + _kinetic(v2),
-                 outline1=outline_corners(v1), outline2=outline_corners(v2))
+                 outline1=outline_corners(v1), outline2=outline_corners(v2),
+                 iterations=iterations, contraction_rate=rho, k=(k_nn, k_nt, k_tt))

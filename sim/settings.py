@@ -30,9 +30,10 @@ class Settings:
         Fixed time step [s], in (0, 1]. With ``start="exact"`` the impulse is applied in one
         step at the impact configuration, so dt only sets the resolution of the recorded
         trajectory; with ``start="detected"`` the lever-arm error grows about linearly in dt.
-    iterations : int
+    iterations : int or None
         Solver iterations per step (Chipmunk's sequential-impulse sweeps), in [1, 100000].
-        The error shrinks geometrically with them (docs/sim.md).
+        None (default): chosen per scene from the predicted convergence rate of the contact
+        (:func:`sim.convergence.auto_iterations`; 20 to 20000 sweeps, ~0.02 us each).
     contact : {"point", "outline"}
         "point": a small circle at C on vehicle 1 against a segment along the tangent
         through C on vehicle 2 -- exactly one contact point with normal n (PIM's
@@ -68,6 +69,11 @@ class Settings:
         Most contact points allowed in one step; more is reported as "multiple_contacts".
         None: 1 for the point contact, unlimited for the outlines (set 1 there to insist on
         PIM's single point).
+    convergence_tolerance : float or None
+        Largest residual [-] of the contact law after a contact step, relative to the speed
+        scale of the scene (Newton restitution at the contact point; zero tangential
+        velocity when sticking, friction opposing the sliding when sliding), checked for a
+        point contact; more is reported as "not_converged". None: no check.
     energy_tolerance : float
         Kinetic energy may rise by this fraction [-] of its initial value (solver round-off)
         before the run is reported as "energy_gained"; >= 0.
@@ -76,7 +82,7 @@ class Settings:
     """
 
     dt: float = 1e-3
-    iterations: int = 20
+    iterations: int | None = None
     contact: str = "point"
     start: str = "exact"
     tyre_friction: bool | float = False
@@ -86,6 +92,7 @@ class Settings:
     lead_steps: float = 2.5
     contact_radius: float = 0.05
     max_contact_points: int | None = None
+    convergence_tolerance: float | None = 1e-8
     energy_tolerance: float = 1e-6
     gravity: float = 9.80665
 
@@ -105,11 +112,13 @@ class Settings:
             object.__setattr__(self, name, value)
 
         number("dt", 0.0, 1.0, low_open=True)
-        if isinstance(self.iterations, bool) or int(self.iterations) != self.iterations \
-                or not 1 <= int(self.iterations) <= 100_000:
-            raise ValueError(f"settings.iterations must be an integer in [1, 100000], "
-                             f"got {self.iterations!r}")
-        object.__setattr__(self, "iterations", int(self.iterations))
+        its = self.iterations
+        if its is not None:
+            if isinstance(its, bool) or not isinstance(its, int | float) or int(its) != its \
+                    or not 1 <= int(its) <= 100_000:
+                raise ValueError(f"settings.iterations must be None (automatic) or an integer "
+                                 f"in [1, 100000], got {its!r}")
+            object.__setattr__(self, "iterations", int(its))
         if self.contact not in CONTACTS:
             raise ValueError(f"settings.contact must be one of {CONTACTS}, got {self.contact!r}")
         if self.start not in STARTS:
@@ -132,6 +141,8 @@ class Settings:
                 raise ValueError(f"settings.max_contact_points must be None or an integer "
                                  f">= 1, got {points!r}")
             object.__setattr__(self, "max_contact_points", int(points))
+        if self.convergence_tolerance is not None:
+            number("convergence_tolerance", 0.0, 1.0, low_open=True)
         number("energy_tolerance", 0.0, 1.0)
         number("gravity", 0.0, 1e3, low_open=True)
 
