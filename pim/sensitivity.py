@@ -235,7 +235,8 @@ def derivatives(result: Result) -> Derivatives:
     Returns
     -------
     Derivatives
-        ``values``, ``d_eps`` and ``d_beta`` for every key of :data:`OUTPUT_KINDS`.
+        ``values``, ``d_eps`` and ``d_beta`` for every key of :data:`OUTPUT_KINDS`, each
+        broadcast to the shape of the result (read-only views).
 
     Notes
     -----
@@ -303,6 +304,9 @@ def derivatives(result: Result) -> Derivatives:
             "crush_energy_normal": dcn, "crush_energy_tangential": dct,
             "tangential_share": _safe_ratio(dct * (cn + ct) - ct * (dcn + dct), (cn + ct) ** 2),
         })
+    shape = np.shape(r.impulse_n)
+    values, d_eps, d_beta = ({k: np.broadcast_to(v, shape) for k, v in d.items()}
+                             for d in (values, d_eps, d_beta))
     return Derivatives(result=r, values=values, d_eps=d_eps, d_beta=d_beta)
 
 

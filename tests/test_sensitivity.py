@@ -1,0 +1,191 @@
+"""Sensitivities: closed-form d/d(eps, beta) and the effect of uncertain inputs."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+import pim
+from pim.cli import main
+from pim.fit import fit
+from pim.sensitivity import (
+    INPUTS,
+    OUTPUT_KINDS,
+    Uncertainty,
+    derivatives,
+    output_values,
+    sensitivity,
+)
+
+
+@pytest.fixture(scope="module")
+def ricsac9():
+    return pim.load_case("ricsac9")
+
+
+@pytest.fixture(scope="module")
+def spinning(ricsac9):
+    case = ricsac9.transformed(rotation=-1.1, translation=(5.0, 1.0))
+    return replace(case, vehicle1=replace(case.vehicle1, yaw_rate=0.6),
+                   vehicle2=replace(case.vehicle2, yaw_rate=-0.3))
+
+
+@pytest.fixture(scope="module")
+def noisy(ricsac9):
+    """Measured values near (0.4, 0.6) plus noise: an interior optimum with residuals."""
+    r = pim.solve(ricsac9, 0.4, 0.6)
+    rng = np.random.default_rng(7)
+    return replace(ricsac9, measured=pim.Measured(
+        r.velocity1 + rng.normal(0, 0.3, 2), r.velocity2 + rng.normal(0, 0.3, 2),
+        float(r.yaw_rate1) + 0.1, float(r.yaw_rate2) - 0.1))
+
+
+def _central(case, eps, beta, param, h=1e-6):
+    """Central finite difference of every output of pim.solve (independent of derivatives)."""
+    if param == "eps":
+        plus, minus = pim.solve(case, eps + h, beta), pim.solve(case, eps - h, beta)
+    else:
+        plus, minus = pim.solve(case, eps, beta + h), pim.solve(case, eps, beta - h)
+    vp, vm = output_values(plus), output_values(minus)
+    return {k: (vp[k] - vm[k]) / (2 * h) for k in vp}
+
+
+@pytest.mark.parametrize("which", ["ricsac9", "spinning"])
+@pytest.mark.parametrize("eps, beta", [(0.355, 1.0), (0.2, 0.6), (0.7, 0.3), (0.5, 1.3)])
+def test_derivatives_match_finite_differences(request, which, eps, beta):
+    case = request.getfixturevalue(which)
+    d = derivatives(pim.solve(case, eps, beta))
+    assert set(d.d_eps) == set(d.d_beta) == set(d.values) == set(OUTPUT_KINDS)
+    for param, closed in (("eps", d.d_eps), ("beta", d.d_beta)):
+        fd = _central(case, eps, beta, param)
+        for key in OUTPUT_KINDS:
+            scale = max(abs(float(d.values[key])), 1.0)
+            assert float(closed[key]) == pytest.approx(float(fd[key]), rel=1e-5, abs=1e-7 * scale), \
+                (param, key)
+
+
+def test_derivatives_broadcast(ricsac9):
+    eps = np.linspace(0.05, 0.95, 7)[:, None]
+    beta = np.linspace(0.1, 1.0, 5)[None, :]
+    d = derivatives(pim.solve(ricsac9, eps, beta))
+    assert d.d_eps["velocity1_x"].shape == (7, 5)
+    single = derivatives(pim.solve(ricsac9, eps[3, 0], beta[0, 2]))
+    for key in OUTPUT_KINDS:
+        assert d.d_beta[key][3, 2] == pytest.approx(float(single.d_beta[key]), rel=1e-12, abs=1e-15)
+
+
+def test_no_approach_has_zero_derivatives(ricsac9):
+    away = replace(ricsac9, vehicle1=replace(ricsac9.vehicle1, velocity=(10.0, 0.0)))
+    d = derivatives(pim.solve(away, 0.3, 0.5))
+    assert not d.result.approaching
+    assert d.d_eps["velocity1_x"] == 0 and d.d_beta["impulse_n"] == 0
+
+
+def _moved(case, key, step):
+    """The case with one input moved by ``step`` (written out here, independent of the module)."""
+    v1, v2, imp, m = case.vehicle1, case.vehicle2, case.impact, case.measured
+    if key.startswith("measured_"):
+        name = key[len("measured_"):]
+        if name.startswith("velocity"):
+            i, axis = int(name[8]), "xy".index(name[-1])
+            v = np.array(getattr(m, f"velocity{i}"), dtype=float)
+            v[axis] += step
+            return replace(case, measured=replace(m, **{f"velocity{i}": v}))
+        i = int(name[-1])
+        return replace(case, measured=replace(m, **{name: getattr(m, name) + step}))
+    if key.startswith("point"):
+        p = np.array(imp.point, dtype=float)
+        p["xy".index(key[-1])] += step
+        return replace(case, impact=replace(imp, point=p))
+    if key == "normal_angle":
+        return replace(case, impact=replace(imp, normal_angle=imp.normal_angle + step))
+    i = int(key[-1] if not key.endswith(("_x", "_y")) else key[-3])
+    v = v1 if i == 1 else v2
+    if key.startswith("velocity"):
+        vel = np.array(v.velocity, dtype=float)
+        vel["xy".index(key[-1])] += step
+        v = replace(v, velocity=vel)
+    else:
+        field = key[:-1]
+        v = replace(v, **{field: getattr(v, field) + step})
+    return replace(case, **{f"vehicle{i}": v})
+
+
+@pytest.mark.parametrize("which, include_yaw", [("ricsac9", False), ("noisy", True)])
+def test_fitted_parameters_match_brute_force_refits(request, which, include_yaw):
+    case = request.getfixturevalue(which)
+    sens = sensitivity(case, include_yaw=include_yaw)
+    keys = ["point_x", "point_y", "normal_angle", "mass1", "yaw_inertia2", "velocity2_x",
+            "yaw_rate1", "measured_velocity1_x", "measured_velocity2_y"]
+    if include_yaw:
+        keys.append("measured_yaw_rate1")
+    for key in keys:
+        k = sens.inputs.index(key)
+        h = 1e-2 * sens.sigma[k]
+        plus = fit(_moved(case, key, h), include_yaw=include_yaw)
+        minus = fit(_moved(case, key, -h), include_yaw=include_yaw)
+        # compared per typical uncertainty (derivative x sigma): the refits converge to
+        # ~1e-10, which limits the finite difference to ~1e-7 absolute
+        sigma = sens.sigma[k]
+        for row, (a, b) in enumerate([(plus.eps, minus.eps), (plus.beta, minus.beta)]):
+            fd = (a - b) / (2 * h)
+            assert sens.derivative[row, k] * sigma == pytest.approx(fd * sigma, rel=2e-4, abs=1e-6), \
+                (key, row)
+        dv = float(plus.result.delta_v1_magnitude - minus.result.delta_v1_magnitude) / (2 * h)
+        assert sens.derivative[2, k] * sigma == pytest.approx(dv * sigma, rel=2e-4, abs=1e-6), key
+
+
+def test_active_bound_holds_beta(ricsac9):
+    sens = sensitivity(ricsac9)
+    assert sens.active_bounds == ("beta",)
+    assert np.all(sens.derivative[sens.outputs.index("beta")] == 0)
+    assert sens.values[0] == pytest.approx(0.355, abs=0.002)
+
+
+def test_partial_delta_v_matches_finite_differences(spinning):
+    sens = sensitivity(spinning, eps=0.4, beta=0.7)
+    assert sens.fit is None and sens.outputs == ("delta_v1", "delta_v2")
+    for k, key in enumerate(sens.inputs):
+        h = 1e-4 * sens.sigma[k]
+        plus = pim.solve(_moved(spinning, key, h), 0.4, 0.7)
+        minus = pim.solve(_moved(spinning, key, -h), 0.4, 0.7)
+        for i in (1, 2):
+            fd = (getattr(plus, f"delta_v{i}_magnitude") - getattr(minus, f"delta_v{i}_magnitude")) / (2 * h)
+            assert sens.derivative[i - 1, k] == pytest.approx(float(fd), rel=1e-5, abs=1e-9), key
+
+
+def test_inputs_sigmas_and_ranking(ricsac9):
+    unc = Uncertainty(point=0.3, mass_fraction=0.05)
+    sens = sensitivity(ricsac9, uncertainty=unc)
+    assert set(sens.inputs) <= set(INPUTS)
+    k = sens.inputs.index("mass1")
+    assert sens.sigma[k] == pytest.approx(0.05 * float(ricsac9.vehicle1.mass))
+    assert sens.sigma[sens.inputs.index("point_y")] == 0.3
+    assert sens.sigma[sens.inputs.index("normal_angle")] == pytest.approx(np.radians(5))
+    order = sens.ranked("delta_v1")
+    effects = sens.effect[sens.outputs.index("delta_v1")][order]
+    assert np.all(np.diff(effects) <= 0)
+    assert "measured_yaw_rate1" not in sens.inputs  # yaw not fitted
+    assert "measured_yaw_rate1" in sensitivity(ricsac9, include_yaw=True).inputs
+
+
+def test_bad_uncertainty_and_missing_eps(ricsac9):
+    with pytest.raises(ValueError, match="point"):
+        Uncertainty(point=-0.1)
+    bare = replace(ricsac9, measured=None, impact=replace(ricsac9.impact, restitution=None))
+    with pytest.raises(ValueError, match="eps"):
+        sensitivity(bare)
+    assert sensitivity(bare, eps=0.3).fit is None
+
+
+def test_cli_sensitivity(capsys):
+    assert main(["sensitivity", "ricsac9", "--top", "5"]) == 0
+    out = capsys.readouterr().out
+    assert "fitted epsilon" in out and "|delta-V| of vehicle 1" in out
+    assert "held on an active bound" in out
+    assert main(["sensitivity", "ricsac9", "--sigma", "point=0.2 m", "--units", "us"]) == 0
+    assert "0.6562 ft" in capsys.readouterr().out
+    assert main(["sensitivity", "ricsac9", "--sigma", "nonsense=1"]) == 2
+    assert "--sigma must be KEY=VALUE" in capsys.readouterr().err
