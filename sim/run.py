@@ -259,7 +259,7 @@ def run_scene(scene: Scene, settings: Settings) -> dict:
                 states.append(_state(scene.start_time + step * dt, b1, b2))
             if rest:
                 break
-    if not record or states[-1][0] != scene.start_time + step * dt:
+    if states[-1][0] != scene.start_time + step * dt:
         states.append(_state(scene.start_time + step * dt, b1, b2))
 
     arr = np.array(states, dtype=float)
