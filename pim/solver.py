@@ -28,7 +28,9 @@ Pn (K_nn + mu K_nt) = -(1 + eps) u_n. Written with (Pn0, Pt0) instead of mu0,
 
     P = s (Pn0, beta Pt0),   s = -(1 + eps) u_n / (K_nn Pn0 + beta K_nt Pt0),
 
-which is exactly P0 at beta = 1 and never divides by Pn0. Brach's coefficients are
+which never divides by Pn0. The denominator is evaluated as -(1 + eps) u_n + (beta - 1)
+K_nt Pt0 (the normal row of the critical solve), so that s = 1 exactly at beta = 1 and no
+digits cancel for grazing impacts, where A - mu B -> 0 and q -> infinity. Brach's coefficients are
 A = m_c K_nn, B = -m_c K_nt, C = m_c K_tt - 1 with m_c = 1 / (a_1 + a_2), and
 q = 1 / (A - mu B) (eq. 6.55); the denominator above is zero exactly when q is singular.
 
@@ -46,7 +48,7 @@ import numpy as np
 
 from .case import Case
 
-__all__ = ["solve", "Result", "effective_mass_matrix", "contact_velocity"]
+__all__ = ["solve", "Result", "constraints", "effective_mass_matrix", "contact_velocity"]
 
 #: |K_nn Pn0 + beta K_nt Pt0| below this fraction of its terms' size counts as singular q.
 SINGULAR_TOLERANCE = 1e-12
@@ -119,6 +121,40 @@ def effective_mass_matrix(inv_mass1, inv_inertia1, arm1, inv_mass2, inv_inertia2
     k_nt = inv_inertia1 * s1n * s1t + inv_inertia2 * s2n * s2t
     k_tt = a + inv_inertia1 * s1t * s1t + inv_inertia2 * s2t * s2t
     return k_nn, k_nt, k_tt
+
+
+def constraints(case: Case, eps=None, beta=None) -> tuple[np.ndarray, np.ndarray]:
+    """The two PIM constraints as :func:`solve` takes them: given, else the case's defaults.
+
+    Parameters
+    ----------
+    case : Case
+        Supplies ``impact.restitution`` and ``impact.beta`` where eps or beta is None.
+    eps, beta : array_like, optional
+        Coefficient of restitution [-] and fraction of mu0 [-]; beta defaults to 1.
+
+    Returns
+    -------
+    eps, beta : ndarray
+        Checked: eps in [0, 1], beta finite.
+
+    Raises
+    ------
+    ValueError
+        eps missing everywhere, outside [0, 1] or NaN; beta not finite.
+    """
+    eps, beta = _defaults(case, eps, beta)
+    return _check_eps(eps), _check_beta(beta)
+
+
+def _defaults(case: Case, eps, beta):
+    if eps is None:
+        eps = case.impact.restitution
+        if eps is None:
+            raise ValueError("eps is required: give it or set impact.restitution in the case")
+    if beta is None:
+        beta = 1.0 if case.impact.beta is None else case.impact.beta
+    return eps, beta
 
 
 def _check_eps(eps) -> np.ndarray:
@@ -205,14 +241,9 @@ def solve(case: Case, eps=None, beta=None, backend: str = "auto") -> Result:
     zero and ``approaching`` is False. Where q is singular (A - mu B = 0) the impulse is
     unbounded: outputs are NaN and ``q_singular`` is True.
     """
-    if eps is None:
-        eps = case.impact.restitution
-        if eps is None:
-            raise ValueError("eps is required: give it or set impact.restitution in the case")
-    if beta is None:
-        beta = 1.0 if case.impact.beta is None else case.impact.beta
+    eps, beta = _defaults(case, eps, beta)
     if _use_kernel(case, eps, beta, backend):
-        return _solve_kernel(case, eps, beta)
+        return _solve_kernel(case, eps, beta)        # checks eps and beta inside the kernel
     eps, beta = _check_eps(eps), _check_beta(beta)
     v1, v2, imp = case.vehicle1, case.vehicle2, case.impact
 
@@ -231,12 +262,16 @@ def solve(case: Case, eps=None, beta=None, backend: str = "auto") -> Result:
     det = k_nn * k_tt - k_nt * k_nt
     pn0 = (-e1 * u_n * k_tt + u_t * k_nt) / det
     pt0 = (-u_t * k_nn + e1 * u_n * k_nt) / det
-    denom = k_nn * pn0 + beta * k_nt * pt0
-    size = np.abs(k_nn * pn0) + np.abs(beta * k_nt * pt0)
+    # K_nn Pn0 + beta K_nt Pt0, using K_nn Pn0 + K_nt Pt0 = -(1 + eps) u_n (normal row of the
+    # critical solve): exact at beta = 1 and free of cancellation for grazing impacts.
+    drive = -e1 * u_n
+    excess = (beta - 1.0) * k_nt * pt0
+    denom = drive + excess
+    size = np.abs(drive) + np.abs(excess)
     approaching = u_n < 0
     singular = approaching & (np.abs(denom) <= SINGULAR_TOLERANCE * size)
     with np.errstate(divide="ignore", invalid="ignore"):
-        scale = np.where(approaching, -e1 * u_n / denom, 0.0)
+        scale = np.where(approaching, drive / denom, 0.0)
     scale = np.where(singular, np.nan, scale)
     p_n = scale * pn0
     p_t = scale * beta * pt0
@@ -269,15 +304,17 @@ def _pdof(impulse: np.ndarray, heading: np.ndarray) -> np.ndarray:
     The direction from which the impulse comes (that of -P), measured from the vehicle's
     heading clockwise, as in SAE J224's clock convention: 0 = from straight ahead (frontal),
     +pi/2 = from the right side, -pi/2 = from the left, pi = from behind. Wrapped to (-pi, pi].
+    NaN where there is no impulse (no impact; see ``Result.approaching``).
     """
     came_from = np.arctan2(-impulse[..., 1], -impulse[..., 0])
-    return _wrap(heading - came_from)
+    none = (impulse[..., 0] == 0) & (impulse[..., 1] == 0)
+    return np.where(none, np.nan, _wrap(heading - came_from))
 
 
 def _clock(pdof: np.ndarray) -> np.ndarray:
-    """Clock position (1..12, 12 = frontal) of a PDOF [rad], nearest hour."""
-    hours = np.mod(np.rint(np.degrees(pdof) / 30.0), 12)
-    return np.where(hours == 0, 12, hours).astype(int)
+    """Clock position (1..12, 12 = frontal) of a PDOF [rad], nearest hour; 0 where PDOF is NaN."""
+    hours = np.mod(np.rint(np.nan_to_num(np.degrees(pdof)) / 30.0), 12)
+    return np.where(np.isnan(pdof), 0, np.where(hours == 0, 12, hours)).astype(int)
 
 
 def _kinetic(mass, inertia, velocity, yaw_rate) -> np.ndarray:
