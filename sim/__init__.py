@@ -10,8 +10,8 @@ them one at a time, and the measured accuracy and speed.
 """
 
 from .batch import case_element, simulate_many
-from .errors import FAILURE_KINDS, SimulationError
 from .crosscheck import CrossCheck, crosscheck
+from .errors import FAILURE_KINDS, SimulationError
 from .limits import limitations
 from .result import BatchResult, SimResult, Trajectory
 from .run import simulate
@@ -19,4 +19,5 @@ from .scene import Scene, build_scene
 from .settings import Settings
 
 __all__ = ["Settings", "simulate", "simulate_many", "SimResult", "Trajectory", "BatchResult",
-           "SimulationError", "FAILURE_KINDS", "limitations", "crosscheck", "CrossCheck", "Scene", "build_scene", "case_element"]
+           "SimulationError", "FAILURE_KINDS", "limitations", "crosscheck", "CrossCheck",
+           "Scene", "build_scene", "case_element"]

@@ -109,10 +109,14 @@ def crosscheck(case: pim.Case, eps=None, beta=None,
     simulated = simulate(case, eps, beta, settings)
     a, s = analytic, simulated
     rows = [
-        CheckRow("velocity1_x", "vehicle 1 velocity x", "m/s", _f(a.velocity1[..., 0]), s.velocity1[0]),
-        CheckRow("velocity1_y", "vehicle 1 velocity y", "m/s", _f(a.velocity1[..., 1]), s.velocity1[1]),
-        CheckRow("velocity2_x", "vehicle 2 velocity x", "m/s", _f(a.velocity2[..., 0]), s.velocity2[0]),
-        CheckRow("velocity2_y", "vehicle 2 velocity y", "m/s", _f(a.velocity2[..., 1]), s.velocity2[1]),
+        CheckRow("velocity1_x", "vehicle 1 velocity x", "m/s",
+                 _f(a.velocity1[..., 0]), s.velocity1[0]),
+        CheckRow("velocity1_y", "vehicle 1 velocity y", "m/s",
+                 _f(a.velocity1[..., 1]), s.velocity1[1]),
+        CheckRow("velocity2_x", "vehicle 2 velocity x", "m/s",
+                 _f(a.velocity2[..., 0]), s.velocity2[0]),
+        CheckRow("velocity2_y", "vehicle 2 velocity y", "m/s",
+                 _f(a.velocity2[..., 1]), s.velocity2[1]),
         CheckRow("yaw_rate1", "vehicle 1 yaw rate", "rad/s", _f(a.yaw_rate1), s.yaw_rate1),
         CheckRow("yaw_rate2", "vehicle 2 yaw rate", "rad/s", _f(a.yaw_rate2), s.yaw_rate2),
         CheckRow("impulse_x", "impulse on vehicle 1 x", "N s", _f(a.impulse[..., 0]), s.impulse[0]),

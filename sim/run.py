@@ -284,9 +284,9 @@ def _not_converged_message(scene: Scene, mon: _Monitor) -> str:
             f"{mon.residual / scene.speed_scale:.3g} (relative) after {scene.iterations} "
             f"iterations; predicted error factor per sweep rho = {scene.contraction_rate:.4g}")
     if scene.beta < 1.0 and scene.contraction_rate >= 1.0:
-        text += (" >= 1: with sliding friction u = |mu| = {:.4g}, |u K_nt| >= K_nn, so "
+        text += (f" >= 1: with sliding friction u = |mu| = {scene.friction:.4g}, |u K_nt| >= K_nn, so "
                  "Chipmunk's sequential impulses diverge; PIM's sliding impulse cannot be "
-                 "reproduced by this engine at any iteration count").format(scene.friction)
+                 "reproduced by this engine at any iteration count")
     else:
         text += "; raise settings.iterations (or leave it None for automatic)"
     return text

@@ -24,7 +24,6 @@ def random_scene(rng: np.random.Generator, barrier_fraction: float = 0.2):
     eps, beta : float
     """
     gamma = rng.uniform(0, 2 * np.pi)
-    n = np.array([np.cos(gamma), np.sin(gamma)])
     point = rng.uniform(-10, 10, 2)
 
     def arm(side: float) -> np.ndarray:
