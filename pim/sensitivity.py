@@ -34,7 +34,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .case import Case, Impact, Measured, Vehicle
+from .case import Case
 from .solver import Result, solve
 
 __all__ = ["derivatives", "Derivatives", "output_values", "OUTPUT_KINDS", "motion_derivatives",
@@ -95,7 +95,8 @@ def output_values(result: Result) -> dict[str, np.ndarray]:
         "delta_v1_x": r.delta_v1[..., 0], "delta_v1_y": r.delta_v1[..., 1],
         "delta_v2_x": r.delta_v2[..., 0], "delta_v2_y": r.delta_v2[..., 1],
         "delta_v1_magnitude": r.delta_v1_magnitude, "delta_v2_magnitude": r.delta_v2_magnitude,
-        "impulse_x": p[..., 0], "impulse_y": p[..., 1], "impulse_magnitude": np.hypot(p[..., 0], p[..., 1]),
+        "impulse_x": p[..., 0], "impulse_y": p[..., 1],
+        "impulse_magnitude": np.hypot(p[..., 0], p[..., 1]),
         "impulse_n": r.impulse_n, "impulse_t": r.impulse_t,
         "impulse_angle": r.impulse_angle, "pdof1": r.pdof1, "pdof2": r.pdof2,
         "mu0": r.mu0, "mu": r.mu, "q": r.q,
@@ -259,7 +260,8 @@ def derivatives(result: Result) -> Derivatives:
     dpn0 = -r.approach_n * r.k_tt / det
     dpt0 = r.approach_n * r.k_nt / det
     with np.errstate(divide="ignore", invalid="ignore"):
-        dmu0_e = (dpt0 * r.critical_impulse_n - r.critical_impulse_t * dpn0) / r.critical_impulse_n ** 2
+        pn0, pt0 = r.critical_impulse_n, r.critical_impulse_t
+        dmu0_e = (dpt0 * pn0 - pt0 * dpn0) / pn0 ** 2
     dmu0 = {"eps": dmu0_e, "beta": np.zeros_like(dmu0_e)}
 
     d_eps, d_beta = {}, {}
@@ -593,8 +595,8 @@ def sensitivity(case: Case, fit_result=None, *, eps=None, beta=None, uncertainty
     dv = np.stack([batch.delta_v1_magnitude, batch.delta_v2_magnitude])       # (2, 2K)
     partial = np.zeros((2, len(keys)))
     partial[:, :n_model] = (dv[:, 0::2] - dv[:, 1::2]) / (2 * steps)
-    dv_dtheta = np.array([[base.d_eps[f"delta_v{i}_magnitude"], base.d_beta[f"delta_v{i}_magnitude"]]
-                          for i in (1, 2)], dtype=float)                        # (2, 2)
+    dv_dtheta = np.array([[base.d_eps[f"delta_v{i}_magnitude"],
+                           base.d_beta[f"delta_v{i}_magnitude"]] for i in (1, 2)], dtype=float)
 
     outputs = ("delta_v1", "delta_v2")
     values = [float(base.values["delta_v1_magnitude"]), float(base.values["delta_v2_magnitude"])]
@@ -628,7 +630,7 @@ def sensitivity(case: Case, fit_result=None, *, eps=None, beta=None, uncertainty
             thetas_b = np.array([beta, beta, beta + h, beta - h])
             gh = _cost_gradient(solve(case, thetas_e, thetas_b), names)         # (4, 2)
             hess = np.stack([(gh[0] - gh[1]) / (e_pts[0] - e_pts[1]),
-                             (gh[2] - gh[3]) / (2 * h)], axis=1)                # H[i, j] = dg_i/dtheta_j
+                             (gh[2] - gh[3]) / (2 * h)], axis=1)  # H[i, j] = dg_i / dtheta_j
             hess = 0.5 * (hess + hess.T)
             h_ff = hess[np.ix_(idx, idx)]
             if not np.all(np.isfinite(h_ff)) or np.linalg.cond(h_ff) > 1e12:

@@ -50,7 +50,8 @@ def _brute_force_cost(case, eps, beta, include_yaw=False):
     if include_yaw:
         k1 = np.sqrt(case.vehicle1.yaw_inertia / case.vehicle1.mass)
         k2 = np.sqrt(case.vehicle2.yaw_inertia / case.vehicle2.mass)
-        cost = cost + (k1 * (r.yaw_rate1 - m.yaw_rate1)) ** 2 + (k2 * (r.yaw_rate2 - m.yaw_rate2)) ** 2
+        cost = (cost + (k1 * (r.yaw_rate1 - m.yaw_rate1)) ** 2
+                + (k2 * (r.yaw_rate2 - m.yaw_rate2)) ** 2)
     return cost
 
 

@@ -62,8 +62,8 @@ def test_derivatives_match_finite_differences(request, which, eps, beta):
         fd = _central(case, eps, beta, param)
         for key in OUTPUT_KINDS:
             scale = max(abs(float(d.values[key])), 1.0)
-            assert float(closed[key]) == pytest.approx(float(fd[key]), rel=1e-5, abs=1e-7 * scale), \
-                (param, key)
+            expected = pytest.approx(float(fd[key]), rel=1e-5, abs=1e-7 * scale)
+            assert float(closed[key]) == expected, (param, key)
 
 
 def test_derivatives_broadcast(ricsac9):
@@ -131,8 +131,8 @@ def test_fitted_parameters_match_brute_force_refits(request, which, include_yaw)
         sigma = sens.sigma[k]
         for row, (a, b) in enumerate([(plus.eps, minus.eps), (plus.beta, minus.beta)]):
             fd = (a - b) / (2 * h)
-            assert sens.derivative[row, k] * sigma == pytest.approx(fd * sigma, rel=2e-4, abs=1e-6), \
-                (key, row)
+            expected = pytest.approx(fd * sigma, rel=2e-4, abs=1e-6)
+            assert sens.derivative[row, k] * sigma == expected, (key, row)
         dv = float(plus.result.delta_v1_magnitude - minus.result.delta_v1_magnitude) / (2 * h)
         assert sens.derivative[2, k] * sigma == pytest.approx(dv * sigma, rel=2e-4, abs=1e-6), key
 
@@ -152,7 +152,8 @@ def test_partial_delta_v_matches_finite_differences(spinning):
         plus = pim.solve(_moved(spinning, key, h), 0.4, 0.7)
         minus = pim.solve(_moved(spinning, key, -h), 0.4, 0.7)
         for i in (1, 2):
-            fd = (getattr(plus, f"delta_v{i}_magnitude") - getattr(minus, f"delta_v{i}_magnitude")) / (2 * h)
+            name = f"delta_v{i}_magnitude"
+            fd = (getattr(plus, name) - getattr(minus, name)) / (2 * h)
             assert sens.derivative[i - 1, k] == pytest.approx(float(fd), rel=1e-5, abs=1e-9), key
 
 

@@ -92,7 +92,7 @@ def fit(case_name, include_yaw, eps, beta, eps_range, beta_range, units, as_json
     click.echo(header)
     click.echo("  " + "-" * (len(header) - 2))
     m = case.measured
-    for name, res in zip(result.residual_names, result.residuals, strict=True):
+    for name in result.residual_names:
         i = int(name[8] if name.startswith("velocity") else name[-1])
         if name.startswith("velocity"):
             axis = "xy".index(name[-1])
@@ -204,7 +204,7 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
                          f"{sens.effect[k, i] * fo:.4g}"))
         head = ("input", "sigma", "per unit", "unit", f"per sigma [{uo}]")
         widths = [max(len(r[c]) for r in [head, *rows]) for c in range(5)]
-        fmt = "  {:<%d}  {:>%d}  {:>%d}  {:<%d}  {:>%d}" % tuple(widths)
+        fmt = "  " + "  ".join(f"{{:{a}{w}}}" for a, w in zip("<>><>", widths, strict=True))
         click.echo(fmt.format(*head))
         click.echo("  " + "  ".join("-" * w for w in widths))
         for r in rows:
