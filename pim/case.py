@@ -220,6 +220,9 @@ class Case:
         Measured post-impact motion, for fitting.
     name, description : str
         Labels for reports.
+    uncertainty : pim.distributions.Uncertainty, optional
+        Distributions of uncertain inputs (the case file's ``[uncertainty]`` table), used by
+        :func:`pim.uncertainty`.
     """
 
     vehicle1: Vehicle
@@ -228,6 +231,7 @@ class Case:
     measured: Measured | None = None
     name: str = ""
     description: str = ""
+    uncertainty: object | None = None  # pim.distributions.Uncertainty, for pim.uncertainty
 
     def __post_init__(self) -> None:
         if self.vehicle1.fixed.any():

@@ -43,7 +43,7 @@ from .units import parse
 __all__ = ["load_case", "list_cases", "parse_case"]
 
 _TOP = {"name", "description", "source", "convention", "vehicle1", "vehicle2", "impact",
-        "measured"}
+        "measured", "uncertainty"}
 _VEHICLE = {"mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
             "length", "width", "fixed", "cg", "heading", "theta", "phi", "d"}
 _IMPACT = {"point", "normal_angle", "restitution", "beta"}
@@ -156,6 +156,15 @@ def _measured(table) -> Measured | None:
     return Measured(**values)
 
 
+def _uncertainty(table):
+    """The ``[uncertainty]`` table (see :mod:`pim.distributions`), parsed only when present."""
+    if table is None:
+        return None
+    from .distributions import parse_uncertainty
+
+    return parse_uncertainty(table)
+
+
 def parse_case(data: dict, source: str = "<case>") -> Case:
     """Build a :class:`pim.Case` from a parsed TOML document (a dict).
 
@@ -190,7 +199,8 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
         if not isinstance(value, str):
             raise ValueError(f"{key} must be a string")
     return Case(vehicle1=vehicles[0], vehicle2=vehicles[1], impact=impact,
-                measured=_measured(data.get("measured")), name=name, description=description)
+                measured=_measured(data.get("measured")), name=name, description=description,
+                uncertainty=_uncertainty(data.get("uncertainty")))
 
 
 def _bundled() -> dict[str, object]:

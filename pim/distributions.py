@@ -1,0 +1,255 @@
+"""Input distributions for Monte Carlo: the ``[uncertainty]`` table of a case file, and sampling.
+
+Each uncertain input of a case is named by its dotted path and given one distribution::
+
+    [uncertainty]
+    vehicle1.mass = {normal = "20 kg"}               # nominal +- sd 20 kg (normal)
+    vehicle1.velocity_x = {normal = "1.5 ft/s"}
+    vehicle2.yaw_rate = {normal = "5 deg/s", mean = "0 deg/s"}   # normal about another mean
+    impact.normal_angle = {plusminus = "5 deg"}      # uniform on nominal +- 5 deg
+    impact.point_x = {uniform = ["-0.2 m", "0.3 m"]} # uniform between absolute bounds
+    impact.restitution = {uniform = [0.2, 0.5]}
+    impact.beta = {fixed = 0.9}                      # a fixed value other than the nominal
+
+Inputs (and their unit kind): ``vehicle1.`` / ``vehicle2.`` + ``mass``, ``yaw_inertia``,
+``cg_x``, ``cg_y``, ``velocity_x``, ``velocity_y``, ``yaw_rate``, ``heading``; ``impact.`` +
+``point_x``, ``point_y``, ``normal_angle``, ``restitution`` (eps), ``beta``. Values are unit
+strings or bare SI numbers, parsed by :func:`pim.units.parse`; unknown inputs, unknown
+distribution keys and bad bounds are errors. Inputs not listed keep their nominal value.
+
+Admissible ranges: eps in [0, 1], mass and yaw inertia > 0. A normal distribution on such an
+input is *truncated* to the range (sampled by inverse CDF between the CDF values of the bounds,
+so no sample piles up at a bound and the shape inside the range is the normal's); uniform
+bounds and fixed values must lie inside it (else ValueError). A fixed obstacle's mass, inertia,
+velocity and yaw rate cannot be uncertain.
+
+Every sample is drawn by inverse CDF from one uniform variate per input (common random
+numbers); :mod:`pim.uncertainty` reuses those uniform variates to bin the inputs for its
+variance-based sensitivity.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .units import parse
+
+__all__ = ["Distribution", "Uncertainty", "parse_uncertainty", "INPUTS"]
+
+#: Uncertain inputs: dotted name -> unit kind for pim.units.parse.
+INPUTS = {
+    **{f"vehicle{i}.{k}": kind for i in (1, 2) for k, kind in (
+        ("mass", "mass"), ("yaw_inertia", "inertia"), ("cg_x", "length"), ("cg_y", "length"),
+        ("velocity_x", "velocity"), ("velocity_y", "velocity"),
+        ("yaw_rate", "angular_velocity"), ("heading", "angle"))},
+    "impact.point_x": "length", "impact.point_y": "length", "impact.normal_angle": "angle",
+    "impact.restitution": "dimensionless", "impact.beta": "dimensionless",
+}
+#: Admissible (low, high) of inputs that have one; low is exclusive for mass and inertia.
+_RANGE = {"impact.restitution": (0.0, 1.0),
+          **{f"vehicle{i}.{k}": (0.0, np.inf) for i in (1, 2) for k in ("mass", "yaw_inertia")}}
+_KINDS = ("normal", "uniform", "plusminus", "fixed")
+
+
+@dataclass(frozen=True)
+class Distribution:
+    """One input's distribution, in SI.
+
+    Parameters
+    ----------
+    kind : {"normal", "uniform", "plusminus", "fixed"}
+        Normal (mean ``a`` or the nominal, sd ``b``), uniform on [a, b], uniform on
+        nominal +- ``b``, or the fixed value ``a``.
+    a, b : float or None
+        Parameters as above [SI unit of the input].
+    """
+
+    kind: str
+    a: float | None = None
+    b: float | None = None
+
+    def bounds(self, nominal: float) -> tuple[float, float]:
+        """The (low, high) of a uniform distribution about ``nominal``."""
+        if self.kind == "plusminus":
+            return nominal - self.b, nominal + self.b
+        return self.a, self.b
+
+    def sample(self, nominal: float, u: np.ndarray, name: str) -> np.ndarray:
+        """Values [SI] from uniform variates ``u`` in (0, 1) by inverse CDF.
+
+        Normal distributions are truncated to the input's admissible range (module notes).
+        """
+        from scipy.special import ndtr, ndtri
+
+        if self.kind == "fixed":
+            return np.full(u.shape, self.a)
+        if self.kind in ("uniform", "plusminus"):
+            low, high = self.bounds(nominal)
+            return low + (high - low) * u
+        mean = nominal if self.a is None else self.a
+        sd = self.b
+        if sd == 0:
+            return np.full(u.shape, mean)
+        low, high = _RANGE.get(name, (-np.inf, np.inf))
+        c_low, c_high = ndtr((low - mean) / sd), ndtr((high - mean) / sd)
+        if c_high - c_low < 1e-9:
+            raise ValueError(f"uncertainty.{name}: normal(mean {mean:g}, sd {sd:g}) has almost "
+                             f"no probability inside the admissible range [{low:g}, {high:g}]")
+        x = mean + sd * ndtri(c_low + (c_high - c_low) * u)
+        return np.clip(x, low, high)  # guards round-off only
+
+    def check(self, nominal: float, name: str) -> None:
+        """ValueError if values of this distribution fall outside the input's range."""
+        low, high = _RANGE.get(name, (-np.inf, np.inf))
+        open_low = name.endswith(("mass", "yaw_inertia"))
+        if self.kind == "normal":
+            mean = nominal if self.a is None else self.a
+            if not (low <= mean <= high) or (open_low and mean <= low):
+                raise ValueError(f"uncertainty.{name}: mean {mean:g} outside the admissible "
+                                 f"range [{low:g}, {high:g}]")
+            return
+        values = (self.a,) if self.kind == "fixed" else self.bounds(nominal)
+        for v in values:
+            if not (low <= v <= high) or (open_low and v <= low):
+                raise ValueError(f"uncertainty.{name}: value {v:g} outside the admissible "
+                                 f"range {'(' if open_low else '['}{low:g}, {high:g}]")
+
+    @property
+    def varies(self) -> bool:
+        """False for fixed values and zero spreads."""
+        if self.kind == "fixed":
+            return False
+        if self.kind == "normal" or self.kind == "plusminus":
+            return self.b != 0
+        return self.a != self.b
+
+
+@dataclass(frozen=True)
+class Uncertainty:
+    """The distributions of a case's uncertain inputs (dotted name -> :class:`Distribution`)."""
+
+    inputs: dict
+
+    def __post_init__(self) -> None:
+        for name, dist in self.inputs.items():
+            if name not in INPUTS:
+                raise ValueError(f"uncertainty: unknown input {name!r} "
+                                 f"(allowed: {', '.join(INPUTS)})")
+            if not isinstance(dist, Distribution):
+                raise ValueError(f"uncertainty.{name} must be a Distribution")
+
+
+def _parse_one(name: str, spec) -> Distribution:
+    where = f"uncertainty.{name}"
+    kind_of = INPUTS[name]
+    if not isinstance(spec, dict):
+        raise ValueError(f"{where} must be a table such as {{normal = ...}}, "
+                         f"{{uniform = [low, high]}}, {{plusminus = ...}} or {{fixed = ...}}")
+    kinds = [k for k in spec if k in _KINDS]
+    unknown = sorted(set(spec) - set(_KINDS) - {"mean"})
+    if unknown:
+        raise ValueError(f"{where}: unknown key {unknown[0]!r} "
+                         f"(allowed: {', '.join(_KINDS)}, and mean with normal)")
+    if len(kinds) != 1:
+        raise ValueError(f"{where}: give exactly one of {', '.join(_KINDS)}")
+    kind = kinds[0]
+    if "mean" in spec and kind != "normal":
+        raise ValueError(f"{where}.mean: only a normal distribution takes a mean")
+    value = spec[kind]
+    if kind == "uniform":
+        if not isinstance(value, list) or len(value) != 2:
+            raise ValueError(f"{where}.uniform must be [low, high], got {value!r}")
+        low = parse(value[0], kind_of, f"{where}.uniform[0]")
+        high = parse(value[1], kind_of, f"{where}.uniform[1]")
+        if not low <= high:
+            raise ValueError(f"{where}.uniform: low {low:g} must be <= high {high:g}")
+        return Distribution("uniform", low, high)
+    number = parse(value, kind_of, f"{where}.{kind}")
+    if kind == "fixed":
+        return Distribution("fixed", number)
+    if number < 0:
+        raise ValueError(f"{where}.{kind} must be >= 0 (a spread), got {number:g}")
+    if kind == "plusminus":
+        return Distribution("plusminus", None, number)
+    mean = parse(spec["mean"], kind_of, f"{where}.mean") if "mean" in spec else None
+    return Distribution("normal", mean, number)
+
+
+def parse_uncertainty(table) -> Uncertainty | None:
+    """Parse the ``[uncertainty]`` table of a case file (already read by tomllib).
+
+    Raises
+    ------
+    ValueError
+        Unknown input or key, bad unit or dimension, or bounds in the wrong order.
+    """
+    if table is None:
+        return None
+    if not isinstance(table, dict):
+        raise ValueError("uncertainty must be a table")
+    flat = {}
+    for group, entries in table.items():
+        if group not in ("vehicle1", "vehicle2", "impact") or not isinstance(entries, dict):
+            raise ValueError(f"uncertainty: unknown input {group!r} (use vehicle1.<input>, "
+                             f"vehicle2.<input> or impact.<input>; allowed: {', '.join(INPUTS)})")
+        for key, spec in entries.items():
+            name = f"{group}.{key}"
+            if name not in INPUTS:
+                raise ValueError(f"uncertainty: unknown input {name!r} "
+                                 f"(allowed: {', '.join(INPUTS)})")
+            flat[name] = _parse_one(name, spec)
+    return Uncertainty(flat)
+
+
+def nominal_values(case, eps=None, beta=None) -> dict:
+    """The nominal value [SI] of every input of :data:`INPUTS` in a scalar ``case``."""
+    out = {}
+    for i, v in ((1, case.vehicle1), (2, case.vehicle2)):
+        p = f"vehicle{i}."
+        out.update({p + "mass": v.mass, p + "yaw_inertia": v.yaw_inertia,
+                    p + "cg_x": v.cg[..., 0], p + "cg_y": v.cg[..., 1],
+                    p + "velocity_x": v.velocity[..., 0], p + "velocity_y": v.velocity[..., 1],
+                    p + "yaw_rate": v.yaw_rate, p + "heading": v.heading})
+    imp = case.impact
+    out.update({"impact.point_x": imp.point[..., 0], "impact.point_y": imp.point[..., 1],
+                "impact.normal_angle": imp.normal_angle,
+                "impact.restitution": imp.restitution if eps is None else eps,
+                "impact.beta": (1.0 if imp.beta is None else imp.beta) if beta is None else beta})
+    for name, value in out.items():
+        if value is None:
+            raise ValueError(f"{name} has no nominal value: give eps (impact.restitution)")
+        if np.size(value) != 1:
+            raise ValueError("uncertainty needs a scalar case (one scene), "
+                             f"but {name} has shape {np.shape(value)}")
+        out[name] = float(np.asarray(value).reshape(()))
+    return out
+
+
+def sample_inputs(uncertainty: Uncertainty, nominal: dict, n: int, rng) -> tuple[dict, dict]:
+    """Draw n samples of every input.
+
+    Returns
+    -------
+    values : dict
+        Input name -> array (n,) for uncertain inputs, float for the others [SI].
+    uniforms : dict
+        Input name -> the uniform variates (n,) its samples came from (varying inputs only).
+    """
+    values, uniforms = dict(nominal), {}
+    fixed_obstacle = np.isinf(nominal["vehicle2.mass"])
+    for name, dist in uncertainty.inputs.items():
+        if fixed_obstacle and name in ("vehicle2.mass", "vehicle2.yaw_inertia",
+                                       "vehicle2.velocity_x", "vehicle2.velocity_y",
+                                       "vehicle2.yaw_rate"):
+            raise ValueError(f"uncertainty.{name}: vehicle2 is a fixed obstacle; "
+                             f"its {name.split('.')[1]} cannot be uncertain")
+        dist.check(nominal[name], name)
+        if not dist.varies:
+            values[name] = dist.sample(nominal[name], np.zeros(1), name)[0]
+            continue
+        u = rng.random(n) + 2.0**-54  # in (0, 1): never exactly a bound
+        values[name] = dist.sample(nominal[name], u, name)
+        uniforms[name] = u
+    return values, uniforms
