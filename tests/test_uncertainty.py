@@ -1,0 +1,146 @@
+"""Monte Carlo uncertainty (pim.uncertainty, pim.distributions) against closed forms.
+
+Reference: a central, collinear impact (CGs and C on the x axis, n along x) has no rotation
+and delta-V1 = (1 + eps) m2 / (m1 + m2) |v1x - v2x| (Brach & Brach 2011, ch. 6, the
+collinear special case of the PIM equations), linear in each of v1x and eps separately.
+"""
+
+import json
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+from scipy.special import ndtr
+
+import pim
+from pim.distributions import Distribution, Uncertainty, parse_uncertainty
+from pim.uncertainty import first_order_indices
+
+M1, M2, V1, V2 = 1200.0, 1800.0, 15.0, -5.0
+
+
+def collinear(table=None, eps=0.3):
+    v1 = pim.Vehicle(M1, 2000.0, (-1.5, 0.0), (V1, 0.0), heading=0.0)
+    v2 = pim.Vehicle(M2, 3500.0, (2.0, 0.0), (V2, 0.0), heading=np.pi)
+    impact = pim.Impact((0.0, 0.0), np.pi, restitution=eps, beta=1.0)
+    return pim.Case(v1, v2, impact, name="collinear",
+                    uncertainty=None if table is None else parse_uncertainty(table))
+
+
+def test_zero_spread_equals_the_deterministic_answer():
+    case = pim.load_case("ricsac9")
+    zero = parse_uncertainty({"vehicle1": {"mass": {"normal": "0 kg"},
+                                           "velocity_x": {"plusminus": "0 ft/s"}},
+                              "impact": {"restitution": {"uniform": [0.355, 0.355]},
+                                         "normal_angle": {"normal": "0 deg"}}})
+    result = pim.uncertainty(case, n=50, distributions=zero)
+    ref = pim.solve(case, 0.355, 1.0)
+    assert result.varying == ()
+    expected = {"delta_v1": ref.delta_v1_magnitude, "speed2": ref.speed2,
+                "yaw_rate1": ref.yaw_rate1, "energy_loss": ref.energy_loss, "pdof2": ref.pdof2}
+    for name, value in expected.items():
+        s = result.stats[name]
+        assert s.p5 == s.p50 == s.p95 == pytest.approx(float(value), rel=1e-12), name
+        assert s.sd == pytest.approx(0.0, abs=1e-9 * abs(float(value)))
+
+
+def test_linear_case_matches_analytic_percentiles():
+    sd = 0.5
+    case = collinear({"vehicle1": {"velocity_x": {"normal": f"{sd} m/s"}}}, eps=0.3)
+    result = pim.uncertainty(case, n=200_000, seed=1)
+    gain = 1.3 * M2 / (M1 + M2)
+    mean, sigma = gain * (V1 - V2), gain * sd
+    s = result.stats["delta_v1"]
+    assert s.mean == pytest.approx(mean, rel=2e-3)
+    assert s.sd == pytest.approx(sigma, rel=1e-2)
+    z95 = 1.6448536269514722
+    assert s.p5 == pytest.approx(mean - z95 * sigma, abs=0.02 * sigma)
+    assert s.p50 == pytest.approx(mean, abs=0.02 * sigma)
+    assert s.p95 == pytest.approx(mean + z95 * sigma, abs=0.02 * sigma)
+    # binning error: the tail bins of a normal input are wide (a few 1e-3 at B = 100)
+    assert result.sensitivity["delta_v1"][0] == ("vehicle1.velocity_x", pytest.approx(1, abs=5e-3))
+
+
+def test_two_inputs_analytic_variance_and_first_order_indices():
+    """Y = c (1 + eps) w, eps ~ U(0.1, 0.5), w = v1x - v2x ~ N(20, 1.5): independent inputs."""
+    lo, hi, sd = 0.1, 0.5, 1.5
+    case = collinear({"vehicle1": {"velocity_x": {"normal": sd}},
+                      "impact": {"restitution": {"uniform": [lo, hi]}}})
+    result = pim.uncertainty(case, n=400_000, seed=2)
+    c, w = M2 / (M1 + M2), V1 - V2
+    e_mean, e_var = 1 + (lo + hi) / 2, (hi - lo) ** 2 / 12
+    var = c**2 * ((e_var + e_mean**2) * (sd**2 + w**2) - (e_mean * w) ** 2)
+    assert result.stats["delta_v1"].sd ** 2 == pytest.approx(var, rel=1.5e-2)
+    indices = dict(result.sensitivity["delta_v1"])
+    assert indices["impact.restitution"] == pytest.approx(c**2 * w**2 * e_var / var, abs=0.01)
+    assert indices["vehicle1.velocity_x"] == pytest.approx(c**2 * e_mean**2 * sd**2 / var,
+                                                           abs=0.01)
+
+
+def test_first_order_indices_of_an_additive_function():
+    """Y = X1 + 2 X2 + 0 X3 with X ~ U(0, 1): S = (1/5, 4/5, 0)."""
+    rng = np.random.default_rng(3)
+    u = {f"x{i}": rng.random(200_000) for i in (1, 2, 3)}
+    idx = dict(first_order_indices(u["x1"] + 2 * u["x2"], u))
+    assert idx["x1"] == pytest.approx(0.2, abs=5e-3)
+    assert idx["x2"] == pytest.approx(0.8, abs=5e-3)
+    assert idx["x3"] == pytest.approx(0.0, abs=2e-3)
+
+
+def test_restitution_normal_is_truncated_to_unit_interval():
+    dist = Distribution("normal", 0.9, 0.3)
+    u = (np.arange(100_000) + 0.5) / 100_000
+    x = dist.sample(0.5, u, "impact.restitution")
+    assert x.min() >= 0 and x.max() <= 1
+    # truncated normal CDF at 0.8: (Phi((0.8-0.9)/0.3) - Phi(-3)) / (Phi(1/3) - Phi(-3))
+    expected = (ndtr(-1 / 3) - ndtr(-3)) / (ndtr(1 / 3) - ndtr(-3))
+    assert np.mean(x <= 0.8) == pytest.approx(expected, abs=1e-4)
+
+
+def test_parsing_units_and_errors():
+    unc = parse_uncertainty({"vehicle1": {"mass": {"normal": "44.0925 lb"}},
+                             "impact": {"normal_angle": {"plusminus": "5 deg"},
+                                        "beta": {"fixed": 0.8}}})
+    assert unc.inputs["vehicle1.mass"].b == pytest.approx(20.0, rel=1e-5)
+    assert unc.inputs["impact.normal_angle"].b == pytest.approx(np.radians(5))
+    with pytest.raises(ValueError, match="unknown input 'vehicle1.massx'"):
+        parse_uncertainty({"vehicle1": {"massx": {"normal": 1}}})
+    with pytest.raises(ValueError, match="unknown key 'sd'"):
+        parse_uncertainty({"vehicle1": {"mass": {"normal": 1, "sd": 2}}})
+    with pytest.raises(ValueError, match="exactly one"):
+        parse_uncertainty({"vehicle1": {"mass": {"normal": 1, "fixed": 2}}})
+    with pytest.raises(ValueError, match="dimension"):
+        parse_uncertainty({"vehicle1": {"mass": {"normal": "3 m"}}})
+    with pytest.raises(ValueError, match="low"):
+        parse_uncertainty({"impact": {"restitution": {"uniform": [0.5, 0.2]}}})
+    case = collinear({"impact": {"restitution": {"uniform": [0.5, 1.2]}}})
+    with pytest.raises(ValueError, match="admissible range"):
+        pim.uncertainty(case, n=100)
+    with pytest.raises(ValueError, match="no \\[uncertainty\\]"):
+        pim.uncertainty(collinear(), n=100)
+    with pytest.raises(ValueError, match="unknown input"):
+        Uncertainty({"impact.gamma": Distribution("fixed", 1.0)})
+
+
+def test_case_file_table_and_command(tmp_path):
+    text = (pim.casefile.resources.files("pim") / "cases" / "ricsac9.toml").read_text()
+    text += ('\n[uncertainty]\nvehicle1.mass = {normal = "20 kg"}\n'
+             'impact.normal_angle = {uniform = ["-5 deg", "5 deg"]}\n'
+             'impact.restitution = {uniform = [0.2, 0.5]}\n')
+    path = tmp_path / "case.toml"
+    path.write_text(text)
+    case = pim.load_case(path)
+    assert set(case.uncertainty.inputs) == {"vehicle1.mass", "impact.normal_angle",
+                                            "impact.restitution"}
+    from pim.cli import cli
+
+    png = tmp_path / "hist.png"
+    out = CliRunner().invoke(cli, ["uncertainty", str(path), "--samples", "20000", "--json",
+                                   "--png", str(png)])
+    assert out.exit_code == 0, out.output
+    data = json.loads(out.output)
+    rows = {r["output"]: r for r in data["outputs"]}
+    assert rows["delta_v1"]["p5"] < rows["delta_v1"]["p50"] < rows["delta_v1"]["p95"]
+    assert rows["delta_v1"]["sensitivity"][0]["input"] == "impact.restitution"
+    assert png.stat().st_size > 10_000
+    assert not list(tmp_path.glob(".*tmp"))
