@@ -1,0 +1,180 @@
+"""Sweeps of simulations on a ``concurrent.futures`` executor: local processes or a Dask cluster.
+
+A pymunk simulation steps one scene at a time and cannot be vectorised, so many scenes are
+spread over processes. :func:`sweep` maps a picklable top-level function over items in chunks
+on any executor and returns the results in input order, with a tqdm progress bar:
+
+- ``executor=None`` or ``"process"``: a local ``ProcessPoolExecutor`` (created and shut down
+  here), one worker per core by default;
+- ``"serial"``: in this process, no executor (for debugging and as the reference);
+- a ``dask.distributed.Client``: its ``get_executor()``, i.e. the cluster's workers (the same
+  API and the same results; dask is never imported here);
+- any other ``concurrent.futures.Executor``: used as given and left running.
+
+:func:`simulate_sweep` applies :func:`sim.simulate` to many scenes this way; a scene whose
+simulation fails (:class:`sim.SimulationError`) gives its error in place of a result instead
+of stopping the sweep.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable, Iterable, Sequence
+from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
+from dataclasses import replace
+
+import numpy as np
+
+import pim
+
+__all__ = ["sweep", "simulate_sweep", "simulate_one"]
+
+
+def _run_chunk(func: Callable, chunk: list) -> list:
+    return [func(item) for item in chunk]
+
+
+def _chunks(items: list, size: int) -> list[tuple[int, list]]:
+    return [(start, items[start:start + size]) for start in range(0, len(items), size)]
+
+
+def _workers(executor) -> int:
+    for attr in ("_max_workers",):
+        n = getattr(executor, attr, None)
+        if isinstance(n, int) and n > 0:
+            return n
+    return os.cpu_count() or 1
+
+
+def sweep(func: Callable, items: Iterable, executor=None, chunksize: int | None = None,
+          max_workers: int | None = None, progress: bool = True,
+          desc: str = "sweep") -> list:
+    """``[func(item) for item in items]`` on an executor, in input order.
+
+    Parameters
+    ----------
+    func : callable
+        A picklable (module-level) function of one item.
+    items : iterable
+        The items; each must pickle.
+    executor : None, "process", "serial", dask.distributed.Client or Executor
+        Where to run (module notes). Default: a local process pool.
+    chunksize : int, optional
+        Items per task; default about four tasks per worker (fewer round trips, still
+        balanced).
+    max_workers : int, optional
+        Size of the local process pool (default: the number of cores).
+    progress : bool
+        Show a tqdm progress bar (on stderr).
+    desc : str
+        Label of the progress bar.
+
+    Returns
+    -------
+    list
+        ``func(item)`` for every item, in the order of ``items``. The first exception raised
+        by ``func`` propagates (pending chunks are cancelled).
+    """
+    from tqdm.auto import tqdm
+
+    items = list(items)
+    n = len(items)
+    bar = tqdm(total=n, desc=desc, disable=not progress, unit="scene", leave=False)
+    try:
+        if isinstance(executor, str) and executor == "serial":
+            out = []
+            for item in items:
+                out.append(func(item))
+                bar.update(1)
+            return out
+        if executor is None or (isinstance(executor, str) and executor == "process"):
+            workers = max_workers or os.cpu_count() or 1
+            with ProcessPoolExecutor(max_workers=workers) as pool:
+                return _map(pool, func, items, chunksize, workers, bar)
+        if isinstance(executor, str):
+            raise ValueError(f"executor must be None, 'process', 'serial', a dask Client or a "
+                             f"concurrent.futures.Executor, got {executor!r}")
+        if hasattr(executor, "get_executor") and not isinstance(executor, Executor):
+            workers = max(1, sum(getattr(executor, "nthreads", lambda: {})().values()))
+            return _map(executor.get_executor(), func, items, chunksize, workers, bar)
+        if isinstance(executor, Executor):
+            return _map(executor, func, items, chunksize, _workers(executor), bar)
+        raise ValueError(f"executor must be None, 'process', 'serial', a dask Client or a "
+                         f"concurrent.futures.Executor, got {type(executor).__name__}")
+    finally:
+        bar.close()
+
+
+def _map(executor, func, items, chunksize, workers, bar) -> list:
+    n = len(items)
+    if n == 0:
+        return []
+    size = chunksize or max(1, math.ceil(n / (4 * workers)))
+    results: list = [None] * n
+    futures = {executor.submit(_run_chunk, func, chunk): (start, len(chunk))
+               for start, chunk in _chunks(items, size)}
+    try:
+        for future in as_completed(futures):
+            start, length = futures[future]
+            results[start:start + length] = future.result()
+            bar.update(length)
+    except BaseException:
+        for future in futures:
+            future.cancel()
+        raise
+    return results
+
+
+def simulate_one(job: tuple):
+    """:func:`sim.simulate` of one ``(case, eps, beta, settings)``; a failure is returned."""
+    from .errors import SimulationError
+    from .run import simulate
+
+    case, eps, beta, settings = job
+    try:
+        return simulate(case, eps, beta, settings)
+    except SimulationError as exc:
+        return exc
+
+
+def simulate_sweep(cases: pim.Case | Sequence[pim.Case], eps=None, beta=None, settings=None,
+                   executor=None, chunksize: int | None = None, max_workers: int | None = None,
+                   progress: bool = True, record: bool = False) -> list:
+    """Simulate many scenes with pymunk on an executor (see :func:`sweep`).
+
+    Parameters
+    ----------
+    cases : pim.Case or sequence of pim.Case
+        An array-valued case (every element one scene) or a list of single cases.
+    eps, beta : array_like, optional
+        Restitution and fraction of mu0 [-], broadcast over the scenes; default each
+        case's own (like :func:`pim.solve`).
+    settings : sim.Settings, optional
+        Shared settings.
+    executor, chunksize, max_workers, progress
+        As :func:`sweep`.
+    record : bool
+        Keep each scene's trajectory (more data to send back); default False.
+
+    Returns
+    -------
+    list
+        A :class:`sim.SimResult` per scene, in order, or the :class:`sim.SimulationError` of
+        a scene that failed.
+    """
+    from .batch import case_count, case_element
+    from .settings import Settings
+
+    settings = replace(settings or Settings(), record=record)
+    if isinstance(cases, pim.Case):
+        items = [case_element(cases, i) for i in range(case_count(cases))]
+    else:
+        items = list(cases)
+    count = len(items)
+    eps_all = np.broadcast_to(np.asarray(np.nan if eps is None else eps, float), (count,))
+    beta_all = np.broadcast_to(np.asarray(np.nan if beta is None else beta, float), (count,))
+    jobs = [(c, None if np.isnan(e) else float(e), None if np.isnan(b) else float(b), settings)
+            for c, e, b in zip(items, eps_all, beta_all, strict=True)]
+    return sweep(simulate_one, jobs, executor=executor, chunksize=chunksize,
+                 max_workers=max_workers, progress=progress, desc="simulate")
