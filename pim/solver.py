@@ -576,10 +576,21 @@ class Result:
         return (self.beta >= 0) & (self.beta <= 1)
 
     @cached_property
+    def friction_opposes_sliding(self) -> np.ndarray:
+        """Pt U_t <= 0: the tangential impulse does not point along the slip left at C.
+
+        With beta < 1 and strong n-t coupling, PIM's mu = beta mu0 can push along the
+        post-impact sliding, which Coulomb friction cannot (and a simulator will not) do.
+        """
+        scale = np.abs(self.impulse_t) * (np.abs(self.approach_n) + np.abs(self.approach_t))
+        return self.impulse_t * self.separation_t <= 1e-9 * scale
+
+    @cached_property
     def admissible(self) -> np.ndarray:
-        """All flags hold: approach, Pn > 0, no energy gain, |mu| <= |mu0|, finite q."""
+        """All flags hold: approach, Pn > 0, no energy gain, |mu| <= |mu0|, friction opposing
+        the remaining slip, finite q."""
         return (self.approaching & self.normal_impulse_positive & self.energy_not_gained
-                & self.within_critical & ~self.q_singular)
+                & self.within_critical & self.friction_opposes_sliding & ~self.q_singular)
 
     def problems(self) -> list[str]:
         """Plain-language reasons why any element is inadmissible (empty when all are fine)."""
@@ -589,6 +600,8 @@ class Result:
             (self.normal_impulse_positive | ~self.approaching,
              "the normal impulse is not positive (the contact would pull)"),
             (self.energy_not_gained, "kinetic energy is gained"),
+            (self.friction_opposes_sliding | ~self.approaching,
+             "the tangential impulse points along the remaining slip at C (not Coulomb friction)"),
             (np.broadcast_to(self.within_critical, np.shape(self.impulse_n)),
              "|mu| > |mu0| (beta outside [0, 1]): tangential sliding at C reverses"),
         ]

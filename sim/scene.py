@@ -34,6 +34,7 @@ import numpy as np
 import pymunk
 
 import pim
+from pim.solver import constraints
 
 from .convergence import auto_iterations, contraction_rate
 from .settings import Settings
@@ -78,15 +79,7 @@ def resolve_coefficients(case: pim.Case, eps=None, beta=None) -> tuple[float, fl
         eps outside [0, 1], or beta outside [0, 1]: Coulomb friction can neither exceed the
         sticking impulse ratio (beta > 1) nor push the sliding the wrong way (beta < 0).
     """
-    if eps is None:
-        eps = case.impact.restitution
-        if eps is None:
-            raise ValueError("eps is required: give it or set impact.restitution in the case")
-    if beta is None:
-        beta = 1.0 if case.impact.beta is None else case.impact.beta
-    eps, beta = float(eps), float(beta)
-    if not 0.0 <= eps <= 1.0:
-        raise ValueError(f"eps (coefficient of restitution) must be in [0, 1], got {eps:g}")
+    eps, beta = (float(x) for x in constraints(case, eps, beta))
     if not 0.0 <= beta <= 1.0:
         raise ValueError(f"beta must be in [0, 1] for the simulator (Coulomb friction cannot "
                          f"reverse sliding or push it the wrong way), got {beta:g}")
