@@ -12,7 +12,8 @@ library as numpy, so the default kernel gives bitwise the numpy path's values
 (``tests/test_kernel.py``), including the approach flag, the singular-q flag and fixed
 obstacles (inverse mass and inertia 0). With ``fast_trig`` it uses its own branch-free sine
 and cosine (within 1 ulp), about 20 % faster; the results then agree with numpy to round-off
-(normwise 1e-15; elementwise more where outputs come from cancellation). numba is imported only when this module is,
+(normwise 1e-15; elementwise more where outputs come from cancellation).
+numba is imported only when this module is,
 which :func:`pim.solve` does only when it takes the fast path.
 
 Outputs: the kernel writes only the core outputs (post-impact velocities, yaw rates, impulse,
@@ -62,7 +63,8 @@ _S4, _S5, _S6 = 2.75573137070700676789e-06, -2.50507602534068634195e-08, 1.58969
 _C1, _C2, _C3 = 4.16666666666666019037e-02, -1.38888888888741095749e-03, 2.48015872894767294178e-05
 _C4, _C5, _C6 = -2.75573143513906633035e-07, 2.08757232129817482790e-09, -1.13596475577881948265e-11
 _INVPIO2 = 6.36619772367581382433e-01
-_PIO2_1, _PIO2_2, _PIO2_2T = 1.57079632673412561417e+00, 6.07710050630396597660e-11, 2.02226624879595063154e-21
+_PIO2_1 = 1.57079632673412561417e+00
+_PIO2_2, _PIO2_2T = 6.07710050630396597660e-11, 2.02226624879595063154e-21
 
 
 @njit(inline="always", error_model="numpy")

@@ -10,8 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .units import convert
 from .uncertainty import OUTPUTS, UncertaintyResult
+from .units import convert
 
 __all__ = ["plot_histograms", "write_histograms"]
 

@@ -1,4 +1,4 @@
-"""sim.sweep: ordered results on serial, process-pool and Dask executors, equal to the serial run."""
+"""sim.sweep: ordered results on serial, process and Dask executors, equal to the serial run."""
 
 import math
 from concurrent.futures import ThreadPoolExecutor
