@@ -15,15 +15,19 @@ from .case import Case, Impact, Measured, Vehicle
 from .casefile import list_cases, load_case
 from .solver import Result, solve
 
+# The functions fit and sensitivity share their modules' names: import them eagerly (both
+# need only numpy), so that the function, bound after the submodule, is what pim.fit means
+# even after a later `import pim.fit`. A lazy export would be overwritten by the module.
+from .fit import FitResult, fit  # noqa: E402, I001
+from .sensitivity import sensitivity  # noqa: E402
+
 # Heavier parts load on first use, so that `import pim` stays fast.
 _LAZY = {
-    "fit": "pim.fit", "FitResult": "pim.fit",
-    "sensitivity": "pim.sensitivity",
     "uncertainty": "pim.uncertainty", "UncertaintyResult": "pim.uncertainty",
 }
 
 __all__ = ["Case", "Impact", "Measured", "Vehicle", "Result", "solve", "load_case",
-           "list_cases", *_LAZY]
+           "list_cases", "fit", "FitResult", "sensitivity", *_LAZY]
 __version__ = "0.1.0"
 
 
