@@ -9,29 +9,19 @@ see the README for the sign conventions and the glossary.
 >>> result.velocity1            # m/s, shape (2,)          # doctest: +SKIP
 """
 
-from importlib import import_module
-
 from .case import Case, Impact, Measured, Vehicle
 from .casefile import list_cases, load_case
 from .solver import Result, solve
 
-# The functions fit and sensitivity share their modules' names: import them eagerly (both
-# need only numpy), so that the function, bound after the submodule, is what pim.fit means
-# even after a later `import pim.fit`. A lazy export would be overwritten by the module.
+# fit, sensitivity and uncertainty share their modules' names: import them eagerly (they
+# need only numpy; scipy, numba and matplotlib load inside them on first use), so that the
+# function, bound after the submodule, is what pim.fit means even after `import pim.fit`.
+# A lazy export would be overwritten by the module.
 from .fit import FitResult, fit  # noqa: E402, I001
 from .sensitivity import sensitivity  # noqa: E402
-
-# Heavier parts load on first use, so that `import pim` stays fast.
-_LAZY = {
-    "uncertainty": "pim.uncertainty", "UncertaintyResult": "pim.uncertainty",
-}
+from .uncertainty import UncertaintyResult, uncertainty  # noqa: E402
 
 __all__ = ["Case", "Impact", "Measured", "Vehicle", "Result", "solve", "load_case",
-           "list_cases", "fit", "FitResult", "sensitivity", *_LAZY]
+           "list_cases", "fit", "FitResult", "sensitivity", "uncertainty",
+           "UncertaintyResult"]
 __version__ = "0.1.0"
-
-
-def __getattr__(name):
-    if name in _LAZY:
-        return getattr(import_module(_LAZY[name]), name)
-    raise AttributeError(f"module 'pim' has no attribute {name!r}")

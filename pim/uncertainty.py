@@ -24,8 +24,6 @@ Samples where the impact is inadmissible (no approach, singular q, energy gain, 
 
 from __future__ import annotations
 
-import sys
-import types
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -260,17 +258,3 @@ def uncertainty(case: Case, n: int = 100_000, seed: int | None = 0,
     return UncertaintyResult(case_name=case.name, n=n, seed=seed, n_admissible=n_ok,
                              problems=result.problems(), stats=stats, sensitivity=sens,
                              varying=tuple(uniforms), samples=samples)
-
-
-class _CallableModule(types.ModuleType):
-    """Makes ``pim.uncertainty(case, ...)`` work even after the submodule is imported.
-
-    Importing ``pim.uncertainty`` binds the module to the package attribute of the same name,
-    shadowing the lazily exported function; calling the module calls the function.
-    """
-
-    def __call__(self, *args, **kwargs):
-        return uncertainty(*args, **kwargs)
-
-
-sys.modules[__name__].__class__ = _CallableModule

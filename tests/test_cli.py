@@ -65,3 +65,11 @@ def test_import_is_light():
             "print(sorted(heavy & set(sys.modules)))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
+
+
+def test_public_functions_are_not_shadowed_by_their_modules():
+    import importlib
+
+    for name in ("fit", "sensitivity", "uncertainty"):
+        importlib.import_module(f"pim.{name}")
+        assert callable(getattr(pim, name)) and getattr(pim, name).__name__ == name
