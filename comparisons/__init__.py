@@ -1,0 +1,15 @@
+"""Analytic PIM against the pymunk simulation: reports, animations, speed-error, hard cases.
+
+The harness's main job. ``pim compare CASE --out DIR`` writes a Markdown report with the
+case, the fitted (epsilon, beta), the analytic-vs-simulated table, the sheet's plots, an
+animation (simulated vehicles solid, the analytic motion as a ghost outline) and a summary
+of how the simulator's accuracy buys speed; ``pim animate``, ``pim speed-error`` and
+``pim hard-cases`` run the parts on their own. See docs/comparisons.md.
+
+comparisons/ uses both pim/ (the analytic model) and sim/ (the pymunk scene); neither of
+them imports it.
+"""
+
+from .errors import QuantityError, compare_results, impact_error
+
+__all__ = ["QuantityError", "compare_results", "impact_error"]

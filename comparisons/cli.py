@@ -1,0 +1,207 @@
+"""Command line of the comparisons: ``pim compare``, ``pim animate``, ``pim speed-error``,
+``pim hard-cases`` (registered as ``pim.commands`` entry points in pyproject.toml)."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import click
+
+from pim.cli import beta_option, case_argument, echo_json, eps_option, json_option
+
+__all__ = ["compare", "animate", "speed_error", "hard_cases"]
+
+out_option = click.option("--out", "out", type=click.Path(file_okay=False), default=None,
+                          help="Output folder (default: out/CASE).")
+progress_option = click.option("--progress/--no-progress", default=None,
+                               help="Progress bars on stderr (default: only on a terminal).")
+
+
+def _out(out, name: str, default: str) -> Path:
+    return Path(out) if out is not None else Path("out") / (name or default)
+
+
+@click.command()
+@case_argument
+@out_option
+@eps_option
+@beta_option
+@click.option("--gif", is_flag=True, help="Also write animation.gif (slower, larger).")
+@click.option("--no-animation", is_flag=True, help="Skip the animation.")
+@click.option("--no-speed-error", is_flag=True, help="Skip the coarse speed-error sweep.")
+@click.option("--tyre-friction", "tyre", type=float, default=0.0, show_default=True,
+              help="Tyre/ground friction coefficient after impact in the animation (the "
+                   "ghost decelerates alike); 0 = free motion.")
+@progress_option
+@json_option
+def compare(case_name, out, eps, beta, gif, no_animation, no_speed_error, tyre, progress,
+            as_json):
+    """Compare PIM with the pymunk simulation for CASE and write a report folder.
+
+    Fits (epsilon, beta) to the measured motion when the case has some (--eps/--beta fix
+    them), solves, simulates, and writes report.md with the inputs, the fit, the
+    analytic-vs-simulated table, the design sheet's plots, an MP4 animation and a coarse
+    speed-against-error summary, plus a CSV of every table.
+    """
+    from pim.casefile import load_case
+
+    from .report import compare_case
+
+    if tyre < 0:
+        raise ValueError(f"--tyre-friction must be >= 0, got {tyre}")
+    case = load_case(case_name)
+    folder = _out(out, case.name, "case")
+    rep = compare_case(case, folder, eps=eps, beta=beta, gif=gif, animation=not no_animation,
+                       speed_error=not no_speed_error, tyre=tyre, progress=progress)
+    if as_json:
+        echo_json({"case": case.name, "out": str(folder), "eps": rep.eps, "beta": rep.beta,
+                   "error": rep.error, "seconds": rep.seconds,
+                   "files": sorted(str(p) for p in rep.files)})
+        return
+    click.echo(f"{case.name}: epsilon = {rep.eps:.6g}, beta = {rep.beta:.6g}; "
+               f"pymunk vs PIM error {rep.error:.2e}")
+    if rep.animation is not None:
+        a = rep.animation
+        click.echo(f"animation: {a.frames} frames, rendered at {a.render_fps:.0f} frames/s")
+    click.echo(f"wrote {rep.report} ({len(rep.files)} files) in "
+               f"{sum(rep.seconds.values()):.1f} s")
+
+
+@click.command()
+@case_argument
+@click.option("--out", "out", type=click.Path(dir_okay=False), default=None,
+              help="MP4 file to write (default: out/CASE/animation.mp4).")
+@eps_option
+@beta_option
+@click.option("--gif", "gif", type=click.Path(dir_okay=False), default=None,
+              help="Also write an animated GIF (half size) here.")
+@click.option("--fps", type=int, default=30, show_default=True, help="Frames per second.")
+@click.option("--before", type=float, default=None,
+              help="Seconds shown before the impact (default: about 1.2 vehicle lengths).")
+@click.option("--after", type=float, default=2.0, show_default=True,
+              help="Seconds shown after the impact.")
+@click.option("--size", type=(int, int), default=(960, 720), show_default=True,
+              help="Frame width and height [px], even numbers.")
+@click.option("--tyre-friction", "tyre", type=float, default=0.0, show_default=True,
+              help="Tyre/ground friction coefficient after the impact (ghost alike).")
+@click.option("--no-ghost", is_flag=True, help="Do not draw PIM's answer as a ghost.")
+@progress_option
+@json_option
+def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_ghost,
+            progress, as_json):
+    """Animate CASE: pymunk simulation solid, PIM's post-impact motion as a ghost (MP4)."""
+    import sim
+    from pim.casefile import load_case
+
+    from .animation import animate_case
+
+    case = load_case(case_name)
+    eps_, beta_ = sim.scene.resolve_coefficients(case, eps, beta)
+    if tyre < 0:
+        raise ValueError(f"--tyre-friction must be >= 0, got {tyre}")
+    path = Path(out) if out else _out(None, case.name, "case") / "animation.mp4"
+    try:
+        info = animate_case(case, eps_, beta_, path, gif=gif, progress=progress, fps=fps,
+                            before=before, after=after, size=size, tyre=tyre,
+                            ghost=not no_ghost)
+    except sim.SimulationError as exc:
+        click.echo(f"simulation failed ({exc.kind}): {exc}", err=True)
+        sys.exit(1)
+    if as_json:
+        echo_json({"path": str(info.path), "gif": str(info.gif) if info.gif else None,
+                   "frames": info.frames, "fps": info.fps, "size": list(info.size),
+                   "render_fps": info.render_fps, "write_seconds": info.write_seconds,
+                   "max_ghost_offset_px": info.max_ghost_offset_px})
+        return
+    click.echo(f"wrote {info.path}" + (f" and {info.gif}" if info.gif else "")
+               + f": {info.frames} frames at {info.fps} fps, rendered at "
+                 f"{info.render_fps:.0f} frames/s, encoded in {info.write_seconds:.2f} s; "
+                 f"ghost offset after impact {info.max_ghost_offset_px:.2g} px")
+
+
+@click.command("speed-error")
+@click.argument("case_names", metavar="CASE...", nargs=-1, required=True)
+@click.option("--out", "out", type=click.Path(file_okay=False), default=None,
+              help="Output folder (default: out/speed-error).")
+@eps_option
+@beta_option
+@click.option("--repeats", type=int, default=3, show_default=True,
+              help="Runs per setting (the best wall time is kept).")
+@click.option("--coarse", is_flag=True, help="The report's coarse grid instead of the full one.")
+@progress_option
+@json_option
+def speed_error(case_names, out, eps, beta, repeats, coarse, progress, as_json):
+    """Sweep the simulator's dt, iterations, contact start and geometry for each CASE.
+
+    Writes, per case, CASE-speed-error.md (table of the Pareto front and every run),
+    CASE-speed-error.csv and CASE-speed-error.png (log-log error against wall time per
+    impact, with the Pareto front, PIM's own time and error and the recommended setting).
+    "hard" stands for every bundled hard case.
+    """
+    from pim.casefile import list_cases, load_case
+    from pim.plots import save_figure
+
+    from .speed_error import COARSE, plot_speed_error, sweep, write_study
+
+    if repeats < 1:
+        raise ValueError(f"--repeats must be >= 1, got {repeats}")
+    names = []
+    for n in case_names:
+        names += [c for c, _ in list_cases() if c.startswith("hard-")] if n == "hard" else [n]
+    folder = Path(out) if out else Path("out") / "speed-error"
+    results = []
+    for name in names:
+        case = load_case(name)
+        grid = dict(COARSE) if coarse else {}
+        grid["repeats"] = repeats
+        study = sweep(case, eps, beta, progress=progress, **grid)
+        stem = case.name or Path(name).stem
+        files = write_study(study, folder, stem, command=_command(name, coarse, repeats))
+        rec = study.recommended()
+        results.append({"case": stem, "files": [str(f) for f in files],
+                        "recommended": None if rec is None else
+                        {"dt": rec.dt, "iterations": rec.iterations,
+                         "iterations_used": rec.iterations_used, "start": rec.start,
+                         "contact": rec.contact, "error": rec.error,
+                         "wall_time": rec.wall_time},
+                        "analytic_time": study.analytic_time,
+                        "analytic_batch_time": study.analytic_batch_time})
+        if not as_json:
+            text = ("no run reaches the target" if rec is None else
+                    f"recommended dt = {rec.dt:g} s, iterations = "
+                    f"{'auto' if rec.iterations is None else rec.iterations}, {rec.start} "
+                    f"start, {rec.contact} contact: error {rec.error:.2e}, "
+                    f"{rec.wall_time * 1e3:.3g} ms/impact (PIM {study.analytic_time * 1e3:.3g} "
+                    f"ms/call)")
+            click.echo(f"{stem}: {text}; wrote {files[0]}")
+    if as_json:
+        echo_json(results)
+    del save_figure
+
+
+def _command(name: str, coarse: bool, repeats: int) -> str:
+    return (f"pim speed-error {name}" + (" --coarse" if coarse else "")
+            + (f" --repeats {repeats}" if repeats != 3 else ""))
+
+
+@click.command("hard-cases")
+@click.option("--out", "out", type=click.Path(file_okay=False), default=None,
+              help="Output folder (default: out/hard-cases).")
+@progress_option
+@json_option
+def hard_cases(out, progress, as_json):
+    """Run every bundled hard case through PIM and the simulator; table of results, errors,
+    and the dt / iterations the simulator needs to reach 1e-6 (or why it cannot)."""
+    from .hard_cases import run_hard_cases, write_hard_cases
+
+    folder = Path(out) if out else Path("out") / "hard-cases"
+    study = run_hard_cases(progress=progress)
+    files = write_hard_cases(study, folder)
+    if as_json:
+        echo_json({"files": [str(f) for f in files], "cases": study.to_json()})
+        return
+    click.echo(study.results_table().to_markdown())
+    click.echo("")
+    click.echo(study.needs_table().to_markdown())
+    click.echo(f"\nwrote {', '.join(str(f) for f in files)}")

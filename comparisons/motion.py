@@ -1,0 +1,157 @@
+"""Poses of the two vehicles at the animation's frame times: simulated and analytic (ghost).
+
+Time 0 is PIM's impact instant (the case's configuration). Before it both vehicles move
+freely with the case's velocities and yaw rates (no forces act; the simulation itself starts
+one step before impact, so these frames are the same rigid motion for both). After it:
+
+* simulated: the recorded pymunk trajectory (:class:`sim.Trajectory`), linearly interpolated
+  between steps (exact for free motion, whose position is linear in time);
+* analytic (ghost): free rigid motion from the impact configuration with PIM's post-impact
+  velocities and yaw rates. With tyre friction the ghost decelerates like the simulator's
+  model: speed falls by mu_t g per second along a fixed direction, the yaw rate by
+  mu_t g d / k^2 (d the mean distance of a uniformly loaded footprint from the CG, k the
+  radius of gyration), each stopping at zero.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+import pim
+
+__all__ = ["Motion", "free_motion", "analytic_motion", "simulated_motion", "footprint_lever"]
+
+
+@dataclass(frozen=True, eq=False)
+class Motion:
+    """Poses over the frame times (SI, global frame).
+
+    Attributes
+    ----------
+    time : ndarray (F,)
+        Frame times [s], 0 at impact.
+    position1, position2 : ndarray (F, 2)
+        CG positions [m].
+    angle1, angle2 : ndarray (F,)
+        Headings [rad].
+    velocity1, velocity2 : ndarray (F, 2)
+        CG velocities [m/s].
+    """
+
+    time: np.ndarray
+    position1: np.ndarray
+    angle1: np.ndarray
+    velocity1: np.ndarray
+    position2: np.ndarray
+    angle2: np.ndarray
+    velocity2: np.ndarray
+
+
+def _vec(x) -> np.ndarray:
+    return np.asarray(x, float).reshape(2)
+
+
+def footprint_lever(vehicle: pim.Vehicle) -> float:
+    """Mean distance [m] of a uniformly loaded length x width footprint from its CG.
+
+    Midpoint rule on a 32 x 32 grid, as the simulator's tyre model does; the radius of
+    gyration when the vehicle has no outline.
+    """
+    if vehicle.length is None or vehicle.width is None:
+        return float(np.sqrt(vehicle.yaw_inertia / vehicle.mass))
+    g = (np.arange(32) + 0.5) / 32 * 2 - 1
+    x, y = np.meshgrid(g * vehicle.length / 2, g * vehicle.width / 2)
+    return float(np.mean(np.hypot(x, y)))
+
+
+def _decelerated(v0: np.ndarray, w0: float, t: np.ndarray, decel: float, yaw_decel: float):
+    """Displacement, heading change, velocity after time t >= 0 under constant deceleration."""
+    speed = float(np.hypot(*v0))
+    if decel > 0 and speed > 0:
+        stop = speed / decel
+        tc = np.minimum(t, stop)
+        dist = speed * tc - 0.5 * decel * tc * tc
+        direction = v0 / speed
+        disp = dist[:, None] * direction
+        vel = np.maximum(speed - decel * t, 0.0)[:, None] * direction
+    else:
+        disp = t[:, None] * v0
+        vel = np.broadcast_to(v0, (len(t), 2)).copy()
+    if yaw_decel > 0 and w0 != 0:
+        stop = abs(w0) / yaw_decel
+        tc = np.minimum(t, stop)
+        turn = np.sign(w0) * (abs(w0) * tc - 0.5 * yaw_decel * tc * tc)
+    else:
+        turn = w0 * t
+    return disp, turn, vel
+
+
+def free_motion(vehicle: pim.Vehicle, velocity, yaw_rate, time, tyre: float = 0.0,
+                gravity: float = 9.80665):
+    """Pose of one vehicle moving from its case CG/heading at ``velocity`` and ``yaw_rate``.
+
+    Negative times rewind (always free motion); positive times go forward, decelerated by
+    tyre friction coefficient ``tyre`` [-] when > 0. Returns (position, angle, velocity).
+    """
+    time = np.asarray(time, float)
+    cg, heading = _vec(vehicle.cg), float(vehicle.heading)
+    v0, w0 = _vec(velocity), float(yaw_rate)
+    if bool(vehicle.fixed):
+        return (np.broadcast_to(cg, (len(time), 2)).copy(), np.full(len(time), heading),
+                np.zeros((len(time), 2)))
+    decel = tyre * gravity
+    yaw_decel = 0.0
+    if decel > 0:
+        k2 = float(vehicle.yaw_inertia / vehicle.mass)
+        yaw_decel = decel * footprint_lever(vehicle) / k2
+    after = time > 0
+    disp, turn, vel = _decelerated(v0, w0, np.where(after, time, 0.0), decel, yaw_decel)
+    before = ~after
+    disp[before] = time[before, None] * v0
+    turn = np.where(before, w0 * time, turn)
+    vel[before] = v0
+    return cg + disp, heading + turn, vel
+
+
+def analytic_motion(case: pim.Case, result: pim.Result, time, tyre: float = 0.0,
+                    gravity: float = 9.80665) -> Motion:
+    """The ghost: pre-impact motion of the case, then PIM's post-impact motion."""
+    time = np.asarray(time, float)
+    out = []
+    for vehicle, after, w_after in ((case.vehicle1, result.velocity1, result.yaw_rate1),
+                                    (case.vehicle2, result.velocity2, result.yaw_rate2)):
+        pre_p, pre_a, pre_v = free_motion(vehicle, vehicle.velocity, vehicle.yaw_rate, time)
+        post_p, post_a, post_v = free_motion(vehicle, after, float(np.asarray(w_after)),
+                                             time, tyre, gravity)
+        b = time < 0
+        out.append((np.where(b[:, None], pre_p, post_p), np.where(b, pre_a, post_a),
+                    np.where(b[:, None], pre_v, post_v)))
+    (p1, a1, v1), (p2, a2, v2) = out
+    return Motion(time, p1, a1, v1, p2, a2, v2)
+
+
+def simulated_motion(case: pim.Case, trajectory, time) -> Motion:
+    """The simulated vehicles: the case's pre-impact motion, then the recorded trajectory.
+
+    Frames after the end of the recording hold its last state (vehicles at rest with tyre
+    friction).
+    """
+    time = np.asarray(time, float)
+    tr = trajectory
+    t0 = float(tr.time[0])
+    out = []
+    for vehicle, pos, ang, vel in ((case.vehicle1, tr.position1, tr.angle1, tr.velocity1),
+                                   (case.vehicle2, tr.position2, tr.angle2, tr.velocity2)):
+        pre_p, pre_a, pre_v = free_motion(vehicle, vehicle.velocity, vehicle.yaw_rate, time)
+        p = np.stack([np.interp(time, tr.time, pos[:, i]) for i in range(2)], -1)
+        a = np.interp(time, tr.time, ang)
+        # velocities are piecewise constant over a step: take the state at the step's end
+        idx = np.clip(np.searchsorted(tr.time, time, side="left"), 0, len(tr.time) - 1)
+        v = vel[idx]
+        early = time < t0
+        p[early], a[early], v[early] = pre_p[early], pre_a[early], pre_v[early]
+        out.append((p, a, v))
+    (p1, a1, v1), (p2, a2, v2) = out
+    return Motion(time, p1, a1, v1, p2, a2, v2)
