@@ -157,7 +157,10 @@ def test_swapping_the_vehicles(case, eps, beta):
     np.testing.assert_allclose(s.velocity2, r.velocity1, atol=scale)
     np.testing.assert_allclose(s.yaw_rate1, r.yaw_rate2, atol=scale * 10)
     np.testing.assert_allclose(s.yaw_rate2, r.yaw_rate1, atol=scale * 10)
-    np.testing.assert_allclose(s.mu0, r.mu0, rtol=1e-9, atol=1e-12)
+    # mu0 = Pt0 / Pn0 is ill-conditioned for grazing scenes; compare its parts.
+    critical = np.array([r.critical_impulse_n, r.critical_impulse_t])
+    np.testing.assert_allclose([s.critical_impulse_n, s.critical_impulse_t], critical,
+                               atol=1e-9 * np.abs(critical).sum())
 
 
 @settings(max_examples=300, deadline=None)
