@@ -86,10 +86,12 @@ class Vehicle:
         set_(self, "velocity", _vector(self.velocity, "velocity", "m/s"))
         set_(self, "yaw_rate", _finite(_scalar(self.yaw_rate, "yaw_rate"), "yaw_rate", "rad/s"))
         set_(self, "heading", _finite(_scalar(self.heading, "heading"), "heading", "rad"))
-        fixed, moving = np.broadcast_arrays(
-            np.isinf(mass), np.abs(self.velocity).sum(-1) + np.abs(self.yaw_rate))
-        if (fixed & (moving != 0)).any():
-            raise ValueError("velocity and yaw_rate of a fixed obstacle must be 0")
+        fixed = np.isinf(mass)
+        if fixed.any():   # checked only when there is an obstacle: one pass in the usual case
+            fixed, moving = np.broadcast_arrays(
+                fixed, np.abs(self.velocity).sum(-1) + np.abs(self.yaw_rate))
+            if (fixed & (moving != 0)).any():
+                raise ValueError("velocity and yaw_rate of a fixed obstacle must be 0")
         for name in ("length", "width"):
             value = getattr(self, name)
             if value is not None:
