@@ -397,7 +397,7 @@ class Renderer:
 
     def array(self, index: int) -> np.ndarray:
         """Frame ``index`` as a (height, width, 3) uint8 array."""
-        return np.asarray(self.frame(index))
+        return _pixels(self.frame(index))
 
     def ghost_offset_px(self) -> float:
         """Largest distance [px] between ghost and simulated corners at t >= 0."""
@@ -409,6 +409,11 @@ class Renderer:
                 continue
             worst = max(worst, float(np.hypot(*(a[after] - b[after]).reshape(-1, 2).T).max()))
         return worst
+
+
+def _pixels(img: Image.Image) -> np.ndarray:
+    """RGB image -> (height, width, 3) uint8 array (tobytes: about twice np.asarray's speed)."""
+    return np.frombuffer(img.tobytes(), np.uint8).reshape(img.height, img.width, 3)
 
 
 def write_animation(renderer: Renderer, path, fps: int = DEFAULT_FPS, gif=None,
@@ -445,7 +450,7 @@ def write_animation(renderer: Renderer, path, fps: int = DEFAULT_FPS, gif=None,
                 t0 = _time.perf_counter()
                 img = renderer.frame(i)
                 render += _time.perf_counter() - t0
-                writer.append_data(np.asarray(img))
+                writer.append_data(_pixels(img))
                 if gif is not None:
                     thumbs.append(img.resize((img.width // 2, img.height // 2),
                                              Image.Resampling.BILINEAR))

@@ -134,8 +134,8 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
 def speed_error(case_names, out, eps, beta, repeats, coarse, progress, as_json):
     """Sweep the simulator's dt, iterations, contact start and geometry for each CASE.
 
-    Writes, per case, CASE-speed-error.md (table of the Pareto front and every run),
-    CASE-speed-error.csv and CASE-speed-error.png (log-log error against wall time per
+    Writes, per case, speed-error-CASE.md (table of the Pareto front and every run),
+    speed-error-CASE.csv and speed-error-CASE.png (log-log error against wall time per
     impact, with the Pareto front, PIM's own time and error and the recommended setting).
     "hard" stands for every bundled hard case.
     """
@@ -157,7 +157,7 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, progress, as_json):
         grid["repeats"] = repeats
         study = sweep(case, eps, beta, progress=progress, **grid)
         stem = case.name or Path(name).stem
-        files = write_study(study, folder, stem, command=_command(name, coarse, repeats))
+        files = write_study(study, folder, stem, command=_command(name, coarse, repeats, out))
         rec = study.recommended()
         results.append({"case": stem, "files": [str(f) for f in files],
                         "recommended": None if rec is None else
@@ -180,9 +180,10 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, progress, as_json):
     del save_figure
 
 
-def _command(name: str, coarse: bool, repeats: int) -> str:
+def _command(name: str, coarse: bool, repeats: int, out) -> str:
     return (f"pim speed-error {name}" + (" --coarse" if coarse else "")
-            + (f" --repeats {repeats}" if repeats != 3 else ""))
+            + (f" --repeats {repeats}" if repeats != 3 else "")
+            + (f" --out {out}" if out else ""))
 
 
 @click.command("hard-cases")

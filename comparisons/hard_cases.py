@@ -248,7 +248,7 @@ def run_hard_cases(names=None, repeats: int = 1, progress: bool | None = None) -
     return HardCaseStudy(tuple(cases))
 
 
-COMMAND = "pim hard-cases --out out/hard-cases"
+COMMAND = "pim hard-cases --out docs"
 
 
 def hard_cases_markdown(study: HardCaseStudy) -> str:

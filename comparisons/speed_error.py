@@ -361,7 +361,7 @@ del replace
 
 
 def write_study(study: SpeedErrorStudy, out_dir, stem: str, command: str = "") -> list:
-    """Write ``stem-speed-error.md``, ``.csv`` (every run), ``-pareto.csv`` and ``.png``."""
+    """Write ``speed-error-STEM.md``, ``.csv`` (every run), ``-pareto.csv`` and ``.png``."""
     from pathlib import Path
 
     from pim.plots import save_figure
@@ -370,11 +370,11 @@ def write_study(study: SpeedErrorStudy, out_dir, stem: str, command: str = "") -
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    every = study_table(study, f"{stem}-speed-error")
-    front = pareto_table(study, f"{stem}-speed-error-pareto")
-    png = save_figure(plot_speed_error(study), out / f"{stem}-speed-error.png")
+    every = study_table(study, f"speed-error-{stem}")
+    front = pareto_table(study, f"speed-error-{stem}-pareto")
+    png = save_figure(plot_speed_error(study), out / f"speed-error-{stem}.png")
     files = [every.write_csv(out), front.write_csv(out), png]
-    md = write_text(out / f"{stem}-speed-error.md", study_markdown(study, stem, command))
+    md = write_text(out / f"speed-error-{stem}.md", study_markdown(study, stem, command))
     return [md, *files]
 
 
@@ -418,7 +418,9 @@ def study_markdown(study: SpeedErrorStudy, stem: str, command: str = "") -> str:
             fails[p.failure] = fails.get(p.failure, 0) + 1
     if fails:
         lines.append("- failed runs: " + ", ".join(f"{k} x {v}" for k, v in fails.items()))
-    lines += ["", f"![speed against error]({stem}-speed-error.png)", "",
+    lines += ["", f"![speed against error](speed-error-{stem}.png)", "",
+              f"Tables as CSV: [every run](speed-error-{stem}.csv), "
+              f"[Pareto front](speed-error-{stem}-pareto.csv).", "",
               "## Pareto front", "", pareto_table(study).to_markdown(), "",
               "## Every run", "", study_table(study).to_markdown(), ""]
     return "\n".join(lines)

@@ -102,6 +102,7 @@ class Table:
             align = ["---:" if any(isinstance(r[i], int | float) and not isinstance(r[i], bool)
                                    for r in self.rows) else ":---"
                      for i in range(len(self.columns))]
-        lines = ["| " + " | ".join(self.columns) + " |", "|" + "|".join(align) + "|"]
+        header = (c.replace("|", "\\|") for c in self.columns)
+        lines = ["| " + " | ".join(header) + " |", "|" + "|".join(align) + "|"]
         lines += ["| " + " | ".join(c.replace("|", "\\|") for c in row) + " |" for row in cells]
         return "\n".join(lines)
