@@ -74,8 +74,8 @@ def main() -> None:
     print(f"ricsac9 animation: {n} frames {renderer.size[0]}x{renderer.size[1]} at 30 fps")
     print(f"  simulate + prepare        : {prepare * 1e3:8.1f} ms")
     print(f"  Pillow renderer           : {best_img:8.0f} frames/s (full frames, PIL images)")
-    print(f"  Pillow renderer + array   : {best:8.0f} frames/s (as numpy arrays for the encoder)")
-    print(f"  matplotlib Agg, reused    : {base:8.0f} frames/s (background image + 4 outlines + clock)")
+    print(f"  Pillow renderer + array   : {best:8.0f} frames/s (as arrays for the encoder)")
+    print(f"  matplotlib Agg, reused    : {base:8.0f} frames/s (background + 4 outlines + clock)")
     print(f"  ratio Pillow / matplotlib : {best / base:8.1f} x")
     print(f"  MP4 (libx264) written in  : {info.write_seconds:8.2f} s "
           f"(render {info.render_seconds:.2f} s)")

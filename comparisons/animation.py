@@ -295,7 +295,6 @@ class Renderer:
         c = self.to_px(self.point)
         half = 0.22 * min(width, height)
         t = self.tangent * np.array([1, -1])
-        n = self.normal * np.array([1, -1])
         self._dashed(d, [c - half * t, c + half * t], COLORS["contact"], 2, dash=12, gap=6)
         d.text(tuple(c + half * t + np.array([4, -8])), "contact plane",
                fill=COLORS["contact"], font=self.small)

@@ -142,7 +142,7 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, progress, as_json):
     from pim.casefile import list_cases, load_case
     from pim.plots import save_figure
 
-    from .speed_error import COARSE, plot_speed_error, sweep, write_study
+    from .speed_error import COARSE, sweep, write_study
 
     if repeats < 1:
         raise ValueError(f"--repeats must be >= 1, got {repeats}")

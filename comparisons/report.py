@@ -139,9 +139,9 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
     progress : bool or None
         tqdm bars on stderr (None: only on a terminal).
     """
-    import sim
     from tqdm import tqdm
 
+    import sim
     from pim.plots import save_figure, write_plots
 
     from .animation import build_renderer, write_animation
@@ -314,7 +314,7 @@ def _markdown(case, fit, eps, beta, result, simulated, sim_error, limits, tables
             lines += [f"No run reached the target error {study.target:g}.", ""]
         lines += ["![speed against error](speed_error.png)", "",
                   _md_table(by_name["speed_error_pareto"]),
-                  f"Every run: [speed_error.csv](speed_error.csv).", ""]
+                  "Every run: [speed_error.csv](speed_error.csv).", ""]
     lines += ["## Files", ""]
     for path in sorted({p.relative_to(out).as_posix() for p in rep.files}):
         lines.append(f"- [{path}]({path})")

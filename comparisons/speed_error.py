@@ -215,9 +215,9 @@ def sweep(case: pim.Case, eps: float | None = None, beta: float | None = None, *
     progress : bool or None
         tqdm bar on stderr (None: only on a terminal).
     """
-    import sim
     from tqdm import tqdm
 
+    import sim
     from sim.scene import resolve_coefficients
 
     eps, beta = resolve_coefficients(case, eps, beta)

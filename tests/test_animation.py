@@ -20,7 +20,7 @@ def renderer():
 
 def ghost_pixels(img):
     a = np.asarray(img).astype(int)
-    return np.argwhere((np.abs(a - np.array(COLORS["ghost"])).sum(-1) == 0))
+    return np.argwhere(np.abs(a - np.array(COLORS["ghost"])).sum(-1) == 0)
 
 
 def distance_to_polygon_edges(points, poly):

@@ -7,7 +7,6 @@ for a detected contact start (error ~ dt, none against a fixed straight barrier)
 
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 import pim
