@@ -30,7 +30,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .solver import Result
+from .solver import APPROACH_TOLERANCE, Result
 
 __all__ = ["solve_case", "solve_arrays", "stream_copy", "INPUTS", "CORE_VECTORS", "CORE_SCALARS",
            "AUX"]
@@ -149,7 +149,7 @@ def _case(i, cs, sn, m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, eps, beta, to
     excess = (b - 1.0) * k_nt * pt0
     denom = drive + excess
     size = np.abs(drive) + np.abs(excess)
-    appr = u_n < 0
+    appr = u_n < -APPROACH_TOLERANCE * (np.abs(u_n) + np.abs(u_t))  # compile-time constant
     sing = appr & (np.abs(denom) <= tol * size)
     scale = drive / denom if appr else 0.0
     scale = np.nan if sing else scale

@@ -50,6 +50,10 @@ from .case import Case
 
 __all__ = ["solve", "Result", "constraints", "effective_mass_matrix", "contact_velocity"]
 
+#: A normal approach u_n smaller than this fraction of |u_n| + |u_t| is round-off, not an
+#: impact: at beta = 1 an infinitesimal approach would stop the whole tangential slip, so the
+#: sign of a rounding error would decide between no impulse and a finite one.
+APPROACH_TOLERANCE = 1e-12
 #: |K_nn Pn0 + beta K_nt Pt0| below this fraction of its terms' size counts as singular q.
 SINGULAR_TOLERANCE = 1e-12
 
@@ -237,7 +241,7 @@ def solve(case: Case, eps=None, beta=None, backend: str = "auto") -> Result:
     Notes
     -----
     Implements Brach & Brach (2011) eqs. 6.45-6.62 in vector form; see the module docstring.
-    Where the vehicles do not approach at C (u_n >= 0) no impact takes place: the impulse is
+    Where the vehicles do not approach at C (u_n >= 0, to round-off) no impact takes place: the impulse is
     zero and ``approaching`` is False. Where q is singular (A - mu B = 0) the impulse is
     unbounded: outputs are NaN and ``q_singular`` is True.
     """
@@ -268,7 +272,7 @@ def solve(case: Case, eps=None, beta=None, backend: str = "auto") -> Result:
     excess = (beta - 1.0) * k_nt * pt0
     denom = drive + excess
     size = np.abs(drive) + np.abs(excess)
-    approaching = u_n < 0
+    approaching = u_n < -APPROACH_TOLERANCE * (np.abs(u_n) + np.abs(u_t))
     singular = approaching & (np.abs(denom) <= SINGULAR_TOLERANCE * size)
     with np.errstate(divide="ignore", invalid="ignore"):
         scale = np.where(approaching, drive / denom, 0.0)
@@ -345,7 +349,8 @@ class Result:
     critical_impulse_n, critical_impulse_t : ndarray
         The impulse at mu = mu0 (beta = 1) [N s].
     approaching : ndarray of bool
-        u_n < 0: the vehicles approach at C. Where False no impulse is applied.
+        u_n < 0 beyond round-off (by more than APPROACH_TOLERANCE of |u_n| + |u_t|): the
+        vehicles approach at C. Where False no impulse is applied.
     q_singular : ndarray of bool
         A - mu B = 0: the impulse is unbounded; outputs there are NaN.
     """

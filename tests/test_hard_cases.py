@@ -236,3 +236,15 @@ def test_energy_gain_is_flagged():
     assert 1.0 > det / (r.k_nn * r.k_tt)
     assert float(r.energy_loss) < 0 and not bool(r.energy_not_gained)
     assert any("energy is gained" in p for p in r.problems())
+
+
+def test_round_off_approach_is_no_impact_in_every_frame():
+    # u_n = -1e-41 against a 1 m/s slip is rounding, not an impact: at beta = 1 it would
+    # otherwise stop the whole slip in one frame and do nothing in a rotated one.
+    case = pim.Case(pim.Vehicle(100.0, 100.0, (0.0, 0.0), (-1e-41, 1.0)),
+                    pim.Vehicle(100.0, 100.0, (0.0, 0.0), (0.0, 0.0)),
+                    pim.Impact((0.0, 0.0), 0.0))
+    for angle in (0.0, 1.0, 2.5):
+        r = pim.solve(case.transformed(angle), 0.0, 1.0)
+        assert not bool(r.approaching)
+        np.testing.assert_array_equal(r.impulse, 0.0)
