@@ -11,7 +11,6 @@ see the README for the sign conventions and the glossary.
 
 from .case import Case, Impact, Measured, Vehicle
 from .casefile import list_cases, load_case
-from .solver import Result, solve
 
 # fit, sensitivity and uncertainty share their modules' names: import them eagerly (they
 # need only numpy; scipy, numba and matplotlib load inside them on first use), so that the
@@ -19,6 +18,7 @@ from .solver import Result, solve
 # A lazy export would be overwritten by the module.
 from .fit import FitResult, fit  # noqa: E402, I001
 from .sensitivity import sensitivity  # noqa: E402
+from .solver import Result, solve
 from .uncertainty import UncertaintyResult, uncertainty  # noqa: E402
 
 __all__ = ["Case", "Impact", "Measured", "Vehicle", "Result", "solve", "load_case",

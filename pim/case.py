@@ -249,11 +249,11 @@ class Case:
 
         measured = self.measured
         if measured is not None:
-            measured = replace(
-                measured,
-                velocity1=None if measured.velocity1 is None else _rotate(measured.velocity1, rotation),
-                velocity2=None if measured.velocity2 is None else _rotate(measured.velocity2, rotation),
-            )
+            def turn(v):
+                return None if v is None else _rotate(v, rotation)
+
+            measured = replace(measured, velocity1=turn(measured.velocity1),
+                               velocity2=turn(measured.velocity2))
         impact = replace(self.impact, point=_rotate(self.impact.point, rotation) + shift,
                          normal_angle=self.impact.normal_angle + rotation)
         return replace(self, vehicle1=move(self.vehicle1), vehicle2=move(self.vehicle2),

@@ -95,7 +95,8 @@ def draw_case(case: Case, result=None, ax=None, velocity_scale: float | None = N
         away = g - c
         away = away / max(np.hypot(*away), 1e-9)
         ax.annotate(f"{name}\nheading {np.degrees(float(v.heading)):.0f}°", xy=g,
-                    xytext=tuple(70 * away + (0, -12)), textcoords="offset points", color=color, fontsize=9,
+                    xytext=tuple(70 * away + (0, -12)), textcoords="offset points",
+                    color=color, fontsize=9,
                     ha="center", bbox=_BOX, zorder=5)
         ax.plot(*np.c_[g, c], ls="--", color=color, lw=1.2, zorder=3)
         mid = g + 0.35 * (c - g)

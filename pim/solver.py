@@ -241,9 +241,9 @@ def solve(case: Case, eps=None, beta=None, backend: str = "auto") -> Result:
     Notes
     -----
     Implements Brach & Brach (2011) eqs. 6.45-6.62 in vector form; see the module docstring.
-    Where the vehicles do not approach at C (u_n >= 0, to round-off) no impact takes place: the impulse is
-    zero and ``approaching`` is False. Where q is singular (A - mu B = 0) the impulse is
-    unbounded: outputs are NaN and ``q_singular`` is True.
+    Where the vehicles do not approach at C (u_n >= 0, to round-off) no impact takes place:
+    the impulse is zero and ``approaching`` is False. Where q is singular (A - mu B = 0) the
+    impulse is unbounded: outputs are NaN and ``q_singular`` is True.
     """
     eps, beta = _defaults(case, eps, beta)
     if _use_kernel(case, eps, beta, backend):
@@ -258,7 +258,8 @@ def solve(case: Case, eps=None, beta=None, backend: str = "auto") -> Result:
     t = _vec(-np.sin(gamma), np.cos(gamma))
     r1 = imp.point - v1.cg
     r2 = imp.point - v2.cg
-    u = contact_velocity(v1.velocity, v1.yaw_rate, r1) - contact_velocity(v2.velocity, v2.yaw_rate, r2)
+    u = (contact_velocity(v1.velocity, v1.yaw_rate, r1)
+         - contact_velocity(v2.velocity, v2.yaw_rate, r2))
     u_n, u_t = _dot(u, n), _dot(u, t)
     k_nn, k_nt, k_tt = effective_mass_matrix(a1, b1, r1, a2, b2, r2, n, t)
 

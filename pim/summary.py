@@ -92,7 +92,7 @@ def format_table(rows: list[Row], title: str = "") -> str:
     body = [(r.label, num(r.vehicle1), num(r.vehicle2), r.unit) for r in rows]
     widths = [max(len(line[i]) for line in [header, *body]) for i in range(4)]
     lines = [title] if title else []
-    fmt = "{:<%d}  {:>%d}  {:>%d}  {:<%d}" % tuple(widths)
+    fmt = "{{:<{}}}  {{:>{}}}  {{:>{}}}  {{:<{}}}".format(*widths)
     lines.append(fmt.format(*header).rstrip())
     lines.append("  ".join("-" * w for w in widths))
     lines += [fmt.format(*line).rstrip() for line in body]

@@ -94,12 +94,14 @@ def _pre_solve(arbiter, space, mon: _Monitor) -> None:
     if mon.pin and count == 1:
         c = points[0].point_b
         normal = mon.normal
-        arbiter.contact_point_set = pymunk.ContactPointSet(normal, (pymunk.ContactPoint(c, c, 0.0),))
+        arbiter.contact_point_set = pymunk.ContactPointSet(
+            normal, (pymunk.ContactPoint(c, c, 0.0),))
         points = arbiter.contact_point_set.points
     if count == 1:
         p = points[0]
         rel = _relative(mon, p.point_a, p.point_b)
-        mon.before = (p.point_a, p.point_b, normal, rel.dot(normal), rel.dot(normal.perpendicular()))
+        mon.before = (p.point_a, p.point_b, normal, rel.dot(normal),
+                      rel.dot(normal.perpendicular()))
     else:
         mon.before = None
     mon.accepted = True
@@ -133,7 +135,8 @@ def _kinetic(body: pymunk.Body) -> float:
     if body.body_type != pymunk.Body.DYNAMIC:
         return 0.0
     v = body.velocity
-    return 0.5 * body.mass * (v.x * v.x + v.y * v.y) + 0.5 * body.moment * body.angular_velocity ** 2
+    w = body.angular_velocity
+    return 0.5 * body.mass * (v.x * v.x + v.y * v.y) + 0.5 * body.moment * w * w
 
 
 def _yaw_lever(outline: np.ndarray | None, body: pymunk.Body) -> float:
@@ -284,7 +287,8 @@ def _not_converged_message(scene: Scene, mon: _Monitor) -> str:
             f"{mon.residual / scene.speed_scale:.3g} (relative) after {scene.iterations} "
             f"iterations; predicted error factor per sweep rho = {scene.contraction_rate:.4g}")
     if scene.beta < 1.0 and scene.contraction_rate >= 1.0:
-        text += (f" >= 1: with sliding friction u = |mu| = {scene.friction:.4g}, |u K_nt| >= K_nn, so "
+        text += (f" >= 1: with sliding friction u = |mu| = {scene.friction:.4g}, "
+                 "|u K_nt| >= K_nn, so "
                  "Chipmunk's sequential impulses diverge; PIM's sliding impulse cannot be "
                  "reproduced by this engine at any iteration count")
     else:

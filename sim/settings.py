@@ -108,7 +108,8 @@ class Settings:
             if not ok:
                 lo = "(" if low_open else "["
                 hi = ")" if high_open else "]"
-                raise ValueError(f"settings.{name} must be in {lo}{low:g}, {high:g}{hi}, got {value!r}")
+                raise ValueError(f"settings.{name} must be in {lo}{low:g}, {high:g}{hi}, "
+                                 f"got {value!r}")
             object.__setattr__(self, name, value)
 
         number("dt", 0.0, 1.0, low_open=True)

@@ -29,7 +29,8 @@ def test_solve_json_matches_the_library(capsys):
 def test_separating_case_warns(tmp_path, capsys):
     text = (resources.files("pim") / "cases" / "hard-eps0.toml").read_text()
     path = tmp_path / "apart.toml"
-    path.write_text(text.replace('velocity = ["15 m/s", "0 m/s"]', 'velocity = ["-15 m/s", "0 m/s"]'))
+    path.write_text(text.replace('velocity = ["15 m/s", "0 m/s"]',
+                                 'velocity = ["-15 m/s", "0 m/s"]'))
     assert main(["solve", str(path)]) == 0
     assert "warning: the vehicles do not approach" in capsys.readouterr().err
 
