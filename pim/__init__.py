@@ -9,17 +9,16 @@ see the README for the sign conventions and the glossary.
 >>> result.velocity1            # m/s, shape (2,)          # doctest: +SKIP
 """
 
+# fit, sensitivity and uncertainty share their modules' names. They are imported eagerly
+# (they need only numpy; scipy, numba and matplotlib load inside them on first use) so that
+# the function, bound after its submodule, is what pim.fit means even after a later
+# `import pim.fit`; a lazy __getattr__ export would be overwritten by the module.
 from .case import Case, Impact, Measured, Vehicle
 from .casefile import list_cases, load_case
-
-# fit, sensitivity and uncertainty share their modules' names: import them eagerly (they
-# need only numpy; scipy, numba and matplotlib load inside them on first use), so that the
-# function, bound after the submodule, is what pim.fit means even after `import pim.fit`.
-# A lazy export would be overwritten by the module.
-from .fit import FitResult, fit  # noqa: E402, I001
-from .sensitivity import sensitivity  # noqa: E402
+from .fit import FitResult, fit
+from .sensitivity import sensitivity
 from .solver import Result, solve
-from .uncertainty import UncertaintyResult, uncertainty  # noqa: E402
+from .uncertainty import UncertaintyResult, uncertainty
 
 __all__ = ["Case", "Impact", "Measured", "Vehicle", "Result", "solve", "load_case",
            "list_cases", "fit", "FitResult", "sensitivity", "uncertainty",
