@@ -204,15 +204,16 @@ def _use_kernel(case: Case, eps, beta, backend: str) -> bool:
     return True
 
 
-def _solve_kernel(case: Case, eps, beta) -> Result:
+def _solve_kernel(case: Case, eps, beta, fast_trig: bool) -> Result:
     """:func:`solve` on the fused numba kernel (:mod:`pim.kernel`); same results."""
     from .kernel import solve_case
 
     return solve_case(case, np.asarray(eps, dtype=float), np.asarray(beta, dtype=float),
-                      SINGULAR_TOLERANCE)
+                      SINGULAR_TOLERANCE, fast_trig=fast_trig)
 
 
-def solve(case: Case, eps=None, beta=None, backend: str = "auto") -> Result:
+def solve(case: Case, eps=None, beta=None, backend: str = "auto",
+          fast_trig: bool = False) -> Result:
     """Post-impact motion of a planar two-body impact (Brach's PIM).
 
     Parameters
@@ -231,6 +232,11 @@ def solve(case: Case, eps=None, beta=None, backend: str = "auto") -> Result:
         broadcast shape, the auxiliary fields (arms, K, approach velocity, n-t impulse
         components) computed on first read; "auto" takes the kernel for batches of at least
         ``FAST_PATH_MIN_SIZE`` cases when numba is installed.
+    fast_trig : bool
+        On the kernel only: take sin and cos of Gamma from the kernel's own branch-free
+        fdlibm polynomials (within 1 ulp of the C library's, about 20 % faster) instead of the
+        C library, so results agree with the numpy path to round-off instead of bitwise.
+        Ignored on the numpy path.
 
     Returns
     -------
@@ -247,7 +253,7 @@ def solve(case: Case, eps=None, beta=None, backend: str = "auto") -> Result:
     """
     eps, beta = _defaults(case, eps, beta)
     if _use_kernel(case, eps, beta, backend):
-        return _solve_kernel(case, eps, beta)        # checks eps and beta inside the kernel
+        return _solve_kernel(case, eps, beta, fast_trig)  # checks eps, beta in the kernel
     eps, beta = _check_eps(eps), _check_beta(beta)
     v1, v2, imp = case.vehicle1, case.vehicle2, case.impact
 
