@@ -26,8 +26,8 @@ import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
 import pim
+from pim.files import atomic_path
 
-from .atomic import atomic_path
 from .motion import Motion, analytic_motion, simulated_motion
 
 __all__ = ["AnimationInfo", "Renderer", "build_renderer", "frame_times", "simulate_for_animation",

@@ -140,7 +140,7 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, progress, as_json):
     "hard" stands for every bundled hard case.
     """
     from pim.casefile import list_cases, load_case
-    from pim.plots import save_figure
+    from pim.files import save_figure
 
     from .speed_error import COARSE, sweep, write_study
 

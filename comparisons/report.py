@@ -24,8 +24,8 @@ from pathlib import Path
 import numpy as np
 
 import pim
+from pim.files import atomic_path, write_text
 
-from .atomic import atomic_path, write_text
 from .errors import compare_results, impact_error
 from .tables import Table, fmt_error
 
@@ -142,7 +142,8 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
     from tqdm import tqdm
 
     import sim
-    from pim.plots import save_figure, write_plots
+    from pim.files import save_figure
+    from pim.plots import write_plots
 
     from .animation import build_renderer, write_animation
     from .speed_error import COARSE, pareto_table, plot_speed_error, study_table, sweep

@@ -119,7 +119,8 @@ def solve(case_name, eps, beta, units, as_json):
 def draw(case_name, out, eps, beta):
     """Draw CASE's geometry and sign conventions (outlines, C, n, t, Gamma, arms, velocities)."""
     from .casefile import load_case
-    from .drawing import draw_case, save_figure
+    from .drawing import draw_case
+    from .files import save_figure
     from .solver import solve as solve_case
 
     case = load_case(case_name)

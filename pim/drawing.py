@@ -8,15 +8,11 @@ matplotlib is imported only here, and only when drawing.
 
 from __future__ import annotations
 
-import os
-import tempfile
-from pathlib import Path
-
 import numpy as np
 
 from .case import Case, Vehicle
 
-__all__ = ["outline", "draw_case", "save_figure"]
+__all__ = ["outline", "draw_case"]
 
 
 def outline(vehicle: Vehicle, default_length: float = 4.5, default_width: float = 1.8):
@@ -142,18 +138,3 @@ def draw_case(case: Case, result=None, ax=None, velocity_scale: float | None = N
     ax.set_xlim(x0 - 0.8, x1 + 0.8)
     ax.set_ylim(y0 - 0.8, y1 + 0.8)
     return fig
-
-
-def save_figure(fig, path) -> Path:
-    """Write a matplotlib figure atomically (temp file in the same folder, then rename)."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem}-", suffix=path.suffix)
-    os.close(fd)
-    try:
-        fig.savefig(tmp, bbox_inches="tight")
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path

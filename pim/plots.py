@@ -21,14 +21,13 @@ Figures (file stem: content):
 
 from __future__ import annotations
 
-import os
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from .case import Case
+from .files import save_figure
 from .fit import FitResult, _measured_terms, residuals
 from .solver import Result, solve
 from .units import convert
@@ -377,30 +376,6 @@ def plot_cost_map(cmap: CostMap, units: str = "si"):
 # ---------------------------------------------------------------------------------------------
 # files
 # ---------------------------------------------------------------------------------------------
-
-def save_figure(fig, path) -> Path:
-    """Write ``fig`` to ``path`` atomically (temp file in the same directory, then rename).
-
-    The format follows the file suffix (png, svg, pdf ...).
-    """
-    path = Path(path)
-    fmt = path.suffix.lstrip(".").lower()
-    if not fmt:
-        raise ValueError(f"path {path} needs a suffix naming the format (.png, .svg)")
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}-", suffix=f".{fmt}.tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as handle:
-            fig.savefig(handle, format=fmt, dpi=120 if fmt == "png" else None)
-        mask = os.umask(0)
-        os.umask(mask)
-        os.chmod(tmp, 0o666 & ~mask)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-    return path
-
 
 #: File stems of the plot set, in report order.
 PLOTS = ("velocity_error", "velocities", "cost_map", "impulse_ratio", "impulse_vehicle2",

@@ -1,7 +1,7 @@
 """Histograms of a Monte Carlo uncertainty study (:class:`pim.uncertainty.UncertaintyResult`).
 
 matplotlib is imported inside the functions, so that ``import pim`` stays fast. Files are
-written atomically by :func:`pim.plots.save_figure`.
+written atomically by :func:`pim.files.save_figure`.
 """
 
 from __future__ import annotations
@@ -58,7 +58,7 @@ def write_histograms(result: UncertaintyResult, path, units: str = "si") -> Path
     """Draw :func:`plot_histograms` and write it atomically to ``path`` (.png or .svg)."""
     import matplotlib.pyplot as plt
 
-    from .plots import save_figure
+    from .files import save_figure
 
     fig = plot_histograms(result, units)
     try:

@@ -1,0 +1,66 @@
+"""Atomic file writing: an interrupted run never leaves a half-written file behind.
+
+Every file the project writes (figures, reports, tables, animations) goes through
+:func:`atomic_path`: the content is written to a temporary file in the same directory, which
+is then renamed onto the target (``os.replace`` is atomic on one file system). On any error,
+or KeyboardInterrupt, the temporary file is removed and the target is left as it was.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import tempfile
+from collections.abc import Iterator
+from pathlib import Path
+
+__all__ = ["atomic_path", "write_text", "save_figure"]
+
+
+@contextlib.contextmanager
+def atomic_path(path) -> Iterator[Path]:
+    """Yield a temporary path next to ``path``; on success rename it onto ``path``.
+
+    The temporary file keeps ``path``'s suffix (writers such as imageio pick the format from
+    it); the final file gets the usual permissions (0666 less the umask).
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}-", suffix=f".tmp{path.suffix}",
+                               dir=path.parent)
+    os.close(fd)
+    tmp = Path(tmp)
+    try:
+        yield tmp
+        mask = os.umask(0)
+        os.umask(mask)
+        os.chmod(tmp, 0o666 & ~mask)
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+def write_text(path, text: str) -> Path:
+    """Write ``text`` (UTF-8) to ``path`` atomically; return the path."""
+    path = Path(path)
+    with atomic_path(path) as tmp:
+        tmp.write_text(text, encoding="utf-8")
+    return path
+
+
+def save_figure(fig, path, **savefig_kwargs) -> Path:
+    """Write a matplotlib figure to ``path`` atomically; the suffix names the format.
+
+    PNGs default to 120 dpi and a tight bounding box; other keyword arguments go to
+    ``Figure.savefig``.
+    """
+    path = Path(path)
+    fmt = path.suffix.lstrip(".").lower()
+    if not fmt:
+        raise ValueError(f"path {path} needs a suffix naming the format (.png, .svg)")
+    options = {"bbox_inches": "tight", **({"dpi": 120} if fmt == "png" else {}),
+               **savefig_kwargs}
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format=fmt, **options)
+    return path
