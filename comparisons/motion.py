@@ -20,8 +20,9 @@ from dataclasses import dataclass
 import numpy as np
 
 import pim
+from sim.scene import footprint_lever
 
-__all__ = ["Motion", "free_motion", "analytic_motion", "simulated_motion", "footprint_lever"]
+__all__ = ["Motion", "free_motion", "analytic_motion", "simulated_motion"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -51,19 +52,6 @@ class Motion:
 
 def _vec(x) -> np.ndarray:
     return np.asarray(x, float).reshape(2)
-
-
-def footprint_lever(vehicle: pim.Vehicle) -> float:
-    """Mean distance [m] of a uniformly loaded length x width footprint from its CG.
-
-    Midpoint rule on a 32 x 32 grid, as the simulator's tyre model does; the radius of
-    gyration when the vehicle has no outline.
-    """
-    if vehicle.length is None or vehicle.width is None:
-        return float(np.sqrt(vehicle.yaw_inertia / vehicle.mass))
-    g = (np.arange(32) + 0.5) / 32 * 2 - 1
-    x, y = np.meshgrid(g * vehicle.length / 2, g * vehicle.width / 2)
-    return float(np.mean(np.hypot(x, y)))
 
 
 def _decelerated(v0: np.ndarray, w0: float, t: np.ndarray, decel: float, yaw_decel: float):

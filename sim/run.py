@@ -139,17 +139,6 @@ def _kinetic(body: pymunk.Body) -> float:
     return 0.5 * body.mass * (v.x * v.x + v.y * v.y) + 0.5 * body.moment * w * w
 
 
-def _yaw_lever(outline: np.ndarray | None, body: pymunk.Body) -> float:
-    """Mean distance [m] of a uniformly loaded footprint from the CG (radius of gyration
-    without an outline): sets the yaw deceleration of the tyre friction model."""
-    if outline is None:
-        return float(np.sqrt(body.moment / body.mass))
-    hl, hw = outline[0]
-    g = (np.arange(32) + 0.5) / 32 * 2 - 1
-    x, y = np.meshgrid(g * hl, g * hw)
-    return float(np.mean(np.hypot(x, y)))
-
-
 def _tyre_step(body: pymunk.Body, decel: float, yaw_decel: float, dt: float) -> bool:
     """Slow a body by tyre/ground friction for one step; True if it is at rest."""
     if body.body_type != pymunk.Body.DYNAMIC:
@@ -248,9 +237,9 @@ def run_scene(scene: Scene, settings: Settings) -> dict:
         yaw1 = yaw2 = 0.0
         if coefficient > 0:
             if b1.body_type == pymunk.Body.DYNAMIC:
-                yaw1 = decel * _yaw_lever(scene.outline1, b1) / (b1.moment / b1.mass)
+                yaw1 = decel * scene.lever1 / (b1.moment / b1.mass)
             if b2.body_type == pymunk.Body.DYNAMIC:
-                yaw2 = decel * _yaw_lever(scene.outline2, b2) / (b2.moment / b2.mass)
+                yaw2 = decel * scene.lever2 / (b2.moment / b2.mass)
         extra = int(np.ceil(settings.duration / dt - 1e-9))
         for _ in range(extra):
             space.step(dt)

@@ -39,8 +39,8 @@ from pim.solver import constraints
 from .convergence import auto_iterations, contraction_rate
 from .settings import Settings
 
-__all__ = ["Scene", "build_scene", "resolve_coefficients", "outline_corners", "STICK_MARGIN",
-           "TYPE1", "TYPE2"]
+__all__ = ["Scene", "build_scene", "resolve_coefficients", "outline_corners", "footprint_lever",
+           "STICK_MARGIN", "TYPE1", "TYPE2"]
 
 #: For beta = 1 the contact friction is this many times |mu0| (and at least 1): sticking.
 STICK_MARGIN = 10.0
@@ -94,6 +94,19 @@ def outline_corners(vehicle: pim.Vehicle) -> np.ndarray | None:
     return np.array([[hl, hw], [-hl, hw], [-hl, -hw], [hl, -hw]])
 
 
+def footprint_lever(vehicle: pim.Vehicle) -> float:
+    """Mean distance [m] of a uniformly loaded length x width footprint from its CG.
+
+    Sets the yaw deceleration of the tyre-friction model (midpoint rule on a 32 x 32 grid);
+    the radius of gyration when the vehicle has no outline.
+    """
+    if vehicle.length is None or vehicle.width is None:
+        return float(np.sqrt(vehicle.yaw_inertia / vehicle.mass))
+    g = (np.arange(32) + 0.5) / 32 * 2 - 1
+    x, y = np.meshgrid(g * vehicle.length / 2, g * vehicle.width / 2)
+    return float(np.mean(np.hypot(x, y)))
+
+
 @dataclass(eq=False)
 class Scene:
     """A built pymunk scene and what the runner needs to know about it."""
@@ -114,6 +127,8 @@ class Scene:
     energy_before: float = 0.0     # [J]
     outline1: np.ndarray | None = None
     outline2: np.ndarray | None = None
+    lever1: float = 0.0            # footprint_lever of each vehicle [m] (tyre friction)
+    lever2: float = 0.0
     iterations: int = 0            # solver sweeps per step in use
     contraction_rate: float = 0.0  # predicted error factor per sweep (sim.convergence)
     k: tuple = (0.0, 0.0, 0.0)     # K_nn, K_nt, K_tt of PIM's contact [1/kg]
@@ -244,4 +259,6 @@ def build_scene(case: pim.Case, eps=None, beta=None, settings: Settings | None =
                  approach_n=float(np.asarray(analytic.approach_n).reshape(())),
                  speed_scale=speed_scale, energy_before=_kinetic(v1) + _kinetic(v2),
                  outline1=outline_corners(v1), outline2=outline_corners(v2),
+                 lever1=footprint_lever(v1),
+                 lever2=0.0 if fixed2 else footprint_lever(v2),
                  iterations=iterations, contraction_rate=rho, k=(k_nn, k_nt, k_tt))
