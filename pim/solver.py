@@ -53,6 +53,8 @@ __all__ = ["solve", "Result", "constraints", "effective_mass_matrix", "contact_v
 #: A normal approach u_n smaller than this fraction of |u_n| + |u_t| is round-off, not an
 #: impact: at beta = 1 an infinitesimal approach would stop the whole tangential slip, so the
 #: sign of a rounding error would decide between no impulse and a finite one.
+#: pim.kernel compiles this in as a constant: after changing it, delete pim/__pycache__'s
+#: numba cache files (*.nbi, *.nbc), which are keyed on kernel.py alone.
 APPROACH_TOLERANCE = 1e-12
 #: |K_nn Pn0 + beta K_nt Pt0| below this fraction of its terms' size counts as singular q.
 SINGULAR_TOLERANCE = 1e-12
