@@ -25,7 +25,8 @@ import numpy as np
 from scipy.optimize import minimize
 
 import pim
-from pim.fit import _residuals_and_jacobian, fit
+from pim.analysis.fitting import fit
+from pim.analysis.residuals import residuals_and_jacobian
 
 NAMES = ("velocity1_x", "velocity1_y", "velocity2_x", "velocity2_y")
 
@@ -34,11 +35,11 @@ def local_fit(case, x0=(0.1, 1.0), bounds=((0.0, 1.0), (0.0, 1.0)), gradient=Fal
     """One local bounded minimize of the sheet's velocity error from ``x0``."""
     if gradient:
         def fun(x):
-            r, j = _residuals_and_jacobian(pim.solve(case, x[0], x[1]), NAMES)
+            r, j = residuals_and_jacobian(pim.solve(case, x[0], x[1]), NAMES)
             return float(r @ r), 2.0 * (r @ j)
     else:
         def fun(x):
-            r, _ = _residuals_and_jacobian(pim.solve(case, x[0], x[1]), NAMES, jacobian=False)
+            r, _ = residuals_and_jacobian(pim.solve(case, x[0], x[1]), NAMES, jacobian=False)
             return float(r @ r)
     return minimize(fun, x0, jac=gradient or None, method="L-BFGS-B", bounds=bounds)
 

@@ -21,8 +21,8 @@ import numba
 import numpy as np
 
 import pim
-from pim import kernel
-from pim.solver import SINGULAR_TOLERANCE
+from pim.model import kernel
+from pim.model.solver import SINGULAR_TOLERANCE
 
 
 def random_batch(n: int, seed: int = 0):

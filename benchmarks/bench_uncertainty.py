@@ -9,7 +9,7 @@ import argparse
 import time
 
 import pim
-from pim.distributions import parse_uncertainty
+from pim.io.uncertainty_table import parse_uncertainty
 
 TABLE = {
     "vehicle1": {"mass": {"normal": "50 kg"}, "velocity_x": {"normal": "1.5 ft/s"}},

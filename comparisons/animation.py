@@ -26,7 +26,7 @@ import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
 import pim
-from pim.files import atomic_path
+from pim.io.files import atomic_path
 
 from .motion import Motion, analytic_motion, simulated_motion
 

@@ -44,7 +44,7 @@ def compare(case_name, out, eps, beta, gif, no_animation, no_speed_error, tyre, 
     analytic-vs-simulated table, the design sheet's plots, an MP4 animation and a coarse
     speed-against-error summary, plus a CSV of every table.
     """
-    from pim.casefile import load_case
+    from pim.io.casefile import load_case
 
     from .report import compare_case
 
@@ -92,7 +92,7 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
             progress, as_json):
     """Animate CASE: pymunk simulation solid, PIM's post-impact motion as a ghost (MP4)."""
     import sim
-    from pim.casefile import load_case
+    from pim.io.casefile import load_case
 
     from .animation import animate_case
 
@@ -139,8 +139,8 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, progress, as_json):
     impact, with the Pareto front, PIM's own time and error and the recommended setting).
     "hard" stands for every bundled hard case.
     """
-    from pim.casefile import list_cases, load_case
-    from pim.files import save_figure
+    from pim.io.casefile import list_cases, load_case
+    from pim.io.files import save_figure
 
     from .speed_error import COARSE, sweep, write_study
 

@@ -278,7 +278,7 @@ def hard_cases_markdown(study: HardCaseStudy) -> str:
 
 def write_hard_cases(study: HardCaseStudy, out_dir) -> list[Path]:
     """Write hard-cases.md and the two CSVs to ``out_dir`` (atomically)."""
-    from pim.files import write_text
+    from pim.io.files import write_text
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

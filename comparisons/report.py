@@ -8,7 +8,7 @@ file it links does):
    (:func:`pim.fit`, fit.csv), else the case's own epsilon and beta;
 3. PIM's answer and the pymunk simulation at those coefficients, every post-impact quantity
    with absolute and relative error (crosscheck.csv);
-4. the design sheet's plots (:func:`pim.plots.write_plots`, plots/*.png);
+4. the design sheet's plots (:func:`pim.plotting.sheet.write_plots`, plots/*.png);
 5. the animation (animation.mp4, optionally animation.gif);
 6. a coarse speed-against-error sweep (speed_error.csv, speed_error_pareto.csv,
    speed_error.png); the full study is ``pim speed-error``.
@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 import pim
-from pim.files import atomic_path, write_text
+from pim.io.files import atomic_path, write_text
 
 from .errors import compare_results, impact_error
 from .tables import Table, fmt_error
@@ -142,8 +142,8 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
     from tqdm import tqdm
 
     import sim
-    from pim.files import save_figure
-    from pim.plots import write_plots
+    from pim.io.files import save_figure
+    from pim.plotting.sheet import write_plots
 
     from .animation import build_renderer, write_animation
     from .speed_error import COARSE, pareto_table, plot_speed_error, study_table, sweep

@@ -364,7 +364,7 @@ def write_study(study: SpeedErrorStudy, out_dir, stem: str, command: str = "") -
     """Write ``speed-error-STEM.md``, ``.csv`` (every run), ``-pareto.csv`` and ``.png``."""
     from pathlib import Path
 
-    from pim.files import save_figure, write_text
+    from pim.io.files import save_figure, write_text
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

@@ -13,7 +13,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from pim.files import write_text
+from pim.io.files import write_text
 
 __all__ = ["Table", "fmt_value", "fmt_error"]
 

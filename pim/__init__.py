@@ -13,12 +13,13 @@ see the README for the sign conventions and the glossary.
 # (they need only numpy; scipy, numba and matplotlib load inside them on first use) so that
 # the function, bound after its submodule, is what pim.fit means even after a later
 # `import pim.fit`; a lazy __getattr__ export would be overwritten by the module.
-from .case import Case, Impact, Measured, Vehicle
-from .casefile import list_cases, load_case
-from .fit import FitResult, fit
-from .sensitivity import sensitivity
-from .solver import Result, solve
-from .uncertainty import UncertaintyResult, uncertainty
+from .analysis.fitting import FitResult, fit
+from .analysis.montecarlo import UncertaintyResult, uncertainty
+from .analysis.sensitivity import sensitivity
+from .io.casefile import list_cases, load_case
+from .model.case import Case, Impact, Measured, Vehicle
+from .model.result import Result
+from .model.solver import solve
 
 __all__ = ["Case", "Impact", "Measured", "Vehicle", "Result", "solve", "load_case",
            "list_cases", "fit", "FitResult", "sensitivity", "uncertainty",

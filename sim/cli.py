@@ -32,7 +32,7 @@ def sim(case_name, eps, beta, dt, iterations, contact, start, as_json):
     relative errors, and the wall time of the simulation. Exit code 1 if the simulation
     fails (no contact, never separated, multiple contacts, energy gained, not converged).
     """
-    from pim.casefile import load_case
+    from pim.io.casefile import load_case
 
     from .errors import SimulationError
     from .settings import Settings

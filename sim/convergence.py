@@ -3,7 +3,7 @@
 Chipmunk solves a contact by Gauss-Seidel sweeps: in each sweep it sets the normal impulse
 so that the normal row meets its Newton target, then the tangential impulse so that the
 tangential row does (clamped to the friction cone). On PIM's single contact with the
-effective inverse-mass matrix K (n-t components, :func:`pim.solver.effective_mass_matrix`):
+effective inverse-mass matrix K (n-t components, :func:`pim.model.solver.effective_mass_matrix`):
 
 * sticking (beta = 1, clamp inactive): plain Gauss-Seidel on the 2x2 system; its iteration
   matrix has the eigenvalue rho = K_nt^2 / (K_nn K_tt) < 1, so the error shrinks like rho^N;

@@ -34,7 +34,7 @@ import numpy as np
 import pymunk
 
 import pim
-from pim.solver import constraints
+from pim.model.solver import constraints
 
 from .convergence import auto_iterations, contraction_rate
 from .settings import Settings

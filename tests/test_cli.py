@@ -27,7 +27,7 @@ def test_solve_json_matches_the_library(capsys):
 
 
 def test_separating_case_warns(tmp_path, capsys):
-    text = (resources.files("pim") / "cases" / "hard-eps0.toml").read_text()
+    text = (resources.files("pim.io") / "cases" / "hard-eps0.toml").read_text()
     path = tmp_path / "apart.toml"
     path.write_text(text.replace('velocity = ["15 m/s", "0 m/s"]',
                                  'velocity = ["-15 m/s", "0 m/s"]'))
@@ -70,7 +70,14 @@ def test_import_is_light():
 
 def test_public_functions_are_not_shadowed_by_their_modules():
     import importlib
+    import pkgutil
 
-    for name in ("fit", "sensitivity", "uncertainty"):
-        importlib.import_module(f"pim.{name}")
+    modules = [m.name for m in pkgutil.walk_packages(pim.__path__, "pim.")]
+    for name in modules:
+        importlib.import_module(name)
+    # after importing every submodule, pim.fit & co. are still the functions...
+    for name in ("fit", "sensitivity", "uncertainty", "solve", "load_case"):
         assert callable(getattr(pim, name)) and getattr(pim, name).__name__ == name
+    # ...and no public name of pim is also the name of one of its submodules
+    tops = {m.split(".")[1] for m in modules}
+    assert not tops & set(pim.__all__)

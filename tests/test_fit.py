@@ -13,8 +13,8 @@ from hypothesis import strategies as st
 from scipy.optimize import minimize
 
 import pim
+from pim import fit
 from pim.cli import main
-from pim.fit import fit
 
 FT = 0.3048  # m per ft, to state the sheet's numbers in its own units
 
@@ -237,7 +237,7 @@ def test_cli_fit(ricsac9, capsys):
 
 
 def test_cli_fit_without_measured_values(tmp_path, capsys):
-    text = (files("pim") / "cases" / "ricsac9.toml").read_text()
+    text = (files("pim.io") / "cases" / "ricsac9.toml").read_text()
     path = tmp_path / "unmeasured.toml"
     path.write_text(text[:text.index("[measured]")])
     assert main(["fit", str(path)]) == 2

@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 import pim
 from pim.cli import main
 
-RICSAC = (resources.files("pim") / "cases" / "ricsac9.toml").read_text()
+RICSAC = (resources.files("pim.io") / "cases" / "ricsac9.toml").read_text()
 
 
 def variant(tmp_path, old, new, count=1):
@@ -105,7 +105,7 @@ def test_library_rejects_bad_arrays():
 
 
 def test_fixed_obstacle_from_a_case_file(tmp_path):
-    text = (resources.files("pim") / "cases" / "hard-barrier.toml").read_text()
+    text = (resources.files("pim.io") / "cases" / "hard-barrier.toml").read_text()
     path = tmp_path / "wall.toml"
     path.write_text(text.replace("fixed = true", 'fixed = true\nmass = "1000 kg"'))
     with pytest.raises(ValueError, match="vehicle2.mass: a fixed obstacle has no mass"):

@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 
 import pim
-from pim import kernel
-from pim.solver import SINGULAR_TOLERANCE
+from pim.model import kernel
+from pim.model.solver import SINGULAR_TOLERANCE
 
 FIELDS = ["velocity1", "velocity2", "yaw_rate1", "yaw_rate2", "impulse", "impulse_n",
           "impulse_t", "critical_impulse_n", "critical_impulse_t", "normal", "tangent", "arm1",
@@ -73,7 +73,7 @@ def test_kernel_equals_numpy_on_random_scenes(fixed):
 
 
 def test_auto_backend_takes_the_kernel_for_large_batches_only():
-    case, eps, beta = random_case(pim.solver.FAST_PATH_MIN_SIZE, seed=3)
+    case, eps, beta = random_case(pim.model.solver.FAST_PATH_MIN_SIZE, seed=3)
     assert isinstance(pim.solve(case, eps, beta), kernel.KernelResult)
     small, eps, beta = random_case(100, seed=3)
     assert not isinstance(pim.solve(small, eps, beta), kernel.KernelResult)

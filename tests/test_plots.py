@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 
 import pim
+from pim import fit
 from pim.cli import main
-from pim.fit import fit
-from pim.plots import PLOTS, cost_map, save_figure, sweep_epsilon, write_plots
+from pim.plotting.sheet import PLOTS, cost_map, save_figure, sweep_epsilon, write_plots
 
 
 @pytest.fixture(scope="module")
@@ -72,7 +72,7 @@ def test_cost_map_marks_the_unconstrained_minimum(fitted):
 
 
 def test_save_figure_is_atomic(fitted, tmp_path):
-    from pim.plots import plot_impulse_ratio
+    from pim.plotting.sheet import plot_impulse_ratio
 
     fig = plot_impulse_ratio(sweep_epsilon(fitted.case, fitted), fitted)
     target = tmp_path / "mu.png"
@@ -97,7 +97,7 @@ def test_cli_plot(tmp_path, capsys):
 
 
 def test_import_pim_does_not_load_matplotlib():
-    code = ("import sys, pim; pim.load_case('ricsac9'); import pim.fit, pim.sensitivity; "
+    code = ("import sys, pim; pim.load_case('ricsac9'); import pim.analysis.fitting, pim.analysis.sensitivity; "
             "print('matplotlib' in sys.modules, 'scipy.optimize' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.split() == ["False", "False"]

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 import pim
-from pim.brach import brach_arms
-from pim.units import convert
+from pim.io.brach import brach_arms
+from pim.io.units import convert
 
 # (quantity, printed value, relative tolerance) -- ricsac9.md, validation table.
 EPS, BETA = 0.355, 1.0

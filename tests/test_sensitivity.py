@@ -8,16 +8,10 @@ import numpy as np
 import pytest
 
 import pim
+from pim import fit
+from pim.analysis.derivatives import OUTPUT_KINDS, derivatives, output_values
+from pim.analysis.sensitivity import INPUTS, TypicalUncertainty, sensitivity
 from pim.cli import main
-from pim.fit import fit
-from pim.sensitivity import (
-    INPUTS,
-    OUTPUT_KINDS,
-    Uncertainty,
-    derivatives,
-    output_values,
-    sensitivity,
-)
 
 
 @pytest.fixture(scope="module")
@@ -158,7 +152,7 @@ def test_partial_delta_v_matches_finite_differences(spinning):
 
 
 def test_inputs_sigmas_and_ranking(ricsac9):
-    unc = Uncertainty(point=0.3, mass_fraction=0.05)
+    unc = TypicalUncertainty(point=0.3, mass_fraction=0.05)
     sens = sensitivity(ricsac9, uncertainty=unc)
     assert set(sens.inputs) <= set(INPUTS)
     k = sens.inputs.index("mass1")
@@ -174,7 +168,7 @@ def test_inputs_sigmas_and_ranking(ricsac9):
 
 def test_bad_uncertainty_and_missing_eps(ricsac9):
     with pytest.raises(ValueError, match="point"):
-        Uncertainty(point=-0.1)
+        TypicalUncertainty(point=-0.1)
     bare = replace(ricsac9, measured=None, impact=replace(ricsac9.impact, restitution=None))
     with pytest.raises(ValueError, match="eps"):
         sensitivity(bare)

@@ -13,8 +13,9 @@ from click.testing import CliRunner
 from scipy.special import ndtr
 
 import pim
-from pim.distributions import Distribution, Uncertainty, parse_uncertainty
-from pim.uncertainty import first_order_indices
+from pim.analysis.montecarlo import first_order_indices
+from pim.io.uncertainty_table import parse_uncertainty
+from pim.model.distributions import Distribution, UncertaintyTable
 
 M1, M2, V1, V2 = 1200.0, 1800.0, 15.0, -5.0
 
@@ -119,11 +120,11 @@ def test_parsing_units_and_errors():
     with pytest.raises(ValueError, match="no \\[uncertainty\\]"):
         pim.uncertainty(collinear(), n=100)
     with pytest.raises(ValueError, match="unknown input"):
-        Uncertainty({"impact.gamma": Distribution("fixed", 1.0)})
+        UncertaintyTable({"impact.gamma": Distribution("fixed", 1.0)})
 
 
 def test_case_file_table_and_command(tmp_path):
-    text = (pim.casefile.resources.files("pim") / "cases" / "ricsac9.toml").read_text()
+    text = (pim.io.casefile.resources.files("pim.io") / "cases" / "ricsac9.toml").read_text()
     text += ('\n[uncertainty]\nvehicle1.mass = {normal = "20 kg"}\n'
              'impact.normal_angle = {uniform = ["-5 deg", "5 deg"]}\n'
              'impact.restitution = {uniform = [0.2, 0.5]}\n')

@@ -26,11 +26,13 @@ from pathlib import Path
 
 import numpy as np
 
-from .case import Case
-from .files import save_figure
-from .fit import FitResult, _measured_terms, residuals
-from .solver import Result, solve
-from .units import convert
+from ..analysis.fitting import FitResult
+from ..analysis.residuals import has_measured_terms, residuals
+from ..io.files import save_figure
+from ..io.units import convert
+from ..model.case import Case
+from ..model.result import Result
+from ..model.solver import solve
 
 __all__ = ["EpsilonSweep", "CostMap", "sweep_epsilon", "cost_map", "write_plots", "PLOTS",
            "plot_velocity_error", "plot_impulse_ratio", "plot_impulse_vehicle2", "plot_pdof",
@@ -409,13 +411,8 @@ def write_plots(case: Case, fit_result: FitResult | None, out_dir, formats=("png
     for fmt in formats:
         if fmt not in ("png", "svg", "pdf"):
             raise ValueError(f"formats must be among png, svg, pdf; got {fmt!r}")
-    if fit_result is None:
-        try:
-            _measured_terms(case, False)
-        except ValueError:
-            pass
-        else:
-            raise ValueError("the case has measured values: pass its fit (pim.fit(case))")
+    if fit_result is None and has_measured_terms(case):
+        raise ValueError("the case has measured values: pass its fit (pim.fit(case))")
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     sweep = sweep_epsilon(case, fit_result)

@@ -2,7 +2,7 @@
 
 A case file names each quantity with units (``"31.09 ft/s"``, ``"2255.4 lbf"``, ``"90 deg"``,
 ``"976 slug*ft**2"``) or as a bare SI number. Unknown keys are errors, so a typo is never
-silently ignored. Layout (global form; see ``pim/cases/ricsac9.toml``)::
+silently ignored. Layout (global form; see ``pim/io/cases/ricsac9.toml``)::
 
     name = "ricsac9"
     description = "..."
@@ -36,8 +36,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..model.case import Case, Impact, Measured, Vehicle
 from .brach import cg_from_brach, heading_from_theta
-from .case import Case, Impact, Measured, Vehicle
 from .units import parse
 
 __all__ = ["load_case", "list_cases", "parse_case"]
@@ -160,7 +160,7 @@ def _uncertainty(table):
     """The ``[uncertainty]`` table (see :mod:`pim.distributions`), parsed only when present."""
     if table is None:
         return None
-    from .distributions import parse_uncertainty
+    from .uncertainty_table import parse_uncertainty
 
     return parse_uncertainty(table)
 
@@ -204,7 +204,7 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
 
 
 def _bundled() -> dict[str, object]:
-    folder = resources.files("pim") / "cases"
+    folder = resources.files("pim.io") / "cases"
     return {p.name[: -len(".toml")]: p for p in folder.iterdir() if p.name.endswith(".toml")}
 
 

@@ -30,7 +30,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .solver import APPROACH_TOLERANCE, Result
+from .result import Result
+from .solver import APPROACH_TOLERANCE
 
 __all__ = ["solve_case", "solve_arrays", "stream_copy", "INPUTS", "CORE_VECTORS", "CORE_SCALARS",
            "AUX"]

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import click
 
-from ..cli import case_argument, echo_json, json_option, units_option
+from .main import case_argument, echo_json, json_option, units_option
 
 __all__ = ["fit", "sensitivity", "plot"]
 
@@ -26,14 +26,14 @@ beta_range_option = click.option("--beta-range", type=float, nargs=2, default=(0
 
 
 def _fit(case, include_yaw, eps, beta, eps_range, beta_range):
-    from ..fit import fit as fit_case
+    from ..analysis.fitting import fit as fit_case
 
     return fit_case(case, include_yaw=include_yaw, bounds=(eps_range, beta_range),
                     eps=eps, beta=beta)
 
 
 def _describe_bounds(result, units) -> list[str]:
-    from ..units import convert
+    from ..io.units import convert
 
     fv, uv = convert(1.0, "velocity", units)
     lines = []
@@ -61,8 +61,8 @@ def fit(case_name, include_yaw, eps, beta, eps_range, beta_range, units, as_json
     Searches the whole (epsilon, beta) box on a grid, then refines the best minima, so it
     finds the global optimum. --eps or --beta fits the other parameter alone.
     """
-    from ..casefile import load_case
-    from ..units import convert
+    from ..io.casefile import load_case
+    from ..io.units import convert
 
     case = load_case(case_name)
     result = _fit(case, include_yaw, eps, beta, eps_range, beta_range)
@@ -120,8 +120,8 @@ def _ratio_unit(out_unit: str, in_unit: str) -> str:
 
 
 def _parse_sigma(items) -> dict:
-    from ..sensitivity import Uncertainty
-    from ..units import parse
+    from ..analysis.sensitivity import TypicalUncertainty
+    from ..io.units import parse
 
     kinds = {"point": "length", "normal_angle": "angle", "mass_fraction": "dimensionless",
              "inertia_fraction": "dimensionless", "velocity": "velocity",
@@ -135,7 +135,7 @@ def _parse_sigma(items) -> dict:
             raise ValueError(f"--sigma must be KEY=VALUE with KEY one of {', '.join(kinds)}; "
                              f"got {item!r}")
         out[key] = parse(value.strip(), kinds[key], f"--sigma {key}")
-    return Uncertainty(**out)
+    return TypicalUncertainty(**out)
 
 
 @click.command()
@@ -159,10 +159,10 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
     For each answer, the inputs are ranked by the change that one typical uncertainty
     (sigma) of the input causes; the derivative per unit is shown too.
     """
-    from ..casefile import load_case
-    from ..sensitivity import INPUTS, SENSITIVITY_OUTPUTS
-    from ..sensitivity import sensitivity as compute
-    from ..units import convert
+    from ..analysis.sensitivity import INPUTS, SENSITIVITY_OUTPUTS
+    from ..analysis.sensitivity import sensitivity as compute
+    from ..io.casefile import load_case
+    from ..io.units import convert
 
     case = load_case(case_name)
     sens = compute(case, eps=eps, beta=beta, uncertainty=_parse_sigma(sigmas),
@@ -227,17 +227,15 @@ def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units)
     Cost vs epsilon, impulse ratio, impulse on vehicle 2, PDOF, energy loss, post-impact
     velocities with the measured values, and the cost map over (epsilon, beta).
     """
-    from ..casefile import load_case
-    from ..fit import _measured_terms
-    from ..plots import write_plots
+    from ..analysis.residuals import has_measured_terms
+    from ..io.casefile import load_case
+    from ..plotting.sheet import write_plots
 
     case = load_case(case_name)
-    try:
-        _measured_terms(case, include_yaw)
-    except ValueError:
+    if has_measured_terms(case, include_yaw):
+        result = _fit(case, include_yaw, None, None, eps_range, beta_range)
+    else:
         result = None
         click.echo("note: nothing measured; plotting without the fit", err=True)
-    else:
-        result = _fit(case, include_yaw, None, None, eps_range, beta_range)
     for path in write_plots(case, result, out_dir, formats=formats, units=units):
         click.echo(str(path))

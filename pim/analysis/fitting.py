@@ -16,7 +16,7 @@ beta >= 0 unless the caller widens the bounds. The result records which bound it
 Global search: the model is closed-form and vectorised, so the bounded box is first
 evaluated on a dense grid in one solver call (41 x 41 by default); the best few local
 minima of the grid are then refined by a bounded quasi-Newton method (L-BFGS-B) using the
-closed-form gradient 2 J^T r (J from :func:`pim.sensitivity.motion_derivatives`), and the
+closed-form gradient 2 J^T r (J from :func:`pim.analysis.derivatives.motion_derivatives`), and the
 lowest refined minimum wins. Inside the default box the cost is convex in the impulse and
 the map (eps, beta) -> impulse is one-to-one, so there is one basin; a second basin appears
 when the box contains the singular beta where A - mu B = 0 (q infinite), which a local
@@ -30,11 +30,12 @@ from functools import cached_property
 
 import numpy as np
 
-from .case import Case
-from .sensitivity import motion_derivatives
-from .solver import Result, solve
+from ..model.case import Case
+from ..model.result import Result
+from ..model.solver import solve
+from .residuals import measured_terms, residuals, residuals_and_jacobian
 
-__all__ = ["fit", "FitResult", "Landscape", "residuals", "DEFAULT_BOUNDS", "DEFAULT_GRID"]
+__all__ = ["fit", "FitResult", "Landscape", "DEFAULT_BOUNDS", "DEFAULT_GRID", "MAX_STARTS"]
 
 #: Default search box ((eps_min, eps_max), (beta_min, beta_max)) [-], the sheet's constraints.
 DEFAULT_BOUNDS = ((0.0, 1.0), (0.0, 1.0))
@@ -42,76 +43,6 @@ DEFAULT_BOUNDS = ((0.0, 1.0), (0.0, 1.0))
 DEFAULT_GRID = (41, 41)
 #: Number of grid minima refined by the local search.
 MAX_STARTS = 5
-
-
-def _measured_terms(case: Case, include_yaw: bool) -> tuple[str, ...]:
-    m = case.measured
-    names: list[str] = []
-    if m is not None:
-        for i, vel in ((1, m.velocity1), (2, m.velocity2)):
-            if vel is not None:
-                names += [f"velocity{i}_x", f"velocity{i}_y"]
-        if include_yaw:
-            for i, w in ((1, m.yaw_rate1), (2, m.yaw_rate2)):
-                if w is not None:
-                    names.append(f"yaw_rate{i}")
-    if not names:
-        has_yaw = m is not None and (m.yaw_rate1 is not None or m.yaw_rate2 is not None)
-        hint = (" (only yaw rates are measured: use include_yaw=True / --include-yaw)"
-                if has_yaw and not include_yaw else "")
-        raise ValueError(
-            f"case {case.name or '(unnamed)'}: nothing to fit; case.measured needs a "
-            f"post-impact velocity1 or velocity2 [m/s]{hint}")
-    return tuple(names)
-
-
-def _gyration_radius(vehicle) -> np.ndarray:
-    """k = sqrt(I / m) [m]; 0 for a fixed obstacle (its yaw rate is 0 and cannot be fitted)."""
-    with np.errstate(invalid="ignore"):
-        k = np.sqrt(vehicle.yaw_inertia / vehicle.mass)
-    return np.where(np.isinf(vehicle.mass), 0.0, k)
-
-
-def residuals(result: Result, names: tuple[str, ...]) -> np.ndarray:
-    """Residuals of the fit [m/s], shape (..., len(names)).
-
-    Parameters
-    ----------
-    result : Result
-        Solve of the case (any shape); its ``case.measured`` holds the targets.
-    names : tuple of str
-        Terms: ``velocity{1,2}_{x,y}`` -> V - V_measured, ``yaw_rate{1,2}`` ->
-        k (Omega - Omega_measured) with k = sqrt(I / m) the radius of gyration.
-    """
-    return _residuals_and_jacobian(result, names, jacobian=False)[0]
-
-
-def _residuals_and_jacobian(result: Result, names, jacobian: bool = True):
-    case = result.case
-    m = case.measured
-    md = motion_derivatives(result) if jacobian else None
-    res, jac = [], []
-    for name in names:
-        if name.startswith("velocity"):
-            i, axis = int(name[8]), "xy".index(name[-1])
-            target = (m.velocity1 if i == 1 else m.velocity2)[axis]
-            value = (result.velocity1 if i == 1 else result.velocity2)[..., axis]
-            res.append(value - target)
-            if jacobian:
-                jac.append([getattr(d, f"velocity{i}")[..., axis] for d in md])
-        else:
-            i = int(name[-1])
-            k = _gyration_radius(case.vehicle1 if i == 1 else case.vehicle2)
-            target = m.yaw_rate1 if i == 1 else m.yaw_rate2
-            res.append(k * ((result.yaw_rate1 if i == 1 else result.yaw_rate2) - target))
-            if jacobian:
-                jac.append([k * getattr(d, f"yaw_rate{i}") for d in md])
-    r = np.stack(np.broadcast_arrays(*res), axis=-1)
-    if not jacobian:
-        return r, None
-    # shape (..., n_terms, 2): d r_i / d (eps, beta)
-    j = np.stack([np.stack(np.broadcast_arrays(*row), axis=-1) for row in jac], axis=-2)
-    return r, j
 
 
 @dataclass(frozen=True, eq=False)
@@ -279,7 +210,7 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
     """
     if np.size(case.vehicle1.mass) != 1 or np.shape(case.impact.point) != (2,):
         raise ValueError("fit needs a single case, not a batch of cases")
-    names = _measured_terms(case, include_yaw)
+    names = measured_terms(case, include_yaw)
     (e_lo, e_hi), (b_lo, b_hi) = _check_bounds(bounds)
     if eps is not None and beta is not None:
         raise ValueError("eps and beta are both fixed: nothing to fit (fix at most one)")
@@ -332,7 +263,7 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
         nfev += 1
         e, b = full(x)
         res = solve(case, e, b)
-        r, j = _residuals_and_jacobian(res, names)
+        r, j = residuals_and_jacobian(res, names)
         c = float(r @ r)
         if not np.isfinite(c):
             return 1e300, np.zeros(len(x))
@@ -351,7 +282,7 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
     e_opt, b_opt, _ = minima[0]
 
     best = solve(case, e_opt, b_opt)
-    r, j = _residuals_and_jacobian(best, names)
+    r, j = residuals_and_jacobian(best, names)
     gradient = 2.0 * (r @ j)
     on_bound = {}
     for name, value, (lo, hi), f in zip(("eps", "beta"), (e_opt, b_opt), full_bounds, free,

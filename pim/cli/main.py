@@ -74,7 +74,7 @@ def echo_json(data) -> None:
 @cli.command()
 def cases():
     """List the bundled cases."""
-    from .casefile import list_cases
+    from ..io.casefile import list_cases
 
     items = list_cases()
     width = max(len(name) for name, _ in items)
@@ -90,9 +90,9 @@ def cases():
 @json_option
 def solve(case_name, eps, beta, units, as_json):
     """Solve CASE with Brach's PIM and print the post-impact results."""
-    from .casefile import load_case
-    from .solver import solve as solve_case
-    from .summary import format_table, rows_to_json, summarize
+    from ..io.casefile import load_case
+    from ..model.solver import solve as solve_case
+    from ..plotting.tables import format_table, rows_to_json, summarize
 
     case = load_case(case_name)
     result = solve_case(case, eps, beta)
@@ -118,10 +118,10 @@ def solve(case_name, eps, beta, units, as_json):
 @beta_option
 def draw(case_name, out, eps, beta):
     """Draw CASE's geometry and sign conventions (outlines, C, n, t, Gamma, arms, velocities)."""
-    from .casefile import load_case
-    from .drawing import draw_case
-    from .files import save_figure
-    from .solver import solve as solve_case
+    from ..io.casefile import load_case
+    from ..io.files import save_figure
+    from ..model.solver import solve as solve_case
+    from ..plotting.drawing import draw_case
 
     case = load_case(case_name)
     result = None

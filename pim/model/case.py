@@ -222,7 +222,7 @@ class Case:
         Measured post-impact motion, for fitting.
     name, description : str
         Labels for reports.
-    uncertainty : pim.distributions.Uncertainty, optional
+    uncertainty : pim.model.distributions.UncertaintyTable, optional
         Distributions of uncertain inputs (the case file's ``[uncertainty]`` table), used by
         :func:`pim.uncertainty`.
     """
@@ -233,7 +233,7 @@ class Case:
     measured: Measured | None = None
     name: str = ""
     description: str = ""
-    uncertainty: object | None = None  # pim.distributions.Uncertainty, for pim.uncertainty
+    uncertainty: object | None = None  # pim.model.distributions.UncertaintyTable
 
     def __post_init__(self) -> None:
         if self.vehicle1.fixed.any():

@@ -28,9 +28,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .case import Case, Impact, Vehicle
-from .distributions import Uncertainty, nominal_values, sample_inputs
-from .solver import solve
+from ..model.case import Case, Impact, Vehicle
+from ..model.distributions import UncertaintyTable, nominal_values, sample_inputs
+from ..model.solver import solve
 
 __all__ = ["uncertainty", "UncertaintyResult", "OutputStats", "OUTPUTS", "first_order_indices"]
 
@@ -188,7 +188,7 @@ def _outputs(result, nominal=None) -> dict:
 
 
 def uncertainty(case: Case, n: int = 100_000, seed: int | None = 0,
-                distributions: Uncertainty | None = None, eps=None,
+                distributions: UncertaintyTable | None = None, eps=None,
                 beta=None) -> UncertaintyResult:
     """Monte Carlo of a scalar case's inputs: percentiles and first-order sensitivity indices.
 
@@ -200,7 +200,7 @@ def uncertainty(case: Case, n: int = 100_000, seed: int | None = 0,
         Number of samples (>= 10).
     seed : int or None
         Seed of numpy's default generator (None: fresh entropy).
-    distributions : Uncertainty, optional
+    distributions : UncertaintyTable, optional
         Input distributions; default ``case.uncertainty`` (the case file's table).
     eps, beta : float, optional
         Nominal eps and beta [-], overriding the case's.
@@ -219,8 +219,8 @@ def uncertainty(case: Case, n: int = 100_000, seed: int | None = 0,
     if dists is None:
         raise ValueError("uncertainty: the case has no [uncertainty] table and no "
                          "distributions were given")
-    if not isinstance(dists, Uncertainty):
-        raise ValueError("distributions must be a pim.distributions.Uncertainty")
+    if not isinstance(dists, UncertaintyTable):
+        raise ValueError("distributions must be a pim.model.distributions.UncertaintyTable")
     n = int(n)
     if n < 10:
         raise ValueError(f"samples must be >= 10, got {n}")

@@ -10,8 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .uncertainty import OUTPUTS, UncertaintyResult
-from .units import convert
+from ..analysis.montecarlo import OUTPUTS, UncertaintyResult
+from ..io.units import convert
 
 __all__ = ["plot_histograms", "write_histograms"]
 
@@ -58,7 +58,7 @@ def write_histograms(result: UncertaintyResult, path, units: str = "si") -> Path
     """Draw :func:`plot_histograms` and write it atomically to ``path`` (.png or .svg)."""
     import matplotlib.pyplot as plt
 
-    from .files import save_figure
+    from ..io.files import save_figure
 
     fig = plot_histograms(result, units)
     try:

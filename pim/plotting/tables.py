@@ -6,8 +6,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .solver import Result
-from .units import convert
+from ..io.units import convert
+from ..model.result import Result
 
 __all__ = ["Row", "summarize", "format_table", "rows_to_json"]
 

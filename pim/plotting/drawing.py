@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .case import Case, Vehicle
+from ..model.case import Case, Vehicle
 
 __all__ = ["outline", "draw_case"]
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from ..cli import case_argument, echo_json, json_option, units_option
+from .main import case_argument, echo_json, json_option, units_option
 
 __all__ = ["uncertainty"]
 
@@ -28,10 +28,10 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, units, as_json):
     Contributions are first-order variance-based (Sobol) indices: the share of an output's
     variance explained by one input alone.
     """
-    from ..casefile import load_case
-    from ..uncertainty import OUTPUTS
-    from ..uncertainty import uncertainty as run
-    from ..units import convert
+    from ..analysis.montecarlo import OUTPUTS
+    from ..analysis.montecarlo import uncertainty as run
+    from ..io.casefile import load_case
+    from ..io.units import convert
 
     case = load_case(case_name)
     result = run(case, n=samples, seed=seed, eps=eps, beta=beta)
@@ -45,7 +45,7 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, units, as_json):
                      "sensitivity": [{"input": k, "first_order": round(v, 4)}
                                      for k, v in result.sensitivity[name]]})
     if png:
-        from ..uncertainty_plots import write_histograms
+        from ..plotting.histograms import write_histograms
 
         write_histograms(result, png, units)
     if as_json:

@@ -14,7 +14,7 @@ Each uncertain input of a case is named by its dotted path and given one distrib
 Inputs (and their unit kind): ``vehicle1.`` / ``vehicle2.`` + ``mass``, ``yaw_inertia``,
 ``cg_x``, ``cg_y``, ``velocity_x``, ``velocity_y``, ``yaw_rate``, ``heading``; ``impact.`` +
 ``point_x``, ``point_y``, ``normal_angle``, ``restitution`` (eps), ``beta``. Values are unit
-strings or bare SI numbers, parsed by :func:`pim.units.parse`; unknown inputs, unknown
+strings or bare SI numbers, parsed by :mod:`pim.io.uncertainty_table`; unknown inputs, unknown
 distribution keys and bad bounds are errors. Inputs not listed keep their nominal value.
 
 Admissible ranges: eps in [0, 1], mass and yaw inertia > 0. A normal distribution on such an
@@ -24,7 +24,7 @@ bounds and fixed values must lie inside it (else ValueError). A fixed obstacle's
 velocity and yaw rate cannot be uncertain.
 
 Every sample is drawn by inverse CDF from one uniform variate per input (common random
-numbers); :mod:`pim.uncertainty` reuses those uniform variates to bin the inputs for its
+numbers); :mod:`pim.analysis.montecarlo` reuses those uniform variates to bin the inputs for its
 variance-based sensitivity.
 """
 
@@ -34,9 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .units import parse
-
-__all__ = ["Distribution", "Uncertainty", "parse_uncertainty", "INPUTS"]
+__all__ = ["Distribution", "UncertaintyTable", "INPUTS", "nominal_values", "sample_inputs"]
 
 #: Uncertain inputs: dotted name -> unit kind for pim.units.parse.
 INPUTS = {
@@ -50,7 +48,7 @@ INPUTS = {
 #: Admissible (low, high) of inputs that have one; low is exclusive for mass and inertia.
 _RANGE = {"impact.restitution": (0.0, 1.0),
           **{f"vehicle{i}.{k}": (0.0, np.inf) for i in (1, 2) for k in ("mass", "yaw_inertia")}}
-_KINDS = ("normal", "uniform", "plusminus", "fixed")
+KINDS = ("normal", "uniform", "plusminus", "fixed")
 
 
 @dataclass(frozen=True)
@@ -127,7 +125,7 @@ class Distribution:
 
 
 @dataclass(frozen=True)
-class Uncertainty:
+class UncertaintyTable:
     """The distributions of a case's uncertain inputs (dotted name -> :class:`Distribution`)."""
 
     inputs: dict
@@ -139,68 +137,6 @@ class Uncertainty:
                                  f"(allowed: {', '.join(INPUTS)})")
             if not isinstance(dist, Distribution):
                 raise ValueError(f"uncertainty.{name} must be a Distribution")
-
-
-def _parse_one(name: str, spec) -> Distribution:
-    where = f"uncertainty.{name}"
-    kind_of = INPUTS[name]
-    if not isinstance(spec, dict):
-        raise ValueError(f"{where} must be a table such as {{normal = ...}}, "
-                         f"{{uniform = [low, high]}}, {{plusminus = ...}} or {{fixed = ...}}")
-    kinds = [k for k in spec if k in _KINDS]
-    unknown = sorted(set(spec) - set(_KINDS) - {"mean"})
-    if unknown:
-        raise ValueError(f"{where}: unknown key {unknown[0]!r} "
-                         f"(allowed: {', '.join(_KINDS)}, and mean with normal)")
-    if len(kinds) != 1:
-        raise ValueError(f"{where}: give exactly one of {', '.join(_KINDS)}")
-    kind = kinds[0]
-    if "mean" in spec and kind != "normal":
-        raise ValueError(f"{where}.mean: only a normal distribution takes a mean")
-    value = spec[kind]
-    if kind == "uniform":
-        if not isinstance(value, list) or len(value) != 2:
-            raise ValueError(f"{where}.uniform must be [low, high], got {value!r}")
-        low = parse(value[0], kind_of, f"{where}.uniform[0]")
-        high = parse(value[1], kind_of, f"{where}.uniform[1]")
-        if not low <= high:
-            raise ValueError(f"{where}.uniform: low {low:g} must be <= high {high:g}")
-        return Distribution("uniform", low, high)
-    number = parse(value, kind_of, f"{where}.{kind}")
-    if kind == "fixed":
-        return Distribution("fixed", number)
-    if number < 0:
-        raise ValueError(f"{where}.{kind} must be >= 0 (a spread), got {number:g}")
-    if kind == "plusminus":
-        return Distribution("plusminus", None, number)
-    mean = parse(spec["mean"], kind_of, f"{where}.mean") if "mean" in spec else None
-    return Distribution("normal", mean, number)
-
-
-def parse_uncertainty(table) -> Uncertainty | None:
-    """Parse the ``[uncertainty]`` table of a case file (already read by tomllib).
-
-    Raises
-    ------
-    ValueError
-        Unknown input or key, bad unit or dimension, or bounds in the wrong order.
-    """
-    if table is None:
-        return None
-    if not isinstance(table, dict):
-        raise ValueError("uncertainty must be a table")
-    flat = {}
-    for group, entries in table.items():
-        if group not in ("vehicle1", "vehicle2", "impact") or not isinstance(entries, dict):
-            raise ValueError(f"uncertainty: unknown input {group!r} (use vehicle1.<input>, "
-                             f"vehicle2.<input> or impact.<input>; allowed: {', '.join(INPUTS)})")
-        for key, spec in entries.items():
-            name = f"{group}.{key}"
-            if name not in INPUTS:
-                raise ValueError(f"uncertainty: unknown input {name!r} "
-                                 f"(allowed: {', '.join(INPUTS)})")
-            flat[name] = _parse_one(name, spec)
-    return Uncertainty(flat)
 
 
 def nominal_values(case, eps=None, beta=None) -> dict:
@@ -227,7 +163,7 @@ def nominal_values(case, eps=None, beta=None) -> dict:
     return out
 
 
-def sample_inputs(uncertainty: Uncertainty, nominal: dict, n: int, rng) -> tuple[dict, dict]:
+def sample_inputs(uncertainty: UncertaintyTable, nominal: dict, n: int, rng) -> tuple[dict, dict]:
     """Draw n samples of every input.
 
     Returns

@@ -1,0 +1,23 @@
+"""The ``pim`` command line: the group and shared options (:mod:`pim.cli.main`) and pim's own
+commands (``fit``, ``sensitivity``, ``plot`` in :mod:`pim.cli.fit`; ``uncertainty`` in
+:mod:`pim.cli.uncertainty`).
+
+Commands are registered under the ``pim.commands`` entry-point group in pyproject.toml and
+loaded only when used, so ``pim --help`` stays fast; the layers above ``pim/`` (``sim``,
+``comparisons``) add theirs the same way.
+"""
+
+from .main import (
+    beta_option,
+    case_argument,
+    cli,
+    echo_json,
+    eps_option,
+    json_option,
+    main,
+    run,
+    units_option,
+)
+
+__all__ = ["main", "run", "cli", "case_argument", "eps_option", "beta_option", "units_option",
+           "json_option", "echo_json"]

@@ -1,0 +1,73 @@
+"""The ``[uncertainty]`` table of a case file, parsed into :class:`UncertaintyTable` (SI).
+
+See :mod:`pim.model.distributions` for the inputs, the distribution kinds and sampling.
+"""
+
+from __future__ import annotations
+
+from ..model.distributions import INPUTS, KINDS, Distribution, UncertaintyTable
+from .units import parse
+
+__all__ = ["parse_uncertainty"]
+
+
+def _parse_one(name: str, spec) -> Distribution:
+    where = f"uncertainty.{name}"
+    kind_of = INPUTS[name]
+    if not isinstance(spec, dict):
+        raise ValueError(f"{where} must be a table such as {{normal = ...}}, "
+                         f"{{uniform = [low, high]}}, {{plusminus = ...}} or {{fixed = ...}}")
+    kinds = [k for k in spec if k in KINDS]
+    unknown = sorted(set(spec) - set(KINDS) - {"mean"})
+    if unknown:
+        raise ValueError(f"{where}: unknown key {unknown[0]!r} "
+                         f"(allowed: {', '.join(KINDS)}, and mean with normal)")
+    if len(kinds) != 1:
+        raise ValueError(f"{where}: give exactly one of {', '.join(KINDS)}")
+    kind = kinds[0]
+    if "mean" in spec and kind != "normal":
+        raise ValueError(f"{where}.mean: only a normal distribution takes a mean")
+    value = spec[kind]
+    if kind == "uniform":
+        if not isinstance(value, list) or len(value) != 2:
+            raise ValueError(f"{where}.uniform must be [low, high], got {value!r}")
+        low = parse(value[0], kind_of, f"{where}.uniform[0]")
+        high = parse(value[1], kind_of, f"{where}.uniform[1]")
+        if not low <= high:
+            raise ValueError(f"{where}.uniform: low {low:g} must be <= high {high:g}")
+        return Distribution("uniform", low, high)
+    number = parse(value, kind_of, f"{where}.{kind}")
+    if kind == "fixed":
+        return Distribution("fixed", number)
+    if number < 0:
+        raise ValueError(f"{where}.{kind} must be >= 0 (a spread), got {number:g}")
+    if kind == "plusminus":
+        return Distribution("plusminus", None, number)
+    mean = parse(spec["mean"], kind_of, f"{where}.mean") if "mean" in spec else None
+    return Distribution("normal", mean, number)
+
+
+def parse_uncertainty(table) -> UncertaintyTable | None:
+    """Parse the ``[uncertainty]`` table of a case file (already read by tomllib).
+
+    Raises
+    ------
+    ValueError
+        Unknown input or key, bad unit or dimension, or bounds in the wrong order.
+    """
+    if table is None:
+        return None
+    if not isinstance(table, dict):
+        raise ValueError("uncertainty must be a table")
+    flat = {}
+    for group, entries in table.items():
+        if group not in ("vehicle1", "vehicle2", "impact") or not isinstance(entries, dict):
+            raise ValueError(f"uncertainty: unknown input {group!r} (use vehicle1.<input>, "
+                             f"vehicle2.<input> or impact.<input>; allowed: {', '.join(INPUTS)})")
+        for key, spec in entries.items():
+            name = f"{group}.{key}"
+            if name not in INPUTS:
+                raise ValueError(f"uncertainty: unknown input {name!r} "
+                                 f"(allowed: {', '.join(INPUTS)})")
+            flat[name] = _parse_one(name, spec)
+    return UncertaintyTable(flat)
