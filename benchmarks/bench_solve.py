@@ -1,7 +1,14 @@
-"""Throughput of pim.solve: compiled fast path vs. the numpy reference vs. the memory-copy bound.
+"""Speed of pim.solve: one case against plain Python, and batches against the copy bound.
 
     python benchmarks/bench_solve.py [--n 2000000] [--repeat 7]
 
+*One case.* ``pim.solve`` on a prebuilt scalar Case, and building the Case from floats and
+solving, against the same closed form written in plain Python floats in this file (Brach's
+vector form, independent of pim.model.formula), and against pycrash's ``impc_calcs`` when
+pycrash is installed (optional; it prints, so its output is swallowed). Best of several
+thousand calls.
+
+*Batches.*
 Every input varies (masses, inertias, CGs, velocities, yaw rates, C, Gamma, eps, beta). The
 fast path is timed as users call it, ``pim.solve(case, eps, beta)`` on a prebuilt Case,
 including output allocation and building the Result; the core outputs (post-impact
@@ -15,14 +22,21 @@ shared.
 from __future__ import annotations
 
 import argparse
+import contextlib
+import io
+import math
 import time
+import timeit
+from types import SimpleNamespace
 
 import numba
 import numpy as np
 
 import pim
 from pim.model import kernel
-from pim.model.solver import SINGULAR_TOLERANCE
+from pim.model.solver import APPROACH_TOLERANCE, SINGULAR_TOLERANCE
+
+TOLS = (APPROACH_TOLERANCE, SINGULAR_TOLERANCE)
 
 
 def random_batch(n: int, seed: int = 0):
@@ -43,6 +57,103 @@ def random_batch(n: int, seed: int = 0):
     return case, rng.uniform(0, 1, n), rng.uniform(0, 1, n), build
 
 
+def plain_python_pim(m1, i1, g1, v1, w1, m2, i2, g2, v2, w2, c, gamma, eps, beta):
+    """Post-impact (V1, W1, V2, W2) of PIM in plain floats, written out independently."""
+    n = (math.cos(gamma), math.sin(gamma))
+    t = (-n[1], n[0])
+    r1 = (c[0] - g1[0], c[1] - g1[1])
+    r2 = (c[0] - g2[0], c[1] - g2[1])
+    u = (v1[0] - w1 * r1[1] - v2[0] + w2 * r2[1], v1[1] + w1 * r1[0] - v2[1] - w2 * r2[0])
+    un, ut = u[0] * n[0] + u[1] * n[1], u[0] * t[0] + u[1] * t[1]
+    s1 = (r1[0] * n[1] - r1[1] * n[0], r1[0] * t[1] - r1[1] * t[0])
+    s2 = (r2[0] * n[1] - r2[1] * n[0], r2[0] * t[1] - r2[1] * t[0])
+    a = 1 / m1 + 1 / m2
+    knn = a + s1[0] ** 2 / i1 + s2[0] ** 2 / i2
+    knt = s1[0] * s1[1] / i1 + s2[0] * s2[1] / i2
+    ktt = a + s1[1] ** 2 / i1 + s2[1] ** 2 / i2
+    det = knn * ktt - knt * knt
+    pn0 = (-(1 + eps) * un * ktt + ut * knt) / det
+    pt0 = (-ut * knn + (1 + eps) * un * knt) / det
+    s = -(1 + eps) * un / (knn * pn0 + beta * knt * pt0) if un < 0 else 0.0
+    pn, pt = s * pn0, s * beta * pt0
+    p = (pn * n[0] + pt * t[0], pn * n[1] + pt * t[1])
+    return ((v1[0] + p[0] / m1, v1[1] + p[1] / m1), w1 + (r1[0] * p[1] - r1[1] * p[0]) / i1,
+            (v2[0] - p[0] / m2, v2[1] - p[1] / m2), w2 - (r2[0] * p[1] - r2[1] * p[0]) / i2)
+
+
+def per_call(fn, number: int = 3000, repeat: int = 7) -> float:
+    """Best time of one call [s] over ``repeat`` runs of ``number`` calls."""
+    return min(timeit.repeat(fn, number=number, repeat=repeat)) / number
+
+
+def single_case() -> None:
+    """One case: pim.solve and building a Case, against plain Python and pycrash."""
+    ricsac = pim.load_case("ricsac9")
+    v1, v2, imp = ricsac.vehicle1, ricsac.vehicle2, ricsac.impact
+    floats = (float(v1.mass), float(v1.yaw_inertia), tuple(v1.cg.tolist()),
+              tuple(v1.velocity.tolist()), float(v1.yaw_rate), float(v2.mass),
+              float(v2.yaw_inertia), tuple(v2.cg.tolist()), tuple(v2.velocity.tolist()),
+              float(v2.yaw_rate), tuple(imp.point.tolist()), float(imp.normal_angle))
+    (m1, i1, g1, u1, w1, m2, i2, g2, u2, w2, c, gamma) = floats
+
+    def build():
+        return pim.Case(pim.Vehicle(m1, i1, g1, u1, w1, float(v1.heading)),
+                        pim.Vehicle(m2, i2, g2, u2, w2, float(v2.heading)),
+                        pim.Impact(c, gamma))
+
+    ref = plain_python_pim(*floats, 0.355, 1.0)
+    res = pim.solve(ricsac, 0.355, 1.0)
+    assert np.allclose(res.velocity1, ref[0], rtol=1e-12) and math.isclose(
+        float(res.yaw_rate2), ref[3], rel_tol=1e-12)
+    t_plain = per_call(lambda: plain_python_pim(*floats, 0.355, 1.0))
+    t_solve = per_call(lambda: pim.solve(ricsac, 0.355, 1.0))
+    t_build_solve = per_call(lambda: pim.solve(build(), 0.355, 1.0))
+    t_build = per_call(build)
+    print("one case (RICSAC 9), best of 7 x 3000 calls")
+    print(f"  plain-Python closed form (this file)       {t_plain * 1e6:6.1f} us")
+    print(f"  pim.solve(case) on a prebuilt case          {t_solve * 1e6:6.1f} us"
+          f"  = {t_solve / t_plain:.1f}x plain Python (goal <= 3x)")
+    print(f"  building the Case from floats               {t_build * 1e6:6.1f} us"
+          f"  = {t_build / t_plain:.1f}x plain Python (goal <= 10x)")
+    print(f"  building and solving                        {t_build_solve * 1e6:6.1f} us")
+    try:
+        from pycrash.impc import impc_calcs  # optional, not a dependency
+    except ImportError:
+        print("  pycrash not installed: impc_calcs not timed (optional, pip install pycrash)")
+        return
+    # pycrash's own units (lbf, ft, deg): the same RICSAC 9 scene, timed only
+    veh1 = SimpleNamespace(head_angle=180.0, pimpact_x=4.77, pimpact_y=0.5, vx_initial=-31.09,
+                           vy_initial=0.0, omega_z=0.0, weight=2255.4, izz=976.0)
+    veh2 = SimpleNamespace(head_angle=90.0, pimpact_x=6.0, pimpact_y=2.0, vx_initial=0.0,
+                           vy_initial=31.1, omega_z=0.0, weight=3857.0, izz=2600.0)
+    inputs = {"cor": 0.355, "cof": 0.6, "impact_norm_deg": 90.0}
+
+    def pycrash_call():
+        with contextlib.redirect_stdout(io.StringIO()):   # impc_calcs prints
+            impc_calcs(veh1, veh2, veh2.pimpact_x, veh2.pimpact_y, inputs)
+
+    t_pycrash = per_call(pycrash_call, number=300)
+    print(f"  pycrash impc_calcs (prints; output swallowed) {t_pycrash * 1e6:6.1f} us"
+          f"  -> pim.solve is {t_pycrash / t_solve:.1f}x faster")
+
+
+@numba.njit(parallel=True, cache=True)
+def trig_only(gamma, out):  # pragma: no cover - compiled
+    """The C library's sine and cosine of every Gamma: the kernel's trig cost alone."""
+    for i in numba.prange(gamma.shape[0]):
+        out[i] = np.cos(gamma[i]) + np.sin(gamma[i])
+
+
+@numba.njit(parallel=True, cache=True)
+def divisions_only(m1, i1, m2, i2, eps, beta, out):  # pragma: no cover - compiled
+    """The formula's seven dependent-free divisions per case (1/m1, 1/I1, 1/m2, 1/I2, the
+    two of the critical impulse, drive/denom, and mu0 = Pt0/Pn0 makes eight) on real data."""
+    for i in numba.prange(m1.shape[0]):
+        a = 1.0 / m1[i] + 1.0 / i1[i] + 1.0 / m2[i] + 1.0 / i2[i]
+        b = eps[i] / beta[i] + beta[i] / m1[i] + eps[i] / i1[i] + m2[i] / i2[i]
+        out[i] = a + b
+
+
 def best_of(fn, repeat: int) -> float:
     times = []
     for _ in range(repeat):
@@ -56,7 +167,12 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--n", type=int, default=2_000_000)
     parser.add_argument("--repeat", type=int, default=7)
+    parser.add_argument("--single-only", action="store_true", help="time one case only")
     args = parser.parse_args()
+    single_case()
+    if args.single_only:
+        return
+    print()
     n = args.n
     case, eps, beta, build = random_batch(n)
     inputs = kernel.case_inputs(case, eps, beta)
@@ -78,11 +194,11 @@ def main() -> None:
     fast, fast_trig, copy, numpy_t = min(fast), min(fast_trig), min(copy), min(numpy_t)
     preallocated = kernel.allocate(n, False)
     args_in = kernel.flatten_inputs(inputs, (n,))
-    kern = best_of(lambda: kernel._solve_kernel_libm(*args_in, SINGULAR_TOLERANCE, False,
+    kern = best_of(lambda: kernel._solve_kernel_libm(*args_in, *TOLS, False,
                                                      *preallocated), args.repeat)
-    copy_pre = best_of(lambda: kernel._copy_kernel(*args_in, 0.0, False, *preallocated),
+    copy_pre = best_of(lambda: kernel._copy_kernel(*args_in, 0.0, 0.0, False, *preallocated),
                        args.repeat)
-    aux = best_of(lambda: kernel.solve_arrays(inputs, SINGULAR_TOLERANCE, full=True), 3)
+    aux = best_of(lambda: kernel.solve_arrays(inputs, *TOLS, full=True), 3)
     derived = []
     for _ in range(3):
         result = pim.solve(case, eps, beta)
@@ -109,6 +225,24 @@ def main() -> None:
     print(f"  kernel alone, preallocated outputs       {rate(kern)}")
     print(f"  copy bound, preallocated outputs         {rate(copy_pre)}"
           f"  -> fraction {copy_pre / kern:.2f}")
+    trig_out = np.empty(n)
+    gam, e_, b_ = args_in[11], args_in[12], args_in[13]
+    trig_only(gam, trig_out)
+    divisions_only(args_in[0], args_in[1], args_in[5], args_in[6], e_, b_, trig_out)
+    t_trig = best_of(lambda: trig_only(gam, trig_out), args.repeat)
+    t_div = best_of(lambda: divisions_only(args_in[0], args_in[1], args_in[5], args_in[6], e_,
+                                           b_, trig_out), args.repeat)
+    threads = numba.get_num_threads()
+    per_case = kern / n * threads * 1e9
+    print(f"  why not 0.7 of the copy bound: the kernel is compute-bound, {per_case:.0f} ns per "
+          f"case per thread, of which")
+    print(f"    sin + cos of Gamma (C library)         {t_trig / n * threads * 1e9:5.1f} ns "
+          f"({t_trig / kern:.0%})")
+    print(f"    eight divisions                        {t_div / n * threads * 1e9:5.1f} ns "
+          f"({t_div / kern:.0%})")
+    print(f"    the copy bound's memory traffic        {copy_pre / n * threads * 1e9:5.1f} ns "
+          f"({copy_pre / kern:.0%}); the rest is the formula's ~110 other flops, kept "
+          f"scalar by the branches")
     print(f"  auxiliary fields on first read (2nd pass): {aux * 1e3:.1f} ms")
     print(f"  energy_loss on first read (numpy):         {derived * 1e3:.1f} ms")
     print(f"  building the Case (validation of inputs):  {build * 1e3:.1f} ms")

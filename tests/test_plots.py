@@ -97,7 +97,8 @@ def test_cli_plot(tmp_path, capsys):
 
 
 def test_import_pim_does_not_load_matplotlib():
-    code = ("import sys, pim; pim.load_case('ricsac9'); import pim.analysis.fitting, pim.analysis.sensitivity; "
+    code = ("import sys, pim; pim.load_case('ricsac9'); "
+            "import pim.analysis.fitting, pim.analysis.sensitivity; "
             "print('matplotlib' in sys.modules, 'scipy.optimize' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.split() == ["False", "False"]

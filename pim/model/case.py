@@ -9,22 +9,49 @@ Unit strings and Brach's (theta, phi, d) inputs are converted before they reach 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 
 import numpy as np
 
 __all__ = ["Vehicle", "Impact", "Case", "Measured"]
 
 
-def _scalar(value, name: str) -> np.ndarray:
-    arr = np.asarray(value, dtype=float)
+def _reject_non_number(value, name: str, unit: str) -> None:
+    if isinstance(value, str | bytes | bool | np.bool_) or value is None:
+        raise ValueError(f"{name} must be a number in [{unit}], got {value!r}")
+
+
+def _real_array(value, name: str, unit: str) -> np.ndarray:
+    _reject_non_number(value, name, unit)
+    try:
+        arr = np.asarray(value)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be numbers in [{unit}] ({exc})") from None
+    if arr.dtype.kind not in "fiu":
+        raise ValueError(f"{name} must be real numbers in [{unit}], got {arr.dtype} values")
+    return arr.astype(float, copy=False)
+
+
+def _scalar(value, name: str, unit: str = "SI") -> np.ndarray:
+    if type(value) is float or type(value) is int:    # the common single case, fast
+        if value != value:
+            raise ValueError(f"{name} is NaN; it must be a finite number in [{unit}]")
+        return np.float64(value)
+    arr = _real_array(value, name, unit)
     if np.isnan(arr).any():
-        raise ValueError(f"{name} is NaN; it must be a finite number")
+        raise ValueError(f"{name} is NaN; it must be a finite number in [{unit}]")
     return arr
 
 
 def _vector(value, name: str, unit: str) -> np.ndarray:
-    arr = np.asarray(value, dtype=float)
+    if (type(value) is tuple or type(value) is list) and len(value) == 2 and all(
+            type(x) is float or type(x) is int for x in value):   # fast path
+        if not (math.isfinite(value[0]) and math.isfinite(value[1])):
+            raise ValueError(f"{name} must be finite [x, y] values in [{unit}]")
+        return np.array(value, dtype=float)
+    arr = _real_array(value, name, unit)
     if arr.ndim == 0 or arr.shape[-1] != 2:
         raise ValueError(f"{name} must be an [x, y] pair in [{unit}], got shape {arr.shape}")
     if not np.isfinite(arr).all():
@@ -33,6 +60,10 @@ def _vector(value, name: str, unit: str) -> np.ndarray:
 
 
 def _finite(arr: np.ndarray, name: str, unit: str) -> np.ndarray:
+    if type(arr) is np.float64:   # a scalar from _scalar's fast path
+        if not math.isfinite(arr):
+            raise ValueError(f"{name} must be a finite number in [{unit}]")
+        return arr
     if not np.isfinite(arr).all():
         raise ValueError(f"{name} must be a finite number in [{unit}]")
     return arr
@@ -72,22 +103,25 @@ class Vehicle:
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
-        mass = _scalar(self.mass, "mass")
-        inertia = _scalar(self.yaw_inertia, "yaw_inertia")
-        if (mass <= 0).any():
+        mass = _scalar(self.mass, "mass", "kg")
+        inertia = _scalar(self.yaw_inertia, "yaw_inertia", "kg m^2")
+        scalars = type(mass) is np.float64 and type(inertia) is np.float64
+        if not (mass > 0 if scalars else (mass > 0).all()):
             raise ValueError("mass must be > 0 [kg] (or inf for a fixed obstacle)")
-        if (inertia <= 0).any():
+        if not (inertia > 0 if scalars else (inertia > 0).all()):
             raise ValueError("yaw_inertia must be > 0 [kg m^2] (or inf for a fixed obstacle)")
-        if (np.isinf(mass) != np.isinf(inertia)).any():
+        if (math.isinf(mass) != math.isinf(inertia) if scalars
+                else (np.isinf(mass) != np.isinf(inertia)).any()):
             raise ValueError("mass and yaw_inertia must both be inf for a fixed obstacle")
         set_(self, "mass", mass)
         set_(self, "yaw_inertia", inertia)
         set_(self, "cg", _vector(self.cg, "cg", "m"))
         set_(self, "velocity", _vector(self.velocity, "velocity", "m/s"))
-        set_(self, "yaw_rate", _finite(_scalar(self.yaw_rate, "yaw_rate"), "yaw_rate", "rad/s"))
-        set_(self, "heading", _finite(_scalar(self.heading, "heading"), "heading", "rad"))
-        fixed = np.isinf(mass)
-        if fixed.any():   # checked only when there is an obstacle: one pass in the usual case
+        set_(self, "yaw_rate", _finite(_scalar(self.yaw_rate, "yaw_rate", "rad/s"), "yaw_rate",
+                                        "rad/s"))
+        set_(self, "heading", _finite(_scalar(self.heading, "heading", "rad"), "heading", "rad"))
+        fixed = math.isinf(mass) if scalars else np.isinf(mass)
+        if fixed if scalars else fixed.any():   # only when there is an obstacle
             fixed, moving = np.broadcast_arrays(
                 fixed, np.abs(self.velocity).sum(-1) + np.abs(self.yaw_rate))
             if (fixed & (moving != 0)).any():
@@ -146,7 +180,7 @@ class Impact:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "point", _vector(self.point, "point", "m"))
-        angle = _finite(_scalar(self.normal_angle, "normal_angle"), "normal_angle", "rad")
+        angle = _finite(_scalar(self.normal_angle, "normal_angle", "rad"), "normal_angle", "rad")
         object.__setattr__(self, "normal_angle", angle)
         if self.restitution is not None:
             eps = float(self.restitution)
@@ -236,8 +270,33 @@ class Case:
     uncertainty: object | None = None  # pim.model.distributions.UncertaintyTable
 
     def __post_init__(self) -> None:
+        for name, kind in (("vehicle1", Vehicle), ("vehicle2", Vehicle), ("impact", Impact)):
+            if not isinstance(getattr(self, name), kind):
+                raise ValueError(f"{name} must be a pim.{kind.__name__}, got "
+                                 f"{type(getattr(self, name)).__name__}")
         if self.vehicle1.fixed.any():
             raise ValueError("vehicle1.mass must be finite: only vehicle2 may be a fixed obstacle")
+
+    @cached_property
+    def shape(self) -> tuple:
+        """Broadcast shape of the case's inputs: () for a single case, (n,) for n samples."""
+        v1, v2, imp = self.vehicle1, self.vehicle2, self.impact
+        return np.broadcast_shapes(
+            np.shape(v1.mass), np.shape(v1.yaw_inertia), np.shape(v1.cg)[:-1],
+            np.shape(v1.velocity)[:-1], np.shape(v1.yaw_rate), np.shape(v2.mass),
+            np.shape(v2.yaw_inertia), np.shape(v2.cg)[:-1], np.shape(v2.velocity)[:-1],
+            np.shape(v2.yaw_rate), np.shape(imp.point)[:-1], np.shape(imp.normal_angle))
+
+    @cached_property
+    def is_scalar(self) -> bool:
+        """True for a single case (every input a scalar or one [x, y] pair)."""
+        v1, v2, imp = self.vehicle1, self.vehicle2, self.impact
+        if all(type(x) is np.float64 for x in (v1.mass, v1.yaw_inertia, v1.yaw_rate, v2.mass,
+                                                 v2.yaw_inertia, v2.yaw_rate,
+                                                 imp.normal_angle)) and all(
+                x.shape == (2,) for x in (v1.cg, v1.velocity, v2.cg, v2.velocity, imp.point)):
+            return True   # the common single case, without broadcasting shapes
+        return self.shape == ()
 
     def transformed(self, rotation: float = 0.0, translation=(0.0, 0.0)) -> Case:
         """The same scene rotated by ``rotation`` [rad] about the origin, then translated [m]."""

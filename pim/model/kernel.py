@@ -30,8 +30,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
+from . import formula
 from .result import Result
-from .solver import APPROACH_TOLERANCE
 
 __all__ = ["solve_case", "solve_arrays", "stream_copy", "INPUTS", "CORE_VECTORS", "CORE_SCALARS",
            "AUX"]
@@ -102,70 +102,47 @@ def _sincos(x):  # pragma: no cover - compiled
     return sin_x, cos_x
 
 
+_contact = njit(inline="always", error_model="numpy")(formula.contact)
+_post_impact = njit(inline="always", error_model="numpy")(formula.post_impact)
+
+
 @njit(inline="always", error_model="numpy")
-def _case(i, cs, sn, m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, eps, beta, tol, full,
-          cvec, csc, approaching, singular, avec, asc, trig):  # pragma: no cover - compiled
-    """Solve case i given cos and sin of its Gamma; see :func:`pim.solver.solve`."""
-    nx = cs
-    ny = sn
-    tx = -sn
-    ty = cs
+def _case(i, cs, sn, m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, eps, beta, approach_tol,
+          singular_tol, full, cvec, csc, approaching, singular, avec, asc,
+          trig):  # pragma: no cover - compiled
+    """Solve case i given cos and sin of its Gamma: :mod:`pim.model.formula`, compiled."""
     e = eps[i]
     b = beta[i]
     a1 = 1.0 / m1[i]
     b1 = 1.0 / i1[i]
     a2 = 1.0 / m2[i]
     b2 = 1.0 / i2[i]
-    px = pt[i, 0]
-    py = pt[i, 1]
-    r1x = px - cg1[i, 0]
-    r1y = py - cg1[i, 1]
-    r2x = px - cg2[i, 0]
-    r2y = py - cg2[i, 1]
+    r1x = pt[i, 0] - cg1[i, 0]
+    r1y = pt[i, 1] - cg1[i, 1]
+    r2x = pt[i, 0] - cg2[i, 0]
+    r2y = pt[i, 1] - cg2[i, 1]
     v1x = v1[i, 0]
     v1y = v1[i, 1]
     v2x = v2[i, 0]
     v2y = v2[i, 1]
     om1 = w1[i]
     om2 = w2[i]
-    # u = (v1 + w1 k x r1) - (v2 + w2 k x r2), with k x r = (-r_y, r_x)
-    ux = (v1x + om1 * -r1y) - (v2x + om2 * -r2y)
-    uy = (v1y + om1 * r1x) - (v2y + om2 * r2x)
-    u_n = ux * nx + uy * ny
-    u_t = ux * tx + uy * ty
-    s1n = r1x * ny - r1y * nx
-    s1t = r1x * ty - r1y * tx
-    s2n = r2x * ny - r2y * nx
-    s2t = r2x * ty - r2y * tx
-    a = a1 + a2
-    k_nn = a + b1 * s1n * s1n + b2 * s2n * s2n
-    k_nt = b1 * s1n * s1t + b2 * s2n * s2t
-    k_tt = a + b1 * s1t * s1t + b2 * s2t * s2t
-    e1 = 1.0 + e
-    det = k_nn * k_tt - k_nt * k_nt
-    pn0 = (-e1 * u_n * k_tt + u_t * k_nt) / det
-    pt0 = (-u_t * k_nn + e1 * u_n * k_nt) / det
-    # K_nn Pn0 + beta K_nt Pt0 = -(1 + eps) u_n + (beta - 1) K_nt Pt0
-    drive = -e1 * u_n
-    excess = (b - 1.0) * k_nt * pt0
-    denom = drive + excess
-    size = np.abs(drive) + np.abs(excess)
-    appr = u_n < -APPROACH_TOLERANCE * (np.abs(u_n) + np.abs(u_t))  # compile-time constant
-    sing = appr & (np.abs(denom) <= tol * size)
+    ux, uy, u_n, u_t, k_nn, k_nt, k_tt, pn0, pt0, drive, denom, appr, sing = _contact(
+        cs, sn, a1, b1, r1x, r1y, v1x, v1y, om1, a2, b2, r2x, r2y, v2x, v2y, om2, e, b,
+        approach_tol, singular_tol)
     scale = drive / denom if appr else 0.0
     scale = np.nan if sing else scale
-    p_n = scale * pn0
-    p_t = scale * b * pt0
-    ix = p_n * nx + p_t * tx
-    iy = p_n * ny + p_t * ty
-    cvec[0, i, 0] = v1x + a1 * ix
-    cvec[0, i, 1] = v1y + a1 * iy
-    cvec[1, i, 0] = v2x - a2 * ix
-    cvec[1, i, 1] = v2y - a2 * iy
+    p_n, p_t, ix, iy, vx1, vy1, vx2, vy2, ww1, ww2 = _post_impact(
+        scale, pn0, pt0, b, cs, sn, a1, b1, r1x, r1y, v1x, v1y, om1, a2, b2, r2x, r2y, v2x,
+        v2y, om2)
+    cvec[0, i, 0] = vx1
+    cvec[0, i, 1] = vy1
+    cvec[1, i, 0] = vx2
+    cvec[1, i, 1] = vy2
     cvec[2, i, 0] = ix
     cvec[2, i, 1] = iy
-    csc[0, i] = om1 + b1 * (r1x * iy - r1y * ix)
-    csc[1, i] = om2 - b2 * (r2x * iy - r2y * ix)
+    csc[0, i] = ww1
+    csc[1, i] = ww2
     csc[2, i] = pt0 / pn0
     approaching[i] = appr
     singular[i] = sing
@@ -185,14 +162,15 @@ def _case(i, cs, sn, m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, eps, beta, to
         asc[6, i] = k_nn
         asc[7, i] = k_nt
         asc[8, i] = k_tt
-        trig[i, 0] = tx
+        trig[i, 0] = -sn
         trig[i, 1] = cs
         trig[i, 2] = sn
     return (0 if (e >= 0.0) & (e <= 1.0) else 1), (0 if np.isfinite(b) else 1)
 
 
 @njit(parallel=True, cache=True, error_model="numpy", fastmath=False)
-def _solve_kernel_fast(m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, gamma, eps, beta, tol, full,
+def _solve_kernel_fast(m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, gamma, eps, beta, approach_tol,
+                       singular_tol, full,
                   cvec, csc, approaching, singular, avec, asc, trig):  # pragma: no cover
     """Solve every case with the kernel's own sine and cosine (:func:`_sincos`).
 
@@ -214,7 +192,8 @@ def _solve_kernel_fast(m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, gamma, eps,
             sn, cs = _sincos(g)
             big += 0 if np.abs(g) <= TRIG_LIMIT else 1
             be, bb = _case(i, cs, sn, m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, eps, beta,
-                           tol, full, cvec, csc, approaching, singular, avec, asc, trig)
+                           approach_tol, singular_tol, full, cvec, csc, approaching, singular,
+                           avec, asc, trig)
             bad_eps += be
             bad_beta += bb
         counts[blk, 0] = bad_eps
@@ -225,8 +204,8 @@ def _solve_kernel_fast(m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, gamma, eps,
 
 
 @njit(parallel=True, cache=True, error_model="numpy", fastmath=False)
-def _solve_kernel_libm(m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, gamma, eps, beta, tol,
-                       full, cvec, csc, approaching, singular, avec, asc,
+def _solve_kernel_libm(m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, gamma, eps, beta, approach_tol,
+                       singular_tol, full, cvec, csc, approaching, singular, avec, asc,
                        trig):  # pragma: no cover - compiled
     """Solve every case with the C library's sine and cosine: bitwise the numpy path's values.
 
@@ -237,14 +216,16 @@ def _solve_kernel_libm(m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, gamma, eps,
     for i in prange(n):
         g = gamma[i]
         be, bb = _case(i, np.cos(g), np.sin(g), m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt,
-                       eps, beta, tol, full, cvec, csc, approaching, singular, avec, asc, trig)
+                       eps, beta, approach_tol, singular_tol, full, cvec, csc, approaching,
+                       singular, avec, asc, trig)
         bad_eps += be
         bad_beta += bb
     return bad_eps, bad_beta, 0
 
 
 @njit(parallel=True, cache=True)
-def _copy_kernel(m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, gamma, eps, beta, tol, full,
+def _copy_kernel(m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, gamma, eps, beta, approach_tol,
+                       singular_tol, full,
                  cvec, csc, approaching, singular, avec, asc, trig):  # pragma: no cover
     """The memory-traffic floor of :func:`_solve_kernel_libm`: same reads and writes, no arithmetic.
 
@@ -302,8 +283,8 @@ def allocate(n: int, full: bool) -> list[np.ndarray]:
             np.empty((m, 3))]
 
 
-def solve_arrays(inputs: dict, tol: float, full: bool = False, copy_only: bool = False,
-                 fast_trig: bool = False) -> dict:
+def solve_arrays(inputs: dict, approach_tol: float, singular_tol: float, full: bool = False,
+                 copy_only: bool = False, fast_trig: bool = False) -> dict:
     """Run the kernel on named inputs (SI; see :data:`INPUTS`) broadcast together.
 
     Parameters
@@ -312,8 +293,10 @@ def solve_arrays(inputs: dict, tol: float, full: bool = False, copy_only: bool =
         ``mass1 [kg], inertia1 [kg m^2], cg1 [m] (..., 2), velocity1 [m/s] (..., 2),
         yaw_rate1 [rad/s]``, the same for vehicle 2, ``point [m] (..., 2),
         normal_angle [rad], eps [-], beta [-]``, in any shapes that broadcast.
-    tol : float
-        Relative tolerance of the singular-q test (``pim.solver.SINGULAR_TOLERANCE``).
+    approach_tol, singular_tol : float
+        Relative tolerances of the approach and singular-q tests [-]
+        (:data:`pim.model.solver.APPROACH_TOLERANCE`, ``SINGULAR_TOLERANCE``): arguments of
+        the compiled functions, so changing them needs no recompilation.
     full : bool
         Also return the auxiliary fields (:data:`AUX`), not just the core ones.
     copy_only : bool
@@ -338,9 +321,10 @@ def solve_arrays(inputs: dict, tol: float, full: bool = False, copy_only: bool =
     out = allocate(n, full)
     kernel = _copy_kernel if copy_only else (_solve_kernel_fast if fast_trig
                                              else _solve_kernel_libm)
-    bad_eps, bad_beta, big = kernel(*args, float(tol), bool(full), *out)
+    tols = float(approach_tol), float(singular_tol)
+    bad_eps, bad_beta, big = kernel(*args, *tols, bool(full), *out)
     if big:  # some |Gamma| beyond the range of the kernel's own sine and cosine: redo
-        bad_eps, bad_beta, big = _solve_kernel_libm(*args, float(tol), bool(full), *out)
+        bad_eps, bad_beta, big = _solve_kernel_libm(*args, *tols, bool(full), *out)
     cvec, csc, appr, sing, avec, asc, trig = out
     fields = {name: cvec[k].reshape(shape + (2,)) for k, name in enumerate(CORE_VECTORS)}
     fields.update({name: csc[k].reshape(shape) for k, name in enumerate(CORE_SCALARS)})
@@ -359,7 +343,7 @@ def solve_arrays(inputs: dict, tol: float, full: bool = False, copy_only: bool =
 
 def stream_copy(inputs: dict, full: bool = False) -> dict:
     """The memory-copy bound: :func:`solve_arrays` with the arithmetic taken out."""
-    return solve_arrays(inputs, 0.0, full=full, copy_only=True)
+    return solve_arrays(inputs, 0.0, 0.0, full=full, copy_only=True)
 
 
 def case_inputs(case, eps, beta) -> dict:
@@ -372,61 +356,18 @@ def case_inputs(case, eps, beta) -> dict:
             "eps": eps, "beta": beta}
 
 
-class _Aux:
-    """Descriptor of an auxiliary field: the first read runs the full kernel once."""
+def solve_case(case, eps, beta, approach_tol: float, singular_tol: float,
+               fast_trig: bool = False) -> Result:
+    """:func:`pim.solve` of ``case`` on the kernel.
 
-    def __set_name__(self, owner, name):
-        self.name = name
-
-    def __get__(self, obj, owner=None):
-        if obj is None:
-            return self
-        obj._fill_aux()
-        return obj.__dict__[self.name]
-
-
-class KernelResult(Result):
-    """A :class:`pim.Result` from the compiled kernel.
-
-    The core fields (post-impact velocities, yaw rates, impulse, mu0 and the flags
-    ``approaching`` / ``q_singular``) are computed by :func:`solve_case`. The auxiliary
-    fields (:data:`AUX`: arms, approach velocity, K, n-t and critical impulse components,
-    normal, tangent) are computed all together, by one more pass of the kernel, when the
-    first of them is read. Everything else behaves as :class:`pim.Result`.
+    The core fields (post-impact velocities, yaw rates, impulse, mu0 and the flags) come from
+    one pass; the auxiliary fields (:data:`AUX`: arms, approach velocity, K, n-t and critical
+    impulse components, normal, tangent) from a second, full pass when the first of them is
+    read. ``eps`` and ``beta`` are arrays [-]; raises ValueError (as :func:`pim.solve`) when
+    eps is outside [0, 1] or beta is not finite. ``fast_trig``: see :func:`solve_arrays`.
     """
-
-    def _fill_aux(self) -> None:
-        if "k_nn" in self.__dict__:
-            return
-        out = solve_arrays(case_inputs(self.case, self.eps, self.beta), self._tol, full=True,
-                           fast_trig=self._fast_trig)
-        self.__dict__.update({name: out[name] for name in AUX})
-
-    def __reduce__(self):
-        # pickle as a plain Result with every field computed
-        from dataclasses import fields
-
-        return _rebuild, (self.__dict__["case"],
-                          {f.name: getattr(self, f.name) for f in fields(Result)})
-
-
-for _name in AUX:
-    _descriptor = _Aux()
-    _descriptor.__set_name__(KernelResult, _name)
-    setattr(KernelResult, _name, _descriptor)
-
-
-def _rebuild(case, values: dict) -> Result:
-    return Result(**values)
-
-
-def solve_case(case, eps, beta, tol: float, fast_trig: bool = False) -> KernelResult:
-    """:func:`pim.solve` of ``case`` on the kernel: a :class:`KernelResult`.
-
-    ``eps`` and ``beta`` are arrays [-]; raises ValueError (as :func:`pim.solve`) when eps is
-    outside [0, 1] or beta is not finite. ``fast_trig``: see :func:`solve_arrays`.
-    """
-    out = solve_arrays(case_inputs(case, eps, beta), tol, fast_trig=fast_trig)
+    inputs = case_inputs(case, eps, beta)
+    out = solve_arrays(inputs, approach_tol, singular_tol, fast_trig=fast_trig)
     bad_eps, bad_beta = out.pop("bad_eps"), out.pop("bad_beta")
     if bad_eps:
         raise ValueError(f"eps (coefficient of restitution) must be in [0, 1] "
@@ -434,6 +375,10 @@ def solve_case(case, eps, beta, tol: float, fast_trig: bool = False) -> KernelRe
     if bad_beta:
         raise ValueError(f"beta (fraction of mu0) must be a finite number, usually in [0, 1] "
                          f"({bad_beta} values are not)")
-    result = object.__new__(KernelResult)
-    result.__dict__.update(out, case=case, eps=eps, beta=beta, _tol=tol, _fast_trig=fast_trig)
-    return result
+
+    def fill() -> dict:
+        full = solve_arrays(inputs, approach_tol, singular_tol, full=True, fast_trig=fast_trig)
+        return {name: full[name] for name in AUX}
+
+    return Result(case, eps, beta, out, fill=fill,
+                  backend="numba-fast-trig" if fast_trig else "numba")

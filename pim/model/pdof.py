@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+from functools import cached_property
+
 import numpy as np
 
-__all__ = ["pdof", "clock_position", "wrap_angle"]
+__all__ = ["pdof", "clock_position", "wrap_angle", "DirectionOutputs"]
 
 
 def wrap_angle(angle: np.ndarray) -> np.ndarray:
@@ -29,3 +31,32 @@ def clock_position(pdof: np.ndarray) -> np.ndarray:
     """Clock position (1..12, 12 = frontal) of a PDOF [rad], nearest hour; 0 where PDOF is NaN."""
     hours = np.mod(np.rint(np.nan_to_num(np.degrees(pdof)) / 30.0), 12)
     return np.where(np.isnan(pdof), 0, np.where(hours == 0, 12, hours)).astype(int)
+
+
+class DirectionOutputs:
+    """A mixin of :class:`pim.Result`: direction of the impulse, PDOF and clock positions."""
+
+    @cached_property
+    def impulse_angle(self) -> np.ndarray:
+        """Direction of the impulse on vehicle 1 from +x [rad]."""
+        return np.arctan2(self.impulse[..., 1], self.impulse[..., 0])
+
+    @cached_property
+    def pdof1(self) -> np.ndarray:
+        """PDOF of vehicle 1 [rad], clockwise from its heading; 0 = frontal (see pdof)."""
+        return pdof(self.impulse, self.case.vehicle1.heading)
+
+    @cached_property
+    def pdof2(self) -> np.ndarray:
+        """PDOF of vehicle 2 [rad], clockwise from its heading; 0 = frontal."""
+        return pdof(-self.impulse, self.case.vehicle2.heading)
+
+    @cached_property
+    def clock1(self) -> np.ndarray:
+        """PDOF of vehicle 1 as a clock position, 12 = frontal, 3 = right side."""
+        return clock_position(self.pdof1)
+
+    @cached_property
+    def clock2(self) -> np.ndarray:
+        """PDOF of vehicle 2 as a clock position, 12 = frontal, 3 = right side."""
+        return clock_position(self.pdof2)

@@ -1,26 +1,66 @@
-"""The outcome of :func:`pim.solve`: post-impact motion and everything derived from it."""
+"""The outcome of :func:`pim.solve`: the core outputs and everything derived from them.
+
+:class:`Result` holds the core outputs of the one formula (:mod:`pim.model.formula`):
+post-impact motion, impulse, critical impulse, approach velocity, K and the flags. The rest is
+read from them on first access and cached, each group defined once in its own module:
+Brach's sheet notation (:mod:`pim.model.sheet_notation`), energies
+(:mod:`pim.model.energy`), direction of force (:mod:`pim.model.pdof`) and admissibility
+(:mod:`pim.model.admissibility`); the motion (delta-V, speeds, separation velocity) is here.
+
+A result is read-only. Its core fields may be given ready (arrays of the numpy path), as
+plain floats (the scalar path: each becomes a 0-d or (2,) array when first read), or left to a
+``fill`` function that computes the missing ones together (the batch kernel's auxiliary
+fields).
+"""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
-from .case import Case
-from .geometry import contact_velocity, dot, kinetic_energy
-from .pdof import clock_position, pdof
+from .admissibility import Admissibility
+from .energy import EnergyOutputs
+from .geometry import contact_velocity, dot
+from .pdof import DirectionOutputs
+from .sheet_notation import SheetNotation
 
-__all__ = ["Result"]
+__all__ = ["Result", "CORE_FIELDS", "VECTOR_FIELDS"]
+
+#: The core fields of a result, in the order of :class:`Result`'s documentation.
+CORE_FIELDS = ("velocity1", "velocity2", "yaw_rate1", "yaw_rate2", "impulse", "impulse_n",
+               "impulse_t", "critical_impulse_n", "critical_impulse_t", "normal", "tangent",
+               "arm1", "arm2", "approach_velocity", "approach_n", "approach_t", "k_nn", "k_nt",
+               "k_tt", "approaching", "q_singular")
+#: Core fields that are vectors (trailing axis of 2).
+VECTOR_FIELDS = frozenset(("velocity1", "velocity2", "impulse", "normal", "tangent", "arm1",
+                           "arm2", "approach_velocity"))
+_READY = frozenset(("case", "eps", "beta") + CORE_FIELDS)
 
 
-@dataclass(frozen=True, eq=False)
-class Result:
-    """The outcome of :func:`solve`: post-impact motion and everything derived from it.
+class Result(SheetNotation, EnergyOutputs, DirectionOutputs, Admissibility):
+    """The outcome of :func:`pim.solve`: post-impact motion and everything derived from it.
 
     Every array broadcasts over the inputs (vectors carry a trailing axis of 2). The core
-    fields are computed by :func:`solve`; the properties below them are computed on first
+    fields are computed by :func:`pim.solve`; the other properties are computed on first
     access and cached. Units: m/s, rad/s, N s, J, rad.
+
+    Parameters
+    ----------
+    case : Case
+        The inputs.
+    eps, beta : array_like
+        Coefficient of restitution and fraction of mu0 used [-].
+    fields : dict, optional
+        Core fields (see below) as arrays.
+    raw : dict, optional
+        Core fields as floats (scalars) or (x, y) pairs (vectors); made arrays when read.
+    fill : callable, optional
+        Called once, with no argument, when a core field missing from ``fields`` and ``raw``
+        is first read; returns a dict of the missing fields.
+    backend : str
+        What evaluated the formula: "python" (one case in floats), "numpy", "numba" or
+        "numba-fast-trig" (the batch kernel with its own sine and cosine).
 
     Attributes
     ----------
@@ -34,84 +74,67 @@ class Result:
         Its components Pn, Pt along n and t [N s].
     critical_impulse_n, critical_impulse_t : ndarray
         The impulse at mu = mu0 (beta = 1) [N s].
+    normal, tangent : ndarray (..., 2)
+        Unit vectors n (from vehicle 2 toward vehicle 1) and t = n turned +90 deg.
+    arm1, arm2 : ndarray (..., 2)
+        Arms C - G_i [m].
+    approach_velocity : ndarray (..., 2)
+        Relative velocity of C before impact, u = u_1 - u_2 [m/s].
+    approach_n, approach_t : ndarray
+        Its components u_n, u_t [m/s].
+    k_nn, k_nt, k_tt : ndarray
+        The effective inverse-mass matrix K in n-t components [1/kg].
     approaching : ndarray of bool
-        u_n < 0 beyond round-off (by more than APPROACH_TOLERANCE of |u_n| + |u_t|): the
-        vehicles approach at C. Where False no impulse is applied.
+        u_n < 0 beyond round-off (by more than the approach tolerance of |u_n| + |u_t|):
+        the vehicles approach at C. Where False no impulse is applied.
     q_singular : ndarray of bool
         A - mu B = 0: the impulse is unbounded; outputs there are NaN.
     """
 
-    case: Case
-    eps: np.ndarray
-    beta: np.ndarray
-    velocity1: np.ndarray
-    velocity2: np.ndarray
-    yaw_rate1: np.ndarray
-    yaw_rate2: np.ndarray
-    impulse: np.ndarray
-    impulse_n: np.ndarray
-    impulse_t: np.ndarray
-    critical_impulse_n: np.ndarray
-    critical_impulse_t: np.ndarray
-    normal: np.ndarray
-    tangent: np.ndarray
-    arm1: np.ndarray
-    arm2: np.ndarray
-    approach_velocity: np.ndarray
-    approach_n: np.ndarray
-    approach_t: np.ndarray
-    k_nn: np.ndarray
-    k_nt: np.ndarray
-    k_tt: np.ndarray
-    approaching: np.ndarray
-    q_singular: np.ndarray
+    def __init__(self, case, eps, beta, fields=None, *, raw=None, fill=None,
+                 backend: str = "numpy") -> None:
+        d = self.__dict__
+        d["backend"] = backend
+        d["case"] = case
+        d["eps"] = eps
+        d["beta"] = beta
+        if fields:
+            d.update(fields)
+        d["_raw"] = raw
+        d["_fill"] = fill
 
-    # ---- impulse ratio -------------------------------------------------------------------
-    @cached_property
-    def mu0(self) -> np.ndarray:
-        """Critical impulse ratio mu0 = Pt0 / Pn0 [-] (eq. 6.60): no sliding at C after impact."""
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return self.critical_impulse_t / self.critical_impulse_n
+    def __getattr__(self, name):
+        # called only for names not found the normal way: a core field not yet made
+        d = self.__dict__
+        raw = d.get("_raw")
+        if raw is not None and name in raw:
+            value = np.asarray(raw[name], dtype=bool if name in ("approaching", "q_singular")
+                               else float)
+            d[name] = value
+            return value
+        fill = d.get("_fill")
+        if fill is not None and name in _READY:
+            d["_fill"] = None
+            d.update(fill())
+            return d[name]
+        raise AttributeError(f"'Result' object has no attribute {name!r}")
 
-    @cached_property
-    def mu(self) -> np.ndarray:
-        """Impulse ratio mu = beta mu0 = Pt / Pn [-]."""
-        return self.beta * self.mu0
+    def __setattr__(self, name, value):
+        raise AttributeError(f"Result is read-only (cannot set {name!r})")
 
-    # ---- Brach's coefficients ------------------------------------------------------------
-    @cached_property
-    def reduced_mass(self) -> np.ndarray:
-        """m_c = m1 m2 / (m1 + m2) [kg]; m1 for a fixed vehicle 2."""
-        return 1.0 / (self.case.vehicle1.inverse_mass + self.case.vehicle2.inverse_mass)
+    def __getstate__(self) -> dict:
+        # pickle every core field as an array (a fill function does not pickle)
+        state = {name: getattr(self, name) for name in _READY}
+        state.update({k: v for k, v in self.__dict__.items() if k not in ("_raw", "_fill")})
+        return state
 
-    @cached_property
-    def A(self) -> np.ndarray:  # noqa: N802 - Brach's symbol
-        """Brach's A = 1 + m_c d_c^2/(m1 k1^2) + m_c d_a^2/(m2 k2^2) [-] (eq. 6.46)."""
-        return self.reduced_mass * self.k_nn
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update(state, _raw=None, _fill=None)
 
-    @cached_property
-    def B(self) -> np.ndarray:  # noqa: N802
-        """Brach's B = m_c d_c d_d/(m1 k1^2) + m_c d_a d_b/(m2 k2^2) [-] (eq. 6.46)."""
-        return -self.reduced_mass * self.k_nt
+    def __repr__(self) -> str:
+        shape = np.shape(self.yaw_rate1)
+        return f"Result(case={self.case.name or '(unnamed)'!r}, shape={shape})"
 
-    @cached_property
-    def C(self) -> np.ndarray:  # noqa: N802
-        """Brach's C = m_c d_d^2/(m1 k1^2) + m_c d_b^2/(m2 k2^2) [-] (eq. 6.46; no leading 1)."""
-        return self.reduced_mass * self.k_tt - 1.0
-
-    @cached_property
-    def q(self) -> np.ndarray:
-        """Brach's q = 1 / (A - mu B) [-] (eq. 6.55)."""
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return 1.0 / (self.A - self.mu * self.B)
-
-    @cached_property
-    def r(self) -> np.ndarray:
-        """Brach's r = u_t / u_n [-], tangential over normal approach velocity at C (eq. 6.60)."""
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return self.approach_t / self.approach_n
-
-    # ---- motion --------------------------------------------------------------------------
     @cached_property
     def delta_v1(self) -> np.ndarray:
         """Change of vehicle 1's CG velocity [m/s], shape (..., 2)."""
@@ -163,143 +186,3 @@ class Result:
         """-U_n / u_n [-]: equals eps by construction (the sheet's consistency check)."""
         with np.errstate(divide="ignore", invalid="ignore"):
             return -self.separation_n / self.approach_n
-
-    # ---- energy --------------------------------------------------------------------------
-    @cached_property
-    def kinetic_energy_before(self) -> np.ndarray:
-        """Total kinetic energy before impact [J]."""
-        v1, v2 = self.case.vehicle1, self.case.vehicle2
-        return (kinetic_energy(v1.mass, v1.yaw_inertia, v1.velocity, v1.yaw_rate)
-                + kinetic_energy(v2.mass, v2.yaw_inertia, v2.velocity, v2.yaw_rate))
-
-    @cached_property
-    def kinetic_energy_after(self) -> np.ndarray:
-        """Total kinetic energy after impact [J]."""
-        v1, v2 = self.case.vehicle1, self.case.vehicle2
-        return (kinetic_energy(v1.mass, v1.yaw_inertia, self.velocity1, self.yaw_rate1)
-                + kinetic_energy(v2.mass, v2.yaw_inertia, self.velocity2, self.yaw_rate2))
-
-    @cached_property
-    def energy_loss(self) -> np.ndarray:
-        """Kinetic energy lost in the impact [J] (negative: energy gained)."""
-        return self.kinetic_energy_before - self.kinetic_energy_after
-
-    @cached_property
-    def energy_loss_percent(self) -> np.ndarray:
-        """Energy lost as a percentage of the kinetic energy before impact [%]."""
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return 100.0 * self.energy_loss / self.kinetic_energy_before
-
-    @cached_property
-    def total_loss_brach(self) -> np.ndarray:
-        """Brach's closed-form total impact loss T_L [J], equal to :attr:`energy_loss`.
-
-        T_L = (1/2) m_c q v_rn^2 (1 + eps) [2 + 2 mu r - (1 + eps) q (A - 2 mu B + mu^2 (1 + C))]
-        (the sheet's T_L with the m_c d_e^2, d_f^2 sum expanded), written with
-        v_rn^2 r = u_n u_t so that it stays finite as u_n -> 0.
-        """
-        mu, q = self.mu, self.q
-        u_n, u_t = self.approach_n, self.approach_t
-        e1 = 1.0 + self.eps
-        bracket = (2.0 * u_n * u_n + 2.0 * mu * u_n * u_t
-                   - e1 * q * u_n * u_n * (self.A - 2.0 * mu * self.B + mu * mu * (1.0 + self.C)))
-        loss = 0.5 * self.reduced_mass * q * e1 * bracket
-        return np.where(self.approaching, loss, 0.0)
-
-    @cached_property
-    def crush_energy_normal(self) -> np.ndarray:
-        """Energy lost in the normal direction, -Pn (u_n + U_n) / 2 [J]."""
-        return -0.5 * self.impulse_n * (self.approach_n + self.separation_n)
-
-    @cached_property
-    def crush_energy_tangential(self) -> np.ndarray:
-        """Energy lost in the tangential direction, -Pt (u_t + U_t) / 2 [J]."""
-        return -0.5 * self.impulse_t * (self.approach_t + self.separation_t)
-
-    @cached_property
-    def tangential_share(self) -> np.ndarray:
-        """Tangential crush energy as a fraction of the total loss [-] (0 where nothing is lost)."""
-        total = self.crush_energy_normal + self.crush_energy_tangential
-        return np.divide(self.crush_energy_tangential, total,
-                         out=np.zeros(np.shape(total)), where=total != 0)
-
-    # ---- direction of force ------------------------------------------------------------------
-    @cached_property
-    def impulse_angle(self) -> np.ndarray:
-        """Direction of the impulse on vehicle 1 from +x [rad]."""
-        return np.arctan2(self.impulse[..., 1], self.impulse[..., 0])
-
-    @cached_property
-    def pdof1(self) -> np.ndarray:
-        """PDOF of vehicle 1 [rad], clockwise from its heading; 0 = frontal (see pdof)."""
-        return pdof(self.impulse, self.case.vehicle1.heading)
-
-    @cached_property
-    def pdof2(self) -> np.ndarray:
-        """PDOF of vehicle 2 [rad], clockwise from its heading; 0 = frontal."""
-        return pdof(-self.impulse, self.case.vehicle2.heading)
-
-    @cached_property
-    def clock1(self) -> np.ndarray:
-        """PDOF of vehicle 1 as a clock position, 12 = frontal, 3 = right side."""
-        return clock_position(self.pdof1)
-
-    @cached_property
-    def clock2(self) -> np.ndarray:
-        """PDOF of vehicle 2 as a clock position, 12 = frontal, 3 = right side."""
-        return clock_position(self.pdof2)
-
-    # ---- admissibility -------------------------------------------------------------------
-    @cached_property
-    def normal_impulse_positive(self) -> np.ndarray:
-        """Pn > 0: the contact pushes (a negative Pn would pull the vehicles together)."""
-        return self.impulse_n > 0
-
-    @cached_property
-    def energy_not_gained(self) -> np.ndarray:
-        """Kinetic energy does not rise (loss >= 0 within round-off)."""
-        tol = 1e-9 * self.kinetic_energy_before
-        return self.energy_loss >= -tol
-
-    @cached_property
-    def within_critical(self) -> np.ndarray:
-        """|mu| <= |mu0| (0 <= beta <= 1): no reversal of tangential sliding at C."""
-        return (self.beta >= 0) & (self.beta <= 1)
-
-    @cached_property
-    def friction_opposes_sliding(self) -> np.ndarray:
-        """Pt U_t <= 0: the tangential impulse does not point along the slip left at C.
-
-        With beta < 1 and strong n-t coupling, PIM's mu = beta mu0 can push along the
-        post-impact sliding, which Coulomb friction cannot (and a simulator will not) do.
-        """
-        scale = np.abs(self.impulse_t) * (np.abs(self.approach_n) + np.abs(self.approach_t))
-        return self.impulse_t * self.separation_t <= 1e-9 * scale
-
-    @cached_property
-    def admissible(self) -> np.ndarray:
-        """All flags hold: approach, Pn > 0, no energy gain, |mu| <= |mu0|, friction opposing
-        the remaining slip, finite q."""
-        return (self.approaching & self.normal_impulse_positive & self.energy_not_gained
-                & self.within_critical & self.friction_opposes_sliding & ~self.q_singular)
-
-    def problems(self) -> list[str]:
-        """Plain-language reasons why any element is inadmissible (empty when all are fine)."""
-        checks = [
-            (self.approaching, "the vehicles do not approach at C (u_n >= 0): no impact"),
-            (~self.q_singular, "q is singular (A - mu B = 0): the impulse is unbounded"),
-            (self.normal_impulse_positive | ~self.approaching,
-             "the normal impulse is not positive (the contact would pull)"),
-            (self.energy_not_gained, "kinetic energy is gained"),
-            (self.friction_opposes_sliding | ~self.approaching,
-             "the tangential impulse points along the remaining slip at C (not Coulomb friction)"),
-            (np.broadcast_to(self.within_critical, np.shape(self.impulse_n)),
-             "|mu| > |mu0| (beta outside [0, 1]): tangential sliding at C reverses"),
-        ]
-        out = []
-        for ok, text in checks:
-            ok = np.asarray(ok)
-            bad = int(np.size(ok) - np.count_nonzero(ok))
-            if bad:
-                out.append(text if ok.size == 1 else f"{text} ({bad} of {ok.size} cases)")
-        return out

@@ -1,0 +1,72 @@
+"""Admissibility flags of a PIM result, and the reasons in plain language.
+
+A mixin of :class:`pim.Result`. Inadmissible results are flagged, never hidden: no approach
+at C, a pulling normal impulse, energy gained, |mu| > |mu0|, a tangential impulse along the
+remaining slip (not Coulomb friction), singular q.
+"""
+
+from __future__ import annotations
+
+from functools import cached_property
+
+import numpy as np
+
+__all__ = ["Admissibility"]
+
+
+class Admissibility:
+    """Flags that say whether each element of a result is physically admissible."""
+
+    @cached_property
+    def normal_impulse_positive(self) -> np.ndarray:
+        """Pn > 0: the contact pushes (a negative Pn would pull the vehicles together)."""
+        return self.impulse_n > 0
+
+    @cached_property
+    def energy_not_gained(self) -> np.ndarray:
+        """Kinetic energy does not rise (loss >= 0 within round-off)."""
+        tol = 1e-9 * self.kinetic_energy_before
+        return self.energy_loss >= -tol
+
+    @cached_property
+    def within_critical(self) -> np.ndarray:
+        """|mu| <= |mu0| (0 <= beta <= 1): no reversal of tangential sliding at C."""
+        return (self.beta >= 0) & (self.beta <= 1)
+
+    @cached_property
+    def friction_opposes_sliding(self) -> np.ndarray:
+        """Pt U_t <= 0: the tangential impulse does not point along the slip left at C.
+
+        With beta < 1 and strong n-t coupling, PIM's mu = beta mu0 can push along the
+        post-impact sliding, which Coulomb friction cannot (and a simulator will not) do.
+        """
+        scale = np.abs(self.impulse_t) * (np.abs(self.approach_n) + np.abs(self.approach_t))
+        return self.impulse_t * self.separation_t <= 1e-9 * scale
+
+    @cached_property
+    def admissible(self) -> np.ndarray:
+        """All flags hold: approach, Pn > 0, no energy gain, |mu| <= |mu0|, friction opposing
+        the remaining slip, finite q."""
+        return (self.approaching & self.normal_impulse_positive & self.energy_not_gained
+                & self.within_critical & self.friction_opposes_sliding & ~self.q_singular)
+
+    def problems(self) -> list[str]:
+        """Plain-language reasons why any element is inadmissible (empty when all are fine)."""
+        checks = [
+            (self.approaching, "the vehicles do not approach at C (u_n >= 0): no impact"),
+            (~self.q_singular, "q is singular (A - mu B = 0): the impulse is unbounded"),
+            (self.normal_impulse_positive | ~self.approaching,
+             "the normal impulse is not positive (the contact would pull)"),
+            (self.energy_not_gained, "kinetic energy is gained"),
+            (self.friction_opposes_sliding | ~self.approaching,
+             "the tangential impulse points along the remaining slip at C (not Coulomb friction)"),
+            (np.broadcast_to(self.within_critical, np.shape(self.impulse_n)),
+             "|mu| > |mu0| (beta outside [0, 1]): tangential sliding at C reverses"),
+        ]
+        out = []
+        for ok, text in checks:
+            ok = np.asarray(ok)
+            bad = int(np.size(ok) - np.count_nonzero(ok))
+            if bad:
+                out.append(text if ok.size == 1 else f"{text} ({bad} of {ok.size} cases)")
+        return out
