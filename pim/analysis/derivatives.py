@@ -3,7 +3,7 @@
 Every output of
 :func:`pim.solve` is differentiated in closed form with respect to the coefficient of
 restitution epsilon and the fraction beta of the critical impulse ratio (mu = beta mu0).
-All outputs are functions of the impulse P, which :mod:`pim.solver` writes as
+All outputs are functions of the impulse P, which :mod:`pim.model.formula` writes as
 
     P = s (Pn0 n + beta Pt0 t),    s = -(1 + eps) u_n / (K_nn Pn0 + beta K_nt Pt0),
 
@@ -14,9 +14,12 @@ with (Pn0, Pt0) = K^-1 [-(1 + eps) u_n, -u_t] (the critical impulse, affine in e
     ds/deps = -u_n / D - s dD/deps / D,   ds/dbeta = -s dD/dbeta / D,
 
 and the derivatives of the velocities, yaw rates, energies and angles follow by the chain
-rule (each formula is next to its output in :func:`derivatives`). Complex-step does not go
-through :func:`pim.solve` (it casts to float), so the closed form is used; the tests compare
-it with central finite differences of :func:`pim.solve`.
+rule (each formula is next to its output in :func:`derivatives`). The closed form is tested
+against automatic differentiation of the one formula (:mod:`pim.model.dual`, forward-mode
+dual numbers; ``tests/test_dual.py``) on random scenes, and against central finite
+differences of :func:`pim.solve` (``tests/test_sensitivity.py``). For derivatives with
+respect to the other inputs (Gamma, C, the pre-impact motion) use
+:func:`pim.model.dual.motion_jacobian`.
 """
 
 from __future__ import annotations

@@ -2,15 +2,15 @@
 
 Closed-form PIM costs a few dozen flops per case, so a batch of millions of cases is limited
 by memory traffic: reading 19 inputs and writing the core outputs. The numpy reference path
-in :mod:`pim.solver` makes one pass over memory per arithmetic operation (about a hundred
+in :mod:`pim.model.solver` makes one pass over memory per arithmetic operation (about a hundred
 temporaries of N doubles); this module makes one: each case is read once, solved in registers
 and written once, on all cores (numba ``prange``).
 
-The arithmetic mirrors :func:`pim.solver.solve` operation by operation and in the same order
-(no fast-math, no fused multiply-add contraction) and takes sine and cosine from the same C
-library as numpy, so the default kernel gives bitwise the numpy path's values
-(``tests/test_kernel.py``), including the approach flag, the singular-q flag and fixed
-obstacles (inverse mass and inertia 0). With ``fast_trig`` it uses its own branch-free sine
+The arithmetic is :mod:`pim.model.formula` itself, compiled by numba (no fast-math, no fused
+multiply-add contraction), with sine and cosine from the same C library as numpy, so the
+default kernel gives bitwise the numpy path's values (``tests/test_kernel.py``), including
+the approach flag, the singular-q flag and fixed obstacles (inverse mass and inertia 0). The
+tolerances are arguments of the compiled functions, not constants baked into numba's cache. With ``fast_trig`` it uses its own branch-free sine
 and cosine (within 1 ulp), about 20 % faster; the results then agree with numpy to round-off
 (normwise 1e-15; elementwise more where outputs come from cancellation).
 numba is imported only when this module is,
@@ -20,7 +20,8 @@ Outputs: the kernel writes only the core outputs (post-impact velocities, yaw ra
 mu0 and the two flags), at the full broadcast shape of the inputs, so a batch costs 19 doubles
 read and 9 doubles and 2 bytes written per case. The auxiliary fields of :class:`pim.Result`
 (arms, approach velocity, K, n-t and critical impulse components, normal, tangent) are written
-by a second pass of the same kernel when one of them is first read (:class:`KernelResult`).
+by a second pass of the same kernel when one of them is first read (the ``fill`` function of
+the :class:`pim.Result` that :func:`solve_case` returns).
 The unit normal and tangent share one buffer ``(-sin G, cos G, sin G)`` of shape (..., 3):
 ``normal`` is its view ``[..., 1:]`` and ``tangent`` its view ``[..., :2]`` (read-only).
 """

@@ -196,6 +196,11 @@ def solve(case: Case, eps=None, beta=None, backend: str = "auto", fast_trig: boo
     if (backend == "auto" and case.is_scalar and _is_float(eps) and _is_float(beta)):
         return _solve_scalar(case, float(eps), float(beta), approach_tol, singular_tol)
     eps, beta = _check_eps(eps), _check_beta(beta)
+    try:
+        np.broadcast_shapes(case.shape, eps.shape, beta.shape)
+    except ValueError:
+        raise ValueError(f"the shapes of eps {eps.shape}, beta {beta.shape} and the case's "
+                         f"inputs {case.shape} do not broadcast together") from None
     if _use_kernel(case, eps, beta, backend):
         from .kernel import solve_case  # numba loads only for the batch path
 
