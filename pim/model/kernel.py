@@ -10,11 +10,11 @@ The arithmetic is :mod:`pim.model.formula` itself, compiled by numba (no fast-ma
 multiply-add contraction), with sine and cosine from the same C library as numpy, so the
 default kernel gives bitwise the numpy path's values (``tests/test_kernel.py``), including
 the approach flag, the singular-q flag and fixed obstacles (inverse mass and inertia 0). The
-tolerances are arguments of the compiled functions, not constants baked into numba's cache. With ``fast_trig`` it uses its own branch-free sine
-and cosine (within 1 ulp), about 20 % faster; the results then agree with numpy to round-off
-(normwise 1e-15; elementwise more where outputs come from cancellation).
-numba is imported only when this module is,
-which :func:`pim.solve` does only when it takes the fast path.
+tolerances are arguments of the compiled functions, not constants baked into numba's cache.
+With ``fast_trig`` it uses its own branch-free sine and cosine (within 1 ulp), about 20 %
+faster; the results then agree with numpy to round-off (normwise 1e-15; elementwise more
+where outputs come from cancellation). numba is imported only when this module is, which
+:func:`pim.solve` does only when it takes the fast path.
 
 Outputs: the kernel writes only the core outputs (post-impact velocities, yaw rates, impulse,
 mu0 and the two flags), at the full broadcast shape of the inputs, so a batch costs 19 doubles
