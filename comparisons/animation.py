@@ -27,6 +27,7 @@ from PIL import Image, ImageDraw, ImageFont
 
 import pim
 from pim.io.files import atomic_path
+from pim.model.geometry import outline_corners
 
 from .motion import Motion, analytic_motion, simulated_motion
 
@@ -99,8 +100,7 @@ def _corners(vehicle: pim.Vehicle) -> np.ndarray | None:
         length, width = DEFAULT_OUTLINE
     else:
         length, width = vehicle.length, vehicle.width
-    hl, hw = length / 2, width / 2
-    return np.array([[hl, hw], [-hl, hw], [-hl, -hw], [hl, -hw]])
+    return outline_corners(length, width)
 
 
 def _place(corners: np.ndarray, position: np.ndarray, angle: np.ndarray) -> np.ndarray:

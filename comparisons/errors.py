@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import pim
+from pim.model.geometry import radius_of_gyration
 
 __all__ = ["QuantityError", "compare_results", "impact_error", "analytic_residual"]
 
@@ -141,7 +142,7 @@ def compare_results(case: pim.Case, result: pim.Result, simulated) -> list[Quant
 
 
 def _gyration(vehicle: pim.Vehicle) -> float:
-    return 0.0 if bool(vehicle.fixed) else float(np.sqrt(vehicle.yaw_inertia / vehicle.mass))
+    return float(radius_of_gyration(vehicle.mass, vehicle.yaw_inertia))
 
 
 def _changes(case: pim.Case, v1, v2, w1, w2) -> np.ndarray:

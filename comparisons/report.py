@@ -25,6 +25,7 @@ import numpy as np
 
 import pim
 from pim.io.files import atomic_path, write_text
+from pim.model.solver import constraints
 
 from .errors import compare_results, impact_error
 from .tables import Table, fmt_error
@@ -170,14 +171,7 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
         fit = pim.fit(case, eps=eps, beta=beta)
         eps, beta = fit.eps, fit.beta
         tables.append(fit_table(fit))
-    if eps is None:
-        eps = case.impact.restitution
-        if eps is None:
-            raise ValueError("eps is required: the case has no impact.restitution and no "
-                             "measurements to fit")
-    if beta is None:
-        beta = 1.0 if case.impact.beta is None else case.impact.beta
-    eps, beta = float(eps), float(beta)
+    eps, beta = (float(x) for x in constraints(case, eps, beta))
     rep.eps, rep.beta = eps, beta
     result = pim.solve(case, eps, beta)
     tick("fit", t0)

@@ -32,6 +32,7 @@ import numpy as np
 import pymunk
 
 import pim
+from pim.model.geometry import kinetic_energy
 
 from .errors import SimulationError
 from .result import SimResult, Trajectory
@@ -132,11 +133,11 @@ def _state(t: float, b1: pymunk.Body, b2: pymunk.Body) -> tuple:
 
 
 def _kinetic(body: pymunk.Body) -> float:
+    """Kinetic energy [J] of a pymunk body (0 for a static or kinematic one)."""
     if body.body_type != pymunk.Body.DYNAMIC:
         return 0.0
-    v = body.velocity
-    w = body.angular_velocity
-    return 0.5 * body.mass * (v.x * v.x + v.y * v.y) + 0.5 * body.moment * w * w
+    return float(kinetic_energy(body.mass, body.moment, tuple(body.velocity),
+                                body.angular_velocity))
 
 
 def _tyre_step(body: pymunk.Body, decel: float, yaw_decel: float, dt: float) -> bool:

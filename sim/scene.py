@@ -34,6 +34,7 @@ import numpy as np
 import pymunk
 
 import pim
+from pim.model import geometry
 from pim.model.solver import constraints
 
 from .convergence import auto_iterations, contraction_rate
@@ -49,11 +50,6 @@ STICK_MARGIN = 10.0
 EXACT_OVERLAP = 1e-3
 #: Collision types of vehicle 1's and vehicle 2's shapes.
 TYPE1, TYPE2 = 1, 2
-
-
-def _rotate(vec, angle: float) -> np.ndarray:
-    c, s = np.cos(angle), np.sin(angle)
-    return np.array([c * vec[0] - s * vec[1], s * vec[0] + c * vec[1]])
 
 
 def _scalar_case(case: pim.Case) -> None:
@@ -90,8 +86,7 @@ def outline_corners(vehicle: pim.Vehicle) -> np.ndarray | None:
     """Corners of the vehicle's length x width rectangle in its body frame [m], or None."""
     if vehicle.length is None or vehicle.width is None:
         return None
-    hl, hw = vehicle.length / 2.0, vehicle.width / 2.0
-    return np.array([[hl, hw], [-hl, hw], [-hl, -hw], [hl, -hw]])
+    return geometry.outline_corners(vehicle.length, vehicle.width)
 
 
 def footprint_lever(vehicle: pim.Vehicle) -> float:
@@ -101,7 +96,7 @@ def footprint_lever(vehicle: pim.Vehicle) -> float:
     the radius of gyration when the vehicle has no outline.
     """
     if vehicle.length is None or vehicle.width is None:
-        return float(np.sqrt(vehicle.yaw_inertia / vehicle.mass))
+        return float(geometry.radius_of_gyration(vehicle.mass, vehicle.yaw_inertia))
     g = (np.arange(32) + 0.5) / 32 * 2 - 1
     x, y = np.meshgrid(g * vehicle.length / 2, g * vehicle.width / 2)
     return float(np.mean(np.hypot(x, y)))
@@ -132,13 +127,6 @@ class Scene:
     iterations: int = 0            # solver sweeps per step in use
     contraction_rate: float = 0.0  # predicted error factor per sweep (sim.convergence)
     k: tuple = (0.0, 0.0, 0.0)     # K_nn, K_nt, K_tt of PIM's contact [1/kg]
-
-
-def _kinetic(vehicle: pim.Vehicle) -> float:
-    if vehicle.fixed:
-        return 0.0
-    v = np.asarray(vehicle.velocity, float).reshape(2)
-    return float(0.5 * vehicle.mass * v @ v + 0.5 * vehicle.yaw_inertia * vehicle.yaw_rate ** 2)
 
 
 def build_scene(case: pim.Case, eps=None, beta=None, settings: Settings | None = None,
@@ -214,8 +202,8 @@ def build_scene(case: pim.Case, eps=None, beta=None, settings: Settings | None =
 
     def local(vehicle: pim.Vehicle, world) -> tuple[float, float]:
         """World point at the impact configuration -> the vehicle's body frame."""
-        p = _rotate(np.asarray(world, float) - np.asarray(vehicle.cg, float).reshape(2),
-                    -float(vehicle.heading))
+        p = geometry.rotate(np.asarray(world, float) - np.asarray(vehicle.cg, float).reshape(2),
+                            -float(vehicle.heading))
         return float(p[0]), float(p[1])
 
     u = analytic.approach_velocity
@@ -257,7 +245,9 @@ def build_scene(case: pim.Case, eps=None, beta=None, settings: Settings | None =
     return Scene(space=space, body1=body1, body2=body2, contact_shapes=shapes, fixed2=fixed2,
                  eps=eps, beta=beta, friction=friction, start_time=-lead, point=point, normal=n,
                  approach_n=float(np.asarray(analytic.approach_n).reshape(())),
-                 speed_scale=speed_scale, energy_before=_kinetic(v1) + _kinetic(v2),
+                 speed_scale=speed_scale, energy_before=float(
+                     geometry.kinetic_energy(v1.mass, v1.yaw_inertia, v1.velocity, v1.yaw_rate)
+                     + geometry.kinetic_energy(v2.mass, v2.yaw_inertia, v2.velocity, v2.yaw_rate)),
                  outline1=outline_corners(v1), outline2=outline_corners(v2),
                  lever1=footprint_lever(v1),
                  lever2=0.0 if fixed2 else footprint_lever(v2),

@@ -17,7 +17,7 @@ import numpy as np
 from ..model.case import Case
 from ..model.geometry import radius_of_gyration
 from ..model.result import Result
-from ..model.solver import solve
+from ..model.solver import defaults, solve
 from .derivatives import derivatives
 from .fitting import FitResult
 from .fitting import fit as fit_case
@@ -278,11 +278,7 @@ def sensitivity(case: Case, fit_result=None, *, eps=None, beta=None, uncertainty
         names = fit_result.residual_names
     else:
         names = ()
-        eps = case.impact.restitution if eps is None else eps
-        if eps is None:
-            raise ValueError("eps is required: nothing is measured to fit, so give eps "
-                             "or set impact.restitution in the case")
-        beta = (1.0 if case.impact.beta is None else case.impact.beta) if beta is None else beta
+        eps, beta = defaults(case, eps, beta)
     eps, beta = float(eps), float(beta)
 
     keys, nominal, sigma = _nominal_and_sigma(case, unc, names)

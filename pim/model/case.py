@@ -15,23 +15,10 @@ from functools import cached_property
 
 import numpy as np
 
+from .geometry import rotate
+from .numbers import real_array
+
 __all__ = ["Vehicle", "Impact", "Case", "Measured"]
-
-
-def _reject_non_number(value, name: str, unit: str) -> None:
-    if isinstance(value, str | bytes | bool | np.bool_) or value is None:
-        raise ValueError(f"{name} must be a number in [{unit}], got {value!r}")
-
-
-def _real_array(value, name: str, unit: str) -> np.ndarray:
-    _reject_non_number(value, name, unit)
-    try:
-        arr = np.asarray(value)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be numbers in [{unit}] ({exc})") from None
-    if arr.dtype.kind not in "fiu":
-        raise ValueError(f"{name} must be real numbers in [{unit}], got {arr.dtype} values")
-    return arr.astype(float, copy=False)
 
 
 def _scalar(value, name: str, unit: str = "SI") -> np.ndarray:
@@ -39,7 +26,7 @@ def _scalar(value, name: str, unit: str = "SI") -> np.ndarray:
         if value != value:
             raise ValueError(f"{name} is NaN; it must be a finite number in [{unit}]")
         return np.float64(value)
-    arr = _real_array(value, name, unit)
+    arr = real_array(value, name, unit)
     if np.isnan(arr).any():
         raise ValueError(f"{name} is NaN; it must be a finite number in [{unit}]")
     return arr
@@ -51,7 +38,7 @@ def _vector(value, name: str, unit: str) -> np.ndarray:
         if not (math.isfinite(value[0]) and math.isfinite(value[1])):
             raise ValueError(f"{name} must be finite [x, y] values in [{unit}]")
         return np.array(value, dtype=float)
-    arr = _real_array(value, name, unit)
+    arr = real_array(value, name, unit)
     if arr.ndim == 0 or arr.shape[-1] != 2:
         raise ValueError(f"{name} must be an [x, y] pair in [{unit}], got shape {arr.shape}")
     if not np.isfinite(arr).all():
@@ -237,11 +224,6 @@ class Measured:
                 object.__setattr__(self, name, value)
 
 
-def _rotate(vec: np.ndarray, angle: float) -> np.ndarray:
-    c, s = np.cos(angle), np.sin(angle)
-    return np.stack([c * vec[..., 0] - s * vec[..., 1], s * vec[..., 0] + c * vec[..., 1]], -1)
-
-
 @dataclass(frozen=True, eq=False)
 class Case:
     """A two-body planar impact: the inputs of :func:`pim.solve`.
@@ -303,17 +285,17 @@ class Case:
         shift = np.asarray(translation, dtype=float)
 
         def move(v: Vehicle) -> Vehicle:
-            return replace(v, cg=_rotate(v.cg, rotation) + shift,
-                           velocity=_rotate(v.velocity, rotation), heading=v.heading + rotation)
+            return replace(v, cg=rotate(v.cg, rotation) + shift,
+                           velocity=rotate(v.velocity, rotation), heading=v.heading + rotation)
 
         measured = self.measured
         if measured is not None:
             def turn(v):
-                return None if v is None else _rotate(v, rotation)
+                return None if v is None else rotate(v, rotation)
 
             measured = replace(measured, velocity1=turn(measured.velocity1),
                                velocity2=turn(measured.velocity2))
-        impact = replace(self.impact, point=_rotate(self.impact.point, rotation) + shift,
+        impact = replace(self.impact, point=rotate(self.impact.point, rotation) + shift,
                          normal_angle=self.impact.normal_angle + rotation)
         return replace(self, vehicle1=move(self.vehicle1), vehicle2=move(self.vehicle2),
                        impact=impact, measured=measured)

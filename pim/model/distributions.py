@@ -34,6 +34,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .solver import defaults
+
 __all__ = ["Distribution", "UncertaintyTable", "INPUTS", "nominal_values", "sample_inputs"]
 
 #: Uncertain inputs: dotted name -> unit kind for pim.units.parse.
@@ -152,7 +154,7 @@ def nominal_values(case, eps=None, beta=None) -> dict:
     out.update({"impact.point_x": imp.point[..., 0], "impact.point_y": imp.point[..., 1],
                 "impact.normal_angle": imp.normal_angle,
                 "impact.restitution": imp.restitution if eps is None else eps,
-                "impact.beta": (1.0 if imp.beta is None else imp.beta) if beta is None else beta})
+                "impact.beta": defaults(case, 0.0, beta)[1]})
     for name, value in out.items():
         if value is None:
             raise ValueError(f"{name} has no nominal value: give eps (impact.restitution)")

@@ -26,6 +26,7 @@ import numpy as np
 from . import formula
 from .case import Case
 from .geometry import vec
+from .numbers import real_array
 from .result import Result
 
 __all__ = ["solve", "constraints", "APPROACH_TOLERANCE", "SINGULAR_TOLERANCE",
@@ -84,27 +85,15 @@ def defaults(case: Case, eps=None, beta=None):
     return eps, beta
 
 
-def _number_array(value, name: str) -> np.ndarray:
-    if isinstance(value, str | bytes | bool | np.bool_) or value is None:
-        raise ValueError(f"{name} must be a number or an array of numbers, got {value!r}")
-    try:
-        arr = np.asarray(value)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be a number or an array of numbers ({exc})") from None
-    if arr.dtype.kind not in "fiu":
-        raise ValueError(f"{name} must be real numbers, got an array of {arr.dtype}")
-    return arr.astype(float, copy=False)
-
-
 def _check_eps(eps) -> np.ndarray:
-    eps = _number_array(eps, "eps (coefficient of restitution)")
+    eps = real_array(eps, "eps (coefficient of restitution)")
     if np.isnan(eps).any() or ((eps < 0) | (eps > 1)).any():
         raise ValueError("eps (coefficient of restitution) must be in [0, 1]")
     return eps
 
 
 def _check_beta(beta) -> np.ndarray:
-    beta = _number_array(beta, "beta (fraction of mu0)")
+    beta = real_array(beta, "beta (fraction of mu0)")
     if not np.isfinite(beta).all():
         raise ValueError("beta (fraction of mu0) must be a finite number, usually in [0, 1]")
     return beta

@@ -11,18 +11,15 @@ from __future__ import annotations
 import numpy as np
 
 from ..model.case import Case, Vehicle
+from ..model.geometry import outline_world
 
 __all__ = ["outline", "draw_case"]
 
 
 def outline(vehicle: Vehicle, default_length: float = 4.5, default_width: float = 1.8):
     """Corners [m] of a vehicle's length x width rectangle centred on its CG, shape (4, 2)."""
-    length = vehicle.length or default_length
-    width = vehicle.width or default_width
-    local = np.array([[length, width], [length, -width], [-length, -width], [-length, width]]) / 2
-    h = float(vehicle.heading)
-    rot = np.array([[np.cos(h), -np.sin(h)], [np.sin(h), np.cos(h)]])
-    return local @ rot.T + np.asarray(vehicle.cg, dtype=float)
+    return outline_world(vehicle.length or default_length, vehicle.width or default_width,
+                         vehicle.cg, float(vehicle.heading))
 
 
 _BOX = dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.8)
@@ -55,14 +52,12 @@ def draw_case(case: Case, result=None, ax=None, velocity_scale: float | None = N
     -------
     matplotlib.figure.Figure
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
     from matplotlib.patches import Arc, Polygon
 
     if ax is None:
-        fig, ax = plt.subplots(figsize=(9, 8), dpi=120)
+        fig = Figure(figsize=(9, 8), dpi=120)
+        ax = fig.add_subplot()
     else:
         fig = ax.figure
     c = np.asarray(case.impact.point, dtype=float)
@@ -79,7 +74,7 @@ def draw_case(case: Case, result=None, ax=None, velocity_scale: float | None = N
         ax.add_patch(Polygon(corners, closed=True, facecolor=color, alpha=0.10,
                              edgecolor=color, lw=1.5, hatch="///" if fixed else None, zorder=1))
         # The nose: a triangle on the front edge shows the heading.
-        front = (corners[0] + corners[1]) / 2
+        front = (corners[0] + corners[3]) / 2   # front-left and front-right corners
         heading = np.array([np.cos(float(v.heading)), np.sin(float(v.heading))])
         side = np.array([-heading[1], heading[0]])
         nose = np.array([front - 0.45 * heading + 0.3 * side, front, front - 0.45 * heading

@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.montecarlo import OUTPUTS, UncertaintyResult
+from ..io.files import save_figure
 from ..io.units import convert
 
 __all__ = ["plot_histograms", "write_histograms"]
@@ -21,15 +22,13 @@ def plot_histograms(result: UncertaintyResult, units: str = "si", bins: int = 60
 
     Returns the matplotlib Figure.
     """
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
 
     names = list(OUTPUTS)
     cols = 3
     rows = -(-len(names) // cols)
-    fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.0 * rows), squeeze=False)
+    fig = Figure(figsize=(4.2 * cols, 3.0 * rows))
+    axes = fig.subplots(rows, cols, squeeze=False)
     for ax, name in zip(axes.flat, names, strict=False):
         label, kind = OUTPUTS[name]
         y, unit = convert(result.samples[name], kind, units)
@@ -56,12 +55,4 @@ def plot_histograms(result: UncertaintyResult, units: str = "si", bins: int = 60
 
 def write_histograms(result: UncertaintyResult, path, units: str = "si") -> Path:
     """Draw :func:`plot_histograms` and write it atomically to ``path`` (.png or .svg)."""
-    import matplotlib.pyplot as plt
-
-    from ..io.files import save_figure
-
-    fig = plot_histograms(result, units)
-    try:
-        return save_figure(fig, Path(path))
-    finally:
-        plt.close(fig)
+    return save_figure(plot_histograms(result, units), Path(path))

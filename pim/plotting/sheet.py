@@ -32,7 +32,7 @@ from ..io.files import save_figure
 from ..io.units import convert
 from ..model.case import Case
 from ..model.result import Result
-from ..model.solver import solve
+from ..model.solver import defaults, solve
 
 __all__ = ["EpsilonSweep", "CostMap", "sweep_epsilon", "cost_map", "write_plots", "PLOTS",
            "plot_velocity_error", "plot_impulse_ratio", "plot_impulse_vehicle2", "plot_pdof",
@@ -109,7 +109,7 @@ def sweep_epsilon(case: Case, fit_result: FitResult | None = None, *, betas=None
     else:
         (e_lo, e_hi), (b_lo, b_hi) = (0.0, 1.0), (0.0, 1.0)
         names = ()
-        beta0 = 1.0 if case.impact.beta is None else case.impact.beta
+        beta0 = float(defaults(case, 0.0, None)[1])
     eps = np.linspace(e_lo, e_hi, 201) if eps is None else np.asarray(eps, dtype=float)
     betas = _default_betas(beta0) if betas is None else np.atleast_1d(np.asarray(betas, float))
     result = solve(case, eps[None, :], betas[:, None])
