@@ -33,11 +33,12 @@ def main() -> None:
         t0 = time.perf_counter()
         result = pim.uncertainty(case, n=args.samples, distributions=dists)
         times.append(time.perf_counter() - t0)
-    s = result.stats["delta_v1"]
+    s = result.stats["delta_v1_magnitude"]
     print(f"Monte Carlo, {args.samples:,} samples, {len(result.varying)} uncertain inputs: "
           f"best {min(times):.2f} s end to end ({args.samples / min(times) / 1e6:.2f} M/s)")
+    top, share = result.sensitivity["delta_v1_magnitude"][0]
     print(f"  delta-V1 5/50/95 %: {s.p5:.3f} / {s.p50:.3f} / {s.p95:.3f} m/s, top input "
-          f"{result.sensitivity['delta_v1'][0][0]} ({result.sensitivity['delta_v1'][0][1]:.2f})")
+          f"{top} ({share:.2f})")
 
 
 if __name__ == "__main__":

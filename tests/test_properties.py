@@ -72,10 +72,13 @@ def test_energy_split_and_closed_form(case, eps, beta):
     r = pim.solve(case, eps, beta)
     assume(not r.q_singular)
     work = np.abs(r.impulse).sum() * np.abs(r.approach_velocity).sum()
-    ke = float(r.kinetic_energy_before) + float(work)
-    # Delta KE = normal + tangential crush = Brach's closed-form T_L.
+    ke = float(r.kinetic_energy_before) + float(work) + abs(float(r.energy_loss))
+    # Delta KE (difference of the kinetic energies) = normal + tangential crush (the work of
+    # the impulse, which is what energy_loss reports) = Brach's closed-form T_L.
+    delta_ke = r.kinetic_energy_before - r.kinetic_energy_after
     assert r.crush_energy_normal + r.crush_energy_tangential == pytest.approx(
-        r.energy_loss, abs=1e-10 * ke)
+        delta_ke, abs=1e-10 * ke)
+    assert r.energy_loss == r.crush_energy_normal + r.crush_energy_tangential
     assert r.total_loss_brach == pytest.approx(r.energy_loss, abs=1e-9 * ke)
     # The normal part never adds energy when the contact pushes.
     if r.impulse_n > 0:

@@ -9,9 +9,10 @@ import pytest
 
 import pim
 from pim import fit
-from pim.analysis.derivatives import OUTPUT_KINDS, derivatives, output_values
+from pim.analysis.derivatives import derivatives, output_values
 from pim.analysis.sensitivity import INPUTS, TypicalUncertainty, sensitivity
 from pim.cli import main
+from pim.model.quantities import OUTPUTS
 
 
 @pytest.fixture(scope="module")
@@ -51,10 +52,10 @@ def _central(case, eps, beta, param, h=1e-6):
 def test_derivatives_match_finite_differences(request, which, eps, beta):
     case = request.getfixturevalue(which)
     d = derivatives(pim.solve(case, eps, beta))
-    assert set(d.d_eps) == set(d.d_beta) == set(d.values) == set(OUTPUT_KINDS)
+    assert set(d.d_eps) == set(d.d_beta) == set(d.values) == set(OUTPUTS)
     for param, closed in (("eps", d.d_eps), ("beta", d.d_beta)):
         fd = _central(case, eps, beta, param)
-        for key in OUTPUT_KINDS:
+        for key in OUTPUTS:
             scale = max(abs(float(d.values[key])), 1.0)
             expected = pytest.approx(float(fd[key]), rel=1e-5, abs=1e-7 * scale)
             assert float(closed[key]) == expected, (param, key)
@@ -66,7 +67,7 @@ def test_derivatives_broadcast(ricsac9):
     d = derivatives(pim.solve(ricsac9, eps, beta))
     assert d.d_eps["velocity1_x"].shape == (7, 5)
     single = derivatives(pim.solve(ricsac9, eps[3, 0], beta[0, 2]))
-    for key in OUTPUT_KINDS:
+    for key in OUTPUTS:
         assert d.d_beta[key][3, 2] == pytest.approx(float(single.d_beta[key]), rel=1e-12, abs=1e-15)
 
 
@@ -80,8 +81,8 @@ def test_no_approach_has_zero_derivatives(ricsac9):
 def _moved(case, key, step):
     """The case with one input moved by ``step`` (written out here, independent of the module)."""
     v1, v2, imp, m = case.vehicle1, case.vehicle2, case.impact, case.measured
-    if key.startswith("measured_"):
-        name = key[len("measured_"):]
+    if key.startswith("measured."):
+        name = key[len("measured."):]
         if name.startswith("velocity"):
             i, axis = int(name[8]), "xy".index(name[-1])
             v = np.array(getattr(m, f"velocity{i}"), dtype=float)
@@ -89,32 +90,32 @@ def _moved(case, key, step):
             return replace(case, measured=replace(m, **{f"velocity{i}": v}))
         i = int(name[-1])
         return replace(case, measured=replace(m, **{name: getattr(m, name) + step}))
-    if key.startswith("point"):
+    if key.startswith("impact.point"):
         p = np.array(imp.point, dtype=float)
         p["xy".index(key[-1])] += step
         return replace(case, impact=replace(imp, point=p))
-    if key == "normal_angle":
+    if key == "impact.normal_angle":
         return replace(case, impact=replace(imp, normal_angle=imp.normal_angle + step))
-    i = int(key[-1] if not key.endswith(("_x", "_y")) else key[-3])
-    v = v1 if i == 1 else v2
-    if key.startswith("velocity"):
+    group, field = key.split(".")
+    v = v1 if group == "vehicle1" else v2
+    if field.startswith("velocity"):
         vel = np.array(v.velocity, dtype=float)
-        vel["xy".index(key[-1])] += step
+        vel["xy".index(field[-1])] += step
         v = replace(v, velocity=vel)
     else:
-        field = key[:-1]
         v = replace(v, **{field: getattr(v, field) + step})
-    return replace(case, **{f"vehicle{i}": v})
+    return replace(case, **{group: v})
 
 
 @pytest.mark.parametrize("which, include_yaw", [("ricsac9", False), ("noisy", True)])
 def test_fitted_parameters_match_brute_force_refits(request, which, include_yaw):
     case = request.getfixturevalue(which)
     sens = sensitivity(case, include_yaw=include_yaw)
-    keys = ["point_x", "point_y", "normal_angle", "mass1", "yaw_inertia2", "velocity2_x",
-            "yaw_rate1", "measured_velocity1_x", "measured_velocity2_y"]
+    keys = ["impact.point_x", "impact.point_y", "impact.normal_angle", "vehicle1.mass",
+            "vehicle2.yaw_inertia", "vehicle2.velocity_x", "vehicle1.yaw_rate",
+            "measured.velocity1_x", "measured.velocity2_y"]
     if include_yaw:
-        keys.append("measured_yaw_rate1")
+        keys.append("measured.yaw_rate1")
     for key in keys:
         k = sens.inputs.index(key)
         h = 1e-2 * sens.sigma[k]
@@ -140,7 +141,7 @@ def test_active_bound_holds_beta(ricsac9):
 
 def test_partial_delta_v_matches_finite_differences(spinning):
     sens = sensitivity(spinning, eps=0.4, beta=0.7)
-    assert sens.fit is None and sens.outputs == ("delta_v1", "delta_v2")
+    assert sens.fit is None and sens.outputs == ("delta_v1_magnitude", "delta_v2_magnitude")
     for k, key in enumerate(sens.inputs):
         h = 1e-4 * sens.sigma[k]
         plus = pim.solve(_moved(spinning, key, h), 0.4, 0.7)
@@ -155,15 +156,15 @@ def test_inputs_sigmas_and_ranking(ricsac9):
     unc = TypicalUncertainty(point=0.3, mass_fraction=0.05)
     sens = sensitivity(ricsac9, uncertainty=unc)
     assert set(sens.inputs) <= set(INPUTS)
-    k = sens.inputs.index("mass1")
+    k = sens.inputs.index("vehicle1.mass")
     assert sens.sigma[k] == pytest.approx(0.05 * float(ricsac9.vehicle1.mass))
-    assert sens.sigma[sens.inputs.index("point_y")] == 0.3
-    assert sens.sigma[sens.inputs.index("normal_angle")] == pytest.approx(np.radians(5))
-    order = sens.ranked("delta_v1")
-    effects = sens.effect[sens.outputs.index("delta_v1")][order]
+    assert sens.sigma[sens.inputs.index("impact.point_y")] == 0.3
+    assert sens.sigma[sens.inputs.index("impact.normal_angle")] == pytest.approx(np.radians(5))
+    order = sens.ranked("delta_v1_magnitude")
+    effects = sens.effect[sens.outputs.index("delta_v1_magnitude")][order]
     assert np.all(np.diff(effects) <= 0)
-    assert "measured_yaw_rate1" not in sens.inputs  # yaw not fitted
-    assert "measured_yaw_rate1" in sensitivity(ricsac9, include_yaw=True).inputs
+    assert "measured.yaw_rate1" not in sens.inputs  # yaw not fitted
+    assert "measured.yaw_rate1" in sensitivity(ricsac9, include_yaw=True).inputs
 
 
 def test_bad_uncertainty_and_missing_eps(ricsac9):

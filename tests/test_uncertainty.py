@@ -37,7 +37,7 @@ def test_zero_spread_equals_the_deterministic_answer():
     result = pim.uncertainty(case, n=50, distributions=zero)
     ref = pim.solve(case, 0.355, 1.0)
     assert result.varying == ()
-    expected = {"delta_v1": ref.delta_v1_magnitude, "speed2": ref.speed2,
+    expected = {"delta_v1_magnitude": ref.delta_v1_magnitude, "speed2": ref.speed2,
                 "yaw_rate1": ref.yaw_rate1, "energy_loss": ref.energy_loss, "pdof2": ref.pdof2}
     for name, value in expected.items():
         s = result.stats[name]
@@ -51,7 +51,7 @@ def test_linear_case_matches_analytic_percentiles():
     result = pim.uncertainty(case, n=200_000, seed=1)
     gain = 1.3 * M2 / (M1 + M2)
     mean, sigma = gain * (V1 - V2), gain * sd
-    s = result.stats["delta_v1"]
+    s = result.stats["delta_v1_magnitude"]
     assert s.mean == pytest.approx(mean, rel=2e-3)
     assert s.sd == pytest.approx(sigma, rel=1e-2)
     z95 = 1.6448536269514722
@@ -59,7 +59,8 @@ def test_linear_case_matches_analytic_percentiles():
     assert s.p50 == pytest.approx(mean, abs=0.02 * sigma)
     assert s.p95 == pytest.approx(mean + z95 * sigma, abs=0.02 * sigma)
     # binning error: the tail bins of a normal input are wide (a few 1e-3 at B = 100)
-    assert result.sensitivity["delta_v1"][0] == ("vehicle1.velocity_x", pytest.approx(1, abs=5e-3))
+    assert result.sensitivity["delta_v1_magnitude"][0] == ("vehicle1.velocity_x",
+                                                          pytest.approx(1, abs=5e-3))
 
 
 def test_two_inputs_analytic_variance_and_first_order_indices():
@@ -71,8 +72,8 @@ def test_two_inputs_analytic_variance_and_first_order_indices():
     c, w = M2 / (M1 + M2), V1 - V2
     e_mean, e_var = 1 + (lo + hi) / 2, (hi - lo) ** 2 / 12
     var = c**2 * ((e_var + e_mean**2) * (sd**2 + w**2) - (e_mean * w) ** 2)
-    assert result.stats["delta_v1"].sd ** 2 == pytest.approx(var, rel=1.5e-2)
-    indices = dict(result.sensitivity["delta_v1"])
+    assert result.stats["delta_v1_magnitude"].sd ** 2 == pytest.approx(var, rel=1.5e-2)
+    indices = dict(result.sensitivity["delta_v1_magnitude"])
     assert indices["impact.restitution"] == pytest.approx(c**2 * w**2 * e_var / var, abs=0.01)
     assert indices["vehicle1.velocity_x"] == pytest.approx(c**2 * e_mean**2 * sd**2 / var,
                                                            abs=0.01)
@@ -141,7 +142,8 @@ def test_case_file_table_and_command(tmp_path):
     assert out.exit_code == 0, out.output
     data = json.loads(out.output)
     rows = {r["output"]: r for r in data["outputs"]}
-    assert rows["delta_v1"]["p5"] < rows["delta_v1"]["p50"] < rows["delta_v1"]["p95"]
-    assert rows["delta_v1"]["sensitivity"][0]["input"] == "impact.restitution"
+    dv1 = rows["delta_v1_magnitude"]
+    assert dv1["p5"] < dv1["p50"] < dv1["p95"]
+    assert rows["delta_v1_magnitude"]["sensitivity"][0]["input"] == "impact.restitution"
     assert png.stat().st_size > 10_000
     assert not list(tmp_path.glob(".*tmp"))

@@ -31,30 +31,8 @@ import numpy as np
 from ..model.geometry import cross, dot
 from ..model.result import Result
 
-__all__ = ["derivatives", "Derivatives", "output_values", "OUTPUT_KINDS", "motion_derivatives",
+__all__ = ["derivatives", "Derivatives", "output_values", "motion_derivatives",
            "MotionDerivative"]
-
-
-#: Output name -> kind of quantity (a key of :data:`pim.units.SI_UNITS`, or None if
-#: dimensionless, "percent" for percentages). Vector outputs are split into _x/_y parts.
-OUTPUT_KINDS: dict[str, str | None] = {
-    "velocity1_x": "velocity", "velocity1_y": "velocity",
-    "velocity2_x": "velocity", "velocity2_y": "velocity",
-    "yaw_rate1": "angular_velocity", "yaw_rate2": "angular_velocity",
-    "speed1": "velocity", "speed2": "velocity",
-    "delta_v1_x": "velocity", "delta_v1_y": "velocity",
-    "delta_v2_x": "velocity", "delta_v2_y": "velocity",
-    "delta_v1_magnitude": "velocity", "delta_v2_magnitude": "velocity",
-    "impulse_x": "impulse", "impulse_y": "impulse", "impulse_magnitude": "impulse",
-    "impulse_n": "impulse", "impulse_t": "impulse",
-    "impulse_angle": "angle", "pdof1": "angle", "pdof2": "angle",
-    "mu0": None, "mu": None, "q": None,
-    "separation_n": "velocity", "separation_t": "velocity", "restitution_check": None,
-    "kinetic_energy_after": "energy", "energy_loss": "energy", "energy_loss_percent": "percent",
-    "total_loss_brach": "energy",
-    "crush_energy_normal": "energy", "crush_energy_tangential": "energy",
-    "tangential_share": None,
-}
 
 
 def output_values(result: Result) -> dict[str, np.ndarray]:
@@ -68,7 +46,8 @@ def output_values(result: Result) -> dict[str, np.ndarray]:
     Returns
     -------
     dict
-        Name (a key of :data:`OUTPUT_KINDS`) -> value in SI units [m/s, rad/s, N s, rad, J, %].
+        Name (a key of :data:`pim.model.quantities.OUTPUTS`) -> value in SI units
+        [m/s, rad/s, N s, rad, J, %].
         ``impulse_*`` is the impulse on vehicle 1 (vehicle 2 receives its negative).
     """
     r = result
@@ -185,7 +164,8 @@ class Derivatives:
     result : Result
         The solve they belong to.
     values, d_eps, d_beta : dict of str -> ndarray
-        Output (see :data:`OUTPUT_KINDS`) in SI units, its derivative per unit epsilon and
+        Output (see :data:`pim.model.quantities.OUTPUTS`) in SI units, its derivative per unit
+        epsilon and
         per unit beta.
     """
 
@@ -222,7 +202,8 @@ def derivatives(result: Result) -> Derivatives:
     Returns
     -------
     Derivatives
-        ``values``, ``d_eps`` and ``d_beta`` for every key of :data:`OUTPUT_KINDS`, each
+        ``values``, ``d_eps`` and ``d_beta`` for every key of
+        :data:`pim.model.quantities.OUTPUTS`, each
         broadcast to the shape of the result (read-only views).
 
     Notes

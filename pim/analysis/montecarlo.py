@@ -34,18 +34,10 @@ from ..model.solver import solve
 
 __all__ = ["uncertainty", "UncertaintyResult", "OutputStats", "OUTPUTS", "first_order_indices"]
 
-#: Outputs summarised: name -> (label, unit kind of pim.units.convert).
-OUTPUTS = {
-    "delta_v1": ("|delta-V| vehicle 1", "speed"),
-    "delta_v2": ("|delta-V| vehicle 2", "speed"),
-    "speed1": ("post-impact speed vehicle 1", "speed"),
-    "speed2": ("post-impact speed vehicle 2", "speed"),
-    "yaw_rate1": ("post-impact yaw rate vehicle 1", "angular_velocity"),
-    "yaw_rate2": ("post-impact yaw rate vehicle 2", "angular_velocity"),
-    "energy_loss": ("kinetic energy lost", "energy"),
-    "pdof1": ("PDOF vehicle 1", "angle"),
-    "pdof2": ("PDOF vehicle 2", "angle"),
-}
+#: Outputs summarised, by their names in :data:`pim.model.quantities.OUTPUTS` (which gives
+#: each one's label and unit kind).
+OUTPUTS = ("delta_v1_magnitude", "delta_v2_magnitude", "speed1", "speed2", "yaw_rate1",
+           "yaw_rate2", "energy_loss", "pdof1", "pdof2")
 PERCENTILES = (5.0, 50.0, 95.0)
 
 
@@ -176,10 +168,7 @@ def _wrap_about(angle: np.ndarray, centre: float) -> np.ndarray:
 
 
 def _outputs(result, nominal=None) -> dict:
-    out = {"delta_v1": result.delta_v1_magnitude, "delta_v2": result.delta_v2_magnitude,
-           "speed1": result.speed1, "speed2": result.speed2,
-           "yaw_rate1": result.yaw_rate1, "yaw_rate2": result.yaw_rate2,
-           "energy_loss": result.energy_loss, "pdof1": result.pdof1, "pdof2": result.pdof2}
+    out = {name: getattr(result, name) for name in OUTPUTS}
     if nominal is not None:
         for k in ("pdof1", "pdof2"):
             if np.isfinite(nominal[k]):

@@ -16,6 +16,8 @@ import numpy as np
 
 from ..model.case import Case
 from ..model.geometry import radius_of_gyration
+from ..model.quantities import INPUTS as QUANTITY_INPUTS
+from ..model.quantities import MEASURED, OUTPUTS, Quantity
 from ..model.result import Result
 from ..model.solver import defaults, solve
 from .derivatives import derivatives
@@ -70,35 +72,22 @@ class TypicalUncertainty:
             object.__setattr__(self, name, value)
 
 
-#: Input key -> (label, kind of quantity for display units).
-INPUTS: dict[str, tuple[str, str]] = {
-    "point_x": ("impact point C, x", "length"),
-    "point_y": ("impact point C, y", "length"),
-    "normal_angle": ("contact-plane angle Gamma", "angle"),
-    "mass1": ("mass of vehicle 1", "mass"),
-    "mass2": ("mass of vehicle 2", "mass"),
-    "yaw_inertia1": ("yaw inertia of vehicle 1", "inertia"),
-    "yaw_inertia2": ("yaw inertia of vehicle 2", "inertia"),
-    "velocity1_x": ("pre-impact velocity 1, x", "velocity"),
-    "velocity1_y": ("pre-impact velocity 1, y", "velocity"),
-    "velocity2_x": ("pre-impact velocity 2, x", "velocity"),
-    "velocity2_y": ("pre-impact velocity 2, y", "velocity"),
-    "yaw_rate1": ("pre-impact yaw rate 1", "angular_velocity"),
-    "yaw_rate2": ("pre-impact yaw rate 2", "angular_velocity"),
-    "measured_velocity1_x": ("measured post-impact velocity 1, x", "velocity"),
-    "measured_velocity1_y": ("measured post-impact velocity 1, y", "velocity"),
-    "measured_velocity2_x": ("measured post-impact velocity 2, x", "velocity"),
-    "measured_velocity2_y": ("measured post-impact velocity 2, y", "velocity"),
-    "measured_yaw_rate1": ("measured post-impact yaw rate 1", "angular_velocity"),
-    "measured_yaw_rate2": ("measured post-impact yaw rate 2", "angular_velocity"),
+#: The inputs whose uncertainty moves the answers: dotted name -> Quantity (a subset of
+#: :data:`pim.model.quantities.INPUTS`, and the measured motion).
+INPUTS: dict[str, Quantity] = {
+    **{k: QUANTITY_INPUTS[k] for k in ("impact.point_x", "impact.point_y",
+                                       "impact.normal_angle")},
+    **{f"vehicle{i}.{f}": QUANTITY_INPUTS[f"vehicle{i}.{f}"] for i in (1, 2)
+       for f in ("mass", "yaw_inertia", "velocity_x", "velocity_y", "yaw_rate")},
+    **MEASURED,
 }
 
 #: Output key -> (label, kind of quantity for display units; None = dimensionless).
-SENSITIVITY_OUTPUTS: dict[str, tuple[str, str | None]] = {
-    "eps": ("fitted epsilon", None),
-    "beta": ("fitted beta", None),
-    "delta_v1": ("|delta-V| of vehicle 1", "velocity"),
-    "delta_v2": ("|delta-V| of vehicle 2", "velocity"),
+SENSITIVITY_OUTPUTS: dict[str, Quantity] = {
+    "eps": Quantity(None, "fitted epsilon"),
+    "beta": Quantity(None, "fitted beta"),
+    "delta_v1_magnitude": OUTPUTS["delta_v1_magnitude"],
+    "delta_v2_magnitude": OUTPUTS["delta_v2_magnitude"],
 }
 
 #: Relative finite-difference step (fraction of the typical uncertainty) for the inputs.
@@ -189,39 +178,42 @@ def _perturbed_case(case: Case, keys, steps) -> Case:
     def vehicle(v, i):
         if v.fixed.all():
             return v
-        return replace(v, mass=v.mass + delta[f"mass{i}"],
-                       yaw_inertia=v.yaw_inertia + delta[f"yaw_inertia{i}"],
-                       velocity=vec(v.velocity, delta[f"velocity{i}_x"], delta[f"velocity{i}_y"]),
-                       yaw_rate=v.yaw_rate + delta[f"yaw_rate{i}"])
+        p = f"vehicle{i}."
+        return replace(v, mass=v.mass + delta[p + "mass"],
+                       yaw_inertia=v.yaw_inertia + delta[p + "yaw_inertia"],
+                       velocity=vec(v.velocity, delta[p + "velocity_x"], delta[p + "velocity_y"]),
+                       yaw_rate=v.yaw_rate + delta[p + "yaw_rate"])
 
-    impact = replace(case.impact, point=vec(case.impact.point, delta["point_x"], delta["point_y"]),
-                     normal_angle=case.impact.normal_angle + delta["normal_angle"])
+    impact = replace(case.impact, point=vec(case.impact.point, delta["impact.point_x"],
+                                            delta["impact.point_y"]),
+                     normal_angle=case.impact.normal_angle + delta["impact.normal_angle"])
     return replace(case, vehicle1=vehicle(case.vehicle1, 1), vehicle2=vehicle(case.vehicle2, 2),
                    impact=impact)
 
 
 def _nominal_and_sigma(case: Case, unc: TypicalUncertainty, names) -> tuple[list, list, list]:
     v1, v2, imp, m = case.vehicle1, case.vehicle2, case.impact, case.measured
-    rows = [("point_x", imp.point[0], unc.point), ("point_y", imp.point[1], unc.point),
-            ("normal_angle", imp.normal_angle, unc.normal_angle)]
+    rows = [("impact.point_x", imp.point[0], unc.point),
+            ("impact.point_y", imp.point[1], unc.point),
+            ("impact.normal_angle", imp.normal_angle, unc.normal_angle)]
     for i, v in ((1, v1), (2, v2)):
         if v.fixed.all():
             continue
-        rows += [(f"mass{i}", v.mass, unc.mass_fraction * v.mass),
-                 (f"yaw_inertia{i}", v.yaw_inertia, unc.inertia_fraction * v.yaw_inertia)]
+        rows += [(f"vehicle{i}.mass", v.mass, unc.mass_fraction * v.mass),
+                 (f"vehicle{i}.yaw_inertia", v.yaw_inertia, unc.inertia_fraction * v.yaw_inertia)]
     for i, v in ((1, v1), (2, v2)):
         if v.fixed.all():
             continue
-        rows += [(f"velocity{i}_x", v.velocity[0], unc.velocity),
-                 (f"velocity{i}_y", v.velocity[1], unc.velocity),
-                 (f"yaw_rate{i}", v.yaw_rate, unc.yaw_rate)]
+        rows += [(f"vehicle{i}.velocity_x", v.velocity[0], unc.velocity),
+                 (f"vehicle{i}.velocity_y", v.velocity[1], unc.velocity),
+                 (f"vehicle{i}.yaw_rate", v.yaw_rate, unc.yaw_rate)]
     for name in names:
         i = int(name[-3] if name.startswith("velocity") else name[-1])
         if name.startswith("velocity"):
             target = (m.velocity1 if i == 1 else m.velocity2)["xy".index(name[-1])]
-            rows.append((f"measured_{name}", target, unc.measured_velocity))
+            rows.append((f"measured.{name}", target, unc.measured_velocity))
         else:
-            rows.append((f"measured_{name}", m.yaw_rate1 if i == 1 else m.yaw_rate2,
+            rows.append((f"measured.{name}", m.yaw_rate1 if i == 1 else m.yaw_rate2,
                          unc.measured_yaw_rate))
     keys = [r[0] for r in rows]
     return keys, [float(r[1]) for r in rows], [float(r[2]) for r in rows]
@@ -282,7 +274,7 @@ def sensitivity(case: Case, fit_result=None, *, eps=None, beta=None, uncertainty
     eps, beta = float(eps), float(beta)
 
     keys, nominal, sigma = _nominal_and_sigma(case, unc, names)
-    model_keys = [k for k in keys if not k.startswith("measured_")]
+    model_keys = [k for k in keys if not k.startswith("measured.")]
     n_model = len(model_keys)
     steps = INPUT_STEP * np.array(sigma[:n_model])
 
@@ -295,7 +287,7 @@ def sensitivity(case: Case, fit_result=None, *, eps=None, beta=None, uncertainty
     dv_dtheta = np.array([[base.d_eps[f"delta_v{i}_magnitude"],
                            base.d_beta[f"delta_v{i}_magnitude"]] for i in (1, 2)], dtype=float)
 
-    outputs = ("delta_v1", "delta_v2")
+    outputs = ("delta_v1_magnitude", "delta_v2_magnitude")
     values = [float(base.values["delta_v1_magnitude"]), float(base.values["delta_v2_magnitude"])]
     derivative = partial.copy()
     active: tuple[str, ...] = ()
@@ -311,9 +303,9 @@ def sensitivity(case: Case, fit_result=None, *, eps=None, beta=None, uncertainty
             dg[:, :n_model] = ((g[0::2] - g[1::2]) / (2 * steps[:, None])).T
             _, j0 = residuals_and_jacobian(base.result, names)                 # (n, 2)
             for col, key in enumerate(keys[n_model:], start=n_model):
-                term = names.index(key[len("measured_"):])
+                term = names.index(key[len("measured."):])
                 weight = 1.0
-                if key.startswith("measured_yaw"):
+                if key.startswith("measured.yaw"):
                     v = case.vehicle1 if key.endswith("1") else case.vehicle2
                     weight = float(radius_of_gyration(v.mass, v.yaw_inertia))
                 dg[:, col] = -2.0 * weight * j0[term]

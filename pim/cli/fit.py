@@ -185,7 +185,7 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
         click.echo(f"  {', '.join(sens.active_bounds)} on an active bound: held there "
                    "(derivative 0)")
     for k, out in enumerate(sens.outputs):
-        label, out_kind = SENSITIVITY_OUTPUTS[out]
+        label, out_kind = SENSITIVITY_OUTPUTS[out].label, SENSITIVITY_OUTPUTS[out].kind
         fo, uo = factor(out_kind)
         click.echo("")
         click.echo(f"{label} = {sens.values[k] * fo:.5g} {uo if uo != '-' else ''}".rstrip()
@@ -196,7 +196,7 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
             continue
         rows = []
         for i in sens.ranked(out)[:top]:
-            in_label, in_kind = INPUTS[sens.inputs[i]]
+            in_label, in_kind = INPUTS[sens.inputs[i]].label, INPUTS[sens.inputs[i]].kind
             fi, ui = factor(in_kind)
             rows.append((in_label, f"{sens.sigma[i] * fi:.4g} {ui}",
                          f"{sens.derivative[k, i] * fo / fi:+.4g}",

@@ -32,11 +32,13 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, units, as_json):
     from ..analysis.montecarlo import uncertainty as run
     from ..io.casefile import load_case
     from ..io.units import convert
+    from ..model.quantities import OUTPUTS as QUANTITIES
 
     case = load_case(case_name)
     result = run(case, n=samples, seed=seed, eps=eps, beta=beta)
     rows = []
-    for name, (label, kind) in OUTPUTS.items():
+    for name in OUTPUTS:
+        label, kind = QUANTITIES[name].label, QUANTITIES[name].kind
         s = result.stats[name]
         values, unit = convert([s.nominal, s.p5, s.p50, s.p95], kind, units)
         rows.append({"output": name, "label": label, "unit": unit,

@@ -13,7 +13,7 @@ __all__ = ["parse_uncertainty"]
 
 def _parse_one(name: str, spec) -> Distribution:
     where = f"uncertainty.{name}"
-    kind_of = INPUTS[name]
+    kind_of = INPUTS[name].kind
     if not isinstance(spec, dict):
         raise ValueError(f"{where} must be a table such as {{normal = ...}}, "
                          f"{{uniform = [low, high]}}, {{plusminus = ...}} or {{fixed = ...}}")

@@ -34,19 +34,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .quantities import INPUTS
 from .solver import defaults
 
-__all__ = ["Distribution", "UncertaintyTable", "INPUTS", "nominal_values", "sample_inputs"]
+__all__ = ["Distribution", "UncertaintyTable", "nominal_values", "sample_inputs"]
 
-#: Uncertain inputs: dotted name -> unit kind for pim.units.parse.
-INPUTS = {
-    **{f"vehicle{i}.{k}": kind for i in (1, 2) for k, kind in (
-        ("mass", "mass"), ("yaw_inertia", "inertia"), ("cg_x", "length"), ("cg_y", "length"),
-        ("velocity_x", "velocity"), ("velocity_y", "velocity"),
-        ("yaw_rate", "angular_velocity"), ("heading", "angle"))},
-    "impact.point_x": "length", "impact.point_y": "length", "impact.normal_angle": "angle",
-    "impact.restitution": "dimensionless", "impact.beta": "dimensionless",
-}
 #: Admissible (low, high) of inputs that have one; low is exclusive for mass and inertia.
 _RANGE = {"impact.restitution": (0.0, 1.0),
           **{f"vehicle{i}.{k}": (0.0, np.inf) for i in (1, 2) for k in ("mass", "yaw_inertia")}}

@@ -32,16 +32,15 @@ import numpy as np
 from numba import njit, prange
 
 from . import formula
+from .quantities import FIELDS, VECTOR_FIELDS
 from .result import Result
 
 __all__ = ["solve_case", "solve_arrays", "stream_copy", "INPUTS", "CORE_VECTORS", "CORE_SCALARS",
            "AUX"]
 
-#: Input names, in the order :func:`solve_arrays` takes them (vectors have a trailing 2).
-INPUTS = ("mass1", "inertia1", "cg1", "velocity1", "yaw_rate1",
-          "mass2", "inertia2", "cg2", "velocity2", "yaw_rate2",
-          "point", "normal_angle", "eps", "beta")
-VECTOR_INPUTS = ("cg1", "velocity1", "cg2", "velocity2", "point")
+#: Input names, in the order the compiled functions take them (vectors have a trailing 2):
+#: the case's fields of :data:`pim.model.quantities.FIELDS` but the headings.
+INPUTS = tuple(name for name in FIELDS if not name.endswith(".heading"))
 
 #: Core outputs written on every call: vectors (N, 2) and scalars (N,), in kernel order.
 CORE_VECTORS = ("velocity1", "velocity2", "impulse")
@@ -266,13 +265,13 @@ def _flat(value, shape: tuple, vector: bool) -> np.ndarray:
 
 def broadcast_shape(inputs: dict) -> tuple:
     """Common shape of the named inputs (vectors without their trailing 2)."""
-    return np.broadcast_shapes(*[np.shape(inputs[k])[:-1] if k in VECTOR_INPUTS
+    return np.broadcast_shapes(*[np.shape(inputs[k])[:-1] if k in VECTOR_FIELDS
                                  else np.shape(inputs[k]) for k in INPUTS])
 
 
 def flatten_inputs(inputs: dict, shape: tuple) -> list[np.ndarray]:
     """The kernel's input arguments from the named inputs (see :data:`INPUTS`)."""
-    return [_flat(inputs[name], shape, name in VECTOR_INPUTS) for name in INPUTS]
+    return [_flat(inputs[name], shape, name in VECTOR_FIELDS) for name in INPUTS]
 
 
 def allocate(n: int, full: bool) -> list[np.ndarray]:
@@ -291,9 +290,11 @@ def solve_arrays(inputs: dict, approach_tol: float, singular_tol: float, full: b
     Parameters
     ----------
     inputs : dict
-        ``mass1 [kg], inertia1 [kg m^2], cg1 [m] (..., 2), velocity1 [m/s] (..., 2),
-        yaw_rate1 [rad/s]``, the same for vehicle 2, ``point [m] (..., 2),
-        normal_angle [rad], eps [-], beta [-]``, in any shapes that broadcast.
+        The fields of :data:`INPUTS` by their dotted names (``vehicle1.mass`` [kg],
+        ``vehicle1.yaw_inertia`` [kg m^2], ``vehicle1.cg`` [m] (..., 2), ``vehicle1.velocity``
+        [m/s] (..., 2), ``vehicle1.yaw_rate`` [rad/s], the same for vehicle 2,
+        ``impact.point`` [m] (..., 2), ``impact.normal_angle`` [rad], ``impact.restitution``
+        and ``impact.beta`` [-]), in any shapes that broadcast.
     approach_tol, singular_tol : float
         Relative tolerances of the approach and singular-q tests [-]
         (:data:`pim.model.solver.APPROACH_TOLERANCE`, ``SINGULAR_TOLERANCE``): arguments of
@@ -350,11 +351,13 @@ def stream_copy(inputs: dict, full: bool = False) -> dict:
 def case_inputs(case, eps, beta) -> dict:
     """The kernel's named inputs of a :class:`pim.Case` with eps and beta [-]."""
     v1, v2, imp = case.vehicle1, case.vehicle2, case.impact
-    return {"mass1": v1.mass, "inertia1": v1.yaw_inertia, "cg1": v1.cg,
-            "velocity1": v1.velocity, "yaw_rate1": v1.yaw_rate, "mass2": v2.mass,
-            "inertia2": v2.yaw_inertia, "cg2": v2.cg, "velocity2": v2.velocity,
-            "yaw_rate2": v2.yaw_rate, "point": imp.point, "normal_angle": imp.normal_angle,
-            "eps": eps, "beta": beta}
+    return {"vehicle1.mass": v1.mass, "vehicle1.yaw_inertia": v1.yaw_inertia,
+            "vehicle1.cg": v1.cg, "vehicle1.velocity": v1.velocity,
+            "vehicle1.yaw_rate": v1.yaw_rate, "vehicle2.mass": v2.mass,
+            "vehicle2.yaw_inertia": v2.yaw_inertia, "vehicle2.cg": v2.cg,
+            "vehicle2.velocity": v2.velocity, "vehicle2.yaw_rate": v2.yaw_rate,
+            "impact.point": imp.point, "impact.normal_angle": imp.normal_angle,
+            "impact.restitution": eps, "impact.beta": beta}
 
 
 def solve_case(case, eps, beta, approach_tol: float, singular_tol: float,

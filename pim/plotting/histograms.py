@@ -13,6 +13,7 @@ import numpy as np
 from ..analysis.montecarlo import OUTPUTS, UncertaintyResult
 from ..io.files import save_figure
 from ..io.units import convert
+from ..model.quantities import OUTPUTS as QUANTITIES
 
 __all__ = ["plot_histograms", "write_histograms"]
 
@@ -30,7 +31,7 @@ def plot_histograms(result: UncertaintyResult, units: str = "si", bins: int = 60
     fig = Figure(figsize=(4.2 * cols, 3.0 * rows))
     axes = fig.subplots(rows, cols, squeeze=False)
     for ax, name in zip(axes.flat, names, strict=False):
-        label, kind = OUTPUTS[name]
+        label, kind = QUANTITIES[name].label, QUANTITIES[name].kind
         y, unit = convert(result.samples[name], kind, units)
         stats = result.stats[name]
         if y.size:
