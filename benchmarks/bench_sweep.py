@@ -11,7 +11,7 @@ import time
 import numpy as np
 
 import pim
-from sim.sweep import simulate_sweep
+from sim import simulate_many
 
 
 def main() -> None:
@@ -24,10 +24,10 @@ def main() -> None:
     cases = [base.transformed(rotation=r) for r in rng.uniform(-np.pi, np.pi, args.scenes)]
     eps = rng.uniform(0.1, 0.6, args.scenes)
     t0 = time.perf_counter()
-    serial = simulate_sweep(cases, eps, 1.0, executor="serial", progress=False)
+    serial = simulate_many(cases, eps, 1.0, executor="serial").results
     t_serial = time.perf_counter() - t0
     t0 = time.perf_counter()
-    pool = simulate_sweep(cases, eps, 1.0, max_workers=args.workers, progress=False)
+    pool = simulate_many(cases, eps, 1.0, executor="process", max_workers=args.workers).results
     t_pool = time.perf_counter() - t0
     same = all(np.array_equal(a.velocity1, b.velocity1) for a, b in zip(serial, pool,
                                                                         strict=True))

@@ -10,6 +10,6 @@ comparisons/ uses both pim/ (the analytic model) and sim/ (the pymunk scene); ne
 them imports it.
 """
 
-from .errors import QuantityError, compare_results, impact_error
+from sim.error_measure import QuantityError, compare_results, impact_error
 
 __all__ = ["QuantityError", "compare_results", "impact_error"]

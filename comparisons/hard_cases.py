@@ -7,7 +7,7 @@ case's own (epsilon, beta):
 
 * PIM's answer (velocity changes, yaw rates, impulse, energy loss) and its flags;
 * the simulator at its default settings: the error against PIM
-  (:func:`comparisons.errors.impact_error`), the sweeps used, the wall time, or the failure;
+  (:func:`sim.error_measure.impact_error`), the sweeps used, the wall time, or the failure;
 * what the simulator needs to reach 1e-6, from the full speed-error sweep
   (:func:`comparisons.speed_error.sweep`): with the exact contact start, the fewest solver
   iterations (and the largest dt with them); with the detected start, the largest dt, or
@@ -24,8 +24,8 @@ from pathlib import Path
 import numpy as np
 
 import pim
+from sim.error_measure import impact_error
 
-from .errors import impact_error
 from .speed_error import TARGET, SpeedErrorStudy, sweep
 from .tables import Table, fmt_error
 

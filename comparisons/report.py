@@ -26,8 +26,8 @@ import numpy as np
 import pim
 from pim.io.files import atomic_path, write_text
 from pim.model.solver import constraints
+from sim.error_measure import compare_results, impact_error
 
-from .errors import compare_results, impact_error
 from .tables import Table, fmt_error
 
 __all__ = ["Report", "compare_case", "inputs_table", "fit_table", "crosscheck_table"]

@@ -10,12 +10,12 @@ For one case at (epsilon, beta) :func:`sweep` runs the pymunk scene over a grid 
 * contact geometry: "point" (PIM's single point C and normal n) or "outline" (the
   vehicles' rectangles collide, a contact patch),
 
-and records the error of each run (:func:`comparisons.errors.impact_error`, relative to the
+and records the error of each run (:func:`sim.error_measure.impact_error`, relative to the
 velocity changes of the impact) and its wall time per impact (building the pymunk Space and
 stepping it, best of ``repeats`` runs: the machine is shared and noisy). Failed runs keep
 their :class:`sim.SimulationError` kind. The analytic solver goes on the same axes: its time
 per impact (one call, and per case in a vectorised batch of 10 000) and its error, the
-residual of its own equations (:func:`comparisons.errors.analytic_residual`).
+residual of its own equations (:func:`sim.error_measure.analytic_residual`).
 
 The Pareto front holds the runs that no other run beats on both time and error; the
 recommended setting is the largest dt, then the fewest iterations, among the runs that
@@ -32,8 +32,8 @@ from itertools import product
 import numpy as np
 
 import pim
+from sim.error_measure import analytic_residual, impact_error
 
-from .errors import analytic_residual, impact_error
 from .tables import Table, fmt_error
 
 __all__ = ["SweepPoint", "SpeedErrorStudy", "sweep", "DTS", "ITERATIONS", "STARTS",
@@ -68,7 +68,7 @@ class SweepPoint:
     start, contact : str
         Contact start and geometry.
     error : float
-        :func:`comparisons.errors.impact_error` [-]; NaN when the run failed.
+        :func:`sim.error_measure.impact_error` [-]; NaN when the run failed.
     wall_time : float
         Best wall time per impact [s]; NaN when the run failed.
     failure : str or None
@@ -113,7 +113,7 @@ class SpeedErrorStudy:
     analytic_batch_time : float
         Wall time per case of ``pim.solve`` on a batch of 10 000 copies [s].
     analytic_error : float
-        Residual of PIM's own equations (:func:`comparisons.errors.analytic_residual`) [-].
+        Residual of PIM's own equations (:func:`sim.error_measure.analytic_residual`) [-].
     target : float
         Error the recommendation must reach [-].
     """

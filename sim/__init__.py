@@ -11,7 +11,7 @@ them one at a time, and the measured accuracy and speed.
 
 from .batch import case_element, simulate_many
 from .crosscheck import CrossCheck, crosscheck
-from .errors import FAILURE_KINDS, SimulationError
+from .failures import FAILURE_KINDS, SimulationError
 from .limits import limitations
 from .result import BatchResult, SimResult, Trajectory
 from .run import simulate

@@ -1,4 +1,5 @@
-"""Run many scenes cheaply: one scene per element of an array-valued :class:`pim.Case`."""
+"""Many scenes: :func:`simulate_many`, the one batch API of :mod:`sim` (serial, a process pool
+or a Dask cluster), and the scenes of an array-valued :class:`pim.Case`."""
 
 from __future__ import annotations
 
@@ -8,13 +9,15 @@ from dataclasses import replace
 import numpy as np
 
 import pim
+from pim.model.numbers import real_array
 
-from .errors import SimulationError
+from .failures import SimulationError
 from .result import BatchResult
 from .run import simulate
 from .settings import Settings
+from .sweep import sweep
 
-__all__ = ["case_element", "case_count", "simulate_many"]
+__all__ = ["case_element", "case_count", "simulate_many", "simulate_one"]
 
 _SCALARS = ("mass", "yaw_inertia", "yaw_rate", "heading")
 _VECTORS = ("cg", "velocity")
@@ -54,35 +57,62 @@ def case_element(case: pim.Case, index: int) -> pim.Case:
                    impact=impact, measured=None)
 
 
+def _coefficient(value, name: str, count: int) -> list:
+    """eps or beta for each scene: None (each case's own default) or checked floats."""
+    if value is None:
+        return [None] * count
+    arr = real_array(value, name)
+    if np.isnan(arr).any():
+        raise ValueError(f"{name} is NaN; give a number, or None for each case's own value")
+    try:
+        arr = np.broadcast_to(arr, (count,))
+    except ValueError:
+        raise ValueError(f"{name} has shape {arr.shape}, but there are {count} scenes") from None
+    return [float(x) for x in arr]
+
+
 def simulate_many(cases: pim.Case | Sequence[pim.Case], eps=None, beta=None,
-                  settings: Settings | None = None) -> BatchResult:
-    """Simulate many scenes, one pymunk Space each, collecting failures instead of raising.
+                  settings: Settings | None = None, executor="serial",
+                  chunksize: int | None = None, max_workers: int | None = None,
+                  progress: bool = False, record: bool = False) -> BatchResult:
+    """Simulate many scenes, one pymunk Space each, on an executor; failures are collected.
+
+    The one batch API of :mod:`sim`.
 
     Parameters
     ----------
     cases : pim.Case or sequence of pim.Case
         An array-valued case (every element one scene) or a list of single cases.
     eps, beta : array_like, optional
-        Restitution and fraction of mu0 [-], broadcast over the scenes; default from each
-        case's impact (like :func:`pim.solve`).
+        Restitution and fraction of mu0 [-], broadcast over the scenes; None: each case's
+        own (like :func:`pim.solve`). NaN is an error, not "use the default".
     settings : Settings, optional
-        Shared settings (``record`` is ignored: no trajectories are kept).
+        Shared settings.
+    executor : "serial", "process", None, a dask.distributed.Client or an Executor
+        Where the scenes run (:func:`sim.sweep.sweep`); default "serial", because one scene
+        takes under a millisecond and starting processes costs more below a few thousand.
+    chunksize, max_workers, progress
+        As :func:`sim.sweep.sweep`.
+    record : bool
+        Keep each scene's trajectory in ``results`` (more data to send back).
 
     Returns
     -------
     BatchResult
-        Arrays over the scenes; failed scenes hold NaN and their failure kind and message.
-        Bad input (ValueError) still raises.
+        Arrays over the scenes (NaN where a scene failed, with its failure kind and
+        message), and ``results``: each scene's :class:`sim.SimResult` or
+        :class:`sim.SimulationError`. Bad input (ValueError) raises.
     """
-    settings = replace(settings or Settings(), record=False)
+    settings = replace(settings or Settings(), record=record)
     if isinstance(cases, pim.Case):
-        count = case_count(cases)
-        items = [case_element(cases, i) for i in range(count)]
+        items = [case_element(cases, i) for i in range(case_count(cases))]
     else:
         items = list(cases)
-        count = len(items)
-    eps_all = np.broadcast_to(np.asarray(np.nan if eps is None else eps, float), (count,))
-    beta_all = np.broadcast_to(np.asarray(np.nan if beta is None else beta, float), (count,))
+    count = len(items)
+    jobs = [(c, e, b, settings) for c, e, b in zip(
+        items, _coefficient(eps, "eps", count), _coefficient(beta, "beta", count), strict=True)]
+    results = sweep(simulate_one, jobs, executor=executor, chunksize=chunksize,
+                    max_workers=max_workers, progress=progress, desc="simulate")
     v1 = np.full((count, 2), np.nan)
     v2 = np.full((count, 2), np.nan)
     w1 = np.full(count, np.nan)
@@ -93,17 +123,22 @@ def simulate_many(cases: pim.Case | Sequence[pim.Case], eps=None, beta=None,
     wall = np.full(count, np.nan)
     failure = np.full(count, None, dtype=object)
     message = np.full(count, None, dtype=object)
-    for i, case in enumerate(items):
-        e = None if np.isnan(eps_all[i]) else float(eps_all[i])
-        b = None if np.isnan(beta_all[i]) else float(beta_all[i])
-        try:
-            r = simulate(case, e, b, settings)
-        except SimulationError as exc:
-            failure[i], message[i], steps[i] = exc.kind, str(exc), exc.step or 0
+    for i, r in enumerate(results):
+        if isinstance(r, SimulationError):
+            failure[i], message[i], steps[i] = r.kind, str(r), r.step or 0
             continue
         v1[i], v2[i], w1[i], w2[i] = r.velocity1, r.velocity2, r.yaw_rate1, r.yaw_rate2
         impulse[i], duration[i], steps[i], wall[i] = (r.impulse, r.contact_duration, r.steps,
                                                       r.wall_time)
     return BatchResult(velocity1=v1, velocity2=v2, yaw_rate1=w1, yaw_rate2=w2, impulse=impulse,
                        contact_duration=duration, steps=steps, wall_time=wall, failure=failure,
-                       message=message, settings=settings)
+                       message=message, settings=settings, results=tuple(results))
+
+
+def simulate_one(job: tuple):
+    """:func:`sim.simulate` of one ``(case, eps, beta, settings)``; a failure is returned."""
+    case, eps, beta, settings = job
+    try:
+        return simulate(case, eps, beta, settings)
+    except SimulationError as exc:
+        return exc

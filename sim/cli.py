@@ -34,7 +34,7 @@ def sim(case_name, eps, beta, dt, iterations, contact, start, as_json):
     """
     from pim.io.casefile import load_case
 
-    from .errors import SimulationError
+    from .failures import SimulationError
     from .settings import Settings
 
     kwargs = {"iterations": iterations, "contact": contact, "start": start}

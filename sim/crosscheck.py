@@ -4,38 +4,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numpy as np
-
 import pim
 
+from .error_measure import ERROR_DEFINITION, compare_results, impact_error
 from .limits import limitations
 from .result import SimResult
 from .run import simulate
 from .scene import resolve_coefficients
 from .settings import Settings
 
-__all__ = ["CrossCheck", "CheckRow", "crosscheck"]
-
-
-@dataclass(frozen=True)
-class CheckRow:
-    """One compared quantity: analytic and simulated values, errors (SI units)."""
-
-    key: str
-    label: str
-    unit: str
-    analytic: float
-    simulated: float
-
-    @property
-    def abs_error(self) -> float:
-        """|simulated - analytic| [unit]."""
-        return abs(self.simulated - self.analytic)
-
-    @property
-    def rel_error(self) -> float:
-        """|simulated - analytic| / |analytic| [-] (NaN where the analytic value is 0)."""
-        return self.abs_error / abs(self.analytic) if self.analytic != 0 else float("nan")
+__all__ = ["CrossCheck", "crosscheck"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -44,11 +22,13 @@ class CrossCheck:
 
     Attributes
     ----------
-    rows : list of CheckRow
-        Post-impact velocities, yaw rates, impulse and energy, analytic vs simulated.
-    max_rel_error : float
-        Largest error of the velocities and yaw rates, each relative to the largest
-        magnitude of its kind (speed components; yaw rates) [-].
+    rows : list of QuantityError
+        Every post-impact quantity of :data:`sim.error_measure.QUANTITIES`, analytic against
+        simulated, with absolute and relative errors.
+    error : float
+        The project's one comparison error (:func:`sim.error_measure.impact_error`): the
+        largest error in the velocity changes the impact makes (yaw rates times the radius
+        of gyration), relative to the largest such change [-].
     limitations : list of str
         Why the engine cannot reproduce PIM here (empty when it can).
     """
@@ -57,7 +37,7 @@ class CrossCheck:
     eps: float
     beta: float
     rows: list
-    max_rel_error: float
+    error: float
     limitations: list
     analytic: pim.Result
     simulated: SimResult
@@ -72,8 +52,8 @@ class CrossCheck:
                  f"{'abs error':>12}{'rel error':>12}"]
         for r in self.rows:
             lines.append(f"{r.label:<26}{r.unit:<7}{r.analytic:>15.8g}{r.simulated:>15.8g}"
-                         f"{r.abs_error:>12.3g}{r.rel_error:>12.3g}")
-        lines.append(f"max relative error (velocities, yaw rates): {self.max_rel_error:.3g}")
+                         f"{r.absolute:>12.3g}{r.relative:>12.3g}")
+        lines.append(f"error {self.error:.3g} ({ERROR_DEFINITION})")
         lines.append(f"wall time {1e3 * s.wall_time:.3f} ms, {s.steps} steps, contact "
                      f"{s.contact_steps} step(s) = {s.contact_duration:.6g} s, "
                      f"{s.contact_points} contact point(s)")
@@ -85,17 +65,14 @@ class CrossCheck:
         return {
             "case": self.case_name, "eps": self.eps, "beta": self.beta,
             "rows": [{"key": r.key, "label": r.label, "unit": r.unit, "analytic": r.analytic,
-                      "simulated": r.simulated, "abs_error": r.abs_error,
-                      "rel_error": r.rel_error} for r in self.rows],
-            "max_rel_error": self.max_rel_error, "limitations": list(self.limitations),
+                      "simulated": r.simulated, "abs_error": r.absolute,
+                      "rel_error": r.relative} for r in self.rows],
+            "error": self.error, "error_definition": ERROR_DEFINITION,
+            "limitations": list(self.limitations),
             "wall_time": s.wall_time, "steps": s.steps, "contact_steps": s.contact_steps,
             "contact_duration": s.contact_duration, "contact_points": s.contact_points,
             "iterations": s.iterations, "settings": s.settings.as_dict(),
         }
-
-
-def _f(x) -> float:
-    return float(np.asarray(x).reshape(()))
 
 
 def crosscheck(case: pim.Case, eps=None, beta=None,
@@ -107,28 +84,10 @@ def crosscheck(case: pim.Case, eps=None, beta=None,
     eps, beta = resolve_coefficients(case, eps, beta)
     analytic = pim.solve(case, eps, beta)
     simulated = simulate(case, eps, beta, settings)
-    a, s = analytic, simulated
-    rows = [
-        CheckRow("velocity1_x", "vehicle 1 velocity x", "m/s",
-                 _f(a.velocity1[..., 0]), s.velocity1[0]),
-        CheckRow("velocity1_y", "vehicle 1 velocity y", "m/s",
-                 _f(a.velocity1[..., 1]), s.velocity1[1]),
-        CheckRow("velocity2_x", "vehicle 2 velocity x", "m/s",
-                 _f(a.velocity2[..., 0]), s.velocity2[0]),
-        CheckRow("velocity2_y", "vehicle 2 velocity y", "m/s",
-                 _f(a.velocity2[..., 1]), s.velocity2[1]),
-        CheckRow("yaw_rate1", "vehicle 1 yaw rate", "rad/s", _f(a.yaw_rate1), s.yaw_rate1),
-        CheckRow("yaw_rate2", "vehicle 2 yaw rate", "rad/s", _f(a.yaw_rate2), s.yaw_rate2),
-        CheckRow("impulse_x", "impulse on vehicle 1 x", "N s", _f(a.impulse[..., 0]), s.impulse[0]),
-        CheckRow("impulse_y", "impulse on vehicle 1 y", "N s", _f(a.impulse[..., 1]), s.impulse[1]),
-        CheckRow("energy_after", "kinetic energy after", "J", _f(a.kinetic_energy_after),
-                 s.energy_after),
-    ]
-    speed = max(abs(r.analytic) for r in rows[:4])
-    spin = max(abs(r.analytic) for r in rows[4:6])
-    errors = [r.abs_error / speed for r in rows[:4] if speed > 0]
-    errors += [r.abs_error / spin for r in rows[4:6] if spin > 0]
+    rows = compare_results(case, analytic, simulated)
+    error = float(impact_error(case, analytic, simulated.velocity1, simulated.velocity2,
+                               simulated.yaw_rate1, simulated.yaw_rate2))
     return CrossCheck(case_name=case.name or "case", eps=eps, beta=beta, rows=rows,
-                      max_rel_error=max(errors) if errors else 0.0,
+                      error=error,
                       limitations=limitations(case, eps, beta), analytic=analytic,
                       simulated=simulated)

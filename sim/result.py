@@ -156,6 +156,11 @@ class BatchResult:
         None where the run succeeded, else the :class:`sim.SimulationError` kind.
     message : ndarray (N,) of object
         None or the failure message.
+    settings : Settings
+        The settings every scene ran with.
+    results : tuple
+        Each scene's :class:`sim.SimResult` (with its trajectory when ``record``) or
+        :class:`sim.SimulationError`, in order.
     """
 
     velocity1: np.ndarray
@@ -169,6 +174,7 @@ class BatchResult:
     failure: np.ndarray
     message: np.ndarray
     settings: Settings
+    results: tuple = ()
 
     @property
     def ok(self) -> np.ndarray:

@@ -34,7 +34,7 @@ import pymunk
 import pim
 from pim.model.geometry import kinetic_energy
 
-from .errors import SimulationError
+from .failures import SimulationError
 from .result import SimResult, Trajectory
 from .scene import TYPE1, TYPE2, Scene, build_scene, resolve_coefficients
 from .settings import Settings

@@ -11,7 +11,7 @@ on any executor and returns the results in input order, with a tqdm progress bar
   API and the same results; dask is never imported here);
 - any other ``concurrent.futures.Executor``: used as given and left running.
 
-:func:`simulate_sweep` applies :func:`sim.simulate` to many scenes this way; a scene whose
+:func:`sim.simulate_many` applies :func:`sim.simulate` to many scenes this way; a scene whose
 simulation fails (:class:`sim.SimulationError`) gives its error in place of a result instead
 of stopping the sweep.
 """
@@ -20,15 +20,10 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable
 from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
-from dataclasses import replace
 
-import numpy as np
-
-import pim
-
-__all__ = ["sweep", "simulate_sweep", "simulate_one"]
+__all__ = ["sweep"]
 
 
 def _run_chunk(func: Callable, chunk: list) -> list:
@@ -124,57 +119,3 @@ def _map(executor, func, items, chunksize, workers, bar) -> list:
             future.cancel()
         raise
     return results
-
-
-def simulate_one(job: tuple):
-    """:func:`sim.simulate` of one ``(case, eps, beta, settings)``; a failure is returned."""
-    from .errors import SimulationError
-    from .run import simulate
-
-    case, eps, beta, settings = job
-    try:
-        return simulate(case, eps, beta, settings)
-    except SimulationError as exc:
-        return exc
-
-
-def simulate_sweep(cases: pim.Case | Sequence[pim.Case], eps=None, beta=None, settings=None,
-                   executor=None, chunksize: int | None = None, max_workers: int | None = None,
-                   progress: bool = True, record: bool = False) -> list:
-    """Simulate many scenes with pymunk on an executor (see :func:`sweep`).
-
-    Parameters
-    ----------
-    cases : pim.Case or sequence of pim.Case
-        An array-valued case (every element one scene) or a list of single cases.
-    eps, beta : array_like, optional
-        Restitution and fraction of mu0 [-], broadcast over the scenes; default each
-        case's own (like :func:`pim.solve`).
-    settings : sim.Settings, optional
-        Shared settings.
-    executor, chunksize, max_workers, progress
-        As :func:`sweep`.
-    record : bool
-        Keep each scene's trajectory (more data to send back); default False.
-
-    Returns
-    -------
-    list
-        A :class:`sim.SimResult` per scene, in order, or the :class:`sim.SimulationError` of
-        a scene that failed.
-    """
-    from .batch import case_count, case_element
-    from .settings import Settings
-
-    settings = replace(settings or Settings(), record=record)
-    if isinstance(cases, pim.Case):
-        items = [case_element(cases, i) for i in range(case_count(cases))]
-    else:
-        items = list(cases)
-    count = len(items)
-    eps_all = np.broadcast_to(np.asarray(np.nan if eps is None else eps, float), (count,))
-    beta_all = np.broadcast_to(np.asarray(np.nan if beta is None else beta, float), (count,))
-    jobs = [(c, None if np.isnan(e) else float(e), None if np.isnan(b) else float(b), settings)
-            for c, e, b in zip(items, eps_all, beta_all, strict=True)]
-    return sweep(simulate_one, jobs, executor=executor, chunksize=chunksize,
-                 max_workers=max_workers, progress=progress, desc="simulate")

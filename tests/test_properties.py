@@ -57,9 +57,16 @@ def test_restitution_and_sticking_at_c(case, eps, beta):
     assume(approaching(case))
     r = pim.solve(case, eps, beta)
     sticking = pim.solve(case, eps, 1.0)
-    # Round-off scale: the terms summed in U = u + K P.
+    # Round-off scale: the terms summed in U = u + K P, and the CG velocities and spin terms
+    # whose differences make u_1 - u_2 (2 m/s - 2 m/s leaves ~4e-16 m/s of round-off).
     k = abs(r.k_nn) + abs(r.k_nt) + abs(r.k_tt)
-    u = np.abs(r.approach_velocity).sum() + k * np.abs(np.r_[r.impulse, sticking.impulse]).sum()
+    motion = sum(np.abs(x).sum() for x in (r.velocity1, r.velocity2, case.vehicle1.velocity,
+                                           case.vehicle2.velocity))
+    spin = sum(abs(float(w)) * np.abs(arm).sum() for w, arm in (
+        (r.yaw_rate1, r.arm1), (r.yaw_rate2, r.arm2), (case.vehicle1.yaw_rate, r.arm1),
+        (case.vehicle2.yaw_rate, r.arm2)))
+    u = (np.abs(r.approach_velocity).sum() + motion + spin
+         + k * np.abs(np.r_[r.impulse, sticking.impulse]).sum())
     assert r.separation_n == pytest.approx(-eps * r.approach_n, abs=1e-11 * u)
     assert r.impulse_t == pytest.approx(r.mu * r.impulse_n, abs=1e-11 * abs(r.impulse).sum())
     assert sticking.separation_t == pytest.approx(0.0, abs=1e-11 * u)

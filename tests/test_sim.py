@@ -297,7 +297,7 @@ def test_cli_table_json_and_exit_codes(capsys):
     assert "vehicle 1 yaw rate" in out and "wall time" in out and "rel error" in out
     assert pim_main(["sim", "ricsac9", "--beta", "0.5", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["beta"] == 0.5 and data["max_rel_error"] < TOL
+    assert data["beta"] == 0.5 and data["error"] < TOL
     assert {r["key"] for r in data["rows"]} >= {"velocity1_x", "yaw_rate2", "impulse_x"}
     with pytest.raises(SystemExit) as exc:
         pim_main(["sim", "ricsac9", "--start", "detected", "--dt", "0.05"])

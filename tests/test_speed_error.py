@@ -16,7 +16,7 @@ import pytest
 
 import pim
 import sim
-from comparisons.errors import impact_error
+from sim.error_measure import impact_error
 from comparisons.speed_error import sweep
 
 DOCS = Path(__file__).resolve().parents[1] / "docs"

@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 import pim
-from sim.sweep import simulate_sweep, sweep
+from sim import simulate_many
+from sim.sweep import sweep
 
 
 def scenes(n):
@@ -39,9 +40,9 @@ def _same(a, b):
 
 def test_simulation_sweep_process_pool_equals_serial():
     cases = scenes(24)
-    serial = simulate_sweep(cases, eps=0.355, beta=1.0, executor="serial", progress=False)
-    pool = simulate_sweep(cases, eps=0.355, beta=1.0, max_workers=2, chunksize=5,
-                          progress=False)
+    serial = simulate_many(cases, eps=0.355, beta=1.0, executor="serial").results
+    pool = simulate_many(cases, eps=0.355, beta=1.0, executor="process", max_workers=2,
+                         chunksize=5).results
     _same(serial, pool)
     # the simulation reproduces PIM (independent check that the sweep ran real scenes)
     ref = pim.solve(cases[3], 0.355, 1.0)
@@ -51,9 +52,17 @@ def test_simulation_sweep_process_pool_equals_serial():
 def test_simulation_sweep_on_a_local_dask_cluster_equals_serial():
     distributed = pytest.importorskip("dask.distributed")
     cases = scenes(16)
-    serial = simulate_sweep(cases, eps=0.3, beta=0.8, executor="serial", progress=False)
+    serial = simulate_many(cases, eps=0.3, beta=0.8, executor="serial").results
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                   dashboard_address=None) as cluster, \
             distributed.Client(cluster) as client:
-        remote = simulate_sweep(cases, eps=0.3, beta=0.8, executor=client, progress=False)
+        remote = simulate_many(cases, eps=0.3, beta=0.8, executor=client).results
     _same(serial, remote)
+
+
+@pytest.mark.parametrize("bad", [{"eps": np.array([0.3, np.nan])}, {"beta": [0.5, float("nan")]},
+                                 {"eps": "0.3"}, {"eps": [0.3, 0.3, 0.3]}])
+def test_simulate_many_rejects_nan_strings_and_wrong_shapes(bad):
+    """NaN is not "the case's default" (None is): issue 12, defect 9."""
+    with pytest.raises(ValueError, match="eps|beta"):
+        simulate_many(scenes(2), **bad)

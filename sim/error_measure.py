@@ -1,4 +1,8 @@
-"""How far the simulation is from the analytic answer: per quantity, and as one number.
+"""How far a simulation is from the analytic answer: per quantity, and as one number.
+
+The project's one comparison error measure: ``pim sim``, ``pim compare``, ``pim speed-error``
+and ``pim hard-cases`` all report :func:`impact_error` and say what it is
+(:data:`ERROR_DEFINITION`).
 
 Per quantity (:func:`compare_results`): absolute error |sim - PIM| and relative error
 |sim - PIM| / |PIM| (undefined, NaN, where the analytic value is zero to round-off, e.g.
@@ -25,7 +29,12 @@ import numpy as np
 import pim
 from pim.model.geometry import radius_of_gyration
 
-__all__ = ["QuantityError", "compare_results", "impact_error", "analytic_residual"]
+__all__ = ["QuantityError", "compare_results", "impact_error", "analytic_residual",
+           "ERROR_DEFINITION", "QUANTITIES"]
+
+#: One line saying what :func:`impact_error` measures, printed next to it by every command.
+ERROR_DEFINITION = ("largest error in the velocity changes, yaw rates times the radius of "
+                    "gyration, relative to the largest change")
 
 
 def _f(x) -> float:
