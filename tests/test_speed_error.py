@@ -16,8 +16,8 @@ import pytest
 
 import pim
 import sim
-from sim.error_measure import impact_error
 from comparisons.speed_error import sweep
+from sim.error_measure import impact_error
 
 DOCS = Path(__file__).resolve().parents[1] / "docs"
 CASE = pim.load_case("ricsac9")
