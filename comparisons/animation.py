@@ -26,6 +26,7 @@ import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
 import pim
+import sim
 from pim.io.files import atomic_path
 from pim.model.geometry import outline_corners
 
@@ -86,7 +87,6 @@ def _auto_before(case: pim.Case) -> float:
 def simulate_for_animation(case: pim.Case, eps: float, beta: float, after: float,
                            tyre: float = 0.0, dt: float = 1e-3):
     """Run the simulator with a recorded trajectory reaching ``after`` seconds past impact."""
-    import sim
 
     settings = sim.Settings(dt=dt, record=True, duration=after + 2 * dt,
                             tyre_friction=float(tyre) if tyre else False)

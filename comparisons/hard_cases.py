@@ -24,6 +24,8 @@ from pathlib import Path
 import numpy as np
 
 import pim
+import sim
+from pim.io.files import write_text
 from sim.error_measure import impact_error
 
 from .speed_error import TARGET, SpeedErrorStudy, sweep
@@ -217,7 +219,6 @@ class HardCaseStudy:
 
 def run_hard_case(name: str, repeats: int = 1, progress: bool | None = False) -> HardCase:
     """PIM, the default simulation and the full sweep for one bundled case."""
-    import sim
 
     case = pim.load_case(name)
     eps, beta = sim.scene.resolve_coefficients(case, None, None)
@@ -278,7 +279,6 @@ def hard_cases_markdown(study: HardCaseStudy) -> str:
 
 def write_hard_cases(study: HardCaseStudy, out_dir) -> list[Path]:
     """Write hard-cases.md and the two CSVs to ``out_dir`` (atomically)."""
-    from pim.io.files import write_text
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

@@ -24,10 +24,14 @@ from pathlib import Path
 import numpy as np
 
 import pim
-from pim.io.files import atomic_path, write_text
+import sim
+from pim.io.files import atomic_path, save_figure, write_text
 from pim.model.solver import constraints
+from pim.plotting.sheet import write_plots
 from sim.error_measure import compare_results, impact_error
 
+from .animation import build_renderer, write_animation
+from .speed_error import COARSE, pareto_table, plot_speed_error, study_table, sweep
 from .tables import Table, fmt_error
 
 __all__ = ["Report", "compare_case", "inputs_table", "fit_table", "crosscheck_table"]
@@ -142,12 +146,6 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
     """
     from tqdm import tqdm
 
-    import sim
-    from pim.io.files import save_figure
-    from pim.plotting.sheet import write_plots
-
-    from .animation import build_renderer, write_animation
-    from .speed_error import COARSE, pareto_table, plot_speed_error, study_table, sweep
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

@@ -105,4 +105,5 @@ def test_animate_command_writes_a_readable_mp4(tmp_path):
 def test_render_rate_is_reported(tmp_path, renderer):
     info = write_animation(renderer, tmp_path / "x.mp4", progress=False)
     assert info.frames == len(renderer)
-    assert info.render_fps > 0 and info.max_ghost_offset_px < 1e-6
+    assert info.render_fps == pytest.approx(info.frames / info.render_seconds)
+    assert 0 < info.render_seconds < 60 and info.max_ghost_offset_px < 1e-6

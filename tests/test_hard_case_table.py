@@ -24,7 +24,7 @@ def study():
 def test_every_hard_case_is_in_the_table(study):
     names = [c.name for c in study.cases]
     assert names == hard_case_names()
-    assert len(names) == 12
+    assert set(names) == {n for n, _ in pim.list_cases() if n.startswith("hard-")}
     table = study.results_table()
     assert table.column("case") == names
 
@@ -90,8 +90,10 @@ def test_high_speed_tunnels_at_large_dt(study):
 
 def test_outline_contact_cannot_reach_1e6_for_t_bones(study):
     for name in ("hard-eps0", "hard-spinning", "hard-gamma37"):
-        best = study[name].study.best(contact="outline")
-        assert best is None or best.error > 1e-3
+        outline = [p for p in study[name].study.points if p.contact == "outline"]
+        assert outline, name                      # the outline contact was run...
+        # ...and no run of it reaches 1e-3: it fails, or it errs by more
+        assert all(p.failure is not None or p.error > 1e-3 for p in outline), name
 
 
 def test_committed_doc_has_the_command_and_every_case():

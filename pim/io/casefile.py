@@ -38,7 +38,8 @@ import numpy as np
 
 from ..model.case import Case, Impact, Measured, Vehicle
 from .brach import cg_from_brach, heading_from_theta
-from .units import parse
+from .uncertainty_table import parse_uncertainty
+from .units import parse, registry
 
 __all__ = ["load_case", "list_cases", "parse_case"]
 
@@ -117,8 +118,6 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int)
     if _one_of(table, "mass", "weight", where) == "mass":
         mass = parse(table["mass"], "mass", f"{where}.mass")
     else:
-        from .units import registry
-
         weight = parse(table["weight"], "force", f"{where}.weight")
         mass = weight / registry().Quantity(1, "standard_gravity").to("m/s**2").magnitude
     if _one_of(table, "yaw_inertia", "radius_of_gyration", where) == "yaw_inertia":
@@ -157,12 +156,8 @@ def _measured(table) -> Measured | None:
 
 
 def _uncertainty(table):
-    """The ``[uncertainty]`` table (see :mod:`pim.distributions`), parsed only when present."""
-    if table is None:
-        return None
-    from .uncertainty_table import parse_uncertainty
-
-    return parse_uncertainty(table)
+    """The ``[uncertainty]`` table (see :mod:`pim.model.distributions`), when present."""
+    return None if table is None else parse_uncertainty(table)
 
 
 def parse_case(data: dict, source: str = "<case>") -> Case:

@@ -1,0 +1,5 @@
+"""The analysis layer: residuals against measured motion, the least-squares fit, derivatives,
+sensitivities, Monte Carlo.
+
+Uses :mod:`pim.model` only; never reads files, plots or prints.
+"""

@@ -1,0 +1,90 @@
+"""The layout's rules, checked on the source (docs/architecture.md).
+
+- Layers: pim.model <- pim.io <- pim.analysis <- pim.plotting <- pim.cli; a module never
+  imports a layer above its own. pim never imports sim or comparisons; sim never imports
+  comparisons.
+- No private name (``_x``) is imported from another module.
+- No function-level import of a project module, except the lazy loads of heavy optional
+  parts listed in LAZY (numba's kernel, and the CLI's commands, which import on use so that
+  ``pim --help`` stays fast).
+- Every package directory has an ``__init__.py`` (so a regular install ships it).
+"""
+
+import ast
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGES = ("pim", "sim", "comparisons")
+RANK = {"pim.model": 0, "pim.io": 1, "pim.analysis": 2, "pim.plotting": 3, "pim.cli": 4,
+        "pim": 5, "sim": 6, "comparisons": 7}
+#: Function-level imports allowed: (module, imported module) -- lazy loads, not cycle dodges.
+LAZY = {("pim.model.solver", "pim.model.kernel")}
+
+
+def _modules():
+    for package in PACKAGES:
+        for path in sorted((ROOT / package).rglob("*.py")):
+            rel = path.relative_to(ROOT).with_suffix("")
+            parts = rel.parts[:-1] if rel.name == "__init__" else rel.parts
+            yield ".".join(parts), path, rel.name == "__init__"
+
+
+def _layer(module: str) -> str:
+    parts = module.split(".")
+    if parts[0] == "pim" and len(parts) > 1 and f"pim.{parts[1]}" in RANK:
+        return f"pim.{parts[1]}"
+    return parts[0]
+
+
+def _imports(module: str, path: Path, is_package: bool):
+    """(imported module, names, line, function-level) of each project import."""
+    tree = ast.parse(path.read_text())
+    package = module if is_package else module.rpartition(".")[0]
+    functions = [n for n in ast.walk(tree)
+                 if isinstance(n, ast.FunctionDef | ast.AsyncFunctionDef)]
+    inner = {id(n) for f in functions for n in ast.walk(f)}
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                up = package.split(".")[:len(package.split(".")) - (node.level - 1)]
+                base = ".".join(up + ([base] if base else []))
+            if base.split(".")[0] in PACKAGES:
+                yield base, [a.name for a in node.names], node.lineno, id(node) in inner
+        elif isinstance(node, ast.Import):
+            for alias in node.names:
+                if alias.name.split(".")[0] in PACKAGES:
+                    yield alias.name, [], node.lineno, id(node) in inner
+
+
+MODULES = list(_modules())
+
+
+@pytest.mark.parametrize("module, path, is_package", MODULES, ids=[m[0] for m in MODULES])
+def test_layers_private_names_and_function_level_imports(module, path, is_package):
+    rank = RANK[_layer(module)]
+    for target, names, line, function_level in _imports(module, path, is_package):
+        where = f"{path.relative_to(ROOT)}:{line}"
+        target_layer = _layer(target)
+        if module.startswith("pim.cli") or module == "pim":
+            pass    # the command line and the top-level API may use every pim layer
+        elif target_layer != "pim" or target == "pim":
+            assert RANK[target_layer] <= rank or target_layer == "pim", (
+                f"{where}: {module} ({_layer(module)}) imports {target} ({target_layer})")
+        if module.startswith("pim"):
+            assert not target.startswith(("sim", "comparisons")), f"{where}: pim imports {target}"
+        if module.startswith("sim"):
+            assert not target.startswith("comparisons"), f"{where}: sim imports {target}"
+        private = [n for n in names if n.startswith("_") and not n.startswith("__")]
+        assert not private, f"{where}: private names {private} imported from {target}"
+        if function_level and not module.endswith(".cli") and not module.startswith("pim.cli"):
+            assert (module, target) in LAZY, f"{where}: function-level import of {target}"
+
+
+def test_every_package_directory_has_an_init():
+    for package in PACKAGES:
+        for folder in (ROOT / package).rglob("*"):
+            if folder.is_dir() and any(folder.glob("*.py")):
+                assert (folder / "__init__.py").exists(), folder
