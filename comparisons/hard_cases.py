@@ -1,6 +1,6 @@
 """``pim hard-cases``: every bundled hard case through PIM and the simulator.
 
-For each case file ``pim/cases/hard-*.toml`` (grazing impact, epsilon = 0, epsilon = 1
+For each case file ``pim/io/cases/hard-*.toml`` (grazing impact, epsilon = 0, epsilon = 1
 frictionless, beta = 0, car against a truck 1:50, barrier, pole, both vehicles spinning,
 C within 1 cm of a CG, Gamma = 37 deg, 100 m/s closing speed, near-singular q) at the
 case's own (epsilon, beta):
@@ -256,7 +256,7 @@ def hard_cases_markdown(study: HardCaseStudy) -> str:
     """The study as a Markdown page."""
     lines = ["# Hard cases: PIM against the pymunk simulation", "",
              "Regenerate with:", "", "```", COMMAND, "```", "",
-             "Each bundled hard case (`pim cases`, `pim/cases/hard-*.toml`) at its own "
+             "Each bundled hard case (`pim cases`, `pim/io/cases/hard-*.toml`) at its own "
              "(epsilon, beta), solved by PIM and simulated by pymunk at the default settings "
              "(point contact at C, exact start, dt = 1e-3 s, automatic iterations). "
              "`sim error` is the largest error in the impact's velocity changes relative to "

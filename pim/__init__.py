@@ -1,7 +1,10 @@
 """Brach's Planar Impact Mechanics (PIM) for two-vehicle collisions.
 
 The model works in SI units in a global x-y frame (angles counter-clockwise from +x);
-see the README for the sign conventions and the glossary.
+see the README for the sign conventions and the glossary, and docs/architecture.md for the
+layers (pim.model, pim.io, pim.analysis, pim.plotting, pim.cli). The public functions are
+named after what they do; the modules that hold them after what they compute
+(``pim.fit`` is :func:`pim.analysis.fitting.fit`), so no public name hides a module.
 
 >>> import pim
 >>> case = pim.load_case("ricsac9")
@@ -9,10 +12,7 @@ see the README for the sign conventions and the glossary.
 >>> result.velocity1            # m/s, shape (2,)          # doctest: +SKIP
 """
 
-# fit, sensitivity and uncertainty share their modules' names. They are imported eagerly
-# (they need only numpy; scipy, numba and matplotlib load inside them on first use) so that
-# the function, bound after its submodule, is what pim.fit means even after a later
-# `import pim.fit`; a lazy __getattr__ export would be overwritten by the module.
+# Everything here needs only numpy; scipy, numba and matplotlib load on first use.
 from .analysis.fitting import FitResult, fit
 from .analysis.montecarlo import UncertaintyResult, uncertainty
 from .analysis.sensitivity import sensitivity

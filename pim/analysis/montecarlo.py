@@ -1,6 +1,6 @@
 """Monte Carlo uncertainty of a PIM reconstruction: percentiles and variance-based sensitivity.
 
-The inputs of a scalar case are sampled from their distributions (:mod:`pim.distributions`,
+The inputs of a scalar case are sampled from their distributions (:mod:`pim.model.distributions`,
 the case file's ``[uncertainty]`` table), all samples are solved in one vectorised call of
 :func:`pim.solve` (the compiled fast path for large n), and for each output the 5th, 50th and
 95th percentiles are reported with the ranked contribution of each input to its variance.

@@ -25,7 +25,7 @@ silently ignored. Layout (global form; see ``pim/io/cases/ricsac9.toml``)::
 
 ``fixed = true`` in ``[vehicle2]`` makes it a barrier or pole (no mass, inertia, velocity).
 ``convention = "brach"`` replaces each vehicle's ``cg`` and ``heading`` by Brach's ``theta``,
-``phi`` and ``d`` (see :mod:`pim.brach`), with C at ``impact.point`` (default the origin).
+``phi`` and ``d`` (see :mod:`pim.io.brach`), with C at ``impact.point`` (default the origin).
 """
 
 from __future__ import annotations

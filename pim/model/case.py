@@ -4,7 +4,7 @@ All quantities are SI (kg, m, s, rad) in the global x-y frame, angles counter-cl
 from +x. Every field may be an array: scalars broadcast against vectors of shape (..., 2),
 so one ``Case`` can hold a single collision or a million Monte Carlo samples of it.
 Unit strings and Brach's (theta, phi, d) inputs are converted before they reach here
-(:mod:`pim.casefile`, :mod:`pim.brach`).
+(:mod:`pim.io.casefile`, :mod:`pim.io.brach`).
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
-"""Histograms of a Monte Carlo uncertainty study (:class:`pim.uncertainty.UncertaintyResult`).
+"""Histograms of a Monte Carlo uncertainty study (:class:`pim.UncertaintyResult`).
 
 matplotlib is imported inside the functions, so that ``import pim`` stays fast. Files are
-written atomically by :func:`pim.files.save_figure`.
+written atomically by :func:`pim.io.files.save_figure`.
 """
 
 from __future__ import annotations

@@ -2,7 +2,7 @@
 
 Computation and drawing are separate. :func:`sweep_epsilon` and :func:`cost_map` are pure
 functions that return result objects (:class:`EpsilonSweep`, :class:`CostMap`); the
-``plot_*`` functions take those objects (and a :class:`pim.fit.FitResult`) and return a
+``plot_*`` functions take those objects (and a :class:`pim.FitResult`) and return a
 matplotlib ``Figure`` without touching pyplot or any screen; :func:`write_plots` computes,
 draws and writes the whole set atomically. matplotlib is imported inside the functions so
 that ``import pim`` stays fast.
