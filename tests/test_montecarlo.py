@@ -10,12 +10,10 @@ import json
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from scipy.special import ndtr
 
 import pim
 from pim.analysis.montecarlo import first_order_indices
 from pim.io.uncertainty_table import parse_uncertainty
-from pim.model.distributions import Distribution, UncertaintyTable
 
 M1, M2, V1, V2 = 1200.0, 1800.0, 15.0, -5.0
 
@@ -89,39 +87,8 @@ def test_first_order_indices_of_an_additive_function():
     assert idx["x3"] == pytest.approx(0.0, abs=2e-3)
 
 
-def test_restitution_normal_is_truncated_to_unit_interval():
-    dist = Distribution("normal", 0.9, 0.3)
-    u = (np.arange(100_000) + 0.5) / 100_000
-    x = dist.sample(0.5, u, "impact.restitution")
-    assert x.min() >= 0 and x.max() <= 1
-    # truncated normal CDF at 0.8: (Phi((0.8-0.9)/0.3) - Phi(-3)) / (Phi(1/3) - Phi(-3))
-    expected = (ndtr(-1 / 3) - ndtr(-3)) / (ndtr(1 / 3) - ndtr(-3))
-    assert np.mean(x <= 0.8) == pytest.approx(expected, abs=1e-4)
 
 
-def test_parsing_units_and_errors():
-    unc = parse_uncertainty({"vehicle1": {"mass": {"normal": "44.0925 lb"}},
-                             "impact": {"normal_angle": {"plusminus": "5 deg"},
-                                        "beta": {"fixed": 0.8}}})
-    assert unc.inputs["vehicle1.mass"].b == pytest.approx(20.0, rel=1e-5)
-    assert unc.inputs["impact.normal_angle"].b == pytest.approx(np.radians(5))
-    with pytest.raises(ValueError, match="unknown input 'vehicle1.massx'"):
-        parse_uncertainty({"vehicle1": {"massx": {"normal": 1}}})
-    with pytest.raises(ValueError, match="unknown key 'sd'"):
-        parse_uncertainty({"vehicle1": {"mass": {"normal": 1, "sd": 2}}})
-    with pytest.raises(ValueError, match="exactly one"):
-        parse_uncertainty({"vehicle1": {"mass": {"normal": 1, "fixed": 2}}})
-    with pytest.raises(ValueError, match="dimension"):
-        parse_uncertainty({"vehicle1": {"mass": {"normal": "3 m"}}})
-    with pytest.raises(ValueError, match="low"):
-        parse_uncertainty({"impact": {"restitution": {"uniform": [0.5, 0.2]}}})
-    case = collinear({"impact": {"restitution": {"uniform": [0.5, 1.2]}}})
-    with pytest.raises(ValueError, match="admissible range"):
-        pim.uncertainty(case, n=100)
-    with pytest.raises(ValueError, match="no \\[uncertainty\\]"):
-        pim.uncertainty(collinear(), n=100)
-    with pytest.raises(ValueError, match="unknown input"):
-        UncertaintyTable({"impact.gamma": Distribution("fixed", 1.0)})
 
 
 def test_case_file_table_and_command(tmp_path):

@@ -1,0 +1,25 @@
+"""pim/model/admissibility.py: every inadmissible result is flagged with a reason."""
+
+import numpy as np
+
+import pim
+
+
+def test_admissible_ricsac9_has_no_problems():
+    r = pim.solve(pim.load_case("ricsac9"), 0.355, 1.0)
+    assert bool(r.admissible) and r.problems() == []
+
+
+def test_each_flag_gives_its_reason():
+    case = pim.load_case("ricsac9")
+    assert any("|mu| > |mu0|" in p for p in pim.solve(case, 0.355, 1.4).problems())
+    away = case.transformed(rotation=0.0)
+    v1 = away.vehicle1
+    separating = pim.Case(pim.Vehicle(v1.mass, v1.yaw_inertia, v1.cg, -v1.velocity),
+                          away.vehicle2, away.impact)
+    r = pim.solve(separating, 0.355, 1.0)
+    assert not bool(r.approaching) and not bool(r.admissible)
+    assert any("do not approach" in p for p in r.problems())
+    batch = pim.solve(case, np.array([0.355, 0.355]), np.array([1.0, 1.4]))
+    assert batch.admissible.tolist() == [True, False]
+    assert any("(1 of 2 cases)" in p for p in batch.problems())

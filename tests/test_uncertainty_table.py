@@ -1,0 +1,35 @@
+"""pim/io/uncertainty_table.py: the case file's [uncertainty] table, parsed to SI, and its
+errors (unknown input or key, wrong dimension, bounds in the wrong order)."""
+
+import numpy as np
+import pytest
+
+import pim
+from pim.io.uncertainty_table import parse_uncertainty
+from pim.model.distributions import Distribution, UncertaintyTable
+from tests.test_montecarlo import collinear
+
+
+def test_parsing_units_and_errors():
+    unc = parse_uncertainty({"vehicle1": {"mass": {"normal": "44.0925 lb"}},
+                             "impact": {"normal_angle": {"plusminus": "5 deg"},
+                                        "beta": {"fixed": 0.8}}})
+    assert unc.inputs["vehicle1.mass"].b == pytest.approx(20.0, rel=1e-5)
+    assert unc.inputs["impact.normal_angle"].b == pytest.approx(np.radians(5))
+    with pytest.raises(ValueError, match="unknown input 'vehicle1.massx'"):
+        parse_uncertainty({"vehicle1": {"massx": {"normal": 1}}})
+    with pytest.raises(ValueError, match="unknown key 'sd'"):
+        parse_uncertainty({"vehicle1": {"mass": {"normal": 1, "sd": 2}}})
+    with pytest.raises(ValueError, match="exactly one"):
+        parse_uncertainty({"vehicle1": {"mass": {"normal": 1, "fixed": 2}}})
+    with pytest.raises(ValueError, match="dimension"):
+        parse_uncertainty({"vehicle1": {"mass": {"normal": "3 m"}}})
+    with pytest.raises(ValueError, match="low"):
+        parse_uncertainty({"impact": {"restitution": {"uniform": [0.5, 0.2]}}})
+    case = collinear({"impact": {"restitution": {"uniform": [0.5, 1.2]}}})
+    with pytest.raises(ValueError, match="admissible range"):
+        pim.uncertainty(case, n=100)
+    with pytest.raises(ValueError, match="no \\[uncertainty\\]"):
+        pim.uncertainty(collinear(), n=100)
+    with pytest.raises(ValueError, match="unknown input"):
+        UncertaintyTable({"impact.gamma": Distribution("fixed", 1.0)})
