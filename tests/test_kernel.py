@@ -208,3 +208,68 @@ def test_stream_copy_writes_every_output():
     x = sum(np.asarray(v, float).reshape(1000, -1).sum(axis=1) for v in inputs.values())
     np.testing.assert_allclose(core["mu0"], x, rtol=1e-12)
     np.testing.assert_allclose(full["k_tt"], x, rtol=1e-12)
+
+
+def test_numba_cache_key_covers_the_formula():
+    """numba keys its cache on kernel.py alone; ours adds formula.py's hash (a stale kernel
+    after an edit of the formula would silently disagree with the numpy path)."""
+    import hashlib
+    from pathlib import Path
+
+    from pim.model import formula
+
+    digest = hashlib.sha256(Path(formula.__file__).read_bytes()).hexdigest()
+    for dispatcher in (kernel._solve_kernel_libm, kernel._solve_kernel_fast,
+                       kernel._copy_kernel):
+        stamp = kernel.cache_stamp(dispatcher)
+        assert stamp[1] == digest
+        assert stamp[0]  # numba's own stamp of kernel.py is still part of the key
+
+
+_STALE_SCRIPT = """
+import sys
+sys.path.insert(0, sys.argv[1])
+import numpy as np
+import pim
+assert pim.__file__.startswith(sys.argv[1]), pim.__file__
+rng = np.random.default_rng(0)
+n = 2000
+def vehicle():
+    return pim.Vehicle(rng.uniform(500, 3000, n), rng.uniform(800, 4000, n),
+                       rng.uniform(-3, 3, (n, 2)), rng.uniform(-30, 30, (n, 2)),
+                       rng.uniform(-3, 3, n))
+case = pim.Case(vehicle(), vehicle(), pim.Impact(rng.uniform(-2, 2, (n, 2)),
+                                                  rng.uniform(-3, 3, n)))
+a = pim.solve(case, 0.3, 0.8, backend="numpy")
+b = pim.solve(case, 0.3, 0.8, backend="numba")
+print(np.array_equal(a.velocity1, b.velocity1, equal_nan=True), float(a.velocity1[0, 0]))
+"""
+
+
+@pytest.mark.slow
+def test_editing_the_formula_recompiles_the_kernel(tmp_path):
+    """End to end: a copy of pim, solved, then its formula edited and solved again in a new
+    process: the kernel must follow the edit (it did not with numba's cache=True)."""
+    import shutil
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root = Path(pim.__file__).parent
+    shutil.copytree(root, tmp_path / "pim", ignore=shutil.ignore_patterns("__pycache__"))
+    script = tmp_path / "run.py"
+    script.write_text(_STALE_SCRIPT)
+
+    def run():
+        out = subprocess.run([sys.executable, str(script), str(tmp_path)], check=True,
+                             capture_output=True, text=True, timeout=600).stdout.split()
+        return out[0] == "True", float(out[1])
+
+    same, before = run()
+    assert same
+    path = tmp_path / "pim" / "model" / "formula.py"
+    text = path.read_text()
+    assert text.count("e1 = 1.0 + eps") == 1
+    path.write_text(text.replace("e1 = 1.0 + eps", "e1 = 1.0 + 0.5 * eps"))
+    same, after = run()
+    assert same and after != before

@@ -10,7 +10,9 @@ The arithmetic is :mod:`pim.model.formula` itself, compiled by numba (no fast-ma
 multiply-add contraction), with sine and cosine from the same C library as numpy, so the
 default kernel gives bitwise the numpy path's values (``tests/test_kernel.py``), including
 the approach flag, the singular-q flag and fixed obstacles (inverse mass and inertia 0). The
-tolerances are arguments of the compiled functions, not constants baked into numba's cache.
+tolerances are arguments of the compiled functions, not constants baked into numba's cache,
+and the cache key covers pim/model/formula.py as well as this file (:func:`_cached`), so an
+edit of the formula recompiles the kernels instead of leaving a stale one.
 With ``fast_trig`` it uses its own branch-free sine and cosine (within 1 ulp), about 20 %
 faster; the results then agree with numpy to round-off (normwise 1e-15; elementwise more
 where outputs come from cancellation). numba is imported only when this module is, which
@@ -28,8 +30,12 @@ The unit normal and tangent share one buffer ``(-sin G, cos G, sin G)`` of shape
 
 from __future__ import annotations
 
+import hashlib
+from pathlib import Path
+
 import numpy as np
 from numba import njit, prange
+from numba.core import caching
 
 from . import formula
 from .quantities import FIELDS, VECTOR_FIELDS
@@ -50,6 +56,48 @@ AUX_VECTORS = ("arm1", "arm2", "approach_velocity")
 AUX_SCALARS = ("impulse_n", "impulse_t", "critical_impulse_n", "critical_impulse_t",
                "approach_n", "approach_t", "k_nn", "k_nt", "k_tt")
 AUX = AUX_VECTORS + AUX_SCALARS + ("normal", "tangent")
+
+
+# ---- numba's cache, keyed on this file and on the formula -------------------------------------
+# numba keys a cached function on its own source file only (kernel.py): an edit of
+# pim/model/formula.py, whose functions the kernels compile, would leave a stale kernel that
+# silently disagrees with the numpy path. The locators below add the formula's SHA-256 to the
+# source stamp, so numba recompiles the kernels whenever either file changes.
+
+#: SHA-256 of pim/model/formula.py: part of the numba cache key of every kernel here.
+FORMULA_STAMP = hashlib.sha256(Path(formula.__file__).read_bytes()).hexdigest()
+
+
+class _FormulaStamp:
+    """Locator mixin: the source stamp of kernel.py together with :data:`FORMULA_STAMP`."""
+
+    def get_source_stamp(self):
+        return super().get_source_stamp(), FORMULA_STAMP
+
+
+class _FormulaCacheImpl(caching.CompileResultCacheImpl):
+    _locator_classes = [type(f"{cls.__name__}WithFormula", (_FormulaStamp, cls), {})
+                        for cls in caching.CompileResultCacheImpl._locator_classes]
+
+
+class _FormulaCache(caching.FunctionCache):
+    _impl_class = _FormulaCacheImpl
+
+
+def _cached(dispatcher):
+    """Cache a compiled kernel on disk under a key that covers kernel.py and the formula
+    (numba's ``cache=True`` covers kernel.py alone). Where no cache location is writable the
+    kernel is compiled in every process instead, as ``cache=True`` would."""
+    try:
+        dispatcher._cache = _FormulaCache(dispatcher.py_func)
+    except RuntimeError:  # no locator available for this file
+        pass
+    return dispatcher
+
+
+def cache_stamp(dispatcher) -> object:
+    """The source stamp numba stores with a kernel's cache (for tests and diagnostics)."""
+    return dispatcher._cache._impl.locator.get_source_stamp()
 
 
 #: Angles |Gamma| [rad] up to this take the kernel's own sine and cosine; beyond it the
@@ -168,7 +216,8 @@ def _case(i, cs, sn, m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, eps, beta, ap
     return (0 if (e >= 0.0) & (e <= 1.0) else 1), (0 if np.isfinite(b) else 1)
 
 
-@njit(parallel=True, cache=True, error_model="numpy", fastmath=False)
+@_cached
+@njit(parallel=True, error_model="numpy", fastmath=False)
 def _solve_kernel_fast(m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, gamma, eps, beta, approach_tol,
                        singular_tol, full,
                   cvec, csc, approaching, singular, avec, asc, trig):  # pragma: no cover
@@ -203,7 +252,8 @@ def _solve_kernel_fast(m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, gamma, eps,
     return total[0], total[1], total[2]
 
 
-@njit(parallel=True, cache=True, error_model="numpy", fastmath=False)
+@_cached
+@njit(parallel=True, error_model="numpy", fastmath=False)
 def _solve_kernel_libm(m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, gamma, eps, beta, approach_tol,
                        singular_tol, full, cvec, csc, approaching, singular, avec, asc,
                        trig):  # pragma: no cover - compiled
@@ -223,7 +273,8 @@ def _solve_kernel_libm(m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, gamma, eps,
     return bad_eps, bad_beta, 0
 
 
-@njit(parallel=True, cache=True)
+@_cached
+@njit(parallel=True)
 def _copy_kernel(m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, gamma, eps, beta, approach_tol,
                        singular_tol, full,
                  cvec, csc, approaching, singular, avec, asc, trig):  # pragma: no cover
