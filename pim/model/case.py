@@ -13,23 +13,50 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-__all__ = ["Vehicle", "Impact", "Case", "Measured"]
+__all__ = ["Vehicle", "Impact", "Case", "Measured", "as_number"]
+
+
+def as_number(value, name: str) -> np.ndarray:
+    """``value`` as a float array; a ValueError naming ``name`` for anything but real numbers.
+
+    Strings, booleans, None, complex numbers and objects are refused (``np.asarray`` would
+    quietly read ``"1000"`` or ``True`` as a number). NaN and inf pass: callers check them.
+    """
+    if value is None or isinstance(value, str | bytes | bool | np.bool_):
+        raise ValueError(f"{name} must be a real number or an array of them, got {value!r}")
+    try:
+        arr = np.asarray(value)
+    except (ValueError, TypeError):
+        raise ValueError(f"{name} must be a real number or an array of them (ragged input)") \
+            from None
+    if arr.dtype.kind not in "iuf":
+        raise ValueError(f"{name} must be a real number or an array of them, "
+                         f"got {arr.dtype.name} values ({str(value)[:40]})")
+    return arr.astype(float)
 
 
 def _scalar(value, name: str) -> np.ndarray:
-    arr = np.asarray(value, dtype=float)
+    arr = as_number(value, name)
     if np.isnan(arr).any():
         raise ValueError(f"{name} is NaN; it must be a finite number")
     return arr
 
 
 def _vector(value, name: str, unit: str) -> np.ndarray:
-    arr = np.asarray(value, dtype=float)
+    arr = as_number(value, name)
     if arr.ndim == 0 or arr.shape[-1] != 2:
         raise ValueError(f"{name} must be an [x, y] pair in [{unit}], got shape {arr.shape}")
     if not np.isfinite(arr).all():
         raise ValueError(f"{name} must be finite [x, y] values in [{unit}]")
     return arr
+
+
+def _one_number(value, name: str) -> float:
+    arr = as_number(value, name)
+    if arr.size != 1:
+        raise ValueError(f"{name} must be a single number (the case's default), "
+                         f"got shape {arr.shape}")
+    return float(arr.reshape(()))
 
 
 def _finite(arr: np.ndarray, name: str, unit: str) -> np.ndarray:
@@ -95,14 +122,18 @@ class Vehicle:
         for name in ("length", "width"):
             value = getattr(self, name)
             if value is not None:
-                value = float(value)
+                value = _one_number(value, name)
                 if not (np.isfinite(value) and value > 0):
                     raise ValueError(f"{name} must be > 0 [m], got {value}")
                 set_(self, name, value)
 
     @classmethod
-    def obstacle(cls, cg, heading=0.0, length=None, width=None) -> Vehicle:
-        """A fixed barrier or pole: infinite mass and yaw inertia, at rest."""
+    def obstacle(cls, cg=(0.0, 0.0), heading=0.0, length=None, width=None) -> Vehicle:
+        """A fixed barrier or pole: infinite mass and yaw inertia, at rest.
+
+        Its ``cg`` [m] and ``heading`` [rad] do not change the impact (its arm is multiplied
+        by a zero inverse inertia); they only place an outline in drawings.
+        """
         return cls(mass=np.inf, yaw_inertia=np.inf, cg=cg, velocity=(0.0, 0.0),
                    yaw_rate=0.0, heading=heading, length=length, width=width)
 
@@ -149,12 +180,12 @@ class Impact:
         angle = _finite(_scalar(self.normal_angle, "normal_angle"), "normal_angle", "rad")
         object.__setattr__(self, "normal_angle", angle)
         if self.restitution is not None:
-            eps = float(self.restitution)
+            eps = _one_number(self.restitution, "restitution")
             if not 0.0 <= eps <= 1.0:
                 raise ValueError(f"restitution must be in [0, 1], got {eps}")
             object.__setattr__(self, "restitution", eps)
         if self.beta is not None:
-            beta = float(self.beta)
+            beta = _one_number(self.beta, "beta")
             if not np.isfinite(beta):
                 raise ValueError(f"beta must be a finite number (usually in [0, 1]), got {beta}")
             object.__setattr__(self, "beta", beta)
@@ -197,7 +228,7 @@ class Measured:
         for name in ("yaw_rate1", "yaw_rate2"):
             value = getattr(self, name)
             if value is not None:
-                value = float(value)
+                value = _one_number(value, name)
                 if not np.isfinite(value):
                     raise ValueError(f"{name} must be a finite number in [rad/s]")
                 object.__setattr__(self, name, value)
@@ -225,6 +256,9 @@ class Case:
     uncertainty : pim.model.distributions.UncertaintyTable, optional
         Distributions of uncertain inputs (the case file's ``[uncertainty]`` table), used by
         :func:`pim.uncertainty`.
+    units : {"si", "us"}
+        The unit system the case was written in (its file's units); results are presented
+        in it unless asked otherwise.
     """
 
     vehicle1: Vehicle
@@ -234,8 +268,16 @@ class Case:
     name: str = ""
     description: str = ""
     uncertainty: object | None = None  # pim.model.distributions.UncertaintyTable
+    units: str = "si"
 
     def __post_init__(self) -> None:
+        for name in ("vehicle1", "vehicle2"):
+            if not isinstance(getattr(self, name), Vehicle):
+                raise ValueError(f"{name} must be a pim.Vehicle, got {getattr(self, name)!r}")
+        if not isinstance(self.impact, Impact):
+            raise ValueError(f"impact must be a pim.Impact, got {self.impact!r}")
+        if self.units not in ("si", "us"):
+            raise ValueError(f"units must be 'si' or 'us', got {self.units!r}")
         if self.vehicle1.fixed.any():
             raise ValueError("vehicle1.mass must be finite: only vehicle2 may be a fixed obstacle")
 

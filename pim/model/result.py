@@ -181,8 +181,13 @@ class Result:
 
     @cached_property
     def energy_loss(self) -> np.ndarray:
-        """Kinetic energy lost in the impact [J] (negative: energy gained)."""
-        return self.kinetic_energy_before - self.kinetic_energy_after
+        """Kinetic energy lost in the impact [J] (negative: energy gained).
+
+        Computed from the impulse, -P.(u + U)/2 (the sum of the normal and tangential crush
+        energies), not as the difference of the kinetic energies before and after, which
+        round-off wipes out at extreme mass ratios (a car against a 1e12 kg body).
+        """
+        return self.crush_energy_normal + self.crush_energy_tangential
 
     @cached_property
     def energy_loss_percent(self) -> np.ndarray:

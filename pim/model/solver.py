@@ -43,7 +43,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .case import Case
+from .case import Case, as_number
 from .geometry import contact_velocity, cross, dot, vec
 from .result import Result
 
@@ -114,6 +114,18 @@ def constraints(case: Case, eps=None, beta=None) -> tuple[np.ndarray, np.ndarray
 
 
 def _defaults(case: Case, eps, beta):
+    if not isinstance(case, Case):
+        raise ValueError(f"case must be a pim.Case, got {type(case).__name__}")
+    if eps is not None:
+        eps = as_number(eps, "eps")
+    if beta is not None:
+        beta = as_number(beta, "beta")
+    if eps is not None and beta is not None:
+        try:
+            np.broadcast_shapes(np.shape(eps), np.shape(beta))
+        except ValueError:
+            raise ValueError(f"eps (shape {np.shape(eps)}) and beta (shape {np.shape(beta)}) "
+                             "do not broadcast together") from None
     if eps is None:
         eps = case.impact.restitution
         if eps is None:
@@ -124,14 +136,14 @@ def _defaults(case: Case, eps, beta):
 
 
 def _check_eps(eps) -> np.ndarray:
-    eps = np.asarray(eps, dtype=float)
+    eps = as_number(eps, "eps")
     if np.isnan(eps).any() or ((eps < 0) | (eps > 1)).any():
         raise ValueError("eps (coefficient of restitution) must be in [0, 1]")
     return eps
 
 
 def _check_beta(beta) -> np.ndarray:
-    beta = np.asarray(beta, dtype=float)
+    beta = as_number(beta, "beta")
     if not np.isfinite(beta).all():
         raise ValueError("beta (fraction of mu0) must be a finite number, usually in [0, 1]")
     return beta
