@@ -13,7 +13,7 @@ def test_solve_prints_the_ricsac9_table_in_us_units(capsys):
     assert main(["solve", "ricsac9", "--units", "us"]) == 0
     out = capsys.readouterr().out
     assert "post-impact yaw rate" in out and "-199.70" in out and "87.31" in out
-    assert "mph" in out and "ft lbf" in out
+    assert "ft/s" in out and "ft lbf" in out and "mph" not in out
 
 
 def test_solve_json_matches_the_library(capsys):
@@ -21,18 +21,23 @@ def test_solve_json_matches_the_library(capsys):
     data = json.loads(capsys.readouterr().out)
     r = pim.solve(pim.load_case("ricsac9"), 0.5, 0.5)
     assert data["admissible"] is True and data["problems"] == []
-    assert data["results"]["velocity_x"]["vehicle1"] == pytest.approx(float(r.velocity1[0]))
-    assert data["results"]["velocity_x"]["unit"] == "m/s"
-    assert data["results"]["energy_loss"]["value"] == pytest.approx(float(r.energy_loss) / 1e3)
+    assert data["results"]["velocity_x"]["vehicle1"] == pytest.approx(
+        float(r.velocity1[0]) / 0.3048)
+    assert data["results"]["velocity_x"]["unit"] == "ft/s"    # ricsac9 is written in ft
+    assert data["results"]["energy_loss"]["value"] == pytest.approx(
+        float(r.energy_loss) / 1.3558179483314004)
 
 
-def test_separating_case_warns(tmp_path, capsys):
+def test_separating_case_says_no_impact_once(tmp_path, capsys):
     text = (resources.files("pim.io") / "cases" / "hard-eps0.toml").read_text()
     path = tmp_path / "apart.toml"
     path.write_text(text.replace('velocity = ["15 m/s", "0 m/s"]',
                                  'velocity = ["-15 m/s", "0 m/s"]'))
-    assert main(["solve", str(path)]) == 0
-    assert "warning: the vehicles do not approach" in capsys.readouterr().err
+    assert main(["solve", str(path)]) == 1
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    assert captured.err.strip().startswith("no impact: the vehicles separate at C")
+    assert len(captured.err.strip().splitlines()) == 1 and "-0" not in captured.err
 
 
 def test_singular_q_is_an_error(capsys):

@@ -65,6 +65,7 @@ def fit(case_name, include_yaw, eps, beta, eps_range, beta_range, units, as_json
     from ..io.units import convert
 
     case = load_case(case_name)
+    units = units or case.units
     result = _fit(case, include_yaw, eps, beta, eps_range, beta_range)
     if as_json:
         echo_json(result.to_dict())
@@ -165,6 +166,7 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
     from ..io.units import convert
 
     case = load_case(case_name)
+    units = units or case.units
     sens = compute(case, eps=eps, beta=beta, uncertainty=_parse_sigma(sigmas),
                    include_yaw=include_yaw)
     if as_json:
@@ -232,6 +234,7 @@ def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units)
     from ..plotting.sheet import write_plots
 
     case = load_case(case_name)
+    units = units or case.units
     if has_measured_terms(case, include_yaw):
         result = _fit(case, include_yaw, None, None, eps_range, beta_range)
     else:

@@ -34,6 +34,7 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, units, as_json):
     from ..io.units import convert
 
     case = load_case(case_name)
+    units = units or case.units
     result = run(case, n=samples, seed=seed, eps=eps, beta=beta)
     rows = []
     for name, (label, kind) in OUTPUTS.items():

@@ -43,6 +43,7 @@ from pathlib import Path
 import numpy as np
 
 from ..model.case import Case, Impact, Measured, Vehicle
+from ..model.plausibility import bare_angle_warning
 from .brach import cg_from_brach, heading_from_theta
 from .units import parse, unit_system_of
 
@@ -215,7 +216,20 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
             raise ValueError(f"{key} must be a string, got {value!r}")
     return Case(vehicle1=vehicles[0], vehicle2=vehicles[1], impact=impact,
                 measured=_measured(data.get("measured")), name=name, description=description,
-                uncertainty=_uncertainty(data.get("uncertainty")), units=_unit_system(data))
+                uncertainty=_uncertainty(data.get("uncertainty")), units=_unit_system(data),
+                notes=_angle_notes(data))
+
+
+def _angle_notes(data) -> tuple[str, ...]:
+    """Warnings for bare numbers above 2 pi given for angles (degrees without a unit?)."""
+    notes = []
+    for table in ("vehicle1", "vehicle2", "impact"):
+        for key in ("heading", "theta", "phi", "normal_angle"):
+            value = data.get(table, {}).get(key)
+            note = bare_angle_warning(f"{table}.{key}", value)
+            if note:
+                notes.append(note)
+    return tuple(notes)
 
 
 def _unit_system(data) -> str:

@@ -259,6 +259,9 @@ class Case:
     units : {"si", "us"}
         The unit system the case was written in (its file's units); results are presented
         in it unless asked otherwise.
+    notes : tuple of str
+        Plausibility warnings about the inputs found while reading the case file (e.g. a
+        bare number above 2 pi given for an angle).
     """
 
     vehicle1: Vehicle
@@ -269,6 +272,7 @@ class Case:
     description: str = ""
     uncertainty: object | None = None  # pim.model.distributions.UncertaintyTable
     units: str = "si"
+    notes: tuple = ()
 
     def __post_init__(self) -> None:
         for name in ("vehicle1", "vehicle2"):
