@@ -8,7 +8,15 @@ from pathlib import Path
 
 import click
 
-from pim.cli import beta_option, case_argument, echo_json, eps_option, json_option
+from pim.cli import (
+    beta_option,
+    case_argument,
+    echo_json,
+    eps_option,
+    json_option,
+    solve_with_options,
+    units_option,
+)
 
 __all__ = ["compare", "animate", "speed_error", "hard_cases"]
 
@@ -28,6 +36,7 @@ def _out(out, name: str, default: str) -> Path:
 @eps_option
 @beta_option
 @click.option("--gif", is_flag=True, help="Also write animation.gif (slower, larger).")
+@units_option
 @click.option("--no-animation", is_flag=True, help="Skip the animation.")
 @click.option("--no-speed-error", is_flag=True, help="Skip the coarse speed-error sweep.")
 @click.option("--tyre-friction", "tyre", type=float, default=0.0, show_default=True,
@@ -35,32 +44,39 @@ def _out(out, name: str, default: str) -> Path:
                    "ghost decelerates alike); 0 = free motion.")
 @progress_option
 @json_option
-def compare(case_name, out, eps, beta, gif, no_animation, no_speed_error, tyre, progress,
-            as_json):
-    """Compare PIM with the pymunk simulation for CASE and write a report folder.
+def compare(case_name, out, eps, beta, gif, units, no_animation, no_speed_error, tyre,
+            progress, as_json):
+    """Write a reconstruction report of CASE to a folder (report.md, CSVs, PNGs, MP4).
 
-    Fits (epsilon, beta) to the measured motion when the case has some (--eps/--beta fix
-    them), solves, simulates, and writes report.md with the inputs, the fit, the
-    analytic-vs-simulated table, the design sheet's plots, an MP4 animation and a coarse
-    speed-against-error summary, plus a CSV of every table.
+    The report opens with the results a reconstruction hands on (delta-V, PDOF, post-impact
+    speeds and yaw rates, energy loss and its crush split, epsilon and beta with their source
+    and, with an [uncertainty] table, 5-95 % intervals), then the coefficients, inputs,
+    plots and animation; the appendix compares PIM with a pymunk simulation and sweeps the
+    simulator's speed against its error. (epsilon, beta) are fitted to the measured motion
+    when the case has some; --eps and --beta together skip the fit (one of them: the other
+    is fitted). Exit code 1 with one line when the vehicles do not approach at C.
     """
     from pim.io.casefile import load_case
+    from pim.io.files import writable_folder
 
     from .report import compare_case
 
     if tyre < 0:
         raise ValueError(f"--tyre-friction must be >= 0, got {tyre}")
     case = load_case(case_name)
-    folder = _out(out, case.name, "case")
+    folder = writable_folder(_out(out, case.name, "case"), "--out")
+    solve_with_options(case, 0.0, 1.0)      # exits 1 with one line when there is no impact
     rep = compare_case(case, folder, eps=eps, beta=beta, gif=gif, animation=not no_animation,
-                       speed_error=not no_speed_error, tyre=tyre, progress=progress)
+                       speed_error=not no_speed_error, tyre=tyre, progress=progress,
+                       units=units)
     if as_json:
         echo_json({"case": case.name, "out": str(folder), "eps": rep.eps, "beta": rep.beta,
                    "error": rep.error, "seconds": rep.seconds,
                    "files": sorted(str(p) for p in rep.files)})
         return
-    click.echo(f"{case.name}: epsilon = {rep.eps:.6g}, beta = {rep.beta:.6g}; "
-               f"pymunk vs PIM error {rep.error:.2e}")
+    error = ("simulation failed" if rep.error != rep.error
+             else f"pymunk vs PIM error {rep.error:.2e}")
+    click.echo(f"{case.name}: epsilon = {rep.eps:.6g}, beta = {rep.beta:.6g}; {error}")
     if rep.animation is not None:
         a = rep.animation
         click.echo(f"animation: {a.frames} frames, rendered at {a.render_fps:.0f} frames/s")

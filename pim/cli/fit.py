@@ -76,11 +76,14 @@ def fit(case_name, include_yaw, eps, beta, eps_range, beta_range, units, as_json
     fixed = f" (fixed: {', '.join(result.fixed)})" if result.fixed else ""
     click.echo(f"{case.name}: least-squares fit of the post-impact "
                f"{'velocities and yaw rates' if include_yaw else 'velocities'}{fixed}")
-    click.echo(f"  epsilon = {result.eps:.6f}   search range [{result.bounds[0][0]:g}, "
-               f"{result.bounds[0][1]:g}]")
-    click.echo(f"  beta    = {result.beta:.6f}   search range [{result.bounds[1][0]:g}, "
-               f"{result.bounds[1][1]:g}]   (mu = {float(solved.mu):.4f}, "
-               f"mu0 = {float(solved.mu0):.4f})")
+    def where(k, name):
+        if name in result.fixed:
+            return "(fixed)"
+        return f"search range [{result.bounds[k][0]:g}, {result.bounds[k][1]:g}]"
+
+    click.echo(f"  epsilon = {result.eps:.6f}   {where(0, 'eps')}")
+    click.echo(f"  beta    = {result.beta:.6f}   {where(1, 'beta')}   "
+               f"(mu = {float(solved.mu):.4f}, mu0 = {float(solved.mu0):.4f})")
     click.echo(f"  cost    = {result.cost * fv * fv:.6g} ({uv})^2   "
                f"rms residual = {result.rms * fv:.4g} {uv}")
     for line in _describe_bounds(result, units):
