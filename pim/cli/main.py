@@ -189,8 +189,34 @@ def draw(case_name, out, eps, beta):
     click.echo(f"wrote {path}")
 
 
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised like Ctrl-C so that every atomic writer removes its temporary file."""
+
+
+def _on_sigterm(signum, frame):
+    raise Terminated()
+
+
 def main(argv=None) -> int:
-    """Entry point of the ``pim`` console script; returns the exit code."""
+    """Entry point of the ``pim`` console script; returns the exit code.
+
+    SIGTERM is handled as SIGINT is: temporary files are removed and the exit code is 143
+    (130 for Ctrl-C). A file or folder that cannot be written is one line and exit code 2.
+    """
+    import signal
+    import threading
+
+    previous = None
+    if threading.current_thread() is threading.main_thread():
+        previous = signal.signal(signal.SIGTERM, _on_sigterm)
+    try:
+        return _main(argv)
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
+
+
+def _main(argv) -> int:
     try:
         code = cli.main(args=argv, prog_name="pim", standalone_mode=False)
     except click.exceptions.Exit as exc:
@@ -198,11 +224,19 @@ def main(argv=None) -> int:
     except click.ClickException as exc:
         exc.show()
         return exc.exit_code
-    except click.exceptions.Abort:
-        click.echo("aborted", err=True)
-        return 130
+    except click.exceptions.Abort as exc:
+        terminated = isinstance(exc.__context__, Terminated)
+        click.echo("terminated" if terminated else "aborted", err=True)
+        return 143 if terminated else 130
+    except Terminated:
+        click.echo("terminated", err=True)
+        return 143
     except ValueError as exc:
         click.echo(f"error: {exc}", err=True)
+        return 2
+    except OSError as exc:      # e.g. a disk full or a folder removed while writing
+        where = f"{exc.filename}: " if exc.filename else ""
+        click.echo(f"error: cannot write {where}{exc.strerror or exc}", err=True)
         return 2
     return code if isinstance(code, int) else 0
 
