@@ -12,6 +12,7 @@ import pim
 from .errors import SimulationError
 from .result import BatchResult
 from .run import simulate
+from .scene import reject_nan_coefficients
 from .settings import Settings
 
 __all__ = ["case_element", "case_count", "simulate_many"]
@@ -81,6 +82,7 @@ def simulate_many(cases: pim.Case | Sequence[pim.Case], eps=None, beta=None,
     else:
         items = list(cases)
         count = len(items)
+    reject_nan_coefficients(eps, beta)   # NaN below means "the case's default"
     eps_all = np.broadcast_to(np.asarray(np.nan if eps is None else eps, float), (count,))
     beta_all = np.broadcast_to(np.asarray(np.nan if beta is None else beta, float), (count,))
     v1 = np.full((count, 2), np.nan)

@@ -62,8 +62,13 @@ class CrossCheck:
     analytic: pim.Result
     simulated: SimResult
 
-    def format_table(self) -> str:
-        """A plain-text table of the comparison and the run's diagnostics."""
+    def format_table(self, units: str = "si") -> str:
+        """A plain-text table of the comparison and the run's diagnostics, in the ``units``
+        system ("si" or "us"; relative errors are unit-free)."""
+        from pim.io.units import convert
+
+        kinds = {"m/s": "velocity", "rad/s": "angular_velocity", "N s": "impulse",
+                 "J": "energy"}
         s = self.simulated
         lines = [f"{self.case_name}: epsilon = {self.eps:g}, beta = {self.beta:g}  "
                  f"(pymunk: dt = {s.settings.dt:g} s, {s.iterations} iterations, contact = "
@@ -71,8 +76,10 @@ class CrossCheck:
                  f"{'quantity':<26}{'unit':<7}{'analytic':>15}{'simulated':>15}"
                  f"{'abs error':>12}{'rel error':>12}"]
         for r in self.rows:
-            lines.append(f"{r.label:<26}{r.unit:<7}{r.analytic:>15.8g}{r.simulated:>15.8g}"
-                         f"{r.abs_error:>12.3g}{r.rel_error:>12.3g}")
+            (a, b, e), unit = convert(np.array([r.analytic, r.simulated, r.abs_error]),
+                                      kinds[r.unit], units)
+            rel = "-" if r.rel_error != r.rel_error else f"{r.rel_error:.3g}"
+            lines.append(f"{r.label:<26}{unit:<7}{a:>15.8g}{b:>15.8g}{e:>12.3g}{rel:>12}")
         lines.append(f"max relative error (velocities, yaw rates): {self.max_rel_error:.3g}")
         lines.append(f"wall time {1e3 * s.wall_time:.3f} ms, {s.steps} steps, contact "
                      f"{s.contact_steps} step(s) = {s.contact_duration:.6g} s, "

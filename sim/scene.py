@@ -34,12 +34,14 @@ import numpy as np
 import pymunk
 
 import pim
+from pim.model.case import as_number
 from pim.model.solver import constraints
 
 from .convergence import auto_iterations, contraction_rate
 from .settings import Settings
 
-__all__ = ["Scene", "build_scene", "resolve_coefficients", "outline_corners", "footprint_lever",
+__all__ = ["Scene", "build_scene", "resolve_coefficients", "reject_nan_coefficients",
+           "outline_corners", "footprint_lever",
            "STICK_MARGIN", "TYPE1", "TYPE2"]
 
 #: For beta = 1 the contact friction is this many times |mu0| (and at least 1): sticking.
@@ -68,6 +70,17 @@ def _scalar_case(case: pim.Case) -> None:
     if max(sizes) != 1:
         raise ValueError("sim.simulate needs a single case (every field a scalar or one "
                          "[x, y] pair); use sim.simulate_many for arrays of cases")
+
+
+def reject_nan_coefficients(eps, beta) -> None:
+    """ValueError when a given eps or beta holds NaN (batch APIs use NaN for "the case's
+    default" internally, so a NaN given by the caller must not silently become it)."""
+    for name, value in (("eps", eps), ("beta", beta)):
+        if value is not None:
+            arr = as_number(value, name)
+            if np.isnan(arr).any():
+                raise ValueError(f"{name} is NaN; give a number (or None for the case's "
+                                 f"default)")
 
 
 def resolve_coefficients(case: pim.Case, eps=None, beta=None) -> tuple[float, float]:

@@ -28,6 +28,8 @@ import numpy as np
 
 import pim
 
+from .scene import reject_nan_coefficients
+
 __all__ = ["sweep", "simulate_sweep", "simulate_one"]
 
 
@@ -172,6 +174,7 @@ def simulate_sweep(cases: pim.Case | Sequence[pim.Case], eps=None, beta=None, se
     else:
         items = list(cases)
     count = len(items)
+    reject_nan_coefficients(eps, beta)   # NaN below means "the case's default"
     eps_all = np.broadcast_to(np.asarray(np.nan if eps is None else eps, float), (count,))
     beta_all = np.broadcast_to(np.asarray(np.nan if beta is None else beta, float), (count,))
     jobs = [(c, None if np.isnan(e) else float(e), None if np.isnan(b) else float(b), settings)
