@@ -102,9 +102,10 @@ def compare(case_name, out, eps, beta, gif, units, no_animation, no_speed_error,
 @click.option("--tyre-friction", "tyre", type=float, default=0.0, show_default=True,
               help="Tyre/ground friction coefficient after the impact (ghost alike).")
 @click.option("--no-ghost", is_flag=True, help="Do not draw PIM's answer as a ghost.")
+@units_option
 @progress_option
 @json_option
-def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_ghost,
+def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_ghost, units,
             progress, as_json):
     """Animate CASE: pymunk simulation solid, PIM's post-impact motion as a ghost (MP4)."""
     import sim
@@ -120,7 +121,7 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
     try:
         info = animate_case(case, eps_, beta_, path, gif=gif, progress=progress, fps=fps,
                             before=before, after=after, size=size, tyre=tyre,
-                            ghost=not no_ghost)
+                            ghost=not no_ghost, units=units or case.units)
     except sim.SimulationError as exc:
         click.echo(f"simulation failed ({exc.kind}): {exc}", err=True)
         sys.exit(1)
@@ -205,20 +206,24 @@ def _command(name: str, coarse: bool, repeats: int, out) -> str:
 @click.command("hard-cases")
 @click.option("--out", "out", type=click.Path(file_okay=False), default=None,
               help="Output folder (default: out/hard-cases).")
+@click.option("--units", type=click.Choice(["si", "us"]), default="si", show_default=True,
+              help="Units of the results table (the hard-case files are written in SI).")
 @progress_option
 @json_option
-def hard_cases(out, progress, as_json):
+def hard_cases(out, units, progress, as_json):
     """Run every bundled hard case through PIM and the simulator; table of results, errors,
     and the dt / iterations the simulator needs to reach 1e-6 (or why it cannot)."""
     from .hard_cases import run_hard_cases, write_hard_cases
 
-    folder = Path(out) if out else Path("out") / "hard-cases"
+    from pim.io.files import writable_folder
+
+    folder = writable_folder(Path(out) if out else Path("out") / "hard-cases", "--out")
     study = run_hard_cases(progress=progress)
-    files = write_hard_cases(study, folder)
+    files = write_hard_cases(study, folder, units)
     if as_json:
         echo_json({"files": [str(f) for f in files], "cases": study.to_json()})
         return
-    click.echo(study.results_table().to_markdown())
+    click.echo(study.results_table(units).to_markdown())
     click.echo("")
     click.echo(study.needs_table().to_markdown())
     click.echo(f"\nwrote {', '.join(str(f) for f in files)}")

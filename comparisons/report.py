@@ -359,7 +359,8 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
         if animation:
             t1 = time.perf_counter()
             try:
-                renderer = build_renderer(case, eps, beta, result=result, tyre=tyre)
+                renderer = build_renderer(case, eps, beta, result=result, tyre=tyre,
+                                          units=units)
                 info = write_animation(renderer, out / "animation.mp4",
                                        gif=out / "animation.gif" if gif else None,
                                        progress=progress)
