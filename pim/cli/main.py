@@ -174,8 +174,10 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, units, as_json):
               help="Image file to write (.png or .svg).")
 @eps_option
 @beta_option
-def draw(case_name, out, eps, beta):
-    """Draw CASE's geometry and sign conventions (outlines, C, n, t, Gamma, arms, velocities)."""
+@units_option
+def draw(case_name, out, eps, beta, units):
+    """Draw CASE's geometry and sign conventions (outlines, C, n, t, Gamma, arms, velocities,
+    and the impulse when epsilon is known) to an image file; no label covers another."""
     from ..io.casefile import load_case
     from ..io.files import save_figure
     from ..model.solver import solve as solve_case
@@ -185,7 +187,7 @@ def draw(case_name, out, eps, beta):
     result = None
     if eps is not None or case.impact.restitution is not None:
         result = solve_case(case, eps, beta)
-    path = save_figure(draw_case(case, result), out)
+    path = save_figure(draw_case(case, result, units=units or case.units), out)
     click.echo(f"wrote {path}")
 
 
