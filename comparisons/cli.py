@@ -8,14 +8,18 @@ from pathlib import Path
 
 import click
 
+import pim
+
 from pim.cli import (
     beta_option,
     case_argument,
     echo_json,
     eps_option,
+    friction_limit_option,
     json_option,
     solve_with_options,
     units_option,
+    warnings_of,
 )
 
 __all__ = ["compare", "animate", "speed_error", "hard_cases"]
@@ -30,13 +34,24 @@ def _out(out, name: str, default: str) -> Path:
     return Path(out) if out is not None else Path("out") / (name or default)
 
 
+compare_eps_option = click.option(
+    "--eps", type=float, default=None,
+    help="Coefficient of restitution epsilon in [0, 1] (default: fitted to the case's "
+         "measured motion, else the case's impact.restitution). With --beta: no fit.")
+compare_beta_option = click.option(
+    "--beta", type=float, default=None,
+    help="Fraction of the critical impulse ratio, mu = beta mu0 (default: fitted to the "
+         "case's measured motion, else the case's impact.beta, else 1). With --eps: no fit.")
+
+
 @click.command()
 @case_argument
 @out_option
-@eps_option
-@beta_option
+@compare_eps_option
+@compare_beta_option
 @click.option("--gif", is_flag=True, help="Also write animation.gif (slower, larger).")
 @units_option
+@friction_limit_option
 @click.option("--no-animation", is_flag=True, help="Skip the animation.")
 @click.option("--no-speed-error", is_flag=True, help="Skip the coarse speed-error sweep.")
 @click.option("--tyre-friction", "tyre", type=float, default=0.0, show_default=True,
@@ -44,8 +59,8 @@ def _out(out, name: str, default: str) -> Path:
                    "ghost decelerates alike); 0 = free motion.")
 @progress_option
 @json_option
-def compare(case_name, out, eps, beta, gif, units, no_animation, no_speed_error, tyre,
-            progress, as_json):
+def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
+            no_speed_error, tyre, progress, as_json):
     """Write a reconstruction report of CASE to a folder (report.md, CSVs, PNGs, MP4).
 
     The report opens with the results a reconstruction hands on (delta-V, PDOF, post-impact
@@ -68,7 +83,7 @@ def compare(case_name, out, eps, beta, gif, units, no_animation, no_speed_error,
     solve_with_options(case, 0.0, 1.0)      # exits 1 with one line when there is no impact
     rep = compare_case(case, folder, eps=eps, beta=beta, gif=gif, animation=not no_animation,
                        speed_error=not no_speed_error, tyre=tyre, progress=progress,
-                       units=units)
+                       units=units, friction_limit=friction_limit)
     if as_json:
         echo_json({"case": case.name, "out": str(folder), "eps": rep.eps, "beta": rep.beta,
                    "error": rep.error, "seconds": rep.seconds,
@@ -80,6 +95,8 @@ def compare(case_name, out, eps, beta, gif, units, no_animation, no_speed_error,
     if rep.animation is not None:
         a = rep.animation
         click.echo(f"animation: {a.frames} frames, rendered at {a.render_fps:.0f} frames/s")
+    for text in warnings_of(case, pim.solve(case, rep.eps, rep.beta), friction_limit):
+        click.echo(f"warning: {text}", err=True)
     click.echo(f"wrote {rep.report} ({len(rep.files)} files) in "
                f"{sum(rep.seconds.values()):.1f} s")
 

@@ -246,7 +246,8 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
                  beta: float | None = None, gif: bool = False, animation: bool = True,
                  speed_error: bool = True, tyre: float = 0.0,
                  progress: bool | None = None, units: str | None = None,
-                 parallel: bool = True, uncertainty_samples: int = 20_000) -> Report:
+                 parallel: bool = True, uncertainty_samples: int = 20_000,
+                 friction_limit: float | None = None) -> Report:
     """Write the comparison report of one case to ``out_dir`` (see the module docstring).
 
     Parameters
@@ -273,6 +274,8 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
     uncertainty_samples : int
         Monte Carlo samples for the 5-95 % intervals when the case has an
         ``[uncertainty]`` table.
+    friction_limit : float, optional
+        Warn in the report when |mu| exceeds it.
     """
     from dataclasses import replace
 
@@ -405,7 +408,8 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
     for table in tables:
         rep.files.append(table.write_csv(out))
     text = _markdown(case, fit, eps, beta, sources, result, simulated, sim_error, limits,
-                     tables, plot_files, out, info, anim_error, study, rep, units)
+                     tables, plot_files, out, info, anim_error, study, rep, units,
+                     friction_limit)
     rep.files.append(write_text(out / "report.md", text))
     _replace_manifest(out, rep.files)
     tick("report", t0)
@@ -429,7 +433,8 @@ def _describe(dist, kind: str, units: str) -> str:
 
 
 def _markdown(case, fit, eps, beta, sources, result, simulated, sim_error, limits, tables,
-              plot_files, out, info, anim_error, study, rep, units) -> str:
+              plot_files, out, info, anim_error, study, rep, units,
+              friction_limit=None) -> str:
     from pim.cli import warnings_of
 
     by_name = {t.name: t for t in tables}
@@ -460,7 +465,7 @@ def _markdown(case, fit, eps, beta, sources, result, simulated, sim_error, limit
     if bool(np.asarray(case.vehicle2.fixed)):
         lines.append("- Vehicle 2 is a fixed obstacle: it has no delta-V and no PDOF.")
     lines += ["", _md_table(by_name["results"])]
-    warnings = warnings_of(case, result)
+    warnings = warnings_of(case, result, friction_limit)
     if warnings:
         lines += ["Warnings:", ""] + [f"- {p}" for p in warnings] + [""]
     lines += ["## Coefficients", ""]

@@ -86,3 +86,20 @@ def test_public_functions_are_not_shadowed_by_their_modules():
     # ...and no public name of pim is also the name of one of its submodules
     tops = {m.split(".")[1] for m in modules}
     assert not tops & set(pim.__all__)
+
+
+def test_help_says_what_compare_does_with_eps(capsys):
+    # issue 12 item 6: compare's --eps default is the fit, not "the case's"
+    assert main(["compare", "--help"]) == 0
+    out = capsys.readouterr().out
+    assert "fitted to the case's" in " ".join(out.split())
+    assert "reconstruction report" in out
+
+
+def test_fit_prints_no_search_range_for_a_fixed_parameter(capsys):
+    assert main(["fit", "ricsac9", "--beta", "1"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    beta = next(line for line in lines if line.strip().startswith("beta"))
+    eps = next(line for line in lines if line.strip().startswith("epsilon"))
+    assert "search range" not in beta and "(fixed)" in beta
+    assert "search range [0, 1]" in eps
