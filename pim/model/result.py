@@ -185,9 +185,16 @@ class Result:
 
         Computed from the impulse, -P.(u + U)/2 (the sum of the normal and tangential crush
         energies), not as the difference of the kinetic energies before and after, which
-        round-off wipes out at extreme mass ratios (a car against a 1e12 kg body).
+        round-off wipes out at extreme mass ratios (a car against a 1e12 kg body). u and U
+        are formed from the pre- and post-impact motion and the arms C - G_i (no K needed).
         """
-        return self.crush_energy_normal + self.crush_energy_tangential
+        v1, v2, point = self.case.vehicle1, self.case.vehicle2, self.case.impact.point
+        r1, r2 = point - v1.cg, point - v2.cg
+        before = (contact_velocity(v1.velocity, v1.yaw_rate, r1)
+                  - contact_velocity(v2.velocity, v2.yaw_rate, r2))
+        after = (contact_velocity(self.velocity1, self.yaw_rate1, r1)
+                 - contact_velocity(self.velocity2, self.yaw_rate2, r2))
+        return -0.5 * dot(self.impulse, before + after)
 
     @cached_property
     def energy_loss_percent(self) -> np.ndarray:
