@@ -35,6 +35,7 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, units, as_json):
     from ..model.quantities import OUTPUTS as QUANTITIES
 
     case = load_case(case_name)
+    units = units or case.units
     result = run(case, n=samples, seed=seed, eps=eps, beta=beta)
     rows = []
     for name in OUTPUTS:
