@@ -6,7 +6,7 @@ Random approaching scenes (masses 100-40 000 kg, radii of gyration 0.3-3 m, spee
 40 m/s per axis, yaw rates up to 6 rad/s, any Gamma), epsilon 0.3, beta 1 (sticking, which
 the engine reproduces), simulated with the engine finding the contact itself
 (``start="detected"``) at one dt. Prints the spread of the error
-(:func:`comparisons.errors.impact_error`) per unit dt and of the ratio of the simulated to
+(:func:`sim.error_measure.impact_error`) per unit dt and of the ratio of the simulated to
 PIM's impulse magnitude, so that the documentation can state a measured spread instead of a
 figure that holds for one case only.
 """
@@ -16,10 +16,10 @@ from __future__ import annotations
 import argparse
 
 import numpy as np
-from comparisons.errors import impact_error
 
 import pim
 import sim
+from sim.error_measure import impact_error
 
 
 def random_scene(rng) -> pim.Case:

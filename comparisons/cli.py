@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import sys
+import time
 from pathlib import Path
 
 import click
@@ -80,6 +81,7 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
     case = load_case(case_name)
     folder = writable_folder(_out(out, case.name, "case"), "--out")
     solve_with_options(case, 0.0, 1.0)      # exits 1 with one line when there is no impact
+    started = time.perf_counter()
     rep = compare_case(case, folder, eps=eps, beta=beta, gif=gif, animation=not no_animation,
                        speed_error=not no_speed_error, tyre=tyre, progress=progress,
                        units=units, friction_limit=friction_limit)
@@ -97,7 +99,7 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
     for text in warnings_of(case, pim.solve(case, rep.eps, rep.beta), friction_limit):
         click.echo(f"warning: {text}", err=True)
     click.echo(f"wrote {rep.report} ({len(rep.files)} files) in "
-               f"{sum(rep.seconds.values()):.1f} s")
+               f"{time.perf_counter() - started:.1f} s")
 
 
 @click.command()

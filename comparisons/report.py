@@ -236,8 +236,10 @@ def _warm_up() -> None:
 
 
 def _render_plots(case, fit, folder, units):
-
-    return write_plots(case, fit, folder, formats=("png",), units=units)
+    """Write the sheet's plots; return the files and the CPU seconds it took."""
+    cpu = time.process_time()
+    files = write_plots(case, fit, folder, formats=("png",), units=units)
+    return files, time.process_time() - cpu
 
 
 def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
@@ -280,6 +282,7 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
     from tqdm import tqdm
 
 
+    cpu0 = time.process_time()
     units = units or case.units
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -383,17 +386,18 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
             from concurrent.futures.process import BrokenProcessPool
 
             try:
-                plot_files = plots_future.result()
+                plot_files, plot_cpu = plots_future.result()
             except BrokenProcessPool:      # the worker died: render here instead
                 plot_files = None
         if plot_files is None:
-            plot_files = _render_plots(plot_case, fit, out / "plots", units)
+            plot_files, plot_cpu = _render_plots(plot_case, fit, out / "plots", units)
     finally:
         if pool is not None:
             pool.shutdown(wait=True, cancel_futures=True)
     rep.files += plot_files
     rep.seconds["plots (parallel: wall time of simulate to plots)" if pool is not None
                 else "plots"] = time.perf_counter() - t0
+    rep.seconds["plots CPU"] = plot_cpu
     bar.update(1)
 
     # CSVs and report.md --------------------------------------------------------------------
@@ -406,6 +410,7 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
     rep.files.append(write_text(out / "report.md", text))
     _replace_manifest(out, rep.files)
     tick("report", t0)
+    rep.seconds["CPU of this process"] = time.process_time() - cpu0
     bar.close()
     return rep
 
