@@ -333,7 +333,12 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
     plot_case = case if fit is not None or not has_measured else replace(case, measured=None)
     plots_future = None
     if pool is not None:
-        plots_future = pool.submit(_render_plots, plot_case, fit, out / "plots", units)
+        from concurrent.futures.process import BrokenProcessPool
+
+        try:
+            plots_future = pool.submit(_render_plots, plot_case, fit, out / "plots", units)
+        except BrokenProcessPool:          # the worker died while warming up
+            plots_future = None
     try:
         # Cross-check ---------------------------------------------------------------------
         t1 = time.perf_counter()

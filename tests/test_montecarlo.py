@@ -124,3 +124,15 @@ def test_ricsac9_ships_an_uncertainty_table(capsys):
     assert main(["uncertainty", "ricsac9", "--samples", "2000"]) == 0
     out = capsys.readouterr().out
     assert "ft/s" in out and "deg/s" in out and "2,000 samples" in out
+
+
+def test_barrier_has_no_pdof_in_the_uncertainty_table(tmp_path, capsys):
+    from pim.cli import main
+
+    text = (pim.io.casefile.resources.files("pim.io") / "cases"
+            / "hard-barrier.toml").read_text()
+    path = tmp_path / "barrier.toml"
+    path.write_text(text + '\n[uncertainty]\nimpact.normal_angle = {plusminus = "5 deg"}\n')
+    assert main(["uncertainty", str(path), "--samples", "2000"]) == 0
+    out = capsys.readouterr().out
+    assert "PDOF of vehicle 1" in out and "PDOF of vehicle 2" not in out
