@@ -79,7 +79,8 @@ class _FormulaStamp:
 
 class _FormulaCacheImpl(caching.CompileResultCacheImpl):
     _locator_classes = [type(f"{cls.__name__}WithFormula", (_FormulaStamp, cls), {})
-                        for cls in caching.CompileResultCacheImpl._locator_classes]
+                        for cls in getattr(caching.CompileResultCacheImpl,
+                                           "_locator_classes", ())]
 
 
 class _FormulaCache(caching.FunctionCache):
@@ -92,8 +93,8 @@ def _cached(dispatcher):
     kernel is compiled in every process instead, as ``cache=True`` would."""
     try:
         dispatcher._cache = _FormulaCache(dispatcher.py_func)
-    except RuntimeError:  # no locator available for this file
-        pass
+    except (RuntimeError, AttributeError):  # no locator for this file, or numba's caching
+        pass                                # internals changed: compile in every process
     return dispatcher
 
 
