@@ -291,8 +291,8 @@ def test_vectorised_kernel_equals_the_scalar_kernel_bitwise(fixed):
     args = kernel.flatten_inputs(inputs, (n,))
     out = kernel.allocate(n, False)
     kernel._solve_kernel_fast(*args, APPROACH_TOLERANCE, SINGULAR_TOLERANCE, False, *out)
-    scalar = dict(zip(kernel.CORE_VECTORS, out[0]))
-    scalar.update(zip(kernel.CORE_SCALARS, out[1]))
+    scalar = dict(zip(kernel.CORE_VECTORS, out[0], strict=True))
+    scalar.update(zip(kernel.CORE_SCALARS, out[1], strict=True))
     scalar.update(approaching=out[2], q_singular=out[3])
     for name, value in scalar.items():
         np.testing.assert_array_equal(simd[name], value, err_msg=name)

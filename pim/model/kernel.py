@@ -17,8 +17,8 @@ With ``fast_trig`` it uses its own branch-free sine and cosine (within 1 ulp), w
 vectorise the loop (:func:`_solve_kernel_simd`: about 2.5x faster, near the memory-copy
 bound); the results then agree with numpy to round-off (normwise 1e-15; elementwise more
 where outputs come from cancellation). The default kernel calls the C library's sine and
-cosine, which keeps its loop scalar (and bitwise equal to numpy). numba is imported only when this module is, which
-:func:`pim.solve` does only when it takes the fast path.
+cosine, which keeps its loop scalar (and bitwise equal to numpy). numba is imported only
+when this module is, which :func:`pim.solve` does only when it takes the fast path.
 
 Outputs: the kernel writes only the core outputs (post-impact velocities, yaw rates, impulse,
 mu0 and the two flags), at the full broadcast shape of the inputs, so a batch costs 19 doubles
