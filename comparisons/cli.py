@@ -1,5 +1,5 @@
 """Command line of the comparisons: ``pim compare``, ``pim animate``, ``pim speed-error``,
-``pim hard-cases`` (registered as ``pim.commands`` entry points in pyproject.toml)."""
+``pim hard-cases``, ``pim assumptions`` (registered as ``pim.commands`` entry points in pyproject.toml)."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import click
 
 from pim.cli import beta_option, case_argument, echo_json, eps_option, json_option
 
-__all__ = ["compare", "animate", "speed_error", "hard_cases"]
+__all__ = ["compare", "animate", "speed_error", "hard_cases", "assumptions"]
 
 out_option = click.option("--out", "out", type=click.Path(file_okay=False), default=None,
                           help="Output folder (default: out/CASE).")
@@ -30,13 +30,15 @@ def _out(out, name: str, default: str) -> Path:
 @click.option("--gif", is_flag=True, help="Also write animation.gif (slower, larger).")
 @click.option("--no-animation", is_flag=True, help="Skip the animation.")
 @click.option("--no-speed-error", is_flag=True, help="Skip the coarse speed-error sweep.")
+@click.option("--no-assumptions", is_flag=True,
+              help="Skip PIM's assumptions at typical values (finite-duration scene).")
 @click.option("--tyre-friction", "tyre", type=float, default=0.0, show_default=True,
               help="Tyre/ground friction coefficient after impact in the animation (the "
                    "ghost decelerates alike); 0 = free motion.")
 @progress_option
 @json_option
-def compare(case_name, out, eps, beta, gif, no_animation, no_speed_error, tyre, progress,
-            as_json):
+def compare(case_name, out, eps, beta, gif, no_animation, no_speed_error, no_assumptions, tyre,
+            progress, as_json):
     """Compare PIM with the pymunk simulation for CASE and write a report folder.
 
     Fits (epsilon, beta) to the measured motion when the case has some (--eps/--beta fix
@@ -53,7 +55,8 @@ def compare(case_name, out, eps, beta, gif, no_animation, no_speed_error, tyre, 
     case = load_case(case_name)
     folder = _out(out, case.name, "case")
     rep = compare_case(case, folder, eps=eps, beta=beta, gif=gif, animation=not no_animation,
-                       speed_error=not no_speed_error, tyre=tyre, progress=progress)
+                       speed_error=not no_speed_error, tyre=tyre,
+                       assumptions=not no_assumptions, progress=progress)
     if as_json:
         echo_json({"case": case.name, "out": str(folder), "eps": rep.eps, "beta": rep.beta,
                    "error": rep.error, "seconds": rep.seconds,
@@ -64,6 +67,8 @@ def compare(case_name, out, eps, beta, gif, no_animation, no_speed_error, tyre, 
     if rep.animation is not None:
         a = rep.animation
         click.echo(f"animation: {a.frames} frames, rendered at {a.render_fps:.0f} frames/s")
+    if rep.animation is not None and rep.animation.secondary_impact is not None:
+        click.echo(f"warning: {rep.animation.secondary_impact.message()}")
     click.echo(f"wrote {rep.report} ({len(rep.files)} files) in "
                f"{sum(rep.seconds.values()):.1f} s")
 
@@ -112,12 +117,16 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
         echo_json({"path": str(info.path), "gif": str(info.gif) if info.gif else None,
                    "frames": info.frames, "fps": info.fps, "size": list(info.size),
                    "render_fps": info.render_fps, "write_seconds": info.write_seconds,
-                   "max_ghost_offset_px": info.max_ghost_offset_px})
+                   "max_ghost_offset_px": info.max_ghost_offset_px,
+                   "secondary_impact": None if info.secondary_impact is None
+                   else info.secondary_impact.time})
         return
     click.echo(f"wrote {info.path}" + (f" and {info.gif}" if info.gif else "")
                + f": {info.frames} frames at {info.fps} fps, rendered at "
                  f"{info.render_fps:.0f} frames/s, encoded in {info.write_seconds:.2f} s; "
                  f"ghost offset after impact {info.max_ghost_offset_px:.2g} px")
+    if info.secondary_impact is not None:
+        click.echo(f"warning: {info.secondary_impact.message()}")
 
 
 @click.command("speed-error")
@@ -206,3 +215,50 @@ def hard_cases(out, progress, as_json):
     click.echo("")
     click.echo(study.needs_table().to_markdown())
     click.echo(f"\nwrote {', '.join(str(f) for f in files)}")
+
+
+@click.command("assumptions")
+@case_argument
+@out_option
+@eps_option
+@beta_option
+@click.option("--executor", type=click.Choice(["process", "serial"]), default="process",
+              show_default=True, help="Run the scenes on a local process pool or serially.")
+@click.option("--no-animation", is_flag=True, help="Skip the MP4 of the finite-duration scene.")
+@progress_option
+@json_option
+def assumptions(case_name, out, eps, beta, executor, no_animation, progress, as_json):
+    """Test PIM's assumptions for CASE with a finite-duration crush scene.
+
+    For each assumption (instantaneous impulse, no external forces, one impact point,
+    Newton restitution with mu = beta mu0) a scene relaxes it alone and a physical
+    parameter is swept; writes assumptions.md with PIM's errors, plots, the effective
+    (epsilon, beta) and C at typical values, one verdict per assumption, and an MP4 with
+    PIM's ghost.
+    """
+    from pim.casefile import load_case
+
+    from .assumptions import run_assumptions, write_assumptions
+
+    case = load_case(case_name)
+    folder = _out(out, case.name, "case")
+    study = run_assumptions(case, eps, beta, executor=executor, progress=progress,
+                            animation_after=None if no_animation else 2.0)
+    command = f"pim assumptions {case_name}" + (f" --out {out}" if out else "")
+    files = write_assumptions(study, folder, animation=not no_animation, progress=progress,
+                              command=command)
+    if as_json:
+        echo_json({"case": case.name, "eps": study.eps, "beta": study.beta,
+                   "verdicts": study.verdicts(), "seconds": study.seconds,
+                   "files": [str(f) for f in files],
+                   "typical": {s.key: {"value": s.typical.value, "errors": s.typical.errors,
+                                       "eps_eff": s.typical.eps_eff,
+                                       "beta_eff": s.typical.beta_eff,
+                                       "impact_point": list(map(float, s.typical.point_eff)),
+                                       "failure": s.typical.failure}
+                               for s in study.sweeps}})
+        return
+    for verdict in study.verdicts():
+        click.echo(f"- {verdict}")
+    click.echo(f"wrote {folder / 'assumptions.md'} ({len(files)} files) in "
+               f"{study.seconds:.1f} s of simulation")

@@ -11,7 +11,12 @@ file it links does):
 4. the design sheet's plots (:func:`pim.plots.write_plots`, plots/*.png);
 5. the animation (animation.mp4, optionally animation.gif);
 6. a coarse speed-against-error sweep (speed_error.csv, speed_error_pareto.csv,
-   speed_error.png); the full study is ``pim speed-error``.
+   speed_error.png); the full study is ``pim speed-error``;
+7. PIM's assumptions at typical values (the finite-duration crush scene,
+   :mod:`comparisons.assumptions`; assumptions.csv); the full study is ``pim assumptions``.
+
+The animation and the report say so when the outlines run into each other again after the
+impact (a secondary impact PIM does not model, :func:`sim.find_secondary_impact`).
 """
 
 from __future__ import annotations
@@ -48,6 +53,7 @@ class Report:
     seconds: dict = field(default_factory=dict)
     animation: object = None
     study: object = None
+    assumptions: object = None
 
     @property
     def report(self) -> Path:
@@ -117,7 +123,7 @@ def _md_table(table: Table) -> str:
 
 def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
                  beta: float | None = None, gif: bool = False, animation: bool = True,
-                 speed_error: bool = True, tyre: float = 0.0,
+                 speed_error: bool = True, tyre: float = 0.0, assumptions: bool = True,
                  progress: bool | None = None) -> Report:
     """Write the comparison report of one case to ``out_dir`` (see the module docstring).
 
@@ -134,6 +140,8 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
         Also write animation.gif.
     animation, speed_error : bool
         Include the animation and the coarse speed-error sweep.
+    assumptions : bool
+        Include PIM's assumptions at typical values (the full study: ``pim assumptions``).
     tyre : float
         Tyre friction coefficient after the impact in the animation (0: none).
     progress : bool or None
@@ -152,7 +160,8 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
     out.mkdir(parents=True, exist_ok=True)
     rep = Report(out_dir=out)
     steps = ["fit", "simulate", "plots"] + (["animation"] if animation else []) \
-        + (["speed-error"] if speed_error else []) + ["report"]
+        + (["speed-error"] if speed_error else []) \
+        + (["assumptions"] if assumptions else []) + ["report"]
     bar = tqdm(total=len(steps), desc=f"compare {case.name or ''}".strip(), unit="step",
                disable=None if progress is None else not progress)
 
@@ -232,7 +241,17 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
         rep.files.append(save_figure(plot_speed_error(study), out / "speed_error.png"))
         tick("speed-error", t0)
 
-    # 7: CSVs and report.md ---------------------------------------------------------------------
+    # 7: assumptions at typical values ----------------------------------------------------------
+    if assumptions:
+        from .assumptions import assumption_table, run_assumptions
+
+        t0 = time.perf_counter()
+        rep.assumptions = run_assumptions(case, eps, beta, executor="serial", progress=False,
+                                          animation_after=None, sweeps=False)
+        tables.append(assumption_table(rep.assumptions))
+        tick("assumptions", t0)
+
+    # 8: CSVs and report.md ---------------------------------------------------------------------
     t0 = time.perf_counter()
     for table in tables:
         rep.files.append(table.write_csv(out))
@@ -291,6 +310,9 @@ def _markdown(case, fit, eps, beta, result, simulated, sim_error, limits, tables
                   "C, the contact plane and the normal n. "
                   f"Largest offset between ghost and simulation after the impact: "
                   f"{info.max_ghost_offset_px:.2g} px.", ""]
+        if info.secondary_impact is not None:
+            lines += [f"**Plausibility:** {info.secondary_impact.message()}; the animation "
+                      f"marks it.", ""]
     elif anim_error is not None:
         lines += [f"No animation: the simulation failed ({anim_error.kind}): {anim_error}", ""]
     else:
@@ -316,6 +338,14 @@ def _markdown(case, fit, eps, beta, result, simulated, sim_error, limits, tables
         lines += ["![speed against error](speed_error.png)", "",
                   _md_table(by_name["speed_error_pareto"]),
                   "Every run: [speed_error.csv](speed_error.csv).", ""]
+    if rep.assumptions is not None:
+        lines += ["## PIM's assumptions (finite-duration crush scene)", ""]
+        lines += ["Each scene relaxes one of PIM's assumptions at a typical value (100 ms "
+                  "contact, tyre friction 0.7, the case's outlines, friction 0.5 between the "
+                  "vehicles); docs/contact-model.md has the model. The sweeps, plots and an "
+                  f"animation are `pim assumptions {name}`.", ""]
+        lines += [f"- {v}" for v in rep.assumptions.verdicts()] + [""]
+        lines += [_md_table(by_name["assumptions"])]
     lines += ["## Files", ""]
     for path in sorted({p.relative_to(out).as_posix() for p in rep.files}):
         lines.append(f"- [{path}]({path})")
