@@ -138,15 +138,19 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
 @click.option("--repeats", type=int, default=3, show_default=True,
               help="Runs per setting (the best wall time is kept).")
 @click.option("--coarse", is_flag=True, help="The report's coarse grid instead of the full one.")
+@click.option("--compliant/--no-compliant", default=True, show_default=True,
+              help="Also the finite-duration contact: pymunk over dt, solve_ivp over rtol.")
 @progress_option
 @json_option
-def speed_error(case_names, out, eps, beta, repeats, coarse, progress, as_json):
+def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, progress, as_json):
     """Sweep the simulator's dt, iterations, contact start and geometry for each CASE.
 
     Writes, per case, speed-error-CASE.md (table of the Pareto front and every run),
     speed-error-CASE.csv and speed-error-CASE.png (log-log error against wall time per
     impact, with the Pareto front, PIM's own time and error and the recommended setting).
-    "hard" stands for every bundled hard case.
+    With --compliant (default) also speed-error-compliant-CASE.md/.csv/.png: the
+    finite-duration contact stepped by pymunk over dt and integrated by solve_ivp over
+    rtol, against a tight solve_ivp reference. "hard" stands for every bundled hard case.
     """
     from pim.casefile import list_cases, load_case
     from pim.files import save_figure
@@ -176,6 +180,28 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, progress, as_json):
                          "wall_time": rec.wall_time},
                         "analytic_time": study.analytic_time,
                         "analytic_batch_time": study.analytic_batch_time})
+        if compliant:
+            from .speed_error_compliant import compliant_sweep, write_compliant_study
+
+            cstudy = compliant_sweep(case, eps, repeats=repeats, progress=progress)
+            cfiles = write_compliant_study(cstudy, folder, stem,
+                                           command=_command(name, coarse, repeats, out))
+            results[-1]["files"] += [str(f) for f in cfiles]
+            results[-1]["compliant"] = {
+                scene: None if cstudy.recommended(scene) is None else
+                {"integrator": cstudy.recommended(scene).integrator,
+                 "setting": cstudy.recommended(scene).setting,
+                 "error": cstudy.recommended(scene).error,
+                 "wall_time": cstudy.recommended(scene).wall_time}
+                for scene in dict.fromkeys(p.scene for p in cstudy.points)}
+            if not as_json:
+                for scene, rec_c in results[-1]["compliant"].items():
+                    click.echo(f"{stem} finite-duration ({scene}): " + (
+                        "no run reaches 1e-3" if rec_c is None else
+                        f"recommended {rec_c['integrator']} "
+                        f"{'dt' if rec_c['integrator'] == 'pymunk' else 'rtol'} = "
+                        f"{rec_c['setting']:.3g}: error {rec_c['error']:.1e}, "
+                        f"{rec_c['wall_time'] * 1e3:.3g} ms/impact"))
         if not as_json:
             text = ("no run reaches the target" if rec is None else
                     f"recommended dt = {rec.dt:g} s, iterations = "
