@@ -51,7 +51,7 @@ COLORS = {
     "fill2": (245, 180, 110), "edge2": (150, 70, 10),
     "fixed": (170, 170, 170), "fixed_edge": (70, 70, 70),
     "ghost": (220, 0, 200), "impulse": (210, 20, 20), "contact": (0, 140, 70),
-    "velocity": (10, 10, 10),
+    "velocity": (10, 10, 10), "warning": (180, 0, 0),
 }
 
 
@@ -134,6 +134,9 @@ class AnimationInfo:
     max_ghost_offset_px : float
         Largest distance [px] between a ghost corner and the matching simulated corner
         after the impact (0 when simulation and PIM agree).
+    secondary_impact : sim.SecondaryImpact or None
+        The outlines run into each other again after separation (a second impact PIM does
+        not model); the frames from then on say so.
     """
 
     path: Path
@@ -144,6 +147,7 @@ class AnimationInfo:
     render_seconds: float
     write_seconds: float
     max_ghost_offset_px: float
+    secondary_impact: object = None
 
     @property
     def render_fps(self) -> float:
@@ -170,13 +174,15 @@ class Renderer:
         Frame size [px]; both even (libx264 with yuv420p needs it).
     title : str
         First line of the caption.
+    secondary : sim.SecondaryImpact, optional
+        A secondary impact after separation: frames from its time on carry a warning.
     """
 
     TOP, BOTTOM, MARGIN = 54, 46, 24
 
     def __init__(self, case: pim.Case, result: pim.Result, simulated: Motion,
                  ghost: Motion | None, impulse, size=DEFAULT_SIZE, title: str = "",
-                 units: str = "si") -> None:
+                 units: str = "si", secondary=None) -> None:
         width, height = (int(s) for s in size)
         if width % 2 or height % 2 or width < 160 or height < 160:
             raise ValueError(f"size must be even and at least 160 px, got {size!r}")
@@ -185,6 +191,7 @@ class Renderer:
         self.title = title
         factor, unit = convert(1.0, "length", units)
         self.length_unit = (float(factor), unit)      # display units per metre, label
+        self.secondary = secondary
         self.times = simulated.time
         self.corners = (_corners(case.vehicle1), _corners(case.vehicle2))
         self.point = np.asarray(case.impact.point, float).reshape(2)
@@ -399,6 +406,10 @@ class Renderer:
         phase = "before impact" if t < 0 else ("impact" if t == 0 else "after impact")
         d.text((10, self.size[1] - self.BOTTOM + 10), f"t = {t:+.3f} s   {phase}",
                fill=COLORS["text"], font=self.font)
+        if self.secondary is not None and t >= self.secondary.time:
+            d.text((10, self.size[1] - self.BOTTOM + 26),
+                   f"SECONDARY IMPACT at t = {self.secondary.time:.3f} s: the outlines overlap "
+                   f"again; PIM models one impact", fill=COLORS["warning"], font=self.font)
         return img
 
     def array(self, index: int) -> np.ndarray:
@@ -472,13 +483,14 @@ def write_animation(renderer: Renderer, path, fps: int = DEFAULT_FPS, gif=None,
     return AnimationInfo(path=path, gif=gif_path, frames=len(renderer), fps=int(fps),
                          size=renderer.size, render_seconds=render,
                          write_seconds=total - render,
-                         max_ghost_offset_px=renderer.ghost_offset_px())
+                         max_ghost_offset_px=renderer.ghost_offset_px(),
+                         secondary_impact=renderer.secondary)
 
 
 def build_renderer(case: pim.Case, eps: float, beta: float, *, before: float | None = None,
                    after: float = DEFAULT_AFTER, fps: int = DEFAULT_FPS, tyre: float = 0.0,
                    ghost: bool = True, size=DEFAULT_SIZE, result: pim.Result | None = None,
-                   simulated=None, units: str = "si") -> Renderer:
+                   simulated=None, units: str = "si", title: str | None = None) -> Renderer:
     """Simulate (unless ``simulated`` is given) and prepare the frames of one collision.
 
     Parameters
@@ -502,10 +514,15 @@ def build_renderer(case: pim.Case, eps: float, beta: float, *, before: float | N
         Frame size [px].
     result : pim.Result, optional
         ``pim.solve(case, eps, beta)`` if at hand.
-    simulated : sim.SimResult, optional
+    simulated : sim.SimResult or sim.CompliantResult, optional
         A simulation with a recorded trajectory reaching ``after``.
     units : {"si", "us"}
         Units of the grid and scale bar (m or ft).
+    title : str, optional
+        Caption's first line (default: case, epsilon, beta, tyre friction).
+
+    A secondary impact after separation (:func:`sim.find_secondary_impact`) is marked in
+    the frames and reported in the returned renderer's ``secondary``.
     """
     if result is None:
         result = pim.solve(case, eps, beta)
@@ -517,10 +534,12 @@ def build_renderer(case: pim.Case, eps: float, beta: float, *, before: float | N
     gravity = simulated.settings.gravity
     sim_motion = simulated_motion(case, simulated.trajectory, times)
     ghost_motion = analytic_motion(case, result, times, tyre, gravity) if ghost else None
-    title = (f"{case.name or 'case'}:  epsilon = {eps:.4g},  beta = {beta:.4g}"
-             + (f",  tyre friction {tyre:g}" if tyre else ",  no tyre friction after impact"))
+    if title is None:
+        title = (f"{case.name or 'case'}:  epsilon = {eps:.4g},  beta = {beta:.4g}"
+                 + (f",  tyre friction {tyre:g}" if tyre else ",  no tyre friction after impact"))
+    secondary = sim.find_secondary_impact(simulated.trajectory)
     return Renderer(case, result, sim_motion, ghost_motion, simulated.impulse, size, title,
-                    units)
+                    units, secondary)
 
 
 def animate_case(case: pim.Case, eps: float, beta: float, out, *, gif=None,

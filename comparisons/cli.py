@@ -1,5 +1,6 @@
 """Command line of the comparisons: ``pim compare``, ``pim animate``, ``pim speed-error``,
-``pim hard-cases`` (registered as ``pim.commands`` entry points in pyproject.toml)."""
+``pim hard-cases``, ``pim assumptions`` (registered as ``pim.commands`` entry points in
+pyproject.toml)."""
 
 from __future__ import annotations
 
@@ -22,7 +23,7 @@ from pim.cli import (
     warnings_of,
 )
 
-__all__ = ["compare", "animate", "speed_error", "hard_cases"]
+__all__ = ["compare", "animate", "speed_error", "hard_cases", "assumptions"]
 
 out_option = click.option("--out", "out", type=click.Path(file_okay=False), default=None,
                           help="Output folder (default: out/CASE).")
@@ -54,13 +55,15 @@ compare_beta_option = click.option(
 @friction_limit_option
 @click.option("--no-animation", is_flag=True, help="Skip the animation.")
 @click.option("--no-speed-error", is_flag=True, help="Skip the coarse speed-error sweep.")
+@click.option("--no-assumptions", is_flag=True,
+              help="Skip PIM's assumptions at typical values (finite-duration scene).")
 @click.option("--tyre-friction", "tyre", type=float, default=0.0, show_default=True,
               help="Tyre/ground friction coefficient after impact in the animation (the "
                    "ghost decelerates alike); 0 = free motion.")
 @progress_option
 @json_option
 def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
-            no_speed_error, tyre, progress, as_json):
+            no_speed_error, no_assumptions, tyre, progress, as_json):
     """Write a reconstruction report of CASE to a folder (report.md, CSVs, PNGs, MP4).
 
     The report opens with the results a reconstruction hands on (delta-V, PDOF, post-impact
@@ -83,7 +86,8 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
     solve_with_options(case, 0.0, 1.0)      # exits 1 with one line when there is no impact
     started = time.perf_counter()
     rep = compare_case(case, folder, eps=eps, beta=beta, gif=gif, animation=not no_animation,
-                       speed_error=not no_speed_error, tyre=tyre, progress=progress,
+                       speed_error=not no_speed_error, tyre=tyre,
+                       assumptions=not no_assumptions, progress=progress,
                        units=units, friction_limit=friction_limit)
     if as_json:
         echo_json({"case": case.name, "out": str(folder), "eps": rep.eps, "beta": rep.beta,
@@ -98,6 +102,8 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
         click.echo(f"animation: {a.frames} frames, rendered at {a.render_fps:.0f} frames/s")
     for text in warnings_of(case, pim.solve(case, rep.eps, rep.beta), friction_limit):
         click.echo(f"warning: {text}", err=True)
+    if rep.animation is not None and rep.animation.secondary_impact is not None:
+        click.echo(f"warning: {rep.animation.secondary_impact.message()}", err=True)
     click.echo(f"wrote {rep.report} ({len(rep.files)} files) in "
                f"{time.perf_counter() - started:.1f} s")
 
@@ -147,12 +153,16 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
         echo_json({"path": str(info.path), "gif": str(info.gif) if info.gif else None,
                    "frames": info.frames, "fps": info.fps, "size": list(info.size),
                    "render_fps": info.render_fps, "write_seconds": info.write_seconds,
-                   "max_ghost_offset_px": info.max_ghost_offset_px})
+                   "max_ghost_offset_px": info.max_ghost_offset_px,
+                   "secondary_impact": None if info.secondary_impact is None
+                   else info.secondary_impact.time})
         return
     click.echo(f"wrote {info.path}" + (f" and {info.gif}" if info.gif else "")
                + f": {info.frames} frames at {info.fps} fps, rendered at "
                  f"{info.render_fps:.0f} frames/s, encoded in {info.write_seconds:.2f} s; "
                  f"ghost offset after impact {info.max_ghost_offset_px:.2g} px")
+    if info.secondary_impact is not None:
+        click.echo(f"warning: {info.secondary_impact.message()}")
 
 
 @click.command("speed-error")
@@ -164,15 +174,19 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
 @click.option("--repeats", type=int, default=3, show_default=True,
               help="Runs per setting (the best wall time is kept).")
 @click.option("--coarse", is_flag=True, help="The report's coarse grid instead of the full one.")
+@click.option("--compliant/--no-compliant", default=True, show_default=True,
+              help="Also the finite-duration contact: pymunk over dt, solve_ivp over rtol.")
 @progress_option
 @json_option
-def speed_error(case_names, out, eps, beta, repeats, coarse, progress, as_json):
+def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, progress, as_json):
     """Sweep the simulator's dt, iterations, contact start and geometry for each CASE.
 
     Writes, per case, speed-error-CASE.md (table of the Pareto front and every run),
     speed-error-CASE.csv and speed-error-CASE.png (log-log error against wall time per
     impact, with the Pareto front, PIM's own time and error and the recommended setting).
-    "hard" stands for every bundled hard case.
+    With --compliant (default) also speed-error-compliant-CASE.md/.csv/.png: the
+    finite-duration contact stepped by pymunk over dt and integrated by solve_ivp over
+    rtol, against a tight solve_ivp reference. "hard" stands for every bundled hard case.
     """
     from pim.io.casefile import list_cases, load_case
     from pim.io.files import save_figure
@@ -202,6 +216,28 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, progress, as_json):
                          "wall_time": rec.wall_time},
                         "analytic_time": study.analytic_time,
                         "analytic_batch_time": study.analytic_batch_time})
+        if compliant:
+            from .speed_error_compliant import compliant_sweep, write_compliant_study
+
+            cstudy = compliant_sweep(case, eps, repeats=repeats, progress=progress)
+            cfiles = write_compliant_study(cstudy, folder, stem,
+                                           command=_command(name, coarse, repeats, out))
+            results[-1]["files"] += [str(f) for f in cfiles]
+            results[-1]["compliant"] = {
+                scene: None if cstudy.recommended(scene) is None else
+                {"integrator": cstudy.recommended(scene).integrator,
+                 "setting": cstudy.recommended(scene).setting,
+                 "error": cstudy.recommended(scene).error,
+                 "wall_time": cstudy.recommended(scene).wall_time}
+                for scene in dict.fromkeys(p.scene for p in cstudy.points)}
+            if not as_json:
+                for scene, rec_c in results[-1]["compliant"].items():
+                    click.echo(f"{stem} finite-duration ({scene}): " + (
+                        "no run reaches 1e-3" if rec_c is None else
+                        f"recommended {rec_c['integrator']} "
+                        f"{'dt' if rec_c['integrator'] == 'pymunk' else 'rtol'} = "
+                        f"{rec_c['setting']:.3g}: error {rec_c['error']:.1e}, "
+                        f"{rec_c['wall_time'] * 1e3:.3g} ms/impact"))
         if not as_json:
             text = ("no run reaches the target" if rec is None else
                     f"recommended dt = {rec.dt:g} s, iterations = "
@@ -245,3 +281,50 @@ def hard_cases(out, units, progress, as_json):
     click.echo("")
     click.echo(study.needs_table().to_markdown())
     click.echo(f"\nwrote {', '.join(str(f) for f in files)}")
+
+
+@click.command("assumptions")
+@case_argument
+@out_option
+@eps_option
+@beta_option
+@click.option("--executor", type=click.Choice(["process", "serial"]), default="process",
+              show_default=True, help="Run the scenes on a local process pool or serially.")
+@click.option("--no-animation", is_flag=True, help="Skip the MP4 of the finite-duration scene.")
+@progress_option
+@json_option
+def assumptions(case_name, out, eps, beta, executor, no_animation, progress, as_json):
+    """Test PIM's assumptions for CASE with a finite-duration crush scene.
+
+    For each assumption (instantaneous impulse, no external forces, one impact point,
+    Newton restitution with mu = beta mu0) a scene relaxes it alone and a physical
+    parameter is swept; writes assumptions.md with PIM's errors, plots, the effective
+    (epsilon, beta) and C at typical values, one verdict per assumption, and an MP4 with
+    PIM's ghost.
+    """
+    from pim.io.casefile import load_case
+
+    from .assumptions import run_assumptions, write_assumptions
+
+    case = load_case(case_name)
+    folder = _out(out, case.name, "case")
+    study = run_assumptions(case, eps, beta, executor=executor, progress=progress,
+                            animation_after=None if no_animation else 2.0)
+    command = f"pim assumptions {case_name}" + (f" --out {out}" if out else "")
+    files = write_assumptions(study, folder, animation=not no_animation, progress=progress,
+                              command=command)
+    if as_json:
+        echo_json({"case": case.name, "eps": study.eps, "beta": study.beta,
+                   "verdicts": study.verdicts(), "seconds": study.seconds,
+                   "files": [str(f) for f in files],
+                   "typical": {s.key: {"value": s.typical.value, "errors": s.typical.errors,
+                                       "eps_eff": s.typical.eps_eff,
+                                       "beta_eff": s.typical.beta_eff,
+                                       "impact_point": list(map(float, s.typical.point_eff)),
+                                       "failure": s.typical.failure}
+                               for s in study.sweeps}})
+        return
+    for verdict in study.verdicts():
+        click.echo(f"- {verdict}")
+    click.echo(f"wrote {folder / 'assumptions.md'} ({len(files)} files) in "
+               f"{study.seconds:.1f} s of simulation")

@@ -15,6 +15,12 @@ links does. A rerun into the same folder removes the files of the earlier run th
 does not write (the folder's ``.pim-compare-files`` lists them) and temporary files left by
 killed runs, so the folder never mixes runs. The plots render in a forked worker process
 while the animation and the sweep run in this one (``parallel=False`` for one process).
+
+The appendix also summarises PIM's assumptions at typical values (the finite-duration crush
+scene, :mod:`comparisons.assumptions`; assumptions.csv); the full study is
+``pim assumptions``. The animation and the report say so when the outlines run into each
+other again after the impact (a secondary impact PIM does not model,
+:func:`sim.find_secondary_impact`).
 """
 
 from __future__ import annotations
@@ -38,6 +44,7 @@ from pim.plotting.tables import summarize
 from sim.error_measure import KIND_OF_UNIT, compare_results, impact_error
 
 from .animation import build_renderer, write_animation
+from .assumptions import assumption_table, run_assumptions
 from .speed_error import COARSE, pareto_table, plot_speed_error, study_table, sweep
 from .tables import Table, fmt_error
 
@@ -64,6 +71,7 @@ class Report:
     seconds: dict = field(default_factory=dict)
     animation: object = None
     study: object = None
+    assumptions: object = None
 
     @property
     def report(self) -> Path:
@@ -244,7 +252,7 @@ def _render_plots(case, fit, folder, units):
 
 def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
                  beta: float | None = None, gif: bool = False, animation: bool = True,
-                 speed_error: bool = True, tyre: float = 0.0,
+                 speed_error: bool = True, tyre: float = 0.0, assumptions: bool = True,
                  progress: bool | None = None, units: str | None = None,
                  parallel: bool = True, uncertainty_samples: int = 20_000,
                  friction_limit: float | None = None) -> Report:
@@ -263,6 +271,8 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
         Also write animation.gif.
     animation, speed_error : bool
         Include the animation and the coarse speed-error sweep.
+    assumptions : bool
+        Include PIM's assumptions at typical values (the full study: ``pim assumptions``).
     tyre : float
         Tyre friction coefficient after the impact in the animation (0: none).
     progress : bool or None
@@ -289,7 +299,8 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
     _stale_files(out)
     rep = Report(out_dir=out)
     steps = ["fit", "simulate", "plots"] + (["animation"] if animation else []) \
-        + (["speed-error"] if speed_error else []) + ["report"]
+        + (["speed-error"] if speed_error else []) \
+        + (["assumptions"] if assumptions else []) + ["report"]
     bar = tqdm(total=len(steps), desc=f"compare {case.name or ''}".strip(), unit="step",
                disable=None if progress is None else not progress)
 
@@ -405,6 +416,14 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
     rep.seconds["plots CPU"] = plot_cpu
     bar.update(1)
 
+    # Assumptions at typical values ---------------------------------------------------------
+    if assumptions:
+        t0 = time.perf_counter()
+        rep.assumptions = run_assumptions(case, eps, beta, executor="serial", progress=False,
+                                          animation_after=None, sweeps=False)
+        tables.append(assumption_table(rep.assumptions))
+        tick("assumptions", t0)
+
     # CSVs and report.md --------------------------------------------------------------------
     t0 = time.perf_counter()
     for table in tables:
@@ -494,6 +513,9 @@ def _markdown(case, fit, eps, beta, sources, result, simulated, sim_error, limit
                   "C, the contact plane and the normal n. "
                   f"Largest offset between ghost and simulation after the impact: "
                   f"{info.max_ghost_offset_px:.2g} px.", ""]
+        if info.secondary_impact is not None:
+            lines += [f"**Plausibility:** {info.secondary_impact.message()}; the animation "
+                      f"marks it.", ""]
     elif anim_error is not None:
         lines += [f"No animation: the simulation failed ({anim_error.kind}): {anim_error}", ""]
     else:
@@ -528,6 +550,14 @@ def _markdown(case, fit, eps, beta, sources, result, simulated, sim_error, limit
         lines += ["![speed against error](speed_error.png)", "",
                   _md_table(by_name["speed_error_pareto"]),
                   "Every run: [speed_error.csv](speed_error.csv).", ""]
+    if rep.assumptions is not None:
+        lines += ["## PIM's assumptions (finite-duration crush scene)", ""]
+        lines += ["Each scene relaxes one of PIM's assumptions at a typical value (100 ms "
+                  "contact, tyre friction 0.7, the case's outlines, friction 0.5 between the "
+                  "vehicles); docs/contact-model.md has the model. The sweeps, plots and an "
+                  f"animation are `pim assumptions {name}`.", ""]
+        lines += [f"- {v}" for v in rep.assumptions.verdicts()] + [""]
+        lines += [_md_table(by_name["assumptions"])]
     lines += ["## Files", ""]
     for path in sorted({p.relative_to(out).as_posix() for p in rep.files} | {"report.md"}):
         lines.append(f"- [{path}]({path})")

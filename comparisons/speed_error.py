@@ -42,7 +42,7 @@ from .tables import Table, fmt_error
 
 __all__ = ["SweepPoint", "SpeedErrorStudy", "sweep", "DTS", "ITERATIONS", "STARTS",
            "CONTACTS", "TARGET", "COARSE", "plot_speed_error", "study_table",
-           "pareto_table", "analytic_timing"]
+           "pareto_table", "analytic_timing", "pareto_front", "ERROR_FLOOR"]
 
 #: Time steps [s] of the full study.
 DTS = (1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5)
@@ -137,12 +137,7 @@ class SpeedErrorStudy:
 
     def pareto(self) -> list[SweepPoint]:
         """Runs not beaten on both wall time and error, fastest first."""
-        front, best = [], math.inf
-        for p in sorted(self.succeeded, key=lambda p: (p.wall_time, p.error)):
-            if p.error < best:
-                front.append(p)
-                best = p.error
-        return front
+        return pareto_front(self.succeeded)
 
     def recommended(self) -> SweepPoint | None:
         """The setting to use, a run on the Pareto front (module docstring), or None if no
@@ -168,6 +163,16 @@ class SpeedErrorStudy:
         if not pts:
             return None
         return sorted(pts, key=lambda p: (-p.dt, p.iterations_used, p.wall_time))[0]
+
+
+def pareto_front(points) -> list:
+    """Points (with ``wall_time`` and ``error``) not beaten on both, fastest first."""
+    front, best = [], math.inf
+    for p in sorted(points, key=lambda p: (p.wall_time, p.error)):
+        if p.error < best:
+            front.append(p)
+            best = p.error
+    return front
 
 
 def analytic_timing(case: pim.Case, eps: float, beta: float, repeats: int = 20):
