@@ -141,6 +141,8 @@ class Runout:
     rest_heading : float [rad]
     stop_time : float [s] (``max_time`` when it did not stop)
     stopped : bool, False when the vehicle still moved after ``max_time``
+    interpolant : callable t -> states (6, ...) or None, solve_ivp's dense output (only
+        with ``dense_output=True``)
     """
 
     time: np.ndarray
@@ -149,6 +151,7 @@ class Runout:
     rest_heading: float
     stop_time: float
     stopped: bool
+    interpolant: object = None
 
     @property
     def distance(self) -> float:
@@ -193,7 +196,7 @@ def _stop_measure(state, reach) -> np.ndarray:
 
 def runout(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *,
            max_time=MAX_TIME, stop_speed=None, rtol=1e-8, atol=1e-10,
-           method="DOP853") -> Runout:
+           method="DOP853", dense_output=False) -> Runout:
     """Integrate one vehicle from its post-impact state to rest with scipy ``solve_ivp``.
 
     Parameters
@@ -206,7 +209,7 @@ def runout(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *,
         [s] simulated time after which the vehicle is flagged as not stopped.
     stop_speed : float, optional
         [m/s]; default ``regularisation / 5``.
-    rtol, atol, method
+    rtol, atol, method, dense_output
         Passed to ``scipy.integrate.solve_ivp``.
     """
     from scipy.integrate import solve_ivp
@@ -227,11 +230,11 @@ def runout(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *,
     event.terminal = True
     event.direction = -1
     sol = solve_ivp(lambda t, y: runout_rhs(y, *args), (0.0, max_time), y0, method=method,
-                    rtol=rtol, atol=atol, events=event)
+                    rtol=rtol, atol=atol, events=event, dense_output=dense_output)
     stopped = sol.status == 1
     states = sol.y.T
     return Runout(sol.t, states, states[-1, :2].copy(), float(states[-1, 2]),
-                  float(sol.t[-1]), bool(stopped))
+                  float(sol.t[-1]), bool(stopped), sol.sol)
 
 
 def runout_many(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *,
