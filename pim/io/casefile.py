@@ -38,13 +38,14 @@ import numpy as np
 
 from ..model.case import Case, Impact, Measured, Vehicle
 from .brach import cg_from_brach, heading_from_theta
+from .evidence_table import parse_evidence, parse_unknown
 from .uncertainty_table import parse_uncertainty
 from .units import parse, registry
 
 __all__ = ["load_case", "list_cases", "parse_case"]
 
 _TOP = {"name", "description", "source", "convention", "vehicle1", "vehicle2", "impact",
-        "measured", "uncertainty"}
+        "measured", "uncertainty", "evidence", "unknown"}
 _VEHICLE = {"mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
             "length", "width", "fixed", "cg", "heading", "theta", "phi", "d"}
 _IMPACT = {"point", "normal_angle", "restitution", "beta"}
@@ -195,7 +196,9 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
             raise ValueError(f"{key} must be a string")
     return Case(vehicle1=vehicles[0], vehicle2=vehicles[1], impact=impact,
                 measured=_measured(data.get("measured")), name=name, description=description,
-                uncertainty=_uncertainty(data.get("uncertainty")))
+                uncertainty=_uncertainty(data.get("uncertainty")),
+                evidence=parse_evidence(data.get("evidence")),
+                unknown=parse_unknown(data.get("unknown")))
 
 
 def _bundled() -> dict[str, object]:

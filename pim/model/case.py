@@ -241,6 +241,11 @@ class Case:
     uncertainty : pim.model.distributions.UncertaintyTable, optional
         Distributions of uncertain inputs (the case file's ``[uncertainty]`` table), used by
         :func:`pim.uncertainty`.
+    evidence : pim.model.evidence.Evidence, optional
+        Rest positions, wheel states, friction (the ``[evidence]`` table), for
+        :mod:`pim.analysis.reconstruction`.
+    unknown : dict, optional
+        Dotted key -> (low, high) bounds [SI] of what a reconstruction solves for.
     """
 
     vehicle1: Vehicle
@@ -250,6 +255,8 @@ class Case:
     name: str = ""
     description: str = ""
     uncertainty: object | None = None  # pim.model.distributions.UncertaintyTable
+    evidence: object | None = None  # pim.model.evidence.Evidence (post-impact evidence)
+    unknown: dict | None = None  # dotted key -> (low, high) SI bounds, the [unknown] table
 
     def __post_init__(self) -> None:
         for name, kind in (("vehicle1", Vehicle), ("vehicle2", Vehicle), ("impact", Impact)):
