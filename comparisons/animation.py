@@ -28,6 +28,7 @@ from PIL import Image, ImageDraw, ImageFont
 import pim
 import sim
 from pim.io.files import atomic_path
+from pim.io.units import convert
 from pim.model.geometry import outline_corners
 
 from .motion import Motion, analytic_motion, simulated_motion
@@ -174,13 +175,16 @@ class Renderer:
     TOP, BOTTOM, MARGIN = 54, 46, 24
 
     def __init__(self, case: pim.Case, result: pim.Result, simulated: Motion,
-                 ghost: Motion | None, impulse, size=DEFAULT_SIZE, title: str = "") -> None:
+                 ghost: Motion | None, impulse, size=DEFAULT_SIZE, title: str = "",
+                 units: str = "si") -> None:
         width, height = (int(s) for s in size)
         if width % 2 or height % 2 or width < 160 or height < 160:
             raise ValueError(f"size must be even and at least 160 px, got {size!r}")
         self.case, self.result, self.sim, self.ghost = case, result, simulated, ghost
         self.size = (width, height)
         self.title = title
+        factor, unit = convert(1.0, "length", units)
+        self.length_unit = (float(factor), unit)      # display units per metre, label
         self.times = simulated.time
         self.corners = (_corners(case.vehicle1), _corners(case.vehicle2))
         self.point = np.asarray(case.impact.point, float).reshape(2)
@@ -279,9 +283,11 @@ class Renderer:
         width, height = self.size
         img = Image.new("RGB", self.size, COLORS["background"])
         d = ImageDraw.Draw(img)
-        # grid every 1, 2, 5 or 10 m: lines at least 40 px apart
-        step = next(s for s in (0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500)
-                    if s * self.scale >= 40)
+        # grid every 1, 2, 5 or 10 display units (m or ft): lines at least 40 px apart
+        per_m, unit = self.length_unit
+        shown = next(s for s in (0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000)
+                     if s / per_m * self.scale >= 40)
+        step = shown / per_m
         lo = self.centre - np.array([width, height]) / 2 / self.scale
         hi = self.centre + np.array([width, height]) / 2 / self.scale
         for x in np.arange(math.floor(lo[0] / step) * step, hi[0] + step, step):
@@ -302,7 +308,8 @@ class Renderer:
         bar = step * self.scale
         y0 = height - 18
         d.line([(width - 30 - bar, y0), (width - 30, y0)], fill=COLORS["text"], width=3)
-        d.text((width - 30 - bar, y0 - 18), f"{step:g} m", fill=COLORS["text"], font=self.small)
+        d.text((width - 30 - bar, y0 - 18), f"{shown:g} {unit}", fill=COLORS["text"],
+               font=self.small)
         # caption
         d.rectangle([0, 0, width, self.TOP - 4], fill=(248, 248, 248))
         d.text((10, 6), self.title, fill=COLORS["text"], font=self.font)
@@ -471,7 +478,7 @@ def write_animation(renderer: Renderer, path, fps: int = DEFAULT_FPS, gif=None,
 def build_renderer(case: pim.Case, eps: float, beta: float, *, before: float | None = None,
                    after: float = DEFAULT_AFTER, fps: int = DEFAULT_FPS, tyre: float = 0.0,
                    ghost: bool = True, size=DEFAULT_SIZE, result: pim.Result | None = None,
-                   simulated=None) -> Renderer:
+                   simulated=None, units: str = "si") -> Renderer:
     """Simulate (unless ``simulated`` is given) and prepare the frames of one collision.
 
     Parameters
@@ -497,6 +504,8 @@ def build_renderer(case: pim.Case, eps: float, beta: float, *, before: float | N
         ``pim.solve(case, eps, beta)`` if at hand.
     simulated : sim.SimResult, optional
         A simulation with a recorded trajectory reaching ``after``.
+    units : {"si", "us"}
+        Units of the grid and scale bar (m or ft).
     """
     if result is None:
         result = pim.solve(case, eps, beta)
@@ -510,7 +519,8 @@ def build_renderer(case: pim.Case, eps: float, beta: float, *, before: float | N
     ghost_motion = analytic_motion(case, result, times, tyre, gravity) if ghost else None
     title = (f"{case.name or 'case'}:  epsilon = {eps:.4g},  beta = {beta:.4g}"
              + (f",  tyre friction {tyre:g}" if tyre else ",  no tyre friction after impact"))
-    return Renderer(case, result, sim_motion, ghost_motion, simulated.impulse, size, title)
+    return Renderer(case, result, sim_motion, ghost_motion, simulated.impulse, size, title,
+                    units)
 
 
 def animate_case(case: pim.Case, eps: float, beta: float, out, *, gif=None,

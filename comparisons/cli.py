@@ -4,11 +4,23 @@
 from __future__ import annotations
 
 import sys
+import time
 from pathlib import Path
 
 import click
 
-from pim.cli import beta_option, case_argument, echo_json, eps_option, json_option
+import pim
+from pim.cli import (
+    beta_option,
+    case_argument,
+    echo_json,
+    eps_option,
+    friction_limit_option,
+    json_option,
+    solve_with_options,
+    units_option,
+    warnings_of,
+)
 
 __all__ = ["compare", "animate", "speed_error", "hard_cases"]
 
@@ -22,12 +34,24 @@ def _out(out, name: str, default: str) -> Path:
     return Path(out) if out is not None else Path("out") / (name or default)
 
 
+compare_eps_option = click.option(
+    "--eps", type=float, default=None,
+    help="Coefficient of restitution epsilon in [0, 1] (default: fitted to the case's "
+         "measured motion, else the case's impact.restitution). With --beta: no fit.")
+compare_beta_option = click.option(
+    "--beta", type=float, default=None,
+    help="Fraction of the critical impulse ratio, mu = beta mu0 (default: fitted to the "
+         "case's measured motion, else the case's impact.beta, else 1). With --eps: no fit.")
+
+
 @click.command()
 @case_argument
 @out_option
-@eps_option
-@beta_option
+@compare_eps_option
+@compare_beta_option
 @click.option("--gif", is_flag=True, help="Also write animation.gif (slower, larger).")
+@units_option
+@friction_limit_option
 @click.option("--no-animation", is_flag=True, help="Skip the animation.")
 @click.option("--no-speed-error", is_flag=True, help="Skip the coarse speed-error sweep.")
 @click.option("--tyre-friction", "tyre", type=float, default=0.0, show_default=True,
@@ -35,37 +59,47 @@ def _out(out, name: str, default: str) -> Path:
                    "ghost decelerates alike); 0 = free motion.")
 @progress_option
 @json_option
-def compare(case_name, out, eps, beta, gif, no_animation, no_speed_error, tyre, progress,
-            as_json):
-    """Compare PIM with the pymunk simulation for CASE and write a report folder.
+def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
+            no_speed_error, tyre, progress, as_json):
+    """Write a reconstruction report of CASE to a folder (report.md, CSVs, PNGs, MP4).
 
-    Fits (epsilon, beta) to the measured motion when the case has some (--eps/--beta fix
-    them), solves, simulates, and writes report.md with the inputs, the fit, the
-    analytic-vs-simulated table, the design sheet's plots, an MP4 animation and a coarse
-    speed-against-error summary, plus a CSV of every table.
+    The report opens with the results a reconstruction hands on (delta-V, PDOF, post-impact
+    speeds and yaw rates, energy loss and its crush split, epsilon and beta with their source
+    and, with an [uncertainty] table, 5-95 % intervals), then the coefficients, inputs,
+    plots and animation; the appendix compares PIM with a pymunk simulation and sweeps the
+    simulator's speed against its error. (epsilon, beta) are fitted to the measured motion
+    when the case has some; --eps and --beta together skip the fit (one of them: the other
+    is fitted). Exit code 1 with one line when the vehicles do not approach at C.
     """
     from pim.io.casefile import load_case
+    from pim.io.files import writable_folder
 
     from .report import compare_case
 
     if tyre < 0:
         raise ValueError(f"--tyre-friction must be >= 0, got {tyre}")
     case = load_case(case_name)
-    folder = _out(out, case.name, "case")
+    folder = writable_folder(_out(out, case.name, "case"), "--out")
+    solve_with_options(case, 0.0, 1.0)      # exits 1 with one line when there is no impact
+    started = time.perf_counter()
     rep = compare_case(case, folder, eps=eps, beta=beta, gif=gif, animation=not no_animation,
-                       speed_error=not no_speed_error, tyre=tyre, progress=progress)
+                       speed_error=not no_speed_error, tyre=tyre, progress=progress,
+                       units=units, friction_limit=friction_limit)
     if as_json:
         echo_json({"case": case.name, "out": str(folder), "eps": rep.eps, "beta": rep.beta,
                    "error": rep.error, "seconds": rep.seconds,
                    "files": sorted(str(p) for p in rep.files)})
         return
-    click.echo(f"{case.name}: epsilon = {rep.eps:.6g}, beta = {rep.beta:.6g}; "
-               f"pymunk vs PIM error {rep.error:.2e}")
+    error = ("simulation failed" if rep.error != rep.error
+             else f"pymunk vs PIM error {rep.error:.2e}")
+    click.echo(f"{case.name}: epsilon = {rep.eps:.6g}, beta = {rep.beta:.6g}; {error}")
     if rep.animation is not None:
         a = rep.animation
         click.echo(f"animation: {a.frames} frames, rendered at {a.render_fps:.0f} frames/s")
+    for text in warnings_of(case, pim.solve(case, rep.eps, rep.beta), friction_limit):
+        click.echo(f"warning: {text}", err=True)
     click.echo(f"wrote {rep.report} ({len(rep.files)} files) in "
-               f"{sum(rep.seconds.values()):.1f} s")
+               f"{time.perf_counter() - started:.1f} s")
 
 
 @click.command()
@@ -86,9 +120,10 @@ def compare(case_name, out, eps, beta, gif, no_animation, no_speed_error, tyre, 
 @click.option("--tyre-friction", "tyre", type=float, default=0.0, show_default=True,
               help="Tyre/ground friction coefficient after the impact (ghost alike).")
 @click.option("--no-ghost", is_flag=True, help="Do not draw PIM's answer as a ghost.")
+@units_option
 @progress_option
 @json_option
-def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_ghost,
+def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_ghost, units,
             progress, as_json):
     """Animate CASE: pymunk simulation solid, PIM's post-impact motion as a ghost (MP4)."""
     import sim
@@ -104,7 +139,7 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
     try:
         info = animate_case(case, eps_, beta_, path, gif=gif, progress=progress, fps=fps,
                             before=before, after=after, size=size, tyre=tyre,
-                            ghost=not no_ghost)
+                            ghost=not no_ghost, units=units or case.units)
     except sim.SimulationError as exc:
         click.echo(f"simulation failed ({exc.kind}): {exc}", err=True)
         sys.exit(1)
@@ -189,20 +224,24 @@ def _command(name: str, coarse: bool, repeats: int, out) -> str:
 @click.command("hard-cases")
 @click.option("--out", "out", type=click.Path(file_okay=False), default=None,
               help="Output folder (default: out/hard-cases).")
+@click.option("--units", type=click.Choice(["si", "us"]), default="si", show_default=True,
+              help="Units of the results table (the hard-case files are written in SI).")
 @progress_option
 @json_option
-def hard_cases(out, progress, as_json):
+def hard_cases(out, units, progress, as_json):
     """Run every bundled hard case through PIM and the simulator; table of results, errors,
     and the dt / iterations the simulator needs to reach 1e-6 (or why it cannot)."""
+    from pim.io.files import writable_folder
+
     from .hard_cases import run_hard_cases, write_hard_cases
 
-    folder = Path(out) if out else Path("out") / "hard-cases"
+    folder = writable_folder(Path(out) if out else Path("out") / "hard-cases", "--out")
     study = run_hard_cases(progress=progress)
-    files = write_hard_cases(study, folder)
+    files = write_hard_cases(study, folder, units)
     if as_json:
         echo_json({"files": [str(f) for f in files], "cases": study.to_json()})
         return
-    click.echo(study.results_table().to_markdown())
+    click.echo(study.results_table(units).to_markdown())
     click.echo("")
     click.echo(study.needs_table().to_markdown())
     click.echo(f"\nwrote {', '.join(str(f) for f in files)}")

@@ -19,11 +19,12 @@ from .analysis.reconstruction import post_impact_motion
 from .analysis.sensitivity import sensitivity
 from .io.casefile import list_cases, load_case
 from .model.case import Case, Impact, Measured, Vehicle
+from .model.friction_cap import solve_capped
 from .model.result import Result
 from .model.solver import solve
 
 __all__ = ["Case", "Impact", "Measured", "Vehicle", "Result", "solve", "load_case",
            "list_cases", "fit", "FitResult", "sensitivity", "uncertainty",
-           "UncertaintyResult",
+           "UncertaintyResult", "solve_capped",
            "post_impact_motion"]
 __version__ = "0.1.0"

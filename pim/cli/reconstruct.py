@@ -37,6 +37,7 @@ def reconstruct(case_name, out, units, as_json):
     from ..io.units import convert
 
     case = load_case(case_name)
+    units = units or case.units
     post = post_impact_motion(case)
     rows = []  # (dotted name, kind, value, sigma) in SI
     for i, fit in post.runouts.items():
