@@ -4,7 +4,7 @@ rest states the forward model generated, the unreachable and non-stopping flags,
 import numpy as np
 import pytest
 
-from pim.analysis.runout_fit import fit_runout, wrap_angle
+from pim.analysis.runout_fit import fit_runout
 from pim.model.runout import RunoutVehicle, runout
 
 CAR = RunoutVehicle(1400.0, 2300.0, 2.6, 1.5, 1.1, 0.75)
@@ -63,8 +63,3 @@ def test_bad_evidence_names_the_field(kwargs, field):
     rest_position, rest_heading = args.pop("rest_position"), args.pop("rest_heading")
     with pytest.raises(ValueError, match=field):
         fit_runout(CAR, [0.0, 0.0], 0.0, rest_position, rest_heading, **args)
-
-
-def test_wrap_angle():
-    np.testing.assert_allclose(wrap_angle([0.0, np.pi, -np.pi, 3 * np.pi / 2, 7.0]),
-                               [0.0, np.pi, np.pi, -np.pi / 2, 7.0 - 2 * np.pi])

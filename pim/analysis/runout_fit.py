@@ -24,14 +24,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model.numbers import real_array
+from ..model.pdof import wrap_angle
 from ..model.runout import MAX_TIME, Runout, RunoutVehicle, runout
 
-__all__ = ["RunoutFit", "fit_runout", "wrap_angle", "path_distance"]
-
-
-def wrap_angle(angle) -> np.ndarray:
-    """``angle`` [rad] wrapped to (-pi, pi]."""
-    return np.pi - np.mod(np.pi - np.asarray(angle, dtype=float), 2 * np.pi)
+__all__ = ["RunoutFit", "fit_runout", "path_distance"]
 
 
 @dataclass(frozen=True)
