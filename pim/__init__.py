@@ -15,6 +15,7 @@ named after what they do; the modules that hold them after what they compute
 # Everything here needs only numpy; scipy, numba and matplotlib load on first use.
 from .analysis.fitting import FitResult, fit
 from .analysis.montecarlo import UncertaintyResult, uncertainty
+from .analysis.reconstruction import post_impact_motion
 from .analysis.sensitivity import sensitivity
 from .io.casefile import list_cases, load_case
 from .model.case import Case, Impact, Measured, Vehicle
@@ -24,5 +25,6 @@ from .model.solver import solve
 
 __all__ = ["Case", "Impact", "Measured", "Vehicle", "Result", "solve", "load_case",
            "list_cases", "fit", "FitResult", "sensitivity", "uncertainty",
-           "UncertaintyResult", "solve_capped"]
+           "UncertaintyResult", "solve_capped",
+           "post_impact_motion"]
 __version__ = "0.1.0"

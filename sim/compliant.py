@@ -44,11 +44,11 @@ from .compliant_setup import (
     reversal,
 )
 from .contact_law import normal_force, permanent_crush, tangential_force, tangential_step
+from .contact_tyres import tyre_force
 from .failures import SimulationError
 from .overlap import outline_overlap, overlap_area
 from .result import Trajectory
 from .secondary import find_secondary_impact
-from .tyres import tyre_force
 
 __all__ = ["simulate_compliant", "step_size", "outline_start"]
 

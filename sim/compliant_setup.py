@@ -29,10 +29,10 @@ import pim
 from pim.model import geometry
 
 from .contact_law import check_fraction, check_positive, contact_duration_estimate
+from .contact_tyres import TYRE_MODES, wheels_from_outline
 from .overlap import place
 from .result import Trajectory
 from .scene import outline_corners
-from .tyres import TYRE_MODES, wheel_positions
 
 __all__ = ["CompliantSettings", "CompliantProblem", "CompliantResult", "ContactHistory",
            "build_problem", "point_contact", "rotate", "GEOMETRIES", "DEFAULT_STIFFNESS",
@@ -248,8 +248,8 @@ def build_problem(case: pim.Case, eps, stiffness, friction=0.0, geometry="point"
     state0 = np.array([cg1[0], cg1[1], h1, vel1[0], vel1[1], w1,
                        cg2[0], cg2[1], h2, vel2[0], vel2[1], w2])
     g = settings.gravity
-    wheels1 = wheel_positions(v1.length, v1.width, math.sqrt(i1 / m1))
-    wheels2 = None if fixed2 else wheel_positions(v2.length, v2.width, math.sqrt(i2 / m2))
+    wheels1 = wheels_from_outline(v1.length, v1.width, math.sqrt(i1 / m1))
+    wheels2 = None if fixed2 else wheels_from_outline(v2.length, v2.width, math.sqrt(i2 / m2))
     speeds = [np.hypot(*vel1), 0.0 if fixed2 else np.hypot(*vel2)]
     kt = settings.tangential_stiffness or stiffness
     return CompliantProblem(

@@ -41,9 +41,9 @@ from .compliant_setup import (
     reversal,
 )
 from .contact_law import normal_force, normal_stiffness, permanent_crush
+from .contact_tyres import tyre_force
 from .failures import SimulationError
 from .result import Trajectory
-from .tyres import tyre_force
 
 __all__ = ["reference_compliant"]
 

@@ -45,13 +45,14 @@ import numpy as np
 from ..model.case import Case, Impact, Measured, Vehicle
 from ..model.plausibility import bare_angle_warning
 from .brach import cg_from_brach, heading_from_theta
+from .evidence_table import parse_evidence, parse_unknown
 from .uncertainty_table import parse_uncertainty
 from .units import parse, registry, unit_system_of
 
 __all__ = ["load_case", "list_cases", "parse_case"]
 
 _TOP = {"name", "description", "source", "convention", "vehicle1", "vehicle2", "impact",
-        "measured", "uncertainty"}
+        "measured", "uncertainty", "evidence", "unknown"}
 _VEHICLE = {"mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
             "length", "width", "fixed", "cg", "heading", "theta", "phi", "d"}
 _IMPACT = {"point", "normal_angle", "restitution", "beta"}
@@ -212,7 +213,9 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
     return Case(vehicle1=vehicles[0], vehicle2=vehicles[1], impact=impact,
                 measured=_measured(data.get("measured")), name=name, description=description,
                 uncertainty=_uncertainty(data.get("uncertainty")), units=_unit_system(data),
-                notes=_angle_notes(data))
+                notes=_angle_notes(data),
+                evidence=parse_evidence(data.get("evidence")),
+                unknown=parse_unknown(data.get("unknown")))
 
 
 def _angle_notes(data) -> tuple[str, ...]:

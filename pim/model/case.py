@@ -259,6 +259,11 @@ class Case:
     notes : tuple of str
         Plausibility warnings about the inputs found while reading the case file (e.g. a
         bare number above 2 pi given for an angle).
+    evidence : pim.model.evidence.Evidence, optional
+        Rest positions, wheel states, friction (the ``[evidence]`` table), for
+        :mod:`pim.analysis.reconstruction`.
+    unknown : dict, optional
+        Dotted key -> (low, high) bounds [SI] of what a reconstruction solves for.
     """
 
     vehicle1: Vehicle
@@ -270,6 +275,8 @@ class Case:
     uncertainty: object | None = None  # pim.model.distributions.UncertaintyTable
     units: str = "si"
     notes: tuple = ()
+    evidence: object | None = None  # pim.model.evidence.Evidence (post-impact evidence)
+    unknown: dict | None = None  # dotted key -> (low, high) SI bounds, the [unknown] table
 
     def __post_init__(self) -> None:
         for name, kind in (("vehicle1", Vehicle), ("vehicle2", Vehicle), ("impact", Impact)):

@@ -1,4 +1,8 @@
-"""Tyre/ground forces on a vehicle during the finite-duration contact (pure, vectorised).
+"""Tyre/ground forces on a vehicle during the finite-duration contact.
+
+The force law is the project's one tyre model, :mod:`pim.model.tyres` (the run-out model
+uses it too); this module only places the wheels from a vehicle's outline and sums the
+forces for the contact scenes.
 
 Four tyres per vehicle, each at its static load N = m g / 4 (the CG midway between the
 axles and the wheels), at body-frame positions (+-wheelbase/2, +-track/2). Each tyre
@@ -20,8 +24,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from pim.model import tyres
+
 __all__ = ["TYRE_MODES", "WHEELBASE_FRACTION", "TRACK_FRACTION", "SLIP_REGULARISATION",
-           "wheel_positions", "tyre_force"]
+           "wheels_from_outline", "tyre_force"]
 
 TYRE_MODES = ("rolling", "locked")
 #: Wheelbase / length and track / width of the four-tyre model [-].
@@ -31,8 +37,9 @@ TRACK_FRACTION = 0.86
 SLIP_REGULARISATION = 0.05
 
 
-def wheel_positions(length, width, radius_of_gyration=None) -> np.ndarray:
-    """Body-frame positions (4, 2) [m] of the wheels: front left, front right, rear ...
+def wheels_from_outline(length, width, radius_of_gyration=None) -> np.ndarray:
+    """Body-frame positions (4, 2) [m] of the wheels (front left, front right, rear left,
+    rear right; :func:`pim.model.tyres.wheel_positions` with the CG midway between axles).
 
     Parameters
     ----------
@@ -43,12 +50,12 @@ def wheel_positions(length, width, radius_of_gyration=None) -> np.ndarray:
     """
     if length is None or width is None:
         if radius_of_gyration is None:
-            raise ValueError("wheel_positions needs length and width or radius_of_gyration")
+            raise ValueError("wheels_from_outline needs length and width or "
+                             "radius_of_gyration")
         length = float(radius_of_gyration) / 0.3
         width = 0.4 * length
-    a = 0.5 * WHEELBASE_FRACTION * float(length)
-    b = 0.5 * TRACK_FRACTION * float(width)
-    return np.array([[a, b], [a, -b], [-a, b], [-a, -b]])
+    wheelbase = WHEELBASE_FRACTION * float(length)
+    return tyres.wheel_positions(wheelbase, TRACK_FRACTION * float(width), 0.5 * wheelbase)
 
 
 def tyre_force(velocity, yaw_rate, angle, wheels, load, mu, mode="rolling",
@@ -63,14 +70,15 @@ def tyre_force(velocity, yaw_rate, angle, wheels, load, mu, mode="rolling",
         Yaw rate [rad/s].
     angle : float
         Heading [rad] from +x.
-    wheels : ndarray (W, 2)
-        Wheel positions in the body frame [m] (:func:`wheel_positions`).
+    wheels : ndarray (4, 2)
+        Wheel positions in the body frame [m] (:func:`wheels_from_outline`).
     load : float
         Normal load per tyre [N].
     mu : float
         Tyre/ground friction coefficient [-].
     mode : {"rolling", "locked"}
-        Free-rolling (lateral slip only) or locked wheels (full slip).
+        Free-rolling (lateral slip only: braking fraction 0) or locked wheels (full slip:
+        braking fraction 1) in :func:`pim.model.tyres.tyre_forces`.
     regularisation : float
         v_r [m/s] of the module notes.
 
@@ -81,18 +89,10 @@ def tyre_force(velocity, yaw_rate, angle, wheels, load, mu, mode="rolling",
     moment : float
         Their moment about the CG [N m], counter-clockwise positive.
     """
-    c, s = np.cos(angle), np.sin(angle)
-    arms = np.stack([c * wheels[:, 0] - s * wheels[:, 1], s * wheels[:, 0] + c * wheels[:, 1]],
-                    axis=-1)                                   # (W, 2) world-frame arms
-    v = np.asarray(velocity, float) + yaw_rate * np.stack([-arms[:, 1], arms[:, 0]], axis=-1)
-    if mode == "rolling":
-        lateral = np.array([-s, c])
-        slip = (v @ lateral)[:, None] * lateral[None, :]
-    elif mode == "locked":
-        slip = v
-    else:
+    if mode not in TYRE_MODES:
         raise ValueError(f"tyre mode must be one of {TYRE_MODES}, got {mode!r}")
-    size = np.sqrt(np.sum(slip * slip, axis=-1) + regularisation * regularisation)
-    forces = -mu * load * slip / size[:, None]
-    moment = float(np.sum(arms[:, 0] * forces[:, 1] - arms[:, 1] * forces[:, 0]))
-    return forces.sum(axis=0), moment
+    braking = np.full(4, 1.0 if mode == "locked" else 0.0)
+    forces = tyres.tyre_forces(velocity, yaw_rate, angle, wheels, np.full(4, float(load)), mu,
+                               braking, regularisation=regularisation)
+    force, moment = tyres.net_force_and_moment(forces, wheels, angle)
+    return force, float(moment)

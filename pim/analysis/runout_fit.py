@@ -1,0 +1,281 @@
+"""Run-out inverse: from the evidence at rest back to the post-impact motion.
+
+Unknowns: the post-impact CG speed ``V`` [m/s], its direction ``theta`` [rad] and the yaw
+rate ``omega`` [rad/s] (polar, so the speed's bounds are a box). Data: the measured rest
+position and heading, optionally points the CG passed through (e.g. the end of a tyre mark,
+reduced to the CG). Residuals, each divided by its standard deviation:
+
+- rest position: ``(x_rest(p) - x_meas) / sigma_pos`` (two components);
+- rest heading: ``wrap(psi_rest(p) - psi_meas) / sigma_psi`` (wrapped to (-pi, pi]);
+- each path point: distance from the point to the fitted CG path / ``sigma_pos``.
+
+Solved with scipy ``least_squares`` (trust-region reflective, bounded) over the solve_ivp
+forward model :func:`pim.model.runout.runout`, from several starts (the rest heading fixes
+the rotation only modulo a full turn, so starts with -1, 0 and +1 extra turns are tried and
+distinct minima reported). A rest state that no motion within the bounds reaches is said
+plainly (``reachable = False``) with the closest reachable rest state; a motion that does
+not stop within ``max_time`` is flagged (``stopped = False``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..model.numbers import real_array
+from ..model.pdof import wrap_angle
+from ..model.runout import MAX_TIME, Runout, RunoutVehicle, runout
+
+__all__ = ["RunoutFit", "fit_runout", "path_distance"]
+
+
+@dataclass(frozen=True)
+class RunoutFit:
+    """Post-impact motion fitted to the rest evidence (SI, global frame).
+
+    Attributes
+    ----------
+    velocity : ndarray (2,) [m/s] post-impact CG velocity
+    yaw_rate : float [rad/s] post-impact yaw rate
+    speed, direction : float [m/s], [rad] the same velocity in polar form
+    runout : Runout, the fitted forward run (trajectory to rest)
+    rest_position, rest_heading : the fitted run's rest state [m], [rad]
+    residual_names, residuals : the weighted residuals at the optimum
+    cost : float, half the sum of squared weighted residuals
+    covariance : ndarray (3, 3), of (speed, direction, yaw rate) from the Jacobian
+    reachable : bool, False when no motion within the bounds reaches the rest evidence
+    stopped : bool, False when the fitted motion has not stopped after ``max_time``
+    on_bound : tuple of the parameters ("speed", "yaw_rate") on a bound
+    minima : list of (cost, speed, direction, yaw_rate) distinct local minima, best first
+    message : str, plain-language summary (empty when all is well)
+    """
+
+    velocity: np.ndarray
+    yaw_rate: float
+    speed: float
+    direction: float
+    runout: Runout
+    rest_position: np.ndarray
+    rest_heading: float
+    residual_names: tuple
+    residuals: np.ndarray
+    cost: float
+    covariance: np.ndarray
+    reachable: bool
+    stopped: bool
+    on_bound: tuple
+    minima: list
+    message: str
+
+
+def path_distance(points, run: Runout) -> np.ndarray:
+    """Distance [m] from each point (k, 2) to the CG path of ``run``.
+
+    The nearest sample of the path is refined by Newton's method on
+    ``f(t) = (x(t) - p) . v(t) = 0`` over solve_ivp's dense output (so the distance is
+    that to the continuous path, not to a polyline of the integrator's steps).
+    """
+    points = np.asarray(points, dtype=float).reshape(-1, 2)
+    path = run.states[:, :2]
+    a, b = path[:-1], path[1:]
+    ab = b - a
+    length2 = np.maximum((ab * ab).sum(axis=-1), 1e-300)
+    rel = points[:, None, :] - a[None, :, :]
+    s = np.clip((rel * ab).sum(axis=-1) / length2, 0.0, 1.0)
+    nearest = a + s[..., None] * ab
+    gap = np.hypot(*(points[:, None, :] - nearest).transpose(2, 0, 1))
+    k = np.argmin(gap, axis=1)
+    distance = gap[np.arange(len(points)), k]
+    if run.interpolant is None or len(points) == 0:
+        return distance
+    t = run.time[k] + s[np.arange(len(points)), k] * (run.time[k + 1] - run.time[k])
+    t_end = run.time[-1]
+    h = 1e-6 * max(t_end, 1e-3)
+    for _ in range(4):
+        y = run.interpolant(t)
+        ya = run.interpolant(np.minimum(t + h, t_end))
+        yb = run.interpolant(np.maximum(t - h, 0.0))
+        x, v = y[:2].T - points, y[3:5].T
+        acc = ((ya[3:5] - yb[3:5]) / (np.minimum(t + h, t_end) - np.maximum(t - h, 0.0))).T
+        f = (x * v).sum(axis=-1)
+        df = (v * v).sum(axis=-1) + (x * acc).sum(axis=-1)
+        t = np.clip(t - f / np.where(np.abs(df) > 1e-12, df, 1e-12), 0.0, t_end)
+    y = run.interpolant(t)
+    return np.minimum(distance, np.hypot(*(y[:2].T - points).T))
+
+
+#: Default standard deviation of a measured rest heading [rad] (2 deg).
+HEADING_SIGMA = float(np.radians(2.0))
+#: Default heading mismatch [rad] (1 deg) below which a rest state counts as reached.
+HEADING_TOLERANCE = float(np.radians(1.0))
+
+
+def fit_runout(vehicle: RunoutVehicle, position, heading, rest_position, rest_heading, *,
+               path_points=None, position_sigma=0.1, heading_sigma=HEADING_SIGMA,
+               speed_bounds=(0.0, 60.0), yaw_rate_bounds=(-15.0, 15.0),
+               max_time=MAX_TIME, position_tolerance=0.05,
+               heading_tolerance=HEADING_TOLERANCE, rtol=1e-9, atol=1e-11,
+               max_evaluations=60) -> RunoutFit:
+    """Fit the post-impact velocity and yaw rate that carry the vehicle to its rest state.
+
+    Parameters
+    ----------
+    vehicle : RunoutVehicle
+        Scalar fields.
+    position : array_like (2,) [m]; heading : float [rad]
+        The vehicle's CG and heading at separation (end of the impact).
+    rest_position : array_like (2,) [m]; rest_heading : float [rad]
+        Measured rest state of the CG.
+    path_points : array_like (k, 2) [m], optional
+        Points the CG passed through between separation and rest.
+    position_sigma, heading_sigma : float
+        Standard deviations of the measured positions [m] and heading [rad] (weights).
+    speed_bounds : (float, float)
+        [m/s] bounds of the post-impact speed (0 <= low <= high).
+    yaw_rate_bounds : (float, float)
+        [rad/s] bounds of the post-impact yaw rate.
+    max_time : float
+        [s] a motion still moving after this is flagged.
+    position_tolerance, heading_tolerance : float
+        [m], [rad] the largest rest miss still counted as reaching the evidence.
+    rtol, atol : float
+        Tolerances of the forward model's solve_ivp (tight: the Jacobian is by finite
+        differences).
+    max_evaluations : int
+        Forward runs allowed per start of the local search.
+
+    Returns
+    -------
+    RunoutFit
+
+    Raises
+    ------
+    ValueError
+        Non-finite evidence, bad bounds or sigmas, naming the field.
+    """
+    from scipy.optimize import least_squares
+
+    position = _finite(position, "evidence.position", "m", (2,))
+    rest_position = _finite(rest_position, "evidence.rest_position", "m", (2,))
+    heading = float(_finite(heading, "evidence.heading", "rad", ()))
+    rest_heading = float(_finite(rest_heading, "evidence.rest_heading", "rad", ()))
+    points = (np.zeros((0, 2)) if path_points is None
+              else _finite(path_points, "evidence.path_points", "m", None).reshape(-1, 2))
+    for name, value, unit in (("evidence.position_sigma", position_sigma, "m"),
+                              ("evidence.heading_sigma", heading_sigma, "rad")):
+        if not (np.isfinite(value) and value > 0):
+            raise ValueError(f"{name} must be finite and > 0 [{unit}], got {value!r}")
+    lo_v, hi_v = (float(v) for v in _finite(speed_bounds, "unknown.speed bounds", "m/s",
+                                            (2,)))
+    if lo_v < 0 or hi_v < lo_v:
+        raise ValueError(f"unknown.speed bounds must satisfy 0 <= low <= high [m/s], "
+                         f"got {speed_bounds!r}")
+    lo_w, hi_w = (float(v) for v in _finite(yaw_rate_bounds, "unknown.yaw_rate bounds",
+                                            "rad/s", (2,)))
+    if hi_w < lo_w:
+        raise ValueError(f"unknown.yaw_rate bounds must satisfy low <= high [rad/s], "
+                         f"got {yaw_rate_bounds!r}")
+
+    names = ("rest_x", "rest_y", "rest_heading") + tuple(
+        f"path_point{i + 1}" for i in range(len(points)))
+
+    def forward(p):
+        speed, direction, omega = p
+        return runout(vehicle, position, heading,
+                      speed * np.array([np.cos(direction), np.sin(direction)]), omega,
+                      max_time=max_time, rtol=rtol, atol=atol,
+                      dense_output=len(points) > 0)
+
+    def residuals_of(run):
+        r = np.concatenate([(run.rest_position - rest_position) / position_sigma,
+                            [wrap_angle(run.rest_heading - rest_heading) / heading_sigma]])
+        if len(points):
+            r = np.concatenate([r, path_distance(points, run) / position_sigma])
+        return r
+
+    def fun(p):
+        return residuals_of(forward(p))
+
+    # starts: energy estimate along the displacement, the rotation with -1, 0, +1 turns
+    displacement = rest_position - position
+    braking = float(np.mean(np.asarray(vehicle.braking, dtype=float)))
+    decel = max(float(vehicle.friction) * max(braking, 0.2) * vehicle.gravity, 1e-3)
+    speed0 = float(np.clip(np.sqrt(2 * decel * np.hypot(*displacement)), lo_v, hi_v))
+    direction0 = float(np.arctan2(displacement[1], displacement[0]))
+    t_stop = max(speed0 / decel, 0.3)
+    turn = float(wrap_angle(rest_heading - heading))
+    lower = np.array([lo_v, -np.inf, lo_w])
+    upper = np.array([hi_v, np.inf, hi_w])
+    minima = []
+    for k in (0, -1, 1):
+        omega0 = float(np.clip(2 * (turn + 2 * np.pi * k) / t_stop, lo_w, hi_w))
+        x0 = np.array([speed0, direction0, omega0])
+        x0 = np.clip(x0, lower + 1e-9 * (hi_v - lo_v + 1), upper - 1e-9 * (hi_v - lo_v + 1))
+        if hi_v == lo_v:
+            x0[0] = lo_v
+        sol = least_squares(fun, x0, bounds=(lower, upper + (hi_v == lo_v) * 1e-12 *
+                                             np.array([1, 0, 0])),
+                            x_scale=np.array([max(speed0, 1.0), 0.1, 0.5]),
+                            diff_step=1e-5, xtol=1e-12, ftol=1e-12, gtol=1e-12,
+                            max_nfev=max_evaluations)
+        minima.append((float(sol.cost), float(sol.x[0]), float(wrap_angle(sol.x[1])),
+                       float(sol.x[2]), sol))
+    minima.sort(key=lambda m: m[0])
+    distinct = []
+    for m in minima:
+        if all(abs(m[1] - d[1]) + abs(m[3] - d[3]) > 1e-4 for d in distinct):
+            distinct.append(m)
+    # equally good minima (the rest heading fixes the rotation only modulo a turn): the
+    # least rotation is taken, the others are reported in ``minima`` and the message
+    tie = distinct[0][0] + 1e-6 * (1 + distinct[0][0])
+    distinct.sort(key=lambda m: (m[0] > tie, abs(m[3]) if m[0] <= tie else m[0]))
+    best = distinct[0][4]
+    speed, direction, omega = float(best.x[0]), float(wrap_angle(best.x[1])), float(best.x[2])
+    run = forward(best.x)
+    res = residuals_of(run)
+    jac = best.jac
+    try:
+        covariance = np.linalg.pinv(jac.T @ jac)
+    except np.linalg.LinAlgError:
+        covariance = np.full((3, 3), np.inf)
+    on_bound = tuple(name for name, value, lo, hi in
+                     (("speed", speed, lo_v, hi_v), ("yaw_rate", omega, lo_w, hi_w))
+                     if np.isclose(value, lo, atol=1e-6) or np.isclose(value, hi, atol=1e-6))
+    miss = float(np.hypot(*(run.rest_position - rest_position)))
+    heading_miss = float(abs(wrap_angle(run.rest_heading - rest_heading)))
+    reachable = miss <= position_tolerance and heading_miss <= heading_tolerance
+    messages = []
+    if not reachable:
+        messages.append(
+            f"the rest state ({rest_position[0]:.3f} m, {rest_position[1]:.3f} m, heading "
+            f"{np.degrees(rest_heading):.2f} deg) is not reached by any post-impact motion "
+            f"with speed in [{lo_v:g}, {hi_v:g}] m/s and yaw rate in [{lo_w:g}, {hi_w:g}] "
+            f"rad/s; the closest reachable rest is ({run.rest_position[0]:.3f} m, "
+            f"{run.rest_position[1]:.3f} m, heading "
+            f"{np.degrees(wrap_angle(run.rest_heading)):.2f} deg), "
+            f"missing by {miss:.3f} m and {np.degrees(heading_miss):.2f} deg")
+    if not run.stopped:
+        messages.append(f"the fitted motion has not stopped after {max_time:g} s of "
+                        f"simulated time (free-rolling wheels?)")
+    equally_good = [m for m in distinct[1:] if m[0] <= tie]
+    if equally_good:
+        messages.append(f"{len(equally_good) + 1} distinct motions fit the evidence equally "
+                        f"well (yaw rates "
+                        + ", ".join(f"{m[3]:.3f}" for m in distinct[:len(equally_good) + 1])
+                        + " rad/s); the least rotation is reported, a path point (tyre mark) "
+                        "decides")
+    velocity = speed * np.array([np.cos(direction), np.sin(direction)])
+    return RunoutFit(velocity, omega, speed, direction, run, run.rest_position,
+                     run.rest_heading, names, res, float(0.5 * res @ res), covariance,
+                     bool(reachable), bool(run.stopped), on_bound,
+                     [m[:4] for m in distinct], "; ".join(messages))
+
+
+def _finite(value, name, unit, shape):
+    arr = real_array(value, name, unit)
+    if shape is not None and arr.shape != shape:
+        raise ValueError(f"{name} must have shape {shape} [{unit}], got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must be finite [{unit}], got {value!r}")
+    return arr

@@ -1,0 +1,154 @@
+"""The ``[evidence]`` and ``[unknown]`` tables of a case file (SI after parsing).
+
+```toml
+[evidence.vehicle1]
+rest_position = ["30 ft", "12 ft"]
+rest_heading = "95 deg"
+wheelbase = "108 in"
+track = "58 in"
+cg_to_front = "45 in"        # optional, default half the wheelbase
+friction = 0.75
+wheels = ["locked", "locked", "free", 0.3]   # or one word for all four
+steer = "0 deg"              # optional: one angle (front wheels) or four
+position_sigma = "0.3 ft"    # optional
+heading_sigma = "2 deg"      # optional
+path_points = [["10 ft", "3 ft"]]   # optional
+
+[unknown]
+vehicle1.speed = {bounds = ["0 mph", "80 mph"]}
+impact.restitution = {bounds = [0, 1]}
+```
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..model.evidence import UNKNOWN_KINDS, Evidence, VehicleEvidence
+from .units import parse
+
+__all__ = ["parse_evidence", "parse_unknown"]
+
+_EVIDENCE = {"rest_position", "rest_heading", "wheelbase", "track", "cg_to_front", "friction",
+             "wheels", "steer", "position_sigma", "heading_sigma", "path_points"}
+_WHEEL_WORDS = {"locked": 1.0, "free": 0.0, "free-rolling": 0.0}
+
+
+def _point(value, where):
+    if not isinstance(value, list) or len(value) != 2:
+        raise ValueError(f"{where} must be [x, y], got {value!r}")
+    return np.array([parse(v, "length", f"{where}[{i}]") for i, v in enumerate(value)])
+
+
+def _wheels(value, where):
+    values = value if isinstance(value, list) else [value] * 4
+    if len(values) != 4:
+        raise ValueError(f"{where} must be one state or four (front-left, front-right, "
+                         f"rear-left, rear-right), got {value!r}")
+    out = []
+    for i, v in enumerate(values):
+        if isinstance(v, str):
+            if v not in _WHEEL_WORDS:
+                raise ValueError(f"{where}[{i}] must be 'locked', 'free' or a braking "
+                                 f"fraction in [0, 1], got {v!r}")
+            out.append(_WHEEL_WORDS[v])
+        else:
+            fraction = parse(v, "dimensionless", f"{where}[{i}]")
+            if not 0 <= fraction <= 1:
+                raise ValueError(f"{where}[{i}] braking fraction must be in [0, 1], got {v!r}")
+            out.append(fraction)
+    return tuple(out)
+
+
+def _vehicle(table, where) -> VehicleEvidence:
+    if not isinstance(table, dict):
+        raise ValueError(f"{where} must be a table")
+    unknown = sorted(set(table) - _EVIDENCE)
+    if unknown:
+        raise ValueError(f"{where}: unknown key {unknown[0]!r} "
+                         f"(allowed: {', '.join(sorted(_EVIDENCE))})")
+    for key in ("rest_position", "rest_heading", "wheelbase", "track", "friction"):
+        if key not in table:
+            raise ValueError(f"{where}: missing {key}")
+    wheelbase = parse(table["wheelbase"], "length", f"{where}.wheelbase")
+    steer = table.get("steer", 0.0)
+    if isinstance(steer, list):
+        if len(steer) != 4:
+            raise ValueError(f"{where}.steer must be one angle (front wheels) or four")
+        steer = tuple(parse(s, "angle", f"{where}.steer[{i}]") for i, s in enumerate(steer))
+    else:
+        front = parse(steer, "angle", f"{where}.steer")
+        steer = (front, front, 0.0, 0.0)
+    points = table.get("path_points", [])
+    if not isinstance(points, list):
+        raise ValueError(f"{where}.path_points must be a list of [x, y]")
+    path = np.array([_point(p, f"{where}.path_points[{i}]") for i, p in enumerate(points)])
+    kwargs = {}
+    if "position_sigma" in table:
+        kwargs["position_sigma"] = parse(table["position_sigma"], "length",
+                                         f"{where}.position_sigma")
+    if "heading_sigma" in table:
+        kwargs["heading_sigma"] = parse(table["heading_sigma"], "angle",
+                                        f"{where}.heading_sigma")
+    return VehicleEvidence(
+        rest_position=_point(table["rest_position"], f"{where}.rest_position"),
+        rest_heading=parse(table["rest_heading"], "angle", f"{where}.rest_heading"),
+        wheelbase=wheelbase, track=parse(table["track"], "length", f"{where}.track"),
+        cg_to_front=(parse(table["cg_to_front"], "length", f"{where}.cg_to_front")
+                     if "cg_to_front" in table else wheelbase / 2),
+        friction=parse(table["friction"], "dimensionless", f"{where}.friction"),
+        braking=_wheels(table.get("wheels", "locked"), f"{where}.wheels"), steer=steer,
+        path_points=path.reshape(-1, 2), where=where, **kwargs)
+
+
+def parse_evidence(table) -> Evidence | None:
+    """Parse the ``[evidence]`` table (already read by tomllib), or None when absent.
+
+    Raises
+    ------
+    ValueError
+        Unknown key, missing field, bad unit, NaN, friction <= 0, ...; naming the field.
+    """
+    if table is None:
+        return None
+    if not isinstance(table, dict) or not set(table) <= {"vehicle1", "vehicle2"}:
+        raise ValueError("evidence must hold [evidence.vehicle1] and/or [evidence.vehicle2]")
+    return Evidence(**{k: _vehicle(v, f"evidence.{k}") for k, v in table.items()})
+
+
+def parse_unknown(table) -> dict[str, tuple[float, float]] | None:
+    """Parse the ``[unknown]`` table: dotted key -> (low, high) bounds in SI.
+
+    Raises
+    ------
+    ValueError
+        Unknown key, bounds not [low, high], low > high, a negative speed bound, or a
+        restitution/beta bound outside [0, 1]; naming the key.
+    """
+    if table is None:
+        return None
+    if not isinstance(table, dict):
+        raise ValueError("unknown must be a table")
+    flat = {}
+    for group, entries in table.items():
+        if not isinstance(entries, dict):
+            raise ValueError(f"unknown.{group} must be a table of keys")
+        for key, spec in entries.items():
+            name = f"{group}.{key}"
+            if name not in UNKNOWN_KINDS:
+                raise ValueError(f"unknown: {name!r} cannot be solved for "
+                                 f"(allowed: {', '.join(UNKNOWN_KINDS)})")
+            if not isinstance(spec, dict) or set(spec) != {"bounds"} or not isinstance(
+                    spec["bounds"], list) or len(spec["bounds"]) != 2:
+                raise ValueError(f"unknown.{name} must be {{bounds = [low, high]}}")
+            low, high = (parse(v, UNKNOWN_KINDS[name], f"unknown.{name}.bounds[{i}]")
+                         for i, v in enumerate(spec["bounds"]))
+            if low > high:
+                raise ValueError(f"unknown.{name}.bounds: low {low:g} must be <= high {high:g}")
+            if key == "speed" and low < 0:
+                raise ValueError(f"unknown.{name}.bounds must be >= 0 m/s (a speed along the "
+                                 f"case's direction), got low = {low:g}")
+            if key in ("restitution", "beta") and not 0 <= low <= high <= 1:
+                raise ValueError(f"unknown.{name}.bounds must lie in [0, 1]")
+            flat[name] = (low, high)
+    return flat

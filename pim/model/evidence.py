@@ -1,0 +1,90 @@
+"""Evidence after the impact (rest positions and headings, tyre marks, wheel states, road
+friction, wheelbase and track) and the unknowns a reconstruction solves for.
+
+Built by :mod:`pim.io.evidence_table` from a case file's ``[evidence]`` and ``[unknown]``
+tables; used by :mod:`pim.analysis.reconstruction`. SI units, global frame.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .runout import RunoutVehicle
+
+__all__ = ["VehicleEvidence", "Evidence", "UNKNOWN_KINDS"]
+
+#: Dotted keys an ``[unknown]`` table may name, with the physical kind of their bounds
+#: (the keys of /work/notes/fit-api.md's ``free``).
+UNKNOWN_KINDS = {
+    **{f"vehicle{i}.{key}": kind for i in (1, 2) for key, kind in (
+        ("speed", "velocity"), ("velocity_x", "velocity"), ("velocity_y", "velocity"),
+        ("yaw_rate", "angular_velocity"), ("phi", "angle"), ("d", "length"),
+        ("radius_of_gyration", "length"), ("yaw_inertia", "inertia"))},
+    "impact.restitution": "dimensionless", "impact.beta": "dimensionless",
+    "impact.normal_angle": "angle", "impact.point_x": "length", "impact.point_y": "length",
+    "impact.point_along": "dimensionless",
+}
+
+
+@dataclass(frozen=True)
+class VehicleEvidence:
+    """One vehicle's evidence after the impact.
+
+    Attributes
+    ----------
+    rest_position : ndarray (2,) [m] measured CG at rest
+    rest_heading : float [rad] measured heading at rest
+    wheelbase, track, cg_to_front : float [m] (see :mod:`pim.model.tyres`)
+    friction : float [-] tyre-road friction coefficient (> 0)
+    braking : tuple of four fractions in [0, 1] (0 free-rolling, 1 locked)
+    steer : tuple of four angles [rad]
+    position_sigma : float [m] standard deviation of the measured positions
+    heading_sigma : float [rad] standard deviation of the measured heading
+    path_points : ndarray (k, 2) [m] points the CG passed through (e.g. tyre-mark ends)
+    """
+
+    rest_position: np.ndarray
+    rest_heading: float
+    wheelbase: float
+    track: float
+    cg_to_front: float
+    friction: float
+    braking: tuple = (1.0, 1.0, 1.0, 1.0)
+    steer: tuple = (0.0, 0.0, 0.0, 0.0)
+    position_sigma: float = 0.1
+    heading_sigma: float = float(np.radians(2.0))
+    path_points: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    where: str = "evidence"
+
+    def __post_init__(self):
+        w = self.where
+        if not (np.isfinite(self.friction) and self.friction > 0):
+            raise ValueError(f"{w}.friction must be a finite number > 0, got {self.friction!r}")
+        for name in ("wheelbase", "track", "position_sigma", "heading_sigma"):
+            value = getattr(self, name)
+            if not (np.isfinite(value) and value > 0):
+                raise ValueError(f"{w}.{name} must be finite and > 0, got {value!r}")
+        if not 0 <= self.cg_to_front <= self.wheelbase:
+            raise ValueError(f"{w}.cg_to_front must be in [0, wheelbase = "
+                             f"{self.wheelbase:g} m], got {self.cg_to_front!r}")
+        if len(self.braking) != 4 or not all(0 <= b <= 1 for b in self.braking):
+            raise ValueError(f"{w}.braking must be four fractions in [0, 1] (front-left, "
+                             f"front-right, rear-left, rear-right), got {self.braking!r}")
+        for name in ("rest_position", "path_points"):
+            if not np.all(np.isfinite(getattr(self, name))):
+                raise ValueError(f"{w}.{name} must be finite")
+
+    def runout_vehicle(self, mass, yaw_inertia) -> RunoutVehicle:
+        """The :class:`RunoutVehicle` of this evidence with the given mass and inertia."""
+        return RunoutVehicle(mass, yaw_inertia, self.wheelbase, self.track, self.cg_to_front,
+                             self.friction, braking=self.braking, steer=self.steer)
+
+
+@dataclass(frozen=True)
+class Evidence:
+    """The post-impact evidence of the two vehicles (either may be missing)."""
+
+    vehicle1: VehicleEvidence | None = None
+    vehicle2: VehicleEvidence | None = None

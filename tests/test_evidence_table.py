@@ -1,0 +1,59 @@
+"""The [evidence] and [unknown] tables (pim.io.evidence_table) and their errors."""
+
+import math
+
+import numpy as np
+import pytest
+
+from pim.io.evidence_table import parse_evidence, parse_unknown
+
+GOOD = {"vehicle1": {"rest_position": ["30 ft", "12 ft"], "rest_heading": "95 deg",
+                     "wheelbase": "108 in", "track": "58 in", "friction": 0.75,
+                     "wheels": ["locked", "locked", "free", 0.3], "steer": "5 deg",
+                     "path_points": [["10 ft", "3 ft"]]}}
+
+
+def test_parses_in_si():
+    ev = parse_evidence(GOOD).vehicle1
+    np.testing.assert_allclose(ev.rest_position, [30 * 0.3048, 12 * 0.3048], rtol=1e-12)
+    assert ev.rest_heading == pytest.approx(math.radians(95))
+    assert ev.wheelbase == pytest.approx(108 * 0.0254) and ev.cg_to_front == ev.wheelbase / 2
+    assert ev.braking == (1.0, 1.0, 0.0, 0.3)
+    assert ev.steer == pytest.approx((math.radians(5), math.radians(5), 0.0, 0.0))
+    assert ev.path_points.shape == (1, 2)
+    assert parse_evidence(GOOD).vehicle2 is None
+
+
+@pytest.mark.parametrize("key, value, match", [
+    ("friction", 0, "evidence.vehicle1.friction"),
+    ("friction", -0.3, "evidence.vehicle1.friction"),
+    ("rest_position", ["nan ft", "1 ft"], r"evidence.vehicle1.rest_position\[0\]"),
+    ("rest_heading", "nan deg", "evidence.vehicle1.rest_heading"),
+    ("wheels", ["locked", "skid", "free", "free"], r"evidence.vehicle1.wheels\[1\]"),
+    ("wheels", [1.5, 1, 1, 1], r"evidence.vehicle1.wheels\[0\]"),
+    ("track", "3 kg", "evidence.vehicle1.track"),
+    ("tyres", 4, "unknown key 'tyres'"),
+])
+def test_bad_evidence_names_the_field(key, value, match):
+    table = {"vehicle1": dict(GOOD["vehicle1"], **{key: value})}
+    with pytest.raises(ValueError, match=match):
+        parse_evidence(table)
+
+
+def test_unknown_bounds_in_si():
+    u = parse_unknown({"vehicle1": {"speed": {"bounds": ["0 mph", "80 mph"]}},
+                       "impact": {"restitution": {"bounds": [0, 1]}}})
+    assert u["vehicle1.speed"] == pytest.approx((0.0, 80 * 0.44704))
+    assert u["impact.restitution"] == (0.0, 1.0)
+
+
+@pytest.mark.parametrize("table, match", [
+    ({"vehicle1": {"speed": {"bounds": ["-5 mph", "80 mph"]}}}, "unknown.vehicle1.speed"),
+    ({"vehicle1": {"speed": {"bounds": ["50 mph", "20 mph"]}}}, "low .* must be <= high"),
+    ({"vehicle1": {"colour": {"bounds": [0, 1]}}}, "'vehicle1.colour' cannot be solved"),
+    ({"impact": {"beta": {"bounds": [0, 2]}}}, r"unknown.impact.beta.bounds must lie"),
+    ({"vehicle2": {"speed": [0, 10]}}, r"must be \{bounds = \[low, high\]\}"),
+])
+def test_bad_unknown_names_the_key(table, match):
+    with pytest.raises(ValueError, match=match):
+        parse_unknown(table)

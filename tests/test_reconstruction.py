@@ -1,0 +1,42 @@
+"""Reconstruction chain (pim.analysis.reconstruction): evidence -> post-impact motion ->
+speeds by linear momentum, on the bundled synthetic case whose rest states the forward
+models generated from known speeds (31.09 ft/s each, pim/io/cases/synthetic-runout.toml)."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+import pim
+from pim.analysis.reconstruction import approach_direction, post_impact_motion
+
+KNOWN = 31.09 * 0.3048  # [m/s], both vehicles
+
+
+@pytest.mark.slow
+def test_synthetic_case_gives_back_the_known_motion_and_speeds():
+    case = pim.load_case("synthetic-runout")
+    truth = pim.solve(pim.load_case("ricsac9"), eps=0.355, beta=1.0)
+    post = post_impact_motion(case)
+    assert post.messages == []
+    np.testing.assert_allclose(post.case.measured.velocity1, truth.velocity1, atol=1e-6)
+    np.testing.assert_allclose(post.case.measured.velocity2, truth.velocity2, atol=1e-6)
+    assert post.case.measured.yaw_rate1 == pytest.approx(float(truth.yaw_rate1), abs=1e-6)
+    assert post.case.measured.yaw_rate2 == pytest.approx(float(truth.yaw_rate2), abs=1e-6)
+    # linear momentum (exact for PIM) gives the speeds back
+    assert post.momentum.speed1 == pytest.approx(KNOWN, abs=1e-6)
+    assert post.momentum.speed2 == pytest.approx(KNOWN, abs=1e-6)
+    # and the propagated interval covers them with room (sigma from 0.1 m, 2 deg evidence)
+    assert 0 < post.momentum.sigma1 < 1.0 and 0 < post.momentum.sigma2 < 1.0
+
+
+def test_a_case_without_evidence_is_refused():
+    with pytest.raises(ValueError, match=r"\[evidence\]"):
+        post_impact_motion(pim.load_case("ricsac9"))
+
+
+def test_approach_direction_is_velocity_or_heading():
+    case = pim.load_case("ricsac9")
+    np.testing.assert_allclose(approach_direction(case.vehicle1), [-1.0, 0.0], atol=1e-12)
+    parked = replace(case.vehicle2, velocity=np.zeros(2), heading=np.pi / 2)
+    np.testing.assert_allclose(approach_direction(parked), [0.0, 1.0], atol=1e-12)
