@@ -31,6 +31,8 @@ import numpy as np
 import pim
 from pim.files import atomic_path, write_text
 
+from .assumptions import assumption_table, run_assumptions
+from .coefficients import coefficients
 from .errors import compare_results, impact_error
 from .tables import Table, fmt_error
 
@@ -172,21 +174,9 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
     # 1-2: inputs and fit ------------------------------------------------------------------
     t0 = time.perf_counter()
     tables = [inputs_table(case)]
-    fit = None
-    has_measured = case.measured is not None and (
-        case.measured.velocity1 is not None or case.measured.velocity2 is not None)
-    if has_measured and (eps is None or beta is None):
-        fit = pim.fit(case, eps=eps, beta=beta)
-        eps, beta = fit.eps, fit.beta
+    eps, beta, fit = coefficients(case, eps, beta)
+    if fit is not None:
         tables.append(fit_table(fit))
-    if eps is None:
-        eps = case.impact.restitution
-        if eps is None:
-            raise ValueError("eps is required: the case has no impact.restitution and no "
-                             "measurements to fit")
-    if beta is None:
-        beta = 1.0 if case.impact.beta is None else case.impact.beta
-    eps, beta = float(eps), float(beta)
     rep.eps, rep.beta = eps, beta
     result = pim.solve(case, eps, beta)
     tick("fit", t0)
@@ -243,8 +233,6 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
 
     # 7: assumptions at typical values ----------------------------------------------------------
     if assumptions:
-        from .assumptions import assumption_table, run_assumptions
-
         t0 = time.perf_counter()
         rep.assumptions = run_assumptions(case, eps, beta, executor="serial", progress=False,
                                           animation_after=None, sweeps=False)
