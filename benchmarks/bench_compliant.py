@@ -11,7 +11,9 @@ Prints
    solve_ivp (DOP853, Radau over rtol), against a DOP853 reference at rtol 1e-13, with
    pim.solve's time in the same run as the baseline (the machine is shared: compare
    ratios);
-3. `pim assumptions ricsac9` end to end (goal: under 60 s on 2 cores).
+3. `pim assumptions ricsac9` end to end (goal: under 60 s on 2 cores);
+4. the stiff limit: error against PIM (beta = 0) over contact time 40 ... 2.5 ms and the
+   fitted order (``--figure PATH`` also writes the log-log plot, docs/stiff-limit-ricsac9.png).
 """
 
 from __future__ import annotations
@@ -23,10 +25,13 @@ import tempfile
 import time
 from dataclasses import replace
 
+from pim.files import save_figure
+
 import pim
 import sim
 from comparisons.assumptions import outcome_errors
 from comparisons.speed_error_compliant import compliant_sweep
+from comparisons.stiff_limit import plot_stiff_limit, stiff_limit
 from sim.compliant_setup import build_problem
 from sim.contact_law import stiffness_for_duration
 
@@ -57,7 +62,16 @@ def at_100ms(name: str, eps: float, tyre: float) -> str:
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--skip-assumptions", action="store_true")
+    parser.add_argument("--figure", default=None, help="write the stiff-limit plot here")
     args = parser.parse_args()
+
+    limit = stiff_limit(pim.load_case("ricsac9"), 0.355)
+    print("4. stiff limit (frictionless, RICSAC 9): contact [ms] -> error against PIM beta 0")
+    for t, e in zip(limit.contact, limit.errors, strict=True):
+        print(f"   {1e3 * t:7.2f} ms  {e:.3e}")
+    print(f"   fitted order {limit.order:.3f} (expected 1)\n")
+    if args.figure:
+        save_figure(plot_stiff_limit(limit), args.figure)
 
     print("1. PIM (beta = 0, same eps) against the frictionless point contact at 100 ms")
     ricsac_eps = pim.fit(pim.load_case("ricsac9")).eps

@@ -50,6 +50,7 @@ from sim.contact_law import stiffness_for_duration
 from sim.sweep import sweep
 
 from .animation import build_renderer, write_animation
+from .coefficients import coefficients
 from .tables import Table, fmt_error
 
 __all__ = ["ASSUMPTIONS", "Outcome", "AssumptionSweep", "AssumptionStudy", "run_assumptions",
@@ -308,7 +309,9 @@ def run_assumptions(case: pim.Case, eps: float | None = None, beta: float | None
     """
 
     start = time.perf_counter()
-    eps, beta = _coefficients(case, eps, beta)
+    eps, beta, _ = coefficients(case, eps, beta)
+    if not 0.0 <= eps <= 1.0:
+        raise ValueError(f"eps must be in [0, 1], got {eps}")
     settings = replace(settings or sim.CompliantSettings(), record=False, duration=0.0)
     k_nn = build_problem(case, eps, sim.DEFAULT_STIFFNESS).k_nn
     mu0 = abs(float(np.asarray(pim.solve(case, eps, 1.0).mu0)))
@@ -363,25 +366,6 @@ def run_assumptions(case: pim.Case, eps: float | None = None, beta: float | None
             anim = None
     return AssumptionStudy(case, eps, beta, k100, tuple(sweeps), time.perf_counter() - start,
                            anim)
-
-
-def _coefficients(case: pim.Case, eps, beta) -> tuple[float, float]:
-    m = case.measured
-    has_measured = m is not None and (m.velocity1 is not None or m.velocity2 is not None)
-    if has_measured and (eps is None or beta is None):
-        fitted = pim.fit(case, eps=eps, beta=beta)
-        eps, beta = fitted.eps, fitted.beta
-    if eps is None:
-        eps = case.impact.restitution
-        if eps is None:
-            raise ValueError("eps is required: the case has no impact.restitution and no "
-                             "measurements to fit")
-    if beta is None:
-        beta = 1.0 if case.impact.beta is None else case.impact.beta
-    eps = float(eps)
-    if not 0.0 <= eps <= 1.0:
-        raise ValueError(f"eps must be in [0, 1], got {eps}")
-    return eps, float(beta)
 
 
 def assumption_table(study: AssumptionStudy, name: str = "assumptions") -> Table:

@@ -217,9 +217,11 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, progress
                         "analytic_time": study.analytic_time,
                         "analytic_batch_time": study.analytic_batch_time})
         if compliant:
+            from .speed_error_compliant import COARSE as CCOARSE
             from .speed_error_compliant import compliant_sweep, write_compliant_study
 
-            cstudy = compliant_sweep(case, eps, repeats=repeats, progress=progress)
+            cgrid = dict(CCOARSE) if coarse else {"repeats": repeats}
+            cstudy = compliant_sweep(case, eps, progress=progress, **cgrid)
             cfiles = write_compliant_study(cstudy, folder, stem,
                                            command=_command(name, coarse, repeats, out))
             results[-1]["files"] += [str(f) for f in cfiles]

@@ -34,17 +34,18 @@ import numpy as np
 
 import pim
 import sim
+from pim.analysis.residuals import has_measured_terms
 from pim.io.files import atomic_path, save_figure, write_text
 from pim.io.units import convert
 from pim.model.plausibility import warnings_of
 from pim.model.quantities import OUTPUTS as QUANTITIES
-from pim.model.solver import constraints
 from pim.plotting.sheet import write_plots
 from pim.plotting.tables import summarize
 from sim.error_measure import KIND_OF_UNIT, compare_results, impact_error
 
 from .animation import build_renderer, write_animation
 from .assumptions import assumption_table, run_assumptions
+from .coefficients import coefficients
 from .speed_error import COARSE, pareto_table, plot_speed_error, study_table, sweep
 from .tables import Table, fmt_error
 
@@ -200,21 +201,18 @@ def _md_table(table: Table) -> str:
     return f"**{table.title}** ([{table.name}.csv]({table.name}.csv))\n\n{table.to_markdown()}\n"
 
 
-def _coefficient_sources(case, eps, beta, fit) -> tuple[float, float, dict]:
-    """epsilon, beta and where each comes from: "command line", "fit" or "case file"."""
+def _coefficient_sources(case, eps, beta) -> tuple[float, float, dict, object]:
+    """epsilon, beta, where each comes from ("command line", "fit to the measured motion",
+    "case file", "default (1)") and the fit (or None), by :func:`coefficients`."""
     sources = {"eps": "command line" if eps is not None else None,
                "beta": "command line" if beta is not None else None}
-    if fit is not None:
-        for name in ("eps", "beta"):
-            if sources[name] is None:
-                sources[name] = "fit to the measured motion"
-        eps, beta = fit.eps, fit.beta
-    if eps is None:
-        sources["eps"] = "case file"
-    if beta is None:
-        sources["beta"] = "case file" if case.impact.beta is not None else "default (1)"
-    eps, beta = constraints(case, eps, beta)   # the case's values where not given
-    return float(eps), float(beta), sources
+    eps, beta, fit = coefficients(case, eps, beta)
+    for name in ("eps", "beta"):
+        if sources[name] is None:
+            sources[name] = "fit to the measured motion" if fit is not None else "case file"
+    if sources["beta"] == "case file" and case.impact.beta is None:
+        sources["beta"] = "default (1)"
+    return eps, beta, sources, fit
 
 
 def _stale_files(out: Path) -> None:
@@ -323,12 +321,8 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
 
     # Results and coefficients ------------------------------------------------------------
     t0 = time.perf_counter()
-    fit = None
-    has_measured = case.measured is not None and (
-        case.measured.velocity1 is not None or case.measured.velocity2 is not None)
-    if has_measured and (eps is None or beta is None):
-        fit = pim.fit(case, eps=eps, beta=beta)
-    eps, beta, sources = _coefficient_sources(case, eps, beta, fit)
+    has_measured = has_measured_terms(case)
+    eps, beta, sources, fit = _coefficient_sources(case, eps, beta)
     rep.eps, rep.beta = eps, beta
     result = pim.solve(case, eps, beta)
     spread = None

@@ -34,7 +34,7 @@ from .speed_error import ERROR_FLOOR, pareto_front
 from .tables import Table, fmt_error
 
 __all__ = ["CompliantPoint", "CompliantSpeedStudy", "compliant_sweep", "STEPS", "RTOLS",
-           "TARGET", "SCENES", "plot_compliant_speed_error", "write_compliant_study"]
+           "TARGET", "SCENES", "COARSE", "plot_compliant_speed_error", "write_compliant_study"]
 
 STEPS = (10, 20, 40, 80, 160, 320, 640, 1280, 2560)
 RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-8, 1e-10, 1e-12)
@@ -43,6 +43,8 @@ TARGET = 1e-3
 #: scene name -> friction mu_c between the vehicles
 SCENES = {"frictionless": 0.0, "friction 0.5": 0.5}
 REFERENCE_RTOL = 1e-13
+#: The coarse grid (``pim speed-error --coarse``): seconds, not a minute.
+COARSE = dict(steps=(10, 40, 160, 640), rtols=(1e-3, 1e-6, 1e-9), repeats=1)
 
 
 @dataclass(frozen=True)

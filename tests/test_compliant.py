@@ -151,7 +151,7 @@ def test_high_speed_outlines_pass_through_is_detected():
     assert err.value.kind == "tunnelled"
 
 
-def test_grazing_contact_slides_and_reports_its_slip():
+def test_grazing_sideswipe_slides_throughout():
     case = pim.load_case("hard-grazing")
     r = sim.simulate_compliant(case, 0.1, K, friction=0.5)
     assert r.stick_fraction < 0.5
@@ -159,6 +159,27 @@ def test_grazing_contact_slides_and_reports_its_slip():
     ref = sim.reference_compliant(case, 0.1, K, friction=0.5,
                                   settings=CompliantSettings(record=False))
     assert r.slip_reversed == ref.slip_reversed
+
+
+def test_grazing_contact_with_slip_reversal():
+    # a slow grazing touch (0.5 m/s slip, 1 m/s approach) that sticks on a stiff friction
+    # spring: the spring gives its energy back and the slip leaves reversed (-0.5 -> +0.3)
+    v1 = pim.Vehicle(1500.0, 1500 * 1.3 ** 2, (-1.5, 0.9), (0.5, -1.0), 0.0, 0.0, 4.5, 1.8)
+    v2 = pim.Vehicle(1800.0, 1800 * 1.4 ** 2, (1.6, -0.9), (0.0, 0.0), 0.0, math.pi, 4.8, 1.8)
+    case = pim.Case(v1, v2, pim.Impact((0.0, 0.0), math.pi / 2))
+    settings = CompliantSettings(tangential_stiffness=5 * K)
+    r = sim.simulate_compliant(case, 0.1, K, friction=3.0, settings=settings)
+    ref = sim.reference_compliant(case, 0.1, K, friction=3.0,
+                                  settings=replace(settings, record=False))
+    assert r.slip_reversed and ref.slip_reversed
+    assert r.history.slip[0] < 0 < r.history.slip[-1]
+    assert r.stick_fraction > 0.9
+    assert np.abs(r.velocity1 - ref.velocity1).max() < 1e-3
+    assert r.energy_after < r.energy_before
+    # a soft spring (0.5 k) does not reverse it
+    soft = sim.simulate_compliant(case, 0.1, K, friction=3.0,
+                                  settings=CompliantSettings(tangential_stiffness=0.5 * K))
+    assert not soft.slip_reversed
 
 
 def test_eps_zero_vehicles_move_together_at_c(ricsac9):

@@ -78,22 +78,6 @@ def test_point_mass_restitution_is_exactly_eps():
             assert r.contact_duration == pytest.approx(expected, rel=1e-8)
 
 
-def test_frictionless_stiff_limit_is_pim_beta0_at_first_order(ricsac9):
-    # the error against PIM (beta = 0, same eps) falls in proportion to the contact time
-    pim0 = pim.solve(ricsac9, 0.355, 0.0)
-    k_nn = float(pim0.k_nn)
-    durations = np.array([0.04, 0.02, 0.01, 0.005])
-    errors = []
-    for duration in durations:
-        k = float(stiffness_for_duration(duration, k_nn, 0.355))
-        r = sim.reference_compliant(ricsac9, 0.355, k,
-                                    settings=CompliantSettings(rtol=1e-11, record=False))
-        errors.append(np.abs(post(r) - post(pim0)).max())
-    order = np.polyfit(np.log(durations), np.log(errors), 1)[0]
-    assert order == pytest.approx(1.0, rel=0.10)
-    assert errors[-1] < errors[0] / 6
-
-
 def test_sticking_stiff_limit_is_pim_beta1_where_slip_does_not_reverse():
     case = offset_barrier_case()
     pim1 = pim.solve(case, 0.3, 1.0)
