@@ -158,6 +158,23 @@ _post_impact = njit(inline="always", error_model="numpy")(formula.post_impact)
 
 
 @njit(inline="always", error_model="numpy")
+def _impact(cs, sn, a1, b1, r1x, r1y, v1x, v1y, om1, a2, b2, r2x, r2y, v2x, v2y, om2, e, b,
+            approach_tol, singular_tol):  # pragma: no cover - compiled
+    """The formula with its two selections (no impulse without approach, NaN where q is
+    singular), for one case: the contact quantities, then the post-impact ones."""
+    ux, uy, u_n, u_t, k_nn, k_nt, k_tt, pn0, pt0, drive, denom, appr, sing = _contact(
+        cs, sn, a1, b1, r1x, r1y, v1x, v1y, om1, a2, b2, r2x, r2y, v2x, v2y, om2, e, b,
+        approach_tol, singular_tol)
+    scale = drive / denom if appr else 0.0
+    scale = np.nan if sing else scale
+    p_n, p_t, ix, iy, vx1, vy1, vx2, vy2, ww1, ww2 = _post_impact(
+        scale, pn0, pt0, b, cs, sn, a1, b1, r1x, r1y, v1x, v1y, om1, a2, b2, r2x, r2y, v2x,
+        v2y, om2)
+    return (ux, uy, u_n, u_t, k_nn, k_nt, k_tt, pn0, pt0, appr, sing,
+            p_n, p_t, ix, iy, vx1, vy1, vx2, vy2, ww1, ww2)
+
+
+@njit(inline="always", error_model="numpy")
 def _case(i, cs, sn, m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, eps, beta, approach_tol,
           singular_tol, full, cvec, csc, approaching, singular, avec, asc,
           trig):  # pragma: no cover - compiled
@@ -178,14 +195,10 @@ def _case(i, cs, sn, m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, eps, beta, ap
     v2y = v2[i, 1]
     om1 = w1[i]
     om2 = w2[i]
-    ux, uy, u_n, u_t, k_nn, k_nt, k_tt, pn0, pt0, drive, denom, appr, sing = _contact(
+    (ux, uy, u_n, u_t, k_nn, k_nt, k_tt, pn0, pt0, appr, sing,
+     p_n, p_t, ix, iy, vx1, vy1, vx2, vy2, ww1, ww2) = _impact(
         cs, sn, a1, b1, r1x, r1y, v1x, v1y, om1, a2, b2, r2x, r2y, v2x, v2y, om2, e, b,
         approach_tol, singular_tol)
-    scale = drive / denom if appr else 0.0
-    scale = np.nan if sing else scale
-    p_n, p_t, ix, iy, vx1, vy1, vx2, vy2, ww1, ww2 = _post_impact(
-        scale, pn0, pt0, b, cs, sn, a1, b1, r1x, r1y, v1x, v1y, om1, a2, b2, r2x, r2y, v2x,
-        v2y, om2)
     cvec[0, i, 0] = vx1
     cvec[0, i, 1] = vy1
     cvec[1, i, 0] = vx2
@@ -291,14 +304,10 @@ def _solve_block(m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, gamma, eps, beta,
         v2y = v2[j + 1]
         om1 = w1[i]
         om2 = w2[i]
-        ux, uy, u_n, u_t, k_nn, k_nt, k_tt, pn0, pt0, drive, denom, appr, sing = _contact(
+        (ux, uy, u_n, u_t, k_nn, k_nt, k_tt, pn0, pt0, appr, sing,
+         p_n, p_t, ix, iy, vx1, vy1, vx2, vy2, ww1, ww2) = _impact(
             cs, sn, a1, b1, r1x, r1y, v1x, v1y, om1, a2, b2, r2x, r2y, v2x, v2y, om2, e, b,
             approach_tol, singular_tol)
-        scale = drive / denom if appr else 0.0
-        scale = np.nan if sing else scale
-        p_n, p_t, ix, iy, vx1, vy1, vx2, vy2, ww1, ww2 = _post_impact(
-            scale, pn0, pt0, b, cs, sn, a1, b1, r1x, r1y, v1x, v1y, om1, a2, b2, r2x, r2y, v2x,
-            v2y, om2)
         vel1[j] = vx1
         vel1[j + 1] = vy1
         vel2[j] = vx2
