@@ -31,7 +31,8 @@ from ..model.solver import solve
 
 __all__ = ["PLACEHOLDER_MASS", "SPEED_TOLERANCE", "YAW_TOLERANCE", "K_BOUNDS", "barrier_case",
            "barrier_motion", "fit_radius_of_gyration", "BarrierReproduction",
-           "reproduce_barrier", "class_radius_of_gyration", "summary_errors"]
+           "reproduce_barrier", "class_radius_of_gyration", "summary_errors",
+           "CoefficientStats", "CRASH_CLASSES", "coefficient_stats", "ricsac_published_errors"]
 
 PLACEHOLDER_MASS = 1500.0             # kg; a barrier impact depends on k, not m
 SPEED_TOLERANCE = 0.44704             # m/s = 1 mph: reproduction tolerance of a delta-V
@@ -177,3 +178,72 @@ def summary_errors(values) -> dict:
     a = np.abs(np.asarray(values, dtype=float))
     return {"median": float(np.median(a)), "p90": float(np.percentile(a, 90)),
             "max": float(a.max()), "n": int(a.size)}
+
+
+@dataclass(frozen=True)
+class CoefficientStats:
+    """Distribution of one coefficient over the tests of one crash class."""
+
+    crash_class: str
+    coefficient: str
+    values: tuple
+
+    @property
+    def n(self) -> int:
+        return len(self.values)
+
+    @property
+    def median(self) -> float:
+        return float(np.median(self.values))
+
+    @property
+    def mean(self) -> float:
+        return float(np.mean(self.values))
+
+    @property
+    def sd(self) -> float:
+        """Sample standard deviation (n - 1)."""
+        return float(np.std(self.values, ddof=1))
+
+    def percentile(self, q) -> float:
+        return float(np.percentile(self.values, q))
+
+
+#: Crash class -> (dataset, selector) of the tests it holds; one value per impact.
+CRASH_CLASSES = {
+    "barrier non-sideswipe": ("iihs-barrier", lambda t: t.group == "NS"),
+    "barrier sideswipe": ("iihs-barrier", lambda t: t.group == "SS"),
+    "car-to-car": ("iihs-car-to-car", lambda t: t.test_id.endswith("a")),
+}
+
+
+def coefficient_stats(records_by_dataset: dict) -> list[CoefficientStats]:
+    """epsilon and beta (mu/mu0) statistics per :data:`CRASH_CLASSES` entry.
+
+    ``records_by_dataset``: dataset name -> its records (:mod:`pim.io.datasets`).
+    """
+    out = []
+    for cls, (dataset, keep) in CRASH_CLASSES.items():
+        records = [r for r in records_by_dataset.get(dataset, ()) if keep(r)]
+        if not records:
+            continue
+        for coefficient, attr in (("epsilon", "restitution"), ("beta", "beta")):
+            out.append(CoefficientStats(cls, coefficient,
+                                        tuple(getattr(r, attr) for r in records)))
+    return out
+
+
+def ricsac_published_errors(tests) -> dict:
+    """Each published RICSAC delta-V analysis against the delta-V magnitudes of the measured
+    pre/post velocities: analysis name -> list of (test number, vehicle, error [m/s])."""
+    out = {}
+    for t in tests:
+        if not t.has_motion:
+            continue
+        measured = (float(np.hypot(*np.subtract(t.velocity1_post, t.velocity1_pre))),
+                    float(np.hypot(*np.subtract(t.velocity2_post, t.velocity2_pre))))
+        for name, values in t.published_delta_v.items():
+            for i, (pub, meas) in enumerate(zip(values, measured), start=1):
+                if pub is not None:
+                    out.setdefault(name, []).append((t.number, i, pub - meas))
+    return out
