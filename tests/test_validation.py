@@ -16,7 +16,10 @@ import pytest
 
 from pim.analysis.validation import (SPEED_TOLERANCE, YAW_TOLERANCE, barrier_case,
                                      barrier_motion, class_radius_of_gyration,
-                                     fit_radius_of_gyration, reproduce_barrier, summary_errors)
+                                     coefficient_stats, fit_radius_of_gyration, refit_barrier,
+                                     reproduce_barrier, summary_errors)
+from pim.plotting.validation import (barrier_table, coefficient_table, plot_coefficients,
+                                     plot_predicted_vs_measured, summary_line)
 from pim.io.datasets import FT, DEG, load_barrier
 from pim.model.solver import solve
 
@@ -94,3 +97,34 @@ def test_summary_errors():
     assert s["median"] == 3.0 and s["max"] == 5.0 and s["n"] == 5
     assert s["p90"] == pytest.approx(4.6)
     assert SPEED_TOLERANCE == pytest.approx(1609.344 / 3600)
+
+
+def test_refit_recovers_the_published_coefficients():
+    """pim.fit on (eps, beta) at the published geometry finds the paper's values: interior
+    tests within 0.01 in e and 0.005 in mu/mu0 (the table prints e to 0.001, mu to 0.1 %; the
+    slack is phi, d1 and Gamma rounded to 0.1), and a paper's bound (e = 0) stays a bound."""
+    tests = INTERIOR[::4] + [t for t in TESTS if t.test_id == "CF11002"]
+    ks = {t.test_id: fit_radius_of_gyration(t) for t in tests}
+    for r in refit_barrier(tests, ks):
+        assert abs(r.restitution - r.test.restitution) < 0.01, r.test.test_id
+        assert abs(r.beta - r.test.beta) < 0.005, r.test.test_id
+        if r.test.restitution == 0:
+            assert "eps" in r.on_bound
+        else:
+            assert r.on_bound == ()
+
+
+def test_report_tables_and_figures():
+    rows = reproduce_barrier(TESTS[:3], 1.4)
+    header, table = barrier_table(rows, rows, units="us")
+    assert header[5] == "dVx meas [mph]" and len(table) == 3
+    assert float(table[0][5]) == pytest.approx(52.79 * 3600 / 5280, abs=0.006)   # CEN1212
+    stats = coefficient_stats({"iihs-barrier": TESTS})
+    header, table = coefficient_table(stats)
+    ns_beta = next(r for r in table if r[0] == "barrier non-sideswipe" and r[1] == "beta")
+    assert ns_beta[2] == 16 and ns_beta[3] == "1.000"
+    fig = plot_predicted_vs_measured({"x": rows}, "si")
+    assert len(fig.axes) == 2 and "km/h" in fig.axes[0].get_xlabel()
+    assert len(plot_coefficients(stats).axes) == 2
+    line = summary_line("t", rows, "us")
+    assert line.startswith("t: 3 tests, delta-V error median") and "mph" in line

@@ -26,12 +26,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..io.brach import cg_from_brach
+from .fitting import fit
 from ..model.case import Case, Impact, Measured, Vehicle
 from ..model.solver import solve
 
 __all__ = ["PLACEHOLDER_MASS", "SPEED_TOLERANCE", "YAW_TOLERANCE", "K_BOUNDS", "barrier_case",
            "barrier_motion", "fit_radius_of_gyration", "BarrierReproduction",
-           "reproduce_barrier", "class_radius_of_gyration", "summary_errors",
+           "reproduce_barrier", "BarrierRefit", "refit_barrier", "class_radius_of_gyration", "summary_errors",
            "CoefficientStats", "CRASH_CLASSES", "coefficient_stats", "ricsac_published_errors"]
 
 PLACEHOLDER_MASS = 1500.0             # kg; a barrier impact depends on k, not m
@@ -162,6 +163,39 @@ def reproduce_barrier(tests, radius_of_gyration=None) -> list[BarrierReproductio
         pred = barrier_motion(solve(barrier_case(t, k), backend="numpy"))
         out.append(BarrierReproduction(t, k, tuple(float(x) for x in pred),
                                        (t.delta_v_x, t.delta_v_y, t.yaw_rate)))
+    return out
+
+
+@dataclass(frozen=True)
+class BarrierRefit(BarrierReproduction):
+    """A barrier test refitted with :func:`pim.fit`: the fitted coefficients and their motion.
+
+    ``restitution``, ``beta`` [-] and ``phi`` [rad] as fitted (phi is the published one when it
+    was held fixed); ``on_bound`` names the fitted parameters that sit on a bound.
+    """
+
+    restitution: float
+    beta: float
+    phi: float
+    on_bound: tuple
+
+
+def refit_barrier(tests, radius_of_gyration) -> list[BarrierRefit]:
+    """Refit each test's (epsilon, beta) with :func:`pim.fit` at its published geometry.
+
+    The fit uses the measured delta-V components and yaw rate (``include_yaw``), epsilon and
+    beta in [0, 1] (the paper's mu <= mu0). ``radius_of_gyration`` as in
+    :func:`reproduce_barrier`, but required (a number or a dict test_id -> k [m]).
+    """
+    out = []
+    for t in tests:
+        k = (radius_of_gyration[t.test_id] if isinstance(radius_of_gyration, dict)
+             else float(radius_of_gyration))
+        r = fit(barrier_case(t, k), include_yaw=True)
+        pred = barrier_motion(solve(barrier_case(t, k), eps=r.eps, beta=r.beta, backend="numpy"))
+        out.append(BarrierRefit(t, k, tuple(float(x) for x in pred),
+                                (t.delta_v_x, t.delta_v_y, t.yaw_rate), float(r.eps),
+                                float(r.beta), t.phi, tuple(r.on_bound)))
     return out
 
 

@@ -6,7 +6,7 @@ import click
 
 from ..analysis.consistency import check_ricsac
 from ..analysis.validation import (class_radius_of_gyration, coefficient_stats,
-                                   reproduce_barrier, ricsac_published_errors, summary_errors)
+                                   refit_barrier, reproduce_barrier, ricsac_published_errors, summary_errors)
 from ..io.datasets import DATASETS, load_dataset
 from ..io.units import convert
 from ..plotting.validation import (barrier_table, coefficient_table, consistency_table,
@@ -23,7 +23,9 @@ NOTES = [
     "the published (e, mu/mu0). The yaw inertia is not published: the radius of gyration k is "
     "fitted per test (one parameter, residuals scaled by 1 mph and 10 deg/s) and, as a second "
     "run, set to the median of the fitted k of the test's vehicle type ('class k'). 'dV err' "
-    "is the length of the delta-V vector error.", "",
+    "is the length of the delta-V vector error. The refit runs pim.fit on (eps, beta) in "
+    "[0, 1] x [0, 1] against the measured dVx, dVy and yaw rate, at the published phi and d1, "
+    "with the per-test and the class k; 'fit' columns are the per-test-k refit.", "",
     "RICSAC: the CG-to-impact distances are not published, so no reproduction; the momentum "
     "balance of the measured data is checked (pim.analysis.consistency).", "",
     "Sources: Brach R.M., Welsh K.J., Brach R.M., SAE 2014-01-0469 (Appendix 2); RICSAC "
@@ -43,7 +45,9 @@ def run_validation(dataset: str = "all", units: str = "si") -> tuple[dict, list[
         usable = [r for r in published if r.test.group != "OUTLIER"]
         class_k = class_radius_of_gyration(usable)
         with_class = reproduce_barrier(tests, {t.test_id: class_k[t.vehicle_type] for t in tests})
-        sections["barrier"] = barrier_table(published, with_class, units=units)
+        refitted = refit_barrier(tests, {r.test.test_id: r.radius_of_gyration for r in published})
+        refitted_class = refit_barrier(tests, {t.test_id: class_k[t.vehicle_type] for t in tests})
+        sections["barrier"] = barrier_table(published, with_class, refitted, units=units)
         ks = [r.radius_of_gyration for r in usable]
         lu = convert(1.0, "length", units)[1]
         k_lo, k_hi = (float(convert(x, "length", units)[0]) for x in (min(ks), max(ks)))
@@ -54,6 +58,15 @@ def run_validation(dataset: str = "all", units: str = "si") -> tuple[dict, list[
             rows = [r for r in with_class if r.test.group == group]
             summary.append(summary_line(f"iihs-barrier {label}, published coefficients, "
                                         f"class k", rows, units))
+            for fits, how in ((refitted, "per-test k"), (refitted_class, "class k")):
+                rows = [r for r in fits if r.test.group == group]
+                summary.append(summary_line(f"iihs-barrier {label}, refitted (eps, beta), {how}",
+                                            rows, units))
+                de = summary_errors([r.restitution - r.test.restitution for r in rows])
+                db = summary_errors([r.beta - r.test.beta for r in rows])
+                summary.append(f"iihs-barrier {label}, refitted ({how}) minus published: "
+                               f"|d eps| median {de['median']:.3f}, max {de['max']:.3f}; "
+                               f"|d beta| median {db['median']:.3f}, max {db['max']:.3f}")
         summary.append(f"iihs-barrier: fitted radius of gyration {k_lo:.3f}-{k_hi:.3f} {lu} "
                        f"over {len(ks)} tests; class medians " + ", ".join(
                            f"{c} {float(convert(k, 'length', units)[0]):.3f} {lu}"
