@@ -61,7 +61,8 @@ def _copy(tmp_path, name, edit):
     (lambda s: s.replace("Omega_dps", "Omega"), r"line 3: header .*missing \['Omega_dps'\]"),
     (lambda s: s.replace(",205.96\n", "\n"), r"line 4: 16 fields, expected 17"),
     (lambda s: s.replace("CEN1204", "CEN1212"), r"line 5: duplicate test_id 'CEN1212'"),
-    (lambda s: s.replace(",58.60,52.79,", ",nan,52.79,"), r"column 'v0_fps': 'nan' is not a finite"),
+    (lambda s: s.replace(",58.60,52.79,", ",nan,52.79,"),
+     r"column 'v0_fps': 'nan' is not a finite"),
     (lambda s: s.replace(",58.60,52.79,", ",,52.79,"), r"column 'v0_fps': empty"),
 ])
 def test_malformed_barrier_file_rejected(tmp_path, edit, match):
@@ -72,8 +73,9 @@ def test_malformed_barrier_file_rejected(tmp_path, edit, match):
 
 
 def test_malformed_car_to_car_file_rejected(tmp_path):
-    path = _copy(tmp_path, CAR_TO_CAR_FILE, lambda s: s.replace("CF09009b,SS,2001 Ford Taurus,28%,0.009",
-                                                                "CF09009b,SS,2001 Ford Taurus,28%,0.010"))
+    path = _copy(tmp_path, CAR_TO_CAR_FILE,
+                 lambda s: s.replace("CF09009b,SS,2001 Ford Taurus,28%,0.009",
+                                     "CF09009b,SS,2001 Ford Taurus,28%,0.010"))
     with pytest.raises(ValueError, match="restitution of CF09009b differs"):
         load_car_to_car(path)
     path = _copy(tmp_path, CAR_TO_CAR_FILE, lambda s: s.replace("CF09009b,", "CF09009c,"))
@@ -85,8 +87,9 @@ def test_malformed_ricsac_file_rejected(tmp_path):
     path = _copy(tmp_path, RICSAC_FILE, lambda s: s.replace("-30,0,60,-19.8", ",0,60,-19.8"))
     with pytest.raises(ValueError, match=r"line 4 column 'Gamma_deg': empty, but other motion"):
         load_ricsac(path)
-    path = _copy(tmp_path, RICSAC_FILE, lambda s: s.replace("1,Chevrolet Chevelle Malibu,Ford Pinto,2096",
-                                                            "1,Chevrolet Chevelle Malibu,Ford Pinto,-2096"))
+    path = _copy(tmp_path, RICSAC_FILE,
+                 lambda s: s.replace("1,Chevrolet Chevelle Malibu,Ford Pinto,2096",
+                                     "1,Chevrolet Chevelle Malibu,Ford Pinto,-2096"))
     with pytest.raises(ValueError, match=r"column 'm1_kg': -2096 outside"):
         load_ricsac(path)
 

@@ -43,7 +43,8 @@ def test_prior_in_uncertainty_table():
 @pytest.mark.parametrize("spec, match", [
     ({"impact": {"restitution": {"prior": "nope"}}}, "unknown prior 'nope'"),
     ({"vehicle1": {"mass": {"prior": "iihs-small-overlap-barrier"}}}, "a prior exists only for"),
-    ({"impact": {"beta": {"prior": "iihs-small-overlap-barrier", "mean": 1}}}, "unknown key|no other"),
+    ({"impact": {"beta": {"prior": "iihs-small-overlap-barrier", "mean": 1}}},
+     "unknown key|no other"),
     ({"impact": {"beta": {"prior": 3}}}, "must be a prior's name"),
 ])
 def test_bad_prior_rejected(spec, match):

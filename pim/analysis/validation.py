@@ -32,7 +32,8 @@ from ..model.solver import solve
 
 __all__ = ["PLACEHOLDER_MASS", "SPEED_TOLERANCE", "YAW_TOLERANCE", "K_BOUNDS", "barrier_case",
            "barrier_motion", "fit_radius_of_gyration", "BarrierReproduction",
-           "reproduce_barrier", "BarrierRefit", "refit_barrier", "class_radius_of_gyration", "summary_errors",
+           "reproduce_barrier", "BarrierRefit", "refit_barrier", "class_radius_of_gyration",
+           "summary_errors",
            "CoefficientStats", "CRASH_CLASSES", "coefficient_stats", "ricsac_published_errors"]
 
 PLACEHOLDER_MASS = 1500.0             # kg; a barrier impact depends on k, not m

@@ -5,8 +5,8 @@ from __future__ import annotations
 import click
 
 from ..analysis.consistency import check_ricsac
-from ..analysis.validation import (class_radius_of_gyration, coefficient_stats,
-                                   refit_barrier, reproduce_barrier, ricsac_published_errors, summary_errors)
+from ..analysis.validation import (class_radius_of_gyration, coefficient_stats, refit_barrier,
+                                   reproduce_barrier, ricsac_published_errors, summary_errors)
 from ..io.datasets import DATASETS, load_dataset
 from ..io.units import convert
 from ..plotting.validation import (barrier_table, coefficient_table, consistency_table,

@@ -203,6 +203,12 @@ class _Rows:
                              f"{'(' if low_open else '['}{low:g}, {high:g}]")
         return value
 
+    def reader(self, line, row):
+        """``number`` bound to one row: ``f(column, low, high, low_open, optional=...)``."""
+        def read(column, low=-math.inf, high=math.inf, low_open=False, optional=False):
+            return self.number(line, row, column, low, high, optional=optional, low_open=low_open)
+        return read
+
     def text(self, line, row, column, allowed=None, required=True):
         value = row[column]
         if required and not value:
@@ -233,8 +239,7 @@ def load_barrier(path=None) -> list[BarrierTest]:
     rows = _Rows(path or data_path(BARRIER_FILE), _BARRIER_COLUMNS)
     out = []
     for line, r in rows.rows:
-        n = lambda c, lo=-math.inf, hi=math.inf, lo_open=False: rows.number(  # noqa: E731
-            line, r, c, lo, hi, low_open=lo_open)
+        n = rows.reader(line, r)
         year = n("my", 1900, 2100)
         if year != int(year):
             raise ValueError(f"{rows.name} line {line} column 'my': {year:g} is not a year")
@@ -261,8 +266,7 @@ def load_car_to_car(path=None) -> list[CarToCarVehicle]:
     rows = _Rows(path or data_path(CAR_TO_CAR_FILE), _CAR_TO_CAR_COLUMNS)
     out = []
     for line, r in rows.rows:
-        n = lambda c, lo=-math.inf, hi=math.inf, lo_open=False: rows.number(  # noqa: E731
-            line, r, c, lo, hi, low_open=lo_open)
+        n = rows.reader(line, r)
         test_id = rows.text(line, r, "iihs_id")
         if test_id[-1:] not in ("a", "b"):
             raise ValueError(f"{rows.name} line {line} column 'iihs_id': {test_id!r} must end "
@@ -311,8 +315,7 @@ def load_ricsac(path=None) -> list[RicsacTest]:
     rows = _Rows(path or data_path(RICSAC_FILE), _RICSAC_COLUMNS)
     out = []
     for line, r in rows.rows:
-        n = lambda c, lo=-math.inf, hi=math.inf, opt=False, lo_open=False: rows.number(  # noqa
-            line, r, c, lo, hi, optional=opt, low_open=lo_open)
+        n = rows.reader(line, r)
         number = n("ricsac", 1, 99)
         if number != int(number):
             raise ValueError(f"{rows.name} line {line} column 'ricsac': {number:g} is not a "
@@ -322,22 +325,23 @@ def load_ricsac(path=None) -> list[RicsacTest]:
             empty = [c for c in _RICSAC_MOTION if r[c] == ""]
             raise ValueError(f"{rows.name} line {line} column {empty[0]!r}: empty, but other "
                              "motion columns of the row are given (all or none)")
-        m = {c: n(c, -100, 100, opt=True) for c in _RICSAC_MOTION if "deg" not in c}
-        a = {c: n(c, -360, 360, opt=True) for c in _RICSAC_MOTION if "deg" in c}
+        m = {c: n(c, -100, 100, optional=True) for c in _RICSAC_MOTION if "deg" not in c}
+        a = {c: n(c, -360, 360, optional=True) for c in _RICSAC_MOTION if "deg" in c}
         vec = lambda x, y: None if m[x] is None else (m[x], m[y])  # noqa: E731
         rad = lambda c: None if a[c] is None else a[c] * DEG  # noqa: E731
         out.append(RicsacTest(
             number=int(number), vehicle1=rows.text(line, r, "veh1", required=False),
             vehicle2=rows.text(line, r, "veh2", required=False),
-            mass1=n("m1_kg", 0, 1e5, lo_open=True), yaw_inertia1=n("I1_kgm2", 0, 1e6, lo_open=True),
-            mass2=n("m2_kg", 0, 1e5, lo_open=True), yaw_inertia2=n("I2_kgm2", 0, 1e6, lo_open=True),
-            speed1_measured=n("v1_pre_meas_mps", 0, 100), speed2_measured=n("v2_pre_meas_mps", 0, 100),
+            mass1=n("m1_kg", 0, 1e5, True), yaw_inertia1=n("I1_kgm2", 0, 1e6, True),
+            mass2=n("m2_kg", 0, 1e5, True), yaw_inertia2=n("I2_kgm2", 0, 1e6, True),
+            speed1_measured=n("v1_pre_meas_mps", 0, 100),
+            speed2_measured=n("v2_pre_meas_mps", 0, 100),
             normal_angle=rad("Gamma_deg"), theta1=rad("theta1_deg"), theta2=rad("theta2_deg"),
             phi1=rad("phi1_deg"), phi2=rad("phi2_deg"),
             velocity1_pre=vec("Vi1x", "Vi1y"), velocity2_pre=vec("Vi2x", "Vi2y"),
             velocity1_post=vec("Vf1x", "Vf1y"), velocity2_post=vec("Vf2x", "Vf2y"),
             yaw_rate1_post=m["Wf1_radps"], yaw_rate2_post=m["Wf2_radps"],
-            published_delta_v={k: (n(f"dV1_{k}", 0, 100, opt=True), n(f"dV2_{k}", 0, 100, opt=True))
+            published_delta_v={k: tuple(n(f"dV{i}_{k}", 0, 100, optional=True) for i in (1, 2))
                                for k in _RICSAC_DV},
             line=line))
     return rows.unique(out, "number")

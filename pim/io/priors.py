@@ -25,8 +25,10 @@ __all__ = ["PRIORS", "PRIOR_INPUTS", "prior_values", "prior_distribution"]
 
 #: Prior name -> (crash class description).
 PRIORS = {
-    "iihs-small-overlap-barrier": "IIHS small-overlap barrier tests, non-sideswipe (Brach et al. 2014)",
-    "iihs-small-overlap-sideswipe": "IIHS small-overlap barrier tests, sideswipe (Brach et al. 2014)",
+    "iihs-small-overlap-barrier":
+        "IIHS small-overlap barrier tests, non-sideswipe (Brach et al. 2014)",
+    "iihs-small-overlap-sideswipe":
+        "IIHS small-overlap barrier tests, sideswipe (Brach et al. 2014)",
     "iihs-small-overlap-car-to-car": "IIHS small-overlap car-to-car tests (Brach et al. 2014)",
 }
 #: Inputs a prior can describe -> record attribute.

@@ -76,7 +76,8 @@ class Distribution:
 
     def __post_init__(self) -> None:
         if self.kind not in KINDS:
-            raise ValueError(f"distribution kind {self.kind!r} unknown (allowed: {', '.join(KINDS)})")
+            raise ValueError(f"distribution kind {self.kind!r} unknown "
+                             f"(allowed: {', '.join(KINDS)})")
         if self.kind == "prior":
             v = np.asarray(self.values if self.values is not None else (), dtype=float)
             if v.ndim != 1 or v.size < 2 or not np.isfinite(v).all():
