@@ -17,6 +17,7 @@ from .analysis.fitting import FitResult, fit
 from .analysis.montecarlo import UncertaintyResult, uncertainty
 from .analysis.sensitivity import sensitivity
 from .io.casefile import list_cases, load_case
+from .io.datasets import load_dataset
 from .model.case import Case, Impact, Measured, Vehicle
 from .model.result import Result
 from .model.solver import solve
@@ -24,4 +25,5 @@ from .model.solver import solve
 __all__ = ["Case", "Impact", "Measured", "Vehicle", "Result", "solve", "load_case",
            "list_cases", "fit", "FitResult", "sensitivity", "uncertainty",
            "UncertaintyResult"]
+__all__ += ["load_dataset"]  # issue 13: bundled published crash tests
 __version__ = "0.1.0"
