@@ -28,6 +28,7 @@ from PIL import Image, ImageDraw, ImageFont
 import pim
 import sim
 from pim.io.files import atomic_path
+from pim.io.units import convert
 from pim.model.geometry import outline_corners
 
 from .motion import Motion, analytic_motion, simulated_motion
@@ -50,7 +51,7 @@ COLORS = {
     "fill2": (245, 180, 110), "edge2": (150, 70, 10),
     "fixed": (170, 170, 170), "fixed_edge": (70, 70, 70),
     "ghost": (220, 0, 200), "impulse": (210, 20, 20), "contact": (0, 140, 70),
-    "velocity": (10, 10, 10),
+    "velocity": (10, 10, 10), "warning": (180, 0, 0),
 }
 
 
@@ -133,6 +134,9 @@ class AnimationInfo:
     max_ghost_offset_px : float
         Largest distance [px] between a ghost corner and the matching simulated corner
         after the impact (0 when simulation and PIM agree).
+    secondary_impact : sim.SecondaryImpact or None
+        The outlines run into each other again after separation (a second impact PIM does
+        not model); the frames from then on say so.
     """
 
     path: Path
@@ -143,6 +147,7 @@ class AnimationInfo:
     render_seconds: float
     write_seconds: float
     max_ghost_offset_px: float
+    secondary_impact: object = None
 
     @property
     def render_fps(self) -> float:
@@ -169,18 +174,24 @@ class Renderer:
         Frame size [px]; both even (libx264 with yuv420p needs it).
     title : str
         First line of the caption.
+    secondary : sim.SecondaryImpact, optional
+        A secondary impact after separation: frames from its time on carry a warning.
     """
 
     TOP, BOTTOM, MARGIN = 54, 46, 24
 
     def __init__(self, case: pim.Case, result: pim.Result, simulated: Motion,
-                 ghost: Motion | None, impulse, size=DEFAULT_SIZE, title: str = "") -> None:
+                 ghost: Motion | None, impulse, size=DEFAULT_SIZE, title: str = "",
+                 units: str = "si", secondary=None) -> None:
         width, height = (int(s) for s in size)
         if width % 2 or height % 2 or width < 160 or height < 160:
             raise ValueError(f"size must be even and at least 160 px, got {size!r}")
         self.case, self.result, self.sim, self.ghost = case, result, simulated, ghost
         self.size = (width, height)
         self.title = title
+        factor, unit = convert(1.0, "length", units)
+        self.length_unit = (float(factor), unit)      # display units per metre, label
+        self.secondary = secondary
         self.times = simulated.time
         self.corners = (_corners(case.vehicle1), _corners(case.vehicle2))
         self.point = np.asarray(case.impact.point, float).reshape(2)
@@ -279,9 +290,11 @@ class Renderer:
         width, height = self.size
         img = Image.new("RGB", self.size, COLORS["background"])
         d = ImageDraw.Draw(img)
-        # grid every 1, 2, 5 or 10 m: lines at least 40 px apart
-        step = next(s for s in (0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500)
-                    if s * self.scale >= 40)
+        # grid every 1, 2, 5 or 10 display units (m or ft): lines at least 40 px apart
+        per_m, unit = self.length_unit
+        shown = next(s for s in (0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000)
+                     if s / per_m * self.scale >= 40)
+        step = shown / per_m
         lo = self.centre - np.array([width, height]) / 2 / self.scale
         hi = self.centre + np.array([width, height]) / 2 / self.scale
         for x in np.arange(math.floor(lo[0] / step) * step, hi[0] + step, step):
@@ -302,7 +315,8 @@ class Renderer:
         bar = step * self.scale
         y0 = height - 18
         d.line([(width - 30 - bar, y0), (width - 30, y0)], fill=COLORS["text"], width=3)
-        d.text((width - 30 - bar, y0 - 18), f"{step:g} m", fill=COLORS["text"], font=self.small)
+        d.text((width - 30 - bar, y0 - 18), f"{shown:g} {unit}", fill=COLORS["text"],
+               font=self.small)
         # caption
         d.rectangle([0, 0, width, self.TOP - 4], fill=(248, 248, 248))
         d.text((10, 6), self.title, fill=COLORS["text"], font=self.font)
@@ -392,6 +406,10 @@ class Renderer:
         phase = "before impact" if t < 0 else ("impact" if t == 0 else "after impact")
         d.text((10, self.size[1] - self.BOTTOM + 10), f"t = {t:+.3f} s   {phase}",
                fill=COLORS["text"], font=self.font)
+        if self.secondary is not None and t >= self.secondary.time:
+            d.text((10, self.size[1] - self.BOTTOM + 26),
+                   f"SECONDARY IMPACT at t = {self.secondary.time:.3f} s: the outlines overlap "
+                   f"again; PIM models one impact", fill=COLORS["warning"], font=self.font)
         return img
 
     def array(self, index: int) -> np.ndarray:
@@ -465,13 +483,14 @@ def write_animation(renderer: Renderer, path, fps: int = DEFAULT_FPS, gif=None,
     return AnimationInfo(path=path, gif=gif_path, frames=len(renderer), fps=int(fps),
                          size=renderer.size, render_seconds=render,
                          write_seconds=total - render,
-                         max_ghost_offset_px=renderer.ghost_offset_px())
+                         max_ghost_offset_px=renderer.ghost_offset_px(),
+                         secondary_impact=renderer.secondary)
 
 
 def build_renderer(case: pim.Case, eps: float, beta: float, *, before: float | None = None,
                    after: float = DEFAULT_AFTER, fps: int = DEFAULT_FPS, tyre: float = 0.0,
                    ghost: bool = True, size=DEFAULT_SIZE, result: pim.Result | None = None,
-                   simulated=None) -> Renderer:
+                   simulated=None, units: str = "si", title: str | None = None) -> Renderer:
     """Simulate (unless ``simulated`` is given) and prepare the frames of one collision.
 
     Parameters
@@ -495,8 +514,15 @@ def build_renderer(case: pim.Case, eps: float, beta: float, *, before: float | N
         Frame size [px].
     result : pim.Result, optional
         ``pim.solve(case, eps, beta)`` if at hand.
-    simulated : sim.SimResult, optional
+    simulated : sim.SimResult or sim.CompliantResult, optional
         A simulation with a recorded trajectory reaching ``after``.
+    units : {"si", "us"}
+        Units of the grid and scale bar (m or ft).
+    title : str, optional
+        Caption's first line (default: case, epsilon, beta, tyre friction).
+
+    A secondary impact after separation (:func:`sim.find_secondary_impact`) is marked in
+    the frames and reported in the returned renderer's ``secondary``.
     """
     if result is None:
         result = pim.solve(case, eps, beta)
@@ -508,9 +534,12 @@ def build_renderer(case: pim.Case, eps: float, beta: float, *, before: float | N
     gravity = simulated.settings.gravity
     sim_motion = simulated_motion(case, simulated.trajectory, times)
     ghost_motion = analytic_motion(case, result, times, tyre, gravity) if ghost else None
-    title = (f"{case.name or 'case'}:  epsilon = {eps:.4g},  beta = {beta:.4g}"
-             + (f",  tyre friction {tyre:g}" if tyre else ",  no tyre friction after impact"))
-    return Renderer(case, result, sim_motion, ghost_motion, simulated.impulse, size, title)
+    if title is None:
+        title = (f"{case.name or 'case'}:  epsilon = {eps:.4g},  beta = {beta:.4g}"
+                 + (f",  tyre friction {tyre:g}" if tyre else ",  no tyre friction after impact"))
+    secondary = sim.find_secondary_impact(simulated.trajectory)
+    return Renderer(case, result, sim_motion, ghost_motion, simulated.impulse, size, title,
+                    units, secondary)
 
 
 def animate_case(case: pim.Case, eps: float, beta: float, out, *, gif=None,

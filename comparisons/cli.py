@@ -1,16 +1,29 @@
 """Command line of the comparisons: ``pim compare``, ``pim animate``, ``pim speed-error``,
-``pim hard-cases`` (registered as ``pim.commands`` entry points in pyproject.toml)."""
+``pim hard-cases``, ``pim assumptions`` (registered as ``pim.commands`` entry points in
+pyproject.toml)."""
 
 from __future__ import annotations
 
 import sys
+import time
 from pathlib import Path
 
 import click
 
-from pim.cli import beta_option, case_argument, echo_json, eps_option, json_option
+import pim
+from pim.cli import (
+    beta_option,
+    case_argument,
+    echo_json,
+    eps_option,
+    friction_limit_option,
+    json_option,
+    solve_with_options,
+    units_option,
+    warnings_of,
+)
 
-__all__ = ["compare", "animate", "speed_error", "hard_cases"]
+__all__ = ["compare", "animate", "speed_error", "hard_cases", "assumptions"]
 
 out_option = click.option("--out", "out", type=click.Path(file_okay=False), default=None,
                           help="Output folder (default: out/CASE).")
@@ -22,50 +35,77 @@ def _out(out, name: str, default: str) -> Path:
     return Path(out) if out is not None else Path("out") / (name or default)
 
 
+compare_eps_option = click.option(
+    "--eps", type=float, default=None,
+    help="Coefficient of restitution epsilon in [0, 1] (default: fitted to the case's "
+         "measured motion, else the case's impact.restitution). With --beta: no fit.")
+compare_beta_option = click.option(
+    "--beta", type=float, default=None,
+    help="Fraction of the critical impulse ratio, mu = beta mu0 (default: fitted to the "
+         "case's measured motion, else the case's impact.beta, else 1). With --eps: no fit.")
+
+
 @click.command()
 @case_argument
 @out_option
-@eps_option
-@beta_option
+@compare_eps_option
+@compare_beta_option
 @click.option("--gif", is_flag=True, help="Also write animation.gif (slower, larger).")
+@units_option
+@friction_limit_option
 @click.option("--no-animation", is_flag=True, help="Skip the animation.")
 @click.option("--no-speed-error", is_flag=True, help="Skip the coarse speed-error sweep.")
+@click.option("--no-assumptions", is_flag=True,
+              help="Skip PIM's assumptions at typical values (finite-duration scene).")
 @click.option("--tyre-friction", "tyre", type=float, default=0.0, show_default=True,
               help="Tyre/ground friction coefficient after impact in the animation (the "
                    "ghost decelerates alike); 0 = free motion.")
 @progress_option
 @json_option
-def compare(case_name, out, eps, beta, gif, no_animation, no_speed_error, tyre, progress,
-            as_json):
-    """Compare PIM with the pymunk simulation for CASE and write a report folder.
+def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
+            no_speed_error, no_assumptions, tyre, progress, as_json):
+    """Write a reconstruction report of CASE to a folder (report.md, CSVs, PNGs, MP4).
 
-    Fits (epsilon, beta) to the measured motion when the case has some (--eps/--beta fix
-    them), solves, simulates, and writes report.md with the inputs, the fit, the
-    analytic-vs-simulated table, the design sheet's plots, an MP4 animation and a coarse
-    speed-against-error summary, plus a CSV of every table.
+    The report opens with the results a reconstruction hands on (delta-V, PDOF, post-impact
+    speeds and yaw rates, energy loss and its crush split, epsilon and beta with their source
+    and, with an [uncertainty] table, 5-95 % intervals), then the coefficients, inputs,
+    plots and animation; the appendix compares PIM with a pymunk simulation and sweeps the
+    simulator's speed against its error. (epsilon, beta) are fitted to the measured motion
+    when the case has some; --eps and --beta together skip the fit (one of them: the other
+    is fitted). Exit code 1 with one line when the vehicles do not approach at C.
     """
     from pim.io.casefile import load_case
+    from pim.io.files import writable_folder
 
     from .report import compare_case
 
     if tyre < 0:
         raise ValueError(f"--tyre-friction must be >= 0, got {tyre}")
     case = load_case(case_name)
-    folder = _out(out, case.name, "case")
+    folder = writable_folder(_out(out, case.name, "case"), "--out")
+    solve_with_options(case, 0.0, 1.0)      # exits 1 with one line when there is no impact
+    started = time.perf_counter()
     rep = compare_case(case, folder, eps=eps, beta=beta, gif=gif, animation=not no_animation,
-                       speed_error=not no_speed_error, tyre=tyre, progress=progress)
+                       speed_error=not no_speed_error, tyre=tyre,
+                       assumptions=not no_assumptions, progress=progress,
+                       units=units, friction_limit=friction_limit)
     if as_json:
         echo_json({"case": case.name, "out": str(folder), "eps": rep.eps, "beta": rep.beta,
                    "error": rep.error, "seconds": rep.seconds,
                    "files": sorted(str(p) for p in rep.files)})
         return
-    click.echo(f"{case.name}: epsilon = {rep.eps:.6g}, beta = {rep.beta:.6g}; "
-               f"pymunk vs PIM error {rep.error:.2e}")
+    error = ("simulation failed" if rep.error != rep.error
+             else f"pymunk vs PIM error {rep.error:.2e}")
+    click.echo(f"{case.name}: epsilon = {rep.eps:.6g}, beta = {rep.beta:.6g}; {error}")
     if rep.animation is not None:
         a = rep.animation
         click.echo(f"animation: {a.frames} frames, rendered at {a.render_fps:.0f} frames/s")
+    for text in warnings_of(case, pim.solve(case, rep.eps, rep.beta), friction_limit):
+        click.echo(f"warning: {text}", err=True)
+    if rep.animation is not None and rep.animation.secondary_impact is not None:
+        click.echo(f"warning: {rep.animation.secondary_impact.message()}", err=True)
     click.echo(f"wrote {rep.report} ({len(rep.files)} files) in "
-               f"{sum(rep.seconds.values()):.1f} s")
+               f"{time.perf_counter() - started:.1f} s")
 
 
 @click.command()
@@ -86,9 +126,10 @@ def compare(case_name, out, eps, beta, gif, no_animation, no_speed_error, tyre, 
 @click.option("--tyre-friction", "tyre", type=float, default=0.0, show_default=True,
               help="Tyre/ground friction coefficient after the impact (ghost alike).")
 @click.option("--no-ghost", is_flag=True, help="Do not draw PIM's answer as a ghost.")
+@units_option
 @progress_option
 @json_option
-def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_ghost,
+def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_ghost, units,
             progress, as_json):
     """Animate CASE: pymunk simulation solid, PIM's post-impact motion as a ghost (MP4)."""
     import sim
@@ -104,7 +145,7 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
     try:
         info = animate_case(case, eps_, beta_, path, gif=gif, progress=progress, fps=fps,
                             before=before, after=after, size=size, tyre=tyre,
-                            ghost=not no_ghost)
+                            ghost=not no_ghost, units=units or case.units)
     except sim.SimulationError as exc:
         click.echo(f"simulation failed ({exc.kind}): {exc}", err=True)
         sys.exit(1)
@@ -112,12 +153,16 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
         echo_json({"path": str(info.path), "gif": str(info.gif) if info.gif else None,
                    "frames": info.frames, "fps": info.fps, "size": list(info.size),
                    "render_fps": info.render_fps, "write_seconds": info.write_seconds,
-                   "max_ghost_offset_px": info.max_ghost_offset_px})
+                   "max_ghost_offset_px": info.max_ghost_offset_px,
+                   "secondary_impact": None if info.secondary_impact is None
+                   else info.secondary_impact.time})
         return
     click.echo(f"wrote {info.path}" + (f" and {info.gif}" if info.gif else "")
                + f": {info.frames} frames at {info.fps} fps, rendered at "
                  f"{info.render_fps:.0f} frames/s, encoded in {info.write_seconds:.2f} s; "
                  f"ghost offset after impact {info.max_ghost_offset_px:.2g} px")
+    if info.secondary_impact is not None:
+        click.echo(f"warning: {info.secondary_impact.message()}")
 
 
 @click.command("speed-error")
@@ -129,15 +174,19 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
 @click.option("--repeats", type=int, default=3, show_default=True,
               help="Runs per setting (the best wall time is kept).")
 @click.option("--coarse", is_flag=True, help="The report's coarse grid instead of the full one.")
+@click.option("--compliant/--no-compliant", default=True, show_default=True,
+              help="Also the finite-duration contact: pymunk over dt, solve_ivp over rtol.")
 @progress_option
 @json_option
-def speed_error(case_names, out, eps, beta, repeats, coarse, progress, as_json):
+def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, progress, as_json):
     """Sweep the simulator's dt, iterations, contact start and geometry for each CASE.
 
     Writes, per case, speed-error-CASE.md (table of the Pareto front and every run),
     speed-error-CASE.csv and speed-error-CASE.png (log-log error against wall time per
     impact, with the Pareto front, PIM's own time and error and the recommended setting).
-    "hard" stands for every bundled hard case.
+    With --compliant (default) also speed-error-compliant-CASE.md/.csv/.png: the
+    finite-duration contact stepped by pymunk over dt and integrated by solve_ivp over
+    rtol, against a tight solve_ivp reference. "hard" stands for every bundled hard case.
     """
     from pim.io.casefile import list_cases, load_case
     from pim.io.files import save_figure
@@ -167,6 +216,28 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, progress, as_json):
                          "wall_time": rec.wall_time},
                         "analytic_time": study.analytic_time,
                         "analytic_batch_time": study.analytic_batch_time})
+        if compliant:
+            from .speed_error_compliant import compliant_sweep, write_compliant_study
+
+            cstudy = compliant_sweep(case, eps, repeats=repeats, progress=progress)
+            cfiles = write_compliant_study(cstudy, folder, stem,
+                                           command=_command(name, coarse, repeats, out))
+            results[-1]["files"] += [str(f) for f in cfiles]
+            results[-1]["compliant"] = {
+                scene: None if cstudy.recommended(scene) is None else
+                {"integrator": cstudy.recommended(scene).integrator,
+                 "setting": cstudy.recommended(scene).setting,
+                 "error": cstudy.recommended(scene).error,
+                 "wall_time": cstudy.recommended(scene).wall_time}
+                for scene in dict.fromkeys(p.scene for p in cstudy.points)}
+            if not as_json:
+                for scene, rec_c in results[-1]["compliant"].items():
+                    click.echo(f"{stem} finite-duration ({scene}): " + (
+                        "no run reaches 1e-3" if rec_c is None else
+                        f"recommended {rec_c['integrator']} "
+                        f"{'dt' if rec_c['integrator'] == 'pymunk' else 'rtol'} = "
+                        f"{rec_c['setting']:.3g}: error {rec_c['error']:.1e}, "
+                        f"{rec_c['wall_time'] * 1e3:.3g} ms/impact"))
         if not as_json:
             text = ("no run reaches the target" if rec is None else
                     f"recommended dt = {rec.dt:g} s, iterations = "
@@ -189,20 +260,71 @@ def _command(name: str, coarse: bool, repeats: int, out) -> str:
 @click.command("hard-cases")
 @click.option("--out", "out", type=click.Path(file_okay=False), default=None,
               help="Output folder (default: out/hard-cases).")
+@click.option("--units", type=click.Choice(["si", "us"]), default="si", show_default=True,
+              help="Units of the results table (the hard-case files are written in SI).")
 @progress_option
 @json_option
-def hard_cases(out, progress, as_json):
+def hard_cases(out, units, progress, as_json):
     """Run every bundled hard case through PIM and the simulator; table of results, errors,
     and the dt / iterations the simulator needs to reach 1e-6 (or why it cannot)."""
+    from pim.io.files import writable_folder
+
     from .hard_cases import run_hard_cases, write_hard_cases
 
-    folder = Path(out) if out else Path("out") / "hard-cases"
+    folder = writable_folder(Path(out) if out else Path("out") / "hard-cases", "--out")
     study = run_hard_cases(progress=progress)
-    files = write_hard_cases(study, folder)
+    files = write_hard_cases(study, folder, units)
     if as_json:
         echo_json({"files": [str(f) for f in files], "cases": study.to_json()})
         return
-    click.echo(study.results_table().to_markdown())
+    click.echo(study.results_table(units).to_markdown())
     click.echo("")
     click.echo(study.needs_table().to_markdown())
     click.echo(f"\nwrote {', '.join(str(f) for f in files)}")
+
+
+@click.command("assumptions")
+@case_argument
+@out_option
+@eps_option
+@beta_option
+@click.option("--executor", type=click.Choice(["process", "serial"]), default="process",
+              show_default=True, help="Run the scenes on a local process pool or serially.")
+@click.option("--no-animation", is_flag=True, help="Skip the MP4 of the finite-duration scene.")
+@progress_option
+@json_option
+def assumptions(case_name, out, eps, beta, executor, no_animation, progress, as_json):
+    """Test PIM's assumptions for CASE with a finite-duration crush scene.
+
+    For each assumption (instantaneous impulse, no external forces, one impact point,
+    Newton restitution with mu = beta mu0) a scene relaxes it alone and a physical
+    parameter is swept; writes assumptions.md with PIM's errors, plots, the effective
+    (epsilon, beta) and C at typical values, one verdict per assumption, and an MP4 with
+    PIM's ghost.
+    """
+    from pim.io.casefile import load_case
+
+    from .assumptions import run_assumptions, write_assumptions
+
+    case = load_case(case_name)
+    folder = _out(out, case.name, "case")
+    study = run_assumptions(case, eps, beta, executor=executor, progress=progress,
+                            animation_after=None if no_animation else 2.0)
+    command = f"pim assumptions {case_name}" + (f" --out {out}" if out else "")
+    files = write_assumptions(study, folder, animation=not no_animation, progress=progress,
+                              command=command)
+    if as_json:
+        echo_json({"case": case.name, "eps": study.eps, "beta": study.beta,
+                   "verdicts": study.verdicts(), "seconds": study.seconds,
+                   "files": [str(f) for f in files],
+                   "typical": {s.key: {"value": s.typical.value, "errors": s.typical.errors,
+                                       "eps_eff": s.typical.eps_eff,
+                                       "beta_eff": s.typical.beta_eff,
+                                       "impact_point": list(map(float, s.typical.point_eff)),
+                                       "failure": s.typical.failure}
+                               for s in study.sweeps}})
+        return
+    for verdict in study.verdicts():
+        click.echo(f"- {verdict}")
+    click.echo(f"wrote {folder / 'assumptions.md'} ({len(files)} files) in "
+               f"{study.seconds:.1f} s of simulation")

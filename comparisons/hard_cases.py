@@ -26,6 +26,7 @@ import numpy as np
 import pim
 import sim
 from pim.io.files import write_text
+from pim.io.units import convert
 from sim.error_measure import impact_error
 
 from .speed_error import TARGET, SpeedErrorStudy, sweep
@@ -163,22 +164,27 @@ class HardCaseStudy:
                 return c
         raise KeyError(name)
 
-    def results_table(self) -> Table:
-        """PIM's answer and the default simulation's error, per case."""
+    def results_table(self, units: str = "si") -> Table:
+        """PIM's answer and the default simulation's error, per case, in ``units``."""
+        fv, uv = convert(1.0, "velocity", units)
+        fw, uw = convert(1.0, "angular_velocity", units)
+        fp, up = convert(1.0, "impulse", units)
+        fv, fw, fp = float(fv), float(fw), float(fp)
         rows = []
         for c in self.cases:
             r = c.result
-            rows.append((c.name, c.eps, c.beta, _f(r.delta_v1_magnitude),
-                         _f(r.delta_v2_magnitude), _f(r.yaw_rate1), _f(r.yaw_rate2),
-                         _f(r.impulse_n), _f(r.impulse_t), _f(r.energy_loss_percent),
+            rows.append((c.name, c.eps, c.beta, _f(r.delta_v1_magnitude) * fv,
+                         _f(r.delta_v2_magnitude) * fv, _f(r.yaw_rate1) * fw,
+                         _f(r.yaw_rate2) * fw, _f(r.impulse_n) * fp, _f(r.impulse_t) * fp,
+                         _f(r.energy_loss_percent),
                          "; ".join(c.problems) or "",
                          c.error, c.iterations or None,
                          c.wall_time * 1e3 if c.failure is None else math.nan,
                          c.failure or ""))
         return Table("hard-cases", "Hard cases: PIM's answer and the pymunk simulation "
                      "(default settings) against it",
-                     ("case", "eps", "beta", "|dV1| [m/s]", "|dV2| [m/s]", "W1 [rad/s]",
-                      "W2 [rad/s]", "Pn [N s]", "Pt [N s]", "energy lost [%]", "PIM flags",
+                     ("case", "eps", "beta", f"|dV1| [{uv}]", f"|dV2| [{uv}]", f"W1 [{uw}]",
+                      f"W2 [{uw}]", f"Pn [{up}]", f"Pt [{up}]", "energy lost [%]", "PIM flags",
                       "sim error [-]", "sweeps", "sim time [ms]", "sim failure"),
                      tuple(rows), formats={"sim error [-]": fmt_error,
                                            "sim time [ms]": lambda x: "" if x != x
@@ -252,8 +258,8 @@ def run_hard_cases(names=None, repeats: int = 1, progress: bool | None = None) -
 COMMAND = "pim hard-cases --out docs"
 
 
-def hard_cases_markdown(study: HardCaseStudy) -> str:
-    """The study as a Markdown page."""
+def hard_cases_markdown(study: HardCaseStudy, units: str = "si") -> str:
+    """The study as a Markdown page (results in ``units``)."""
     lines = ["# Hard cases: PIM against the pymunk simulation", "",
              "Regenerate with:", "", "```", COMMAND, "```", "",
              "Each bundled hard case (`pim cases`, `pim/io/cases/hard-*.toml`) at its own "
@@ -262,7 +268,7 @@ def hard_cases_markdown(study: HardCaseStudy) -> str:
              "`sim error` is the largest error in the impact's velocity changes relative to "
              "the largest change (docs/comparisons.md). Times are wall times on the machine "
              "that ran the command.", "",
-             "## Results", "", study.results_table().to_markdown(), "",
+             "## Results", "", study.results_table(units).to_markdown(), "",
              f"## What the simulator needs to reach {TARGET:g}", "",
              "From the full speed-error sweep of each case (dt 1e-2 ... 1e-5 s, iterations "
              "1 ... 100 and automatic, exact or detected start, point or outline contact). "
@@ -277,11 +283,11 @@ def hard_cases_markdown(study: HardCaseStudy) -> str:
     return "\n".join(lines)
 
 
-def write_hard_cases(study: HardCaseStudy, out_dir) -> list[Path]:
-    """Write hard-cases.md and the two CSVs to ``out_dir`` (atomically)."""
+def write_hard_cases(study: HardCaseStudy, out_dir, units: str = "si") -> list[Path]:
+    """Write hard-cases.md and the two CSVs to ``out_dir`` (atomically), in ``units``."""
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    files = [study.results_table().write_csv(out), study.needs_table().write_csv(out)]
-    files.insert(0, write_text(out / "hard-cases.md", hard_cases_markdown(study)))
+    files = [study.results_table(units).write_csv(out), study.needs_table().write_csv(out)]
+    files.insert(0, write_text(out / "hard-cases.md", hard_cases_markdown(study, units)))
     return files

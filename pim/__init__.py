@@ -19,11 +19,16 @@ from .analysis.sensitivity import sensitivity
 from .io.casefile import list_cases, load_case
 from .io.datasets import load_dataset
 from .model.case import Case, Impact, Measured, Vehicle
+from .model.friction_cap import solve_capped
 from .model.result import Result
 from .model.solver import solve
 
 __all__ = ["Case", "Impact", "Measured", "Vehicle", "Result", "solve", "load_case",
            "list_cases", "fit", "FitResult", "sensitivity", "uncertainty",
+<<<<<<< HEAD
            "UncertaintyResult"]
 __all__ += ["load_dataset"]  # issue 13: bundled published crash tests
+=======
+           "UncertaintyResult", "solve_capped"]
+>>>>>>> main
 __version__ = "0.1.0"

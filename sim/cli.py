@@ -6,7 +6,14 @@ import sys
 
 import click
 
-from pim.cli import beta_option, case_argument, echo_json, eps_option, json_option
+from pim.cli import (
+    beta_option,
+    case_argument,
+    echo_json,
+    eps_option,
+    json_option,
+    units_option,
+)
 
 from .crosscheck import crosscheck
 
@@ -24,8 +31,9 @@ __all__ = ["sim"]
               show_default=True, help="Collide a point at C, or the vehicle outlines.")
 @click.option("--start", type=click.Choice(["exact", "detected"]), default="exact",
               show_default=True, help="Place the contact at C, or let the engine find it.")
+@units_option
 @json_option
-def sim(case_name, eps, beta, dt, iterations, contact, start, as_json):
+def sim(case_name, eps, beta, dt, iterations, contact, start, units, as_json):
     """Simulate CASE with pymunk and compare with Brach's PIM (pim solve).
 
     Prints analytic and simulated post-impact velocities and yaw rates with absolute and
@@ -42,6 +50,7 @@ def sim(case_name, eps, beta, dt, iterations, contact, start, as_json):
         kwargs["dt"] = dt
     settings = Settings(**kwargs)
     case = load_case(case_name)
+    units = units or case.units
     try:
         check = crosscheck(case, eps, beta, settings)
     except SimulationError as exc:
@@ -50,7 +59,7 @@ def sim(case_name, eps, beta, dt, iterations, contact, start, as_json):
     if as_json:
         echo_json(check.to_json())
         return
-    click.echo(check.format_table())
+    click.echo(check.format_table(units))
     for text in check.limitations:
         click.echo(f"note: {text}", err=True)
 

@@ -4,9 +4,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import pim
+import numpy as np
 
-from .error_measure import ERROR_DEFINITION, compare_results, impact_error
+import pim
+from pim.io.units import convert
+
+from .error_measure import ERROR_DEFINITION, KIND_OF_UNIT, compare_results, impact_error
 from .limits import limitations
 from .result import SimResult
 from .run import simulate
@@ -42,8 +45,9 @@ class CrossCheck:
     analytic: pim.Result
     simulated: SimResult
 
-    def format_table(self) -> str:
-        """A plain-text table of the comparison and the run's diagnostics."""
+    def format_table(self, units: str = "si") -> str:
+        """A plain-text table of the comparison and the run's diagnostics, in the ``units``
+        system ("si" or "us"; relative errors are unit-free)."""
         s = self.simulated
         lines = [f"{self.case_name}: epsilon = {self.eps:g}, beta = {self.beta:g}  "
                  f"(pymunk: dt = {s.settings.dt:g} s, {s.iterations} iterations, contact = "
@@ -51,8 +55,10 @@ class CrossCheck:
                  f"{'quantity':<26}{'unit':<7}{'analytic':>15}{'simulated':>15}"
                  f"{'abs error':>12}{'rel error':>12}"]
         for r in self.rows:
-            lines.append(f"{r.label:<26}{r.unit:<7}{r.analytic:>15.8g}{r.simulated:>15.8g}"
-                         f"{r.absolute:>12.3g}{r.relative:>12.3g}")
+            (a, b, e), unit = convert(np.array([r.analytic, r.simulated, r.absolute]),
+                                      KIND_OF_UNIT[r.unit], units)
+            rel = "-" if r.relative != r.relative else f"{r.relative:.3g}"
+            lines.append(f"{r.label:<26}{unit:<7}{a:>15.8g}{b:>15.8g}{e:>12.3g}{rel:>12}")
         lines.append(f"error {self.error:.3g} ({ERROR_DEFINITION})")
         lines.append(f"wall time {1e3 * s.wall_time:.3f} ms, {s.steps} steps, contact "
                      f"{s.contact_steps} step(s) = {s.contact_duration:.6g} s, "

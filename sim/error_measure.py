@@ -30,7 +30,7 @@ import pim
 from pim.model.geometry import radius_of_gyration
 
 __all__ = ["QuantityError", "compare_results", "impact_error", "analytic_residual",
-           "ERROR_DEFINITION", "QUANTITIES"]
+           "ERROR_DEFINITION", "QUANTITIES", "KIND_OF_UNIT"]
 
 #: One line saying what :func:`impact_error` measures, printed next to it by every command.
 ERROR_DEFINITION = ("largest error in the velocity changes, yaw rates times the radius of "
@@ -97,6 +97,10 @@ def _pim_quantities(result: pim.Result) -> dict:
         "impulse_t": _f(result.impulse_t), "energy_loss": _f(result.energy_loss),
     }
 
+
+#: Unit kind (pim.io.units) of each SI unit in :data:`QUANTITIES`, for display.
+KIND_OF_UNIT = {"m/s": "velocity", "rad/s": "angular_velocity", "N s": "impulse",
+                "J": "energy"}
 
 #: (key, label, SI unit) of every compared post-impact quantity, in table order.
 QUANTITIES = (

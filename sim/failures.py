@@ -6,7 +6,7 @@ __all__ = ["SimulationError", "FAILURE_KINDS"]
 
 #: Every value :attr:`SimulationError.kind` can take.
 FAILURE_KINDS = ("no_contact", "never_separated", "multiple_contacts", "energy_gained",
-                 "not_converged")
+                 "not_converged", "tunnelled")
 
 
 class SimulationError(RuntimeError):
@@ -21,7 +21,9 @@ class SimulationError(RuntimeError):
         (more contact points than the scene allows), "energy_gained" (kinetic energy rose
         beyond ``settings.energy_tolerance``), "not_converged" (the contact law was not met
         after a contact step: too few solver iterations, or a sliding contact on which
-        Chipmunk's sequential impulses diverge, see :mod:`sim.convergence`).
+        Chipmunk's sequential impulses diverge, see :mod:`sim.convergence`), "tunnelled"
+        (the finite-duration contact of :mod:`sim.compliant`: a step too coarse to resolve
+        the contact, or outlines that passed through each other).
     step : int or None
         Step at which the failure was found.
     """

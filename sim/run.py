@@ -214,6 +214,10 @@ def run_scene(scene: Scene, settings: Settings) -> dict:
         if now > search_end:
             raise SimulationError("no_contact", _no_contact_message(scene, settings, now), step)
 
+    if not np.any(np.asarray(mon.impulse, dtype=float) != 0):
+        raise SimulationError(
+            "no_contact", f"the shapes touched for {contact_steps} step(s) but no impulse was "
+            f"applied (a grazing touch, not an impact)", step)
     velocity1 = np.array(b1.velocity)
     velocity2 = np.array(b2.velocity)
     yaw_rate1, yaw_rate2 = b1.angular_velocity, b2.angular_velocity
@@ -291,9 +295,11 @@ def _no_contact_message(scene: Scene, settings: Settings, now: float) -> str:
         return (f"no contact: the vehicles do not approach at C (u_n = {scene.approach_n:.6g} "
                 f"m/s >= 0), so there is no impact to simulate")
     travel = abs(scene.approach_n) * settings.dt
-    if settings.contact == "point" and travel > 2 * settings.contact_radius:
+    # A step that covers the whole diameter can carry the circle from just outside to just
+    # outside the other side: equality tunnels too.
+    if settings.contact == "point" and travel >= 2 * settings.contact_radius:
         return (f"no contact found by t = {now:.6g} s: the contact circle tunnelled through "
-                f"(approach speed x dt = {travel:.3g} m > its diameter "
+                f"(approach speed x dt = {travel:.3g} m >= its diameter "
                 f"{2 * settings.contact_radius:.3g} m); reduce dt or raise contact_radius")
     return f"no contact found by t = {now:.6g} s (the shapes never touched while approaching)"
 

@@ -13,16 +13,17 @@ def test_solve_prints_the_ricsac9_table_in_us_units(capsys):
     assert main(["solve", "ricsac9", "--units", "us"]) == 0
     out = capsys.readouterr().out
     # the design sheet prints final yaw rates -199.702 and 87.322 deg/s, speeds 9.669 and
-    # 18.885 mph (shared spec ricsac9.md; relative 2e-3 for its printed digits)
+    # 18.885 mph (shared spec ricsac9.md; relative 2e-3 for its printed digits); US output
+    # gives every speed in ft/s (one speed unit per system): 1 mph = 22/15 ft/s exactly
     rows = {line[:40].strip(): line[40:].split() for line in out.splitlines()}
     w1, w2, unit = rows["post-impact yaw rate"]
     assert unit == "deg/s"
     assert float(w1) == pytest.approx(-199.702, rel=2e-3)
     assert float(w2) == pytest.approx(87.322, rel=2e-3)
     s1, s2, unit = rows["post-impact speed"]
-    assert unit == "mph" and float(s1) == pytest.approx(9.669, rel=2e-3)
-    assert float(s2) == pytest.approx(18.885, rel=2e-3)
-    assert "ft lbf" in out
+    assert unit == "ft/s" and float(s1) == pytest.approx(9.669 * 22 / 15, rel=2e-3)
+    assert float(s2) == pytest.approx(18.885 * 22 / 15, rel=2e-3)
+    assert "ft lbf" in out and "mph" not in out
 
 
 def test_solve_json_matches_the_library(capsys):
@@ -30,18 +31,23 @@ def test_solve_json_matches_the_library(capsys):
     data = json.loads(capsys.readouterr().out)
     r = pim.solve(pim.load_case("ricsac9"), 0.5, 0.5)
     assert data["admissible"] is True and data["problems"] == []
-    assert data["results"]["velocity_x"]["vehicle1"] == pytest.approx(float(r.velocity1[0]))
-    assert data["results"]["velocity_x"]["unit"] == "m/s"
-    assert data["results"]["energy_loss"]["value"] == pytest.approx(float(r.energy_loss) / 1e3)
+    assert data["results"]["velocity_x"]["vehicle1"] == pytest.approx(
+        float(r.velocity1[0]) / 0.3048)
+    assert data["results"]["velocity_x"]["unit"] == "ft/s"    # ricsac9 is written in ft
+    assert data["results"]["energy_loss"]["value"] == pytest.approx(
+        float(r.energy_loss) / 1.3558179483314004)
 
 
-def test_separating_case_warns(tmp_path, capsys):
+def test_separating_case_says_no_impact_once(tmp_path, capsys):
     text = (resources.files("pim.io") / "cases" / "hard-eps0.toml").read_text()
     path = tmp_path / "apart.toml"
     path.write_text(text.replace('velocity = ["15 m/s", "0 m/s"]',
                                  'velocity = ["-15 m/s", "0 m/s"]'))
-    assert main(["solve", str(path)]) == 0
-    assert "warning: the vehicles do not approach" in capsys.readouterr().err
+    assert main(["solve", str(path)]) == 1
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    assert captured.err.strip().startswith("no impact: the vehicles separate at C")
+    assert len(captured.err.strip().splitlines()) == 1 and "-0" not in captured.err
 
 
 def test_singular_q_is_an_error(capsys):
@@ -90,3 +96,20 @@ def test_public_functions_are_not_shadowed_by_their_modules():
     # ...and no public name of pim is also the name of one of its submodules
     tops = {m.split(".")[1] for m in modules}
     assert not tops & set(pim.__all__)
+
+
+def test_help_says_what_compare_does_with_eps(capsys):
+    # issue 12 item 6: compare's --eps default is the fit, not "the case's"
+    assert main(["compare", "--help"]) == 0
+    out = capsys.readouterr().out
+    assert "fitted to the case's" in " ".join(out.split())
+    assert "reconstruction report" in out
+
+
+def test_fit_prints_no_search_range_for_a_fixed_parameter(capsys):
+    assert main(["fit", "ricsac9", "--beta", "1"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    beta = next(line for line in lines if line.strip().startswith("beta"))
+    eps = next(line for line in lines if line.strip().startswith("epsilon"))
+    assert "search range" not in beta and "(fixed)" in beta
+    assert "search range [0, 1]" in eps

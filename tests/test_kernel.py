@@ -273,3 +273,54 @@ def test_editing_the_formula_recompiles_the_kernel(tmp_path):
     path.write_text(text.replace("e1 = 1.0 + eps", "e1 = 1.0 + 0.5 * eps"))
     same, after = run()
     assert same and after != before
+
+
+@pytest.mark.parametrize("fixed", [False, True])
+def test_vectorised_kernel_equals_the_scalar_kernel_bitwise(fixed):
+    """fast_trig's core outputs come from the SIMD block kernel; the auxiliary fields from the
+    scalar kernel (_case): the same formula and operations, so every field agrees bitwise,
+    across block boundaries (n not a multiple of BLOCK), for separating scenes, obstacles and
+    singular q."""
+    n = 2 * kernel.BLOCK + 123
+    case, eps, beta = random_case(n, seed=12 + fixed, fixed=fixed)
+    ref1 = pim.solve(case, eps, 1.0, backend="numpy")
+    singular_beta = -(ref1.k_nn * ref1.critical_impulse_n) / (ref1.k_nt * ref1.critical_impulse_t)
+    beta = np.where(np.arange(n) % 5 == 0, np.nan_to_num(singular_beta, nan=0.5), beta)
+    inputs = kernel.case_inputs(case, eps, beta)
+    simd = kernel.solve_arrays(inputs, APPROACH_TOLERANCE, SINGULAR_TOLERANCE, fast_trig=True)
+    args = kernel.flatten_inputs(inputs, (n,))
+    out = kernel.allocate(n, False)
+    kernel._solve_kernel_fast(*args, APPROACH_TOLERANCE, SINGULAR_TOLERANCE, False, *out)
+    scalar = dict(zip(kernel.CORE_VECTORS, out[0], strict=True))
+    scalar.update(zip(kernel.CORE_SCALARS, out[1], strict=True))
+    scalar.update(approaching=out[2], q_singular=out[3])
+    for name, value in scalar.items():
+        np.testing.assert_array_equal(simd[name], value, err_msg=name)
+    assert simd["q_singular"].sum() > 100 and 0.2 < simd["approaching"].mean() < 0.8
+    assert simd["approaching"].dtype == bool and simd["q_singular"].dtype == bool
+    fast = pim.solve(case, eps, beta, backend="numba", fast_trig=True)
+    ref = pim.solve(case, eps, beta, backend="numpy")
+    np.testing.assert_array_equal(fast.q_singular, ref.q_singular)
+    np.testing.assert_array_equal(fast.approaching, ref.approaching)
+    # core (SIMD pass) and auxiliary (scalar pass) fields describe the same impulse
+    p = fast.impulse_n[..., None] * fast.normal + fast.impulse_t[..., None] * fast.tangent
+    ok = ~fast.q_singular
+    np.testing.assert_array_equal(p[ok], fast.impulse[ok])
+
+
+def test_vectorised_kernel_with_broadcast_inputs():
+    """Scalar and (2,) inputs (stride-0 views, flattened by copy) give the numpy path's values."""
+    rng = np.random.default_rng(14)
+    shape = (30, 700)
+    v1 = pim.Vehicle(1500.0, 2500.0, (1.5, 0.2), rng.uniform(-20, 20, shape + (2,)),
+                     rng.uniform(-1, 1, shape))
+    v2 = pim.Vehicle(1200.0, 2100.0, (-1.0, 0.3), (3.0, -4.0), 0.2)
+    case = pim.Case(v1, v2, pim.Impact((0.0, 0.1), rng.uniform(-1, 1, (700,))))
+    eps = rng.uniform(0, 1, (30, 1))
+    ref = pim.solve(case, eps, 0.7, backend="numpy")
+    fast = pim.solve(case, eps, 0.7, fast_trig=True)
+    assert fast.backend == "numba-fast-trig" and fast.velocity1.shape == shape + (2,)
+    for name in ("velocity1", "velocity2", "impulse", "yaw_rate1", "yaw_rate2"):
+        a, b = np.broadcast_arrays(getattr(fast, name), getattr(ref, name))
+        assert np.max(np.abs(a - b)) <= 1e-12 * np.max(np.abs(b)), name
+    np.testing.assert_array_equal(fast.approaching, np.broadcast_to(ref.approaching, shape))

@@ -93,6 +93,7 @@ def test_first_order_indices_of_an_additive_function():
 
 def test_case_file_table_and_command(tmp_path):
     text = (pim.io.casefile.resources.files("pim.io") / "cases" / "ricsac9.toml").read_text()
+    text = text.split("[uncertainty]")[0]        # replace the bundled table by this one
     text += ('\n[uncertainty]\nvehicle1.mass = {normal = "20 kg"}\n'
              'impact.normal_angle = {uniform = ["-5 deg", "5 deg"]}\n'
              'impact.restitution = {uniform = [0.2, 0.5]}\n')
@@ -114,3 +115,24 @@ def test_case_file_table_and_command(tmp_path):
     assert rows["delta_v1_magnitude"]["sensitivity"][0]["input"] == "impact.restitution"
     assert png.stat().st_size > 10_000
     assert not list(tmp_path.glob(".*tmp"))
+
+
+def test_ricsac9_ships_an_uncertainty_table(capsys):
+    # issue 12 item 2: `pim uncertainty ricsac9` works out of the box, in the file's units
+    from pim.cli import main
+
+    assert main(["uncertainty", "ricsac9", "--samples", "2000"]) == 0
+    out = capsys.readouterr().out
+    assert "ft/s" in out and "deg/s" in out and "2,000 samples" in out
+
+
+def test_barrier_has_no_pdof_in_the_uncertainty_table(tmp_path, capsys):
+    from pim.cli import main
+
+    text = (pim.io.casefile.resources.files("pim.io") / "cases"
+            / "hard-barrier.toml").read_text()
+    path = tmp_path / "barrier.toml"
+    path.write_text(text + '\n[uncertainty]\nimpact.normal_angle = {plusminus = "5 deg"}\n')
+    assert main(["uncertainty", str(path), "--samples", "2000"]) == 0
+    out = capsys.readouterr().out
+    assert "PDOF of vehicle 1" in out and "PDOF of vehicle 2" not in out

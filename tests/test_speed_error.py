@@ -101,7 +101,7 @@ def test_command_writes_table_plot_and_csv(tmp_path):
     assert np.isfinite(float(rows[1].split(",")[5]))
 
 
-def test_recommendation_lies_on_the_pareto_front(study):
+def test_recommendation_on_ricsac9_lies_on_the_pareto_front(study):
     """Issue 12, defect 12: no run of the front may beat the recommended one on both time
     and error, and the recommendation must reach the target."""
     rec = study.recommended()
@@ -126,3 +126,30 @@ def test_full_study_of_every_setting_on_ricsac9():
         assert 0.1 * dt < p.error < 10 * dt, dt
     rec = full.recommended()
     assert rec is not None and rec in full.pareto()
+def test_recommendation_lies_on_the_pareto_front():
+    # Issue 12 defect 12: the old rule (largest dt within 2x the fastest good run) picked
+    # 1.6e-8 in 0.97 ms although a run on the front reached 3.5e-16 in 0.49 ms.
+    from comparisons.speed_error import SpeedErrorStudy, SweepPoint
+
+    pts = (SweepPoint(1e-3, None, 20, "exact", "point", 1.6e-8, 0.97e-3),
+           SweepPoint(1e-4, None, 20, "exact", "point", 3.5e-16, 0.49e-3),
+           SweepPoint(1e-2, 1, 1, "exact", "point", 1e-2, 0.1e-3))
+    study = SpeedErrorStudy("synthetic", 0.3, 1.0, pts, 1e-5, 1e-7, 1e-16)
+    rec = study.recommended()
+    assert rec in study.pareto()
+    assert rec.error == 3.5e-16
+    beaten = [p for p in study.succeeded
+              if p.wall_time <= rec.wall_time and p.error <= rec.error and p is not rec]
+    assert not beaten
+
+
+def test_the_two_pim_timings_have_different_markers():
+    from comparisons.speed_error import SpeedErrorStudy, SweepPoint, plot_speed_error
+
+    pts = (SweepPoint(1e-3, None, 20, "exact", "point", 1e-9, 1e-3),)
+    fig = plot_speed_error(SpeedErrorStudy("synthetic", 0.3, 1.0, pts, 1e-5, 1e-7, 1e-16))
+    ax = fig.axes[0]
+    handles, labels = ax.get_legend_handles_labels()
+    pim_markers = {tuple(h.get_paths()[0].vertices.round(3).ravel())
+                   for h, label in zip(handles, labels, strict=True) if "PIM" in label}
+    assert len(pim_markers) == 2

@@ -12,8 +12,8 @@ def test_rows_convert_with_exact_factors():
     us = {row.key: row for row in summarize(r, "us")}
     assert si["velocity_x"].vehicle1 == pytest.approx(float(r.velocity1[0]))
     assert us["velocity_x"].vehicle1 == pytest.approx(float(r.velocity1[0]) / 0.3048)
-    assert us["speed"].unit == "mph"
-    assert us["speed"].vehicle2 == pytest.approx(float(r.speed2) / 0.44704)
+    assert us["speed"].unit == "ft/s"      # one speed unit per system
+    assert us["speed"].vehicle2 == pytest.approx(float(r.speed2) / 0.3048)
     assert si["clock"].vehicle1 == 11 and si["clock"].vehicle2 == 2   # README's worked PDOF
     text = format_table(list(si.values()), "title")
     assert text.splitlines()[0] == "title" and "post-impact yaw rate" in text

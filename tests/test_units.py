@@ -31,7 +31,7 @@ def test_wrong_dimension_names_the_field():
 
 def test_convert_to_us_and_si():
     value, unit = convert(np.array([1.0]), "speed", "us")
-    assert unit == "mph" and value[0] == pytest.approx(1 / 0.44704)
+    assert unit == "ft/s" and value[0] == pytest.approx(1 / 0.3048)   # one speed unit
     value, unit = convert(1.0, "angular_velocity", "us")
     assert unit == "deg/s" and float(value) == pytest.approx(180 / math.pi)
     value, unit = convert(1000.0, "energy", "us")

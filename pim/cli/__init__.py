@@ -8,16 +8,22 @@ loaded only when used, so ``pim --help`` stays fast; the layers above ``pim/`` (
 """
 
 from .main import (
+    NO_IMPACT_EXIT_CODE,
     beta_option,
+    cap_friction_option,
     case_argument,
     cli,
     echo_json,
     eps_option,
+    friction_limit_option,
     json_option,
     main,
     run,
+    solve_with_options,
     units_option,
+    warnings_of,
 )
 
 __all__ = ["main", "run", "cli", "case_argument", "eps_option", "beta_option", "units_option",
-           "json_option", "echo_json"]
+           "json_option", "echo_json", "friction_limit_option", "cap_friction_option",
+           "solve_with_options", "warnings_of", "NO_IMPACT_EXIT_CODE"]

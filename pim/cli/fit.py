@@ -65,6 +65,7 @@ def fit(case_name, include_yaw, eps, beta, eps_range, beta_range, units, as_json
     from ..io.units import convert
 
     case = load_case(case_name)
+    units = units or case.units
     result = _fit(case, include_yaw, eps, beta, eps_range, beta_range)
     if as_json:
         echo_json(result.to_dict())
@@ -75,11 +76,14 @@ def fit(case_name, include_yaw, eps, beta, eps_range, beta_range, units, as_json
     fixed = f" (fixed: {', '.join(result.fixed)})" if result.fixed else ""
     click.echo(f"{case.name}: least-squares fit of the post-impact "
                f"{'velocities and yaw rates' if include_yaw else 'velocities'}{fixed}")
-    click.echo(f"  epsilon = {result.eps:.6f}   search range [{result.bounds[0][0]:g}, "
-               f"{result.bounds[0][1]:g}]")
-    click.echo(f"  beta    = {result.beta:.6f}   search range [{result.bounds[1][0]:g}, "
-               f"{result.bounds[1][1]:g}]   (mu = {float(solved.mu):.4f}, "
-               f"mu0 = {float(solved.mu0):.4f})")
+    def where(k, name):
+        if name in result.fixed:
+            return "(fixed)"
+        return f"search range [{result.bounds[k][0]:g}, {result.bounds[k][1]:g}]"
+
+    click.echo(f"  epsilon = {result.eps:.6f}   {where(0, 'eps')}")
+    click.echo(f"  beta    = {result.beta:.6f}   {where(1, 'beta')}   "
+               f"(mu = {float(solved.mu):.4f}, mu0 = {float(solved.mu0):.4f})")
     click.echo(f"  cost    = {result.cost * fv * fv:.6g} ({uv})^2   "
                f"rms residual = {result.rms * fv:.4g} {uv}")
     for line in _describe_bounds(result, units):
@@ -165,6 +169,7 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
     from ..io.units import convert
 
     case = load_case(case_name)
+    units = units or case.units
     sens = compute(case, eps=eps, beta=beta, uncertainty=_parse_sigma(sigmas),
                    include_yaw=include_yaw)
     if as_json:
@@ -232,6 +237,7 @@ def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units)
     from ..plotting.sheet import write_plots
 
     case = load_case(case_name)
+    units = units or case.units
     if has_measured_terms(case, include_yaw):
         result = _fit(case, include_yaw, None, None, eps_range, beta_range)
     else:

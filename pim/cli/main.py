@@ -14,8 +14,11 @@ from importlib.metadata import entry_points
 
 import click
 
+from ..model.plausibility import warnings_of
+
 __all__ = ["main", "cli", "case_argument", "eps_option", "beta_option", "units_option",
-           "json_option", "echo_json"]
+           "json_option", "echo_json", "friction_limit_option", "cap_friction_option",
+           "solve_with_options", "warnings_of", "NO_IMPACT_EXIT_CODE"]
 
 ENTRY_POINT_GROUP = "pim.commands"
 
@@ -48,12 +51,15 @@ def cli():
 case_argument = click.argument("case_name", metavar="CASE")
 eps_option = click.option("--eps", type=float, default=None,
                           help="Coefficient of restitution epsilon in [0, 1] "
-                               "(default: the case's).")
+                               "(default: the case's impact.restitution).")
 beta_option = click.option("--beta", type=float, default=None,
                            help="Fraction of the critical impulse ratio, mu = beta mu0 "
-                                "(default: the case's, else 1).")
-units_option = click.option("--units", type=click.Choice(["si", "us"]), default="si",
-                            show_default=True, help="Units of the printed results.")
+                                "(default: the case's impact.beta, else 1).")
+units_option = click.option("--units", type=click.Choice(["si", "us"]), default=None,
+                            help="Units of the printed and written results: si (m, m/s, kg, "
+                                 "N, kJ) or us (ft, ft/s, slug, lbf, ft lbf); angles in deg, "
+                                 "yaw rates in deg/s (default: the units the case file is "
+                                 "written in).")
 json_option = click.option("--json", "as_json", is_flag=True, help="Print JSON instead of a table.")
 
 
@@ -82,31 +88,77 @@ def cases():
         click.echo(f"{name:<{width}}  {description}")
 
 
+friction_limit_option = click.option(
+    "--friction-limit", type=click.FloatRange(min=0), default=None,
+    help="Warn when |mu| = |Pt/Pn| exceeds this friction coefficient (default: no limit).")
+cap_friction_option = click.option(
+    "--cap-friction", is_flag=True,
+    help="Friction-capped mode: mu = sign(mu0) min(beta |mu0|, --friction-limit), as "
+         "pycrash's cof and PC-Crash's contact-plane friction do.")
+
+
+def solve_with_options(case, eps, beta, friction_limit=None, cap_friction=False):
+    """Solve ``case`` as the commands do: plain PIM, or friction-capped with --cap-friction.
+
+    Raises ValueError for --cap-friction without --friction-limit, and click's Exit(1) after
+    one line on stderr when the vehicles do not approach at C (no impact).
+    """
+    from ..model.friction_cap import solve_capped
+    from ..model.plausibility import no_impact_message
+    from ..model.solver import solve as solve_case
+
+    if cap_friction:
+        if friction_limit is None:
+            raise ValueError("--cap-friction needs --friction-limit")
+        result = solve_capped(case, eps, beta, friction_limit)
+    else:
+        result = solve_case(case, eps, beta)
+    message = no_impact_message(result)
+    if message:
+        click.echo(message, err=True)
+        raise click.exceptions.Exit(NO_IMPACT_EXIT_CODE)
+    return result
+
+
+#: Exit code of a command whose case has no impact (the vehicles separate at C).
+NO_IMPACT_EXIT_CODE = 1
+
+
 @cli.command()
 @case_argument
 @eps_option
 @beta_option
+@friction_limit_option
+@cap_friction_option
 @units_option
 @json_option
-def solve(case_name, eps, beta, units, as_json):
-    """Solve CASE with Brach's PIM and print the post-impact results."""
+def solve(case_name, eps, beta, friction_limit, cap_friction, units, as_json):
+    """Solve CASE with Brach's PIM and print the post-impact results.
+
+    Prints each vehicle's post-impact velocity, speed and yaw rate, delta-V, PDOF, the
+    impulse, Brach's coefficients and the energy loss with its normal/tangential split, then
+    warnings. Exit code 1 with one line when the vehicles do not approach at C (no impact).
+    """
     from ..io.casefile import load_case
-    from ..model.solver import solve as solve_case
     from ..plotting.tables import format_table, rows_to_json, summarize
 
     case = load_case(case_name)
-    result = solve_case(case, eps, beta)
-    problems = result.problems()
+    units = units or case.units
+    result = solve_with_options(case, eps, beta, friction_limit, cap_friction)
     if result.q_singular.any():
+        problems = result.problems()
         raise ValueError(problems[0] if problems else "q is singular")
+    warnings = warnings_of(case, result, friction_limit)
     rows = summarize(result, units)
     if as_json:
         echo_json({"case": case.name, "units": units, "admissible": bool(result.admissible),
-                   "problems": problems, "results": rows_to_json(rows)})
+                   "problems": warnings, "results": rows_to_json(rows)})
         return
     title = f"{case.name}: epsilon = {float(result.eps):g}, beta = {float(result.beta):g}"
+    if cap_friction:
+        title += f" (friction-capped at |mu| <= {friction_limit:g})"
     click.echo(format_table(rows, title))
-    for text in problems:
+    for text in warnings:
         click.echo(f"warning: {text}", err=True)
 
 
@@ -116,8 +168,10 @@ def solve(case_name, eps, beta, units, as_json):
               help="Image file to write (.png or .svg).")
 @eps_option
 @beta_option
-def draw(case_name, out, eps, beta):
-    """Draw CASE's geometry and sign conventions (outlines, C, n, t, Gamma, arms, velocities)."""
+@units_option
+def draw(case_name, out, eps, beta, units):
+    """Draw CASE's geometry and sign conventions (outlines, C, n, t, Gamma, arms, velocities,
+    and the impulse when epsilon is known) to an image file; no label covers another."""
     from ..io.casefile import load_case
     from ..io.files import save_figure
     from ..model.solver import solve as solve_case
@@ -127,26 +181,60 @@ def draw(case_name, out, eps, beta):
     result = None
     if eps is not None or case.impact.restitution is not None:
         result = solve_case(case, eps, beta)
-    path = save_figure(draw_case(case, result), out)
+    path = save_figure(draw_case(case, result, units=units or case.units), out)
     click.echo(f"wrote {path}")
 
 
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised like Ctrl-C so that every atomic writer removes its temporary file."""
+
+
+def _on_sigterm(signum, frame):
+    raise Terminated()
+
+
 def main(argv=None) -> int:
-    """Entry point of the ``pim`` console script; returns the exit code."""
+    """Entry point of the ``pim`` console script; returns the exit code.
+
+    SIGTERM is handled as SIGINT is: temporary files are removed and the exit code is 143
+    (130 for Ctrl-C). A file or folder that cannot be written is one line and exit code 2.
+    """
+    import signal
+    import threading
+
+    previous = None
+    if threading.current_thread() is threading.main_thread():
+        previous = signal.signal(signal.SIGTERM, _on_sigterm)
     try:
-        cli.main(args=argv, prog_name="pim", standalone_mode=False)
+        return _main(argv)
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
+
+
+def _main(argv) -> int:
+    try:
+        code = cli.main(args=argv, prog_name="pim", standalone_mode=False)
     except click.exceptions.Exit as exc:
         return exc.exit_code
     except click.ClickException as exc:
         exc.show()
         return exc.exit_code
-    except click.exceptions.Abort:
-        click.echo("aborted", err=True)
-        return 130
+    except click.exceptions.Abort as exc:
+        terminated = isinstance(exc.__context__, Terminated)
+        click.echo("terminated" if terminated else "aborted", err=True)
+        return 143 if terminated else 130
+    except Terminated:
+        click.echo("terminated", err=True)
+        return 143
     except ValueError as exc:
         click.echo(f"error: {exc}", err=True)
         return 2
-    return 0
+    except OSError as exc:      # e.g. a disk full or a folder removed while writing
+        where = f"{exc.filename}: " if exc.filename else ""
+        click.echo(f"error: cannot write {where}{exc.strerror or exc}", err=True)
+        return 2
+    return code if isinstance(code, int) else 0
 
 
 if __name__ == "__main__":  # pragma: no cover

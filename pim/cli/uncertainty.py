@@ -35,9 +35,13 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, units, as_json):
     from ..model.quantities import OUTPUTS as QUANTITIES
 
     case = load_case(case_name)
+    units = units or case.units
     result = run(case, n=samples, seed=seed, eps=eps, beta=beta)
     rows = []
+    barrier = bool(case.vehicle2.fixed)
     for name in OUTPUTS:
+        if barrier and name in ("pdof2", "delta_v2_magnitude", "speed2", "yaw_rate2"):
+            continue        # a fixed obstacle does not move and has no PDOF
         label, kind = QUANTITIES[name].label, QUANTITIES[name].kind
         s = result.stats[name]
         values, unit = convert([s.nominal, s.p5, s.p50, s.p95], kind, units)

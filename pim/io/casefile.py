@@ -23,7 +23,13 @@ silently ignored. Layout (global form; see ``pim/io/cases/ricsac9.toml``)::
     vehicle1.velocity = ["-5.1 ft/s", "17.6 ft/s"]
     vehicle1.yaw_rate = "-180 deg/s"
 
-``fixed = true`` in ``[vehicle2]`` makes it a barrier or pole (no mass, inertia, velocity).
+``fixed = true`` in ``[vehicle2]`` makes it a barrier or pole (no mass, inertia, velocity;
+``cg`` defaults to the impact point and ``heading`` to 0, as neither changes the answer).
+
+Every quantity must lie within :data:`pim.io.units.LIMITS` (e.g. lengths within 1e5 m,
+speeds within 1e4 m/s, masses between 1 g and 1e9 kg). The case records the unit system its
+file is written in (``Case.units``: "us" when any quantity uses ft, lbf, mph, slug ...), which
+the commands print in unless ``--units`` says otherwise.
 ``convention = "brach"`` replaces each vehicle's ``cg`` and ``heading`` by Brach's ``theta``,
 ``phi`` and ``d`` (see :mod:`pim.io.brach`), with C at ``impact.point`` (default the origin).
 """
@@ -37,9 +43,10 @@ from pathlib import Path
 import numpy as np
 
 from ..model.case import Case, Impact, Measured, Vehicle
+from ..model.plausibility import bare_angle_warning
 from .brach import cg_from_brach, heading_from_theta
 from .uncertainty_table import parse_uncertainty
-from .units import parse, registry
+from .units import parse, registry, unit_system_of
 
 __all__ = ["load_case", "list_cases", "parse_case"]
 
@@ -91,7 +98,13 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int)
     if stray:
         raise ValueError(f"{where}: key {stray[0]!r} does not belong to the {convention!r} "
                          f"convention (use {', '.join(placement)})")
-    if convention == "global":
+    fixed = table.get("fixed", False)
+    if not isinstance(fixed, bool):
+        raise ValueError(f"{where}.fixed must be true or false")
+    if convention == "global" and fixed:
+        cg = _pair(table["cg"], "length", f"{where}.cg") if "cg" in table else point
+        heading = parse(table.get("heading", 0.0), "angle", f"{where}.heading")
+    elif convention == "global":
         cg = _pair(_require(table, "cg", where), "length", f"{where}.cg")
         heading = parse(_require(table, "heading", where), "angle", f"{where}.heading")
     else:
@@ -103,9 +116,6 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int)
     length = _optional(table, "length", "length", where)
     width = _optional(table, "width", "length", where)
 
-    fixed = table.get("fixed", False)
-    if not isinstance(fixed, bool):
-        raise ValueError(f"{where}.fixed must be true or false")
     if fixed:
         if number == 1:
             raise ValueError(f"{where}.fixed: only vehicle2 may be a fixed obstacle")
@@ -119,11 +129,16 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int)
         mass = parse(table["mass"], "mass", f"{where}.mass")
     else:
         weight = parse(table["weight"], "force", f"{where}.weight")
+        if weight <= 0:
+            raise ValueError(f"{where}.weight must be > 0, got {table['weight']!r}")
         mass = weight / registry().Quantity(1, "standard_gravity").to("m/s**2").magnitude
     if _one_of(table, "yaw_inertia", "radius_of_gyration", where) == "yaw_inertia":
         inertia = parse(table["yaw_inertia"], "inertia", f"{where}.yaw_inertia")
     else:
         k = parse(table["radius_of_gyration"], "length", f"{where}.radius_of_gyration")
+        if k <= 0:
+            raise ValueError(f"{where}.radius_of_gyration must be > 0, "
+                             f"got {table['radius_of_gyration']!r}")
         inertia = mass * k * k
     velocity = _pair(_require(table, "velocity", where), "velocity", f"{where}.velocity")
     yaw_rate = parse(table.get("yaw_rate", 0.0), "angular_velocity", f"{where}.yaw_rate")
@@ -190,12 +205,42 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
     ]
     name = data.get("name", Path(source).stem)
     description = data.get("description", "")
-    for key, value in (("name", name), ("description", description)):
+    for key, value in (("name", name), ("description", description),
+                       ("source", data.get("source", ""))):
         if not isinstance(value, str):
-            raise ValueError(f"{key} must be a string")
+            raise ValueError(f"{key} must be a string, got {value!r}")
     return Case(vehicle1=vehicles[0], vehicle2=vehicles[1], impact=impact,
                 measured=_measured(data.get("measured")), name=name, description=description,
-                uncertainty=_uncertainty(data.get("uncertainty")))
+                uncertainty=_uncertainty(data.get("uncertainty")), units=_unit_system(data),
+                notes=_angle_notes(data))
+
+
+def _angle_notes(data) -> tuple[str, ...]:
+    """Warnings for bare numbers above 2 pi given for angles (degrees without a unit?)."""
+    notes = []
+    for table in ("vehicle1", "vehicle2", "impact"):
+        for key in ("heading", "theta", "phi", "normal_angle"):
+            value = data.get(table, {}).get(key)
+            note = bare_angle_warning(f"{table}.{key}", value)
+            if note:
+                notes.append(note)
+    return tuple(notes)
+
+
+def _unit_system(data) -> str:
+    """"us" when any quantity string of the file uses a US customary unit, else "si"."""
+    def strings(x):
+        if isinstance(x, dict):
+            for v in x.values():
+                yield from strings(v)
+        elif isinstance(x, list):
+            for v in x:
+                yield from strings(v)
+        elif isinstance(x, str):
+            yield x
+
+    systems = {unit_system_of(s) for s in strings(data)}
+    return "us" if "us" in systems else "si"
 
 
 def _bundled() -> dict[str, object]:

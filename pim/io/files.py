@@ -14,7 +14,7 @@ import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 
-__all__ = ["atomic_path", "write_text", "save_figure"]
+__all__ = ["atomic_path", "write_text", "save_figure", "writable_folder"]
 
 
 @contextlib.contextmanager
@@ -52,15 +52,40 @@ def write_text(path, text: str) -> Path:
 def save_figure(fig, path, **savefig_kwargs) -> Path:
     """Write a matplotlib figure to ``path`` atomically; the suffix names the format.
 
-    PNGs default to 120 dpi and a tight bounding box; other keyword arguments go to
-    ``Figure.savefig``.
+    PNGs default to 120 dpi; figures without a layout engine get a tight bounding box; other
+    keyword arguments go to ``Figure.savefig``.
     """
     path = Path(path)
     fmt = path.suffix.lstrip(".").lower()
     if not fmt:
         raise ValueError(f"path {path} needs a suffix naming the format (.png, .svg)")
-    options = {"bbox_inches": "tight", **({"dpi": 120} if fmt == "png" else {}),
-               **savefig_kwargs}
+    # A figure with a layout engine (constrained layout) already fits its labels: a tight
+    # bounding box would only draw it a second time.
+    tight = {} if fig.get_layout_engine() is not None else {"bbox_inches": "tight"}
+    options = {**tight, **({"dpi": 120} if fmt == "png" else {}), **savefig_kwargs}
     with atomic_path(path) as tmp:
         fig.savefig(tmp, format=fmt, **options)
+    return path
+
+
+def writable_folder(path, option: str = "--out") -> Path:
+    """Create folder ``path`` if needed and check that files can be written in it.
+
+    Raises
+    ------
+    ValueError
+        ``path`` or one of its parents is a regular file, or the folder cannot be created
+        or written (read-only); the message names ``option`` and the path.
+    """
+    path = Path(path)
+    for parent in [path, *path.parents]:
+        if parent.exists() and not parent.is_dir():
+            raise ValueError(f"{option} {path}: {parent} is a file, not a folder")
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ValueError(f"{option} {path}: cannot create the folder ({exc.strerror})") \
+            from None
+    if not os.access(path, os.W_OK | os.X_OK):
+        raise ValueError(f"{option} {path}: the folder is not writable")
     return path

@@ -7,11 +7,13 @@ on first use so that ``import pim`` stays fast.
 
 from __future__ import annotations
 
+import re
 from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["registry", "parse", "convert", "DISPLAY_UNITS", "UNIT_SYSTEMS"]
+__all__ = ["registry", "parse", "convert", "DISPLAY_UNITS", "UNIT_SYSTEMS", "LIMITS",
+           "unit_system_of"]
 
 #: SI unit of each kind of input quantity (its dimension is the expected one).
 DIMENSIONS = {
@@ -25,12 +27,31 @@ DIMENSIONS = {
     "dimensionless": "",
 }
 
-#: Display units of each output kind, per unit system.
+#: Largest magnitude [SI unit of the kind] an input may have, and for masses, inertias and
+#: forces (weights) also the smallest. These bounds lie far outside any vehicle collision
+#: (a 1e5 m scene, 1e4 m/s, a 1 g to 1e9 kg body) and keep every product the solver forms
+#: (m v^2, I w^2, m k^2) far from float overflow and underflow.
+LIMITS = {
+    "length": (0.0, 1e5),
+    "mass": (1e-3, 1e9),
+    "force": (1e-2, 1e10),
+    "inertia": (1e-6, 1e12),
+    "velocity": (0.0, 1e4),
+    "angle": (0.0, 1e4),
+    "angular_velocity": (0.0, 1e4),
+    "dimensionless": (0.0, 1e6),
+}
+
+#: Units that mark a case file as written in US customary units (pint's names).
+US_UNIT_NAMES = frozenset({"foot", "inch", "yard", "mile", "mile_per_hour", "force_pound",
+                           "pound", "slug", "foot_per_second"})
+
+#: Display units of each output kind, per unit system: one speed unit per system.
 DISPLAY_UNITS = {
-    "si": {"velocity": "m/s", "speed": "km/h", "angular_velocity": "deg/s", "impulse": "N*s",
+    "si": {"velocity": "m/s", "speed": "m/s", "angular_velocity": "deg/s", "impulse": "N*s",
            "energy": "kJ", "length": "m", "mass": "kg", "inertia": "kg*m**2", "angle": "deg",
            "force": "N"},
-    "us": {"velocity": "ft/s", "speed": "mph", "angular_velocity": "deg/s", "impulse": "lbf*s",
+    "us": {"velocity": "ft/s", "speed": "ft/s", "angular_velocity": "deg/s", "impulse": "lbf*s",
            "energy": "ft*lbf", "length": "ft", "mass": "slug", "inertia": "slug*ft**2",
            "angle": "deg", "force": "lbf"},
 }
@@ -44,10 +65,58 @@ SI_UNITS = {"velocity": "m/s", "speed": "m/s", "angular_velocity": "rad/s", "imp
 
 @lru_cache(maxsize=1)
 def registry():
-    """The shared pint UnitRegistry (created on first use)."""
+    """The shared pint UnitRegistry (created on first use).
+
+    pint caches its parsed unit definitions in the user's cache folder (``:auto:``), which
+    makes the registry 0.02 s to build instead of 0.7 s; without a writable cache it is
+    built from the definitions as usual.
+    """
     import pint
 
-    return pint.UnitRegistry()
+    try:
+        return pint.UnitRegistry(cache_folder=":auto:")
+    except Exception:       # no writable cache folder (or an unreadable one): build afresh
+        return pint.UnitRegistry()
+
+
+_NUMBER = re.compile(r"^\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*(.*?)\s*$")
+_EXPONENT = re.compile(r"(\*\*|\^)\s*\(?\s*[+-]?\d+\s*\)?")
+
+
+@lru_cache(maxsize=256)
+def _unit(text: str):
+    """pint Unit of ``text`` and its root units (base units, radian kept as such)."""
+    ureg = registry()
+    unit = ureg.Unit(text)
+    return unit, ureg.get_root_units(unit)[1]
+
+
+def _split(value: str, field: str) -> tuple[float, str]:
+    """A quantity string as (number, unit text): exactly one number, then a unit or nothing."""
+    match = _NUMBER.match(value)
+    if match is None:
+        raise ValueError(f"{field}: {value!r} must be one number followed by a unit, "
+                         f"e.g. '1200 kg' or '90 deg'")
+    number, unit = match.group(1), match.group(2)
+    if re.search(r"\d", _EXPONENT.sub("", unit)):
+        raise ValueError(f"{field}: {value!r} holds more than one number; write one number "
+                         f"and one unit, e.g. '1200 kg'")
+    return float(number), unit
+
+
+def unit_system_of(value) -> str | None:
+    """"us" when a quantity string uses a US customary unit (ft, lbf, mph, slug ...), "si"
+    when it uses another unit, None for bare numbers and unreadable strings."""
+    if not isinstance(value, str):
+        return None
+    try:
+        _, unit = _split(value, "")
+        if not unit:
+            return None
+        parsed, _ = _unit(unit)
+    except Exception:
+        return None
+    return "us" if set(parsed._units) & US_UNIT_NAMES else "si"
 
 
 def parse(value, kind: str, field: str) -> float:
@@ -56,49 +125,72 @@ def parse(value, kind: str, field: str) -> float:
     Parameters
     ----------
     value : str or float
-        A quantity with units (``"31.09 ft/s"``, ``"90 deg"``) or a bare number, taken as SI.
+        A quantity with units (``"31.09 ft/s"``, ``"90 deg"``): exactly one number and one
+        unit; or a bare number, taken as SI. An angle or angular velocity written as a
+        string needs its unit (``"180"`` is refused: degrees or radians?).
     kind : str
-        Key of :data:`DIMENSIONS` naming the expected physical dimension.
+        Key of :data:`DIMENSIONS` naming the expected physical dimension. The unit must
+        reduce to the kind's base units exactly, so ``"1 Hz"`` is no yaw rate and ``"1 sr"``
+        or ``"1 m/m"`` no angle.
     field : str
         Dotted name of the input, used in error messages.
 
     Returns
     -------
     float
-        The magnitude in the SI unit of ``kind`` (radians for angles).
+        The magnitude in the SI unit of ``kind`` (radians for angles), within
+        :data:`LIMITS`.
 
     Raises
     ------
     ValueError
-        Unknown unit, wrong dimension, not a number, or NaN/inf; the message names ``field``.
+        Unknown unit, wrong dimension, more or fewer than one number, a value outside
+        :data:`LIMITS`, or NaN/inf; the message names ``field``.
     """
     unit = DIMENSIONS[kind]
     if isinstance(value, bool):
         raise ValueError(f"{field} must be a number or a quantity string, got {value!r}")
     if isinstance(value, int | float):
-        number = float(value)
-    elif isinstance(value, str):
-        import pint
-
-        ureg = registry()
         try:
-            quantity = ureg.Quantity(value)
-        except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError) as exc:
+            number = float(value)
+        except OverflowError:
+            raise ValueError(f"{field}: {str(value)[:20]}... is too large a number") from None
+    elif isinstance(value, str):
+        magnitude, text = _split(value, field)
+        if not text:
+            if kind in ("angle", "angular_velocity"):
+                raise ValueError(f"{field}: {value!r} has no unit; write e.g. "
+                                 f"'{value.strip()} {'deg' if kind == 'angle' else 'deg/s'}'")
+            text = ""
+        try:
+            parsed, root = _unit(text) if text else (None, None)
+        except Exception as exc:
             raise ValueError(f"{field}: unknown unit in {value!r} ({exc})") from None
-        except Exception:
-            raise ValueError(f"{field}: cannot read {value!r} as a quantity") from None
-        if not isinstance(quantity, ureg.Quantity):
-            quantity = ureg.Quantity(float(quantity), "")
-        wanted = ureg.Quantity(1, unit).dimensionality
-        if quantity.dimensionality != wanted:
-            expected = str(wanted) if wanted else "dimensionless"
-            raise ValueError(f"{field}: {value!r} has dimension {quantity.dimensionality}, "
-                             f"expected {expected} (e.g. {unit or 'a bare number'})")
-        number = float(quantity.to(unit).magnitude)
+        _, wanted = _unit(unit) if unit else (None, None)
+        root_items = dict(root._units) if root is not None else {}
+        wanted_items = dict(wanted._units) if wanted is not None else {}
+        if root_items != wanted_items:
+            what = kind.replace("_", " ")
+            dim = parsed.dimensionality if parsed is not None else ""
+            expected = wanted.dimensionality if wanted is not None else ""
+            raise ValueError(f"{field}: {value!r} is not a{'n' if what[0] in 'aeiou' else ''} "
+                             f"{what} (its unit has dimension {dim or 'dimensionless'}, "
+                             f"expected {expected or 'dimensionless'}: a unit like "
+                             f"{unit or 'none, a bare number'})")
+        if parsed is None:
+            number = magnitude
+        else:
+            ureg = registry()
+            number = float(ureg.Quantity(magnitude, parsed).to(unit).magnitude)
     else:
         raise ValueError(f"{field} must be a number or a quantity string, got {value!r}")
     if not np.isfinite(number):
         raise ValueError(f"{field} must be a finite number, got {value!r}")
+    low, high = LIMITS[kind]
+    if abs(number) > high or (number != 0 and abs(number) < low):
+        raise ValueError(f"{field} = {value!r} is outside the physically meaningful range: "
+                         f"|value| must be {f'between {low:g} and ' if low else 'at most '}"
+                         f"{high:g} {unit or '(dimensionless)'}")
     return number
 
 

@@ -60,8 +60,14 @@ class Admissibility:
             (self.energy_not_gained, "kinetic energy is gained"),
             (self.friction_opposes_sliding | ~self.approaching,
              "the tangential impulse points along the remaining slip at C (not Coulomb friction)"),
-            (np.broadcast_to(self.within_critical, np.shape(self.impulse_n)),
-             "|mu| > |mu0| (beta outside [0, 1]): tangential sliding at C reverses"),
+            # Sliding reverses only where beta > 1 and there is sliding to reverse (Pt0 != 0);
+            # beta < 0 makes the tangential impulse drive the sliding instead.
+            (np.broadcast_to((self.beta <= 1) | (self.critical_impulse_t == 0),
+                             np.shape(self.impulse_n)),
+             "|mu| > |mu0| (beta > 1): tangential sliding at C reverses"),
+            (np.broadcast_to((self.beta >= 0) | (self.critical_impulse_t == 0),
+                             np.shape(self.impulse_n)),
+             "beta < 0: the tangential impulse drives the sliding at C instead of opposing it"),
         ]
         out = []
         for ok, text in checks:

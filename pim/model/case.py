@@ -46,6 +46,14 @@ def _vector(value, name: str, unit: str) -> np.ndarray:
     return arr
 
 
+def _one_number(value, name: str) -> float:
+    arr = real_array(value, name)
+    if arr.size != 1:
+        raise ValueError(f"{name} must be a single number (the case's default), "
+                         f"got shape {arr.shape}")
+    return float(arr.reshape(()))
+
+
 def _finite(arr: np.ndarray, name: str, unit: str) -> np.ndarray:
     if type(arr) is np.float64:   # a scalar from _scalar's fast path
         if not math.isfinite(arr):
@@ -116,14 +124,18 @@ class Vehicle:
         for name in ("length", "width"):
             value = getattr(self, name)
             if value is not None:
-                value = float(value)
+                value = _one_number(value, name)
                 if not (np.isfinite(value) and value > 0):
                     raise ValueError(f"{name} must be > 0 [m], got {value}")
                 set_(self, name, value)
 
     @classmethod
-    def obstacle(cls, cg, heading=0.0, length=None, width=None) -> Vehicle:
-        """A fixed barrier or pole: infinite mass and yaw inertia, at rest."""
+    def obstacle(cls, cg=(0.0, 0.0), heading=0.0, length=None, width=None) -> Vehicle:
+        """A fixed barrier or pole: infinite mass and yaw inertia, at rest.
+
+        Its ``cg`` [m] and ``heading`` [rad] do not change the impact (its arm is multiplied
+        by a zero inverse inertia); they only place an outline in drawings.
+        """
         return cls(mass=np.inf, yaw_inertia=np.inf, cg=cg, velocity=(0.0, 0.0),
                    yaw_rate=0.0, heading=heading, length=length, width=width)
 
@@ -170,12 +182,12 @@ class Impact:
         angle = _finite(_scalar(self.normal_angle, "normal_angle", "rad"), "normal_angle", "rad")
         object.__setattr__(self, "normal_angle", angle)
         if self.restitution is not None:
-            eps = float(self.restitution)
+            eps = _one_number(self.restitution, "restitution")
             if not 0.0 <= eps <= 1.0:
                 raise ValueError(f"restitution must be in [0, 1], got {eps}")
             object.__setattr__(self, "restitution", eps)
         if self.beta is not None:
-            beta = float(self.beta)
+            beta = _one_number(self.beta, "beta")
             if not np.isfinite(beta):
                 raise ValueError(f"beta must be a finite number (usually in [0, 1]), got {beta}")
             object.__setattr__(self, "beta", beta)
@@ -218,7 +230,7 @@ class Measured:
         for name in ("yaw_rate1", "yaw_rate2"):
             value = getattr(self, name)
             if value is not None:
-                value = float(value)
+                value = _one_number(value, name)
                 if not np.isfinite(value):
                     raise ValueError(f"{name} must be a finite number in [rad/s]")
                 object.__setattr__(self, name, value)
@@ -241,6 +253,12 @@ class Case:
     uncertainty : pim.model.distributions.UncertaintyTable, optional
         Distributions of uncertain inputs (the case file's ``[uncertainty]`` table), used by
         :func:`pim.uncertainty`.
+    units : {"si", "us"}
+        The unit system the case was written in (its file's units); results are presented
+        in it unless asked otherwise.
+    notes : tuple of str
+        Plausibility warnings about the inputs found while reading the case file (e.g. a
+        bare number above 2 pi given for an angle).
     """
 
     vehicle1: Vehicle
@@ -250,12 +268,16 @@ class Case:
     name: str = ""
     description: str = ""
     uncertainty: object | None = None  # pim.model.distributions.UncertaintyTable
+    units: str = "si"
+    notes: tuple = ()
 
     def __post_init__(self) -> None:
         for name, kind in (("vehicle1", Vehicle), ("vehicle2", Vehicle), ("impact", Impact)):
             if not isinstance(getattr(self, name), kind):
                 raise ValueError(f"{name} must be a pim.{kind.__name__}, got "
                                  f"{type(getattr(self, name)).__name__}")
+        if self.units not in ("si", "us"):
+            raise ValueError(f"units must be 'si' or 'us', got {self.units!r}")
         if self.vehicle1.fixed.any():
             raise ValueError("vehicle1.mass must be finite: only vehicle2 may be a fixed obstacle")
 

@@ -12,7 +12,7 @@ from functools import cached_property
 
 import numpy as np
 
-from .geometry import kinetic_energy
+from .geometry import contact_velocity, dot, kinetic_energy
 
 __all__ = ["EnergyOutputs"]
 
@@ -38,11 +38,19 @@ class EnergyOutputs:
     def energy_loss(self) -> np.ndarray:
         """Kinetic energy lost in the impact [J] (negative: energy gained).
 
-        Computed from the impulse, -P.(u + U)/2 = the normal plus the tangential crush
-        energy, so that it holds at any mass ratio: the difference of the kinetic energies
-        before and after loses it to round-off when one body is 1e12 times heavier.
+        Computed from the impulse, -P.(u + U)/2 (the sum of the normal and tangential crush
+        energies), not as the difference of the kinetic energies before and after, which
+        round-off wipes out at extreme mass ratios (a car against a 1e12 kg body). u and U
+        are formed from the pre- and post-impact motion and the arms C - G_i, so only core
+        fields are read (no auxiliary pass of the batch kernel).
         """
-        return self.crush_energy_normal + self.crush_energy_tangential
+        v1, v2, point = self.case.vehicle1, self.case.vehicle2, self.case.impact.point
+        r1, r2 = point - v1.cg, point - v2.cg
+        before = (contact_velocity(v1.velocity, v1.yaw_rate, r1)
+                  - contact_velocity(v2.velocity, v2.yaw_rate, r2))
+        after = (contact_velocity(self.velocity1, self.yaw_rate1, r1)
+                 - contact_velocity(self.velocity2, self.yaw_rate2, r2))
+        return -0.5 * dot(self.impulse, before + after)
 
     @cached_property
     def energy_loss_percent(self) -> np.ndarray:

@@ -21,6 +21,7 @@ class Row:
     vehicle1: float | None
     vehicle2: float | None
     unit: str
+    single: bool = False    #: one shared value (in ``vehicle1``), not one per vehicle
 
 
 def _f(x) -> float:
@@ -32,16 +33,18 @@ def summarize(result: Result, units: str = "si") -> list[Row]:
     if np.size(result.impulse_n) != 1:
         raise ValueError("summarize needs a single case; index the Result first")
     rows: list[Row] = []
+    barrier = bool(np.asarray(result.case.vehicle2.fixed).reshape(()))
 
-    def pair(key, label, a, b, kind):
+    def pair(key, label, a, b, kind, movable_only=False):
         (ca, cb), unit = convert(np.array([_f(a), _f(b)]), kind, units)
-        rows.append(Row(key, label, float(ca), float(cb), unit))
+        hide = movable_only and barrier
+        rows.append(Row(key, label, float(ca), None if hide else float(cb), unit))
 
     def one(key, label, a, kind=None, unit=""):
         value = _f(a)
         if kind is not None:
             value, unit = convert(value, kind, units)
-        rows.append(Row(key, label, float(value), None, unit))
+        rows.append(Row(key, label, float(value), None, unit, single=True))
 
     pair("velocity_x", "post-impact velocity x", result.velocity1[..., 0],
          result.velocity2[..., 0], "velocity")
@@ -53,9 +56,12 @@ def summarize(result: Result, units: str = "si") -> list[Row]:
     pair("delta_v_x", "delta-V x", result.delta_v1[..., 0], result.delta_v2[..., 0], "velocity")
     pair("delta_v_y", "delta-V y", result.delta_v1[..., 1], result.delta_v2[..., 1], "velocity")
     pair("delta_v", "|delta-V|", result.delta_v1_magnitude, result.delta_v2_magnitude, "speed")
-    pair("pdof", "PDOF (clockwise from heading)", result.pdof1, result.pdof2, "angle")
+    # A fixed obstacle has no PDOF: it has no heading that a principal direction of force
+    # could be measured from (its outline, if any, only places the drawing).
+    pair("pdof", "PDOF (clockwise from heading)", result.pdof1, result.pdof2, "angle",
+         movable_only=True)
     rows.append(Row("clock", "PDOF clock position", float(_f(result.clock1)),
-                    float(_f(result.clock2)), "o'clock"))
+                    None if barrier else float(_f(result.clock2)), "o'clock"))
     pair("impulse_x", "impulse on vehicle x", result.impulse[..., 0], -result.impulse[..., 0],
          "impulse")
     pair("impulse_y", "impulse on vehicle y", result.impulse[..., 1], -result.impulse[..., 1],
@@ -85,11 +91,11 @@ def summarize(result: Result, units: str = "si") -> list[Row]:
 
 def format_table(rows: list[Row], title: str = "") -> str:
     """Plain-text table of rows: label, vehicle 1, vehicle 2, unit."""
-    def num(x):
-        return "" if x is None else f"{x:.6g}"
+    def num(x, single=False):
+        return ("" if single else "-") if x is None else f"{x:.6g}"
 
     header = ("quantity", "vehicle 1", "vehicle 2", "unit")
-    body = [(r.label, num(r.vehicle1), num(r.vehicle2), r.unit) for r in rows]
+    body = [(r.label, num(r.vehicle1), num(r.vehicle2, r.single), r.unit) for r in rows]
     widths = [max(len(line[i]) for line in [header, *body]) for i in range(4)]
     lines = [title] if title else []
     fmt = "{{:<{}}}  {{:>{}}}  {{:>{}}}  {{:<{}}}".format(*widths)
@@ -103,7 +109,7 @@ def rows_to_json(rows: list[Row]) -> dict:
     """Rows as a JSON-ready dict: key -> {vehicle1, vehicle2 or value, unit}."""
     out = {}
     for r in rows:
-        if r.vehicle2 is None:
+        if r.single:
             out[r.key] = {"value": r.vehicle1, "unit": r.unit}
         else:
             out[r.key] = {"vehicle1": r.vehicle1, "vehicle2": r.vehicle2, "unit": r.unit}

@@ -1,0 +1,77 @@
+"""Friction-capped PIM: the impulse ratio limited by a friction coefficient.
+
+PIM's tangential constraint is mu = beta mu0 (Brach & Brach 2011, sec. 6.3), which for a
+grazing impact can ask for |mu| well above what sheet metal sliding on sheet metal can
+transmit. pycrash's ``cof`` and PC-Crash's contact-plane friction instead cap the ratio of
+tangential to normal impulse at a friction coefficient. The capped constraint is
+
+    mu = sign(mu0) min(beta |mu0|, limit),
+
+which is PIM's own constraint with the effective fraction beta_eff = min(beta, limit / |mu0|)
+(beta >= 0), so the capped answer is :func:`pim.solve` at beta_eff: one formula, solved twice
+(once for mu0, once with the capped beta).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .case import Case
+from .numbers import real_array
+from .result import Result
+from .solver import constraints, solve
+
+__all__ = ["capped_beta", "solve_capped"]
+
+
+def capped_beta(mu0, beta, limit) -> np.ndarray:
+    """Effective fraction of mu0 under a friction cap: min(beta, limit / |mu0|) [-].
+
+    Parameters
+    ----------
+    mu0 : array_like
+        Critical impulse ratio [-] (Brach eq. 6.60).
+    beta : array_like
+        Requested fraction of mu0 [-], >= 0.
+    limit : array_like
+        Friction limit [-], >= 0: the largest |Pt / Pn| the contact can transmit.
+
+    Returns
+    -------
+    ndarray
+        beta_eff, such that beta_eff mu0 = sign(mu0) min(beta |mu0|, limit); equal to beta
+        where mu0 = 0.
+    """
+    mu0, beta, limit = np.broadcast_arrays(np.asarray(mu0, float), np.asarray(beta, float),
+                                           np.asarray(limit, float))
+    ratio = np.divide(limit, np.abs(mu0), out=np.full(mu0.shape, np.inf),
+                      where=np.abs(mu0) > 0)
+    return np.minimum(beta, ratio)
+
+
+def solve_capped(case: Case, eps=None, beta=None, limit=np.inf) -> Result:
+    """:func:`pim.solve` with the impulse ratio capped at a friction limit.
+
+    Parameters
+    ----------
+    case : Case
+        The impact.
+    eps, beta : array_like, optional
+        As for :func:`pim.solve` (beta must be >= 0 here).
+    limit : array_like
+        Friction limit [-], >= 0 (inf: no cap, the plain PIM answer).
+
+    Returns
+    -------
+    Result
+        The post-impact state at mu = sign(mu0) min(beta |mu0|, limit); ``result.beta`` is
+        the effective beta.
+    """
+    limit = real_array(limit, "friction limit")
+    if np.isnan(limit).any() or (limit < 0).any():
+        raise ValueError("friction limit must be >= 0 (inf for no cap)")
+    eps, beta = constraints(case, eps, beta)
+    if (beta < 0).any():
+        raise ValueError("beta must be >= 0 with a friction limit (the cap bounds |mu|)")
+    critical = solve(case, eps, 1.0)
+    return solve(case, eps, capped_beta(critical.mu0, beta, limit))

@@ -1,0 +1,440 @@
+"""What both integrators of the finite-duration contact share: settings, the validated
+physical problem, the point-contact kinematics, and the typed result.
+
+The problem takes only physical inputs (masses, inertias, pre-impact motion, C and Gamma of
+the case; the crush stiffness, restitution epsilon, friction mu_c between the vehicles and
+tyre friction) and never a PIM output (no mu0, no impulse, no fitted coefficient). The
+stepping itself is not shared: :mod:`sim.compliant` steps pymunk, :mod:`sim.reference`
+integrates the same equations with ``scipy.integrate.solve_ivp``.
+
+Point contact (docs/contact-model.md)
+-------------------------------------
+A material point P of vehicle 1, at C when the contact begins (t = 0), against the contact
+plane carried by vehicle 2 through its own material point Q (at C at t = 0) that turns with
+vehicle 2: n(t) = R(theta_2(t) - theta_2(0)) n_0, t(t) = n(t) turned +90 deg. The crush is
+the depth of P below the plane, delta = -(P - Q) . n, and d delta / dt = -v_rel . n exactly,
+with v_rel the velocity of P on vehicle 1 minus that of the coincident point of vehicle 2.
+The force F = F_n n + F_t t acts on vehicle 1 at P and -F on vehicle 2 at the same point, so
+linear momentum and angular momentum about any fixed point are conserved.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields
+
+import numpy as np
+
+import pim
+from pim.model import geometry
+
+from .contact_law import check_fraction, check_positive, contact_duration_estimate
+from .overlap import place
+from .result import Trajectory
+from .scene import outline_corners
+from .tyres import TYRE_MODES, wheel_positions
+
+__all__ = ["CompliantSettings", "CompliantProblem", "CompliantResult", "ContactHistory",
+           "build_problem", "point_contact", "rotate", "GEOMETRIES", "DEFAULT_STIFFNESS",
+           "kinetic_energy", "placed_outlines", "reversal"]
+
+GEOMETRIES = ("point", "outline")
+#: Default linear crush stiffness of a car [N/m] (NHTSA test 10146: 750-780 kN/m).
+DEFAULT_STIFFNESS = 7.5e5
+
+
+@dataclass(frozen=True)
+class CompliantSettings:
+    """Numerics and model switches of the finite-duration contact.
+
+    Parameters
+    ----------
+    dt : float or None
+        pymunk's fixed step [s] in (0, 1]; None: the estimated contact duration divided by
+        ``steps_per_contact``.
+    steps_per_contact : int
+        Steps per estimated contact duration when ``dt`` is None, >= ``min_steps``.
+    min_steps : int
+        Fewest steps per estimated contact duration accepted, >= 2; a coarser ``dt`` is
+        reported as "tunnelled" (the contact would be crossed in a few steps).
+    method : str
+        ``solve_ivp`` method of the reference: "DOP853" (explicit, 8th order), "RK45",
+        "Radau" or "BDF" (implicit), "LSODA".
+    rtol : float
+        Relative tolerance of the reference, in (0, 0.1].
+    tangential_stiffness : float or None
+        k_t [N/m] of the elastoplastic friction spring, > 0; None: equal to the normal
+        stiffness k.
+    preload : float
+        Force at zero crush a [N] >= 0 of the loading curve F = a + k delta (Campbell's A
+        times the contact width; k is then Campbell's B times the width); default 0.
+    tyre_mode : {"rolling", "locked"}
+        Free-rolling wheels (lateral tyre force only) or locked wheels.
+    max_contact_time : float
+        Longest contact accepted [s], > 0; longer is "never_separated".
+    duration : float
+        Free motion simulated after separation [s], >= 0 (animation, secondary impacts);
+        tyre forces keep acting in it when tyre friction is on.
+    record : bool
+        Keep the contact history (force, crush, slip per step) and the trajectory.
+    gravity : float
+        g [m/s^2] for the tyres' static load, > 0.
+    """
+
+    dt: float | None = None
+    steps_per_contact: int = 400
+    min_steps: int = 10
+    method: str = "DOP853"
+    rtol: float = 1e-9
+    tangential_stiffness: float | None = None
+    preload: float = 0.0
+    tyre_mode: str = "rolling"
+    max_contact_time: float = 1.0
+    duration: float = 0.0
+    record: bool = True
+    gravity: float = 9.80665
+
+    def __post_init__(self) -> None:
+        set_ = object.__setattr__
+        if self.dt is not None:
+            dt = check_positive(self.dt, "settings.dt", "s")
+            if dt > 1.0:
+                raise ValueError(f"settings.dt must be in (0, 1] [s], got {dt!r}")
+            set_(self, "dt", dt)
+        for name, low in (("min_steps", 2), ("steps_per_contact", 2)):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, int) or value < low:
+                raise ValueError(f"settings.{name} must be an integer >= {low}, got {value!r}")
+        if self.steps_per_contact < self.min_steps:
+            raise ValueError(f"settings.steps_per_contact must be >= settings.min_steps "
+                             f"({self.min_steps}), got {self.steps_per_contact}")
+        methods = ("DOP853", "RK45", "Radau", "BDF", "LSODA")
+        if self.method not in methods:
+            raise ValueError(f"settings.method must be one of {methods}, got {self.method!r}")
+        rtol = check_positive(self.rtol, "settings.rtol", "-")
+        if rtol > 0.1:
+            raise ValueError(f"settings.rtol must be in (0, 0.1], got {rtol!r}")
+        set_(self, "rtol", rtol)
+        if self.tangential_stiffness is not None:
+            set_(self, "tangential_stiffness", check_positive(
+                self.tangential_stiffness, "settings.tangential_stiffness", "N/m"))
+        set_(self, "preload", check_positive(self.preload, "settings.preload", "N",
+                                             allow_zero=True))
+        if self.tyre_mode not in TYRE_MODES:
+            raise ValueError(f"settings.tyre_mode must be one of {TYRE_MODES}, "
+                             f"got {self.tyre_mode!r}")
+        set_(self, "max_contact_time", check_positive(self.max_contact_time,
+                                                      "settings.max_contact_time", "s"))
+        set_(self, "duration", check_positive(self.duration, "settings.duration", "s",
+                                              allow_zero=True))
+        if not isinstance(self.record, bool):
+            raise ValueError(f"settings.record must be True or False, got {self.record!r}")
+        set_(self, "gravity", check_positive(self.gravity, "settings.gravity", "m/s^2"))
+
+    def as_dict(self) -> dict:
+        """The settings as plain values (for JSON)."""
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+
+def rotate(vec, angle: float) -> np.ndarray:
+    """``vec`` (2,) turned counter-clockwise by ``angle`` [rad]."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([c * vec[0] - s * vec[1], s * vec[0] + c * vec[1]])
+
+
+def kinetic_energy(mass, inertia, velocity, yaw_rate) -> float:
+    """Translational plus rotational kinetic energy [J] of one body (0 if fixed), as a float
+    (:func:`pim.model.geometry.kinetic_energy`)."""
+    return float(geometry.kinetic_energy(mass, inertia, velocity, yaw_rate))
+
+
+@dataclass(frozen=True, eq=False)
+class CompliantProblem:
+    """The validated inputs of one finite-duration impact (SI, global frame).
+
+    ``state0`` is the state at t = 0 (point contact: first contact at C), 12 numbers:
+    x1, y1, theta1, vx1, vy1, w1, x2, y2, theta2, vx2, vy2, w2.
+    """
+
+    case: pim.Case
+    eps: float
+    stiffness: float            # b of the loading curve [N/m]
+    preload: float              # a [N]
+    friction: float             # mu_c [-]
+    tangential_stiffness: float  # k_t [N/m]
+    geometry: str
+    tyre_friction: float
+    tyre_mode: str
+    mass1: float
+    inertia1: float
+    mass2: float
+    inertia2: float
+    fixed2: bool
+    state0: np.ndarray
+    arm1_body: np.ndarray       # P in vehicle 1's body frame [m]
+    arm2_body: np.ndarray       # Q in vehicle 2's body frame [m]
+    normal2_body: np.ndarray    # n in vehicle 2's body frame
+    wheels1: np.ndarray
+    wheels2: np.ndarray | None
+    load1: float                # static load per tyre [N]
+    load2: float
+    outline1: np.ndarray | None
+    outline2: np.ndarray | None
+    k_nn: float                 # K_nn of the contact at t = 0 [1/kg]
+    duration_estimate: float    # frictionless linear-law contact time [s]
+    speed_scale: float          # [m/s]
+    energy_before: float        # [J]
+    settings: CompliantSettings
+
+    def heading_offsets(self) -> tuple[float, float]:
+        """Angle of the bodies' frames at t = 0 [rad] (the case's headings)."""
+        return float(self.state0[2]), float(self.state0[8])
+
+
+def _scalar(case: pim.Case) -> None:
+    if np.size(case.vehicle1.mass) != 1 or np.shape(case.impact.point) != (2,) \
+            or np.size(case.vehicle2.mass) != 1 or np.shape(case.vehicle1.cg) != (2,) \
+            or np.shape(case.vehicle2.cg) != (2,) or np.size(case.impact.normal_angle) != 1:
+        raise ValueError("the finite-duration contact needs a single case (scalar fields), "
+                         "not a batch of cases")
+
+
+def build_problem(case: pim.Case, eps, stiffness, friction=0.0, geometry="point",
+                  tyre_friction=0.0, settings: CompliantSettings | None = None
+                  ) -> CompliantProblem:
+    """Validate the physical inputs and set up the initial state (both integrators).
+
+    Raises
+    ------
+    ValueError
+        eps outside [0, 1]; stiffness zero, negative, NaN or infinite; friction or
+        tyre_friction negative or NaN; an unknown geometry; outline geometry without
+        outlines; a batch of cases.
+    """
+    settings = settings or CompliantSettings()
+    if not isinstance(case, pim.Case):
+        raise ValueError(f"case must be a pim.Case, got {type(case).__name__}")
+    _scalar(case)
+    eps = check_fraction(eps, "eps")
+    stiffness = check_positive(stiffness, "stiffness", "N/m")
+    friction = check_positive(friction, "friction", "-", allow_zero=True)
+    tyre_friction = check_positive(tyre_friction, "tyre_friction", "-", allow_zero=True)
+    if geometry not in GEOMETRIES:
+        raise ValueError(f"geometry must be one of {GEOMETRIES}, got {geometry!r}")
+    v1, v2, imp = case.vehicle1, case.vehicle2, case.impact
+    outline1, outline2 = outline_corners(v1), outline_corners(v2)
+    fixed2 = bool(v2.fixed)
+    if geometry == "outline":
+        if outline1 is None:
+            raise ValueError("geometry='outline' needs vehicle1.length and vehicle1.width")
+        if outline2 is None and not fixed2:
+            raise ValueError("geometry='outline' needs vehicle2.length and vehicle2.width")
+    m1, i1 = float(v1.mass), float(v1.yaw_inertia)
+    m2, i2 = float(v2.mass), float(v2.yaw_inertia)
+    cg1 = np.asarray(v1.cg, float).reshape(2)
+    cg2 = np.asarray(v2.cg, float).reshape(2)
+    h1, h2 = float(v1.heading), float(v2.heading)
+    vel1 = np.asarray(v1.velocity, float).reshape(2)
+    vel2 = np.asarray(v2.velocity, float).reshape(2)
+    w1, w2 = float(v1.yaw_rate), float(v2.yaw_rate)
+    point = np.asarray(imp.point, float).reshape(2)
+    gamma = float(imp.normal_angle)
+    n = np.array([math.cos(gamma), math.sin(gamma)])
+    r1, r2 = point - cg1, point - cg2
+    # K_nn = 1/m1 + 1/m2 + (r1 x n)^2 / I1 + (r2 x n)^2 / I2 (the frequency of the contact)
+    k_nn = 1.0 / m1 + (r1[0] * n[1] - r1[1] * n[0]) ** 2 / i1
+    if not fixed2:
+        k_nn += 1.0 / m2 + (r2[0] * n[1] - r2[1] * n[0]) ** 2 / i2
+    state0 = np.array([cg1[0], cg1[1], h1, vel1[0], vel1[1], w1,
+                       cg2[0], cg2[1], h2, vel2[0], vel2[1], w2])
+    g = settings.gravity
+    wheels1 = wheel_positions(v1.length, v1.width, math.sqrt(i1 / m1))
+    wheels2 = None if fixed2 else wheel_positions(v2.length, v2.width, math.sqrt(i2 / m2))
+    speeds = [np.hypot(*vel1), 0.0 if fixed2 else np.hypot(*vel2)]
+    kt = settings.tangential_stiffness or stiffness
+    return CompliantProblem(
+        case=case, eps=eps, stiffness=stiffness, preload=settings.preload, friction=friction,
+        tangential_stiffness=kt, geometry=geometry, tyre_friction=tyre_friction,
+        tyre_mode=settings.tyre_mode, mass1=m1, inertia1=i1, mass2=m2, inertia2=i2,
+        fixed2=fixed2, state0=state0, arm1_body=rotate(r1, -h1), arm2_body=rotate(r2, -h2),
+        normal2_body=rotate(n, -h2), wheels1=wheels1, wheels2=wheels2,
+        load1=m1 * g / 4.0, load2=0.0 if fixed2 else m2 * g / 4.0,
+        outline1=outline1, outline2=outline2, k_nn=float(k_nn),
+        duration_estimate=float(contact_duration_estimate(stiffness, k_nn, eps)),
+        speed_scale=max(max(speeds), 1e-6),
+        energy_before=kinetic_energy(m1, i1, vel1, w1) + kinetic_energy(m2, i2, vel2, w2),
+        settings=settings)
+
+
+def point_contact(problem: CompliantProblem, position1, angle1, velocity1, yaw_rate1,
+                  position2, angle2, velocity2, yaw_rate2):
+    """Kinematics of the point contact (module notes) at one state.
+
+    Returns
+    -------
+    point : ndarray (2,)
+        P, the material point of vehicle 1 [m], where the force acts.
+    normal, tangent : ndarray (2,)
+        n(t) and t(t), carried by vehicle 2.
+    delta : float
+        Crush, the depth of P below the plane [m].
+    slip_n, slip_t : float
+        v_rel . n (= -d delta / dt) and v_rel . t [m/s].
+    """
+    p = position1 + rotate(problem.arm1_body, angle1)
+    q = position2 + rotate(problem.arm2_body, angle2)
+    n = rotate(problem.normal2_body, angle2)
+    t = np.array([-n[1], n[0]])
+    d1 = p - position1
+    d2 = p - position2
+    rel = (velocity1 + yaw_rate1 * np.array([-d1[1], d1[0]])
+           - velocity2 - yaw_rate2 * np.array([-d2[1], d2[0]]))
+    return p, n, t, float(-(p - q) @ n), float(rel @ n), float(rel @ t)
+
+
+@dataclass(frozen=True, eq=False)
+class ContactHistory:
+    """The contact as it happened, one row per recorded instant (SI).
+
+    Attributes
+    ----------
+    time : ndarray (N,)
+        [s] from the start of the contact (t = 0 is PIM's impact instant for the point
+        geometry; the outline contact may begin earlier).
+    crush : ndarray (N,)
+        delta [m].
+    force : ndarray (N, 2)
+        Contact force on vehicle 1 [N], global frame.
+    normal_force, tangential_force : ndarray (N,)
+        F_n, F_t [N].
+    slip : ndarray (N,)
+        Tangential relative velocity v_t at the contact [m/s].
+    sticking : ndarray (N,) of bool
+        The friction spring is inside the Coulomb cone.
+    point : ndarray (N, 2)
+        Where the force acts [m].
+    """
+
+    time: np.ndarray
+    crush: np.ndarray
+    force: np.ndarray
+    normal_force: np.ndarray
+    tangential_force: np.ndarray
+    slip: np.ndarray
+    sticking: np.ndarray
+    point: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class CompliantResult:
+    """Outcome of :func:`sim.simulate_compliant` or :func:`sim.reference_compliant`.
+
+    Attributes
+    ----------
+    velocity1, velocity2 : ndarray (2,)
+        CG velocities at separation [m/s].
+    yaw_rate1, yaw_rate2 : float
+        Yaw rates at separation [rad/s].
+    contact_duration : float
+        Time from first contact to separation [s].
+    contact_start : float
+        When the contact began [s] (0 for the point geometry; the outline contact starts
+        when the outlines first touch, moved back along the free paths).
+    impulse : ndarray (2,)
+        Contact impulse on vehicle 1 [N s] (time integral of the contact force).
+    impact_point : ndarray (2,)
+        Impulse centroid [m]: the contact points weighted by |F| dt, the effective impact
+        point (C for the point geometry, to within the motion of P during the contact).
+    peak_force : float
+        Largest |F| [N].
+    peak_crush, permanent_crush : float
+        delta_max and delta_p [m].
+    energy_before, energy_after : float
+        Kinetic energy at first contact and at separation [J].
+    tyre_work : float
+        Work of the tyre forces during the contact [J] (<= 0).
+    stick_fraction : float
+        Share of the contact time the friction spring stuck [-].
+    slip_reversed : bool
+        The tangential slip reversed (:func:`reversal`): the contact slid both ways, or
+        left with a tangential velocity opposite to the one it met with (tangential rebound
+        of the friction spring).
+    steps : int
+        Integrator steps (pymunk steps; accepted steps of solve_ivp).
+    wall_time : float
+        [s].
+    integrator : str
+        "pymunk" or the solve_ivp method.
+    eps, stiffness, friction, tyre_friction : float
+        The physical inputs.
+    geometry : str
+    settings : CompliantSettings
+    history : ContactHistory or None
+    trajectory : sim.Trajectory or None
+        Motion of both bodies (pymunk with ``settings.record``), including ``duration``
+        after separation; ``impact_index`` marks separation.
+    secondary_impact : float or None
+        First time [s] after separation at which the outlines overlap again (a second
+        impact PIM does not model), within the recorded ``duration``.
+    problems : tuple of str
+        Flags: e.g. a crush deeper than the vehicle (the outlines would pass through).
+    """
+
+    velocity1: np.ndarray
+    velocity2: np.ndarray
+    yaw_rate1: float
+    yaw_rate2: float
+    contact_duration: float
+    contact_start: float
+    impulse: np.ndarray
+    impact_point: np.ndarray
+    peak_force: float
+    peak_crush: float
+    permanent_crush: float
+    energy_before: float
+    energy_after: float
+    tyre_work: float
+    stick_fraction: float
+    slip_reversed: bool
+    steps: int
+    wall_time: float
+    integrator: str
+    eps: float
+    stiffness: float
+    friction: float
+    tyre_friction: float
+    geometry: str
+    settings: CompliantSettings
+    history: ContactHistory | None = None
+    trajectory: Trajectory | None = None
+    secondary_impact: float | None = None
+    problems: tuple = ()
+
+    @property
+    def energy_loss(self) -> float:
+        """Kinetic energy lost during the contact [J] (crush and friction and tyres)."""
+        return self.energy_before - self.energy_after
+
+    def measured(self) -> pim.Measured:
+        """The post-impact motion as a :class:`pim.Measured` (to fit PIM to it)."""
+        return pim.Measured(self.velocity1, self.velocity2, self.yaw_rate1, self.yaw_rate2)
+
+
+def reversal(initial_sign: float, final_slip: float, speed_scale: float,
+             directions) -> bool:
+    """Whether the tangential slip reversed during the contact.
+
+    True when the contact slid in both directions (``directions`` holds +1 and -1), or when
+    the tangential relative velocity at separation, ``final_slip`` [m/s], opposes the one
+    at first contact (sign ``initial_sign``) by more than 1e-6 of the speed scale.
+    """
+    rebound = initial_sign != 0 and final_slip * initial_sign < -1e-6 * speed_scale
+    return bool(len(set(directions)) > 1 or rebound)
+
+
+def placed_outlines(problem: CompliantProblem, state) -> tuple[np.ndarray, np.ndarray | None]:
+    """World corners of both outlines at ``state`` (None for an obstacle without one)."""
+    poly1 = place(problem.outline1, state[0:2], state[2])
+    poly2 = None if problem.outline2 is None else place(problem.outline2, state[6:8], state[8])
+    return poly1, poly2
+

@@ -1,0 +1,220 @@
+"""The finite-duration contact law: bilinear crush hysteresis and elastoplastic friction.
+
+Pure, vectorised functions (numpy broadcasting, no state, no I/O) shared by the pymunk
+stepping of :mod:`sim.compliant` and the independent ``solve_ivp`` integration of
+:mod:`sim.reference`: they *are* the model under test, the integrators are not.
+
+Normal crush force (docs/contact-model.md)
+------------------------------------------
+Loading (delta >= delta_max, the largest crush so far), Campbell's per-width form times the
+contact width w, or a plain linear spring (a = 0, b = k):
+
+    F_L(delta) = a + b delta,        a = A w [N],  b = B w [N/m]   (k = b when a = 0)
+
+Unloading and reloading below delta_max run along a straight line of slope s from the peak
+(delta_max, F_max = F_L(delta_max)) down to the permanent crush delta_p:
+
+    F_U(delta) = F_max + s (delta - delta_max)   for delta > delta_p,  0 below,
+    s = F_max^2 / (2 eps^2 E_L),  E_L = a delta_max + b delta_max^2 / 2,
+    delta_p = delta_max - F_max / s.
+
+The unloading line returns eps^2 of the loading work, so a point mass rebounds with
+exactly epsilon times its approach speed. For the linear spring s = k / eps^2 and
+delta_p = delta_max (1 - eps^2), the bilinear model of the issue. epsilon = 0: no
+rebound (s infinite, F = 0 as soon as delta < delta_max).
+
+Tangential force
+----------------
+Coulomb friction mu_c |F_n| against the slip, regularised by a tangential spring of
+stiffness k_t (an elastoplastic, "bristle" model): the elastic tangential displacement z
+follows the slip while |k_t z| < mu_c F_n (sticking: the contact stores tangential
+energy and gives it back, so a sticking contact can reverse), and is held on the Coulomb
+cone |z| <= z_max = mu_c F_n / k_t while the slip pushes outward (sliding: the force is
+mu_c F_n against the elastic displacement). The force is F_t = -k_t z. In continuous
+time z obeys the sweeping process
+
+    dz/dt = v_t                                if |z| < z_max or z v_t <= 0,
+    dz/dt = sign(z) min(|v_t|, dz_max/dt)      on the cone, pushed outward,
+
+(and follows a shrinking cone; :mod:`sim.reference` integrates it as sticking and sliding
+modes with events); its implicit ("catching-up") step is
+z_{n+1} = clip(z_n + v_t dt, -z_max,n+1, z_max,n+1), which the fixed-step integrator uses.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["check_positive", "check_fraction", "loading_force", "loading_work",
+           "unloading_slope", "permanent_crush", "normal_force", "normal_stiffness",
+           "tangential_step", "tangential_force", "contact_frequency",
+           "contact_duration_estimate", "stiffness_for_duration"]
+
+
+def check_positive(value, name: str, unit: str, allow_zero: bool = False) -> float:
+    """``value`` as a float, or a ValueError naming ``name`` and the allowed range.
+
+    Rejects NaN, infinities, booleans, strings and values <= 0 (< 0 with ``allow_zero``).
+    """
+    if isinstance(value, bool) or not isinstance(value, int | float | np.floating | np.integer):
+        raise ValueError(f"{name} must be a number [{unit}], got {value!r}")
+    value = float(value)
+    ok = math.isfinite(value) and (value >= 0 if allow_zero else value > 0)
+    if not ok:
+        bound = ">= 0" if allow_zero else "> 0"
+        raise ValueError(f"{name} must be a finite number {bound} [{unit}], got {value!r}")
+    return value
+
+
+def check_fraction(value, name: str) -> float:
+    """``value`` as a float in [0, 1], or a ValueError naming ``name``."""
+    if isinstance(value, bool) or not isinstance(value, int | float | np.floating | np.integer):
+        raise ValueError(f"{name} must be a number in [0, 1], got {value!r}")
+    value = float(value)
+    if not (math.isfinite(value) and 0.0 <= value <= 1.0):
+        raise ValueError(f"{name} must be in [0, 1], got {value!r}")
+    return value
+
+
+def loading_force(delta, a, b):
+    """Crush force on the loading curve F_L = a + b delta [N] (0 for delta <= 0).
+
+    Parameters
+    ----------
+    delta : array_like
+        Crush (penetration depth) [m].
+    a : array_like
+        Force at zero crush [N] (Campbell's A times the contact width; 0 for a linear spring).
+    b : array_like
+        Crush stiffness [N/m] (Campbell's B times the width, or the linear k).
+    """
+    delta = np.asarray(delta, float)
+    return np.where(delta > 0.0, a + b * np.maximum(delta, 0.0), 0.0)
+
+
+def loading_work(delta_max, a, b):
+    """Work done along the loading curve up to ``delta_max``: a d + b d^2 / 2 [J]."""
+    d = np.maximum(np.asarray(delta_max, float), 0.0)
+    return a * d + 0.5 * b * d * d
+
+
+def unloading_slope(delta_max, eps, a, b):
+    """Slope s [N/m] of the unloading line from the peak, s = F_max^2 / (2 eps^2 E_L).
+
+    Infinite for eps = 0 (no rebound) or before any crush (delta_max = 0).
+    """
+    f_max = a + b * np.asarray(delta_max, float)
+    work = loading_work(delta_max, a, b)
+    denom = 2.0 * np.asarray(eps, float) ** 2 * work
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(denom > 0.0, f_max * f_max / np.where(denom > 0, denom, 1.0), np.inf)
+
+
+def permanent_crush(delta_max, eps, a, b):
+    """Permanent (residual) crush delta_p = delta_max - F_max / s [m].
+
+    Linear spring: delta_max (1 - eps^2).
+    """
+    delta_max = np.asarray(delta_max, float)
+    f_max = a + b * delta_max
+    work = loading_work(delta_max, a, b)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        back = np.where(f_max > 0, 2.0 * np.asarray(eps, float) ** 2 * work
+                        / np.where(f_max > 0, f_max, 1.0), 0.0)
+    return np.where(delta_max > 0, delta_max - back, 0.0)
+
+
+def normal_force(delta, delta_max, eps, a, b):
+    """Normal crush force F_n [N] >= 0 of the bilinear hysteresis.
+
+    Parameters
+    ----------
+    delta : array_like
+        Current crush [m].
+    delta_max : array_like
+        Largest crush so far [m] (memory of the loading); loading when delta >= delta_max.
+    eps : array_like
+        Coefficient of restitution [-] in [0, 1].
+    a, b : array_like
+        Loading curve F_L = a + b delta ([N], [N/m]).
+
+    Returns
+    -------
+    ndarray
+        F_L(delta) on loading, F_max + s (delta - delta_max) clipped at 0 on unloading,
+        0 for delta <= 0.
+    """
+    delta = np.asarray(delta, float)
+    delta_max = np.asarray(delta_max, float)
+    loading = loading_force(delta, a, b)
+    f_max = a + b * delta_max
+    delta_p = permanent_crush(delta_max, eps, a, b)
+    # the unloading line through (delta_p, 0) and (delta_max, f_max), written without s so
+    # that eps = 0 (delta_p = delta_max) gives 0 below the peak instead of inf * 0
+    span = delta_max - delta_p
+    with np.errstate(divide="ignore", invalid="ignore"):
+        frac = np.where(span > 0, (delta - delta_p) / np.where(span > 0, span, 1.0), 0.0)
+    unloading = f_max * np.clip(frac, 0.0, 1.0)
+    return np.where(delta >= delta_max, loading, np.where(delta > 0, unloading, 0.0))
+
+
+def normal_stiffness(delta, delta_max, eps, a, b):
+    """dF_n/d delta [N/m] of :func:`normal_force` (b on loading, s unloading, 0 apart)."""
+    delta = np.asarray(delta, float)
+    delta_max = np.asarray(delta_max, float)
+    delta_p = permanent_crush(delta_max, eps, a, b)
+    s = unloading_slope(delta_max, eps, a, b)
+    load = (delta >= delta_max) & (delta > 0)
+    unload = (delta < delta_max) & (delta > delta_p)
+    return np.where(load, b, np.where(unload, s, 0.0))
+
+
+def tangential_step(z, slip, dt, z_max):
+    """One implicit step of the elastoplastic tangential spring [m].
+
+    z_{n+1} = clip(z_n + v_t dt, -z_max, z_max) with z_max = mu_c F_n / k_t at the new
+    state: sticking while inside the cone, sliding (and following a shrinking cone) on it.
+    """
+    z_max = np.maximum(np.asarray(z_max, float), 0.0)
+    return np.clip(np.asarray(z, float) + np.asarray(slip, float) * dt, -z_max, z_max)
+
+
+def tangential_force(z, k_t, limit):
+    """Tangential force F_t = -k_t z [N], clipped to the Coulomb limit mu_c F_n."""
+    return -np.clip(k_t * np.asarray(z, float), -limit, limit)
+
+
+def contact_frequency(k, k_nn):
+    """Natural circular frequency sqrt(k K_nn) [rad/s] of the contact on the loading spring.
+
+    Parameters
+    ----------
+    k : array_like
+        Loading stiffness [N/m].
+    k_nn : array_like
+        Normal-normal entry of the contact's effective inverse mass matrix K [1/kg]
+        (1/m1 + 1/m2 + (n x r1)^2/I1 + (n x r2)^2/I2; ``pim.Result.k_nn``).
+    """
+    return np.sqrt(np.asarray(k, float) * np.asarray(k_nn, float))
+
+
+def contact_duration_estimate(k, k_nn, eps):
+    """Contact duration [s] of the linear law for a frictionless point contact.
+
+    A quarter period pi / (2 omega) loading and a quarter period eps pi / (2 omega) of the
+    stiffer unloading spring (frequency omega / eps): T = pi (1 + eps) / (2 omega).
+    """
+    return 0.5 * np.pi * (1.0 + np.asarray(eps, float)) / contact_frequency(k, k_nn)
+
+
+def stiffness_for_duration(duration, k_nn, eps):
+    """The linear stiffness k [N/m] whose frictionless contact lasts ``duration`` [s].
+
+    Inverse of :func:`contact_duration_estimate`: k = (pi (1 + eps) / (2 T))^2 / K_nn.
+    """
+    duration = np.asarray(duration, float)
+    if np.any(~np.isfinite(duration)) or np.any(duration <= 0):
+        raise ValueError(f"duration must be a finite number > 0 [s], got {duration!r}")
+    return (0.5 * np.pi * (1.0 + np.asarray(eps, float)) / duration) ** 2 / np.asarray(k_nn, float)

@@ -1,0 +1,304 @@
+"""Independent integration of the point contact with ``scipy.integrate.solve_ivp``.
+
+The reference of the finite-duration scene: the same equations of motion and contact law
+(:mod:`sim.contact_law`, the model under test; the point kinematics of
+:func:`sim.compliant_setup.point_contact`) integrated by an adaptive high-order method,
+explicit ("DOP853", 8th order) or implicit ("Radau", 5th order), with events instead of
+fixed steps:
+
+* loading (F_n = F_L(delta), delta_max = delta) until the crush stops growing
+  (d delta/dt = -v_rel . n crosses zero downward): delta_max is frozen there; with
+  epsilon = 0 this is the separation (no rebound);
+* unloading along the straight line to delta_p until delta = delta_p (separation, the end),
+  or back to loading if delta climbs to delta_max again;
+* the friction spring z is a state variable of the sweeping process of
+  :mod:`sim.contact_law` written as modes, so that the right-hand side is smooth inside each
+  solve_ivp call: sticking (dz/dt = v_t, F_t = -k_t z) until k_t |z| reaches mu_c F_n,
+  sliding (z on the cone, dz/dt = +-dz_max/dt with dz_max/dt = mu_c (dF_n/d delta)
+  (d delta/dt) / k_t, F_t = -+mu_c F_n) until the slip stops pushing outward.
+
+State: x1, y1, theta1, vx1, vy1, w1, x2, y2, theta2, vx2, vy2, w2, z (a fixed vehicle 2
+keeps zero velocity). Nothing is shared with the pymunk stepping of :mod:`sim.compliant`.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+import pim
+
+from .compliant_setup import (
+    CompliantProblem,
+    CompliantResult,
+    CompliantSettings,
+    ContactHistory,
+    build_problem,
+    kinetic_energy,
+    point_contact,
+    reversal,
+)
+from .contact_law import normal_force, normal_stiffness, permanent_crush
+from .failures import SimulationError
+from .result import Trajectory
+from .tyres import tyre_force
+
+__all__ = ["reference_compliant"]
+
+
+def _unpack(y):
+    return (y[0:2], y[2], y[3:5], y[5], y[6:8], y[8], y[9:11], y[11])
+
+
+class _Model:
+    """Right-hand side and events of one phase of the contact."""
+
+    def __init__(self, problem: CompliantProblem):
+        self.p = problem
+        self.loading = True
+        self.delta_max = 0.0
+        self.delta_p = 0.0
+        self.mode = 0            # friction: 0 sticking, +1 / -1 sliding with z = +- z_max
+        self.cone = (0.0, 0.0)   # (k_t |z| - mu F_n, mode v_t - dz_max/dt) at the last call
+
+    def contact(self, y):
+        x1, a1, v1, w1, x2, a2, v2, w2 = _unpack(y)
+        return point_contact(self.p, x1, a1, v1, w1, x2, a2, v2, w2)
+
+    def forces(self, y):
+        p = self.p
+        point, n, t, delta, slip_n, slip_t = self.contact(y)
+        dmax = max(delta, self.delta_max) if self.loading else self.delta_max
+        fn = float(normal_force(delta, dmax, p.eps, p.preload, p.stiffness))
+        z = y[12]
+        dz = 0.0
+        ft = 0.0
+        if p.friction > 0:
+            kt = p.tangential_stiffness
+            stiff = float(normal_stiffness(delta, dmax, p.eps, p.preload, p.stiffness))
+            rate = p.friction * stiff * (-slip_n) / kt
+            if self.mode == 0:                 # sticking: the spring follows the slip
+                dz, ft = slip_t, -kt * z
+            else:                              # sliding on the cone
+                dz, ft = self.mode * rate, -self.mode * p.friction * fn
+            self.cone = (kt * abs(z) - p.friction * fn, self.mode * slip_t - rate)
+        return point, n * fn + t * ft, dz
+
+    def rhs(self, t, y):
+        p = self.p
+        x1, a1, v1, w1, x2, a2, v2, w2 = _unpack(y)
+        point, force, dz = self.forces(y)
+        d1, d2 = point - x1, point - x2
+        f1, f2 = force, -force
+        m1 = d1[0] * force[1] - d1[1] * force[0]
+        m2 = -(d2[0] * force[1] - d2[1] * force[0])
+        if p.tyre_friction > 0:
+            ft, mt = tyre_force(v1, w1, a1, p.wheels1, p.load1, p.tyre_friction, p.tyre_mode)
+            f1, m1 = f1 + ft, m1 + mt
+            if not p.fixed2:
+                ft, mt = tyre_force(v2, w2, a2, p.wheels2, p.load2, p.tyre_friction,
+                                    p.tyre_mode)
+                f2, m2 = f2 + ft, m2 + mt
+        out = np.zeros(13)
+        out[0:2] = v1
+        out[2] = w1
+        out[3:5] = f1 / p.mass1
+        out[5] = m1 / p.inertia1
+        if not p.fixed2:
+            out[6:8] = v2
+            out[8] = w2
+            out[9:11] = f2 / p.mass2
+            out[11] = m2 / p.inertia2
+        out[12] = dz
+        return out
+
+    def impulse_rate(self, t, y):
+        """d/dt of (impulse x, impulse y, |F|, |F| P_x, |F| P_y) (quadrature states)."""
+        point, force, _ = self.forces(y)
+        size = math.hypot(force[0], force[1])
+        return np.array([force[0], force[1], size, size * point[0], size * point[1]])
+
+
+def reference_compliant(case: pim.Case, eps, stiffness, friction=0.0, geometry="point",
+                        tyre_friction=0.0, settings: CompliantSettings | None = None
+                        ) -> CompliantResult:
+    """The point contact integrated by ``solve_ivp`` (``settings.method``, ``settings.rtol``).
+
+    Same signature and result as :func:`sim.simulate_compliant`; only ``geometry="point"``
+    (the outline contact has no independent reference). ``history`` holds the dense output
+    at 200 instants of the contact with ``settings.record``; ``trajectory`` the states at
+    first contact and separation (and dense samples between them with ``record``).
+
+    Raises
+    ------
+    ValueError
+        Bad input, or a geometry other than "point".
+    SimulationError
+        "no_contact" (no approach at C), "never_separated", "not_converged" (solve_ivp
+        failed).
+    """
+    from scipy.integrate import solve_ivp
+
+    wall = time.perf_counter()
+    if geometry != "point":
+        raise ValueError(f"reference_compliant integrates the point contact only, "
+                         f"got geometry={geometry!r}")
+    problem = build_problem(case, eps, stiffness, friction, geometry, tyre_friction, settings)
+    s = problem.settings
+    model = _Model(problem)
+    y = np.r_[problem.state0, 0.0]
+    *_, slip_n, _ = model.contact(y)
+    if not slip_n < 0:
+        raise SimulationError("no_contact", f"no contact: the vehicles do not approach at C "
+                              f"(u_n = {slip_n:.6g} m/s >= 0)", 0)
+    # absolute tolerances from the scales of the contact: crush d, speed v, gyration k
+    omega = math.sqrt(problem.stiffness * problem.k_nn)
+    v = problem.speed_scale
+    d = v / omega
+    k1 = math.sqrt(problem.inertia1 / problem.mass1)
+    k2 = k1 if problem.fixed2 else math.sqrt(problem.inertia2 / problem.mass2)
+    scale = np.array([d, d, d / k1, v, v, v / k1, d, d, d / k2, v, v, v / k2, d])
+    atol = s.rtol * scale
+
+    def peak(t, y):                  # d delta / dt = -v_rel . n crosses zero downward
+        return -model.contact(y)[4]
+
+    def released(t, y):              # delta falls to delta_p
+        return model.contact(y)[3] - model.delta_p
+
+    def reloaded(t, y):              # delta climbs back to delta_max (a margin of 1e-9 of
+        return model.contact(y)[3] - model.delta_max * (1.0 + 1e-9)   # it: no chattering
+
+    def slips(t, y):                 # sticking: the spring force reaches the Coulomb limit
+        model.forces(y)
+        return model.cone[0] - 1e-9 * problem.friction * problem.stiffness * d
+
+    def sticks(t, y):                # sliding: the slip stops pushing outward
+        model.forces(y)
+        return model.cone[1] + 1e-9 * v
+
+    for event, direction in ((peak, -1), (released, -1), (reloaded, 1), (slips, 1),
+                             (sticks, -1)):
+        event.terminal = True
+        event.direction = direction
+
+    t0 = 0.0
+    steps = 0
+    stick_time = 0.0
+    directions = set()
+    slip_t0_sign = np.sign(model.contact(y)[5])
+    if problem.friction > 0:        # at first contact (F_n = 0): slide if the slip outruns
+        _, _, _, _, slip_n0, slip_t0 = model.contact(y)      # the growing Coulomb cone
+        rate0 = problem.friction * problem.stiffness * (-slip_n0) / problem.tangential_stiffness
+        if abs(slip_t0) > rate0 or problem.preload > 0:
+            model.mode = 1 if slip_t0 > 0 else -1
+            directions.add(model.mode)
+    impulse = np.zeros(5)
+    pieces = []
+    while True:
+        if not model.loading and model.contact(y)[3] <= model.delta_p + 1e-12 * d:
+            break                               # released exactly at a mode switch
+        events = [peak] if model.loading else [released, reloaded]
+        if problem.friction > 0:
+            events = events + [slips if model.mode == 0 else sticks]
+        q0 = np.zeros(5)
+
+        def rhs(t, yq):
+            return np.r_[model.rhs(t, yq[:13]), model.impulse_rate(t, yq[:13])]
+
+        def wrap(ev):
+            def f(t, yq):
+                return ev(t, yq[:13])
+            f.terminal, f.direction = True, ev.direction
+            return f
+
+        sol = solve_ivp(rhs, (t0, t0 + s.max_contact_time), np.r_[y, q0], method=s.method,
+                        rtol=s.rtol, atol=np.r_[atol, np.full(5, 0.0) + s.rtol * 1e-6],
+                        events=[wrap(e) for e in events], dense_output=s.record)
+        if sol.status < 0:
+            raise SimulationError("not_converged", f"solve_ivp ({s.method}) failed: "
+                                  f"{sol.message}", steps)
+        steps += len(sol.t) - 1
+        if s.record:
+            pieces.append((sol.t[0], sol.t[-1], sol.sol, model.loading, model.delta_max,
+                           model.mode))
+        y = sol.y[:13, -1].copy()
+        impulse += sol.y[13:, -1]
+        t_end = sol.t[-1]
+        if sol.status == 0:
+            raise SimulationError("never_separated", f"the contact still pushed after "
+                                  f"{s.max_contact_time:g} s (max_contact_time)", steps)
+        t0 = t_end
+        if model.mode == 0:
+            stick_time += sol.t[-1] - sol.t[0]
+        fired = [i for i, e in enumerate(sol.t_events) if len(e)]
+        if problem.friction > 0 and fired == [len(events) - 1]:
+            if model.mode == 0:                 # sticking -> sliding along z
+                model.mode = 1 if y[12] > 0 else -1
+                directions.add(model.mode)
+            else:                               # sliding -> sticking
+                model.mode = 0
+            continue
+        if model.loading:                       # reached the peak crush
+            model.delta_max = model.contact(y)[3]
+            model.delta_p = float(permanent_crush(model.delta_max, problem.eps,
+                                                  problem.preload, problem.stiffness))
+            model.loading = False
+            if problem.eps == 0.0:
+                break                           # no rebound: the contact ends at the peak
+            continue
+        if fired and fired[0] == 0:             # released at delta_p: separated
+            break
+        model.loading = True                    # reloaded
+    v1, w1 = y[3:5].copy(), float(y[5])
+    v2, w2 = y[9:11].copy(), float(y[11])
+    energy_after = (kinetic_energy(problem.mass1, problem.inertia1, v1, w1)
+                    + kinetic_energy(problem.mass2, problem.inertia2, v2, w2))
+    history = _history(model, pieces) if s.record else None
+    states = [np.r_[0.0, problem.state0]]
+    if s.record:
+        for a, b, dense, *_ in pieces:
+            states += [np.r_[t, dense(t)[:12]] for t in np.linspace(a, b, 20)[1:]]
+    else:
+        states.append(np.r_[t0, y[:12]])
+    arr = np.array(states)
+    trajectory = Trajectory(
+        time=arr[:, 0], position1=arr[:, 1:3], angle1=arr[:, 3], position2=arr[:, 7:9],
+        angle2=arr[:, 9], velocity1=arr[:, 4:6], yaw_rate1=arr[:, 6], velocity2=arr[:, 10:12],
+        yaw_rate2=arr[:, 12], impact_index=len(arr) - 1, outline1=problem.outline1,
+        outline2=problem.outline2, fixed2=problem.fixed2)
+    stick = stick_time / t0 if problem.friction > 0 else 0.0
+    slip_rev = reversal(slip_t0_sign, model.contact(y)[5], v, directions)
+    return CompliantResult(
+        velocity1=v1, velocity2=v2, yaw_rate1=w1, yaw_rate2=w2, contact_duration=t0,
+        contact_start=0.0, impulse=impulse[0:2],
+        impact_point=impulse[3:5] / impulse[2] if impulse[2] > 0 else np.full(2, np.nan),
+        peak_force=float(np.max(np.hypot(*history.force.T))) if history is not None
+        else math.nan, peak_crush=model.delta_max, permanent_crush=model.delta_p,
+        energy_before=problem.energy_before, energy_after=energy_after, tyre_work=math.nan,
+        stick_fraction=stick,
+        slip_reversed=bool(slip_rev), steps=steps, wall_time=time.perf_counter() - wall,
+        integrator=s.method, eps=problem.eps, stiffness=problem.stiffness,
+        friction=problem.friction, tyre_friction=problem.tyre_friction, geometry=geometry,
+        settings=s, history=history, trajectory=trajectory)
+
+
+def _history(model: _Model, pieces):
+    rows = []
+    total = sum(b - a for a, b, *_ in pieces)
+    for a, b, dense, loading, dmax, mode in pieces:
+        count = max(2, int(round(200 * (b - a) / max(total, 1e-300))))
+        model.loading, model.delta_max, model.mode = loading, dmax, mode
+        for t in np.linspace(a, b, count):
+            y = dense(t)[:13]
+            point, n, tt, delta, slip_n, slip_t = model.contact(y)
+            _, force, _ = model.forces(y)
+            fn, ft = float(force @ n), float(force @ tt)
+            rows.append((t, delta, force[0], force[1], fn, ft, slip_t, mode == 0,
+                         point[0], point[1]))
+    h = np.array(rows, float)
+    return ContactHistory(time=h[:, 0], crush=h[:, 1], force=h[:, 2:4], normal_force=h[:, 4],
+                          tangential_force=h[:, 5], slip=h[:, 6],
+                          sticking=h[:, 7].astype(bool), point=h[:, 8:10])

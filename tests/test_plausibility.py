@@ -1,0 +1,40 @@
+"""Plausibility warnings and the friction-capped mode (issue 12, item 3)."""
+
+from importlib import resources
+
+import pim
+from pim.cli import main
+
+RICSAC = (resources.files("pim.io") / "cases" / "ricsac9.toml").read_text()
+
+
+def test_bare_angle_above_two_pi_is_flagged(tmp_path, capsys):
+    path = tmp_path / "case.toml"
+    path.write_text(RICSAC.replace('heading = "180 deg"', "heading = 180", 1))
+    assert main(["solve", str(path)]) == 0
+    err = capsys.readouterr().err
+    assert "vehicle1.heading = 180" in err and "deg" in err
+    assert main(["solve", "ricsac9"]) == 0
+    assert "heading" not in capsys.readouterr().err
+
+
+
+
+
+
+
+
+def test_sliding_reverses_only_when_it_does():
+    case = pim.load_case("ricsac9")
+    assert any("reverses" in p for p in pim.solve(case, 0.3, 1.2).problems())
+    negative = pim.solve(case, 0.3, -0.2).problems()
+    assert not any("reverses" in p for p in negative)
+    assert any("beta < 0" in p for p in negative)
+    assert pim.solve(case, 0.3, 0.8).problems() == []
+
+
+def test_barrier_has_no_pdof(capsys):
+    assert main(["solve", "hard-barrier"]) == 0
+    out = capsys.readouterr().out
+    pdof = [line for line in out.splitlines() if line.startswith("PDOF")]
+    assert pdof and all(line.split()[-2] == "-" for line in pdof), pdof

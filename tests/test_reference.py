@@ -1,0 +1,132 @@
+"""The solve_ivp reference of the point contact: methods agree, invariants, PIM's limits."""
+
+import math
+
+import numpy as np
+import pytest
+
+import pim
+import sim
+from sim import CompliantSettings
+from sim.contact_law import contact_duration_estimate, stiffness_for_duration
+
+K = sim.DEFAULT_STIFFNESS
+
+
+@pytest.fixture(scope="module")
+def ricsac9():
+    return pim.load_case("ricsac9")
+
+
+def post(r):
+    return np.r_[r.velocity1, r.velocity2, r.yaw_rate1, r.yaw_rate2]
+
+
+def offset_barrier_case():
+    """A car hits a wall with C 0.8 m off its line of motion: no initial slip, K_nt != 0."""
+    v1 = pim.Vehicle(1500.0, 2500.0, (-1.0, 0.8), (15.0, 0.0), 0.0, 0.0)
+    return pim.Case(v1, pim.Vehicle.obstacle((1.0, 0.0)), pim.Impact((0.0, 0.0), math.pi))
+
+
+@pytest.mark.parametrize("friction", [0.0, 0.8])
+def test_explicit_and_implicit_methods_agree(ricsac9, friction):
+    a = sim.reference_compliant(ricsac9, 0.355, K, friction=friction,
+                                settings=CompliantSettings(method="DOP853", rtol=1e-10,
+                                                           record=False))
+    b = sim.reference_compliant(ricsac9, 0.355, K, friction=friction,
+                                settings=CompliantSettings(method="Radau", rtol=1e-10,
+                                                           record=False))
+    assert np.abs(post(a) - post(b)).max() < 1e-6
+    assert a.contact_duration == pytest.approx(b.contact_duration, rel=1e-7)
+
+
+@pytest.mark.parametrize("method", ["DOP853", "Radau"])
+def test_momentum_conserved(ricsac9, method):
+    r = sim.reference_compliant(ricsac9, 0.355, K, friction=0.8,
+                                settings=CompliantSettings(method=method, rtol=1e-11,
+                                                           record=False))
+    v1, v2 = ricsac9.vehicle1, ricsac9.vehicle2
+    lin0 = v1.mass * v1.velocity + v2.mass * v2.velocity
+    lin = v1.mass * r.velocity1 + v2.mass * r.velocity2
+    # Runge-Kutta and collocation methods keep linear invariants exactly: round-off
+    assert np.abs(lin - lin0).max() < 1e-10 * np.linalg.norm(lin0)
+    # angular momentum about the origin is quadratic in the state: kept to the tolerance
+    tr = r.trajectory
+    i = tr.impact_index
+
+    def angular(p1, u1, w1, p2, u2, w2):
+        return (v1.mass * np.cross(p1, u1) + v1.yaw_inertia * w1
+                + v2.mass * np.cross(p2, u2) + v2.yaw_inertia * w2)
+
+    before = angular(v1.cg, v1.velocity, v1.yaw_rate, v2.cg, v2.velocity, v2.yaw_rate)
+    after = angular(tr.position1[i], tr.velocity1[i], tr.yaw_rate1[i], tr.position2[i],
+                    tr.velocity2[i], tr.yaw_rate2[i])
+    scale = float(v1.mass * np.linalg.norm(v1.velocity) * np.linalg.norm(v1.cg)
+                  + v2.mass * np.linalg.norm(v2.velocity) * np.linalg.norm(v2.cg))
+    assert abs(after - before) < 1e-8 * scale
+
+
+def test_point_mass_restitution_is_exactly_eps():
+    v1 = pim.Vehicle(1500.0, 2500.0, (-1.0, 0.0), (15.0, 0.0), 0.0, 0.0)
+    case = pim.Case(v1, pim.Vehicle.obstacle((1.0, 0.0)), pim.Impact((0.0, 0.0), math.pi))
+    for eps in (0.0, 0.165, 0.5, 1.0):
+        r = sim.reference_compliant(case, eps, K,
+                                    settings=CompliantSettings(rtol=1e-12, record=False))
+        assert -r.velocity1[0] / 15.0 == pytest.approx(eps, rel=1e-8, abs=1e-9)
+        expected = contact_duration_estimate(K, 1 / 1500, eps)
+        if eps > 0:
+            assert r.contact_duration == pytest.approx(expected, rel=1e-8)
+
+
+def test_frictionless_stiff_limit_is_pim_beta0_at_first_order(ricsac9):
+    # the error against PIM (beta = 0, same eps) falls in proportion to the contact time
+    pim0 = pim.solve(ricsac9, 0.355, 0.0)
+    k_nn = float(pim0.k_nn)
+    durations = np.array([0.04, 0.02, 0.01, 0.005])
+    errors = []
+    for duration in durations:
+        k = float(stiffness_for_duration(duration, k_nn, 0.355))
+        r = sim.reference_compliant(ricsac9, 0.355, k,
+                                    settings=CompliantSettings(rtol=1e-11, record=False))
+        errors.append(np.abs(post(r) - post(pim0)).max())
+    order = np.polyfit(np.log(durations), np.log(errors), 1)[0]
+    assert order == pytest.approx(1.0, rel=0.10)
+    assert errors[-1] < errors[0] / 6
+
+
+def test_sticking_stiff_limit_is_pim_beta1_where_slip_does_not_reverse():
+    case = offset_barrier_case()
+    pim1 = pim.solve(case, 0.3, 1.0)
+    k_nn = float(pim1.k_nn)
+    scale = np.array([1, 1, math.sqrt(2500 / 1500)])
+
+    def error(duration, ratio):
+        k = float(stiffness_for_duration(duration, k_nn, 0.3))
+        r = sim.reference_compliant(case, 0.3, k, friction=2.0, settings=CompliantSettings(
+            rtol=1e-10, record=False, tangential_stiffness=ratio * k))
+        diff = np.r_[r.velocity1 - pim1.velocity1, r.yaw_rate1 - pim1.yaw_rate1] * scale
+        return np.abs(diff).max() / 15.0, r
+
+    coarse, r1 = error(0.02, 1000.0)
+    fine, r2 = error(0.005, 1000.0)
+    assert not r1.slip_reversed and not r2.slip_reversed
+    assert r2.stick_fraction > 0.99
+    assert fine < 0.005 and fine < coarse / 2
+    # a soft friction spring gives its energy back: the slip reverses, which is reported
+    soft, r3 = error(0.005, 1.0)
+    assert r3.slip_reversed and soft > 0.1
+
+
+def test_no_outline_reference(ricsac9):
+    with pytest.raises(ValueError, match="point"):
+        sim.reference_compliant(ricsac9, 0.3, K, geometry="outline")
+
+
+def test_history_is_recorded(ricsac9):
+    r = sim.reference_compliant(ricsac9, 0.355, K, friction=0.5)
+    h = r.history
+    assert len(h.time) >= 100
+    assert (h.normal_force >= 0).all()
+    stepped = sim.simulate_compliant(ricsac9, 0.355, K, friction=0.5)
+    assert r.peak_force == pytest.approx(stepped.peak_force, rel=0.01)
+    assert r.peak_crush == pytest.approx(stepped.peak_crush, rel=1e-3)
