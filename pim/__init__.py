@@ -25,10 +25,6 @@ from .model.solver import solve
 
 __all__ = ["Case", "Impact", "Measured", "Vehicle", "Result", "solve", "load_case",
            "list_cases", "fit", "FitResult", "sensitivity", "uncertainty",
-<<<<<<< HEAD
-           "UncertaintyResult"]
-__all__ += ["load_dataset"]  # issue 13: bundled published crash tests
-=======
            "UncertaintyResult", "solve_capped"]
->>>>>>> main
+__all__ += ["load_dataset"]  # issue 13: bundled published crash tests
 __version__ = "0.1.0"
