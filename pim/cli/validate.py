@@ -111,8 +111,10 @@ def validate(dataset, out, units, as_json):
 
     Reproduces the published analyses with their coefficients, checks the momentum balance
     of the measured data and tabulates the coefficients by crash class; writes a Markdown +
-    CSV report with figures into OUT and prints one summary line per dataset.
+    CSV report with figures into OUT and prints one summary line per dataset. Units default
+    to those the data are published in: us for the IIHS tests (and all), si for RICSAC.
     """
+    units = units or ("si" if dataset == "ricsac" else "us")
     sections, summary = run_validation(dataset, units)
     written = write_validation_report(out, sections, units)
     if as_json:
