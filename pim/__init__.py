@@ -18,6 +18,7 @@ from .analysis.montecarlo import UncertaintyResult, uncertainty
 from .analysis.reconstruction import post_impact_motion
 from .analysis.sensitivity import sensitivity
 from .io.casefile import list_cases, load_case
+from .io.datasets import load_dataset
 from .model.case import Case, Impact, Measured, Vehicle
 from .model.friction_cap import solve_capped
 from .model.result import Result
@@ -25,6 +26,5 @@ from .model.solver import solve
 
 __all__ = ["Case", "Impact", "Measured", "Vehicle", "Result", "solve", "load_case",
            "list_cases", "fit", "FitResult", "sensitivity", "uncertainty",
-           "UncertaintyResult", "solve_capped",
-           "post_impact_motion"]
+           "UncertaintyResult", "solve_capped", "post_impact_motion", "load_dataset"]
 __version__ = "0.1.0"

@@ -6,6 +6,7 @@ See :mod:`pim.model.distributions` for the inputs, the distribution kinds and sa
 from __future__ import annotations
 
 from ..model.distributions import INPUTS, KINDS, Distribution, UncertaintyTable
+from .priors import prior_distribution
 from .units import parse
 
 __all__ = ["parse_uncertainty"]
@@ -16,7 +17,8 @@ def _parse_one(name: str, spec) -> Distribution:
     kind_of = INPUTS[name].kind
     if not isinstance(spec, dict):
         raise ValueError(f"{where} must be a table such as {{normal = ...}}, "
-                         f"{{uniform = [low, high]}}, {{plusminus = ...}} or {{fixed = ...}}")
+                         f"{{uniform = [low, high]}}, {{plusminus = ...}}, {{fixed = ...}} "
+                         "or {{prior = \"name\"}}")
     kinds = [k for k in spec if k in KINDS]
     unknown = sorted(set(spec) - set(KINDS) - {"mean"})
     if unknown:
@@ -25,6 +27,10 @@ def _parse_one(name: str, spec) -> Distribution:
     if len(kinds) != 1:
         raise ValueError(f"{where}: give exactly one of {', '.join(KINDS)}")
     kind = kinds[0]
+    if kind == "prior":
+        if len(spec) != 1:
+            raise ValueError(f"{where}: a prior takes no other key")
+        return prior_distribution(spec["prior"], name)
     if "mean" in spec and kind != "normal":
         raise ValueError(f"{where}.mean: only a normal distribution takes a mean")
     value = spec[kind]

@@ -10,6 +10,7 @@ Each uncertain input of a case is named by its dotted path and given one distrib
     impact.point_x = {uniform = ["-0.2 m", "0.3 m"]} # uniform between absolute bounds
     impact.restitution = {uniform = [0.2, 0.5]}
     impact.beta = {fixed = 0.9}                      # a fixed value other than the nominal
+    impact.restitution = {prior = "iihs-small-overlap-barrier"}   # a named empirical prior
 
 Inputs (and their unit kind): ``vehicle1.`` / ``vehicle2.`` + ``mass``, ``yaw_inertia``,
 ``cg_x``, ``cg_y``, ``velocity_x``, ``velocity_y``, ``yaw_rate``, ``heading``; ``impact.`` +
@@ -22,6 +23,11 @@ input is *truncated* to the range (sampled by inverse CDF between the CDF values
 so no sample piles up at a bound and the shape inside the range is the normal's); uniform
 bounds and fixed values must lie inside it (else ValueError). A fixed obstacle's mass, inertia,
 velocity and yaw rate cannot be uncertain.
+
+A ``prior`` is an empirical distribution: the sorted values of a coefficient found in published
+tests (named priors are resolved by :mod:`pim.io.priors`), sampled by the inverse of their
+empirical CDF, linearly interpolated between the plotting positions (i - 0.5)/n (Hazen), so
+a sample never leaves [min, max] of the values.
 
 Every sample is drawn by inverse CDF from one uniform variate per input (common random
 numbers); :mod:`pim.analysis.montecarlo` reuses those uniform variates to bin the inputs for its
@@ -42,7 +48,7 @@ __all__ = ["Distribution", "UncertaintyTable", "nominal_values", "sample_inputs"
 #: Admissible (low, high) of inputs that have one; low is exclusive for mass and inertia.
 _RANGE = {"impact.restitution": (0.0, 1.0),
           **{f"vehicle{i}.{k}": (0.0, np.inf) for i in (1, 2) for k in ("mass", "yaw_inertia")}}
-KINDS = ("normal", "uniform", "plusminus", "fixed")
+KINDS = ("normal", "uniform", "plusminus", "fixed", "prior")
 
 
 @dataclass(frozen=True)
@@ -51,16 +57,32 @@ class Distribution:
 
     Parameters
     ----------
-    kind : {"normal", "uniform", "plusminus", "fixed"}
+    kind : {"normal", "uniform", "plusminus", "fixed", "prior"}
         Normal (mean ``a`` or the nominal, sd ``b``), uniform on [a, b], uniform on
-        nominal +- ``b``, or the fixed value ``a``.
+        nominal +- ``b``, the fixed value ``a``, or the empirical distribution of ``values``.
     a, b : float or None
         Parameters as above [SI unit of the input].
+    values : tuple of float, optional
+        For ``prior``: the observed values [SI unit of the input] (at least 2).
+    label : str
+        For ``prior``: its name, for reports.
     """
 
     kind: str
     a: float | None = None
     b: float | None = None
+    values: tuple | None = None
+    label: str = ""
+
+    def __post_init__(self) -> None:
+        if self.kind not in KINDS:
+            raise ValueError(f"distribution kind {self.kind!r} unknown "
+                             f"(allowed: {', '.join(KINDS)})")
+        if self.kind == "prior":
+            v = np.asarray(self.values if self.values is not None else (), dtype=float)
+            if v.ndim != 1 or v.size < 2 or not np.isfinite(v).all():
+                raise ValueError(f"prior {self.label!r} needs at least 2 finite values")
+            object.__setattr__(self, "values", tuple(float(x) for x in np.sort(v)))
 
     def bounds(self, nominal: float) -> tuple[float, float]:
         """The (low, high) of a uniform distribution about ``nominal``."""
@@ -77,6 +99,9 @@ class Distribution:
 
         if self.kind == "fixed":
             return np.full(u.shape, self.a)
+        if self.kind == "prior":
+            v = np.asarray(self.values)
+            return np.interp(u, (np.arange(v.size) + 0.5) / v.size, v)
         if self.kind in ("uniform", "plusminus"):
             low, high = self.bounds(nominal)
             return low + (high - low) * u
@@ -102,7 +127,10 @@ class Distribution:
                 raise ValueError(f"uncertainty.{name}: mean {mean:g} outside the admissible "
                                  f"range [{low:g}, {high:g}]")
             return
-        values = (self.a,) if self.kind == "fixed" else self.bounds(nominal)
+        if self.kind == "prior":
+            values = (self.values[0], self.values[-1])
+        else:
+            values = (self.a,) if self.kind == "fixed" else self.bounds(nominal)
         for v in values:
             if not (low <= v <= high) or (open_low and v <= low):
                 raise ValueError(f"uncertainty.{name}: value {v:g} outside the admissible "
@@ -113,6 +141,8 @@ class Distribution:
         """False for fixed values and zero spreads."""
         if self.kind == "fixed":
             return False
+        if self.kind == "prior":
+            return self.values[0] != self.values[-1]
         if self.kind == "normal" or self.kind == "plusminus":
             return self.b != 0
         return self.a != self.b

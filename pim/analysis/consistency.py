@@ -1,0 +1,132 @@
+"""Momentum consistency of measured pre/post-impact data, checked before any fit.
+
+In a two-vehicle impact with negligible external impulse (tyre forces during the ~0.1 s
+contact), the impulses on the two vehicles are equal and opposite:
+
+    m1 dv1 + m2 dv2 = 0                                          (linear momentum)
+    I_i dw_i = ((C - G_i) x P_i) . k ,  P_i = m_i dv_i            (angular momentum about G_i)
+
+Measured data that break the first equation cannot be reproduced by *any* PIM coefficients;
+fitted coefficients of such a test absorb the measurement error. Three measures per test:
+
+* ``impulse_ratio``: m1 |dv1| / (m2 |dv2|) - 1 from *published delta-V magnitudes* (for RICSAC
+  the Brach & Smith 2002 corrected values); 0 when balanced.
+* ``linear_imbalance``: |m1 dv1 + m2 dv2| / max(|m1 dv1|, |m2 dv2|) from the measured pre- and
+  post-impact velocity *vectors*; 0 when balanced.
+* ``arm1``, ``arm2``: the distance of the impulse's line of action from each CG implied by
+  the angular balance, I_i |dw_i| / |P_i| [m] (P_i = m_i dv_i); both must be below the
+  vehicle's half-diagonal for a common impact point C to exist (the CG-to-C distances are not
+  published, so the angular balance can only bound them). Pre-impact yaw rates are taken
+  as 0 (staged tests).
+
+A test is flagged when either linear measure exceeds ``tolerance`` (default 15 %) or an
+implied arm exceeds ``max_arm`` (default 3 m).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["MomentumCheck", "momentum_check", "check_ricsac", "DEFAULT_TOLERANCE",
+           "DEFAULT_MAX_ARM"]
+
+DEFAULT_TOLERANCE = 0.15   # relative imbalance [-]
+DEFAULT_MAX_ARM = 3.0      # m: about half the diagonal of a large car
+
+
+@dataclass(frozen=True)
+class MomentumCheck:
+    """The momentum balance of one test (module notes); ``flagged`` names what failed."""
+
+    test: str
+    impulse_ratio: float | None
+    linear_imbalance: float | None
+    arm1: float | None
+    arm2: float | None
+    tolerance: float
+    max_arm: float
+
+    @property
+    def reasons(self) -> list[str]:
+        """Plain-language reasons why the test is inconsistent (empty when it is not)."""
+        out = []
+        if self.impulse_ratio is not None and abs(self.impulse_ratio) > self.tolerance:
+            out.append(f"m1|dV1|/(m2|dV2|) off by {100 * self.impulse_ratio:+.1f} %")
+        if self.linear_imbalance is not None and self.linear_imbalance > self.tolerance:
+            out.append(f"linear momentum of measured velocities off by "
+                       f"{100 * self.linear_imbalance:.1f} %")
+        for i, arm in ((1, self.arm1), (2, self.arm2)):
+            if arm is not None and arm > self.max_arm:
+                out.append(f"angular balance puts the impulse {arm:.2f} m from CG{i} "
+                           f"(> {self.max_arm:g} m)")
+        return out
+
+    @property
+    def flagged(self) -> bool:
+        """True when the measured data break momentum balance beyond the tolerances."""
+        return bool(self.reasons)
+
+
+def momentum_check(test, mass1, mass2, *, delta_v1=None, delta_v2=None, velocity1_pre=None,
+                   velocity1_post=None, velocity2_pre=None, velocity2_post=None,
+                   yaw_inertia1=None, yaw_inertia2=None, yaw_rate1_change=None,
+                   yaw_rate2_change=None, tolerance=DEFAULT_TOLERANCE,
+                   max_arm=DEFAULT_MAX_ARM) -> MomentumCheck:
+    """Momentum balance of one test's measured data.
+
+    Parameters
+    ----------
+    test : str
+        Test name for the report.
+    mass1, mass2 : float
+        Masses [kg].
+    delta_v1, delta_v2 : float, optional
+        Published delta-V magnitudes [m/s] (for ``impulse_ratio``).
+    velocity1_pre, velocity1_post, velocity2_pre, velocity2_post : array_like (2,), optional
+        Measured velocities [m/s] (for ``linear_imbalance`` and the arms).
+    yaw_inertia1, yaw_inertia2 : float, optional
+        Yaw inertias [kg m^2].
+    yaw_rate1_change, yaw_rate2_change : float, optional
+        Yaw-rate changes [rad/s].
+    """
+    if not (mass1 > 0 and mass2 > 0):
+        raise ValueError(f"{test}: masses must be > 0 [kg]")
+    ratio = None
+    if delta_v1 is not None and delta_v2 is not None and delta_v2 > 0:
+        ratio = mass1 * delta_v1 / (mass2 * delta_v2) - 1.0
+    imbalance = arm1 = arm2 = None
+    if None not in (velocity1_pre, velocity1_post, velocity2_pre, velocity2_post):
+        p1 = mass1 * (np.asarray(velocity1_post, float) - np.asarray(velocity1_pre, float))
+        p2 = mass2 * (np.asarray(velocity2_post, float) - np.asarray(velocity2_pre, float))
+        scale = max(np.hypot(*p1), np.hypot(*p2))
+        if scale > 0:
+            imbalance = float(np.hypot(*(p1 + p2)) / scale)
+            impulse = 0.5 * (np.hypot(*p1) + np.hypot(*p2))
+            if yaw_inertia1 is not None and yaw_rate1_change is not None:
+                arm1 = float(yaw_inertia1 * abs(yaw_rate1_change) / impulse)
+            if yaw_inertia2 is not None and yaw_rate2_change is not None:
+                arm2 = float(yaw_inertia2 * abs(yaw_rate2_change) / impulse)
+    return MomentumCheck(str(test), ratio, imbalance, arm1, arm2, tolerance, max_arm)
+
+
+def check_ricsac(tests, tolerance=DEFAULT_TOLERANCE, max_arm=DEFAULT_MAX_ARM,
+                 analysis="BrachSmith2002") -> list[MomentumCheck]:
+    """:func:`momentum_check` of every RICSAC test with data (:func:`pim.io.datasets.load_ricsac`).
+
+    ``analysis`` names the published delta-V magnitudes used for ``impulse_ratio``.
+    """
+    out = []
+    for t in tests:
+        dv1, dv2 = t.published_delta_v.get(analysis, (None, None))
+        if dv1 is None and not t.has_motion:
+            continue
+        out.append(momentum_check(
+            f"RICSAC {t.number}", t.mass1, t.mass2, delta_v1=dv1, delta_v2=dv2,
+            velocity1_pre=t.velocity1_pre, velocity1_post=t.velocity1_post,
+            velocity2_pre=t.velocity2_pre, velocity2_post=t.velocity2_post,
+            yaw_inertia1=t.yaw_inertia1, yaw_inertia2=t.yaw_inertia2,
+            yaw_rate1_change=t.yaw_rate1_post, yaw_rate2_change=t.yaw_rate2_post,
+            tolerance=tolerance, max_arm=max_arm))
+    return out

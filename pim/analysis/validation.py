@@ -1,0 +1,284 @@
+"""Validation on published crash tests: the IIHS small-overlap barrier tests as PIM cases,
+reproduction with the published coefficients, the radius of gyration they imply.
+
+Barrier tests in Brach's form (Brach, Welsh & Brach, SAE 2014-01-0469): the car is vehicle 1
+with theta1 = 0 (its heading is 180 deg, moving along -x, :mod:`pim.io.brach`), the impact
+point C at the origin, the CG at ``cg_from_brach(0, phi, d1, 1)``, the impact plane's normal
+at Gamma, vehicle 2 a fixed obstacle. The measured delta-V components are magnitudes along the
+car's axes: with this geometry the car slows (-dVx along its heading), is pushed to its right
+(-dVy along its left axis) and yaws counter-clockwise (+Omega); :func:`barrier_case` puts them
+in ``case.measured`` with those signs, and :func:`reproduce_barrier` checks that the published
+coefficients give the same signs.
+
+The yaw inertia is not published (the authors scaled the manufacturer's value by the test
+mass), so the radius of gyration k (I = m k^2) is an explicit input. A barrier impact depends
+on the mass only through k (the obstacle has infinite mass), so the car's mass is a
+placeholder (:data:`PLACEHOLDER_MASS`). :func:`fit_radius_of_gyration` finds, per test, the k
+with which the published coefficients best reproduce the measured delta-V and yaw rate: a
+one-parameter least-squares fit, residuals scaled by the reproduction tolerances (1 mph for
+each delta-V component, 10 deg/s for the yaw rate).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..io.brach import cg_from_brach
+from ..model.case import Case, Impact, Measured, Vehicle
+from ..model.solver import solve
+from .fitting import fit
+
+__all__ = ["PLACEHOLDER_MASS", "SPEED_TOLERANCE", "YAW_TOLERANCE", "K_BOUNDS", "barrier_case",
+           "barrier_motion", "fit_radius_of_gyration", "BarrierReproduction",
+           "reproduce_barrier", "BarrierRefit", "refit_barrier", "class_radius_of_gyration",
+           "summary_errors",
+           "CoefficientStats", "CRASH_CLASSES", "coefficient_stats", "ricsac_published_errors"]
+
+PLACEHOLDER_MASS = 1500.0             # kg; a barrier impact depends on k, not m
+SPEED_TOLERANCE = 0.44704             # m/s = 1 mph: reproduction tolerance of a delta-V
+YAW_TOLERANCE = np.radians(10.0)      # rad/s = 10 deg/s: reproduction tolerance of a yaw rate
+K_BOUNDS = (0.6, 2.4)                 # m: search range of the radius of gyration
+
+
+def _heading_axes():
+    h = np.pi
+    return h, np.array([np.cos(h), np.sin(h)]), np.array([-np.sin(h), np.cos(h)])
+
+
+def barrier_case(test, radius_of_gyration, *, phi=None, d=None) -> Case:
+    """A :class:`pim.Case` of one barrier test (module notes) [SI].
+
+    Parameters
+    ----------
+    test : pim.io.datasets.BarrierTest
+    radius_of_gyration : array_like
+        k [m] (yaw inertia = m k^2); arrays give a batch of cases.
+    phi, d : array_like, optional
+        Brach's phi [rad] and d [m] of C from the CG instead of the published ones.
+    """
+    k = np.asarray(radius_of_gyration, dtype=float)
+    if (~np.isfinite(k) | (k <= 0)).any():
+        raise ValueError("radius_of_gyration must be > 0 [m]")
+    phi = test.phi if phi is None else np.asarray(phi, float)
+    d = test.d if d is None else np.asarray(d, float)
+    h, ahead, left = _heading_axes()
+    cg = cg_from_brach(0.0, phi, d, 1)
+    car = Vehicle(mass=PLACEHOLDER_MASS, yaw_inertia=PLACEHOLDER_MASS * k**2, cg=cg,
+                  velocity=test.speed * ahead, heading=h)
+    wall = Vehicle.obstacle(cg=(0.0, 0.0))
+    dv = -test.delta_v_x * ahead - test.delta_v_y * left
+    measured = Measured(velocity1=test.speed * ahead + dv, yaw_rate1=test.yaw_rate)
+    return Case(car, wall, Impact(point=(0.0, 0.0), normal_angle=test.normal_angle,
+                                  restitution=test.restitution, beta=test.beta),
+                measured=measured, name=test.test_id,
+                description=f"IIHS {test.test_id} {test.model_year} {test.vehicle}, "
+                            f"{test.barrier} (Brach et al. 2014)")
+
+
+def barrier_motion(result):
+    """(dVx, dVy, Omega) of a barrier solve in the table's sign convention [m/s, m/s, rad/s]:
+    slowing along the heading, pushed along the car's right, yaw counter-clockwise."""
+    _, ahead, left = _heading_axes()
+    dv = result.delta_v1
+    return -(dv @ ahead), -(dv @ left), np.asarray(result.yaw_rate1, dtype=float)
+
+
+def _scaled_residuals(test, result):
+    dvx, dvy, om = barrier_motion(result)
+    return np.stack([(dvx - test.delta_v_x) / SPEED_TOLERANCE,
+                     (dvy - test.delta_v_y) / SPEED_TOLERANCE,
+                     (om - test.yaw_rate) / YAW_TOLERANCE], axis=-1)
+
+
+def fit_radius_of_gyration(test, bounds=K_BOUNDS, grid=121) -> float:
+    """The k [m] with which the published coefficients best reproduce the measured motion.
+
+    A grid over ``bounds`` (one batched solve), then a bounded scalar refinement of the sum
+    of squared residuals scaled by 1 mph and 10 deg/s (module notes).
+    """
+    from scipy.optimize import minimize_scalar
+
+    def cost(k):
+        r = _scaled_residuals(test, solve(barrier_case(test, k), backend="numpy"))
+        return (r**2).sum(-1)
+
+    ks = np.linspace(*bounds, grid)
+    i = int(np.argmin(cost(ks)))
+    lo, hi = ks[max(i - 1, 0)], ks[min(i + 1, grid - 1)]
+    best = minimize_scalar(lambda k: float(cost(k)), bounds=(lo, hi), method="bounded",
+                           options={"xatol": 1e-5})
+    return float(best.x)
+
+
+@dataclass(frozen=True)
+class BarrierReproduction:
+    """One barrier test reproduced with the published coefficients [SI].
+
+    ``predicted`` and ``measured`` are (dVx, dVy, Omega) [m/s, m/s, rad/s];
+    ``delta_v_error`` is the length of the delta-V vector error [m/s], ``yaw_error`` the
+    yaw-rate error [rad/s]; ``yaw_per_k`` and ``delta_v_per_k`` the change of the predicted
+    yaw rate [rad/s] and delta-V magnitude [m/s] for +10 % k.
+    """
+
+    test: object
+    radius_of_gyration: float
+    predicted: tuple
+    measured: tuple
+
+    @property
+    def delta_v_error(self) -> float:
+        return float(np.hypot(self.predicted[0] - self.measured[0],
+                              self.predicted[1] - self.measured[1]))
+
+    @property
+    def delta_v_magnitude_error(self) -> float:
+        """Predicted |delta-V| minus the tabulated resultant dV [m/s]."""
+        return float(np.hypot(*self.predicted[:2]) - self.test.delta_v)
+
+    @property
+    def yaw_error(self) -> float:
+        return float(self.predicted[2] - self.measured[2])
+
+    @property
+    def within_tolerance(self) -> bool:
+        """delta-V within 1 mph and yaw rate within 10 deg/s."""
+        return self.delta_v_error <= SPEED_TOLERANCE and abs(self.yaw_error) <= YAW_TOLERANCE
+
+
+def reproduce_barrier(tests, radius_of_gyration=None) -> list[BarrierReproduction]:
+    """Each test's motion with the published (e, mu, d1, phi, Gamma).
+
+    ``radius_of_gyration``: None (fitted per test, :func:`fit_radius_of_gyration`), a number
+    [m] for every test, or a dict test_id -> k [m].
+    """
+    out = []
+    for t in tests:
+        if radius_of_gyration is None:
+            k = fit_radius_of_gyration(t)
+        elif isinstance(radius_of_gyration, dict):
+            k = radius_of_gyration[t.test_id]
+        else:
+            k = float(radius_of_gyration)
+        pred = barrier_motion(solve(barrier_case(t, k), backend="numpy"))
+        out.append(BarrierReproduction(t, k, tuple(float(x) for x in pred),
+                                       (t.delta_v_x, t.delta_v_y, t.yaw_rate)))
+    return out
+
+
+@dataclass(frozen=True)
+class BarrierRefit(BarrierReproduction):
+    """A barrier test refitted with :func:`pim.fit`: the fitted coefficients and their motion.
+
+    ``restitution``, ``beta`` [-] and ``phi`` [rad] as fitted (phi is the published one when it
+    was held fixed); ``on_bound`` names the fitted parameters that sit on a bound.
+    """
+
+    restitution: float
+    beta: float
+    phi: float
+    on_bound: tuple
+
+
+def refit_barrier(tests, radius_of_gyration) -> list[BarrierRefit]:
+    """Refit each test's (epsilon, beta) with :func:`pim.fit` at its published geometry.
+
+    The fit uses the measured delta-V components and yaw rate (``include_yaw``), epsilon and
+    beta in [0, 1] (the paper's mu <= mu0). ``radius_of_gyration`` as in
+    :func:`reproduce_barrier`, but required (a number or a dict test_id -> k [m]).
+    """
+    out = []
+    for t in tests:
+        k = (radius_of_gyration[t.test_id] if isinstance(radius_of_gyration, dict)
+             else float(radius_of_gyration))
+        r = fit(barrier_case(t, k), include_yaw=True)
+        pred = barrier_motion(solve(barrier_case(t, k), eps=r.eps, beta=r.beta, backend="numpy"))
+        out.append(BarrierRefit(t, k, tuple(float(x) for x in pred),
+                                (t.delta_v_x, t.delta_v_y, t.yaw_rate), float(r.eps),
+                                float(r.beta), t.phi, tuple(r.on_bound)))
+    return out
+
+
+def class_radius_of_gyration(rows) -> dict:
+    """Median fitted k [m] per vehicle type over :class:`BarrierReproduction` rows."""
+    by = {}
+    for r in rows:
+        by.setdefault(r.test.vehicle_type, []).append(r.radius_of_gyration)
+    return {cls: float(np.median(ks)) for cls, ks in by.items()}
+
+
+def summary_errors(values) -> dict:
+    """Median, 90th percentile and maximum of the absolute values of ``values``."""
+    a = np.abs(np.asarray(values, dtype=float))
+    return {"median": float(np.median(a)), "p90": float(np.percentile(a, 90)),
+            "max": float(a.max()), "n": int(a.size)}
+
+
+@dataclass(frozen=True)
+class CoefficientStats:
+    """Distribution of one coefficient over the tests of one crash class."""
+
+    crash_class: str
+    coefficient: str
+    values: tuple
+
+    @property
+    def n(self) -> int:
+        return len(self.values)
+
+    @property
+    def median(self) -> float:
+        return float(np.median(self.values))
+
+    @property
+    def mean(self) -> float:
+        return float(np.mean(self.values))
+
+    @property
+    def sd(self) -> float:
+        """Sample standard deviation (n - 1)."""
+        return float(np.std(self.values, ddof=1))
+
+    def percentile(self, q) -> float:
+        return float(np.percentile(self.values, q))
+
+
+#: Crash class -> (dataset, selector) of the tests it holds; one value per impact.
+CRASH_CLASSES = {
+    "barrier non-sideswipe": ("iihs-barrier", lambda t: t.group == "NS"),
+    "barrier sideswipe": ("iihs-barrier", lambda t: t.group == "SS"),
+    "car-to-car": ("iihs-car-to-car", lambda t: t.test_id.endswith("a")),
+}
+
+
+def coefficient_stats(records_by_dataset: dict) -> list[CoefficientStats]:
+    """epsilon and beta (mu/mu0) statistics per :data:`CRASH_CLASSES` entry.
+
+    ``records_by_dataset``: dataset name -> its records (:mod:`pim.io.datasets`).
+    """
+    out = []
+    for cls, (dataset, keep) in CRASH_CLASSES.items():
+        records = [r for r in records_by_dataset.get(dataset, ()) if keep(r)]
+        if not records:
+            continue
+        for coefficient, attr in (("epsilon", "restitution"), ("beta", "beta")):
+            out.append(CoefficientStats(cls, coefficient,
+                                        tuple(getattr(r, attr) for r in records)))
+    return out
+
+
+def ricsac_published_errors(tests) -> dict:
+    """Each published RICSAC delta-V analysis against the delta-V magnitudes of the measured
+    pre/post velocities: analysis name -> list of (test number, vehicle, error [m/s])."""
+    out = {}
+    for t in tests:
+        if not t.has_motion:
+            continue
+        measured = (float(np.hypot(*np.subtract(t.velocity1_post, t.velocity1_pre))),
+                    float(np.hypot(*np.subtract(t.velocity2_post, t.velocity2_pre))))
+        for name, values in t.published_delta_v.items():
+            for i, (pub, meas) in enumerate(zip(values, measured, strict=True), start=1):
+                if pub is not None:
+                    out.setdefault(name, []).append((t.number, i, pub - meas))
+    return out
