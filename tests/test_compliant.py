@@ -15,6 +15,12 @@ from .scenes import random_cases
 
 K = sim.DEFAULT_STIFFNESS
 
+def cross2(a, b):
+    """z of a x b for planar vectors (..., 2), written out (np.cross on 2D is deprecated)."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
 
 def momenta(case, r):
     """Linear momentum (2,) and angular momentum about the origin after the impact [SI]."""
@@ -22,11 +28,11 @@ def momenta(case, r):
     traj = r.trajectory
     i = traj.impact_index
     lin = v1.mass * traj.velocity1[i]
-    ang = v1.mass * np.cross(traj.position1[i], traj.velocity1[i]) + v1.yaw_inertia * \
+    ang = v1.mass * cross2(traj.position1[i], traj.velocity1[i]) + v1.yaw_inertia * \
         traj.yaw_rate1[i]
     if not bool(v2.fixed):
         lin = lin + v2.mass * traj.velocity2[i]
-        ang = ang + v2.mass * np.cross(traj.position2[i], traj.velocity2[i]) + \
+        ang = ang + v2.mass * cross2(traj.position2[i], traj.velocity2[i]) + \
             v2.yaw_inertia * traj.yaw_rate2[i]
     return lin, float(ang)
 
@@ -34,8 +40,8 @@ def momenta(case, r):
 def before(case):
     v1, v2 = case.vehicle1, case.vehicle2
     lin = v1.mass * v1.velocity + v2.mass * v2.velocity
-    ang = (v1.mass * np.cross(v1.cg, v1.velocity) + v1.yaw_inertia * v1.yaw_rate
-           + v2.mass * np.cross(v2.cg, v2.velocity) + v2.yaw_inertia * v2.yaw_rate)
+    ang = (v1.mass * cross2(v1.cg, v1.velocity) + v1.yaw_inertia * v1.yaw_rate
+           + v2.mass * cross2(v2.cg, v2.velocity) + v2.yaw_inertia * v2.yaw_rate)
     return lin, float(ang)
 
 

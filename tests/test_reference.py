@@ -12,6 +12,12 @@ from sim.contact_law import contact_duration_estimate, stiffness_for_duration
 
 K = sim.DEFAULT_STIFFNESS
 
+def cross2(a, b):
+    """z of a x b for planar vectors (..., 2), written out (np.cross on 2D is deprecated)."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
 
 @pytest.fixture(scope="module")
 def ricsac9():
@@ -55,8 +61,8 @@ def test_momentum_conserved(ricsac9, method):
     i = tr.impact_index
 
     def angular(p1, u1, w1, p2, u2, w2):
-        return (v1.mass * np.cross(p1, u1) + v1.yaw_inertia * w1
-                + v2.mass * np.cross(p2, u2) + v2.yaw_inertia * w2)
+        return (v1.mass * cross2(p1, u1) + v1.yaw_inertia * w1
+                + v2.mass * cross2(p2, u2) + v2.yaw_inertia * w2)
 
     before = angular(v1.cg, v1.velocity, v1.yaw_rate, v2.cg, v2.velocity, v2.yaw_rate)
     after = angular(tr.position1[i], tr.velocity1[i], tr.yaw_rate1[i], tr.position2[i],

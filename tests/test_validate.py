@@ -26,7 +26,7 @@ def test_report_files_and_summary(report, capsys):
     text = (report / "report.md").read_text()
     assert "delta-V error median" in text and "within 1 mph" in text
     assert "SAE 2014-01-0469" in text
-    rows = list(csv.DictReader(open(report / "barrier.csv")))
+    rows = list(csv.DictReader((report / "barrier.csv").read_text().splitlines()))
     assert len(rows) == 41
     cen1201 = next(r for r in rows if r["test"] == "CEN1201")
     # the measured values in the user's units: 35.44 ft/s and 48.78 deg/s (paper, App. 2)
@@ -34,7 +34,8 @@ def test_report_files_and_summary(report, capsys):
     assert float(cen1201[f"dVx meas [{unit}]"]) == pytest.approx(35.44 * 0.3048 * factor,
                                                                abs=0.006)
     assert float(cen1201["Omega meas [deg/s]"]) == pytest.approx(48.78, abs=0.06)
-    flagged = {r["test"] for r in csv.DictReader(open(report / "consistency.csv"))
+    flagged = {r["test"] for r in csv.DictReader(
+        (report / "consistency.csv").read_text().splitlines())
                if r["flagged"] == "yes"}
     assert {"RICSAC 1", "RICSAC 4", "RICSAC 7", "RICSAC 8", "RICSAC 12"} <= flagged
 
