@@ -25,7 +25,7 @@ search from the sheet's guess cannot cross.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 
 import numpy as np
@@ -33,9 +33,10 @@ import numpy as np
 from ..model.case import Case
 from ..model.result import Result
 from ..model.solver import solve
+from .free_fit import FREE_KEYS, Identifiability, check_free, fit_free
 from .residuals import measured_terms, residuals, residuals_and_jacobian
 
-__all__ = ["fit", "FitResult", "Landscape", "DEFAULT_BOUNDS", "DEFAULT_GRID", "MAX_STARTS"]
+__all__ = ["fit", "FitResult", "FREE_KEYS", "Landscape", "DEFAULT_BOUNDS", "DEFAULT_GRID", "MAX_STARTS"]
 
 #: Default search box ((eps_min, eps_max), (beta_min, beta_max)) [-], the sheet's constraints.
 DEFAULT_BOUNDS = ((0.0, 1.0), (0.0, 1.0))
@@ -118,6 +119,40 @@ class FitResult:
     landscape: Landscape = field(repr=False)
     minima: tuple = field(repr=False)
     nfev: int = 0
+    #: Every fitted parameter by its dotted key -> value [SI] ("impact.restitution",
+    #: "impact.beta" when fitted, and the ``free`` keys).
+    values: dict = field(default_factory=dict)
+    #: Rank, singular values, correlations, families of exact fits, under-determination
+    #: (None for a plain (eps, beta) fit without ``free``).
+    identifiability: Identifiability | None = field(default=None, repr=False)
+    #: Free-parameter minima: (values dict, cost), best first.
+    minima_values: tuple = field(default=(), repr=False)
+
+    @property
+    def fitted_case(self) -> Case:
+        """The case with the fitted values put in (eps and beta on its impact)."""
+        return replace(self.case, impact=replace(self.case.impact, restitution=self.eps,
+                                                 beta=self.beta))
+
+    @property
+    def residual_table(self) -> list[dict]:
+        """Per measured quantity: name, measured, fitted, residual [SI]."""
+        res, m = self.result, self.case.measured
+        rows = []
+        for name, r in zip(self.residual_names, self.residuals, strict=True):
+            if name.startswith("velocity"):
+                i, axis = int(name[8]), "xy".index(name[-1])
+                measured = float(getattr(m, f"velocity{i}")[axis])
+                fitted = float(np.asarray(getattr(res, f"velocity{i}")).reshape(-1)[axis])
+                unit = "m/s"
+            else:
+                i = int(name[-1])
+                measured = float(getattr(m, f"yaw_rate{i}"))
+                fitted = float(np.asarray(getattr(res, f"yaw_rate{i}")).reshape(()))
+                unit = "rad/s"
+            rows.append({"name": name, "measured": measured, "fitted": fitted,
+                         "error": fitted - measured, "unit": unit, "residual": float(r)})
+        return rows
 
     @property
     def rms(self) -> float:
@@ -179,7 +214,8 @@ def _grid_minima(cost: np.ndarray) -> list[tuple[int, int]]:
 
 
 def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=None, beta=None,
-        grid=DEFAULT_GRID, max_starts: int = MAX_STARTS) -> FitResult:
+        grid=DEFAULT_GRID, max_starts: int = MAX_STARTS, free=None,
+        samples: int = 256, seed: int = 0) -> FitResult:
     """Least-squares (epsilon, beta) that best reproduce the measured post-impact motion.
 
     Parameters
@@ -198,6 +234,16 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
         Points of the coarse search along eps and beta.
     max_starts : int
         How many of the best grid minima are refined locally.
+    free : dict, optional
+        Further free parameters: dotted key -> (low, high) bounds [SI]
+        (:data:`pim.analysis.free_fit.FREE_KEYS`: the scalar inputs of ``[uncertainty]``,
+        e.g. ``impact.normal_angle``, ``impact.point_x``, ``vehicle1.yaw_rate``, plus
+        ``vehicle{1,2}.radius_of_gyration`` and ``vehicle{1,2}.speed``;
+        ``impact.restitution`` / ``impact.beta`` here replace ``bounds``). The coarse search
+        is then a Sobol sample of ``samples`` points (``seed``), refined by bounded least
+        squares; ``identifiability`` reports rank, correlations and families of exact fits.
+    samples, seed : int
+        Size and seed of the coarse Sobol sample (``free`` only).
 
     Returns
     -------
@@ -223,6 +269,9 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
         beta = float(beta)
         if not np.isfinite(beta):
             raise ValueError(f"beta (fixed) must be a finite number, got {beta}")
+    if free:
+        return _fit_free(case, names, check_free(free), include_yaw, eps, beta, fixed,
+                         ((e_lo, e_hi), (b_lo, b_hi)), samples, max_starts, seed)
     n_eps, n_beta = (int(g) for g in grid)
     if n_eps < 3 or n_beta < 3:
         raise ValueError(f"grid must have at least 3 points per axis, got {grid}")
@@ -296,3 +345,28 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
                      residual_names=names, include_yaw=bool(include_yaw), bounds=full_bounds,
                      fixed=fixed, on_bound=on_bound, gradient=gradient, landscape=landscape,
                      minima=tuple(minima), nfev=nfev)
+
+
+def _fit_free(case, names, free, include_yaw, eps, beta, fixed, bounds, samples, max_starts,
+              seed) -> FitResult:
+    free = dict(free)
+    box = list(bounds)
+    if "impact.restitution" in free:
+        box[0] = free["impact.restitution"]
+    if "impact.beta" in free:
+        box[1] = free["impact.beta"]
+    weights = np.ones(len(names))
+    out = fit_free(case, free, names, weights, eps, beta, bounds[0], bounds[1],
+                   samples=samples, max_starts=max_starts, seed=seed)
+    base = out.case
+    fitted = solve(base, out.eps, out.beta)
+    r = residuals(fitted, names)
+    minima = tuple((v.get("impact.restitution", out.eps), v.get("impact.beta", out.beta), c)
+                   for v, c in out.minima)
+    landscape = Landscape(eps=np.array([out.eps]), beta=np.array([out.beta]),
+                          cost=np.array([[out.cost]]))
+    return FitResult(case=base, eps=out.eps, beta=out.beta, cost=float(r @ r), residuals=r,
+                     residual_names=names, include_yaw=bool(include_yaw), bounds=tuple(box),
+                     fixed=fixed, on_bound=out.on_bound, gradient=out.gradient,
+                     landscape=landscape, minima=minima, nfev=out.nfev, values=out.values,
+                     identifiability=out.identifiability, minima_values=out.minima)
