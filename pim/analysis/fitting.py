@@ -34,7 +34,7 @@ from ..model.case import Case
 from ..model.result import Result
 from ..model.solver import solve
 from .free_fit import FREE_KEYS, Identifiability, check_free, fit_free
-from .residuals import measured_terms, residuals, residuals_and_jacobian
+from .residuals import measured_terms, measured_weights, residuals, residuals_and_jacobian
 
 __all__ = ["fit", "FitResult", "FREE_KEYS", "Landscape", "DEFAULT_BOUNDS", "DEFAULT_GRID", "MAX_STARTS"]
 
@@ -80,7 +80,8 @@ class FitResult:
     eps, beta : float
         Optimum coefficient of restitution and fraction of mu0 [-].
     cost : float
-        Sum of squared residuals at the optimum [m^2/s^2].
+        Sum of squared residuals at the optimum [m^2/s^2]; with measured standard
+        deviations the chi-square sum of (residual / sigma)^2 [-] (see ``weights``).
     residuals : ndarray
         Residuals at the optimum [m/s] (model minus measured; yaw terms times k_i).
     residual_names : tuple of str
@@ -127,6 +128,9 @@ class FitResult:
     identifiability: Identifiability | None = field(default=None, repr=False)
     #: Free-parameter minima: (values dict, cost), best first.
     minima_values: tuple = field(default=(), repr=False)
+    #: Residual weights 1/sigma (``[measured]`` standard deviations), or None (unweighted).
+    #: With weights, ``cost`` is the chi-square sum (w r)^2 [-]; ``residuals`` stay in m/s.
+    weights: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def fitted_case(self) -> Case:
@@ -157,7 +161,7 @@ class FitResult:
     @property
     def rms(self) -> float:
         """Root-mean-square residual [m/s]."""
-        return float(np.sqrt(self.cost / len(self.residuals)))
+        return float(np.sqrt(np.mean(np.square(self.residuals))))
 
     @cached_property
     def result(self) -> Result:
@@ -283,7 +287,9 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
     if not np.any(grid_result.approaching):
         raise ValueError(f"case {case.name or '(unnamed)'}: the vehicles do not approach at C "
                          "(u_n >= 0): there is no impact to fit")
-    cost = np.sum(residuals(grid_result, names) ** 2, axis=-1)
+    weights = measured_weights(case, names)
+    wv = 1.0 if weights is None else weights
+    cost = np.sum((residuals(grid_result, names) * wv) ** 2, axis=-1)
     cost = np.where(np.isfinite(cost), cost, np.inf)
     landscape = Landscape(eps=eps_grid, beta=beta_grid, cost=cost)
     starts = _grid_minima(cost)[:max(1, int(max_starts))]
@@ -313,6 +319,8 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
         e, b = full(x)
         res = solve(case, e, b)
         r, j = residuals_and_jacobian(res, names)
+        if weights is not None:
+            r, j = r * weights, j * weights[:, None]
         c = float(r @ r)
         if not np.isfinite(c):
             return 1e300, np.zeros(len(x))
@@ -332,7 +340,8 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
 
     best = solve(case, e_opt, b_opt)
     r, j = residuals_and_jacobian(best, names)
-    gradient = 2.0 * (r @ j)
+    rw, jw = (r, j) if weights is None else (r * weights, j * weights[:, None])
+    gradient = 2.0 * (rw @ jw)
     on_bound = {}
     for name, value, (lo, hi), f in zip(("eps", "beta"), (e_opt, b_opt), full_bounds, free,
                                         strict=True):
@@ -341,10 +350,10 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
             on_bound[name] = "lower"
         elif f and value >= hi - tol:
             on_bound[name] = "upper"
-    return FitResult(case=case, eps=e_opt, beta=b_opt, cost=float(r @ r), residuals=r,
+    return FitResult(case=case, eps=e_opt, beta=b_opt, cost=float(rw @ rw), residuals=r,
                      residual_names=names, include_yaw=bool(include_yaw), bounds=full_bounds,
                      fixed=fixed, on_bound=on_bound, gradient=gradient, landscape=landscape,
-                     minima=tuple(minima), nfev=nfev)
+                     minima=tuple(minima), nfev=nfev, weights=weights)
 
 
 def _fit_free(case, names, free, include_yaw, eps, beta, fixed, bounds, samples, max_starts,
@@ -355,18 +364,20 @@ def _fit_free(case, names, free, include_yaw, eps, beta, fixed, bounds, samples,
         box[0] = free["impact.restitution"]
     if "impact.beta" in free:
         box[1] = free["impact.beta"]
-    weights = np.ones(len(names))
-    out = fit_free(case, free, names, weights, eps, beta, bounds[0], bounds[1],
+    out = fit_free(case, free, names, eps, beta, bounds[0], bounds[1],
                    samples=samples, max_starts=max_starts, seed=seed)
     base = out.case
     fitted = solve(base, out.eps, out.beta)
     r = residuals(fitted, names)
+    w = measured_weights(base, names)
     minima = tuple((v.get("impact.restitution", out.eps), v.get("impact.beta", out.beta), c)
                    for v, c in out.minima)
     landscape = Landscape(eps=np.array([out.eps]), beta=np.array([out.beta]),
                           cost=np.array([[out.cost]]))
-    return FitResult(case=base, eps=out.eps, beta=out.beta, cost=float(r @ r), residuals=r,
+    rw = r if w is None else r * w
+    return FitResult(case=base, eps=out.eps, beta=out.beta, cost=float(rw @ rw), residuals=r,
                      residual_names=names, include_yaw=bool(include_yaw), bounds=tuple(box),
                      fixed=fixed, on_bound=out.on_bound, gradient=out.gradient,
                      landscape=landscape, minima=minima, nfev=out.nfev, values=out.values,
-                     identifiability=out.identifiability, minima_values=out.minima)
+                     identifiability=out.identifiability, minima_values=out.minima,
+                     weights=w)

@@ -30,7 +30,7 @@ import numpy as np
 from ..model.case import Case
 from ..model.quantities import INPUTS, field_of
 from ..model.solver import solve
-from .residuals import residuals
+from .residuals import measured_weights, residuals
 
 __all__ = ["FREE_KEYS", "Identifiability", "set_inputs", "check_free", "fit_free",
            "identifiability"]
@@ -124,9 +124,6 @@ def set_inputs(case: Case, values: dict) -> Case:
                 ichanges[attr] = vec
     for i in (1, 2):
         ch = vchanges[i]
-        if "mass" in ch and "yaw_inertia" not in ch and any(
-                k.endswith(f"vehicle{i}.radius_of_gyration") for k in values):
-            pass
         if ch:
             vehicles[i] = replace(vehicles[i], **ch)
     impact = replace(case.impact, **ichanges) if ichanges else case.impact
@@ -270,7 +267,7 @@ class FreeFit:
     extra: dict = field(default_factory=dict)
 
 
-def fit_free(case: Case, free: dict, names: tuple, weights: np.ndarray, eps, beta,
+def fit_free(case: Case, free: dict, names: tuple, eps, beta,
              eps_bounds, beta_bounds, samples: int = 256, max_starts: int = 5,
              seed: int = 0) -> FreeFit:
     """Bounded least squares over eps, beta (unless fixed) and the ``free`` keys.
@@ -283,8 +280,6 @@ def fit_free(case: Case, free: dict, names: tuple, weights: np.ndarray, eps, bet
         Validated dotted key -> (low, high) [SI] (see :func:`check_free`).
     names : tuple of str
         Residual terms (:func:`pim.analysis.residuals.measured_terms`).
-    weights : ndarray (len(names),)
-        Multiplies each residual (1 / sigma, or 1).
     eps, beta : float or None
         Fixed values, or None to fit within ``eps_bounds`` / ``beta_bounds``.
     samples : int
@@ -328,7 +323,8 @@ def fit_free(case: Case, free: dict, names: tuple, weights: np.ndarray, eps, bet
         nfev += 1
         try:
             c, e, b = model_case(x)
-            r = residuals(solve(c, e, b), names) * weights
+            w = measured_weights(c, names)
+            r = residuals(solve(c, e, b), names) * (1.0 if w is None else w)
         except (ValueError, ZeroDivisionError, FloatingPointError):
             return np.full(len(names), 1e6)
         r = np.asarray(r, dtype=float)
@@ -376,9 +372,8 @@ def fit_free(case: Case, free: dict, names: tuple, weights: np.ndarray, eps, bet
             on_bound[k] = "upper"
     fitted, e_opt, b_opt = model_case(x_opt)
     values = dict(zip(keys, map(float, x_opt), strict=True))
-    scale = max(c_opt, 1e-12)
     minima_out = tuple((dict(zip(keys, map(float, x), strict=True)), float(c))
-                       for x, c in minima if c <= c_opt + 1e-6 * scale + 1e-20 or True)
+                       for x, c in minima)
     return FreeFit(values=values, case=fitted, eps=float(e_opt), beta=float(b_opt),
                    cost=float(r @ r), residuals=r, on_bound=on_bound, gradient=gradient,
                    minima=minima_out, identifiability=ident, nfev=nfev)
