@@ -25,7 +25,7 @@ search from the sheet's guess cannot cross.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 
 import numpy as np
@@ -33,9 +33,10 @@ import numpy as np
 from ..model.case import Case
 from ..model.result import Result
 from ..model.solver import solve
-from .residuals import measured_terms, residuals, residuals_and_jacobian
+from .free_fit import FREE_KEYS, Identifiability, check_free, fit_free
+from .residuals import measured_terms, measured_weights, residuals, residuals_and_jacobian
 
-__all__ = ["fit", "FitResult", "Landscape", "DEFAULT_BOUNDS", "DEFAULT_GRID", "MAX_STARTS"]
+__all__ = ["fit", "FitResult", "FREE_KEYS", "Landscape", "DEFAULT_BOUNDS", "DEFAULT_GRID", "MAX_STARTS"]
 
 #: Default search box ((eps_min, eps_max), (beta_min, beta_max)) [-], the sheet's constraints.
 DEFAULT_BOUNDS = ((0.0, 1.0), (0.0, 1.0))
@@ -79,7 +80,8 @@ class FitResult:
     eps, beta : float
         Optimum coefficient of restitution and fraction of mu0 [-].
     cost : float
-        Sum of squared residuals at the optimum [m^2/s^2].
+        Sum of squared residuals at the optimum [m^2/s^2]; with measured standard
+        deviations the chi-square sum of (residual / sigma)^2 [-] (see ``weights``).
     residuals : ndarray
         Residuals at the optimum [m/s] (model minus measured; yaw terms times k_i).
     residual_names : tuple of str
@@ -118,11 +120,48 @@ class FitResult:
     landscape: Landscape = field(repr=False)
     minima: tuple = field(repr=False)
     nfev: int = 0
+    #: Every fitted parameter by its dotted key -> value [SI] ("impact.restitution",
+    #: "impact.beta" when fitted, and the ``free`` keys).
+    values: dict = field(default_factory=dict)
+    #: Rank, singular values, correlations, families of exact fits, under-determination
+    #: (None for a plain (eps, beta) fit without ``free``).
+    identifiability: Identifiability | None = field(default=None, repr=False)
+    #: Free-parameter minima: (values dict, cost), best first.
+    minima_values: tuple = field(default=(), repr=False)
+    #: Residual weights 1/sigma (``[measured]`` standard deviations), or None (unweighted).
+    #: With weights, ``cost`` is the chi-square sum (w r)^2 [-]; ``residuals`` stay in m/s.
+    weights: np.ndarray | None = field(default=None, repr=False)
+
+    @property
+    def fitted_case(self) -> Case:
+        """The case with the fitted values put in (eps and beta on its impact)."""
+        return replace(self.case, impact=replace(self.case.impact, restitution=self.eps,
+                                                 beta=self.beta))
+
+    @property
+    def residual_table(self) -> list[dict]:
+        """Per measured quantity: name, measured, fitted, residual [SI]."""
+        res, m = self.result, self.case.measured
+        rows = []
+        for name, r in zip(self.residual_names, self.residuals, strict=True):
+            if name.startswith("velocity"):
+                i, axis = int(name[8]), "xy".index(name[-1])
+                measured = float(getattr(m, f"velocity{i}")[axis])
+                fitted = float(np.asarray(getattr(res, f"velocity{i}")).reshape(-1)[axis])
+                unit = "m/s"
+            else:
+                i = int(name[-1])
+                measured = float(getattr(m, f"yaw_rate{i}"))
+                fitted = float(np.asarray(getattr(res, f"yaw_rate{i}")).reshape(()))
+                unit = "rad/s"
+            rows.append({"name": name, "measured": measured, "fitted": fitted,
+                         "error": fitted - measured, "unit": unit, "residual": float(r)})
+        return rows
 
     @property
     def rms(self) -> float:
         """Root-mean-square residual [m/s]."""
-        return float(np.sqrt(self.cost / len(self.residuals)))
+        return float(np.sqrt(np.mean(np.square(self.residuals))))
 
     @cached_property
     def result(self) -> Result:
@@ -179,7 +218,8 @@ def _grid_minima(cost: np.ndarray) -> list[tuple[int, int]]:
 
 
 def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=None, beta=None,
-        grid=DEFAULT_GRID, max_starts: int = MAX_STARTS) -> FitResult:
+        grid=DEFAULT_GRID, max_starts: int = MAX_STARTS, free=None,
+        samples: int = 256, seed: int = 0) -> FitResult:
     """Least-squares (epsilon, beta) that best reproduce the measured post-impact motion.
 
     Parameters
@@ -198,6 +238,16 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
         Points of the coarse search along eps and beta.
     max_starts : int
         How many of the best grid minima are refined locally.
+    free : dict, optional
+        Further free parameters: dotted key -> (low, high) bounds [SI]
+        (:data:`pim.analysis.free_fit.FREE_KEYS`: the scalar inputs of ``[uncertainty]``,
+        e.g. ``impact.normal_angle``, ``impact.point_x``, ``vehicle1.yaw_rate``, plus
+        ``vehicle{1,2}.radius_of_gyration`` and ``vehicle{1,2}.speed``;
+        ``impact.restitution`` / ``impact.beta`` here replace ``bounds``). The coarse search
+        is then a Sobol sample of ``samples`` points (``seed``), refined by bounded least
+        squares; ``identifiability`` reports rank, correlations and families of exact fits.
+    samples, seed : int
+        Size and seed of the coarse Sobol sample (``free`` only).
 
     Returns
     -------
@@ -223,6 +273,9 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
         beta = float(beta)
         if not np.isfinite(beta):
             raise ValueError(f"beta (fixed) must be a finite number, got {beta}")
+    if free:
+        return _fit_free(case, names, check_free(free), include_yaw, eps, beta, fixed,
+                         ((e_lo, e_hi), (b_lo, b_hi)), samples, max_starts, seed)
     n_eps, n_beta = (int(g) for g in grid)
     if n_eps < 3 or n_beta < 3:
         raise ValueError(f"grid must have at least 3 points per axis, got {grid}")
@@ -234,7 +287,9 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
     if not np.any(grid_result.approaching):
         raise ValueError(f"case {case.name or '(unnamed)'}: the vehicles do not approach at C "
                          "(u_n >= 0): there is no impact to fit")
-    cost = np.sum(residuals(grid_result, names) ** 2, axis=-1)
+    weights = measured_weights(case, names)
+    wv = 1.0 if weights is None else weights
+    cost = np.sum((residuals(grid_result, names) * wv) ** 2, axis=-1)
     cost = np.where(np.isfinite(cost), cost, np.inf)
     landscape = Landscape(eps=eps_grid, beta=beta_grid, cost=cost)
     starts = _grid_minima(cost)[:max(1, int(max_starts))]
@@ -264,6 +319,8 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
         e, b = full(x)
         res = solve(case, e, b)
         r, j = residuals_and_jacobian(res, names)
+        if weights is not None:
+            r, j = r * weights, j * weights[:, None]
         c = float(r @ r)
         if not np.isfinite(c):
             return 1e300, np.zeros(len(x))
@@ -283,7 +340,8 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
 
     best = solve(case, e_opt, b_opt)
     r, j = residuals_and_jacobian(best, names)
-    gradient = 2.0 * (r @ j)
+    rw, jw = (r, j) if weights is None else (r * weights, j * weights[:, None])
+    gradient = 2.0 * (rw @ jw)
     on_bound = {}
     for name, value, (lo, hi), f in zip(("eps", "beta"), (e_opt, b_opt), full_bounds, free,
                                         strict=True):
@@ -292,7 +350,34 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
             on_bound[name] = "lower"
         elif f and value >= hi - tol:
             on_bound[name] = "upper"
-    return FitResult(case=case, eps=e_opt, beta=b_opt, cost=float(r @ r), residuals=r,
+    return FitResult(case=case, eps=e_opt, beta=b_opt, cost=float(rw @ rw), residuals=r,
                      residual_names=names, include_yaw=bool(include_yaw), bounds=full_bounds,
                      fixed=fixed, on_bound=on_bound, gradient=gradient, landscape=landscape,
-                     minima=tuple(minima), nfev=nfev)
+                     minima=tuple(minima), nfev=nfev, weights=weights)
+
+
+def _fit_free(case, names, free, include_yaw, eps, beta, fixed, bounds, samples, max_starts,
+              seed) -> FitResult:
+    free = dict(free)
+    box = list(bounds)
+    if "impact.restitution" in free:
+        box[0] = free["impact.restitution"]
+    if "impact.beta" in free:
+        box[1] = free["impact.beta"]
+    out = fit_free(case, free, names, eps, beta, bounds[0], bounds[1],
+                   samples=samples, max_starts=max_starts, seed=seed)
+    base = out.case
+    fitted = solve(base, out.eps, out.beta)
+    r = residuals(fitted, names)
+    w = measured_weights(base, names)
+    minima = tuple((v.get("impact.restitution", out.eps), v.get("impact.beta", out.beta), c)
+                   for v, c in out.minima)
+    landscape = Landscape(eps=np.array([out.eps]), beta=np.array([out.beta]),
+                          cost=np.array([[out.cost]]))
+    rw = r if w is None else r * w
+    return FitResult(case=base, eps=out.eps, beta=out.beta, cost=float(rw @ rw), residuals=r,
+                     residual_names=names, include_yaw=bool(include_yaw), bounds=tuple(box),
+                     fixed=fixed, on_bound=out.on_bound, gradient=out.gradient,
+                     landscape=landscape, minima=minima, nfev=out.nfev, values=out.values,
+                     identifiability=out.identifiability, minima_values=out.minima,
+                     weights=w)

@@ -14,7 +14,8 @@ from ..model.geometry import radius_of_gyration
 from ..model.result import Result
 from .derivatives import motion_derivatives
 
-__all__ = ["measured_terms", "has_measured_terms", "residuals", "residuals_and_jacobian"]
+__all__ = ["measured_terms", "has_measured_terms", "residuals", "residuals_and_jacobian",
+           "measured_weights"]
 
 
 def measured_terms(case: Case, include_yaw: bool) -> tuple[str, ...]:
@@ -79,6 +80,38 @@ def residuals_and_jacobian(result: Result, names, jacobian: bool = True):
     # shape (..., n_terms, 2): d r_i / d (eps, beta)
     j = np.stack([np.stack(np.broadcast_arrays(*row), axis=-1) for row in jac], axis=-2)
     return r, j
+
+
+def measured_weights(case: Case, names: tuple[str, ...]) -> np.ndarray | None:
+    """Weights that turn the residuals into standardised ones, or None when unweighted.
+
+    With the ``[measured]`` standard deviations (``Measured.velocity1_sigma`` [m/s],
+    ``yaw_rate1_sigma`` [rad/s] ...), the velocity residual V - V_m is divided by its sigma
+    and the yaw residual k (Omega - Omega_m) by k sigma, so that sum (w r)^2 is a chi-square.
+    Either every fitted term has a sigma or none has: a mix is an error naming what is missing.
+    """
+    m = case.measured
+    w, missing = [], []
+    for name in names:
+        if name.startswith("velocity"):
+            i, axis = int(name[8]), "xy".index(name[-1])
+            sigma = getattr(m, f"velocity{i}_sigma")
+            w.append(None if sigma is None else 1.0 / sigma[axis])
+        else:
+            i = int(name[-1])
+            sigma = getattr(m, f"yaw_rate{i}_sigma")
+            v = case.vehicle1 if i == 1 else case.vehicle2
+            w.append(None if sigma is None
+                     else 1.0 / (radius_of_gyration(v.mass, v.yaw_inertia) * sigma))
+        if w[-1] is None:
+            missing.append(name)
+    if len(missing) == len(names):
+        return None
+    if missing:
+        raise ValueError(f"measured: standard deviations are given for some fitted terms but "
+                         f"not for {', '.join(missing)}; give a *_sigma for every measured "
+                         f"quantity that is fitted, or for none")
+    return np.array([float(np.asarray(x).reshape(())) for x in w])
 
 
 def has_measured_terms(case: Case, include_yaw: bool = False) -> bool:

@@ -42,7 +42,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model.case import Case, Impact, Measured, Vehicle
+from ..model.case import Case, Impact, Vehicle
+from .measured_table import parse_measured
 from ..model.plausibility import bare_angle_warning
 from .brach import cg_from_brach, heading_from_theta
 from .evidence_table import parse_evidence, parse_unknown
@@ -56,7 +57,6 @@ _TOP = {"name", "description", "source", "convention", "vehicle1", "vehicle2", "
 _VEHICLE = {"mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
             "length", "width", "fixed", "cg", "heading", "theta", "phi", "d"}
 _IMPACT = {"point", "normal_angle", "restitution", "beta"}
-_MEASURED = {"velocity", "yaw_rate"}
 
 
 def _check_keys(table, allowed: set[str], where: str) -> dict:
@@ -155,22 +155,6 @@ def _wrap(where: str, factory, **kwargs):
         raise ValueError(f"{where}.{exc}") from None
 
 
-def _measured(table) -> Measured | None:
-    if table is None:
-        return None
-    table = _check_keys(table, {"vehicle1", "vehicle2"}, "measured")
-    values = {}
-    for i in (1, 2):
-        where = f"measured.vehicle{i}"
-        sub = _check_keys(table.get(f"vehicle{i}", {}), _MEASURED, where)
-        if "velocity" in sub:
-            values[f"velocity{i}"] = _pair(sub["velocity"], "velocity", f"{where}.velocity")
-        if "yaw_rate" in sub:
-            values[f"yaw_rate{i}"] = parse(sub["yaw_rate"], "angular_velocity",
-                                           f"{where}.yaw_rate")
-    return Measured(**values)
-
-
 def _uncertainty(table):
     """The ``[uncertainty]`` table (see :mod:`pim.model.distributions`), when present."""
     return None if table is None else parse_uncertainty(table)
@@ -211,7 +195,7 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
         if not isinstance(value, str):
             raise ValueError(f"{key} must be a string, got {value!r}")
     return Case(vehicle1=vehicles[0], vehicle2=vehicles[1], impact=impact,
-                measured=_measured(data.get("measured")), name=name, description=description,
+                measured=parse_measured(data.get("measured")), name=name, description=description,
                 uncertainty=_uncertainty(data.get("uncertainty")), units=_unit_system(data),
                 notes=_angle_notes(data),
                 evidence=parse_evidence(data.get("evidence")),

@@ -215,12 +215,20 @@ class Measured:
         Post-impact CG velocities [m/s].
     yaw_rate1, yaw_rate2 : float, optional
         Post-impact yaw rates [rad/s].
+    velocity1_sigma, velocity2_sigma : array_like, shape (2,), optional
+        Standard deviations of the measured velocity components [m/s], > 0.
+    yaw_rate1_sigma, yaw_rate2_sigma : float, optional
+        Standard deviations of the measured yaw rates [rad/s], > 0.
     """
 
     velocity1: np.ndarray | None = None
     velocity2: np.ndarray | None = None
     yaw_rate1: float | None = None
     yaw_rate2: float | None = None
+    velocity1_sigma: np.ndarray | None = None
+    velocity2_sigma: np.ndarray | None = None
+    yaw_rate1_sigma: float | None = None
+    yaw_rate2_sigma: float | None = None
 
     def __post_init__(self) -> None:
         for name, unit in (("velocity1", "m/s"), ("velocity2", "m/s")):
@@ -234,6 +242,18 @@ class Measured:
                 if not np.isfinite(value):
                     raise ValueError(f"{name} must be a finite number in [rad/s]")
                 object.__setattr__(self, name, value)
+        for name, unit in (("velocity1", "m/s"), ("velocity2", "m/s"), ("yaw_rate1", "rad/s"),
+                           ("yaw_rate2", "rad/s")):
+            sigma = getattr(self, name + "_sigma")
+            if sigma is None:
+                continue
+            if getattr(self, name) is None:
+                raise ValueError(f"{name}_sigma is given but {name} is not measured")
+            sigma = (_vector(sigma, name + "_sigma", unit) if name.startswith("velocity")
+                     else _one_number(sigma, name + "_sigma"))
+            if not np.all(np.isfinite(sigma)) or np.any(np.asarray(sigma) <= 0):
+                raise ValueError(f"{name}_sigma must be finite and > 0 [{unit}], got {sigma}")
+            object.__setattr__(self, name + "_sigma", sigma)
 
 
 @dataclass(frozen=True, eq=False)
