@@ -14,8 +14,7 @@ import numpy as np
 import pytest
 
 import pim
-from pim.analysis.free_fit import (FREE_KEYS, check_free, current_value, identifiability,
-                                   set_inputs)
+from pim.analysis.free_fit import FREE_KEYS, check_free, current_value, identifiability, set_inputs
 
 TRUE_EPS, TRUE_BETA = 0.3, 0.6
 

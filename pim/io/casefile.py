@@ -43,10 +43,10 @@ from pathlib import Path
 import numpy as np
 
 from ..model.case import Case, Impact, Vehicle
-from .measured_table import parse_measured
 from ..model.plausibility import bare_angle_warning
 from .brach import cg_from_brach, heading_from_theta
 from .evidence_table import parse_evidence, parse_unknown
+from .measured_table import parse_measured
 from .uncertainty_table import parse_uncertainty
 from .units import parse, registry, unit_system_of
 
