@@ -162,7 +162,8 @@ def test_sigmas_weight_the_residuals(ricsac9):
     res = f.result
     chi2 = (((res.velocity1 - noisy.velocity1) / 0.3) ** 2).sum() \
         + (((res.velocity2 - noisy.velocity2) / 0.5) ** 2).sum() \
-        + ((res.yaw_rate1 - noisy.yaw_rate1) / 0.1) ** 2 + ((res.yaw_rate2 - noisy.yaw_rate2) / 0.1) ** 2
+        + ((res.yaw_rate1 - noisy.yaw_rate1) / 0.1) ** 2 \
+        + ((res.yaw_rate2 - noisy.yaw_rate2) / 0.1) ** 2
     assert f.cost == pytest.approx(float(chi2), rel=1e-9)
     assert f.weights is not None
     # weighting changes the answer: an unweighted fit of the same data lands elsewhere

@@ -36,7 +36,8 @@ from ..model.solver import solve
 from .free_fit import FREE_KEYS, Identifiability, check_free, fit_free
 from .residuals import measured_terms, measured_weights, residuals, residuals_and_jacobian
 
-__all__ = ["fit", "FitResult", "FREE_KEYS", "Landscape", "DEFAULT_BOUNDS", "DEFAULT_GRID", "MAX_STARTS"]
+__all__ = ["fit", "FitResult", "FREE_KEYS", "Landscape", "DEFAULT_BOUNDS", "DEFAULT_GRID",
+           "MAX_STARTS"]
 
 #: Default search box ((eps_min, eps_max), (beta_min, beta_max)) [-], the sheet's constraints.
 DEFAULT_BOUNDS = ((0.0, 1.0), (0.0, 1.0))
