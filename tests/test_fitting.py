@@ -243,3 +243,30 @@ def test_cli_fit_without_measured_values(tmp_path, capsys):
     assert main(["fit", str(path)]) == 2
     err = capsys.readouterr().err
     assert err.startswith("error:") and "nothing to fit" in err and "Traceback" not in err
+
+
+def test_cli_free_parameters_say_whether_the_data_decide_them(capsys):
+    """`pim fit --free`: with (eps, beta, Gamma) free the data fix only a combination (the
+    post-impact motion depends on the impulse vector and its line through C: three numbers
+    against four measured velocities with one redundant), so a family is reported; with beta
+    fixed, Gamma has one minimum (issue 13, item 1)."""
+    import json
+
+    assert main(["fit", "ricsac9", "--free", 'impact.normal_angle="-10 deg,10 deg"']) == 0
+    out = capsys.readouterr().out
+    assert "impact.normal_angle = " in out and "deg" in out
+    assert "family of equally good fits" in out and "rank 2 of 3" in out
+    assert main(["fit", "ricsac9", "--beta", "1", "--json",
+                 "--free", "impact.normal_angle=-10 deg,10 deg"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["identifiability"]["rank"] == 2 and not data["identifiability"]["families"]
+    assert -np.radians(10) - 1e-9 <= data["values"]["impact.normal_angle"] <= np.radians(10) + 1e-9
+
+
+@pytest.mark.parametrize("arg, words", [("bogus=1,2", "KEY"),
+                                        ("impact.normal_angle=1 m,2 m", "not an angle"),
+                                        ("impact.normal_angle=1 deg", "two bounds")])
+def test_cli_free_bad_input_is_one_line_and_exit_2(arg, words, capsys):
+    assert main(["fit", "ricsac9", "--free", arg]) == 2
+    err = capsys.readouterr().err
+    assert words in err and len(err.strip().splitlines()) == 1

@@ -25,11 +25,48 @@ beta_range_option = click.option("--beta-range", type=float, nargs=2, default=(0
                                       "beta <= 1 (wider ranges are flagged).")
 
 
-def _fit(case, include_yaw, eps, beta, eps_range, beta_range):
+free_option = click.option(
+    "--free", "free", multiple=True, metavar='KEY="LO,HI"',
+    help="Also fit this input within [LO, HI] (unit strings), by its case-file key, e.g. "
+         '--free impact.normal_angle="0 deg,90 deg" --free vehicle1.radius_of_gyration='
+         '"1 m,1.6 m"; repeatable. Keys: every [uncertainty] input, '
+         "vehicleN.radius_of_gyration, vehicleN.speed.")
+
+
+def _kind_of(key: str) -> str:
+    """Unit kind of a free key, for parsing its bounds and printing its value."""
+    from ..model.quantities import INPUTS
+
+    if key in INPUTS:
+        return INPUTS[key].kind
+    return "length" if key.endswith("radius_of_gyration") else "velocity"
+
+
+def parse_free(items) -> dict:
+    """``--free KEY="LO,HI"`` options -> {key: (lo, hi)} in SI (one line, exit 2, if bad)."""
+    from ..analysis.free_fit import FREE_KEYS
+    from ..io.units import parse
+
+    out = {}
+    for item in items:
+        key, sep, text = item.partition("=")
+        key = key.strip()
+        if not sep or key not in FREE_KEYS:
+            raise ValueError(f"--free {item!r}: give KEY=\"LO,HI\" with KEY one of "
+                             f"{', '.join(FREE_KEYS)}")
+        parts = [t.strip() for t in text.strip().strip('"').split(",")]
+        if len(parts) != 2:
+            raise ValueError(f"--free {key}: give two bounds separated by a comma, got {text!r}")
+        kind = _kind_of(key)
+        out[key] = tuple(parse(t, kind, f"--free {key}") for t in parts)
+    return out
+
+
+def _fit(case, include_yaw, eps, beta, eps_range, beta_range, free=None):
     from ..analysis.fitting import fit as fit_case
 
     return fit_case(case, include_yaw=include_yaw, bounds=(eps_range, beta_range),
-                    eps=eps, beta=beta)
+                    eps=eps, beta=beta, free=free or None)
 
 
 def _describe_bounds(result, units) -> list[str]:
@@ -38,6 +75,9 @@ def _describe_bounds(result, units) -> list[str]:
     fv, uv = convert(1.0, "velocity", units)
     lines = []
     for name, side in result.on_bound.items():
+        if name not in ("eps", "beta"):
+            lines.append(f"{name} sits on its {side} bound")
+            continue
         k = ("eps", "beta").index(name)
         value = result.bounds[k][0 if side == "lower" else 1]
         slope = result.gradient[k]
@@ -53,22 +93,30 @@ def _describe_bounds(result, units) -> list[str]:
 @fixed_beta_option
 @eps_range_option
 @beta_range_option
+@free_option
 @units_option
 @json_option
-def fit(case_name, include_yaw, eps, beta, eps_range, beta_range, units, as_json):
+def fit(case_name, include_yaw, eps, beta, eps_range, beta_range, free, units, as_json):
     """Least-squares (epsilon, beta) matching CASE's measured post-impact motion.
 
     Searches the whole (epsilon, beta) box on a grid, then refines the best minima, so it
-    finds the global optimum. --eps or --beta fits the other parameter alone.
+    finds the global optimum. --eps or --beta fits the other parameter alone; --free adds
+    any other input, and the output then says whether the data determine them all
+    (rank, families of equally good fits, under-determined).
     """
     from ..io.casefile import load_case
     from ..io.units import convert
 
     case = load_case(case_name)
     units = units or case.units
-    result = _fit(case, include_yaw, eps, beta, eps_range, beta_range)
+    result = _fit(case, include_yaw, eps, beta, eps_range, beta_range, parse_free(free))
+    ident = result.identifiability
     if as_json:
-        echo_json(result.to_dict())
+        data = result.to_dict()
+        if free:
+            data["values"] = {k: float(v) for k, v in result.values.items()}
+            data["identifiability"] = ident.to_dict() if ident is not None else None
+        echo_json(data)
         return
     solved = result.result
     fv, uv = convert(1.0, "velocity", units)
@@ -86,6 +134,16 @@ def fit(case_name, include_yaw, eps, beta, eps_range, beta_range, units, as_json
                f"(mu = {float(solved.mu):.4f}, mu0 = {float(solved.mu0):.4f})")
     click.echo(f"  cost    = {result.cost * fv * fv:.6g} ({uv})^2   "
                f"rms residual = {result.rms * fv:.4g} {uv}")
+    for key, value in (result.values.items() if free else ()):
+        if key in ("impact.restitution", "impact.beta"):
+            continue
+        shown, unit = convert(value, _kind_of(key), units)
+        click.echo(f"  {key} = {float(shown):.6g} {unit}")
+    if free and ident is not None:
+        click.echo(f"  identifiability: rank {ident.rank} of {len(ident.names)} parameters, "
+                   f"{ident.n_data} measured quantities")
+        for text in ident.warnings:
+            click.echo(f"  warning: {text}")
     for line in _describe_bounds(result, units):
         click.echo(f"  note: {line}")
     if len(result.minima) > 1:
