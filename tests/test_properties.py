@@ -138,6 +138,12 @@ def test_energy_is_dissipated_in_most_admissible_scenes():
 @given(scenes(), unit, unit, st.floats(-np.pi, np.pi), st.floats(-20, 20), st.floats(-20, 20))
 def test_rotating_and_translating_the_scene(case, eps, beta, angle, dx, dy):
     r = pim.solve(case, eps, beta)
+    # A nearly grazing approach (|u_n| below 1e-6 of |u|) is ill-conditioned: rotating the
+    # scene changes u_n by round-off, ~1e-16 |u|, which moves the impulse by that much
+    # relative to u_n (derandomized CI found u_n = -1.1e-10 m/s against u_t = 3 m/s, an
+    # answer good to 7e-7). Grazing impacts are tested on their own in test_hard_cases.py.
+    assume(not r.approaching or abs(float(r.approach_n))
+           > 1e-6 * float(np.abs(r.approach_velocity).sum()))
     moved = pim.solve(case.transformed(angle, (dx, dy)), eps, beta)
     c, s = np.cos(angle), np.sin(angle)
     rot = np.array([[c, -s], [s, c]])
