@@ -13,18 +13,6 @@ from pim.analysis.derivatives import derivatives, output_values
 from pim.model.quantities import OUTPUTS
 
 
-@pytest.fixture(scope="module")
-def ricsac9():
-    return pim.load_case("ricsac9")
-
-
-@pytest.fixture(scope="module")
-def spinning(ricsac9):
-    case = ricsac9.transformed(rotation=-1.1, translation=(5.0, 1.0))
-    return replace(case, vehicle1=replace(case.vehicle1, yaw_rate=0.6),
-                   vehicle2=replace(case.vehicle2, yaw_rate=-0.3))
-
-
 def _central(case, eps, beta, param, h=1e-6):
     """Central finite difference of every output of pim.solve (independent of derivatives)."""
     if param == "eps":

@@ -14,18 +14,6 @@ from pim.cli import main
 
 
 @pytest.fixture(scope="module")
-def ricsac9():
-    return pim.load_case("ricsac9")
-
-
-@pytest.fixture(scope="module")
-def spinning(ricsac9):
-    case = ricsac9.transformed(rotation=-1.1, translation=(5.0, 1.0))
-    return replace(case, vehicle1=replace(case.vehicle1, yaw_rate=0.6),
-                   vehicle2=replace(case.vehicle2, yaw_rate=-0.3))
-
-
-@pytest.fixture(scope="module")
 def noisy(ricsac9):
     """Measured values near (0.4, 0.6) plus noise: an interior optimum with residuals."""
     r = pim.solve(ricsac9, 0.4, 0.6)

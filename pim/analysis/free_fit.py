@@ -84,6 +84,20 @@ def _direction(vehicle) -> np.ndarray:
     return np.array([np.cos(h), np.sin(h)])
 
 
+def _set_field(changes: dict, base, key: str, value: float) -> None:
+    """Record in ``changes`` the field of ``base`` (a Vehicle or the Impact) that input
+    ``key`` names, set to ``value``; for the x or y part of a vector field, the vector as
+    changed so far with that component replaced."""
+    name, axis = field_of(key)
+    attr = name.split(".", 1)[1]
+    if axis is None:
+        changes[attr] = value
+    else:
+        vec = np.array(changes.get(attr, getattr(base, attr)), dtype=float)
+        vec[axis] = value
+        changes[attr] = vec
+
+
 def set_inputs(case: Case, values: dict) -> Case:
     """``case`` with the inputs named by dotted keys set to ``values`` [SI] (scalars).
 
@@ -96,32 +110,14 @@ def set_inputs(case: Case, values: dict) -> Case:
     for key, value in values.items():
         value = float(value)
         group, attr = key.split(".", 1)
-        if group.startswith("vehicle"):
-            i = int(group[-1])
-            base = vehicles[i]
-            ch = vchanges[i]
-            if attr == "radius_of_gyration":
-                ch["yaw_inertia"] = float(base.mass) * value ** 2
-            elif attr == "speed":
-                ch["velocity"] = value * _direction(base)
-            else:
-                name, axis = field_of(key)
-                attr = name.split(".", 1)[1]
-                if axis is None:
-                    ch[attr] = value
-                else:
-                    vec = np.array(ch.get(attr, getattr(base, attr)), dtype=float)
-                    vec[axis] = value
-                    ch[attr] = vec
+        base, ch = ((vehicles[int(group[-1])], vchanges[int(group[-1])])
+                    if group.startswith("vehicle") else (case.impact, ichanges))
+        if attr == "radius_of_gyration":
+            ch["yaw_inertia"] = float(base.mass) * value ** 2
+        elif attr == "speed":
+            ch["velocity"] = value * _direction(base)
         else:
-            name, axis = field_of(key)
-            attr = name.split(".", 1)[1]
-            if axis is None:
-                ichanges[attr] = value
-            else:
-                vec = np.array(ichanges.get(attr, case.impact.point), dtype=float)
-                vec[axis] = value
-                ichanges[attr] = vec
+            _set_field(ch, base, key, value)
     for i in (1, 2):
         ch = vchanges[i]
         if ch:

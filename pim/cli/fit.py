@@ -42,6 +42,17 @@ def _kind_of(key: str) -> str:
     return "length" if key.endswith("radius_of_gyration") else "velocity"
 
 
+def _key_value(item: str, allowed, option: str, form: str) -> tuple[str, str]:
+    """``KEY=TEXT`` of a repeatable option -> (key, text); ValueError naming the option and
+    the allowed keys when the form or the key is wrong."""
+    key, sep, text = item.partition("=")
+    key = key.strip()
+    if not sep or key not in allowed:
+        raise ValueError(f"{option} must be {form} with KEY one of {', '.join(allowed)}; "
+                         f"got {item!r}")
+    return key, text
+
+
 def parse_free(items) -> dict:
     """``--free KEY="LO,HI"`` options -> {key: (lo, hi)} in SI (one line, exit 2, if bad)."""
     from ..analysis.free_fit import FREE_KEYS
@@ -49,11 +60,7 @@ def parse_free(items) -> dict:
 
     out = {}
     for item in items:
-        key, sep, text = item.partition("=")
-        key = key.strip()
-        if not sep or key not in FREE_KEYS:
-            raise ValueError(f"--free {item!r}: give KEY=\"LO,HI\" with KEY one of "
-                             f"{', '.join(FREE_KEYS)}")
+        key, text = _key_value(item, FREE_KEYS, "--free", 'KEY="LO,HI"')
         parts = [t.strip() for t in text.strip().strip('"').split(",")]
         if len(parts) != 2:
             raise ValueError(f"--free {key}: give two bounds separated by a comma, got {text!r}")
@@ -191,11 +198,7 @@ def _parse_sigma(items) -> dict:
              "measured_yaw_rate": "angular_velocity"}
     out = {}
     for item in items:
-        key, sep, value = item.partition("=")
-        key = key.strip()
-        if not sep or key not in kinds:
-            raise ValueError(f"--sigma must be KEY=VALUE with KEY one of {', '.join(kinds)}; "
-                             f"got {item!r}")
+        key, value = _key_value(item, kinds, "--sigma", "KEY=VALUE")
         out[key] = parse(value.strip(), kinds[key], f"--sigma {key}")
     return TypicalUncertainty(**out)
 
