@@ -47,6 +47,7 @@ from ..model.plausibility import bare_angle_warning
 from .brach import cg_from_brach, heading_from_theta
 from .evidence_table import parse_evidence, parse_unknown
 from .measured_table import parse_measured
+from .toml_tables import check_keys
 from .uncertainty_table import parse_uncertainty
 from .units import parse, registry, unit_system_of
 
@@ -57,16 +58,6 @@ _TOP = {"name", "description", "source", "convention", "vehicle1", "vehicle2", "
 _VEHICLE = {"mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
             "length", "width", "fixed", "cg", "heading", "theta", "phi", "d"}
 _IMPACT = {"point", "normal_angle", "restitution", "beta"}
-
-
-def _check_keys(table, allowed: set[str], where: str) -> dict:
-    if not isinstance(table, dict):
-        raise ValueError(f"{where} must be a table")
-    unknown = sorted(set(table) - allowed)
-    if unknown:
-        raise ValueError(f"{where}: unknown key {unknown[0]!r} "
-                         f"(allowed: {', '.join(sorted(allowed))})")
-    return table
 
 
 def _require(table: dict, key: str, where: str):
@@ -93,7 +84,7 @@ def _optional(table: dict, key: str, kind: str, where: str):
 
 
 def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int) -> Vehicle:
-    table = _check_keys(table, _VEHICLE, where)
+    table = check_keys(table, _VEHICLE, where)
     placement = {"global": ("cg", "heading"), "brach": ("theta", "phi", "d")}[convention]
     stray = sorted(set(table) & ({"cg", "heading", "theta", "phi", "d"} - set(placement)))
     if stray:
@@ -169,11 +160,11 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
         Missing or unknown key, bad unit or dimension, or a value out of range; the message
         names the field.
     """
-    data = _check_keys(data, _TOP, source)
+    data = check_keys(data, _TOP, source)
     convention = data.get("convention", "global")
     if convention not in ("global", "brach"):
         raise ValueError(f"convention must be 'global' or 'brach', got {convention!r}")
-    impact_table = _check_keys(_require(data, "impact", source), _IMPACT, "impact")
+    impact_table = check_keys(_require(data, "impact", source), _IMPACT, "impact")
     if convention == "global" or "point" in impact_table:
         point = _pair(_require(impact_table, "point", "impact"), "length", "impact.point")
     else:

@@ -25,6 +25,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..model.evidence import UNKNOWN_KINDS, Evidence, VehicleEvidence
+from .toml_tables import check_keys
 from .units import parse
 
 __all__ = ["parse_evidence", "parse_unknown"]
@@ -61,12 +62,7 @@ def _wheels(value, where):
 
 
 def _vehicle(table, where) -> VehicleEvidence:
-    if not isinstance(table, dict):
-        raise ValueError(f"{where} must be a table")
-    unknown = sorted(set(table) - _EVIDENCE)
-    if unknown:
-        raise ValueError(f"{where}: unknown key {unknown[0]!r} "
-                         f"(allowed: {', '.join(sorted(_EVIDENCE))})")
+    check_keys(table, _EVIDENCE, where)
     for key in ("rest_position", "rest_heading", "wheelbase", "track", "friction"):
         if key not in table:
             raise ValueError(f"{where}: missing {key}")

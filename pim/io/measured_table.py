@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..model.case import Measured
+from .toml_tables import check_keys
 from .units import parse
 
 __all__ = ["parse_measured", "MEASURED_KEYS"]
@@ -45,21 +46,12 @@ def parse_measured(table) -> Measured | None:
     """
     if table is None:
         return None
-    if not isinstance(table, dict):
-        raise ValueError("measured must be a table")
-    unknown = sorted(set(table) - {"vehicle1", "vehicle2"})
-    if unknown:
-        raise ValueError(f"measured: unknown key {unknown[0]!r} (allowed: vehicle1, vehicle2)")
+    check_keys(table, ("vehicle1", "vehicle2"), "measured")
     values = {}
     for i in (1, 2):
         where = f"measured.vehicle{i}"
         sub = table.get(f"vehicle{i}", {})
-        if not isinstance(sub, dict):
-            raise ValueError(f"{where} must be a table")
-        unknown = sorted(set(sub) - set(MEASURED_KEYS))
-        if unknown:
-            raise ValueError(f"{where}: unknown key {unknown[0]!r} "
-                             f"(allowed: {', '.join(MEASURED_KEYS)})")
+        check_keys(sub, MEASURED_KEYS, where)
         if "velocity" in sub:
             values[f"velocity{i}"] = _pair(sub["velocity"], f"{where}.velocity", False)
         if "velocity_sigma" in sub:
