@@ -43,6 +43,9 @@ ONE_EXTRA = [
     ("vehicle2.speed", 12.0, (8.0, 16.0)),
     ("vehicle1.velocity_x", -7.0, (-12.0, -4.0)),
     ("vehicle1.mass", 1500.0, (1000.0, 2000.0)),
+    ("vehicle1.phi", 0.25, (-0.2, 0.6)),            # Brach's phi at the case's d
+    ("vehicle2.d", 1.9, (1.2, 2.4)),
+    ("impact.point_along", 0.3, (-0.6, 0.6)),       # C along the crush edge
 ]
 
 
@@ -57,7 +60,12 @@ def test_recovers_eps_beta_and_one_extra_parameter(ricsac9, key, true, bounds):
     assert f.cost < 1e-16
     assert f.identifiability.rank == 3 and not f.identifiability.families
     assert not f.identifiability.under_determined
-    assert current_value(f.case, key) == pytest.approx(f.values[key], rel=1e-12)
+    if key == "impact.point_along":     # measured from the case's C: C moved along t0
+        g0 = float(ricsac9.impact.normal_angle)
+        np.testing.assert_allclose(f.case.impact.point - ricsac9.impact.point,
+                                   true * np.array([-np.sin(g0), np.cos(g0)]), atol=1e-8)
+    else:
+        assert current_value(f.case, key) == pytest.approx(f.values[key], rel=1e-12)
 
 
 def test_gamma_eps_beta_is_a_family_and_says_so(ricsac9):
@@ -192,3 +200,39 @@ def test_identifiability_of_a_known_matrix():
     full = identifiability(np.eye(3), ("a", "b", "c"), ("r1", "r2", "r3"))
     assert full.rank == 3 and not full.families
     np.testing.assert_allclose(full.correlation, np.eye(3), atol=1e-15)
+
+
+def test_both_coordinates_of_c_with_eps_and_beta_form_a_family(ricsac9):
+    """C's two coordinates and (eps, beta): the impulse and its line of action fix only
+    three numbers, so the four parameters have a one-dimensional family of exact fits."""
+    case = measured_at(ricsac9, {"impact.point_x": 0.1, "impact.point_y": -0.1})
+    f = pim.fit(case, include_yaw=True, free={"impact.point_x": (-0.5, 0.5),
+                                               "impact.point_y": (-0.5, 0.5)})
+    assert f.cost < 1e-14
+    assert f.identifiability.rank == 3 and f.identifiability.families
+    assert not f.identifiability.identifiable
+
+
+def test_the_fit_jacobian_is_exact(ricsac9):
+    """The refinement's derivatives (dual numbers) against central differences of the
+    residuals, for every kind of key at once."""
+    from pim.analysis.free_fit import free_residuals, residual_terms
+    from pim.analysis.free_inputs import case_state
+    from pim.analysis.residuals import measured_terms
+
+    case = measured_at(ricsac9, {})
+    names = measured_terms(case, True)
+    keys = ("impact.restitution", "impact.beta", "impact.normal_angle", "vehicle1.phi",
+            "vehicle2.speed", "vehicle1.radius_of_gyration", "impact.point_along")
+    x0 = np.array([0.4, 0.8, 0.1, 0.2, 9.0, 1.2, 0.1])
+    base = case_state(case)
+    terms = residual_terms(case, names)
+    _, jac = free_residuals(base, keys, x0[None], *terms)
+    for j in range(len(keys)):
+        h = 1e-6 * max(1.0, abs(x0[j]))
+        xp, xm = x0.copy(), x0.copy()
+        xp[j] += h
+        xm[j] -= h
+        fd = (free_residuals(base, keys, xp[None], *terms, jacobian=False)[0]
+              - free_residuals(base, keys, xm[None], *terms, jacobian=False)[0]) / (2 * h)
+        np.testing.assert_allclose(jac[0, :, j], fd[0], rtol=1e-6, atol=1e-7, err_msg=keys[j])

@@ -1,148 +1,60 @@
 """Fit of any inputs of a case (beyond epsilon and beta) to measured post-impact motion.
 
-A free parameter is named by its dotted case-file key (:data:`FREE_KEYS`): every scalar input
-of :data:`pim.model.quantities.INPUTS` (``impact.normal_angle``, ``impact.point_x``,
-``vehicle1.yaw_rate`` ...) plus ``vehicle{1,2}.radius_of_gyration`` [m] (the yaw inertia
-becomes m k^2) and ``vehicle{1,2}.speed`` [m/s] (the pre-impact speed along the direction of
-the case's velocity, or of the heading where the velocity is zero).
+A free parameter is named by its dotted case-file key (:data:`FREE_KEYS`, defined with the
+way each moves the case in :mod:`pim.analysis.free_inputs`): every scalar input of
+:data:`pim.model.quantities.INPUTS` plus ``vehicle{1,2}.speed``,
+``vehicle{1,2}.radius_of_gyration``, Brach's ``vehicle{1,2}.phi`` and ``vehicle{1,2}.d``,
+and ``impact.point_along`` (C along the crush edge).
 
 Strategy (as :func:`pim.analysis.fitting.fit`): a coarse global search over the bounded box
-(a scrambled Sobol sample, seeded, so runs repeat), then bounded local refinement
-(``scipy.optimize.least_squares``, trust-region reflective) from the best few samples, with
-central finite-difference derivatives. At the optimum the Jacobian of the (weighted)
-residuals with respect to the free parameters, each scaled by its bound width, is taken by
-central differences; its singular values give the rank, its near-null right singular
-vectors the *families* of exact fits (parameters that trade against each other with no change
-in the fitted motion), and (J^T J)^-1 the parameter correlations.
+(a scrambled Sobol sample, seeded, so runs repeat) evaluated in one vectorised call of the
+formula, then a bounded Levenberg-Marquardt refinement of the best few samples, all starts
+at once (:func:`pim.analysis.least_squares_batch.least_squares_batch`), with exact
+derivatives: dual numbers through the map free keys -> model inputs
+(:func:`pim.analysis.free_inputs.free_inputs`) and through the formula
+(:func:`pim.model.dual.motion_of_inputs`). At the optimum the Jacobian of the (weighted)
+residuals with respect to the free parameters, each scaled by its bound width, gives the
+rank from its singular values, the *families* of exact fits from its near-null right
+singular vectors (parameters that trade against each other with no change in the fitted
+motion), and the parameter correlations from (J^T J)^-1.
 
 Why families appear: the post-impact motion depends only on the impulse vector P and the line
 of action through C, three numbers. Free (eps, beta, Gamma), or (eps, beta) with both
 coordinates of C, can all move while P stays put, so a whole curve of parameters fits
 equally well: the fit reports that, and does not present one member as the answer.
+
+The yaw-rate residuals are weighted by each vehicle's radius of gyration in the case as
+given (:mod:`pim.analysis.residuals`), also when k is fitted, so that the weights stay fixed
+during the fit.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..model.case import Case
-from ..model.quantities import INPUTS, field_of
-from ..model.solver import solve
-from .residuals import measured_weights, residuals
+from ..model.dual import MOTION_INPUTS, MOTION_OUTPUTS, motion_of_inputs
+from ..model.geometry import radius_of_gyration
+from .free_inputs import (
+    FREE_KEYS,
+    case_state,
+    check_free,
+    check_free_for_case,
+    current_value,
+    free_inputs,
+    set_inputs,
+)
+from .least_squares_batch import least_squares_batch
+from .residuals import measured_weights
 
-__all__ = ["FREE_KEYS", "Identifiability", "set_inputs", "check_free", "fit_free",
-           "identifiability"]
+__all__ = ["FREE_KEYS", "Identifiability", "FreeFit", "set_inputs", "check_free",
+           "current_value", "fit_free", "identifiability", "free_residuals",
+           "residual_terms"]
 
-#: Keys accepted in ``free`` beyond :data:`INPUTS`, with their meaning.
-EXTRA_KEYS = {
-    **{f"vehicle{i}.radius_of_gyration": "radius of gyration k [m]; yaw inertia = m k^2"
-       for i in (1, 2)},
-    **{f"vehicle{i}.speed": "pre-impact speed [m/s] along the case's velocity direction"
-       for i in (1, 2)},
-}
-#: Every key :func:`fit_free` accepts.
-FREE_KEYS = tuple(INPUTS) + tuple(EXTRA_KEYS)
-
-#: Physical lower limits of bounds [SI] (strictly above for mass, inertia, k).
-_POSITIVE = ("mass", "yaw_inertia", "radius_of_gyration")
-
-
-def check_free(free: dict) -> dict:
-    """Validate ``free``: known keys, finite bounds with low < high, physical ranges."""
-    out = {}
-    for key, b in (free or {}).items():
-        if key not in FREE_KEYS:
-            raise ValueError(f"free parameter {key!r} is unknown (allowed: "
-                             f"{', '.join(FREE_KEYS)})")
-        try:
-            lo, hi = (float(x) for x in b)
-        except (TypeError, ValueError):
-            raise ValueError(f"free parameter {key}: bounds must be (low, high) numbers in "
-                             f"SI, got {b!r}") from None
-        if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
-            raise ValueError(f"free parameter {key}: bounds must be finite with low < high, "
-                             f"got ({lo}, {hi})")
-        attr = key.split(".", 1)[1]
-        if attr in _POSITIVE and lo <= 0:
-            raise ValueError(f"free parameter {key}: bounds must be > 0, got ({lo}, {hi})")
-        if key == "impact.restitution" and not (0.0 <= lo and hi <= 1.0):
-            raise ValueError(f"free parameter {key}: bounds must lie in [0, 1], got ({lo}, {hi})")
-        if attr == "speed" and lo < 0:
-            raise ValueError(f"free parameter {key}: bounds must be >= 0 [m/s], got ({lo}, {hi})")
-        out[key] = (lo, hi)
-    return out
-
-
-def _direction(vehicle) -> np.ndarray:
-    v = np.asarray(vehicle.velocity, dtype=float)
-    s = float(np.hypot(*v))
-    if s > 0:
-        return v / s
-    h = float(np.asarray(vehicle.heading))
-    return np.array([np.cos(h), np.sin(h)])
-
-
-def _set_field(changes: dict, base, key: str, value: float) -> None:
-    """Record in ``changes`` the field of ``base`` (a Vehicle or the Impact) that input
-    ``key`` names, set to ``value``; for the x or y part of a vector field, the vector as
-    changed so far with that component replaced."""
-    name, axis = field_of(key)
-    attr = name.split(".", 1)[1]
-    if axis is None:
-        changes[attr] = value
-    else:
-        vec = np.array(changes.get(attr, getattr(base, attr)), dtype=float)
-        vec[axis] = value
-        changes[attr] = vec
-
-
-def set_inputs(case: Case, values: dict) -> Case:
-    """``case`` with the inputs named by dotted keys set to ``values`` [SI] (scalars).
-
-    ``impact.restitution`` and ``impact.beta`` are stored on the impact; the others replace the
-    vehicle or impact fields they name.
-    """
-    vehicles = {1: case.vehicle1, 2: case.vehicle2}
-    vchanges: dict[int, dict] = {1: {}, 2: {}}
-    ichanges: dict = {}
-    for key, value in values.items():
-        value = float(value)
-        group, attr = key.split(".", 1)
-        base, ch = ((vehicles[int(group[-1])], vchanges[int(group[-1])])
-                    if group.startswith("vehicle") else (case.impact, ichanges))
-        if attr == "radius_of_gyration":
-            ch["yaw_inertia"] = float(base.mass) * value ** 2
-        elif attr == "speed":
-            ch["velocity"] = value * _direction(base)
-        else:
-            _set_field(ch, base, key, value)
-    for i in (1, 2):
-        ch = vchanges[i]
-        if ch:
-            vehicles[i] = replace(vehicles[i], **ch)
-    impact = replace(case.impact, **ichanges) if ichanges else case.impact
-    return replace(case, vehicle1=vehicles[1], vehicle2=vehicles[2], impact=impact)
-
-
-def current_value(case: Case, key: str) -> float:
-    """The value [SI] of a free key in ``case``."""
-    group, attr = key.split(".", 1)
-    if group.startswith("vehicle"):
-        v = case.vehicle1 if group.endswith("1") else case.vehicle2
-        if attr == "radius_of_gyration":
-            return float(np.sqrt(float(v.yaw_inertia) / float(v.mass)))
-        if attr == "speed":
-            return float(np.hypot(*np.asarray(v.velocity, dtype=float)))
-    name, axis = field_of(key)
-    grp, attr = name.split(".", 1)
-    obj = case.impact if grp == "impact" else (case.vehicle1 if grp.endswith("1")
-                                               else case.vehicle2)
-    value = getattr(obj, attr)
-    if value is None:
-        return float("nan")
-    return float(np.asarray(value, dtype=float).reshape(-1)[0 if axis is None else axis])
+#: Residual that stands for a failed evaluation (singular q, no approach) [weighted units].
+PENALTY = 1e6
 
 
 @dataclass(frozen=True)
@@ -263,6 +175,66 @@ class FreeFit:
     extra: dict = field(default_factory=dict)
 
 
+def residual_terms(case: Case, names: tuple) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Rows of :data:`pim.model.dual.MOTION_OUTPUTS`, measured targets and factors of the
+    residual terms ``names`` of ``case``: residual = (output - target) * factor, the factor
+    being 1 for a velocity and k_i for a yaw rate, times the ``[measured]`` weight 1/sigma
+    when standard deviations are given (:func:`pim.analysis.residuals.measured_weights`)."""
+    m = case.measured
+    rows, target, scale = [], [], []
+    for name in names:
+        rows.append(MOTION_OUTPUTS.index(name))
+        if name.startswith("velocity"):
+            i, axis = int(name[8]), "xy".index(name[-1])
+            target.append(float(getattr(m, f"velocity{i}")[axis]))
+            scale.append(1.0)
+        else:
+            i = int(name[-1])
+            v = getattr(case, f"vehicle{i}")
+            target.append(float(getattr(m, f"yaw_rate{i}")))
+            scale.append(float(radius_of_gyration(v.mass, v.yaw_inertia)))
+    w = measured_weights(case, names)
+    factor = np.array(scale) * (1.0 if w is None else w)
+    return np.array(rows), np.array(target), factor
+
+
+def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True):
+    """Weighted residuals at the free parameters ``x`` (m, n), and their exact Jacobian.
+
+    Parameters
+    ----------
+    base : Case or array_like (21,) or (m, 21)
+        Everything not freed (:func:`pim.analysis.free_inputs.free_inputs`).
+    keys : sequence of str
+        Free keys, the columns of ``x``.
+    x : array_like (m, n)
+        Parameter vectors [SI].
+    rows, target, factor : array_like (k,) / (k,) or (m, k) / (k,) or (m, k)
+        The residual terms (:func:`residual_terms`); target and factor per row or shared.
+    jacobian : bool
+        Also return the Jacobian.
+
+    Returns
+    -------
+    r : ndarray (m, k)
+        (output - target) * factor; :data:`PENALTY` where q is singular.
+    jac : ndarray (m, k, n) or None
+        d r / d x, zero where the penalty stands.
+    """
+    state, dstate = free_inputs(base, keys, x, jacobian=jacobian)
+    n_in = len(MOTION_INPUTS)
+    values, dvalues = motion_of_inputs(state[:, :n_in], jacobian=jacobian)
+    r = (values[:, rows] - target) * factor
+    bad = ~np.all(np.isfinite(r), axis=1)
+    r = np.where(bad[:, None], PENALTY, r)
+    if not jacobian:
+        return r, None
+    jac = np.einsum("pki,pin->pkn", dvalues[:, rows, :], dstate[:, :n_in, :])
+    jac = jac * np.asarray(factor)[..., None]
+    jac = np.where(bad[:, None, None] | ~np.isfinite(jac), 0.0, jac)
+    return r, jac
+
+
 def fit_free(case: Case, free: dict, names: tuple, eps, beta,
              eps_bounds, beta_bounds, samples: int = 256, max_starts: int = 5,
              seed: int = 0) -> FreeFit:
@@ -281,13 +253,13 @@ def fit_free(case: Case, free: dict, names: tuple, eps, beta,
     samples : int
         Size of the coarse Sobol sample (rounded up to a power of two).
     max_starts : int
-        Number of best samples refined locally.
+        Number of best samples refined locally (distinct ones only).
     seed : int
         Seed of the scrambled Sobol sample.
     """
-    from scipy.optimize import least_squares
     from scipy.stats import qmc
 
+    free = dict(free)
     keys, box = [], []
     if eps is None:
         keys.append("impact.restitution")
@@ -302,62 +274,44 @@ def fit_free(case: Case, free: dict, names: tuple, eps, beta,
     for k, b in free.items():
         keys.append(k)
         box.append(b)
+    check_free_for_case(case, keys)
+    keys = tuple(keys)
     lo = np.array([b[0] for b in box])
     hi = np.array([b[1] for b in box])
     width = hi - lo
     n = len(keys)
-    nfev = 0
+    fixed = {"eps": eps, "beta": beta}
+    base = case_state(case, 0.5 if eps is None else eps, 0.5 if beta is None else beta)
+    rows, target, factor = residual_terms(case, names)
 
-    def model_case(x):
-        vals = dict(zip(keys, map(float, x), strict=True))
-        e = vals.pop("impact.restitution", eps)
-        b = vals.pop("impact.beta", beta)
-        return set_inputs(case, vals) if vals else case, e, b
+    def resid(x, jacobian=True):
+        return free_residuals(base, keys, x, rows, target, factor, jacobian=jacobian)
 
-    def resid(x):
-        nonlocal nfev
-        nfev += 1
-        try:
-            c, e, b = model_case(x)
-            w = measured_weights(c, names)
-            r = residuals(solve(c, e, b), names) * (1.0 if w is None else w)
-        except (ValueError, ZeroDivisionError, FloatingPointError):
-            return np.full(len(names), 1e6)
-        r = np.asarray(r, dtype=float)
-        return np.where(np.isfinite(r), r, 1e6)
-
-    # ---- coarse global search ----------------------------------------------------------
+    # ---- coarse global search: one vectorised evaluation of the Sobol sample ------------
     m_exp = int(np.ceil(np.log2(max(int(samples), 8))))
     u = qmc.Sobol(d=n, scramble=True, seed=seed).random_base2(m_exp)
     xs = lo + u * width
-    costs = np.array([float(np.sum(resid(x) ** 2)) for x in xs])
-    order = np.argsort(costs, kind="stable")
-    starts = [xs[i] for i in order[:max(1, int(max_starts))]]
+    r0, _ = resid(xs, jacobian=False)
+    costs = np.sum(r0 * r0, axis=1)
+    starts = []
+    for i in np.argsort(costs, kind="stable"):
+        if len(starts) >= max(1, int(max_starts)):
+            break
+        if all(np.max(np.abs(u[i] - u[j])) > 0.125 for j in starts):
+            starts.append(i)
 
-    # ---- local refinement ---------------------------------------------------------------
+    # ---- local refinement of every start at once, exact derivatives ----------------------
+    out = least_squares_batch(lambda x, idx: resid(x), xs[starts], lo, hi)
     minima = []
-    for x0 in starts:
-        out = least_squares(resid, x0, bounds=(lo, hi), x_scale=width, method="trf",
-                            jac="3-point", xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=400)
-        x = np.clip(out.x, lo, hi)
-        c = float(np.sum(resid(x) ** 2))
+    for k in np.argsort(out.cost, kind="stable"):
+        x = out.x[k]
         if all(np.max(np.abs(x - y) / width) > 1e-4 for y, _ in minima):
-            minima.append((x, c))
-    minima.sort(key=lambda t: t[1])
-    x_opt, c_opt = minima[0]
-    r = resid(x_opt)
-
-    # ---- Jacobian at the optimum (central differences, scaled by bound width) -----------
-    h = 1e-6 * width
-    cols = []
-    for j in range(n):
-        xp, xm = x_opt.copy(), x_opt.copy()
-        xp[j] = min(x_opt[j] + h[j], hi[j])
-        xm[j] = max(x_opt[j] - h[j], lo[j])
-        cols.append((resid(xp) - resid(xm)) / ((xp[j] - xm[j]) / width[j]))
-    jac = np.array(cols).T.reshape(len(names), n)
-    ident = identifiability(jac, tuple(keys), names)
-    gradient = 2.0 * (r @ jac) / width
+            minima.append((x, float(out.cost[k])))
+    x_opt, _ = minima[0]
+    r, jac = resid(x_opt[None])
+    r, jac = r[0], jac[0]
+    ident = identifiability(jac * width, keys, names)
+    gradient = 2.0 * (r @ jac)
 
     on_bound = {}
     for k, v, a, b in zip(keys, x_opt, lo, hi, strict=True):
@@ -366,10 +320,17 @@ def fit_free(case: Case, free: dict, names: tuple, eps, beta,
             on_bound[k] = "lower"
         elif v >= b - tol:
             on_bound[k] = "upper"
-    fitted, e_opt, b_opt = model_case(x_opt)
     values = dict(zip(keys, map(float, x_opt), strict=True))
+    e_opt = values.get("impact.restitution", fixed["eps"])
+    b_opt = values.get("impact.beta", fixed["beta"])
+    fitted = set_inputs(case, {k: v for k, v in values.items()
+                               if k not in ("impact.restitution", "impact.beta")})
     minima_out = tuple((dict(zip(keys, map(float, x), strict=True)), float(c))
                        for x, c in minima)
     return FreeFit(values=values, case=fitted, eps=float(e_opt), beta=float(b_opt),
                    cost=float(r @ r), residuals=r, on_bound=on_bound, gradient=gradient,
-                   minima=minima_out, identifiability=ident, nfev=nfev)
+                   minima=minima_out, identifiability=ident, nfev=int(out.nfev) + 1,
+                   extra={"converged": bool(out.converged.all()),
+                          "start_values": {k: float(current_value(case, k)) for k in keys
+                                           if k not in ("impact.restitution",
+                                                        "impact.beta")}})

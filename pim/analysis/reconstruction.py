@@ -21,6 +21,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..model.case import Case, Measured
+from .free_inputs import approach_direction
 from .momentum import MomentumSpeeds, momentum_speeds
 from .runout_fit import RunoutFit, fit_runout
 
@@ -47,16 +48,6 @@ class PostImpact:
     yaw_rate_sigma: dict
     momentum: MomentumSpeeds | None
     messages: list
-
-
-def approach_direction(vehicle) -> np.ndarray:
-    """Unit pre-impact direction of travel: the case's velocity, or its heading when the
-    velocity is zero (the direction of ``vehicleN.speed`` in the ``[unknown]`` table)."""
-    v = np.asarray(vehicle.velocity, dtype=float)
-    if np.hypot(*v) > 0:
-        return v / np.hypot(*v)
-    h = float(vehicle.heading)
-    return np.array([np.cos(h), np.sin(h)])
 
 
 def _velocity_covariance(fit: RunoutFit) -> tuple[np.ndarray, float]:

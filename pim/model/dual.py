@@ -3,8 +3,10 @@
 A :class:`Dual` carries a value and its gradient with respect to k seeded inputs; the
 formula, being plain arithmetic, runs on duals unchanged and so gives exact derivatives (to
 round-off, no step size) of every output with respect to any input. :func:`motion_jacobian`
-differentiates the post-impact motion of a case with respect to epsilon, beta, Gamma, C and
-the pre-impact velocities and yaw rates. The hand-derived derivatives in
+differentiates the post-impact motion of a case with respect to epsilon, beta, Gamma, C,
+the pre-impact velocities and yaw rates, the CG positions, masses and yaw inertias
+(:data:`MOTION_INPUTS`); :func:`motion_of_inputs` does the same from a plain array of those
+inputs, which is what a fit of any inputs iterates on. The hand-derived derivatives in
 :mod:`pim.analysis.derivatives` are tested against it.
 """
 
@@ -15,7 +17,8 @@ import numpy as np
 from . import formula
 from .case import Case
 
-__all__ = ["Dual", "motion_jacobian", "MOTION_OUTPUTS", "MOTION_INPUTS"]
+__all__ = ["Dual", "cos_sin", "motion_jacobian", "motion_inputs", "motion_of_inputs",
+           "MOTION_OUTPUTS", "MOTION_INPUTS"]
 
 
 class Dual:
@@ -84,14 +87,40 @@ class Dual:
         return self.value >= self._split(other)[0]
 
 
+def cos_sin(x):
+    """(cos x, sin x) of a number, an array or a :class:`Dual` (with d cos = -sin dx,
+    d sin = cos dx)."""
+    if not isinstance(x, Dual):
+        return np.cos(x), np.sin(x)
+    c, s = np.cos(x.value), np.sin(x.value)
+    return Dual(c, -s[..., None] * x.grad), Dual(s, c[..., None] * x.grad)
+
+
 #: Inputs :func:`motion_jacobian` differentiates with respect to, in column order [SI].
 MOTION_INPUTS = ("impact.restitution", "impact.beta", "impact.normal_angle", "impact.point_x",
                  "impact.point_y", "vehicle1.velocity_x", "vehicle1.velocity_y",
                  "vehicle1.yaw_rate", "vehicle2.velocity_x", "vehicle2.velocity_y",
-                 "vehicle2.yaw_rate")
+                 "vehicle2.yaw_rate", "vehicle1.cg_x", "vehicle1.cg_y", "vehicle2.cg_x",
+                 "vehicle2.cg_y", "vehicle1.mass", "vehicle1.yaw_inertia", "vehicle2.mass",
+                 "vehicle2.yaw_inertia")
 #: Outputs of :func:`motion_jacobian`, in row order [SI].
 MOTION_OUTPUTS = ("impulse_n", "impulse_t", "impulse_x", "impulse_y", "velocity1_x",
                   "velocity1_y", "velocity2_x", "velocity2_y", "yaw_rate1", "yaw_rate2")
+
+
+def motion_inputs(case: Case, eps, beta) -> np.ndarray:
+    """The values of :data:`MOTION_INPUTS` of ``case`` [SI], shape S + (19,).
+
+    A fixed obstacle's mass and yaw inertia are ``inf`` (zero inverse mass and inertia).
+    """
+    v1, v2, imp = case.vehicle1, case.vehicle2, case.impact
+    cols = (eps, beta, imp.normal_angle, imp.point[..., 0], imp.point[..., 1],
+            v1.velocity[..., 0], v1.velocity[..., 1], v1.yaw_rate, v2.velocity[..., 0],
+            v2.velocity[..., 1], v2.yaw_rate, v1.cg[..., 0], v1.cg[..., 1], v2.cg[..., 0],
+            v2.cg[..., 1], v1.mass, v1.yaw_inertia, v2.mass, v2.yaw_inertia)
+    cols = [np.asarray(c, dtype=float) for c in cols]
+    shape = np.broadcast_shapes(*(c.shape for c in cols))
+    return np.stack([np.broadcast_to(c, shape) for c in cols], axis=-1)
 
 
 def motion_jacobian(case: Case, eps, beta, approach_tol: float = 1e-12,
@@ -111,49 +140,91 @@ def motion_jacobian(case: Case, eps, beta, approach_tol: float = 1e-12,
     -------
     values : ndarray, shape S + (10,)
         The outputs of :data:`MOTION_OUTPUTS` [N s, m/s, rad/s].
-    jacobian : ndarray, shape S + (10, 11)
+    jacobian : ndarray, shape S + (10, 19)
         d output / d input for the inputs of :data:`MOTION_INPUTS` [SI per SI]; zero where
         the vehicles do not approach, NaN where q is singular.
+    """
+    return motion_of_inputs(motion_inputs(case, eps, beta), approach_tol, singular_tol)
+
+
+def motion_of_inputs(x, approach_tol: float = 1e-12, singular_tol: float = 1e-12,
+                     jacobian: bool = True) -> tuple[np.ndarray, np.ndarray | None]:
+    """Post-impact motion of the inputs ``x`` (:data:`MOTION_INPUTS` order) and its Jacobian.
+
+    Parameters
+    ----------
+    x : array_like, shape S + (19,)
+        Values of :data:`MOTION_INPUTS` [SI] (see :func:`motion_inputs`).
+    approach_tol, singular_tol : float
+        As in :func:`pim.solve`.
+    jacobian : bool
+        False: plain arithmetic, no derivatives (the fast path of a coarse search).
+
+    Returns
+    -------
+    values : ndarray, shape S + (10,)
+        The outputs of :data:`MOTION_OUTPUTS` [N s, m/s, rad/s] (formula of
+        :mod:`pim.model.formula`, the same as :func:`pim.solve`).
+    jacobian : ndarray, shape S + (10, 19), or None
+        d output / d input; zero where the vehicles do not approach, NaN where q is singular.
 
     Notes
     -----
-    Gamma enters through its sine and cosine, seeded with their derivatives (cos, -sin).
+    Gamma enters through its sine and cosine, seeded with their derivatives (cos, -sin); the
+    masses and inertias through their inverses, seeded with d(1/m)/dm = -1/m^2 (zero for a
+    fixed obstacle of infinite mass).
     """
-    v1, v2, imp = case.vehicle1, case.vehicle2, case.impact
-    eps, beta = np.asarray(eps, float), np.asarray(beta, float)
-    shape = np.broadcast_shapes(case.shape, eps.shape, beta.shape)
-    k = len(MOTION_INPUTS)
+    x = np.asarray(x, dtype=float)
+    shape, k = x.shape[:-1], len(MOTION_INPUTS)
 
-    def seed(value, index):
-        value = np.broadcast_to(np.asarray(value, float), shape)
+    def seed(index):
+        if not jacobian:
+            return x[..., index]
         grad = np.zeros(shape + (k,))
         grad[..., index] = 1.0
-        return Dual(value, grad)
+        return Dual(x[..., index], grad)
 
-    gamma = np.broadcast_to(imp.normal_angle, shape)
-    cs_grad = np.zeros(shape + (k,))
-    sn_grad = np.zeros(shape + (k,))
-    cs_grad[..., 2] = -np.sin(gamma)
-    sn_grad[..., 2] = np.cos(gamma)
-    cs, sn = Dual(np.cos(gamma), cs_grad), Dual(np.sin(gamma), sn_grad)
-    px, py = seed(imp.point[..., 0], 3), seed(imp.point[..., 1], 4)
-    r1x, r1y = px - v1.cg[..., 0], py - v1.cg[..., 1]
-    r2x, r2y = px - v2.cg[..., 0], py - v2.cg[..., 1]
-    v1x, v1y, w1 = seed(v1.velocity[..., 0], 5), seed(v1.velocity[..., 1], 6), seed(v1.yaw_rate, 7)
-    v2x, v2y, w2 = seed(v2.velocity[..., 0], 8), seed(v2.velocity[..., 1], 9), seed(v2.yaw_rate, 10)
-    e, b = seed(eps, 0), seed(beta, 1)
-    a1, b1 = v1.inverse_mass, v1.inverse_inertia
-    a2, b2 = v2.inverse_mass, v2.inverse_inertia
+    def inverse(index):
+        with np.errstate(divide="ignore"):
+            inv = 1.0 / x[..., index]
+        if not jacobian:
+            return inv
+        grad = np.zeros(shape + (k,))
+        grad[..., index] = -inv * inv
+        return Dual(inv, grad)
+
+    gamma = x[..., 2]
+    if jacobian:
+        cs_grad = np.zeros(shape + (k,))
+        sn_grad = np.zeros(shape + (k,))
+        cs_grad[..., 2] = -np.sin(gamma)
+        sn_grad[..., 2] = np.cos(gamma)
+        cs, sn = Dual(np.cos(gamma), cs_grad), Dual(np.sin(gamma), sn_grad)
+    else:
+        cs, sn = np.cos(gamma), np.sin(gamma)
+    e, b = seed(0), seed(1)
+    px, py = seed(3), seed(4)
+    v1x, v1y, w1 = seed(5), seed(6), seed(7)
+    v2x, v2y, w2 = seed(8), seed(9), seed(10)
+    r1x, r1y = px - seed(11), py - seed(12)
+    r2x, r2y = px - seed(13), py - seed(14)
+    a1, b1, a2, b2 = inverse(15), inverse(16), inverse(17), inverse(18)
     (_, _, _, _, _, _, _, pn0, pt0, drive, denom, appr, sing) = formula.contact(
         cs, sn, a1, b1, r1x, r1y, v1x, v1y, w1, a2, b2, r2x, r2y, v2x, v2y, w2, e, b,
         approach_tol, singular_tol)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        s = drive / denom
     nan = np.where(sing, np.nan, 1.0)
-    scale = Dual(np.where(appr, s.value, 0.0) * nan,
-                 np.where(appr[..., None], s.grad, 0.0) * nan[..., None])
+    if jacobian:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            s = drive / denom
+        scale = Dual(np.where(appr, s.value, 0.0) * nan,
+                     np.where(appr[..., None], s.grad, 0.0) * nan[..., None])
+    else:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            scale = np.where(appr, drive / denom, 0.0) * nan
     out = formula.post_impact(scale, pn0, pt0, b, cs, sn, a1, b1, r1x, r1y, v1x, v1y, w1,
                               a2, b2, r2x, r2y, v2x, v2y, w2)
+    if not jacobian:
+        return np.stack([np.broadcast_to(o, shape) for o in out], axis=-1), None
     values = np.stack([np.broadcast_to(o.value, shape) for o in out], axis=-1)
     jac = np.stack([np.broadcast_to(o.grad, shape + (k,)) for o in out], axis=-2)
     return values, jac
