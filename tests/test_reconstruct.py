@@ -10,10 +10,46 @@ from pim.cli.main import main
 KNOWN = 31.09 * 0.3048
 
 
-def test_case_without_evidence_is_one_line_and_exit_code_2(capsys):
+def test_case_without_unknowns_is_one_line_and_exit_code_2(capsys):
     assert main(["reconstruct", "ricsac9"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "[evidence]" in err[0]
+    assert len(err) == 1 and "[unknown]" in err[0]
+
+
+def test_ricsac9_turned_around_covers_the_staged_speeds(tmp_path, capsys):
+    """RICSAC 9's measured post-impact motion -> its impact speeds: the staged 21.2 mph of
+    each car (Brach & Brach 2011) lies inside the stated 5-95 % interval."""
+    assert main(["reconstruct", "ricsac9-reconstruct", "--out", str(tmp_path), "--json",
+                 "--samples", "4000"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    staged = 21.2 * 0.44704
+    for key in ("vehicle1.speed", "vehicle2.speed"):
+        row = data["unknowns"][key]
+        assert row["p5"] < staged < row["p95"], (key, row)
+        assert row["p5"] < row["p50"] < row["p95"]
+    assert {"impact.restitution", "impact.beta"} <= set(data["unknowns"])
+    assert {p.name for p in tmp_path.iterdir()} == {"report.md", "reconstruction.csv"}
+    csv = (tmp_path / "reconstruction.csv").read_text()
+    assert "vehicle1.speed,mph," in csv          # US case: mph in, mph out
+
+
+def test_under_determined_is_said_not_a_number(tmp_path, capsys):
+    """Both speeds, eps and beta from one vehicle's post-impact motion (3 numbers): exit 2
+    and one line naming what is missing."""
+    import pim
+    from dataclasses import replace
+
+    from pim.io.casefile import load_case
+
+    case = load_case("ricsac9-reconstruct")
+    one = replace(case, measured=pim.Measured(velocity1=case.measured.velocity1,
+                                              yaw_rate1=case.measured.yaw_rate1))
+    from pim.analysis.reconstruction import reconstruct
+
+    rec = reconstruct(one, samples=100)
+    assert not rec.determined and rec.values == {} and rec.samples is None
+    msg = " ".join(rec.messages)
+    assert "under-determined" in msg and "vehicle2's post-impact velocity" in msg
 
 
 @pytest.mark.slow

@@ -263,8 +263,9 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
         raise ValueError("fit needs a single case, not a batch of cases")
     names = measured_terms(case, include_yaw)
     (e_lo, e_hi), (b_lo, b_hi) = _check_bounds(bounds)
-    if eps is not None and beta is not None:
-        raise ValueError("eps and beta are both fixed: nothing to fit (fix at most one)")
+    if eps is not None and beta is not None and not free:
+        raise ValueError("eps and beta are both fixed: nothing to fit (fix at most one, or "
+                         "free other inputs)")
     fixed = tuple(n for n, v in (("eps", eps), ("beta", beta)) if v is not None)
     if eps is not None:
         eps = float(eps)

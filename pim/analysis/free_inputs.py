@@ -35,7 +35,7 @@ from ..model.dual import MOTION_INPUTS, Dual, cos_sin, motion_inputs
 from ..model.pdof import wrap_angle
 from ..model.quantities import INPUTS
 
-__all__ = ["FREE_KEYS", "EXTRA_KEYS", "STATE", "check_free", "check_free_for_case",
+__all__ = ["FREE_KEYS", "EXTRA_KEYS", "STATE", "check_free", "check_free_for_case", "fields_set_by",
            "case_state", "free_inputs", "set_inputs", "current_value",
            "approach_direction", "unit_or_heading"]
 
@@ -94,6 +94,18 @@ def check_free(free: dict) -> dict:
         if a in out and b in out:
             raise ValueError(f"free parameters {a} and {b} set the same field: free one of them")
     return out
+
+
+def fields_set_by(key: str) -> tuple[str, ...]:
+    """The inputs (:data:`STATE` names) that free key ``key`` overwrites."""
+    if key in _COLUMN:
+        return (key,)
+    group, attr = key.split(".", 1)
+    return {"point_along": ("impact.point_x", "impact.point_y"),
+            "speed": (f"{group}.velocity_x", f"{group}.velocity_y"),
+            "radius_of_gyration": (f"{group}.yaw_inertia",),
+            "phi": (f"{group}.cg_x", f"{group}.cg_y"),
+            "d": (f"{group}.cg_x", f"{group}.cg_y")}[attr]
 
 
 def check_free_for_case(case: Case, keys) -> None:

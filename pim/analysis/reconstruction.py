@@ -7,11 +7,16 @@ deviations from the fit's Jacobian and the evidence's sigmas. PIM's impact is
 instantaneous, so each vehicle separates from its impact position and heading (the case's
 ``cg`` and ``heading``).
 
-Step 2: the post-impact motion becomes the case's ``measured`` data; the pre-impact
-speeds, restitution and beta named in ``[unknown]`` are then fitted by ``pim.fit`` with
-``free=case.unknown`` (the inverse PIM, see /work/notes/fit-api.md). Beside it, the
-linear-momentum two-equation solve (:func:`pim.analysis.momentum.momentum_speeds`) is
-reported as a check.
+Step 2: the post-impact motion becomes the case's ``measured`` data (with standard
+deviations from step 1); the unknowns of ``[unknown]`` (pre-impact speeds, restitution,
+beta ...) are solved by the inverse PIM (:func:`pim.analysis.inverse_pim.inverse_pim`).
+Beside it, the linear-momentum two-equation solve
+(:func:`pim.analysis.momentum.momentum_speeds`) is reported as a check. A case without
+``[evidence]`` but with ``[measured]`` post-impact motion starts at step 2.
+
+Step 3 (:func:`reconstruct` with ``samples``): a Monte Carlo over the stated uncertainties
+(:mod:`pim.analysis.reconstruction_mc`) gives each unknown's 5/50/95 % values and the inputs
+that drive its spread.
 """
 
 from __future__ import annotations
@@ -21,11 +26,19 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..model.case import Case, Measured
-from .free_inputs import approach_direction
+from .fitting import FitResult
+from .free_inputs import approach_direction, check_free
+from .inverse_pim import inverse_pim, under_determined
 from .momentum import MomentumSpeeds, momentum_speeds
+from .reconstruction_mc import (
+    ReconstructionSamples,
+    reconstruction_samples,
+    residual_standard_error,
+)
 from .runout_fit import RunoutFit, fit_runout
 
-__all__ = ["PostImpact", "post_impact_motion", "approach_direction"]
+__all__ = ["PostImpact", "post_impact_motion", "approach_direction", "Reconstruction",
+           "reconstruct"]
 
 
 @dataclass(frozen=True)
@@ -96,6 +109,8 @@ def post_impact_motion(case: Case, *, speed_bounds=(0.0, 60.0),
         vel_cov[i], yaw_sigma[i] = _velocity_covariance(fit)
         measured[f"velocity{i}"] = fit.velocity
         measured[f"yaw_rate{i}"] = fit.yaw_rate
+        measured[f"velocity{i}_sigma"] = np.sqrt(np.maximum(np.diag(vel_cov[i]), 1e-12))
+        measured[f"yaw_rate{i}_sigma"] = max(yaw_sigma[i], 1e-9)
         if fit.message:
             messages.append(f"vehicle{i}: {fit.message}")
     momentum = None
@@ -108,3 +123,138 @@ def post_impact_motion(case: Case, *, speed_bounds=(0.0, 60.0),
             messages.append(f"linear momentum: {momentum.message}")
     return PostImpact(replace(case, measured=Measured(**measured)), runouts, vel_cov,
                       yaw_sigma, momentum, messages)
+
+
+@dataclass(frozen=True)
+class Reconstruction:
+    """Outcome of :func:`reconstruct` (SI).
+
+    Attributes
+    ----------
+    case : Case
+        The case solved: the input case with ``measured`` = the post-impact motion used.
+    unknown : dict
+        The unknowns' bounds [SI] (the ``[unknown]`` table).
+    post : PostImpact or None
+        Step 1 (run-out inverse of the evidence); None when the case's ``[measured]`` motion
+        was used directly.
+    fit : FitResult or None
+        The inverse PIM (None when under-determined).
+    values : dict
+        Unknown key -> solved value [SI] (empty when under-determined).
+    momentum : MomentumSpeeds or None
+        The linear-momentum check (both vehicles' post-impact velocities needed).
+    samples : ReconstructionSamples or None
+        The Monte Carlo (None without ``samples``).
+    determined : bool
+        False when the data cannot decide the unknowns (``messages`` says why).
+    messages : list of str
+    """
+
+    case: Case
+    unknown: dict
+    post: PostImpact | None
+    fit: FitResult | None
+    values: dict
+    momentum: MomentumSpeeds | None
+    samples: ReconstructionSamples | None
+    determined: bool
+    messages: list
+
+    def table(self) -> list[dict]:
+        """Per unknown: name, value, p5, p50, p95 [SI] (percentiles NaN without samples)."""
+        rows = []
+        for key, value in self.values.items():
+            st = self.samples.stats.get(key) if self.samples else None
+            rows.append({"name": key, "value": float(value),
+                         "p5": st.p5 if st else float("nan"),
+                         "p50": st.p50 if st else float("nan"),
+                         "p95": st.p95 if st else float("nan"),
+                         "drivers": st.drivers if st else []})
+        return rows
+
+
+def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, seed: int = 0,
+                include_yaw: bool = True, post_impact_samples=None) -> Reconstruction:
+    """Evidence (or measured post-impact motion) -> impact speeds, eps, beta, with intervals.
+
+    Parameters
+    ----------
+    case : Case
+        With ``[evidence]`` for one or both vehicles, or with ``[measured]`` post-impact motion;
+        and the unknowns (``[unknown]`` or ``unknown``).
+    unknown : dict, optional
+        Dotted key -> (low, high) [SI]; default ``case.unknown``.
+    samples : int
+        Monte Carlo samples (0: none).
+    seed : int
+        Seed of the Monte Carlo.
+    include_yaw : bool
+        Fit the post-impact yaw rates too (default).
+    post_impact_samples : callable, optional
+        Per-sample post-impact motion from the evidence, for the Monte Carlo (see
+        :func:`pim.analysis.reconstruction_mc.reconstruction_samples`).
+
+    Returns
+    -------
+    Reconstruction
+        With ``determined = False`` and a message naming what is missing when the data cannot
+        decide the unknowns; never a number then.
+    """
+    unknown = check_free(case.unknown if unknown is None else unknown)
+    if not unknown:
+        raise ValueError("unknown: nothing to solve for; name the unknowns in an [unknown] "
+                         "table (e.g. vehicle1.speed = {bounds = [\"0 mph\", \"80 mph\"]})")
+    has_evidence = case.evidence is not None and (case.evidence.vehicle1 is not None
+                                                   or case.evidence.vehicle2 is not None)
+    post = post_impact_motion(case) if has_evidence else None
+    solved = post.case if post else case
+    if solved.measured is None:
+        raise ValueError("reconstruct: the case has neither [evidence] nor [measured] "
+                         "post-impact motion")
+    messages = list(post.messages) if post else []
+    momentum = post.momentum if post else _momentum_of(solved)
+    if momentum is not None and momentum.message and not post:
+        messages.append(f"linear momentum: {momentum.message}")
+    why = under_determined(solved, unknown, include_yaw)
+    if why:
+        return Reconstruction(solved, unknown, post, None, {}, momentum, None, False,
+                              messages + [why])
+    fitted = inverse_pim(solved, unknown, include_yaw=include_yaw)
+    ident = fitted.identifiability
+    determined = ident is None or ident.identifiable
+    messages += list(ident.warnings) if ident else []
+    for key, side in fitted.on_bound.items():
+        messages.append(f"{key} sits on its {side} bound")
+    values = {k: v for k, v in fitted.values.items()} if determined else {}
+    if momentum is not None and not post and solved.measured.velocity1_sigma is None:
+        s_hat = residual_standard_error(fitted)          # no sigma stated: the fit's
+        if np.isfinite(s_hat):
+            momentum = _momentum_of(solved, s_hat)
+    mc = None
+    if determined and samples:
+        mc = reconstruction_samples(solved, fitted, unknown, n=samples, seed=seed,
+                                    include_yaw=include_yaw, post_impact=post_impact_samples)
+        messages += mc.messages
+    return Reconstruction(solved, unknown, post, fitted, values, momentum, mc, determined,
+                          messages)
+
+
+def _momentum_of(case: Case, sigma: float | None = None) -> MomentumSpeeds | None:
+    """The linear-momentum speeds of the measured motion; ``sigma`` [m/s] (isotropic)
+    replaces the stated standard deviations."""
+    m = case.measured
+    if m.velocity1 is None or m.velocity2 is None or np.any(case.vehicle2.fixed) or np.any(
+            case.vehicle1.fixed):
+        return None
+    return momentum_speeds(float(case.vehicle1.mass), float(case.vehicle2.mass),
+                           approach_direction(case.vehicle1),
+                           approach_direction(case.vehicle2), m.velocity1, m.velocity2,
+                           _covariance(m.velocity1_sigma, sigma),
+                           _covariance(m.velocity2_sigma, sigma))
+
+
+def _covariance(stated, sigma):
+    if sigma is not None:
+        return float(sigma)
+    return 0.0 if stated is None else np.diag(np.asarray(stated) ** 2)

@@ -50,17 +50,18 @@ US_UNIT_NAMES = frozenset({"foot", "inch", "yard", "mile", "mile_per_hour", "for
 DISPLAY_UNITS = {
     "si": {"velocity": "m/s", "speed": "m/s", "angular_velocity": "deg/s", "impulse": "N*s",
            "energy": "kJ", "length": "m", "mass": "kg", "inertia": "kg*m**2", "angle": "deg",
-           "force": "N"},
+           "force": "N", "impact_speed": "m/s", "dimensionless": "dimensionless"},
     "us": {"velocity": "ft/s", "speed": "ft/s", "angular_velocity": "deg/s", "impulse": "lbf*s",
            "energy": "ft*lbf", "length": "ft", "mass": "slug", "inertia": "slug*ft**2",
-           "angle": "deg", "force": "lbf"},
+           "angle": "deg", "force": "lbf", "impact_speed": "mph",
+           "dimensionless": "dimensionless"},
 }
 UNIT_SYSTEMS = tuple(DISPLAY_UNITS)
 
 #: SI unit of each output kind.
 SI_UNITS = {"velocity": "m/s", "speed": "m/s", "angular_velocity": "rad/s", "impulse": "N*s",
             "energy": "J", "length": "m", "mass": "kg", "inertia": "kg*m**2", "angle": "rad",
-            "force": "N"}
+            "force": "N", "impact_speed": "m/s", "dimensionless": "dimensionless"}
 
 
 @lru_cache(maxsize=1)
@@ -203,4 +204,5 @@ def convert(value, kind: str, system: str):
         raise ValueError(f"units must be one of {', '.join(UNIT_SYSTEMS)}, got {system!r}")
     target = DISPLAY_UNITS[system][kind]
     factor = registry().Quantity(1.0, SI_UNITS[kind]).to(target).magnitude
-    return np.asarray(value) * factor, target.replace("**", "^").replace("*", " ")
+    label = "-" if target == "dimensionless" else target.replace("**", "^").replace("*", " ")
+    return np.asarray(value) * factor, label

@@ -24,7 +24,7 @@ UNKNOWN_KINDS = {
         ("radius_of_gyration", "length"), ("yaw_inertia", "inertia"))},
     "impact.restitution": "dimensionless", "impact.beta": "dimensionless",
     "impact.normal_angle": "angle", "impact.point_x": "length", "impact.point_y": "length",
-    "impact.point_along": "dimensionless",
+    "impact.point_along": "length",
 }
 
 

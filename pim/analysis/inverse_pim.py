@@ -1,0 +1,137 @@
+"""Inverse PIM: the pre-impact unknowns (speeds, velocities, yaw rates, eps, beta ...) from
+the measured post-impact motion.
+
+The unknowns are the ``[unknown]`` table's dotted keys (:data:`pim.analysis.free_inputs.FREE_KEYS`,
+e.g. ``vehicle1.speed`` along the case's direction of travel); the data are the measured
+post-impact velocities and yaw rates with their standard deviations as weights (the
+``[measured]`` sigmas). :func:`inverse_pim` is :func:`pim.analysis.fitting.fit` with
+``free=`` the unknowns: a vectorised Sobol search, then a batched Levenberg-Marquardt on
+exact derivatives, with the rank, families and bounds it reports. Restitution and beta not
+named in the table stay as the case gives them (beta 1 when it gives none).
+
+Before any number is given, :func:`under_determined` compares the unknowns with the data:
+more unknowns than measured quantities is said plainly, naming what is missing (which
+vehicle's post-impact motion); a rank-deficient fit (a family of exact solutions) likewise.
+
+:func:`inverse_pim_many` solves many such problems at once (one per Monte Carlo sample),
+each with its own inputs and measured motion, starting from the nominal solution.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..model.case import Case
+from ..model.solver import defaults
+from .fitting import FitResult, fit
+from .free_fit import free_residuals
+from .free_inputs import check_free
+from .least_squares_batch import BatchFit, least_squares_batch
+from .residuals import measured_terms
+
+__all__ = ["inverse_pim", "inverse_pim_many", "under_determined", "fixed_coefficients"]
+
+
+def fixed_coefficients(case: Case, unknown: dict) -> tuple:
+    """(eps, beta) held fixed: None where the table names it as unknown, else the case's
+    (beta defaults to 1)."""
+    eps = None if "impact.restitution" in unknown else case.impact.restitution
+    if "impact.restitution" not in unknown and eps is None:
+        raise ValueError("impact.restitution: not given in [impact] and not named in "
+                         "[unknown]; give it or solve for it")
+    beta = None if "impact.beta" in unknown else defaults(case, 0.0, None)[1]
+    return eps, beta
+
+
+def under_determined(case: Case, unknown: dict, include_yaw: bool = True) -> str:
+    """Why the unknowns cannot be decided by the measured motion, or "" when they may be.
+
+    Counts the unknowns (with restitution and beta when named) against the measured
+    quantities, and names the vehicles whose post-impact motion is missing.
+    """
+    names = measured_terms(case, include_yaw)
+    n_unknown, n_data = len(unknown), len(names)
+    if n_unknown <= n_data:
+        return ""
+    m = case.measured
+    missing = [f"vehicle{i}'s post-impact {what}" for i in (1, 2) for what, value in (
+        ("velocity", getattr(m, f"velocity{i}")),
+        ("yaw rate", getattr(m, f"yaw_rate{i}") if include_yaw else 0.0)) if value is None]
+    hint = (f"; missing: {', '.join(missing)} (evidence of that vehicle's rest position "
+            "gives it)" if missing else "; fix some of them (e.g. beta = 1) instead")
+    return (f"under-determined: {n_unknown} unknowns ({', '.join(unknown)}) but only "
+            f"{n_data} measured quantities ({', '.join(names)}){hint}")
+
+
+def inverse_pim(case: Case, unknown: dict | None = None, *, include_yaw: bool = True,
+                samples: int = 256, seed: int = 0) -> FitResult:
+    """The unknowns that best reproduce the measured post-impact motion.
+
+    Parameters
+    ----------
+    case : Case
+        Single case with ``measured`` (sigmas weight the residuals when given).
+    unknown : dict, optional
+        Dotted key -> (low, high) [SI]; default ``case.unknown`` (the ``[unknown]`` table).
+    include_yaw : bool
+        Fit the measured yaw rates too (default).
+    samples, seed : int
+        Coarse search size and seed (:func:`pim.analysis.fitting.fit`).
+
+    Returns
+    -------
+    FitResult
+        ``values`` holds every unknown by its key [SI]; ``identifiability`` says whether the
+        data decide them.
+
+    Raises
+    ------
+    ValueError
+        No unknowns, bad bounds, nothing measured, or more unknowns than measured quantities
+        (the message names what is missing).
+    """
+    unknown = check_free(case.unknown if unknown is None else unknown)
+    if not unknown:
+        raise ValueError("unknown: nothing to solve for (the case has no [unknown] table)")
+    why = under_determined(case, unknown, include_yaw)
+    if why:
+        raise ValueError(why)
+    eps, beta = fixed_coefficients(case, unknown)
+    return fit(case, include_yaw=include_yaw, eps=eps, beta=beta, free=unknown,
+               samples=samples, seed=seed)
+
+
+def inverse_pim_many(base, keys, bounds, x0, rows, target, factor) -> BatchFit:
+    """Many inverse problems at once: sample p has state ``base[p]`` (the model's inputs,
+    :func:`pim.analysis.free_inputs.case_state`) and measured ``target[p]``.
+
+    Parameters
+    ----------
+    base : ndarray (m, 21)
+        Everything not solved for, per sample.
+    keys : sequence of str
+        The unknowns (restitution and beta first when they are unknown).
+    bounds : sequence of (low, high)
+        Per key [SI].
+    x0 : array_like (n,) or (m, n)
+        Starting point(s): the nominal solution.
+    rows, target, factor :
+        Residual terms (:func:`pim.analysis.free_fit.residual_terms`); target and factor
+        (m, k) or (k,).
+
+    Returns
+    -------
+    BatchFit
+    """
+    base = np.asarray(base, dtype=float)
+    m = base.shape[0]
+    target = np.broadcast_to(np.asarray(target, dtype=float), (m, len(rows)))
+    factor = np.broadcast_to(np.asarray(factor, dtype=float), (m, len(rows)))
+    lo = np.array([b[0] for b in bounds], dtype=float)
+    hi = np.array([b[1] for b in bounds], dtype=float)
+    x0 = np.broadcast_to(np.asarray(x0, dtype=float), (m, len(keys)))
+
+    def fun(x, idx):
+        return free_residuals(base[idx], keys, x, rows, target[idx], factor[idx])
+
+    return least_squares_batch(fun, x0, lo, hi, max_iter=100)

@@ -1,0 +1,204 @@
+"""Monte Carlo of a reconstruction: the stated uncertainties -> each unknown's 5/50/95 % and
+which input drives its spread.
+
+Each sample draws, by inverse CDF from one uniform variate per quantity (common random
+numbers, as :mod:`pim.analysis.montecarlo`):
+
+- the case's inputs from its ``[uncertainty]`` table (masses, C, Gamma, ...;
+  :func:`pim.model.distributions.sample_inputs`);
+- the measured post-impact motion, normal about the measured value with the ``[measured]``
+  standard deviations (or, where the case states none, the residual standard error of the
+  nominal fit, s = sqrt(cost / (k - n)) for k data and n unknowns: the classic estimate of an
+  unstated measurement error, said in the report);
+- with ``[evidence]``, the post-impact motion comes instead from the run-out inverse of each
+  sample's rest position and heading (normal with the evidence's sigmas) and friction,
+  solved for all samples at once (:func:`post_impact_samples`).
+
+Then every sample's inverse PIM is solved at once
+(:func:`pim.analysis.inverse_pim.inverse_pim_many`)
+from the nominal solution. The percentiles are over the samples whose fit converged (and whose
+run-outs reached their evidence); the first-order indices (correlation ratio,
+:func:`pim.analysis.montecarlo.first_order_indices`) over the same samples rank the inputs.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..model.distributions import UncertaintyTable, nominal_values, sample_inputs
+from .fitting import FitResult
+from .free_fit import residual_terms
+from .free_inputs import STATE, fields_set_by
+from .inverse_pim import inverse_pim_many
+from .montecarlo import PERCENTILES, first_order_indices
+from .residuals import measured_terms
+
+__all__ = ["UnknownStats", "ReconstructionSamples", "reconstruction_samples",
+           "residual_standard_error"]
+
+
+@dataclass(frozen=True)
+class UnknownStats:
+    """One unknown over the Monte Carlo samples [SI].
+
+    ``drivers`` lists (input, first-order index) by decreasing index.
+    """
+
+    name: str
+    nominal: float
+    p5: float
+    p50: float
+    p95: float
+    mean: float
+    std: float
+    drivers: list
+
+
+@dataclass(frozen=True)
+class ReconstructionSamples:
+    """Outcome of :func:`reconstruction_samples`.
+
+    Attributes
+    ----------
+    n : int
+        Samples drawn.
+    n_used : int
+        Samples whose fit converged (and, with evidence, whose run-out reached the rest
+        evidence and stopped).
+    stats : dict
+        Unknown key -> :class:`UnknownStats`.
+    samples : dict
+        Unknown key -> its values over the used samples [SI].
+    varying : tuple of str
+        The quantities that varied (inputs, measured components, evidence).
+    measured_sigma_source : str
+        "stated" or "residual standard error".
+    messages : list of str
+    """
+
+    n: int
+    n_used: int
+    stats: dict
+    samples: dict
+    varying: tuple
+    measured_sigma_source: str
+    messages: list
+
+
+def residual_standard_error(fit_result: FitResult) -> float:
+    """s = sqrt(cost / (k - n)) of an unweighted fit [m/s] (NaN without degrees of freedom)."""
+    k = len(fit_result.residual_names)
+    n = len(fit_result.values)
+    return float(np.sqrt(fit_result.cost / (k - n))) if k > n else float("nan")
+
+
+def _measured_sigmas(case, names, fit_result) -> tuple[np.ndarray, str]:
+    """Per residual term: the sigma of the measured value [m/s or rad/s] and its source."""
+    m = case.measured
+    sig = []
+    for name in names:
+        if name.startswith("velocity"):
+            i, axis = int(name[8]), "xy".index(name[-1])
+            s = getattr(m, f"velocity{i}_sigma")
+            sig.append(None if s is None else float(s[axis]))
+        else:
+            s = getattr(m, f"yaw_rate{name[-1]}_sigma")
+            sig.append(None if s is None else float(s))
+    if all(s is not None for s in sig):
+        return np.array(sig), "stated"
+    s = residual_standard_error(fit_result)
+    if not np.isfinite(s):
+        raise ValueError("measured: no standard deviations are stated and the fit has no "
+                         "degrees of freedom to estimate them; give *_sigma in [measured]")
+    _, _, scale = residual_terms(case, names)      # 1 for velocities, k_i for yaw rates
+    return s / scale, "residual standard error"
+
+
+def reconstruction_samples(case, fit_result: FitResult, unknown: dict, n: int = 10_000,
+                           seed: int = 0,
+                           distributions: UncertaintyTable | None = None,
+                           include_yaw: bool = True, post_impact=None) -> ReconstructionSamples:
+    """Monte Carlo of the inverse PIM over the stated uncertainties (module notes).
+
+    Parameters
+    ----------
+    case : Case
+        Single case with ``measured`` (the nominal post-impact motion).
+    fit_result : FitResult
+        The nominal inverse PIM (:func:`pim.analysis.inverse_pim.inverse_pim`) of ``case``.
+    unknown : dict
+        The unknowns' bounds [SI], as given to the nominal fit.
+    n : int
+        Number of samples (>= 10).
+    seed : int
+        Seed of numpy's default generator.
+    distributions : UncertaintyTable, optional
+        Default ``case.uncertainty`` (may be None: then only the measured motion varies).
+    include_yaw : bool
+        As in the nominal fit.
+    post_impact : callable, optional
+        ``post_impact(values, uniforms, rng) -> (targets (n, k), ok (n,), varying dict)``:
+        the post-impact motion per sample from the evidence (the run-out inverse); default:
+        the measured motion drawn with its sigmas.
+    """
+    n = int(n)
+    if n < 10:
+        raise ValueError(f"samples must be >= 10, got {n}")
+    rng = np.random.default_rng(seed)
+    dists = case.uncertainty if distributions is None else distributions
+    keys = tuple(fit_result.values)
+    eps0 = fit_result.eps
+    beta0 = fit_result.beta
+    nominal = nominal_values(case, eps0, beta0)
+    solved = {f for k in keys for f in fields_set_by(k)}
+    uncertain = UncertaintyTable({k: d for k, d in (dists.inputs.items() if dists else ())
+                                  if k not in solved})
+    values, uniforms = sample_inputs(uncertain, nominal, n, rng)
+    names = measured_terms(case, include_yaw)
+    rows, target, factor = residual_terms(case, names)
+    messages = []
+    if post_impact is None:
+        from scipy.special import ndtri
+
+        sigma, source = _measured_sigmas(case, names, fit_result)
+        targets = np.empty((n, len(names)))
+        for j, name in enumerate(names):
+            u = rng.random(n) + 2.0**-54
+            uniforms[f"measured.{name}"] = u
+            targets[:, j] = target[j] + sigma[j] * ndtri(u)
+        ok_post = np.ones(n, dtype=bool)
+        if source != "stated":
+            messages.append(f"measured: no standard deviations stated; the residual standard "
+                            f"error of the nominal fit ({residual_standard_error(fit_result):.3g}"
+                            f" m/s) stands for them")
+    else:
+        targets, ok_post, extra = post_impact(values, uniforms, rng)
+        uniforms.update(extra)
+        source = "evidence"
+    base = np.stack([np.broadcast_to(np.asarray(values[name], dtype=float), (n,))
+                     for name in STATE], axis=-1)
+    bounds = [unknown[k] for k in keys]
+    x0 = np.array([fit_result.values[k] for k in keys])
+    out = inverse_pim_many(base, keys, bounds, x0, rows, targets, factor)
+    ok = out.converged & ok_post & np.all(np.isfinite(out.x), axis=1)
+    n_used = int(ok.sum())
+    if n_used < n:
+        messages.append(f"{n - n_used} of {n} samples left out (fit not converged or no "
+                        f"post-impact motion reaching the evidence)")
+    u_ok = {k: u[ok] for k, u in uniforms.items()}
+    stats, samples = {}, {}
+    for j, key in enumerate(keys):
+        y = out.x[ok, j]
+        samples[key] = y
+        if n_used:
+            p5, p50, p95 = np.percentile(y, PERCENTILES)
+            drivers = first_order_indices(y, u_ok) if n_used > 1 else []
+            stats[key] = UnknownStats(key, float(x0[j]), float(p5), float(p50), float(p95),
+                                      float(y.mean()), float(y.std()), drivers)
+        else:
+            stats[key] = UnknownStats(key, float(x0[j]), *([np.nan] * 5), [])
+    return ReconstructionSamples(n=n, n_used=n_used, stats=stats, samples=samples,
+                                 varying=tuple(uniforms), measured_sigma_source=source,
+                                 messages=messages)
