@@ -36,9 +36,9 @@ def test_ricsac9_turned_around_covers_the_staged_speeds(tmp_path, capsys):
 def test_under_determined_is_said_not_a_number(tmp_path, capsys):
     """Both speeds, eps and beta from one vehicle's post-impact motion (3 numbers): exit 2
     and one line naming what is missing."""
-    import pim
     from dataclasses import replace
 
+    import pim
     from pim.io.casefile import load_case
 
     case = load_case("ricsac9-reconstruct")

@@ -53,6 +53,8 @@ __all__ = ["FREE_KEYS", "Identifiability", "FreeFit", "set_inputs", "check_free"
            "current_value", "fit_free", "identifiability", "free_residuals",
            "residual_terms"]
 
+#: Box-scaled distance within which two starts of the local search count as one minimum.
+MERGE = 1e-3
 #: Residual that stands for a failed evaluation (singular q, no approach) [weighted units].
 PENALTY = 1e6
 
@@ -301,11 +303,11 @@ def fit_free(case: Case, free: dict, names: tuple, eps, beta,
             starts.append(i)
 
     # ---- local refinement of every start at once, exact derivatives ----------------------
-    out = least_squares_batch(lambda x, idx: resid(x), xs[starts], lo, hi)
+    out = least_squares_batch(lambda x, idx: resid(x), xs[starts], lo, hi, merge=MERGE)
     minima = []
     for k in np.argsort(out.cost, kind="stable"):
         x = out.x[k]
-        if all(np.max(np.abs(x - y) / width) > 1e-4 for y, _ in minima):
+        if all(np.max(np.abs(x - y) / width) > MERGE for y, _ in minima):
             minima.append((x, float(out.cost[k])))
     x_opt, _ = minima[0]
     r, jac = resid(x_opt[None])

@@ -178,7 +178,7 @@ def free_inputs(base, keys, x, *, jacobian: bool = False):
         raise ValueError(f"x has {n} columns but {len(keys)} keys were given")
     base = case_state(base) if isinstance(base, Case) else np.asarray(base, dtype=float)
     base = np.broadcast_to(base, (m, len(STATE)))
-    cols: list = [base[:, k] for k in range(len(STATE))]
+    cols: list = list(base.T)
 
     def value(j):
         if not jacobian:
@@ -213,8 +213,9 @@ def free_inputs(base, keys, x, *, jacobian: bool = False):
             c, s = cos_sin(cols[_COLUMN[f"vehicle{i}.heading"]] + phi)
             cols[_COLUMN[f"vehicle{i}.cg_x"]] = cols[cx] - d * c
             cols[_COLUMN[f"vehicle{i}.cg_y"]] = cols[cy] - d * s
-    state = np.stack([np.broadcast_to(c.value if isinstance(c, Dual) else c, (m,))
-                      for c in cols], axis=-1)
+    state = np.empty((m, len(STATE)))
+    for k, c in enumerate(cols):
+        state[:, k] = c.value if isinstance(c, Dual) else c
     if not jacobian:
         return state, None
     jac = np.zeros((m, len(STATE), n))

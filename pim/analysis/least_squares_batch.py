@@ -17,7 +17,8 @@ in Mathematics 630, 1978, with Marquardt's diagonal scaling):
   trial point is clipped into the box;
 - accept the step when the cost falls (then lambda /= 3), else lambda *= 4 and retry;
 - stop a problem when the relative cost decrease of an accepted step is below ``ftol``, its
-  step below ``xtol`` (in scaled variables), its projected gradient below ``gtol``, or
+  step below ``xtol`` (in scaled variables), its projected gradient below ``gtol``, a refused
+  step was promised a decrease below 1e-14 of the cost by the linear model (round-off), or
   lambda has grown past 1e12 (no descent left at round-off).
 
 Rank-deficient problems (families of exact fits) are handled by the damping: the iteration
@@ -67,7 +68,7 @@ class BatchFit:
 
 def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: float = 0.0,
                         xtol: float = 1e-13, gtol: float = 1e-14,
-                        lam0: float = 1e-3) -> BatchFit:
+                        lam0: float = 1e-3, merge: float | None = None) -> BatchFit:
     """Minimise ``sum r(x)^2`` for m problems at once, each x in the box [lower, upper].
 
     Parameters
@@ -86,6 +87,10 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
         Stopping tolerances (module notes); ``xtol`` and ``gtol`` in box-scaled variables.
     lam0 : float
         Initial damping.
+    merge : float, optional
+        For multi-start use (the m problems are one problem from m starts): a running start
+        that comes within ``merge`` (box-scaled, max norm) of a converged one with no lower
+        cost is stopped as a duplicate of it (``x`` and ``cost`` become the converged one's).
 
     Returns
     -------
@@ -144,12 +149,26 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
         cost[acc] = ct[better]
         lam[acc] = np.maximum(lam[acc] / 3.0, 1e-12)
         lam[idx[~better]] *= 4.0
+        # decrease of sum r^2 the linear model promised for the step (round-off floor)
+        jstep = np.einsum("pki,pi->pk", jf, step)
+        promised = -2.0 * np.einsum("pi,pi->p", gfree, step) - np.sum(jstep**2, axis=1)
+        flat = promised <= 1e-14 * np.maximum(cost[idx], 1e-300)
         done = (small_grad
                 | (better & ((drop <= ftol * ct) | (moved <= xtol)))
-                | (~better & (moved <= xtol))
+                | (~better & ((moved <= xtol) | flat))
                 | (lam[idx] > 1e12))
         converged[idx[done]] = True
         running[idx[done]] = False
+        if merge is not None and converged.any() and running.any():
+            live, fixed = np.flatnonzero(running), np.flatnonzero(converged)
+            dist = np.max(np.abs(u[live][:, None, :] - u[fixed][None, :, :]), axis=-1)
+            near = np.argmin(dist, axis=1)
+            dup = (dist[np.arange(live.size), near] <= merge) & (
+                cost[live] >= cost[fixed[near]] * (1.0 - 1e-9))
+            for p_, q_ in zip(live[dup], fixed[near[dup]], strict=True):
+                u[p_], r[p_], j[p_], cost[p_] = u[q_], r[q_], j[q_], cost[q_]
+            converged[live[dup]] = True
+            running[live[dup]] = False
     x = lo + u * width
     on_bound = np.where(u <= 0.0, -1, np.where(u >= 1.0, 1, 0)).astype(np.int8)
     return BatchFit(x=x, cost=cost, residuals=r, jacobian=j / width[:, None, :],

@@ -31,6 +31,14 @@ class Dual:
         self.value = np.asarray(value, dtype=float)
         self.grad = np.asarray(grad, dtype=float)
 
+    @classmethod
+    def _new(cls, value, grad):
+        """A dual from arrays already of float dtype (no conversion: the arithmetic's path)."""
+        d = object.__new__(cls)
+        d.value = value
+        d.grad = grad
+        return d
+
     @staticmethod
     def _split(x):
         if isinstance(x, Dual):
@@ -38,40 +46,53 @@ class Dual:
         return np.asarray(x, dtype=float), 0.0
 
     def __add__(self, other):
-        v, g = self._split(other)
-        return Dual(self.value + v, self.grad + g)
+        if isinstance(other, Dual):
+            return Dual._new(self.value + other.value, self.grad + other.grad)
+        return Dual._new(self.value + other, self.grad + 0.0)
 
     __radd__ = __add__
 
     def __sub__(self, other):
-        v, g = self._split(other)
-        return Dual(self.value - v, self.grad - g)
+        if isinstance(other, Dual):
+            return Dual._new(self.value - other.value, self.grad - other.grad)
+        return Dual._new(self.value - other, self.grad + 0.0)
 
     def __rsub__(self, other):
-        v, g = self._split(other)
-        return Dual(v - self.value, g - self.grad)
+        return Dual._new(other - self.value, -self.grad)
 
     def __mul__(self, other):
-        v, g = self._split(other)
-        return Dual(self.value * v, self.grad * v[..., None] + self.value[..., None] * g)
+        if isinstance(other, Dual):
+            return Dual._new(self.value * other.value,
+                             self.grad * other.value[..., None]
+                             + self.value[..., None] * other.grad)
+        v = np.asarray(other, dtype=float)
+        if v.ndim == 0:
+            return Dual._new(self.value * v, self.grad * v)
+        return Dual._new(self.value * v, self.grad * v[..., None]
+                         + np.zeros_like(self.value)[..., None])
 
     __rmul__ = __mul__
 
     def __truediv__(self, other):
-        v, g = self._split(other)
+        if isinstance(other, Dual):
+            q = self.value / other.value
+            return Dual._new(q, (self.grad - q[..., None] * other.grad) / other.value[..., None])
+        v = np.asarray(other, dtype=float)
         q = self.value / v
-        return Dual(q, (self.grad - q[..., None] * g) / v[..., None])
+        if v.ndim == 0:
+            return Dual._new(q, self.grad / v)
+        return Dual._new(q, self.grad / v[..., None] + np.zeros_like(q)[..., None])
 
     def __rtruediv__(self, other):
-        v, g = self._split(other)
+        v = np.asarray(other, dtype=float)
         q = v / self.value
-        return Dual(q, (g - q[..., None] * self.grad) / self.value[..., None])
+        return Dual._new(q, -q[..., None] * self.grad / self.value[..., None])
 
     def __neg__(self):
-        return Dual(-self.value, -self.grad)
+        return Dual._new(-self.value, -self.grad)
 
     def __abs__(self):
-        return Dual(np.abs(self.value), np.sign(self.value)[..., None] * self.grad)
+        return Dual._new(np.abs(self.value), np.sign(self.value)[..., None] * self.grad)
 
     # comparisons act on the values (the branch flags of the formula)
     def __lt__(self, other):

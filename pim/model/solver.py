@@ -79,7 +79,10 @@ def defaults(case: Case, eps=None, beta=None):
     if eps is None:
         eps = case.impact.restitution
         if eps is None:
-            raise ValueError("eps is required: give it or set impact.restitution in the case")
+            hint = ("; this case names unknowns in [unknown]: `pim reconstruct` solves them"
+                    if getattr(case, "unknown", None) else "")
+            raise ValueError("eps is required: give it or set impact.restitution in the "
+                             f"case{hint}")
     if beta is None:
         beta = 1.0 if case.impact.beta is None else case.impact.beta
     return eps, beta
