@@ -33,3 +33,22 @@ def test_parsing_units_and_errors():
         pim.uncertainty(collinear(), n=100)
     with pytest.raises(ValueError, match="unknown input"):
         UncertaintyTable({"impact.gamma": Distribution("fixed", 1.0)})
+
+
+def test_evidence_friction_is_an_uncertain_input():
+    unc = parse_uncertainty({"evidence": {"vehicle1": {"friction": {"plusminus": 0.1}}},
+                             "impact": {"normal_angle": {"plusminus": "5 deg"}}})
+    assert unc.inputs["evidence.vehicle1.friction"] == Distribution("plusminus", None, 0.1)
+    with pytest.raises(ValueError, match="unknown input 'evidence.vehicle1.grip'"):
+        parse_uncertainty({"evidence": {"vehicle1": {"grip": {"plusminus": 0.1}}}})
+    with pytest.raises(ValueError, match="vehicle1 / vehicle2 tables"):
+        parse_uncertainty({"evidence": {"vehicle1": 0.1}})
+    # a friction spread reaching zero is outside the admissible range (0, inf)
+    from pim.model.distributions import sample_inputs
+
+    table = parse_uncertainty({"evidence": {"vehicle1": {"friction": {"uniform": [0.0, 0.8]}}}})
+    with pytest.raises(ValueError, match="admissible range"):
+        sample_inputs(table, {"evidence.vehicle1.friction": 0.7}, 10,
+                      np.random.default_rng(0))
+    with pytest.raises(ValueError, match=r"\[evidence\]"):
+        sample_inputs(table, {}, 10, np.random.default_rng(0))

@@ -215,6 +215,8 @@ def uncertainty(case: Case, n: int = 100_000, seed: int | None = 0,
         raise ValueError(f"samples must be >= 10, got {n}")
     nominal_in = nominal_values(case, eps, beta)
     rng = np.random.default_rng(seed)
+    # evidence inputs (run-out friction) do not act on the impact: pim reconstruct samples them
+    dists = UncertaintyTable({k: d for k, d in dists.inputs.items() if k in nominal_in})
     values, uniforms = sample_inputs(dists, nominal_in, n, rng)
 
     nominal_result = solve(case, nominal_in["impact.restitution"], nominal_in["impact.beta"],

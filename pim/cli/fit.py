@@ -30,16 +30,16 @@ free_option = click.option(
     help="Also fit this input within [LO, HI] (unit strings), by its case-file key, e.g. "
          '--free impact.normal_angle="0 deg,90 deg" --free vehicle1.radius_of_gyration='
          '"1 m,1.6 m"; repeatable. Keys: every [uncertainty] input, '
-         "vehicleN.radius_of_gyration, vehicleN.speed.")
+         "vehicleN.radius_of_gyration, vehicleN.speed, Brach's vehicleN.phi and vehicleN.d, "
+         "impact.point_along (C along the contact plane).")
 
 
 def _kind_of(key: str) -> str:
     """Unit kind of a free key, for parsing its bounds and printing its value."""
+    from ..model.evidence import UNKNOWN_KINDS
     from ..model.quantities import INPUTS
 
-    if key in INPUTS:
-        return INPUTS[key].kind
-    return "length" if key.endswith("radius_of_gyration") else "velocity"
+    return INPUTS[key].kind if key in INPUTS else UNKNOWN_KINDS[key]
 
 
 def _key_value(item: str, allowed, option: str, form: str) -> tuple[str, str]:

@@ -5,7 +5,8 @@ See :mod:`pim.model.distributions` for the inputs, the distribution kinds and sa
 
 from __future__ import annotations
 
-from ..model.distributions import INPUTS, KINDS, Distribution, UncertaintyTable
+from ..model.distributions import KINDS, Distribution, UncertaintyTable
+from ..model.quantities import UNCERTAIN
 from .priors import prior_distribution
 from .units import parse
 
@@ -14,7 +15,7 @@ __all__ = ["parse_uncertainty"]
 
 def _parse_one(name: str, spec) -> Distribution:
     where = f"uncertainty.{name}"
-    kind_of = INPUTS[name].kind
+    kind_of = UNCERTAIN[name].kind
     if not isinstance(spec, dict):
         raise ValueError(f"{where} must be a table such as {{normal = ...}}, "
                          f"{{uniform = [low, high]}}, {{plusminus = ...}}, {{fixed = ...}} "
@@ -66,14 +67,24 @@ def parse_uncertainty(table) -> UncertaintyTable | None:
     if not isinstance(table, dict):
         raise ValueError("uncertainty must be a table")
     flat = {}
-    for group, entries in table.items():
-        if group not in ("vehicle1", "vehicle2", "impact") or not isinstance(entries, dict):
+    groups = [(g, e) for g, e in table.items() if g != "evidence"]
+    evidence = table.get("evidence")
+    if evidence is not None:
+        if not isinstance(evidence, dict) or not all(isinstance(e, dict)
+                                                      for e in evidence.values()):
+            raise ValueError("uncertainty.evidence must hold vehicle1 / vehicle2 tables, e.g. "
+                             "evidence.vehicle1.friction = {plusminus = 0.1}")
+        groups += [(f"evidence.{g}", e) for g, e in evidence.items()]
+    for group, entries in groups:
+        if group.split(".")[0] not in ("vehicle1", "vehicle2", "impact", "evidence") or \
+                not isinstance(entries, dict):
             raise ValueError(f"uncertainty: unknown input {group!r} (use vehicle1.<input>, "
-                             f"vehicle2.<input> or impact.<input>; allowed: {', '.join(INPUTS)})")
+                             f"vehicle2.<input>, impact.<input> or evidence.vehicleN.friction; "
+                             f"allowed: {', '.join(UNCERTAIN)})")
         for key, spec in entries.items():
             name = f"{group}.{key}"
-            if name not in INPUTS:
+            if name not in UNCERTAIN:
                 raise ValueError(f"uncertainty: unknown input {name!r} "
-                                 f"(allowed: {', '.join(INPUTS)})")
+                                 f"(allowed: {', '.join(UNCERTAIN)})")
             flat[name] = _parse_one(name, spec)
     return UncertaintyTable(flat)

@@ -40,14 +40,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .quantities import INPUTS
+from .quantities import UNCERTAIN
 from .solver import defaults
 
 __all__ = ["Distribution", "UncertaintyTable", "nominal_values", "sample_inputs"]
 
 #: Admissible (low, high) of inputs that have one; low is exclusive for mass and inertia.
 _RANGE = {"impact.restitution": (0.0, 1.0),
-          **{f"vehicle{i}.{k}": (0.0, np.inf) for i in (1, 2) for k in ("mass", "yaw_inertia")}}
+          **{f"vehicle{i}.{k}": (0.0, np.inf) for i in (1, 2) for k in ("mass", "yaw_inertia")},
+          **{f"evidence.vehicle{i}.friction": (0.0, np.inf) for i in (1, 2)}}
 KINDS = ("normal", "uniform", "plusminus", "fixed", "prior")
 
 
@@ -120,7 +121,7 @@ class Distribution:
     def check(self, nominal: float, name: str) -> None:
         """ValueError if values of this distribution fall outside the input's range."""
         low, high = _RANGE.get(name, (-np.inf, np.inf))
-        open_low = name.endswith(("mass", "yaw_inertia"))
+        open_low = name.endswith(("mass", "yaw_inertia", "friction"))
         if self.kind == "normal":
             mean = nominal if self.a is None else self.a
             if not (low <= mean <= high) or (open_low and mean <= low):
@@ -156,9 +157,9 @@ class UncertaintyTable:
 
     def __post_init__(self) -> None:
         for name, dist in self.inputs.items():
-            if name not in INPUTS:
+            if name not in UNCERTAIN:
                 raise ValueError(f"uncertainty: unknown input {name!r} "
-                                 f"(allowed: {', '.join(INPUTS)})")
+                                 f"(allowed: {', '.join(UNCERTAIN)})")
             if not isinstance(dist, Distribution):
                 raise ValueError(f"uncertainty.{name} must be a Distribution")
 
@@ -198,13 +199,16 @@ def sample_inputs(uncertainty: UncertaintyTable, nominal: dict, n: int, rng) -> 
         Input name -> the uniform variates (n,) its samples came from (varying inputs only).
     """
     values, uniforms = dict(nominal), {}
-    fixed_obstacle = np.isinf(nominal["vehicle2.mass"])
+    fixed_obstacle = np.isinf(nominal.get("vehicle2.mass", 1.0))
     for name, dist in uncertainty.inputs.items():
         if fixed_obstacle and name in ("vehicle2.mass", "vehicle2.yaw_inertia",
                                        "vehicle2.velocity_x", "vehicle2.velocity_y",
                                        "vehicle2.yaw_rate"):
             raise ValueError(f"uncertainty.{name}: vehicle2 is a fixed obstacle; "
                              f"its {name.split('.')[1]} cannot be uncertain")
+        if name not in nominal:
+            raise ValueError(f"uncertainty.{name}: the case has no nominal value for it "
+                             f"(an evidence input needs that vehicle's [evidence] table)")
         dist.check(nominal[name], name)
         if not dist.varies:
             values[name] = dist.sample(nominal[name], np.zeros(1), name)[0]

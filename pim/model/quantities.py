@@ -15,7 +15,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["Quantity", "FIELDS", "INPUTS", "MEASURED", "OUTPUTS", "VECTOR_FIELDS", "field_of"]
+__all__ = ["Quantity", "FIELDS", "INPUTS", "EVIDENCE_INPUTS", "UNCERTAIN", "MEASURED", "OUTPUTS",
+           "VECTOR_FIELDS", "field_of"]
 
 
 @dataclass(frozen=True)
@@ -65,6 +66,15 @@ def _components() -> dict[str, Quantity]:
 
 #: Every scalar input of a case: the fields, vectors split into their x and y parts.
 INPUTS: dict[str, Quantity] = _components()
+
+#: Inputs of a reconstruction's evidence that an ``[uncertainty]`` table may also vary (they
+#: act on the run-out, not on the impact).
+EVIDENCE_INPUTS: dict[str, Quantity] = {
+    f"evidence.vehicle{i}.friction": Quantity("dimensionless",
+                                             f"tyre-road friction of vehicle {i}")
+    for i in (1, 2)}
+#: Every name an ``[uncertainty]`` table accepts.
+UNCERTAIN: dict[str, Quantity] = {**INPUTS, **EVIDENCE_INPUTS}
 
 
 #: The measured post-impact motion of a case file's ``[measured]`` table, as inputs of a fit.
