@@ -20,6 +20,7 @@ import argparse
 import time
 
 import numpy as np
+from bench_fit import median_time  # a sibling script: benchmarks run from their folder
 from scipy.optimize import least_squares
 
 import pim
@@ -28,15 +29,6 @@ from pim.analysis.free_inputs import case_state
 from pim.analysis.inverse_pim import inverse_pim
 from pim.analysis.reconstruction import reconstruct
 from pim.analysis.residuals import measured_terms
-
-
-def median_time(func, repeats):
-    times = []
-    for _ in range(repeats):
-        t = time.perf_counter()
-        func()
-        times.append(time.perf_counter() - t)
-    return float(np.median(times))
 
 
 def main(argv=None):
