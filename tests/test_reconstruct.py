@@ -2,10 +2,15 @@
 synthetic case's report files and JSON (slow: two run-out fits)."""
 
 import json
+from dataclasses import replace
+from importlib import resources
 
 import pytest
 
+import pim
+from pim.analysis.reconstruction import reconstruct
 from pim.cli.main import main
+from pim.io.casefile import load_case
 
 KNOWN = 31.09 * 0.3048
 
@@ -36,16 +41,17 @@ def test_ricsac9_turned_around_covers_the_staged_speeds(tmp_path, capsys):
 def test_under_determined_is_said_not_a_number(tmp_path, capsys):
     """Both speeds, eps and beta from one vehicle's post-impact motion (3 numbers): exit 2
     and one line naming what is missing."""
-    from dataclasses import replace
-
-    import pim
-    from pim.io.casefile import load_case
-
+    text = (resources.files("pim.io") / "cases" / "ricsac9-reconstruct.toml").read_text()
+    kept = [line for line in text.splitlines() if not line.startswith("vehicle2.velocity =")
+            and not line.startswith("vehicle2.yaw_rate =")]
+    path = tmp_path / "one-vehicle.toml"
+    path.write_text("\n".join(kept) + "\n")
+    assert main(["reconstruct", str(path)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "under-determined" in err[0] and "vehicle2" in err[0]
     case = load_case("ricsac9-reconstruct")
     one = replace(case, measured=pim.Measured(velocity1=case.measured.velocity1,
                                               yaw_rate1=case.measured.yaw_rate1))
-    from pim.analysis.reconstruction import reconstruct
-
     rec = reconstruct(one, samples=100)
     assert not rec.determined and rec.values == {} and rec.samples is None
     msg = " ".join(rec.messages)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import pim
-from pim.analysis.reconstruction import approach_direction, post_impact_motion
+from pim.analysis.reconstruction import approach_direction, post_impact_motion, reconstruct
 
 KNOWN = 31.09 * 0.3048  # [m/s], both vehicles
 
@@ -40,3 +40,22 @@ def test_approach_direction_is_velocity_or_heading():
     np.testing.assert_allclose(approach_direction(case.vehicle1), [-1.0, 0.0], atol=1e-12)
     parked = replace(case.vehicle2, velocity=np.zeros(2), heading=np.pi / 2)
     np.testing.assert_allclose(approach_direction(parked), [0.0, 1.0], atol=1e-12)
+
+
+@pytest.mark.slow
+def test_synthetic_case_inverse_pim_recovers_the_speeds_to_1e_6():
+    """The whole chain without noise: rest evidence -> run-out inverse -> inverse PIM gives
+    back the speeds (and eps) the evidence was generated with."""
+    rec = reconstruct(pim.load_case("synthetic-runout"))
+    assert rec.determined and rec.messages == []
+    assert rec.values["vehicle1.speed"] == pytest.approx(KNOWN, abs=1e-6)
+    assert rec.values["vehicle2.speed"] == pytest.approx(KNOWN, abs=1e-6)
+    assert rec.values["impact.restitution"] == pytest.approx(0.355, abs=1e-6)
+    assert rec.momentum.speed1 == pytest.approx(KNOWN, abs=1e-6)
+
+
+def test_a_case_with_neither_evidence_nor_measured_motion_is_refused():
+    case = replace(pim.load_case("ricsac9"), measured=None,
+                   unknown={"vehicle1.speed": (0.0, 30.0)})
+    with pytest.raises(ValueError, match=r"neither \[evidence\] nor \[measured\]"):
+        reconstruct(case)
