@@ -14,6 +14,7 @@ import pytest
 
 import pim
 from pim.model import kernel
+from pim.model.numba_cache import cache_stamp
 from pim.model.solver import APPROACH_TOLERANCE, SINGULAR_TOLERANCE
 
 FIELDS = ["velocity1", "velocity2", "yaw_rate1", "yaw_rate2", "impulse", "impulse_n",
@@ -221,7 +222,7 @@ def test_numba_cache_key_covers_the_formula():
     digest = hashlib.sha256(Path(formula.__file__).read_bytes()).hexdigest()
     for dispatcher in (kernel._solve_kernel_libm, kernel._solve_kernel_fast,
                        kernel._copy_kernel):
-        stamp = kernel.cache_stamp(dispatcher)
+        stamp = cache_stamp(dispatcher)
         assert stamp[1] == digest
         assert stamp[0]  # numba's own stamp of kernel.py is still part of the key
 

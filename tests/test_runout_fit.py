@@ -63,3 +63,20 @@ def test_bad_evidence_names_the_field(kwargs, field):
     rest_position, rest_heading = args.pop("rest_position"), args.pop("rest_heading")
     with pytest.raises(ValueError, match=field):
         fit_runout(CAR, [0.0, 0.0], 0.0, rest_position, rest_heading, **args)
+
+
+def test_path_distance_is_to_the_continuous_path_not_its_chords():
+    """A curved run-out (solve_ivp's steps are long, their chords cut inside the curve by
+    millimetres): the distance must be the brute-force one on the dense output."""
+    from pim.analysis.runout_fit import path_distance
+    from pim.model.runout import RunoutVehicle, runout
+
+    car = RunoutVehicle(mass=1500.0, yaw_inertia=2500.0, wheelbase=2.7, track=1.5,
+                        cg_to_front=1.2, friction=0.8, braking=(1.0, 1.0, 0.3, 0.3))
+    run = runout(car, [0, 0], 0.4, [6.17, 1.53], 1.2, rtol=1e-9, atol=1e-11,
+                 dense_output=True)
+    points = np.array([[1.63987893, 0.49641693], [2.5, 1.3]])
+    t = np.linspace(0.0, run.time[-1], 200_001)
+    path = run.interpolant(t)[:2].T
+    brute = [np.min(np.hypot(*(path - p).T)) for p in points]
+    np.testing.assert_allclose(path_distance(points, run), brute, atol=2e-6)

@@ -35,6 +35,7 @@ from .reconstruction_mc import (
     reconstruction_samples,
     residual_standard_error,
 )
+from .residuals import measured_terms
 from .runout_fit import RunoutFit, fit_runout
 
 __all__ = ["PostImpact", "post_impact_motion", "approach_direction", "Reconstruction",
@@ -233,8 +234,15 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
             momentum = _momentum_of(solved, s_hat)
     mc = None
     if determined and samples:
+        extra_nominal, sampler = {}, post_impact_samples
+        if post is not None and sampler is None:
+            extra_nominal = {f"evidence.vehicle{i}.friction":
+                             float(getattr(case.evidence, f"vehicle{i}").friction)
+                             for i in post.runouts}
+            sampler = evidence_sampler(case, post, include_yaw)
         mc = reconstruction_samples(solved, fitted, unknown, n=samples, seed=seed,
-                                    include_yaw=include_yaw, post_impact=post_impact_samples)
+                                    include_yaw=include_yaw, post_impact=sampler,
+                                    extra_nominal=extra_nominal)
         messages += mc.messages
     return Reconstruction(solved, unknown, post, fitted, values, momentum, mc, determined,
                           messages)
@@ -258,3 +266,60 @@ def _covariance(stated, sigma):
     if sigma is not None:
         return float(sigma)
     return 0.0 if stated is None else np.diag(np.asarray(stated) ** 2)
+
+
+def evidence_sampler(case: Case, post: PostImpact, include_yaw: bool = True):
+    """The Monte Carlo's post-impact motion per sample from the evidence.
+
+    Returns ``sampler(values, uniforms, rng, n) -> (targets (n, k), ok (n,), uniforms)``: for
+    each vehicle with evidence, its rest position and heading drawn normal about the measured
+    ones with the evidence's sigmas (one uniform variate each, for the driver attribution),
+    its friction, mass, yaw inertia, separation position and heading from the sampled inputs
+    ``values``; all samples' run-out inverses solved at once
+    (:func:`pim.analysis.runout_fit_batch.fit_runout_many`, started from the nominal fit).
+    ``ok`` drops the samples whose run-out fit did not converge or whose motion does not stop.
+    """
+    from scipy.special import ndtri
+
+    from .runout_fit_batch import fit_runout_many  # compiled run-out: numba on first use
+
+    names = measured_terms(post.case, include_yaw)
+
+    def sampler(values, uniforms, rng, n):
+        def each(name):
+            return np.broadcast_to(np.asarray(values[name], dtype=float), (n,))
+
+        targets = np.empty((n, len(names)))
+        ok = np.ones(n, dtype=bool)
+        extra = {}
+        for i, nominal in post.runouts.items():
+            ev = getattr(case.evidence, f"vehicle{i}")
+            p = f"vehicle{i}."
+            u = {key: rng.random(n) + 2.0**-54 for key in
+                 (f"evidence.vehicle{i}.rest_position_x", f"evidence.vehicle{i}.rest_position_y",
+                  f"evidence.vehicle{i}.rest_heading")}
+            extra.update(u)
+            keys = list(u)
+            rest = np.stack([ev.rest_position[0] + ev.position_sigma * ndtri(u[keys[0]]),
+                             ev.rest_position[1] + ev.position_sigma * ndtri(u[keys[1]])],
+                            axis=-1)
+            rest_heading = ev.rest_heading + ev.heading_sigma * ndtri(u[keys[2]])
+            vehicle = replace(ev.runout_vehicle(each(p + "mass"), each(p + "yaw_inertia")),
+                              friction=each(f"evidence.vehicle{i}.friction"))
+            fit = fit_runout_many(
+                vehicle, np.stack([each(p + "cg_x"), each(p + "cg_y")], axis=-1),
+                each(p + "heading"), rest, rest_heading,
+                start=(nominal.speed, nominal.direction, nominal.yaw_rate),
+                path_points=ev.path_points if len(ev.path_points) else None,
+                position_sigma=ev.position_sigma, heading_sigma=ev.heading_sigma)
+            ok &= fit.converged & fit.stopped
+            for j, name in enumerate(names):
+                if name == f"velocity{i}_x":
+                    targets[:, j] = fit.velocity[:, 0]
+                elif name == f"velocity{i}_y":
+                    targets[:, j] = fit.velocity[:, 1]
+                elif name == f"yaw_rate{i}":
+                    targets[:, j] = fit.yaw_rate
+        return targets, ok, extra
+
+    return sampler

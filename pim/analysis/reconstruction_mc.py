@@ -119,7 +119,8 @@ def _measured_sigmas(case, names, fit_result) -> tuple[np.ndarray, str]:
 def reconstruction_samples(case, fit_result: FitResult, unknown: dict, n: int = 10_000,
                            seed: int = 0,
                            distributions: UncertaintyTable | None = None,
-                           include_yaw: bool = True, post_impact=None) -> ReconstructionSamples:
+                           include_yaw: bool = True, post_impact=None,
+                           extra_nominal: dict | None = None) -> ReconstructionSamples:
     """Monte Carlo of the inverse PIM over the stated uncertainties (module notes).
 
     Parameters
@@ -139,9 +140,13 @@ def reconstruction_samples(case, fit_result: FitResult, unknown: dict, n: int = 
     include_yaw : bool
         As in the nominal fit.
     post_impact : callable, optional
-        ``post_impact(values, uniforms, rng) -> (targets (n, k), ok (n,), varying dict)``:
-        the post-impact motion per sample from the evidence (the run-out inverse); default:
-        the measured motion drawn with its sigmas.
+        ``post_impact(values, uniforms, rng, n) -> (targets (n, k), ok (n,), uniforms)``:
+        the post-impact motion per sample from the evidence (the run-out inverse,
+        :func:`pim.analysis.reconstruction.evidence_sampler`); default: the measured motion
+        drawn with its sigmas.
+    extra_nominal : dict, optional
+        Nominal values of the evidence inputs (``evidence.vehicleN.friction``) that the
+        ``[uncertainty]`` table may vary.
     """
     n = int(n)
     if n < 10:
@@ -151,10 +156,10 @@ def reconstruction_samples(case, fit_result: FitResult, unknown: dict, n: int = 
     keys = tuple(fit_result.values)
     eps0 = fit_result.eps
     beta0 = fit_result.beta
-    nominal = nominal_values(case, eps0, beta0)
+    nominal = {**nominal_values(case, eps0, beta0), **(extra_nominal or {})}
     solved = {f for k in keys for f in fields_set_by(k)}
     uncertain = UncertaintyTable({k: d for k, d in (dists.inputs.items() if dists else ())
-                                  if k not in solved})
+                                  if k not in solved and k in nominal})
     values, uniforms = sample_inputs(uncertain, nominal, n, rng)
     names = measured_terms(case, include_yaw)
     rows, target, factor = residual_terms(case, names)
@@ -174,7 +179,7 @@ def reconstruction_samples(case, fit_result: FitResult, unknown: dict, n: int = 
                             f"error of the nominal fit ({residual_standard_error(fit_result):.3g}"
                             f" m/s) stands for them")
     else:
-        targets, ok_post, extra = post_impact(values, uniforms, rng)
+        targets, ok_post, extra = post_impact(values, uniforms, rng, n)
         uniforms.update(extra)
         source = "evidence"
     base = np.stack([np.broadcast_to(np.asarray(values[name], dtype=float), (n,))

@@ -32,14 +32,11 @@ The unit normal and tangent share one buffer ``(-sin G, cos G, sin G)`` of shape
 
 from __future__ import annotations
 
-import hashlib
-from pathlib import Path
-
 import numpy as np
 from numba import njit, prange
-from numba.core import caching
 
 from . import formula
+from .numba_cache import files_stamp, stamped_cache
 from .quantities import FIELDS, VECTOR_FIELDS
 from .result import Result
 
@@ -61,46 +58,10 @@ AUX = AUX_VECTORS + AUX_SCALARS + ("normal", "tangent")
 
 
 # ---- numba's cache, keyed on this file and on the formula -------------------------------------
-# numba keys a cached function on its own source file only (kernel.py): an edit of
-# pim/model/formula.py, whose functions the kernels compile, would leave a stale kernel that
-# silently disagrees with the numpy path. The locators below add the formula's SHA-256 to the
-# source stamp, so numba recompiles the kernels whenever either file changes.
-
 #: SHA-256 of pim/model/formula.py: part of the numba cache key of every kernel here.
-FORMULA_STAMP = hashlib.sha256(Path(formula.__file__).read_bytes()).hexdigest()
-
-
-class _FormulaStamp:
-    """Locator mixin: the source stamp of kernel.py together with :data:`FORMULA_STAMP`."""
-
-    def get_source_stamp(self):
-        return super().get_source_stamp(), FORMULA_STAMP
-
-
-class _FormulaCacheImpl(caching.CompileResultCacheImpl):
-    _locator_classes = [type(f"{cls.__name__}WithFormula", (_FormulaStamp, cls), {})
-                        for cls in getattr(caching.CompileResultCacheImpl,
-                                           "_locator_classes", ())]
-
-
-class _FormulaCache(caching.FunctionCache):
-    _impl_class = _FormulaCacheImpl
-
-
-def _cached(dispatcher):
-    """Cache a compiled kernel on disk under a key that covers kernel.py and the formula
-    (numba's ``cache=True`` covers kernel.py alone). Where no cache location is writable the
-    kernel is compiled in every process instead, as ``cache=True`` would."""
-    try:
-        dispatcher._cache = _FormulaCache(dispatcher.py_func)
-    except (RuntimeError, AttributeError):  # no locator for this file, or numba's caching
-        pass                                # internals changed: compile in every process
-    return dispatcher
-
-
-def cache_stamp(dispatcher) -> object:
-    """The source stamp numba stores with a kernel's cache (for tests and diagnostics)."""
-    return dispatcher._cache._impl.locator.get_source_stamp()
+FORMULA_STAMP = files_stamp(formula)
+#: Decorator caching a kernel under a key that covers kernel.py and the formula.
+_cached = stamped_cache(formula)
 
 
 #: Angles |Gamma| [rad] up to this take the kernel's own sine and cosine; beyond it the

@@ -31,10 +31,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from .geometry import dot, perp, rotate
+from .geometry import rotate
 
 __all__ = ["WHEELS", "STANDARD_GRAVITY", "DEFAULT_REGULARISATION", "wheel_positions",
-           "static_loads", "tyre_forces", "net_force_and_moment",
+           "static_loads", "tyre_forces", "wheel_force", "net_force_and_moment",
            "regularised_slide_distance"]
 
 WHEELS = ("front_left", "front_right", "rear_left", "rear_right")
@@ -135,22 +135,54 @@ def tyre_forces(velocity, yaw_rate, heading, positions, loads, friction, braking
         [N], global frame.
     """
     velocity = np.asarray(velocity, dtype=float)
-    yaw_rate = np.asarray(yaw_rate, dtype=float)
-    heading = np.asarray(heading, dtype=float)
-    arms = rotate(positions, heading[..., None])                      # (..., 4, 2) global
-    slip = velocity[..., None, :] + yaw_rate[..., None, None] * perp(arms)
-    wheel_heading = heading[..., None] + np.asarray(steer, dtype=float)
-    lateral = np.stack([-np.sin(wheel_heading), np.cos(wheel_heading)], axis=-1)
-    lateral_slip = dot(slip, lateral)[..., None] * lateral
-    vr2 = regularisation * regularisation
+    heading = np.asarray(heading, dtype=float)[..., None]
+    positions = np.asarray(positions, dtype=float)
+    wheel_heading = heading + np.asarray(steer, dtype=float)
+    fx, fy, _ = wheel_force(np.cos(heading), np.sin(heading), velocity[..., None, 0],
+                            velocity[..., None, 1], np.asarray(yaw_rate, dtype=float)[..., None],
+                            positions[..., 0], positions[..., 1], np.cos(wheel_heading),
+                            np.sin(wheel_heading), np.asarray(loads, dtype=float),
+                            np.asarray(friction, dtype=float)[..., None],
+                            np.asarray(braking, dtype=float), regularisation)
+    return np.stack(np.broadcast_arrays(fx, fy), axis=-1)
 
-    def unit(s):
-        return s / np.sqrt(dot(s, s) + vr2)[..., None]
 
-    f = np.asarray(braking, dtype=float)[..., None]
-    direction = f * unit(slip) + (1.0 - f) * unit(lateral_slip)
-    scale = np.asarray(friction, dtype=float)[..., None] * np.asarray(loads, dtype=float)
-    return -scale[..., None] * direction
+def wheel_force(c, s, vx, vy, omega, px, py, cw, sw, load, mu, braking, vr):
+    """Force of one tyre [N] (global frame) and its yaw moment about the CG [N m].
+
+    The law of :func:`tyre_forces` in plain arithmetic on numbers or broadcasting arrays (so
+    numba compiles the same function for the batched run-out, :mod:`pim.model.runout_kernel`).
+
+    Parameters
+    ----------
+    c, s : cos and sin of the vehicle's heading psi.
+    vx, vy : CG velocity [m/s]; omega : yaw rate [rad/s].
+    px, py : tyre position in the body frame [m].
+    cw, sw : cos and sin of the wheel's heading psi + delta.
+    load : normal load N [N]; mu : friction coefficient [-]; braking : f in [0, 1].
+    vr : slip regularisation v_r [m/s].
+
+    Returns
+    -------
+    fx, fy, moment
+        ``F = -mu N [f g(s) + (1 - f) g((s . e_t) e_t)]`` with the slip ``s = v + omega k x
+        R(psi) p``, ``e_t = (-sin, cos)(psi + delta)`` and ``g(s) = s / sqrt(|s|^2 + v_r^2)``;
+        the moment ``(R(psi) p) x F``.
+    """
+    ax = c * px - s * py                       # arm R(psi) p, global frame
+    ay = s * px + c * py
+    sx = vx - omega * ay                       # slip velocity of the contact point
+    sy = vy + omega * ax
+    ex, ey = -sw, cw                           # wheel's lateral unit vector
+    lat = sx * ex + sy * ey
+    lx, ly = lat * ex, lat * ey
+    vr2 = vr * vr
+    full = braking / np.sqrt(sx * sx + sy * sy + vr2)
+    side = (1.0 - braking) / np.sqrt(lx * lx + ly * ly + vr2)
+    scale = -mu * load
+    fx = scale * (full * sx + side * lx)
+    fy = scale * (full * sy + side * ly)
+    return fx, fy, ax * fy - ay * fx
 
 
 def net_force_and_moment(forces, positions, heading):

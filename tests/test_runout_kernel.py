@@ -1,0 +1,66 @@
+"""pim/model/runout_kernel.py: the compiled batched run-out against closed forms, the numpy
+fixed-step integrator (same scheme: agreement to round-off), solve_ivp (the reference), and
+the path-point distance against geometry."""
+
+import numpy as np
+import pytest
+
+from pim.model.runout import RunoutVehicle, runout, runout_many
+from pim.model.runout_kernel import integrate_many
+from pim.model.tyres import regularised_slide_distance
+
+CAR = RunoutVehicle(mass=1500.0, yaw_inertia=2500.0, wheelbase=2.7, track=1.5,
+                    cg_to_front=1.2, friction=0.8, braking=(1.0, 1.0, 0.3, 0.3),
+                    steer=(0.2, 0.2, 0.0, 0.0))
+
+
+def test_locked_straight_slide_is_the_closed_form():
+    car = RunoutVehicle(1500.0, 2500.0, 2.7, 1.5, 1.2, 0.8)
+    v0 = np.array([20.0, 8.0, 31.0])
+    psi = np.array([0.3, -2.0, 1.0])
+    d = np.stack([np.cos(psi), np.sin(psi)], axis=-1)
+    final, _, stopped, _ = integrate_many(car, np.zeros((3, 2)), psi, v0[:, None] * d,
+                                          np.zeros(3))
+    assert stopped.all()
+    np.testing.assert_allclose(np.hypot(*final[:, :2].T),
+                               regularised_slide_distance(v0, 0.8), atol=5e-4)
+
+
+def test_same_scheme_as_the_numpy_integrator_and_close_to_solve_ivp():
+    rng = np.random.default_rng(5)
+    n = 40
+    pos = rng.uniform(-3, 3, (n, 2))
+    psi = rng.uniform(-np.pi, np.pi, n)
+    vel = rng.uniform(-12, 12, (n, 2))
+    omega = rng.uniform(-3, 3, n)
+    final, stop_time, stopped, _ = integrate_many(CAR, pos, psi, vel, omega)
+    batch = runout_many(CAR, pos, psi, vel, omega)
+    np.testing.assert_allclose(final[:, :2], batch.rest_position, atol=1e-9)
+    np.testing.assert_allclose(final[:, 2], batch.rest_heading, atol=1e-9)
+    np.testing.assert_array_equal(stopped, batch.stopped)
+    for k in range(5):
+        ref = runout(CAR, pos[k], psi[k], vel[k], omega[k], rtol=1e-11, atol=1e-12)
+        assert np.hypot(*(final[k, :2] - ref.rest_position)) < 2e-3
+        assert abs(final[k, 2] - ref.rest_heading) < 1e-3
+
+
+def test_path_distance_is_the_distance_to_the_travelled_line():
+    car = RunoutVehicle(1500.0, 2500.0, 2.7, 1.5, 1.2, 0.8)
+    # straight slide along +x from the origin: a point at (5, 0.7) is 0.7 m off the path,
+    # one behind the start is its distance to the start
+    _, _, _, dist = integrate_many(car, [[0.0, 0.0]], [0.0], [[15.0, 0.0]], [0.0],
+                                   path_points=[[5.0, 0.7], [-2.0, 0.0]])
+    np.testing.assert_allclose(dist[0], [0.7, 2.0], atol=1e-9)
+
+
+def test_free_rolling_is_flagged_not_stopped():
+    car = RunoutVehicle(1500.0, 2500.0, 2.7, 1.5, 1.2, 0.8, braking=(0, 0, 0, 0))
+    final, stop_time, stopped, _ = integrate_many(car, [[0.0, 0.0]], [0.0], [[12.0, 0.0]],
+                                                  [0.0], max_time=2.0)
+    assert not stopped[0] and stop_time[0] == pytest.approx(2.0, abs=0.004)
+    assert final[0, 3] == pytest.approx(12.0, abs=1e-9)
+
+
+def test_non_finite_state_is_an_error():
+    with pytest.raises(ValueError, match="finite"):
+        integrate_many(CAR, [[0.0, np.nan]], [0.0], [[1.0, 0.0]], [0.0])
