@@ -42,3 +42,15 @@ def test_outline_corners_start_front_left_counter_clockwise():
     # heading 90 deg: the front-left corner is at (-1, +2) from the CG
     w = g.outline_world(4.0, 2.0, (10.0, 0.0), np.pi / 2)
     np.testing.assert_allclose(w[0], [9.0, 2.0], atol=1e-12)
+
+
+def test_outline_distance_hits_the_right_edge():
+    from pim.model.geometry import outline_distance
+
+    # 4 m x 2 m, CG in the middle: ahead 2 m, sideways 1 m, to the corner sqrt(5)
+    np.testing.assert_allclose(outline_distance([0.0, np.pi / 2, np.pi, np.arctan2(1, 2)],
+                                                4.0, 2.0),
+                               [2.0, 1.0, 2.0, np.sqrt(5.0)], rtol=1e-12)
+    # CG 1.5 m behind the front: backwards 2.5 m; 30 deg ahead: front edge 1.5 / cos 30
+    np.testing.assert_allclose(outline_distance([np.pi, np.radians(30)], 4.0, 2.0, 1.5),
+                               [2.5, 1.5 / np.cos(np.radians(30))], rtol=1e-12)

@@ -27,14 +27,16 @@ import numpy as np
 
 from ..io.brach import cg_from_brach
 from ..model.case import Case, Impact, Measured, Vehicle
+from ..model.geometry import outline_distance
 from ..model.solver import solve
 from .fitting import fit
 
 __all__ = ["PLACEHOLDER_MASS", "SPEED_TOLERANCE", "YAW_TOLERANCE", "K_BOUNDS", "barrier_case",
            "barrier_motion", "fit_radius_of_gyration", "BarrierReproduction",
-           "reproduce_barrier", "BarrierRefit", "refit_barrier", "class_radius_of_gyration",
-           "summary_errors",
-           "CoefficientStats", "CRASH_CLASSES", "coefficient_stats", "ricsac_published_errors"]
+           "reproduce_barrier", "BarrierRefit", "refit_barrier", "PHI_RANGE",
+           "class_radius_of_gyration", "summary_errors", "CoefficientStats", "CRASH_CLASSES",
+           "ricsac_case", "RicsacRefit", "refit_ricsac", "coefficient_stats",
+           "ricsac_published_errors"]
 
 PLACEHOLDER_MASS = 1500.0             # kg; a barrier impact depends on k, not m
 SPEED_TOLERANCE = 0.44704             # m/s = 1 mph: reproduction tolerance of a delta-V
@@ -69,7 +71,10 @@ def barrier_case(test, radius_of_gyration, *, phi=None, d=None) -> Case:
                   velocity=test.speed * ahead, heading=h)
     wall = Vehicle.obstacle(cg=(0.0, 0.0))
     dv = -test.delta_v_x * ahead - test.delta_v_y * left
-    measured = Measured(velocity1=test.speed * ahead + dv, yaw_rate1=test.yaw_rate)
+    # standard deviations = the reproduction tolerances, so a fit's chi-square counts them
+    measured = Measured(velocity1=test.speed * ahead + dv, yaw_rate1=test.yaw_rate,
+                        velocity1_sigma=(SPEED_TOLERANCE, SPEED_TOLERANCE),
+                        yaw_rate1_sigma=YAW_TOLERANCE)
     return Case(car, wall, Impact(point=(0.0, 0.0), normal_angle=test.normal_angle,
                                   restitution=test.restitution, beta=test.beta),
                 measured=measured, name=test.test_id,
@@ -181,22 +186,140 @@ class BarrierRefit(BarrierReproduction):
     on_bound: tuple
 
 
-def refit_barrier(tests, radius_of_gyration) -> list[BarrierRefit]:
-    """Refit each test's (epsilon, beta) with :func:`pim.fit` at its published geometry.
+#: Half-width [rad] of the search range of phi about the published value in the refit.
+PHI_RANGE = float(np.radians(30.0))
 
-    The fit uses the measured delta-V components and yaw rate (``include_yaw``), epsilon and
-    beta in [0, 1] (the paper's mu <= mu0). ``radius_of_gyration`` as in
-    :func:`reproduce_barrier`, but required (a number or a dict test_id -> k [m]).
+
+def refit_barrier(tests, radius_of_gyration, *, free_phi: bool = False,
+                  phi_range: float = PHI_RANGE) -> list[BarrierRefit]:
+    """Refit each test with :func:`pim.fit` against its measured dVx, dVy and yaw rate.
+
+    ``free_phi=False``: (epsilon, beta) at the published geometry. ``free_phi=True``: the
+    published method of Brach et al. (SAE 2014-01-0469): epsilon, beta and the impact point's
+    angle phi (Brach's phi of vehicle 1, the free key ``vehicle1.phi``) at the published
+    arm length d1, phi within the published value +- ``phi_range`` [rad]; C then moves along
+    the circle of radius d1 about the CG (the crush edge as the authors parametrise it).
+    epsilon and beta stay in [0, 1] (the paper's mu <= mu0). ``radius_of_gyration``: a
+    number [m] or a dict test_id -> k [m].
     """
     out = []
     for t in tests:
         k = (radius_of_gyration[t.test_id] if isinstance(radius_of_gyration, dict)
              else float(radius_of_gyration))
-        r = fit(barrier_case(t, k), include_yaw=True)
-        pred = barrier_motion(solve(barrier_case(t, k), eps=r.eps, beta=r.beta, backend="numpy"))
+        case = barrier_case(t, k)
+        free = {"vehicle1.phi": (t.phi - phi_range, t.phi + phi_range)} if free_phi else None
+        r = fit(case, include_yaw=True, free=free)
+        phi = r.values.get("vehicle1.phi", t.phi)
+        pred = barrier_motion(solve(barrier_case(t, k, phi=phi), eps=r.eps, beta=r.beta,
+                                    backend="numpy"))
         out.append(BarrierRefit(t, k, tuple(float(x) for x in pred),
                                 (t.delta_v_x, t.delta_v_y, t.yaw_rate), float(r.eps),
-                                float(r.beta), t.phi, tuple(r.on_bound)))
+                                float(r.beta), float(phi), tuple(r.on_bound)))
+    return out
+
+
+#: Length of a car from its radius of gyration, L = sqrt(12) k (a uniform slender body;
+#: RICSAC 9's 13.0 ft and 17.5 ft cars have sqrt(12) k = 12.9 ft and 17.7 ft).
+LENGTH_PER_K = float(np.sqrt(12.0))
+#: Width over length of the outline (RICSAC 9's cars: 0.41 and 0.37).
+WIDTH_PER_LENGTH = 0.39
+#: Search range [m] of C along the contact plane in the RICSAC refit.
+ALONG_RANGE = 1.0
+
+
+def ricsac_case(test) -> Case:
+    """A :class:`pim.Case` of one RICSAC test with measured pre- and post-impact motion [SI].
+
+    The sources give Brach's theta and phi but not the CG-to-impact distances d, so C is put
+    on a documented crush edge: the undeformed rectangular outline of each car (length
+    ``sqrt(12) k``, width ``0.39 L``, CG at mid-length; k = sqrt(I/m) from the source's
+    inertias), where the ray from the CG at Brach's phi leaves it
+    (:func:`pim.model.geometry.outline_distance`); C at the origin, each CG at d_i back along
+    its ray (:func:`pim.io.brach.cg_from_brach`); the headings from theta (vehicle 1's is
+    theta1 + 180 deg, Brach's convention); pre-impact yaw rates 0; the normal at the
+    published Gamma. ``measured`` holds the post-impact velocities and yaw rates.
+    """
+    if not test.has_motion or test.normal_angle is None:
+        raise ValueError(f"RICSAC {test.number}: no measured pre/post motion or geometry")
+    vehicles = []
+    for i, (m, inertia, theta, phi, v) in enumerate(
+            ((test.mass1, test.yaw_inertia1, test.theta1, test.phi1, test.velocity1_pre),
+             (test.mass2, test.yaw_inertia2, test.theta2, test.phi2, test.velocity2_pre)),
+            start=1):
+        length = LENGTH_PER_K * float(np.sqrt(inertia / m))
+        width = WIDTH_PER_LENGTH * length
+        d = float(outline_distance(phi, length, width))
+        heading = theta + np.pi if i == 1 else theta
+        vehicles.append(Vehicle(mass=m, yaw_inertia=inertia, cg=cg_from_brach(theta, phi, d, i),
+                                velocity=v, heading=heading, length=length, width=width))
+    measured = Measured(velocity1=test.velocity1_post, velocity2=test.velocity2_post,
+                        yaw_rate1=test.yaw_rate1_post, yaw_rate2=test.yaw_rate2_post)
+    return Case(*vehicles, Impact(point=(0.0, 0.0), normal_angle=test.normal_angle),
+                measured=measured, name=f"ricsac{test.number}",
+                description=f"RICSAC {test.number} (crush-edge geometry, see ricsac_case)")
+
+
+@dataclass(frozen=True)
+class RicsacRefit:
+    """One RICSAC test refitted: (eps, beta) and C along the contact plane [SI].
+
+    ``residuals`` maps each measured term to model minus measured (m/s, rad/s);
+    ``error`` is None when the test could not be fitted, with ``message`` saying why.
+    """
+
+    test: object
+    restitution: float
+    beta: float
+    along: float
+    residuals: dict
+    on_bound: tuple
+    message: str = ""
+
+    @property
+    def velocity_error(self) -> float:
+        """Largest post-impact velocity error (vector length) of the two cars [m/s]."""
+        r = self.residuals
+        return float(max(np.hypot(r["velocity1_x"], r["velocity1_y"]),
+                         np.hypot(r["velocity2_x"], r["velocity2_y"])))
+
+    @property
+    def yaw_error(self) -> float:
+        """Largest post-impact yaw-rate error [rad/s]."""
+        return float(max(abs(self.residuals["yaw_rate1"]), abs(self.residuals["yaw_rate2"])))
+
+    @property
+    def within_tolerance(self) -> bool:
+        """Both cars within 1 mph and 10 deg/s."""
+        return self.velocity_error <= SPEED_TOLERANCE and self.yaw_error <= YAW_TOLERANCE
+
+
+def refit_ricsac(tests, along_range: float = ALONG_RANGE) -> list[RicsacRefit]:
+    """Fit epsilon, beta (in [0, 1]) and C's position along the contact plane
+    (``impact.point_along`` within +- ``along_range`` [m]) of each test with motion, against
+    the measured post-impact velocities and yaw rates (yaw weighted by k, as
+    :mod:`pim.analysis.residuals`)."""
+    out = []
+    for t in tests:
+        if not t.has_motion or t.normal_angle is None:
+            continue
+        case = ricsac_case(t)
+        try:
+            r = fit(case, include_yaw=True,
+                    free={"impact.point_along": (-along_range, along_range)})
+        except ValueError as exc:
+            out.append(RicsacRefit(t, np.nan, np.nan, np.nan, {}, (), str(exc)))
+            continue
+        res = solve(r.case, r.eps, r.beta)
+        m = case.measured
+        residuals = {"velocity1_x": float(res.velocity1[0] - m.velocity1[0]),
+                     "velocity1_y": float(res.velocity1[1] - m.velocity1[1]),
+                     "velocity2_x": float(res.velocity2[0] - m.velocity2[0]),
+                     "velocity2_y": float(res.velocity2[1] - m.velocity2[1]),
+                     "yaw_rate1": float(res.yaw_rate1 - m.yaw_rate1),
+                     "yaw_rate2": float(res.yaw_rate2 - m.yaw_rate2)}
+        out.append(RicsacRefit(t, float(r.eps), float(r.beta),
+                               float(r.values["impact.point_along"]), residuals,
+                               tuple(r.on_bound)))
     return out
 
 

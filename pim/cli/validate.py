@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import click
+import numpy as np
 
 from ..analysis.consistency import check_ricsac
 from ..analysis.validation import (
     class_radius_of_gyration,
     coefficient_stats,
     refit_barrier,
+    refit_ricsac,
     reproduce_barrier,
     ricsac_published_errors,
     summary_errors,
@@ -21,6 +23,7 @@ from ..plotting.validation import (
     consistency_table,
     plot_coefficients,
     plot_predicted_vs_measured,
+    ricsac_refit_table,
     summary_line,
     write_validation_report,
 )
@@ -37,9 +40,16 @@ NOTES = [
     "run, set to the median of the fitted k of the test's vehicle type ('class k'). 'dV err' "
     "is the length of the delta-V vector error. The refit runs pim.fit on (eps, beta) in "
     "[0, 1] x [0, 1] against the measured dVx, dVy and yaw rate, at the published phi and d1, "
-    "with the per-test and the class k; 'fit' columns are the per-test-k refit.", "",
+    "with the per-test and the class k. The published method's refit (Brach et al.: eps, beta "
+    "and phi at the published d1, phi within +-30 deg of the published value) is the 'fit' "
+    "columns (per-test k). The residuals are weighted by the tolerances (1 mph per delta-V "
+    "component, 10 deg/s), so the fit minimises the misses the table counts.", "",
     "RICSAC: the CG-to-impact distances are not published, so no reproduction; the momentum "
-    "balance of the measured data is checked (pim.analysis.consistency).", "",
+    "balance of the measured data is checked (pim.analysis.consistency). The refit puts C on "
+    "a documented crush edge (each car's rectangular outline, length sqrt(12) k, width "
+    "0.39 L, CG at mid-length, where the ray at Brach's phi leaves it) and fits eps, beta and "
+    "C's position along the contact plane (+-1 m) to both cars' post-impact velocities and "
+    "yaw rates; tests flagged by the momentum check are marked.", "",
     "Sources: Brach R.M., Welsh K.J., Brach R.M., SAE 2014-01-0469 (Appendix 2); RICSAC "
     "compiled from Neades (PhD thesis, De Montfort Univ.) and Vossou & Koulocheris (2018).",
     "",
@@ -57,9 +67,14 @@ def run_validation(dataset: str = "all", units: str = "si") -> tuple[dict, list[
         usable = [r for r in published if r.test.group != "OUTLIER"]
         class_k = class_radius_of_gyration(usable)
         with_class = reproduce_barrier(tests, {t.test_id: class_k[t.vehicle_type] for t in tests})
-        refitted = refit_barrier(tests, {r.test.test_id: r.radius_of_gyration for r in published})
-        refitted_class = refit_barrier(tests, {t.test_id: class_k[t.vehicle_type] for t in tests})
-        sections["barrier"] = barrier_table(published, with_class, refitted, units=units)
+        per_test_k = {r.test.test_id: r.radius_of_gyration for r in published}
+        class_ks = {t.test_id: class_k[t.vehicle_type] for t in tests}
+        refitted = refit_barrier(tests, per_test_k)
+        refitted_class = refit_barrier(tests, class_ks)
+        # the published method (Brach et al.): eps, beta and phi at the published d1
+        method = refit_barrier(tests, per_test_k, free_phi=True)
+        method_class = refit_barrier(tests, class_ks, free_phi=True)
+        sections["barrier"] = barrier_table(published, with_class, method, units=units)
         ks = [r.radius_of_gyration for r in usable]
         lu = convert(1.0, "length", units)[1]
         k_lo, k_hi = (float(convert(x, "length", units)[0]) for x in (min(ks), max(ks)))
@@ -70,6 +85,15 @@ def run_validation(dataset: str = "all", units: str = "si") -> tuple[dict, list[
             rows = [r for r in with_class if r.test.group == group]
             summary.append(summary_line(f"iihs-barrier {label}, published coefficients, "
                                         f"class k", rows, units))
+            for fits, how in ((method, "per-test k"), (method_class, "class k")):
+                rows = [r for r in fits if r.test.group == group]
+                summary.append(summary_line(
+                    f"iihs-barrier {label}, refitted by the published method (eps, beta, phi "
+                    f"at the published d1), {how}", rows, units))
+                dphi = summary_errors([np.degrees(r.phi - r.test.phi) for r in rows])
+                summary.append(f"iihs-barrier {label}, published-method refit ({how}) minus "
+                               f"published: |d phi| median {dphi['median']:.2f} deg, max "
+                               f"{dphi['max']:.2f} deg")
             for fits, how in ((refitted, "per-test k"), (refitted_class, "class k")):
                 rows = [r for r in fits if r.test.group == group]
                 summary.append(summary_line(f"iihs-barrier {label}, refitted (eps, beta), {how}",
@@ -86,13 +110,30 @@ def run_validation(dataset: str = "all", units: str = "si") -> tuple[dict, list[
         sections["figures"]["predicted_vs_measured"] = plot_predicted_vs_measured(
             {"non-sideswipe, per-test k": [r for r in published if r.test.group == "NS"],
              "sideswipe, per-test k": [r for r in published if r.test.group == "SS"],
-             "all, class k": [r for r in with_class if r.test.group != "OUTLIER"]}, units)
+             "all, class k": [r for r in with_class if r.test.group != "OUTLIER"],
+             "all, refitted (eps, beta, phi)": [r for r in method
+                                                if r.test.group != "OUTLIER"]}, units)
     if "ricsac" in records:
         checks = check_ricsac(records["ricsac"])
         sections["consistency"] = consistency_table(checks)
         flagged = [c.test.split()[1] for c in checks if c.flagged]
         summary.append(f"ricsac: {len(checks)} tests checked, momentum-inconsistent: "
                        f"{', '.join(flagged) or 'none'}")
+        fits = refit_ricsac(records["ricsac"])
+        sections["ricsac_refit"] = ricsac_refit_table(fits, flagged, units)
+        ok = [f for f in fits if not f.message]
+        dv = summary_errors([f.velocity_error for f in ok])
+        om = summary_errors([np.degrees(f.yaw_error) for f in ok])
+        su = convert(1.0, "speed", units)[1]
+        sv = lambda x: float(convert(x, "speed", units)[0])  # noqa: E731
+        summary.append(
+            f"ricsac refit (eps, beta, C along the contact plane on the crush-edge geometry): "
+            f"{len(ok)} tests, worst-car velocity error median {sv(dv['median']):.2f} {su}, "
+            f"p90 {sv(dv['p90']):.2f} {su}; yaw-rate error median {om['median']:.1f} deg/s, "
+            f"p90 {om['p90']:.1f} deg/s; {sum(f.within_tolerance for f in ok)}/{len(ok)} "
+            f"within 1 mph and 10 deg/s (consistent tests only: "
+            f"{sum(f.within_tolerance for f in ok if str(f.test.number) not in flagged)}/"
+            f"{sum(str(f.test.number) not in flagged for f in ok)})")
         su = convert(1.0, "speed", units)[1]
         for name, errors in ricsac_published_errors(records["ricsac"]).items():
             s = summary_errors([e for _, _, e in errors])

@@ -8,8 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["cross", "dot", "perp", "vec", "rotate", "contact_velocity", "kinetic_energy",
-           "radius_of_gyration", "outline_corners", "outline_world"]
+__all__ = ["outline_distance", "cross", "dot", "perp", "vec", "rotate", "contact_velocity",
+           "kinetic_energy", "radius_of_gyration", "outline_corners", "outline_world"]
 
 
 def cross(a, b) -> np.ndarray:
@@ -107,3 +107,23 @@ def outline_world(length, width, cg, heading) -> np.ndarray:
     """Corners [m] of the rectangle of :func:`outline_corners` placed at ``cg``, turned to
     ``heading`` [rad], in the global frame. Shape (4, 2)."""
     return rotate(outline_corners(length, width), heading) + np.asarray(cg, dtype=float)
+
+
+def outline_distance(angle, length, width, cg_to_front=None) -> np.ndarray:
+    """Distance [m] from the CG to the vehicle's rectangular outline along a direction.
+
+    The outline in the body frame (x forward, y left, CG at the origin) spans
+    ``-(length - a) <= x <= a`` and ``|y| <= width / 2`` (``a = cg_to_front``, default
+    ``length / 2``); the ray from the CG at ``angle`` [rad] (counter-clockwise from the
+    heading, Brach's phi) leaves it at ``min(a / cos, (length - a) / -cos, (width/2) / |sin|)``
+    over the positive terms.
+    """
+    angle = np.asarray(angle, dtype=float)
+    length = np.asarray(length, dtype=float)
+    width = np.asarray(width, dtype=float)
+    a = length / 2 if cg_to_front is None else np.asarray(cg_to_front, dtype=float)
+    c, s = np.cos(angle), np.sin(angle)
+    with np.errstate(divide="ignore"):
+        tx = np.where(c > 0, a / c, np.where(c < 0, (a - length) / c, np.inf))
+        ty = np.where(s != 0, (width / 2) / np.abs(s), np.inf)
+    return np.minimum(tx, ty)

@@ -17,7 +17,8 @@ from ..io.files import save_figure, write_text
 from ..io.units import convert
 
 __all__ = ["plot_predicted_vs_measured", "plot_coefficients", "barrier_table",
-           "consistency_table", "coefficient_table", "write_validation_report", "csv_text"]
+           "consistency_table", "ricsac_refit_table", "coefficient_table",
+           "write_validation_report", "csv_text"]
 
 
 def _speed(x, units):
@@ -136,6 +137,32 @@ def barrier_table(published, class_k, refitted=None, units="si"):
     return header, rows
 
 
+def ricsac_refit_table(fits, flagged=(), units="si"):
+    """Header and rows of the RICSAC refit (:func:`pim.analysis.validation.refit_ricsac`):
+    fitted coefficients, C's shift along the contact plane, each residual, in ``units``."""
+    su = _speed(1.0, units)[1]
+    yu = _yaw(1.0, units)[1]
+    lu = convert(1.0, "length", units)[1]
+    header = ["test", "momentum-inconsistent", "eps fit", "beta fit", f"C along [{lu}]",
+              *[f"{n} err [{su}]" for n in ("V1x", "V1y", "V2x", "V2y")],
+              f"Omega1 err [{yu}]", f"Omega2 err [{yu}]", "within 1 mph, 10 deg/s", "note"]
+    rows = []
+    for f in fits:
+        flag = "yes" if str(f.test.number) in flagged else "no"
+        if f.message:
+            rows.append([f.test.number, flag, *[""] * 10, f.message])
+            continue
+        r = f.residuals
+        rows.append([f.test.number, flag, f"{f.restitution:.3f}", f"{f.beta:.3f}",
+                     f"{float(convert(f.along, 'length', units)[0]):+.3f}",
+                     *[f"{float(_speed(r[k], units)[0]):+.2f}" for k in
+                       ("velocity1_x", "velocity1_y", "velocity2_x", "velocity2_y")],
+                     *[f"{float(_yaw(r[k], units)[0]):+.1f}" for k in ("yaw_rate1", "yaw_rate2")],
+                     "yes" if f.within_tolerance else "no",
+                     ", ".join(f"{k} on bound" for k in f.on_bound)])
+    return header, rows
+
+
 def consistency_table(checks):
     """Header and rows of the momentum checks (:mod:`pim.analysis.consistency`)."""
     header = ["test", "m1dV1/(m2dV2)-1 [%]", "linear imbalance [%]", "arm1 [m]", "arm2 [m]",
@@ -177,8 +204,9 @@ def write_validation_report(out, sections: dict, units: str = "si") -> list[Path
     """Write ``report.md`` and the CSVs/PNGs of ``sections`` into directory ``out``.
 
     ``sections`` may hold: ``summary`` (list of lines), ``barrier`` ((header, rows)),
-    ``consistency`` ((header, rows)), ``coefficients`` ((header, rows)), ``notes`` (list of
-    Markdown paragraphs), ``figures`` (name -> Figure). Returns the written paths.
+    ``consistency`` ((header, rows)), ``ricsac_refit`` ((header, rows)), ``coefficients``
+    ((header, rows)), ``notes`` (list of Markdown paragraphs), ``figures`` (name ->
+    Figure). Returns the written paths.
     """
     out = Path(out)
     written = []
@@ -188,6 +216,7 @@ def write_validation_report(out, sections: dict, units: str = "si") -> list[Path
         md += ["## Summary", ""] + [f"- {line}" for line in sections["summary"]] + [""]
     for key, title in (("barrier", "IIHS small-overlap barrier tests"),
                        ("consistency", "RICSAC momentum consistency"),
+                       ("ricsac_refit", "RICSAC refit (eps, beta, C along the crush edge)"),
                        ("coefficients", "Coefficients by crash class")):
         if key not in sections:
             continue
