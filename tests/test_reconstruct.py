@@ -60,12 +60,13 @@ def test_under_determined_is_said_not_a_number(tmp_path, capsys):
 
 @pytest.mark.slow
 def test_synthetic_case_report_and_json(tmp_path, capsys):
-    assert main(["reconstruct", "synthetic-runout", "--out", str(tmp_path), "--json"]) == 0
+    assert main(["reconstruct", "synthetic-runout", "--out", str(tmp_path), "--json",
+                 "--samples", "2000"]) == 0
     data = json.loads(capsys.readouterr().out)
     for key in ("vehicle1.speed", "vehicle2.speed"):
         row = data["unknowns"][key]
         assert row["value"] == pytest.approx(KNOWN, abs=1e-5)
         assert row["p5"] < KNOWN < row["p95"]
     assert {p.name for p in tmp_path.iterdir()} == {"report.md", "reconstruction.csv",
-                                                    "scene.png"}
+                                                    "scene.png", "reconstruction.mp4"}
     assert "vehicle1.speed" in (tmp_path / "report.md").read_text()

@@ -80,3 +80,5 @@ def test_path_distance_is_to_the_continuous_path_not_its_chords():
     path = run.interpolant(t)[:2].T
     brute = [np.min(np.hypot(*(path - p).T)) for p in points]
     np.testing.assert_allclose(path_distance(points, run), brute, atol=2e-6)
+    np.testing.assert_allclose(np.abs(path_distance(points, run, signed=True)), brute,
+                               atol=2e-6)

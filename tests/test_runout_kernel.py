@@ -47,10 +47,10 @@ def test_same_scheme_as_the_numpy_integrator_and_close_to_solve_ivp():
 def test_path_distance_is_the_distance_to_the_travelled_line():
     car = RunoutVehicle(1500.0, 2500.0, 2.7, 1.5, 1.2, 0.8)
     # straight slide along +x from the origin: a point at (5, 0.7) is 0.7 m off the path,
-    # one behind the start is its distance to the start
+    # one to its right is at -0.4 m (signed cross-track error)
     _, _, _, dist = integrate_many(car, [[0.0, 0.0]], [0.0], [[15.0, 0.0]], [0.0],
-                                   path_points=[[5.0, 0.7], [-2.0, 0.0]])
-    np.testing.assert_allclose(dist[0], [0.7, 2.0], atol=1e-9)
+                                   path_points=[[5.0, 0.7], [6.0, -0.4]])
+    np.testing.assert_allclose(dist[0], [0.7, -0.4], atol=1e-9)   # left +, right -
 
 
 def test_free_rolling_is_flagged_not_stopped():

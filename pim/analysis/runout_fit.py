@@ -69,8 +69,12 @@ class RunoutFit:
     message: str
 
 
-def path_distance(points, run: Runout) -> np.ndarray:
+def path_distance(points, run: Runout, signed: bool = False) -> np.ndarray:
     """Distance [m] from each point (k, 2) to the CG path of ``run``.
+
+    With ``signed``, positive for a point to the left of the direction of travel and
+    negative to its right: the cross-track error, smooth through zero (an exact tyre-mark
+    point), which is what a least-squares fit needs.
 
     The nearest point of the polyline of the integrator's steps is refined by Newton's method
     on ``f(t) = (x(t) - p) . v(t) = 0`` over solve_ivp's dense output, and the distance is
@@ -89,6 +93,11 @@ def path_distance(points, run: Runout) -> np.ndarray:
     k = np.argmin(gap, axis=1)
     distance = gap[np.arange(len(points)), k]
     if run.interpolant is None or len(points) == 0:
+        if signed:
+            k_ = np.arange(len(points))
+            cross = (ab[k, 0] * (points[:, 1] - nearest[k_, k, 1])
+                     - ab[k, 1] * (points[:, 0] - nearest[k_, k, 0]))
+            distance = np.where(cross < 0, -distance, distance)
         return distance
     t = run.time[k] + s[np.arange(len(points)), k] * (run.time[k + 1] - run.time[k])
     t_end = run.time[-1]
@@ -106,7 +115,12 @@ def path_distance(points, run: Runout) -> np.ndarray:
     # the distance to the continuous path: the polyline's chords cut inside a curved path
     # by ~L^2 kappa / 8 (millimetres between solve_ivp's large steps), so its distance is
     # only the starting guess, never the answer
-    return np.hypot(*(y[:2].T - points).T)
+    gap = points - y[:2].T
+    out = np.hypot(*gap.T)
+    if signed:
+        v = y[3:5].T
+        out = np.where(v[:, 0] * gap[:, 1] - v[:, 1] * gap[:, 0] < 0, -out, out)
+    return out
 
 
 #: Default standard deviation of a measured rest heading [rad] (2 deg).
@@ -195,7 +209,7 @@ def fit_runout(vehicle: RunoutVehicle, position, heading, rest_position, rest_he
         r = np.concatenate([(run.rest_position - rest_position) / position_sigma,
                             [wrap_angle(run.rest_heading - rest_heading) / heading_sigma]])
         if len(points):
-            r = np.concatenate([r, path_distance(points, run) / position_sigma])
+            r = np.concatenate([r, path_distance(points, run, signed=True) / position_sigma])
         return r
 
     def fun(p):

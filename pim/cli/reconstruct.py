@@ -7,7 +7,8 @@ stated uncertainties (``--samples``) for each unknown's 5/50/95 % and its drivin
 Prints the table in the case's units (``--units`` to change; speeds in mph in US units, the
 customary unit of impact speeds); ``--json`` prints each unknown
 by its dotted name with its value and percentiles in SI. Writes DIR/report.md,
-DIR/reconstruction.csv and, with evidence, DIR/scene.png.
+DIR/reconstruction.csv and, with evidence, DIR/scene.png and DIR/reconstruction.mp4 (the
+reconstructed crash from the impact to rest).
 
 When the data cannot decide the unknowns, one line says what is missing and the exit code
 is 2: never a number.
@@ -25,6 +26,7 @@ from ..io.casefile import load_case
 from ..io.files import save_figure, write_text
 from ..io.units import convert
 from ..model.evidence import UNKNOWN_KINDS
+from ..plotting.reconstruction_animation import write_reconstruction_mp4
 from ..plotting.reconstruction_scene import reconstruction_figure
 from .main import case_argument, echo_json, json_option, units_option
 
@@ -53,7 +55,8 @@ def reconstruction_rows(rec: Reconstruction, units: str) -> list[dict]:
     return rows
 
 
-def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool) -> str:
+def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
+            with_video: bool = False) -> str:
     n = rec.samples.n if rec.samples else 0
     source = ("the run-out inverse of each vehicle's rest evidence" if rec.post else
               "the case's [measured] post-impact motion")
@@ -80,6 +83,8 @@ def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool)
     lines += [f"- {m}" for m in rec.messages] or ["No warnings."]
     if with_scene:
         lines += ["", "![scene](scene.png)"]
+    if with_scene and with_video:
+        lines += ["", "Animation from the impact to rest: [reconstruction.mp4](reconstruction.mp4)"]
     return "\n".join(lines) + "\n"
 
 
@@ -90,9 +95,11 @@ def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool)
 @click.option("--samples", type=click.IntRange(min=0), default=10_000, show_default=True,
               help="Monte Carlo samples over the stated uncertainties (0: none).")
 @click.option("--seed", type=int, default=0, show_default=True, help="Monte Carlo seed.")
+@click.option("--video/--no-video", default=True, show_default=True,
+              help="With evidence, also write DIR/reconstruction.mp4 (impact to rest).")
 @units_option
 @json_option
-def reconstruct(case_name, out, samples, seed, units, as_json):
+def reconstruct(case_name, out, samples, seed, video, units, as_json):
     """Reconstruct CASE's unknowns (e.g. the impact speeds) from its evidence."""
     case = load_case(case_name)
     units = units or case.units
@@ -121,4 +128,8 @@ def reconstruct(case_name, out, samples, seed, units, as_json):
         write_text(directory / "reconstruction.csv", "\n".join(csv) + "\n")
         if rec.post is not None:
             save_figure(reconstruction_figure(rec.post, units), directory / "scene.png")
-        write_text(directory / "report.md", _report(rec, rows, units, rec.post is not None))
+            if video:
+                write_reconstruction_mp4(rec.post, directory / "reconstruction.mp4",
+                                         units=units)
+        write_text(directory / "report.md",
+                   _report(rec, rows, units, rec.post is not None, video))

@@ -7,7 +7,8 @@ classical Runge-Kutta method with a fixed step until it stops (``|v| + |omega| r
 stop_speed``) or ``max_time`` passes, on all cores (``prange`` over samples, each with its
 own early stop, so a short run-out does not wait for a long one). Along the way the distance
 from each given path point to the CG's polyline is tracked (closest point on each step's
-segment), so a fit to tyre-mark points needs no stored trajectory.
+segment, signed: negative to the right of the direction of travel), so a fit to tyre-mark
+points needs no stored trajectory.
 
 numba is imported only when this module is (the reconstruction Monte Carlo imports it); the
 kernel is cached on disk under a key that covers this file and pim/model/tyres.py.
@@ -49,13 +50,15 @@ def _rhs(x, y, psi, vx, vy, om, mass, inertia, px, py, load, mu, braking, cd, sd
 
 @njit(inline="always", error_model="numpy")
 def _segment_distance(ax, ay, bx, by, qx, qy):  # pragma: no cover - compiled
+    """Distance from q to the segment a-b, negative when q is to the right of a -> b."""
     dx, dy = bx - ax, by - ay
     length2 = dx * dx + dy * dy
     t = 0.0
     if length2 > 0.0:
         t = min(max(((qx - ax) * dx + (qy - ay) * dy) / length2, 0.0), 1.0)
-    ex, ey = ax + t * dx - qx, ay + t * dy - qy
-    return np.sqrt(ex * ex + ey * ey)
+    ex, ey = qx - (ax + t * dx), qy - (ay + t * dy)
+    d = np.sqrt(ex * ex + ey * ey)
+    return -d if dx * ey - dy * ex < 0.0 else d
 
 
 @stamped_cache(tyres)
@@ -90,7 +93,7 @@ def _integrate(y0, mass, inertia, px, py, load, mu, braking, cos_steer, sin_stee
             ny = y + w * (k1[1] + 2.0 * k2[1] + 2.0 * k3[1] + k4[1])
             for j in range(k):
                 d = _segment_distance(x, y, nx, ny, points[i, j, 0], points[i, j, 1])
-                if d < distance[i, j]:
+                if abs(d) < abs(distance[i, j]):
                     distance[i, j] = d
             x, y = nx, ny
             psi = psi + w * (k1[2] + 2.0 * k2[2] + 2.0 * k3[2] + k4[2])
@@ -133,7 +136,8 @@ def integrate_many(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate
     stop_time : ndarray (n,) [s]
     stopped : ndarray (n,) of bool
     distance : ndarray (n, k) [m]
-        Distance from each path point to the sample's CG path.
+        Distance from each path point to the sample's CG path, negative for a point to the
+        right of the direction of travel (the cross-track error, smooth through zero).
     """
     position = np.atleast_2d(np.asarray(position, dtype=float))
     n = position.shape[0]
