@@ -272,8 +272,9 @@ def evidence_sampler(case: Case, post: PostImpact, include_yaw: bool = True):
     """The Monte Carlo's post-impact motion per sample from the evidence.
 
     Returns ``sampler(values, uniforms, rng, n) -> (targets (n, k), ok (n,), uniforms)``: for
-    each vehicle with evidence, its rest position and heading drawn normal about the measured
-    ones with the evidence's sigmas (one uniform variate each, for the driver attribution),
+    each vehicle with evidence, its rest position and heading and its tyre-mark points drawn
+    normal about the measured ones with the evidence's sigmas (one uniform variate each, for
+    the driver attribution),
     its friction, mass, yaw inertia, separation position and heading from the sampled inputs
     ``values``; all samples' run-out inverses solved at once
     (:func:`pim.analysis.runout_fit_batch.fit_runout_many`, started from the nominal fit).
@@ -304,14 +305,23 @@ def evidence_sampler(case: Case, post: PostImpact, include_yaw: bool = True):
                              ev.rest_position[1] + ev.position_sigma * ndtri(u[keys[1]])],
                             axis=-1)
             rest_heading = ev.rest_heading + ev.heading_sigma * ndtri(u[keys[2]])
+            points = None
+            if len(ev.path_points):      # the tyre-mark points carry the same position error
+                points = np.empty((n,) + ev.path_points.shape)
+                for k, point in enumerate(ev.path_points):
+                    for axis, name in enumerate("xy"):
+                        key = f"evidence.vehicle{i}.path_point{k + 1}_{name}"
+                        extra[key] = rng.random(n) + 2.0**-54
+                        points[:, k, axis] = point[axis] + ev.position_sigma * ndtri(
+                            extra[key])
             vehicle = replace(ev.runout_vehicle(each(p + "mass"), each(p + "yaw_inertia")),
                               friction=each(f"evidence.vehicle{i}.friction"))
             fit = fit_runout_many(
                 vehicle, np.stack([each(p + "cg_x"), each(p + "cg_y")], axis=-1),
                 each(p + "heading"), rest, rest_heading,
                 start=(nominal.speed, nominal.direction, nominal.yaw_rate),
-                path_points=ev.path_points if len(ev.path_points) else None,
-                position_sigma=ev.position_sigma, heading_sigma=ev.heading_sigma)
+                path_points=points, position_sigma=ev.position_sigma,
+                heading_sigma=ev.heading_sigma)
             ok &= fit.converged & fit.stopped
             for j, name in enumerate(names):
                 if name == f"velocity{i}_x":
