@@ -118,7 +118,7 @@ def write_reconstruction_mp4(post: PostImpact, path, *, units: str = "si",
     margin = 0.15 * max(np.ptp(pts[:, 0]), np.ptp(pts[:, 1]), 1.0)
     ax.set_xlim(pts[:, 0].min() - margin, pts[:, 0].max() + margin)
     ax.set_ylim(pts[:, 1].min() - margin, pts[:, 1].max() + margin)
-    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_aspect("equal", adjustable="box")
     ax.set_xlabel(f"x [{unit}]")
     ax.set_ylabel(f"y [{unit}]")
     ax.grid(True, alpha=0.3)
