@@ -184,3 +184,32 @@ def test_evidence_chain_interval_covers_the_truth_over_200_seeds():
     print(f"coverage of the 5-95 % interval over {seeds} seeds: vehicle1 {hits[0]}, "
           f"vehicle2 {hits[1]}; median width {np.median(p95 - p5, axis=0) / 0.44704} mph")
     assert np.all((165 <= hits) & (hits <= 195)), hits
+
+
+def test_blocks_on_an_executor_pool_into_the_same_distribution():
+    """The Monte Carlo spread over an executor (here threads, and a stand-in for a Dask
+    client, which hands out its executor by get_executor) gives the same intervals as one
+    block, to the sampling error of 4000 samples, and repeats exactly for a given seed."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from pim.analysis.reconstruction import reconstruct
+
+    case = pim.load_case("ricsac9-reconstruct")
+    one = reconstruct(case, samples=4000, seed=3)
+
+    class Client:                                  # what pim needs of dask.distributed.Client
+        def __init__(self, pool):
+            self.pool = pool
+
+        def get_executor(self):
+            return self.pool
+
+    with ThreadPoolExecutor(2) as pool:
+        spread = reconstruct(case, samples=4000, seed=3, executor=pool, blocks=4)
+        again = reconstruct(case, samples=4000, seed=3, executor=Client(pool), blocks=4)
+    assert spread.samples.n == 4000
+    for key in ("vehicle1.speed", "vehicle2.speed"):
+        a, b = one.samples.stats[key], spread.samples.stats[key]
+        width = a.p95 - a.p5
+        assert abs(a.p50 - b.p50) < 0.05 * width and abs(a.p95 - b.p95) < 0.08 * width
+        assert again.samples.stats[key] == b

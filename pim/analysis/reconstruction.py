@@ -34,12 +34,14 @@ from .reconstruction_mc import (
     ReconstructionSamples,
     reconstruction_samples,
     residual_standard_error,
+    solve_samples,
+    summarise,
 )
 from .residuals import measured_terms
 from .runout_fit import RunoutFit, fit_runout
 
 __all__ = ["PostImpact", "post_impact_motion", "approach_direction", "Reconstruction",
-           "reconstruct"]
+           "reconstruct", "evidence_sampler", "evidence_nominal", "sample_block"]
 
 
 @dataclass(frozen=True)
@@ -176,7 +178,8 @@ class Reconstruction:
 
 
 def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, seed: int = 0,
-                include_yaw: bool = True, post_impact_samples=None) -> Reconstruction:
+                include_yaw: bool = True, post_impact_samples=None, executor=None,
+                blocks: int | None = None) -> Reconstruction:
     """Evidence (or measured post-impact motion) -> impact speeds, eps, beta, with intervals.
 
     Parameters
@@ -194,7 +197,13 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         Fit the post-impact yaw rates too (default).
     post_impact_samples : callable, optional
         Per-sample post-impact motion from the evidence, for the Monte Carlo (see
-        :func:`pim.analysis.reconstruction_mc.reconstruction_samples`).
+        :func:`pim.analysis.reconstruction_mc.reconstruction_samples`); in-process only.
+    executor : concurrent.futures.Executor or dask.distributed.Client, optional
+        Spread the Monte Carlo over it in ``blocks`` blocks of samples (each block seeded
+        from ``seed`` by ``numpy.random.SeedSequence.spawn``, so a run repeats for a given
+        block count); None: one block in this process (numpy and numba's threads).
+    blocks : int, optional
+        Number of blocks with an executor (default 4).
 
     Returns
     -------
@@ -234,15 +243,22 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
             momentum = _momentum_of(solved, s_hat)
     mc = None
     if determined and samples:
-        extra_nominal, sampler = {}, post_impact_samples
-        if post is not None and sampler is None:
-            extra_nominal = {f"evidence.vehicle{i}.friction":
-                             float(getattr(case.evidence, f"vehicle{i}").friction)
-                             for i in post.runouts}
-            sampler = evidence_sampler(case, post, include_yaw)
-        mc = reconstruction_samples(solved, fitted, unknown, n=samples, seed=seed,
-                                    include_yaw=include_yaw, post_impact=sampler,
-                                    extra_nominal=extra_nominal)
+        if executor is None or post_impact_samples is not None:
+            extra_nominal, sampler = {}, post_impact_samples
+            if post is not None and sampler is None:
+                extra_nominal = evidence_nominal(case, post)
+                sampler = evidence_sampler(case, post, include_yaw)
+            mc = reconstruction_samples(solved, fitted, unknown, n=samples, seed=seed,
+                                        include_yaw=include_yaw, post_impact=sampler,
+                                        extra_nominal=extra_nominal)
+        else:
+            k = int(blocks or 4)
+            sizes = [len(part) for part in np.array_split(np.arange(samples), k) if len(part)]
+            seeds = np.random.SeedSequence(seed).spawn(len(sizes))
+            pool = executor.get_executor() if hasattr(executor, "get_executor") else executor
+            jobs = [(solved, fitted, unknown, size, sq, include_yaw, case, post)
+                    for size, sq in zip(sizes, seeds, strict=True)]
+            mc = summarise(fitted, list(pool.map(sample_block, jobs)))
         messages += mc.messages
     return Reconstruction(solved, unknown, post, fitted, values, momentum, mc, determined,
                           messages)
@@ -333,3 +349,21 @@ def evidence_sampler(case: Case, post: PostImpact, include_yaw: bool = True):
         return targets, ok, extra
 
     return sampler
+
+
+def evidence_nominal(case: Case, post: PostImpact) -> dict:
+    """Nominal values of the evidence inputs an ``[uncertainty]`` table may vary."""
+    return {f"evidence.vehicle{i}.friction": float(getattr(case.evidence, f"vehicle{i}").friction)
+            for i in post.runouts}
+
+
+def sample_block(job):
+    """One block of a reconstruction's Monte Carlo (a top-level function, so that a process
+    pool or a Dask cluster can run it): ``job`` = (solved case, nominal fit, unknowns, block
+    size, SeedSequence, include_yaw, input case, PostImpact or None)."""
+    solved, fitted, unknown, size, seed_sequence, include_yaw, case, post = job
+    sampler, extra = None, {}
+    if post is not None:
+        sampler, extra = evidence_sampler(case, post, include_yaw), evidence_nominal(case, post)
+    return solve_samples(solved, fitted, unknown, size, np.random.default_rng(seed_sequence),
+                         include_yaw=include_yaw, post_impact=sampler, extra_nominal=extra)

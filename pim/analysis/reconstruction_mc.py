@@ -36,7 +36,7 @@ from .montecarlo import PERCENTILES, first_order_indices
 from .residuals import measured_terms
 
 __all__ = ["UnknownStats", "ReconstructionSamples", "reconstruction_samples",
-           "residual_standard_error"]
+           "residual_standard_error", "SampleBlock", "solve_samples", "summarise"]
 
 
 @dataclass(frozen=True)
@@ -151,7 +151,33 @@ def reconstruction_samples(case, fit_result: FitResult, unknown: dict, n: int = 
     n = int(n)
     if n < 10:
         raise ValueError(f"samples must be >= 10, got {n}")
-    rng = np.random.default_rng(seed)
+    block = solve_samples(case, fit_result, unknown, n, np.random.default_rng(seed),
+                          distributions=distributions, include_yaw=include_yaw,
+                          post_impact=post_impact, extra_nominal=extra_nominal)
+    return summarise(fit_result, [block])
+
+
+@dataclass(frozen=True)
+class SampleBlock:
+    """Raw Monte Carlo samples of a reconstruction (one block; blocks concatenate).
+
+    ``x`` (n, n_unknowns) in the order of the nominal fit's ``values``; ``ok`` (n,) the
+    samples used; ``uniforms`` the uniform variate of every varying quantity (n,).
+    """
+
+    x: np.ndarray
+    ok: np.ndarray
+    uniforms: dict
+    source: str
+    messages: list
+
+
+def solve_samples(case, fit_result: FitResult, unknown: dict, n: int, rng, *,
+                  distributions: UncertaintyTable | None = None, include_yaw: bool = True,
+                  post_impact=None, extra_nominal: dict | None = None) -> SampleBlock:
+    """Draw ``n`` samples with ``rng`` and solve their inverse problems (module notes; the
+    parameters are those of :func:`reconstruction_samples`)."""
+    n = int(n)
     dists = case.uncertainty if distributions is None else distributions
     keys = tuple(fit_result.values)
     eps0 = fit_result.eps
@@ -188,6 +214,18 @@ def reconstruction_samples(case, fit_result: FitResult, unknown: dict, n: int = 
     x0 = np.array([fit_result.values[k] for k in keys])
     out = inverse_pim_many(base, keys, bounds, x0, rows, targets, factor)
     ok = out.converged & ok_post & np.all(np.isfinite(out.x), axis=1)
+    return SampleBlock(out.x, ok, uniforms, source, messages)
+
+
+def summarise(fit_result: FitResult, blocks) -> ReconstructionSamples:
+    """Percentiles and drivers of each unknown over the pooled ``blocks`` (SampleBlock)."""
+    keys = tuple(fit_result.values)
+    x0 = np.array([fit_result.values[k] for k in keys])
+    x = np.concatenate([b.x for b in blocks])
+    ok = np.concatenate([b.ok for b in blocks])
+    uniforms = {k: np.concatenate([b.uniforms[k] for b in blocks]) for k in blocks[0].uniforms}
+    messages = list(dict.fromkeys(m for b in blocks for m in b.messages))
+    n = len(ok)
     n_used = int(ok.sum())
     if n_used < n:
         messages.append(f"{n - n_used} of {n} samples left out (fit not converged or no "
@@ -195,7 +233,7 @@ def reconstruction_samples(case, fit_result: FitResult, unknown: dict, n: int = 
     u_ok = {k: u[ok] for k, u in uniforms.items()}
     stats, samples = {}, {}
     for j, key in enumerate(keys):
-        y = out.x[ok, j]
+        y = x[ok, j]
         samples[key] = y
         if n_used:
             p5, p50, p95 = np.percentile(y, PERCENTILES)
@@ -205,5 +243,5 @@ def reconstruction_samples(case, fit_result: FitResult, unknown: dict, n: int = 
         else:
             stats[key] = UnknownStats(key, float(x0[j]), *([np.nan] * 5), [])
     return ReconstructionSamples(n=n, n_used=n_used, stats=stats, samples=samples,
-                                 varying=tuple(uniforms), measured_sigma_source=source,
+                                 varying=tuple(uniforms), measured_sigma_source=blocks[0].source,
                                  messages=messages)

@@ -16,6 +16,7 @@ is 2: never a number.
 
 from __future__ import annotations
 
+from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 import click
@@ -95,15 +96,23 @@ def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
 @click.option("--samples", type=click.IntRange(min=0), default=10_000, show_default=True,
               help="Monte Carlo samples over the stated uncertainties (0: none).")
 @click.option("--seed", type=int, default=0, show_default=True, help="Monte Carlo seed.")
+@click.option("--workers", type=click.IntRange(min=1), default=1, show_default=True,
+              help="Spread the Monte Carlo over this many processes (1: this process, "
+                   "which already uses every core for the run-outs).")
 @click.option("--video/--no-video", default=True, show_default=True,
               help="With evidence, also write DIR/reconstruction.mp4 (impact to rest).")
 @units_option
 @json_option
-def reconstruct(case_name, out, samples, seed, video, units, as_json):
+def reconstruct(case_name, out, samples, seed, workers, video, units, as_json):
     """Reconstruct CASE's unknowns (e.g. the impact speeds) from its evidence."""
     case = load_case(case_name)
     units = units or case.units
-    rec = run_reconstruction(case, samples=samples, seed=seed)
+    if workers > 1:
+        with ProcessPoolExecutor(workers) as pool:
+            rec = run_reconstruction(case, samples=samples, seed=seed, executor=pool,
+                                     blocks=2 * workers)
+    else:
+        rec = run_reconstruction(case, samples=samples, seed=seed)
     if not rec.determined:
         raise ValueError(next((m for m in rec.messages if "under-determined" in m
                                or "family" in m), "; ".join(rec.messages)))
