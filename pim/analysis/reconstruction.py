@@ -236,6 +236,13 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
     messages += list(ident.warnings) if ident else []
     for key, side in fitted.on_bound.items():
         messages.append(f"{key} sits on its {side} bound")
+    best = fitted.minima_values[0][1] if fitted.minima_values else 0.0
+    equal = [v for v, c in fitted.minima_values if c <= best * (1 + 1e-6) + 1e-12]
+    if len(equal) > 1:
+        determined = False
+        messages.append(f"{len(equal)} distinct solutions fit equally well (" + "; ".join(
+            ", ".join(f"{k} = {x:.4g}" for k, x in v.items()) for v in equal)
+            + "): the data do not decide between them")
     values = {k: v for k, v in fitted.values.items()} if determined else {}
     if momentum is not None and not post and solved.measured.velocity1_sigma is None:
         s_hat = residual_standard_error(fitted)          # no sigma stated: the fit's

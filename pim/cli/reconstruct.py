@@ -115,7 +115,8 @@ def reconstruct(case_name, out, samples, seed, workers, video, units, as_json):
         rec = run_reconstruction(case, samples=samples, seed=seed)
     if not rec.determined:
         raise ValueError(next((m for m in rec.messages if "under-determined" in m
-                               or "family" in m), "; ".join(rec.messages)))
+                               or "family" in m or "equally well" in m),
+                              "; ".join(rec.messages)))
     rows = reconstruction_rows(rec, units)
     if as_json:
         echo_json({"case": case.name, "units": "si", "samples": samples,
