@@ -153,7 +153,9 @@ def make_baseline(cases, sections=DEFAULT_SECTIONS, settings: dict | None = None
         if progress is not None:
             progress(case)
         entry = record_case(case, sections, settings, base)
-        entry["references"] = dict((references or {}).get(entry["name"], {}))
+        refs = (references or {}).get(entry["name"], {})
+        entry["references"] = {k: v for k, v in refs.items()
+                               if k.split(".")[0] in entry["sections"]}
         out["cases"].append(entry)
     return out
 
@@ -169,18 +171,33 @@ def _parse_value(text, kind: str, where: str) -> float:
         raise ValueError(f"{where}: cannot read {text!r} as {kind} ({exc})") from None
 
 
+def _reference(ref: dict, where: str) -> dict:
+    missing = {"case", "quantity", "kind", "source"} - set(ref)
+    bounds = [k for k in ("value", "at_least", "at_most") if k in ref]
+    if missing or ref.get("kind") not in SI_UNITS or len(bounds) != 1:
+        raise ValueError(f"{where}: needs case, quantity, kind (one of {', '.join(SI_UNITS)}), "
+                         f"source and one of value, at_least, at_most")
+    absolute = _parse_value(ref.get("absolute", 0.0), ref["kind"], where)
+    return {"value": _parse_value(ref[bounds[0]], ref["kind"], where), "bound": bounds[0],
+            "kind": ref["kind"], "unit": SI_UNITS[ref["kind"]],
+            "printed": str(ref[bounds[0]]),
+            "tolerance": {"absolute": absolute, "relative": float(ref.get("relative", 0.0))},
+            "source": ref["source"]}
+
+
 def load_references(path) -> dict:
     """Independent reference values from a TOML file (docs/regression.md)::
 
         [[reference]]
-        case = "ricsac9"
+        case = "ricsac9"              # the case's name
         quantity = "solve.velocity1_x"
-        kind = "velocity"             # unit kind, for the printed value's unit
-        value = "-6.126 ft/s"         # as published, with its unit
+        kind = "velocity"             # unit kind of the value
+        value = "-6.126 ft/s"         # as published, with its unit (or at_least / at_most)
         relative = 2e-3               # and/or absolute = "0.01 ft/s"
         source = "Brach design sheet, RICSAC 9 validation table"
 
-    Returns case name -> {quantity -> {value [SI], kind, printed, tolerance, source}}.
+    Returns case name -> {quantity -> {value [SI], bound, kind, unit, printed, tolerance,
+    source}}; ``bound`` is "value" (within the tolerance), "at_least" or "at_most".
     """
     try:
         data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
@@ -188,17 +205,8 @@ def load_references(path) -> dict:
         raise ValueError(f"{path}: cannot read references ({exc})") from None
     out: dict = {}
     for i, ref in enumerate(data.get("reference", [])):
-        where = f"{path}: reference {i + 1}"
-        missing = {"case", "quantity", "kind", "value", "source"} - set(ref)
-        if missing or ref.get("kind") not in SI_UNITS:
-            raise ValueError(f"{where}: needs case, quantity, kind (one of "
-                             f"{', '.join(SI_UNITS)}), value and source")
-        absolute = _parse_value(ref.get("absolute", 0.0), ref["kind"], where)
-        out.setdefault(ref["case"], {})[ref["quantity"]] = {
-            "value": _parse_value(ref["value"], ref["kind"], where), "kind": ref["kind"],
-            "unit": SI_UNITS[ref["kind"]], "printed": str(ref["value"]),
-            "tolerance": {"absolute": absolute, "relative": float(ref.get("relative", 0.0))},
-            "source": ref["source"]}
+        out.setdefault(ref.get("case"), {})[ref.get("quantity")] = _reference(
+            ref, f"{path}: reference {i + 1}")
     return out
 
 
@@ -299,6 +307,18 @@ def _compare(case: str, name: str, q: dict, now: float | None, exact: bool,
                  q["kind"], against)
 
 
+def _compare_reference(case: str, name: str, ref: dict, now: float | None) -> Drift | None:
+    bound = ref.get("bound", "value")
+    if bound == "value":
+        return _compare(case, name, ref, now, False, ref["source"])
+    limit = ref["value"]
+    ok = now is not None and (now >= limit if bound == "at_least" else now <= limit)
+    if ok:
+        return None
+    return Drift(case, name, limit, now, None if now is None else now - limit, 0.0,
+                 ref["unit"], ref["kind"], f"{bound.replace('_', ' ')}: {ref['source']}")
+
+
 def _rerun(entry: dict, loaded: pim.Case, report: CheckReport) -> dict:
     now = {}
     for section in entry.get("sections", []):
@@ -333,7 +353,7 @@ def _check_case(entry: dict, base: Path, same_versions: bool, report: CheckRepor
             report.drifts.append(d)
     for name, ref in entry.get("references", {}).items():
         report.checked += 1
-        d = _compare(entry["case"], name, ref, now.get(name), False, ref["source"])
+        d = _compare_reference(entry["case"], name, ref, now.get(name))
         if d is not None:
             report.drifts.append(d)
 
