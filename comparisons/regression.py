@@ -397,6 +397,8 @@ def check_baseline(path, cases=None, progress=None) -> CheckReport:
 def _show(value, kind: str, system: str) -> str:
     if value is None:
         return "missing"
+    if not math.isfinite(value):
+        return "undefined"
     x, _ = convert(value, kind, system)
     return f"{float(x):.10g}"
 
