@@ -10,7 +10,9 @@ section          runs                         tolerance (``|now - baseline| <= m
 ===============  ===========================  ==============================================
 solve            :func:`pim.solve`            round-off of the closed form: relative 1e-12,
                                               absolute 1e-12 x the largest value of the
-                                              same unit in the section
+                                              same unit in the section, or what moving the
+                                              scene by round-off changes (a 1e-14 rad
+                                              rotation, a 1e-13 m shift), if larger
 fit              :func:`pim.fit`              the optimiser's: relative 1e-6, absolute 1e-6
                                               (eps, beta) or 1e-6 x the scale of the unit
 crosscheck       :func:`sim.crosscheck`       the rigid scene's stated accuracy (docs/sim.md:
@@ -45,8 +47,8 @@ from pim.model.quantities import OUTPUTS
 from .assumptions import run_assumptions
 
 __all__ = ["Recorded", "SECTIONS", "DEFAULT_SECTIONS", "DEFAULT_SETTINGS", "run_section",
-           "standard_error", "STATISTICAL_K", "CLOSED_FORM_REL", "FIT_REL", "SIM_REL",
-           "COMPLIANT_ABS"]
+           "standard_error", "ROUND_OFF_MOVES", "STATISTICAL_K", "CLOSED_FORM_REL", "FIT_REL",
+           "SIM_REL", "COMPLIANT_ABS"]
 
 #: Every section, in the order they run; the default ones leave out the slow assumptions.
 SECTIONS = ("solve", "fit", "crosscheck", "uncertainty", "reconstruct", "assumptions")
@@ -133,14 +135,24 @@ def _outputs(result: pim.Result) -> dict:
     return out
 
 
+#: Round-off-sized moves of the whole scene, (rotation [rad], translation [m]): what they
+#: change in an output measures the case's conditioning (a near-singular q amplifies them).
+ROUND_OFF_MOVES = ((1e-14, (0.0, 0.0)), (-1e-14, (0.0, 0.0)), (0.0, (1e-13, -1e-13)))
+
+
 def _solve(case: pim.Case, settings: dict) -> list[Recorded]:
     if case.impact.restitution is None:
         raise LookupError("the case gives no impact.restitution")
-    result = pim.solve(case)
-    values = _outputs(result)
+    values = _outputs(pim.solve(case))
     kinds = {k: _kind(OUTPUTS[k].kind if k in OUTPUTS else "energy") for k in values}
-    return _scaled(values, kinds, CLOSED_FORM_REL, CLOSED_FORM_REL, "solve",
-                   "round-off of the closed form")
+    rows = _scaled(values, kinds, CLOSED_FORM_REL, CLOSED_FORM_REL, "solve",
+                   "round-off of the closed form and the case's conditioning")
+    moved = [_outputs(pim.solve(case.transformed(a, b))) for a, b in ROUND_OFF_MOVES]
+    for r in rows:
+        key = r.name[len("solve."):]
+        spread = [abs(m[key] - r.value) for m in moved if math.isfinite(m[key] - r.value)]
+        r.absolute = max([r.absolute, *spread])
+    return rows
 
 
 def _fit(case: pim.Case, settings: dict) -> list[Recorded]:

@@ -94,7 +94,9 @@ def check(baseline_file, only, units, as_json):
     Carlo is held to its statistical tolerance instead of bit for bit). Exit code 0: all
     within tolerance; 1: drift; 2: bad input (missing or malformed baseline, one line).
     """
-    report = check_baseline(baseline_file, only or None)
+    bar, step = _progress(len(only) if only else None, "check")
+    with bar:
+        report = check_baseline(baseline_file, only or None, step)
     if as_json:
         echo_json(report.to_json())
     else:
