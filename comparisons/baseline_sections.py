@@ -59,8 +59,9 @@ DEFAULT_SETTINGS = {"uncertainty_samples": 2000, "reconstruct_samples": 200, "se
 #: Round-off of the closed form [-] (a few thousand ulp: libm sine and cosine may differ by
 #: an ulp across platforms, and a few subtractions amplify it).
 CLOSED_FORM_REL = 1e-12
-#: The fit's optimiser (scipy least squares, tolerances 1e-10 on the cost; a scipy upgrade
-#: may stop at a neighbouring point of the flat valley) [-].
+#: The fit's optimiser (L-BFGS-B from a coarse grid, gtol 1e-11 on the gradient: near a flat
+#: minimum the parameters are determined only to about the square root of the cost's
+#: round-off, and a scipy upgrade may stop at a neighbouring point) [-].
 FIT_REL = 1e-6
 #: The rigid pymunk scene against pim.solve: every scene within 1e-6 (docs/sim.md) [-].
 SIM_REL = 1e-6
