@@ -65,3 +65,15 @@ def test_baseline_of_an_unknown_case_is_exit_2(tmp_path, capsys):
     assert main(["baseline", "no-such-case", "--out", str(tmp_path / "b.json")]) == 2
     assert "no-such-case" in capsys.readouterr().err
     assert not (tmp_path / "b.json").exists()
+
+
+def test_assumptions_are_opt_in_and_check_clean(tmp_path, capsys):
+    out = tmp_path / "b.json"
+    assert main(["baseline", "hard-pole", "--with", "assumptions", "--without", "crosscheck",
+                 "--out", str(out)]) == 0
+    entry = json.loads(out.read_text())["cases"][0]
+    assert entry["sections"] == ["solve", "assumptions"]
+    q = entry["quantities"]["assumptions.instantaneous.delta_v1"]
+    assert q["tolerance"]["absolute"] == 1e-3 and "contact-model.md" in q["tolerance_basis"]
+    assert "assumptions" in entry["seconds"]
+    assert main(["check", str(out)]) == 0
