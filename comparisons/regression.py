@@ -407,10 +407,26 @@ def _short(value: float, kind: str, system: str) -> str:
     return f"{float(convert(value, kind, system)[0]):.3g}"
 
 
+def _row(d: Drift, system: str) -> list[str]:
+    _, unit = convert(1.0, d.kind, system)
+    diff = "-" if d.difference is None else _short(d.difference, d.kind, system)
+    return [d.case, d.quantity, _show(d.baseline, d.kind, system),
+            _show(d.now, d.kind, system), diff, _short(d.tolerance, d.kind, system), unit,
+            d.against]
+
+
+def _by_section(report: CheckReport) -> str:
+    counts: dict = {}
+    for d in report.drifts:
+        key = d.quantity.split(".")[0] + (" (references)" if d.against != "baseline" else "")
+        counts[key] = counts.get(key, 0) + 1
+    return ", ".join(f"{k} {n}" for k, n in counts.items())
+
+
 def format_report(report: CheckReport, units: str | None = None) -> str:
     """The check as text: input and version changes, then one row per drifted quantity
-    (quantity, baseline, now, difference, tolerance, unit) in ``units`` ("si" or "us";
-    default each case's own)."""
+    (case, quantity, baseline, now, difference, tolerance, unit, against what) in ``units``
+    ("si" or "us"; default each case's own)."""
     lines = [f"input changed: {c}" for c in report.input_changes]
     lines += [f"version differs: {k} {old} -> {new} (Monte Carlo statistics are held to "
               f"their statistical tolerance, not bit for bit)"
@@ -419,18 +435,16 @@ def format_report(report: CheckReport, units: str | None = None) -> str:
     if report.ok:
         lines.append(f"{report.path}: all {report.checked} quantities within tolerance")
         return "\n".join(lines)
-    head = (f"{'case':<22}{'quantity':<40}{'baseline':>16}{'now':>16}{'difference':>13}"
-            f"{'tolerance':>11}  unit  against")
-    lines += [f"{report.path}: {len(report.drifts)} of {report.checked} quantities moved "
-              f"beyond tolerance", head]
-    for d in report.drifts:
-        system = units or report.units.get(d.case, "si")
-        _, unit = convert(1.0, d.kind, system)
-        diff = "-" if d.difference is None else _short(d.difference, d.kind, system)
-        tol = _short(d.tolerance, d.kind, system)
-        lines.append(f"{d.case:<22}{d.quantity:<40}{_show(d.baseline, d.kind, system):>16}"
-                     f"{_show(d.now, d.kind, system):>16}{diff:>13}{tol:>11}  {unit:<5} "
-                     f"{d.against}")
+    lines.append(f"{report.path}: {len(report.drifts)} of {report.checked} quantities moved "
+                 f"beyond tolerance ({_by_section(report)})")
+    rows = [["case", "quantity", "baseline", "now", "difference", "tolerance", "unit",
+             "against"]]
+    rows += [_row(d, units or report.units.get(d.case, "si")) for d in report.drifts]
+    widths = [max(len(r[i]) for r in rows) for i in range(7)]
+    for r in rows:
+        cells = [c.ljust(w) if i in (0, 1, 6) else c.rjust(w)
+                 for i, (c, w) in enumerate(zip(r, widths, strict=False))]
+        lines.append("  ".join(cells + [r[7]]))
     return "\n".join(lines)
 
 
