@@ -351,6 +351,11 @@ def _check_case(entry: dict, base: Path, same_versions: bool, report: CheckRepor
         d = _compare(entry["case"], name, q, now.get(name), exact)
         if d is not None:
             report.drifts.append(d)
+    new = sorted(set(now) - set(entry["quantities"]))
+    if new:
+        report.notes.append(f"{entry['case']}: {len(new)} quantities are new since the "
+                            f"baseline and not checked ({', '.join(new[:5])}"
+                            f"{', ...' if len(new) > 5 else ''})")
     for name, ref in entry.get("references", {}).items():
         report.checked += 1
         d = _compare_reference(entry["case"], name, ref, now.get(name))

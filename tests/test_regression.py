@@ -87,6 +87,14 @@ def test_a_planted_drift_beyond_tolerance_is_the_only_row(recorded, tmp_path):
     assert d.unit == "N*s" and abs(d.difference) > d.tolerance
 
 
+def test_a_quantity_new_since_the_baseline_is_a_note_not_drift(recorded, tmp_path):
+    def forget(doc):
+        del doc["cases"][1]["quantities"]["solve.mu0"]
+    report = check_baseline(_copy(recorded, tmp_path, forget))
+    assert report.ok and "hard-pole: 1 quantities are new" in report.notes[0]
+    assert "solve.mu0" in format_report(report)
+
+
 def test_a_change_within_tolerance_passes(recorded, tmp_path):
     # 1e-13 relative: below the closed form's round-off tolerance of 1e-12
     assert check_baseline(_copy(recorded, tmp_path, _set("solve.impulse_n", 1 + 1e-13))).ok
