@@ -41,7 +41,7 @@ def _progress(total: int, desc: str):
                    "typical values, about 1-2 s per case).")
 @click.option("--without", "skip", multiple=True, type=click.Choice(SECTIONS),
               help="Leave this section out (e.g. reconstruct of a case with run-out "
-                   "evidence takes about a minute).")
+                   "evidence takes minutes).")
 @click.option("--samples", type=click.IntRange(min=10), default=None,
               help=f"Monte Carlo samples of the uncertainty section (default "
                    f"{DEFAULT_SETTINGS['uncertainty_samples']}).")

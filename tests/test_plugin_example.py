@@ -29,7 +29,7 @@ def test_bundled_case_matches_its_baseline(pim_check, case):
 
 
 def test_synthetic_runout_matches_its_baseline(pim_check):
-    # its reconstruction (about a minute) is in slow.json
+    # its reconstruction (minutes) is in slow.json
     pim_check("synthetic-runout", BASELINES / "synthetic-runout.json")
 
 
