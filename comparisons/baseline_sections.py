@@ -270,9 +270,12 @@ def _assumptions(case: pim.Case, settings: dict) -> list[Recorded]:
         for key, err in o.errors.items():
             rows.append(Recorded(f"assumptions.{s.key}.{key}", float(err), "dimensionless",
                                  COMPLIANT_ABS, 0.0, basis))
-        for key in ("eps_eff", "beta_eff"):
-            rows.append(Recorded(f"assumptions.{s.key}.{key}", float(getattr(o, key)),
-                                 "dimensionless", COMPLIANT_ABS, 0.0, basis))
+        for key in ("eps_eff", "beta_eff", "fit_rms", "energy_loss", "pim_energy_loss",
+                    "stick_fraction", "point_distance"):
+            kind = {"fit_rms": "velocity", "point_distance": "length"}.get(key, "dimensionless")
+            rows.append(Recorded(f"assumptions.{s.key}.{key}", float(getattr(o, key)), kind,
+                                 COMPLIANT_ABS if kind == "dimensionless" else 1e-6,
+                                 0.0 if kind == "dimensionless" else COMPLIANT_ABS, basis))
     return rows
 
 
