@@ -33,8 +33,8 @@ from sim.error_measure import ERROR_DEFINITION, impact_error
 from .baseline_sections import DEFAULT_SECTIONS, DEFAULT_SETTINGS, SECTIONS, run_section
 
 __all__ = ["FORMAT", "make_baseline", "record_case", "load_baseline", "check_baseline",
-           "CheckReport", "Drift", "format_report", "case_source", "versions", "load_references",
-           "assert_agrees", "agreement", "DEPENDENCIES", "SAME_VERSIONS_REL"]
+           "CheckReport", "Drift", "format_report", "dumps_baseline", "case_source", "versions",
+           "load_references", "assert_agrees", "agreement", "DEPENDENCIES", "SAME_VERSIONS_REL"]
 
 #: Format tag of a baseline file.
 FORMAT = "pim-baseline/1"
@@ -172,6 +172,27 @@ def _parse_value(text, kind: str, where: str) -> float:
             float(q.to("dimensionless").magnitude)
     except Exception as exc:   # pint raises several unrelated types for a bad unit
         raise ValueError(f"{where}: cannot read {text!r} as {kind} ({exc})") from None
+
+
+def dumps_baseline(doc: dict) -> str:
+    """A baseline as JSON text: indented, one line per quantity and reference (so that a
+    re-recorded baseline's diff shows one line per value that changed)."""
+    lines = {}
+
+    def one_line(table: dict) -> dict:
+        out = {}
+        for name, q in table.items():
+            key = f"@@{len(lines)}@@"
+            lines[key] = json.dumps(q, allow_nan=False)
+            out[name] = key
+        return out
+
+    cases = [{**c, "quantities": one_line(c["quantities"]),
+              "references": one_line(c.get("references", {}))} for c in doc["cases"]]
+    text = json.dumps({**doc, "cases": cases}, indent=1, allow_nan=False)
+    for key, value in lines.items():
+        text = text.replace(f'"{key}"', value, 1)
+    return text + "\n"
 
 
 def _reference(ref: dict, where: str) -> dict:

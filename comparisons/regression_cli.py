@@ -3,7 +3,6 @@ as ``pim.commands`` entry points in pyproject.toml)."""
 
 from __future__ import annotations
 
-import json
 import sys
 import time
 from pathlib import Path
@@ -15,7 +14,13 @@ from pim.cli import echo_json, json_option, units_option
 from pim.io.files import write_text
 
 from .baseline_sections import DEFAULT_SECTIONS, DEFAULT_SETTINGS, SECTIONS
-from .regression import check_baseline, format_report, load_references, make_baseline
+from .regression import (
+    check_baseline,
+    dumps_baseline,
+    format_report,
+    load_references,
+    make_baseline,
+)
 
 __all__ = ["baseline", "check", "DRIFT_EXIT_CODE"]
 
@@ -73,7 +78,7 @@ def baseline(cases, out, extra, skip, samples, reconstruct_samples, seed, refere
     bar, step = _progress(len(cases), "baseline")
     with bar:
         doc = make_baseline(cases, sections, settings, Path(out).resolve().parent, refs, step)
-    write_text(out, json.dumps(doc, indent=1, allow_nan=False) + "\n")
+    write_text(out, dumps_baseline(doc))
     n = sum(len(c["quantities"]) for c in doc["cases"])
     click.echo(f"{out}: {n} quantities of {len(cases)} case(s) in "
                f"{time.perf_counter() - start:.1f} s ({', '.join(sections)})")

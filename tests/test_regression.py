@@ -15,6 +15,7 @@ from comparisons.regression import (
     agreement,
     assert_agrees,
     check_baseline,
+    dumps_baseline,
     format_report,
     load_baseline,
     load_references,
@@ -221,3 +222,11 @@ def test_agreement_is_the_projects_one_error_measure(ricsac9):
         assert_agrees(analytic, other, 1e-3)
     with pytest.raises(TypeError):
         agreement(simulated, simulated)
+
+
+def test_the_file_has_one_line_per_quantity_and_reads_back(recorded):
+    doc = recorded[1]
+    text = dumps_baseline(doc)
+    assert json.loads(text) == json.loads(json.dumps(doc))
+    line = next(x for x in text.splitlines() if '"solve.velocity1_x"' in x)
+    assert json.loads(line.strip().rstrip(",").split(": ", 1)[1])["unit"] == "m/s"
