@@ -77,3 +77,14 @@ def test_assumptions_are_opt_in_and_check_clean(tmp_path, capsys):
     assert q["tolerance"]["absolute"] == 1e-3 and "contact-model.md" in q["tolerance_basis"]
     assert "assumptions" in entry["seconds"]
     assert main(["check", str(out)]) == 0
+
+
+def test_check_names_dependency_versions_that_differ(folder, tmp_path, capsys):
+    doc = json.loads((folder / "b.json").read_text())
+    doc["versions"]["pymunk"] = "6.0.0"
+    (tmp_path / "b.json").write_text(json.dumps(doc))
+    shutil.copy(folder / "mine.toml", tmp_path / "mine.toml")
+    assert main(["check", str(tmp_path / "b.json")]) == 0
+    assert "version differs: pymunk 6.0.0 ->" in capsys.readouterr().out
+    assert main(["check", str(tmp_path / "b.json"), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["version_changes"]["pymunk"][0] == "6.0.0"
