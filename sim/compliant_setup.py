@@ -28,7 +28,12 @@ import numpy as np
 import pim
 from pim.model import geometry
 
-from .contact_law import check_fraction, check_positive, contact_duration_estimate
+from .contact_law import (
+    check_fraction,
+    check_positive,
+    contact_duration_estimate,
+    tangential_recovery_default,
+)
 from .contact_tyres import TYRE_MODES, wheels_from_outline
 from .overlap import place
 from .result import Trajectory
@@ -65,6 +70,11 @@ class CompliantSettings:
     tangential_stiffness : float or None
         k_t [N/m] of the elastoplastic friction spring, > 0; None: equal to the normal
         stiffness k.
+    tangential_recovery : float or None
+        Share r [-] in [0, 1] of the stored tangential (elastic) energy the contact gives
+        back (:mod:`sim.contact_law`, "Tangential recovery"); None: tied to the restitution,
+        r = eps^2 (:func:`sim.contact_law.tangential_recovery_default`); 1: the fully
+        elastic friction spring; 0: plastic.
     preload : float
         Force at zero crush a [N] >= 0 of the loading curve F = a + k delta (Campbell's A
         times the contact width; k is then Campbell's B times the width); default 0.
@@ -87,6 +97,7 @@ class CompliantSettings:
     method: str = "DOP853"
     rtol: float = 1e-9
     tangential_stiffness: float | None = None
+    tangential_recovery: float | None = None
     preload: float = 0.0
     tyre_mode: str = "rolling"
     max_contact_time: float = 1.0
@@ -118,6 +129,9 @@ class CompliantSettings:
         if self.tangential_stiffness is not None:
             set_(self, "tangential_stiffness", check_positive(
                 self.tangential_stiffness, "settings.tangential_stiffness", "N/m"))
+        if self.tangential_recovery is not None:
+            set_(self, "tangential_recovery", check_fraction(
+                self.tangential_recovery, "settings.tangential_recovery"))
         set_(self, "preload", check_positive(self.preload, "settings.preload", "N",
                                              allow_zero=True))
         if self.tyre_mode not in TYRE_MODES:
@@ -162,6 +176,7 @@ class CompliantProblem:
     preload: float              # a [N]
     friction: float             # mu_c [-]
     tangential_stiffness: float  # k_t [N/m]
+    tangential_recovery: float  # r [-]
     geometry: str
     tyre_friction: float
     tyre_mode: str
@@ -252,9 +267,12 @@ def build_problem(case: pim.Case, eps, stiffness, friction=0.0, geometry="point"
     wheels2 = None if fixed2 else wheels_from_outline(v2.length, v2.width, math.sqrt(i2 / m2))
     speeds = [np.hypot(*vel1), 0.0 if fixed2 else np.hypot(*vel2)]
     kt = settings.tangential_stiffness or stiffness
+    recovery = (float(tangential_recovery_default(eps)) if settings.tangential_recovery is None
+                else settings.tangential_recovery)
     return CompliantProblem(
         case=case, eps=eps, stiffness=stiffness, preload=settings.preload, friction=friction,
-        tangential_stiffness=kt, geometry=geometry, tyre_friction=tyre_friction,
+        tangential_stiffness=kt, tangential_recovery=recovery, geometry=geometry,
+        tyre_friction=tyre_friction,
         tyre_mode=settings.tyre_mode, mass1=m1, inertia1=i1, mass2=m2, inertia2=i2,
         fixed2=fixed2, state0=state0, arm1_body=rotate(r1, -h1), arm2_body=rotate(r2, -h2),
         normal2_body=rotate(n, -h2), wheels1=wheels1, wheels2=wheels2,
@@ -378,6 +396,8 @@ class CompliantResult:
         impact PIM does not model), within the recorded ``duration``.
     problems : tuple of str
         Flags: e.g. a crush deeper than the vehicle (the outlines would pass through).
+    tangential_recovery : float
+        The tangential recovery r [-] the contact used (``settings.tangential_recovery``).
     """
 
     velocity1: np.ndarray
@@ -409,6 +429,7 @@ class CompliantResult:
     trajectory: Trajectory | None = None
     secondary_impact: float | None = None
     problems: tuple = ()
+    tangential_recovery: float = math.nan
 
     @property
     def energy_loss(self) -> float:
