@@ -13,8 +13,9 @@ law     Newton's restitution, mu = beta mu0         crush hysteresis (epsilon) a
                                                     sticking plastic friction spring for
                                                     beta 1), point at C, nearly instantaneous
 duration  instantaneous impulse                     the same at contact time T
-point   where the impulse acts (one point C)        the point moved to the outlines' impulse
-                                                    centroid (same T)
+point   where the impulse acts (C and Gamma)        the point moved to the outlines' impulse
+                                                    centroid, the normal turned to their mean
+                                                    contact normal (same T)
 outline concentrated contact                        the outlines crush into each other (same T)
 tyres   no external forces                          tyre friction during the contact (same T)
 friction  PIM's tangential law                      Coulomb friction mu_c between the vehicles
@@ -94,7 +95,8 @@ class Scene:
     duration : float or None
         Contact time [s]; None: instantaneous (PIM; the crush law at :data:`STIFF_LIMIT`).
     point : {"C", "centroid"}
-        Where the point contact acts: the case's C, or the impulse centroid of the outlines.
+        Where the point contact acts: the case's C and normal Gamma, or the impulse centroid
+        and the mean contact normal of the outlines (the line the outlines' impulse acts on).
     distributed : bool
         The outlines crush into each other (the force acts where they overlap).
     tyre_friction : float
@@ -134,7 +136,7 @@ RUNGS = {
     "pim": "PIM",
     "law": "Newton's restitution and mu = beta mu0 (replaced by the crush hysteresis)",
     "duration": "instantaneous impulse (finite contact time)",
-    "point": "impulse at C (moved to where the outlines' impulse acts)",
+    "point": "impulse at C along Gamma (moved to the line the outlines' impulse acts on)",
     "outline": "one contact point (the outlines crush: a distributed contact)",
     "tyres": "no external forces (tyre friction during the contact)",
     "friction": "PIM's tangential law (Coulomb friction between the vehicles)",
@@ -180,6 +182,7 @@ class SceneRun:
     yaw_rate2: float
     contact_duration: float = math.nan
     impact_point: np.ndarray = field(default_factory=lambda: np.full(2, math.nan))
+    normal: np.ndarray = field(default_factory=lambda: np.full(2, math.nan))
     energy_loss: float = math.nan
     stick_fraction: float = math.nan
     slip_reversed: bool = False
@@ -258,6 +261,8 @@ class AssumptionStudy:
         The friction rung at the typical contact time.
     centroid_distance : float
         |impulse centroid - C| [m] of the outlines at the typical contact time.
+    normal_turn : float
+        Angle [deg] from the case's normal Gamma to the outlines' mean contact normal there.
     seconds : float
         Wall time of the study [s].
     """
@@ -270,6 +275,7 @@ class AssumptionStudy:
     tyre_curves: dict
     recovery_map: tuple
     centroid_distance: float
+    normal_turn: float
     stiffness_typical: float
     seconds: float
     animation_result: object = field(default=None, repr=False)
@@ -319,19 +325,22 @@ def outcome_errors(case: pim.Case, result: pim.Result, velocity1, velocity2, yaw
 
 # -- simulating one scene ---------------------------------------------------------------------
 
-def _contact_case(case: pim.Case, scene: Scene, centroid) -> pim.Case:
-    """The case with its impact point at the outlines' impulse centroid if the scene says so
-    (the point contact acts there; the outline scenes take the stiffness for it)."""
+def _contact_case(case: pim.Case, scene: Scene, line) -> pim.Case:
+    """The case with its impact point and normal on the outlines' line of impulse
+    ``line`` = (centroid, normal) if the scene says so (the point contact acts there; the
+    outline scenes take the stiffness for it)."""
     if scene.point == "C":
         return case
-    return replace(case, impact=replace(case.impact, point=np.asarray(centroid, float)))
+    centroid, normal = line
+    return replace(case, impact=replace(case.impact, point=np.asarray(centroid, float),
+                                        normal_angle=math.atan2(normal[1], normal[0])))
 
 
 def _simulate(job: tuple) -> SceneRun:
     """Simulate one scene (module level, so that it runs on a process pool)."""
-    case, eps, beta_pim, scene, centroid, settings = job
+    case, eps, beta_pim, scene, line, settings = job
     try:
-        where = _contact_case(case, scene, centroid)
+        where = _contact_case(case, scene, line)
         k_nn = build_problem(where, eps, sim.DEFAULT_STIFFNESS).k_nn
         duration = STIFF_LIMIT if scene.duration is None else scene.duration
         k = float(stiffness_for_duration(duration, k_nn, eps))
@@ -350,6 +359,7 @@ def _simulate(job: tuple) -> SceneRun:
     e0 = r.energy_before
     return SceneRun(scene, r.velocity1, r.velocity2, r.yaw_rate1, r.yaw_rate2,
                     r.contact_duration, np.asarray(r.impact_point, float),
+                    np.asarray(r.impulse_normal, float),
                     r.energy_loss / e0 if e0 > 0 else math.nan, r.stick_fraction,
                     bool(r.slip_reversed), r.tangential_recovery)
 
@@ -427,7 +437,7 @@ def _simulate_all(case, eps, beta_pim, plan, has_outline, settings, executor, pr
         for d, run in zip(plan.durations, sweep(_simulate, probes, executor=executor,
                                                 progress=progress, desc="outline probes"),
                           strict=True):
-            centroids[d] = run.impact_point
+            centroids[d] = (run.impact_point, run.normal)
     scenes = list(dict.fromkeys(s for d in plan.durations
                                 for s in _variants(plan, d, has_outline)))
     jobs = [(case, eps, beta_pim, s, centroids.get(s.duration), settings) for s in scenes]
@@ -516,12 +526,16 @@ def run_assumptions(case: pim.Case, eps: float | None = None, beta: float | None
     k_nn = build_problem(case, eps, sim.DEFAULT_STIFFNESS).k_nn
     k_typical = float(stiffness_for_duration(TYPICAL["duration"], k_nn, eps))
     point = np.asarray(case.impact.point, float).reshape(2)
-    centroid = centroids[TYPICAL["duration"]]
-    distance = math.nan if centroid is None else float(np.hypot(*(centroid - point)))
+    line = centroids[TYPICAL["duration"]]
+    distance = turn = math.nan
+    if line is not None:
+        distance = float(np.hypot(*(line[0] - point)))
+        gamma = float(case.impact.normal_angle)
+        turn = math.degrees(math.remainder(math.atan2(line[1][1], line[1][0]) - gamma, math.tau))
     anim = _animation(case, eps, stiffness or k_typical, has_outline, settings,
                       animation_after)
     return AssumptionStudy(case, eps, beta, beta_pim, ladders, curves, recovery_map, distance,
-                           k_typical, time.perf_counter() - start, anim)
+                           turn, k_typical, time.perf_counter() - start, anim)
 
 
 def _animation(case, eps, k, has_outline, settings, after):
@@ -584,8 +598,9 @@ def verdicts(study: AssumptionStudy) -> list[str]:
                f"instantaneous {1e3 * STIFF_LIMIT:g} ms contact",
         "duration": f"The instantaneous impulse, replaced by a {ms} contact (same contact law "
                     f"at C)",
-        "point": f"The impulse acting at C, moved to the outlines' impulse centroid "
-                 f"{study.centroid_distance:.2f} m away (point contact, {ms})",
+        "point": f"The impulse acting at C along Gamma, moved to the outlines' impulse "
+                 f"centroid {study.centroid_distance:.2f} m away and their mean contact "
+                 f"normal ({study.normal_turn:+.0f} deg) (point contact, {ms})",
         "outline": f"One contact point, replaced by the outlines crushing into each other "
                    f"(a distributed contact with the same impulse centroid, {ms})",
         "tyres": f"No external forces, replaced by tyre friction {TYPICAL['tyre_friction']:g} "

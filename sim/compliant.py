@@ -288,6 +288,7 @@ class ContactTally:
 
     impulse: np.ndarray = field(default_factory=lambda: np.zeros(2))
     moment_sum: np.ndarray = field(default_factory=lambda: np.zeros(2))
+    normal_sum: np.ndarray = field(default_factory=lambda: np.zeros(2))
     weight: float = 0.0
     peak: float = 0.0
     tyre_work: float = 0.0
@@ -305,6 +306,7 @@ class ContactTally:
         size = math.hypot(cf.force[0], cf.force[1])
         self.impulse += cf.force * dt
         self.moment_sum += size * dt * geo.point
+        self.normal_sum += size * dt * geo.normal
         self.weight += size * dt
         self.contact_time += dt
         self.stick_time += dt if cf.sticking else 0.0
@@ -569,7 +571,9 @@ def _result(problem: CompliantProblem, stepper: _Stepper, post: tuple, delta_p: 
         tyre_friction=problem.tyre_friction, geometry=problem.geometry,
         settings=problem.settings, history=history, trajectory=trajectory,
         secondary_impact=secondary, problems=_problems(problem, mem.delta_max),
-        tangential_recovery=problem.tangential_recovery)
+        tangential_recovery=problem.tangential_recovery,
+        impulse_normal=(tally.normal_sum / math.hypot(*tally.normal_sum)
+                        if tally.weight > 0 else np.full(2, np.nan)))
 
 
 def _problems(problem: CompliantProblem, peak_crush: float) -> tuple:

@@ -21,7 +21,7 @@ linear momentum and angular momentum about any fixed point are conserved.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
@@ -398,6 +398,9 @@ class CompliantResult:
         Flags: e.g. a crush deeper than the vehicle (the outlines would pass through).
     tangential_recovery : float
         The tangential recovery r [-] the contact used (``settings.tangential_recovery``).
+    impulse_normal : ndarray (2,)
+        The contact normal weighted like ``impact_point`` (|F| dt), unit length: the mean
+        normal of the outline contact (pymunk only; NaN from the reference).
     """
 
     velocity1: np.ndarray
@@ -430,6 +433,7 @@ class CompliantResult:
     secondary_impact: float | None = None
     problems: tuple = ()
     tangential_recovery: float = math.nan
+    impulse_normal: np.ndarray = field(default_factory=lambda: np.full(2, math.nan))
 
     @property
     def energy_loss(self) -> float:

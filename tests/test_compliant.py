@@ -264,6 +264,14 @@ def test_outline_geometry_gives_the_impulse_centroid(ricsac9):
     assert np.abs(lin - lin0).max() < 1e-9 * np.linalg.norm(lin0)
 
 
+def test_outline_reports_its_mean_contact_normal(ricsac9):
+    r = sim.simulate_compliant(ricsac9, 0.355, K, geometry="outline",
+                               settings=CompliantSettings(record=False))
+    assert np.hypot(*r.impulse_normal) == pytest.approx(1.0, abs=1e-12)
+    # RICSAC 9: vehicle 1's front into vehicle 2's side, normal along +x like Gamma = 0
+    assert r.impulse_normal[0] > 0.99
+
+
 def test_tyres_slow_the_vehicles_during_the_contact(ricsac9):
     free = sim.simulate_compliant(ricsac9, 0.355, K, settings=CompliantSettings(record=False))
     tyres = sim.simulate_compliant(ricsac9, 0.355, K, tyre_friction=0.7,
