@@ -51,7 +51,7 @@ import numpy as np
 import pim
 import sim
 from pim.io.files import save_figure, write_text
-from sim.compliant_setup import build_problem
+from sim.compliant_setup import build_problem, rotate
 from sim.contact_law import stiffness_for_duration, tangential_recovery_default
 from sim.error_measure import ERROR_DEFINITION, impact_error
 from sim.sweep import sweep
@@ -183,6 +183,9 @@ class SceneRun:
     contact_duration: float = math.nan
     impact_point: np.ndarray = field(default_factory=lambda: np.full(2, math.nan))
     normal: np.ndarray = field(default_factory=lambda: np.full(2, math.nan))
+    contact_start: float = 0.0
+    point_body1: np.ndarray = field(default_factory=lambda: np.full(2, math.nan))
+    normal_body2: np.ndarray = field(default_factory=lambda: np.full(2, math.nan))
     energy_loss: float = math.nan
     stick_fraction: float = math.nan
     slip_reversed: bool = False
@@ -325,15 +328,31 @@ def outcome_errors(case: pim.Case, result: pim.Result, velocity1, velocity2, yaw
 
 # -- simulating one scene ---------------------------------------------------------------------
 
-def _contact_case(case: pim.Case, scene: Scene, line) -> pim.Case:
-    """The case with its impact point and normal on the outlines' line of impulse
-    ``line`` = (centroid, normal) if the scene says so (the point contact acts there; the
-    outline scenes take the stiffness for it)."""
+def _contact_case(case: pim.Case, scene: Scene, probe: SceneRun | None) -> pim.Case:
+    """The case placed where the outlines of ``probe`` touch, if the scene says so.
+
+    The bodies are moved along their free pre-impact paths to the instant the outlines first
+    touch (``probe.contact_start``), C to the outlines' impulse centroid (fixed in vehicle
+    1's frame) and Gamma to their mean contact normal (fixed in vehicle 2's frame): the
+    point contact then acts on the line the distributed contact's impulse acts on. The
+    outline scenes take the stiffness for that point.
+    """
     if scene.point == "C":
         return case
-    centroid, normal = line
-    return replace(case, impact=replace(case.impact, point=np.asarray(centroid, float),
-                                        normal_angle=math.atan2(normal[1], normal[0])))
+    t = probe.contact_start
+
+    def moved(vehicle):
+        if bool(vehicle.fixed):
+            return vehicle
+        return replace(vehicle, cg=np.asarray(vehicle.cg, float) + np.asarray(
+            vehicle.velocity, float) * t, heading=float(vehicle.heading)
+            + float(vehicle.yaw_rate) * t)
+
+    v1, v2 = moved(case.vehicle1), moved(case.vehicle2)
+    point = np.asarray(v1.cg, float) + rotate(probe.point_body1, float(v1.heading))
+    n = rotate(probe.normal_body2, float(v2.heading))
+    return replace(case, vehicle1=v1, vehicle2=v2, impact=replace(
+        case.impact, point=point, normal_angle=math.atan2(n[1], n[0])))
 
 
 def _simulate(job: tuple) -> SceneRun:
@@ -359,7 +378,9 @@ def _simulate(job: tuple) -> SceneRun:
     e0 = r.energy_before
     return SceneRun(scene, r.velocity1, r.velocity2, r.yaw_rate1, r.yaw_rate2,
                     r.contact_duration, np.asarray(r.impact_point, float),
-                    np.asarray(r.impulse_normal, float),
+                    np.asarray(r.impulse_normal, float), r.contact_start,
+                    np.asarray(r.impact_point_body1, float),
+                    np.asarray(r.impulse_normal_body2, float),
                     r.energy_loss / e0 if e0 > 0 else math.nan, r.stick_fraction,
                     bool(r.slip_reversed), r.tangential_recovery)
 
@@ -437,7 +458,7 @@ def _simulate_all(case, eps, beta_pim, plan, has_outline, settings, executor, pr
         for d, run in zip(plan.durations, sweep(_simulate, probes, executor=executor,
                                                 progress=progress, desc="outline probes"),
                           strict=True):
-            centroids[d] = (run.impact_point, run.normal)
+            centroids[d] = run
     scenes = list(dict.fromkeys(s for d in plan.durations
                                 for s in _variants(plan, d, has_outline)))
     jobs = [(case, eps, beta_pim, s, centroids.get(s.duration), settings) for s in scenes]
@@ -526,12 +547,13 @@ def run_assumptions(case: pim.Case, eps: float | None = None, beta: float | None
     k_nn = build_problem(case, eps, sim.DEFAULT_STIFFNESS).k_nn
     k_typical = float(stiffness_for_duration(TYPICAL["duration"], k_nn, eps))
     point = np.asarray(case.impact.point, float).reshape(2)
-    line = centroids[TYPICAL["duration"]]
+    probe = centroids[TYPICAL["duration"]]
     distance = turn = math.nan
-    if line is not None:
-        distance = float(np.hypot(*(line[0] - point)))
+    if probe is not None:
+        distance = float(np.hypot(*(probe.impact_point - point)))
         gamma = float(case.impact.normal_angle)
-        turn = math.degrees(math.remainder(math.atan2(line[1][1], line[1][0]) - gamma, math.tau))
+        turn = math.degrees(math.remainder(math.atan2(probe.normal[1], probe.normal[0])
+                                           - gamma, math.tau))
     anim = _animation(case, eps, stiffness or k_typical, has_outline, settings,
                       animation_after)
     return AssumptionStudy(case, eps, beta, beta_pim, ladders, curves, recovery_map, distance,
@@ -598,9 +620,11 @@ def verdicts(study: AssumptionStudy) -> list[str]:
                f"instantaneous {1e3 * STIFF_LIMIT:g} ms contact",
         "duration": f"The instantaneous impulse, replaced by a {ms} contact (same contact law "
                     f"at C)",
-        "point": f"The impulse acting at C along Gamma, moved to the outlines' impulse "
-                 f"centroid {study.centroid_distance:.2f} m away and their mean contact "
-                 f"normal ({study.normal_turn:+.0f} deg) (point contact, {ms})",
+        "point": f"PIM's impact configuration (the impulse at C along Gamma), replaced by "
+                 f"where the outlines' impulse acts: the bodies where the outlines first "
+                 f"touch, the point at their impulse centroid ({study.centroid_distance:.2f} "
+                 f"m from C) along their mean contact normal ({study.normal_turn:+.0f} deg "
+                 f"from Gamma), still one point ({ms})",
         "outline": f"One contact point, replaced by the outlines crushing into each other "
                    f"(a distributed contact with the same impulse centroid, {ms})",
         "tyres": f"No external forces, replaced by tyre friction {TYPICAL['tyre_friction']:g} "

@@ -43,6 +43,7 @@ from .compliant_setup import (
     placed_outlines,
     point_contact,
     reversal,
+    rotate,
 )
 from .contact_law import normal_force, permanent_crush, tangential_force, tangential_step
 from .contact_tyres import tyre_force
@@ -289,6 +290,8 @@ class ContactTally:
     impulse: np.ndarray = field(default_factory=lambda: np.zeros(2))
     moment_sum: np.ndarray = field(default_factory=lambda: np.zeros(2))
     normal_sum: np.ndarray = field(default_factory=lambda: np.zeros(2))
+    body_point_sum: np.ndarray = field(default_factory=lambda: np.zeros(2))   # vehicle 1
+    body_normal_sum: np.ndarray = field(default_factory=lambda: np.zeros(2))  # vehicle 2
     weight: float = 0.0
     peak: float = 0.0
     tyre_work: float = 0.0
@@ -301,12 +304,14 @@ class ContactTally:
     rows: list | None = None                        # the contact history
 
     def add(self, geo: ContactGeometry, cf: ContactForce, z: float, dt: float,
-            when: float, mu: float) -> None:
+            when: float, mu: float, kin: Kinematics) -> None:
         """Account for one step in contact."""
         size = math.hypot(cf.force[0], cf.force[1])
         self.impulse += cf.force * dt
         self.moment_sum += size * dt * geo.point
         self.normal_sum += size * dt * geo.normal
+        self.body_point_sum += size * dt * rotate(geo.point - kin[0], -kin[1])
+        self.body_normal_sum += size * dt * rotate(geo.normal, -kin[5])
         self.weight += size * dt
         self.contact_time += dt
         self.stick_time += dt if cf.sticking else 0.0
@@ -385,7 +390,7 @@ class _Stepper:
             mem, cf = contact_step(self.p, mem, geo, self.dt)
             self.memory = mem
             if mem.on and mem.started:
-                tally.add(geo, cf, mem.z, self.dt, when, self.p.friction)
+                tally.add(geo, cf, mem.z, self.dt, when, self.p.friction, kin)
                 f1, f2 = cf.force, -cf.force
                 m1, m2 = moments(geo.point, cf.force, kin[0], kin[4])
         t1, n1, t2, n2, power = tyre_loads(self.p, kin)
@@ -572,8 +577,14 @@ def _result(problem: CompliantProblem, stepper: _Stepper, post: tuple, delta_p: 
         settings=problem.settings, history=history, trajectory=trajectory,
         secondary_impact=secondary, problems=_problems(problem, mem.delta_max),
         tangential_recovery=problem.tangential_recovery,
-        impulse_normal=(tally.normal_sum / math.hypot(*tally.normal_sum)
-                        if tally.weight > 0 else np.full(2, np.nan)))
+        impulse_normal=_unit(tally.normal_sum, tally.weight),
+        impact_point_body1=(tally.body_point_sum / tally.weight if tally.weight > 0
+                            else np.full(2, np.nan)),
+        impulse_normal_body2=_unit(tally.body_normal_sum, tally.weight))
+
+
+def _unit(total: np.ndarray, weight: float) -> np.ndarray:
+    return total / math.hypot(*total) if weight > 0 else np.full(2, np.nan)
 
 
 def _problems(problem: CompliantProblem, peak_crush: float) -> tuple:

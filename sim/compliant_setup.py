@@ -401,6 +401,11 @@ class CompliantResult:
     impulse_normal : ndarray (2,)
         The contact normal weighted like ``impact_point`` (|F| dt), unit length: the mean
         normal of the outline contact (pymunk only; NaN from the reference).
+    impact_point_body1 : ndarray (2,)
+        ``impact_point`` in vehicle 1's body frame [m] (each contact point taken in the frame
+        of its instant; pymunk only).
+    impulse_normal_body2 : ndarray (2,)
+        ``impulse_normal`` in vehicle 2's body frame (pymunk only).
     """
 
     velocity1: np.ndarray
@@ -434,6 +439,8 @@ class CompliantResult:
     problems: tuple = ()
     tangential_recovery: float = math.nan
     impulse_normal: np.ndarray = field(default_factory=lambda: np.full(2, math.nan))
+    impact_point_body1: np.ndarray = field(default_factory=lambda: np.full(2, math.nan))
+    impulse_normal_body2: np.ndarray = field(default_factory=lambda: np.full(2, math.nan))
 
     @property
     def energy_loss(self) -> float:

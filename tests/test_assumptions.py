@@ -98,11 +98,15 @@ def test_outline_rung_separates_where_the_impulse_acts_from_distribution(summary
     assert outline.scene.distributed
     assert summary.centroid_distance > 0.01
     assert math.isfinite(point.marginal) and math.isfinite(outline.marginal)
+    # both start where the outlines first touch (RICSAC 9: 71 ms before PIM's instant): the
+    # point scene there, on the outlines' line of impulse, and the outline scene
+    assert outline.run.contact_start == pytest.approx(-0.0708, abs=1e-3)
+    assert point.run.contact_start == 0.0 and point.run.failure is None
 
 
 def test_verdicts_name_their_assumption_and_state_both_effects(summary):
     words = {"law": "Newton's restitution", "duration": "instantaneous impulse",
-             "point": "impulse acting at C", "outline": "One contact point",
+             "point": "PIM's impact configuration", "outline": "One contact point",
              "tyres": "No external forces", "friction": "tangential law"}
     texts = summary.verdicts()
     assert len(texts) == len(KEYS) - 1
