@@ -51,6 +51,7 @@ import numpy as np
 import pim
 import sim
 from pim.io.files import save_figure, write_text
+from pim.io.units import convert
 from sim.compliant_setup import build_problem, rotate
 from sim.contact_law import stiffness_for_duration, tangential_recovery_default
 from sim.error_measure import ERROR_DEFINITION, impact_error
@@ -614,6 +615,7 @@ def verdicts(study: AssumptionStudy) -> list[str]:
     """One sentence per rung above PIM; each names the assumption it measured."""
     lad = study.typical
     ms = f"{1e3 * lad.duration:g} ms"
+    length, label = convert(1.0, "length", study.case.units)
     text = {
         "law": f"Newton's restitution with mu = beta mu0, replaced by the crush hysteresis "
                f"(epsilon = {study.eps:.3g}) with {_tangential(study)} at a nearly "
@@ -622,9 +624,10 @@ def verdicts(study: AssumptionStudy) -> list[str]:
                     f"at C)",
         "point": f"PIM's impact configuration (the impulse at C along Gamma), replaced by "
                  f"where the outlines' impulse acts: the bodies where the outlines first "
-                 f"touch, the point at their impulse centroid ({study.centroid_distance:.2f} "
-                 f"m from C) along their mean contact normal ({study.normal_turn:+.0f} deg "
-                 f"from Gamma), still one point ({ms})",
+                 f"touch, the point at their impulse centroid "
+                 f"({length * study.centroid_distance:.2f} {label} from C) along their mean "
+                 f"contact normal ({study.normal_turn:+.0f} deg from Gamma), still one point "
+                 f"({ms})",
         "outline": f"One contact point, replaced by the outlines crushing into each other "
                    f"(a distributed contact with the same impulse centroid, {ms})",
         "tyres": f"No external forces, replaced by tyre friction {TYPICAL['tyre_friction']:g} "
@@ -662,17 +665,24 @@ def _scene_words(scene: Scene) -> str:
     return ", ".join(parts)
 
 
-def assumption_table(study: AssumptionStudy, name: str = "assumptions") -> Table:
-    """The ladder at the typical contact time: marginal and cumulative effects per rung."""
+def assumption_table(study: AssumptionStudy, name: str = "assumptions",
+                     units: str | None = None) -> Table:
+    """The ladder at the typical contact time: marginal and cumulative effects per rung.
+
+    Lengths in ``units`` ("si" or "us"; default: the case's own).
+    """
+    length, label = convert(1.0, "length", units or study.case.units)
     rows = []
     for rung in study.typical.rungs[1:]:
         r = rung.run
         rows.append((rung.title, rung.baseline, _scene_words(rung.scene), rung.marginal,
-                     rung.cumulative, 1e3 * r.contact_duration, float(r.impact_point[0]),
-                     float(r.impact_point[1]), rung.eps_eff, rung.beta_eff, r.energy_loss,
+                     rung.cumulative, 1e3 * r.contact_duration,
+                     float(length * r.impact_point[0]), float(length * r.impact_point[1]),
+                     rung.eps_eff, rung.beta_eff, r.energy_loss,
                      r.stick_fraction, r.slip_reversed, r.failure or ""))
     columns = ("assumption relaxed", "against", "scene", "marginal effect [-]",
-               "cumulative (PIM's error) [-]", "contact [ms]", "C_eff x [m]", "C_eff y [m]",
+               "cumulative (PIM's error) [-]", "contact [ms]", f"C_eff x [{label}]",
+               f"C_eff y [{label}]",
                "eps_eff [-]", "beta_eff [-]", "energy loss [-]", "stick fraction [-]",
                "slip reversed", "failure")
     return Table(name, f"PIM's assumptions one at a time at {1e3 * study.typical.duration:g} "

@@ -150,6 +150,13 @@ def test_nearly_instantaneous_frictionless_scene_fits_back_to_eps_and_beta0():
     assert fitted.beta < 0.05
 
 
+def test_table_and_verdicts_speak_the_case_units(summary):
+    assert summary.case.units == "us"                    # ricsac9.toml is written in US units
+    assert "C_eff x [ft]" in A.assumption_table(summary).columns
+    assert "C_eff x [m]" in A.assumption_table(summary, units="si").columns
+    assert f"{summary.centroid_distance / 0.3048:.2f} ft from C" in summary.verdicts()[2]
+
+
 def test_tables_and_plots(summary, tmp_path):
     table = A.assumption_table(summary)
     assert len(table.rows) == len(KEYS) - 1
