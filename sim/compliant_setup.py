@@ -27,6 +27,7 @@ import numpy as np
 
 import pim
 from pim.model import geometry
+from pim.model.geometry import cross, radius_of_gyration
 
 from .contact_law import (
     check_fraction,
@@ -151,9 +152,9 @@ class CompliantSettings:
 
 
 def rotate(vec, angle: float) -> np.ndarray:
-    """``vec`` (2,) turned counter-clockwise by ``angle`` [rad]."""
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([c * vec[0] - s * vec[1], s * vec[0] + c * vec[1]])
+    """``vec`` (2,) turned counter-clockwise by ``angle`` [rad]
+    (:func:`pim.model.geometry.rotate`)."""
+    return geometry.rotate(vec, angle)
 
 
 def kinetic_energy(mass, inertia, velocity, yaw_rate) -> float:
@@ -257,14 +258,16 @@ def build_problem(case: pim.Case, eps, stiffness, friction=0.0, geometry="point"
     n = np.array([math.cos(gamma), math.sin(gamma)])
     r1, r2 = point - cg1, point - cg2
     # K_nn = 1/m1 + 1/m2 + (r1 x n)^2 / I1 + (r2 x n)^2 / I2 (the frequency of the contact)
-    k_nn = 1.0 / m1 + (r1[0] * n[1] - r1[1] * n[0]) ** 2 / i1
+    k_nn = 1.0 / m1 + float(cross(r1, n)) ** 2 / i1
     if not fixed2:
-        k_nn += 1.0 / m2 + (r2[0] * n[1] - r2[1] * n[0]) ** 2 / i2
+        k_nn += 1.0 / m2 + float(cross(r2, n)) ** 2 / i2
     state0 = np.array([cg1[0], cg1[1], h1, vel1[0], vel1[1], w1,
                        cg2[0], cg2[1], h2, vel2[0], vel2[1], w2])
     g = settings.gravity
-    wheels1 = wheels_from_outline(v1.length, v1.width, math.sqrt(i1 / m1))
-    wheels2 = None if fixed2 else wheels_from_outline(v2.length, v2.width, math.sqrt(i2 / m2))
+    wheels1 = wheels_from_outline(v1.length, v1.width,
+                                  float(radius_of_gyration(m1, i1)))
+    wheels2 = None if fixed2 else wheels_from_outline(
+        v2.length, v2.width, float(radius_of_gyration(m2, i2)))
     speeds = [np.hypot(*vel1), 0.0 if fixed2 else np.hypot(*vel2)]
     kt = settings.tangential_stiffness or stiffness
     recovery = (float(tangential_recovery_default(eps)) if settings.tangential_recovery is None
