@@ -648,6 +648,9 @@ def verdicts(study: AssumptionStudy) -> list[str]:
         if rung.run.failure:
             sentence += f" [failed: {rung.run.failure}]"
         out.append(sentence + ".")
+    if lad.rung("outline") is None:
+        out.insert(2, "PIM's impact configuration and one contact point: not assessed (the "
+                      "case gives no outlines: vehicle length and width).")
     return out
 
 

@@ -20,7 +20,7 @@ KEYS = ["pim", "law", "duration", "point", "outline", "tyres", "friction"]
 def summary():
     case = pim.load_case("ricsac9")
     return A.run_assumptions(case, executor="serial", progress=False, animation_after=None,
-                             sweeps=False)
+                             sweeps=False, settings=COARSE)
 
 
 @pytest.fixture(scope="module")
@@ -185,3 +185,13 @@ def test_cli_writes_the_whole_study(tmp_path):
     study_csv = (tmp_path / "assumption_sweeps.csv").read_text()
     assert "tyre effect" in study_csv and "friction effect" in study_csv
     assert np.isfinite(1.0)
+
+
+@pytest.mark.slow
+def test_cli_json_lists_every_ladder(tmp_path, capsys):
+    import json
+    assert main(["assumptions", "ricsac9", "--out", str(tmp_path), "--no-progress",
+                 "--no-animation", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert [lad["contact_time_ms"] for lad in data["ladders"]] == [10, 25, 50, 100, 200]
+    assert [r["key"] for r in data["ladders"][0]["rungs"]] == KEYS[1:]
