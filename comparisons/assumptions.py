@@ -65,7 +65,7 @@ __all__ = ["Scene", "SceneRun", "Rung", "Ladder", "AssumptionStudy", "RUNGS", "T
            "DURATIONS", "STIFF_LIMIT", "HOLDS", "ROUGHLY", "ASSUMPTION_FIELDS",
            "changed_assumptions", "ladder_scenes", "run_assumptions", "assumption_table",
            "sweep_table", "plot_overview", "write_assumptions", "assumptions_markdown",
-           "outcome_errors"]
+           "outcome_errors", "LEGACY_KEYS", "legacy_sweeps"]
 
 #: Marginal effect below which an assumption is negligible, and below which it is moderate.
 HOLDS, ROUGHLY = 0.05, 0.15
@@ -225,6 +225,7 @@ class Rung:
     cumulative: float
     eps_eff: float = math.nan
     beta_eff: float = math.nan
+    fit_rms: float = math.nan
 
     @property
     def scene(self) -> Scene:
@@ -269,6 +270,8 @@ class AssumptionStudy:
         Angle [deg] from the case's normal Gamma to the outlines' mean contact normal there.
     seconds : float
         Wall time of the study [s].
+    outline_note : str
+        Why the outline rungs are missing ("" when they ran).
     """
 
     case: pim.Case
@@ -283,6 +286,7 @@ class AssumptionStudy:
     stiffness_typical: float
     seconds: float
     animation_result: object = field(default=None, repr=False)
+    outline_note: str = ""
 
     @property
     def durations(self) -> np.ndarray:
@@ -301,6 +305,61 @@ class AssumptionStudy:
     def verdicts(self) -> list[str]:
         """One sentence per relaxed assumption, naming it and the effect measured."""
         return verdicts(self)
+
+    @property
+    def sweeps(self) -> tuple:
+        """The typical ladder in the shape of the former study, for callers written for it
+        (``comparisons.baseline_sections``): :data:`LEGACY_KEYS` rung -> ``LegacySweep``."""
+        return legacy_sweeps(self)
+
+
+#: The former study's assumption keys of the rungs that relax the same assumption.
+LEGACY_KEYS = {"duration": "instantaneous", "tyres": "no_external_forces",
+               "outline": "one_point", "friction": "restitution_friction"}
+
+
+@dataclass(frozen=True)
+class LegacyOutcome:
+    """PIM's per-vehicle errors against one rung's scene (:func:`outcome_errors`) and the
+    rung's effective coefficients, named as the former study named them."""
+
+    value: float
+    errors: dict
+    eps_eff: float
+    beta_eff: float
+    fit_rms: float
+    energy_loss: float
+    pim_energy_loss: float
+    stick_fraction: float
+    point_distance: float
+    failure: str | None
+
+
+@dataclass(frozen=True)
+class LegacySweep:
+    key: str
+    typical: LegacyOutcome
+
+
+def legacy_sweeps(study: AssumptionStudy) -> tuple:
+    """:attr:`AssumptionStudy.sweeps` (see there)."""
+    case = study.case
+    result = pim.solve(case, study.eps, study.beta_pim)
+    e0 = float(np.asarray(result.kinetic_energy_before))
+    pim_loss = float(np.asarray(result.energy_loss)) / e0 if e0 > 0 else math.nan
+    point = np.asarray(case.impact.point, float).reshape(2)
+    out = []
+    for rung in study.typical.rungs:
+        if rung.key not in LEGACY_KEYS:
+            continue
+        run = rung.run
+        errors, _ = outcome_errors(case, result, run.velocity1, run.velocity2, run.yaw_rate1,
+                                   run.yaw_rate2)
+        out.append(LegacySweep(LEGACY_KEYS[rung.key], LegacyOutcome(
+            study.typical.duration, errors, rung.eps_eff, rung.beta_eff, rung.fit_rms,
+            run.energy_loss, pim_loss, run.stick_fraction,
+            float(np.hypot(*(run.impact_point - point))), run.failure)))
+    return tuple(out)
 
 
 def outcome_errors(case: pim.Case, result: pim.Result, velocity1, velocity2, yaw_rate1,
@@ -359,6 +418,10 @@ def _contact_case(case: pim.Case, scene: Scene, probe: SceneRun | None) -> pim.C
 def _simulate(job: tuple) -> SceneRun:
     """Simulate one scene (module level, so that it runs on a process pool)."""
     case, eps, beta_pim, scene, line, settings = job
+    if scene.point == "centroid" and (line is None or line.failure is not None
+                                      or not np.isfinite(line.point_body1).all()):
+        why = "no outline probe" if line is None else line.failure or "no impulse centroid"
+        return SceneRun.failed(scene, f"the outline probe failed ({why})")
     try:
         where = _contact_case(case, scene, line)
         k_nn = build_problem(where, eps, sim.DEFAULT_STIFFNESS).k_nn
@@ -401,18 +464,18 @@ def _error(case: pim.Case, reference: SceneRun, run: SceneRun) -> float:
                               run.yaw_rate2))
 
 
-def _fit(case: pim.Case, run: SceneRun) -> tuple[float, float]:
-    """(eps_eff, beta_eff): what PIM needs to reproduce the simulated motion."""
+def _fit(case: pim.Case, run: SceneRun) -> tuple[float, float, float]:
+    """(eps_eff, beta_eff, rms [m/s]): what PIM needs to reproduce the simulated motion."""
     if run.failure is not None:
-        return math.nan, math.nan
+        return math.nan, math.nan, math.nan
     fixed2 = bool(case.vehicle2.fixed)
     measured = pim.Measured(run.velocity1, None if fixed2 else run.velocity2, run.yaw_rate1,
                             None if fixed2 else run.yaw_rate2)
     try:
         fitted = pim.fit(replace(case, measured=measured), include_yaw=True)
     except ValueError:
-        return math.nan, math.nan
-    return float(fitted.eps), float(fitted.beta)
+        return math.nan, math.nan, math.nan
+    return float(fitted.eps), float(fitted.beta), float(fitted.rms)
 
 
 # -- the study ----------------------------------------------------------------------------------
@@ -449,22 +512,24 @@ def _variants(plan: _Plan, duration: float, has_outline: bool) -> list[Scene]:
     return list(dict.fromkeys(scenes))          # unique, in order
 
 
-def _simulate_all(case, eps, beta_pim, plan, has_outline, settings, executor, progress):
-    """Outline probes for the impulse centroids, then every scene: ({scene: run},
-    {duration: centroid})."""
-    centroids = {d: None for d in plan.durations}
-    if has_outline:
-        probes = [(case, eps, beta_pim, Scene(law="crush", duration=d, distributed=True),
-                   None, settings) for d in plan.durations]
-        for d, run in zip(plan.durations, sweep(_simulate, probes, executor=executor,
-                                                progress=progress, desc="outline probes"),
-                          strict=True):
-            centroids[d] = run
+def _probes(case, eps, beta_pim, plan, settings, executor, progress):
+    """The outline scene per contact time (its impulse centroid, normal and first-touch
+    instant place the "point" rung): ({duration: run}, None), or (None, why) if one failed."""
+    jobs = [(case, eps, beta_pim, Scene(law="crush", duration=d, distributed=True), None,
+             settings) for d in plan.durations]
+    runs = sweep(_simulate, jobs, executor=executor, progress=progress, desc="outline probes")
+    failed = next((r.failure for r in runs if r.failure is not None), None)
+    return (None, failed) if failed else (dict(zip(plan.durations, runs, strict=True)), None)
+
+
+def _simulate_all(case, eps, beta_pim, plan, has_outline, probes, settings, executor,
+                  progress) -> dict:
+    """Every scene of the study: {scene: run}."""
     scenes = list(dict.fromkeys(s for d in plan.durations
                                 for s in _variants(plan, d, has_outline)))
-    jobs = [(case, eps, beta_pim, s, centroids.get(s.duration), settings) for s in scenes]
+    jobs = [(case, eps, beta_pim, s, probes.get(s.duration), settings) for s in scenes]
     runs = sweep(_simulate, jobs, executor=executor, progress=progress, desc="assumptions")
-    return dict(zip(scenes, runs, strict=True)), centroids
+    return dict(zip(scenes, runs, strict=True))
 
 
 def _ladder(case, duration, scenes: dict, runs: dict, pim_run: SceneRun, fit: bool) -> Ladder:
@@ -473,9 +538,9 @@ def _ladder(case, duration, scenes: dict, runs: dict, pim_run: SceneRun, fit: bo
     for key, scene in scenes.items():
         run = pim_run if key == "pim" else runs[scene]
         marginal = 0.0 if below is None else _error(case, below.run, run)
-        eps_eff, beta_eff = _fit(case, run) if fit and key != "pim" else (math.nan, math.nan)
+        fitted = _fit(case, run) if fit and key != "pim" else (math.nan,) * 3
         rung = Rung(key, None if below is None else below.key, run, marginal,
-                    _error(case, pim_run, run), eps_eff, beta_eff)
+                    _error(case, pim_run, run), *fitted)
         rungs.append(rung)
         below = rung
     return Ladder(duration, tuple(rungs))
@@ -539,8 +604,14 @@ def run_assumptions(case: pim.Case, eps: float | None = None, beta: float | None
     has_outline = (case.vehicle1.length is not None and
                    (case.vehicle2.length is not None or bool(case.vehicle2.fixed)))
     plan = _plan(eps, sweeps)
-    runs, centroids = _simulate_all(case, eps, beta_pim, plan, has_outline, settings,
-                                    executor, progress is not False)
+    probes, note = {}, "the case gives no outlines: vehicle length and width"
+    if has_outline:
+        found, failure = _probes(case, eps, beta_pim, plan, settings, executor,
+                                 progress is not False)
+        has_outline, probes = found is not None, found or {}
+        note = f"the outline scene failed: {failure}"
+    runs = _simulate_all(case, eps, beta_pim, plan, has_outline, probes, settings, executor,
+                         progress is not False)
     pim_run = _pim_run(case, pim.solve(case, eps, beta_pim))
     ladders = tuple(_ladder(case, d, ladder_scenes(d, has_outline), runs, pim_run,
                             fit=d == TYPICAL["duration"]) for d in plan.durations)
@@ -548,7 +619,7 @@ def run_assumptions(case: pim.Case, eps: float | None = None, beta: float | None
     k_nn = build_problem(case, eps, sim.DEFAULT_STIFFNESS).k_nn
     k_typical = float(stiffness_for_duration(TYPICAL["duration"], k_nn, eps))
     point = np.asarray(case.impact.point, float).reshape(2)
-    probe = centroids[TYPICAL["duration"]]
+    probe = probes.get(TYPICAL["duration"])
     distance = turn = math.nan
     if probe is not None:
         distance = float(np.hypot(*(probe.impact_point - point)))
@@ -558,7 +629,8 @@ def run_assumptions(case: pim.Case, eps: float | None = None, beta: float | None
     anim = _animation(case, eps, stiffness or k_typical, has_outline, settings,
                       animation_after)
     return AssumptionStudy(case, eps, beta, beta_pim, ladders, curves, recovery_map, distance,
-                           turn, k_typical, time.perf_counter() - start, anim)
+                           turn, k_typical, time.perf_counter() - start, anim,
+                           "" if has_outline else note)
 
 
 def _animation(case, eps, k, has_outline, settings, after):
@@ -638,6 +710,9 @@ def verdicts(study: AssumptionStudy) -> list[str]:
     }
     out = []
     for rung in lad.rungs[1:]:
+        if rung.run.failure:
+            out.append(f"{text[rung.key]}: not assessed ({rung.run.failure}).")
+            continue
         sentence = (f"{text[rung.key]}: {_size(rung.marginal)} marginal effect, "
                     f"{_pct(rung.marginal)} against the scene below; PIM is "
                     f"{_pct(rung.cumulative)} off this scene (cumulative)")
@@ -645,12 +720,10 @@ def verdicts(study: AssumptionStudy) -> list[str]:
             sentence += _over_durations(study, rung.key)
         if rung.key == "friction" and study.recovery_map:
             sentence += _recovery_words(study)
-        if rung.run.failure:
-            sentence += f" [failed: {rung.run.failure}]"
         out.append(sentence + ".")
     if lad.rung("outline") is None:
-        out.insert(2, "PIM's impact configuration and one contact point: not assessed (the "
-                      "case gives no outlines: vehicle length and width).")
+        out.insert(2, f"PIM's impact configuration and one contact point: not assessed "
+                      f"({study.outline_note}).")
     return out
 
 

@@ -195,3 +195,28 @@ def test_cli_json_lists_every_ladder(tmp_path, capsys):
     data = json.loads(capsys.readouterr().out)
     assert [lad["contact_time_ms"] for lad in data["ladders"]] == [10, 25, 50, 100, 200]
     assert [r["key"] for r in data["ladders"][0]["rungs"]] == KEYS[1:]
+
+
+def test_legacy_view_for_the_baseline_sections(summary):
+    # comparisons.baseline_sections (pim baseline --with assumptions) reads study.sweeps
+    legacy = {s.key: s.typical for s in summary.sweeps}
+    assert set(legacy) == set(A.LEGACY_KEYS.values())
+    o = legacy["instantaneous"]
+    assert set(o.errors) == {"delta_v1", "delta_v2", "speed1", "speed2", "yaw1", "yaw2"}
+    assert o.failure is None and math.isfinite(o.fit_rms) and o.point_distance > 0
+    run = summary.typical.rung("duration").run
+    errors, _ = A.outcome_errors(summary.case, pim.solve(summary.case, summary.eps, 1.0),
+                                 run.velocity1, run.velocity2, run.yaw_rate1, run.yaw_rate2)
+    assert o.errors == errors
+
+
+def test_a_failed_outline_scene_leaves_the_point_ladder_and_says_why():
+    # hard-pole: the pole's outline is crossed by the car's (tunnelled); the ladder goes on
+    # without the outline rungs, tyres and friction on the point contact at C
+    study = A.run_assumptions(pim.load_case("hard-pole"), executor="serial", progress=False,
+                              animation_after=None, sweeps=False, settings=COARSE)
+    assert [r.key for r in study.typical.rungs] == ["pim", "law", "duration", "tyres",
+                                                    "friction"]
+    check_one_assumption_per_rung(study.typical)
+    assert "not assessed (the outline scene failed: tunnelled" in study.verdicts()[2]
+    assert all(r.run.failure is None for r in study.typical.rungs)
