@@ -13,9 +13,10 @@ law     Newton's restitution, mu = beta mu0         crush hysteresis (epsilon) a
                                                     sticking plastic friction spring for
                                                     beta 1), point at C, nearly instantaneous
 duration  instantaneous impulse                     the same at contact time T
-point   where the impulse acts (C and Gamma)        the point moved to the outlines' impulse
-                                                    centroid, the normal turned to their mean
-                                                    contact normal (same T)
+point   PIM's impact configuration (C, Gamma)       one point where the outlines' impulse
+                                                    acts: bodies where the outlines first
+                                                    touch, C at their impulse centroid, Gamma
+                                                    along their mean contact normal (same T)
 outline concentrated contact                        the outlines crush into each other (same T)
 tyres   no external forces                          tyre friction during the contact (same T)
 friction  PIM's tangential law                      Coulomb friction mu_c between the vehicles
@@ -27,7 +28,10 @@ beta_pim is 0 or 1, whichever is nearer the case's beta: PIM with that beta is w
 :data:`STIFF_LIMIT` (the scene converges to the instantaneous one at first order in the
 contact time, docs/contact-model.md). Every scene at contact time T has the stiffness that
 gives T for its own contact point: k = (pi (1 + eps) / (2 T))^2 / K_nn; the outline scenes
-take K_nn at the impulse centroid of an outline probe at the same T.
+take K_nn at the impulse centroid of an outline probe at the same T. If the outline scene
+fails (e.g. a pole crossed by the car's outline) the ladder goes on at C without the outline
+rungs and says why. :attr:`AssumptionStudy.sweeps` keeps the former per-assumption view
+(PIM's per-vehicle errors, :func:`outcome_errors`) for ``comparisons.baseline_sections``.
 
 The measure is the project's one error, :func:`sim.error_measure.impact_error`: the largest
 difference in the velocity changes (yaw rates times the radius of gyration), relative to the
