@@ -28,12 +28,12 @@ Tangential force
 Coulomb friction mu_c |F_n| against the slip, regularised by a tangential spring of
 stiffness k_t (an elastoplastic, "bristle" model): the elastic tangential displacement z
 follows the slip while |k_t z| < mu_c F_n (sticking: the contact stores tangential
-energy and gives it back, so a sticking contact can reverse), and is held on the Coulomb
+energy and gives back the share r of it, below), and is held on the Coulomb
 cone |z| <= z_max = mu_c F_n / k_t while the slip pushes outward (sliding: the force is
 mu_c F_n against the elastic displacement). The force is F_t = -k_t z. In continuous
 time z obeys the sweeping process
 
-    dz/dt = v_t                                if |z| < z_max or z v_t <= 0,
+    dz/dt = v_t                                if |z| < z_max or z v_t <= 0  (r = 1),
     dz/dt = sign(z) min(|v_t|, dz_max/dt)      on the cone, pushed outward,
 
 (and follows a shrinking cone; :mod:`sim.reference` integrates it as sticking and sliding
