@@ -296,12 +296,14 @@ def hard_cases(out, units, progress, as_json):
 @progress_option
 @json_option
 def assumptions(case_name, out, eps, beta, executor, no_animation, progress, as_json):
-    """Test PIM's assumptions for CASE with a finite-duration crush scene.
+    """Test PIM's assumptions for CASE, one at a time, on a ladder of crush scenes.
 
-    For each assumption (instantaneous impulse, no external forces, one impact point,
-    Newton restitution with mu = beta mu0) a scene relaxes it alone and a physical
-    parameter is swept; writes assumptions.md with PIM's errors, plots, the effective
-    (epsilon, beta) and C at typical values, one verdict per assumption, and an MP4 with
+    Each scene differs from the one below in one assumption (Newton's restitution and
+    mu = beta mu0, instantaneous impulse, impulse at C, one contact point, no external
+    forces, PIM's tangential law); the marginal effect of each (against the scene below, at
+    the same contact time) and the cumulative one (PIM's error) are measured at several
+    contact times, with the tyre effect over the contact time and the friction effect over
+    mu_c and the tangential recovery. Writes assumptions.md, CSVs, a plot and an MP4 with
     PIM's ghost.
     """
     from pim.io.casefile import load_case
@@ -317,14 +319,15 @@ def assumptions(case_name, out, eps, beta, executor, no_animation, progress, as_
                               command=command)
     if as_json:
         echo_json({"case": case.name, "eps": study.eps, "beta": study.beta,
-                   "verdicts": study.verdicts(), "seconds": study.seconds,
-                   "files": [str(f) for f in files],
-                   "typical": {s.key: {"value": s.typical.value, "errors": s.typical.errors,
-                                       "eps_eff": s.typical.eps_eff,
-                                       "beta_eff": s.typical.beta_eff,
-                                       "impact_point": list(map(float, s.typical.point_eff)),
-                                       "failure": s.typical.failure}
-                               for s in study.sweeps}})
+                   "beta_pim": study.beta_pim, "verdicts": study.verdicts(),
+                   "seconds": study.seconds, "files": [str(f) for f in files],
+                   "ladders": [{"contact_time_ms": 1e3 * lad.duration,
+                                "rungs": [{"key": r.key, "against": r.baseline,
+                                           "marginal": r.marginal,
+                                           "cumulative": r.cumulative,
+                                           "failure": r.run.failure}
+                                          for r in lad.rungs[1:]]}
+                               for lad in study.ladders]})
         return
     for verdict in study.verdicts():
         click.echo(f"- {verdict}")

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import pymunk
@@ -42,6 +43,7 @@ from .compliant_setup import (
     placed_outlines,
     point_contact,
     reversal,
+    rotate,
 )
 from .contact_law import normal_force, permanent_crush, tangential_force, tangential_step
 from .contact_tyres import tyre_force
@@ -128,168 +130,358 @@ def _obstacle(problem: CompliantProblem, poly2):
                      point - 100 * t])
 
 
+@dataclass(frozen=True)
+class ContactMemory:
+    """What the contact law remembers from one step to the next (SI).
+
+    Attributes
+    ----------
+    on : bool
+        Contact forces still act (False once separated, and in the free motion after).
+    started : bool
+        The crush has been positive.
+    delta_max, delta, prev_delta : float
+        Largest crush so far, this step's and the last step's crush [m].
+    z : float
+        Elastic tangential displacement of the friction spring [m].
+    normal : ndarray (2,) or None
+        Outline contact: the normal of the last step with overlap.
+    separated : bool
+        The normal force returned to zero on unloading in this step.
+    """
+
+    on: bool = True
+    started: bool = False
+    delta_max: float = 0.0
+    delta: float = 0.0
+    prev_delta: float = 0.0
+    z: float = 0.0
+    normal: np.ndarray | None = None
+    separated: bool = False
+
+
+@dataclass(frozen=True)
+class ContactGeometry:
+    """Where and how the bodies touch at one state: point, normal n, tangent t, crush
+    delta [m], tangential and normal relative velocity at the point [m/s], and whether the
+    outlines overlap (always True for the point contact)."""
+
+    point: np.ndarray
+    normal: np.ndarray
+    tangent: np.ndarray
+    delta: float
+    slip_t: float
+    slip_n: float = 0.0
+    overlap: bool = True
+
+
+@dataclass(frozen=True)
+class ContactForce:
+    """The contact force of one step: total on vehicle 1 [N], F_n, F_t [N], sticking."""
+
+    force: np.ndarray
+    normal_force: float
+    tangential_force: float
+    sticking: bool
+
+
+Kinematics = tuple  # (x1, a1, v1, w1, x2, a2, v2, w2): positions, angles, velocities, yaw rates
+
+
+def read_kinematics(body1, body2) -> Kinematics:
+    """Both bodies' position (2,), angle, velocity (2,), yaw rate from pymunk."""
+    out = []
+    for body in (body1, body2):
+        p, v = body.position, body.velocity
+        out += [np.array([p.x, p.y]), body.angle, np.array([v.x, v.y]), body.angular_velocity]
+    return tuple(out)
+
+
+def contact_geometry(problem: CompliantProblem, memory: ContactMemory, kin: Kinematics,
+                     obstacle, when: float) -> ContactGeometry:
+    """The point or outline contact at ``kin`` (docs/contact-model.md).
+
+    Raises
+    ------
+    SimulationError
+        "tunnelled": the outline normal flipped (the outlines passed through each other).
+    """
+    if problem.geometry == "point":
+        point, n, t, delta, slip_n, slip_t = point_contact(problem, *kin)
+        return ContactGeometry(point, n, t, delta, slip_t, slip_n)
+    x1, a1, v1, w1, x2, a2, v2, w2 = kin
+    poly1, poly2 = placed_outlines(problem, np.r_[x1, a1, v1, w1, x2, a2, v2, w2])
+    ov = outline_overlap(poly1, poly2 if poly2 is not None else obstacle)
+    if ov.area <= 0.0:
+        n = memory.normal if memory.normal is not None else ov.normal
+        return ContactGeometry(np.zeros(2), n, np.array([-n[1], n[0]]), 0.0, 0.0, 0.0, False)
+    n = ov.normal
+    if memory.normal is not None and n @ memory.normal < 0.0:
+        raise SimulationError(
+            "tunnelled", f"the contact normal of the outlines flipped at t = {when:.4g} s "
+            f"(crush {ov.depth:.3g} m): the outlines passed through each other; reduce dt or "
+            f"raise the stiffness", 0)
+    c = ov.centroid
+    d1, d2 = c - x1, c - x2
+    rel = v1 + w1 * np.array([-d1[1], d1[0]]) - v2 - w2 * np.array([-d2[1], d2[0]])
+    t = np.array([-n[1], n[0]])
+    return ContactGeometry(c, n, t, ov.depth, float(rel @ t), float(rel @ n))
+
+
+def contact_step(problem: CompliantProblem, memory: ContactMemory, geo: ContactGeometry,
+                 dt: float) -> tuple[ContactMemory, ContactForce]:
+    """One step of the contact law (:mod:`sim.contact_law`): the new memory and the force.
+
+    Implicit in the memory: delta_max = max(delta_max, delta), the friction spring by
+    :func:`sim.contact_law.tangential_step`; separation when the normal force has returned
+    to zero on unloading.
+    """
+    delta = geo.delta
+    started = memory.started or delta > 0.0
+    delta_max, on, fn = memory.delta_max, memory.on, 0.0
+    if started:
+        delta_max = max(delta_max, delta)
+        fn = float(normal_force(delta, delta_max, problem.eps, problem.preload,
+                                problem.stiffness))
+        if fn <= 0.0 and delta < delta_max:
+            on, fn = False, 0.0
+    z, ft, sticking = 0.0, 0.0, False
+    if problem.friction > 0.0 and on:
+        kt = problem.tangential_stiffness
+        limit = problem.friction * fn / kt
+        z = float(tangential_step(memory.z, geo.slip_t, dt, limit,
+                                  problem.tangential_recovery))
+        ft = float(tangential_force(z, kt, problem.friction * fn))
+        sticking = abs(z) < limit * (1 - 1e-9)
+    new = replace(memory, on=on, started=started, delta_max=delta_max, delta=delta,
+                  prev_delta=memory.delta, z=z,
+                  normal=geo.normal if geo.overlap else memory.normal, separated=not on)
+    return new, ContactForce(fn * geo.normal + ft * geo.tangent, fn, ft, sticking)
+
+
+def moments(point, force, x1, x2) -> tuple[float, float]:
+    """Moments [N m] of ``force`` on vehicle 1 and of -``force`` on vehicle 2 at ``point``."""
+    d1, d2 = point - x1, point - x2
+    return (float(d1[0] * force[1] - d1[1] * force[0]),
+            float(-(d2[0] * force[1] - d2[1] * force[0])))
+
+
+def tyre_loads(problem: CompliantProblem, kin: Kinematics):
+    """Tyre forces [N], moments [N m] on both vehicles and their power [W] (0 without)."""
+    x1, a1, v1, w1, x2, a2, v2, w2 = kin
+    zero = np.zeros(2)
+    if problem.tyre_friction <= 0.0:
+        return zero, 0.0, zero, 0.0, 0.0
+    f1, m1 = tyre_force(v1, w1, a1, problem.wheels1, problem.load1, problem.tyre_friction,
+                        problem.tyre_mode)
+    power = float(f1 @ v1 + m1 * w1)
+    f2, m2 = zero, 0.0
+    if not problem.fixed2:
+        f2, m2 = tyre_force(v2, w2, a2, problem.wheels2, problem.load2,
+                            problem.tyre_friction, problem.tyre_mode)
+        power += float(f2 @ v2 + m2 * w2)
+    return f1, m1, f2, m2, power
+
+
+@dataclass
+class ContactTally:
+    """What the result reports, summed over the contact steps (SI)."""
+
+    impulse: np.ndarray = field(default_factory=lambda: np.zeros(2))
+    moment_sum: np.ndarray = field(default_factory=lambda: np.zeros(2))
+    normal_sum: np.ndarray = field(default_factory=lambda: np.zeros(2))
+    body_point_sum: np.ndarray = field(default_factory=lambda: np.zeros(2))   # vehicle 1
+    body_normal_sum: np.ndarray = field(default_factory=lambda: np.zeros(2))  # vehicle 2
+    weight: float = 0.0
+    peak: float = 0.0
+    tyre_work: float = 0.0
+    stick_time: float = 0.0
+    contact_time: float = 0.0
+    directions: set = field(default_factory=set)   # signs of z while it slid
+    initial_sign: float | None = None               # sign of the slip at first contact
+    last_slip: float = 0.0                          # slip in the last contact step [m/s]
+    last_slip_n: float = 0.0                        # outline: v_rel . n there [m/s]
+    rows: list | None = None                        # the contact history
+
+    def add(self, geo: ContactGeometry, cf: ContactForce, z: float, dt: float,
+            when: float, mu: float, kin: Kinematics) -> None:
+        """Account for one step in contact."""
+        size = math.hypot(cf.force[0], cf.force[1])
+        self.impulse += cf.force * dt
+        self.moment_sum += size * dt * geo.point
+        self.normal_sum += size * dt * geo.normal
+        self.body_point_sum += size * dt * rotate(geo.point - kin[0], -kin[1])
+        self.body_normal_sum += size * dt * rotate(geo.normal, -kin[5])
+        self.weight += size * dt
+        self.contact_time += dt
+        self.stick_time += dt if cf.sticking else 0.0
+        self.peak = max(self.peak, size)
+        if mu > 0.0 and not cf.sticking and z != 0.0:
+            self.directions.add(1 if z > 0 else -1)
+        if self.rows is not None:
+            self.rows.append((when, geo.delta, cf.force[0], cf.force[1], cf.normal_force,
+                              cf.tangential_force, geo.slip_t, cf.sticking, geo.point[0],
+                              geo.point[1]))
+
+
 class _Stepper:
-    """Computes the contact and tyre forces once per step and feeds them to pymunk."""
+    """Computes the forces once per step and feeds them to pymunk's velocity callbacks.
 
-    def __init__(self, problem: CompliantProblem, body1, body2, dt: float, start: float):
-        self.p = problem
-        self.b1, self.b2 = body1, body2
-        self.dt = dt
-        self.step = 0
-        self.done_step = -1
-        self.force1 = (0.0, 0.0, 0.0)      # fx, fy, torque on body 1
-        self.force2 = (0.0, 0.0, 0.0)
-        self.delta_max = 0.0
-        self.z = 0.0
-        self.started = False
-        self.separated = False
-        self.contact = True                # contact forces still on
-        self.delta = 0.0
-        self.prev_delta = 0.0
-        self.normal = None
-        self.impulse = np.zeros(2)
-        self.moment_sum = np.zeros(2)
-        self.weight = 0.0
-        self.peak = 0.0
-        self.tyre_work = 0.0
-        self.stick_time = 0.0
-        self.contact_time = 0.0
-        self.directions = set()            # directions (sign of z) in which it slid
-        self.initial_sign = None           # sign of the slip at first contact
-        self.last_slip = 0.0               # slip in the last contact step [m/s]
-        self.rows = [] if problem.settings.record else None
-        self.start = start
-        self.a, self.b, self.eps = problem.preload, problem.stiffness, problem.eps
-        self.mu, self.kt = problem.friction, problem.tangential_stiffness
-        self.last_slip_n = 0.0             # outline: v_rel . n at the last contact [m/s]
-        self.obstacle = None
-        if problem.geometry == "outline" and problem.outline2 is None:
-            self.obstacle = _obstacle(problem, None)
+    An exception raised inside a callback (a KeyboardInterrupt included) cannot cross
+    Chipmunk's C frames: cffi would print and ignore it. It is kept in ``error`` and
+    :meth:`step` re-raises it after ``space.step`` returns.
+    """
 
-    # pymunk callbacks ----------------------------------------------------------------------
+    def __init__(self, problem: CompliantProblem, space, body1, body2, dt: float,
+                 start: float):
+        self.p, self.space, self.b1, self.b2 = problem, space, body1, body2
+        self.dt, self.start, self.step_count, self.done_step = dt, start, 0, -1
+        self.memory = ContactMemory()
+        self.tally = ContactTally(rows=[] if problem.settings.record else None)
+        self.loads = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))   # (fx, fy, torque) per body
+        self.error: BaseException | None = None
+        self.obstacle = (_obstacle(problem, None) if problem.geometry == "outline"
+                         and problem.outline2 is None else None)
+        body1.velocity_func = self.velocity1
+        if body2.body_type == pymunk.Body.DYNAMIC:
+            body2.velocity_func = self.velocity2
+
+    def step(self) -> None:
+        """One pymunk step; re-raises what a callback raised."""
+        self.space.step(self.dt)
+        self.step_count += 1
+        if self.error is not None:
+            error, self.error = self.error, None
+            raise error
+
     def velocity1(self, body, gravity, damping, dt):
-        self._compute()
-        body.force = self.force1[0:2]
-        body.torque = self.force1[2]
-        pymunk.Body.update_velocity(body, gravity, damping, dt)
+        self._callback(body, 0, gravity, damping, dt)
 
     def velocity2(self, body, gravity, damping, dt):
-        self._compute()
-        body.force = self.force2[0:2]
-        body.torque = self.force2[2]
-        pymunk.Body.update_velocity(body, gravity, damping, dt)
+        self._callback(body, 1, gravity, damping, dt)
 
-    # the forces ------------------------------------------------------------------------------
-    def _state(self, body):
-        p, v = body.position, body.velocity
-        return np.array([p.x, p.y]), body.angle, np.array([v.x, v.y]), body.angular_velocity
+    def _callback(self, body, index, gravity, damping, dt) -> None:
+        try:
+            if self.error is not None:
+                return
+            if self.done_step != self.step_count:
+                self.done_step = self.step_count
+                self.loads = self._loads(read_kinematics(self.b1, self.b2))
+            fx, fy, torque = self.loads[index]
+            body.force = (fx, fy)
+            body.torque = torque
+            pymunk.Body.update_velocity(body, gravity, damping, dt)
+        except BaseException as exc:      # noqa: BLE001 -- re-raised after space.step
+            self.error = exc
 
-    def _compute(self) -> None:
-        if self.done_step == self.step:
-            return
-        self.done_step = self.step
-        p, dt = self.p, self.dt
-        x1, a1, v1, w1 = self._state(self.b1)
-        x2, a2, v2, w2 = self._state(self.b2)
-        f1 = np.zeros(2)
+    def _loads(self, kin: Kinematics):
+        f1 = f2 = np.zeros(2)
         m1 = m2 = 0.0
-        f2 = np.zeros(2)
-        if self.contact:
-            geo = self._geometry(x1, a1, v1, w1, x2, a2, v2, w2)
-            if geo is not None:
-                point, n, t, delta, slip_t = geo
-                if self.started or delta > 0.0:
-                    if self.initial_sign is None:
-                        self.initial_sign = math.copysign(1.0, slip_t) if slip_t else 0.0
-                    self.last_slip = slip_t
-                self.prev_delta, self.delta = self.delta, delta
-                if delta > 0.0:
-                    self.started = True
-                fn = 0.0
-                if self.started:
-                    self.delta_max = max(self.delta_max, delta)
-                    fn = float(normal_force(delta, self.delta_max, self.eps, self.a, self.b))
-                    if fn <= 0.0 and delta < self.delta_max:
-                        self.separated = True
-                        self.contact = False
-                        fn = 0.0
-                ft = 0.0
-                if self.mu > 0.0 and self.contact:
-                    limit = self.mu * fn / self.kt
-                    self.z = float(tangential_step(self.z, slip_t, dt, limit))
-                    ft = float(tangential_force(self.z, self.kt, self.mu * fn))
-                    sticking = abs(self.z) < limit * (1 - 1e-9)
-                else:
-                    self.z = 0.0
-                    sticking = False
-                force = fn * n + ft * t
-                if self.contact and self.started:
-                    size = math.hypot(force[0], force[1])
-                    self.impulse += force * dt
-                    self.moment_sum += size * dt * point
-                    self.weight += size * dt
-                    self.contact_time += dt
-                    if sticking:
-                        self.stick_time += dt
-                    if size > self.peak:
-                        self.peak = size
-                    if self.mu > 0.0 and not sticking and self.z != 0.0:
-                        self.directions.add(1 if self.z > 0 else -1)
-                    f1 = force
-                    f2 = -force
-                    d1, d2 = point - x1, point - x2
-                    m1 = d1[0] * force[1] - d1[1] * force[0]
-                    m2 = -(d2[0] * force[1] - d2[1] * force[0])
-                    if self.rows is not None:
-                        self.rows.append((self.start + (self.step + 1) * dt, delta, force[0],
-                                          force[1], fn, ft, slip_t, sticking, point[0],
-                                          point[1]))
-        if p.tyre_friction > 0.0:
-            ft1, mt1 = tyre_force(v1, w1, a1, p.wheels1, p.load1, p.tyre_friction, p.tyre_mode)
-            f1 = f1 + ft1
-            m1 += mt1
-            self.tyre_work += float(ft1 @ v1 + mt1 * w1) * dt
-            if not p.fixed2:
-                ft2, mt2 = tyre_force(v2, w2, a2, p.wheels2, p.load2, p.tyre_friction,
-                                      p.tyre_mode)
-                f2 = f2 + ft2
-                m2 += mt2
-                self.tyre_work += float(ft2 @ v2 + mt2 * w2) * dt
-        self.force1 = (float(f1[0]), float(f1[1]), float(m1))
-        self.force2 = (float(f2[0]), float(f2[1]), float(m2))
-
-    def _geometry(self, x1, a1, v1, w1, x2, a2, v2, w2):
-        p = self.p
-        if p.geometry == "point":
-            point, n, t, delta, _, slip_t = point_contact(p, x1, a1, v1, w1, x2, a2, v2, w2)
-            return point, n, t, delta, slip_t
-        state = np.r_[x1, a1, v1, w1, x2, a2, v2, w2]
-        poly1, poly2 = placed_outlines(p, state)
-        poly2 = poly2 if poly2 is not None else self.obstacle
-        ov = outline_overlap(poly1, poly2)
-        if ov.area <= 0.0:
-            n = self.normal if self.normal is not None else ov.normal
-            return np.zeros(2), n, np.array([-n[1], n[0]]), 0.0, 0.0
-        n = ov.normal
-        if self.normal is not None and n @ self.normal < 0.0:
-            raise SimulationError(
-                "tunnelled", f"the contact normal of the outlines flipped at t = "
-                f"{self.start + (self.step + 1) * self.dt:.4g} s (crush {ov.depth:.3g} m): the "
-                f"outlines passed through each other; reduce dt or raise the stiffness",
-                self.step)
-        self.normal = n
-        t = np.array([-n[1], n[0]])
-        c = ov.centroid
-        d1, d2 = c - x1, c - x2
-        rel = v1 + w1 * np.array([-d1[1], d1[0]]) - v2 - w2 * np.array([-d2[1], d2[0]])
-        self.last_slip_n = float(rel @ n)
-        return c, n, t, ov.depth, float(rel @ t)
+        when = self.start + (self.step_count + 1) * self.dt
+        mem, tally = self.memory, self.tally
+        if mem.on:
+            geo = contact_geometry(self.p, mem, kin, self.obstacle, when)
+            if mem.started or geo.delta > 0.0:
+                if tally.initial_sign is None:
+                    tally.initial_sign = math.copysign(1.0, geo.slip_t) if geo.slip_t else 0.0
+                tally.last_slip = geo.slip_t
+            if self.p.geometry == "outline" and geo.overlap:
+                tally.last_slip_n = geo.slip_n
+            mem, cf = contact_step(self.p, mem, geo, self.dt)
+            self.memory = mem
+            if mem.on and mem.started:
+                tally.add(geo, cf, mem.z, self.dt, when, self.p.friction, kin)
+                f1, f2 = cf.force, -cf.force
+                m1, m2 = moments(geo.point, cf.force, kin[0], kin[4])
+        t1, n1, t2, n2, power = tyre_loads(self.p, kin)
+        tally.tyre_work += power * self.dt
+        f1, f2, m1, m2 = f1 + t1, f2 + t2, m1 + n1, m2 + n2
+        return ((float(f1[0]), float(f1[1]), float(m1)), (float(f2[0]), float(f2[1]),
+                                                          float(m2)))
 
 
 def _row(t: float, b1, b2) -> tuple:
     p1, v1, p2, v2 = b1.position, b1.velocity, b2.position, b2.velocity
     return (t, p1.x, p1.y, b1.angle, p2.x, p2.y, b2.angle, v1.x, v1.y, b1.angular_velocity,
             v2.x, v2.y, b2.angular_velocity)
+
+
+def _check_approach(problem: CompliantProblem, state: np.ndarray) -> None:
+    """The point contact must start with the vehicles approaching at C."""
+    *_, slip_n, _ = point_contact(problem, state[0:2], state[2], state[3:5], state[5],
+                                  state[6:8], state[8], state[9:11], state[11])
+    if not slip_n < 0.0:
+        raise SimulationError("no_contact", f"no contact: the vehicles do not approach at "
+                              f"C (u_n = {slip_n:.6g} m/s >= 0)", 0)
+
+
+def _space(problem: CompliantProblem, state: np.ndarray):
+    """A gravity-free pymunk space with both bodies at ``state`` (no shapes)."""
+    space = pymunk.Space()
+    space.gravity = (0.0, 0.0)
+    space.damping = 1.0
+    body1 = pymunk.Body(problem.mass1, problem.inertia1)
+    body2 = (pymunk.Body(body_type=pymunk.Body.STATIC) if problem.fixed2
+             else pymunk.Body(problem.mass2, problem.inertia2))
+    for body, k in ((body1, 0), (body2, 6)):
+        body.position = (float(state[k]), float(state[k + 1]))
+        body.angle = float(state[k + 2])
+        if body.body_type == pymunk.Body.DYNAMIC:
+            body.velocity = (float(state[k + 3]), float(state[k + 4]))
+            body.angular_velocity = float(state[k + 5])
+    space.add(body1, body2)
+    return space, body1, body2
+
+
+def _run_contact(stepper: _Stepper, rows: list | None) -> None:
+    """Step until the contact separates (or fail: never separated, never touched)."""
+    s, dt, start = stepper.p.settings, stepper.dt, stepper.start
+    max_steps = int(math.ceil(s.max_contact_time / dt)) + 1
+    while True:
+        stepper.step()
+        if rows is not None:
+            rows.append(_row(start + stepper.step_count * dt, stepper.b1, stepper.b2))
+        if stepper.memory.separated:
+            break
+        if stepper.step_count >= max_steps:
+            started = stepper.memory.started
+            text = (f"the contact still pushed after {s.max_contact_time:g} s "
+                    f"(max_contact_time)" if started else
+                    f"the outlines never touched within {s.max_contact_time:g} s")
+            raise SimulationError("never_separated" if started else "no_contact", text,
+                                  stepper.step_count)
+    problem, tally, mem = stepper.p, stepper.tally, stepper.memory
+    if problem.geometry == "outline" and tally.last_slip_n < -1e-3 * problem.speed_scale:
+        raise SimulationError(
+            "tunnelled", f"the outlines passed through each other: their overlap ended at "
+            f"t = {start + stepper.step_count * dt:.4g} s while they still approached at "
+            f"{-tally.last_slip_n:.3g} m/s (mean crush {mem.delta_max:.3g} m); the crush "
+            f"is deeper than the vehicles: raise the stiffness", stepper.step_count)
+
+
+def _separation_time(stepper: _Stepper, delta_p: float) -> float:
+    """The separation instant [s], interpolated between the last two crushes (delta_p)."""
+    mem = stepper.memory
+    frac = 1.0
+    if mem.prev_delta != mem.delta:
+        frac = min(max((mem.prev_delta - delta_p) / (mem.prev_delta - mem.delta), 0.0), 1.0)
+    return stepper.start + (stepper.step_count - 1 + frac) * stepper.dt
+
+
+def _records(problem: CompliantProblem, rows: list, stepper: _Stepper, separation: int):
+    """Trajectory, contact history and the secondary impact time from the recorded rows."""
+    arr = np.array(rows, float)
+    trajectory = Trajectory(
+        time=arr[:, 0], position1=arr[:, 1:3], angle1=arr[:, 3], position2=arr[:, 4:6],
+        angle2=arr[:, 6], velocity1=arr[:, 7:9], yaw_rate1=arr[:, 9],
+        velocity2=arr[:, 10:12], yaw_rate2=arr[:, 12], impact_index=separation,
+        outline1=problem.outline1, outline2=problem.outline2, fixed2=problem.fixed2)
+    h = np.array(stepper.tally.rows, float).reshape(-1, 10)
+    history = ContactHistory(time=h[:, 0], crush=h[:, 1], force=h[:, 2:4],
+                             normal_force=h[:, 4], tangential_force=h[:, 5], slip=h[:, 6],
+                             sticking=h[:, 7].astype(bool), point=h[:, 8:10])
+    found = find_secondary_impact(trajectory, separation)
+    return trajectory, history, None if found is None else found.time
 
 
 def simulate_compliant(case: pim.Case, eps, stiffness, friction=0.0, geometry="point",
@@ -316,6 +508,7 @@ def simulate_compliant(case: pim.Case, eps, stiffness, friction=0.0, geometry="p
     tyre_friction : float
         Tyre/ground friction mu_tyre [-] >= 0 acting during the contact (0: none).
     settings : CompliantSettings, optional
+        Numerics, and the tangential stiffness and recovery of the friction spring.
 
     Returns
     -------
@@ -335,112 +528,63 @@ def simulate_compliant(case: pim.Case, eps, stiffness, friction=0.0, geometry="p
     start = 0.0 if geometry == "point" else outline_start(problem)
     state = _free_state(problem.state0, start)
     if geometry == "point":
-        _, _, _, _, slip_n, _ = point_contact(problem, state[0:2], state[2], state[3:5],
-                                               state[5], state[6:8], state[8], state[9:11],
-                                               state[11])
-        if not slip_n < 0.0:
-            raise SimulationError("no_contact", f"no contact: the vehicles do not approach at "
-                                  f"C (u_n = {slip_n:.6g} m/s >= 0)", 0)
-
-    space = pymunk.Space()
-    space.gravity = (0.0, 0.0)
-    space.damping = 1.0
-    body1 = pymunk.Body(problem.mass1, problem.inertia1)
-    if problem.fixed2:
-        body2 = pymunk.Body(body_type=pymunk.Body.STATIC)
-    else:
-        body2 = pymunk.Body(problem.mass2, problem.inertia2)
-    for body, k in ((body1, 0), (body2, 6)):
-        body.position = (float(state[k]), float(state[k + 1]))
-        body.angle = float(state[k + 2])
-        if body.body_type == pymunk.Body.DYNAMIC:
-            body.velocity = (float(state[k + 3]), float(state[k + 4]))
-            body.angular_velocity = float(state[k + 5])
-    space.add(body1, body2)
-    stepper = _Stepper(problem, body1, body2, dt, start)
-    body1.velocity_func = stepper.velocity1
-    if body2.body_type == pymunk.Body.DYNAMIC:
-        body2.velocity_func = stepper.velocity2
-
+        _check_approach(problem, state)
+    space, body1, body2 = _space(problem, state)
+    stepper = _Stepper(problem, space, body1, body2, dt, start)
     rows = [_row(start, body1, body2)] if s.record else None
-    max_steps = int(math.ceil(s.max_contact_time / dt)) + 1
-    step = 0
-    while True:
-        space.step(dt)
-        step += 1
-        stepper.step = step
-        if rows is not None:
-            rows.append(_row(start + step * dt, body1, body2))
-        if stepper.separated:
-            break
-        if step >= max_steps:
-            kind = "never_separated" if stepper.started else "no_contact"
-            text = (f"the contact still pushed after {s.max_contact_time:g} s "
-                    f"(max_contact_time)" if stepper.started else
-                    f"the outlines never touched within {s.max_contact_time:g} s")
-            raise SimulationError(kind, text, step)
-    if geometry == "outline" and stepper.last_slip_n < -1e-3 * problem.speed_scale:
-        raise SimulationError(
-            "tunnelled", f"the outlines passed through each other: their overlap ended at "
-            f"t = {start + step * dt:.4g} s while they still approached at "
-            f"{-stepper.last_slip_n:.3g} m/s (mean crush {stepper.delta_max:.3g} m); the crush "
-            f"is deeper than the vehicles: raise the stiffness", step)
-    # the force was zero in the last step: these are the post-impact velocities. The
-    # separation instant is interpolated between the last two positions (delta = delta_p).
-    delta_p = float(permanent_crush(stepper.delta_max, problem.eps, problem.preload,
+    _run_contact(stepper, rows)
+    # the force was zero in the last step: these are the post-impact velocities
+    delta_p = float(permanent_crush(stepper.memory.delta_max, problem.eps, problem.preload,
                                     problem.stiffness))
-    frac = 1.0
-    if stepper.prev_delta != stepper.delta:
-        frac = min(max((stepper.prev_delta - delta_p) / (stepper.prev_delta - stepper.delta),
-                       0.0), 1.0)
-    t_end = start + (step - 1 + frac) * dt
-    v1 = np.array(body1.velocity)
-    v2 = np.array(body2.velocity)
-    w1, w2 = float(body1.angular_velocity), float(body2.angular_velocity)
-    energy_after = (kinetic_energy(problem.mass1, problem.inertia1, v1, w1)
-                    + kinetic_energy(problem.mass2, problem.inertia2, v2, w2))
+    t_end = _separation_time(stepper, delta_p)
+    post = (np.array(body1.velocity), np.array(body2.velocity),
+            float(body1.angular_velocity), float(body2.angular_velocity))
     separation_index = len(rows) - 1 if rows is not None else 0
-
-    # free motion after separation (animation, secondary impact); tyres keep acting
-    if s.duration > 0:
-        stepper.contact = False
-        for _ in range(int(math.ceil(s.duration / dt))):
-            space.step(dt)
-            step += 1
-            stepper.step = step
-            if rows is not None:
-                rows.append(_row(start + step * dt, body1, body2))
-    trajectory = history = secondary = None
+    stepper.memory = replace(stepper.memory, on=False)   # free motion; tyres still act
+    for _ in range(int(math.ceil(s.duration / dt)) if s.duration > 0 else 0):
+        stepper.step()
+        if rows is not None:
+            rows.append(_row(start + stepper.step_count * dt, body1, body2))
+    records = (None, None, None)
     if rows is not None:
-        arr = np.array(rows, float)
-        trajectory = Trajectory(
-            time=arr[:, 0], position1=arr[:, 1:3], angle1=arr[:, 3], position2=arr[:, 4:6],
-            angle2=arr[:, 6], velocity1=arr[:, 7:9], yaw_rate1=arr[:, 9],
-            velocity2=arr[:, 10:12], yaw_rate2=arr[:, 12], impact_index=separation_index,
-            outline1=problem.outline1, outline2=problem.outline2, fixed2=problem.fixed2)
-        h = np.array(stepper.rows, float).reshape(-1, 10)
-        history = ContactHistory(time=h[:, 0], crush=h[:, 1], force=h[:, 2:4],
-                                 normal_force=h[:, 4], tangential_force=h[:, 5], slip=h[:, 6],
-                                 sticking=h[:, 7].astype(bool), point=h[:, 8:10])
-        found = find_secondary_impact(trajectory, separation_index)
-        secondary = None if found is None else found.time
-    impact_point = (stepper.moment_sum / stepper.weight if stepper.weight > 0
-                    else np.full(2, np.nan))
-    problems = _problems(problem, stepper.delta_max)
+        records = _records(problem, rows, stepper, separation_index)
+    return _result(problem, stepper, post, delta_p, t_end, records,
+                   time.perf_counter() - wall)
+
+
+def _result(problem: CompliantProblem, stepper: _Stepper, post: tuple, delta_p: float,
+            t_end: float, records: tuple, wall: float) -> CompliantResult:
+    """The typed result from the stepper's tally and the post-impact motion ``post``."""
+    v1, v2, w1, w2 = post
+    tally, mem, start = stepper.tally, stepper.memory, stepper.start
+    trajectory, history, secondary = records
     return CompliantResult(
         velocity1=v1, velocity2=v2, yaw_rate1=w1, yaw_rate2=w2,
-        contact_duration=t_end - start, contact_start=start, impulse=stepper.impulse.copy(),
-        impact_point=impact_point, peak_force=stepper.peak, peak_crush=stepper.delta_max,
-        permanent_crush=delta_p, energy_before=problem.energy_before,
-        energy_after=energy_after, tyre_work=stepper.tyre_work,
-        stick_fraction=stepper.stick_time / max(stepper.contact_time, 1e-300),
-        slip_reversed=reversal(stepper.initial_sign or 0.0, stepper.last_slip,
-                               problem.speed_scale, stepper.directions),
-        steps=step, wall_time=time.perf_counter() - wall,
-        integrator="pymunk", eps=problem.eps, stiffness=problem.stiffness,
-        friction=problem.friction, tyre_friction=problem.tyre_friction, geometry=geometry,
-        settings=s, history=history, trajectory=trajectory, secondary_impact=secondary,
-        problems=problems)
+        contact_duration=t_end - start, contact_start=start, impulse=tally.impulse.copy(),
+        impact_point=(tally.moment_sum / tally.weight if tally.weight > 0
+                      else np.full(2, np.nan)),
+        peak_force=tally.peak, peak_crush=mem.delta_max, permanent_crush=delta_p,
+        energy_before=problem.energy_before,
+        energy_after=(kinetic_energy(problem.mass1, problem.inertia1, v1, w1)
+                      + kinetic_energy(problem.mass2, problem.inertia2, v2, w2)),
+        tyre_work=tally.tyre_work,
+        stick_fraction=tally.stick_time / max(tally.contact_time, 1e-300),
+        slip_reversed=reversal(tally.initial_sign or 0.0, tally.last_slip,
+                               problem.speed_scale, tally.directions),
+        steps=stepper.step_count, wall_time=wall, integrator="pymunk", eps=problem.eps,
+        stiffness=problem.stiffness, friction=problem.friction,
+        tyre_friction=problem.tyre_friction, geometry=problem.geometry,
+        settings=problem.settings, history=history, trajectory=trajectory,
+        secondary_impact=secondary, problems=_problems(problem, mem.delta_max),
+        tangential_recovery=problem.tangential_recovery,
+        impulse_normal=_unit(tally.normal_sum, tally.weight),
+        impact_point_body1=(tally.body_point_sum / tally.weight if tally.weight > 0
+                            else np.full(2, np.nan)),
+        impulse_normal_body2=_unit(tally.body_normal_sum, tally.weight))
+
+
+def _unit(total: np.ndarray, weight: float) -> np.ndarray:
+    return total / math.hypot(*total) if weight > 0 else np.full(2, np.nan)
 
 
 def _problems(problem: CompliantProblem, peak_crush: float) -> tuple:

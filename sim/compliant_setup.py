@@ -21,14 +21,20 @@ linear momentum and angular momentum about any fixed point are conserved.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
 import pim
 from pim.model import geometry
+from pim.model.geometry import cross, radius_of_gyration
 
-from .contact_law import check_fraction, check_positive, contact_duration_estimate
+from .contact_law import (
+    check_fraction,
+    check_positive,
+    contact_duration_estimate,
+    tangential_recovery_default,
+)
 from .contact_tyres import TYRE_MODES, wheels_from_outline
 from .overlap import place
 from .result import Trajectory
@@ -65,6 +71,11 @@ class CompliantSettings:
     tangential_stiffness : float or None
         k_t [N/m] of the elastoplastic friction spring, > 0; None: equal to the normal
         stiffness k.
+    tangential_recovery : float or None
+        Share r [-] in [0, 1] of the stored tangential (elastic) energy the contact gives
+        back (:mod:`sim.contact_law`, "Tangential recovery"); None: tied to the restitution,
+        r = eps^2 (:func:`sim.contact_law.tangential_recovery_default`); 1: the fully
+        elastic friction spring; 0: plastic.
     preload : float
         Force at zero crush a [N] >= 0 of the loading curve F = a + k delta (Campbell's A
         times the contact width; k is then Campbell's B times the width); default 0.
@@ -87,6 +98,7 @@ class CompliantSettings:
     method: str = "DOP853"
     rtol: float = 1e-9
     tangential_stiffness: float | None = None
+    tangential_recovery: float | None = None
     preload: float = 0.0
     tyre_mode: str = "rolling"
     max_contact_time: float = 1.0
@@ -118,6 +130,9 @@ class CompliantSettings:
         if self.tangential_stiffness is not None:
             set_(self, "tangential_stiffness", check_positive(
                 self.tangential_stiffness, "settings.tangential_stiffness", "N/m"))
+        if self.tangential_recovery is not None:
+            set_(self, "tangential_recovery", check_fraction(
+                self.tangential_recovery, "settings.tangential_recovery"))
         set_(self, "preload", check_positive(self.preload, "settings.preload", "N",
                                              allow_zero=True))
         if self.tyre_mode not in TYRE_MODES:
@@ -137,9 +152,9 @@ class CompliantSettings:
 
 
 def rotate(vec, angle: float) -> np.ndarray:
-    """``vec`` (2,) turned counter-clockwise by ``angle`` [rad]."""
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([c * vec[0] - s * vec[1], s * vec[0] + c * vec[1]])
+    """``vec`` (2,) turned counter-clockwise by ``angle`` [rad]
+    (:func:`pim.model.geometry.rotate`)."""
+    return geometry.rotate(vec, angle)
 
 
 def kinetic_energy(mass, inertia, velocity, yaw_rate) -> float:
@@ -162,6 +177,7 @@ class CompliantProblem:
     preload: float              # a [N]
     friction: float             # mu_c [-]
     tangential_stiffness: float  # k_t [N/m]
+    tangential_recovery: float  # r [-]
     geometry: str
     tyre_friction: float
     tyre_mode: str
@@ -242,19 +258,24 @@ def build_problem(case: pim.Case, eps, stiffness, friction=0.0, geometry="point"
     n = np.array([math.cos(gamma), math.sin(gamma)])
     r1, r2 = point - cg1, point - cg2
     # K_nn = 1/m1 + 1/m2 + (r1 x n)^2 / I1 + (r2 x n)^2 / I2 (the frequency of the contact)
-    k_nn = 1.0 / m1 + (r1[0] * n[1] - r1[1] * n[0]) ** 2 / i1
+    k_nn = 1.0 / m1 + float(cross(r1, n)) ** 2 / i1
     if not fixed2:
-        k_nn += 1.0 / m2 + (r2[0] * n[1] - r2[1] * n[0]) ** 2 / i2
+        k_nn += 1.0 / m2 + float(cross(r2, n)) ** 2 / i2
     state0 = np.array([cg1[0], cg1[1], h1, vel1[0], vel1[1], w1,
                        cg2[0], cg2[1], h2, vel2[0], vel2[1], w2])
     g = settings.gravity
-    wheels1 = wheels_from_outline(v1.length, v1.width, math.sqrt(i1 / m1))
-    wheels2 = None if fixed2 else wheels_from_outline(v2.length, v2.width, math.sqrt(i2 / m2))
+    wheels1 = wheels_from_outline(v1.length, v1.width,
+                                  float(radius_of_gyration(m1, i1)))
+    wheels2 = None if fixed2 else wheels_from_outline(
+        v2.length, v2.width, float(radius_of_gyration(m2, i2)))
     speeds = [np.hypot(*vel1), 0.0 if fixed2 else np.hypot(*vel2)]
     kt = settings.tangential_stiffness or stiffness
+    recovery = (float(tangential_recovery_default(eps)) if settings.tangential_recovery is None
+                else settings.tangential_recovery)
     return CompliantProblem(
         case=case, eps=eps, stiffness=stiffness, preload=settings.preload, friction=friction,
-        tangential_stiffness=kt, geometry=geometry, tyre_friction=tyre_friction,
+        tangential_stiffness=kt, tangential_recovery=recovery, geometry=geometry,
+        tyre_friction=tyre_friction,
         tyre_mode=settings.tyre_mode, mass1=m1, inertia1=i1, mass2=m2, inertia2=i2,
         fixed2=fixed2, state0=state0, arm1_body=rotate(r1, -h1), arm2_body=rotate(r2, -h2),
         normal2_body=rotate(n, -h2), wheels1=wheels1, wheels2=wheels2,
@@ -378,6 +399,16 @@ class CompliantResult:
         impact PIM does not model), within the recorded ``duration``.
     problems : tuple of str
         Flags: e.g. a crush deeper than the vehicle (the outlines would pass through).
+    tangential_recovery : float
+        The tangential recovery r [-] the contact used (``settings.tangential_recovery``).
+    impulse_normal : ndarray (2,)
+        The contact normal weighted like ``impact_point`` (|F| dt), unit length: the mean
+        normal of the outline contact (pymunk only; NaN from the reference).
+    impact_point_body1 : ndarray (2,)
+        ``impact_point`` in vehicle 1's body frame [m] (each contact point taken in the frame
+        of its instant; pymunk only).
+    impulse_normal_body2 : ndarray (2,)
+        ``impulse_normal`` in vehicle 2's body frame (pymunk only).
     """
 
     velocity1: np.ndarray
@@ -409,6 +440,10 @@ class CompliantResult:
     trajectory: Trajectory | None = None
     secondary_impact: float | None = None
     problems: tuple = ()
+    tangential_recovery: float = math.nan
+    impulse_normal: np.ndarray = field(default_factory=lambda: np.full(2, math.nan))
+    impact_point_body1: np.ndarray = field(default_factory=lambda: np.full(2, math.nan))
+    impulse_normal_body2: np.ndarray = field(default_factory=lambda: np.full(2, math.nan))
 
     @property
     def energy_loss(self) -> float:

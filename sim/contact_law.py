@@ -28,17 +28,33 @@ Tangential force
 Coulomb friction mu_c |F_n| against the slip, regularised by a tangential spring of
 stiffness k_t (an elastoplastic, "bristle" model): the elastic tangential displacement z
 follows the slip while |k_t z| < mu_c F_n (sticking: the contact stores tangential
-energy and gives it back, so a sticking contact can reverse), and is held on the Coulomb
+energy and gives back the share r of it, below), and is held on the Coulomb
 cone |z| <= z_max = mu_c F_n / k_t while the slip pushes outward (sliding: the force is
 mu_c F_n against the elastic displacement). The force is F_t = -k_t z. In continuous
 time z obeys the sweeping process
 
-    dz/dt = v_t                                if |z| < z_max or z v_t <= 0,
+    dz/dt = v_t                                if |z| < z_max or z v_t <= 0  (r = 1),
     dz/dt = sign(z) min(|v_t|, dz_max/dt)      on the cone, pushed outward,
 
 (and follows a shrinking cone; :mod:`sim.reference` integrates it as sticking and sliding
 modes with events); its implicit ("catching-up") step is
 z_{n+1} = clip(z_n + v_t dt, -z_max,n+1, z_max,n+1), which the fixed-step integrator uses.
+
+Tangential recovery
+-------------------
+How much of the stored tangential energy the contact gives back is a physical parameter,
+the tangential recovery r in [0, 1]. While |z| grows (loading) z follows the slip at rate
+v_t; while it shrinks (the slip has turned back, unloading) it follows at v_t / r, so the
+force falls along a line of slope k_t / r and the contact returns r k_t z^2 / 2 of the
+k_t z^2 / 2 it stored (the tangential analogue of the crush's unloading line, which returns
+eps^2 of the loading work). Past z = 0 the rest of the slip loads the other way at v_t.
+
+    dz/dt = v_t          if z v_t >= 0 (loading),
+    dz/dt = v_t / r      if z v_t < 0 (unloading; r = 0: z drops to 0 at once),
+
+inside the cone. r = 1 is the elastic spring (Maw, Barber and Fawcett), r = 0 a plastic
+tangential crush that gives nothing back; :data:`tangential_recovery_default` ties it to
+the restitution, r = eps^2 (docs/contact-model.md has the source).
 """
 
 from __future__ import annotations
@@ -49,7 +65,8 @@ import numpy as np
 
 __all__ = ["check_positive", "check_fraction", "loading_force", "loading_work",
            "unloading_slope", "permanent_crush", "normal_force", "normal_stiffness",
-           "tangential_step", "tangential_force", "contact_frequency",
+           "tangential_step", "tangential_force", "tangential_recovery_default",
+           "contact_frequency",
            "contact_duration_estimate", "stiffness_for_duration"]
 
 
@@ -171,14 +188,46 @@ def normal_stiffness(delta, delta_max, eps, a, b):
     return np.where(load, b, np.where(unload, s, 0.0))
 
 
-def tangential_step(z, slip, dt, z_max):
+def tangential_step(z, slip, dt, z_max, recovery=1.0):
     """One implicit step of the elastoplastic tangential spring [m].
 
-    z_{n+1} = clip(z_n + v_t dt, -z_max, z_max) with z_max = mu_c F_n / k_t at the new
-    state: sticking while inside the cone, sliding (and following a shrinking cone) on it.
+    z_{n+1} = clip(z_n + dz, -z_max, z_max) with z_max = mu_c F_n / k_t at the new state:
+    sticking while inside the cone, sliding (and following a shrinking cone) on it. The
+    slip v_t dt loads the spring (dz = v_t dt) while it pushes |z| outward and unloads it at
+    1 / r the rate while it pulls |z| back to 0 (module notes, "Tangential recovery"); the
+    slip left over past z = 0 loads the other way.
+
+    Parameters
+    ----------
+    z : array_like
+        Elastic tangential displacement [m].
+    slip : array_like
+        Tangential relative velocity v_t [m/s].
+    dt : float
+        Step [s].
+    z_max : array_like
+        Cone radius mu_c F_n / k_t [m].
+    recovery : array_like
+        Tangential recovery r [-] in [0, 1] (1: elastic, today's spring; 0: plastic).
     """
+    z = np.asarray(z, float)
+    dz = np.asarray(slip, float) * dt
+    r = np.asarray(recovery, float)
+    back = z * dz < 0.0                                # unloading toward z = 0
+    reach = np.abs(z) * r                               # slip that unloads it fully [m]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        partial = z + dz / np.where(r > 0, r, 1.0)
+    past = np.sign(dz) * (np.abs(dz) - reach)
+    unloaded = np.where((np.abs(dz) < reach) & (r > 0), partial, past)
     z_max = np.maximum(np.asarray(z_max, float), 0.0)
-    return np.clip(np.asarray(z, float) + np.asarray(slip, float) * dt, -z_max, z_max)
+    return np.clip(np.where(back, unloaded, z + dz), -z_max, z_max)
+
+
+def tangential_recovery_default(eps):
+    """The default tangential recovery r = eps^2 [-]: the contact gives back the same share
+    of its stored tangential energy as the crush gives back of its loading work (Stronge's
+    energetic restitution, docs/contact-model.md)."""
+    return np.asarray(eps, float) ** 2
 
 
 def tangential_force(z, k_t, limit):

@@ -52,6 +52,9 @@ def _unpack(y):
     return (y[0:2], y[2], y[3:5], y[5], y[6:8], y[8], y[9:11], y[11])
 
 
+STICK, UNLOAD = 0, 2        # friction modes besides sliding (+1 / -1, z = +- z_max)
+
+
 class _Model:
     """Right-hand side and events of one phase of the contact."""
 
@@ -60,7 +63,7 @@ class _Model:
         self.loading = True
         self.delta_max = 0.0
         self.delta_p = 0.0
-        self.mode = 0            # friction: 0 sticking, +1 / -1 sliding with z = +- z_max
+        self.mode = STICK        # friction: STICK, UNLOAD (sticking, |z| shrinking), +-1 sliding
         self.cone = (0.0, 0.0)   # (k_t |z| - mu F_n, mode v_t - dz_max/dt) at the last call
 
     def contact(self, y):
@@ -79,11 +82,18 @@ class _Model:
             kt = p.tangential_stiffness
             stiff = float(normal_stiffness(delta, dmax, p.eps, p.preload, p.stiffness))
             rate = p.friction * stiff * (-slip_n) / kt
-            if self.mode == 0:                 # sticking: the spring follows the slip
+            if self.mode == STICK:             # sticking, loading: the spring follows the slip
                 dz, ft = slip_t, -kt * z
+            elif self.mode == UNLOAD:          # sticking, unloading at 1 / r the rate
+                dz, ft = slip_t / p.tangential_recovery, -kt * z
             else:                              # sliding on the cone
                 dz, ft = self.mode * rate, -self.mode * p.friction * fn
-            self.cone = (kt * abs(z) - p.friction * fn, self.mode * slip_t - rate)
+            # z leaves the cone when its own rate inward (v_t, or v_t / r unloading)
+            # beats the cone's: with r < 1 a slip turning back releases the spring faster
+            out = self.mode * slip_t
+            if out < 0 and p.tangential_recovery < 1:
+                out = out / max(p.tangential_recovery, 1e-12)
+            self.cone = (kt * abs(z) - p.friction * fn, out - rate)
         return point, n * fn + t * ft, dz
 
     def rhs(self, t, y):
@@ -121,6 +131,154 @@ class _Model:
         return np.array([force[0], force[1], size, size * point[0], size * point[1]])
 
 
+def _event(function, direction: int):
+    function.terminal = True
+    function.direction = direction
+    return function
+
+
+def _phase_events(model: _Model, y, d: float, v: float) -> dict:
+    """name -> terminal event of the current phase (crush and friction modes)."""
+    problem = model.p
+    events = {}
+    if model.loading:            # d delta / dt = -v_rel . n crosses zero downward
+        events["peak"] = _event(lambda t, y: -model.contact(y)[4], -1)
+    else:                        # delta falls to delta_p, or climbs back to delta_max
+        events["released"] = _event(lambda t, y: model.contact(y)[3] - model.delta_p, -1)
+        events["reloaded"] = _event(      # (a margin of 1e-9 of it: no chattering)
+            lambda t, y: model.contact(y)[3] - model.delta_max * (1.0 + 1e-9), 1)
+    if problem.friction <= 0:
+        return events
+
+    def cone(t, y, i):
+        model.forces(y)
+        return model.cone[i]
+
+    if model.mode in (STICK, UNLOAD):     # the spring force reaches the Coulomb limit
+        events["slips"] = _event(
+            lambda t, y: cone(t, y, 0) - 1e-9 * problem.friction * problem.stiffness * d, 1)
+    else:                                 # sliding: the slip stops pushing outward
+        events["sticks"] = _event(lambda t, y: cone(t, y, 1) + 1e-9 * v, -1)
+    if problem.tangential_recovery < 1 and model.mode == STICK:   # the slip turns back
+        events["turns"] = _event(lambda t, y: y[12] * model.contact(y)[5], -1)
+    if model.mode == UNLOAD:
+        sign = 1.0 if y[12] > 0 else -1.0    # z reaches 0, or the slip pushes out again
+        events["unloaded"] = _event(lambda t, y: sign * y[12], -1)
+        events["reloads"] = _event(lambda t, y: y[12] * model.contact(y)[5], 1)
+    return events
+
+
+def _switch_friction(model: _Model, y, name: str, directions: set) -> None:
+    """The friction mode after event ``name`` (module notes; "Tangential recovery" of
+    :mod:`sim.contact_law`)."""
+    r = model.p.tangential_recovery
+    if name == "slips":                          # sticking -> sliding along z
+        model.mode = 1 if y[12] > 0 else -1
+        directions.add(model.mode)
+        return
+    if name in ("unloaded", "reloads"):
+        model.mode = STICK
+        if name == "unloaded":
+            y[12] = 0.0
+        return
+    backward = y[12] * model.contact(y)[5] < 0   # "turns", or "sticks" off the cone
+    if name == "sticks" and not (backward and r < 1):
+        model.mode = STICK
+    elif r == 0.0:                               # plastic: nothing to give back
+        model.mode, y[12] = STICK, 0.0
+    else:
+        model.mode = UNLOAD
+
+
+def _tolerances(problem: CompliantProblem):
+    """Absolute tolerances from the scales of the contact: crush d, speed v, gyration k."""
+    v = problem.speed_scale
+    d = v / math.sqrt(problem.stiffness * problem.k_nn)
+    k1 = math.sqrt(problem.inertia1 / problem.mass1)
+    k2 = k1 if problem.fixed2 else math.sqrt(problem.inertia2 / problem.mass2)
+    scale = np.array([d, d, d / k1, v, v, v / k1, d, d, d / k2, v, v, v / k2, d])
+    return problem.settings.rtol * scale, d, v
+
+
+def _first_mode(model: _Model, y, directions: set) -> None:
+    """At first contact (F_n = 0): slide if the slip outruns the growing Coulomb cone."""
+    problem = model.p
+    if problem.friction > 0:
+        _, _, _, _, slip_n0, slip_t0 = model.contact(y)
+        rate0 = problem.friction * problem.stiffness * (-slip_n0) / problem.tangential_stiffness
+        if abs(slip_t0) > rate0 or problem.preload > 0:
+            model.mode = 1 if slip_t0 > 0 else -1
+            directions.add(model.mode)
+
+
+def _phase(model: _Model, y, t0: float, events: dict, atol):
+    """solve_ivp over one smooth phase, with the impulse quadratures appended."""
+    from scipy.integrate import solve_ivp
+
+    s = model.p.settings
+
+    def rhs(t, yq):
+        return np.r_[model.rhs(t, yq[:13]), model.impulse_rate(t, yq[:13])]
+
+    def wrap(ev):
+        return _event(lambda t, yq: ev(t, yq[:13]), ev.direction)
+
+    return solve_ivp(rhs, (t0, t0 + s.max_contact_time), np.r_[y, np.zeros(5)],
+                     method=s.method, rtol=s.rtol, atol=np.r_[atol, np.full(5, s.rtol * 1e-6)],
+                     events=[wrap(e) for e in events.values()], dense_output=s.record)
+
+
+def _integrate(model: _Model, y):
+    """Every phase from first contact to separation: (y, t, impulse, steps, pieces,
+    stick time, slide directions)."""
+    problem, s = model.p, model.p.settings
+    atol, d, v = _tolerances(problem)
+    t0, steps, stick_time, directions = 0.0, 0, 0.0, set()
+    _first_mode(model, y, directions)
+    impulse, pieces = np.zeros(5), []
+    while True:
+        if not model.loading and model.contact(y)[3] <= model.delta_p + 1e-12 * d:
+            break                               # released exactly at a mode switch
+        events = _phase_events(model, y, d, v)
+        sol = _phase(model, y, t0, events, atol)
+        if sol.status < 0:
+            raise SimulationError("not_converged", f"solve_ivp ({s.method}) failed: "
+                                  f"{sol.message}", steps)
+        steps += len(sol.t) - 1
+        if s.record:
+            pieces.append((sol.t[0], sol.t[-1], sol.sol, model.loading, model.delta_max,
+                           model.mode))
+        y, impulse = sol.y[:13, -1].copy(), impulse + sol.y[13:, -1]
+        if sol.status == 0:
+            raise SimulationError("never_separated", f"the contact still pushed after "
+                                  f"{s.max_contact_time:g} s (max_contact_time)", steps)
+        stick_time += (sol.t[-1] - sol.t[0]) if model.mode in (STICK, UNLOAD) else 0.0
+        t0 = sol.t[-1]
+        fired = [name for name, e in zip(events, sol.t_events, strict=True) if len(e)]
+        if _after_event(model, y, fired, directions):
+            break
+    return y, t0, impulse, steps, pieces, stick_time, directions
+
+
+def _after_event(model: _Model, y, fired: list, directions: set) -> bool:
+    """Update the phase after the events ``fired``; True when the contact has ended."""
+    problem = model.p
+    crush = [name for name in fired if name in ("peak", "released", "reloaded")]
+    if not crush:
+        _switch_friction(model, y, fired[0], directions)
+        return False
+    if crush[0] == "peak":                      # reached the peak crush
+        model.delta_max = model.contact(y)[3]
+        model.delta_p = float(permanent_crush(model.delta_max, problem.eps, problem.preload,
+                                              problem.stiffness))
+        model.loading = False
+        return problem.eps == 0.0               # no rebound: the contact ends at the peak
+    if crush[0] == "released":                  # released at delta_p: separated
+        return True
+    model.loading = True                        # reloaded
+    return False
+
+
 def reference_compliant(case: pim.Case, eps, stiffness, friction=0.0, geometry="point",
                         tyre_friction=0.0, settings: CompliantSettings | None = None
                         ) -> CompliantResult:
@@ -139,123 +297,29 @@ def reference_compliant(case: pim.Case, eps, stiffness, friction=0.0, geometry="
         "no_contact" (no approach at C), "never_separated", "not_converged" (solve_ivp
         failed).
     """
-    from scipy.integrate import solve_ivp
-
     wall = time.perf_counter()
     if geometry != "point":
         raise ValueError(f"reference_compliant integrates the point contact only, "
                          f"got geometry={geometry!r}")
     problem = build_problem(case, eps, stiffness, friction, geometry, tyre_friction, settings)
-    s = problem.settings
     model = _Model(problem)
     y = np.r_[problem.state0, 0.0]
-    *_, slip_n, _ = model.contact(y)
+    *_, slip_n, slip_t0 = model.contact(y)
     if not slip_n < 0:
         raise SimulationError("no_contact", f"no contact: the vehicles do not approach at C "
                               f"(u_n = {slip_n:.6g} m/s >= 0)", 0)
-    # absolute tolerances from the scales of the contact: crush d, speed v, gyration k
-    omega = math.sqrt(problem.stiffness * problem.k_nn)
-    v = problem.speed_scale
-    d = v / omega
-    k1 = math.sqrt(problem.inertia1 / problem.mass1)
-    k2 = k1 if problem.fixed2 else math.sqrt(problem.inertia2 / problem.mass2)
-    scale = np.array([d, d, d / k1, v, v, v / k1, d, d, d / k2, v, v, v / k2, d])
-    atol = s.rtol * scale
+    y, t0, impulse, steps, pieces, stick_time, directions = _integrate(model, y)
+    return _reference_result(model, y, t0, impulse, steps, pieces, stick_time,
+                             reversal(np.sign(slip_t0), model.contact(y)[5],
+                                      problem.speed_scale, directions),
+                             time.perf_counter() - wall)
 
-    def peak(t, y):                  # d delta / dt = -v_rel . n crosses zero downward
-        return -model.contact(y)[4]
 
-    def released(t, y):              # delta falls to delta_p
-        return model.contact(y)[3] - model.delta_p
-
-    def reloaded(t, y):              # delta climbs back to delta_max (a margin of 1e-9 of
-        return model.contact(y)[3] - model.delta_max * (1.0 + 1e-9)   # it: no chattering
-
-    def slips(t, y):                 # sticking: the spring force reaches the Coulomb limit
-        model.forces(y)
-        return model.cone[0] - 1e-9 * problem.friction * problem.stiffness * d
-
-    def sticks(t, y):                # sliding: the slip stops pushing outward
-        model.forces(y)
-        return model.cone[1] + 1e-9 * v
-
-    for event, direction in ((peak, -1), (released, -1), (reloaded, 1), (slips, 1),
-                             (sticks, -1)):
-        event.terminal = True
-        event.direction = direction
-
-    t0 = 0.0
-    steps = 0
-    stick_time = 0.0
-    directions = set()
-    slip_t0_sign = np.sign(model.contact(y)[5])
-    if problem.friction > 0:        # at first contact (F_n = 0): slide if the slip outruns
-        _, _, _, _, slip_n0, slip_t0 = model.contact(y)      # the growing Coulomb cone
-        rate0 = problem.friction * problem.stiffness * (-slip_n0) / problem.tangential_stiffness
-        if abs(slip_t0) > rate0 or problem.preload > 0:
-            model.mode = 1 if slip_t0 > 0 else -1
-            directions.add(model.mode)
-    impulse = np.zeros(5)
-    pieces = []
-    while True:
-        if not model.loading and model.contact(y)[3] <= model.delta_p + 1e-12 * d:
-            break                               # released exactly at a mode switch
-        events = [peak] if model.loading else [released, reloaded]
-        if problem.friction > 0:
-            events = events + [slips if model.mode == 0 else sticks]
-        q0 = np.zeros(5)
-
-        def rhs(t, yq):
-            return np.r_[model.rhs(t, yq[:13]), model.impulse_rate(t, yq[:13])]
-
-        def wrap(ev):
-            def f(t, yq):
-                return ev(t, yq[:13])
-            f.terminal, f.direction = True, ev.direction
-            return f
-
-        sol = solve_ivp(rhs, (t0, t0 + s.max_contact_time), np.r_[y, q0], method=s.method,
-                        rtol=s.rtol, atol=np.r_[atol, np.full(5, 0.0) + s.rtol * 1e-6],
-                        events=[wrap(e) for e in events], dense_output=s.record)
-        if sol.status < 0:
-            raise SimulationError("not_converged", f"solve_ivp ({s.method}) failed: "
-                                  f"{sol.message}", steps)
-        steps += len(sol.t) - 1
-        if s.record:
-            pieces.append((sol.t[0], sol.t[-1], sol.sol, model.loading, model.delta_max,
-                           model.mode))
-        y = sol.y[:13, -1].copy()
-        impulse += sol.y[13:, -1]
-        t_end = sol.t[-1]
-        if sol.status == 0:
-            raise SimulationError("never_separated", f"the contact still pushed after "
-                                  f"{s.max_contact_time:g} s (max_contact_time)", steps)
-        t0 = t_end
-        if model.mode == 0:
-            stick_time += sol.t[-1] - sol.t[0]
-        fired = [i for i, e in enumerate(sol.t_events) if len(e)]
-        if problem.friction > 0 and fired == [len(events) - 1]:
-            if model.mode == 0:                 # sticking -> sliding along z
-                model.mode = 1 if y[12] > 0 else -1
-                directions.add(model.mode)
-            else:                               # sliding -> sticking
-                model.mode = 0
-            continue
-        if model.loading:                       # reached the peak crush
-            model.delta_max = model.contact(y)[3]
-            model.delta_p = float(permanent_crush(model.delta_max, problem.eps,
-                                                  problem.preload, problem.stiffness))
-            model.loading = False
-            if problem.eps == 0.0:
-                break                           # no rebound: the contact ends at the peak
-            continue
-        if fired and fired[0] == 0:             # released at delta_p: separated
-            break
-        model.loading = True                    # reloaded
+def _reference_result(model: _Model, y, t0, impulse, steps, pieces, stick_time,
+                      slip_reversed, wall) -> CompliantResult:
+    problem, s = model.p, model.p.settings
     v1, w1 = y[3:5].copy(), float(y[5])
     v2, w2 = y[9:11].copy(), float(y[11])
-    energy_after = (kinetic_energy(problem.mass1, problem.inertia1, v1, w1)
-                    + kinetic_energy(problem.mass2, problem.inertia2, v2, w2))
     history = _history(model, pieces) if s.record else None
     states = [np.r_[0.0, problem.state0]]
     if s.record:
@@ -269,20 +333,21 @@ def reference_compliant(case: pim.Case, eps, stiffness, friction=0.0, geometry="
         angle2=arr[:, 9], velocity1=arr[:, 4:6], yaw_rate1=arr[:, 6], velocity2=arr[:, 10:12],
         yaw_rate2=arr[:, 12], impact_index=len(arr) - 1, outline1=problem.outline1,
         outline2=problem.outline2, fixed2=problem.fixed2)
-    stick = stick_time / t0 if problem.friction > 0 else 0.0
-    slip_rev = reversal(slip_t0_sign, model.contact(y)[5], v, directions)
     return CompliantResult(
         velocity1=v1, velocity2=v2, yaw_rate1=w1, yaw_rate2=w2, contact_duration=t0,
         contact_start=0.0, impulse=impulse[0:2],
         impact_point=impulse[3:5] / impulse[2] if impulse[2] > 0 else np.full(2, np.nan),
         peak_force=float(np.max(np.hypot(*history.force.T))) if history is not None
         else math.nan, peak_crush=model.delta_max, permanent_crush=model.delta_p,
-        energy_before=problem.energy_before, energy_after=energy_after, tyre_work=math.nan,
-        stick_fraction=stick,
-        slip_reversed=bool(slip_rev), steps=steps, wall_time=time.perf_counter() - wall,
-        integrator=s.method, eps=problem.eps, stiffness=problem.stiffness,
-        friction=problem.friction, tyre_friction=problem.tyre_friction, geometry=geometry,
-        settings=s, history=history, trajectory=trajectory)
+        energy_before=problem.energy_before,
+        energy_after=(kinetic_energy(problem.mass1, problem.inertia1, v1, w1)
+                      + kinetic_energy(problem.mass2, problem.inertia2, v2, w2)),
+        tyre_work=math.nan, stick_fraction=stick_time / t0 if problem.friction > 0 else 0.0,
+        slip_reversed=bool(slip_reversed), steps=steps, wall_time=wall, integrator=s.method,
+        eps=problem.eps, stiffness=problem.stiffness, friction=problem.friction,
+        tyre_friction=problem.tyre_friction, geometry=problem.geometry, settings=s,
+        history=history, trajectory=trajectory,
+        tangential_recovery=problem.tangential_recovery)
 
 
 def _history(model: _Model, pieces):
@@ -296,7 +361,8 @@ def _history(model: _Model, pieces):
             point, n, tt, delta, slip_n, slip_t = model.contact(y)
             _, force, _ = model.forces(y)
             fn, ft = float(force @ n), float(force @ tt)
-            rows.append((t, delta, force[0], force[1], fn, ft, slip_t, mode == 0,
+            rows.append((t, delta, force[0], force[1], fn, ft, slip_t,
+                         mode in (STICK, UNLOAD),
                          point[0], point[1]))
     h = np.array(rows, float)
     return ContactHistory(time=h[:, 0], crush=h[:, 1], force=h[:, 2:4], normal_force=h[:, 4],

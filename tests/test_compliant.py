@@ -173,7 +173,7 @@ def test_grazing_contact_with_slip_reversal():
     v1 = pim.Vehicle(1500.0, 1500 * 1.3 ** 2, (-1.5, 0.9), (0.5, -1.0), 0.0, 0.0, 4.5, 1.8)
     v2 = pim.Vehicle(1800.0, 1800 * 1.4 ** 2, (1.6, -0.9), (0.0, 0.0), 0.0, math.pi, 4.8, 1.8)
     case = pim.Case(v1, v2, pim.Impact((0.0, 0.0), math.pi / 2))
-    settings = CompliantSettings(tangential_stiffness=5 * K)
+    settings = CompliantSettings(tangential_stiffness=5 * K, tangential_recovery=1.0)
     r = sim.simulate_compliant(case, 0.1, K, friction=3.0, settings=settings)
     ref = sim.reference_compliant(case, 0.1, K, friction=3.0,
                                   settings=replace(settings, record=False))
@@ -183,9 +183,51 @@ def test_grazing_contact_with_slip_reversal():
     assert np.abs(r.velocity1 - ref.velocity1).max() < 1e-3
     assert r.energy_after < r.energy_before
     # a soft spring (0.5 k) does not reverse it
-    soft = sim.simulate_compliant(case, 0.1, K, friction=3.0,
-                                  settings=CompliantSettings(tangential_stiffness=0.5 * K))
+    soft = sim.simulate_compliant(case, 0.1, K, friction=3.0, settings=replace(
+        settings, tangential_stiffness=0.5 * K))
     assert not soft.slip_reversed
+    # a plastic tangential contact (r = 0) gives nothing back: no reversal, more loss
+    plastic = sim.simulate_compliant(case, 0.1, K, friction=3.0, settings=replace(
+        settings, tangential_recovery=0.0))
+    ref0 = sim.reference_compliant(case, 0.1, K, friction=3.0, settings=replace(
+        settings, tangential_recovery=0.0, record=False))
+    assert not plastic.slip_reversed and not ref0.slip_reversed
+    assert plastic.energy_loss > r.energy_loss
+    assert np.abs(plastic.velocity1 - ref0.velocity1).max() < 1e-3
+
+
+def test_tangential_recovery_default_is_eps_squared_and_orders_the_energy_loss(ricsac9):
+    # sticking contact (mu_c = 3): the less the spring gives back, the more energy is lost
+    losses = []
+    for r in (0.0, 0.5, 1.0):
+        res = sim.simulate_compliant(ricsac9, 0.355, K, friction=3.0, settings=CompliantSettings(
+            tangential_recovery=r, record=False))
+        assert res.tangential_recovery == r
+        losses.append(res.energy_loss)
+    assert losses[0] > losses[1] > losses[2]
+    default = sim.simulate_compliant(ricsac9, 0.355, K, friction=0.5,
+                                     settings=CompliantSettings(record=False))
+    assert default.tangential_recovery == pytest.approx(0.355 ** 2, rel=1e-12)
+
+
+@pytest.mark.parametrize("target,limit", [("normal_force", 5), ("tyre_force", 1000)])
+def test_interrupt_in_the_velocity_callback_propagates(ricsac9, monkeypatch, target, limit):
+    # an exception raised inside pymunk's cffi callback used to be printed and ignored
+    # ("Exception ignored from cffi callback"), the run going on with one step's force lost
+    import sim.compliant as C
+    calls = {"n": 0}            # tyre_force: 2 calls a step, call 1000 after separation
+    original = getattr(C, target)
+
+    def interrupted(*args, **kwargs):
+        calls["n"] += 1
+        if calls["n"] == limit:
+            raise KeyboardInterrupt
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(C, target, interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        sim.simulate_compliant(ricsac9, 0.355, K, tyre_friction=0.7, settings=CompliantSettings(
+            record=False, duration=0.2))
 
 
 def test_eps_zero_vehicles_move_together_at_c(ricsac9):
@@ -220,6 +262,14 @@ def test_outline_geometry_gives_the_impulse_centroid(ricsac9):
     lin0, _ = before(ricsac9)
     lin, _ = momenta(ricsac9, r)
     assert np.abs(lin - lin0).max() < 1e-9 * np.linalg.norm(lin0)
+
+
+def test_outline_reports_its_mean_contact_normal(ricsac9):
+    r = sim.simulate_compliant(ricsac9, 0.355, K, geometry="outline",
+                               settings=CompliantSettings(record=False))
+    assert np.hypot(*r.impulse_normal) == pytest.approx(1.0, abs=1e-12)
+    # RICSAC 9: vehicle 1's front into vehicle 2's side, normal along +x like Gamma = 0
+    assert r.impulse_normal[0] > 0.99
 
 
 def test_tyres_slow_the_vehicles_during_the_contact(ricsac9):

@@ -96,3 +96,30 @@ def test_bad_stiffness_and_duration_are_clear_errors(bad):
     if not isinstance(bad, str | bool | type(None)):
         with pytest.raises(ValueError, match="duration"):
             law.stiffness_for_duration(bad, 1e-3, 0.3)
+
+
+@pytest.mark.parametrize("recovery", [0.0, 0.25, 0.6, 1.0])
+def test_tangential_step_gives_back_r_of_the_stored_energy(recovery):
+    # load the spring (k_t = 1) by slip 1 mm at 1 m/s, then slip back until the force is 0:
+    # stored k z^2 / 2, returned = work of the force over the backward slip = r of it
+    dt, z, z_max = 1e-6, 0.0, 1.0
+    for _ in range(1000):
+        z = float(law.tangential_step(z, 1.0, dt, z_max, recovery))
+    stored = 0.5 * z * z
+    returned, steps = 0.0, 0
+    while z > 0.0 and steps < 10_000:
+        new = float(law.tangential_step(z, -1.0, dt, z_max, recovery))
+        returned += 0.5 * (z + max(new, 0.0)) * min(dt, z * recovery)   # force x slip
+        z, steps = new, steps + 1
+    assert z <= 0.0
+    assert returned == pytest.approx(recovery * stored, abs=2e-3 * stored)
+
+
+def test_tangential_step_with_full_recovery_is_the_elastic_spring():
+    rng = np.random.default_rng(1)
+    z, slip, z_max = rng.normal(size=(3, 1000))
+    z_max = np.abs(z_max)
+    got = law.tangential_step(z, slip, 0.3, z_max, 1.0)
+    assert np.array_equal(got, np.clip(z + 0.3 * slip, -z_max, z_max))
+    assert np.array_equal(law.tangential_step(z, slip, 0.3, z_max), got)
+    assert law.tangential_recovery_default(0.3) == pytest.approx(0.09)

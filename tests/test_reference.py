@@ -93,7 +93,8 @@ def test_sticking_stiff_limit_is_pim_beta1_where_slip_does_not_reverse():
     def error(duration, ratio):
         k = float(stiffness_for_duration(duration, k_nn, 0.3))
         r = sim.reference_compliant(case, 0.3, k, friction=2.0, settings=CompliantSettings(
-            rtol=1e-10, record=False, tangential_stiffness=ratio * k))
+            rtol=1e-10, record=False, tangential_stiffness=ratio * k,
+            tangential_recovery=1.0))
         diff = np.r_[r.velocity1 - pim1.velocity1, r.yaw_rate1 - pim1.yaw_rate1] * scale
         return np.abs(diff).max() / 15.0, r
 
@@ -120,3 +121,17 @@ def test_history_is_recorded(ricsac9):
     stepped = sim.simulate_compliant(ricsac9, 0.355, K, friction=0.5)
     assert r.peak_force == pytest.approx(stepped.peak_force, rel=0.01)
     assert r.peak_crush == pytest.approx(stepped.peak_crush, rel=1e-3)
+
+
+@pytest.mark.parametrize("recovery", [0.0, 0.5])
+def test_tangential_recovery_modes_agree_with_the_stepper(ricsac9, recovery):
+    # sticking contact (mu_c = 3): sticking, unloading at v_t / r and sliding as modes with
+    # events, against pymunk's implicit step (first order: 400 steps per contact)
+    settings = CompliantSettings(tangential_recovery=recovery, record=False)
+    ref = sim.reference_compliant(ricsac9, 0.355, K, friction=3.0,
+                                  settings=CompliantSettings(tangential_recovery=recovery,
+                                                             record=False, rtol=1e-8))
+    got = sim.simulate_compliant(ricsac9, 0.355, K, friction=3.0, settings=settings)
+    assert np.abs(post(ref) - post(got)).max() < 1e-2
+    assert ref.stick_fraction > 0.9 and got.stick_fraction > 0.9
+    assert ref.tangential_recovery == recovery
