@@ -12,6 +12,7 @@ from pim.cli import (
     echo_json,
     eps_option,
     json_option,
+    require_brach,
     units_option,
 )
 
@@ -50,6 +51,7 @@ def sim(case_name, eps, beta, dt, iterations, contact, start, units, as_json):
         kwargs["dt"] = dt
     settings = Settings(**kwargs)
     case = load_case(case_name)
+    require_brach(case, "pim sim")
     units = units or case.units
     try:
         check = crosscheck(case, eps, beta, settings)
