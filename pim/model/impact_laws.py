@@ -176,7 +176,8 @@ class LawResult(Result):
 
     def admissibility_checks(self) -> list:
         """Brach's checks without the two on tangential restitution (see the class)."""
-        return [c for c in super().admissibility_checks() if c[2] not in ("reverses", "along", "drives")]
+        skip = ("reverses", "along", "drives")
+        return [c for c in super().admissibility_checks() if c[2] not in skip]
 
 
 def _fields(case: Case, k, mu_c, approach_tol, singular_tol) -> tuple[dict, np.ndarray]:
