@@ -5,13 +5,16 @@ times the impulse the engine measured: physical inputs only. It must agree with
 pim.model.impact_laws.solve_kudlich_slibar to round-off wherever the engine converges.
 """
 
+import json
+
 import numpy as np
 import pytest
 
 import pim
 import sim
+from pim.cli import main
 from pim.model.impact_laws import solve_kudlich_slibar
-from sim.kudlich_slibar import simulate_kudlich_slibar
+from sim.kudlich_slibar import crosscheck_kudlich_slibar, simulate_kudlich_slibar
 from tests.scenes import random_cases
 
 
@@ -72,3 +75,46 @@ def test_random_scenes_agree_or_name_the_engines_limit():
 def test_bad_parameters_name_the_field(k, mu_c, message):
     with pytest.raises(ValueError, match=message):
         simulate_kudlich_slibar(pim.load_case("ricsac9"), k, mu_c)
+
+
+CASE = """
+[vehicle1]
+mass = 1500
+yaw_inertia = 2500
+cg = [1.5, 0.4]
+heading = "180 deg"
+velocity = [-12, 0]
+[vehicle2]
+mass = 1200
+yaw_inertia = 1800
+cg = [-0.5, -1.6]
+heading = "90 deg"
+velocity = [0, 8]
+[impact]
+point = [0, 0]
+normal_angle = "0 deg"
+law = "{law}"
+restitution = 0.2
+contact_friction = 0.4
+"""
+
+
+def test_sim_command_cross_checks_the_case_law(tmp_path, capsys):
+    path = tmp_path / "ks.toml"
+    path.write_text(CASE.format(law="kudlich-slibar"))
+    assert main(["sim", str(path), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["law"] == "kudlich-slibar" and out["error"] < 1e-9
+    check = crosscheck_kudlich_slibar(pim.load_case(path))
+    assert check.k == 0.2 and check.mu_c == 0.4 and check.error < 1e-9
+    assert main(["sim", str(path), "--eps", "0.3"]) == 2
+    assert "--eps and --beta do not apply" in capsys.readouterr().err
+
+
+def test_sim_command_runs_the_capped_law_at_its_effective_beta(tmp_path, capsys):
+    path = tmp_path / "capped.toml"
+    path.write_text(CASE.format(law="brach-capped"))
+    assert main(["sim", str(path), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    capped = pim.solve_law(pim.load_case(path))
+    assert out["beta"] == pytest.approx(float(capped.beta)) and out["error"] < 1e-9
