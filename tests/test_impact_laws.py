@@ -26,6 +26,7 @@ from pim.model.impact_laws import (
 from tests.scenes import random_cases, scenes
 
 KS = "kudlich-slibar"
+ANY_SCENE = st.one_of(scenes(), scenes(fixed=True))    # two vehicles, or a fixed obstacle
 SETTINGS = dict(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
 
@@ -69,7 +70,7 @@ def test_central_frictionless_collision_all_laws_agree_with_the_closed_form(k):
         assert float(r.yaw_rate1) == pytest.approx(0.0, abs=1e-12)
 
 
-@given(scenes(), st.floats(0.0, 1.0))
+@given(ANY_SCENE, st.floats(0.0, 1.0))
 @settings(**SETTINGS)
 def test_sticking_ends_at_minus_k_times_the_approach_in_both_directions(case, k):
     assume(compression_pushes(case))
@@ -130,7 +131,7 @@ def test_kudlich_slibar_matches_an_independent_n_t_derivation(name, k, mu_c):
 
 
 # ---- the mapping to Brach's PIM, both directions --------------------------------------------
-@given(scenes(), st.floats(0.0, 1.0), st.floats(0.0, 3.0))
+@given(ANY_SCENE, st.floats(0.0, 1.0), st.floats(0.0, 3.0))
 @settings(**SETTINGS)
 def test_kudlich_slibar_is_pim_at_eps_k_and_mu0_at_eps_0_capped(case, k, mu_c):
     assume(compression_pushes(case))
@@ -148,7 +149,7 @@ def test_kudlich_slibar_is_pim_at_eps_k_and_mu0_at_eps_0_capped(case, k, mu_c):
         close(ks, solve_capped(case, k, mu0_0 / mu0_k, mu_c), scale_of(case))
 
 
-@given(scenes(), st.floats(0.0, 1.0), st.floats(0.0, 1.0))
+@given(ANY_SCENE, st.floats(0.0, 1.0), st.floats(0.0, 1.0))
 @settings(**SETTINGS)
 def test_pim_answers_within_the_compression_ratio_are_kudlich_slibar_answers(case, eps, frac):
     assume(compression_pushes(case))
