@@ -18,6 +18,7 @@ from pim.cli import (
     eps_option,
     friction_limit_option,
     json_option,
+    require_brach,
     solve_with_options,
     units_option,
     warnings_of,
@@ -82,6 +83,7 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
     if tyre < 0:
         raise ValueError(f"--tyre-friction must be >= 0, got {tyre}")
     case = load_case(case_name)
+    require_brach(case, "pim compare")
     folder = writable_folder(_out(out, case.name, "case"), "--out")
     solve_with_options(case, 0.0, 1.0)      # exits 1 with one line when there is no impact
     started = time.perf_counter()
@@ -138,6 +140,7 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
     from .animation import animate_case
 
     case = load_case(case_name)
+    require_brach(case, "pim animate")
     eps_, beta_ = sim.scene.resolve_coefficients(case, eps, beta)
     if tyre < 0:
         raise ValueError(f"--tyre-friction must be >= 0, got {tyre}")
@@ -202,6 +205,7 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, progress
     results = []
     for name in names:
         case = load_case(name)
+        require_brach(case, "pim speed-error")
         grid = dict(COARSE) if coarse else {}
         grid["repeats"] = repeats
         study = sweep(case, eps, beta, progress=progress, **grid)
@@ -311,6 +315,7 @@ def assumptions(case_name, out, eps, beta, executor, no_animation, progress, as_
     from .assumptions import run_assumptions, write_assumptions
 
     case = load_case(case_name)
+    require_brach(case, "pim assumptions")
     folder = _out(out, case.name, "case")
     study = run_assumptions(case, eps, beta, executor=executor, progress=progress,
                             animation_after=None if no_animation else 2.0)

@@ -14,8 +14,10 @@ from pim.cli import (
     json_option,
     units_option,
 )
+from pim.model.impact_laws import solve_law
 
 from .crosscheck import crosscheck
+from .kudlich_slibar import crosscheck_kudlich_slibar
 
 __all__ = ["sim"]
 
@@ -34,7 +36,8 @@ __all__ = ["sim"]
 @units_option
 @json_option
 def sim(case_name, eps, beta, dt, iterations, contact, start, units, as_json):
-    """Simulate CASE with pymunk and compare with Brach's PIM (pim solve).
+    """Simulate CASE with pymunk and compare with the analytic answer (pim solve) under the
+    case's impact law (Brach's PIM, friction-capped Brach or Kudlich-Slibar).
 
     Prints analytic and simulated post-impact velocities and yaw rates with absolute and
     relative errors, and the wall time of the simulation. Exit code 1 if the simulation
@@ -52,7 +55,7 @@ def sim(case_name, eps, beta, dt, iterations, contact, start, units, as_json):
     case = load_case(case_name)
     units = units or case.units
     try:
-        check = crosscheck(case, eps, beta, settings)
+        check = _crosscheck_law(case, eps, beta, settings)
     except SimulationError as exc:
         click.echo(f"simulation failed ({exc.kind}): {exc}", err=True)
         sys.exit(1)
@@ -60,6 +63,21 @@ def sim(case_name, eps, beta, dt, iterations, contact, start, units, as_json):
         echo_json(check.to_json())
         return
     click.echo(check.format_table(units))
-    for text in check.limitations:
+    for text in getattr(check, "limitations", ()):
         click.echo(f"note: {text}", err=True)
+
+
+def _crosscheck_law(case, eps, beta, settings):
+    """The cross-check of the case's impact law: Brach's (at the effective beta for the
+    friction-capped law) or the two-phase Kudlich-Slibar run (docs/impact-laws.md)."""
+    law = case.impact.law or "brach"
+    if law == "kudlich-slibar":
+        if eps is not None or beta is not None:
+            raise ValueError("--eps and --beta do not apply to law kudlich-slibar (set "
+                             "impact.restitution and impact.contact_friction in the case)")
+        return crosscheck_kudlich_slibar(case, settings=settings)
+    if law == "brach-capped":
+        capped = solve_law(case, law, eps, beta)
+        eps, beta = float(capped.eps), float(capped.beta)
+    return crosscheck(case, eps, beta, settings)
 

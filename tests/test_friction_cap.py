@@ -1,7 +1,7 @@
 """pim/model/friction_cap.py: the friction-capped impulse ratio (issue 12, item 3).
 
-mu = sign(mu0) min(beta |mu0|, limit), as pycrash's cof and PC-Crash's contact-plane
-friction cap it."""
+mu = sign(mu0) min(beta |mu0|, limit): the friction-capped Brach law ("brach-capped"), not
+PC-Crash's law (that is Kudlich-Slibar: tests/test_impact_laws.py)."""
 
 import numpy as np
 import pytest

@@ -17,7 +17,9 @@ from .main import (
     eps_option,
     friction_limit_option,
     json_option,
+    law_options,
     main,
+    require_brach,
     run,
     solve_with_options,
     units_option,
@@ -26,4 +28,5 @@ from .main import (
 
 __all__ = ["main", "run", "cli", "case_argument", "eps_option", "beta_option", "units_option",
            "json_option", "echo_json", "friction_limit_option", "cap_friction_option",
-           "solve_with_options", "warnings_of", "NO_IMPACT_EXIT_CODE"]
+           "solve_with_options", "warnings_of", "NO_IMPACT_EXIT_CODE", "law_options",
+           "require_brach"]

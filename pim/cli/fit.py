@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import click
 
-from .main import case_argument, echo_json, json_option, units_option
+from .main import case_argument, echo_json, json_option, require_brach, units_option
 
 __all__ = ["fit", "sensitivity", "plot"]
 
@@ -115,6 +115,7 @@ def fit(case_name, include_yaw, eps, beta, eps_range, beta_range, free, units, a
     from ..io.units import convert
 
     case = load_case(case_name)
+    require_brach(case, "pim fit")
     units = units or case.units
     result = _fit(case, include_yaw, eps, beta, eps_range, beta_range, parse_free(free))
     ident = result.identifiability
@@ -230,6 +231,7 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
     from ..io.units import convert
 
     case = load_case(case_name)
+    require_brach(case, "pim sensitivity")
     units = units or case.units
     sens = compute(case, eps=eps, beta=beta, uncertainty=_parse_sigma(sigmas),
                    include_yaw=include_yaw)
@@ -298,6 +300,7 @@ def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units)
     from ..plotting.sheet import write_plots
 
     case = load_case(case_name)
+    require_brach(case, "pim plot")
     units = units or case.units
     if has_measured_terms(case, include_yaw):
         result = _fit(case, include_yaw, None, None, eps_range, beta_range)

@@ -18,7 +18,8 @@ from ..model.plausibility import warnings_of
 
 __all__ = ["main", "cli", "case_argument", "eps_option", "beta_option", "units_option",
            "json_option", "echo_json", "friction_limit_option", "cap_friction_option",
-           "solve_with_options", "warnings_of", "NO_IMPACT_EXIT_CODE"]
+           "solve_with_options", "warnings_of", "NO_IMPACT_EXIT_CODE", "law_options",
+           "require_brach"]
 
 ENTRY_POINT_GROUP = "pim.commands"
 
@@ -93,31 +94,87 @@ friction_limit_option = click.option(
     help="Warn when |mu| = |Pt/Pn| exceeds this friction coefficient (default: no limit).")
 cap_friction_option = click.option(
     "--cap-friction", is_flag=True,
-    help="Friction-capped mode: mu = sign(mu0) min(beta |mu0|, --friction-limit), as "
-         "pycrash's cof and PC-Crash's contact-plane friction do.")
+    help="Friction-capped Brach (law brach-capped): mu = sign(mu0) min(beta |mu0|, "
+         "--friction-limit). A variant of Brach's law, not PC-Crash's: for the PC-Crash / "
+         "Virtual CRASH law use --law kudlich-slibar.")
 
 
-def solve_with_options(case, eps, beta, friction_limit=None, cap_friction=False):
-    """Solve ``case`` as the commands do: plain PIM, or friction-capped with --cap-friction.
+def law_options(command):
+    """--law, --k and --mu-c: the impact law and its parameters (docs/impact-laws.md)."""
+    from ..model.case import LAWS
 
-    Raises ValueError for --cap-friction without --friction-limit, and click's Exit(1) after
-    one line on stderr when the vehicles do not approach at C (no impact).
-    """
-    from ..model.friction_cap import solve_capped
-    from ..model.plausibility import no_impact_message
-    from ..model.solver import solve as solve_case
+    command = click.option(
+        "--mu-c", "mu_c", type=float, default=None,
+        help="Contact friction mu_c >= 0 between the vehicles (kudlich-slibar), or the cap "
+             "of brach-capped (default: the case's impact.contact_friction).")(command)
+    command = click.option(
+        "--k", "k", type=float, default=None,
+        help="Restitution k in [0, 1] of the kudlich-slibar law (the restitution impulse is "
+             "k times the compression impulse; default: the case's impact.restitution).")(
+        command)
+    return click.option(
+        "--law", type=click.Choice(LAWS), default=None,
+        help="Impact law: brach (eps, beta), brach-capped (eps, beta, capped at --mu-c) or "
+             "kudlich-slibar (PC-Crash / Virtual CRASH: --k, --mu-c); default: the case's "
+             "impact.law, else brach.")(command)
+
+
+def _law_parameters(case, eps, beta, friction_limit, cap_friction, law, k, mu_c):
+    """(law, restitution, beta, contact friction) from the options, checked."""
+    from ..model.impact_laws import check_contact_friction, check_restitution, law_of
 
     if cap_friction:
-        if friction_limit is None:
+        if law not in (None, "brach-capped"):
+            raise ValueError(f"--cap-friction is law brach-capped; it contradicts --law {law}")
+        if friction_limit is None and mu_c is None:
             raise ValueError("--cap-friction needs --friction-limit")
-        result = solve_capped(case, eps, beta, friction_limit)
-    else:
-        result = solve_case(case, eps, beta)
+        law, mu_c = "brach-capped", friction_limit if mu_c is None else mu_c
+    law = law_of(case, law)
+    if k is not None:
+        if law != "kudlich-slibar":
+            raise ValueError(f"--k is the restitution of law kudlich-slibar (law is {law}; "
+                             f"use --eps)")
+        if eps is not None:
+            raise ValueError("give --k or --eps, not both")
+        eps = float(check_restitution(k, "--k (restitution)"))
+    if law == "kudlich-slibar" and beta is not None:
+        raise ValueError("--beta does not apply to law kudlich-slibar (use --k and --mu-c)")
+    if mu_c is not None:
+        if law == "brach":
+            raise ValueError("--mu-c needs --law kudlich-slibar or brach-capped")
+        mu_c = float(check_contact_friction(mu_c, "--mu-c (contact friction)"))
+    return law, eps, beta, mu_c
+
+
+def solve_with_options(case, eps, beta, friction_limit=None, cap_friction=False, law=None,
+                       k=None, mu_c=None):
+    """Solve ``case`` as the commands do: under the case's impact law or ``law``
+    (:func:`pim.solve_law`); ``cap_friction`` is law "brach-capped" capped at
+    ``friction_limit``.
+
+    Raises ValueError for a bad or contradictory option, and click's Exit(1) after one line
+    on stderr when the vehicles do not approach at C (no impact).
+    """
+    from ..model.impact_laws import solve_law
+    from ..model.plausibility import no_impact_message
+
+    law, eps, beta, mu_c = _law_parameters(case, eps, beta, friction_limit, cap_friction, law,
+                                           k, mu_c)
+    result = solve_law(case, law, eps, beta, mu_c)
     message = no_impact_message(result)
     if message:
         click.echo(message, err=True)
         raise click.exceptions.Exit(NO_IMPACT_EXIT_CODE)
     return result
+
+
+def require_brach(case, command: str) -> None:
+    """A ValueError (one line, exit 2) when ``case`` names an impact law other than Brach's,
+    which ``command`` cannot apply yet: never silently Brach's answer instead."""
+    law = case.impact.law or "brach"
+    if law != "brach":
+        raise ValueError(f"{command} cannot use impact law {law!r} yet (only 'brach'); "
+                         f"`pim solve` can, or set impact.law = \"brach\"")
 
 
 #: Exit code of a command whose case has no impact (the vehicles separate at C).
@@ -130,10 +187,12 @@ NO_IMPACT_EXIT_CODE = 1
 @beta_option
 @friction_limit_option
 @cap_friction_option
+@law_options
 @units_option
 @json_option
-def solve(case_name, eps, beta, friction_limit, cap_friction, units, as_json):
-    """Solve CASE with Brach's PIM and print the post-impact results.
+def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, units, as_json):
+    """Solve CASE under its impact law (default Brach's PIM) and print the post-impact
+    results.
 
     Prints each vehicle's post-impact velocity, speed and yaw rate, delta-V, PDOF, the
     impulse, Brach's coefficients and the energy loss with its normal/tangential split, then
@@ -144,22 +203,34 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, units, as_json):
 
     case = load_case(case_name)
     units = units or case.units
-    result = solve_with_options(case, eps, beta, friction_limit, cap_friction)
+    result = solve_with_options(case, eps, beta, friction_limit, cap_friction, law, k, mu_c)
     if result.q_singular.any():
         problems = result.problems()
         raise ValueError(problems[0] if problems else "q is singular")
     warnings = warnings_of(case, result, friction_limit)
     rows = summarize(result, units)
+    law = getattr(result, "law", None) or ("brach-capped" if cap_friction
+                                           else case.impact.law or "brach")
     if as_json:
-        echo_json({"case": case.name, "units": units, "admissible": bool(result.admissible),
-                   "problems": warnings, "results": rows_to_json(rows)})
+        echo_json({"case": case.name, "units": units, "law": law,
+                   "admissible": bool(result.admissible), "problems": warnings,
+                   "results": rows_to_json(rows)})
         return
-    title = f"{case.name}: epsilon = {float(result.eps):g}, beta = {float(result.beta):g}"
-    if cap_friction:
-        title += f" (friction-capped at |mu| <= {friction_limit:g})"
-    click.echo(format_table(rows, title))
+    click.echo(format_table(rows, _title(case, result, law)))
     for text in warnings:
         click.echo(f"warning: {text}", err=True)
+
+
+def _title(case, result, law: str) -> str:
+    """The table's title: the law and the parameters it used."""
+    if law == "kudlich-slibar":
+        return (f"{case.name}: Kudlich-Slibar law, k = {float(result.eps):g}, mu_c = "
+                f"{float(result.contact_friction):g} (equivalent PIM beta = "
+                f"{float(result.beta):g})")
+    title = f"{case.name}: epsilon = {float(result.eps):g}, beta = {float(result.beta):g}"
+    if law == "brach-capped":
+        title += " (friction-capped Brach, effective beta)"
+    return title
 
 
 @cli.command()
@@ -174,13 +245,13 @@ def draw(case_name, out, eps, beta, units):
     and the impulse when epsilon is known) to an image file; no label covers another."""
     from ..io.casefile import load_case
     from ..io.files import save_figure
-    from ..model.solver import solve as solve_case
+    from ..model.impact_laws import solve_law
     from ..plotting.drawing import draw_case
 
     case = load_case(case_name)
     result = None
     if eps is not None or case.impact.restitution is not None:
-        result = solve_case(case, eps, beta)
+        result = solve_law(case, None, eps, beta)     # under the case's impact law
     path = save_figure(draw_case(case, result, units=units or case.units), out)
     click.echo(f"wrote {path}")
 

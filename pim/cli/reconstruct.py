@@ -29,7 +29,7 @@ from ..io.units import convert
 from ..model.evidence import UNKNOWN_KINDS
 from ..plotting.reconstruction_animation import write_reconstruction_mp4
 from ..plotting.reconstruction_scene import reconstruction_figure
-from .main import case_argument, echo_json, json_option, units_option
+from .main import case_argument, echo_json, json_option, require_brach, units_option
 
 __all__ = ["reconstruct", "reconstruction_rows"]
 
@@ -106,6 +106,7 @@ def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
 def reconstruct(case_name, out, samples, seed, workers, video, units, as_json):
     """Reconstruct CASE's unknowns (e.g. the impact speeds) from its evidence."""
     case = load_case(case_name)
+    require_brach(case, "pim reconstruct")
     units = units or case.units
     if workers > 1:
         with ProcessPoolExecutor(workers) as pool:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from .main import case_argument, echo_json, json_option, units_option
+from .main import case_argument, echo_json, json_option, require_brach, units_option
 
 __all__ = ["uncertainty"]
 
@@ -35,6 +35,7 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, units, as_json):
     from ..model.quantities import OUTPUTS as QUANTITIES
 
     case = load_case(case_name)
+    require_brach(case, "pim uncertainty")
     units = units or case.units
     result = run(case, n=samples, seed=seed, eps=eps, beta=beta)
     rows = []

@@ -17,8 +17,10 @@ silently ignored. Layout (global form; see ``pim/io/cases/ricsac9.toml``)::
     [impact]
     point = [0, 0]
     normal_angle = "0 deg"          # Gamma: n points from vehicle 2 toward vehicle 1
-    restitution = 0.355             # optional defaults for solve
+    restitution = 0.355             # optional defaults for solve (k for kudlich-slibar)
     beta = 1
+    law = "brach"                   # or "kudlich-slibar", "brach-capped" (docs/impact-laws.md)
+    contact_friction = 0.6          # mu_c of "kudlich-slibar" / the cap of "brach-capped"
     [measured]                      # optional
     vehicle1.velocity = ["-5.1 ft/s", "17.6 ft/s"]
     vehicle1.yaw_rate = "-180 deg/s"
@@ -57,7 +59,7 @@ _TOP = {"name", "description", "source", "convention", "vehicle1", "vehicle2", "
         "measured", "uncertainty", "evidence", "unknown"}
 _VEHICLE = {"mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
             "length", "width", "fixed", "cg", "heading", "theta", "phi", "d"}
-_IMPACT = {"point", "normal_angle", "restitution", "beta"}
+_IMPACT = {"point", "normal_angle", "restitution", "beta", "law", "contact_friction"}
 
 
 def _require(table: dict, key: str, where: str):
@@ -173,8 +175,11 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
                          "impact.normal_angle")
     eps = _optional(impact_table, "restitution", "dimensionless", "impact")
     beta = _optional(impact_table, "beta", "dimensionless", "impact")
+    # the impact law and its contact friction (docs/impact-laws.md)
+    law = impact_table.get("law")
+    contact_friction = _optional(impact_table, "contact_friction", "dimensionless", "impact")
     impact = _wrap("impact", Impact, point=point, normal_angle=normal_angle,
-                   restitution=eps, beta=beta)
+                   restitution=eps, beta=beta, law=law, contact_friction=contact_friction)
     vehicles = [
         _vehicle(_require(data, f"vehicle{i}", source), f"vehicle{i}", convention, point, i)
         for i in (1, 2)

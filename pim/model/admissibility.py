@@ -2,7 +2,10 @@
 
 A mixin of :class:`pim.Result`. Inadmissible results are flagged, never hidden: no approach
 at C, a pulling normal impulse, energy gained, |mu| > |mu0|, a tangential impulse along the
-remaining slip (not Coulomb friction), singular q.
+remaining slip, singular q. The last two (|mu| > |mu0| and a tangential impulse along the
+remaining slip) are tangential restitution: outside Brach's law, but the standard behaviour
+of the Kudlich-Slibar law of PC-Crash and Virtual CRASH (:mod:`pim.model.impact_laws`),
+whose results do not count them.
 """
 
 from __future__ import annotations
@@ -37,8 +40,10 @@ class Admissibility:
     def friction_opposes_sliding(self) -> np.ndarray:
         """Pt U_t <= 0: the tangential impulse does not point along the slip left at C.
 
-        With beta < 1 and strong n-t coupling, PIM's mu = beta mu0 can push along the
-        post-impact sliding, which Coulomb friction cannot (and a simulator will not) do.
+        With strong n-t coupling PIM's mu = beta mu0 can push along the post-impact
+        sliding, which a Coulomb contact that slides throughout cannot do. A contact that
+        sticks and then restitutes tangentially (the Kudlich-Slibar law of PC-Crash and
+        Virtual CRASH, slip -k u_t after impact) does it as standard.
         """
         scale = np.abs(self.impulse_t) * (np.abs(self.approach_n) + np.abs(self.approach_t))
         return self.impulse_t * self.separation_t <= 1e-9 * scale
@@ -50,27 +55,37 @@ class Admissibility:
         return (self.approaching & self.normal_impulse_positive & self.energy_not_gained
                 & self.within_critical & self.friction_opposes_sliding & ~self.q_singular)
 
-    def problems(self) -> list[str]:
-        """Plain-language reasons why any element is inadmissible (empty when all are fine)."""
-        checks = [
-            (self.approaching, "the vehicles do not approach at C (u_n >= 0): no impact"),
-            (~self.q_singular, "q is singular (A - mu B = 0): the impulse is unbounded"),
+    def admissibility_checks(self) -> list[tuple]:
+        """(ok, reason, key) for each check :meth:`problems` reports, in order."""
+        return [
+            (self.approaching, "the vehicles do not approach at C (u_n >= 0): no impact",
+             "approach"),
+            (~self.q_singular, "q is singular (A - mu B = 0): the impulse is unbounded",
+             "singular"),
             (self.normal_impulse_positive | ~self.approaching,
-             "the normal impulse is not positive (the contact would pull)"),
-            (self.energy_not_gained, "kinetic energy is gained"),
+             "the normal impulse is not positive (the contact would pull)", "pull"),
+            (self.energy_not_gained, "kinetic energy is gained", "energy"),
             (self.friction_opposes_sliding | ~self.approaching,
-             "the tangential impulse points along the remaining slip at C (not Coulomb friction)"),
+             "the tangential impulse points along the remaining slip at C (tangential "
+             "restitution: outside Brach's mu <= mu0, though standard in the Kudlich-Slibar "
+             "law of PC-Crash and Virtual CRASH, where sticking ends at slip -k u_t)", "along"),
             # Sliding reverses only where beta > 1 and there is sliding to reverse (Pt0 != 0);
             # beta < 0 makes the tangential impulse drive the sliding instead.
             (np.broadcast_to((self.beta <= 1) | (self.critical_impulse_t == 0),
                              np.shape(self.impulse_n)),
-             "|mu| > |mu0| (beta > 1): tangential sliding at C reverses"),
+             "|mu| > |mu0| (beta > 1): tangential slip at C reverses (outside Brach's "
+             "bounds; the Kudlich-Slibar law of PC-Crash and Virtual CRASH does this as "
+             "standard: law = \"kudlich-slibar\")", "reverses"),
             (np.broadcast_to((self.beta >= 0) | (self.critical_impulse_t == 0),
                              np.shape(self.impulse_n)),
-             "beta < 0: the tangential impulse drives the sliding at C instead of opposing it"),
+             "beta < 0: the tangential impulse drives the sliding at C instead of opposing it",
+             "drives"),
         ]
+
+    def problems(self) -> list[str]:
+        """Plain-language reasons why any element is inadmissible (empty when all are fine)."""
         out = []
-        for ok, text in checks:
+        for ok, text, _ in self.admissibility_checks():
             ok = np.asarray(ok)
             bad = int(np.size(ok) - np.count_nonzero(ok))
             if bad:

@@ -18,7 +18,14 @@ import numpy as np
 from .geometry import rotate
 from .numbers import real_array
 
-__all__ = ["Vehicle", "Impact", "Case", "Measured"]
+__all__ = ["Vehicle", "Impact", "Case", "Measured", "LAWS"]
+
+#: The impact laws a case may name (``impact.law``); see :mod:`pim.model.impact_laws`.
+#: "brach": Brach's PIM (eps, beta); "brach-capped": PIM with |mu| capped at a friction
+#: coefficient; "kudlich-slibar": the PC-Crash / Virtual CRASH law (k, mu_c).
+LAWS = ("brach", "brach-capped", "kudlich-slibar")
+#: The laws that take a contact friction coefficient (``impact.contact_friction``).
+FRICTION_LAWS = ("brach-capped", "kudlich-slibar")
 
 
 def _scalar(value, name: str, unit: str = "SI") -> np.ndarray:
@@ -169,13 +176,21 @@ class Impact:
     restitution : float, optional
         Default coefficient of restitution epsilon [-] for :func:`pim.solve`.
     beta : float, optional
-        Default fraction beta [-] of the critical impulse ratio mu0.
+        Default fraction beta [-] of the critical impulse ratio mu0 (Brach's laws only).
+    law : {"brach", "brach-capped", "kudlich-slibar"}, optional
+        The impact law :func:`pim.model.impact_laws.solve_law` applies (None: "brach").
+        For "kudlich-slibar" ``restitution`` is PC-Crash's k.
+    contact_friction : float, optional
+        Friction coefficient mu_c [-] >= 0 between the vehicles (inf: always stick), for
+        the laws of :data:`FRICTION_LAWS`.
     """
 
     point: np.ndarray
     normal_angle: np.ndarray
     restitution: float | None = None
     beta: float | None = None
+    law: str | None = None
+    contact_friction: float | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "point", _vector(self.point, "point", "m"))
@@ -191,6 +206,25 @@ class Impact:
             if not np.isfinite(beta):
                 raise ValueError(f"beta must be a finite number (usually in [0, 1]), got {beta}")
             object.__setattr__(self, "beta", beta)
+        self._check_law()
+
+    def _check_law(self) -> None:
+        """The law is known, and takes the parameters given."""
+        law = self.law
+        if law is not None and (not isinstance(law, str) or law not in LAWS):
+            raise ValueError(f"law must be one of {', '.join(map(repr, LAWS))}, got {law!r}")
+        if self.contact_friction is not None:
+            mu_c = _one_number(self.contact_friction, "contact_friction")
+            if not mu_c >= 0.0:
+                raise ValueError(f"contact_friction must be >= 0 (a friction coefficient; inf: "
+                                 f"always stick), got {mu_c}")
+            if law not in FRICTION_LAWS:
+                raise ValueError(f"contact_friction needs law = 'kudlich-slibar' or "
+                                 f"'brach-capped' (law is {law or 'brach'!r})")
+            object.__setattr__(self, "contact_friction", mu_c)
+        if law == "kudlich-slibar" and self.beta is not None:
+            raise ValueError("beta does not apply to law 'kudlich-slibar' (its parameters "
+                             "are restitution k and contact_friction mu_c)")
 
     @property
     def normal(self) -> np.ndarray:

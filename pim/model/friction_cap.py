@@ -1,15 +1,21 @@
-"""Friction-capped PIM: the impulse ratio limited by a friction coefficient.
+"""Friction-capped Brach ("brach-capped"): PIM's impulse ratio limited by a friction limit.
 
 PIM's tangential constraint is mu = beta mu0 (Brach & Brach 2011, sec. 6.3), which for a
 grazing impact can ask for |mu| well above what sheet metal sliding on sheet metal can
-transmit. pycrash's ``cof`` and PC-Crash's contact-plane friction instead cap the ratio of
-tangential to normal impulse at a friction coefficient. The capped constraint is
+transmit. This law caps the ratio of tangential to normal impulse at a friction coefficient:
 
     mu = sign(mu0) min(beta |mu0|, limit),
 
 which is PIM's own constraint with the effective fraction beta_eff = min(beta, limit / |mu0|)
 (beta >= 0), so the capped answer is :func:`pim.solve` at beta_eff: one formula, solved twice
 (once for mu0, once with the capped beta).
+
+It is a variant of Brach's law, not the law of PC-Crash, Virtual CRASH or pycrash's ``cof``:
+there (Kudlich-Slibar, :mod:`pim.model.impact_laws`) the cap applies to the compression
+impulse, mu0 is taken at eps = 0, and the restitution impulse k times the compression one
+leaves a sticking contact with slip -k u_t; here mu0 is taken at the final eps and a sticking
+contact ends with no slip. The two agree only at k = 0 or where the contact slides at the cap
+with the same ratio.
 """
 
 from __future__ import annotations
