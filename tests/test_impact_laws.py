@@ -82,12 +82,12 @@ def test_sticking_ends_at_minus_k_times_the_approach_in_both_directions(case, k)
     assert bool(r.energy_not_gained)
 
 
-@given(scenes(), st.floats(0.0, 1.0), st.floats(0.0, 2.0))
+@given(scenes(), st.floats(0.0, 1.0), st.floats(0.0, 0.999))
 @settings(**SETTINGS)
-def test_sliding_transmits_exactly_mu_c_times_the_normal_impulse(case, k, mu_c):
+def test_sliding_transmits_exactly_mu_c_times_the_normal_impulse(case, k, share):
     assume(compression_pushes(case))
     sticking = pim.solve(case, 0.0, 1.0, backend="numpy")
-    assume(abs(float(sticking.mu0)) > mu_c * (1 + 1e-6))      # the contact slides
+    mu_c = share * abs(float(sticking.mu0))         # below what sticking needs: the contact slides
     r = solve_kudlich_slibar(case, k, mu_c)
     assume(not bool(r.q_singular))
     pn, pt = float(r.impulse_n), float(r.impulse_t)
