@@ -52,6 +52,12 @@ class Admissibility:
 
     def problems(self) -> list[str]:
         """Plain-language reasons why any element is inadmissible (empty when all are fine)."""
+        return [text if size == 1 else f"{text} ({bad} of {size} cases)"
+                for text, bad, size in self.problem_counts()]
+
+    def problem_counts(self) -> list[tuple[str, int, int]]:
+        """(reason, elements failing it, elements) of each failed check of :meth:`problems`
+        (counts that add up over the chunks of a Monte Carlo)."""
         checks = [
             (self.approaching, "the vehicles do not approach at C (u_n >= 0): no impact"),
             (~self.q_singular, "q is singular (A - mu B = 0): the impulse is unbounded"),
@@ -74,5 +80,5 @@ class Admissibility:
             ok = np.asarray(ok)
             bad = int(np.size(ok) - np.count_nonzero(ok))
             if bad:
-                out.append(text if ok.size == 1 else f"{text} ({bad} of {ok.size} cases)")
+                out.append((text, bad, int(ok.size)))
         return out
