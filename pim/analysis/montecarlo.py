@@ -306,19 +306,16 @@ def _streamed(setup: _Setup, progress) -> UncertaintyResult:
             moments = {k: StreamingIndices(varying, bins, float(np.mean(y)) if y.size else 0.0)
                        for k, y in y_ok.items()}
         binned = _bin_indices(u_ok, moments[OUTPUTS[0]].bins)
+        counts = {k: np.bincount(b, minlength=moments[OUTPUTS[0]].bins) for k, b in binned.items()}
         for k, y in y_ok.items():
             quantiles[k].add(y)
-            moments[k].add(y, binned)
+            moments[k].add(y, binned, counts)
         n_ok += int(np.count_nonzero(ok))
         if progress is not None:
             progress(ok.size)
-    missing = {k: q.missing() for k, q in quantiles.items() if q.missing()}
-    if missing:     # a pilot far from the whole: collect the bins needed (rare; module notes)
-        for outputs, ok, _, _ in setup.chunks():
-            for k, bins in missing.items():
-                quantiles[k].collect(outputs[k][ok], bins)
-        for k, bins in missing.items():
-            quantiles[k].mark_collected(bins)
+    for k, q in quantiles.items():
+        if q.missing():     # a pilot far from the whole: passes over the same chunks (rare)
+            q.refine(lambda k=k: (out[k][ok] for out, ok, _, _ in setup.chunks()))
     stats, sens = {}, {}
     for k in OUTPUTS:
         mean, sd = moments[k].mean_sd()

@@ -2,19 +2,16 @@
 and standard deviation, first-order variance-based indices.
 
 Percentiles (exact, numpy's default "linear" method): the first chunk (the pilot, a random
-subsample of the same distribution) sets ``bins`` bin edges at its own quantiles; every chunk
-adds its counts per bin, and the values that fall in the few bins around the pilot's estimate
-of each percentile (``window`` bins either side) are kept. At the end the cumulative counts
-say which bin holds each order statistic the percentile needs; when that bin was kept (the
-usual case) the percentile is exact; otherwise :meth:`StreamingPercentiles.missing` names the
-bins to collect in a second pass over the same chunks (:meth:`StreamingPercentiles.collect`).
-
-Why it rarely needs that pass: with a pilot of m values the pilot's p-quantile lies within
-sqrt(p (1 - p) / m) of p in probability (one standard error); with m = 2^19, 2048 bins
-(1/2048 = 4.9e-4 of probability each) and 4 bins either side kept, the true quantile is
-outside the kept window only beyond 4 bins = 9 standard errors at p = 0.05.
-Memory: counts of ``bins`` + 2 bins and about (2 window + 1) / bins of the values per
-percentile (1.3 % of the samples for three percentiles, 8 bytes each).
+subsample of the same distribution) gives, for each percentile p, a window of values around
+its own p-quantile, z = 8 standard errors wide either side in probability (a pilot of m
+values puts its p-quantile within sqrt(p (1 - p) / m) of p, one standard error); every chunk
+adds its count of values below the window and keeps the values inside. At the end the
+counts say whether the order statistics the percentile needs lie inside the kept values
+(then it is exact); otherwise (a pilot far from the whole: probability about 1e-15 per
+window at z = 8) :meth:`StreamingPercentiles.refine` finds them by passes over the same
+chunks, each narrowing an interval 1365-fold on a histogram, still exact.
+Memory: about 2 z sqrt(p (1 - p) / m) of the values per percentile, 8 bytes each: with
+m = 2^19, 1.1 % of the samples at p = 0.5 and 0.5 % at p = 0.05 or 0.95.
 
 Indices: the correlation ratio of :func:`pim.analysis.montecarlo.first_order_indices`, from
 per-bin counts and sums accumulated chunk by chunk (values shifted by the pilot's mean so the
@@ -51,30 +48,27 @@ class StreamingPercentiles:
     ----------
     percentiles : sequence of float
         Percentiles wanted [%].
-    bins : int
-        Number of pilot-quantile bins.
-    window : int
-        Bins kept on either side of the pilot's estimate of each percentile.
+    z : float
+        Half-width of each kept window in standard errors of the pilot's percentile.
+    budget : int
+        Most values a refinement pass keeps for one order statistic.
     """
 
-    def __init__(self, percentiles, bins: int = 2048, window: int = 4):
+    def __init__(self, percentiles, z: float = 8.0, budget: int = 1 << 22):
         self.percentiles = tuple(float(q) for q in percentiles)
-        self.bins, self.window = int(bins), int(window)
-        self.edges = None
-        self.counts = None
-        self.keep = None
-        self.kept: list = []
-        self.nan = 0
+        self.z, self.budget = float(z), int(budget)
+        self.windows = None         # [low, high, values below low, kept values]
+        self.n, self.nan, self.low, self.high = 0, 0, np.inf, -np.inf
+        self.found: dict = {}       # order statistic (0-based) -> value
 
     def _start(self, pilot: np.ndarray) -> None:
-        levels = np.linspace(0.0, 100.0, self.bins + 1)
-        self.edges = np.unique(np.percentile(pilot, levels))
-        # bin j holds edges[j - 1] <= y < edges[j]; bins 0 and len(edges) are the open ends
-        self.counts = np.zeros(self.edges.size + 1, np.int64)
-        self.keep = np.zeros(self.edges.size + 1, bool)
+        ordered, m = np.sort(pilot), pilot.size
+        self.windows = []
         for q in self.percentiles:
-            j = int(np.searchsorted(self.edges, np.percentile(pilot, q), side="right"))
-            self.keep[max(0, j - self.window):j + self.window + 1] = True
+            p = q / 100
+            half = self.z * np.sqrt(p * (1 - p) / m) + 2 / m
+            lo, hi = (int(np.clip(np.floor(x * (m - 1)), 0, m - 1)) for x in (p - half, p + half))
+            self.windows.append([ordered[lo], ordered[min(hi + 1, m - 1)], 0, []])
 
     def add(self, y: np.ndarray) -> None:
         """Count a chunk of values (the first non-empty chunk is the pilot)."""
@@ -85,63 +79,86 @@ class StreamingPercentiles:
             y = y[finite]
         if y.size == 0:
             return
-        if self.edges is None:
+        if self.windows is None:
             self._start(y)
-        index = np.searchsorted(self.edges, y, side="right")
-        self.counts += np.bincount(index, minlength=self.counts.size)
-        mask = self.keep[index]
-        if mask.any():
-            self.kept.append((index[mask], y[mask]))
+        self.n += y.size
+        self.low, self.high = min(self.low, float(y.min())), max(self.high, float(y.max()))
+        for window in self.windows:
+            lo, hi = window[0], window[1]
+            window[2] += int(np.count_nonzero(y < lo))
+            window[3].append(y[(y >= lo) & (y <= hi)])
 
-    @property
-    def n(self) -> int:
-        """Values counted (NaN excluded)."""
-        return 0 if self.counts is None else int(self.counts.sum())
+    def _needed(self) -> set:
+        return {k for q in self.percentiles for k in _ranks(self.n, q)[:2]}
 
-    def _needed_bins(self) -> set:
-        n, cum, out = self.n, np.cumsum(self.counts), set()
-        for q in self.percentiles:
-            for k in _ranks(n, q)[:2]:
-                out.add(int(np.searchsorted(cum, k, side="right")))
-        return out
-
-    def missing(self) -> set:
-        """Bins holding a needed order statistic whose values were not kept (empty: exact)."""
+    def missing(self) -> list:
+        """Order statistics (0-based) not yet known; empty: :meth:`result` is exact."""
         if self.n == 0 or self.nan:
-            return set()
-        return {j for j in self._needed_bins() if not self.keep[j]}
+            return []
+        for window in self.windows:
+            if isinstance(window[3], list):
+                window[3] = np.sort(np.concatenate(window[3]))
+            below, kept = window[2], window[3]
+            for k in self._needed():
+                if below <= k < below + kept.size:
+                    self.found[k] = float(kept[k - below])
+        return sorted(self._needed() - set(self.found))
 
-    def collect(self, y: np.ndarray, bins: set) -> None:
-        """Second pass: keep the values of ``bins`` (counts are not added again)."""
-        y = np.asarray(y, float).ravel()
-        y = y[~np.isnan(y)]
-        index = np.searchsorted(self.edges, y, side="right")
-        mask = np.isin(index, list(bins)) & ~self.keep[index]
-        if mask.any():
-            self.kept.append((index[mask], y[mask]))
+    def refine(self, passes) -> None:
+        """Find the missing order statistics by passes over the same chunks.
 
-    def mark_collected(self, bins: set) -> None:
-        """Record that a second pass kept ``bins`` (after every chunk was collected)."""
-        self.keep[list(bins)] = True
+        ``passes`` is a function returning a fresh iterator of the chunks of values. Each
+        pass counts, for every unknown order statistic, the values below its interval [a, b]
+        and those inside in 4096 equal bins, keeping the inside values while they number at
+        most ``budget``; if they were kept the statistic is read off, else the interval
+        narrows to the bin holding it and one bin either side (a margin for rounding).
+        """
+        todo = {k: (self.low, self.high) for k in self.missing()}
+        while todo:
+            below = dict.fromkeys(todo, 0)
+            hists = {k: np.zeros(4098, np.int64) for k in todo}
+            kept = {k: [] for k in todo}
+            for y in passes():
+                y = np.asarray(y, float).ravel()
+                y = y[~np.isnan(y)]
+                for k, (a, b) in todo.items():
+                    j = _bin(y, a, b)
+                    below[k] += int(np.count_nonzero(j == 0))
+                    hists[k] += np.bincount(j, minlength=4098)
+                    if kept[k] is not None:
+                        kept[k].append(y[(j >= 1) & (j <= 4096)])
+                        if sum(v.size for v in kept[k]) > self.budget:
+                            kept[k] = None
+            for k in list(todo):
+                a, b = todo.pop(k)
+                if kept[k] is not None:
+                    self.found[k] = float(np.sort(np.concatenate(kept[k]))[k - below[k]])
+                    continue
+                j = int(np.searchsorted(below[k] + np.cumsum(hists[k][1:4097]), k,
+                                        side="right")) + 1
+                width = (b - a) / 4096
+                todo[k] = (max(a, a + (j - 2) * width), min(b, a + (j + 1) * width))
+                if todo[k] == (a, b):   # no narrower float interval: keep them all next time
+                    self.budget = max(self.budget, int(hists[k][1:4097].sum()))
 
     def result(self) -> tuple:
         """The percentiles [same unit as the values]; NaN if any value was NaN or none came."""
         if self.n == 0 or self.nan:
             return tuple(np.nan for _ in self.percentiles)
         if self.missing():
-            raise RuntimeError("percentile bins not kept: run collect() over the chunks first")
-        index = np.concatenate([i for i, _ in self.kept])
-        values = np.concatenate([v for _, v in self.kept])
-        cum = np.cumsum(self.counts)
-        sorted_bins: dict = {}
+            raise RuntimeError("order statistics not found: call refine() first")
+        return tuple(numpy_percentile(self.found.__getitem__, self.n, q)
+                     for q in self.percentiles)
 
-        def order(k: int) -> float:
-            j = int(np.searchsorted(cum, k, side="right"))
-            if j not in sorted_bins:
-                sorted_bins[j] = np.sort(values[index == j])
-            return sorted_bins[j][k - (cum[j - 1] if j else 0)]
 
-        return tuple(numpy_percentile(order, self.n, q) for q in self.percentiles)
+def _bin(y: np.ndarray, a: float, b: float) -> np.ndarray:
+    """Bin of each value for 4096 equal bins of [a, b]: 0 below a, 4097 above b, the top bin
+    closed."""
+    if a == b:
+        return np.where(y < a, 0, np.where(y > b, 4097, 1))
+    j = np.floor((y - a) * (4096 / (b - a))).astype(np.int64) + 1
+    j = np.where(y == b, 4096, np.clip(j, 0, 4097))
+    return np.where(y < a, 0, np.where(y > b, 4097, j))
 
 
 class StreamingIndices:
@@ -163,14 +180,16 @@ class StreamingIndices:
         self.counts = {k: np.zeros(self.bins, np.int64) for k in self.names}
         self.sums = {k: np.zeros(self.bins) for k in self.names}
 
-    def add(self, y: np.ndarray, binned: dict) -> None:
-        """Add values y (n,) and each input's bin index (n,) in [0, bins)."""
+    def add(self, y: np.ndarray, binned: dict, counts: dict | None = None) -> None:
+        """Add values y (n,) and each input's bin index (n,) in [0, bins) (``counts``: the
+        bin counts of ``binned``, if already known)."""
         dev = np.asarray(y, float) - self.shift
         self.n += dev.size
         self.sum += float(dev.sum())
         self.sum2 += float(np.dot(dev, dev))
         for k in self.names:
-            self.counts[k] += np.bincount(binned[k], minlength=self.bins)
+            self.counts[k] += (np.bincount(binned[k], minlength=self.bins) if counts is None
+                               else counts[k])
             self.sums[k] += np.bincount(binned[k], weights=dev, minlength=self.bins)
 
     def mean_sd(self) -> tuple[float, float]:
