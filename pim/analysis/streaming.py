@@ -86,6 +86,8 @@ class StreamingPercentiles:
         for window in self.windows:
             lo, hi = window[0], window[1]
             window[2] += int(np.count_nonzero(y < lo))
+            if not isinstance(window[3], list):     # sorted by missing(); more values came
+                window[3] = [window[3]]
             window[3].append(y[(y >= lo) & (y <= hi)])
 
     def _needed(self) -> set:
