@@ -64,7 +64,7 @@ TYPICAL = {"duration": 0.1, "tyre_friction": 0.7, "friction": 0.5}
 #: Contact duration [s] of the friction scene (short: the impulse is nearly instantaneous).
 FRICTION_SCENE_DURATION = 0.005
 
-#: key -> (title, parameter, unit, swept values, geometry)
+#: key -> (title, parameter, unit, swept values): 4-tuples
 ASSUMPTIONS = {
     "instantaneous": ("instantaneous impulse (no motion during the contact)", "contact time",
                       "ms", (10, 20, 35, 50, 75, 100, 150, 200)),

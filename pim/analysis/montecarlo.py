@@ -49,7 +49,17 @@ BYTES_PER_SAMPLE = 700
 
 @dataclass(frozen=True)
 class OutputStats:
-    """Summary of one output over the admissible samples [SI unit of the output]."""
+    """Summary of one output over the admissible samples [SI unit of the output].
+
+    Attributes
+    ----------
+    nominal : float
+        The output at the nominal inputs.
+    p5, p50, p95 : float
+        5th, 50th and 95th percentiles (numpy's "linear" method, exact in chunked runs).
+    mean, sd : float
+        Mean and population standard deviation.
+    """
 
     nominal: float
     p5: float
