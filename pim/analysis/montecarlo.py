@@ -43,8 +43,10 @@ OUTPUTS = ("delta_v1_magnitude", "delta_v2_magnitude", "speed1", "speed2", "yaw_
 PERCENTILES = (5.0, 50.0, 95.0)
 #: Samples solved in one vectorised call; larger runs go chunk by chunk.
 CHUNK_SIZE = 1 << 19
-#: Peak memory per sample of one chunk [bytes] (measured: benchmarks/bench_uncertainty.py).
-BYTES_PER_SAMPLE = 700
+#: Peak memory per sample of one chunk [bytes], and of the process before the first chunk
+#: (Python, numpy, numba) [bytes] (measured: benchmarks/bench_uncertainty.py --memory).
+BYTES_PER_SAMPLE = 760
+BASELINE_BYTES = 320 * 2**20
 
 
 @dataclass(frozen=True)
@@ -196,13 +198,14 @@ def _outputs(result, nominal=None) -> dict:
 def memory_estimate(n: int, chunk_size: int = CHUNK_SIZE) -> int:
     """Peak memory of :func:`uncertainty` with n samples [bytes], an upper estimate.
 
-    One chunk's inputs, results and statistics (:data:`BYTES_PER_SAMPLE` each, measured by
-    ``benchmarks/bench_uncertainty.py --memory``), plus the kept values of the streaming
-    percentiles (1.3 % of the samples per output, 8 bytes each).
+    The process (:data:`BASELINE_BYTES`), one chunk's inputs, results and statistics
+    (:data:`BYTES_PER_SAMPLE` each), plus the values the streaming percentiles keep (2.5 % of
+    the samples per output for the three windows, 8 bytes each); measured by
+    ``benchmarks/bench_uncertainty.py --memory`` (1e6 samples: 675 MiB; 1e8: 879 MiB).
     """
     n = int(n)
-    kept = 0 if n <= chunk_size else int(0.014 * n) * 8 * len(OUTPUTS)
-    return min(n, int(chunk_size)) * BYTES_PER_SAMPLE + kept
+    kept = 0 if n <= chunk_size else int(0.025 * n) * 8 * len(OUTPUTS)
+    return BASELINE_BYTES + min(n, int(chunk_size)) * BYTES_PER_SAMPLE + kept
 
 
 def available_memory() -> int | None:
