@@ -1,9 +1,10 @@
 """Monte Carlo uncertainty of a PIM reconstruction: percentiles and variance-based sensitivity.
 
 The inputs of a scalar case are sampled from their distributions (:mod:`pim.model.distributions`,
-the case file's ``[uncertainty]`` table), all samples are solved in one vectorised call of
-:func:`pim.solve` (the compiled fast path for large n), and for each output the 5th, 50th and
-95th percentiles are reported with the ranked contribution of each input to its variance.
+the case file's ``[uncertainty]`` table), solved by vectorised calls of :func:`pim.solve` (the
+compiled fast path for large n; up to :data:`CHUNK_SIZE` samples in one call, more chunk by
+chunk on bounded memory, :mod:`pim.analysis.streaming`), and for each output the 5th, 50th
+and 95th percentiles are reported with the ranked contribution of each input to its variance.
 
 Sensitivity: first-order indices S_i = Var(E[Y | X_i]) / Var(Y) (Sobol's first-order index),
 estimated from the same samples as the percentiles by the correlation ratio: the samples are
