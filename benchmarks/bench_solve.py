@@ -115,7 +115,8 @@ def single_case() -> None:
           f"  = {t_solve / t_plain:.1f}x plain Python (goal <= 3x)")
     print(f"  building the Case from floats               {t_build * 1e6:6.1f} us"
           f"  = {t_build / t_plain:.1f}x plain Python (goal <= 10x)")
-    print(f"  building and solving                        {t_build_solve * 1e6:6.1f} us")
+    print(f"  building and solving                        {t_build_solve * 1e6:6.1f} us"
+          f"  = {t_build_solve / t_plain:.1f}x plain Python (goal <= 10x)")
     try:
         from pycrash.impc import impc_calcs  # optional, not a dependency
     except ImportError:
@@ -180,18 +181,18 @@ def main() -> None:
     bytes_out = (9 * 8 + 2) * n
 
     # warm up (compile or load from cache) and page in
-    pim.solve(case, eps, beta, backend="numba")
-    pim.solve(case, eps, beta, fast_trig=True)
+    pim.solve(case, eps, beta, fast_trig=False)
+    pim.solve(case, eps, beta)
     kernel.stream_copy(inputs)
 
-    fast, fast_trig, copy, numpy_t = [], [], [], []
+    libm, fast, copy, numpy_t = [], [], [], []
     for _ in range(args.repeat):
-        fast.append(best_of(lambda: pim.solve(case, eps, beta, backend="numba"), 1))
-        fast_trig.append(best_of(lambda: pim.solve(case, eps, beta, fast_trig=True), 1))
+        libm.append(best_of(lambda: pim.solve(case, eps, beta, fast_trig=False), 1))
+        fast.append(best_of(lambda: pim.solve(case, eps, beta), 1))
         copy.append(best_of(lambda: kernel.stream_copy(inputs), 1))
     for _ in range(2):
         numpy_t.append(best_of(lambda: pim.solve(case, eps, beta, backend="numpy"), 1))
-    fast, fast_trig, copy, numpy_t = min(fast), min(fast_trig), min(copy), min(numpy_t)
+    libm, fast, copy, numpy_t = min(libm), min(fast), min(copy), min(numpy_t)
     preallocated = kernel.allocate(n, False)
     args_in = kernel.flatten_inputs(inputs, (n,))
     kern = best_of(lambda: kernel._solve_kernel_libm(*args_in, *TOLS, False,
@@ -213,13 +214,13 @@ def main() -> None:
     print(f"pim.solve throughput, N = {n:,} cases, every input varying, "
           f"{numba.get_num_threads()} numba threads")
     print(f"  bytes per case: {bytes_in // n} read + {bytes_out // n} written (core outputs)")
-    print(f"  fast path  pim.solve(backend='numba')    {rate(fast)}")
-    print(f"  fast path, pim.solve(fast_trig=True)     {rate(fast_trig)}")
+    print(f"  batch default pim.solve(case, eps, beta) (own sin/cos) {rate(fast)}")
+    print(f"  pim.solve(fast_trig=False) (C library, bitwise numpy) {rate(libm)}")
     print(f"  numpy reference pim.solve(backend='numpy') {rate(numpy_t)}")
     print(f"  memory-copy bound (same bytes, fresh buffers) {rate(copy)}  "
           f"= {(bytes_in + bytes_out) / copy / 1e9:.1f} GB/s")
-    print(f"  fraction of the copy bound reached: fast_trig=True (vectorised) "
-          f"{copy / fast_trig:.2f}; default (C library sin/cos, bitwise numpy) {copy / fast:.2f}")
+    print(f"  fraction of the copy bound reached: batch default {copy / fast:.2f} (goal >= 0.7); "
+          f"fast_trig=False {copy / libm:.2f}")
     print(f"  speed-up over numpy: {numpy_t / fast:.1f}x")
     print("  -- breakdown --")
     print(f"  kernel alone, preallocated outputs       {rate(kern)}")
@@ -240,7 +241,7 @@ def main() -> None:
     simd = best_of(lambda: kernel._solve_kernel_simd(*flat_in, *TOLS, *flat_out), args.repeat)
     print(f"  vectorised kernel (fast_trig), preallocated {rate(simd)}"
           f"  -> fraction {copy_pre / simd:.2f}")
-    print(f"  why the default path stays below 0.7 of the copy bound: it is compute-bound, "
+    print(f"  why fast_trig=False stays below 0.7 of the copy bound: it is compute-bound, "
           f"{per_case:.0f} ns per case per thread, of which")
     print(f"    sin + cos of Gamma (C library)         {t_trig / n * threads * 1e9:5.1f} ns "
           f"({t_trig / kern:.0%})")
@@ -251,7 +252,7 @@ def main() -> None:
           f"scalar")
     print("    by the calls to the C library's sin and cos (kept for bitwise equality with "
           "numpy); with the")
-    print("    kernel's own branch-free sin/cos (fast_trig=True) LLVM vectorises the loop: "
+    print("    kernel's own branch-free sin/cos (the default) LLVM vectorises the loop: "
           "the line above")
     print(f"  auxiliary fields on first read (2nd pass): {aux * 1e3:.1f} ms")
     print(f"  energy_loss on first read (numpy):         {derived * 1e3:.1f} ms")

@@ -25,6 +25,14 @@ class CrossCheck:
 
     Attributes
     ----------
+    case_name : str
+        The case's name.
+    eps, beta : float
+        Coefficient of restitution and fraction of mu0 of both answers [-].
+    analytic : pim.Result
+        PIM's answer.
+    simulated : SimResult
+        The simulation's answer.
     rows : list of QuantityError
         Every post-impact quantity of :data:`sim.error_measure.QUANTITIES`, analytic against
         simulated, with absolute and relative errors.

@@ -14,6 +14,7 @@ makes, relative to the largest such change,
     e = max(|dV1_sim - dV1|, |dV2_sim - dV2|, k1 |dW1_sim - dW1|, k2 |dW2_sim - dW2|)
         / max(|dV1|, |dV2|, k1 |dW1|, k2 |dW2|)                                   [-]
 
+where |.| of a velocity change is its largest component, |x| or |y| (the maximum norm),
 with k_i = sqrt(I_i / m_i) the radius of gyration (a yaw rate error times k_i is the speed
 error it gives a point at k_i from the CG). Measuring against the change rather than the
 speed keeps a grazing impact (tiny impulse, large speeds) honest: there a 1e-6 error in

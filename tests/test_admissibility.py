@@ -23,3 +23,17 @@ def test_each_flag_gives_its_reason():
     batch = pim.solve(case, np.array([0.355, 0.355]), np.array([1.0, 1.4]))
     assert batch.admissible.tolist() == [True, False]
     assert any("(1 of 2 cases)" in p for p in batch.problems())
+
+
+def test_problem_counts_add_up_over_chunks():
+    """problem_counts (pim.model.admissibility) gives the counts that problems() words, so a
+    chunked Monte Carlo can add them."""
+    from pim.model.admissibility import Admissibility
+
+    case = pim.load_case("ricsac9")
+    r = pim.solve(case, 0.355, np.array([0.5, 1.0, 1.2, 1.3]))
+    assert isinstance(r, Admissibility)
+    counts = r.problem_counts()
+    assert [(text, bad) for text, bad, _ in counts if "beta > 1" in text] == [
+        ("|mu| > |mu0| (beta > 1): tangential sliding at C reverses", 2)]
+    assert r.problems() == [f"{text} ({bad} of {n} cases)" for text, bad, n in counts]

@@ -1,8 +1,9 @@
 """The layout's rules, checked on the source (docs/architecture.md).
 
-- Layers: pim.model <- pim.io <- pim.analysis <- pim.plotting <- pim.cli; a module never
-  imports a layer above its own. pim never imports sim or comparisons; sim never imports
-  comparisons.
+- Layers: pim.model <- pim.io <- pim.analysis <- pim.plotting <- pim (the top-level API,
+  pim/__init__.py) <- pim.cli <- sim <- comparisons; a module never imports a layer above its
+  own, so only pim.cli, sim and comparisons may ``import pim`` itself. pim never imports sim or
+  comparisons; sim never imports comparisons.
 - No private name (``_x``) is imported from another module.
 - No function-level import of a project module, except the lazy loads of heavy optional
   parts listed in LAZY (numba's kernels, and the CLI's commands, which import on use so that
@@ -17,8 +18,8 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGES = ("pim", "sim", "comparisons")
-RANK = {"pim.model": 0, "pim.io": 1, "pim.analysis": 2, "pim.plotting": 3, "pim.cli": 4,
-        "pim": 5, "sim": 6, "comparisons": 7}
+RANK = {"pim.model": 0, "pim.io": 1, "pim.analysis": 2, "pim.plotting": 3, "pim": 4,
+        "pim.cli": 5, "sim": 6, "comparisons": 7}
 #: Function-level imports allowed: (module, imported module) -- lazy loads, not cycle dodges.
 LAZY = {("pim.model.solver", "pim.model.kernel"),
         ("pim.analysis.reconstruction", "pim.analysis.runout_fit_batch")}
@@ -63,25 +64,54 @@ def _imports(module: str, path: Path, is_package: bool):
 MODULES = list(_modules())
 
 
+def violations(module: str, path: Path, is_package: bool) -> list[str]:
+    """Every breach of the rules above in one module's source."""
+    rank, found = RANK[_layer(module)], []
+    for target, names, line, function_level in _imports(module, path, is_package):
+        where = f"{path.name}:{line}"
+        target_layer = _layer(target)
+        if RANK[target_layer] > rank:
+            found.append(f"{where}: {module} ({_layer(module)}) imports {target} ({target_layer})")
+        if module.startswith("pim") and target.startswith(("sim", "comparisons")):
+            found.append(f"{where}: pim imports {target}")
+        if module.startswith("sim") and target.startswith("comparisons"):
+            found.append(f"{where}: sim imports {target}")
+        private = [n for n in names if n.startswith("_") and not n.startswith("__")]
+        if private:
+            found.append(f"{where}: private names {private} imported from {target}")
+        if (function_level and not module.endswith(".cli") and not module.startswith("pim.cli")
+                and (module, target) not in LAZY):
+            found.append(f"{where}: function-level import of {target}")
+    return found
+
+
 @pytest.mark.parametrize("module, path, is_package", MODULES, ids=[m[0] for m in MODULES])
 def test_layers_private_names_and_function_level_imports(module, path, is_package):
-    rank = RANK[_layer(module)]
-    for target, names, line, function_level in _imports(module, path, is_package):
-        where = f"{path.relative_to(ROOT)}:{line}"
-        target_layer = _layer(target)
-        if module.startswith("pim.cli") or module == "pim":
-            pass    # the command line and the top-level API may use every pim layer
-        elif target_layer != "pim" or target == "pim":
-            assert RANK[target_layer] <= rank or target_layer == "pim", (
-                f"{where}: {module} ({_layer(module)}) imports {target} ({target_layer})")
-        if module.startswith("pim"):
-            assert not target.startswith(("sim", "comparisons")), f"{where}: pim imports {target}"
-        if module.startswith("sim"):
-            assert not target.startswith("comparisons"), f"{where}: sim imports {target}"
-        private = [n for n in names if n.startswith("_") and not n.startswith("__")]
-        assert not private, f"{where}: private names {private} imported from {target}"
-        if function_level and not module.endswith(".cli") and not module.startswith("pim.cli"):
-            assert (module, target) in LAZY, f"{where}: function-level import of {target}"
+    assert violations(module, path, is_package) == []
+
+
+@pytest.mark.parametrize("planted, expected", [
+    ("import pim", "pim.model.energy (pim.model) imports pim (pim)"),
+    ("from pim import solve", "imports pim (pim)"),
+    ("from .. import analysis", "pim.model.energy (pim.model) imports pim (pim)"),
+    ("from ...sim import run", "pim imports sim"),
+    ("from .geometry import _private", "private names ['_private']"),
+])
+def test_a_planted_breach_is_caught(tmp_path, planted, expected):
+    """The rules fail on a breach planted in a copy of pim/model/energy.py (the hole through
+    which any layer could ``import pim`` is closed)."""
+    source = (ROOT / "pim" / "model" / "energy.py").read_text()
+    assert violations("pim.model.energy", ROOT / "pim" / "model" / "energy.py", False) == []
+    copy = tmp_path / "energy.py"
+    copy.write_text(f"{planted}\n{source}")
+    found = violations("pim.model.energy", copy, False)
+    assert any(expected in text for text in found), found
+
+
+def test_only_the_command_line_and_outside_packages_import_pim_itself():
+    importers = {module for module, path, is_package in MODULES
+                 for target, *_ in _imports(module, path, is_package) if target == "pim"}
+    assert importers and all(_layer(m) in ("pim.cli", "sim", "comparisons") for m in importers)
 
 
 def test_every_package_directory_has_an_init():

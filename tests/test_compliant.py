@@ -102,16 +102,25 @@ def test_frictionless_eps1_point_contact_is_elastic(ricsac9):
 
 
 def test_converges_to_the_solve_ivp_reference_at_first_order(ricsac9):
+    """Symplectic Euler is first order: the error against the reference falls at least 4^0.9
+    over a 4-fold step count (10 % below order 1 for the higher-order terms, as the stiff
+    limit's test), and the error of the finest run is at most twice the change from the
+    previous one (for order p >= 1 the remaining error is |v(n/2) - v(n)| / (2^p - 1) <=
+    |v(n/2) - v(n)|; twice that for the pre-asymptotic terms and the reference's own 1e-6
+    agreement). Measured: order 1.19 against the reference, 2.0 between the runs."""
     ref = sim.reference_compliant(ricsac9, 0.355, K, friction=0.8,
                                   settings=CompliantSettings(rtol=1e-11, record=False))
-    errors = []
-    for n in (200, 800):
+    v = {}
+    for n in (200, 400, 800):
         r = sim.simulate_compliant(ricsac9, 0.355, K, friction=0.8,
                                    settings=CompliantSettings(steps_per_contact=n, record=False))
-        errors.append(np.abs(np.r_[r.velocity1 - ref.velocity1, r.velocity2 - ref.velocity2]).max())
-    order = math.log(errors[0] / errors[1]) / math.log(4)
-    assert errors[1] < 1e-3 * 15.86
-    assert 0.8 < order < 2.2
+        v[n] = np.r_[r.velocity1, r.velocity2]
+    exact = np.r_[ref.velocity1, ref.velocity2]
+    errors = {n: np.abs(v[n] - exact).max() for n in v}
+    assert errors[800] <= errors[200] / 4 ** 0.9
+    assert errors[800] <= 2 * np.abs(v[400] - v[800]).max()
+    order_between_runs = math.log2(np.abs(v[200] - v[400]).max() / np.abs(v[400] - v[800]).max())
+    assert order_between_runs >= 0.9
 
 
 def test_point_mass_into_a_barrier_rebounds_at_eps():
@@ -231,7 +240,12 @@ def test_interrupt_in_the_velocity_callback_propagates(ricsac9, monkeypatch, tar
 
 
 def test_eps_zero_vehicles_move_together_at_c(ricsac9):
-    r = sim.simulate_compliant(ricsac9, 0.0, K, settings=CompliantSettings(steps_per_contact=2000))
+    """eps = 0: the normal relative velocity at C ends at zero, to within one step's change
+    of it for a first-order step: the approach u_n0 spread over the 2000 steps of the
+    contact, |u_n0| / 2000 (the old bound 5e-3 x 9.5 m/s was this with u_n0 rounded up)."""
+    steps = 2000
+    r = sim.simulate_compliant(ricsac9, 0.0, K,
+                               settings=CompliantSettings(steps_per_contact=steps))
     # no rebound: the normal relative velocity at the contact ends at about zero
     traj = r.trajectory
     i = traj.impact_index
@@ -242,7 +256,8 @@ def test_eps_zero_vehicles_move_together_at_c(ricsac9):
                                                            (p - traj.position1[i])[0]])
     u2 = traj.velocity2[i] + traj.yaw_rate2[i] * np.array([-(p - traj.position2[i])[1],
                                                            (p - traj.position2[i])[0]])
-    assert abs((u1 - u2) @ n) < 5e-3 * 9.5
+    approach = abs(float(pim.solve(ricsac9, 0.0, 1.0).approach_n))
+    assert abs((u1 - u2) @ n) < approach / steps
     assert r.permanent_crush == r.peak_crush
 
 

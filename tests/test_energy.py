@@ -43,3 +43,23 @@ def test_sheet_energy_values():
     assert float(r.energy_loss_percent) == pytest.approx(31.457, rel=2e-3)
     half = pim.solve(case, 0.5, 0.5)
     assert float(half.crush_energy_normal) / ftlb == pytest.approx(1.412e4, rel=2e-3)
+
+
+def test_kinetic_energies_from_the_definition():
+    """EnergyOutputs (pim.model.energy) against 1/2 m v^2 + 1/2 I w^2 written out here."""
+    from pim.model.energy import EnergyOutputs
+
+    case = pim.load_case("ricsac9")
+    r = pim.solve(case, 0.355, 1.0)
+    assert isinstance(r, EnergyOutputs)
+
+    def kinetic(m, i, v, w):
+        return 0.5 * float(m) * float(np.dot(v, v)) + 0.5 * float(i) * float(w) ** 2
+
+    a, b = case.vehicle1, case.vehicle2
+    before = kinetic(a.mass, a.yaw_inertia, a.velocity, a.yaw_rate) + kinetic(
+        b.mass, b.yaw_inertia, b.velocity, b.yaw_rate)
+    after = kinetic(a.mass, a.yaw_inertia, r.velocity1, r.yaw_rate1) + kinetic(
+        b.mass, b.yaw_inertia, r.velocity2, r.yaw_rate2)
+    assert float(r.kinetic_energy_before) == pytest.approx(before, rel=1e-12)
+    assert float(r.energy_loss) == pytest.approx(before - after, rel=1e-9)

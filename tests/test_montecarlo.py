@@ -136,3 +136,63 @@ def test_barrier_has_no_pdof_in_the_uncertainty_table(tmp_path, capsys):
     assert main(["uncertainty", str(path), "--samples", "2000"]) == 0
     out = capsys.readouterr().out
     assert "PDOF of vehicle 1" in out and "PDOF of vehicle 2" not in out
+
+
+def test_chunked_run_equals_the_in_memory_run_of_the_same_samples():
+    """One varying input: chunks of rng.random draw the same stream as one call, so the
+    chunked run sees exactly the in-memory run's samples (issue 22 item 4: exact
+    percentiles on bounded memory)."""
+    case = collinear({"vehicle1": {"velocity_x": {"normal": "0.5 m/s"}}})
+    whole = pim.uncertainty(case, n=30_000, seed=4)
+    done = []
+    chunked = pim.uncertainty(case, n=30_000, seed=4, chunk_size=4_000, progress=done.append)
+    assert sum(done) == 30_000 and len(done) == 8
+    for name in ("delta_v1_magnitude", "speed2", "energy_loss"):
+        a, b = whole.stats[name], chunked.stats[name]
+        assert (b.p5, b.p50, b.p95) == (a.p5, a.p50, a.p95), name
+        assert b.mean == pytest.approx(a.mean, rel=1e-12)
+        assert b.sd == pytest.approx(a.sd, rel=1e-9)
+    # the first chunk's samples are kept for histograms, not all of them
+    assert chunked.samples["speed1"].size == 4_000
+    assert whole.samples["speed1"].size == 30_000
+
+
+def test_chunked_statistics_agree_within_their_sampling_error():
+    """Several inputs: the chunked samples differ from the one-call samples; the percentiles
+    agree within 4 standard errors of a quantile, sqrt(p (1 - p) / n) / f(x_p) (f the density;
+    normal outputs: f(x_p) = phi(z_p) / sd), combined for two independent runs."""
+    lo, hi, sd = 0.1, 0.5, 1.5
+    case = collinear({"vehicle1": {"velocity_x": {"normal": sd}},
+                      "impact": {"restitution": {"uniform": [lo, hi]}}})
+    n = 40_000
+    a = pim.uncertainty(case, n=n, seed=7)
+    b = pim.uncertainty(case, n=n, seed=7, chunk_size=3_000)
+    sa, sb = a.stats["delta_v1_magnitude"], b.stats["delta_v1_magnitude"]
+    phi95, phi50 = 0.10313564037537128, 0.3989422804014327     # phi(1.645), phi(0)
+    for p, phi, x, y in ((0.05, phi95, sa.p5, sb.p5), (0.5, phi50, sa.p50, sb.p50),
+                         (0.95, phi95, sa.p95, sb.p95)):
+        se = np.sqrt(p * (1 - p) / n) * sa.sd / phi
+        assert abs(x - y) < 4 * np.sqrt(2) * se, p
+    assert abs(sa.mean - sb.mean) < 4 * np.sqrt(2 / n) * sa.sd
+    ia, ib = (dict(r.sensitivity["delta_v1_magnitude"]) for r in (a, b))
+    for name in ia:     # indices: standard error about 1 / sqrt(n) = 0.005 here
+        assert ib[name] == pytest.approx(ia[name], abs=0.03), name
+
+
+def test_samples_in_exponent_form_and_the_memory_check(monkeypatch):
+    from pim.analysis import montecarlo
+    from pim.cli import main
+
+    assert main(["uncertainty", "ricsac9", "--samples", "2e3", "--no-progress"]) == 0
+    assert main(["uncertainty", "ricsac9", "--samples", "2.5e0"]) == 2
+    assert main(["uncertainty", "ricsac9", "--samples", "1.5e3x"]) == 2
+    monkeypatch.setattr(montecarlo, "available_memory", lambda: 10 * 2**20)
+    assert main(["uncertainty", "ricsac9", "--samples", "1e8"]) == 2
+
+
+def test_memory_estimate_is_bounded_in_the_sample_count():
+    from pim.analysis.montecarlo import CHUNK_SIZE, memory_estimate
+
+    assert memory_estimate(1e5) < memory_estimate(CHUNK_SIZE)
+    # above a chunk only the kept percentile windows grow: 1e8 samples stay under 4 GB
+    assert memory_estimate(1e8) < 2 * 2**30

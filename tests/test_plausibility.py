@@ -38,3 +38,15 @@ def test_barrier_has_no_pdof(capsys):
     out = capsys.readouterr().out
     pdof = [line for line in out.splitlines() if line.startswith("PDOF")]
     assert pdof and all(line.split()[-2] == "-" for line in pdof), pdof
+
+
+def test_bare_angle_and_no_impact_messages():
+    from pim.model.plausibility import bare_angle_warning, no_impact_message
+
+    assert bare_angle_warning("impact.normal_angle", 1.5) is None     # plausible radians
+    assert "impact.normal_angle" in bare_angle_warning("impact.normal_angle", 90)
+    case = pim.load_case("ricsac9")
+    assert no_impact_message(pim.solve(case, 0.355, 1.0)) is None
+    apart = pim.Case(case.vehicle1, case.vehicle2,
+                     pim.Impact(case.impact.point, float(case.impact.normal_angle) + 3.14159))
+    assert no_impact_message(pim.solve(apart, 0.355, 1.0)).startswith("no impact")

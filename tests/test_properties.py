@@ -156,9 +156,10 @@ def test_rotating_and_translating_the_scene(case, eps, beta, angle, dx, dy):
     np.testing.assert_allclose(moved.energy_loss, r.energy_loss,
                                atol=1e-9 * (1 + float(r.kinetic_energy_before)))
     if np.abs(r.impulse).sum() > 1e-6 * (1 + r.k_nn ** -1 * np.abs(r.approach_velocity).sum()):
-        # PDOF is relative to the heading, which rotates with the scene (compare on the circle).
-        np.testing.assert_allclose(np.cos(moved.pdof1), np.cos(r.pdof1), atol=1e-6)
-        np.testing.assert_allclose(np.sin(moved.pdof2), np.sin(r.pdof2), atol=1e-6)
+        # PDOF is relative to the heading, which rotates with the scene: the full angle,
+        # compared on the circle (a cosine alone would accept the mirrored direction)
+        assert_same_angle(moved.pdof1, r.pdof1, 1e-6)
+        assert_same_angle(moved.pdof2, r.pdof2, 1e-6)
     if abs(r.approach_n) > 1e-9 * (1 + np.abs(r.approach_velocity).sum()):
         assert bool(moved.approaching) == bool(r.approaching)
 
@@ -223,3 +224,19 @@ def test_grid_of_eps_and_beta_broadcasts():
     assert r.energy_loss.shape == (11, 6) and r.pdof2.shape == (11, 6)
     single = pim.solve(case, 0.4, 0.6)
     np.testing.assert_allclose(r.velocity1[4, 3], single.velocity1, rtol=1e-14)
+
+
+def assert_same_angle(a, b, tol):
+    """|a - b| wrapped to (-pi, pi] is within tol [rad] (NaN where both are NaN)."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    np.testing.assert_array_equal(np.isnan(a), np.isnan(b))
+    d = np.angle(np.exp(1j * (a - b)))
+    assert np.all(np.abs(d[~np.isnan(d)]) <= tol), d
+
+
+def test_angle_check_sees_the_whole_angle():
+    """The old check compared cos(pdof1) only, which a mirrored PDOF (-pdof) passes."""
+    assert_same_angle(np.pi - 1e-9, -np.pi + 1e-9, 1e-6)          # across the cut
+    with pytest.raises(AssertionError):
+        assert_same_angle(-0.7, 0.7, 1e-6)      # cos equal, angle not
+    np.testing.assert_allclose(np.cos(-0.7), np.cos(0.7), atol=1e-6)   # the old check passed

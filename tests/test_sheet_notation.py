@@ -25,3 +25,13 @@ def test_definitions(result):
                                                  * float(result.B)), rel=1e-12)
     assert float(result.mu) == pytest.approx(float(result.beta) * float(result.mu0))
     assert float(result.total_loss_brach) == pytest.approx(float(result.energy_loss), rel=1e-9)
+
+
+def test_mu0_is_the_critical_impulse_ratio():
+    """SheetNotation (pim.model.sheet_notation): mu0 = Pt0 / Pn0 (Brach eq. 6.60)."""
+    from pim.model.sheet_notation import SheetNotation
+
+    r = pim.solve(pim.load_case("ricsac9"), 0.355, 1.0)
+    assert isinstance(r, SheetNotation)
+    assert float(r.mu0) == pytest.approx(float(r.critical_impulse_t / r.critical_impulse_n),
+                                         rel=1e-15)

@@ -1,5 +1,7 @@
 """The analysis layer: residuals against measured motion, the least-squares fit, derivatives,
 sensitivities, Monte Carlo.
 
-Uses :mod:`pim.model` only; never reads files, plots or prints.
+Uses :mod:`pim.model` and, for the published data's conventions, :mod:`pim.io`
+(:mod:`pim.analysis.validation` reads Brach's CG convention through :mod:`pim.io.brach`); never
+plots or prints (tests/test_architecture.py ranks the layers).
 """

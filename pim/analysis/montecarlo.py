@@ -1,9 +1,10 @@
 """Monte Carlo uncertainty of a PIM reconstruction: percentiles and variance-based sensitivity.
 
 The inputs of a scalar case are sampled from their distributions (:mod:`pim.model.distributions`,
-the case file's ``[uncertainty]`` table), all samples are solved in one vectorised call of
-:func:`pim.solve` (the compiled fast path for large n), and for each output the 5th, 50th and
-95th percentiles are reported with the ranked contribution of each input to its variance.
+the case file's ``[uncertainty]`` table), solved by vectorised calls of :func:`pim.solve` (the
+compiled fast path for large n; up to :data:`CHUNK_SIZE` samples in one call, more chunk by
+chunk on bounded memory, :mod:`pim.analysis.streaming`), and for each output the 5th, 50th
+and 95th percentiles are reported with the ranked contribution of each input to its variance.
 
 Sensitivity: first-order indices S_i = Var(E[Y | X_i]) / Var(Y) (Sobol's first-order index),
 estimated from the same samples as the percentiles by the correlation ratio: the samples are
@@ -31,19 +32,37 @@ import numpy as np
 from ..model.case import Case, Impact, Vehicle
 from ..model.distributions import UncertaintyTable, nominal_values, sample_inputs
 from ..model.solver import solve
+from .streaming import StreamingIndices, StreamingPercentiles
 
-__all__ = ["uncertainty", "UncertaintyResult", "OutputStats", "OUTPUTS", "first_order_indices"]
+__all__ = ["uncertainty", "UncertaintyResult", "OutputStats", "OUTPUTS", "first_order_indices",
+           "memory_estimate", "available_memory", "CHUNK_SIZE"]
 
 #: Outputs summarised, by their names in :data:`pim.model.quantities.OUTPUTS` (which gives
 #: each one's label and unit kind).
 OUTPUTS = ("delta_v1_magnitude", "delta_v2_magnitude", "speed1", "speed2", "yaw_rate1",
            "yaw_rate2", "energy_loss", "pdof1", "pdof2")
 PERCENTILES = (5.0, 50.0, 95.0)
+#: Samples solved in one vectorised call; larger runs go chunk by chunk.
+CHUNK_SIZE = 1 << 19
+#: Peak memory per sample of one chunk [bytes], and of the process before the first chunk
+#: (Python, numpy, numba) [bytes] (measured: benchmarks/bench_uncertainty.py --memory).
+BYTES_PER_SAMPLE = 760
+BASELINE_BYTES = 320 * 2**20
 
 
 @dataclass(frozen=True)
 class OutputStats:
-    """Summary of one output over the admissible samples [SI unit of the output]."""
+    """Summary of one output over the admissible samples [SI unit of the output].
+
+    Attributes
+    ----------
+    nominal : float
+        The output at the nominal inputs.
+    p5, p50, p95 : float
+        5th, 50th and 95th percentiles (numpy's "linear" method, exact in chunked runs).
+    mean, sd : float
+        Mean and population standard deviation.
+    """
 
     nominal: float
     p5: float
@@ -63,7 +82,7 @@ class UncertaintyResult:
     n : int
         Number of samples drawn.
     seed : int or None
-        Seed of the random generator.
+        Seed of the random generator (the entropy drawn when None was given).
     n_admissible : int
         Samples used in the statistics (the others are inadmissible impacts).
     problems : list of str
@@ -75,7 +94,8 @@ class UncertaintyResult:
     varying : tuple of str
         The inputs that vary.
     samples : dict
-        Output name -> admissible samples [SI], for histograms.
+        Output name -> admissible samples [SI], for histograms: all of them when n is at most
+        the chunk size, else those of the first chunk.
     """
 
     case_name: str
@@ -176,10 +196,158 @@ def _outputs(result, nominal=None) -> dict:
     return out
 
 
+def memory_estimate(n: int, chunk_size: int = CHUNK_SIZE) -> int:
+    """Peak memory of :func:`uncertainty` with n samples [bytes], an upper estimate.
+
+    The process (:data:`BASELINE_BYTES`), one chunk's inputs, results and statistics
+    (:data:`BYTES_PER_SAMPLE` each), plus the values the streaming percentiles keep (2.5 % of
+    the samples per output for the three windows, 8 bytes each); measured by
+    ``benchmarks/bench_uncertainty.py --memory`` (1e6 samples: 675 MiB; 1e8: 879 MiB).
+    """
+    n = int(n)
+    kept = 0 if n <= chunk_size else int(0.025 * n) * 8 * len(OUTPUTS)
+    return BASELINE_BYTES + min(n, int(chunk_size)) * BYTES_PER_SAMPLE + kept
+
+
+def available_memory() -> int | None:
+    """Memory the system can still give [bytes] (MemAvailable of /proc/meminfo), or None."""
+    try:
+        with open("/proc/meminfo") as f:
+            for line in f:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except OSError:
+        pass
+    return None
+
+
+@dataclass
+class _Setup:
+    """What every chunk of a Monte Carlo shares."""
+
+    case: Case
+    dists: UncertaintyTable
+    nominal_in: dict
+    nominal_out: dict
+    seed: np.random.SeedSequence
+    n: int
+    chunk_size: int
+
+    def chunks(self):
+        """(outputs, ok mask, uniforms, problem counts) chunk by chunk; the same every time."""
+        rng = np.random.default_rng(self.seed)
+        for start in range(0, self.n, self.chunk_size):
+            m = min(self.chunk_size, self.n - start)
+            values, uniforms = sample_inputs(self.dists, self.nominal_in, m, rng)
+            result = solve(_sampled_case(self.case, values), values["impact.restitution"],
+                           values["impact.beta"])
+            ok = np.broadcast_to(result.admissible, (m,))
+            outputs = {k: np.broadcast_to(v, (m,)) for k, v in
+                       _outputs(result, self.nominal_out).items()}
+            yield outputs, ok, uniforms, result.problem_counts()
+
+
+def _setup(case, n, seed, distributions, eps, beta, chunk_size) -> _Setup:
+    dists = case.uncertainty if distributions is None else distributions
+    if dists is None:
+        raise ValueError("uncertainty: the case has no [uncertainty] table and no "
+                         "distributions were given")
+    if not isinstance(dists, UncertaintyTable):
+        raise ValueError("distributions must be a pim.model.distributions.UncertaintyTable")
+    n = int(n)
+    if n < 10:
+        raise ValueError(f"samples must be >= 10, got {n}")
+    if int(chunk_size) < 10:
+        raise ValueError(f"chunk_size must be >= 10, got {chunk_size}")
+    nominal_in = nominal_values(case, eps, beta)
+    # evidence inputs (run-out friction) do not act on the impact: pim reconstruct samples them
+    dists = UncertaintyTable({k: d for k, d in dists.inputs.items() if k in nominal_in})
+    nominal_result = solve(case, nominal_in["impact.restitution"], nominal_in["impact.beta"],
+                           backend="numpy")
+    nominal_out = {k: float(np.asarray(v).reshape(())) for k, v in _outputs(nominal_result).items()}
+    return _Setup(case, dists, nominal_in, nominal_out, np.random.SeedSequence(seed), n,
+                  int(chunk_size))
+
+
+def _merge_problems(counts: dict, n: int) -> list:
+    return [text if n == 1 else f"{text} ({bad} of {n} cases)" for text, bad in counts.items()]
+
+
+def _in_memory(setup: _Setup, progress) -> UncertaintyResult:
+    """All samples in one chunk: percentiles by :func:`numpy.percentile`."""
+    outputs, ok, uniforms, problems = next(setup.chunks())
+    if progress is not None:
+        progress(setup.n)
+    n, n_ok = setup.n, int(np.count_nonzero(ok))
+    all_ok = n_ok == n
+    u_ok = {k: (u if all_ok else u[ok]) for k, u in uniforms.items()}
+    bins = int(np.clip(np.sqrt(n_ok) / 2, 2, 100))
+    binned = _bin_indices(u_ok, bins)
+    stats, sens, samples = {}, {}, {}
+    for name, y in outputs.items():
+        y = y if all_ok else y[ok]
+        samples[name] = y
+        if n_ok:
+            p5, p50, p95 = np.percentile(y, PERCENTILES)
+            stats[name] = OutputStats(setup.nominal_out[name], float(p5), float(p50),
+                                      float(p95), float(y.mean()), float(y.std()))
+        else:
+            stats[name] = OutputStats(setup.nominal_out[name], *([np.nan] * 5))
+        sens[name] = first_order_indices(y, u_ok, bins, binned) if n_ok > 1 else []
+    return _result(setup, n_ok, _merge_problems({t: b for t, b, _ in problems}, n), stats,
+                   sens, tuple(uniforms), samples)
+
+
+def _result(setup, n_ok, problems, stats, sens, varying, samples) -> UncertaintyResult:
+    return UncertaintyResult(case_name=setup.case.name, n=setup.n, seed=setup.seed.entropy,
+                             n_admissible=n_ok, problems=problems, stats=stats,
+                             sensitivity=sens, varying=varying, samples=samples)
+
+
+def _streamed(setup: _Setup, progress) -> UncertaintyResult:
+    """Chunk by chunk on bounded memory (:mod:`pim.analysis.streaming`)."""
+    quantiles = {k: StreamingPercentiles(PERCENTILES) for k in OUTPUTS}
+    moments, samples, problems, n_ok, varying = None, {}, {}, 0, ()
+    for outputs, ok, uniforms, counts in setup.chunks():
+        for text, bad, _ in counts:
+            problems[text] = problems.get(text, 0) + bad
+        y_ok = {k: y[ok] for k, y in outputs.items()}
+        u_ok = {k: u[ok] for k, u in uniforms.items()}
+        if moments is None:     # the first chunk: the pilot of the bins and the histograms
+            varying, samples = tuple(uniforms), y_ok
+            share = max(np.count_nonzero(ok), 1) / ok.size
+            bins = int(np.clip(np.sqrt(setup.n * share) / 2, 2, 100))
+            moments = {k: StreamingIndices(varying, bins, float(np.mean(y)) if y.size else 0.0)
+                       for k, y in y_ok.items()}
+        binned = _bin_indices(u_ok, moments[OUTPUTS[0]].bins)
+        counts = {k: np.bincount(b, minlength=moments[OUTPUTS[0]].bins) for k, b in binned.items()}
+        for k, y in y_ok.items():
+            quantiles[k].add(y)
+            moments[k].add(y, binned, counts)
+        n_ok += int(np.count_nonzero(ok))
+        if progress is not None:
+            progress(ok.size)
+    for k, q in quantiles.items():
+        if q.missing():     # a pilot far from the whole: passes over the same chunks (rare)
+            q.refine(lambda k=k: (out[k][ok] for out, ok, _, _ in setup.chunks()))
+    stats, sens = {}, {}
+    for k in OUTPUTS:
+        mean, sd = moments[k].mean_sd()
+        stats[k] = OutputStats(setup.nominal_out[k], *quantiles[k].result(), mean, sd)
+        sens[k] = moments[k].indices()
+    return _result(setup, n_ok, _merge_problems(problems, setup.n), stats, sens, varying,
+                   samples)
+
+
 def uncertainty(case: Case, n: int = 100_000, seed: int | None = 0,
                 distributions: UncertaintyTable | None = None, eps=None,
-                beta=None) -> UncertaintyResult:
+                beta=None, chunk_size: int = CHUNK_SIZE, progress=None) -> UncertaintyResult:
     """Monte Carlo of a scalar case's inputs: percentiles and first-order sensitivity indices.
+
+    Up to ``chunk_size`` samples are solved in one vectorised call; more are drawn, solved
+    and summarised chunk by chunk on bounded memory (:func:`memory_estimate`), with the same
+    statistics: exact percentiles (:class:`pim.analysis.streaming.StreamingPercentiles`),
+    mean, standard deviation and first-order indices accumulated by chunk.
 
     Parameters
     ----------
@@ -193,10 +361,20 @@ def uncertainty(case: Case, n: int = 100_000, seed: int | None = 0,
         Input distributions; default ``case.uncertainty`` (the case file's table).
     eps, beta : float, optional
         Nominal eps and beta [-], overriding the case's.
+    chunk_size : int
+        Samples per chunk (>= 10). With n <= chunk_size the result is that of one call
+        (unchanged from the in-memory implementation); above it the samples are drawn chunk
+        by chunk from the same generator, so they differ from a one-chunk run of the same
+        seed (the statistics agree within their sampling error).
+    progress : callable, optional
+        Called with the number of samples just finished after each chunk (e.g. a tqdm
+        bar's ``update``).
 
     Returns
     -------
     UncertaintyResult
+        Its ``samples`` (for histograms) are all admissible samples when n <= chunk_size,
+        else those of the first chunk (a random subsample).
 
     Raises
     ------
@@ -204,48 +382,7 @@ def uncertainty(case: Case, n: int = 100_000, seed: int | None = 0,
         No distributions, a non-scalar case, n < 10, or a distribution outside an input's
         admissible range.
     """
-    dists = case.uncertainty if distributions is None else distributions
-    if dists is None:
-        raise ValueError("uncertainty: the case has no [uncertainty] table and no "
-                         "distributions were given")
-    if not isinstance(dists, UncertaintyTable):
-        raise ValueError("distributions must be a pim.model.distributions.UncertaintyTable")
-    n = int(n)
-    if n < 10:
-        raise ValueError(f"samples must be >= 10, got {n}")
-    nominal_in = nominal_values(case, eps, beta)
-    rng = np.random.default_rng(seed)
-    # evidence inputs (run-out friction) do not act on the impact: pim reconstruct samples them
-    dists = UncertaintyTable({k: d for k, d in dists.inputs.items() if k in nominal_in})
-    values, uniforms = sample_inputs(dists, nominal_in, n, rng)
-
-    nominal_result = solve(case, nominal_in["impact.restitution"], nominal_in["impact.beta"],
-                           backend="numpy")
-    nominal_out = {k: float(np.asarray(v).reshape(())) for k, v in _outputs(nominal_result).items()}
-    sampled = _sampled_case(case, values)
-    result = solve(sampled, values["impact.restitution"], values["impact.beta"])
-    outputs = _outputs(result, nominal_out)
-
-    ok = np.broadcast_to(result.admissible, np.shape(result.impulse_n))
-    if ok.shape != (n,):
-        ok = np.broadcast_to(ok, (n,))
-    n_ok = int(np.count_nonzero(ok))
-    all_ok = n_ok == n
-    u_ok = {k: (u if all_ok else u[ok]) for k, u in uniforms.items()}
-    bins = int(np.clip(np.sqrt(n_ok) / 2, 2, 100))
-    binned = _bin_indices(u_ok, bins)
-    stats, sens, samples = {}, {}, {}
-    for name, y in outputs.items():
-        y = np.broadcast_to(y, (n,))
-        y = y if all_ok else y[ok]
-        samples[name] = y
-        if n_ok:
-            p5, p50, p95 = np.percentile(y, PERCENTILES)
-            stats[name] = OutputStats(nominal_out[name], float(p5), float(p50), float(p95),
-                                      float(y.mean()), float(y.std()))
-        else:
-            stats[name] = OutputStats(nominal_out[name], *([np.nan] * 5))
-        sens[name] = first_order_indices(y, u_ok, bins, binned) if n_ok > 1 else []
-    return UncertaintyResult(case_name=case.name, n=n, seed=seed, n_admissible=n_ok,
-                             problems=result.problems(), stats=stats, sensitivity=sens,
-                             varying=tuple(uniforms), samples=samples)
+    setup = _setup(case, n, seed, distributions, eps, beta, chunk_size)
+    if setup.n <= setup.chunk_size:
+        return _in_memory(setup, progress)
+    return _streamed(setup, progress)

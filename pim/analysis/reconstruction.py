@@ -52,7 +52,8 @@ class PostImpact:
     ----------
     case : Case, the input case with ``measured`` replaced by the run-out fits' motion
     runouts : dict vehicle number (1, 2) -> RunoutFit (only vehicles with evidence)
-    velocity_sigma : dict vehicle number -> (2, 2) covariance of the post-impact velocity
+    velocity_sigma : dict vehicle number -> (2, 2) covariance [m^2/s^2] of the post-impact
+        velocity (a covariance matrix, not a standard deviation, despite the name)
     yaw_rate_sigma : dict vehicle number -> standard deviation of the yaw rate [rad/s]
     momentum : MomentumSpeeds or None (needs both vehicles' evidence)
     messages : list of plain-language warnings (unreachable rest, no stop, several minima)

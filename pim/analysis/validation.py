@@ -121,10 +121,22 @@ def fit_radius_of_gyration(test, bounds=K_BOUNDS, grid=121) -> float:
 class BarrierReproduction:
     """One barrier test reproduced with the published coefficients [SI].
 
-    ``predicted`` and ``measured`` are (dVx, dVy, Omega) [m/s, m/s, rad/s];
-    ``delta_v_error`` is the length of the delta-V vector error [m/s], ``yaw_error`` the
-    yaw-rate error [rad/s]; ``yaw_per_k`` and ``delta_v_per_k`` the change of the predicted
-    yaw rate [rad/s] and delta-V magnitude [m/s] for +10 % k.
+    Attributes
+    ----------
+    test : BarrierTest
+        The published test (:mod:`pim.io.datasets`).
+    radius_of_gyration : float
+        Radius of gyration used [m].
+    predicted, measured : tuple
+        (dVx, dVy, Omega) [m/s, m/s, rad/s], PIM's and the test's.
+    delta_v_error : float
+        Length of the delta-V vector error [m/s].
+    delta_v_magnitude_error : float
+        Predicted |delta-V| minus the tabulated resultant dV [m/s].
+    yaw_error : float
+        Yaw-rate error [rad/s].
+    within_tolerance : bool
+        delta-V within 1 mph and yaw rate within 10 deg/s.
     """
 
     test: object

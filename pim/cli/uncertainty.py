@@ -2,17 +2,39 @@
 
 from __future__ import annotations
 
+import math
+
 import click
 
 from .main import case_argument, echo_json, json_option, require_brach, units_option
 
-__all__ = ["uncertainty"]
+__all__ = ["uncertainty", "SampleCount"]
+
+
+class SampleCount(click.ParamType):
+    """A whole number of samples >= 10, written as an integer or in exponent form (1e8)."""
+
+    name = "integer"
+
+    def convert(self, value, param, ctx):
+        text = str(value).strip().replace("_", "")
+        try:
+            x = float(text)
+        except ValueError:
+            self.fail(f"{value!r} is not a number of samples", param, ctx)
+        if not math.isfinite(x) or x != int(x):
+            self.fail(f"{value!r} is not a whole number of samples", param, ctx)
+        n = int(text) if text.lstrip("+").isdigit() else int(x)
+        if n < 10:
+            self.fail(f"{value!r}: samples must be >= 10", param, ctx)
+        return n
 
 
 @click.command()
 @case_argument
-@click.option("--samples", "-n", type=click.IntRange(min=10), default=100_000,
-              show_default=True, help="Number of Monte Carlo samples.")
+@click.option("--samples", "-n", type=SampleCount(), default=100_000, show_default=True,
+              help="Number of Monte Carlo samples (e.g. 100000 or 1e8; over 524288 they are "
+                   "solved chunk by chunk on bounded memory).")
 @click.option("--seed", type=int, default=0, show_default=True, help="Random seed.")
 @click.option("--eps", type=float, default=None, help="Nominal epsilon (default: the case's).")
 @click.option("--beta", type=float, default=None, help="Nominal beta (default: the case's).")
@@ -20,15 +42,19 @@ __all__ = ["uncertainty"]
               help="Write histograms of the outputs to this PNG (or .svg) file.")
 @click.option("--top", type=click.IntRange(min=1), default=3, show_default=True,
               help="Inputs listed per output in the sensitivity ranking.")
+@click.option("--progress/--no-progress", default=None,
+              help="Progress bar on stderr (default: only on a terminal).")
 @units_option
 @json_option
-def uncertainty(case_name, samples, seed, eps, beta, png, top, units, as_json):
+def uncertainty(case_name, samples, seed, eps, beta, png, top, progress, units, as_json):
     """Monte Carlo of CASE's [uncertainty] table: 5/50/95 % and ranked input contributions.
 
     Contributions are first-order variance-based (Sobol) indices: the share of an output's
     variance explained by one input alone.
     """
-    from ..analysis.montecarlo import OUTPUTS
+    from tqdm import tqdm
+
+    from ..analysis.montecarlo import OUTPUTS, available_memory, memory_estimate
     from ..analysis.montecarlo import uncertainty as run
     from ..io.casefile import load_case
     from ..io.units import convert
@@ -37,7 +63,13 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, units, as_json):
     case = load_case(case_name)
     require_brach(case, "pim uncertainty")
     units = units or case.units
-    result = run(case, n=samples, seed=seed, eps=eps, beta=beta)
+    need, free = memory_estimate(samples), available_memory()
+    if free is not None and need > free:
+        raise ValueError(f"--samples {samples:,} needs about {need / 2**30:.1f} GiB of memory "
+                         f"and {free / 2**30:.1f} GiB are available")
+    with tqdm(total=samples, unit="sample", unit_scale=True, desc="Monte Carlo", leave=False,
+              disable=None if progress is None else not progress) as bar:
+        result = run(case, n=samples, seed=seed, eps=eps, beta=beta, progress=bar.update)
     rows = []
     barrier = bool(case.vehicle2.fixed)
     for name in OUTPUTS:

@@ -84,10 +84,16 @@ class Admissibility:
 
     def problems(self) -> list[str]:
         """Plain-language reasons why any element is inadmissible (empty when all are fine)."""
+        return [text if size == 1 else f"{text} ({bad} of {size} cases)"
+                for text, bad, size in self.problem_counts()]
+
+    def problem_counts(self) -> list[tuple[str, int, int]]:
+        """(reason, elements failing it, elements) of each failed check of :meth:`problems`
+        (counts that add up over the chunks of a Monte Carlo)."""
         out = []
         for ok, text, _ in self.admissibility_checks():
             ok = np.asarray(ok)
             bad = int(np.size(ok) - np.count_nonzero(ok))
             if bad:
-                out.append(text if ok.size == 1 else f"{text} ({bad} of {ok.size} cases)")
+                out.append((text, bad, int(ok.size)))
         return out

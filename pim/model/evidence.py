@@ -43,6 +43,7 @@ class VehicleEvidence:
     position_sigma : float [m] standard deviation of the measured positions
     heading_sigma : float [rad] standard deviation of the measured heading
     path_points : ndarray (k, 2) [m] points the CG passed through (e.g. tyre-mark ends)
+    where : str, the case-file table named in error messages (e.g. ``evidence.vehicle1``)
     """
 
     rest_position: np.ndarray

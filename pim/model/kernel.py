@@ -7,18 +7,19 @@ temporaries of N doubles); this module makes one: each case is read once, solved
 and written once, on all cores (numba ``prange``).
 
 The arithmetic is :mod:`pim.model.formula` itself, compiled by numba (no fast-math, no fused
-multiply-add contraction), with sine and cosine from the same C library as numpy, so the
-default kernel gives bitwise the numpy path's values (``tests/test_kernel.py``), including
-the approach flag, the singular-q flag and fixed obstacles (inverse mass and inertia 0). The
-tolerances are arguments of the compiled functions, not constants baked into numba's cache,
-and the cache key covers pim/model/formula.py as well as this file (:func:`_cached`), so an
-edit of the formula recompiles the kernels instead of leaving a stale one.
-With ``fast_trig`` it uses its own branch-free sine and cosine (within 1 ulp), which lets LLVM
-vectorise the loop (:func:`_solve_kernel_simd`: about 2.5x faster, near the memory-copy
-bound); the results then agree with numpy to round-off (normwise 1e-15; elementwise more
-where outputs come from cancellation). The default kernel calls the C library's sine and
-cosine, which keeps its loop scalar (and bitwise equal to numpy). numba is imported only
-when this module is, which :func:`pim.solve` does only when it takes the fast path.
+multiply-add contraction). By default the kernel takes sine and cosine of Gamma from its own
+branch-free fdlibm polynomials (:func:`_sincos`, within 1 ulp of the C library's), which lets
+LLVM vectorise the loop (:func:`_solve_kernel_simd`, near the memory-copy bound; the figures
+are printed by ``benchmarks/bench_solve.py`` and kept in docs/performance.md). The results
+then agree with the numpy path within :data:`ULP_BOUND` ulp of each output's scale times the
+condition number of q (``tests/test_kernel.py``, hypothesis over the inputs), the approach
+and singular-q flags included. With ``fast_trig=False`` the kernel calls the C library's
+sine and cosine, as numpy does, and gives bitwise the numpy path's values, at about 0.35 of
+the copy bound (the calls keep the loop scalar). The tolerances are arguments of the
+compiled functions, not constants baked into numba's cache, and the cache key covers
+pim/model/formula.py as well as this file (:func:`_cached`), so an edit of the formula
+recompiles the kernels instead of leaving a stale one. numba is imported only when this
+module is, which :func:`pim.solve` does only when it takes the fast path.
 
 Outputs: the kernel writes only the core outputs (post-impact velocities, yaw rates, impulse,
 mu0 and the two flags), at the full broadcast shape of the inputs, so a batch costs 19 doubles
@@ -69,6 +70,11 @@ _cached = stamped_cache(formula)
 TRIG_LIMIT = 1.0e5
 #: Cases per block of the parallel loop (the inner loop over a block is vectorised).
 BLOCK = 8192
+#: The fast (default) kernel agrees with the numpy path within this many ulp of each output's
+#: scale (the largest magnitude among the quantities it is formed from) times the condition
+#: number of q, (|K_nn Pn0| + |beta K_nt Pt0|) / |K_nn Pn0 + beta K_nt Pt0| (measured: a few
+#: hundred at most over 10^6 random scenes; tests/test_kernel.py).
+ULP_BOUND = 1024
 
 # fdlibm's minimax coefficients of sin and cos on [-pi/4, pi/4] and its split of pi/2.
 _S1, _S2, _S3 = -1.66666666666666324348e-01, 8.33333333332248946124e-03, -1.98412698298579493134e-04
@@ -419,9 +425,9 @@ def solve_arrays(inputs: dict, approach_tol: float, singular_tol: float, full: b
     fast_trig : bool
         Use the kernel's own branch-free sine and cosine (:func:`_sincos`, within 1 ulp of
         the C library's) instead of the C library's, which numpy uses; the core outputs then
-        come from the vectorised :func:`_solve_kernel_simd` (about 3x faster, near the
-        memory-copy bound), and results differ from the numpy path by round-off amplified by
-        cancellation (normwise ~1e-15) instead of not at all.
+        come from the vectorised :func:`_solve_kernel_simd` (near the memory-copy bound), and
+        results differ from the numpy path by round-off (module notes: :data:`ULP_BOUND`)
+        instead of not at all.
 
     Returns
     -------
@@ -485,7 +491,7 @@ def case_inputs(case, eps, beta) -> dict:
 
 
 def solve_case(case, eps, beta, approach_tol: float, singular_tol: float,
-               fast_trig: bool = False) -> Result:
+               fast_trig: bool = True) -> Result:
     """:func:`pim.solve` of ``case`` on the kernel.
 
     The core fields (post-impact velocities, yaw rates, impulse, mu0 and the flags) come from
@@ -509,4 +515,4 @@ def solve_case(case, eps, beta, approach_tol: float, singular_tol: float,
         return {name: full[name] for name in AUX}
 
     return Result(case, eps, beta, out, fill=fill,
-                  backend="numba-fast-trig" if fast_trig else "numba")
+                  backend="numba" if fast_trig else "numba-libm")

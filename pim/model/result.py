@@ -59,8 +59,9 @@ class Result(SheetNotation, EnergyOutputs, DirectionOutputs, Admissibility):
         Called once, with no argument, when a core field missing from ``fields`` and ``raw``
         is first read; returns a dict of the missing fields.
     backend : str
-        What evaluated the formula: "python" (one case in floats), "numpy", "numba" or
-        "numba-fast-trig" (the batch kernel with its own sine and cosine).
+        What evaluated the formula: "python" (one case in floats), "numpy", "numba" (the batch
+        kernel with its own sine and cosine, the default) or "numba-libm" (the batch kernel
+        with the C library's, ``fast_trig=False``).
 
     Attributes
     ----------

@@ -9,8 +9,12 @@ checks the inputs, chooses the path that evaluates it and wraps the answer in a
 * batches of :data:`FAST_PATH_MIN_SIZE` cases and more: the fused parallel numba kernel
   (:mod:`pim.model.kernel`), which compiles the same formula.
 
-The three agree bitwise (same operations in the same order, the C library's sine and cosine;
-``tests/test_solver.py``, ``tests/test_kernel.py``).
+The Python and numpy paths agree bitwise (same operations in the same order, the C library's
+sine and cosine; ``tests/test_solver.py``). The kernel takes its own sine and cosine (within
+1 ulp) by default, which lets it run near the memory-copy bound, and agrees with numpy within
+:data:`pim.model.kernel.ULP_BOUND` ulp of each output's scale times the condition number of q;
+``fast_trig=False`` makes it bitwise equal to numpy at about 0.35 of the copy bound
+(``tests/test_kernel.py``, ``benchmarks/bench_solve.py``).
 
 *Energy.* The kinetic energy lost is -P.(u + U)/2, whose n and t parts are the normal and
 tangential crush energies (Brach & Welsh, SAE 2007-01-0737); Brach's closed form T_L is
@@ -129,7 +133,7 @@ def _use_kernel(case: Case, eps, beta, backend: str) -> bool:
     return True
 
 
-def solve(case: Case, eps=None, beta=None, backend: str = "auto", fast_trig: bool = False,
+def solve(case: Case, eps=None, beta=None, backend: str = "auto", fast_trig: bool = True,
           approach_tol: float = APPROACH_TOLERANCE,
           singular_tol: float = SINGULAR_TOLERANCE) -> Result:
     """Post-impact motion of a planar two-body impact (Brach's PIM).
@@ -153,10 +157,11 @@ def solve(case: Case, eps=None, beta=None, backend: str = "auto", fast_trig: boo
         cases when numba is installed, numpy otherwise.
     fast_trig : bool
         On the kernel only: take sin and cos of Gamma from the kernel's own branch-free
-        fdlibm polynomials (within 1 ulp of the C library's) instead of the C library, which
-        lets the compiler vectorise the kernel (about 2.5x faster, near the memory-copy bound;
-        ``benchmarks/bench_solve.py``), so results agree with the numpy path to round-off
-        instead of bitwise.
+        fdlibm polynomials (within 1 ulp of the C library's; the default), which lets the
+        compiler vectorise the kernel (near the memory-copy bound; ``benchmarks/bench_solve.py``),
+        so results agree with the numpy path within :data:`pim.model.kernel.ULP_BOUND` ulp of
+        their scale times the condition number of q; False takes the C library's, bitwise
+        equal to the numpy path and about 2.5x slower.
     approach_tol : float
         The vehicles approach at C where u_n < -approach_tol (|u_n| + |u_t|) [-].
     singular_tol : float
