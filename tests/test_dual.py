@@ -8,7 +8,7 @@ import numpy as np
 from hypothesis import given, settings
 
 import pim
-from pim.analysis.derivatives import motion_derivatives
+from .closed_form import motion_derivatives
 from pim.model.dual import MOTION_INPUTS, MOTION_OUTPUTS, Dual, motion_jacobian
 from tests.scenes import random_cases, scenes
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import pim
-from pim.analysis.derivatives import output_values
+from .closed_form import output_values
 from pim.model.quantities import FIELDS, INPUTS, OUTPUTS, VECTOR_FIELDS, field_of
 
 

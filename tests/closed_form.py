@@ -1,4 +1,8 @@
-"""Closed-form derivatives of every PIM output with respect to (epsilon, beta).
+"""Test oracle: closed-form derivatives of every PIM output with respect to (epsilon, beta).
+
+Hand-derived, independent of the dual numbers (:mod:`pim.model.dual`) through which the
+fits differentiate the one formula: the tests check each against the other and against
+finite differences. (It was ``pim/analysis/derivatives.py``; the library no longer uses it.)
 
 Every output of
 :func:`pim.solve` is differentiated in closed form with respect to the coefficient of
@@ -28,8 +32,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..model.geometry import cross, dot
-from ..model.result import Result
+from pim.model.geometry import cross, dot
+from pim.model.result import Result
 
 __all__ = ["derivatives", "Derivatives", "output_values", "motion_derivatives",
            "MotionDerivative"]
