@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 
 import pim
-from .closed_form import derivatives, output_values
 from pim.model.quantities import OUTPUTS
+
+from .closed_form import derivatives, output_values
 
 
 def _central(case, eps, beta, param, h=1e-6):

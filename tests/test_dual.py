@@ -8,9 +8,10 @@ import numpy as np
 from hypothesis import given, settings
 
 import pim
-from .closed_form import motion_derivatives
 from pim.model.dual import MOTION_INPUTS, MOTION_OUTPUTS, Dual, motion_jacobian
 from tests.scenes import random_cases, scenes
+
+from .closed_form import motion_derivatives
 
 
 def test_dual_arithmetic_matches_calculus():

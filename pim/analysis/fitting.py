@@ -92,8 +92,8 @@ class FitResult:
         Number of evaluations of the residuals in the local refinement (each over every
         start still running; the coarse sample counts as one).
     values : dict
-        Every parameter by its dotted key -> value [SI]: ``impact.restitution`` and
-        ``impact.beta`` always (fitted or fixed), and the ``free`` keys.
+        Every fitted parameter by its dotted key -> value [SI], on every path:
+        ``impact.restitution`` and ``impact.beta`` unless fixed, and the ``free`` keys.
     identifiability : Identifiability
         Rank, singular values, correlations, families of exact fits, under-determination.
     minima_values : tuple
@@ -146,7 +146,7 @@ class FitResult:
     @property
     def fitted_keys(self) -> tuple[str, ...]:
         """The parameters fitted (dotted keys; fixed eps or beta excluded)."""
-        return tuple(self.minima_values[0][0]) if self.minima_values else ()
+        return tuple(self.values)
 
     @property
     def chi_square(self) -> bool:
@@ -233,8 +233,9 @@ def _box(bounds, eps, beta, free: dict) -> dict:
 def _fit_result(case, raw: FreeFit, terms, include_yaw, bounds, fixed, eps, beta,
                 weights) -> FitResult:
     """Wrap the engine's outcome into a :class:`FitResult` (one bound detection: ``side``)."""
-    values = {"impact.restitution": eps, "impact.beta": beta, **raw.values}
-    e_opt, b_opt = values["impact.restitution"], values["impact.beta"]
+    values = raw.values
+    e_opt = values.get("impact.restitution", eps)
+    b_opt = values.get("impact.beta", beta)
     grad = dict(zip(raw.keys, raw.gradient, strict=True))
     on_bound = {SHORT_NAMES.get(k, k): ("lower" if s < 0 else "upper")
                 for k, s in zip(raw.keys, raw.side, strict=True) if s}
@@ -305,8 +306,8 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
     free = check_free(free or {})
     eps, beta = _check_fixed(eps, beta, free)
     _check_grid(grid)
-    if not np.any(solve(case, 0.5 if eps is None else eps, 1.0 if beta is None else beta)
-                  .approaching):
+    if not free and not np.any(solve(case, 0.5 if eps is None else eps,
+                                     1.0 if beta is None else beta).approaching):
         raise ValueError(f"case {case.name or '(unnamed)'}: the vehicles do not approach at C "
                          "(u_n >= 0): there is no impact to fit")
     weights = measured_weights(case, terms)

@@ -307,13 +307,13 @@ def evidence_sampler(case: Case, post: PostImpact, include_yaw: bool = True):
 
     from .runout_fit_batch import fit_runout_many  # compiled run-out: numba on first use
 
-    names = measured_terms(post.case, include_yaw)
+    terms = measured_terms(post.case, include_yaw)
 
     def sampler(values, uniforms, rng, n):
         def each(name):
             return np.broadcast_to(np.asarray(values[name], dtype=float), (n,))
 
-        targets = np.empty((n, len(names)))
+        targets = np.empty((n, len(terms)))
         ok = np.ones(n, dtype=bool)
         extra = {}
         for i, nominal in post.runouts.items():
@@ -346,13 +346,10 @@ def evidence_sampler(case: Case, post: PostImpact, include_yaw: bool = True):
                 path_points=points, position_sigma=ev.position_sigma,
                 heading_sigma=ev.heading_sigma)
             ok &= fit.converged & fit.stopped
-            for j, name in enumerate(names):
-                if name == f"velocity{i}_x":
-                    targets[:, j] = fit.velocity[:, 0]
-                elif name == f"velocity{i}_y":
-                    targets[:, j] = fit.velocity[:, 1]
-                elif name == f"yaw_rate{i}":
-                    targets[:, j] = fit.yaw_rate
+            for j, term in enumerate(terms):
+                if term.vehicle == i:
+                    targets[:, j] = (fit.velocity[:, term.axis] if term.is_velocity
+                                     else fit.yaw_rate)
         return targets, ok, extra
 
     return sampler

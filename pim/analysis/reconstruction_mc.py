@@ -186,9 +186,9 @@ def solve_samples(case, fit_result: FitResult, unknown: dict, n: int, rng, *,
 
         sigma, source = _measured_sigmas(case, names, fit_result)
         targets = np.empty((n, len(names)))
-        for j, name in enumerate(names):
+        for j, term in enumerate(names):
             u = rng.random(n) + 2.0**-54
-            uniforms[f"measured.{name}"] = u
+            uniforms[f"measured.{term.name}"] = u
             targets[:, j] = target[j] + sigma[j] * ndtri(u)
         ok_post = np.ones(n, dtype=bool)
         if source != "stated":
