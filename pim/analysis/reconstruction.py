@@ -37,7 +37,7 @@ from .reconstruction_mc import (
     solve_samples,
     summarise,
 )
-from .residuals import measured_terms
+from .residuals import GoodnessOfFit, measured_terms
 from .runout_fit import RunoutFit, fit_runout
 
 __all__ = ["PostImpact", "post_impact_motion", "approach_direction", "Reconstruction",
@@ -52,7 +52,8 @@ class PostImpact:
     ----------
     case : Case, the input case with ``measured`` replaced by the run-out fits' motion
     runouts : dict vehicle number (1, 2) -> RunoutFit (only vehicles with evidence)
-    velocity_sigma : dict vehicle number -> (2, 2) covariance of the post-impact velocity
+    velocity_covariance : dict vehicle number -> (2, 2) covariance of the post-impact
+        velocity [m^2/s^2] (``velocity_sigma``, its former name, still reads it)
     yaw_rate_sigma : dict vehicle number -> standard deviation of the yaw rate [rad/s]
     momentum : MomentumSpeeds or None (needs both vehicles' evidence)
     messages : list of plain-language warnings (unreachable rest, no stop, several minima)
@@ -60,10 +61,15 @@ class PostImpact:
 
     case: Case
     runouts: dict
-    velocity_sigma: dict
+    velocity_covariance: dict
     yaw_rate_sigma: dict
     momentum: MomentumSpeeds | None
     messages: list
+
+    @property
+    def velocity_sigma(self) -> dict:
+        """Former name of :attr:`velocity_covariance` (it always held covariances)."""
+        return self.velocity_covariance
 
 
 def _velocity_covariance(fit: RunoutFit) -> tuple[np.ndarray, float]:
@@ -164,6 +170,11 @@ class Reconstruction:
     determined: bool
     messages: list
 
+    @property
+    def goodness(self) -> GoodnessOfFit | None:
+        """Chi-square test of the inverse PIM (None without standard deviations or a fit)."""
+        return None if self.fit is None else self.fit.goodness
+
     def table(self) -> list[dict]:
         """Per unknown: name, value, p5, p50, p95 [SI] (percentiles NaN without samples)."""
         rows = []
@@ -236,6 +247,8 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
     messages += list(ident.warnings) if ident else []
     for key, side in fitted.on_bound.items():
         messages.append(f"{key} sits on its {side} bound")
+    if fitted.goodness is not None and fitted.goodness.consistent is False:
+        messages.append(fitted.goodness.summary())
     best = fitted.minima_values[0][1] if fitted.minima_values else 0.0
     equal = [v for v, c in fitted.minima_values if c <= best * (1 + 1e-6) + 1e-12]
     if len(equal) > 1:

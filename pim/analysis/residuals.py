@@ -169,6 +169,12 @@ class GoodnessOfFit:
         return f"the measurements are consistent with PIM at the stated sigmas (p = " \
                f"{self.p_value:.2g})"
 
+    def summary(self) -> str:
+        """One line: chi-square, degrees of freedom, p-value and the verdict."""
+        p = f"p = {self.p_value:.3g}" if self.dof > 0 else "p undefined"
+        return (f"chi-square = {self.chi_square:.4g} with {self.dof} degrees of freedom "
+                f"({p}): {self.verdict()}")
+
     def to_dict(self) -> dict:
         return {"chi_square": self.chi_square, "dof": self.dof,
                 "p_value": None if not np.isfinite(self.p_value) else self.p_value,

@@ -103,9 +103,8 @@ def _cost_lines(result, fv: float, uv: str) -> list[str]:
     if result.goodness is None:
         return [f"  cost    = {result.cost * fv * fv:.6g} ({uv})^2 (sum of squares)   {rms}"]
     g = result.goodness
-    p = f"p = {g.p_value:.3g}" if g.dof > 0 else "p undefined"
-    return [f"  chi-square = {g.chi_square:.4g} with {g.dof} degrees of freedom ({p})   {rms}",
-            f"  {g.verdict()}"]
+    line, verdict = g.summary().split("): ", 1)
+    return [f"  {line})   {rms}", f"  {verdict}"]
 
 
 @click.command()
