@@ -35,7 +35,7 @@ import numpy as np
 import pim
 import sim
 from pim.analysis.residuals import has_measured_terms
-from pim.io.files import atomic_path, save_figure, write_text
+from pim.io.files import save_figure, write_text
 from pim.io.units import convert
 from pim.model.plausibility import warnings_of
 from pim.model.quantities import OUTPUTS as QUANTITIES
@@ -567,6 +567,3 @@ def _markdown(case, fit, eps, beta, sources, result, simulated, sim_error, limit
         lines.append(f"- [{path}]({path})")
     lines += ["", "Timings: " + ", ".join(f"{k} {v:.2f} s" for k, v in rep.seconds.items()), ""]
     return "\n".join(lines)
-
-
-del atomic_path

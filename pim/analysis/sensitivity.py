@@ -16,6 +16,7 @@ import numpy as np
 
 from ..model.case import Case
 from ..model.dual import MOTION_OUTPUTS, motion_jacobian
+from ..model.geometry import radius_of_gyration
 from ..model.motion import as_terms
 from ..model.quantities import INPUTS as QUANTITY_INPUTS
 from ..model.quantities import MEASURED, OUTPUTS, Quantity
@@ -238,8 +239,8 @@ def _cost_gradient(cases: Case, terms, eps, beta, fit_case_: Case) -> tuple:
     for col, term in enumerate(as_terms(terms)):
         if not term.is_velocity:
             v0, v = (getattr(c, f"vehicle{term.vehicle}") for c in (fit_case_, cases))
-            ratio = np.sqrt(np.asarray(v.yaw_inertia / v.mass, dtype=float)
-                            / float(v0.yaw_inertia / v0.mass))
+            k0 = float(radius_of_gyration(v0.mass, v0.yaw_inertia))
+            ratio = radius_of_gyration(v.mass, v.yaw_inertia) / k0 if k0 > 0 else np.ones(1)
             factor[:, col] *= np.broadcast_to(ratio.reshape(-1), (m,))
     r, j = free_residuals(state, _EPS_BETA, x, rows, target, factor)
     return 2.0 * np.einsum("pk,pkn->pn", r, j), j, factor
