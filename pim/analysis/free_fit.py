@@ -31,6 +31,7 @@ during the fit.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -265,6 +266,19 @@ def _distinct(x: np.ndarray, cost: np.ndarray, width: np.ndarray) -> list[int]:
     return kept
 
 
+@lru_cache(maxsize=64)
+def sobol_sample(d: int, samples: int, seed: int) -> np.ndarray:
+    """Scrambled Sobol points in the unit cube (2^m >= ``samples`` of them, at least 8),
+    seeded so that fits repeat; cached (read-only), as building the generator costs more
+    than the fit's coarse evaluation."""
+    from scipy.stats import qmc
+
+    m_exp = int(np.ceil(np.log2(max(int(samples), 8))))
+    u = qmc.Sobol(d=d, scramble=True, seed=seed).random_base2(m_exp)
+    u.flags.writeable = False
+    return u
+
+
 def fit_free(case: Case, box: dict, terms, eps: float = 0.5, beta: float = 0.5,
              samples: int = 256, max_starts: int = 5, seed: int = 0) -> FreeFit:
     """Bounded least squares of the residual ``terms`` over the parameters of ``box``.
@@ -287,8 +301,6 @@ def fit_free(case: Case, box: dict, terms, eps: float = 0.5, beta: float = 0.5,
     seed : int
         Seed of the scrambled Sobol sample.
     """
-    from scipy.stats import qmc
-
     keys = tuple(box)
     check_free_for_case(case, keys)
     lo, hi = (np.array([box[k][j] for k in keys], dtype=float) for j in (0, 1))
@@ -300,8 +312,7 @@ def fit_free(case: Case, box: dict, terms, eps: float = 0.5, beta: float = 0.5,
         return free_residuals(base, keys, x, rows, target, factor, jacobian=jacobian)
 
     # coarse global search: one vectorised evaluation of the Sobol sample
-    m_exp = int(np.ceil(np.log2(max(int(samples), 8))))
-    u = qmc.Sobol(d=len(keys), scramble=True, seed=seed).random_base2(m_exp)
+    u = sobol_sample(len(keys), samples, seed)
     xs = lo + u * width
     r0, _ = resid(xs, jacobian=False)
     starts = _starts(u, np.sum(r0 * r0, axis=1), max_starts)
