@@ -242,11 +242,30 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         return Reconstruction(solved, unknown, post, None, {}, momentum, None, False,
                               messages + [why])
     fitted = inverse_pim(solved, unknown, include_yaw=include_yaw)
+    determined, said = _judge(fitted)
+    messages += said
+    values = {k: v for k, v in fitted.values.items()} if determined else {}
+    if momentum is not None and not post and solved.measured.velocity1_sigma is None:
+        s_hat = residual_standard_error(fitted)          # no sigma stated: the fit's
+        if np.isfinite(s_hat):
+            momentum = _momentum_of(solved, s_hat)
+    mc = None
+    if determined and samples:
+        mc = _monte_carlo(case, post, solved, fitted, unknown, samples, seed, include_yaw,
+                          post_impact_samples, executor, blocks)
+        messages += mc.messages
+    return Reconstruction(solved, unknown, post, fitted, values, momentum, mc, determined,
+                          messages)
+
+
+def _judge(fitted: FitResult) -> tuple[bool, list[str]]:
+    """Whether the inverse PIM determines the unknowns, and what to tell the user: the
+    identifiability warnings, parameters on a bound, a chi-square that says the data do not
+    fit, several equally good solutions."""
     ident = fitted.identifiability
     determined = ident is None or ident.identifiable
-    messages += list(ident.warnings) if ident else []
-    for key, side in fitted.on_bound.items():
-        messages.append(f"{key} sits on its {side} bound")
+    messages = list(ident.warnings) if ident else []
+    messages += [f"{key} sits on its {side} bound" for key, side in fitted.on_bound.items()]
     if fitted.goodness is not None and fitted.goodness.consistent is False:
         messages.append(fitted.goodness.summary())
     best = fitted.minima_values[0][1] if fitted.minima_values else 0.0
@@ -256,32 +275,28 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         messages.append(f"{len(equal)} distinct solutions fit equally well (" + "; ".join(
             ", ".join(f"{k} = {x:.4g}" for k, x in v.items()) for v in equal)
             + "): the data do not decide between them")
-    values = {k: v for k, v in fitted.values.items()} if determined else {}
-    if momentum is not None and not post and solved.measured.velocity1_sigma is None:
-        s_hat = residual_standard_error(fitted)          # no sigma stated: the fit's
-        if np.isfinite(s_hat):
-            momentum = _momentum_of(solved, s_hat)
-    mc = None
-    if determined and samples:
-        if executor is None or post_impact_samples is not None:
-            extra_nominal, sampler = {}, post_impact_samples
-            if post is not None and sampler is None:
-                extra_nominal = evidence_nominal(case, post)
-                sampler = evidence_sampler(case, post, include_yaw)
-            mc = reconstruction_samples(solved, fitted, unknown, n=samples, seed=seed,
-                                        include_yaw=include_yaw, post_impact=sampler,
-                                        extra_nominal=extra_nominal)
-        else:
-            k = int(blocks or 4)
-            sizes = [len(part) for part in np.array_split(np.arange(samples), k) if len(part)]
-            seeds = np.random.SeedSequence(seed).spawn(len(sizes))
-            pool = executor.get_executor() if hasattr(executor, "get_executor") else executor
-            jobs = [(solved, fitted, unknown, size, sq, include_yaw, case, post)
-                    for size, sq in zip(sizes, seeds, strict=True)]
-            mc = summarise(fitted, list(pool.map(sample_block, jobs)))
-        messages += mc.messages
-    return Reconstruction(solved, unknown, post, fitted, values, momentum, mc, determined,
-                          messages)
+    return determined, messages
+
+
+def _monte_carlo(case, post, solved, fitted, unknown, samples, seed, include_yaw,
+                 post_impact_samples, executor, blocks) -> ReconstructionSamples:
+    """The Monte Carlo of :func:`reconstruct`: in this process, or in seeded blocks on the
+    executor."""
+    if executor is None or post_impact_samples is not None:
+        extra_nominal, sampler = {}, post_impact_samples
+        if post is not None and sampler is None:
+            extra_nominal = evidence_nominal(case, post)
+            sampler = evidence_sampler(case, post, include_yaw)
+        return reconstruction_samples(solved, fitted, unknown, n=samples, seed=seed,
+                                      include_yaw=include_yaw, post_impact=sampler,
+                                      extra_nominal=extra_nominal)
+    k = int(blocks or 4)
+    sizes = [len(part) for part in np.array_split(np.arange(samples), k) if len(part)]
+    seeds = np.random.SeedSequence(seed).spawn(len(sizes))
+    pool = executor.get_executor() if hasattr(executor, "get_executor") else executor
+    jobs = [(solved, fitted, unknown, size, sq, include_yaw, case, post)
+            for size, sq in zip(sizes, seeds, strict=True)]
+    return summarise(fitted, list(pool.map(sample_block, jobs)))
 
 
 def _momentum_of(case: Case, sigma: float | None = None) -> MomentumSpeeds | None:

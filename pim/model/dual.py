@@ -168,6 +168,35 @@ def motion_jacobian(case: Case, eps, beta, approach_tol: float = 1e-12,
     return motion_of_inputs(motion_inputs(case, eps, beta), approach_tol, singular_tol)
 
 
+def _seeds(x: np.ndarray, tangent, jacobian: bool):
+    """The formula's inputs from the rows ``x``: ``seed(i)`` (input i), ``inverse(i)`` (its
+    inverse, d(1/m) = -dm/m^2, zero at infinite mass), cos and sin of Gamma (input 2), and
+    the gradient width; dual numbers carrying ``tangent`` (default: the identity) when
+    ``jacobian``, plain arrays otherwise."""
+    shape = x.shape[:-1]
+    if tangent is None:
+        tangent = np.broadcast_to(np.eye(len(MOTION_INPUTS)), shape + (len(MOTION_INPUTS),) * 2)
+    tangent = np.asarray(tangent, dtype=float)
+
+    def seed(index):
+        return Dual(x[..., index], tangent[..., index, :]) if jacobian else x[..., index]
+
+    def inverse(index):
+        with np.errstate(divide="ignore"):
+            inv = 1.0 / x[..., index]
+        if not jacobian:
+            return inv
+        return Dual(inv, np.where(np.isinf(x[..., index]), 0.0, -inv * inv)[..., None]
+                    * tangent[..., index, :])
+
+    gamma = x[..., 2]
+    if not jacobian:
+        return seed, inverse, np.cos(gamma), np.sin(gamma), tangent.shape[-1]
+    return (seed, inverse, Dual(np.cos(gamma), -np.sin(gamma)[..., None] * tangent[..., 2, :]),
+            Dual(np.sin(gamma), np.cos(gamma)[..., None] * tangent[..., 2, :]),
+            tangent.shape[-1])
+
+
 def motion_of_inputs(x, approach_tol: float = 1e-12, singular_tol: float = 1e-12,
                      jacobian: bool = True, tangent=None) -> tuple[np.ndarray, np.ndarray | None]:
     """Post-impact motion of the inputs ``x`` (:data:`MOTION_INPUTS` order) and its Jacobian.
@@ -190,7 +219,7 @@ def motion_of_inputs(x, approach_tol: float = 1e-12, singular_tol: float = 1e-12
     values : ndarray, shape S + (10,)
         The outputs of :data:`MOTION_OUTPUTS` [N s, m/s, rad/s] (formula of
         :mod:`pim.model.formula`, the same as :func:`pim.solve`).
-    jacobian : ndarray, shape S + (10, 19), or None
+    jacobian : ndarray, shape S + (10, 19) (S + (10, n) with ``tangent``), or None
         d output / d input; zero where the vehicles do not approach, NaN where q is singular.
 
     Notes
@@ -201,30 +230,7 @@ def motion_of_inputs(x, approach_tol: float = 1e-12, singular_tol: float = 1e-12
     """
     x = np.asarray(x, dtype=float)
     shape = x.shape[:-1]
-    if tangent is None:
-        tangent = np.broadcast_to(np.eye(len(MOTION_INPUTS)), shape + (len(MOTION_INPUTS),) * 2)
-    tangent = np.asarray(tangent, dtype=float)
-    k = tangent.shape[-1]
-
-    def seed(index):
-        if not jacobian:
-            return x[..., index]
-        return Dual(x[..., index], tangent[..., index, :])
-
-    def inverse(index):
-        with np.errstate(divide="ignore"):
-            inv = 1.0 / x[..., index]
-        if not jacobian:
-            return inv
-        return Dual(inv, np.where(np.isinf(x[..., index]), 0.0, -inv * inv)[..., None]
-                    * tangent[..., index, :])
-
-    gamma = x[..., 2]
-    if jacobian:
-        cs = Dual(np.cos(gamma), -np.sin(gamma)[..., None] * tangent[..., 2, :])
-        sn = Dual(np.sin(gamma), np.cos(gamma)[..., None] * tangent[..., 2, :])
-    else:
-        cs, sn = np.cos(gamma), np.sin(gamma)
+    seed, inverse, cs, sn, k = _seeds(x, tangent if jacobian else None, jacobian)
     e, b = seed(0), seed(1)
     px, py = seed(3), seed(4)
     v1x, v1y, w1 = seed(5), seed(6), seed(7)
