@@ -37,3 +37,37 @@ def test_bad_terms(args):
         Term(*args)
     with pytest.raises(ValueError, match="unknown post-impact term"):
         as_terms(["velocity3_x"])
+
+
+def test_impact_error_is_the_largest_change_error_over_the_largest_change():
+    """The one error measure (moved from sim.error_measure, which now calls it): written
+    out here from the result's fields."""
+    from pim.model.motion import MotionValues, impact_error
+
+    case = pim.load_case("ricsac9")
+    r = pim.solve(case, 0.355, 1.0)
+    k1 = np.sqrt(float(case.vehicle1.yaw_inertia) / float(case.vehicle1.mass))
+    k2 = np.sqrt(float(case.vehicle2.yaw_inertia) / float(case.vehicle2.mass))
+    changes = np.abs(np.concatenate([
+        r.velocity1 - case.vehicle1.velocity, r.velocity2 - case.vehicle2.velocity,
+        [k1 * (float(r.yaw_rate1) - float(case.vehicle1.yaw_rate)),
+         k2 * (float(r.yaw_rate2) - float(case.vehicle2.yaw_rate))]]))
+    v1 = np.array([r.velocity1 + [0.1, 0.0], r.velocity1, [np.nan, 0.0]])
+    w2 = np.array([float(r.yaw_rate2), float(r.yaw_rate2) + 0.2, 0.0])
+    got = impact_error(case, r, MotionValues(v1, np.broadcast_to(r.velocity2, (3, 2)),
+                                             np.full(3, float(r.yaw_rate1)), w2))
+    np.testing.assert_allclose(got[:2], [0.1 / changes.max(), k2 * 0.2 / changes.max()],
+                               rtol=1e-12)
+    assert np.isnan(got[2])
+    assert impact_error(case, r, r) == 0.0
+
+
+def test_sim_error_measure_calls_the_one_formula():
+    from pim.model.motion import MotionValues, impact_error
+    from sim.error_measure import impact_error as sim_error
+
+    case = pim.load_case("ricsac9")
+    r = pim.solve(case, 0.355, 1.0)
+    v1 = np.asarray(r.velocity1) + [0.3, -0.2]
+    assert sim_error(case, r, v1, r.velocity2, r.yaw_rate1, r.yaw_rate2) == impact_error(
+        case, r, MotionValues(v1, r.velocity2, r.yaw_rate1, r.yaw_rate2))

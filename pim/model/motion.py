@@ -22,7 +22,10 @@ from typing import Literal, Protocol, runtime_checkable
 
 import numpy as np
 
-__all__ = ["PostImpactMotion", "Term", "QUANTITIES", "TERMS", "as_terms"]
+from .geometry import radius_of_gyration
+
+__all__ = ["PostImpactMotion", "MotionValues", "Term", "QUANTITIES", "TERMS", "as_terms",
+           "velocity_changes", "impact_error"]
 
 #: The scalar quantities of one vehicle's post-impact motion: CG velocity x and y [m/s] and
 #: yaw rate [rad/s].
@@ -45,6 +48,56 @@ class PostImpactMotion(Protocol):
     velocity2: object
     yaw_rate1: object
     yaw_rate2: object
+
+
+@dataclass(frozen=True)
+class MotionValues:
+    """Plain post-impact motion (a :class:`PostImpactMotion`): arrays as given, unchecked
+    (NaN allowed, e.g. for failed simulation runs) [m/s, rad/s]."""
+
+    velocity1: object
+    velocity2: object
+    yaw_rate1: object
+    yaw_rate2: object
+
+
+def velocity_changes(case, motion: PostImpactMotion) -> np.ndarray:
+    """(dV1x, dV1y, dV2x, dV2y, k1 dW1, k2 dW2) [m/s] of ``motion`` against the single
+    ``case``'s pre-impact motion, shape (..., 6); k_i = sqrt(I_i / m_i) the radius of
+    gyration, so a yaw-rate change counts as the speed it gives a point at k_i from the CG.
+    A fixed obstacle's changes are 0."""
+    a, b = case.vehicle1, case.vehicle2
+    d1 = np.asarray(motion.velocity1, float) - np.asarray(a.velocity, float).reshape(2)
+    d2 = np.asarray(motion.velocity2, float) - np.asarray(b.velocity, float).reshape(2)
+    if bool(np.all(b.fixed)):
+        d2 = np.zeros_like(d2)
+    k1 = float(radius_of_gyration(a.mass, a.yaw_inertia))
+    k2 = float(radius_of_gyration(b.mass, b.yaw_inertia))
+    e1 = k1 * (np.asarray(motion.yaw_rate1, float) - float(np.asarray(a.yaw_rate).reshape(())))
+    e2 = (k2 * (np.asarray(motion.yaw_rate2, float) - float(np.asarray(b.yaw_rate).reshape(())))
+          if k2 else np.zeros_like(e1))
+    return np.concatenate([d1, d2, np.asarray(e1)[..., None], np.asarray(e2)[..., None]], -1)
+
+
+def impact_error(case, reference: PostImpactMotion, other: PostImpactMotion) -> np.ndarray:
+    """The project's one error measure: the largest error in the impact's velocity changes,
+    relative to the largest change [-],
+
+        e = max(|dV1' - dV1|, |dV2' - dV2|, k1 |dW1' - dW1|, k2 |dW2' - dW2|)
+            / max(|dV1|, |dV2|, k1 |dW1|, k2 |dW2|)
+
+    (component-wise maxima, :func:`velocity_changes`; ``reference`` a single motion, e.g.
+    the analytic :class:`pim.Result`, ``other`` any batch shape, e.g. simulations).
+    Measured against the change rather than the speed, a grazing impact (tiny impulse, large
+    speeds) stays honest: a 1e-6 error in its impulse is a 1e-6 error, not 1e-10 of the
+    speed. NaN where ``other`` is NaN."""
+    ref = velocity_changes(case, MotionValues(
+        np.asarray(reference.velocity1, float).reshape(2),
+        np.asarray(reference.velocity2, float).reshape(2),
+        float(np.asarray(reference.yaw_rate1).reshape(())),
+        float(np.asarray(reference.yaw_rate2).reshape(()))))
+    scale = max(float(np.abs(ref).max()), 1e-300)
+    return np.max(np.abs(velocity_changes(case, other) - ref), axis=-1) / scale
 
 
 @dataclass(frozen=True, order=True)
