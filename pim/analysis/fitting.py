@@ -171,6 +171,7 @@ class FitResult:
             "fixed": list(self.fixed), "on_bound": dict(self.on_bound),
             "gradient": {"eps": float(self.gradient[0]), "beta": float(self.gradient[1])},
             "minima": [{"eps": e, "beta": b, "cost": c} for e, b, c in self.minima],
+            "values": dict(self.values),
             "goodness_of_fit": None if self.goodness is None else self.goodness.to_dict(),
             "admissible": bool(self.result.admissible), "problems": self.result.problems(),
         }

@@ -135,7 +135,6 @@ def fit(case_name, include_yaw, eps, beta, eps_range, beta_range, free, units, a
     if as_json:
         data = result.to_dict()
         if free:
-            data["values"] = {k: float(v) for k, v in result.values.items()}
             data["identifiability"] = ident.to_dict() if ident is not None else None
         echo_json(data)
         return
