@@ -250,6 +250,8 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
 
     how = ("fitted to the measured motion" if sens.fit is not None
            else "at fixed epsilon, beta (nothing measured)")
+    if sens.fit is not None and sens.fit.chi_square:
+        how += ", weighted by the [measured] standard deviations"
     click.echo(f"{case.name}: sensitivity at epsilon = {sens.eps:.4f}, beta = {sens.beta:.4f} "
                f"({how})")
     if sens.active_bounds:
