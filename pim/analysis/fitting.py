@@ -303,18 +303,18 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
     if np.size(case.vehicle1.mass) != 1 or np.shape(case.impact.point) != (2,):
         raise ValueError("fit needs a single case, not a batch of cases")
     terms = measured_terms(case, include_yaw)
-    bounds = _check_bounds(bounds)
-    free = check_free(free or {})
-    eps, beta = _check_fixed(eps, beta, free)
+    box_eb = _check_bounds(bounds)
+    free_box = check_free(free or {})
+    eps_fixed, beta_fixed = _check_fixed(eps, beta, free_box)
     _check_grid(grid)
-    if not free and not np.any(solve(case, 0.5 if eps is None else eps,
-                                     1.0 if beta is None else beta).approaching):
+    eps0 = 0.5 if eps_fixed is None else eps_fixed
+    beta0 = 0.5 if beta_fixed is None else beta_fixed
+    if not free_box and not np.any(solve(case, eps0, beta0).approaching):
         raise ValueError(f"case {case.name or '(unnamed)'}: the vehicles do not approach at C "
                          "(u_n >= 0): there is no impact to fit")
     weights = measured_weights(case, terms)
-    box = _box(bounds, eps, beta, free)
-    raw = fit_free(case, box, terms, 0.5 if eps is None else eps,
-                   0.5 if beta is None else beta, samples=samples, max_starts=max_starts,
-                   seed=seed)
-    fixed = tuple(n for n, v in (("eps", eps), ("beta", beta)) if v is not None)
-    return _fit_result(case, raw, terms, include_yaw, bounds, fixed, eps, beta, weights)
+    raw = fit_free(case, _box(box_eb, eps_fixed, beta_fixed, free_box), terms, eps0, beta0,
+                   samples=samples, max_starts=max_starts, seed=seed)
+    fixed = tuple(n for n, v in (("eps", eps_fixed), ("beta", beta_fixed)) if v is not None)
+    return _fit_result(case, raw, terms, include_yaw, box_eb, fixed, eps_fixed, beta_fixed,
+                       weights)
