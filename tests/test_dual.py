@@ -1,5 +1,5 @@
 """pim/model/dual.py: exact derivatives through the one formula, against two independent
-references: the hand-derived closed form of pim.analysis.derivatives (for eps and beta) and
+references: the hand-derived closed form of tests/closed_form.py (for eps and beta) and
 central finite differences of pim.solve (for Gamma, C and the pre-impact motion)."""
 
 from dataclasses import replace
