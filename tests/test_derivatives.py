@@ -10,8 +10,9 @@ import pytest
 
 import pim
 from pim.model.quantities import OUTPUTS
+from pim.model.result import output_values
 
-from .closed_form import derivatives, output_values
+from .closed_form import derivatives
 
 
 def _central(case, eps, beta, param, h=1e-6):

@@ -7,8 +7,7 @@ import pytest
 
 import pim
 from pim.model.quantities import FIELDS, INPUTS, OUTPUTS, VECTOR_FIELDS, field_of
-
-from .closed_form import output_values
+from pim.model.result import output_values
 
 
 def test_fields_are_the_case_types_fields():
