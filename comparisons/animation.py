@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 import time as _time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -548,6 +548,3 @@ def animate_case(case: pim.Case, eps: float, beta: float, out, *, gif=None,
     renderer = build_renderer(case, eps, beta, **kwargs)
     return write_animation(renderer, out, fps=kwargs.get("fps", DEFAULT_FPS), gif=gif,
                            progress=progress)
-
-
-del replace

@@ -38,11 +38,11 @@ import numpy as np
 
 import pim
 import sim
-from pim.analysis.derivatives import output_values
 from pim.analysis.reconstruction import reconstruct
 from pim.analysis.residuals import has_measured_terms
 from pim.io.units import SI_UNITS
 from pim.model.quantities import OUTPUTS
+from pim.model.result import output_values
 
 from .assumptions import run_assumptions
 
@@ -130,7 +130,7 @@ def _scaled(values: dict, kinds: dict, rel: float, floor: float, section: str,
 
 def _outputs(result: pim.Result) -> dict:
     """Every scalar output of :data:`pim.model.quantities.OUTPUTS`
-    (:func:`pim.analysis.derivatives.output_values`) and the kinetic energy before [SI]."""
+    (:func:`pim.model.result.output_values`) and the kinetic energy before [SI]."""
     out = {k: _f(v) for k, v in output_values(result).items()}
     out["kinetic_energy_before"] = _f(result.kinetic_energy_before)
     return out

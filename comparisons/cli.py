@@ -192,7 +192,6 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, progress
     rtol, against a tight solve_ivp reference. "hard" stands for every bundled hard case.
     """
     from pim.io.casefile import list_cases, load_case
-    from pim.io.files import save_figure
 
     from .speed_error import COARSE, sweep, write_study
 
@@ -254,7 +253,6 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, progress
             click.echo(f"{stem}: {text}; wrote {files[0]}")
     if as_json:
         echo_json(results)
-    del save_figure
 
 
 def _command(name: str, coarse: bool, repeats: int, out) -> str:

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import pim
+from pim.model.tyres import STANDARD_GRAVITY
 from sim.scene import footprint_lever
 
 __all__ = ["Motion", "free_motion", "analytic_motion", "simulated_motion"]
@@ -77,7 +78,7 @@ def _decelerated(v0: np.ndarray, w0: float, t: np.ndarray, decel: float, yaw_dec
 
 
 def free_motion(vehicle: pim.Vehicle, velocity, yaw_rate, time, tyre: float = 0.0,
-                gravity: float = 9.80665):
+                gravity: float = STANDARD_GRAVITY):
     """Pose of one vehicle moving from its case CG/heading at ``velocity`` and ``yaw_rate``.
 
     Negative times rewind (always free motion); positive times go forward, decelerated by
@@ -104,7 +105,7 @@ def free_motion(vehicle: pim.Vehicle, velocity, yaw_rate, time, tyre: float = 0.
 
 
 def analytic_motion(case: pim.Case, result: pim.Result, time, tyre: float = 0.0,
-                    gravity: float = 9.80665) -> Motion:
+                    gravity: float = STANDARD_GRAVITY) -> Motion:
     """The ghost: pre-impact motion of the case, then PIM's post-impact motion."""
     time = np.asarray(time, float)
     out = []

@@ -35,7 +35,7 @@ import numpy as np
 import pim
 import sim
 from pim.analysis.residuals import has_measured_terms
-from pim.io.files import atomic_path, save_figure, write_text
+from pim.io.files import save_figure, write_text
 from pim.io.units import convert
 from pim.model.plausibility import warnings_of
 from pim.model.quantities import OUTPUTS as QUANTITIES
@@ -167,12 +167,22 @@ def results_table(result: pim.Result, units: str = "si", spread=None) -> Table:
     return Table("results", "Reconstruction results", columns, tuple(rows))
 
 
+def _cost_rows(fit, f: float, unit: str) -> list[tuple]:
+    """The fit's cost: with measured sigmas the chi-square [-] (unit-free), its degrees of
+    freedom, p-value and verdict; else the sum of squares in the user's unit squared."""
+    g = fit.goodness
+    if g is None:
+        return [("cost (sum of squared velocity errors)", fit.cost * f * f, f"({unit})^2")]
+    return [("chi-square", g.chi_square, "-"), ("degrees of freedom", g.dof, "-"),
+            ("p-value", g.p_value, "-"), ("verdict", g.verdict(), "")]
+
+
 def fit_table(fit, units: str = "si") -> Table:
     """The fitted (epsilon, beta) and the quality of the fit, in the ``units`` system."""
     f, unit = convert(1.0, "velocity", units)
     f = float(f)
     rows = [("epsilon", fit.eps, "-"), ("beta", fit.beta, "-"),
-            ("cost (sum of squared velocity errors)", fit.cost * f * f, f"({unit})^2"),
+            *_cost_rows(fit, f, unit),
             ("rms residual", fit.rms * f, unit),
             ("on a bound", ", ".join(f"{k} {v}" for k, v in fit.on_bound.items()) or "no", ""),
             ("local minima found", len(fit.minima), "")]
@@ -557,6 +567,3 @@ def _markdown(case, fit, eps, beta, sources, result, simulated, sim_error, limit
         lines.append(f"- [{path}]({path})")
     lines += ["", "Timings: " + ", ".join(f"{k} {v:.2f} s" for k, v in rep.seconds.items()), ""]
     return "\n".join(lines)
-
-
-del atomic_path

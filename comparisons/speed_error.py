@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from itertools import product
 
 import numpy as np
@@ -363,8 +363,6 @@ def plot_speed_error(study: SpeedErrorStudy):
             transform=ax.transAxes, fontsize=7, color="0.4")
     return fig
 
-
-del replace
 
 
 def write_study(study: SpeedErrorStudy, out_dir, stem: str, command: str = "") -> list:

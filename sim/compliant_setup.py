@@ -28,6 +28,7 @@ import numpy as np
 import pim
 from pim.model import geometry
 from pim.model.geometry import cross, radius_of_gyration
+from pim.model.tyres import STANDARD_GRAVITY
 
 from .contact_law import (
     check_fraction,
@@ -104,7 +105,7 @@ class CompliantSettings:
     max_contact_time: float = 1.0
     duration: float = 0.0
     record: bool = True
-    gravity: float = 9.80665
+    gravity: float = STANDARD_GRAVITY
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
@@ -201,10 +202,6 @@ class CompliantProblem:
     speed_scale: float          # [m/s]
     energy_before: float        # [J]
     settings: CompliantSettings
-
-    def heading_offsets(self) -> tuple[float, float]:
-        """Angle of the bodies' frames at t = 0 [rad] (the case's headings)."""
-        return float(self.state0[2]), float(self.state0[8])
 
 
 def _scalar(case: pim.Case) -> None:

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import pim
-from pim.model.geometry import radius_of_gyration
+from pim.model import motion
 
 __all__ = ["QuantityError", "compare_results", "impact_error", "analytic_residual",
            "ERROR_DEFINITION", "QUANTITIES", "KIND_OF_UNIT"]
@@ -155,30 +155,6 @@ def compare_results(case: pim.Case, result: pim.Result, simulated) -> list[Quant
     return out
 
 
-def _gyration(vehicle: pim.Vehicle) -> float:
-    return float(radius_of_gyration(vehicle.mass, vehicle.yaw_inertia))
-
-
-def _changes(case: pim.Case, v1, v2, w1, w2) -> np.ndarray:
-    """(dV1x, dV1y, dV2x, dV2y, k1 dW1, k2 dW2) [m/s], shape (..., 6)."""
-    a, b = case.vehicle1, case.vehicle2
-    d1 = np.asarray(v1, float) - np.asarray(a.velocity, float).reshape(2)
-    d2 = np.asarray(v2, float) - np.asarray(b.velocity, float).reshape(2)
-    if bool(b.fixed):
-        d2 = np.zeros_like(d2)
-    k1, k2 = _gyration(a), _gyration(b)
-    e1 = k1 * (np.asarray(w1, float) - _f(a.yaw_rate))
-    e2 = k2 * (np.asarray(w2, float) - _f(b.yaw_rate)) if k2 else np.zeros_like(e1)
-    return np.concatenate([d1, d2, np.asarray(e1)[..., None], np.asarray(e2)[..., None]], -1)
-
-
-def _change_scale(case: pim.Case, result: pim.Result) -> float:
-    ref = _changes(case, np.asarray(result.velocity1).reshape(2),
-                   np.asarray(result.velocity2).reshape(2), _f(result.yaw_rate1),
-                   _f(result.yaw_rate2))
-    return max(float(np.abs(ref).max()), 1e-300)
-
-
 def impact_error(case: pim.Case, result: pim.Result, velocity1, velocity2, yaw_rate1,
                  yaw_rate2) -> np.ndarray:
     """Largest error in the impact's velocity changes, relative to the largest change [-].
@@ -199,11 +175,8 @@ def impact_error(case: pim.Case, result: pim.Result, velocity1, velocity2, yaw_r
     ndarray
         e (module docstring) per run; NaN where the run failed.
     """
-    ref = _changes(case, np.asarray(result.velocity1).reshape(2),
-                   np.asarray(result.velocity2).reshape(2), _f(result.yaw_rate1),
-                   _f(result.yaw_rate2))
-    got = _changes(case, velocity1, velocity2, yaw_rate1, yaw_rate2)
-    return np.max(np.abs(got - ref), axis=-1) / _change_scale(case, result)
+    return motion.impact_error(case, result, motion.MotionValues(velocity1, velocity2,
+                                                                 yaw_rate1, yaw_rate2))
 
 
 def analytic_residual(case: pim.Case, result: pim.Result) -> float:
@@ -225,4 +198,4 @@ def analytic_residual(case: pim.Case, result: pim.Result) -> float:
         d1 = np.asarray(result.velocity1, float).reshape(2) - np.asarray(a.velocity).reshape(2)
         d2 = np.asarray(result.velocity2, float).reshape(2) - np.asarray(b.velocity).reshape(2)
         res.append(float(np.hypot(*(m1 * d1 + m2 * d2))) * (1 / m1 + 1 / m2))
-    return max(res) / _change_scale(case, result)
+    return max(res) / max(float(np.abs(motion.velocity_changes(case, result)).max()), 1e-300)

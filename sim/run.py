@@ -231,7 +231,6 @@ def run_scene(scene: Scene, settings: Settings) -> dict:
             f"kinetic energy rose from {scene.energy_before:.9g} J to {energy_after:.9g} J "
             f"(+{gain:.3g} J, {100 * gain / max(scene.energy_before, 1e-300):.3g} %) in the "
             f"impact" if finite else "the engine returned a non-finite state", step)
-    separation_step = step
 
     # ---- after separation: free motion (point contact removed), tyre friction -----------
     if settings.duration > 0:
@@ -265,7 +264,6 @@ def run_scene(scene: Scene, settings: Settings) -> dict:
         angle2=arr[:, 6], velocity1=arr[:, 7:9], yaw_rate1=arr[:, 9], velocity2=arr[:, 10:12],
         yaw_rate2=arr[:, 12], impact_index=int(impact_index), outline1=scene.outline1,
         outline2=scene.outline2, fixed2=scene.fixed2)
-    del separation_step
     return dict(iterations=scene.iterations, contraction_rate=scene.contraction_rate,
         velocity1=velocity1, velocity2=velocity2, yaw_rate1=float(yaw_rate1),
         yaw_rate2=float(yaw_rate2), impulse=np.array(mon.impulse),

@@ -11,6 +11,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, fields
 
+from pim.model.tyres import STANDARD_GRAVITY
+
 __all__ = ["Settings", "DEFAULT_TYRE_FRICTION", "CONTACTS", "STARTS"]
 
 #: Tyre/ground friction coefficient [-] used when ``tyre_friction=True``.
@@ -94,7 +96,7 @@ class Settings:
     max_contact_points: int | None = None
     convergence_tolerance: float | None = 1e-8
     energy_tolerance: float = 1e-6
-    gravity: float = 9.80665
+    gravity: float = STANDARD_GRAVITY
 
     def __post_init__(self) -> None:
         def number(name, low, high, low_open=False, high_open=False):

@@ -1,4 +1,4 @@
-"""pim/analysis/derivatives.py: closed-form d/d(eps, beta) of every output against central
+"""tests/closed_form.py (the hand-derived d/d(eps, beta) oracle) against central
 finite differences of pim.solve (and, in tests/test_dual.py, against dual numbers)."""
 
 from __future__ import annotations
@@ -9,8 +9,10 @@ import numpy as np
 import pytest
 
 import pim
-from pim.analysis.derivatives import derivatives, output_values
 from pim.model.quantities import OUTPUTS
+from pim.model.result import output_values
+
+from .closed_form import derivatives
 
 
 def _central(case, eps, beta, param, h=1e-6):

@@ -1,5 +1,5 @@
 """pim/model/dual.py: exact derivatives through the one formula, against two independent
-references: the hand-derived closed form of pim.analysis.derivatives (for eps and beta) and
+references: the hand-derived closed form of tests/closed_form.py (for eps and beta) and
 central finite differences of pim.solve (for Gamma, C and the pre-impact motion)."""
 
 from dataclasses import replace
@@ -8,9 +8,10 @@ import numpy as np
 from hypothesis import given, settings
 
 import pim
-from pim.analysis.derivatives import motion_derivatives
 from pim.model.dual import MOTION_INPUTS, MOTION_OUTPUTS, Dual, motion_jacobian
 from tests.scenes import random_cases, scenes
+
+from .closed_form import motion_derivatives
 
 
 def test_dual_arithmetic_matches_calculus():
@@ -73,3 +74,17 @@ def test_dual_matches_finite_differences_for_every_other_input():
         fd = (plus.velocity1 - minus.velocity1) / (2 * h)
         got = jac[:, 4:6, col]
         np.testing.assert_allclose(got[ok], fd[ok], rtol=1e-5, atol=1e-6, err_msg=key)
+
+
+def test_tangent_carries_the_chain_rule():
+    """motion_of_inputs(x, tangent=T) gives d output / d p = J T, n columns wide."""
+    from pim.model.dual import MOTION_INPUTS, motion_inputs, motion_of_inputs
+
+    case = pim.load_case("ricsac9")
+    x = motion_inputs(case, 0.3, 0.8)[None]
+    rng = np.random.default_rng(1)
+    t = rng.normal(size=(1, len(MOTION_INPUTS), 3))
+    values, jac = motion_of_inputs(x)
+    v2, j2 = motion_of_inputs(x, tangent=t)
+    np.testing.assert_array_equal(values, v2)
+    np.testing.assert_allclose(j2, jac @ t, rtol=1e-12, atol=1e-12)

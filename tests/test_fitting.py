@@ -147,7 +147,6 @@ def test_single_parameter_fit(ricsac9):
     costs = _brute_force_cost(ricsac9, scan, 1.0)
     assert result.eps == pytest.approx(scan[np.argmin(costs)], abs=1e-4)
     assert result.cost <= costs.min() + 1e-12
-    assert result.landscape.cost.shape == (41, 1)
     # beta alone at the sheet's eps: the optimum sits on beta = 1
     result = fit(ricsac9, eps=0.355)
     assert result.fixed == ("eps",) and result.eps == 0.355
@@ -169,13 +168,25 @@ def test_yaw_residuals_are_weighted_by_the_radius_of_gyration(ricsac9):
         float(k1 * (r.yaw_rate1 - ricsac9.measured.yaw_rate1)), rel=1e-12)
 
 
-def test_landscape_is_the_cost_on_the_grid(ricsac9):
-    result = fit(ricsac9)
-    land = result.landscape
-    assert land.cost.shape == (41, 41)
-    expected = _brute_force_cost(ricsac9, land.eps[:, None], land.beta[None, :])
-    np.testing.assert_allclose(land.cost, expected, rtol=1e-12)
-    np.testing.assert_allclose(land.profile(), expected.min(axis=1), rtol=1e-12)
+def test_one_engine_values_hold_eps_and_beta_on_every_path(ricsac9):
+    """FitResult.values holds every fitted parameter on every path (it was {} without
+    ``free``), and the (eps, beta) fit is the free fit's two-key case: the same answer."""
+    plain = fit(ricsac9)
+    assert plain.values == {"impact.restitution": plain.eps, "impact.beta": plain.beta}
+    assert plain.fitted_keys == ("impact.restitution", "impact.beta")
+    assert plain.identifiability is not None and plain.identifiability.rank == 2
+    fixed = fit(ricsac9, beta=1.0)
+    assert fixed.values == {"impact.restitution": fixed.eps}
+    assert fixed.fitted_keys == ("impact.restitution",)
+    free = fit(ricsac9, free={"impact.restitution": (0.0, 1.0)})
+    assert free.eps == pytest.approx(plain.eps, abs=1e-8) and free.beta == plain.beta
+    assert free.on_bound == plain.on_bound == {"beta": "upper"}
+    assert not hasattr(plain, "landscape")
+
+
+def test_grid_is_deprecated_but_validated(ricsac9):
+    with pytest.warns(DeprecationWarning, match="grid"):
+        fit(ricsac9, grid=(21, 21))
 
 
 def test_nothing_measured_is_a_clear_error(ricsac9):
@@ -234,6 +245,63 @@ def test_cli_fit(ricsac9, capsys):
     assert "beta sits on its upper bound" in out and "ft/s" in out and "yaw_rate2" in out
     assert main(["fit", "ricsac9", "--beta", "1"]) == 0
     assert "fixed: beta" in capsys.readouterr().out
+
+
+def _with_sigmas(case, scale=1.0, shift=(0.0, 0.0)):
+    """RICSAC 9's measured motion with stated sigmas (0.3 m/s, 0.1 rad/s) times ``scale``,
+    velocity 1 shifted by ``shift`` [m/s]."""
+    m = case.measured
+    return replace(case, measured=replace(
+        m, velocity1=np.asarray(m.velocity1) + shift, velocity1_sigma=[0.3 * scale] * 2,
+        velocity2_sigma=[0.3 * scale] * 2, yaw_rate1_sigma=0.1 * scale,
+        yaw_rate2_sigma=0.1 * scale))
+
+
+def test_goodness_of_fit_with_sigmas(ricsac9):
+    """With sigmas the cost is a chi-square with k - n degrees of freedom and its p-value
+    (scipy.stats.chi2.sf, checked against the closed form for 2 dof: exp(-x/2))."""
+    result = fit(_with_sigmas(ricsac9), include_yaw=True)
+    g = result.goodness
+    assert g.chi_square == result.cost and g.dof == 6 - 2
+    # 4 dof: sf(x) = exp(-x/2) (1 + x/2)
+    x = g.chi_square
+    assert g.p_value == pytest.approx(np.exp(-x / 2) * (1 + x / 2), rel=1e-10)
+    # velocities only, beta fixed: 4 - 1 = 3 dof
+    assert fit(_with_sigmas(ricsac9), beta=1.0).goodness.dof == 3
+    # without sigmas there is no chi-square
+    assert fit(ricsac9).goodness is None and fit(ricsac9).to_dict()["cost_unit"] == "m^2/s^2"
+
+
+def test_inconsistent_measurements_are_said_plainly(ricsac9):
+    """Tiny sigmas (RICSAC 9's residual is ~1 m/s): the data do not fit PIM, and the fit
+    says so; generous sigmas: consistent."""
+    tight = fit(_with_sigmas(ricsac9, scale=0.1), include_yaw=True)
+    assert tight.goodness.p_value < 0.01 and tight.goodness.consistent is False
+    assert "inconsistent with PIM at the stated sigmas" in tight.goodness.verdict()
+    loose = fit(_with_sigmas(ricsac9, scale=10.0), include_yaw=True)
+    assert loose.goodness.consistent is True
+
+
+def test_cli_chi_square_is_unit_free(capsys, tmp_path):
+    """issue 22: with sigmas the cost is a chi-square, named so, and the same number in
+    every unit system (it was printed as (ft/s)^2 and changed with --units)."""
+    text = (files("pim.io") / "cases" / "ricsac9.toml").read_text()
+    sig = ("vehicle1.velocity_sigma = \"0.3 m/s\"\nvehicle2.velocity_sigma = \"0.3 m/s\"\n"
+           "vehicle1.yaw_rate_sigma = \"0.1 rad/s\"\nvehicle2.yaw_rate_sigma = \"0.1 rad/s\"\n")
+    at = text.index("[measured]") + len("[measured]\n")
+    path = tmp_path / "sig.toml"
+    path.write_text(text[:at] + sig + text[at:])
+    outs = {}
+    for units in ("si", "us"):
+        assert main(["fit", str(path), "--include-yaw", "--units", units]) == 0
+        out = capsys.readouterr().out
+        line = next(s for s in out.splitlines() if "chi-square =" in s)
+        outs[units] = line.split("rms")[0]
+        assert "^2" not in line and "degrees of freedom" in line
+    assert outs["si"] == outs["us"]
+    assert main(["fit", str(path), "--include-yaw", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["cost_unit"] == "-" and data["goodness_of_fit"]["dof"] == 4
 
 
 def test_cli_fit_without_measured_values(tmp_path, capsys):

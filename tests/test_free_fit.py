@@ -131,7 +131,7 @@ def test_free_restitution_bounds_replace_bounds(ricsac9):
     case = measured_at(ricsac9, {})
     f = pim.fit(case, include_yaw=True, free={"impact.restitution": (0.4, 0.9),
                                               "vehicle1.yaw_rate": (-0.5, 0.5)})
-    assert f.on_bound.get("impact.restitution") == "lower"
+    assert f.on_bound.get("eps") == "lower"
     assert f.eps == pytest.approx(0.4)
 
 

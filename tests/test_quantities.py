@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 import pim
-from pim.analysis.derivatives import output_values
 from pim.model.quantities import FIELDS, INPUTS, OUTPUTS, VECTOR_FIELDS, field_of
+from pim.model.result import output_values
 
 
 def test_fields_are_the_case_types_fields():

@@ -59,3 +59,26 @@ def test_a_case_with_neither_evidence_nor_measured_motion_is_refused():
                    unknown={"vehicle1.speed": (0.0, 30.0)})
     with pytest.raises(ValueError, match=r"neither \[evidence\] nor \[measured\]"):
         reconstruct(case)
+
+
+def test_goodness_of_fit_is_reported_and_inconsistency_said():
+    """issue 17 item 6: with sigmas the reconstruction reports chi-square, dof and p, and a
+    measured motion PIM cannot produce at its sigmas is said to be inconsistent."""
+    base = pim.load_case("ricsac9-reconstruct")
+    truth = pim.solve(base, 0.3, 0.9)
+    unknown = {"vehicle1.speed": (0.0, 35.0), "vehicle2.speed": (0.0, 35.0)}
+    case = replace(base, impact=replace(base.impact, restitution=0.3, beta=0.9),
+                   measured=pim.Measured(
+                       np.asarray(truth.velocity1) + [0.05, -0.05], truth.velocity2,
+                       float(truth.yaw_rate1), float(truth.yaw_rate2),
+                       velocity1_sigma=[0.1, 0.1], velocity2_sigma=[0.1, 0.1],
+                       yaw_rate1_sigma=0.05, yaw_rate2_sigma=0.05))
+    rec = reconstruct(case, unknown=unknown, samples=0)
+    g = rec.goodness
+    assert g is not None and g.dof == 6 - 2 and g.consistent
+    assert not any("inconsistent" in m for m in rec.messages)
+    bad = replace(case, measured=replace(case.measured, velocity1=np.asarray(
+        truth.velocity1) + [3.0, -3.0]))
+    rec = reconstruct(bad, unknown=unknown, samples=0)
+    assert rec.goodness.consistent is False
+    assert any("inconsistent with PIM at the stated sigmas" in m for m in rec.messages)

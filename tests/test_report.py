@@ -128,3 +128,21 @@ def test_sigterm_removes_temporary_files(tmp_path):
     assert not [p for p in out.rglob("*") if ".tmp" in p.name]
     if proc.returncode != 0:          # it may have finished before the signal arrived
         assert proc.returncode == 143 and "terminated" in proc.stderr.read()
+
+
+def test_fit_table_with_sigmas_is_a_unit_free_chi_square():
+    """issue 22: fit.csv named the chi-square a (ft/s)^2 sum and changed with the units."""
+    from dataclasses import replace
+
+    from comparisons.report import fit_table
+
+    case = pim.load_case("ricsac9")
+    m = replace(case.measured, velocity1_sigma=[0.3, 0.3], velocity2_sigma=[0.3, 0.3])
+    f = pim.fit(replace(case, measured=m))
+    tables = {u: {r[0]: r[1:] for r in fit_table(f, u).rows} for u in ("si", "us")}
+    for rows in tables.values():
+        assert rows["chi-square"] == (f.cost, "-")
+        assert rows["degrees of freedom"] == (2, "-")
+        assert not any("^2" in str(v) for row in rows.values() for v in row)
+    assert "cost (sum of squared velocity errors)" in {
+        r[0] for r in fit_table(pim.fit(case), "us").rows}

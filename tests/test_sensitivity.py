@@ -138,3 +138,36 @@ def test_cli_sensitivity(capsys):
     assert "0.6562 ft" in capsys.readouterr().out
     assert main(["sensitivity", "ricsac9", "--sigma", "nonsense=1"]) == 2
     assert "--sigma must be KEY=VALUE" in capsys.readouterr().err
+
+
+def _with_sigmas(case, s1=0.3):
+    m = case.measured
+    return replace(case, measured=replace(m, velocity1_sigma=[s1, s1],
+                                          velocity2_sigma=[0.3, 0.3]))
+
+
+def test_stated_sigmas_weight_the_fit_and_size_the_inputs(noisy):
+    """issue 22: `sensitivity` used the typical sigma for the measured values and the
+    unweighted cost even when [measured] states sigmas. Now the stated sigma is the
+    input's sigma, and d(eps, beta)/d(measured) is that of the weighted refit: checked by
+    brute-force refits of the weighted fit, and doubling vehicle 1's sigma halves its
+    weight (its values pull the refit less, vehicle 2's more)."""
+    for s1 in (0.3, 0.6):
+        case = _with_sigmas(noisy, s1)
+        sens = sensitivity(case)
+        k = sens.inputs.index("measured.velocity1_x")
+        assert sens.sigma[k] == s1
+        assert sens.sigma[sens.inputs.index("measured.velocity2_y")] == 0.3
+        for key in ("measured.velocity1_x", "measured.velocity2_y", "impact.point_x"):
+            k = sens.inputs.index(key)
+            h = 1e-2 * sens.sigma[k]
+            plus, minus = fit(_moved(case, key, h)), fit(_moved(case, key, -h))
+            for row, (a, b) in enumerate([(plus.eps, minus.eps), (plus.beta, minus.beta)]):
+                fd = (a - b) / (2 * h)
+                assert sens.derivative[row, k] == pytest.approx(fd, rel=1e-3, abs=1e-7), \
+                    (s1, key, row)
+    d = {s1: sensitivity(_with_sigmas(noisy, s1)) for s1 in (0.3, 0.6)}
+    k1 = d[0.3].inputs.index("measured.velocity1_x")
+    k2 = d[0.3].inputs.index("measured.velocity2_x")
+    assert abs(d[0.6].derivative[0, k1]) < abs(d[0.3].derivative[0, k1])
+    assert abs(d[0.6].derivative[0, k2]) > abs(d[0.3].derivative[0, k2])

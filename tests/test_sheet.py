@@ -102,3 +102,28 @@ def test_import_pim_does_not_load_matplotlib():
             "print('matplotlib' in sys.modules, 'scipy.optimize' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.split() == ["False", "False"]
+
+
+def test_cost_map_with_sigmas_is_the_chi_square_in_every_unit_system(ricsac9):
+    """issue 22: with [measured] sigmas the cost map is the fit's chi-square (it was the
+    unweighted sum in (ft/s)^2 and changed with the units), labelled so, and the fitted
+    optimum is its minimum within the bounds."""
+    from pim.plotting.sheet import plot_cost_map, plot_velocity_error
+
+    m = replace(ricsac9.measured, velocity1_sigma=[0.2, 0.2], velocity2_sigma=[0.6, 0.6])
+    f = fit(replace(ricsac9, measured=m))
+    cmap = cost_map(f, n=41, beta_margin=0.0)
+    assert np.nanmin(cmap.cost) >= f.cost - 1e-9
+    r = pim.solve(f.case, cmap.eps[None, :], cmap.beta[:, None])
+    chi2 = (((r.velocity1 - m.velocity1) / 0.2) ** 2).sum(-1) \
+        + (((r.velocity2 - m.velocity2) / 0.6) ** 2).sum(-1)
+    np.testing.assert_allclose(cmap.cost, chi2, rtol=1e-12)
+    labels = {}
+    for units in ("si", "us"):
+        fig = plot_cost_map(cmap, units)
+        labels[units] = fig.axes[-1].get_ylabel()
+        assert fig.axes[-1].get_ylim() == plot_cost_map(cmap, "si").axes[-1].get_ylim()
+        sweep = sweep_epsilon(f.case, f)
+        assert "chi-square" in plot_velocity_error(sweep, f, units).axes[0].get_ylabel()
+    assert labels["si"] == labels["us"] and "chi-square" in labels["si"]
+    assert "ft" not in labels["us"] and "m/s" not in labels["si"]

@@ -1,4 +1,4 @@
-"""The analysis layer: residuals against measured motion, the least-squares fit, derivatives,
+"""The analysis layer: residuals against measured motion, the least-squares fit,
 sensitivities, Monte Carlo.
 
 Uses :mod:`pim.model` and, for the published data's conventions, :mod:`pim.io`

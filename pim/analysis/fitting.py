@@ -1,4 +1,4 @@
-"""Least-squares fit of (epsilon, beta) to measured post-impact motion (the sheet's optimum).
+"""Least-squares fit of (epsilon, beta), and of any other inputs, to measured post-impact motion.
 
 The cost is the design sheet's sum of squared post-impact velocity errors,
 
@@ -8,66 +8,52 @@ over the measured components of V1 and V2 (x and y). With ``include_yaw`` the ya
 join as velocities, each weighted by its vehicle's radius of gyration k_i = sqrt(I_i / m_i):
 the residual is k_i (Omega_i - Omega_i,measured) [m/s], the speed that spin gives a point at
 distance k_i from the CG. Only measured quantities enter; a case with nothing measured is an
-error.
+error. With the ``[measured]`` standard deviations each residual is divided by its sigma:
+the cost is then the chi-square [-], and the result carries its degrees of freedom and
+p-value (:class:`pim.analysis.residuals.GoodnessOfFit`).
 
 Constraints as in the sheet: eps >= 0 (and <= 1, the solver's range) and beta <= 1, with
 beta >= 0 unless the caller widens the bounds. The result records which bound it sits on.
 
-Global search: the model is closed-form and vectorised, so the bounded box is first
-evaluated on a dense grid in one solver call (41 x 41 by default); the best few local
-minima of the grid are then refined by a bounded quasi-Newton method (L-BFGS-B) using the
-closed-form gradient 2 J^T r (J from :func:`pim.analysis.derivatives.motion_derivatives`), and the
-lowest refined minimum wins. Inside the default box the cost is convex in the impulse and
-the map (eps, beta) -> impulse is one-to-one, so there is one basin; a second basin appears
-when the box contains the singular beta where A - mu B = 0 (q infinite), which a local
-search from the sheet's guess cannot cross.
+One engine (:func:`pim.analysis.free_fit.fit_free`) for every fit: (eps, beta) is the
+two-key case of the free fit. A scrambled Sobol sample of the bounded box is evaluated in one
+vectorised call of the formula; the best few samples are refined together by a bounded
+Levenberg-Marquardt iteration (:mod:`pim.analysis.least_squares_batch`) on exact derivatives
+(dual numbers through the one formula, :mod:`pim.model.dual`), and the lowest minimum wins.
+Inside the default box the cost is convex in the impulse and the map (eps, beta) -> impulse
+is one-to-one, so there is one basin; a second basin appears when the box contains the
+singular beta where A - mu B = 0 (q infinite), which a local search from the sheet's guess
+cannot cross.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+import warnings
+from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
 
 from ..model.case import Case
+from ..model.motion import Term
 from ..model.result import Result
 from ..model.solver import solve
-from .free_fit import FREE_KEYS, Identifiability, check_free, fit_free
-from .residuals import measured_terms, measured_weights, residuals, residuals_and_jacobian
+from .free_fit import FREE_KEYS, FreeFit, Identifiability, check_free, fit_free
+from .residuals import GoodnessOfFit, goodness_of_fit, measured_terms, measured_weights
 
-__all__ = ["fit", "FitResult", "FREE_KEYS", "Landscape", "DEFAULT_BOUNDS", "DEFAULT_GRID",
-           "MAX_STARTS"]
+__all__ = ["fit", "FitResult", "FREE_KEYS", "DEFAULT_BOUNDS", "DEFAULT_GRID", "MAX_STARTS",
+           "SAMPLES", "SHORT_NAMES"]
 
 #: Default search box ((eps_min, eps_max), (beta_min, beta_max)) [-], the sheet's constraints.
 DEFAULT_BOUNDS = ((0.0, 1.0), (0.0, 1.0))
-#: Default grid of the coarse search (points along eps, points along beta).
+#: Former grid of the coarse search; kept so that ``grid=`` still validates (see :func:`fit`).
 DEFAULT_GRID = (41, 41)
-#: Number of grid minima refined by the local search.
+#: Number of coarse-search minima refined by the local search.
 MAX_STARTS = 5
-
-
-@dataclass(frozen=True, eq=False)
-class Landscape:
-    """The cost evaluated on the search grid.
-
-    Attributes
-    ----------
-    eps : ndarray (n_eps,)
-        Grid of epsilon [-] (one value when epsilon is held fixed).
-    beta : ndarray (n_beta,)
-        Grid of beta [-] (one value when beta is held fixed).
-    cost : ndarray (n_eps, n_beta)
-        Sum of squared residuals [m^2/s^2]; inf where q is singular.
-    """
-
-    eps: np.ndarray
-    beta: np.ndarray
-    cost: np.ndarray
-
-    def profile(self) -> np.ndarray:
-        """Lowest cost over beta at each grid epsilon [m^2/s^2], shape (n_eps,)."""
-        return self.cost.min(axis=1)
+#: Default size of the coarse Sobol sample.
+SAMPLES = 256
+#: The short names of restitution and beta in ``on_bound``, ``fixed`` and messages.
+SHORT_NAMES = {"impact.restitution": "eps", "impact.beta": "beta"}
 
 
 @dataclass(frozen=True, eq=False)
@@ -77,34 +63,48 @@ class FitResult:
     Attributes
     ----------
     case : Case
-        The fitted case.
+        The case fitted, with the fitted ``free`` inputs put in (eps and beta are the
+        fields below; :attr:`result` solves at them).
     eps, beta : float
-        Optimum coefficient of restitution and fraction of mu0 [-].
+        Optimum (or fixed) coefficient of restitution and fraction of mu0 [-].
     cost : float
         Sum of squared residuals at the optimum [m^2/s^2]; with measured standard
         deviations the chi-square sum of (residual / sigma)^2 [-] (see ``weights``).
     residuals : ndarray
         Residuals at the optimum [m/s] (model minus measured; yaw terms times k_i).
     residual_names : tuple of str
-        Which measured term each residual is.
+        Which measured term each residual is (the names of ``terms``).
     include_yaw : bool
         Whether the yaw rates were fitted.
     bounds : ((float, float), (float, float))
-        The search box ((eps_min, eps_max), (beta_min, beta_max)).
+        The search box of (eps, beta).
     fixed : tuple of str
         Parameters held fixed ("eps" and/or "beta"); they are not fitted.
     on_bound : dict
-        Parameter -> "lower" or "upper" for every fitted parameter that sits on a bound
-        (empty when the optimum is interior).
+        Parameter ("eps", "beta" or a ``free`` key) -> "lower" or "upper" for every fitted
+        parameter that sits on a bound (empty when the optimum is interior).
     gradient : ndarray (2,)
-        d cost / d (eps, beta) at the optimum [m^2/s^2]: nonzero on an active bound, where
-        its sign shows the direction in which the cost would keep falling.
-    landscape : Landscape
-        The coarse grid the global search evaluated.
+        d cost / d (eps, beta) at the optimum (0 for a fixed one): nonzero on an active
+        bound, where its sign shows the direction in which the cost would keep falling.
     minima : tuple of (eps, beta, cost)
         Every refined local minimum, best first (more than one means several basins).
     nfev : int
-        Number of solver calls of the local refinement (the grid counts as one).
+        Number of evaluations of the residuals in the local refinement (each over every
+        start still running; the coarse sample counts as one).
+    values : dict
+        Every fitted parameter by its dotted key -> value [SI], on every path:
+        ``impact.restitution`` and ``impact.beta`` unless fixed, and the ``free`` keys.
+    identifiability : Identifiability
+        Rank, singular values, correlations, families of exact fits, under-determination.
+    minima_values : tuple
+        Every refined local minimum as (values dict of the fitted keys, cost), best first.
+    weights : ndarray or None
+        Residual weights 1/sigma (``[measured]`` standard deviations), or None (unweighted).
+        With weights, ``cost`` is the chi-square sum (w r)^2 [-]; ``residuals`` stay in m/s.
+    terms : tuple of Term
+        The residual terms, typed.
+    goodness : GoodnessOfFit or None
+        Chi-square, degrees of freedom and p-value; None without standard deviations.
     """
 
     case: Case
@@ -118,51 +118,40 @@ class FitResult:
     fixed: tuple[str, ...]
     on_bound: dict
     gradient: np.ndarray
-    landscape: Landscape = field(repr=False)
     minima: tuple = field(repr=False)
     nfev: int = 0
-    #: Every fitted parameter by its dotted key -> value [SI] ("impact.restitution",
-    #: "impact.beta" when fitted, and the ``free`` keys).
     values: dict = field(default_factory=dict)
-    #: Rank, singular values, correlations, families of exact fits, under-determination
-    #: (None for a plain (eps, beta) fit without ``free``).
     identifiability: Identifiability | None = field(default=None, repr=False)
-    #: Free-parameter minima: (values dict, cost), best first.
     minima_values: tuple = field(default=(), repr=False)
-    #: Residual weights 1/sigma (``[measured]`` standard deviations), or None (unweighted).
-    #: With weights, ``cost`` is the chi-square sum (w r)^2 [-]; ``residuals`` stay in m/s.
     weights: np.ndarray | None = field(default=None, repr=False)
-
-    @property
-    def fitted_case(self) -> Case:
-        """The case with the fitted values put in (eps and beta on its impact)."""
-        return replace(self.case, impact=replace(self.case.impact, restitution=self.eps,
-                                                 beta=self.beta))
+    terms: tuple[Term, ...] = field(default=(), repr=False)
+    goodness: GoodnessOfFit | None = field(default=None, repr=False)
 
     @property
     def residual_table(self) -> list[dict]:
-        """Per measured quantity: name, measured, fitted, residual [SI]."""
-        res, m = self.result, self.case.measured
+        """Per measured quantity: name, measured, fitted, error, unit, residual [SI]."""
         rows = []
-        for name, r in zip(self.residual_names, self.residuals, strict=True):
-            if name.startswith("velocity"):
-                i, axis = int(name[8]), "xy".index(name[-1])
-                measured = float(getattr(m, f"velocity{i}")[axis])
-                fitted = float(np.asarray(getattr(res, f"velocity{i}")).reshape(-1)[axis])
-                unit = "m/s"
-            else:
-                i = int(name[-1])
-                measured = float(getattr(m, f"yaw_rate{i}"))
-                fitted = float(np.asarray(getattr(res, f"yaw_rate{i}")).reshape(()))
-                unit = "rad/s"
-            rows.append({"name": name, "measured": measured, "fitted": fitted,
-                         "error": fitted - measured, "unit": unit, "residual": float(r)})
+        for term, r in zip(self.terms, self.residuals, strict=True):
+            measured = float(term.of(self.case.measured))
+            fitted = float(term.of(self.result))
+            rows.append({"name": term.name, "measured": measured, "fitted": fitted,
+                         "error": fitted - measured, "unit": term.unit, "residual": float(r)})
         return rows
 
     @property
     def rms(self) -> float:
         """Root-mean-square residual [m/s]."""
         return float(np.sqrt(np.mean(np.square(self.residuals))))
+
+    @property
+    def fitted_keys(self) -> tuple[str, ...]:
+        """The parameters fitted (dotted keys; fixed eps or beta excluded)."""
+        return tuple(self.values)
+
+    @property
+    def chi_square(self) -> bool:
+        """True when ``cost`` is a chi-square (standard deviations were given)."""
+        return self.weights is not None
 
     @cached_property
     def result(self) -> Result:
@@ -173,13 +162,17 @@ class FitResult:
         """JSON-ready summary (SI units)."""
         return {
             "case": self.case.name, "eps": self.eps, "beta": self.beta, "cost": self.cost,
-            "cost_unit": "m^2/s^2", "rms": self.rms, "rms_unit": "m/s",
+            "cost_unit": "-" if self.chi_square else "m^2/s^2",
+            "cost_kind": "chi-square" if self.chi_square else "sum of squares",
+            "rms": self.rms, "rms_unit": "m/s",
             "residuals": dict(zip(self.residual_names, map(float, self.residuals), strict=True)),
             "include_yaw": self.include_yaw, "bounds": {"eps": list(self.bounds[0]),
                                                         "beta": list(self.bounds[1])},
             "fixed": list(self.fixed), "on_bound": dict(self.on_bound),
             "gradient": {"eps": float(self.gradient[0]), "beta": float(self.gradient[1])},
             "minima": [{"eps": e, "beta": b, "cost": c} for e, b, c in self.minima],
+            "values": dict(self.values),
+            "goodness_of_fit": None if self.goodness is None else self.goodness.to_dict(),
             "admissible": bool(self.result.admissible), "problems": self.result.problems(),
         }
 
@@ -199,29 +192,78 @@ def _check_bounds(bounds) -> tuple:
     return (e_lo, e_hi), (b_lo, b_hi)
 
 
-def _grid_minima(cost: np.ndarray) -> list[tuple[int, int]]:
-    """Indices of grid points not higher than any of their 8 neighbours, best first."""
-    padded = np.pad(cost, 1, constant_values=np.inf)
-    n, m = cost.shape
-    is_min = np.isfinite(cost)
-    for di in (-1, 0, 1):
-        for dj in (-1, 0, 1):
-            if di or dj:
-                is_min &= cost <= padded[1 + di:1 + di + n, 1 + dj:1 + dj + m]
-    idx = np.argwhere(is_min)
-    order = np.argsort(cost[is_min], kind="stable")
-    chosen: list[tuple[int, int]] = []
-    for i, j in idx[order]:
-        # plateaus: keep one point per cluster of adjacent minima
-        if all(abs(i - a) > 1 or abs(j - b) > 1 for a, b in chosen):
-            chosen.append((int(i), int(j)))
-    return chosen
+def _check_fixed(eps, beta, free: dict) -> tuple[float | None, float | None]:
+    """The fixed eps and beta as floats (None where fitted); a clear error when out of range."""
+    if eps is not None and beta is not None and not free:
+        raise ValueError("eps and beta are both fixed: nothing to fit (fix at most one, or "
+                         "free other inputs)")
+    if eps is not None:
+        eps = float(eps)
+        if not 0.0 <= eps <= 1.0:
+            raise ValueError(f"eps (fixed) must be in [0, 1], got {eps}")
+    if beta is not None:
+        beta = float(beta)
+        if not np.isfinite(beta):
+            raise ValueError(f"beta (fixed) must be a finite number, got {beta}")
+    return eps, beta
+
+
+def _check_grid(grid) -> None:
+    """``grid`` is no longer used (the coarse search is a Sobol sample): validate, warn."""
+    if tuple(int(g) for g in grid) == DEFAULT_GRID:
+        return
+    if min(int(g) for g in grid) < 3:
+        raise ValueError(f"grid must have at least 3 points per axis, got {grid}")
+    warnings.warn("pim.fit(grid=...) is ignored: the coarse search is a Sobol sample of "
+                  "`samples` points", DeprecationWarning, stacklevel=3)
+
+
+def _box(bounds, eps, beta, free: dict) -> dict:
+    """Every fitted parameter -> (low, high): eps and beta first (unless fixed), then
+    ``free``; ``free`` bounds on restitution or beta replace ``bounds``."""
+    free = dict(free)
+    box = {}
+    for key, value, b in (("impact.restitution", eps, bounds[0]),
+                          ("impact.beta", beta, bounds[1])):
+        given = free.pop(key, b)
+        if value is None:
+            box[key] = tuple(given)
+    return {**box, **free}
+
+
+def _fit_result(case, raw: FreeFit, terms, include_yaw, bounds, fixed, eps, beta,
+                weights) -> FitResult:
+    """Wrap the engine's outcome into a :class:`FitResult` (one bound detection: ``side``)."""
+    values = raw.values
+    e_opt = values.get("impact.restitution", eps)
+    b_opt = values.get("impact.beta", beta)
+    grad = dict(zip(raw.keys, raw.gradient, strict=True))
+    on_bound = {SHORT_NAMES.get(k, k): ("lower" if s < 0 else "upper")
+                for k, s in zip(raw.keys, raw.side, strict=True) if s}
+
+    def pair(x):
+        return (float(x.get("impact.restitution", eps)), float(x.get("impact.beta", beta)))
+
+    minima_values = tuple((dict(zip(raw.keys, map(float, x), strict=True)), c)
+                          for x, c in raw.minima)
+    r = raw.residuals / (1.0 if weights is None else weights)
+    goodness = None if weights is None else goodness_of_fit(raw.cost, len(terms),
+                                                            len(raw.keys))
+    return FitResult(
+        case=raw.case, eps=float(e_opt), beta=float(b_opt), cost=raw.cost, residuals=r,
+        residual_names=tuple(t.name for t in terms), include_yaw=bool(include_yaw),
+        bounds=bounds, fixed=fixed, on_bound=on_bound,
+        gradient=np.array([grad.get("impact.restitution", 0.0), grad.get("impact.beta", 0.0)]),
+        minima=tuple((*pair(v), c) for v, c in minima_values), nfev=raw.nfev + 1,
+        values={k: float(v) for k, v in values.items()}, identifiability=raw.identifiability,
+        minima_values=minima_values, weights=weights, terms=tuple(terms), goodness=goodness)
 
 
 def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=None, beta=None,
         grid=DEFAULT_GRID, max_starts: int = MAX_STARTS, free=None,
-        samples: int = 256, seed: int = 0) -> FitResult:
-    """Least-squares (epsilon, beta) that best reproduce the measured post-impact motion.
+        samples: int = SAMPLES, seed: int = 0) -> FitResult:
+    """Least-squares (epsilon, beta), and optionally other inputs, that best reproduce the
+    measured post-impact motion.
 
     Parameters
     ----------
@@ -236,19 +278,18 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
     eps, beta : float, optional
         Hold that parameter fixed at the given value and fit only the other one.
     grid : (int, int)
-        Points of the coarse search along eps and beta.
+        No longer used (the coarse search is the Sobol sample); validated, and a
+        DeprecationWarning when not the default.
     max_starts : int
-        How many of the best grid minima are refined locally.
+        How many of the best coarse-search points are refined locally.
     free : dict, optional
         Further free parameters: dotted key -> (low, high) bounds [SI]
         (:data:`pim.analysis.free_fit.FREE_KEYS`: the scalar inputs of ``[uncertainty]``,
         e.g. ``impact.normal_angle``, ``impact.point_x``, ``vehicle1.yaw_rate``, plus
         ``vehicle{1,2}.radius_of_gyration`` and ``vehicle{1,2}.speed``;
-        ``impact.restitution`` / ``impact.beta`` here replace ``bounds``). The coarse search
-        is then a Sobol sample of ``samples`` points (``seed``), refined by bounded least
-        squares; ``identifiability`` reports rank, correlations and families of exact fits.
+        ``impact.restitution`` / ``impact.beta`` here replace ``bounds``).
     samples, seed : int
-        Size and seed of the coarse Sobol sample (``free`` only).
+        Size and seed of the coarse Sobol sample.
 
     Returns
     -------
@@ -261,125 +302,19 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
     """
     if np.size(case.vehicle1.mass) != 1 or np.shape(case.impact.point) != (2,):
         raise ValueError("fit needs a single case, not a batch of cases")
-    names = measured_terms(case, include_yaw)
-    (e_lo, e_hi), (b_lo, b_hi) = _check_bounds(bounds)
-    if eps is not None and beta is not None and not free:
-        raise ValueError("eps and beta are both fixed: nothing to fit (fix at most one, or "
-                         "free other inputs)")
-    fixed = tuple(n for n, v in (("eps", eps), ("beta", beta)) if v is not None)
-    if eps is not None:
-        eps = float(eps)
-        if not 0.0 <= eps <= 1.0:
-            raise ValueError(f"eps (fixed) must be in [0, 1], got {eps}")
-    if beta is not None:
-        beta = float(beta)
-        if not np.isfinite(beta):
-            raise ValueError(f"beta (fixed) must be a finite number, got {beta}")
-    if free:
-        return _fit_free(case, names, check_free(free), include_yaw, eps, beta, fixed,
-                         ((e_lo, e_hi), (b_lo, b_hi)), samples, max_starts, seed)
-    n_eps, n_beta = (int(g) for g in grid)
-    if n_eps < 3 or n_beta < 3:
-        raise ValueError(f"grid must have at least 3 points per axis, got {grid}")
-
-    # ---- coarse global search: one vectorised solve over the grid -----------------------
-    eps_grid = np.array([eps]) if eps is not None else np.linspace(e_lo, e_hi, n_eps)
-    beta_grid = np.array([beta]) if beta is not None else np.linspace(b_lo, b_hi, n_beta)
-    grid_result = solve(case, eps_grid[:, None], beta_grid[None, :])
-    if not np.any(grid_result.approaching):
+    terms = measured_terms(case, include_yaw)
+    box_eb = _check_bounds(bounds)
+    free_box = check_free(free or {})
+    eps_fixed, beta_fixed = _check_fixed(eps, beta, free_box)
+    _check_grid(grid)
+    eps0 = 0.5 if eps_fixed is None else eps_fixed
+    beta0 = 0.5 if beta_fixed is None else beta_fixed
+    if not free_box and not np.any(solve(case, eps0, beta0).approaching):
         raise ValueError(f"case {case.name or '(unnamed)'}: the vehicles do not approach at C "
                          "(u_n >= 0): there is no impact to fit")
-    weights = measured_weights(case, names)
-    wv = 1.0 if weights is None else weights
-    cost = np.sum((residuals(grid_result, names) * wv) ** 2, axis=-1)
-    cost = np.where(np.isfinite(cost), cost, np.inf)
-    landscape = Landscape(eps=eps_grid, beta=beta_grid, cost=cost)
-    starts = _grid_minima(cost)[:max(1, int(max_starts))]
-    if not starts:
-        raise ValueError("the cost is not finite anywhere in the search box")
-
-    # ---- local refinement of the best grid minima ----------------------------------------
-    from scipy.optimize import minimize
-
-    free = [n not in fixed for n in ("eps", "beta")]
-    full_bounds = ((e_lo, e_hi), (b_lo, b_hi))
-    box = [b for b, f in zip(full_bounds, free, strict=True) if f]
-    nfev = 0
-
-    def full(x):
-        theta = [eps, beta]
-        k = 0
-        for i, f in enumerate(free):
-            if f:
-                theta[i] = x[k]
-                k += 1
-        return theta
-
-    def cost_and_grad(x):
-        nonlocal nfev
-        nfev += 1
-        e, b = full(x)
-        res = solve(case, e, b)
-        r, j = residuals_and_jacobian(res, names)
-        if weights is not None:
-            r, j = r * weights, j * weights[:, None]
-        c = float(r @ r)
-        if not np.isfinite(c):
-            return 1e300, np.zeros(len(x))
-        g = 2.0 * (r @ j)
-        return c, g[free]
-
-    minima = []
-    for i, j in starts:
-        x0 = [v for v, f in zip((eps_grid[i], beta_grid[j]), free, strict=True) if f]
-        out = minimize(cost_and_grad, x0, jac=True, method="L-BFGS-B", bounds=box,
-                       options={"ftol": 1e-15, "gtol": 1e-11, "maxiter": 200})
-        e, b = full(np.clip(out.x, [lo for lo, _ in box], [hi for _, hi in box]))
-        if all(abs(e - a) + abs(b - c) > 1e-6 for a, c, _ in minima):
-            minima.append((float(e), float(b), float(out.fun)))
-    minima.sort(key=lambda m: m[2])
-    e_opt, b_opt, _ = minima[0]
-
-    best = solve(case, e_opt, b_opt)
-    r, j = residuals_and_jacobian(best, names)
-    rw, jw = (r, j) if weights is None else (r * weights, j * weights[:, None])
-    gradient = 2.0 * (rw @ jw)
-    on_bound = {}
-    for name, value, (lo, hi), f in zip(("eps", "beta"), (e_opt, b_opt), full_bounds, free,
-                                        strict=True):
-        tol = 1e-9 * (hi - lo)
-        if f and value <= lo + tol:
-            on_bound[name] = "lower"
-        elif f and value >= hi - tol:
-            on_bound[name] = "upper"
-    return FitResult(case=case, eps=e_opt, beta=b_opt, cost=float(rw @ rw), residuals=r,
-                     residual_names=names, include_yaw=bool(include_yaw), bounds=full_bounds,
-                     fixed=fixed, on_bound=on_bound, gradient=gradient, landscape=landscape,
-                     minima=tuple(minima), nfev=nfev, weights=weights)
-
-
-def _fit_free(case, names, free, include_yaw, eps, beta, fixed, bounds, samples, max_starts,
-              seed) -> FitResult:
-    free = dict(free)
-    box = list(bounds)
-    if "impact.restitution" in free:
-        box[0] = free["impact.restitution"]
-    if "impact.beta" in free:
-        box[1] = free["impact.beta"]
-    out = fit_free(case, free, names, eps, beta, bounds[0], bounds[1],
+    weights = measured_weights(case, terms)
+    raw = fit_free(case, _box(box_eb, eps_fixed, beta_fixed, free_box), terms, eps0, beta0,
                    samples=samples, max_starts=max_starts, seed=seed)
-    base = out.case
-    fitted = solve(base, out.eps, out.beta)
-    r = residuals(fitted, names)
-    w = measured_weights(base, names)
-    minima = tuple((v.get("impact.restitution", out.eps), v.get("impact.beta", out.beta), c)
-                   for v, c in out.minima)
-    landscape = Landscape(eps=np.array([out.eps]), beta=np.array([out.beta]),
-                          cost=np.array([[out.cost]]))
-    rw = r if w is None else r * w
-    return FitResult(case=base, eps=out.eps, beta=out.beta, cost=float(rw @ rw), residuals=r,
-                     residual_names=names, include_yaw=bool(include_yaw), bounds=tuple(box),
-                     fixed=fixed, on_bound=out.on_bound, gradient=out.gradient,
-                     landscape=landscape, minima=minima, nfev=out.nfev, values=out.values,
-                     identifiability=out.identifiability, minima_values=out.minima,
-                     weights=w)
+    fixed = tuple(n for n, v in (("eps", eps_fixed), ("beta", beta_fixed)) if v is not None)
+    return _fit_result(case, raw, terms, include_yaw, box_eb, fixed, eps_fixed, beta_fixed,
+                       weights)

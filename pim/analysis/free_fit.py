@@ -30,13 +30,14 @@ during the fit.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
 from ..model.case import Case
-from ..model.dual import MOTION_INPUTS, MOTION_OUTPUTS, motion_of_inputs
-from ..model.geometry import radius_of_gyration
+from ..model.dual import MOTION_INPUTS, motion_of_inputs
+from ..model.motion import as_terms
 from .free_inputs import (
     FREE_KEYS,
     case_state,
@@ -47,7 +48,7 @@ from .free_inputs import (
     set_inputs,
 )
 from .least_squares_batch import least_squares_batch
-from .residuals import measured_weights
+from .residuals import residual_terms
 
 __all__ = ["FREE_KEYS", "Identifiability", "FreeFit", "set_inputs", "check_free",
            "current_value", "fit_free", "identifiability", "free_residuals",
@@ -141,7 +142,7 @@ def identifiability(jac: np.ndarray, names: tuple, residual_names: tuple,
     under = n > m or rank < n
     if n > m:
         warnings.append(f"under-determined: {n} free parameters ({', '.join(names)}) but only "
-                        f"{m} measured quantities ({', '.join(residual_names)}); measure "
+                        f"{m} measured quantities ({', '.join(map(str, residual_names))}); measure "
                         f"{n - m} more (e.g. the other vehicle's velocity or the yaw rates "
                         f"with include_yaw) or fix {n - m} parameter(s)")
     for fam in families:
@@ -161,43 +162,50 @@ def identifiability(jac: np.ndarray, names: tuple, residual_names: tuple,
 
 @dataclass(frozen=True)
 class FreeFit:
-    """Raw outcome of :func:`fit_free` (wrapped into a :class:`pim.FitResult` by ``fit``)."""
+    """Raw outcome of :func:`fit_free` (wrapped into a :class:`pim.FitResult` by ``fit``).
 
-    values: dict
+    Attributes
+    ----------
+    keys : tuple of str
+        The fitted parameters (dotted keys), in the order of ``x``, ``gradient``, ``box``.
+    x : ndarray (n,)
+        Their values at the optimum [SI].
+    box : ndarray (n, 2)
+        Their bounds [SI].
+    case : Case
+        The input case with the fitted inputs put in (eps and beta excepted).
+    cost : float
+        Sum of squared (weighted) residuals at the optimum.
+    residuals : ndarray (k,)
+        The weighted residuals at the optimum.
+    side : ndarray (n,) of int
+        -1 on the lower bound, +1 on the upper bound, 0 inside.
+    gradient : ndarray (n,)
+        d cost / d x at the optimum.
+    minima : tuple of (ndarray (n,), float)
+        Distinct local minima (x, cost), best first.
+    identifiability : Identifiability
+    nfev : int
+    converged : bool
+    """
+
+    keys: tuple
+    x: np.ndarray
+    box: np.ndarray
     case: Case
-    eps: float
-    beta: float
     cost: float
     residuals: np.ndarray
-    on_bound: dict
+    side: np.ndarray
     gradient: np.ndarray
     minima: tuple
     identifiability: Identifiability
     nfev: int
-    extra: dict = field(default_factory=dict)
+    converged: bool
 
-
-def residual_terms(case: Case, names: tuple) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Rows of :data:`pim.model.dual.MOTION_OUTPUTS`, measured targets and factors of the
-    residual terms ``names`` of ``case``: residual = (output - target) * factor, the factor
-    being 1 for a velocity and k_i for a yaw rate, times the ``[measured]`` weight 1/sigma
-    when standard deviations are given (:func:`pim.analysis.residuals.measured_weights`)."""
-    m = case.measured
-    rows, target, scale = [], [], []
-    for name in names:
-        rows.append(MOTION_OUTPUTS.index(name))
-        if name.startswith("velocity"):
-            i, axis = int(name[8]), "xy".index(name[-1])
-            target.append(float(getattr(m, f"velocity{i}")[axis]))
-            scale.append(1.0)
-        else:
-            i = int(name[-1])
-            v = getattr(case, f"vehicle{i}")
-            target.append(float(getattr(m, f"yaw_rate{i}")))
-            scale.append(float(radius_of_gyration(v.mass, v.yaw_inertia)))
-    w = measured_weights(case, names)
-    factor = np.array(scale) * (1.0 if w is None else w)
-    return np.array(rows), np.array(target), factor
+    @property
+    def values(self) -> dict:
+        """Dotted key -> fitted value [SI]."""
+        return dict(zip(self.keys, map(float, self.x), strict=True))
 
 
 def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True):
@@ -212,7 +220,8 @@ def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True
     x : array_like (m, n)
         Parameter vectors [SI].
     rows, target, factor : array_like (k,) / (k,) or (m, k) / (k,) or (m, k)
-        The residual terms (:func:`residual_terms`); target and factor per row or shared.
+        The residual terms (:func:`pim.analysis.residuals.residual_terms`); target and
+        factor per row or shared.
     jacobian : bool
         Also return the Jacobian.
 
@@ -225,33 +234,66 @@ def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True
     """
     state, dstate = free_inputs(base, keys, x, jacobian=jacobian)
     n_in = len(MOTION_INPUTS)
-    values, dvalues = motion_of_inputs(state[:, :n_in], jacobian=jacobian)
+    values, dvalues = motion_of_inputs(state[:, :n_in], jacobian=jacobian,
+                                       tangent=None if dstate is None else dstate[:, :n_in, :])
     r = (values[:, rows] - target) * factor
     bad = ~np.all(np.isfinite(r), axis=1)
     r = np.where(bad[:, None], PENALTY, r)
     if not jacobian:
         return r, None
-    jac = np.einsum("pki,pin->pkn", dvalues[:, rows, :], dstate[:, :n_in, :])
-    jac = jac * np.asarray(factor)[..., None]
+    jac = dvalues[:, rows, :] * np.asarray(factor)[..., None]
     jac = np.where(bad[:, None, None] | ~np.isfinite(jac), 0.0, jac)
     return r, jac
 
 
-def fit_free(case: Case, free: dict, names: tuple, eps, beta,
-             eps_bounds, beta_bounds, samples: int = 256, max_starts: int = 5,
-             seed: int = 0) -> FreeFit:
-    """Bounded least squares over eps, beta (unless fixed) and the ``free`` keys.
+def _starts(u: np.ndarray, costs: np.ndarray, max_starts: int) -> list[int]:
+    """The best samples of the coarse search, at most one per box-scaled cell of 1/8."""
+    starts: list[int] = []
+    for i in np.argsort(costs, kind="stable"):
+        if len(starts) >= max(1, int(max_starts)):
+            break
+        if all(np.max(np.abs(u[i] - u[j])) > 0.125 for j in starts):
+            starts.append(int(i))
+    return starts
+
+
+def _distinct(x: np.ndarray, cost: np.ndarray, width: np.ndarray) -> list[int]:
+    """Indices of the distinct minima (box-scaled distance > :data:`MERGE`), best first."""
+    kept: list[int] = []
+    for k in np.argsort(cost, kind="stable"):
+        if all(np.max(np.abs(x[k] - x[j]) / width) > MERGE for j in kept):
+            kept.append(int(k))
+    return kept
+
+
+@lru_cache(maxsize=64)
+def sobol_sample(d: int, samples: int, seed: int) -> np.ndarray:
+    """Scrambled Sobol points in the unit cube (2^m >= ``samples`` of them, at least 8),
+    seeded so that fits repeat; cached (read-only), as building the generator costs more
+    than the fit's coarse evaluation."""
+    from scipy.stats import qmc
+
+    m_exp = int(np.ceil(np.log2(max(int(samples), 8))))
+    u = qmc.Sobol(d=d, scramble=True, seed=seed).random_base2(m_exp)
+    u.flags.writeable = False
+    return u
+
+
+def fit_free(case: Case, box: dict, terms, eps: float = 0.5, beta: float = 0.5,
+             samples: int = 256, max_starts: int = 5, seed: int = 0) -> FreeFit:
+    """Bounded least squares of the residual ``terms`` over the parameters of ``box``.
 
     Parameters
     ----------
     case : Case
         Scalar case with ``measured`` set.
-    free : dict
-        Validated dotted key -> (low, high) [SI] (see :func:`check_free`).
-    names : tuple of str
+    box : dict
+        Dotted key -> (low, high) [SI] of every fitted parameter, ``impact.restitution`` and
+        ``impact.beta`` included when they are fitted (validated: :func:`check_free`).
+    terms : sequence of Term or str
         Residual terms (:func:`pim.analysis.residuals.measured_terms`).
-    eps, beta : float or None
-        Fixed values, or None to fit within ``eps_bounds`` / ``beta_bounds``.
+    eps, beta : float
+        Restitution and beta where they are not in ``box`` (held fixed).
     samples : int
         Size of the coarse Sobol sample (rounded up to a power of two).
     max_starts : int
@@ -259,80 +301,32 @@ def fit_free(case: Case, free: dict, names: tuple, eps, beta,
     seed : int
         Seed of the scrambled Sobol sample.
     """
-    from scipy.stats import qmc
-
-    free = dict(free)
-    keys, box = [], []
-    if eps is None:
-        keys.append("impact.restitution")
-        box.append(tuple(free.pop("impact.restitution", eps_bounds)))
-    else:
-        free.pop("impact.restitution", None)
-    if beta is None:
-        keys.append("impact.beta")
-        box.append(tuple(free.pop("impact.beta", beta_bounds)))
-    else:
-        free.pop("impact.beta", None)
-    for k, b in free.items():
-        keys.append(k)
-        box.append(b)
+    keys = tuple(box)
     check_free_for_case(case, keys)
-    keys = tuple(keys)
-    lo = np.array([b[0] for b in box])
-    hi = np.array([b[1] for b in box])
+    lo, hi = (np.array([box[k][j] for k in keys], dtype=float) for j in (0, 1))
     width = hi - lo
-    n = len(keys)
-    fixed = {"eps": eps, "beta": beta}
-    base = case_state(case, 0.5 if eps is None else eps, 0.5 if beta is None else beta)
-    rows, target, factor = residual_terms(case, names)
+    base = case_state(case, eps, beta)
+    rows, target, factor = residual_terms(case, terms)
 
     def resid(x, jacobian=True):
         return free_residuals(base, keys, x, rows, target, factor, jacobian=jacobian)
 
-    # ---- coarse global search: one vectorised evaluation of the Sobol sample ------------
-    m_exp = int(np.ceil(np.log2(max(int(samples), 8))))
-    u = qmc.Sobol(d=n, scramble=True, seed=seed).random_base2(m_exp)
+    # coarse global search: one vectorised evaluation of the Sobol sample
+    u = sobol_sample(len(keys), samples, seed)
     xs = lo + u * width
     r0, _ = resid(xs, jacobian=False)
-    costs = np.sum(r0 * r0, axis=1)
-    starts = []
-    for i in np.argsort(costs, kind="stable"):
-        if len(starts) >= max(1, int(max_starts)):
-            break
-        if all(np.max(np.abs(u[i] - u[j])) > 0.125 for j in starts):
-            starts.append(i)
-
-    # ---- local refinement of every start at once, exact derivatives ----------------------
+    starts = _starts(u, np.sum(r0 * r0, axis=1), max_starts)
+    # local refinement of every start at once, exact derivatives
     out = least_squares_batch(lambda x, idx: resid(x), xs[starts], lo, hi, merge=MERGE)
-    minima = []
-    for k in np.argsort(out.cost, kind="stable"):
-        x = out.x[k]
-        if all(np.max(np.abs(x - y) / width) > MERGE for y, _ in minima):
-            minima.append((x, float(out.cost[k])))
-    x_opt, _ = minima[0]
-    r, jac = resid(x_opt[None])
-    r, jac = r[0], jac[0]
-    ident = identifiability(jac * width, keys, names)
-    gradient = 2.0 * (r @ jac)
-
-    on_bound = {}
-    for k, v, a, b in zip(keys, x_opt, lo, hi, strict=True):
-        tol = 1e-9 * (b - a)
-        if v <= a + tol:
-            on_bound[k] = "lower"
-        elif v >= b - tol:
-            on_bound[k] = "upper"
-    values = dict(zip(keys, map(float, x_opt), strict=True))
-    e_opt = values.get("impact.restitution", fixed["eps"])
-    b_opt = values.get("impact.beta", fixed["beta"])
+    order = _distinct(out.x, out.cost, width)
+    best = order[0]
+    r, jac = out.residuals[best], out.jacobian[best]
+    values = dict(zip(keys, map(float, out.x[best]), strict=True))
     fitted = set_inputs(case, {k: v for k, v in values.items()
                                if k not in ("impact.restitution", "impact.beta")})
-    minima_out = tuple((dict(zip(keys, map(float, x), strict=True)), float(c))
-                       for x, c in minima)
-    return FreeFit(values=values, case=fitted, eps=float(e_opt), beta=float(b_opt),
-                   cost=float(r @ r), residuals=r, on_bound=on_bound, gradient=gradient,
-                   minima=minima_out, identifiability=ident, nfev=int(out.nfev) + 1,
-                   extra={"converged": bool(out.converged.all()),
-                          "start_values": {k: float(current_value(case, k)) for k in keys
-                                           if k not in ("impact.restitution",
-                                                        "impact.beta")}})
+    return FreeFit(keys=keys, x=out.x[best], box=np.stack([lo, hi], axis=1), case=fitted,
+                   cost=float(r @ r), residuals=r, side=out.on_bound[best].astype(int),
+                   gradient=2.0 * (r @ jac),
+                   minima=tuple((out.x[k], float(out.cost[k])) for k in order),
+                   identifiability=identifiability(jac * width, keys, as_terms(terms)),
+                   nfev=int(out.nfev), converged=bool(out.converged.all()))

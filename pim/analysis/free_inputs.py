@@ -32,6 +32,7 @@ import numpy as np
 
 from ..model.case import Case
 from ..model.dual import MOTION_INPUTS, Dual, cos_sin, motion_inputs
+from ..model.geometry import radius_of_gyration
 from ..model.pdof import wrap_angle
 from ..model.quantities import INPUTS
 
@@ -298,6 +299,6 @@ def current_value(case: Case, key: str) -> float:
     if attr == "speed":
         return float(np.hypot(*np.asarray(vehicle.velocity, dtype=float)))
     if attr == "radius_of_gyration":
-        return float(np.sqrt(float(vehicle.yaw_inertia) / float(vehicle.mass)))
+        return float(radius_of_gyration(vehicle.mass, vehicle.yaw_inertia))
     phi, d = _arm(state, i)
     return float(phi if attr == "phi" else d)

@@ -60,7 +60,7 @@ def under_determined(case: Case, unknown: dict, include_yaw: bool = True) -> str
     hint = (f"; missing: {', '.join(missing)} (evidence of that vehicle's rest position "
             "gives it)" if missing else "; fix some of them (e.g. beta = 1) instead")
     return (f"under-determined: {n_unknown} unknowns ({', '.join(unknown)}) but only "
-            f"{n_data} measured quantities ({', '.join(names)}){hint}")
+            f"{n_data} measured quantities ({', '.join(t.name for t in names)}){hint}")
 
 
 def inverse_pim(case: Case, unknown: dict | None = None, *, include_yaw: bool = True,

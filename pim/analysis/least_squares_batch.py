@@ -98,14 +98,9 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
     """
     x0 = np.atleast_2d(np.asarray(x0, dtype=float))
     m, n = x0.shape
-    lo = np.broadcast_to(np.asarray(lower, dtype=float), (m, n))
-    hi = np.broadcast_to(np.asarray(upper, dtype=float), (m, n))
-    if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) and np.all(lo < hi)):
-        raise ValueError("bounds must be finite with lower < upper")
-    width = hi - lo
+    lo, width = _box(lower, upper, (m, n))
     u = np.clip((x0 - lo) / width, 0.0, 1.0)
-    all_idx = np.arange(m)
-    r, j = fun(lo + u * width, all_idx)
+    r, j = fun(lo + u * width, np.arange(m))
     nfev = 1
     r = np.array(r, dtype=float)
     j = np.array(j, dtype=float) * width[:, None, :]      # d r / d u
@@ -114,26 +109,14 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
     running = np.ones(m, dtype=bool)
     converged = np.zeros(m, dtype=bool)
     iterations = np.zeros(m, dtype=int)
-    eye = np.eye(n)
     for _ in range(int(max_iter)):
         idx = np.flatnonzero(running)
         if idx.size == 0:
             break
         iterations[idx] += 1
-        ua, ra, ja = u[idx], r[idx], j[idx]
-        g = np.einsum("pki,pk->pi", ja, ra)
-        held = ((ua <= 0.0) & (g > 0.0)) | ((ua >= 1.0) & (g < 0.0))
-        gfree = np.where(held, 0.0, g)
+        ua = u[idx]
+        gfree, jf, step = _step(ua, r[idx], j[idx], lam[idx])
         small_grad = np.max(np.abs(gfree), axis=1) <= gtol * np.maximum(cost[idx], 1e-300) ** 0.5
-        jf = np.where(held[:, None, :], 0.0, ja)
-        a = np.einsum("pki,pkj->pij", jf, jf)
-        diag = np.einsum("pii->pi", a)
-        diag = np.maximum(diag, 1e-12 * np.maximum(diag.max(axis=1, keepdims=True), 1e-300))
-        lhs = a + (lam[idx, None] * diag)[:, :, None] * eye
-        lhs = np.where(held[:, :, None] | held[:, None, :], 0.0, lhs) + held[:, :, None] * eye
-        with np.errstate(all="ignore"):
-            step = -np.linalg.solve(lhs, gfree[..., None])[..., 0]
-        step = np.where(np.isfinite(step), step, 0.0)
         trial = np.clip(ua + step, 0.0, 1.0)
         rt, jt = fun(lo[idx] + trial * width[idx], idx)
         nfev += 1
@@ -149,10 +132,7 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
         cost[acc] = ct[better]
         lam[acc] = np.maximum(lam[acc] / 3.0, 1e-12)
         lam[idx[~better]] *= 4.0
-        # decrease of sum r^2 the linear model promised for the step (round-off floor)
-        jstep = np.einsum("pki,pi->pk", jf, step)
-        promised = -2.0 * np.einsum("pi,pi->p", gfree, step) - np.sum(jstep**2, axis=1)
-        flat = promised <= 1e-14 * np.maximum(cost[idx], 1e-300)
+        flat = _flat(jf, gfree, step, cost[idx])
         done = (small_grad
                 | (better & ((drop <= ftol * ct) | (moved <= xtol)))
                 | (~better & ((moved <= xtol) | flat))
@@ -160,19 +140,63 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
         converged[idx[done]] = True
         running[idx[done]] = False
         if merge is not None and converged.any() and running.any():
-            live, fixed = np.flatnonzero(running), np.flatnonzero(converged)
-            dist = np.max(np.abs(u[live][:, None, :] - u[fixed][None, :, :]), axis=-1)
-            near = np.argmin(dist, axis=1)
-            dup = (dist[np.arange(live.size), near] <= merge) & (
-                cost[live] >= cost[fixed[near]] * (1.0 - 1e-9))
-            for p_, q_ in zip(live[dup], fixed[near[dup]], strict=True):
-                u[p_], r[p_], j[p_], cost[p_] = u[q_], r[q_], j[q_], cost[q_]
-            converged[live[dup]] = True
-            running[live[dup]] = False
+            _merge_duplicates(u, r, j, cost, running, converged, merge)
     x = lo + u * width
     on_bound = np.where(u <= 0.0, -1, np.where(u >= 1.0, 1, 0)).astype(np.int8)
     return BatchFit(x=x, cost=cost, residuals=r, jacobian=j / width[:, None, :],
                     on_bound=on_bound, converged=converged, iterations=iterations, nfev=nfev)
+
+
+def _box(lower, upper, shape) -> tuple[np.ndarray, np.ndarray]:
+    """Lower bounds and widths (m, n); a clear error unless finite with lower < upper."""
+    lo = np.broadcast_to(np.asarray(lower, dtype=float), shape)
+    hi = np.broadcast_to(np.asarray(upper, dtype=float), shape)
+    if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) and np.all(lo < hi)):
+        raise ValueError("bounds must be finite with lower < upper")
+    return lo, hi - lo
+
+
+def _flat(jf, gfree, step, cost) -> np.ndarray:
+    """Whether the decrease of sum r^2 that the linear model promised for the step is below
+    round-off (1e-14 of the cost)."""
+    jstep = np.einsum("pki,pi->pk", jf, step)
+    promised = -2.0 * np.einsum("pi,pi->p", gfree, step) - np.sum(jstep**2, axis=1)
+    return promised <= 1e-14 * np.maximum(cost, 1e-300)
+
+
+def _step(ua: np.ndarray, ra: np.ndarray, ja: np.ndarray, lam: np.ndarray) -> tuple:
+    """One damped Gauss-Newton step per problem in box-scaled variables (module notes).
+
+    Returns the projected gradient J^T r (zero on the held variables), the Jacobian with the
+    held columns zeroed, and the step (p, n); a variable on a bound whose gradient pushes it
+    outward is held (the projected-gradient active set)."""
+    g = np.einsum("pki,pk->pi", ja, ra)
+    held = ((ua <= 0.0) & (g > 0.0)) | ((ua >= 1.0) & (g < 0.0))
+    gfree = np.where(held, 0.0, g)
+    jf = np.where(held[:, None, :], 0.0, ja)
+    a = np.einsum("pki,pkj->pij", jf, jf)
+    diag = np.einsum("pii->pi", a)
+    diag = np.maximum(diag, 1e-12 * np.maximum(diag.max(axis=1, keepdims=True), 1e-300))
+    eye = np.eye(ua.shape[1])
+    lhs = a + (lam[:, None] * diag)[:, :, None] * eye
+    lhs = np.where(held[:, :, None] | held[:, None, :], 0.0, lhs) + held[:, :, None] * eye
+    with np.errstate(all="ignore"):
+        step = -np.linalg.solve(lhs, gfree[..., None])[..., 0]
+    return gfree, jf, np.where(np.isfinite(step), step, 0.0)
+
+
+def _merge_duplicates(u, r, j, cost, running, converged, merge: float) -> None:
+    """Stop (in place) each running start within ``merge`` (box-scaled, max norm) of a
+    converged one with no lower cost: it becomes a copy of that one."""
+    live, fixed = np.flatnonzero(running), np.flatnonzero(converged)
+    dist = np.max(np.abs(u[live][:, None, :] - u[fixed][None, :, :]), axis=-1)
+    near = np.argmin(dist, axis=1)
+    dup = (dist[np.arange(live.size), near] <= merge) & (
+        cost[live] >= cost[fixed[near]] * (1.0 - 1e-9))
+    for p_, q_ in zip(live[dup], fixed[near[dup]], strict=True):
+        u[p_], r[p_], j[p_], cost[p_] = u[q_], r[q_], j[q_], cost[q_]
+    converged[live[dup]] = True
+    running[live[dup]] = False
 
 
 def _cost(r: np.ndarray) -> np.ndarray:

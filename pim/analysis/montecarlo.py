@@ -108,10 +108,6 @@ class UncertaintyResult:
     varying: tuple
     samples: dict = field(repr=False)
 
-    def interaction_share(self, output: str) -> float:
-        """1 - sum of first-order indices: the variance share of interactions [-]."""
-        return max(0.0, 1.0 - sum(s for _, s in self.sensitivity[output]))
-
 
 def _bin_indices(uniforms: dict, bins: int) -> dict:
     return {name: np.minimum((u * bins).astype(np.intp), bins - 1)

@@ -37,7 +37,7 @@ from .reconstruction_mc import (
     solve_samples,
     summarise,
 )
-from .residuals import measured_terms
+from .residuals import GoodnessOfFit, measured_terms
 from .runout_fit import RunoutFit, fit_runout
 
 __all__ = ["PostImpact", "post_impact_motion", "approach_direction", "Reconstruction",
@@ -52,8 +52,8 @@ class PostImpact:
     ----------
     case : Case, the input case with ``measured`` replaced by the run-out fits' motion
     runouts : dict vehicle number (1, 2) -> RunoutFit (only vehicles with evidence)
-    velocity_sigma : dict vehicle number -> (2, 2) covariance [m^2/s^2] of the post-impact
-        velocity (a covariance matrix, not a standard deviation, despite the name)
+    velocity_covariance : dict vehicle number -> (2, 2) covariance of the post-impact
+        velocity [m^2/s^2] (``velocity_sigma``, its former name, still reads it)
     yaw_rate_sigma : dict vehicle number -> standard deviation of the yaw rate [rad/s]
     momentum : MomentumSpeeds or None (needs both vehicles' evidence)
     messages : list of plain-language warnings (unreachable rest, no stop, several minima)
@@ -61,10 +61,15 @@ class PostImpact:
 
     case: Case
     runouts: dict
-    velocity_sigma: dict
+    velocity_covariance: dict
     yaw_rate_sigma: dict
     momentum: MomentumSpeeds | None
     messages: list
+
+    @property
+    def velocity_sigma(self) -> dict:
+        """Former name of :attr:`velocity_covariance` (it always held covariances)."""
+        return self.velocity_covariance
 
 
 def _velocity_covariance(fit: RunoutFit) -> tuple[np.ndarray, float]:
@@ -165,6 +170,11 @@ class Reconstruction:
     determined: bool
     messages: list
 
+    @property
+    def goodness(self) -> GoodnessOfFit | None:
+        """Chi-square test of the inverse PIM (None without standard deviations or a fit)."""
+        return None if self.fit is None else self.fit.goodness
+
     def table(self) -> list[dict]:
         """Per unknown: name, value, p5, p50, p95 [SI] (percentiles NaN without samples)."""
         rows = []
@@ -232,18 +242,8 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         return Reconstruction(solved, unknown, post, None, {}, momentum, None, False,
                               messages + [why])
     fitted = inverse_pim(solved, unknown, include_yaw=include_yaw)
-    ident = fitted.identifiability
-    determined = ident is None or ident.identifiable
-    messages += list(ident.warnings) if ident else []
-    for key, side in fitted.on_bound.items():
-        messages.append(f"{key} sits on its {side} bound")
-    best = fitted.minima_values[0][1] if fitted.minima_values else 0.0
-    equal = [v for v, c in fitted.minima_values if c <= best * (1 + 1e-6) + 1e-12]
-    if len(equal) > 1:
-        determined = False
-        messages.append(f"{len(equal)} distinct solutions fit equally well (" + "; ".join(
-            ", ".join(f"{k} = {x:.4g}" for k, x in v.items()) for v in equal)
-            + "): the data do not decide between them")
+    determined, said = _judge(fitted)
+    messages += said
     values = {k: v for k, v in fitted.values.items()} if determined else {}
     if momentum is not None and not post and solved.measured.velocity1_sigma is None:
         s_hat = residual_standard_error(fitted)          # no sigma stated: the fit's
@@ -251,25 +251,52 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
             momentum = _momentum_of(solved, s_hat)
     mc = None
     if determined and samples:
-        if executor is None or post_impact_samples is not None:
-            extra_nominal, sampler = {}, post_impact_samples
-            if post is not None and sampler is None:
-                extra_nominal = evidence_nominal(case, post)
-                sampler = evidence_sampler(case, post, include_yaw)
-            mc = reconstruction_samples(solved, fitted, unknown, n=samples, seed=seed,
-                                        include_yaw=include_yaw, post_impact=sampler,
-                                        extra_nominal=extra_nominal)
-        else:
-            k = int(blocks or 4)
-            sizes = [len(part) for part in np.array_split(np.arange(samples), k) if len(part)]
-            seeds = np.random.SeedSequence(seed).spawn(len(sizes))
-            pool = executor.get_executor() if hasattr(executor, "get_executor") else executor
-            jobs = [(solved, fitted, unknown, size, sq, include_yaw, case, post)
-                    for size, sq in zip(sizes, seeds, strict=True)]
-            mc = summarise(fitted, list(pool.map(sample_block, jobs)))
+        mc = _monte_carlo(case, post, solved, fitted, unknown, samples, seed, include_yaw,
+                          post_impact_samples, executor, blocks)
         messages += mc.messages
     return Reconstruction(solved, unknown, post, fitted, values, momentum, mc, determined,
                           messages)
+
+
+def _judge(fitted: FitResult) -> tuple[bool, list[str]]:
+    """Whether the inverse PIM determines the unknowns, and what to tell the user: the
+    identifiability warnings, parameters on a bound, a chi-square that says the data do not
+    fit, several equally good solutions."""
+    ident = fitted.identifiability
+    determined = ident is None or ident.identifiable
+    messages = list(ident.warnings) if ident else []
+    messages += [f"{key} sits on its {side} bound" for key, side in fitted.on_bound.items()]
+    if fitted.goodness is not None and fitted.goodness.consistent is False:
+        messages.append(fitted.goodness.summary())
+    best = fitted.minima_values[0][1] if fitted.minima_values else 0.0
+    equal = [v for v, c in fitted.minima_values if c <= best * (1 + 1e-6) + 1e-12]
+    if len(equal) > 1:
+        determined = False
+        messages.append(f"{len(equal)} distinct solutions fit equally well (" + "; ".join(
+            ", ".join(f"{k} = {x:.4g}" for k, x in v.items()) for v in equal)
+            + "): the data do not decide between them")
+    return determined, messages
+
+
+def _monte_carlo(case, post, solved, fitted, unknown, samples, seed, include_yaw,
+                 post_impact_samples, executor, blocks) -> ReconstructionSamples:
+    """The Monte Carlo of :func:`reconstruct`: in this process, or in seeded blocks on the
+    executor."""
+    if executor is None or post_impact_samples is not None:
+        extra_nominal, sampler = {}, post_impact_samples
+        if post is not None and sampler is None:
+            extra_nominal = evidence_nominal(case, post)
+            sampler = evidence_sampler(case, post, include_yaw)
+        return reconstruction_samples(solved, fitted, unknown, n=samples, seed=seed,
+                                      include_yaw=include_yaw, post_impact=sampler,
+                                      extra_nominal=extra_nominal)
+    k = int(blocks or 4)
+    sizes = [len(part) for part in np.array_split(np.arange(samples), k) if len(part)]
+    seeds = np.random.SeedSequence(seed).spawn(len(sizes))
+    pool = executor.get_executor() if hasattr(executor, "get_executor") else executor
+    jobs = [(solved, fitted, unknown, size, sq, include_yaw, case, post)
+            for size, sq in zip(sizes, seeds, strict=True)]
+    return summarise(fitted, list(pool.map(sample_block, jobs)))
 
 
 def _momentum_of(case: Case, sigma: float | None = None) -> MomentumSpeeds | None:
@@ -308,13 +335,13 @@ def evidence_sampler(case: Case, post: PostImpact, include_yaw: bool = True):
 
     from .runout_fit_batch import fit_runout_many  # compiled run-out: numba on first use
 
-    names = measured_terms(post.case, include_yaw)
+    terms = measured_terms(post.case, include_yaw)
 
     def sampler(values, uniforms, rng, n):
         def each(name):
             return np.broadcast_to(np.asarray(values[name], dtype=float), (n,))
 
-        targets = np.empty((n, len(names)))
+        targets = np.empty((n, len(terms)))
         ok = np.ones(n, dtype=bool)
         extra = {}
         for i, nominal in post.runouts.items():
@@ -347,13 +374,10 @@ def evidence_sampler(case: Case, post: PostImpact, include_yaw: bool = True):
                 path_points=points, position_sigma=ev.position_sigma,
                 heading_sigma=ev.heading_sigma)
             ok &= fit.converged & fit.stopped
-            for j, name in enumerate(names):
-                if name == f"velocity{i}_x":
-                    targets[:, j] = fit.velocity[:, 0]
-                elif name == f"velocity{i}_y":
-                    targets[:, j] = fit.velocity[:, 1]
-                elif name == f"yaw_rate{i}":
-                    targets[:, j] = fit.yaw_rate
+            for j, term in enumerate(terms):
+                if term.vehicle == i:
+                    targets[:, j] = (fit.velocity[:, term.axis] if term.is_velocity
+                                     else fit.yaw_rate)
         return targets, ok, extra
 
     return sampler

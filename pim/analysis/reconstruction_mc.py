@@ -28,12 +28,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model.distributions import UncertaintyTable, nominal_values, sample_inputs
+from ..model.motion import as_terms
 from .fitting import FitResult
-from .free_fit import residual_terms
 from .free_inputs import STATE, fields_set_by
 from .inverse_pim import inverse_pim_many
 from .montecarlo import PERCENTILES, first_order_indices
-from .residuals import measured_terms
+from .residuals import measured_terms, residual_terms
 
 __all__ = ["UnknownStats", "ReconstructionSamples", "reconstruction_samples",
            "residual_standard_error", "SampleBlock", "solve_samples", "summarise"]
@@ -90,22 +90,13 @@ class ReconstructionSamples:
 def residual_standard_error(fit_result: FitResult) -> float:
     """s = sqrt(cost / (k - n)) of an unweighted fit [m/s] (NaN without degrees of freedom)."""
     k = len(fit_result.residual_names)
-    n = len(fit_result.values)
+    n = len(fit_result.fitted_keys)
     return float(np.sqrt(fit_result.cost / (k - n))) if k > n else float("nan")
 
 
 def _measured_sigmas(case, names, fit_result) -> tuple[np.ndarray, str]:
     """Per residual term: the sigma of the measured value [m/s or rad/s] and its source."""
-    m = case.measured
-    sig = []
-    for name in names:
-        if name.startswith("velocity"):
-            i, axis = int(name[8]), "xy".index(name[-1])
-            s = getattr(m, f"velocity{i}_sigma")
-            sig.append(None if s is None else float(s[axis]))
-        else:
-            s = getattr(m, f"yaw_rate{name[-1]}_sigma")
-            sig.append(None if s is None else float(s))
+    sig = [t.sigma_of(case.measured) for t in as_terms(names)]
     if all(s is not None for s in sig):
         return np.array(sig), "stated"
     s = residual_standard_error(fit_result)
@@ -195,9 +186,9 @@ def solve_samples(case, fit_result: FitResult, unknown: dict, n: int, rng, *,
 
         sigma, source = _measured_sigmas(case, names, fit_result)
         targets = np.empty((n, len(names)))
-        for j, name in enumerate(names):
+        for j, term in enumerate(names):
             u = rng.random(n) + 2.0**-54
-            uniforms[f"measured.{name}"] = u
+            uniforms[f"measured.{term.name}"] = u
             targets[:, j] = target[j] + sigma[j] * ndtri(u)
         ok_post = np.ones(n, dtype=bool)
         if source != "stated":

@@ -1,88 +1,66 @@
-"""Residuals of measured post-impact motion against PIM, and their Jacobian in (eps, beta).
+"""Residuals of measured post-impact motion against PIM, and the fit's goodness of fit.
 
-The residual terms are ``velocity{1,2}_{x,y}`` -> V - V_measured [m/s] and
-``yaw_rate{1,2}`` -> k (Omega - Omega_measured) [m/s], with k = sqrt(I / m) the vehicle's
-radius of gyration (the speed that spin gives a point at distance k from the CG).
+The residual terms (:class:`pim.model.motion.Term`) are the measured velocity components,
+V - V_measured [m/s], and yaw rates, k (Omega - Omega_measured) [m/s], with k = sqrt(I / m)
+the vehicle's radius of gyration (the speed that spin gives a point at distance k from the
+CG). With the ``[measured]`` standard deviations each residual is divided by its sigma
+(k sigma for a yaw rate): the sum of squares is then a chi-square [-], and
+:func:`goodness_of_fit` says whether the data fit the model at the stated sigmas.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from ..model.case import Case
+from ..model.dual import MOTION_OUTPUTS
 from ..model.geometry import radius_of_gyration
+from ..model.motion import Term, as_terms
 from ..model.result import Result
-from .derivatives import motion_derivatives
 
-__all__ = ["measured_terms", "has_measured_terms", "residuals", "residuals_and_jacobian",
-           "measured_weights"]
+__all__ = ["measured_terms", "has_measured_terms", "residuals", "residual_terms",
+           "measured_weights", "GoodnessOfFit", "goodness_of_fit", "P_INCONSISTENT",
+           "cost_label"]
+
+#: p-value below which the measurements are called inconsistent with PIM at their sigmas.
+P_INCONSISTENT = 0.01
 
 
-def measured_terms(case: Case, include_yaw: bool) -> tuple[str, ...]:
+def measured_terms(case: Case, include_yaw: bool) -> tuple[Term, ...]:
+    """The terms ``case.measured`` holds (velocities; yaw rates with ``include_yaw``).
+
+    Raises
+    ------
+    ValueError
+        Nothing measured to fit, with a hint when only yaw rates are measured.
+    """
     m = case.measured
-    names: list[str] = []
+    terms: list[Term] = []
     if m is not None:
-        for i, vel in ((1, m.velocity1), (2, m.velocity2)):
-            if vel is not None:
-                names += [f"velocity{i}_x", f"velocity{i}_y"]
-        if include_yaw:
-            for i, w in ((1, m.yaw_rate1), (2, m.yaw_rate2)):
-                if w is not None:
-                    names.append(f"yaw_rate{i}")
-    if not names:
+        for i in (1, 2):
+            if getattr(m, f"velocity{i}") is not None:
+                terms += [Term(i, "vx"), Term(i, "vy")]
+        for i in (1, 2) if include_yaw else ():
+            if getattr(m, f"yaw_rate{i}") is not None:
+                terms.append(Term(i, "omega"))
+    if not terms:
         has_yaw = m is not None and (m.yaw_rate1 is not None or m.yaw_rate2 is not None)
         hint = (" (only yaw rates are measured: use include_yaw=True / --include-yaw)"
                 if has_yaw and not include_yaw else "")
         raise ValueError(
             f"case {case.name or '(unnamed)'}: nothing to fit; case.measured needs a "
             f"post-impact velocity1 or velocity2 [m/s]{hint}")
-    return tuple(names)
+    return tuple(terms)
 
 
-def residuals(result: Result, names: tuple[str, ...]) -> np.ndarray:
-    """Residuals of the fit [m/s], shape (..., len(names)).
-
-    Parameters
-    ----------
-    result : Result
-        Solve of the case (any shape); its ``case.measured`` holds the targets.
-    names : tuple of str
-        Terms: ``velocity{1,2}_{x,y}`` -> V - V_measured, ``yaw_rate{1,2}`` ->
-        k (Omega - Omega_measured) with k = sqrt(I / m) the radius of gyration.
-    """
-    return residuals_and_jacobian(result, names, jacobian=False)[0]
+def _gyration(case: Case, term: Term) -> float:
+    v = getattr(case, f"vehicle{term.vehicle}")
+    return float(radius_of_gyration(v.mass, v.yaw_inertia))
 
 
-def residuals_and_jacobian(result: Result, names, jacobian: bool = True):
-    case = result.case
-    m = case.measured
-    md = motion_derivatives(result) if jacobian else None
-    res, jac = [], []
-    for name in names:
-        if name.startswith("velocity"):
-            i, axis = int(name[8]), "xy".index(name[-1])
-            target = (m.velocity1 if i == 1 else m.velocity2)[axis]
-            value = (result.velocity1 if i == 1 else result.velocity2)[..., axis]
-            res.append(value - target)
-            if jacobian:
-                jac.append([getattr(d, f"velocity{i}")[..., axis] for d in md])
-        else:
-            i = int(name[-1])
-            v = case.vehicle1 if i == 1 else case.vehicle2
-            k = radius_of_gyration(v.mass, v.yaw_inertia)
-            target = m.yaw_rate1 if i == 1 else m.yaw_rate2
-            res.append(k * ((result.yaw_rate1 if i == 1 else result.yaw_rate2) - target))
-            if jacobian:
-                jac.append([k * getattr(d, f"yaw_rate{i}") for d in md])
-    r = np.stack(np.broadcast_arrays(*res), axis=-1)
-    if not jacobian:
-        return r, None
-    # shape (..., n_terms, 2): d r_i / d (eps, beta)
-    j = np.stack([np.stack(np.broadcast_arrays(*row), axis=-1) for row in jac], axis=-2)
-    return r, j
-
-
-def measured_weights(case: Case, names: tuple[str, ...]) -> np.ndarray | None:
+def measured_weights(case: Case, terms) -> np.ndarray | None:
     """Weights that turn the residuals into standardised ones, or None when unweighted.
 
     With the ``[measured]`` standard deviations (``Measured.velocity1_sigma`` [m/s],
@@ -90,28 +68,56 @@ def measured_weights(case: Case, names: tuple[str, ...]) -> np.ndarray | None:
     and the yaw residual k (Omega - Omega_m) by k sigma, so that sum (w r)^2 is a chi-square.
     Either every fitted term has a sigma or none has: a mix is an error naming what is missing.
     """
-    m = case.measured
-    w, missing = [], []
-    for name in names:
-        if name.startswith("velocity"):
-            i, axis = int(name[8]), "xy".index(name[-1])
-            sigma = getattr(m, f"velocity{i}_sigma")
-            w.append(None if sigma is None else 1.0 / sigma[axis])
-        else:
-            i = int(name[-1])
-            sigma = getattr(m, f"yaw_rate{i}_sigma")
-            v = case.vehicle1 if i == 1 else case.vehicle2
-            w.append(None if sigma is None
-                     else 1.0 / (radius_of_gyration(v.mass, v.yaw_inertia) * sigma))
-        if w[-1] is None:
-            missing.append(name)
-    if len(missing) == len(names):
+    terms = as_terms(terms)
+    sigmas = [t.sigma_of(case.measured) for t in terms]
+    missing = [t.name for t, s in zip(terms, sigmas, strict=True) if s is None]
+    if len(missing) == len(terms):
         return None
     if missing:
         raise ValueError(f"measured: standard deviations are given for some fitted terms but "
                          f"not for {', '.join(missing)}; give a *_sigma for every measured "
                          f"quantity that is fitted, or for none")
-    return np.array([float(np.asarray(x).reshape(())) for x in w])
+    return np.array([1.0 / (s if t.is_velocity else _gyration(case, t) * s)
+                     for t, s in zip(terms, sigmas, strict=True)])
+
+
+def residual_terms(case: Case, terms) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Rows of :data:`pim.model.dual.MOTION_OUTPUTS`, measured targets and factors of the
+    residual ``terms`` of ``case``: residual = (output - target) * factor, the factor being 1
+    for a velocity and k_i for a yaw rate, times the ``[measured]`` weight 1/sigma when
+    standard deviations are given (:func:`measured_weights`)."""
+    terms = as_terms(terms)
+    rows = np.array([MOTION_OUTPUTS.index(t.name) for t in terms])
+    target = np.array([float(t.of(case.measured)) for t in terms])
+    scale = np.array([1.0 if t.is_velocity else _gyration(case, t) for t in terms])
+    w = measured_weights(case, terms)
+    return rows, target, scale * (1.0 if w is None else w)
+
+
+def residuals(result: Result, terms, *, weighted: bool = False) -> np.ndarray:
+    """Residuals of the fit, shape (..., len(terms)).
+
+    Parameters
+    ----------
+    result : Result
+        Solve of a single case (any shape of eps, beta); its ``case.measured`` holds the
+        targets.
+    terms : sequence of Term or str
+        ``velocity{1,2}_{x,y}`` -> V - V_measured [m/s], ``yaw_rate{1,2}`` ->
+        k (Omega - Omega_measured) [m/s] with k = sqrt(I / m) the radius of gyration.
+    weighted : bool
+        Divide by the ``[measured]`` standard deviations (when given): residuals [-] whose
+        sum of squares is the chi-square.
+    """
+    terms = as_terms(terms)
+    case = result.case
+    scale = np.array([1.0 if t.is_velocity else _gyration(case, t) for t in terms])
+    if weighted:
+        w = measured_weights(case, terms)
+        scale = scale * (1.0 if w is None else w)
+    values = np.stack(np.broadcast_arrays(*(t.of(result) for t in terms)), axis=-1)
+    target = np.array([float(t.of(case.measured)) for t in terms])
+    return (values - target) * scale
 
 
 def has_measured_terms(case: Case, include_yaw: bool = False) -> bool:
@@ -123,3 +129,68 @@ def has_measured_terms(case: Case, include_yaw: bool = False) -> bool:
     if m.velocity1 is not None or m.velocity2 is not None:
         return True
     return include_yaw and (m.yaw_rate1 is not None or m.yaw_rate2 is not None)
+
+
+@dataclass(frozen=True)
+class GoodnessOfFit:
+    """Chi-square test of a fit with stated measurement sigmas.
+
+    Attributes
+    ----------
+    chi_square : float
+        Sum of the squared standardised residuals, ((model - measured) / sigma)^2 [-].
+    dof : int
+        Degrees of freedom: measured terms minus fitted parameters.
+    p_value : float
+        Probability of a chi-square at least this large if the model holds and the sigmas
+        are right (``scipy.stats.chi2.sf``); NaN when ``dof`` is 0 or less.
+    """
+
+    chi_square: float
+    dof: int
+    p_value: float
+
+    @property
+    def consistent(self) -> bool | None:
+        """False when p < :data:`P_INCONSISTENT`; None when the test has no degree of freedom."""
+        if not np.isfinite(self.p_value):
+            return None
+        return bool(self.p_value >= P_INCONSISTENT)
+
+    def verdict(self) -> str:
+        """One plain sentence on whether the measurements fit PIM at their sigmas."""
+        if self.consistent is None:
+            return ("no degree of freedom left (as many fitted parameters as measured "
+                    "terms): the fit cannot test the model")
+        if not self.consistent:
+            return (f"the measurements are inconsistent with PIM at the stated sigmas "
+                    f"(p = {self.p_value:.2g} < {P_INCONSISTENT:g}): the model, the inputs "
+                    f"or the sigmas are wrong")
+        return f"the measurements are consistent with PIM at the stated sigmas (p = " \
+               f"{self.p_value:.2g})"
+
+    def summary(self) -> str:
+        """One line: chi-square, degrees of freedom, p-value and the verdict."""
+        p = f"p = {self.p_value:.3g}" if self.dof > 0 else "p undefined"
+        return (f"chi-square = {self.chi_square:.4g} with {self.dof} degrees of freedom "
+                f"({p}): {self.verdict()}")
+
+    def to_dict(self) -> dict:
+        return {"chi_square": self.chi_square, "dof": self.dof,
+                "p_value": None if not np.isfinite(self.p_value) else self.p_value,
+                "consistent": self.consistent, "verdict": self.verdict()}
+
+
+def goodness_of_fit(chi_square: float, n_data: int, n_parameters: int) -> GoodnessOfFit:
+    """The chi-square test of a weighted fit: dof = n_data - n_parameters, p = chi2.sf."""
+    from scipy.stats import chi2
+
+    dof = int(n_data) - int(n_parameters)
+    p = float(chi2.sf(chi_square, dof)) if dof > 0 else float("nan")
+    return GoodnessOfFit(float(chi_square), dof, p)
+
+
+def cost_label(weighted: bool, velocity_unit: str) -> str:
+    """What the fit's cost is: ``chi-square`` [-] with sigmas, else a sum of squares in
+    ``(velocity_unit)^2``."""
+    return "chi-square" if weighted else f"sum of squares ({velocity_unit})^2"

@@ -19,7 +19,7 @@ not stop within ``max_time`` is flagged (``stopped = False``).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -27,7 +27,7 @@ from ..model.numbers import real_array
 from ..model.pdof import wrap_angle
 from ..model.runout import MAX_TIME, Runout, RunoutVehicle, runout
 
-__all__ = ["RunoutFit", "fit_runout", "path_distance"]
+__all__ = ["RunoutFit", "RunoutFitSettings", "fit_runout", "path_distance"]
 
 
 @dataclass(frozen=True)
@@ -129,24 +129,12 @@ HEADING_SIGMA = float(np.radians(2.0))
 HEADING_TOLERANCE = float(np.radians(1.0))
 
 
-def fit_runout(vehicle: RunoutVehicle, position, heading, rest_position, rest_heading, *,
-               path_points=None, position_sigma=0.1, heading_sigma=HEADING_SIGMA,
-               speed_bounds=(0.0, 60.0), yaw_rate_bounds=(-15.0, 15.0),
-               max_time=MAX_TIME, position_tolerance=0.05,
-               heading_tolerance=HEADING_TOLERANCE, rtol=1e-9, atol=1e-11,
-               max_evaluations=60) -> RunoutFit:
-    """Fit the post-impact velocity and yaw rate that carry the vehicle to its rest state.
+@dataclass(frozen=True)
+class RunoutFitSettings:
+    """How :func:`fit_runout` weighs the evidence, bounds the search and runs the model (SI).
 
-    Parameters
+    Attributes
     ----------
-    vehicle : RunoutVehicle
-        Scalar fields.
-    position : array_like (2,) [m]; heading : float [rad]
-        The vehicle's CG and heading at separation (end of the impact).
-    rest_position : array_like (2,) [m]; rest_heading : float [rad]
-        Measured rest state of the CG.
-    path_points : array_like (k, 2) [m], optional
-        Points the CG passed through between separation and rest.
     position_sigma, heading_sigma : float
         Standard deviations of the measured positions [m] and heading [rad] (weights).
     speed_bounds : (float, float)
@@ -162,6 +150,174 @@ def fit_runout(vehicle: RunoutVehicle, position, heading, rest_position, rest_he
         differences).
     max_evaluations : int
         Forward runs allowed per start of the local search.
+    """
+
+    position_sigma: float = 0.1
+    heading_sigma: float = HEADING_SIGMA
+    speed_bounds: tuple = (0.0, 60.0)
+    yaw_rate_bounds: tuple = (-15.0, 15.0)
+    max_time: float = MAX_TIME
+    position_tolerance: float = 0.05
+    heading_tolerance: float = HEADING_TOLERANCE
+    rtol: float = 1e-9
+    atol: float = 1e-11
+    max_evaluations: int = 60
+
+    def __post_init__(self) -> None:
+        for name, unit in (("position_sigma", "m"), ("heading_sigma", "rad")):
+            value = getattr(self, name)
+            if not (np.isfinite(value) and value > 0):
+                raise ValueError(f"evidence.{name} must be finite and > 0 [{unit}], "
+                                 f"got {value!r}")
+        lo_v, hi_v = (float(v) for v in _finite(self.speed_bounds, "unknown.speed bounds",
+                                                "m/s", (2,)))
+        if lo_v < 0 or hi_v < lo_v:
+            raise ValueError(f"unknown.speed bounds must satisfy 0 <= low <= high [m/s], "
+                             f"got {self.speed_bounds!r}")
+        lo_w, hi_w = (float(v) for v in _finite(self.yaw_rate_bounds,
+                                                "unknown.yaw_rate bounds", "rad/s", (2,)))
+        if hi_w < lo_w:
+            raise ValueError(f"unknown.yaw_rate bounds must satisfy low <= high [rad/s], "
+                             f"got {self.yaw_rate_bounds!r}")
+        object.__setattr__(self, "speed_bounds", (lo_v, hi_v))
+        object.__setattr__(self, "yaw_rate_bounds", (lo_w, hi_w))
+
+
+@dataclass(frozen=True)
+class _Problem:
+    """The run-out inverse of one vehicle: forward model and weighted residuals."""
+
+    vehicle: RunoutVehicle
+    position: np.ndarray
+    heading: float
+    rest_position: np.ndarray
+    rest_heading: float
+    points: np.ndarray
+    settings: RunoutFitSettings
+
+    @property
+    def names(self) -> tuple:
+        return ("rest_x", "rest_y", "rest_heading") + tuple(
+            f"path_point{i + 1}" for i in range(len(self.points)))
+
+    def forward(self, p) -> Runout:
+        speed, direction, omega = p
+        s = self.settings
+        return runout(self.vehicle, self.position, self.heading,
+                      speed * np.array([np.cos(direction), np.sin(direction)]), omega,
+                      max_time=s.max_time, rtol=s.rtol, atol=s.atol,
+                      dense_output=len(self.points) > 0)
+
+    def residuals_of(self, run: Runout) -> np.ndarray:
+        s = self.settings
+        r = np.concatenate([(run.rest_position - self.rest_position) / s.position_sigma,
+                            [wrap_angle(run.rest_heading - self.rest_heading)
+                             / s.heading_sigma]])
+        if len(self.points):
+            r = np.concatenate([r, path_distance(self.points, run, signed=True)
+                                / s.position_sigma])
+        return r
+
+    def __call__(self, p) -> np.ndarray:
+        return self.residuals_of(self.forward(p))
+
+
+def _local_minima(problem: _Problem) -> list:
+    """Local fits from the energy estimate along the displacement, with the rotation taken
+    with -1, 0 and +1 extra turns: (cost, speed, direction, yaw rate, solution), best first."""
+    from scipy.optimize import least_squares
+
+    (lo_v, hi_v), (lo_w, hi_w) = problem.settings.speed_bounds, problem.settings.yaw_rate_bounds
+    displacement = problem.rest_position - problem.position
+    braking = float(np.mean(np.asarray(problem.vehicle.braking, dtype=float)))
+    decel = max(float(problem.vehicle.friction) * max(braking, 0.2)
+                * problem.vehicle.gravity, 1e-3)
+    speed0 = float(np.clip(np.sqrt(2 * decel * np.hypot(*displacement)), lo_v, hi_v))
+    direction0 = float(np.arctan2(displacement[1], displacement[0]))
+    t_stop = max(speed0 / decel, 0.3)
+    turn = float(wrap_angle(problem.rest_heading - problem.heading))
+    lower = np.array([lo_v, -np.inf, lo_w])
+    upper = np.array([hi_v, np.inf, hi_w])
+    minima = []
+    for k in (0, -1, 1):
+        omega0 = float(np.clip(2 * (turn + 2 * np.pi * k) / t_stop, lo_w, hi_w))
+        x0 = np.array([speed0, direction0, omega0])
+        x0 = np.clip(x0, lower + 1e-9 * (hi_v - lo_v + 1), upper - 1e-9 * (hi_v - lo_v + 1))
+        if hi_v == lo_v:
+            x0[0] = lo_v
+        sol = least_squares(problem, x0, bounds=(lower, upper + (hi_v == lo_v) * 1e-12 *
+                                                 np.array([1, 0, 0])),
+                            x_scale=np.array([max(speed0, 1.0), 0.1, 0.5]),
+                            diff_step=1e-5, xtol=1e-12, ftol=1e-12, gtol=1e-12,
+                            max_nfev=problem.settings.max_evaluations)
+        minima.append((float(sol.cost), float(sol.x[0]), float(wrap_angle(sol.x[1])),
+                       float(sol.x[2]), sol))
+    minima.sort(key=lambda m: m[0])
+    return minima
+
+
+def _distinct_minima(minima: list) -> tuple[list, list]:
+    """Distinct minima, the chosen one first, and the others that fit equally well.
+
+    The rest heading fixes the rotation only modulo a turn: among equally good minima the
+    least rotation is taken."""
+    distinct = []
+    for m in minima:
+        if all(abs(m[1] - d[1]) + abs(m[3] - d[3]) > 1e-4 for d in distinct):
+            distinct.append(m)
+    tie = distinct[0][0] + 1e-6 * (1 + distinct[0][0])
+    distinct.sort(key=lambda m: (m[0] > tie, abs(m[3]) if m[0] <= tie else m[0]))
+    return distinct, [m for m in distinct[1:] if m[0] <= tie]
+
+
+def _messages(problem: _Problem, run: Runout, reachable: bool, miss: float,
+              heading_miss: float, distinct: list, equally_good: list) -> str:
+    """Plain-language warnings: unreachable rest, no stop, several equally good motions."""
+    s = problem.settings
+    (lo_v, hi_v), (lo_w, hi_w) = s.speed_bounds, s.yaw_rate_bounds
+    rest, rest_heading = problem.rest_position, problem.rest_heading
+    messages = []
+    if not reachable:
+        messages.append(
+            f"the rest state ({rest[0]:.3f} m, {rest[1]:.3f} m, heading "
+            f"{np.degrees(rest_heading):.2f} deg) is not reached by any post-impact motion "
+            f"with speed in [{lo_v:g}, {hi_v:g}] m/s and yaw rate in [{lo_w:g}, {hi_w:g}] "
+            f"rad/s; the closest reachable rest is ({run.rest_position[0]:.3f} m, "
+            f"{run.rest_position[1]:.3f} m, heading "
+            f"{np.degrees(wrap_angle(run.rest_heading)):.2f} deg), "
+            f"missing by {miss:.3f} m and {np.degrees(heading_miss):.2f} deg")
+    if not run.stopped:
+        messages.append(f"the fitted motion has not stopped after {s.max_time:g} s of "
+                        f"simulated time (free-rolling wheels?)")
+    if equally_good:
+        messages.append(f"{len(equally_good) + 1} distinct motions fit the evidence equally "
+                        f"well (yaw rates "
+                        + ", ".join(f"{m[3]:.3f}" for m in distinct[:len(equally_good) + 1])
+                        + " rad/s); the least rotation is reported, a path point (tyre mark) "
+                        "decides")
+    return "; ".join(messages)
+
+
+def fit_runout(vehicle: RunoutVehicle, position, heading, rest_position, rest_heading, *,
+               path_points=None, settings: RunoutFitSettings | None = None,
+               **options) -> RunoutFit:
+    """Fit the post-impact velocity and yaw rate that carry the vehicle to its rest state.
+
+    Parameters
+    ----------
+    vehicle : RunoutVehicle
+        Scalar fields.
+    position : array_like (2,) [m]; heading : float [rad]
+        The vehicle's CG and heading at separation (end of the impact).
+    rest_position : array_like (2,) [m]; rest_heading : float [rad]
+        Measured rest state of the CG.
+    path_points : array_like (k, 2) [m], optional
+        Points the CG passed through between separation and rest.
+    settings : RunoutFitSettings, optional
+        Sigmas, bounds, tolerances and budget (defaults: :class:`RunoutFitSettings()`).
+    **options
+        Any field of :class:`RunoutFitSettings` by name (``position_sigma=0.2``,
+        ``speed_bounds=(0, 30)`` ...), overriding ``settings``.
 
     Returns
     -------
@@ -172,122 +328,38 @@ def fit_runout(vehicle: RunoutVehicle, position, heading, rest_position, rest_he
     ValueError
         Non-finite evidence, bad bounds or sigmas, naming the field.
     """
-    from scipy.optimize import least_squares
-
-    position = _finite(position, "evidence.position", "m", (2,))
-    rest_position = _finite(rest_position, "evidence.rest_position", "m", (2,))
-    heading = float(_finite(heading, "evidence.heading", "rad", ()))
-    rest_heading = float(_finite(rest_heading, "evidence.rest_heading", "rad", ()))
+    settings = replace(settings or RunoutFitSettings(), **options)
     points = (np.zeros((0, 2)) if path_points is None
               else _finite(path_points, "evidence.path_points", "m", None).reshape(-1, 2))
-    for name, value, unit in (("evidence.position_sigma", position_sigma, "m"),
-                              ("evidence.heading_sigma", heading_sigma, "rad")):
-        if not (np.isfinite(value) and value > 0):
-            raise ValueError(f"{name} must be finite and > 0 [{unit}], got {value!r}")
-    lo_v, hi_v = (float(v) for v in _finite(speed_bounds, "unknown.speed bounds", "m/s",
-                                            (2,)))
-    if lo_v < 0 or hi_v < lo_v:
-        raise ValueError(f"unknown.speed bounds must satisfy 0 <= low <= high [m/s], "
-                         f"got {speed_bounds!r}")
-    lo_w, hi_w = (float(v) for v in _finite(yaw_rate_bounds, "unknown.yaw_rate bounds",
-                                            "rad/s", (2,)))
-    if hi_w < lo_w:
-        raise ValueError(f"unknown.yaw_rate bounds must satisfy low <= high [rad/s], "
-                         f"got {yaw_rate_bounds!r}")
-
-    names = ("rest_x", "rest_y", "rest_heading") + tuple(
-        f"path_point{i + 1}" for i in range(len(points)))
-
-    def forward(p):
-        speed, direction, omega = p
-        return runout(vehicle, position, heading,
-                      speed * np.array([np.cos(direction), np.sin(direction)]), omega,
-                      max_time=max_time, rtol=rtol, atol=atol,
-                      dense_output=len(points) > 0)
-
-    def residuals_of(run):
-        r = np.concatenate([(run.rest_position - rest_position) / position_sigma,
-                            [wrap_angle(run.rest_heading - rest_heading) / heading_sigma]])
-        if len(points):
-            r = np.concatenate([r, path_distance(points, run, signed=True) / position_sigma])
-        return r
-
-    def fun(p):
-        return residuals_of(forward(p))
-
-    # starts: energy estimate along the displacement, the rotation with -1, 0, +1 turns
-    displacement = rest_position - position
-    braking = float(np.mean(np.asarray(vehicle.braking, dtype=float)))
-    decel = max(float(vehicle.friction) * max(braking, 0.2) * vehicle.gravity, 1e-3)
-    speed0 = float(np.clip(np.sqrt(2 * decel * np.hypot(*displacement)), lo_v, hi_v))
-    direction0 = float(np.arctan2(displacement[1], displacement[0]))
-    t_stop = max(speed0 / decel, 0.3)
-    turn = float(wrap_angle(rest_heading - heading))
-    lower = np.array([lo_v, -np.inf, lo_w])
-    upper = np.array([hi_v, np.inf, hi_w])
-    minima = []
-    for k in (0, -1, 1):
-        omega0 = float(np.clip(2 * (turn + 2 * np.pi * k) / t_stop, lo_w, hi_w))
-        x0 = np.array([speed0, direction0, omega0])
-        x0 = np.clip(x0, lower + 1e-9 * (hi_v - lo_v + 1), upper - 1e-9 * (hi_v - lo_v + 1))
-        if hi_v == lo_v:
-            x0[0] = lo_v
-        sol = least_squares(fun, x0, bounds=(lower, upper + (hi_v == lo_v) * 1e-12 *
-                                             np.array([1, 0, 0])),
-                            x_scale=np.array([max(speed0, 1.0), 0.1, 0.5]),
-                            diff_step=1e-5, xtol=1e-12, ftol=1e-12, gtol=1e-12,
-                            max_nfev=max_evaluations)
-        minima.append((float(sol.cost), float(sol.x[0]), float(wrap_angle(sol.x[1])),
-                       float(sol.x[2]), sol))
-    minima.sort(key=lambda m: m[0])
-    distinct = []
-    for m in minima:
-        if all(abs(m[1] - d[1]) + abs(m[3] - d[3]) > 1e-4 for d in distinct):
-            distinct.append(m)
-    # equally good minima (the rest heading fixes the rotation only modulo a turn): the
-    # least rotation is taken, the others are reported in ``minima`` and the message
-    tie = distinct[0][0] + 1e-6 * (1 + distinct[0][0])
-    distinct.sort(key=lambda m: (m[0] > tie, abs(m[3]) if m[0] <= tie else m[0]))
+    problem = _Problem(
+        vehicle, _finite(position, "evidence.position", "m", (2,)),
+        float(_finite(heading, "evidence.heading", "rad", ())),
+        _finite(rest_position, "evidence.rest_position", "m", (2,)),
+        float(_finite(rest_heading, "evidence.rest_heading", "rad", ())), points, settings)
+    distinct, equally_good = _distinct_minima(_local_minima(problem))
     best = distinct[0][4]
     speed, direction, omega = float(best.x[0]), float(wrap_angle(best.x[1])), float(best.x[2])
-    run = forward(best.x)
-    res = residuals_of(run)
-    jac = best.jac
+    run = problem.forward(best.x)
+    res = problem.residuals_of(run)
     try:
-        covariance = np.linalg.pinv(jac.T @ jac)
+        covariance = np.linalg.pinv(best.jac.T @ best.jac)
     except np.linalg.LinAlgError:
         covariance = np.full((3, 3), np.inf)
+    (lo_v, hi_v), (lo_w, hi_w) = settings.speed_bounds, settings.yaw_rate_bounds
     on_bound = tuple(name for name, value, lo, hi in
                      (("speed", speed, lo_v, hi_v), ("yaw_rate", omega, lo_w, hi_w))
                      if np.isclose(value, lo, atol=1e-6) or np.isclose(value, hi, atol=1e-6))
-    miss = float(np.hypot(*(run.rest_position - rest_position)))
-    heading_miss = float(abs(wrap_angle(run.rest_heading - rest_heading)))
-    reachable = miss <= position_tolerance and heading_miss <= heading_tolerance
-    messages = []
-    if not reachable:
-        messages.append(
-            f"the rest state ({rest_position[0]:.3f} m, {rest_position[1]:.3f} m, heading "
-            f"{np.degrees(rest_heading):.2f} deg) is not reached by any post-impact motion "
-            f"with speed in [{lo_v:g}, {hi_v:g}] m/s and yaw rate in [{lo_w:g}, {hi_w:g}] "
-            f"rad/s; the closest reachable rest is ({run.rest_position[0]:.3f} m, "
-            f"{run.rest_position[1]:.3f} m, heading "
-            f"{np.degrees(wrap_angle(run.rest_heading)):.2f} deg), "
-            f"missing by {miss:.3f} m and {np.degrees(heading_miss):.2f} deg")
-    if not run.stopped:
-        messages.append(f"the fitted motion has not stopped after {max_time:g} s of "
-                        f"simulated time (free-rolling wheels?)")
-    equally_good = [m for m in distinct[1:] if m[0] <= tie]
-    if equally_good:
-        messages.append(f"{len(equally_good) + 1} distinct motions fit the evidence equally "
-                        f"well (yaw rates "
-                        + ", ".join(f"{m[3]:.3f}" for m in distinct[:len(equally_good) + 1])
-                        + " rad/s); the least rotation is reported, a path point (tyre mark) "
-                        "decides")
+    miss = float(np.hypot(*(run.rest_position - problem.rest_position)))
+    heading_miss = float(abs(wrap_angle(run.rest_heading - problem.rest_heading)))
+    reachable = (miss <= settings.position_tolerance
+                 and heading_miss <= settings.heading_tolerance)
     velocity = speed * np.array([np.cos(direction), np.sin(direction)])
     return RunoutFit(velocity, omega, speed, direction, run, run.rest_position,
-                     run.rest_heading, names, res, float(0.5 * res @ res), covariance,
-                     bool(reachable), bool(run.stopped), on_bound,
-                     [m[:4] for m in distinct], "; ".join(messages))
+                     run.rest_heading, problem.names, res, float(0.5 * res @ res),
+                     covariance, bool(reachable), bool(run.stopped), on_bound,
+                     [m[:4] for m in distinct],
+                     _messages(problem, run, reachable, miss, heading_miss, distinct,
+                               equally_good))
 
 
 def _finite(value, name, unit, shape):

@@ -75,6 +75,78 @@ def _per_sample(value, shape, name, unit):
     return arr
 
 
+@dataclass(frozen=True, eq=False)
+class _Samples:
+    """The n run-out inverses of :func:`fit_runout_many`: per-sample inputs (checked), the
+    batched forward run and the weighted residuals; called as ``fun(x, idx) -> (r, J)``
+    (forward-difference Jacobian, one batched integration of the 4 shifted copies)."""
+
+    vehicle: RunoutVehicle
+    fields: dict
+    position: np.ndarray
+    heading: np.ndarray
+    rest_position: np.ndarray
+    rest_heading: np.ndarray
+    sig_p: np.ndarray
+    sig_h: np.ndarray
+    points: np.ndarray
+    upper: np.ndarray
+    dt: float
+    max_time: float
+
+    @classmethod
+    def checked(cls, vehicle, position, heading, rest_position, rest_heading, path_points,
+                position_sigma, heading_sigma, upper, dt, max_time) -> _Samples:
+        n = rest_position.shape[0]
+        sig_p = _per_sample(position_sigma, (n,), "evidence.position_sigma", "m")
+        sig_h = _per_sample(heading_sigma, (n,), "evidence.heading_sigma", "rad")
+        if np.any(sig_p <= 0) or np.any(sig_h <= 0):
+            raise ValueError("evidence.position_sigma and heading_sigma must be > 0")
+        if path_points is None or np.size(path_points) == 0:
+            points = np.zeros((n, 0, 2))
+        else:
+            pts = np.asarray(path_points, dtype=float)
+            pts = pts if pts.ndim == 3 else pts.reshape(-1, 2)
+            points = _per_sample(pts, (n, pts.shape[-2], 2), "evidence.path_points", "m")
+        fields = {name: _per_sample(getattr(vehicle, name), shape, f"runout.{name}", unit)
+                  for name, shape, unit in (
+                      ("mass", (n,), "kg"), ("yaw_inertia", (n,), "kg m^2"),
+                      ("wheelbase", (n,), "m"), ("track", (n,), "m"),
+                      ("cg_to_front", (n,), "m"), ("friction", (n,), "-"),
+                      ("braking", (n, 4), "-"), ("steer", (n, 4), "rad"))}
+        return cls(vehicle, fields, _per_sample(position, (n, 2), "evidence.position", "m"),
+                   _per_sample(heading, (n,), "evidence.heading", "rad"),
+                   _per_sample(rest_position, (n, 2), "evidence.rest_position", "m"),
+                   _per_sample(rest_heading, (n,), "evidence.rest_heading", "rad"),
+                   sig_p, sig_h, points, upper, dt, max_time)
+
+    def run(self, x, idx):
+        sub = RunoutVehicle(**{k: v[idx] for k, v in self.fields.items()},
+                            gravity=self.vehicle.gravity,
+                            regularisation=self.vehicle.regularisation)
+        velocity = x[:, :1] * np.stack([np.cos(x[:, 1]), np.sin(x[:, 1])], axis=-1)
+        return integrate_many(sub, self.position[idx], self.heading[idx], velocity, x[:, 2],
+                              path_points=self.points[idx], dt=self.dt,
+                              max_time=self.max_time)
+
+    def residuals_of(self, final, distance, idx):
+        return np.concatenate([(final[:, :2] - self.rest_position[idx]) / self.sig_p[idx, None],
+                               (wrap_angle(final[:, 2] - self.rest_heading[idx])
+                                / self.sig_h[idx])[:, None],
+                               distance / self.sig_p[idx, None]], axis=-1)
+
+    def __call__(self, x, idx):
+        m = len(idx)
+        step = np.where(x + FD_STEP <= self.upper[idx], FD_STEP, -FD_STEP)
+        shifted = np.concatenate([x] + [x + np.eye(3)[j] * step[:, j:j + 1]
+                                        for j in range(3)])
+        final, _, _, distance = self.run(shifted, np.tile(idx, 4))
+        r_all = self.residuals_of(final, distance, np.tile(idx, 4)).reshape(4, m, -1)
+        r = r_all[0]
+        jac = np.stack([(r_all[j + 1] - r) / step[:, j:j + 1] for j in range(3)], axis=-1)
+        return r, jac
+
+
 def fit_runout_many(vehicle: RunoutVehicle, position, heading, rest_position, rest_heading,
                     *, start, path_points=None, position_sigma=0.1,
                     heading_sigma=HEADING_SIGMA, speed_bounds=(0.0, 60.0),
@@ -113,58 +185,19 @@ def fit_runout_many(vehicle: RunoutVehicle, position, heading, rest_position, re
     """
     rest_position = np.atleast_2d(np.asarray(rest_position, dtype=float))
     n = rest_position.shape[0]
-    rest_position = _per_sample(rest_position, (n, 2), "evidence.rest_position", "m")
-    rest_heading = _per_sample(rest_heading, (n,), "evidence.rest_heading", "rad")
-    position = _per_sample(position, (n, 2), "evidence.position", "m")
-    heading = _per_sample(heading, (n,), "evidence.heading", "rad")
-    sig_p = _per_sample(position_sigma, (n,), "evidence.position_sigma", "m")
-    sig_h = _per_sample(heading_sigma, (n,), "evidence.heading_sigma", "rad")
-    if np.any(sig_p <= 0) or np.any(sig_h <= 0):
-        raise ValueError("evidence.position_sigma and heading_sigma must be > 0")
-    if path_points is None or np.size(path_points) == 0:
-        points = np.zeros((n, 0, 2))
-    else:
-        pts = np.asarray(path_points, dtype=float)
-        pts = pts if pts.ndim == 3 else pts.reshape(-1, 2)
-        points = _per_sample(pts, (n, pts.shape[-2], 2), "evidence.path_points", "m")
     lo_v, hi_v = (float(v) for v in speed_bounds)
     lo_w, hi_w = (float(v) for v in yaw_rate_bounds)
     if not (0 <= lo_v < hi_v and lo_w < hi_w):
         raise ValueError(f"speed bounds must satisfy 0 <= low < high and yaw-rate bounds "
                          f"low < high, got {speed_bounds!r}, {yaw_rate_bounds!r}")
-    fields = {name: _per_sample(getattr(vehicle, name), shape, f"runout.{name}", unit)
-              for name, shape, unit in (("mass", (n,), "kg"), ("yaw_inertia", (n,), "kg m^2"),
-                                        ("wheelbase", (n,), "m"), ("track", (n,), "m"),
-                                        ("cg_to_front", (n,), "m"), ("friction", (n,), "-"),
-                                        ("braking", (n, 4), "-"), ("steer", (n, 4), "rad"))}
     x0 = np.stack([_per_sample(v, (n,), "start", "SI") for v in start], axis=-1)
     lower = np.stack([np.full(n, lo_v), x0[:, 1] - np.pi, np.full(n, lo_w)], axis=-1)
     upper = np.stack([np.full(n, hi_v), x0[:, 1] + np.pi, np.full(n, hi_w)], axis=-1)
     x0 = np.clip(x0, lower, upper)
-
-    def run(x, idx):
-        sub = RunoutVehicle(**{k: v[idx] for k, v in fields.items()},
-                            gravity=vehicle.gravity, regularisation=vehicle.regularisation)
-        velocity = x[:, :1] * np.stack([np.cos(x[:, 1]), np.sin(x[:, 1])], axis=-1)
-        return integrate_many(sub, position[idx], heading[idx], velocity, x[:, 2],
-                              path_points=points[idx], dt=dt, max_time=max_time)
-
-    def residuals_of(final, distance, idx):
-        return np.concatenate([(final[:, :2] - rest_position[idx]) / sig_p[idx, None],
-                               (wrap_angle(final[:, 2] - rest_heading[idx])
-                                / sig_h[idx])[:, None],
-                               distance / sig_p[idx, None]], axis=-1)
-
-    def fun(x, idx):
-        m = len(idx)
-        step = np.where(x + FD_STEP <= upper[idx], FD_STEP, -FD_STEP)
-        shifted = np.concatenate([x] + [x + np.eye(3)[j] * step[:, j:j + 1]
-                                        for j in range(3)])
-        final, _, _, distance = run(shifted, np.tile(idx, 4))
-        r_all = residuals_of(final, distance, np.tile(idx, 4)).reshape(4, m, -1)
-        r = r_all[0]
-        jac = np.stack([(r_all[j + 1] - r) / step[:, j:j + 1] for j in range(3)], axis=-1)
-        return r, jac
+    fun = _Samples.checked(vehicle, position, heading, rest_position, rest_heading,
+                           path_points, position_sigma, heading_sigma, upper, dt, max_time)
+    rest_position, rest_heading = fun.rest_position, fun.rest_heading
+    run, residuals_of = fun.run, fun.residuals_of
 
     # chord steps: Gauss-Newton with one Jacobian (the first sample's at the start) for all
     # samples, one batched integration each; the samples are perturbations of one problem,

@@ -15,15 +15,17 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..model.case import Case
+from ..model.dual import MOTION_OUTPUTS, motion_jacobian
 from ..model.geometry import radius_of_gyration
+from ..model.motion import as_terms
 from ..model.quantities import INPUTS as QUANTITY_INPUTS
 from ..model.quantities import MEASURED, OUTPUTS, Quantity
-from ..model.result import Result
 from ..model.solver import defaults, solve
-from .derivatives import derivatives
 from .fitting import FitResult
 from .fitting import fit as fit_case
-from .residuals import has_measured_terms, residuals_and_jacobian
+from .free_fit import free_residuals
+from .free_inputs import STATE, case_state
+from .residuals import has_measured_terms, residual_terms
 
 __all__ = ["sensitivity", "Sensitivity", "TypicalUncertainty", "INPUTS", "SENSITIVITY_OUTPUTS"]
 
@@ -191,7 +193,9 @@ def _perturbed_case(case: Case, keys, steps) -> Case:
                    impact=impact)
 
 
-def _nominal_and_sigma(case: Case, unc: TypicalUncertainty, names) -> tuple[list, list, list]:
+def _nominal_and_sigma(case: Case, unc: TypicalUncertainty, terms) -> tuple[list, list, list]:
+    """Input keys, nominal values and sigmas [SI]: the measured terms take their stated
+    ``[measured]`` standard deviation where given, else the typical one."""
     v1, v2, imp, m = case.vehicle1, case.vehicle2, case.impact, case.measured
     rows = [("impact.point_x", imp.point[0], unc.point),
             ("impact.point_y", imp.point[1], unc.point),
@@ -207,22 +211,52 @@ def _nominal_and_sigma(case: Case, unc: TypicalUncertainty, names) -> tuple[list
         rows += [(f"vehicle{i}.velocity_x", v.velocity[0], unc.velocity),
                  (f"vehicle{i}.velocity_y", v.velocity[1], unc.velocity),
                  (f"vehicle{i}.yaw_rate", v.yaw_rate, unc.yaw_rate)]
-    for name in names:
-        i = int(name[-3] if name.startswith("velocity") else name[-1])
-        if name.startswith("velocity"):
-            target = (m.velocity1 if i == 1 else m.velocity2)["xy".index(name[-1])]
-            rows.append((f"measured.{name}", target, unc.measured_velocity))
-        else:
-            rows.append((f"measured.{name}", m.yaw_rate1 if i == 1 else m.yaw_rate2,
-                         unc.measured_yaw_rate))
+    for term in terms:
+        stated = term.sigma_of(m)
+        typical = unc.measured_velocity if term.is_velocity else unc.measured_yaw_rate
+        rows.append((f"measured.{term.name}", term.of(m), typical if stated is None else stated))
     keys = [r[0] for r in rows]
     return keys, [float(r[1]) for r in rows], [float(r[2]) for r in rows]
 
 
-def _cost_gradient(result: Result, names) -> np.ndarray:
-    """d S / d (eps, beta) = 2 J^T r [m^2/s^2], shape (..., 2)."""
-    r, j = residuals_and_jacobian(result, names)
-    return 2.0 * np.einsum("...i,...ij->...j", r, j)
+_EPS_BETA = ("impact.restitution", "impact.beta")
+
+
+def _cost_gradient(cases: Case, terms, eps, beta, fit_case_: Case) -> tuple:
+    """d S / d (eps, beta) = 2 J^T r of the fit's (weighted) cost, shape (m, 2), for the
+    cases (any batch, flattened to m rows) at the parameters (eps, beta) (shape (m,) or
+    scalar), with exact derivatives (dual numbers); and J (m, k, 2).
+
+    The targets and weights are those of ``fit_case_`` (the measured motion is not moved)."""
+    state = case_state(cases).reshape(-1, len(STATE))
+    e, b = np.broadcast_arrays(np.asarray(eps, dtype=float), np.asarray(beta, dtype=float))
+    m = max(state.shape[0], e.size)
+    state = np.broadcast_to(state, (m, len(STATE)))
+    x = np.stack([np.broadcast_to(e, (m,)), np.broadcast_to(b, (m,))], axis=-1)
+    rows, target, factor = residual_terms(fit_case_, terms)
+    # a yaw term's factor is k_i = sqrt(I_i / m_i) of the (perturbed) case itself
+    factor = np.broadcast_to(factor, (m, len(rows))).copy()
+    for col, term in enumerate(as_terms(terms)):
+        if not term.is_velocity:
+            v0, v = (getattr(c, f"vehicle{term.vehicle}") for c in (fit_case_, cases))
+            k0 = float(radius_of_gyration(v0.mass, v0.yaw_inertia))
+            ratio = radius_of_gyration(v.mass, v.yaw_inertia) / k0 if k0 > 0 else np.ones(1)
+            factor[:, col] *= np.broadcast_to(ratio.reshape(-1), (m,))
+    r, j = free_residuals(state, _EPS_BETA, x, rows, target, factor)
+    return 2.0 * np.einsum("pk,pkn->pn", r, j), j, factor
+
+
+def _delta_v_by_parameters(case: Case, eps: float, beta: float) -> tuple:
+    """|delta-V_1|, |delta-V_2| [m/s] and their exact derivatives w.r.t. (eps, beta), (2, 2)."""
+    values, jac = motion_jacobian(case, eps, beta)
+    out, grad = [], []
+    for i in (1, 2):
+        rows = [MOTION_OUTPUTS.index(f"velocity{i}_{a}") for a in "xy"]
+        dv = values[rows] - np.asarray(getattr(case, f"vehicle{i}").velocity, dtype=float)
+        size = float(np.hypot(*dv))
+        out.append(size)
+        grad.append(dv @ jac[rows][:, :2] / size if size > 0 else np.zeros(2))
+    return out, np.array(grad)
 
 
 def sensitivity(case: Case, fit_result=None, *, eps=None, beta=None, uncertainty=None,
@@ -267,62 +301,31 @@ def sensitivity(case: Case, fit_result=None, *, eps=None, beta=None, uncertainty
         if not isinstance(fit_result, FitResult):
             raise ValueError("fit_result must be a FitResult from pim.fit")
         eps, beta = fit_result.eps, fit_result.beta
-        names = fit_result.residual_names
+        terms = fit_result.terms or as_terms(fit_result.residual_names)
     else:
-        names = ()
+        terms = ()
         eps, beta = defaults(case, eps, beta)
     eps, beta = float(eps), float(beta)
 
-    keys, nominal, sigma = _nominal_and_sigma(case, unc, names)
-    model_keys = [k for k in keys if not k.startswith("measured.")]
-    n_model = len(model_keys)
+    keys, nominal, sigma = _nominal_and_sigma(case, unc, terms)
+    n_model = sum(not k.startswith("measured.") for k in keys)
     steps = INPUT_STEP * np.array(sigma[:n_model])
-
     # one broadcast solve over all +/- perturbations of the model inputs
-    batch = solve(_perturbed_case(case, model_keys, steps), eps, beta)
-    base = derivatives(solve(case, eps, beta))
+    moved = _perturbed_case(case, keys[:n_model], steps)
+    batch = solve(moved, eps, beta)
     dv = np.stack([batch.delta_v1_magnitude, batch.delta_v2_magnitude])       # (2, 2K)
     partial = np.zeros((2, len(keys)))
     partial[:, :n_model] = (dv[:, 0::2] - dv[:, 1::2]) / (2 * steps)
-    dv_dtheta = np.array([[base.d_eps[f"delta_v{i}_magnitude"],
-                           base.d_beta[f"delta_v{i}_magnitude"]] for i in (1, 2)], dtype=float)
-
+    values, dv_dtheta = _delta_v_by_parameters(case, eps, beta)
     outputs = ("delta_v1_magnitude", "delta_v2_magnitude")
-    values = [float(base.values["delta_v1_magnitude"]), float(base.values["delta_v2_magnitude"])]
     derivative = partial.copy()
     active: tuple[str, ...] = ()
     if fit_result is not None:
-        free = [p not in fit_result.fixed and p not in fit_result.on_bound for p in ("eps", "beta")]
         active = tuple(p for p in ("eps", "beta") if p in fit_result.on_bound)
-        dtheta = np.zeros((2, len(keys)))
-        idx = [i for i, f in enumerate(free) if f]
-        if idx:
-            # dg/dx for the model inputs (finite differences) and measured values (exact)
-            g = _cost_gradient(batch, names)                                    # (2K, 2)
-            dg = np.zeros((2, len(keys)))
-            dg[:, :n_model] = ((g[0::2] - g[1::2]) / (2 * steps[:, None])).T
-            _, j0 = residuals_and_jacobian(base.result, names)                 # (n, 2)
-            for col, key in enumerate(keys[n_model:], start=n_model):
-                term = names.index(key[len("measured."):])
-                weight = 1.0
-                if key.startswith("measured.yaw"):
-                    v = case.vehicle1 if key.endswith("1") else case.vehicle2
-                    weight = float(radius_of_gyration(v.mass, v.yaw_inertia))
-                dg[:, col] = -2.0 * weight * j0[term]
-            # Hessian of the cost over (eps, beta) by central differences of g
-            h = PARAMETER_STEP
-            e_pts = np.clip([eps + h, eps - h], 0.0, 1.0)
-            thetas_e = np.array([e_pts[0], e_pts[1], eps, eps])
-            thetas_b = np.array([beta, beta, beta + h, beta - h])
-            gh = _cost_gradient(solve(case, thetas_e, thetas_b), names)         # (4, 2)
-            hess = np.stack([(gh[0] - gh[1]) / (e_pts[0] - e_pts[1]),
-                             (gh[2] - gh[3]) / (2 * h)], axis=1)  # H[i, j] = dg_i / dtheta_j
-            hess = 0.5 * (hess + hess.T)
-            h_ff = hess[np.ix_(idx, idx)]
-            if not np.all(np.isfinite(h_ff)) or np.linalg.cond(h_ff) > 1e12:
-                raise ValueError("the cost is flat at the optimum (singular Hessian): the "
-                                 "fitted parameters are not determined by the measurements")
-            dtheta[idx] = -np.linalg.solve(h_ff, dg[idx])
+        held = set(active) | set(fit_result.fixed)
+        dtheta = _parameter_derivative(case, moved, terms, keys, steps, eps, beta,
+                                       [i for i, p in enumerate(("eps", "beta"))
+                                        if p not in held])
         derivative = np.vstack([dtheta, partial + dv_dtheta @ dtheta])
         outputs = ("eps", "beta", *outputs)
         values = [eps, beta, *values]
@@ -330,3 +333,37 @@ def sensitivity(case: Case, fit_result=None, *, eps=None, beta=None, uncertainty
                        nominal=np.array(nominal), sigma=np.array(sigma), outputs=outputs,
                        values=np.array(values), derivative=derivative,
                        partial_delta_v=partial, active_bounds=active)
+
+
+def _parameter_derivative(case: Case, moved: Case, terms, keys, steps, eps: float,
+                          beta: float, idx: list[int]) -> np.ndarray:
+    """d (eps, beta) / d input (2, n_inputs) by the implicit-function theorem at the optimum
+    of the (weighted) cost; rows not in ``idx`` (fixed or on a bound) are 0."""
+    dtheta = np.zeros((2, len(keys)))
+    if not idx:
+        return dtheta
+    n_model = len(steps)
+    # dg/dx for the model inputs (central differences of the exact gradient)
+    g, _, _ = _cost_gradient(moved, terms, eps, beta, case)                   # (2K, 2)
+    dg = np.zeros((2, len(keys)))
+    dg[:, :n_model] = ((g[0::2] - g[1::2]) / (2 * steps[:, None])).T
+    # measured values: r_i = (model - y_i) f_i, so dg/dy_i = -2 f_i J_i exactly
+    _, j0, factor = _cost_gradient(case, terms, eps, beta, case)
+    names = [t.name for t in terms]
+    for col, key in enumerate(keys[n_model:], start=n_model):
+        term = names.index(key[len("measured."):])
+        dg[:, col] = -2.0 * factor[0, term] * j0[0, term]
+    # Hessian of the cost over (eps, beta) by central differences of the exact gradient
+    h = PARAMETER_STEP
+    e_pts = np.clip([eps + h, eps - h], 0.0, 1.0)
+    gh, _, _ = _cost_gradient(case, terms, np.array([e_pts[0], e_pts[1], eps, eps]),
+                              np.array([beta, beta, beta + h, beta - h]), case)   # (4, 2)
+    hess = np.stack([(gh[0] - gh[1]) / (e_pts[0] - e_pts[1]),
+                     (gh[2] - gh[3]) / (2 * h)], axis=1)  # H[i, j] = dg_i / dtheta_j
+    hess = 0.5 * (hess + hess.T)
+    h_ff = hess[np.ix_(idx, idx)]
+    if not np.all(np.isfinite(h_ff)) or np.linalg.cond(h_ff) > 1e12:
+        raise ValueError("the cost is flat at the optimum (singular Hessian): the "
+                         "fitted parameters are not determined by the measurements")
+    dtheta[idx] = -np.linalg.solve(h_ff, dg[idx])
+    return dtheta

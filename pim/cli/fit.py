@@ -88,9 +88,23 @@ def _describe_bounds(result, units) -> list[str]:
         k = ("eps", "beta").index(name)
         value = result.bounds[k][0 if side == "lower" else 1]
         slope = result.gradient[k]
+        cost = (f"{slope:.4g}" if result.chi_square
+                else f"{slope * fv * fv:.4g} ({uv})^2")
         lines.append(f"{name} sits on its {side} bound {value:g} (d cost / d {name} = "
-                     f"{slope * fv * fv:.4g} ({uv})^2: the error would keep falling beyond it)")
+                     f"{cost}: the error would keep falling beyond it)")
     return lines
+
+
+def _cost_lines(result, fv: float, uv: str) -> list[str]:
+    """The cost in words: the chi-square [-] with its degrees of freedom, p-value and verdict
+    when the measured values carry standard deviations, else the sum of squares in the
+    user's velocity unit squared; the rms residual in the user's unit."""
+    rms = f"rms residual = {result.rms * fv:.4g} {uv}"
+    if result.goodness is None:
+        return [f"  cost    = {result.cost * fv * fv:.6g} ({uv})^2 (sum of squares)   {rms}"]
+    g = result.goodness
+    line, verdict = g.summary().split("): ", 1)
+    return [f"  {line})   {rms}", f"  {verdict}"]
 
 
 @click.command()
@@ -122,7 +136,6 @@ def fit(case_name, include_yaw, eps, beta, eps_range, beta_range, free, units, a
     if as_json:
         data = result.to_dict()
         if free:
-            data["values"] = {k: float(v) for k, v in result.values.items()}
             data["identifiability"] = ident.to_dict() if ident is not None else None
         echo_json(data)
         return
@@ -140,8 +153,8 @@ def fit(case_name, include_yaw, eps, beta, eps_range, beta_range, free, units, a
     click.echo(f"  epsilon = {result.eps:.6f}   {where(0, 'eps')}")
     click.echo(f"  beta    = {result.beta:.6f}   {where(1, 'beta')}   "
                f"(mu = {float(solved.mu):.4f}, mu0 = {float(solved.mu0):.4f})")
-    click.echo(f"  cost    = {result.cost * fv * fv:.6g} ({uv})^2   "
-               f"rms residual = {result.rms * fv:.4g} {uv}")
+    for line in _cost_lines(result, fv, uv):
+        click.echo(line)
     for key, value in (result.values.items() if free else ()):
         if key in ("impact.restitution", "impact.beta"):
             continue
@@ -155,25 +168,17 @@ def fit(case_name, include_yaw, eps, beta, eps_range, beta_range, free, units, a
     for line in _describe_bounds(result, units):
         click.echo(f"  note: {line}")
     if len(result.minima) > 1:
+        scale = 1.0 if result.chi_square else fv * fv
         click.echo("  other local minima (eps, beta, cost): " + ", ".join(
-            f"({e:.4f}, {b:.4f}, {c * fv * fv:.4g})" for e, b, c in result.minima[1:]))
+            f"({e:.4f}, {b:.4f}, {c * scale:.4g})" for e, b, c in result.minima[1:]))
     click.echo("")
     header = f"  {'term':<14} {'model':>10} {'measured':>10} {'residual':>10}  unit"
     click.echo(header)
     click.echo("  " + "-" * (len(header) - 2))
-    m = case.measured
-    for name in result.residual_names:
-        i = int(name[8] if name.startswith("velocity") else name[-1])
-        if name.startswith("velocity"):
-            axis = "xy".index(name[-1])
-            model = float(getattr(solved, f"velocity{i}")[..., axis]) * fv
-            meas = float(getattr(m, f"velocity{i}")[axis]) * fv
-            unit = uv
-        else:
-            model = float(getattr(solved, f"yaw_rate{i}")) * fw
-            meas = float(getattr(m, f"yaw_rate{i}")) * fw
-            unit = uw
-        click.echo(f"  {name:<14} {model:10.4f} {meas:10.4f} {model - meas:10.4f}  {unit}")
+    for row in result.residual_table:
+        f, unit = (fv, uv) if row["unit"] == "m/s" else (fw, uw)
+        model, meas = row["fitted"] * f, row["measured"] * f
+        click.echo(f"  {row['name']:<14} {model:10.4f} {meas:10.4f} {model - meas:10.4f}  {unit}")
     for text in solved.problems():
         click.echo(f"warning: {text}", err=True)
 
@@ -247,6 +252,8 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
 
     how = ("fitted to the measured motion" if sens.fit is not None
            else "at fixed epsilon, beta (nothing measured)")
+    if sens.fit is not None and sens.fit.chi_square:
+        how += ", weighted by the [measured] standard deviations"
     click.echo(f"{case.name}: sensitivity at epsilon = {sens.eps:.4f}, beta = {sens.beta:.4f} "
                f"({how})")
     if sens.active_bounds:

@@ -81,6 +81,8 @@ def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
             top = ", ".join(f"{k} {v:.2f}" for k, v in r["drivers"][:4] if v > 0.005)
             lines.append(f"- {r['name']}: {top or 'no single input dominates'}")
         lines.append("")
+    if rec.goodness is not None:
+        lines += [f"Goodness of fit: {rec.goodness.summary()}.", ""]
     lines += [f"- {m}" for m in rec.messages] or ["No warnings."]
     if with_scene:
         lines += ["", "![scene](scene.png)"]
@@ -122,12 +124,15 @@ def reconstruct(case_name, out, samples, seed, workers, video, units, as_json):
     if as_json:
         echo_json({"case": case.name, "units": "si", "samples": samples,
                    "messages": rec.messages,
+                   "goodness_of_fit": rec.goodness.to_dict() if rec.goodness else None,
                    "unknowns": {r["name"]: {k: r[k] for k in ("value", "p5", "p50", "p95")}
                                 for r in rec.table()}})
     else:
         for r in rows:
             click.echo(f"{r['name']:32s} {r['value']:10.4g}  [{r['p5']:.4g}, {r['p50']:.4g}, "
                        f"{r['p95']:.4g}] {r['unit']}")
+        if rec.goodness is not None:
+            click.echo(f"goodness of fit: {rec.goodness.summary()}")
         for message in rec.messages:
             click.echo(f"warning: {message}")
     if out:

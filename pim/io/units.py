@@ -117,7 +117,8 @@ def unit_system_of(value) -> str | None:
         parsed, _ = _unit(unit)
     except Exception:
         return None
-    return "us" if set(parsed._units) & US_UNIT_NAMES else "si"
+    names = dict(registry().Quantity(1.0, parsed).unit_items())
+    return "us" if set(names) & US_UNIT_NAMES else "si"
 
 
 def parse(value, kind: str, field: str) -> float:
@@ -168,9 +169,8 @@ def parse(value, kind: str, field: str) -> float:
         except Exception as exc:
             raise ValueError(f"{field}: unknown unit in {value!r} ({exc})") from None
         _, wanted = _unit(unit) if unit else (None, None)
-        root_items = dict(root._units) if root is not None else {}
-        wanted_items = dict(wanted._units) if wanted is not None else {}
-        if root_items != wanted_items:
+        none = registry().Unit("")
+        if (none if root is None else root) != (none if wanted is None else wanted):
             what = kind.replace("_", " ")
             dim = parsed.dimensionality if parsed is not None else ""
             expected = wanted.dimensionality if wanted is not None else ""

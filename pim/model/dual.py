@@ -6,8 +6,8 @@ round-off, no step size) of every output with respect to any input. :func:`motio
 differentiates the post-impact motion of a case with respect to epsilon, beta, Gamma, C,
 the pre-impact velocities and yaw rates, the CG positions, masses and yaw inertias
 (:data:`MOTION_INPUTS`); :func:`motion_of_inputs` does the same from a plain array of those
-inputs, which is what a fit of any inputs iterates on. The hand-derived derivatives in
-:mod:`pim.analysis.derivatives` are tested against it.
+inputs, which is what a fit of any inputs iterates on. The hand-derived derivatives in the
+test oracle ``tests/closed_form.py`` are tested against it.
 """
 
 from __future__ import annotations
@@ -168,8 +168,37 @@ def motion_jacobian(case: Case, eps, beta, approach_tol: float = 1e-12,
     return motion_of_inputs(motion_inputs(case, eps, beta), approach_tol, singular_tol)
 
 
+def _seeds(x: np.ndarray, tangent, jacobian: bool):
+    """The formula's inputs from the rows ``x``: ``seed(i)`` (input i), ``inverse(i)`` (its
+    inverse, d(1/m) = -dm/m^2, zero at infinite mass), cos and sin of Gamma (input 2), and
+    the gradient width; dual numbers carrying ``tangent`` (default: the identity) when
+    ``jacobian``, plain arrays otherwise."""
+    shape = x.shape[:-1]
+    if tangent is None:
+        tangent = np.broadcast_to(np.eye(len(MOTION_INPUTS)), shape + (len(MOTION_INPUTS),) * 2)
+    tangent = np.asarray(tangent, dtype=float)
+
+    def seed(index):
+        return Dual(x[..., index], tangent[..., index, :]) if jacobian else x[..., index]
+
+    def inverse(index):
+        with np.errstate(divide="ignore"):
+            inv = 1.0 / x[..., index]
+        if not jacobian:
+            return inv
+        return Dual(inv, np.where(np.isinf(x[..., index]), 0.0, -inv * inv)[..., None]
+                    * tangent[..., index, :])
+
+    gamma = x[..., 2]
+    if not jacobian:
+        return seed, inverse, np.cos(gamma), np.sin(gamma), tangent.shape[-1]
+    return (seed, inverse, Dual(np.cos(gamma), -np.sin(gamma)[..., None] * tangent[..., 2, :]),
+            Dual(np.sin(gamma), np.cos(gamma)[..., None] * tangent[..., 2, :]),
+            tangent.shape[-1])
+
+
 def motion_of_inputs(x, approach_tol: float = 1e-12, singular_tol: float = 1e-12,
-                     jacobian: bool = True) -> tuple[np.ndarray, np.ndarray | None]:
+                     jacobian: bool = True, tangent=None) -> tuple[np.ndarray, np.ndarray | None]:
     """Post-impact motion of the inputs ``x`` (:data:`MOTION_INPUTS` order) and its Jacobian.
 
     Parameters
@@ -180,13 +209,17 @@ def motion_of_inputs(x, approach_tol: float = 1e-12, singular_tol: float = 1e-12
         As in :func:`pim.solve`.
     jacobian : bool
         False: plain arithmetic, no derivatives (the fast path of a coarse search).
+    tangent : array_like, shape S + (19, n), optional
+        d x / d p for n parameters p: the Jacobian is then d output / d p, shape
+        S + (10, n) (the chain rule carried through the dual numbers, n columns wide instead
+        of 19: a fit of two parameters differentiates at a fraction of the cost).
 
     Returns
     -------
     values : ndarray, shape S + (10,)
         The outputs of :data:`MOTION_OUTPUTS` [N s, m/s, rad/s] (formula of
         :mod:`pim.model.formula`, the same as :func:`pim.solve`).
-    jacobian : ndarray, shape S + (10, 19), or None
+    jacobian : ndarray, shape S + (10, 19) (S + (10, n) with ``tangent``), or None
         d output / d input; zero where the vehicles do not approach, NaN where q is singular.
 
     Notes
@@ -196,33 +229,8 @@ def motion_of_inputs(x, approach_tol: float = 1e-12, singular_tol: float = 1e-12
     fixed obstacle of infinite mass).
     """
     x = np.asarray(x, dtype=float)
-    shape, k = x.shape[:-1], len(MOTION_INPUTS)
-
-    def seed(index):
-        if not jacobian:
-            return x[..., index]
-        grad = np.zeros(shape + (k,))
-        grad[..., index] = 1.0
-        return Dual(x[..., index], grad)
-
-    def inverse(index):
-        with np.errstate(divide="ignore"):
-            inv = 1.0 / x[..., index]
-        if not jacobian:
-            return inv
-        grad = np.zeros(shape + (k,))
-        grad[..., index] = -inv * inv
-        return Dual(inv, grad)
-
-    gamma = x[..., 2]
-    if jacobian:
-        cs_grad = np.zeros(shape + (k,))
-        sn_grad = np.zeros(shape + (k,))
-        cs_grad[..., 2] = -np.sin(gamma)
-        sn_grad[..., 2] = np.cos(gamma)
-        cs, sn = Dual(np.cos(gamma), cs_grad), Dual(np.sin(gamma), sn_grad)
-    else:
-        cs, sn = np.cos(gamma), np.sin(gamma)
+    shape = x.shape[:-1]
+    seed, inverse, cs, sn, k = _seeds(x, tangent if jacobian else None, jacobian)
     e, b = seed(0), seed(1)
     px, py = seed(3), seed(4)
     v1x, v1y, w1 = seed(5), seed(6), seed(7)

@@ -25,7 +25,7 @@ from .geometry import contact_velocity, dot
 from .pdof import DirectionOutputs
 from .sheet_notation import SheetNotation
 
-__all__ = ["Result", "CORE_FIELDS", "VECTOR_FIELDS"]
+__all__ = ["Result", "CORE_FIELDS", "VECTOR_FIELDS", "output_values"]
 
 #: The core fields of a result, in the order of :class:`Result`'s documentation.
 CORE_FIELDS = ("velocity1", "velocity2", "yaw_rate1", "yaw_rate2", "impulse", "impulse_n",
@@ -187,3 +187,45 @@ class Result(SheetNotation, EnergyOutputs, DirectionOutputs, Admissibility):
         """-U_n / u_n [-]: equals eps by construction (the sheet's consistency check)."""
         with np.errstate(divide="ignore", invalid="ignore"):
             return -self.separation_n / self.approach_n
+
+
+def output_values(result: Result) -> dict[str, np.ndarray]:
+    """Every scalar output of a :class:`pim.Result` by its name in
+    :data:`pim.model.quantities.OUTPUTS` (what tables, sensitivities and the test oracle of
+    the derivatives read).
+
+    Parameters
+    ----------
+    result : Result
+        Output of :func:`pim.solve`.
+
+    Returns
+    -------
+    dict
+        Name (a key of :data:`pim.model.quantities.OUTPUTS`) -> value in SI units
+        [m/s, rad/s, N s, rad, J, %].
+        ``impulse_*`` is the impulse on vehicle 1 (vehicle 2 receives its negative).
+    """
+    r = result
+    p = r.impulse
+    return {
+        "velocity1_x": r.velocity1[..., 0], "velocity1_y": r.velocity1[..., 1],
+        "velocity2_x": r.velocity2[..., 0], "velocity2_y": r.velocity2[..., 1],
+        "yaw_rate1": r.yaw_rate1, "yaw_rate2": r.yaw_rate2,
+        "speed1": r.speed1, "speed2": r.speed2,
+        "delta_v1_x": r.delta_v1[..., 0], "delta_v1_y": r.delta_v1[..., 1],
+        "delta_v2_x": r.delta_v2[..., 0], "delta_v2_y": r.delta_v2[..., 1],
+        "delta_v1_magnitude": r.delta_v1_magnitude, "delta_v2_magnitude": r.delta_v2_magnitude,
+        "impulse_x": p[..., 0], "impulse_y": p[..., 1],
+        "impulse_magnitude": np.hypot(p[..., 0], p[..., 1]),
+        "impulse_n": r.impulse_n, "impulse_t": r.impulse_t,
+        "impulse_angle": r.impulse_angle, "pdof1": r.pdof1, "pdof2": r.pdof2,
+        "mu0": r.mu0, "mu": r.mu, "q": r.q,
+        "separation_n": r.separation_n, "separation_t": r.separation_t,
+        "restitution_check": r.restitution_check,
+        "kinetic_energy_after": r.kinetic_energy_after, "energy_loss": r.energy_loss,
+        "energy_loss_percent": r.energy_loss_percent, "total_loss_brach": r.total_loss_brach,
+        "crush_energy_normal": r.crush_energy_normal,
+        "crush_energy_tangential": r.crush_energy_tangential,
+        "tangential_share": r.tangential_share,
+    }

@@ -60,7 +60,8 @@ class EpsilonSweep:
     residual_names : tuple of str
         Fitted terms (empty when nothing is measured).
     cost : ndarray (m, n) or None
-        Least-squares cost at each point [m^2/s^2] (None when nothing is measured).
+        The fit's cost at each point: sum of squares [m^2/s^2], or the chi-square [-] with
+        measured standard deviations (None when nothing is measured).
     profile_cost, profile_beta : ndarray (n,) or None
         Lowest cost over beta within the fit's beta bounds at each epsilon, and the beta
         where it occurs.
@@ -115,7 +116,7 @@ def sweep_epsilon(case: Case, fit_result: FitResult | None = None, *, betas=None
     result = solve(case, eps[None, :], betas[:, None])
     cost = profile_cost = profile_beta = None
     if names:
-        cost = np.sum(residuals(result, names) ** 2, axis=-1)
+        cost = np.sum(residuals(result, names, weighted=True) ** 2, axis=-1)
         if "beta" in fit_result.fixed:
             profile_cost, profile_beta = cost[0], np.full(eps.shape, beta0)
         else:
@@ -138,7 +139,8 @@ class CostMap:
     eps, beta : ndarray
         Grid axes [-]; beta may extend past the fit's upper bound to show what lies beyond.
     cost : ndarray (n_beta, n_eps)
-        Cost [m^2/s^2]; NaN where q is singular.
+        The fit's cost: sum of squares [m^2/s^2], or the chi-square [-] when the measured
+        values carry standard deviations; NaN where q is singular.
     fit : FitResult
         The fit it belongs to.
     """
@@ -166,7 +168,7 @@ def cost_map(fit_result: FitResult, n: int = 161, beta_margin: float = 0.5) -> C
     eps = np.linspace(e_lo, e_hi, n)
     beta = np.linspace(b_lo, b_hi + beta_margin * (b_hi - b_lo), n)
     res = solve(fit_result.case, eps[None, :], beta[:, None])
-    cost = np.sum(residuals(res, fit_result.residual_names) ** 2, axis=-1)
+    cost = np.sum(residuals(res, fit_result.residual_names, weighted=True) ** 2, axis=-1)
     return CostMap(eps=eps, beta=beta, cost=np.where(np.isfinite(cost), cost, np.nan),
                    fit=fit_result)
 
@@ -186,6 +188,17 @@ def _figure(size=(7.0, 4.6), **subplots):
 def _factor(kind: str, units: str):
     value, unit = convert(1.0, kind, units)
     return float(value), unit
+
+
+def _cost_axis(fit_result: FitResult, units: str) -> tuple[float, str]:
+    """Display factor and axis label of the fit's cost: the chi-square [-] (unit-free, the
+    same in every unit system) with standard deviations, else the sum of squared errors in
+    the user's velocity unit squared."""
+    if fit_result.chi_square:
+        return 1.0, "chi-square Σ((model − measured)/σ)² [-]"
+    f, unit = _factor("velocity", units)
+    yaw = " and k·yaw-rate" if fit_result.include_yaw else ""
+    return f * f, f"sum of squared velocity{yaw} errors [({unit})²]"
 
 
 def _eps_axis(ax, fit_result: FitResult | None, label=True):
@@ -218,9 +231,8 @@ def plot_velocity_error(sweep: EpsilonSweep, fit_result: FitResult, units: str =
     """Least-squares cost vs epsilon: lowest over beta, and at each swept beta."""
     if sweep.cost is None:
         raise ValueError("the sweep has no cost: nothing was measured")
-    f, unit = _factor("velocity", units)
+    f2, cost_label = _cost_axis(fit_result, units)
     fig, ax = _figure()
-    f2 = f * f
     ax.plot(sweep.eps, sweep.profile_cost * f2, color="k", lw=2.4,
             label="lowest over β" if "beta" not in fit_result.fixed else
             _beta_label(fit_result.beta, False) + " (fixed)")
@@ -232,8 +244,7 @@ def plot_velocity_error(sweep: EpsilonSweep, fit_result: FitResult, units: str =
     ax.plot([fit_result.eps], [fit_result.cost * f2], "o", color="C3", ms=8, zorder=5,
             label=f"optimum ε = {fit_result.eps:.3f}, β = {fit_result.beta:.3f}"
                   + (f" ({bound})" if bound else ""))
-    yaw = " and k·yaw-rate" if fit_result.include_yaw else ""
-    ax.set_ylabel(f"sum of squared velocity{yaw} errors [({unit})²]")
+    ax.set_ylabel(cost_label)
     finite = sweep.profile_cost[np.isfinite(sweep.profile_cost)] * f2
     if finite.size:
         ax.set_ylim(0, 1.15 * max(np.percentile(finite, 98), 3 * fit_result.cost * f2))
@@ -331,9 +342,9 @@ def plot_cost_map(cmap: CostMap, units: str = "si"):
     from matplotlib.colors import LogNorm
     from matplotlib.ticker import FormatStrFormatter, LogLocator
 
-    f, unit = _factor("velocity", units)
     fit_result = cmap.fit
-    cost = cmap.cost * f * f
+    f2, cost_label = _cost_axis(fit_result, units)
+    cost = cmap.cost * f2
     fig, ax = _figure(size=(7.5, 5.6))
     finite = cost[np.isfinite(cost) & (cost > 0)]
     lo = max(finite.min(), 1e-6 * finite.max())
@@ -349,8 +360,7 @@ def plot_cost_map(cmap: CostMap, units: str = "si"):
     bar.ax.yaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 3.0, 5.0, 7.0)))
     bar.ax.yaxis.set_major_formatter(FormatStrFormatter("%.3g"))
     bar.ax.yaxis.set_minor_formatter(FormatStrFormatter(""))
-    yaw = " and k·yaw-rate" if fit_result.include_yaw else ""
-    bar.set_label(f"sum of squared velocity{yaw} errors [({unit})²]")
+    bar.set_label(cost_label)
     (e_lo, e_hi), (b_lo, b_hi) = fit_result.bounds
     if cmap.beta[-1] > b_hi:
         ax.axhspan(b_hi, cmap.beta[-1], color="w", alpha=0.35, lw=0)

@@ -1,4 +1,8 @@
-"""Closed-form derivatives of every PIM output with respect to (epsilon, beta).
+"""Test oracle: closed-form derivatives of every PIM output with respect to (epsilon, beta).
+
+Hand-derived, independent of the dual numbers (:mod:`pim.model.dual`) through which the
+fits differentiate the one formula: the tests check each against the other and against
+finite differences. (It was ``pim/analysis/derivatives.py``; the library no longer uses it.)
 
 Every output of
 :func:`pim.solve` is differentiated in closed form with respect to the coefficient of
@@ -28,51 +32,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..model.geometry import cross, dot
-from ..model.result import Result
+from pim.model.geometry import cross, dot
+from pim.model.result import Result, output_values
 
 __all__ = ["derivatives", "Derivatives", "output_values", "motion_derivatives",
            "MotionDerivative"]
-
-
-def output_values(result: Result) -> dict[str, np.ndarray]:
-    """The outputs of a :class:`pim.Result` that :func:`derivatives` differentiates.
-
-    Parameters
-    ----------
-    result : Result
-        Output of :func:`pim.solve`.
-
-    Returns
-    -------
-    dict
-        Name (a key of :data:`pim.model.quantities.OUTPUTS`) -> value in SI units
-        [m/s, rad/s, N s, rad, J, %].
-        ``impulse_*`` is the impulse on vehicle 1 (vehicle 2 receives its negative).
-    """
-    r = result
-    p = r.impulse
-    return {
-        "velocity1_x": r.velocity1[..., 0], "velocity1_y": r.velocity1[..., 1],
-        "velocity2_x": r.velocity2[..., 0], "velocity2_y": r.velocity2[..., 1],
-        "yaw_rate1": r.yaw_rate1, "yaw_rate2": r.yaw_rate2,
-        "speed1": r.speed1, "speed2": r.speed2,
-        "delta_v1_x": r.delta_v1[..., 0], "delta_v1_y": r.delta_v1[..., 1],
-        "delta_v2_x": r.delta_v2[..., 0], "delta_v2_y": r.delta_v2[..., 1],
-        "delta_v1_magnitude": r.delta_v1_magnitude, "delta_v2_magnitude": r.delta_v2_magnitude,
-        "impulse_x": p[..., 0], "impulse_y": p[..., 1],
-        "impulse_magnitude": np.hypot(p[..., 0], p[..., 1]),
-        "impulse_n": r.impulse_n, "impulse_t": r.impulse_t,
-        "impulse_angle": r.impulse_angle, "pdof1": r.pdof1, "pdof2": r.pdof2,
-        "mu0": r.mu0, "mu": r.mu, "q": r.q,
-        "separation_n": r.separation_n, "separation_t": r.separation_t,
-        "restitution_check": r.restitution_check,
-        "kinetic_energy_after": r.kinetic_energy_after, "energy_loss": r.energy_loss,
-        "energy_loss_percent": r.energy_loss_percent, "total_loss_brach": r.total_loss_brach,
-        "crush_energy_normal": r.crush_energy_normal,
-        "crush_energy_tangential": r.crush_energy_tangential,
-        "tangential_share": r.tangential_share,
-    }
 
 
 def _impulse_derivatives(r: Result):
