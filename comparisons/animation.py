@@ -30,6 +30,7 @@ import sim
 from pim.io.files import atomic_path
 from pim.io.units import convert
 from pim.model.geometry import outline_corners
+from pim.model.numbers import InputError
 
 from .motion import Motion, analytic_motion, simulated_motion
 
@@ -65,9 +66,9 @@ def _font(size: int):
 def frame_times(before: float, after: float, fps: int) -> np.ndarray:
     """Frame times [s] from -before to +after (0, the impact, is always a frame)."""
     if not (fps >= 1 and int(fps) == fps):
-        raise ValueError(f"fps must be a positive integer, got {fps!r}")
+        raise InputError(f"fps must be a positive integer, got {fps!r}")
     if not (before >= 0 and after > 0 and math.isfinite(before + after)):
-        raise ValueError(f"before must be >= 0 and after > 0 [s], got {before!r}, {after!r}")
+        raise InputError(f"before must be >= 0 and after > 0 [s], got {before!r}, {after!r}")
     n_before = int(round(before * fps))
     n_after = int(round(after * fps))
     return np.arange(-n_before, n_after + 1) / fps
@@ -185,7 +186,7 @@ class Renderer:
                  units: str = "si", secondary=None) -> None:
         width, height = (int(s) for s in size)
         if width % 2 or height % 2 or width < 160 or height < 160:
-            raise ValueError(f"size must be even and at least 160 px, got {size!r}")
+            raise InputError(f"size must be even and at least 160 px, got {size!r}")
         self.case, self.result, self.sim, self.ghost = case, result, simulated, ghost
         self.size = (width, height)
         self.title = title

@@ -45,6 +45,7 @@ import numpy as np
 import pim
 import sim
 from pim.io.files import save_figure, write_text
+from pim.model.numbers import InputError
 from sim.compliant_setup import build_problem
 from sim.contact_law import stiffness_for_duration
 from sim.sweep import sweep
@@ -311,7 +312,7 @@ def run_assumptions(case: pim.Case, eps: float | None = None, beta: float | None
     start = time.perf_counter()
     eps, beta, _ = coefficients(case, eps, beta)
     if not 0.0 <= eps <= 1.0:
-        raise ValueError(f"eps must be in [0, 1], got {eps}")
+        raise InputError(f"eps must be in [0, 1], got {eps}")
     settings = replace(settings or sim.CompliantSettings(), record=False, duration=0.0)
     k_nn = build_problem(case, eps, sim.DEFAULT_STIFFNESS).k_nn
     mu0 = abs(float(np.asarray(pim.solve(case, eps, 1.0).mu0)))

@@ -22,6 +22,7 @@ from pim.cli import (
     units_option,
     warnings_of,
 )
+from pim.model.numbers import InputError
 
 __all__ = ["compare", "animate", "speed_error", "hard_cases", "assumptions"]
 
@@ -80,7 +81,7 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
     from .report import compare_case
 
     if tyre < 0:
-        raise ValueError(f"--tyre-friction must be >= 0, got {tyre}")
+        raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
     case = load_case(case_name)
     folder = writable_folder(_out(out, case.name, "case"), "--out")
     solve_with_options(case, 0.0, 1.0)      # exits 1 with one line when there is no impact
@@ -140,7 +141,7 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
     case = load_case(case_name)
     eps_, beta_ = sim.scene.resolve_coefficients(case, eps, beta)
     if tyre < 0:
-        raise ValueError(f"--tyre-friction must be >= 0, got {tyre}")
+        raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
     path = Path(out) if out else _out(None, case.name, "case") / "animation.mp4"
     try:
         info = animate_case(case, eps_, beta_, path, gif=gif, progress=progress, fps=fps,
@@ -194,7 +195,7 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, progress
     from .speed_error import COARSE, sweep, write_study
 
     if repeats < 1:
-        raise ValueError(f"--repeats must be >= 1, got {repeats}")
+        raise InputError(f"--repeats must be >= 1, got {repeats}")
     names = []
     for n in case_names:
         names += [c for c, _ in list_cases() if c.startswith("hard-")] if n == "hard" else [n]

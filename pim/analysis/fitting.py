@@ -31,6 +31,7 @@ from functools import cached_property
 import numpy as np
 
 from ..model.case import Case
+from ..model.numbers import InputError
 from ..model.result import Result
 from ..model.solver import solve
 from .free_fit import FREE_KEYS, Identifiability, check_free, fit_free
@@ -189,12 +190,12 @@ def _check_bounds(bounds) -> tuple:
         (e_lo, e_hi), (b_lo, b_hi) = bounds
         e_lo, e_hi, b_lo, b_hi = map(float, (e_lo, e_hi, b_lo, b_hi))
     except (TypeError, ValueError):
-        raise ValueError("bounds must be ((eps_min, eps_max), (beta_min, beta_max))") from None
+        raise InputError("bounds must be ((eps_min, eps_max), (beta_min, beta_max))") from None
     if not (0.0 <= e_lo < e_hi <= 1.0):
-        raise ValueError(f"bounds on eps must satisfy 0 <= eps_min < eps_max <= 1, "
+        raise InputError(f"bounds on eps must satisfy 0 <= eps_min < eps_max <= 1, "
                          f"got ({e_lo}, {e_hi})")
     if not (np.isfinite(b_lo) and np.isfinite(b_hi) and b_lo < b_hi):
-        raise ValueError(f"bounds on beta must be finite with beta_min < beta_max, "
+        raise InputError(f"bounds on beta must be finite with beta_min < beta_max, "
                          f"got ({b_lo}, {b_hi})")
     return (e_lo, e_hi), (b_lo, b_hi)
 
@@ -260,34 +261,34 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
         Nothing measured, a batched case, bad bounds, both parameters fixed, or no approach.
     """
     if np.size(case.vehicle1.mass) != 1 or np.shape(case.impact.point) != (2,):
-        raise ValueError("fit needs a single case, not a batch of cases")
+        raise InputError("fit needs a single case, not a batch of cases")
     names = measured_terms(case, include_yaw)
     (e_lo, e_hi), (b_lo, b_hi) = _check_bounds(bounds)
     if eps is not None and beta is not None and not free:
-        raise ValueError("eps and beta are both fixed: nothing to fit (fix at most one, or "
+        raise InputError("eps and beta are both fixed: nothing to fit (fix at most one, or "
                          "free other inputs)")
     fixed = tuple(n for n, v in (("eps", eps), ("beta", beta)) if v is not None)
     if eps is not None:
         eps = float(eps)
         if not 0.0 <= eps <= 1.0:
-            raise ValueError(f"eps (fixed) must be in [0, 1], got {eps}")
+            raise InputError(f"eps (fixed) must be in [0, 1], got {eps}")
     if beta is not None:
         beta = float(beta)
         if not np.isfinite(beta):
-            raise ValueError(f"beta (fixed) must be a finite number, got {beta}")
+            raise InputError(f"beta (fixed) must be a finite number, got {beta}")
     if free:
         return _fit_free(case, names, check_free(free), include_yaw, eps, beta, fixed,
                          ((e_lo, e_hi), (b_lo, b_hi)), samples, max_starts, seed)
     n_eps, n_beta = (int(g) for g in grid)
     if n_eps < 3 or n_beta < 3:
-        raise ValueError(f"grid must have at least 3 points per axis, got {grid}")
+        raise InputError(f"grid must have at least 3 points per axis, got {grid}")
 
     # ---- coarse global search: one vectorised solve over the grid -----------------------
     eps_grid = np.array([eps]) if eps is not None else np.linspace(e_lo, e_hi, n_eps)
     beta_grid = np.array([beta]) if beta is not None else np.linspace(b_lo, b_hi, n_beta)
     grid_result = solve(case, eps_grid[:, None], beta_grid[None, :])
     if not np.any(grid_result.approaching):
-        raise ValueError(f"case {case.name or '(unnamed)'}: the vehicles do not approach at C "
+        raise InputError(f"case {case.name or '(unnamed)'}: the vehicles do not approach at C "
                          "(u_n >= 0): there is no impact to fit")
     weights = measured_weights(case, names)
     wv = 1.0 if weights is None else weights
@@ -296,7 +297,7 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
     landscape = Landscape(eps=eps_grid, beta=beta_grid, cost=cost)
     starts = _grid_minima(cost)[:max(1, int(max_starts))]
     if not starts:
-        raise ValueError("the cost is not finite anywhere in the search box")
+        raise InputError("the cost is not finite anywhere in the search box")
 
     # ---- local refinement of the best grid minima ----------------------------------------
     from scipy.optimize import minimize

@@ -31,6 +31,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..model.numbers import InputError
+
 __all__ = ["BatchFit", "least_squares_batch"]
 
 
@@ -101,7 +103,7 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
     lo = np.broadcast_to(np.asarray(lower, dtype=float), (m, n))
     hi = np.broadcast_to(np.asarray(upper, dtype=float), (m, n))
     if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) and np.all(lo < hi)):
-        raise ValueError("bounds must be finite with lower < upper")
+        raise InputError("bounds must be finite with lower < upper")
     width = hi - lo
     u = np.clip((x0 - lo) / width, 0.0, 1.0)
     all_idx = np.arange(m)

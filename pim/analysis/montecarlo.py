@@ -30,6 +30,7 @@ import numpy as np
 
 from ..model.case import Case, Impact, Vehicle
 from ..model.distributions import UncertaintyTable, nominal_values, sample_inputs
+from ..model.numbers import InputError
 from ..model.solver import solve
 
 __all__ = ["uncertainty", "UncertaintyResult", "OutputStats", "OUTPUTS", "first_order_indices"]
@@ -206,13 +207,13 @@ def uncertainty(case: Case, n: int = 100_000, seed: int | None = 0,
     """
     dists = case.uncertainty if distributions is None else distributions
     if dists is None:
-        raise ValueError("uncertainty: the case has no [uncertainty] table and no "
+        raise InputError("uncertainty: the case has no [uncertainty] table and no "
                          "distributions were given")
     if not isinstance(dists, UncertaintyTable):
-        raise ValueError("distributions must be a pim.model.distributions.UncertaintyTable")
+        raise InputError("distributions must be a pim.model.distributions.UncertaintyTable")
     n = int(n)
     if n < 10:
-        raise ValueError(f"samples must be >= 10, got {n}")
+        raise InputError(f"samples must be >= 10, got {n}")
     nominal_in = nominal_values(case, eps, beta)
     rng = np.random.default_rng(seed)
     # evidence inputs (run-out friction) do not act on the impact: pim reconstruct samples them

@@ -26,6 +26,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..model.case import Case, Measured
+from ..model.numbers import InputError
 from .fitting import FitResult
 from .free_inputs import approach_direction, check_free
 from .inverse_pim import inverse_pim, under_determined
@@ -94,7 +95,7 @@ def post_impact_motion(case: Case, *, speed_bounds=(0.0, 60.0),
     """
     evidence = case.evidence
     if evidence is None or (evidence.vehicle1 is None and evidence.vehicle2 is None):
-        raise ValueError("evidence: the case has no [evidence] table (rest positions, "
+        raise InputError("evidence: the case has no [evidence] table (rest positions, "
                          "friction, wheelbase and track of at least one vehicle)")
     runouts, vel_cov, yaw_sigma, measured, messages = {}, {}, {}, {}, []
     for i in (1, 2):
@@ -213,14 +214,14 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
     """
     unknown = check_free(case.unknown if unknown is None else unknown)
     if not unknown:
-        raise ValueError("unknown: nothing to solve for; name the unknowns in an [unknown] "
+        raise InputError("unknown: nothing to solve for; name the unknowns in an [unknown] "
                          "table (e.g. vehicle1.speed = {bounds = [\"0 mph\", \"80 mph\"]})")
     has_evidence = case.evidence is not None and (case.evidence.vehicle1 is not None
                                                    or case.evidence.vehicle2 is not None)
     post = post_impact_motion(case) if has_evidence else None
     solved = post.case if post else case
     if solved.measured is None:
-        raise ValueError("reconstruct: the case has neither [evidence] nor [measured] "
+        raise InputError("reconstruct: the case has neither [evidence] nor [measured] "
                          "post-impact motion")
     messages = list(post.messages) if post else []
     momentum = post.momentum if post else _momentum_of(solved)

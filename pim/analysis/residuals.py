@@ -11,6 +11,7 @@ import numpy as np
 
 from ..model.case import Case
 from ..model.geometry import radius_of_gyration
+from ..model.numbers import InputError
 from ..model.result import Result
 from .derivatives import motion_derivatives
 
@@ -33,7 +34,7 @@ def measured_terms(case: Case, include_yaw: bool) -> tuple[str, ...]:
         has_yaw = m is not None and (m.yaw_rate1 is not None or m.yaw_rate2 is not None)
         hint = (" (only yaw rates are measured: use include_yaw=True / --include-yaw)"
                 if has_yaw and not include_yaw else "")
-        raise ValueError(
+        raise InputError(
             f"case {case.name or '(unnamed)'}: nothing to fit; case.measured needs a "
             f"post-impact velocity1 or velocity2 [m/s]{hint}")
     return tuple(names)
@@ -108,7 +109,7 @@ def measured_weights(case: Case, names: tuple[str, ...]) -> np.ndarray | None:
     if len(missing) == len(names):
         return None
     if missing:
-        raise ValueError(f"measured: standard deviations are given for some fitted terms but "
+        raise InputError(f"measured: standard deviations are given for some fitted terms but "
                          f"not for {', '.join(missing)}; give a *_sigma for every measured "
                          f"quantity that is fitted, or for none")
     return np.array([float(np.asarray(x).reshape(())) for x in w])

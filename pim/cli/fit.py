@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import click
 
+from ..model.numbers import InputError
 from .main import case_argument, echo_json, json_option, units_option
 
 __all__ = ["fit", "sensitivity", "plot"]
@@ -48,7 +49,7 @@ def _key_value(item: str, allowed, option: str, form: str) -> tuple[str, str]:
     key, sep, text = item.partition("=")
     key = key.strip()
     if not sep or key not in allowed:
-        raise ValueError(f"{option} must be {form} with KEY one of {', '.join(allowed)}; "
+        raise InputError(f"{option} must be {form} with KEY one of {', '.join(allowed)}; "
                          f"got {item!r}")
     return key, text
 
@@ -63,7 +64,7 @@ def parse_free(items) -> dict:
         key, text = _key_value(item, FREE_KEYS, "--free", 'KEY="LO,HI"')
         parts = [t.strip() for t in text.strip().strip('"').split(",")]
         if len(parts) != 2:
-            raise ValueError(f"--free {key}: give two bounds separated by a comma, got {text!r}")
+            raise InputError(f"--free {key}: give two bounds separated by a comma, got {text!r}")
         kind = _kind_of(key)
         out[key] = tuple(parse(t, kind, f"--free {key}") for t in parts)
     return out

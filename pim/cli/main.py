@@ -3,7 +3,8 @@
 pim's own commands are defined here; commands of the layers above it (``pim sim``,
 ``pim compare`` ...) are registered by their packages under the ``pim.commands`` entry-point
 group and loaded only when used, so that ``pim/`` never imports ``sim/`` or
-``comparisons/``. Any ``ValueError`` (bad input) becomes a one-line message and exit code 2.
+``comparisons/``. A :class:`pim.InputError` (bad input) or a click usage error becomes a
+one-line message and exit code 2; any other exception is a bug and keeps its traceback.
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ from importlib.metadata import entry_points
 
 import click
 
+from ..model.numbers import InputError
 from ..model.plausibility import warnings_of
 
 __all__ = ["main", "cli", "case_argument", "eps_option", "beta_option", "units_option",
@@ -100,7 +102,7 @@ cap_friction_option = click.option(
 def solve_with_options(case, eps, beta, friction_limit=None, cap_friction=False):
     """Solve ``case`` as the commands do: plain PIM, or friction-capped with --cap-friction.
 
-    Raises ValueError for --cap-friction without --friction-limit, and click's Exit(1) after
+    Raises InputError for --cap-friction without --friction-limit, and click's Exit(1) after
     one line on stderr when the vehicles do not approach at C (no impact).
     """
     from ..model.friction_cap import solve_capped
@@ -109,7 +111,7 @@ def solve_with_options(case, eps, beta, friction_limit=None, cap_friction=False)
 
     if cap_friction:
         if friction_limit is None:
-            raise ValueError("--cap-friction needs --friction-limit")
+            raise InputError("--cap-friction needs --friction-limit")
         result = solve_capped(case, eps, beta, friction_limit)
     else:
         result = solve_case(case, eps, beta)
@@ -147,7 +149,7 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, units, as_json):
     result = solve_with_options(case, eps, beta, friction_limit, cap_friction)
     if result.q_singular.any():
         problems = result.problems()
-        raise ValueError(problems[0] if problems else "q is singular")
+        raise InputError(problems[0] if problems else "q is singular")
     warnings = warnings_of(case, result, friction_limit)
     rows = summarize(result, units)
     if as_json:
@@ -227,7 +229,7 @@ def _main(argv) -> int:
     except Terminated:
         click.echo("terminated", err=True)
         return 143
-    except ValueError as exc:
+    except InputError as exc:
         click.echo(f"error: {exc}", err=True)
         return 2
     except OSError as exc:      # e.g. a disk full or a folder removed while writing

@@ -27,6 +27,7 @@ from ..io.casefile import load_case
 from ..io.files import save_figure, write_text
 from ..io.units import convert
 from ..model.evidence import UNKNOWN_KINDS
+from ..model.numbers import InputError
 from ..plotting.reconstruction_animation import write_reconstruction_mp4
 from ..plotting.reconstruction_scene import reconstruction_figure
 from .main import case_argument, echo_json, json_option, units_option
@@ -114,7 +115,7 @@ def reconstruct(case_name, out, samples, seed, workers, video, units, as_json):
     else:
         rec = run_reconstruction(case, samples=samples, seed=seed)
     if not rec.determined:
-        raise ValueError(next((m for m in rec.messages if "under-determined" in m
+        raise InputError(next((m for m in rec.messages if "under-determined" in m
                                or "family" in m or "equally well" in m),
                               "; ".join(rec.messages)))
     rows = reconstruction_rows(rec, units)

@@ -43,6 +43,7 @@ from pathlib import Path
 import numpy as np
 
 from ..model.case import Case, Impact, Vehicle
+from ..model.numbers import InputError
 from ..model.plausibility import bare_angle_warning
 from .brach import cg_from_brach, heading_from_theta
 from .evidence_table import parse_evidence, parse_unknown
@@ -62,20 +63,20 @@ _IMPACT = {"point", "normal_angle", "restitution", "beta"}
 
 def _require(table: dict, key: str, where: str):
     if key not in table:
-        raise ValueError(f"{where}.{key} is missing")
+        raise InputError(f"{where}.{key} is missing")
     return table[key]
 
 
 def _pair(value, kind: str, field: str) -> np.ndarray:
     if not isinstance(value, list) or len(value) != 2:
-        raise ValueError(f"{field} must be a list of two values [x, y], got {value!r}")
+        raise InputError(f"{field} must be a list of two values [x, y], got {value!r}")
     return np.array([parse(value[0], kind, f"{field}[0]"), parse(value[1], kind, f"{field}[1]")])
 
 
 def _one_of(table: dict, a: str, b: str, where: str) -> str:
     present = [k for k in (a, b) if k in table]
     if len(present) != 1:
-        raise ValueError(f"{where}: give exactly one of {a!r} or {b!r}")
+        raise InputError(f"{where}: give exactly one of {a!r} or {b!r}")
     return present[0]
 
 
@@ -88,11 +89,11 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int)
     placement = {"global": ("cg", "heading"), "brach": ("theta", "phi", "d")}[convention]
     stray = sorted(set(table) & ({"cg", "heading", "theta", "phi", "d"} - set(placement)))
     if stray:
-        raise ValueError(f"{where}: key {stray[0]!r} does not belong to the {convention!r} "
+        raise InputError(f"{where}: key {stray[0]!r} does not belong to the {convention!r} "
                          f"convention (use {', '.join(placement)})")
     fixed = table.get("fixed", False)
     if not isinstance(fixed, bool):
-        raise ValueError(f"{where}.fixed must be true or false")
+        raise InputError(f"{where}.fixed must be true or false")
     if convention == "global" and fixed:
         cg = _pair(table["cg"], "length", f"{where}.cg") if "cg" in table else point
         heading = parse(table.get("heading", 0.0), "angle", f"{where}.heading")
@@ -110,11 +111,11 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int)
 
     if fixed:
         if number == 1:
-            raise ValueError(f"{where}.fixed: only vehicle2 may be a fixed obstacle")
+            raise InputError(f"{where}.fixed: only vehicle2 may be a fixed obstacle")
         extra = sorted(set(table) & {"mass", "weight", "yaw_inertia", "radius_of_gyration",
                                      "velocity", "yaw_rate"})
         if extra:
-            raise ValueError(f"{where}.{extra[0]}: a fixed obstacle has no {extra[0]}")
+            raise InputError(f"{where}.{extra[0]}: a fixed obstacle has no {extra[0]}")
         return _wrap(where, Vehicle.obstacle, cg=cg, heading=heading, length=length, width=width)
 
     if _one_of(table, "mass", "weight", where) == "mass":
@@ -122,14 +123,14 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int)
     else:
         weight = parse(table["weight"], "force", f"{where}.weight")
         if weight <= 0:
-            raise ValueError(f"{where}.weight must be > 0, got {table['weight']!r}")
+            raise InputError(f"{where}.weight must be > 0, got {table['weight']!r}")
         mass = weight / registry().Quantity(1, "standard_gravity").to("m/s**2").magnitude
     if _one_of(table, "yaw_inertia", "radius_of_gyration", where) == "yaw_inertia":
         inertia = parse(table["yaw_inertia"], "inertia", f"{where}.yaw_inertia")
     else:
         k = parse(table["radius_of_gyration"], "length", f"{where}.radius_of_gyration")
         if k <= 0:
-            raise ValueError(f"{where}.radius_of_gyration must be > 0, "
+            raise InputError(f"{where}.radius_of_gyration must be > 0, "
                              f"got {table['radius_of_gyration']!r}")
         inertia = mass * k * k
     velocity = _pair(_require(table, "velocity", where), "velocity", f"{where}.velocity")
@@ -143,7 +144,7 @@ def _wrap(where: str, factory, **kwargs):
     try:
         return factory(**kwargs)
     except ValueError as exc:
-        raise ValueError(f"{where}.{exc}") from None
+        raise InputError(f"{where}.{exc}") from None
 
 
 def _uncertainty(table):
@@ -163,7 +164,7 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
     data = check_keys(data, _TOP, source)
     convention = data.get("convention", "global")
     if convention not in ("global", "brach"):
-        raise ValueError(f"convention must be 'global' or 'brach', got {convention!r}")
+        raise InputError(f"convention must be 'global' or 'brach', got {convention!r}")
     impact_table = check_keys(_require(data, "impact", source), _IMPACT, "impact")
     if convention == "global" or "point" in impact_table:
         point = _pair(_require(impact_table, "point", "impact"), "length", "impact.point")
@@ -184,7 +185,7 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
     for key, value in (("name", name), ("description", description),
                        ("source", data.get("source", ""))):
         if not isinstance(value, str):
-            raise ValueError(f"{key} must be a string, got {value!r}")
+            raise InputError(f"{key} must be a string, got {value!r}")
     return Case(vehicle1=vehicles[0], vehicle2=vehicles[1], impact=impact,
                 measured=parse_measured(data.get("measured")), name=name, description=description,
                 uncertainty=_uncertainty(data.get("uncertainty")), units=_unit_system(data),
@@ -251,13 +252,13 @@ def load_case(name_or_path) -> Case:
         path = Path(key)
         if not path.is_file():
             names = ", ".join(sorted(bundled))
-            raise ValueError(f"case {key!r} is neither a file nor a bundled case ({names})")
+            raise InputError(f"case {key!r} is neither a file nor a bundled case ({names})")
         try:
             text, source = path.read_text(encoding="utf-8"), str(path)
         except (OSError, UnicodeDecodeError) as exc:
-            raise ValueError(f"{path}: cannot read ({exc})") from None
+            raise InputError(f"{path}: cannot read ({exc})") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{source}: malformed TOML ({exc})") from None
+        raise InputError(f"{source}: malformed TOML ({exc})") from None
     return parse_case(data, source)

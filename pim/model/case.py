@@ -16,7 +16,7 @@ from functools import cached_property
 import numpy as np
 
 from .geometry import rotate
-from .numbers import real_array
+from .numbers import InputError, real_array
 
 __all__ = ["Vehicle", "Impact", "Case", "Measured"]
 
@@ -24,11 +24,11 @@ __all__ = ["Vehicle", "Impact", "Case", "Measured"]
 def _scalar(value, name: str, unit: str = "SI") -> np.ndarray:
     if type(value) is float or type(value) is int:    # the common single case, fast
         if value != value:
-            raise ValueError(f"{name} is NaN; it must be a finite number in [{unit}]")
+            raise InputError(f"{name} is NaN; it must be a finite number in [{unit}]")
         return np.float64(value)
     arr = real_array(value, name, unit)
     if np.isnan(arr).any():
-        raise ValueError(f"{name} is NaN; it must be a finite number in [{unit}]")
+        raise InputError(f"{name} is NaN; it must be a finite number in [{unit}]")
     return arr
 
 
@@ -36,20 +36,20 @@ def _vector(value, name: str, unit: str) -> np.ndarray:
     if (type(value) is tuple or type(value) is list) and len(value) == 2 and all(
             type(x) is float or type(x) is int for x in value):   # fast path
         if not (math.isfinite(value[0]) and math.isfinite(value[1])):
-            raise ValueError(f"{name} must be finite [x, y] values in [{unit}]")
+            raise InputError(f"{name} must be finite [x, y] values in [{unit}]")
         return np.array(value, dtype=float)
     arr = real_array(value, name, unit)
     if arr.ndim == 0 or arr.shape[-1] != 2:
-        raise ValueError(f"{name} must be an [x, y] pair in [{unit}], got shape {arr.shape}")
+        raise InputError(f"{name} must be an [x, y] pair in [{unit}], got shape {arr.shape}")
     if not np.isfinite(arr).all():
-        raise ValueError(f"{name} must be finite [x, y] values in [{unit}]")
+        raise InputError(f"{name} must be finite [x, y] values in [{unit}]")
     return arr
 
 
 def _one_number(value, name: str) -> float:
     arr = real_array(value, name)
     if arr.size != 1:
-        raise ValueError(f"{name} must be a single number (the case's default), "
+        raise InputError(f"{name} must be a single number (the case's default), "
                          f"got shape {arr.shape}")
     return float(arr.reshape(()))
 
@@ -57,10 +57,10 @@ def _one_number(value, name: str) -> float:
 def _finite(arr: np.ndarray, name: str, unit: str) -> np.ndarray:
     if type(arr) is np.float64:   # a scalar from _scalar's fast path
         if not math.isfinite(arr):
-            raise ValueError(f"{name} must be a finite number in [{unit}]")
+            raise InputError(f"{name} must be a finite number in [{unit}]")
         return arr
     if not np.isfinite(arr).all():
-        raise ValueError(f"{name} must be a finite number in [{unit}]")
+        raise InputError(f"{name} must be a finite number in [{unit}]")
     return arr
 
 
@@ -102,12 +102,12 @@ class Vehicle:
         inertia = _scalar(self.yaw_inertia, "yaw_inertia", "kg m^2")
         scalars = type(mass) is np.float64 and type(inertia) is np.float64
         if not (mass > 0 if scalars else (mass > 0).all()):
-            raise ValueError("mass must be > 0 [kg] (or inf for a fixed obstacle)")
+            raise InputError("mass must be > 0 [kg] (or inf for a fixed obstacle)")
         if not (inertia > 0 if scalars else (inertia > 0).all()):
-            raise ValueError("yaw_inertia must be > 0 [kg m^2] (or inf for a fixed obstacle)")
+            raise InputError("yaw_inertia must be > 0 [kg m^2] (or inf for a fixed obstacle)")
         if (math.isinf(mass) != math.isinf(inertia) if scalars
                 else (np.isinf(mass) != np.isinf(inertia)).any()):
-            raise ValueError("mass and yaw_inertia must both be inf for a fixed obstacle")
+            raise InputError("mass and yaw_inertia must both be inf for a fixed obstacle")
         set_(self, "mass", mass)
         set_(self, "yaw_inertia", inertia)
         set_(self, "cg", _vector(self.cg, "cg", "m"))
@@ -120,13 +120,13 @@ class Vehicle:
             fixed, moving = np.broadcast_arrays(
                 fixed, np.abs(self.velocity).sum(-1) + np.abs(self.yaw_rate))
             if (fixed & (moving != 0)).any():
-                raise ValueError("velocity and yaw_rate of a fixed obstacle must be 0")
+                raise InputError("velocity and yaw_rate of a fixed obstacle must be 0")
         for name in ("length", "width"):
             value = getattr(self, name)
             if value is not None:
                 value = _one_number(value, name)
                 if not (np.isfinite(value) and value > 0):
-                    raise ValueError(f"{name} must be > 0 [m], got {value}")
+                    raise InputError(f"{name} must be > 0 [m], got {value}")
                 set_(self, name, value)
 
     @classmethod
@@ -184,12 +184,12 @@ class Impact:
         if self.restitution is not None:
             eps = _one_number(self.restitution, "restitution")
             if not 0.0 <= eps <= 1.0:
-                raise ValueError(f"restitution must be in [0, 1], got {eps}")
+                raise InputError(f"restitution must be in [0, 1], got {eps}")
             object.__setattr__(self, "restitution", eps)
         if self.beta is not None:
             beta = _one_number(self.beta, "beta")
             if not np.isfinite(beta):
-                raise ValueError(f"beta must be a finite number (usually in [0, 1]), got {beta}")
+                raise InputError(f"beta must be a finite number (usually in [0, 1]), got {beta}")
             object.__setattr__(self, "beta", beta)
 
     @property
@@ -240,7 +240,7 @@ class Measured:
             if value is not None:
                 value = _one_number(value, name)
                 if not np.isfinite(value):
-                    raise ValueError(f"{name} must be a finite number in [rad/s]")
+                    raise InputError(f"{name} must be a finite number in [rad/s]")
                 object.__setattr__(self, name, value)
         for name, unit in (("velocity1", "m/s"), ("velocity2", "m/s"), ("yaw_rate1", "rad/s"),
                            ("yaw_rate2", "rad/s")):
@@ -248,11 +248,11 @@ class Measured:
             if sigma is None:
                 continue
             if getattr(self, name) is None:
-                raise ValueError(f"{name}_sigma is given but {name} is not measured")
+                raise InputError(f"{name}_sigma is given but {name} is not measured")
             sigma = (_vector(sigma, name + "_sigma", unit) if name.startswith("velocity")
                      else _one_number(sigma, name + "_sigma"))
             if not np.all(np.isfinite(sigma)) or np.any(np.asarray(sigma) <= 0):
-                raise ValueError(f"{name}_sigma must be finite and > 0 [{unit}], got {sigma}")
+                raise InputError(f"{name}_sigma must be finite and > 0 [{unit}], got {sigma}")
             object.__setattr__(self, name + "_sigma", sigma)
 
 
@@ -301,12 +301,12 @@ class Case:
     def __post_init__(self) -> None:
         for name, kind in (("vehicle1", Vehicle), ("vehicle2", Vehicle), ("impact", Impact)):
             if not isinstance(getattr(self, name), kind):
-                raise ValueError(f"{name} must be a pim.{kind.__name__}, got "
+                raise InputError(f"{name} must be a pim.{kind.__name__}, got "
                                  f"{type(getattr(self, name)).__name__}")
         if self.units not in ("si", "us"):
-            raise ValueError(f"units must be 'si' or 'us', got {self.units!r}")
+            raise InputError(f"units must be 'si' or 'us', got {self.units!r}")
         if self.vehicle1.fixed.any():
-            raise ValueError("vehicle1.mass must be finite: only vehicle2 may be a fixed obstacle")
+            raise InputError("vehicle1.mass must be finite: only vehicle2 may be a fixed obstacle")
 
     @cached_property
     def shape(self) -> tuple:
@@ -352,7 +352,7 @@ class Case:
     def swapped(self) -> Case:
         """The same scene with the vehicles' roles exchanged (n flips: Gamma + pi)."""
         if self.vehicle2.fixed.any():
-            raise ValueError("vehicle2 is a fixed obstacle; it cannot become vehicle1")
+            raise InputError("vehicle2 is a fixed obstacle; it cannot become vehicle1")
         measured = self.measured
         if measured is not None:
             measured = Measured(measured.velocity2, measured.velocity1,

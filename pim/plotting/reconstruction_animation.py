@@ -19,6 +19,7 @@ from ..analysis.reconstruction import PostImpact
 from ..io.files import atomic_path
 from ..io.units import convert
 from ..model.geometry import outline_world
+from ..model.numbers import InputError
 from .reconstruction_scene import COLOURS
 
 __all__ = ["FrameStates", "frame_states", "write_reconstruction_mp4", "DEFAULT_FPS",
@@ -46,11 +47,11 @@ def frame_states(post: PostImpact, fps: int = DEFAULT_FPS,
     stored states (the heading is integrated continuously, so it interpolates without a
     jump at +-180 deg)."""
     if not (isinstance(fps, int | np.integer) and fps >= 1):
-        raise ValueError(f"fps must be a positive integer, got {fps!r}")
+        raise InputError(f"fps must be a positive integer, got {fps!r}")
     if not (np.isfinite(hold) and hold >= 0):
-        raise ValueError(f"hold must be >= 0 [s], got {hold!r}")
+        raise InputError(f"hold must be >= 0 [s], got {hold!r}")
     if not post.runouts:
-        raise ValueError("the reconstruction has no run-out to animate (no [evidence])")
+        raise InputError("the reconstruction has no run-out to animate (no [evidence])")
     end = max(float(f.runout.time[-1]) for f in post.runouts.values())
     times = np.arange(int(np.ceil((end + hold) * fps)) + 1) / fps
     states = {}
