@@ -102,7 +102,7 @@ def _corners(vehicle: pim.Vehicle) -> np.ndarray | None:
         length, width = DEFAULT_OUTLINE
     else:
         length, width = vehicle.length, vehicle.width
-    return outline_corners(length, width)
+    return outline_corners(length, width, vehicle.cg_to_front)
 
 
 def _place(corners: np.ndarray, position: np.ndarray, angle: np.ndarray) -> np.ndarray:

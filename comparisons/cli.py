@@ -12,6 +12,7 @@ import click
 
 import pim
 from pim.cli import (
+    FiniteFloat,
     beta_option,
     case_argument,
     echo_json,
@@ -37,11 +38,11 @@ def _out(out, name: str, default: str) -> Path:
 
 
 compare_eps_option = click.option(
-    "--eps", type=float, default=None,
+    "--eps", type=FiniteFloat(), default=None,
     help="Coefficient of restitution epsilon in [0, 1] (default: fitted to the case's "
          "measured motion, else the case's impact.restitution). With --beta: no fit.")
 compare_beta_option = click.option(
-    "--beta", type=float, default=None,
+    "--beta", type=FiniteFloat(), default=None,
     help="Fraction of the critical impulse ratio, mu = beta mu0 (default: fitted to the "
          "case's measured motion, else the case's impact.beta, else 1). With --eps: no fit.")
 
@@ -58,7 +59,7 @@ compare_beta_option = click.option(
 @click.option("--no-speed-error", is_flag=True, help="Skip the coarse speed-error sweep.")
 @click.option("--no-assumptions", is_flag=True,
               help="Skip PIM's assumptions at typical values (finite-duration scene).")
-@click.option("--tyre-friction", "tyre", type=float, default=0.0, show_default=True,
+@click.option("--tyre-friction", "tyre", type=FiniteFloat(), default=0.0, show_default=True,
               help="Tyre/ground friction coefficient after impact in the animation (the "
                    "ghost decelerates alike); 0 = free motion.")
 @progress_option
@@ -118,13 +119,13 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
 @click.option("--gif", "gif", type=click.Path(dir_okay=False), default=None,
               help="Also write an animated GIF (half size) here.")
 @click.option("--fps", type=int, default=30, show_default=True, help="Frames per second.")
-@click.option("--before", type=float, default=None,
+@click.option("--before", type=FiniteFloat(), default=None,
               help="Seconds shown before the impact (default: about 1.2 vehicle lengths).")
-@click.option("--after", type=float, default=2.0, show_default=True,
+@click.option("--after", type=FiniteFloat(), default=2.0, show_default=True,
               help="Seconds shown after the impact.")
 @click.option("--size", type=(int, int), default=(960, 720), show_default=True,
               help="Frame width and height [px], even numbers.")
-@click.option("--tyre-friction", "tyre", type=float, default=0.0, show_default=True,
+@click.option("--tyre-friction", "tyre", type=FiniteFloat(), default=0.0, show_default=True,
               help="Tyre/ground friction coefficient after the impact (ghost alike).")
 @click.option("--no-ghost", is_flag=True, help="Do not draw PIM's answer as a ghost.")
 @units_option

@@ -7,6 +7,7 @@ import sys
 import click
 
 from pim.cli import (
+    FiniteFloat,
     beta_option,
     case_argument,
     echo_json,
@@ -24,7 +25,7 @@ __all__ = ["sim"]
 @case_argument
 @eps_option
 @beta_option
-@click.option("--dt", type=float, default=None, help="Time step [s] (default: Settings()).")
+@click.option("--dt", type=FiniteFloat(), default=None, help="Time step [s] (default: Settings()).")
 @click.option("--iterations", type=int, default=None,
               help="Solver iterations per step (default: automatic from the contact).")
 @click.option("--contact", type=click.Choice(["point", "outline"]), default="point",

@@ -87,7 +87,7 @@ def outline_corners(vehicle: pim.Vehicle) -> np.ndarray | None:
     """Corners of the vehicle's length x width rectangle in its body frame [m], or None."""
     if vehicle.length is None or vehicle.width is None:
         return None
-    return geometry.outline_corners(vehicle.length, vehicle.width)
+    return geometry.outline_corners(vehicle.length, vehicle.width, vehicle.cg_to_front)
 
 
 def footprint_lever(vehicle: pim.Vehicle) -> float:

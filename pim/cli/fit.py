@@ -6,21 +6,21 @@ from __future__ import annotations
 import click
 
 from ..model.numbers import InputError
-from .main import case_argument, echo_json, json_option, units_option
+from .main import FiniteFloat, case_argument, echo_json, json_option, units_option
 
 __all__ = ["fit", "sensitivity", "plot"]
 
 include_yaw_option = click.option(
     "--include-yaw", is_flag=True,
     help="Also fit the measured yaw rates, weighted by each vehicle's radius of gyration.")
-fixed_eps_option = click.option("--eps", type=float, default=None,
+fixed_eps_option = click.option("--eps", type=FiniteFloat(), default=None,
                                 help="Hold epsilon fixed at this value and fit beta only.")
-fixed_beta_option = click.option("--beta", type=float, default=None,
+fixed_beta_option = click.option("--beta", type=FiniteFloat(), default=None,
                                  help="Hold beta fixed at this value and fit epsilon only.")
-eps_range_option = click.option("--eps-range", type=float, nargs=2, default=(0.0, 1.0),
+eps_range_option = click.option("--eps-range", type=FiniteFloat(), nargs=2, default=(0.0, 1.0),
                                 show_default=True, metavar="MIN MAX",
                                 help="Search range of epsilon (within [0, 1]).")
-beta_range_option = click.option("--beta-range", type=float, nargs=2, default=(0.0, 1.0),
+beta_range_option = click.option("--beta-range", type=FiniteFloat(), nargs=2, default=(0.0, 1.0),
                                  show_default=True, metavar="MIN MAX",
                                  help="Search range of beta; the sheet's constraint is "
                                       "beta <= 1 (wider ranges are flagged).")
@@ -207,16 +207,17 @@ def _parse_sigma(items) -> dict:
 @click.command()
 @case_argument
 @include_yaw_option
-@click.option("--eps", type=float, default=None,
+@click.option("--eps", type=FiniteFloat(), default=None,
               help="Evaluate delta-V at this epsilon instead of fitting.")
-@click.option("--beta", type=float, default=None,
+@click.option("--beta", type=FiniteFloat(), default=None,
               help="Evaluate delta-V at this beta instead of fitting.")
 @click.option("--sigma", "sigmas", multiple=True, metavar="KEY=VALUE",
               help="Override a typical uncertainty, e.g. --sigma point='0.2 m' "
                    "--sigma normal_angle='3 deg' --sigma mass_fraction=0.05. Keys: point, "
                    "normal_angle, mass_fraction, inertia_fraction, velocity, yaw_rate, "
                    "measured_velocity, measured_yaw_rate.")
-@click.option("--top", type=int, default=None, help="Show only the N largest effects.")
+@click.option("--top", type=click.IntRange(min=1), default=None,
+              help="Show only the N largest effects.")
 @units_option
 @json_option
 def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):

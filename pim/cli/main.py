@@ -10,6 +10,7 @@ one-line message and exit code 2; any other exception is a bug and keeps its tra
 from __future__ import annotations
 
 import json
+import math
 import sys
 from importlib.metadata import entry_points
 
@@ -18,7 +19,8 @@ import click
 from ..model.numbers import InputError
 from ..model.plausibility import warnings_of
 
-__all__ = ["main", "cli", "case_argument", "eps_option", "beta_option", "units_option",
+__all__ = ["main", "cli", "FiniteFloat",
+           "case_argument", "eps_option", "beta_option", "units_option",
            "json_option", "echo_json", "friction_limit_option", "cap_friction_option",
            "solve_with_options", "warnings_of", "NO_IMPACT_EXIT_CODE"]
 
@@ -50,11 +52,38 @@ def cli():
     """
 
 
+class FiniteFloat(click.ParamType):
+    """A finite float (``nan`` and ``inf`` are usage errors), optionally in [low, high]."""
+
+    name = "float"
+
+    def __init__(self, low: float | None = None, high: float | None = None):
+        self.low, self.high = low, high
+
+    def _range(self) -> str:
+        if self.low is not None and self.high is not None:
+            return f" in [{self.low:g}, {self.high:g}]"
+        return f" >= {self.low:g}" if self.low is not None else ""
+
+    def convert(self, value, param, ctx):
+        if isinstance(value, float):
+            number = value
+        else:
+            try:
+                number = float(value)
+            except (TypeError, ValueError):
+                self.fail(f"{value!r} is not a number", param, ctx)
+        if not math.isfinite(number) or (self.low is not None and number < self.low) or (
+                self.high is not None and number > self.high):
+            self.fail(f"{value!r} is not a finite number{self._range()}", param, ctx)
+        return number
+
+
 case_argument = click.argument("case_name", metavar="CASE")
-eps_option = click.option("--eps", type=float, default=None,
+eps_option = click.option("--eps", type=FiniteFloat(0.0, 1.0), default=None,
                           help="Coefficient of restitution epsilon in [0, 1] "
                                "(default: the case's impact.restitution).")
-beta_option = click.option("--beta", type=float, default=None,
+beta_option = click.option("--beta", type=FiniteFloat(), default=None,
                            help="Fraction of the critical impulse ratio, mu = beta mu0 "
                                 "(default: the case's impact.beta, else 1).")
 units_option = click.option("--units", type=click.Choice(["si", "us"]), default=None,
@@ -91,7 +120,7 @@ def cases():
 
 
 friction_limit_option = click.option(
-    "--friction-limit", type=click.FloatRange(min=0), default=None,
+    "--friction-limit", type=FiniteFloat(low=0.0), default=None,
     help="Warn when |mu| = |Pt/Pn| exceeds this friction coefficient (default: no limit).")
 cap_friction_option = click.option(
     "--cap-friction", is_flag=True,
@@ -99,12 +128,14 @@ cap_friction_option = click.option(
          "pycrash's cof and PC-Crash's contact-plane friction do.")
 
 
-def solve_with_options(case, eps, beta, friction_limit=None, cap_friction=False):
+def solve_with_options(case, eps, beta, friction_limit=None, cap_friction=False, units=None):
     """Solve ``case`` as the commands do: plain PIM, or friction-capped with --cap-friction.
 
     Raises InputError for --cap-friction without --friction-limit, and click's Exit(1) after
-    one line on stderr when the vehicles do not approach at C (no impact).
+    one line on stderr when the vehicles do not approach at C (no impact), with the
+    approach velocity in ``units`` (default: the case's).
     """
+    from ..io.units import convert
     from ..model.friction_cap import solve_capped
     from ..model.plausibility import no_impact_message
     from ..model.solver import solve as solve_case
@@ -115,7 +146,8 @@ def solve_with_options(case, eps, beta, friction_limit=None, cap_friction=False)
         result = solve_capped(case, eps, beta, friction_limit)
     else:
         result = solve_case(case, eps, beta)
-    message = no_impact_message(result)
+    scale, label = convert(1.0, "velocity", units or case.units)
+    message = no_impact_message(result, label, float(scale))
     if message:
         click.echo(message, err=True)
         raise click.exceptions.Exit(NO_IMPACT_EXIT_CODE)
@@ -146,7 +178,7 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, units, as_json):
 
     case = load_case(case_name)
     units = units or case.units
-    result = solve_with_options(case, eps, beta, friction_limit, cap_friction)
+    result = solve_with_options(case, eps, beta, friction_limit, cap_friction, units)
     if result.q_singular.any():
         problems = result.problems()
         raise InputError(problems[0] if problems else "q is singular")
@@ -159,9 +191,9 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, units, as_json):
     title = f"{case.name}: epsilon = {float(result.eps):g}, beta = {float(result.beta):g}"
     if cap_friction:
         title += f" (friction-capped at |mu| <= {friction_limit:g})"
-    click.echo(format_table(rows, title))
-    for text in warnings:
+    for text in warnings:       # before the table, where a reader sees them
         click.echo(f"warning: {text}", err=True)
+    click.echo(format_table(rows, title))
 
 
 @cli.command()

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from .main import case_argument, echo_json, json_option, units_option
+from .main import FiniteFloat, case_argument, echo_json, json_option, units_option
 
 __all__ = ["uncertainty"]
 
@@ -14,8 +14,10 @@ __all__ = ["uncertainty"]
 @click.option("--samples", "-n", type=click.IntRange(min=10), default=100_000,
               show_default=True, help="Number of Monte Carlo samples.")
 @click.option("--seed", type=int, default=0, show_default=True, help="Random seed.")
-@click.option("--eps", type=float, default=None, help="Nominal epsilon (default: the case's).")
-@click.option("--beta", type=float, default=None, help="Nominal beta (default: the case's).")
+@click.option("--eps", type=FiniteFloat(), default=None,
+              help="Nominal epsilon (default: the case's).")
+@click.option("--beta", type=FiniteFloat(), default=None,
+              help="Nominal beta (default: the case's).")
 @click.option("--png", "png", type=click.Path(dir_okay=False), default=None,
               help="Write histograms of the outputs to this PNG (or .svg) file.")
 @click.option("--top", type=click.IntRange(min=1), default=3, show_default=True,

@@ -14,6 +14,7 @@ silently ignored. Layout (global form; see ``pim/io/cases/ricsac9.toml``)::
     velocity = ["-31.09 ft/s", 0]
     yaw_rate = "0 deg/s"
     length = "4.1 m"                # optional, with width: outline for drawing
+    cg_to_front = "1.9 m"           # optional: CG to front bumper (default length / 2)
     [impact]
     point = [0, 0]
     normal_angle = "0 deg"          # Gamma: n points from vehicle 2 toward vehicle 1
@@ -57,7 +58,13 @@ __all__ = ["load_case", "list_cases", "parse_case"]
 _TOP = {"name", "description", "source", "convention", "vehicle1", "vehicle2", "impact",
         "measured", "uncertainty", "evidence", "unknown"}
 _VEHICLE = {"mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
-            "length", "width", "fixed", "cg", "heading", "theta", "phi", "d"}
+            "length", "width", "cg_to_front", "fixed", "cg", "heading", "theta", "phi", "d"}
+
+#: Deepest nesting of tables and lists a case file may have: the deepest legitimate value,
+#: ``[measured] vehicle1.velocity = [..]``, sits at depth 4.
+MAX_DEPTH = 8
+#: Longest ``name``, ``description`` or ``source`` [characters].
+MAX_TEXT = {"name": 200, "description": 10_000, "source": 10_000}
 _IMPACT = {"point", "normal_angle", "restitution", "beta"}
 
 
@@ -108,6 +115,7 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int)
         heading = float(heading_from_theta(theta, number))
     length = _optional(table, "length", "length", where)
     width = _optional(table, "width", "length", where)
+    cg_to_front = _optional(table, "cg_to_front", "length", where)
 
     if fixed:
         if number == 1:
@@ -116,7 +124,8 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int)
                                      "velocity", "yaw_rate"})
         if extra:
             raise InputError(f"{where}.{extra[0]}: a fixed obstacle has no {extra[0]}")
-        return _wrap(where, Vehicle.obstacle, cg=cg, heading=heading, length=length, width=width)
+        return _wrap(where, Vehicle.obstacle, cg=cg, heading=heading, length=length, width=width,
+                     cg_to_front=cg_to_front)
 
     if _one_of(table, "mass", "weight", where) == "mass":
         mass = parse(table["mass"], "mass", f"{where}.mass")
@@ -136,7 +145,8 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int)
     velocity = _pair(_require(table, "velocity", where), "velocity", f"{where}.velocity")
     yaw_rate = parse(table.get("yaw_rate", 0.0), "angular_velocity", f"{where}.yaw_rate")
     return _wrap(where, Vehicle, mass=mass, yaw_inertia=inertia, cg=cg, velocity=velocity,
-                 yaw_rate=yaw_rate, heading=heading, length=length, width=width)
+                 yaw_rate=yaw_rate, heading=heading, length=length, width=width,
+                 cg_to_front=cg_to_front)
 
 
 def _wrap(where: str, factory, **kwargs):
@@ -161,6 +171,7 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
         Missing or unknown key, bad unit or dimension, or a value out of range; the message
         names the field.
     """
+    _check_depth(data, source)
     data = check_keys(data, _TOP, source)
     convention = data.get("convention", "global")
     if convention not in ("global", "brach"):
@@ -186,12 +197,29 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
                        ("source", data.get("source", ""))):
         if not isinstance(value, str):
             raise InputError(f"{key} must be a string, got {value!r}")
+        if len(value) > MAX_TEXT[key]:
+            raise InputError(f"{key} has {len(value)} characters; at most {MAX_TEXT[key]}")
     return Case(vehicle1=vehicles[0], vehicle2=vehicles[1], impact=impact,
                 measured=parse_measured(data.get("measured")), name=name, description=description,
                 uncertainty=_uncertainty(data.get("uncertainty")), units=_unit_system(data),
                 notes=_angle_notes(data),
                 evidence=parse_evidence(data.get("evidence")),
                 unknown=parse_unknown(data.get("unknown")))
+
+
+def _check_depth(data, source: str) -> None:
+    """InputError when tables and lists nest deeper than :data:`MAX_DEPTH` (walked without
+    recursion, so any depth is answered in linear time)."""
+    stack = [(data, 0)]
+    while stack:
+        value, depth = stack.pop()
+        if depth > MAX_DEPTH:
+            raise InputError(f"{source}: tables and lists nest {depth} deep; a case file "
+                             f"nests at most {MAX_DEPTH} deep")
+        if isinstance(value, dict):
+            stack.extend((v, depth + 1) for v in value.values())
+        elif isinstance(value, list):
+            stack.extend((v, depth + 1) for v in value)
 
 
 def _angle_notes(data) -> tuple[str, ...]:
@@ -208,17 +236,15 @@ def _angle_notes(data) -> tuple[str, ...]:
 
 def _unit_system(data) -> str:
     """"us" when any quantity string of the file uses a US customary unit, else "si"."""
-    def strings(x):
+    stack, systems = [data], set()
+    while stack:
+        x = stack.pop()
         if isinstance(x, dict):
-            for v in x.values():
-                yield from strings(v)
+            stack.extend(x.values())
         elif isinstance(x, list):
-            for v in x:
-                yield from strings(v)
+            stack.extend(x)
         elif isinstance(x, str):
-            yield x
-
-    systems = {unit_system_of(s) for s in strings(data)}
+            systems.add(unit_system_of(x))
     return "us" if "us" in systems else "si"
 
 
@@ -261,4 +287,7 @@ def load_case(name_or_path) -> Case:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"{source}: malformed TOML ({exc})") from None
+    except RecursionError:      # tomllib recurses into nested inline tables and arrays
+        raise InputError(f"{source}: tables and lists nest too deep; a case file nests at "
+                         f"most {MAX_DEPTH} deep") from None
     return parse_case(data, source)

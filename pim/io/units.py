@@ -182,7 +182,10 @@ def parse(value, kind: str, field: str) -> float:
     value : str or float
         A quantity with units (``"31.09 ft/s"``, ``"90 deg"``): exactly one number and one
         unit; or a bare number, taken as SI. An angle or angular velocity written as a
-        string needs its unit (``"180"`` is refused: degrees or radians?).
+        string needs its unit (``"180"`` is refused: degrees or radians?); a bare number
+        for an angle is radians and must lie within [-2 pi, 2 pi] (``-90`` is refused:
+        degrees were meant; :func:`pim.model.plausibility.bare_angle_warning` warns about
+        the others).
     kind : str
         Key of :data:`DIMENSIONS` naming the expected physical dimension. The unit must
         reduce to the kind's base units exactly, so ``"1 Hz"`` is no yaw rate and ``"1 sr"``
@@ -210,6 +213,10 @@ def parse(value, kind: str, field: str) -> float:
             number = float(value)
         except OverflowError:
             raise InputError(f"{field}: {str(value)[:20]}... is too large a number") from None
+        if kind == "angle" and abs(number) > 2 * np.pi:
+            raise InputError(f"{field} = {value!r} has no unit; a bare angle is read in "
+                             f"radians and must lie within [-2 pi, 2 pi]: write "
+                             f"'{value} deg' (or '{value} rad' if radians are meant)")
     elif isinstance(value, str):
         magnitude, text = _split(value, field)
         if not text:

@@ -83,8 +83,11 @@ class Vehicle:
     heading : array_like
         Direction the vehicle's nose points [rad] from +x; used for PDOF and drawing only.
     length, width : float, optional
-        Outline of the vehicle [m], a rectangle centred on the CG; used for drawing and
+        Outline of the vehicle [m], a rectangle along the heading; used for drawing and
         for the optional outline contact of the simulator, never by the impact equations.
+    cg_to_front : float, optional
+        Distance [m] from the CG forward to the front of the outline, in [0, length];
+        default ``length / 2`` (the outline centred on the CG). Needs ``length``.
     """
 
     mass: np.ndarray
@@ -95,6 +98,7 @@ class Vehicle:
     heading: np.ndarray = 0.0
     length: float | None = None
     width: float | None = None
+    cg_to_front: float | None = None
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
@@ -128,16 +132,26 @@ class Vehicle:
                 if not (np.isfinite(value) and value > 0):
                     raise InputError(f"{name} must be > 0 [m], got {value}")
                 set_(self, name, value)
+        if self.cg_to_front is not None:
+            a = _one_number(self.cg_to_front, "cg_to_front")
+            if self.length is None:
+                raise InputError("cg_to_front needs length (the outline it places the CG in)")
+            if not 0.0 <= a <= self.length:
+                raise InputError(f"cg_to_front must be in [0, length = {self.length:g}] [m], "
+                                 f"got {a:g}")
+            set_(self, "cg_to_front", a)
 
     @classmethod
-    def obstacle(cls, cg=(0.0, 0.0), heading=0.0, length=None, width=None) -> Vehicle:
+    def obstacle(cls, cg=(0.0, 0.0), heading=0.0, length=None, width=None,
+                 cg_to_front=None) -> Vehicle:
         """A fixed barrier or pole: infinite mass and yaw inertia, at rest.
 
         Its ``cg`` [m] and ``heading`` [rad] do not change the impact (its arm is multiplied
         by a zero inverse inertia); they only place an outline in drawings.
         """
         return cls(mass=np.inf, yaw_inertia=np.inf, cg=cg, velocity=(0.0, 0.0),
-                   yaw_rate=0.0, heading=heading, length=length, width=width)
+                   yaw_rate=0.0, heading=heading, length=length, width=width,
+                   cg_to_front=cg_to_front)
 
     @property
     def fixed(self) -> np.ndarray:

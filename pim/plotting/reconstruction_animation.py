@@ -104,14 +104,16 @@ def write_reconstruction_mp4(post: PostImpact, path, *, units: str = "si",
         colour = COLOURS[i]
         path_xy = fit.runout.states[:, :2] * scale
         ax.plot(path_xy[:, 0], path_xy[:, 1], "-", color=colour, lw=0.8, alpha=0.5)
-        rest = outline_world(length, width, evidence.rest_position, evidence.rest_heading)
+        rest = outline_world(length, width, evidence.rest_position, evidence.rest_heading,
+                             vehicle.cg_to_front)
         closed = np.vstack([rest, rest[:1]]) * scale
         ax.plot(closed[:, 0], closed[:, 1], "--", color="k", lw=1.0)
-        start = outline_world(length, width, frames.states[i][0, :2], frames.states[i][0, 2])
+        start = outline_world(length, width, frames.states[i][0, :2], frames.states[i][0, 2],
+                              vehicle.cg_to_front)
         patch = Polygon(start * scale, closed=True, facecolor=colour, alpha=0.6,
                         edgecolor=colour, label=f"vehicle {i}")
         ax.add_patch(patch)
-        patches[i] = (patch, length, width)
+        patches[i] = (patch, length, width, vehicle.cg_to_front)
         extent += [path_xy, closed]
     ax.plot([], [], "--", color="k", label="measured rest")
     ax.plot(*(np.asarray(case.impact.point) * scale), "*", color="k", ms=10, label="C")
@@ -132,9 +134,9 @@ def write_reconstruction_mp4(post: PostImpact, path, *, units: str = "si",
                                     ffmpeg_log_level="error")
         try:
             for k, t in enumerate(frames.times):
-                for i, (patch, length, width) in patches.items():
+                for i, (patch, length, width, front) in patches.items():
                     x, y, h = frames.states[i][k]
-                    patch.set_xy(outline_world(length, width, (x, y), h) * scale)
+                    patch.set_xy(outline_world(length, width, (x, y), h, front) * scale)
                 clock.set_text(f"{case.name}: t = {t:5.2f} s after the impact")
                 canvas.draw()
                 rgba = np.asarray(canvas.buffer_rgba())
