@@ -51,7 +51,7 @@ from .evidence_table import parse_evidence, parse_unknown
 from .measured_table import parse_measured
 from .toml_tables import check_keys
 from .uncertainty_table import parse_uncertainty
-from .units import parse, registry, unit_system_of
+from .units import LIMITS, parse, registry, unit_system_of
 
 __all__ = ["load_case", "list_cases", "parse_case"]
 
@@ -142,6 +142,11 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int)
             raise InputError(f"{where}.radius_of_gyration must be > 0, "
                              f"got {table['radius_of_gyration']!r}")
         inertia = mass * k * k
+        low, high = LIMITS["inertia"]
+        if mass > 0 and not low <= inertia <= high:
+            raise InputError(f"{where}.radius_of_gyration = {table['radius_of_gyration']!r} "
+                             f"gives a yaw inertia m k^2 = {inertia:.3g} kg m^2 outside "
+                             f"[{low:g}, {high:g}] kg m^2")
     velocity = _pair(_require(table, "velocity", where), "velocity", f"{where}.velocity")
     yaw_rate = parse(table.get("yaw_rate", 0.0), "angular_velocity", f"{where}.yaw_rate")
     return _wrap(where, Vehicle, mass=mass, yaw_inertia=inertia, cg=cg, velocity=velocity,
