@@ -9,7 +9,7 @@ from dataclasses import replace
 import numpy as np
 
 import pim
-from pim.model.numbers import InputError, real_array
+from pim.model.numbers import InputError, check_counts, real_array
 
 from .failures import SimulationError
 from .result import BatchResult
@@ -103,6 +103,7 @@ def simulate_many(cases: pim.Case | Sequence[pim.Case], eps=None, beta=None,
         message), and ``results``: each scene's :class:`sim.SimResult` or
         :class:`sim.SimulationError`. Bad input (ValueError) raises.
     """
+    check_counts(chunksize=chunksize, max_workers=max_workers)
     settings = replace(settings or Settings(), record=record)
     if isinstance(cases, pim.Case):
         items = [case_element(cases, i) for i in range(case_count(cases))]

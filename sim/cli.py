@@ -58,9 +58,9 @@ def sim(case_name, eps, beta, dt, iterations, contact, start, units, as_json):
         click.echo(f"simulation failed ({exc.kind}): {exc}", err=True)
         sys.exit(1)
     if as_json:
-        echo_json(check.to_json())
+        echo_json(check.to_json(units))
         return
-    click.echo(check.format_table(units))
-    for text in check.limitations:
+    for text in check.limitations:     # before the table, where a reader sees them
         click.echo(f"note: {text}", err=True)
+    click.echo(check.format_table(units))
 

@@ -23,7 +23,7 @@ import os
 from collections.abc import Callable, Iterable
 from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
 
-from pim.model.numbers import InputError
+from pim.model.numbers import InputError, check_counts
 
 __all__ = ["sweep"]
 
@@ -73,6 +73,7 @@ def sweep(func: Callable, items: Iterable, executor=None, chunksize: int | None 
         ``func(item)`` for every item, in the order of ``items``. The first exception raised
         by ``func`` propagates (pending chunks are cancelled).
     """
+    check_counts(chunksize=chunksize, max_workers=max_workers)
     from tqdm.auto import tqdm
 
     items = list(items)

@@ -30,7 +30,7 @@ import numpy as np
 
 from ..model.case import Case, Impact, Vehicle
 from ..model.distributions import UncertaintyTable, nominal_values, sample_inputs
-from ..model.numbers import InputError
+from ..model.numbers import InputError, checked_count
 from ..model.solver import solve
 
 __all__ = ["uncertainty", "UncertaintyResult", "OutputStats", "OUTPUTS", "first_order_indices"]
@@ -211,9 +211,7 @@ def uncertainty(case: Case, n: int = 100_000, seed: int | None = 0,
                          "distributions were given")
     if not isinstance(dists, UncertaintyTable):
         raise InputError("distributions must be a pim.model.distributions.UncertaintyTable")
-    n = int(n)
-    if n < 10:
-        raise InputError(f"samples must be >= 10, got {n}")
+    n = checked_count(n, "n (samples)", low=10)
     nominal_in = nominal_values(case, eps, beta)
     rng = np.random.default_rng(seed)
     # evidence inputs (run-out friction) do not act on the impact: pim reconstruct samples them

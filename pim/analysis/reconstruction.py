@@ -26,7 +26,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..model.case import Case, Measured
-from ..model.numbers import InputError
+from ..model.numbers import InputError, check_counts, checked_count
 from .fitting import FitResult
 from .free_inputs import approach_direction, check_free
 from .inverse_pim import inverse_pim, under_determined
@@ -212,6 +212,7 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         With ``determined = False`` and a message naming what is missing when the data cannot
         decide the unknowns; never a number then.
     """
+    samples, _ = checked_count(samples, "samples", low=0), check_counts(blocks=blocks)
     unknown = check_free(case.unknown if unknown is None else unknown)
     if not unknown:
         raise InputError("unknown: nothing to solve for; name the unknowns in an [unknown] "

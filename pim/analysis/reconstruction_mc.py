@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model.distributions import UncertaintyTable, nominal_values, sample_inputs
-from ..model.numbers import InputError
+from ..model.numbers import InputError, checked_count
 from .fitting import FitResult
 from .free_fit import residual_terms
 from .free_inputs import STATE, fields_set_by
@@ -149,9 +149,7 @@ def reconstruction_samples(case, fit_result: FitResult, unknown: dict, n: int = 
         Nominal values of the evidence inputs (``evidence.vehicleN.friction``) that the
         ``[uncertainty]`` table may vary.
     """
-    n = int(n)
-    if n < 10:
-        raise InputError(f"samples must be >= 10, got {n}")
+    n = checked_count(n, "n (samples)", low=10)
     block = solve_samples(case, fit_result, unknown, n, np.random.default_rng(seed),
                           distributions=distributions, include_yaw=include_yaw,
                           post_impact=post_impact, extra_nominal=extra_nominal)

@@ -61,6 +61,8 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, units, as_json):
                    "admissible": result.n_admissible, "problems": result.problems,
                    "units": units, "outputs": rows})
         return
+    for text in result.problems:        # before the table, where a reader sees them
+        click.echo(f"warning: {text}; those samples are left out", err=True)
     click.echo(f"{case.name}: {result.n:,} samples (seed {seed}), "
                f"{result.n_admissible:,} admissible")
     width = max(len(r["label"]) for r in rows)
@@ -71,7 +73,5 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, units, as_json):
                             for c in r["sensitivity"][:top])
         click.echo(f"{r['label']:<{width}}  {r['unit']:>6}  {r['nominal']:>10.4g}  "
                    f"{r['p5']:>10.4g}  {r['p50']:>10.4g}  {r['p95']:>10.4g}  {contrib}")
-    for text in result.problems:
-        click.echo(f"warning: {text}; those samples are left out", err=True)
     if png:
         click.echo(f"histograms: {png}")

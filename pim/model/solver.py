@@ -26,7 +26,7 @@ import numpy as np
 from . import formula
 from .case import Case
 from .geometry import vec
-from .numbers import InputError, real_array
+from .numbers import InputError, checked_number, real_array
 from .result import Result
 
 __all__ = ["solve", "constraints", "APPROACH_TOLERANCE", "SINGULAR_TOLERANCE",
@@ -129,6 +129,13 @@ def _use_kernel(case: Case, eps, beta, backend: str) -> bool:
     return True
 
 
+def _check_tolerances(approach_tol, singular_tol) -> None:
+    if approach_tol is not APPROACH_TOLERANCE:
+        checked_number(approach_tol, "approach_tol", low=0.0)
+    if singular_tol is not SINGULAR_TOLERANCE:
+        checked_number(singular_tol, "singular_tol", low=0.0)
+
+
 def solve(case: Case, eps=None, beta=None, backend: str = "auto", fast_trig: bool = False,
           approach_tol: float = APPROACH_TOLERANCE,
           singular_tol: float = SINGULAR_TOLERANCE) -> Result:
@@ -183,6 +190,7 @@ def solve(case: Case, eps=None, beta=None, backend: str = "auto", fast_trig: boo
     >>> round(float(r.mu0), 3)          # the sheet prints mu0(0.355) = 0.512
     0.512
     """
+    _check_tolerances(approach_tol, singular_tol)
     if not isinstance(case, Case):
         raise InputError(f"case must be a pim.Case (e.g. pim.load_case(...)), got "
                          f"{type(case).__name__}")
