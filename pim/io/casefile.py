@@ -1,8 +1,10 @@
 """Case files: TOML descriptions of an impact, with units, in global or Brach form.
 
 A case file names each quantity with units (``"31.09 ft/s"``, ``"2255.4 lbf"``, ``"90 deg"``,
-``"976 slug*ft**2"``) or as a bare SI number. Unknown keys are errors, so a typo is never
-silently ignored. Layout (global form; see ``pim/io/cases/ricsac9.toml``)::
+``"976 slug*ft**2"``) with nothing after the unit, or as a bare SI number (a bare angle is
+radians: refused beyond 2 pi, where degrees were surely meant, and warned about within it).
+Unknown keys are errors, so a typo is never silently ignored; every error is a
+:class:`pim.InputError` naming the field. Layout (global form; see ``pim/io/cases/ricsac9.toml``)::
 
     name = "ricsac9"
     description = "..."
