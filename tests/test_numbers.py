@@ -3,6 +3,9 @@
 import numpy as np
 import pytest
 
+import pim
+import sim
+from pim.analysis.reconstruction import reconstruct
 from pim.model.numbers import InputError, checked_count, checked_number, real_array
 
 
@@ -46,3 +49,25 @@ def test_checked_count_accepts_integers_and_integral_floats():
     assert checked_count(1e6, "n") == 1_000_000
     assert checked_count(None, "n", none=True) is None
     assert checked_count(0, "n", low=0) == 0
+
+
+@pytest.mark.parametrize("call", [
+    lambda case: pim.solve(case, 0.3, 1.0, approach_tol=-1),
+    lambda case: pim.solve(case, 0.3, 1.0, approach_tol=float("nan")),
+    lambda case: pim.solve(case, "0.3", 1.0),
+    lambda case: pim.fit(case, max_starts=0),
+    lambda case: pim.fit(case, samples=0),
+    lambda case: pim.fit(case, eps="0.3"),
+    lambda case: pim.sensitivity(case, eps="0.3", beta=1.0),
+    lambda case: pim.uncertainty(case, n="100", eps=0.3, beta=1.0),
+    lambda case: pim.uncertainty(case, n=100, eps=0.3, beta=float("nan")),
+    lambda case: reconstruct(case, samples="100"),
+    lambda case: reconstruct(case, blocks=0),
+    lambda case: sim.simulate_many([case], 0.3, 1.0, max_workers=0),
+    lambda case: sim.simulate_many([case], 0.3, 1.0, chunksize=-1),
+])
+def test_public_entry_points_check_their_numeric_arguments(ricsac9, call):
+    """Issue 22: each of these was accepted (or failed with a TypeError) before."""
+    with pytest.raises(InputError, match=r"approach_tol|eps|beta|max_starts|samples|n \(|"
+                                         r"blocks|max_workers|chunksize"):
+        call(ricsac9)

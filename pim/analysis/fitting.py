@@ -31,7 +31,7 @@ from functools import cached_property
 import numpy as np
 
 from ..model.case import Case
-from ..model.numbers import InputError, check_counts
+from ..model.numbers import InputError, check_counts, check_numbers
 from ..model.result import Result
 from ..model.solver import solve
 from .free_fit import FREE_KEYS, Identifiability, check_free, fit_free
@@ -261,6 +261,7 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
         Nothing measured, a batched case, bad bounds, both parameters fixed, or no approach.
     """
     check_counts(max_starts=max_starts, samples=samples)
+    check_numbers(eps=eps, beta=beta)
     if np.size(case.vehicle1.mass) != 1 or np.shape(case.impact.point) != (2,):
         raise InputError("fit needs a single case, not a batch of cases")
     names = measured_terms(case, include_yaw)

@@ -30,7 +30,7 @@ import numpy as np
 
 from ..model.case import Case, Impact, Vehicle
 from ..model.distributions import UncertaintyTable, nominal_values, sample_inputs
-from ..model.numbers import InputError, checked_count
+from ..model.numbers import InputError, check_numbers, checked_count
 from ..model.solver import solve
 
 __all__ = ["uncertainty", "UncertaintyResult", "OutputStats", "OUTPUTS", "first_order_indices"]
@@ -205,6 +205,7 @@ def uncertainty(case: Case, n: int = 100_000, seed: int | None = 0,
         No distributions, a non-scalar case, n < 10, or a distribution outside an input's
         admissible range.
     """
+    check_numbers(eps=eps, beta=beta)
     dists = case.uncertainty if distributions is None else distributions
     if dists is None:
         raise InputError("uncertainty: the case has no [uncertainty] table and no "

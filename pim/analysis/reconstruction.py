@@ -212,7 +212,8 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         With ``determined = False`` and a message naming what is missing when the data cannot
         decide the unknowns; never a number then.
     """
-    samples, _ = checked_count(samples, "samples", low=0), check_counts(blocks=blocks)
+    samples = checked_count(samples, "samples", low=0)
+    check_counts(blocks=blocks)
     unknown = check_free(case.unknown if unknown is None else unknown)
     if not unknown:
         raise InputError("unknown: nothing to solve for; name the unknowns in an [unknown] "

@@ -16,7 +16,7 @@ import numpy as np
 
 from ..model.case import Case
 from ..model.geometry import radius_of_gyration
-from ..model.numbers import InputError
+from ..model.numbers import InputError, check_numbers
 from ..model.quantities import INPUTS as QUANTITY_INPUTS
 from ..model.quantities import MEASURED, OUTPUTS, Quantity
 from ..model.result import Result
@@ -258,6 +258,7 @@ def sensitivity(case: Case, fit_result=None, *, eps=None, beta=None, uncertainty
     on an active bound stays there (derivative 0); a fixed parameter does not move. For the
     measured values dr_i/dy_i = -1 (or -k_i for yaw), so dg/dy_i = -2 J_i exactly.
     """
+    check_numbers(eps=eps, beta=beta)
     if np.size(case.vehicle1.mass) != 1 or np.shape(case.impact.point) != (2,):
         raise InputError("sensitivity needs a single case, not a batch of cases")
     unc = TypicalUncertainty() if uncertainty is None else uncertainty

@@ -7,7 +7,8 @@ import math
 
 import numpy as np
 
-__all__ = ["InputError", "real_array", "checked_number", "checked_count", "check_counts"]
+__all__ = ["InputError", "real_array", "checked_number", "checked_count", "check_counts",
+           "check_numbers"]
 
 
 class InputError(ValueError):
@@ -105,3 +106,11 @@ def _range(low, high, low_open: bool) -> str:
     if low is not None:
         return f" {'>' if low_open else '>='} {low:g}"
     return f" <= {high:g}" if high is not None else ""
+
+
+def check_numbers(**values) -> None:
+    """Each keyword None (the default) or finite real numbers (:func:`real_array`): a
+    one-line check of optional numeric arguments such as ``eps`` and ``beta``."""
+    for name, value in values.items():
+        if value is not None and not np.isfinite(real_array(value, name)).all():
+            raise InputError(f"{name} must be finite, got {value!r}")
