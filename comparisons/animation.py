@@ -192,6 +192,8 @@ class Renderer:
         self.title = title
         factor, unit = convert(1.0, "length", units)
         self.length_unit = (float(factor), unit)      # display units per metre, label
+        factor, unit = convert(1.0, "impulse", units)
+        self.impulse_unit = (float(factor), unit)     # display units per N s, label
         self.secondary = secondary
         self.times = simulated.time
         self.corners = (_corners(case.vehicle1), _corners(case.vehicle2))
@@ -402,7 +404,8 @@ class Renderer:
             p = self.impulse * np.array([1, -1]) * self.arrow_px_per_ns
             self._arrow(d, c, p, COLORS["impulse"], width=5)
             d.text(tuple(c + p + np.array([6, -6])),
-                   f"P = {np.hypot(*self.impulse):.4g} N s", fill=COLORS["impulse"],
+                   f"P = {np.hypot(*self.impulse) * self.impulse_unit[0]:.4g} "
+                   f"{self.impulse_unit[1]}", fill=COLORS["impulse"],
                    font=self.font)
         phase = "before impact" if t < 0 else ("impact" if t == 0 else "after impact")
         d.text((10, self.size[1] - self.BOTTOM + 10), f"t = {t:+.3f} s   {phase}",
