@@ -128,7 +128,7 @@ def outline_distance(angle, length, width, cg_to_front=None) -> np.ndarray:
     width = np.asarray(width, dtype=float)
     a = length / 2 if cg_to_front is None else np.asarray(cg_to_front, dtype=float)
     c, s = np.cos(angle), np.sin(angle)
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", over="ignore"):
         tx = np.where(c > 0, a / c, np.where(c < 0, (a - length) / c, np.inf))
         ty = np.where(s != 0, (width / 2) / np.abs(s), np.inf)
     return np.minimum(tx, ty)
