@@ -61,6 +61,10 @@ def save_figure(fig, path, **savefig_kwargs) -> Path:
     fmt = path.suffix.lstrip(".").lower()
     if not fmt:
         raise InputError(f"path {path} needs a suffix naming the format (.png, .svg)")
+    supported = fig.canvas.get_supported_filetypes()
+    if fmt not in supported:
+        raise InputError(f"path {path}: .{fmt} is no image format matplotlib writes "
+                         f"(use one of {', '.join('.' + k for k in sorted(supported))})")
     # A figure with a layout engine (constrained layout) already fits its labels: a tight
     # bounding box would only draw it a second time.
     tight = {} if fig.get_layout_engine() is not None else {"bbox_inches": "tight"}
