@@ -100,11 +100,13 @@ def _within(value, scalar: bool, bounds: tuple, name: str, unit: str) -> None:
 def _check_conditioning(case) -> None:
     """InputError when a moving body's m |C - CG|^2 / I exceeds :data:`MAX_ARM_RATIO`."""
     point = case.impact.point
+    px, py = point.tolist() if point.shape == (2,) else (None, None)
     for i, v in ((1, case.vehicle1), (2, case.vehicle2)):
-        if type(v.mass) is np.float64 and point.shape == (2,) and v.cg.shape == (2,):
-            if math.isinf(v.mass) or v.mass * ((point[0] - v.cg[0]) ** 2 + (
-                    point[1] - v.cg[1]) ** 2) <= MAX_ARM_RATIO * v.yaw_inertia:
-                continue        # the common single case, in floats
+        if px is not None and type(v.mass) is np.float64 and v.cg.shape == (2,):
+            mass, (cx, cy) = float(v.mass), v.cg.tolist()     # the single case, in floats
+            if mass == math.inf or mass * ((px - cx) ** 2 + (py - cy) ** 2) <= (
+                    MAX_ARM_RATIO * float(v.yaw_inertia)):
+                continue
         arm = point - v.cg
         with np.errstate(invalid="ignore", over="ignore"):
             ratio = v.mass * (arm[..., 0] ** 2 + arm[..., 1] ** 2) / v.yaw_inertia
