@@ -151,12 +151,12 @@ def _sampled_case(case: Case, v: dict) -> Case:
         if base.fixed.any():
             return Vehicle.obstacle(cg=_pair(v[p + "cg_x"], v[p + "cg_y"]),
                                     heading=v[p + "heading"], length=base.length,
-                                    width=base.width)
+                                    width=base.width, cg_to_front=base.cg_to_front)
         return Vehicle(mass=v[p + "mass"], yaw_inertia=v[p + "yaw_inertia"],
                        cg=_pair(v[p + "cg_x"], v[p + "cg_y"]),
                        velocity=_pair(v[p + "velocity_x"], v[p + "velocity_y"]),
                        yaw_rate=v[p + "yaw_rate"], heading=v[p + "heading"],
-                       length=base.length, width=base.width)
+                       length=base.length, width=base.width, cg_to_front=base.cg_to_front)
 
     impact = Impact(point=_pair(v["impact.point_x"], v["impact.point_y"]),
                     normal_angle=v["impact.normal_angle"])
