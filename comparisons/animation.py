@@ -30,6 +30,7 @@ import sim
 from pim.io.files import atomic_path
 from pim.io.units import convert
 from pim.model.geometry import outline_corners
+from pim.model.numbers import InputError
 
 from .motion import Motion, analytic_motion, simulated_motion
 
@@ -65,9 +66,9 @@ def _font(size: int):
 def frame_times(before: float, after: float, fps: int) -> np.ndarray:
     """Frame times [s] from -before to +after (0, the impact, is always a frame)."""
     if not (fps >= 1 and int(fps) == fps):
-        raise ValueError(f"fps must be a positive integer, got {fps!r}")
+        raise InputError(f"fps must be a positive integer, got {fps!r}")
     if not (before >= 0 and after > 0 and math.isfinite(before + after)):
-        raise ValueError(f"before must be >= 0 and after > 0 [s], got {before!r}, {after!r}")
+        raise InputError(f"before must be >= 0 and after > 0 [s], got {before!r}, {after!r}")
     n_before = int(round(before * fps))
     n_after = int(round(after * fps))
     return np.arange(-n_before, n_after + 1) / fps
@@ -101,7 +102,7 @@ def _corners(vehicle: pim.Vehicle) -> np.ndarray | None:
         length, width = DEFAULT_OUTLINE
     else:
         length, width = vehicle.length, vehicle.width
-    return outline_corners(length, width)
+    return outline_corners(length, width, vehicle.cg_to_front)
 
 
 def _place(corners: np.ndarray, position: np.ndarray, angle: np.ndarray) -> np.ndarray:
@@ -185,12 +186,14 @@ class Renderer:
                  units: str = "si", secondary=None) -> None:
         width, height = (int(s) for s in size)
         if width % 2 or height % 2 or width < 160 or height < 160:
-            raise ValueError(f"size must be even and at least 160 px, got {size!r}")
+            raise InputError(f"size must be even and at least 160 px, got {size!r}")
         self.case, self.result, self.sim, self.ghost = case, result, simulated, ghost
         self.size = (width, height)
         self.title = title
         factor, unit = convert(1.0, "length", units)
         self.length_unit = (float(factor), unit)      # display units per metre, label
+        factor, unit = convert(1.0, "impulse", units)
+        self.impulse_unit = (float(factor), unit)     # display units per N s, label
         self.secondary = secondary
         self.times = simulated.time
         self.corners = (_corners(case.vehicle1), _corners(case.vehicle2))
@@ -401,7 +404,8 @@ class Renderer:
             p = self.impulse * np.array([1, -1]) * self.arrow_px_per_ns
             self._arrow(d, c, p, COLORS["impulse"], width=5)
             d.text(tuple(c + p + np.array([6, -6])),
-                   f"P = {np.hypot(*self.impulse):.4g} N s", fill=COLORS["impulse"],
+                   f"P = {np.hypot(*self.impulse) * self.impulse_unit[0]:.4g} "
+                   f"{self.impulse_unit[1]}", fill=COLORS["impulse"],
                    font=self.font)
         phase = "before impact" if t < 0 else ("impact" if t == 0 else "after impact")
         d.text((10, self.size[1] - self.BOTTOM + 10), f"t = {t:+.3f} s   {phase}",

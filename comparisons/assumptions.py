@@ -56,6 +56,7 @@ import pim
 import sim
 from pim.io.files import save_figure, write_text
 from pim.io.units import convert
+from pim.model.numbers import InputError
 from sim.compliant_setup import build_problem, rotate
 from sim.contact_law import stiffness_for_duration, tangential_recovery_default
 from sim.error_measure import ERROR_DEFINITION, impact_error
@@ -602,7 +603,7 @@ def run_assumptions(case: pim.Case, eps: float | None = None, beta: float | None
     start = time.perf_counter()
     eps, beta, _ = coefficients(case, eps, beta)
     if not 0.0 <= eps <= 1.0:
-        raise ValueError(f"eps must be in [0, 1], got {eps}")
+        raise InputError(f"eps must be in [0, 1], got {eps}")
     beta_pim = 0.0 if beta < 0.5 else 1.0
     settings = replace(settings or sim.CompliantSettings(), record=False, duration=0.0)
     has_outline = (case.vehicle1.length is not None and

@@ -41,6 +41,7 @@ import sim
 from pim.analysis.reconstruction import reconstruct
 from pim.analysis.residuals import has_measured_terms
 from pim.io.units import SI_UNITS
+from pim.model.numbers import InputError
 from pim.model.quantities import OUTPUTS
 from pim.model.result import output_values
 
@@ -296,7 +297,7 @@ def run_section(section: str, case: pim.Case, settings: dict) -> list[Recorded]:
         Unknown section name.
     """
     if section not in _RUNNERS:
-        raise ValueError(f"unknown section {section!r} (allowed: {', '.join(SECTIONS)})")
+        raise InputError(f"unknown section {section!r} (allowed: {', '.join(SECTIONS)})")
     try:
         return _RUNNERS[section](case, settings)
     except ValueError as exc:

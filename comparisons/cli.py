@@ -12,6 +12,7 @@ import click
 
 import pim
 from pim.cli import (
+    FiniteFloat,
     beta_option,
     case_argument,
     echo_json,
@@ -23,6 +24,7 @@ from pim.cli import (
     units_option,
     warnings_of,
 )
+from pim.model.numbers import InputError
 
 __all__ = ["compare", "animate", "speed_error", "hard_cases", "assumptions"]
 
@@ -37,11 +39,11 @@ def _out(out, name: str, default: str) -> Path:
 
 
 compare_eps_option = click.option(
-    "--eps", type=float, default=None,
+    "--eps", type=FiniteFloat(), default=None,
     help="Coefficient of restitution epsilon in [0, 1] (default: fitted to the case's "
          "measured motion, else the case's impact.restitution). With --beta: no fit.")
 compare_beta_option = click.option(
-    "--beta", type=float, default=None,
+    "--beta", type=FiniteFloat(), default=None,
     help="Fraction of the critical impulse ratio, mu = beta mu0 (default: fitted to the "
          "case's measured motion, else the case's impact.beta, else 1). With --eps: no fit.")
 
@@ -58,7 +60,7 @@ compare_beta_option = click.option(
 @click.option("--no-speed-error", is_flag=True, help="Skip the coarse speed-error sweep.")
 @click.option("--no-assumptions", is_flag=True,
               help="Skip PIM's assumptions at typical values (finite-duration scene).")
-@click.option("--tyre-friction", "tyre", type=float, default=0.0, show_default=True,
+@click.option("--tyre-friction", "tyre", type=FiniteFloat(), default=0.0, show_default=True,
               help="Tyre/ground friction coefficient after impact in the animation (the "
                    "ghost decelerates alike); 0 = free motion.")
 @progress_option
@@ -81,7 +83,7 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
     from .report import compare_case
 
     if tyre < 0:
-        raise ValueError(f"--tyre-friction must be >= 0, got {tyre}")
+        raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
     case = load_case(case_name)
     require_brach(case, "pim compare")
     folder = writable_folder(_out(out, case.name, "case"), "--out")
@@ -119,13 +121,13 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
 @click.option("--gif", "gif", type=click.Path(dir_okay=False), default=None,
               help="Also write an animated GIF (half size) here.")
 @click.option("--fps", type=int, default=30, show_default=True, help="Frames per second.")
-@click.option("--before", type=float, default=None,
+@click.option("--before", type=FiniteFloat(), default=None,
               help="Seconds shown before the impact (default: about 1.2 vehicle lengths).")
-@click.option("--after", type=float, default=2.0, show_default=True,
+@click.option("--after", type=FiniteFloat(), default=2.0, show_default=True,
               help="Seconds shown after the impact.")
 @click.option("--size", type=(int, int), default=(960, 720), show_default=True,
               help="Frame width and height [px], even numbers.")
-@click.option("--tyre-friction", "tyre", type=float, default=0.0, show_default=True,
+@click.option("--tyre-friction", "tyre", type=FiniteFloat(), default=0.0, show_default=True,
               help="Tyre/ground friction coefficient after the impact (ghost alike).")
 @click.option("--no-ghost", is_flag=True, help="Do not draw PIM's answer as a ghost.")
 @units_option
@@ -143,7 +145,7 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
     require_brach(case, "pim animate")
     eps_, beta_ = sim.scene.resolve_coefficients(case, eps, beta)
     if tyre < 0:
-        raise ValueError(f"--tyre-friction must be >= 0, got {tyre}")
+        raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
     path = Path(out) if out else _out(None, case.name, "case") / "animation.mp4"
     try:
         info = animate_case(case, eps_, beta_, path, gif=gif, progress=progress, fps=fps,
@@ -196,7 +198,7 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, progress
     from .speed_error import COARSE, sweep, write_study
 
     if repeats < 1:
-        raise ValueError(f"--repeats must be >= 1, got {repeats}")
+        raise InputError(f"--repeats must be >= 1, got {repeats}")
     names = []
     for n in case_names:
         names += [c for c, _ in list_cases() if c.startswith("hard-")] if n == "hard" else [n]

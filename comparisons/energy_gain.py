@@ -21,6 +21,7 @@ import numpy as np
 
 import pim
 import sim
+from pim.model.numbers import InputError
 from sim.sampling import random_scene
 
 from .tables import Table
@@ -39,7 +40,7 @@ def energy_gain_study(count: int = 10, seed: int = 0, max_draws: int = 20000) ->
     otherwise admissible scenes were drawn per energy-gaining one.
     """
     if count < 1:
-        raise ValueError(f"count must be >= 1, got {count}")
+        raise InputError(f"count must be >= 1, got {count}")
     rng = np.random.default_rng(seed)
     rows = []
     looked = gaining = 0

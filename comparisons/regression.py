@@ -28,6 +28,7 @@ import numpy as np
 
 import pim
 from pim.io.units import SI_UNITS, convert, registry
+from pim.model.numbers import InputError
 from sim.error_measure import ERROR_DEFINITION, impact_error
 
 from .baseline_sections import DEFAULT_SECTIONS, DEFAULT_SETTINGS, SECTIONS, run_section
@@ -75,7 +76,7 @@ def case_source(case: str, base: Path | None = None) -> tuple[str, bytes]:
     bundled = resources.files("pim.io") / "cases" / f"{case}.toml"
     if "/" not in case and bundled.is_file():
         return f"bundled:{case}", bundled.read_bytes()
-    raise ValueError(f"case {case!r}: neither a file nor a bundled case (pim cases lists them)")
+    raise InputError(f"case {case!r}: neither a file nor a bundled case (pim cases lists them)")
 
 
 def _load(label: str) -> pim.Case:
@@ -148,7 +149,7 @@ def make_baseline(cases, sections=DEFAULT_SECTIONS, settings: dict | None = None
     sections = tuple(sections)
     for s in sections:
         if s not in SECTIONS:
-            raise ValueError(f"unknown section {s!r} (allowed: {', '.join(SECTIONS)})")
+            raise InputError(f"unknown section {s!r} (allowed: {', '.join(SECTIONS)})")
     out = {"format": FORMAT, "created": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
            "units": UNITS_NOTE, "versions": versions(), "sections": list(sections),
            "cases": []}
@@ -171,7 +172,7 @@ def _parse_value(text, kind: str, where: str) -> float:
         return float(q.to(SI_UNITS[kind]).magnitude) if kind != "dimensionless" else \
             float(q.to("dimensionless").magnitude)
     except Exception as exc:   # pint raises several unrelated types for a bad unit
-        raise ValueError(f"{where}: cannot read {text!r} as {kind} ({exc})") from None
+        raise InputError(f"{where}: cannot read {text!r} as {kind} ({exc})") from None
 
 
 def dumps_baseline(doc: dict) -> str:
@@ -199,7 +200,7 @@ def _reference(ref: dict, where: str) -> dict:
     missing = {"case", "quantity", "kind", "source"} - set(ref)
     bounds = [k for k in ("value", "at_least", "at_most") if k in ref]
     if missing or ref.get("kind") not in SI_UNITS or len(bounds) != 1:
-        raise ValueError(f"{where}: needs case, quantity, kind (one of {', '.join(SI_UNITS)}), "
+        raise InputError(f"{where}: needs case, quantity, kind (one of {', '.join(SI_UNITS)}), "
                          f"source and one of value, at_least, at_most")
     absolute = _parse_value(ref.get("absolute", 0.0), ref["kind"], where)
     return {"value": _parse_value(ref[bounds[0]], ref["kind"], where), "bound": bounds[0],
@@ -226,7 +227,7 @@ def load_references(path) -> dict:
     try:
         data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
     except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
-        raise ValueError(f"{path}: cannot read references ({exc})") from None
+        raise InputError(f"{path}: cannot read references ({exc})") from None
     out: dict = {}
     for i, ref in enumerate(data.get("reference", [])):
         out.setdefault(ref.get("case"), {})[ref.get("quantity")] = _reference(
@@ -260,7 +261,7 @@ def load_baseline(path) -> dict:
     try:
         data = json.loads(Path(path).read_text(encoding="utf-8"))
     except FileNotFoundError:
-        raise ValueError(f"{path}: no such baseline file") from None
+        raise InputError(f"{path}: no such baseline file") from None
     except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
         raise _fail(path, f"unreadable JSON: {exc}") from None
     if not isinstance(data, dict) or data.get("format") != FORMAT:
@@ -416,7 +417,7 @@ def check_baseline(path, cases=None, progress=None) -> CheckReport:
         wanted = set(cases)
         entries = [e for e in entries if e["case"] in wanted or e.get("name") in wanted]
         if not entries:
-            raise ValueError(f"{path}: holds no case {', '.join(sorted(wanted))}")
+            raise InputError(f"{path}: holds no case {', '.join(sorted(wanted))}")
     for entry in entries:
         if progress is not None:
             progress(entry["case"])

@@ -9,7 +9,7 @@ from dataclasses import replace
 import numpy as np
 
 import pim
-from pim.model.numbers import real_array
+from pim.model.numbers import InputError, check_counts, real_array
 
 from .failures import SimulationError
 from .result import BatchResult
@@ -63,11 +63,11 @@ def _coefficient(value, name: str, count: int) -> list:
         return [None] * count
     arr = real_array(value, name)
     if np.isnan(arr).any():
-        raise ValueError(f"{name} is NaN; give a number, or None for each case's own value")
+        raise InputError(f"{name} is NaN; give a number, or None for each case's own value")
     try:
         arr = np.broadcast_to(arr, (count,))
     except ValueError:
-        raise ValueError(f"{name} has shape {arr.shape}, but there are {count} scenes") from None
+        raise InputError(f"{name} has shape {arr.shape}, but there are {count} scenes") from None
     return [float(x) for x in arr]
 
 
@@ -103,6 +103,7 @@ def simulate_many(cases: pim.Case | Sequence[pim.Case], eps=None, beta=None,
         message), and ``results``: each scene's :class:`sim.SimResult` or
         :class:`sim.SimulationError`. Bad input (ValueError) raises.
     """
+    check_counts(chunksize=chunksize, max_workers=max_workers)
     settings = replace(settings or Settings(), record=record)
     if isinstance(cases, pim.Case):
         items = [case_element(cases, i) for i in range(case_count(cases))]

@@ -7,6 +7,7 @@ import sys
 import click
 
 from pim.cli import (
+    FiniteFloat,
     beta_option,
     case_argument,
     echo_json,
@@ -15,6 +16,7 @@ from pim.cli import (
     units_option,
 )
 from pim.model.impact_laws import solve_law
+from pim.model.numbers import InputError
 
 from .crosscheck import crosscheck
 from .kudlich_slibar import crosscheck_kudlich_slibar
@@ -26,7 +28,7 @@ __all__ = ["sim"]
 @case_argument
 @eps_option
 @beta_option
-@click.option("--dt", type=float, default=None, help="Time step [s] (default: Settings()).")
+@click.option("--dt", type=FiniteFloat(), default=None, help="Time step [s] (default: Settings()).")
 @click.option("--iterations", type=int, default=None,
               help="Solver iterations per step (default: automatic from the contact).")
 @click.option("--contact", type=click.Choice(["point", "outline"]), default="point",
@@ -60,11 +62,11 @@ def sim(case_name, eps, beta, dt, iterations, contact, start, units, as_json):
         click.echo(f"simulation failed ({exc.kind}): {exc}", err=True)
         sys.exit(1)
     if as_json:
-        echo_json(check.to_json())
+        echo_json(check.to_json(units))
         return
-    click.echo(check.format_table(units))
-    for text in getattr(check, "limitations", ()):
+    for text in getattr(check, "limitations", ()):     # before the table, where a reader sees them
         click.echo(f"note: {text}", err=True)
+    click.echo(check.format_table(units))
 
 
 def _crosscheck_law(case, eps, beta, settings):
@@ -73,7 +75,7 @@ def _crosscheck_law(case, eps, beta, settings):
     law = case.impact.law or "brach"
     if law == "kudlich-slibar":
         if eps is not None or beta is not None:
-            raise ValueError("--eps and --beta do not apply to law kudlich-slibar (set "
+            raise InputError("--eps and --beta do not apply to law kudlich-slibar (set "
                              "impact.restitution and impact.contact_friction in the case)")
         return crosscheck_kudlich_slibar(case, settings=settings)
     if law == "brach-capped":

@@ -28,6 +28,7 @@ import numpy as np
 import pim
 from pim.model import geometry
 from pim.model.geometry import cross, radius_of_gyration
+from pim.model.numbers import InputError
 from pim.model.tyres import STANDARD_GRAVITY
 
 from .contact_law import (
@@ -112,21 +113,21 @@ class CompliantSettings:
         if self.dt is not None:
             dt = check_positive(self.dt, "settings.dt", "s")
             if dt > 1.0:
-                raise ValueError(f"settings.dt must be in (0, 1] [s], got {dt!r}")
+                raise InputError(f"settings.dt must be in (0, 1] [s], got {dt!r}")
             set_(self, "dt", dt)
         for name, low in (("min_steps", 2), ("steps_per_contact", 2)):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int) or value < low:
-                raise ValueError(f"settings.{name} must be an integer >= {low}, got {value!r}")
+                raise InputError(f"settings.{name} must be an integer >= {low}, got {value!r}")
         if self.steps_per_contact < self.min_steps:
-            raise ValueError(f"settings.steps_per_contact must be >= settings.min_steps "
+            raise InputError(f"settings.steps_per_contact must be >= settings.min_steps "
                              f"({self.min_steps}), got {self.steps_per_contact}")
         methods = ("DOP853", "RK45", "Radau", "BDF", "LSODA")
         if self.method not in methods:
-            raise ValueError(f"settings.method must be one of {methods}, got {self.method!r}")
+            raise InputError(f"settings.method must be one of {methods}, got {self.method!r}")
         rtol = check_positive(self.rtol, "settings.rtol", "-")
         if rtol > 0.1:
-            raise ValueError(f"settings.rtol must be in (0, 0.1], got {rtol!r}")
+            raise InputError(f"settings.rtol must be in (0, 0.1], got {rtol!r}")
         set_(self, "rtol", rtol)
         if self.tangential_stiffness is not None:
             set_(self, "tangential_stiffness", check_positive(
@@ -137,14 +138,14 @@ class CompliantSettings:
         set_(self, "preload", check_positive(self.preload, "settings.preload", "N",
                                              allow_zero=True))
         if self.tyre_mode not in TYRE_MODES:
-            raise ValueError(f"settings.tyre_mode must be one of {TYRE_MODES}, "
+            raise InputError(f"settings.tyre_mode must be one of {TYRE_MODES}, "
                              f"got {self.tyre_mode!r}")
         set_(self, "max_contact_time", check_positive(self.max_contact_time,
                                                       "settings.max_contact_time", "s"))
         set_(self, "duration", check_positive(self.duration, "settings.duration", "s",
                                               allow_zero=True))
         if not isinstance(self.record, bool):
-            raise ValueError(f"settings.record must be True or False, got {self.record!r}")
+            raise InputError(f"settings.record must be True or False, got {self.record!r}")
         set_(self, "gravity", check_positive(self.gravity, "settings.gravity", "m/s^2"))
 
     def as_dict(self) -> dict:
@@ -208,7 +209,7 @@ def _scalar(case: pim.Case) -> None:
     if np.size(case.vehicle1.mass) != 1 or np.shape(case.impact.point) != (2,) \
             or np.size(case.vehicle2.mass) != 1 or np.shape(case.vehicle1.cg) != (2,) \
             or np.shape(case.vehicle2.cg) != (2,) or np.size(case.impact.normal_angle) != 1:
-        raise ValueError("the finite-duration contact needs a single case (scalar fields), "
+        raise InputError("the finite-duration contact needs a single case (scalar fields), "
                          "not a batch of cases")
 
 
@@ -226,22 +227,22 @@ def build_problem(case: pim.Case, eps, stiffness, friction=0.0, geometry="point"
     """
     settings = settings or CompliantSettings()
     if not isinstance(case, pim.Case):
-        raise ValueError(f"case must be a pim.Case, got {type(case).__name__}")
+        raise InputError(f"case must be a pim.Case, got {type(case).__name__}")
     _scalar(case)
     eps = check_fraction(eps, "eps")
     stiffness = check_positive(stiffness, "stiffness", "N/m")
     friction = check_positive(friction, "friction", "-", allow_zero=True)
     tyre_friction = check_positive(tyre_friction, "tyre_friction", "-", allow_zero=True)
     if geometry not in GEOMETRIES:
-        raise ValueError(f"geometry must be one of {GEOMETRIES}, got {geometry!r}")
+        raise InputError(f"geometry must be one of {GEOMETRIES}, got {geometry!r}")
     v1, v2, imp = case.vehicle1, case.vehicle2, case.impact
     outline1, outline2 = outline_corners(v1), outline_corners(v2)
     fixed2 = bool(v2.fixed)
     if geometry == "outline":
         if outline1 is None:
-            raise ValueError("geometry='outline' needs vehicle1.length and vehicle1.width")
+            raise InputError("geometry='outline' needs vehicle1.length and vehicle1.width")
         if outline2 is None and not fixed2:
-            raise ValueError("geometry='outline' needs vehicle2.length and vehicle2.width")
+            raise InputError("geometry='outline' needs vehicle2.length and vehicle2.width")
     m1, i1 = float(v1.mass), float(v1.yaw_inertia)
     m2, i2 = float(v2.mass), float(v2.yaw_inertia)
     cg1 = np.asarray(v1.cg, float).reshape(2)

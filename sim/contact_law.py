@@ -63,6 +63,8 @@ import math
 
 import numpy as np
 
+from pim.model.numbers import InputError
+
 __all__ = ["check_positive", "check_fraction", "loading_force", "loading_work",
            "unloading_slope", "permanent_crush", "normal_force", "normal_stiffness",
            "tangential_step", "tangential_force", "tangential_recovery_default",
@@ -76,22 +78,22 @@ def check_positive(value, name: str, unit: str, allow_zero: bool = False) -> flo
     Rejects NaN, infinities, booleans, strings and values <= 0 (< 0 with ``allow_zero``).
     """
     if isinstance(value, bool) or not isinstance(value, int | float | np.floating | np.integer):
-        raise ValueError(f"{name} must be a number [{unit}], got {value!r}")
+        raise InputError(f"{name} must be a number [{unit}], got {value!r}")
     value = float(value)
     ok = math.isfinite(value) and (value >= 0 if allow_zero else value > 0)
     if not ok:
         bound = ">= 0" if allow_zero else "> 0"
-        raise ValueError(f"{name} must be a finite number {bound} [{unit}], got {value!r}")
+        raise InputError(f"{name} must be a finite number {bound} [{unit}], got {value!r}")
     return value
 
 
 def check_fraction(value, name: str) -> float:
     """``value`` as a float in [0, 1], or a ValueError naming ``name``."""
     if isinstance(value, bool) or not isinstance(value, int | float | np.floating | np.integer):
-        raise ValueError(f"{name} must be a number in [0, 1], got {value!r}")
+        raise InputError(f"{name} must be a number in [0, 1], got {value!r}")
     value = float(value)
     if not (math.isfinite(value) and 0.0 <= value <= 1.0):
-        raise ValueError(f"{name} must be in [0, 1], got {value!r}")
+        raise InputError(f"{name} must be in [0, 1], got {value!r}")
     return value
 
 
@@ -265,5 +267,5 @@ def stiffness_for_duration(duration, k_nn, eps):
     """
     duration = np.asarray(duration, float)
     if np.any(~np.isfinite(duration)) or np.any(duration <= 0):
-        raise ValueError(f"duration must be a finite number > 0 [s], got {duration!r}")
+        raise InputError(f"duration must be a finite number > 0 [s], got {duration!r}")
     return (0.5 * np.pi * (1.0 + np.asarray(eps, float)) / duration) ** 2 / np.asarray(k_nn, float)

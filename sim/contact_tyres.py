@@ -25,6 +25,7 @@ from __future__ import annotations
 import numpy as np
 
 from pim.model import tyres
+from pim.model.numbers import InputError
 
 __all__ = ["TYRE_MODES", "WHEELBASE_FRACTION", "TRACK_FRACTION", "SLIP_REGULARISATION",
            "wheels_from_outline", "tyre_force"]
@@ -50,7 +51,7 @@ def wheels_from_outline(length, width, radius_of_gyration=None) -> np.ndarray:
     """
     if length is None or width is None:
         if radius_of_gyration is None:
-            raise ValueError("wheels_from_outline needs length and width or "
+            raise InputError("wheels_from_outline needs length and width or "
                              "radius_of_gyration")
         length = float(radius_of_gyration) / 0.3
         width = 0.4 * length
@@ -90,7 +91,7 @@ def tyre_force(velocity, yaw_rate, angle, wheels, load, mu, mode="rolling",
         Their moment about the CG [N m], counter-clockwise positive.
     """
     if mode not in TYRE_MODES:
-        raise ValueError(f"tyre mode must be one of {TYRE_MODES}, got {mode!r}")
+        raise InputError(f"tyre mode must be one of {TYRE_MODES}, got {mode!r}")
     braking = np.full(4, 1.0 if mode == "locked" else 0.0)
     forces = tyres.tyre_forces(velocity, yaw_rate, angle, wheels, np.full(4, float(load)), mu,
                                braking, regularisation=regularisation)

@@ -73,14 +73,20 @@ class CrossCheck:
                      f"{s.contact_points} contact point(s)")
         return "\n".join(lines)
 
-    def to_json(self) -> dict:
-        """Plain data for ``--json``."""
+    def to_json(self, units: str = "si") -> dict:
+        """Plain data for ``--json``, the quantities in the ``units`` system (named in
+        ``units``; each row carries its unit; times in s)."""
         s = self.simulated
+
+        def row(r):
+            (a, b, e), unit = convert(np.array([r.analytic, r.simulated, r.absolute]),
+                                      KIND_OF_UNIT[r.unit], units)
+            return {"key": r.key, "label": r.label, "unit": unit, "analytic": float(a),
+                    "simulated": float(b), "abs_error": float(e), "rel_error": r.relative}
+
         return {
-            "case": self.case_name, "eps": self.eps, "beta": self.beta,
-            "rows": [{"key": r.key, "label": r.label, "unit": r.unit, "analytic": r.analytic,
-                      "simulated": r.simulated, "abs_error": r.absolute,
-                      "rel_error": r.relative} for r in self.rows],
+            "case": self.case_name, "units": units, "eps": self.eps, "beta": self.beta,
+            "rows": [row(r) for r in self.rows],
             "error": self.error, "error_definition": ERROR_DEFINITION,
             "limitations": list(self.limitations),
             "wall_time": s.wall_time, "steps": s.steps, "contact_steps": s.contact_steps,

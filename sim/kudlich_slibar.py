@@ -32,6 +32,7 @@ from pim.model.impact_laws import (
     check_restitution,
     solve_kudlich_slibar,
 )
+from pim.model.numbers import InputError
 
 from .convergence import auto_iterations, contraction_rate
 from .error_measure import ERROR_DEFINITION, KIND_OF_UNIT, compare_results, impact_error
@@ -124,11 +125,11 @@ def simulate_kudlich_slibar(case: pim.Case, k: float, mu_c: float,
     k = float(check_restitution(k))
     mu_c = float(check_contact_friction(mu_c))
     if not np.isfinite(mu_c):
-        raise ValueError("contact_friction mu_c must be finite for the simulator (use a large "
+        raise InputError("contact_friction mu_c must be finite for the simulator (use a large "
                          "value for a sticking contact)")
     settings = settings or Settings()
     if settings.contact != "point" or settings.start != "exact":
-        raise ValueError("the two-phase Kudlich-Slibar run needs contact='point' and "
+        raise InputError("the two-phase Kudlich-Slibar run needs contact='point' and "
                          "start='exact' (the impulse acts at C)")
     settings = replace(settings, duration=0.0)
     started = time.perf_counter()
@@ -185,13 +186,18 @@ class KudlichSlibarCheck:
         lines.append(f"wall time {1e3 * self.run.wall_time:.3f} ms")
         return "\n".join(lines)
 
-    def to_json(self) -> dict:
-        """Plain data for ``--json``."""
-        return {"case": self.case_name, "law": "kudlich-slibar", "k": self.k,
+    def to_json(self, units: str = "si") -> dict:
+        """Plain data for ``--json``, the quantities in the ``units`` system (named in
+        ``units``; each row carries its unit; times in s)."""
+        def row(r):
+            (a, b, e), unit = convert(np.array([r.analytic, r.simulated, r.absolute]),
+                                      KIND_OF_UNIT[r.unit], units)
+            return {"key": r.key, "label": r.label, "unit": unit, "analytic": float(a),
+                    "simulated": float(b), "abs_error": float(e), "rel_error": r.relative}
+
+        return {"case": self.case_name, "units": units, "law": "kudlich-slibar", "k": self.k,
                 "mu_c": self.mu_c, "error": self.error, "error_definition": ERROR_DEFINITION,
-                "rows": [{"key": r.key, "label": r.label, "unit": r.unit,
-                          "analytic": r.analytic, "simulated": r.simulated,
-                          "abs_error": r.absolute, "rel_error": r.relative} for r in self.rows],
+                "rows": [row(r) for r in self.rows],
                 "iterations": self.run.iterations, "wall_time": self.run.wall_time}
 
 

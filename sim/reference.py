@@ -29,6 +29,7 @@ import time
 import numpy as np
 
 import pim
+from pim.model.numbers import InputError
 
 from .compliant_setup import (
     CompliantProblem,
@@ -299,7 +300,7 @@ def reference_compliant(case: pim.Case, eps, stiffness, friction=0.0, geometry="
     """
     wall = time.perf_counter()
     if geometry != "point":
-        raise ValueError(f"reference_compliant integrates the point contact only, "
+        raise InputError(f"reference_compliant integrates the point contact only, "
                          f"got geometry={geometry!r}")
     problem = build_problem(case, eps, stiffness, friction, geometry, tyre_friction, settings)
     model = _Model(problem)

@@ -35,6 +35,7 @@ import pymunk
 
 import pim
 from pim.model import geometry
+from pim.model.numbers import InputError
 from pim.model.solver import constraints
 
 from .convergence import auto_iterations, contraction_rate
@@ -62,7 +63,7 @@ def _scalar_case(case: pim.Case) -> None:
                                         case.vehicle2.cg, case.vehicle2.velocity,
                                         case.impact.point)]
     if max(sizes) != 1:
-        raise ValueError("sim.simulate needs a single case (every field a scalar or one "
+        raise InputError("sim.simulate needs a single case (every field a scalar or one "
                          "[x, y] pair); use sim.simulate_many for arrays of cases")
 
 
@@ -77,7 +78,7 @@ def resolve_coefficients(case: pim.Case, eps=None, beta=None) -> tuple[float, fl
     """
     eps, beta = (float(x) for x in constraints(case, eps, beta))
     if not 0.0 <= beta <= 1.0:
-        raise ValueError(f"beta must be in [0, 1] for the simulator (Coulomb friction cannot "
+        raise InputError(f"beta must be in [0, 1] for the simulator (Coulomb friction cannot "
                          f"reverse sliding or push it the wrong way), got {beta:g}")
     return eps, beta
 
@@ -86,7 +87,7 @@ def outline_corners(vehicle: pim.Vehicle) -> np.ndarray | None:
     """Corners of the vehicle's length x width rectangle in its body frame [m], or None."""
     if vehicle.length is None or vehicle.width is None:
         return None
-    return geometry.outline_corners(vehicle.length, vehicle.width)
+    return geometry.outline_corners(vehicle.length, vehicle.width, vehicle.cg_to_front)
 
 
 def footprint_lever(vehicle: pim.Vehicle) -> float:
@@ -224,9 +225,9 @@ def build_scene(case: pim.Case, eps=None, beta=None, settings: Settings | None =
     else:
         corners1, corners2 = outline_corners(v1), outline_corners(v2)
         if corners1 is None:
-            raise ValueError("contact='outline' needs vehicle1.length and vehicle1.width")
+            raise InputError("contact='outline' needs vehicle1.length and vehicle1.width")
         if corners2 is None and not fixed2:
-            raise ValueError("contact='outline' needs vehicle2.length and vehicle2.width")
+            raise InputError("contact='outline' needs vehicle2.length and vehicle2.width")
         box1 = pymunk.Poly(body1, [tuple(c) for c in corners1])
         if corners2 is not None:
             box2 = pymunk.Poly(body2, [tuple(c) for c in corners2])

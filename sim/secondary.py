@@ -17,6 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pim.model.numbers import InputError
+
 from .overlap import overlap_area, place
 
 __all__ = ["SecondaryImpact", "find_secondary_impact", "DEFAULT_TOLERANCE"]
@@ -64,7 +66,7 @@ def find_secondary_impact(trajectory, start_index: int | None = None,
         Overlap growth that counts, as a fraction [-] of the smaller outline's area, > 0.
     """
     if not tolerance > 0:
-        raise ValueError(f"tolerance must be > 0, got {tolerance!r}")
+        raise InputError(f"tolerance must be > 0, got {tolerance!r}")
     o1, o2 = trajectory.outline1, trajectory.outline2
     if o1 is None or o2 is None:
         return None

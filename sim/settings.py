@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, fields
 
+from pim.model.numbers import InputError
 from pim.model.tyres import STANDARD_GRAVITY
 
 __all__ = ["Settings", "DEFAULT_TYRE_FRICTION", "CONTACTS", "STARTS"]
@@ -102,7 +103,7 @@ class Settings:
         def number(name, low, high, low_open=False, high_open=False):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int | float):
-                raise ValueError(f"settings.{name} must be a number, got {value!r}")
+                raise InputError(f"settings.{name} must be a number, got {value!r}")
             value = float(value)
             ok = math.isfinite(value) or (high == math.inf and value == math.inf and not high_open)
             ok = ok and (value > low if low_open else value >= low)
@@ -110,7 +111,7 @@ class Settings:
             if not ok:
                 lo = "(" if low_open else "["
                 hi = ")" if high_open else "]"
-                raise ValueError(f"settings.{name} must be in {lo}{low:g}, {high:g}{hi}, "
+                raise InputError(f"settings.{name} must be in {lo}{low:g}, {high:g}{hi}, "
                                  f"got {value!r}")
             object.__setattr__(self, name, value)
 
@@ -119,29 +120,29 @@ class Settings:
         if its is not None:
             if isinstance(its, bool) or not isinstance(its, int | float) or int(its) != its \
                     or not 1 <= int(its) <= 100_000:
-                raise ValueError(f"settings.iterations must be None (automatic) or an integer "
+                raise InputError(f"settings.iterations must be None (automatic) or an integer "
                                  f"in [1, 100000], got {its!r}")
             object.__setattr__(self, "iterations", int(its))
         if self.contact not in CONTACTS:
-            raise ValueError(f"settings.contact must be one of {CONTACTS}, got {self.contact!r}")
+            raise InputError(f"settings.contact must be one of {CONTACTS}, got {self.contact!r}")
         if self.start not in STARTS:
-            raise ValueError(f"settings.start must be one of {STARTS}, got {self.start!r}")
+            raise InputError(f"settings.start must be one of {STARTS}, got {self.start!r}")
         tyre = self.tyre_friction
         if not isinstance(tyre, bool):
             if not isinstance(tyre, int | float) or not (math.isfinite(tyre) and tyre >= 0):
-                raise ValueError(f"settings.tyre_friction must be True/False or a coefficient "
+                raise InputError(f"settings.tyre_friction must be True/False or a coefficient "
                                  f">= 0, got {tyre!r}")
             object.__setattr__(self, "tyre_friction", float(tyre))
         number("duration", 0.0, 1e6)
         if not isinstance(self.record, bool):
-            raise ValueError(f"settings.record must be True or False, got {self.record!r}")
+            raise InputError(f"settings.record must be True or False, got {self.record!r}")
         number("max_contact_time", 0.0, 1e6, low_open=True)
         number("lead_steps", 1.0, 1e6, low_open=True)
         number("contact_radius", 0.0, 1e3, low_open=True)
         points = self.max_contact_points
         if points is not None:
             if isinstance(points, bool) or int(points) != points or points < 1:
-                raise ValueError(f"settings.max_contact_points must be None or an integer "
+                raise InputError(f"settings.max_contact_points must be None or an integer "
                                  f">= 1, got {points!r}")
             object.__setattr__(self, "max_contact_points", int(points))
         if self.convergence_tolerance is not None:

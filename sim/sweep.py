@@ -23,6 +23,8 @@ import os
 from collections.abc import Callable, Iterable
 from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
 
+from pim.model.numbers import InputError, check_counts
+
 __all__ = ["sweep"]
 
 
@@ -71,6 +73,7 @@ def sweep(func: Callable, items: Iterable, executor=None, chunksize: int | None 
         ``func(item)`` for every item, in the order of ``items``. The first exception raised
         by ``func`` propagates (pending chunks are cancelled).
     """
+    check_counts(chunksize=chunksize, max_workers=max_workers)
     from tqdm.auto import tqdm
 
     items = list(items)
@@ -88,14 +91,14 @@ def sweep(func: Callable, items: Iterable, executor=None, chunksize: int | None 
             with ProcessPoolExecutor(max_workers=workers) as pool:
                 return _map(pool, func, items, chunksize, workers, bar)
         if isinstance(executor, str):
-            raise ValueError(f"executor must be None, 'process', 'serial', a dask Client or a "
+            raise InputError(f"executor must be None, 'process', 'serial', a dask Client or a "
                              f"concurrent.futures.Executor, got {executor!r}")
         if hasattr(executor, "get_executor") and not isinstance(executor, Executor):
             workers = max(1, sum(getattr(executor, "nthreads", lambda: {})().values()))
             return _map(executor.get_executor(), func, items, chunksize, workers, bar)
         if isinstance(executor, Executor):
             return _map(executor, func, items, chunksize, _workers(executor), bar)
-        raise ValueError(f"executor must be None, 'process', 'serial', a dask Client or a "
+        raise InputError(f"executor must be None, 'process', 'serial', a dask Client or a "
                          f"concurrent.futures.Executor, got {type(executor).__name__}")
     finally:
         bar.close()

@@ -107,3 +107,11 @@ def test_render_rate_is_reported(tmp_path, renderer):
     assert info.frames == len(renderer)
     assert info.render_fps == pytest.approx(info.frames / info.render_seconds)
     assert 0 < info.render_seconds < 60 and info.max_ghost_offset_px < 1e-6
+
+
+def test_impulse_label_speaks_the_case_units():
+    """Issue 22: a US case's animation labelled its impulse in N s."""
+    us = build_renderer(CASE, 0.355, 1.0, units="us", after=0.2)
+    si = build_renderer(CASE, 0.355, 1.0, units="si", after=0.2)
+    assert us.impulse_unit[1] == "lbf s" and si.impulse_unit[1] == "N s"
+    assert us.impulse_unit[0] == pytest.approx(1 / (0.45359237 * 9.80665))

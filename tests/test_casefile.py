@@ -180,3 +180,82 @@ def test_us_and_si_inputs_give_the_same_physics(tmp_path_factory, xs):
     np.testing.assert_allclose(ra.velocity2, rb.velocity2, rtol=1e-9, atol=1e-9)
     np.testing.assert_allclose(ra.yaw_rate1, rb.yaw_rate1, rtol=1e-9, atol=1e-9)
     np.testing.assert_allclose(ra.energy_loss, rb.energy_loss, rtol=1e-9, atol=1e-6)
+
+
+# --- Issue 22: inputs accepted that should not be -------------------------------------
+
+
+@pytest.mark.parametrize("old, new, field", [
+    ('weight = "2255.4 lbf"', 'weight = "2255.4 lbf # comment"', "vehicle1.weight"),
+    ('heading = "180 deg"', 'heading = "180 deg;"', "vehicle1.heading"),
+    ('yaw_rate = "0 deg/s"', 'yaw_rate = "30 deg/s !"', "vehicle1.yaw_rate"),
+    ('weight = "2255.4 lbf"', "weight = \"2255.4 lbf 'x'\"", "vehicle1.weight"),
+    ('normal_angle = "0 deg"', "normal_angle = -90", "impact.normal_angle"),
+    ('weight = "2255.4 lbf"', 'weight = "4800 lbs"', "4800 lbf"),
+])
+def test_trailing_text_and_bare_degrees_exit_2_naming_the_field(tmp_path, capsys, old, new,
+                                                                 field):
+    """Before: each solved with exit 0."""
+    assert main(["solve", str(variant(tmp_path, old, new))]) == 2
+    err = capsys.readouterr().err
+    assert field in err and "Traceback" not in err and len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("nested", [
+    "a = " + "{b = " * 500 + "1" + "}" * 500,
+    "a = " + "[" * 500 + "]" * 500,
+    "[" + ".".join(["evidence"] + ["x"] * 500) + "]",
+])
+def test_deep_nesting_is_one_line(tmp_path, capsys, nested):
+    """Before: 500 nested tables raised RecursionError."""
+    path = tmp_path / "case.toml"
+    path.write_text(RICSAC + "\n" + nested + "\n")
+    assert main(["solve", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and ("nest" in err or "unknown key" in err), err
+
+
+def test_a_huge_description_is_refused_at_once(tmp_path, capsys):
+    """Before: a 150 000-character description took over 60 s (the unit-system scan)."""
+    import time
+
+    path = variant(tmp_path, 'description = "RICSAC',
+                   'description = "1 m' + " " * 150_000 + 'x RICSAC')
+    start = time.perf_counter()
+    assert main(["solve", str(path)]) == 2
+    assert time.perf_counter() - start < 5
+    assert "description has 15" in capsys.readouterr().err
+
+
+def test_cg_to_front_places_the_outline(tmp_path):
+    """The vehicle table's cg_to_front: the outline spans [a - length, a] along the heading
+    (before: outlines were always centred on the CG)."""
+    case = pim.load_case(variant(tmp_path, 'length = "13.0 ft"',
+                                 'length = "13.0 ft"\ncg_to_front = "5 ft"'))
+    assert case.vehicle1.cg_to_front == pytest.approx(5 * 0.3048)
+    from pim.plotting.drawing import outline
+
+    corners = outline(case.vehicle1)
+    # heading 180 deg: the front is at cg_x - 5 ft, the rear at cg_x + 8 ft
+    cg_x = case.vehicle1.cg[0]
+    assert corners[:, 0].min() == pytest.approx(cg_x - 5 * 0.3048)
+    assert corners[:, 0].max() == pytest.approx(cg_x + 8 * 0.3048)
+
+
+@pytest.mark.parametrize("new, words", [
+    ('length = "13.0 ft"\ncg_to_front = "14 ft"', ["cg_to_front", "[0, length"]),
+    ('cg_to_front = "5 ft"', ["cg_to_front", "needs length"]),
+])
+def test_cg_to_front_outside_the_outline_is_refused(tmp_path, capsys, new, words):
+    assert main(["solve", str(variant(tmp_path, 'length = "13.0 ft"', new))]) == 2
+    err = capsys.readouterr().err
+    assert all(w in err for w in words), err
+
+
+def test_flipped_normal_hints_at_its_direction_in_the_case_units(tmp_path, capsys):
+    """Before: "no impact ... (u_n = 9.476 m/s > 0)" for a US case, no hint."""
+    path = variant(tmp_path, 'normal_angle = "0 deg"', 'normal_angle = "180 deg"')
+    assert main(["solve", str(path)]) == 1
+    err = capsys.readouterr().err
+    assert "ft/s" in err and "m/s" not in err
+    assert "from vehicle 2 toward vehicle 1" in err and "try 0 deg" in err

@@ -113,3 +113,65 @@ def test_fit_prints_no_search_range_for_a_fixed_parameter(capsys):
     eps = next(line for line in lines if line.strip().startswith("epsilon"))
     assert "search range" not in beta and "(fixed)" in beta
     assert "search range [0, 1]" in eps
+
+
+# --- Issue 21 point 7 and issue 22: input errors exit 2, bugs keep their traceback ----
+
+
+def test_input_error_is_one_line_and_exit_2(capsys):
+    assert main(["solve", "no-such-case"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: ") and len(err.strip().splitlines()) == 1
+
+
+def test_an_internal_bug_is_not_disguised_as_bad_input(monkeypatch):
+    """Before: any ValueError, internal bugs included, became "error: ..." and exit 2."""
+    import pim.model.solver
+
+    def broken(*args, **kwargs):
+        raise ValueError("an internal bug")
+
+    monkeypatch.setattr(pim.model.solver, "solve", broken)
+    with pytest.raises(ValueError, match="an internal bug"):
+        main(["solve", "ricsac9"])
+
+
+@pytest.mark.parametrize("args, words", [
+    (["solve", "ricsac9", "--friction-limit", "nan"], ["--friction-limit", "finite"]),
+    (["solve", "ricsac9", "--friction-limit", "-1"], ["--friction-limit", ">= 0"]),
+    (["solve", "ricsac9", "--eps", "inf"], ["--eps", "[0, 1]"]),
+    (["solve", "ricsac9", "--beta", "nan"], ["--beta", "finite"]),
+    (["uncertainty", "ricsac9", "--eps", "nan"], ["--eps", "finite"]),
+])
+def test_non_finite_options_are_usage_errors(capsys, args, words):
+    """Before: --friction-limit nan was accepted."""
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert all(w in err for w in words), err
+
+
+@pytest.mark.parametrize("command", [["fit"], ["sensitivity"], ["solve"],
+                                     ["uncertainty", "--samples", "200"], ["sim"]])
+def test_every_json_names_its_units_and_speaks_them(capsys, command):
+    """Before: fit, sensitivity and reconstruct --json answered in SI for a US case."""
+    args = [command[0], "ricsac9", *command[1:], "--json"]
+    try:
+        code = main(args)
+    except SystemExit as exc:           # pim sim exits through sys.exit
+        code = exc.code
+    assert code == 0
+    us = json.loads(capsys.readouterr().out)
+    assert us["units"] == "us"
+    try:
+        main([*args, "--units", "si"])
+    except SystemExit:
+        pass
+    si = json.loads(capsys.readouterr().out)
+    assert si["units"] == "si"
+    assert json.dumps(us) != json.dumps(si)
+    if command[0] == "fit":
+        assert us["rms_unit"] == "ft/s" and si["rms_unit"] == "m/s"
+        assert us["rms"] == pytest.approx(si["rms"] / 0.3048)
+    if command[0] == "sensitivity":
+        v_us, v_si = us["outputs"]["delta_v1_magnitude"], si["outputs"]["delta_v1_magnitude"]
+        assert v_us["value"] == pytest.approx(v_si["value"] / 0.3048)

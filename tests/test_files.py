@@ -22,3 +22,13 @@ def test_save_figure_needs_a_format_and_writes_it(tmp_path):
         save_figure(fig, tmp_path / "plot")
     path = save_figure(fig, tmp_path / "plot.png")
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_an_unknown_image_format_is_an_input_error(tmp_path, capsys):
+    """Issue 21 point 7: with only InputError turned into exit 2, matplotlib's ValueError
+    for '.xyz' must become one first (else a traceback)."""
+    from pim.cli import main
+
+    assert main(["draw", "ricsac9", "--out", str(tmp_path / "x.xyz")]) == 2
+    err = capsys.readouterr().err
+    assert ".xyz" in err and ".png" in err and not list(tmp_path.iterdir())

@@ -328,7 +328,9 @@ def test_cli_free_parameters_say_whether_the_data_decide_them(capsys):
                  "--free", "impact.normal_angle=-10 deg,10 deg"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["identifiability"]["rank"] == 2 and not data["identifiability"]["families"]
-    assert -np.radians(10) - 1e-9 <= data["values"]["impact.normal_angle"] <= np.radians(10) + 1e-9
+    # --json speaks the case's units (issue 22): the angle in degrees, its unit named
+    assert -10 - 1e-6 <= data["values"]["impact.normal_angle"] <= 10 + 1e-6
+    assert data["value_units"]["impact.normal_angle"] == "deg" and data["units"] == "us"
 
 
 @pytest.mark.parametrize("arg, words", [("bogus=1,2", "KEY"),

@@ -54,3 +54,19 @@ def test_outline_distance_hits_the_right_edge():
     # CG 1.5 m behind the front: backwards 2.5 m; 30 deg ahead: front edge 1.5 / cos 30
     np.testing.assert_allclose(outline_distance([np.pi, np.radians(30)], 4.0, 2.0, 1.5),
                                [2.5, 1.5 / np.cos(np.radians(30))], rtol=1e-12)
+
+
+@given(length=st.floats(0.5, 20), width=st.floats(0.5, 5), share=st.floats(0, 1),
+       angle=st.floats(-math.pi, math.pi))
+def test_outline_with_cg_to_front_agrees_with_outline_distance(length, width, share, angle):
+    """The vehicle table's cg_to_front (issue 22): the outline spans [a - length, a] x
+    [-w/2, w/2] with the CG at the origin, the same rectangle outline_distance measures."""
+    a = share * length
+    c = g.outline_corners(length, width, a)
+    assert c[:, 0].max() == pytest.approx(a) and c[:, 0].min() == pytest.approx(a - length)
+    assert np.allclose(g.outline_corners(length, width, length / 2),
+                       g.outline_corners(length, width))
+    r = float(g.outline_distance(angle, length, width, a))
+    x, y = r * math.cos(angle), r * math.sin(angle)       # on the rectangle's boundary
+    assert a - length - 1e-9 <= x <= a + 1e-9 and abs(y) <= width / 2 + 1e-9
+    assert min(abs(x - a), abs(x - (a - length)), abs(abs(y) - width / 2)) < 1e-9 * length

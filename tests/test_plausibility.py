@@ -1,5 +1,8 @@
 """Plausibility warnings and the friction-capped mode (issue 12, item 3)."""
 
+import os
+import subprocess
+import sys
 from importlib import resources
 
 import pim
@@ -8,14 +11,29 @@ from pim.cli import main
 RICSAC = (resources.files("pim.io") / "cases" / "ricsac9.toml").read_text()
 
 
-def test_bare_angle_above_two_pi_is_flagged(tmp_path, capsys):
+def test_bare_angle_above_two_pi_is_refused(tmp_path, capsys):
+    """Issue 22: a bare -90 or 180 is degrees meant and radians read: an error naming the
+    field and asking for a unit (before: solved in radians, exit 0)."""
     path = tmp_path / "case.toml"
     path.write_text(RICSAC.replace('heading = "180 deg"', "heading = 180", 1))
-    assert main(["solve", str(path)]) == 0
+    assert main(["solve", str(path)]) == 2
     err = capsys.readouterr().err
-    assert "vehicle1.heading = 180" in err and "deg" in err
+    assert "vehicle1.heading = 180" in err and "'180 deg'" in err and "Traceback" not in err
     assert main(["solve", "ricsac9"]) == 0
     assert "heading" not in capsys.readouterr().err
+
+
+def test_bare_angle_within_two_pi_warns_before_the_table(tmp_path):
+    """Issue 22: the warning comes before the table (before: after a 33-line table)."""
+    path = tmp_path / "case.toml"
+    path.write_text(RICSAC.replace('heading = "180 deg"', "heading = 3.14159", 1))
+    run = subprocess.run([sys.executable, "-c", "import sys; from pim.cli import main; "
+                          f"sys.exit(main(['solve', {str(path)!r}]))"],
+                         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                         check=False, env={**os.environ, "PYTHONUNBUFFERED": "1"})
+    assert run.returncode == 0, run.stdout
+    warning = run.stdout.index("vehicle1.heading = 3.14159 has no unit")
+    assert "180 deg" in run.stdout and warning < run.stdout.index("epsilon =")
 
 
 

@@ -12,7 +12,7 @@ from pim.model.result import output_values
 
 def test_fields_are_the_case_types_fields():
     for group, kind in (("vehicle1", pim.Vehicle), ("vehicle2", pim.Vehicle)):
-        names = {f.name for f in dataclasses.fields(kind)} - {"length", "width"}
+        names = {f.name for f in dataclasses.fields(kind)} - {"length", "width", "cg_to_front"}
         assert {k.split(".")[1] for k in FIELDS if k.startswith(group)} == names
     assert {k.split(".")[1] for k in FIELDS if k.startswith("impact")} == {
         f.name for f in dataclasses.fields(pim.Impact)}

@@ -27,9 +27,11 @@ def test_ricsac9_turned_around_covers_the_staged_speeds(tmp_path, capsys):
     assert main(["reconstruct", "ricsac9-reconstruct", "--out", str(tmp_path), "--json",
                  "--samples", "4000"]) == 0
     data = json.loads(capsys.readouterr().out)
-    staged = 21.2 * 0.44704
+    staged = 21.2                               # mph: --json speaks the case's units
+    assert data["units"] == "us"
     for key in ("vehicle1.speed", "vehicle2.speed"):
         row = data["unknowns"][key]
+        assert row["unit"] == "mph"
         assert row["p5"] < staged < row["p95"], (key, row)
         assert row["p5"] < row["p50"] < row["p95"]
     assert {"impact.restitution", "impact.beta"} <= set(data["unknowns"])
@@ -65,8 +67,25 @@ def test_synthetic_case_report_and_json(tmp_path, capsys):
     data = json.loads(capsys.readouterr().out)
     for key in ("vehicle1.speed", "vehicle2.speed"):
         row = data["unknowns"][key]
+        assert row["unit"] == "mph" and data["units"] == "us"
+        row = {k: v * 0.44704 for k, v in row.items() if k != "unit"}     # mph -> m/s
         assert row["value"] == pytest.approx(KNOWN, abs=1e-5)
         assert row["p5"] < KNOWN < row["p95"]
     assert {p.name for p in tmp_path.iterdir()} == {"report.md", "reconstruction.csv",
                                                     "scene.png", "reconstruction.mp4"}
     assert "vehicle1.speed" in (tmp_path / "report.md").read_text()
+
+
+def test_no_monte_carlo_prints_no_nan_and_json_speaks_the_case_units(capsys):
+    """Issue 22: before, --samples 0 printed [nan, nan, nan] on every row (the momentum
+    check's too), and --json answered in SI for a US case."""
+    assert main(["reconstruct", "ricsac9-reconstruct", "--samples", "0"]) == 0
+    out = capsys.readouterr().out
+    assert "5/50/95 %: not computed, --samples 0" in out and "1 sd = " in out
+    assert "nan" not in out.lower()
+    assert main(["reconstruct", "ricsac9-reconstruct", "--samples", "0", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["units"] == "us" and data["unknowns"]["vehicle1.speed"]["unit"] == "mph"
+    assert 10 < data["unknowns"]["vehicle1.speed"]["value"] < 30          # mph, not m/s
+    check = data["momentum_check"]["vehicle1.speed"]
+    assert check["unit"] == "mph" and check["sd"] > 0

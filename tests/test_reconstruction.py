@@ -2,13 +2,16 @@
 speeds by linear momentum, on the bundled synthetic case whose rest states the forward
 models generated from known speeds (31.09 ft/s each, pim/io/cases/synthetic-runout.toml)."""
 
+import time
 from dataclasses import replace
+from importlib import resources
 
 import numpy as np
 import pytest
 
 import pim
 from pim.analysis.reconstruction import approach_direction, post_impact_motion, reconstruct
+from pim.model.numbers import InputError
 
 KNOWN = 31.09 * 0.3048  # [m/s], both vehicles
 
@@ -82,3 +85,22 @@ def test_goodness_of_fit_is_reported_and_inconsistency_said():
     rec = reconstruct(bad, unknown=unknown, samples=0)
     assert rec.goodness.consistent is False
     assert any("inconsistent with PIM at the stated sigmas" in m for m in rec.messages)
+@pytest.mark.parametrize("old, new, words", [
+    ("rest_position = [0.44940861599726445, 2.804097342912324]",
+     "rest_position = [1000.0, 2.8]", ["evidence.vehicle1.rest_position", "beyond any run-out"]),
+    ('wheels = ["locked", "locked", 0.3, 0.3]', 'wheels = "free"',
+     ["evidence.vehicle1.wheels", "free-rolling"]),
+])
+def test_unreachable_or_never_stopping_evidence_is_answered_at_once(tmp_path, old, new, words):
+    """Issue 22: wheels = 'free' or a rest position 1 km away ran pim reconstruct for over
+    120 s with no word; now one InputError before any run-out fit."""
+    text = (resources.files("pim.io") / "cases" / "synthetic-runout.toml").read_text()
+    assert old in text
+    path = tmp_path / "case.toml"
+    path.write_text(text.replace(old, new, 1))
+    case = pim.load_case(path)
+    start = time.perf_counter()
+    with pytest.raises(InputError) as info:
+        post_impact_motion(case)
+    assert time.perf_counter() - start < 1.0
+    assert all(w in str(info.value) for w in words), str(info.value)

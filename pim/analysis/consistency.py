@@ -29,6 +29,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..model.numbers import InputError
+
 __all__ = ["MomentumCheck", "momentum_check", "check_ricsac", "DEFAULT_TOLERANCE",
            "DEFAULT_MAX_ARM"]
 
@@ -92,7 +94,7 @@ def momentum_check(test, mass1, mass2, *, delta_v1=None, delta_v2=None, velocity
         Yaw-rate changes [rad/s].
     """
     if not (mass1 > 0 and mass2 > 0):
-        raise ValueError(f"{test}: masses must be > 0 [kg]")
+        raise InputError(f"{test}: masses must be > 0 [kg]")
     ratio = None
     if delta_v1 is not None and delta_v2 is not None and delta_v2 > 0:
         ratio = mass1 * delta_v1 / (mass2 * delta_v2) - 1.0

@@ -36,6 +36,7 @@ import numpy as np
 
 from ..model.case import Case
 from ..model.motion import Term
+from ..model.numbers import InputError, check_counts, check_numbers
 from ..model.result import Result
 from ..model.solver import solve
 from .free_fit import FREE_KEYS, FreeFit, Identifiability, check_free, fit_free
@@ -182,12 +183,12 @@ def _check_bounds(bounds) -> tuple:
         (e_lo, e_hi), (b_lo, b_hi) = bounds
         e_lo, e_hi, b_lo, b_hi = map(float, (e_lo, e_hi, b_lo, b_hi))
     except (TypeError, ValueError):
-        raise ValueError("bounds must be ((eps_min, eps_max), (beta_min, beta_max))") from None
+        raise InputError("bounds must be ((eps_min, eps_max), (beta_min, beta_max))") from None
     if not (0.0 <= e_lo < e_hi <= 1.0):
-        raise ValueError(f"bounds on eps must satisfy 0 <= eps_min < eps_max <= 1, "
+        raise InputError(f"bounds on eps must satisfy 0 <= eps_min < eps_max <= 1, "
                          f"got ({e_lo}, {e_hi})")
     if not (np.isfinite(b_lo) and np.isfinite(b_hi) and b_lo < b_hi):
-        raise ValueError(f"bounds on beta must be finite with beta_min < beta_max, "
+        raise InputError(f"bounds on beta must be finite with beta_min < beta_max, "
                          f"got ({b_lo}, {b_hi})")
     return (e_lo, e_hi), (b_lo, b_hi)
 
@@ -195,16 +196,16 @@ def _check_bounds(bounds) -> tuple:
 def _check_fixed(eps, beta, free: dict) -> tuple[float | None, float | None]:
     """The fixed eps and beta as floats (None where fitted); a clear error when out of range."""
     if eps is not None and beta is not None and not free:
-        raise ValueError("eps and beta are both fixed: nothing to fit (fix at most one, or "
+        raise InputError("eps and beta are both fixed: nothing to fit (fix at most one, or "
                          "free other inputs)")
     if eps is not None:
         eps = float(eps)
         if not 0.0 <= eps <= 1.0:
-            raise ValueError(f"eps (fixed) must be in [0, 1], got {eps}")
+            raise InputError(f"eps (fixed) must be in [0, 1], got {eps}")
     if beta is not None:
         beta = float(beta)
         if not np.isfinite(beta):
-            raise ValueError(f"beta (fixed) must be a finite number, got {beta}")
+            raise InputError(f"beta (fixed) must be a finite number, got {beta}")
     return eps, beta
 
 
@@ -213,7 +214,7 @@ def _check_grid(grid) -> None:
     if tuple(int(g) for g in grid) == DEFAULT_GRID:
         return
     if min(int(g) for g in grid) < 3:
-        raise ValueError(f"grid must have at least 3 points per axis, got {grid}")
+        raise InputError(f"grid must have at least 3 points per axis, got {grid}")
     warnings.warn("pim.fit(grid=...) is ignored: the coarse search is a Sobol sample of "
                   "`samples` points", DeprecationWarning, stacklevel=3)
 
@@ -300,8 +301,10 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
     ValueError
         Nothing measured, a batched case, bad bounds, both parameters fixed, or no approach.
     """
+    check_counts(max_starts=max_starts, samples=samples)
+    check_numbers(eps=eps, beta=beta)
     if np.size(case.vehicle1.mass) != 1 or np.shape(case.impact.point) != (2,):
-        raise ValueError("fit needs a single case, not a batch of cases")
+        raise InputError("fit needs a single case, not a batch of cases")
     terms = measured_terms(case, include_yaw)
     box_eb = _check_bounds(bounds)
     free_box = check_free(free or {})
@@ -310,7 +313,7 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
     eps0 = 0.5 if eps_fixed is None else eps_fixed
     beta0 = 0.5 if beta_fixed is None else beta_fixed
     if not free_box and not np.any(solve(case, eps0, beta0).approaching):
-        raise ValueError(f"case {case.name or '(unnamed)'}: the vehicles do not approach at C "
+        raise InputError(f"case {case.name or '(unnamed)'}: the vehicles do not approach at C "
                          "(u_n >= 0): there is no impact to fit")
     weights = measured_weights(case, terms)
     raw = fit_free(case, _box(box_eb, eps_fixed, beta_fixed, free_box), terms, eps0, beta0,

@@ -33,6 +33,7 @@ import numpy as np
 from ..model.case import Case
 from ..model.dual import MOTION_INPUTS, Dual, cos_sin, motion_inputs
 from ..model.geometry import radius_of_gyration
+from ..model.numbers import InputError
 from ..model.pdof import wrap_angle
 from ..model.quantities import INPUTS
 
@@ -73,27 +74,27 @@ def check_free(free: dict) -> dict:
     out = {}
     for key, b in (free or {}).items():
         if key not in FREE_KEYS:
-            raise ValueError(f"free parameter {key!r} is unknown (allowed: "
+            raise InputError(f"free parameter {key!r} is unknown (allowed: "
                              f"{', '.join(FREE_KEYS)})")
         try:
             lo, hi = (float(x) for x in b)
         except (TypeError, ValueError):
-            raise ValueError(f"free parameter {key}: bounds must be (low, high) numbers in "
+            raise InputError(f"free parameter {key}: bounds must be (low, high) numbers in "
                              f"SI, got {b!r}") from None
         if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
-            raise ValueError(f"free parameter {key}: bounds must be finite with low < high, "
+            raise InputError(f"free parameter {key}: bounds must be finite with low < high, "
                              f"got ({lo}, {hi})")
         attr = key.split(".", 1)[1]
         if attr in _POSITIVE and lo <= 0:
-            raise ValueError(f"free parameter {key}: bounds must be > 0, got ({lo}, {hi})")
+            raise InputError(f"free parameter {key}: bounds must be > 0, got ({lo}, {hi})")
         if key == "impact.restitution" and not (0.0 <= lo and hi <= 1.0):
-            raise ValueError(f"free parameter {key}: bounds must lie in [0, 1], got ({lo}, {hi})")
+            raise InputError(f"free parameter {key}: bounds must lie in [0, 1], got ({lo}, {hi})")
         if attr == "speed" and lo < 0:
-            raise ValueError(f"free parameter {key}: bounds must be >= 0 [m/s], got ({lo}, {hi})")
+            raise InputError(f"free parameter {key}: bounds must be >= 0 [m/s], got ({lo}, {hi})")
         out[key] = (lo, hi)
     for a, b in _CLASHES:
         if a in out and b in out:
-            raise ValueError(f"free parameters {a} and {b} set the same field: free one of them")
+            raise InputError(f"free parameters {a} and {b} set the same field: free one of them")
     return out
 
 
@@ -116,7 +117,7 @@ def check_free_for_case(case: Case, keys) -> None:
         if group.startswith("vehicle") and attr not in ("heading",):
             vehicle = getattr(case, group)
             if bool(np.any(vehicle.fixed)) and attr not in ("cg_x", "cg_y", "phi", "d"):
-                raise ValueError(f"free parameter {key}: {group} is a fixed obstacle "
+                raise InputError(f"free parameter {key}: {group} is a fixed obstacle "
                                  f"(infinite mass, at rest); its {attr} cannot be fitted")
 
 
@@ -251,7 +252,7 @@ def set_inputs(case: Case, values: dict) -> Case:
     if not keys:
         return case
     if case.shape != ():
-        raise ValueError("set_inputs needs a single case, not a batch of cases")
+        raise InputError("set_inputs needs a single case, not a batch of cases")
     state, _ = free_inputs(case, keys, [[float(values[k]) for k in keys]])
     s = dict(zip(STATE, state[0], strict=True))
     moved = {g for g in ("vehicle1", "vehicle2", "impact")
@@ -282,7 +283,7 @@ def current_value(case: Case, key: str) -> float:
     """The value [SI] of a free key in ``case`` (``impact.point_along`` is 0 by definition:
     it is measured from the case's C)."""
     if key not in FREE_KEYS:
-        raise ValueError(f"free parameter {key!r} is unknown (allowed: {', '.join(FREE_KEYS)})")
+        raise InputError(f"free parameter {key!r} is unknown (allowed: {', '.join(FREE_KEYS)})")
     if key == "impact.point_along":
         return 0.0
     group, attr = key.split(".", 1)
@@ -291,7 +292,7 @@ def current_value(case: Case, key: str) -> float:
         return float("nan") if v is None else float(v)
     state = case_state(case)
     if np.shape(state) != (len(STATE),):
-        raise ValueError("current_value needs a single case, not a batch of cases")
+        raise InputError("current_value needs a single case, not a batch of cases")
     if key in _COLUMN:
         return float(state[_COLUMN[key]])
     i = int(group[-1])

@@ -22,6 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..model.case import Case
+from ..model.numbers import InputError
 from ..model.solver import defaults
 from .fitting import FitResult, fit
 from .free_fit import free_residuals
@@ -37,7 +38,7 @@ def fixed_coefficients(case: Case, unknown: dict) -> tuple:
     (beta defaults to 1)."""
     eps = None if "impact.restitution" in unknown else case.impact.restitution
     if "impact.restitution" not in unknown and eps is None:
-        raise ValueError("impact.restitution: not given in [impact] and not named in "
+        raise InputError("impact.restitution: not given in [impact] and not named in "
                          "[unknown]; give it or solve for it")
     beta = None if "impact.beta" in unknown else defaults(case, 0.0, None)[1]
     return eps, beta
@@ -92,10 +93,10 @@ def inverse_pim(case: Case, unknown: dict | None = None, *, include_yaw: bool = 
     """
     unknown = check_free(case.unknown if unknown is None else unknown)
     if not unknown:
-        raise ValueError("unknown: nothing to solve for (the case has no [unknown] table)")
+        raise InputError("unknown: nothing to solve for (the case has no [unknown] table)")
     why = under_determined(case, unknown, include_yaw)
     if why:
-        raise ValueError(why)
+        raise InputError(why)
     eps, beta = fixed_coefficients(case, unknown)
     return fit(case, include_yaw=include_yaw, eps=eps, beta=beta, free=unknown,
                samples=samples, seed=seed)

@@ -31,6 +31,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..model.numbers import InputError
+
 __all__ = ["BatchFit", "least_squares_batch"]
 
 
@@ -152,7 +154,7 @@ def _box(lower, upper, shape) -> tuple[np.ndarray, np.ndarray]:
     lo = np.broadcast_to(np.asarray(lower, dtype=float), shape)
     hi = np.broadcast_to(np.asarray(upper, dtype=float), shape)
     if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) and np.all(lo < hi)):
-        raise ValueError("bounds must be finite with lower < upper")
+        raise InputError("bounds must be finite with lower < upper")
     return lo, hi - lo
 
 

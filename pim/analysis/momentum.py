@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model.geometry import cross
+from ..model.numbers import InputError
 
 __all__ = ["MomentumSpeeds", "momentum_speeds", "ILL_CONDITIONED_SINE"]
 
@@ -71,7 +72,7 @@ def momentum_speeds(mass1, mass2, direction1, direction2, velocity1_after, veloc
     u2 = np.asarray(direction2, dtype=float)
     for name, u in (("direction1", u1), ("direction2", u2)):
         if not (np.all(np.isfinite(u)) and np.hypot(*u) > 0):
-            raise ValueError(f"momentum.{name} must be a finite non-zero vector, got {u!r}")
+            raise InputError(f"momentum.{name} must be a finite non-zero vector, got {u!r}")
     u1, u2 = u1 / np.hypot(*u1), u2 / np.hypot(*u2)
     m1, m2 = float(mass1), float(mass2)
     a = np.column_stack([m1 * u1, m2 * u2])

@@ -31,6 +31,7 @@ import numpy as np
 
 from ..model.case import Case, Impact, Vehicle
 from ..model.distributions import UncertaintyTable, nominal_values, sample_inputs
+from ..model.numbers import InputError, check_numbers, checked_count
 from ..model.solver import solve
 from .streaming import StreamingIndices, StreamingPercentiles
 
@@ -166,12 +167,12 @@ def _sampled_case(case: Case, v: dict) -> Case:
         if base.fixed.any():
             return Vehicle.obstacle(cg=_pair(v[p + "cg_x"], v[p + "cg_y"]),
                                     heading=v[p + "heading"], length=base.length,
-                                    width=base.width)
+                                    width=base.width, cg_to_front=base.cg_to_front)
         return Vehicle(mass=v[p + "mass"], yaw_inertia=v[p + "yaw_inertia"],
                        cg=_pair(v[p + "cg_x"], v[p + "cg_y"]),
                        velocity=_pair(v[p + "velocity_x"], v[p + "velocity_y"]),
                        yaw_rate=v[p + "yaw_rate"], heading=v[p + "heading"],
-                       length=base.length, width=base.width)
+                       length=base.length, width=base.width, cg_to_front=base.cg_to_front)
 
     impact = Impact(point=_pair(v["impact.point_x"], v["impact.point_y"]),
                     normal_angle=v["impact.normal_angle"])
@@ -244,17 +245,15 @@ class _Setup:
 
 
 def _setup(case, n, seed, distributions, eps, beta, chunk_size) -> _Setup:
+    check_numbers(eps=eps, beta=beta)
     dists = case.uncertainty if distributions is None else distributions
     if dists is None:
-        raise ValueError("uncertainty: the case has no [uncertainty] table and no "
+        raise InputError("uncertainty: the case has no [uncertainty] table and no "
                          "distributions were given")
     if not isinstance(dists, UncertaintyTable):
-        raise ValueError("distributions must be a pim.model.distributions.UncertaintyTable")
-    n = int(n)
-    if n < 10:
-        raise ValueError(f"samples must be >= 10, got {n}")
-    if int(chunk_size) < 10:
-        raise ValueError(f"chunk_size must be >= 10, got {chunk_size}")
+        raise InputError("distributions must be a pim.model.distributions.UncertaintyTable")
+    n = checked_count(n, "n (samples)", low=10)
+    chunk_size = checked_count(chunk_size, "chunk_size", low=10)
     nominal_in = nominal_values(case, eps, beta)
     # evidence inputs (run-out friction) do not act on the impact: pim reconstruct samples them
     dists = UncertaintyTable({k: d for k, d in dists.inputs.items() if k in nominal_in})

@@ -26,6 +26,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..model.case import Case, Measured
+from ..model.numbers import InputError, check_counts, checked_count
+from ..model.tyres import STANDARD_GRAVITY
 from .fitting import FitResult
 from .free_inputs import approach_direction, check_free
 from .inverse_pim import inverse_pim, under_determined
@@ -40,7 +42,8 @@ from .reconstruction_mc import (
 from .residuals import GoodnessOfFit, measured_terms
 from .runout_fit import RunoutFit, fit_runout
 
-__all__ = ["PostImpact", "post_impact_motion", "approach_direction", "Reconstruction",
+__all__ = ["PostImpact", "post_impact_motion", "check_reachable", "approach_direction",
+           "Reconstruction",
            "reconstruct", "evidence_sampler", "evidence_nominal", "sample_block"]
 
 
@@ -80,6 +83,44 @@ def _velocity_covariance(fit: RunoutFit) -> tuple[np.ndarray, float]:
     return cov[:2, :2], float(np.sqrt(max(cov[2, 2], 0.0)))
 
 
+#: Slack [m] on the reach of :func:`check_reachable`: the regularised tyre law's extra
+#: sliding (about 1 mm, :func:`pim.model.tyres.regularised_slide_distance`) and more.
+REACH_SLACK = 1.0
+
+
+def check_reachable(ev, vehicle, speed_bounds, yaw_rate_bounds, where: str) -> None:
+    """InputError at once (instead of minutes of run-out fits) when no post-impact motion
+    within the bounds can end at the rest evidence.
+
+    All four wheels free-rolling never stop a car rolling straight (the tyre model has no
+    rolling resistance). Otherwise, with ``f`` the smallest braking fraction, every wheel
+    dissipates at least ``f mu N_i |v_i|``, and ``sum N_i |v_i| >= |sum N_i v_i| = m g |v|``
+    (the static loads have their centroid at the CG), so the kinetic energy falls by at least
+    ``f mu m g`` per metre of CG path: from at most ``(v_max^2 + k^2 w_max^2) / 2`` per unit
+    mass the CG travels at most ``(v_max^2 + k^2 w_max^2) / (2 f mu g)``. A rest position
+    farther from the CG at impact is unreachable. (With a free-rolling wheel, ``f = 0``, no
+    such bound holds and the fit decides.)
+    """
+    braking = np.asarray(ev.braking, dtype=float)
+    if not braking.any():
+        raise InputError(f"{where}.wheels: with all four wheels free-rolling nothing stops a "
+                         f"car rolling straight (the tyre model has no rolling resistance), "
+                         f"so no run-out ends at rest; give the braked or locked wheels")
+    f = float(braking.min())
+    if f == 0:
+        return
+    k2 = float(vehicle.yaw_inertia) / float(vehicle.mass)
+    w_max = max(abs(float(w)) for w in yaw_rate_bounds)
+    reach = (float(speed_bounds[1]) ** 2 + k2 * w_max ** 2) / (2 * f * ev.friction
+                                                                * STANDARD_GRAVITY)
+    distance = float(np.hypot(*(np.asarray(ev.rest_position) - np.asarray(vehicle.cg))))
+    if distance > reach + REACH_SLACK + 3 * ev.position_sigma:
+        raise InputError(f"{where}.rest_position is {distance:.4g} m from the CG at impact, "
+                         f"beyond any run-out within the speed bound {speed_bounds[1]:g} m/s "
+                         f"and yaw-rate bound {w_max:g} rad/s (at most {reach:.4g} m with "
+                         f"friction {ev.friction:g} and braking {f:g} on every wheel)")
+
+
 def post_impact_motion(case: Case, *, speed_bounds=(0.0, 60.0),
                        yaw_rate_bounds=(-15.0, 15.0), **fit_options) -> PostImpact:
     """Fit each vehicle's post-impact motion to its rest evidence (step 1 of the chain).
@@ -100,7 +141,7 @@ def post_impact_motion(case: Case, *, speed_bounds=(0.0, 60.0),
     """
     evidence = case.evidence
     if evidence is None or (evidence.vehicle1 is None and evidence.vehicle2 is None):
-        raise ValueError("evidence: the case has no [evidence] table (rest positions, "
+        raise InputError("evidence: the case has no [evidence] table (rest positions, "
                          "friction, wheelbase and track of at least one vehicle)")
     runouts, vel_cov, yaw_sigma, measured, messages = {}, {}, {}, {}, []
     for i in (1, 2):
@@ -108,6 +149,7 @@ def post_impact_motion(case: Case, *, speed_bounds=(0.0, 60.0),
         if ev is None:
             continue
         vehicle = getattr(case, f"vehicle{i}")
+        check_reachable(ev, vehicle, speed_bounds, yaw_rate_bounds, f"evidence.vehicle{i}")
         fit = fit_runout(ev.runout_vehicle(float(vehicle.mass), float(vehicle.yaw_inertia)),
                          vehicle.cg, float(vehicle.heading), ev.rest_position,
                          ev.rest_heading, path_points=ev.path_points if len(ev.path_points)
@@ -222,16 +264,18 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         With ``determined = False`` and a message naming what is missing when the data cannot
         decide the unknowns; never a number then.
     """
+    samples = checked_count(samples, "samples", low=0)
+    check_counts(blocks=blocks)
     unknown = check_free(case.unknown if unknown is None else unknown)
     if not unknown:
-        raise ValueError("unknown: nothing to solve for; name the unknowns in an [unknown] "
+        raise InputError("unknown: nothing to solve for; name the unknowns in an [unknown] "
                          "table (e.g. vehicle1.speed = {bounds = [\"0 mph\", \"80 mph\"]})")
     has_evidence = case.evidence is not None and (case.evidence.vehicle1 is not None
                                                    or case.evidence.vehicle2 is not None)
     post = post_impact_motion(case) if has_evidence else None
     solved = post.case if post else case
     if solved.measured is None:
-        raise ValueError("reconstruct: the case has neither [evidence] nor [measured] "
+        raise InputError("reconstruct: the case has neither [evidence] nor [measured] "
                          "post-impact motion")
     messages = list(post.messages) if post else []
     momentum = post.momentum if post else _momentum_of(solved)

@@ -29,6 +29,7 @@ import numpy as np
 
 from ..model.distributions import UncertaintyTable, nominal_values, sample_inputs
 from ..model.motion import as_terms
+from ..model.numbers import InputError, checked_count
 from .fitting import FitResult
 from .free_inputs import STATE, fields_set_by
 from .inverse_pim import inverse_pim_many
@@ -101,7 +102,7 @@ def _measured_sigmas(case, names, fit_result) -> tuple[np.ndarray, str]:
         return np.array(sig), "stated"
     s = residual_standard_error(fit_result)
     if not np.isfinite(s):
-        raise ValueError("measured: no standard deviations are stated and the fit has no "
+        raise InputError("measured: no standard deviations are stated and the fit has no "
                          "degrees of freedom to estimate them; give *_sigma in [measured]")
     _, _, scale = residual_terms(case, names)      # 1 for velocities, k_i for yaw rates
     return s / scale, "residual standard error"
@@ -139,9 +140,7 @@ def reconstruction_samples(case, fit_result: FitResult, unknown: dict, n: int = 
         Nominal values of the evidence inputs (``evidence.vehicleN.friction``) that the
         ``[uncertainty]`` table may vary.
     """
-    n = int(n)
-    if n < 10:
-        raise ValueError(f"samples must be >= 10, got {n}")
+    n = checked_count(n, "n (samples)", low=10)
     block = solve_samples(case, fit_result, unknown, n, np.random.default_rng(seed),
                           distributions=distributions, include_yaw=include_yaw,
                           post_impact=post_impact, extra_nominal=extra_nominal)

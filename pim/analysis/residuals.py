@@ -18,6 +18,7 @@ from ..model.case import Case
 from ..model.dual import MOTION_OUTPUTS
 from ..model.geometry import radius_of_gyration
 from ..model.motion import Term, as_terms
+from ..model.numbers import InputError
 from ..model.result import Result
 
 __all__ = ["measured_terms", "has_measured_terms", "residuals", "residual_terms",
@@ -49,7 +50,7 @@ def measured_terms(case: Case, include_yaw: bool) -> tuple[Term, ...]:
         has_yaw = m is not None and (m.yaw_rate1 is not None or m.yaw_rate2 is not None)
         hint = (" (only yaw rates are measured: use include_yaw=True / --include-yaw)"
                 if has_yaw and not include_yaw else "")
-        raise ValueError(
+        raise InputError(
             f"case {case.name or '(unnamed)'}: nothing to fit; case.measured needs a "
             f"post-impact velocity1 or velocity2 [m/s]{hint}")
     return tuple(terms)
@@ -74,7 +75,7 @@ def measured_weights(case: Case, terms) -> np.ndarray | None:
     if len(missing) == len(terms):
         return None
     if missing:
-        raise ValueError(f"measured: standard deviations are given for some fitted terms but "
+        raise InputError(f"measured: standard deviations are given for some fitted terms but "
                          f"not for {', '.join(missing)}; give a *_sigma for every measured "
                          f"quantity that is fitted, or for none")
     return np.array([1.0 / (s if t.is_velocity else _gyration(case, t) * s)

@@ -23,7 +23,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..model.numbers import real_array
+from ..model.numbers import InputError, real_array
 from ..model.pdof import wrap_angle
 from ..model.runout import MAX_TIME, Runout, RunoutVehicle, runout
 
@@ -167,17 +167,17 @@ class RunoutFitSettings:
         for name, unit in (("position_sigma", "m"), ("heading_sigma", "rad")):
             value = getattr(self, name)
             if not (np.isfinite(value) and value > 0):
-                raise ValueError(f"evidence.{name} must be finite and > 0 [{unit}], "
+                raise InputError(f"evidence.{name} must be finite and > 0 [{unit}], "
                                  f"got {value!r}")
         lo_v, hi_v = (float(v) for v in _finite(self.speed_bounds, "unknown.speed bounds",
                                                 "m/s", (2,)))
         if lo_v < 0 or hi_v < lo_v:
-            raise ValueError(f"unknown.speed bounds must satisfy 0 <= low <= high [m/s], "
+            raise InputError(f"unknown.speed bounds must satisfy 0 <= low <= high [m/s], "
                              f"got {self.speed_bounds!r}")
         lo_w, hi_w = (float(v) for v in _finite(self.yaw_rate_bounds,
                                                 "unknown.yaw_rate bounds", "rad/s", (2,)))
         if hi_w < lo_w:
-            raise ValueError(f"unknown.yaw_rate bounds must satisfy low <= high [rad/s], "
+            raise InputError(f"unknown.yaw_rate bounds must satisfy low <= high [rad/s], "
                              f"got {self.yaw_rate_bounds!r}")
         object.__setattr__(self, "speed_bounds", (lo_v, hi_v))
         object.__setattr__(self, "yaw_rate_bounds", (lo_w, hi_w))
@@ -365,7 +365,7 @@ def fit_runout(vehicle: RunoutVehicle, position, heading, rest_position, rest_he
 def _finite(value, name, unit, shape):
     arr = real_array(value, name, unit)
     if shape is not None and arr.shape != shape:
-        raise ValueError(f"{name} must have shape {shape} [{unit}], got {arr.shape}")
+        raise InputError(f"{name} must have shape {shape} [{unit}], got {arr.shape}")
     if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite [{unit}], got {value!r}")
+        raise InputError(f"{name} must be finite [{unit}], got {value!r}")
     return arr

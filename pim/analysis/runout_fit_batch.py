@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..model.numbers import InputError
 from ..model.pdof import wrap_angle
 from ..model.runout import MAX_TIME, RunoutVehicle
 from ..model.runout_kernel import RUNOUT_STEP, integrate_many
@@ -68,10 +69,10 @@ def _per_sample(value, shape, name, unit):
     try:
         arr = np.broadcast_to(arr, shape)
     except ValueError:
-        raise ValueError(f"{name} must broadcast to shape {shape} [{unit}], got "
+        raise InputError(f"{name} must broadcast to shape {shape} [{unit}], got "
                          f"{arr.shape}") from None
     if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite [{unit}]")
+        raise InputError(f"{name} must be finite [{unit}]")
     return arr
 
 
@@ -101,7 +102,7 @@ class _Samples:
         sig_p = _per_sample(position_sigma, (n,), "evidence.position_sigma", "m")
         sig_h = _per_sample(heading_sigma, (n,), "evidence.heading_sigma", "rad")
         if np.any(sig_p <= 0) or np.any(sig_h <= 0):
-            raise ValueError("evidence.position_sigma and heading_sigma must be > 0")
+            raise InputError("evidence.position_sigma and heading_sigma must be > 0")
         if path_points is None or np.size(path_points) == 0:
             points = np.zeros((n, 0, 2))
         else:
@@ -188,7 +189,7 @@ def fit_runout_many(vehicle: RunoutVehicle, position, heading, rest_position, re
     lo_v, hi_v = (float(v) for v in speed_bounds)
     lo_w, hi_w = (float(v) for v in yaw_rate_bounds)
     if not (0 <= lo_v < hi_v and lo_w < hi_w):
-        raise ValueError(f"speed bounds must satisfy 0 <= low < high and yaw-rate bounds "
+        raise InputError(f"speed bounds must satisfy 0 <= low < high and yaw-rate bounds "
                          f"low < high, got {speed_bounds!r}, {yaw_rate_bounds!r}")
     x0 = np.stack([_per_sample(v, (n,), "start", "SI") for v in start], axis=-1)
     lower = np.stack([np.full(n, lo_v), x0[:, 1] - np.pi, np.full(n, lo_w)], axis=-1)

@@ -18,6 +18,7 @@ from ..model.case import Case
 from ..model.dual import MOTION_OUTPUTS, motion_jacobian
 from ..model.geometry import radius_of_gyration
 from ..model.motion import as_terms
+from ..model.numbers import InputError, check_numbers
 from ..model.quantities import INPUTS as QUANTITY_INPUTS
 from ..model.quantities import MEASURED, OUTPUTS, Quantity
 from ..model.solver import defaults, solve
@@ -70,7 +71,7 @@ class TypicalUncertainty:
         for name in self.__dataclass_fields__:
             value = float(getattr(self, name))
             if not (np.isfinite(value) and value > 0):
-                raise ValueError(f"uncertainty.{name} must be a finite number > 0, got {value}")
+                raise InputError(f"uncertainty.{name} must be a finite number > 0, got {value}")
             object.__setattr__(self, name, value)
 
 
@@ -291,15 +292,16 @@ def sensitivity(case: Case, fit_result=None, *, eps=None, beta=None, uncertainty
     on an active bound stays there (derivative 0); a fixed parameter does not move. For the
     measured values dr_i/dy_i = -1 (or -k_i for yaw), so dg/dy_i = -2 J_i exactly.
     """
+    check_numbers(eps=eps, beta=beta)
     if np.size(case.vehicle1.mass) != 1 or np.shape(case.impact.point) != (2,):
-        raise ValueError("sensitivity needs a single case, not a batch of cases")
+        raise InputError("sensitivity needs a single case, not a batch of cases")
     unc = TypicalUncertainty() if uncertainty is None else uncertainty
     if fit_result is None and eps is None and beta is None and has_measured_terms(case,
                                                                                    include_yaw):
         fit_result = fit_case(case, include_yaw=include_yaw)
     if fit_result is not None:
         if not isinstance(fit_result, FitResult):
-            raise ValueError("fit_result must be a FitResult from pim.fit")
+            raise InputError("fit_result must be a FitResult from pim.fit")
         eps, beta = fit_result.eps, fit_result.beta
         terms = fit_result.terms or as_terms(fit_result.residual_names)
     else:
@@ -363,7 +365,7 @@ def _parameter_derivative(case: Case, moved: Case, terms, keys, steps, eps: floa
     hess = 0.5 * (hess + hess.T)
     h_ff = hess[np.ix_(idx, idx)]
     if not np.all(np.isfinite(h_ff)) or np.linalg.cond(h_ff) > 1e12:
-        raise ValueError("the cost is flat at the optimum (singular Hessian): the "
+        raise InputError("the cost is flat at the optimum (singular Hessian): the "
                          "fitted parameters are not determined by the measurements")
     dtheta[idx] = -np.linalg.solve(h_ff, dg[idx])
     return dtheta

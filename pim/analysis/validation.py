@@ -28,6 +28,7 @@ import numpy as np
 from ..io.brach import cg_from_brach
 from ..model.case import Case, Impact, Measured, Vehicle
 from ..model.geometry import outline_distance
+from ..model.numbers import InputError
 from ..model.solver import solve
 from .fitting import fit
 
@@ -62,7 +63,7 @@ def barrier_case(test, radius_of_gyration, *, phi=None, d=None) -> Case:
     """
     k = np.asarray(radius_of_gyration, dtype=float)
     if (~np.isfinite(k) | (k <= 0)).any():
-        raise ValueError("radius_of_gyration must be > 0 [m]")
+        raise InputError("radius_of_gyration must be > 0 [m]")
     phi = test.phi if phi is None else np.asarray(phi, float)
     d = test.d if d is None else np.asarray(d, float)
     h, ahead, left = _heading_axes()
@@ -252,7 +253,7 @@ def ricsac_case(test) -> Case:
     published Gamma. ``measured`` holds the post-impact velocities and yaw rates.
     """
     if not test.has_motion or test.normal_angle is None:
-        raise ValueError(f"RICSAC {test.number}: no measured pre/post motion or geometry")
+        raise InputError(f"RICSAC {test.number}: no measured pre/post motion or geometry")
     vehicles = []
     for i, (m, inertia, theta, phi, v) in enumerate(
             ((test.mass1, test.yaw_inertia1, test.theta1, test.phi1, test.velocity1_pre),

@@ -9,6 +9,7 @@ loaded only when used, so ``pim --help`` stays fast; the layers above ``pim/`` (
 
 from .main import (
     NO_IMPACT_EXIT_CODE,
+    FiniteFloat,
     beta_option,
     cap_friction_option,
     case_argument,
@@ -29,4 +30,4 @@ from .main import (
 __all__ = ["main", "run", "cli", "case_argument", "eps_option", "beta_option", "units_option",
            "json_option", "echo_json", "friction_limit_option", "cap_friction_option",
            "solve_with_options", "warnings_of", "NO_IMPACT_EXIT_CODE", "law_options",
-           "require_brach"]
+           "require_brach", "FiniteFloat"]

@@ -5,21 +5,29 @@ from __future__ import annotations
 
 import click
 
-from .main import case_argument, echo_json, json_option, require_brach, units_option
+from ..model.numbers import InputError
+from .main import (
+    FiniteFloat,
+    case_argument,
+    echo_json,
+    json_option,
+    require_brach,
+    units_option,
+)
 
 __all__ = ["fit", "sensitivity", "plot"]
 
 include_yaw_option = click.option(
     "--include-yaw", is_flag=True,
     help="Also fit the measured yaw rates, weighted by each vehicle's radius of gyration.")
-fixed_eps_option = click.option("--eps", type=float, default=None,
+fixed_eps_option = click.option("--eps", type=FiniteFloat(), default=None,
                                 help="Hold epsilon fixed at this value and fit beta only.")
-fixed_beta_option = click.option("--beta", type=float, default=None,
+fixed_beta_option = click.option("--beta", type=FiniteFloat(), default=None,
                                  help="Hold beta fixed at this value and fit epsilon only.")
-eps_range_option = click.option("--eps-range", type=float, nargs=2, default=(0.0, 1.0),
+eps_range_option = click.option("--eps-range", type=FiniteFloat(), nargs=2, default=(0.0, 1.0),
                                 show_default=True, metavar="MIN MAX",
                                 help="Search range of epsilon (within [0, 1]).")
-beta_range_option = click.option("--beta-range", type=float, nargs=2, default=(0.0, 1.0),
+beta_range_option = click.option("--beta-range", type=FiniteFloat(), nargs=2, default=(0.0, 1.0),
                                  show_default=True, metavar="MIN MAX",
                                  help="Search range of beta; the sheet's constraint is "
                                       "beta <= 1 (wider ranges are flagged).")
@@ -48,7 +56,7 @@ def _key_value(item: str, allowed, option: str, form: str) -> tuple[str, str]:
     key, sep, text = item.partition("=")
     key = key.strip()
     if not sep or key not in allowed:
-        raise ValueError(f"{option} must be {form} with KEY one of {', '.join(allowed)}; "
+        raise InputError(f"{option} must be {form} with KEY one of {', '.join(allowed)}; "
                          f"got {item!r}")
     return key, text
 
@@ -63,9 +71,50 @@ def parse_free(items) -> dict:
         key, text = _key_value(item, FREE_KEYS, "--free", 'KEY="LO,HI"')
         parts = [t.strip() for t in text.strip().strip('"').split(",")]
         if len(parts) != 2:
-            raise ValueError(f"--free {key}: give two bounds separated by a comma, got {text!r}")
+            raise InputError(f"--free {key}: give two bounds separated by a comma, got {text!r}")
         kind = _kind_of(key)
         out[key] = tuple(parse(t, kind, f"--free {key}") for t in parts)
+    return out
+
+
+def _shown(value, kind: str, units: str) -> dict:
+    """{"value", "unit"} of an SI value of ``kind`` in ``units``."""
+    from ..io.units import convert
+
+    shown, unit = convert(float(value), kind, units)
+    return {"value": float(shown), "unit": unit}
+
+
+#: SI unit labels of FitResult.to_dict() -> (unit kind, power): the fields converted to the
+#: user's units in ``--json``; unit-free fields (a chi-square) stay as they are.
+_SI_LABELS = {"m/s": ("velocity", 1), "m^2/s^2": ("velocity", 2), "(m/s)^2": ("velocity", 2)}
+
+
+def fit_json(data: dict, units: str) -> dict:
+    """FitResult.to_dict() (SI) with its velocities, yaw rates and velocity-squared costs in
+    ``units``, each with its unit, and ``units`` naming the system."""
+    from ..io.units import convert
+
+    out = dict(data)
+    for key in [k for k in data if k.endswith("_unit")]:
+        field, label = key.removesuffix("_unit"), data[key]
+        if label not in _SI_LABELS or field not in data:
+            continue
+        kind, power = _SI_LABELS[label]
+        factor, unit = convert(1.0, kind, units)
+        scale = float(factor) ** power
+        out[field] = data[field] * scale
+        out[key] = unit if power == 1 else f"({unit})^2"
+        if field == "cost":
+            out["minima"] = [dict(m, cost=m["cost"] * scale) for m in data.get("minima", [])]
+            out["gradient"] = {k: v * scale for k, v in data.get("gradient", {}).items()}
+    fv, uv = convert(1.0, "velocity", units)
+    fw, uw = convert(1.0, "angular_velocity", units)
+    out["residuals"] = {name: value * float(fv if name.startswith("velocity") else fw)
+                        for name, value in data.get("residuals", {}).items()}
+    out["residual_units"] = {name: uv if name.startswith("velocity") else uw
+                             for name in data.get("residuals", {})}
+    out["units"] = units
     return out
 
 
@@ -134,12 +183,17 @@ def fit(case_name, include_yaw, eps, beta, eps_range, beta_range, free, units, a
     result = _fit(case, include_yaw, eps, beta, eps_range, beta_range, parse_free(free))
     ident = result.identifiability
     if as_json:
-        data = result.to_dict()
+        data = fit_json(result.to_dict(), units)
         if free:
+            shown = {k: _shown(v, _kind_of(k), units) for k, v in result.values.items()}
+            data["values"] = {k: s["value"] for k, s in shown.items()}
+            data["value_units"] = {k: s["unit"] for k, s in shown.items()}
             data["identifiability"] = ident.to_dict() if ident is not None else None
         echo_json(data)
         return
     solved = result.result
+    for text in [*case.notes, *solved.problems()]:     # before the table
+        click.echo(f"warning: {text}", err=True)
     fv, uv = convert(1.0, "velocity", units)
     fw, uw = convert(1.0, "angular_velocity", units)
     fixed = f" (fixed: {', '.join(result.fixed)})" if result.fixed else ""
@@ -179,8 +233,34 @@ def fit(case_name, include_yaw, eps, beta, eps_range, beta_range, free, units, a
         f, unit = (fv, uv) if row["unit"] == "m/s" else (fw, uw)
         model, meas = row["fitted"] * f, row["measured"] * f
         click.echo(f"  {row['name']:<14} {model:10.4f} {meas:10.4f} {model - meas:10.4f}  {unit}")
-    for text in solved.problems():
-        click.echo(f"warning: {text}", err=True)
+
+
+def _factor(kind, units: str) -> tuple[float, str]:
+    """Display factor and unit of a quantity kind (None: dimensionless)."""
+    from ..io.units import convert
+
+    if kind is None:
+        return 1.0, "-"
+    value, unit = convert(1.0, kind, units)
+    return float(value), unit
+
+
+def sensitivity_json(sens, units: str) -> dict:
+    """Sensitivity.to_dict() with every value, sigma and derivative in ``units``."""
+    from ..analysis.sensitivity import INPUTS, SENSITIVITY_OUTPUTS
+
+    data = sens.to_dict()
+    for name, entry in data["outputs"].items():
+        fo, uo = _factor(SENSITIVITY_OUTPUTS[name].kind, units)
+        entry["value"] *= fo
+        entry["unit"] = uo
+        for row in entry["inputs"]:
+            fi, ui = _factor(INPUTS[row["input"]].kind, units)
+            row.update(sigma=row["sigma"] * fi, sigma_unit=ui,
+                       per_unit=row["per_unit"] * fo / fi, per_unit_unit=_ratio_unit(uo, ui),
+                       per_sigma=row["per_sigma"] * fo)
+    data["units"] = units
+    return data
 
 
 def _ratio_unit(out_unit: str, in_unit: str) -> str:
@@ -212,16 +292,17 @@ def _parse_sigma(items) -> dict:
 @click.command()
 @case_argument
 @include_yaw_option
-@click.option("--eps", type=float, default=None,
+@click.option("--eps", type=FiniteFloat(), default=None,
               help="Evaluate delta-V at this epsilon instead of fitting.")
-@click.option("--beta", type=float, default=None,
+@click.option("--beta", type=FiniteFloat(), default=None,
               help="Evaluate delta-V at this beta instead of fitting.")
 @click.option("--sigma", "sigmas", multiple=True, metavar="KEY=VALUE",
               help="Override a typical uncertainty, e.g. --sigma point='0.2 m' "
                    "--sigma normal_angle='3 deg' --sigma mass_fraction=0.05. Keys: point, "
                    "normal_angle, mass_fraction, inertia_fraction, velocity, yaw_rate, "
                    "measured_velocity, measured_yaw_rate.")
-@click.option("--top", type=int, default=None, help="Show only the N largest effects.")
+@click.option("--top", type=click.IntRange(min=1), default=None,
+              help="Show only the N largest effects.")
 @units_option
 @json_option
 def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
@@ -233,7 +314,6 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
     from ..analysis.sensitivity import INPUTS, SENSITIVITY_OUTPUTS
     from ..analysis.sensitivity import sensitivity as compute
     from ..io.casefile import load_case
-    from ..io.units import convert
 
     case = load_case(case_name)
     require_brach(case, "pim sensitivity")
@@ -241,14 +321,8 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
     sens = compute(case, eps=eps, beta=beta, uncertainty=_parse_sigma(sigmas),
                    include_yaw=include_yaw)
     if as_json:
-        echo_json(sens.to_dict())
+        echo_json(sensitivity_json(sens, units))
         return
-
-    def factor(kind):
-        if kind is None:
-            return 1.0, "-"
-        value, unit = convert(1.0, kind, units)
-        return float(value), unit
 
     how = ("fitted to the measured motion" if sens.fit is not None
            else "at fixed epsilon, beta (nothing measured)")
@@ -261,7 +335,7 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
                    "(derivative 0)")
     for k, out in enumerate(sens.outputs):
         label, out_kind = SENSITIVITY_OUTPUTS[out].label, SENSITIVITY_OUTPUTS[out].kind
-        fo, uo = factor(out_kind)
+        fo, uo = _factor(out_kind, units)
         click.echo("")
         click.echo(f"{label} = {sens.values[k] * fo:.5g} {uo if uo != '-' else ''}".rstrip()
                    + ("  (includes the refit of epsilon, beta)"
@@ -272,7 +346,7 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
         rows = []
         for i in sens.ranked(out)[:top]:
             in_label, in_kind = INPUTS[sens.inputs[i]].label, INPUTS[sens.inputs[i]].kind
-            fi, ui = factor(in_kind)
+            fi, ui = _factor(in_kind, units)
             rows.append((in_label, f"{sens.sigma[i] * fi:.4g} {ui}",
                          f"{sens.derivative[k, i] * fo / fi:+.4g}",
                          _ratio_unit(uo, ui),

@@ -3,20 +3,24 @@
 pim's own commands are defined here; commands of the layers above it (``pim sim``,
 ``pim compare`` ...) are registered by their packages under the ``pim.commands`` entry-point
 group and loaded only when used, so that ``pim/`` never imports ``sim/`` or
-``comparisons/``. Any ``ValueError`` (bad input) becomes a one-line message and exit code 2.
+``comparisons/``. A :class:`pim.InputError` (bad input) or a click usage error becomes a
+one-line message and exit code 2; any other exception is a bug and keeps its traceback.
 """
 
 from __future__ import annotations
 
 import json
+import math
 import sys
 from importlib.metadata import entry_points
 
 import click
 
+from ..model.numbers import InputError
 from ..model.plausibility import warnings_of
 
-__all__ = ["main", "cli", "case_argument", "eps_option", "beta_option", "units_option",
+__all__ = ["main", "cli", "FiniteFloat",
+           "case_argument", "eps_option", "beta_option", "units_option",
            "json_option", "echo_json", "friction_limit_option", "cap_friction_option",
            "solve_with_options", "warnings_of", "NO_IMPACT_EXIT_CODE", "law_options",
            "require_brach"]
@@ -49,11 +53,38 @@ def cli():
     """
 
 
+class FiniteFloat(click.ParamType):
+    """A finite float (``nan`` and ``inf`` are usage errors), optionally in [low, high]."""
+
+    name = "float"
+
+    def __init__(self, low: float | None = None, high: float | None = None):
+        self.low, self.high = low, high
+
+    def _range(self) -> str:
+        if self.low is not None and self.high is not None:
+            return f" in [{self.low:g}, {self.high:g}]"
+        return f" >= {self.low:g}" if self.low is not None else ""
+
+    def convert(self, value, param, ctx):
+        if isinstance(value, float):
+            number = value
+        else:
+            try:
+                number = float(value)
+            except (TypeError, ValueError):
+                self.fail(f"{value!r} is not a number", param, ctx)
+        if not math.isfinite(number) or (self.low is not None and number < self.low) or (
+                self.high is not None and number > self.high):
+            self.fail(f"{value!r} is not a finite number{self._range()}", param, ctx)
+        return number
+
+
 case_argument = click.argument("case_name", metavar="CASE")
-eps_option = click.option("--eps", type=float, default=None,
+eps_option = click.option("--eps", type=FiniteFloat(0.0, 1.0), default=None,
                           help="Coefficient of restitution epsilon in [0, 1] "
                                "(default: the case's impact.restitution).")
-beta_option = click.option("--beta", type=float, default=None,
+beta_option = click.option("--beta", type=FiniteFloat(), default=None,
                            help="Fraction of the critical impulse ratio, mu = beta mu0 "
                                 "(default: the case's impact.beta, else 1).")
 units_option = click.option("--units", type=click.Choice(["si", "us"]), default=None,
@@ -90,7 +121,7 @@ def cases():
 
 
 friction_limit_option = click.option(
-    "--friction-limit", type=click.FloatRange(min=0), default=None,
+    "--friction-limit", type=FiniteFloat(low=0.0), default=None,
     help="Warn when |mu| = |Pt/Pn| exceeds this friction coefficient (default: no limit).")
 cap_friction_option = click.option(
     "--cap-friction", is_flag=True,
@@ -104,11 +135,11 @@ def law_options(command):
     from ..model.case import LAWS
 
     command = click.option(
-        "--mu-c", "mu_c", type=float, default=None,
+        "--mu-c", "mu_c", type=FiniteFloat(), default=None,
         help="Contact friction mu_c >= 0 between the vehicles (kudlich-slibar), or the cap "
              "of brach-capped (default: the case's impact.contact_friction).")(command)
     command = click.option(
-        "--k", "k", type=float, default=None,
+        "--k", "k", type=FiniteFloat(), default=None,
         help="Restitution k in [0, 1] of the kudlich-slibar law (the restitution impulse is "
              "k times the compression impulse; default: the case's impact.restitution).")(
         command)
@@ -125,43 +156,46 @@ def _law_parameters(case, eps, beta, friction_limit, cap_friction, law, k, mu_c)
 
     if cap_friction:
         if law not in (None, "brach-capped"):
-            raise ValueError(f"--cap-friction is law brach-capped; it contradicts --law {law}")
+            raise InputError(f"--cap-friction is law brach-capped; it contradicts --law {law}")
         if friction_limit is None and mu_c is None:
-            raise ValueError("--cap-friction needs --friction-limit")
+            raise InputError("--cap-friction needs --friction-limit")
         law, mu_c = "brach-capped", friction_limit if mu_c is None else mu_c
     law = law_of(case, law)
     if k is not None:
         if law != "kudlich-slibar":
-            raise ValueError(f"--k is the restitution of law kudlich-slibar (law is {law}; "
+            raise InputError(f"--k is the restitution of law kudlich-slibar (law is {law}; "
                              f"use --eps)")
         if eps is not None:
-            raise ValueError("give --k or --eps, not both")
+            raise InputError("give --k or --eps, not both")
         eps = float(check_restitution(k, "--k (restitution)"))
     if law == "kudlich-slibar" and beta is not None:
-        raise ValueError("--beta does not apply to law kudlich-slibar (use --k and --mu-c)")
+        raise InputError("--beta does not apply to law kudlich-slibar (use --k and --mu-c)")
     if mu_c is not None:
         if law == "brach":
-            raise ValueError("--mu-c needs --law kudlich-slibar or brach-capped")
+            raise InputError("--mu-c needs --law kudlich-slibar or brach-capped")
         mu_c = float(check_contact_friction(mu_c, "--mu-c (contact friction)"))
     return law, eps, beta, mu_c
 
 
 def solve_with_options(case, eps, beta, friction_limit=None, cap_friction=False, law=None,
-                       k=None, mu_c=None):
+                       k=None, mu_c=None, units=None):
     """Solve ``case`` as the commands do: under the case's impact law or ``law``
     (:func:`pim.solve_law`); ``cap_friction`` is law "brach-capped" capped at
     ``friction_limit``.
 
-    Raises ValueError for a bad or contradictory option, and click's Exit(1) after one line
-    on stderr when the vehicles do not approach at C (no impact).
+    Raises InputError for a bad or contradictory option, and click's Exit(1) after one line
+    on stderr when the vehicles do not approach at C (no impact), with the approach
+    velocity in ``units`` (default: the case's).
     """
+    from ..io.units import convert
     from ..model.impact_laws import solve_law
     from ..model.plausibility import no_impact_message
 
     law, eps, beta, mu_c = _law_parameters(case, eps, beta, friction_limit, cap_friction, law,
                                            k, mu_c)
     result = solve_law(case, law, eps, beta, mu_c)
-    message = no_impact_message(result)
+    scale, label = convert(1.0, "velocity", units or case.units)
+    message = no_impact_message(result, label, float(scale))
     if message:
         click.echo(message, err=True)
         raise click.exceptions.Exit(NO_IMPACT_EXIT_CODE)
@@ -173,7 +207,7 @@ def require_brach(case, command: str) -> None:
     which ``command`` cannot apply yet: never silently Brach's answer instead."""
     law = case.impact.law or "brach"
     if law != "brach":
-        raise ValueError(f"{command} cannot use impact law {law!r} yet (only 'brach'); "
+        raise InputError(f"{command} cannot use impact law {law!r} yet (only 'brach'); "
                          f"`pim solve` can, or set impact.law = \"brach\"")
 
 
@@ -203,10 +237,11 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, unit
 
     case = load_case(case_name)
     units = units or case.units
-    result = solve_with_options(case, eps, beta, friction_limit, cap_friction, law, k, mu_c)
+    result = solve_with_options(case, eps, beta, friction_limit, cap_friction, law, k, mu_c,
+                                units)
     if result.q_singular.any():
         problems = result.problems()
-        raise ValueError(problems[0] if problems else "q is singular")
+        raise InputError(problems[0] if problems else "q is singular")
     warnings = warnings_of(case, result, friction_limit)
     rows = summarize(result, units)
     law = getattr(result, "law", None) or ("brach-capped" if cap_friction
@@ -216,9 +251,9 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, unit
                    "admissible": bool(result.admissible), "problems": warnings,
                    "results": rows_to_json(rows)})
         return
-    click.echo(format_table(rows, _title(case, result, law)))
-    for text in warnings:
+    for text in warnings:       # before the table, where a reader sees them
         click.echo(f"warning: {text}", err=True)
+    click.echo(format_table(rows, _title(case, result, law)))
 
 
 def _title(case, result, law: str) -> str:
@@ -298,7 +333,7 @@ def _main(argv) -> int:
     except Terminated:
         click.echo("terminated", err=True)
         return 143
-    except ValueError as exc:
+    except InputError as exc:
         click.echo(f"error: {exc}", err=True)
         return 2
     except OSError as exc:      # e.g. a disk full or a folder removed while writing

@@ -6,7 +6,8 @@ for the ``[unknown]`` table, the linear-momentum check beside it, and a Monte Ca
 stated uncertainties (``--samples``) for each unknown's 5/50/95 % and its driving inputs.
 Prints the table in the case's units (``--units`` to change; speeds in mph in US units, the
 customary unit of impact speeds); ``--json`` prints each unknown
-by its dotted name with its value and percentiles in SI. Writes DIR/report.md,
+by its dotted name with its value, percentiles and unit in the same units (``units`` names
+the system), and the momentum check beside them. Writes DIR/report.md,
 DIR/reconstruction.csv and, with evidence, DIR/scene.png and DIR/reconstruction.mp4 (the
 reconstructed crash from the impact to rest).
 
@@ -27,6 +28,7 @@ from ..io.casefile import load_case
 from ..io.files import save_figure, write_text
 from ..io.units import convert
 from ..model.evidence import UNKNOWN_KINDS
+from ..model.numbers import InputError
 from ..plotting.reconstruction_animation import write_reconstruction_mp4
 from ..plotting.reconstruction_scene import reconstruction_figure
 from .main import case_argument, echo_json, json_option, require_brach, units_option
@@ -52,8 +54,19 @@ def reconstruction_rows(rec: Reconstruction, units: str) -> list[dict]:
             rows.append({"name": f"momentum check: vehicle{i}.speed", "unit": unit,
                          "value": float(values[0]), "p5": float("nan"), "p50": float("nan"),
                          "p95": float("nan"), "driver": f"1 sd = {float(values[1]):.3g} {unit}",
-                         "driver_index": float("nan")})
+                         "driver_index": float("nan"), "sd": float(values[1])})
     return rows
+
+
+def spread_text(row: dict, samples: int, sep: str = ", ") -> str:
+    """"[p5, p50, p95]" of a table row, or why there is none (never "[nan, nan, nan]")."""
+    if row["name"].startswith("momentum check"):
+        return f"({row['driver']})"
+    if not samples:
+        return "(5/50/95 %: not computed, --samples 0)"
+    if row["p5"] != row["p5"]:
+        return "(5/50/95 %: no usable Monte Carlo sample)"
+    return f"[{row['p5']:.4g}{sep}{row['p50']:.4g}{sep}{row['p95']:.4g}]"
 
 
 def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
@@ -71,8 +84,9 @@ def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
     for r in rows:
         driver = (f"{r['driver']} ({r['driver_index']:.2f})" if r["driver_index"] == r[
             "driver_index"] else r["driver"])
-        lines.append(f"| {r['name']} | {r['value']:.4g} | {r['p5']:.4g} | {r['p50']:.4g} | "
-                     f"{r['p95']:.4g} | {r['unit']} | {driver} |")
+        spread = (f"{r['p5']:.4g} | {r['p50']:.4g} | {r['p95']:.4g}" if r["p5"] == r["p5"]
+                  else " | ".join(["-"] * 3))
+        lines.append(f"| {r['name']} | {r['value']:.4g} | {spread} | {r['unit']} | {driver} |")
     lines.append("")
     if rec.samples:
         lines += ["## What drives each unknown's spread", "",
@@ -89,6 +103,19 @@ def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
     if with_scene and with_video:
         lines += ["", "Animation from the impact to rest: [reconstruction.mp4](reconstruction.mp4)"]
     return "\n".join(lines) + "\n"
+
+
+def _json(case, rows: list[dict], samples: int, messages, units: str) -> dict:
+    """``--json``'s data: every value in ``units`` with its unit (NaN becomes null)."""
+    def pick(r, keys):
+        return {"unit": r["unit"], **{k: r[k] for k in keys}}
+
+    unknowns = [r for r in rows if not r["name"].startswith("momentum check")]
+    momentum = [r for r in rows if r["name"].startswith("momentum check")]
+    return {"case": case.name, "units": units, "samples": samples, "messages": messages,
+            "unknowns": {r["name"]: pick(r, ("value", "p5", "p50", "p95")) for r in unknowns},
+            "momentum_check": {r["name"].removeprefix("momentum check: "): pick(r, ("value",))
+                               | {"sd": r["sd"]} for r in momentum}}
 
 
 @click.command()
@@ -117,24 +144,22 @@ def reconstruct(case_name, out, samples, seed, workers, video, units, as_json):
     else:
         rec = run_reconstruction(case, samples=samples, seed=seed)
     if not rec.determined:
-        raise ValueError(next((m for m in rec.messages if "under-determined" in m
+        raise InputError(next((m for m in rec.messages if "under-determined" in m
                                or "family" in m or "equally well" in m),
                               "; ".join(rec.messages)))
     rows = reconstruction_rows(rec, units)
     if as_json:
-        echo_json({"case": case.name, "units": "si", "samples": samples,
-                   "messages": rec.messages,
-                   "goodness_of_fit": rec.goodness.to_dict() if rec.goodness else None,
-                   "unknowns": {r["name"]: {k: r[k] for k in ("value", "p5", "p50", "p95")}
-                                for r in rec.table()}})
+        data = _json(case, rows, samples, rec.messages, units)
+        data["goodness_of_fit"] = rec.goodness.to_dict() if rec.goodness else None
+        echo_json(data)
     else:
+        for message in rec.messages:        # before the table, where a reader sees them
+            click.echo(f"warning: {message}")
         for r in rows:
-            click.echo(f"{r['name']:32s} {r['value']:10.4g}  [{r['p5']:.4g}, {r['p50']:.4g}, "
-                       f"{r['p95']:.4g}] {r['unit']}")
+            click.echo(f"{r['name']:32s} {r['value']:10.4g} {r['unit']}  "
+                       f"{spread_text(r, samples)}")
         if rec.goodness is not None:
             click.echo(f"goodness of fit: {rec.goodness.summary()}")
-        for message in rec.messages:
-            click.echo(f"warning: {message}")
     if out:
         directory = Path(out)
         directory.mkdir(parents=True, exist_ok=True)

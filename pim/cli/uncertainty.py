@@ -6,7 +6,15 @@ import math
 
 import click
 
-from .main import case_argument, echo_json, json_option, require_brach, units_option
+from ..model.numbers import InputError
+from .main import (
+    FiniteFloat,
+    case_argument,
+    echo_json,
+    json_option,
+    require_brach,
+    units_option,
+)
 
 __all__ = ["uncertainty", "SampleCount"]
 
@@ -36,8 +44,10 @@ class SampleCount(click.ParamType):
               help="Number of Monte Carlo samples (e.g. 100000 or 1e8; over 524288 they are "
                    "solved chunk by chunk on bounded memory).")
 @click.option("--seed", type=int, default=0, show_default=True, help="Random seed.")
-@click.option("--eps", type=float, default=None, help="Nominal epsilon (default: the case's).")
-@click.option("--beta", type=float, default=None, help="Nominal beta (default: the case's).")
+@click.option("--eps", type=FiniteFloat(), default=None,
+              help="Nominal epsilon (default: the case's).")
+@click.option("--beta", type=FiniteFloat(), default=None,
+              help="Nominal beta (default: the case's).")
 @click.option("--png", "png", type=click.Path(dir_okay=False), default=None,
               help="Write histograms of the outputs to this PNG (or .svg) file.")
 @click.option("--top", type=click.IntRange(min=1), default=3, show_default=True,
@@ -65,7 +75,7 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, progress, units, 
     units = units or case.units
     need, free = memory_estimate(samples), available_memory()
     if free is not None and need > free:
-        raise ValueError(f"--samples {samples:,} needs about {need / 2**30:.1f} GiB of memory "
+        raise InputError(f"--samples {samples:,} needs about {need / 2**30:.1f} GiB of memory "
                          f"and {free / 2**30:.1f} GiB are available")
     with tqdm(total=samples, unit="sample", unit_scale=True, desc="Monte Carlo", leave=False,
               disable=None if progress is None else not progress) as bar:
@@ -92,6 +102,8 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, progress, units, 
                    "admissible": result.n_admissible, "problems": result.problems,
                    "units": units, "outputs": rows})
         return
+    for text in result.problems:        # before the table, where a reader sees them
+        click.echo(f"warning: {text}; those samples are left out", err=True)
     click.echo(f"{case.name}: {result.n:,} samples (seed {seed}), "
                f"{result.n_admissible:,} admissible")
     width = max(len(r["label"]) for r in rows)
@@ -102,7 +114,5 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, progress, units, 
                             for c in r["sensitivity"][:top])
         click.echo(f"{r['label']:<{width}}  {r['unit']:>6}  {r['nominal']:>10.4g}  "
                    f"{r['p5']:>10.4g}  {r['p50']:>10.4g}  {r['p95']:>10.4g}  {contrib}")
-    for text in result.problems:
-        click.echo(f"warning: {text}; those samples are left out", err=True)
     if png:
         click.echo(f"histograms: {png}")

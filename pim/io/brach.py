@@ -18,13 +18,15 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..model.numbers import InputError
+
 __all__ = ["heading_from_theta", "cg_from_brach", "brach_arms", "brach_angles"]
 
 
 def heading_from_theta(theta, vehicle: int) -> np.ndarray:
     """True heading [rad] from Brach's theta [rad]; vehicle 1's datum is rotated by pi."""
     if vehicle not in (1, 2):
-        raise ValueError(f"vehicle must be 1 or 2, got {vehicle}")
+        raise InputError(f"vehicle must be 1 or 2, got {vehicle}")
     theta = np.asarray(theta, dtype=float)
     return theta + np.pi if vehicle == 1 else theta
 
@@ -36,7 +38,7 @@ def cg_from_brach(theta, phi, d, vehicle: int, point=(0.0, 0.0)) -> np.ndarray:
     """
     d = np.asarray(d, dtype=float)
     if (d < 0).any() or not np.isfinite(d).all():
-        raise ValueError("d (distance CG to C) must be >= 0 [m]")
+        raise InputError("d (distance CG to C) must be >= 0 [m]")
     angle = heading_from_theta(theta, vehicle) + np.asarray(phi, dtype=float)
     arm = d[..., None] * np.stack([np.cos(angle), np.sin(angle)], axis=-1)
     return np.asarray(point, dtype=float) - arm

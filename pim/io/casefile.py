@@ -1,8 +1,10 @@
 """Case files: TOML descriptions of an impact, with units, in global or Brach form.
 
 A case file names each quantity with units (``"31.09 ft/s"``, ``"2255.4 lbf"``, ``"90 deg"``,
-``"976 slug*ft**2"``) or as a bare SI number. Unknown keys are errors, so a typo is never
-silently ignored. Layout (global form; see ``pim/io/cases/ricsac9.toml``)::
+``"976 slug*ft**2"``) with nothing after the unit, or as a bare SI number (a bare angle is
+radians: refused beyond 2 pi, where degrees were surely meant, and warned about within it).
+Unknown keys are errors, so a typo is never silently ignored; every error is a
+:class:`pim.InputError` naming the field. Layout (global form; see ``pim/io/cases/ricsac9.toml``)::
 
     name = "ricsac9"
     description = "..."
@@ -14,6 +16,7 @@ silently ignored. Layout (global form; see ``pim/io/cases/ricsac9.toml``)::
     velocity = ["-31.09 ft/s", 0]
     yaw_rate = "0 deg/s"
     length = "4.1 m"                # optional, with width: outline for drawing
+    cg_to_front = "1.9 m"           # optional: CG to front bumper (default length / 2)
     [impact]
     point = [0, 0]
     normal_angle = "0 deg"          # Gamma: n points from vehicle 2 toward vehicle 1
@@ -45,39 +48,46 @@ from pathlib import Path
 import numpy as np
 
 from ..model.case import Case, Impact, Vehicle
+from ..model.numbers import InputError
 from ..model.plausibility import bare_angle_warning
 from .brach import cg_from_brach, heading_from_theta
 from .evidence_table import parse_evidence, parse_unknown
 from .measured_table import parse_measured
 from .toml_tables import check_keys
 from .uncertainty_table import parse_uncertainty
-from .units import parse, registry, unit_system_of
+from .units import LIMITS, parse, registry, unit_system_of
 
 __all__ = ["load_case", "list_cases", "parse_case"]
 
 _TOP = {"name", "description", "source", "convention", "vehicle1", "vehicle2", "impact",
         "measured", "uncertainty", "evidence", "unknown"}
 _VEHICLE = {"mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
-            "length", "width", "fixed", "cg", "heading", "theta", "phi", "d"}
+            "length", "width", "cg_to_front", "fixed", "cg", "heading", "theta", "phi", "d"}
+
+#: Deepest nesting of tables and lists a case file may have: the deepest legitimate value,
+#: ``[measured] vehicle1.velocity = [..]``, sits at depth 4.
+MAX_DEPTH = 8
+#: Longest ``name``, ``description`` or ``source`` [characters].
+MAX_TEXT = {"name": 200, "description": 10_000, "source": 10_000}
 _IMPACT = {"point", "normal_angle", "restitution", "beta", "law", "contact_friction"}
 
 
 def _require(table: dict, key: str, where: str):
     if key not in table:
-        raise ValueError(f"{where}.{key} is missing")
+        raise InputError(f"{where}.{key} is missing")
     return table[key]
 
 
 def _pair(value, kind: str, field: str) -> np.ndarray:
     if not isinstance(value, list) or len(value) != 2:
-        raise ValueError(f"{field} must be a list of two values [x, y], got {value!r}")
+        raise InputError(f"{field} must be a list of two values [x, y], got {value!r}")
     return np.array([parse(value[0], kind, f"{field}[0]"), parse(value[1], kind, f"{field}[1]")])
 
 
 def _one_of(table: dict, a: str, b: str, where: str) -> str:
     present = [k for k in (a, b) if k in table]
     if len(present) != 1:
-        raise ValueError(f"{where}: give exactly one of {a!r} or {b!r}")
+        raise InputError(f"{where}: give exactly one of {a!r} or {b!r}")
     return present[0]
 
 
@@ -90,11 +100,11 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int)
     placement = {"global": ("cg", "heading"), "brach": ("theta", "phi", "d")}[convention]
     stray = sorted(set(table) & ({"cg", "heading", "theta", "phi", "d"} - set(placement)))
     if stray:
-        raise ValueError(f"{where}: key {stray[0]!r} does not belong to the {convention!r} "
+        raise InputError(f"{where}: key {stray[0]!r} does not belong to the {convention!r} "
                          f"convention (use {', '.join(placement)})")
     fixed = table.get("fixed", False)
     if not isinstance(fixed, bool):
-        raise ValueError(f"{where}.fixed must be true or false")
+        raise InputError(f"{where}.fixed must be true or false")
     if convention == "global" and fixed:
         cg = _pair(table["cg"], "length", f"{where}.cg") if "cg" in table else point
         heading = parse(table.get("heading", 0.0), "angle", f"{where}.heading")
@@ -109,35 +119,43 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int)
         heading = float(heading_from_theta(theta, number))
     length = _optional(table, "length", "length", where)
     width = _optional(table, "width", "length", where)
+    cg_to_front = _optional(table, "cg_to_front", "length", where)
 
     if fixed:
         if number == 1:
-            raise ValueError(f"{where}.fixed: only vehicle2 may be a fixed obstacle")
+            raise InputError(f"{where}.fixed: only vehicle2 may be a fixed obstacle")
         extra = sorted(set(table) & {"mass", "weight", "yaw_inertia", "radius_of_gyration",
                                      "velocity", "yaw_rate"})
         if extra:
-            raise ValueError(f"{where}.{extra[0]}: a fixed obstacle has no {extra[0]}")
-        return _wrap(where, Vehicle.obstacle, cg=cg, heading=heading, length=length, width=width)
+            raise InputError(f"{where}.{extra[0]}: a fixed obstacle has no {extra[0]}")
+        return _wrap(where, Vehicle.obstacle, cg=cg, heading=heading, length=length, width=width,
+                     cg_to_front=cg_to_front)
 
     if _one_of(table, "mass", "weight", where) == "mass":
         mass = parse(table["mass"], "mass", f"{where}.mass")
     else:
         weight = parse(table["weight"], "force", f"{where}.weight")
         if weight <= 0:
-            raise ValueError(f"{where}.weight must be > 0, got {table['weight']!r}")
+            raise InputError(f"{where}.weight must be > 0, got {table['weight']!r}")
         mass = weight / registry().Quantity(1, "standard_gravity").to("m/s**2").magnitude
     if _one_of(table, "yaw_inertia", "radius_of_gyration", where) == "yaw_inertia":
         inertia = parse(table["yaw_inertia"], "inertia", f"{where}.yaw_inertia")
     else:
         k = parse(table["radius_of_gyration"], "length", f"{where}.radius_of_gyration")
         if k <= 0:
-            raise ValueError(f"{where}.radius_of_gyration must be > 0, "
+            raise InputError(f"{where}.radius_of_gyration must be > 0, "
                              f"got {table['radius_of_gyration']!r}")
         inertia = mass * k * k
+        low, high = LIMITS["inertia"]
+        if mass > 0 and not low <= inertia <= high:
+            raise InputError(f"{where}.radius_of_gyration = {table['radius_of_gyration']!r} "
+                             f"gives a yaw inertia m k^2 = {inertia:.3g} kg m^2 outside "
+                             f"[{low:g}, {high:g}] kg m^2")
     velocity = _pair(_require(table, "velocity", where), "velocity", f"{where}.velocity")
     yaw_rate = parse(table.get("yaw_rate", 0.0), "angular_velocity", f"{where}.yaw_rate")
     return _wrap(where, Vehicle, mass=mass, yaw_inertia=inertia, cg=cg, velocity=velocity,
-                 yaw_rate=yaw_rate, heading=heading, length=length, width=width)
+                 yaw_rate=yaw_rate, heading=heading, length=length, width=width,
+                 cg_to_front=cg_to_front)
 
 
 def _wrap(where: str, factory, **kwargs):
@@ -145,7 +163,7 @@ def _wrap(where: str, factory, **kwargs):
     try:
         return factory(**kwargs)
     except ValueError as exc:
-        raise ValueError(f"{where}.{exc}") from None
+        raise InputError(f"{where}.{exc}") from None
 
 
 def _uncertainty(table):
@@ -162,10 +180,11 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
         Missing or unknown key, bad unit or dimension, or a value out of range; the message
         names the field.
     """
+    _check_depth(data, source)
     data = check_keys(data, _TOP, source)
     convention = data.get("convention", "global")
     if convention not in ("global", "brach"):
-        raise ValueError(f"convention must be 'global' or 'brach', got {convention!r}")
+        raise InputError(f"convention must be 'global' or 'brach', got {convention!r}")
     impact_table = check_keys(_require(data, "impact", source), _IMPACT, "impact")
     if convention == "global" or "point" in impact_table:
         point = _pair(_require(impact_table, "point", "impact"), "length", "impact.point")
@@ -189,13 +208,30 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
     for key, value in (("name", name), ("description", description),
                        ("source", data.get("source", ""))):
         if not isinstance(value, str):
-            raise ValueError(f"{key} must be a string, got {value!r}")
+            raise InputError(f"{key} must be a string, got {value!r}")
+        if len(value) > MAX_TEXT[key]:
+            raise InputError(f"{key} has {len(value)} characters; at most {MAX_TEXT[key]}")
     return Case(vehicle1=vehicles[0], vehicle2=vehicles[1], impact=impact,
                 measured=parse_measured(data.get("measured")), name=name, description=description,
                 uncertainty=_uncertainty(data.get("uncertainty")), units=_unit_system(data),
                 notes=_angle_notes(data),
                 evidence=parse_evidence(data.get("evidence")),
                 unknown=parse_unknown(data.get("unknown")))
+
+
+def _check_depth(data, source: str) -> None:
+    """InputError when tables and lists nest deeper than :data:`MAX_DEPTH` (walked without
+    recursion, so any depth is answered in linear time)."""
+    stack = [(data, 0)]
+    while stack:
+        value, depth = stack.pop()
+        if depth > MAX_DEPTH:
+            raise InputError(f"{source}: tables and lists nest {depth} deep; a case file "
+                             f"nests at most {MAX_DEPTH} deep")
+        if isinstance(value, dict):
+            stack.extend((v, depth + 1) for v in value.values())
+        elif isinstance(value, list):
+            stack.extend((v, depth + 1) for v in value)
 
 
 def _angle_notes(data) -> tuple[str, ...]:
@@ -212,17 +248,15 @@ def _angle_notes(data) -> tuple[str, ...]:
 
 def _unit_system(data) -> str:
     """"us" when any quantity string of the file uses a US customary unit, else "si"."""
-    def strings(x):
+    stack, systems = [data], set()
+    while stack:
+        x = stack.pop()
         if isinstance(x, dict):
-            for v in x.values():
-                yield from strings(v)
+            stack.extend(x.values())
         elif isinstance(x, list):
-            for v in x:
-                yield from strings(v)
+            stack.extend(x)
         elif isinstance(x, str):
-            yield x
-
-    systems = {unit_system_of(s) for s in strings(data)}
+            systems.add(unit_system_of(x))
     return "us" if "us" in systems else "si"
 
 
@@ -256,13 +290,16 @@ def load_case(name_or_path) -> Case:
         path = Path(key)
         if not path.is_file():
             names = ", ".join(sorted(bundled))
-            raise ValueError(f"case {key!r} is neither a file nor a bundled case ({names})")
+            raise InputError(f"case {key!r} is neither a file nor a bundled case ({names})")
         try:
             text, source = path.read_text(encoding="utf-8"), str(path)
         except (OSError, UnicodeDecodeError) as exc:
-            raise ValueError(f"{path}: cannot read ({exc})") from None
+            raise InputError(f"{path}: cannot read ({exc})") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{source}: malformed TOML ({exc})") from None
+        raise InputError(f"{source}: malformed TOML ({exc})") from None
+    except RecursionError:      # tomllib recurses into nested inline tables and arrays
+        raise InputError(f"{source}: tables and lists nest too deep; a case file nests at "
+                         f"most {MAX_DEPTH} deep") from None
     return parse_case(data, source)

@@ -26,6 +26,8 @@ from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
+from ..model.numbers import InputError
+
 __all__ = ["BarrierTest", "CarToCarVehicle", "RicsacTest", "DATASETS", "load_barrier",
            "load_car_to_car", "load_ricsac", "load_dataset", "data_path", "source_lines"]
 
@@ -154,22 +156,22 @@ class _Rows:
         try:
             text = self.path.read_text(encoding="utf-8")
         except OSError as exc:
-            raise ValueError(f"{self.path}: cannot read ({exc.strerror})") from None
+            raise InputError(f"{self.path}: cannot read ({exc.strerror})") from None
         except UnicodeDecodeError:
-            raise ValueError(f"{self.name}: not UTF-8 text") from None
+            raise InputError(f"{self.name}: not UTF-8 text") from None
         lines = text.splitlines()
         start = 0
         while start < len(lines) and lines[start].startswith("#"):
             start += 1
         if start >= len(lines):
-            raise ValueError(f"{self.name}: no header line")
+            raise InputError(f"{self.name}: no header line")
         header = next(csv.reader([lines[start]]))
         if header != columns:
             missing = [c for c in columns if c not in header]
             extra = [c for c in header if c not in columns]
             detail = (f"missing {missing}" if missing else "") + \
                      (f" unexpected {extra}" if extra else "") or "columns out of order"
-            raise ValueError(f"{self.name} line {start + 1}: header does not match the expected "
+            raise InputError(f"{self.name} line {start + 1}: header does not match the expected "
                              f"columns ({detail.strip()}); expected {','.join(columns)}")
         self.columns = columns
         self.rows = []
@@ -178,11 +180,11 @@ class _Rows:
             if not fields or all(not f.strip() for f in fields):
                 continue
             if len(fields) != len(columns):
-                raise ValueError(f"{self.name} line {line}: {len(fields)} fields, "
+                raise InputError(f"{self.name} line {line}: {len(fields)} fields, "
                                  f"expected {len(columns)}")
             self.rows.append((line, dict(zip(columns, (f.strip() for f in fields), strict=False))))
         if not self.rows:
-            raise ValueError(f"{self.name}: no data rows")
+            raise InputError(f"{self.name}: no data rows")
 
     def number(self, line, row, column, low=-math.inf, high=math.inf, optional=False,
                low_open=False):
@@ -191,15 +193,15 @@ class _Rows:
         if text == "":
             if optional:
                 return None
-            raise ValueError(f"{where}: empty, a number is required")
+            raise InputError(f"{where}: empty, a number is required")
         try:
             value = float(text)
         except ValueError:
-            raise ValueError(f"{where}: {text!r} is not a number") from None
+            raise InputError(f"{where}: {text!r} is not a number") from None
         if not math.isfinite(value):
-            raise ValueError(f"{where}: {text!r} is not a finite number")
+            raise InputError(f"{where}: {text!r} is not a finite number")
         if value < low or value > high or (low_open and value == low):
-            raise ValueError(f"{where}: {value:g} outside the allowed range "
+            raise InputError(f"{where}: {value:g} outside the allowed range "
                              f"{'(' if low_open else '['}{low:g}, {high:g}]")
         return value
 
@@ -212,9 +214,9 @@ class _Rows:
     def text(self, line, row, column, allowed=None, required=True):
         value = row[column]
         if required and not value:
-            raise ValueError(f"{self.name} line {line} column {column!r}: empty")
+            raise InputError(f"{self.name} line {line} column {column!r}: empty")
         if allowed is not None and value not in allowed:
-            raise ValueError(f"{self.name} line {line} column {column!r}: {value!r} is not one "
+            raise InputError(f"{self.name} line {line} column {column!r}: {value!r} is not one "
                              f"of {', '.join(allowed)}")
         return value
 
@@ -223,7 +225,7 @@ class _Rows:
         for r in records:
             k = getattr(r, key)
             if k in seen:
-                raise ValueError(f"{self.name} line {r.line}: duplicate {key} {k!r} "
+                raise InputError(f"{self.name} line {r.line}: duplicate {key} {k!r} "
                                  f"(first on line {seen[k]})")
             seen[k] = r.line
         return records
@@ -242,7 +244,7 @@ def load_barrier(path=None) -> list[BarrierTest]:
         n = rows.reader(line, r)
         year = n("my", 1900, 2100)
         if year != int(year):
-            raise ValueError(f"{rows.name} line {line} column 'my': {year:g} is not a year")
+            raise InputError(f"{rows.name} line {line} column 'my': {year:g} is not a year")
         out.append(BarrierTest(
             test_id=rows.text(line, r, "iihs_id"), group=rows.text(line, r, "group", GROUPS),
             model_year=int(year), vehicle=rows.text(line, r, "vehicle"),
@@ -269,7 +271,7 @@ def load_car_to_car(path=None) -> list[CarToCarVehicle]:
         n = rows.reader(line, r)
         test_id = rows.text(line, r, "iihs_id")
         if test_id[-1:] not in ("a", "b"):
-            raise ValueError(f"{rows.name} line {line} column 'iihs_id': {test_id!r} must end "
+            raise InputError(f"{rows.name} line {line} column 'iihs_id': {test_id!r} must end "
                              "in a or b (the two vehicles of one test)")
         out.append(CarToCarVehicle(
             test_id=test_id, group=rows.text(line, r, "group", ("NS", "SS")),
@@ -284,12 +286,12 @@ def load_car_to_car(path=None) -> list[CarToCarVehicle]:
         by_test.setdefault(v.test_id[:-1], []).append(v)
     for test, pair in by_test.items():
         if len(pair) != 2:
-            raise ValueError(f"{rows.name} line {pair[0].line}: test {test} has {len(pair)} "
+            raise InputError(f"{rows.name} line {pair[0].line}: test {test} has {len(pair)} "
                              "vehicle rows, expected 2 (a and b)")
         a, b = pair
         for attr in ("restitution", "beta", "normal_angle", "group"):
             if getattr(a, attr) != getattr(b, attr):
-                raise ValueError(f"{rows.name} line {b.line}: {attr} of {b.test_id} differs "
+                raise InputError(f"{rows.name} line {b.line}: {attr} of {b.test_id} differs "
                                  f"from {a.test_id} (one impact has one value)")
     return out
 
@@ -318,12 +320,12 @@ def load_ricsac(path=None) -> list[RicsacTest]:
         n = rows.reader(line, r)
         number = n("ricsac", 1, 99)
         if number != int(number):
-            raise ValueError(f"{rows.name} line {line} column 'ricsac': {number:g} is not a "
+            raise InputError(f"{rows.name} line {line} column 'ricsac': {number:g} is not a "
                              "test number")
         given = [c for c in _RICSAC_MOTION if r[c] != ""]
         if given and len(given) != len(_RICSAC_MOTION):
             empty = [c for c in _RICSAC_MOTION if r[c] == ""]
-            raise ValueError(f"{rows.name} line {line} column {empty[0]!r}: empty, but other "
+            raise InputError(f"{rows.name} line {line} column {empty[0]!r}: empty, but other "
                              "motion columns of the row are given (all or none)")
         m = {c: n(c, -100, 100, optional=True) for c in _RICSAC_MOTION if "deg" not in c}
         a = {c: n(c, -360, 360, optional=True) for c in _RICSAC_MOTION if "deg" in c}
@@ -355,5 +357,5 @@ DATASETS = {"iihs-barrier": load_barrier, "iihs-car-to-car": load_car_to_car,
 def load_dataset(name: str, path=None):
     """Records of a bundled dataset by name (see :data:`DATASETS`)."""
     if name not in DATASETS:
-        raise ValueError(f"unknown dataset {name!r} (allowed: {', '.join(DATASETS)})")
+        raise InputError(f"unknown dataset {name!r} (allowed: {', '.join(DATASETS)})")
     return DATASETS[name](path)

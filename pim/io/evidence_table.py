@@ -25,6 +25,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..model.evidence import UNKNOWN_KINDS, Evidence, VehicleEvidence
+from ..model.numbers import InputError
 from .toml_tables import check_keys
 from .units import parse
 
@@ -37,26 +38,26 @@ _WHEEL_WORDS = {"locked": 1.0, "free": 0.0, "free-rolling": 0.0}
 
 def _point(value, where):
     if not isinstance(value, list) or len(value) != 2:
-        raise ValueError(f"{where} must be [x, y], got {value!r}")
+        raise InputError(f"{where} must be [x, y], got {value!r}")
     return np.array([parse(v, "length", f"{where}[{i}]") for i, v in enumerate(value)])
 
 
 def _wheels(value, where):
     values = value if isinstance(value, list) else [value] * 4
     if len(values) != 4:
-        raise ValueError(f"{where} must be one state or four (front-left, front-right, "
+        raise InputError(f"{where} must be one state or four (front-left, front-right, "
                          f"rear-left, rear-right), got {value!r}")
     out = []
     for i, v in enumerate(values):
         if isinstance(v, str):
             if v not in _WHEEL_WORDS:
-                raise ValueError(f"{where}[{i}] must be 'locked', 'free' or a braking "
+                raise InputError(f"{where}[{i}] must be 'locked', 'free' or a braking "
                                  f"fraction in [0, 1], got {v!r}")
             out.append(_WHEEL_WORDS[v])
         else:
             fraction = parse(v, "dimensionless", f"{where}[{i}]")
             if not 0 <= fraction <= 1:
-                raise ValueError(f"{where}[{i}] braking fraction must be in [0, 1], got {v!r}")
+                raise InputError(f"{where}[{i}] braking fraction must be in [0, 1], got {v!r}")
             out.append(fraction)
     return tuple(out)
 
@@ -65,19 +66,19 @@ def _vehicle(table, where) -> VehicleEvidence:
     check_keys(table, _EVIDENCE, where)
     for key in ("rest_position", "rest_heading", "wheelbase", "track", "friction"):
         if key not in table:
-            raise ValueError(f"{where}: missing {key}")
+            raise InputError(f"{where}: missing {key}")
     wheelbase = parse(table["wheelbase"], "length", f"{where}.wheelbase")
     steer = table.get("steer", 0.0)
     if isinstance(steer, list):
         if len(steer) != 4:
-            raise ValueError(f"{where}.steer must be one angle (front wheels) or four")
+            raise InputError(f"{where}.steer must be one angle (front wheels) or four")
         steer = tuple(parse(s, "angle", f"{where}.steer[{i}]") for i, s in enumerate(steer))
     else:
         front = parse(steer, "angle", f"{where}.steer")
         steer = (front, front, 0.0, 0.0)
     points = table.get("path_points", [])
     if not isinstance(points, list):
-        raise ValueError(f"{where}.path_points must be a list of [x, y]")
+        raise InputError(f"{where}.path_points must be a list of [x, y]")
     path = np.array([_point(p, f"{where}.path_points[{i}]") for i, p in enumerate(points)])
     kwargs = {}
     if "position_sigma" in table:
@@ -108,7 +109,7 @@ def parse_evidence(table) -> Evidence | None:
     if table is None:
         return None
     if not isinstance(table, dict) or not set(table) <= {"vehicle1", "vehicle2"}:
-        raise ValueError("evidence must hold [evidence.vehicle1] and/or [evidence.vehicle2]")
+        raise InputError("evidence must hold [evidence.vehicle1] and/or [evidence.vehicle2]")
     return Evidence(**{k: _vehicle(v, f"evidence.{k}") for k, v in table.items()})
 
 
@@ -124,27 +125,27 @@ def parse_unknown(table) -> dict[str, tuple[float, float]] | None:
     if table is None:
         return None
     if not isinstance(table, dict):
-        raise ValueError("unknown must be a table")
+        raise InputError("unknown must be a table")
     flat = {}
     for group, entries in table.items():
         if not isinstance(entries, dict):
-            raise ValueError(f"unknown.{group} must be a table of keys")
+            raise InputError(f"unknown.{group} must be a table of keys")
         for key, spec in entries.items():
             name = f"{group}.{key}"
             if name not in UNKNOWN_KINDS:
-                raise ValueError(f"unknown: {name!r} cannot be solved for "
+                raise InputError(f"unknown: {name!r} cannot be solved for "
                                  f"(allowed: {', '.join(UNKNOWN_KINDS)})")
             if not isinstance(spec, dict) or set(spec) != {"bounds"} or not isinstance(
                     spec["bounds"], list) or len(spec["bounds"]) != 2:
-                raise ValueError(f"unknown.{name} must be {{bounds = [low, high]}}")
+                raise InputError(f"unknown.{name} must be {{bounds = [low, high]}}")
             low, high = (parse(v, UNKNOWN_KINDS[name], f"unknown.{name}.bounds[{i}]")
                          for i, v in enumerate(spec["bounds"]))
             if low > high:
-                raise ValueError(f"unknown.{name}.bounds: low {low:g} must be <= high {high:g}")
+                raise InputError(f"unknown.{name}.bounds: low {low:g} must be <= high {high:g}")
             if key == "speed" and low < 0:
-                raise ValueError(f"unknown.{name}.bounds must be >= 0 m/s (a speed along the "
+                raise InputError(f"unknown.{name}.bounds must be >= 0 m/s (a speed along the "
                                  f"case's direction), got low = {low:g}")
             if key in ("restitution", "beta") and not 0 <= low <= high <= 1:
-                raise ValueError(f"unknown.{name}.bounds must lie in [0, 1]")
+                raise InputError(f"unknown.{name}.bounds must lie in [0, 1]")
             flat[name] = (low, high)
     return flat

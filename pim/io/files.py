@@ -14,6 +14,8 @@ import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 
+from ..model.numbers import InputError
+
 __all__ = ["atomic_path", "write_text", "save_figure", "writable_folder"]
 
 
@@ -58,7 +60,11 @@ def save_figure(fig, path, **savefig_kwargs) -> Path:
     path = Path(path)
     fmt = path.suffix.lstrip(".").lower()
     if not fmt:
-        raise ValueError(f"path {path} needs a suffix naming the format (.png, .svg)")
+        raise InputError(f"path {path} needs a suffix naming the format (.png, .svg)")
+    supported = fig.canvas.get_supported_filetypes()
+    if fmt not in supported:
+        raise InputError(f"path {path}: .{fmt} is no image format matplotlib writes "
+                         f"(use one of {', '.join('.' + k for k in sorted(supported))})")
     # A figure with a layout engine (constrained layout) already fits its labels: a tight
     # bounding box would only draw it a second time.
     tight = {} if fig.get_layout_engine() is not None else {"bbox_inches": "tight"}
@@ -80,12 +86,12 @@ def writable_folder(path, option: str = "--out") -> Path:
     path = Path(path)
     for parent in [path, *path.parents]:
         if parent.exists() and not parent.is_dir():
-            raise ValueError(f"{option} {path}: {parent} is a file, not a folder")
+            raise InputError(f"{option} {path}: {parent} is a file, not a folder")
     try:
         path.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
-        raise ValueError(f"{option} {path}: cannot create the folder ({exc.strerror})") \
+        raise InputError(f"{option} {path}: cannot create the folder ({exc.strerror})") \
             from None
     if not os.access(path, os.W_OK | os.X_OK):
-        raise ValueError(f"{option} {path}: the folder is not writable")
+        raise InputError(f"{option} {path}: the folder is not writable")
     return path

@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..model.case import Measured
+from ..model.numbers import InputError
 from .toml_tables import check_keys
 from .units import parse
 
@@ -29,7 +30,7 @@ def _pair(value, field: str, allow_one: bool) -> np.ndarray:
         v = parse(value, "velocity", field)
         return np.array([v, v])
     if not isinstance(value, list) or len(value) != 2:
-        raise ValueError(f"{field} must be a list of two values [x, y]"
+        raise InputError(f"{field} must be a list of two values [x, y]"
                          f"{' or one value' if allow_one else ''}, got {value!r}")
     return np.array([parse(value[0], "velocity", f"{field}[0]"),
                      parse(value[1], "velocity", f"{field}[1]")])
@@ -64,4 +65,4 @@ def parse_measured(table) -> Measured | None:
     try:
         return Measured(**values)
     except ValueError as exc:
-        raise ValueError(f"measured: {exc}") from None
+        raise InputError(f"measured: {exc}") from None

@@ -19,6 +19,7 @@ Priors (the authors' outlier CF11006 is left out of all of them):
 from __future__ import annotations
 
 from ..model.distributions import Distribution
+from ..model.numbers import InputError
 from .datasets import load_barrier, load_car_to_car
 
 __all__ = ["PRIORS", "PRIOR_INPUTS", "prior_values", "prior_distribution"]
@@ -42,13 +43,13 @@ def _records(name: str):
         return [t for t in load_barrier() if t.group == "SS"]
     if name == "iihs-small-overlap-car-to-car":
         return [v for v in load_car_to_car() if v.test_id.endswith("a")]
-    raise ValueError(f"unknown prior {name!r} (allowed: {', '.join(PRIORS)})")
+    raise InputError(f"unknown prior {name!r} (allowed: {', '.join(PRIORS)})")
 
 
 def prior_values(name: str, input_name: str) -> tuple:
     """The observed values of ``input_name`` (``impact.restitution`` or ``impact.beta``) [-]."""
     if input_name not in PRIOR_INPUTS:
-        raise ValueError(f"uncertainty.{input_name}: a prior exists only for "
+        raise InputError(f"uncertainty.{input_name}: a prior exists only for "
                          f"{', '.join(PRIOR_INPUTS)}")
     return tuple(getattr(r, PRIOR_INPUTS[input_name]) for r in _records(name))
 
@@ -56,6 +57,6 @@ def prior_values(name: str, input_name: str) -> tuple:
 def prior_distribution(name: str, input_name: str) -> Distribution:
     """The named prior of ``input_name`` as a :class:`Distribution` of kind ``prior``."""
     if not isinstance(name, str):
-        raise ValueError(f"uncertainty.{input_name}.prior must be a prior's name "
+        raise InputError(f"uncertainty.{input_name}.prior must be a prior's name "
                          f"(allowed: {', '.join(PRIORS)})")
     return Distribution("prior", values=prior_values(name, input_name), label=name)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from ..model.numbers import InputError
+
 __all__ = ["check_keys"]
 
 
@@ -10,14 +12,14 @@ def check_keys(table, allowed, where: str) -> dict:
 
     Raises
     ------
-    ValueError
+    InputError
         Not a table, or an unknown key: the message names ``where``, the first unknown key
         and the allowed ones (sorted).
     """
     if not isinstance(table, dict):
-        raise ValueError(f"{where} must be a table")
+        raise InputError(f"{where} must be a table")
     unknown = sorted(set(table) - set(allowed))
     if unknown:
-        raise ValueError(f"{where}: unknown key {unknown[0]!r} "
+        raise InputError(f"{where}: unknown key {unknown[0]!r} "
                          f"(allowed: {', '.join(sorted(allowed))})")
     return table

@@ -6,6 +6,7 @@ See :mod:`pim.model.distributions` for the inputs, the distribution kinds and sa
 from __future__ import annotations
 
 from ..model.distributions import KINDS, Distribution, UncertaintyTable
+from ..model.numbers import InputError
 from ..model.quantities import UNCERTAIN
 from .priors import prior_distribution
 from .units import parse
@@ -17,37 +18,37 @@ def _parse_one(name: str, spec) -> Distribution:
     where = f"uncertainty.{name}"
     kind_of = UNCERTAIN[name].kind
     if not isinstance(spec, dict):
-        raise ValueError(f"{where} must be a table such as {{normal = ...}}, "
+        raise InputError(f"{where} must be a table such as {{normal = ...}}, "
                          f"{{uniform = [low, high]}}, {{plusminus = ...}}, {{fixed = ...}} "
                          "or {{prior = \"name\"}}")
     kinds = [k for k in spec if k in KINDS]
     unknown = sorted(set(spec) - set(KINDS) - {"mean"})
     if unknown:
-        raise ValueError(f"{where}: unknown key {unknown[0]!r} "
+        raise InputError(f"{where}: unknown key {unknown[0]!r} "
                          f"(allowed: {', '.join(KINDS)}, and mean with normal)")
     if len(kinds) != 1:
-        raise ValueError(f"{where}: give exactly one of {', '.join(KINDS)}")
+        raise InputError(f"{where}: give exactly one of {', '.join(KINDS)}")
     kind = kinds[0]
     if kind == "prior":
         if len(spec) != 1:
-            raise ValueError(f"{where}: a prior takes no other key")
+            raise InputError(f"{where}: a prior takes no other key")
         return prior_distribution(spec["prior"], name)
     if "mean" in spec and kind != "normal":
-        raise ValueError(f"{where}.mean: only a normal distribution takes a mean")
+        raise InputError(f"{where}.mean: only a normal distribution takes a mean")
     value = spec[kind]
     if kind == "uniform":
         if not isinstance(value, list) or len(value) != 2:
-            raise ValueError(f"{where}.uniform must be [low, high], got {value!r}")
+            raise InputError(f"{where}.uniform must be [low, high], got {value!r}")
         low = parse(value[0], kind_of, f"{where}.uniform[0]")
         high = parse(value[1], kind_of, f"{where}.uniform[1]")
         if not low <= high:
-            raise ValueError(f"{where}.uniform: low {low:g} must be <= high {high:g}")
+            raise InputError(f"{where}.uniform: low {low:g} must be <= high {high:g}")
         return Distribution("uniform", low, high)
     number = parse(value, kind_of, f"{where}.{kind}")
     if kind == "fixed":
         return Distribution("fixed", number)
     if number < 0:
-        raise ValueError(f"{where}.{kind} must be >= 0 (a spread), got {number:g}")
+        raise InputError(f"{where}.{kind} must be >= 0 (a spread), got {number:g}")
     if kind == "plusminus":
         return Distribution("plusminus", None, number)
     mean = parse(spec["mean"], kind_of, f"{where}.mean") if "mean" in spec else None
@@ -65,26 +66,26 @@ def parse_uncertainty(table) -> UncertaintyTable | None:
     if table is None:
         return None
     if not isinstance(table, dict):
-        raise ValueError("uncertainty must be a table")
+        raise InputError("uncertainty must be a table")
     flat = {}
     groups = [(g, e) for g, e in table.items() if g != "evidence"]
     evidence = table.get("evidence")
     if evidence is not None:
         if not isinstance(evidence, dict) or not all(isinstance(e, dict)
                                                       for e in evidence.values()):
-            raise ValueError("uncertainty.evidence must hold vehicle1 / vehicle2 tables, e.g. "
+            raise InputError("uncertainty.evidence must hold vehicle1 / vehicle2 tables, e.g. "
                              "evidence.vehicle1.friction = {plusminus = 0.1}")
         groups += [(f"evidence.{g}", e) for g, e in evidence.items()]
     for group, entries in groups:
         if group.split(".")[0] not in ("vehicle1", "vehicle2", "impact", "evidence") or \
                 not isinstance(entries, dict):
-            raise ValueError(f"uncertainty: unknown input {group!r} (use vehicle1.<input>, "
+            raise InputError(f"uncertainty: unknown input {group!r} (use vehicle1.<input>, "
                              f"vehicle2.<input>, impact.<input> or evidence.vehicleN.friction; "
                              f"allowed: {', '.join(UNCERTAIN)})")
         for key, spec in entries.items():
             name = f"{group}.{key}"
             if name not in UNCERTAIN:
-                raise ValueError(f"uncertainty: unknown input {name!r} "
+                raise InputError(f"uncertainty: unknown input {name!r} "
                                  f"(allowed: {', '.join(UNCERTAIN)})")
             flat[name] = _parse_one(name, spec)
     return UncertaintyTable(flat)

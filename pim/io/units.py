@@ -7,10 +7,13 @@ on first use so that ``import pim`` stays fast.
 
 from __future__ import annotations
 
+import difflib
 import re
 from functools import lru_cache
 
 import numpy as np
+
+from ..model.numbers import InputError
 
 __all__ = ["registry", "parse", "convert", "DISPLAY_UNITS", "UNIT_SYSTEMS", "LIMITS",
            "unit_system_of"]
@@ -80,8 +83,27 @@ def registry():
         return pint.UnitRegistry()
 
 
-_NUMBER = re.compile(r"^\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*(.*?)\s*$")
-_EXPONENT = re.compile(r"(\*\*|\^)\s*\(?\s*[+-]?\d+\s*\)?")
+#: Longest quantity string read [characters]: "-1.23456789e+02 slug*ft**2" is 26; the cap
+#: bounds the parse time whatever the input.
+MAX_QUANTITY_LENGTH = 100
+
+_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
+#: Characters a unit may be written with: letters, digits of exponents, * / ^ ( ) and spaces
+#: (pint's grammar). Anything else (# ; ! ' , = ...) is trailing text, never read.
+_UNIT_TEXT = re.compile(r"[\w\s*/^().+-]*")
+_EXPONENT = re.compile(r"(?:\*\*|\^)[\s(]{0,3}[+-]?\d{1,3}\)?")
+
+#: Common units of each kind, offered as "did you mean" suggestions.
+COMMON_UNITS = {
+    "length": ("m", "cm", "mm", "km", "ft", "inch", "yd", "mi"),
+    "mass": ("kg", "g", "t", "lb", "slug"),
+    "force": ("N", "kN", "lbf", "kgf"),
+    "inertia": ("kg*m**2", "slug*ft**2", "lb*ft**2"),
+    "velocity": ("m/s", "km/h", "kph", "mph", "ft/s", "knot"),
+    "angle": ("deg", "rad", "degree", "radian"),
+    "angular_velocity": ("deg/s", "rad/s", "rpm"),
+    "dimensionless": (),
+}
 
 
 @lru_cache(maxsize=256)
@@ -93,16 +115,48 @@ def _unit(text: str):
 
 
 def _split(value: str, field: str) -> tuple[float, str]:
-    """A quantity string as (number, unit text): exactly one number, then a unit or nothing."""
-    match = _NUMBER.match(value)
+    """A quantity string as (number, unit text): exactly one number, then a unit or nothing.
+
+    Linear in the string's length (and the length is capped at
+    :data:`MAX_QUANTITY_LENGTH`): one anchored number, then one character-class match of the
+    unit text; anything after the unit (``"2255.4 lbf # comment"``, ``"10 deg;"``) is an
+    error, never ignored.
+    """
+    if len(value) > MAX_QUANTITY_LENGTH:
+        raise InputError(f"{field}: a quantity of {len(value)} characters is too long "
+                         f"(at most {MAX_QUANTITY_LENGTH}); write one number and one unit, "
+                         f"e.g. '1200 kg'")
+    text = value.strip()
+    match = _NUMBER.match(text)
     if match is None:
-        raise ValueError(f"{field}: {value!r} must be one number followed by a unit, "
+        raise InputError(f"{field}: {value!r} must be one number followed by a unit, "
                          f"e.g. '1200 kg' or '90 deg'")
-    number, unit = match.group(1), match.group(2)
+    number, unit = match.group(0), text[match.end():].strip()
+    if unit and (text[match.end()] not in " \t*/" and not unit[0].isalpha()):
+        raise InputError(f"{field}: {value!r} must be one number followed by a unit, "
+                         f"e.g. '1200 kg' or '90 deg'")
+    if _UNIT_TEXT.fullmatch(unit) is None:
+        bad = next(c for c in unit if not (c.isalnum() or c in " \t*/^()._+-"))
+        raise InputError(f"{field}: {value!r} has text after its unit (from {bad!r}); write "
+                         f"exactly one number and one unit, e.g. '1200 kg', with nothing "
+                         f"after it (TOML comments go outside the quotes)")
     if re.search(r"\d", _EXPONENT.sub("", unit)):
-        raise ValueError(f"{field}: {value!r} holds more than one number; write one number "
+        raise InputError(f"{field}: {value!r} holds more than one number; write one number "
                          f"and one unit, e.g. '1200 kg'")
     return float(number), unit
+
+
+def _suggestion(magnitude: float, text: str, kind: str, dimension: str) -> str:
+    """" (did you mean ...?)" for a unit of the wrong kind or an unknown one, else ""."""
+    if kind == "force" and dimension == "[mass]":
+        return (f"; {text!r} is a mass: a weight needs a force unit, e.g. '{magnitude:g} lbf' "
+                f"or '{magnitude:g} kgf' (or give mass = '{magnitude:g} lb')")
+    if kind == "mass" and dimension == "[mass] * [length] / [time] ** 2":
+        return (f"; {text!r} is a force: give weight = '{magnitude:g} {text}' or a mass unit "
+                f"such as '{magnitude:g} lb'")
+    close = difflib.get_close_matches(text.replace(" ", ""), COMMON_UNITS[kind], n=1,
+                                      cutoff=0.5)
+    return f"; did you mean '{magnitude:g} {close[0]}'?" if close else ""
 
 
 def unit_system_of(value) -> str | None:
@@ -129,7 +183,10 @@ def parse(value, kind: str, field: str) -> float:
     value : str or float
         A quantity with units (``"31.09 ft/s"``, ``"90 deg"``): exactly one number and one
         unit; or a bare number, taken as SI. An angle or angular velocity written as a
-        string needs its unit (``"180"`` is refused: degrees or radians?).
+        string needs its unit (``"180"`` is refused: degrees or radians?); a bare number
+        for an angle is radians and must lie within [-2 pi, 2 pi] (``-90`` is refused:
+        degrees were meant; :func:`pim.model.plausibility.bare_angle_warning` warns about
+        the others).
     kind : str
         Key of :data:`DIMENSIONS` naming the expected physical dimension. The unit must
         reduce to the kind's base units exactly, so ``"1 Hz"`` is no yaw rate and ``"1 sr"``
@@ -151,45 +208,51 @@ def parse(value, kind: str, field: str) -> float:
     """
     unit = DIMENSIONS[kind]
     if isinstance(value, bool):
-        raise ValueError(f"{field} must be a number or a quantity string, got {value!r}")
+        raise InputError(f"{field} must be a number or a quantity string, got {value!r}")
     if isinstance(value, int | float):
         try:
             number = float(value)
         except OverflowError:
-            raise ValueError(f"{field}: {str(value)[:20]}... is too large a number") from None
+            raise InputError(f"{field}: {str(value)[:20]}... is too large a number") from None
+        if kind == "angle" and abs(number) > 2 * np.pi:
+            raise InputError(f"{field} = {value!r} has no unit; a bare angle is read in "
+                             f"radians and must lie within [-2 pi, 2 pi]: write "
+                             f"'{value} deg' (or '{value} rad' if radians are meant)")
     elif isinstance(value, str):
         magnitude, text = _split(value, field)
         if not text:
             if kind in ("angle", "angular_velocity"):
-                raise ValueError(f"{field}: {value!r} has no unit; write e.g. "
+                raise InputError(f"{field}: {value!r} has no unit; write e.g. "
                                  f"'{value.strip()} {'deg' if kind == 'angle' else 'deg/s'}'")
             text = ""
         try:
             parsed, root = _unit(text) if text else (None, None)
         except Exception as exc:
-            raise ValueError(f"{field}: unknown unit in {value!r} ({exc})") from None
+            hint = _suggestion(magnitude, text, kind, "")
+            raise InputError(f"{field}: unknown unit in {value!r} ({exc}){hint}") from None
         _, wanted = _unit(unit) if unit else (None, None)
         none = registry().Unit("")
         if (none if root is None else root) != (none if wanted is None else wanted):
             what = kind.replace("_", " ")
             dim = parsed.dimensionality if parsed is not None else ""
             expected = wanted.dimensionality if wanted is not None else ""
-            raise ValueError(f"{field}: {value!r} is not a{'n' if what[0] in 'aeiou' else ''} "
+            raise InputError(f"{field}: {value!r} is not a{'n' if what[0] in 'aeiou' else ''} "
                              f"{what} (its unit has dimension {dim or 'dimensionless'}, "
                              f"expected {expected or 'dimensionless'}: a unit like "
-                             f"{unit or 'none, a bare number'})")
+                             f"{unit or 'none, a bare number'})"
+                             f"{_suggestion(magnitude, text, kind, str(dim))}")
         if parsed is None:
             number = magnitude
         else:
             ureg = registry()
             number = float(ureg.Quantity(magnitude, parsed).to(unit).magnitude)
     else:
-        raise ValueError(f"{field} must be a number or a quantity string, got {value!r}")
+        raise InputError(f"{field} must be a number or a quantity string, got {value!r}")
     if not np.isfinite(number):
-        raise ValueError(f"{field} must be a finite number, got {value!r}")
+        raise InputError(f"{field} must be a finite number, got {value!r}")
     low, high = LIMITS[kind]
     if abs(number) > high or (number != 0 and abs(number) < low):
-        raise ValueError(f"{field} = {value!r} is outside the physically meaningful range: "
+        raise InputError(f"{field} = {value!r} is outside the physically meaningful range: "
                          f"|value| must be {f'between {low:g} and ' if low else 'at most '}"
                          f"{high:g} {unit or '(dimensionless)'}")
     return number
@@ -201,7 +264,7 @@ def convert(value, kind: str, system: str):
     Returns the converted values (same shape) and the unit label.
     """
     if system not in DISPLAY_UNITS:
-        raise ValueError(f"units must be one of {', '.join(UNIT_SYSTEMS)}, got {system!r}")
+        raise InputError(f"units must be one of {', '.join(UNIT_SYSTEMS)}, got {system!r}")
     target = DISPLAY_UNITS[system][kind]
     factor = registry().Quantity(1.0, SI_UNITS[kind]).to(target).magnitude
     label = "-" if target == "dimensionless" else target.replace("**", "^").replace("*", " ")

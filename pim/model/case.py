@@ -16,9 +16,10 @@ from functools import cached_property
 import numpy as np
 
 from .geometry import rotate
-from .numbers import real_array
+from .numbers import InputError, real_array
 
-__all__ = ["Vehicle", "Impact", "Case", "Measured", "LAWS"]
+__all__ = ["Vehicle", "Impact", "Case", "Measured", "LAWS", "MASS_RANGE", "INERTIA_RANGE",
+           "MAX_ARM_RATIO"]
 
 #: The impact laws a case may name (``impact.law``); see :mod:`pim.model.impact_laws`.
 #: "brach": Brach's PIM (eps, beta); "brach-capped": PIM with |mu| capped at a friction
@@ -27,15 +28,35 @@ LAWS = ("brach", "brach-capped", "kudlich-slibar")
 #: The laws that take a contact friction coefficient (``impact.contact_friction``).
 FRICTION_LAWS = ("brach-capped", "kudlich-slibar")
 
+#: Allowed mass [kg] and yaw inertia [kg m^2] of a moving body (inf: a fixed obstacle): where
+#: the arithmetic holds, not where vehicles lie (a case file is held to the tighter
+#: :data:`pim.io.units.LIMITS`). Every product the solver forms (1/m, 1/I, the 2x2
+#: determinant ~ (1/m)^2, m v^2 with v <= 1e4 m/s) then stays within 1e-140 ... 1e140, far
+#: from float overflow and underflow; a mass of 1e-300 kg made 1/m^2 overflow to inf and
+#: the answer NaN. Mass ratios are no problem: 1/m1 + 1/m2 adds positive terms (a ratio of
+#: 1e12 keeps the energy loss to 1e-9, tests/test_case_validation.py).
+MASS_RANGE = (1e-60, 1e60)
+INERTIA_RANGE = (1e-60, 1e60)
+
+#: Largest m |r|^2 / I (r = C - CG, I = m k^2: the squared ratio of the arm to the radius of
+#: gyration k) of a moving body. The effective-mass matrix adds (r x n)^2 / I to 1/m, so its
+#: solution loses about log10 of this ratio in significant digits: measured against exact
+#: rational arithmetic (tests/exact.py, RICSAC 9 with k shrunk), the velocities' relative
+#: error is 1e-14 at a ratio of 2e4, 3e-10 at 2e8, 1e-6 at 2e12 and 2e-3 at 2e15 (k = 1e-7 ft),
+#: and k = 1e-9 ft divides by zero. The bound 1e8 keeps the error below about 1e-10; a real
+#: vehicle has a ratio near 1-10 (k of 1-1.5 m, arms of 1-3 m), a thin pole struck at
+#: 1 m with k = 1 mm a ratio of 1e6.
+MAX_ARM_RATIO = 1e8
+
 
 def _scalar(value, name: str, unit: str = "SI") -> np.ndarray:
     if type(value) is float or type(value) is int:    # the common single case, fast
         if value != value:
-            raise ValueError(f"{name} is NaN; it must be a finite number in [{unit}]")
+            raise InputError(f"{name} is NaN; it must be a finite number in [{unit}]")
         return np.float64(value)
     arr = real_array(value, name, unit)
     if np.isnan(arr).any():
-        raise ValueError(f"{name} is NaN; it must be a finite number in [{unit}]")
+        raise InputError(f"{name} is NaN; it must be a finite number in [{unit}]")
     return arr
 
 
@@ -43,20 +64,20 @@ def _vector(value, name: str, unit: str) -> np.ndarray:
     if (type(value) is tuple or type(value) is list) and len(value) == 2 and all(
             type(x) is float or type(x) is int for x in value):   # fast path
         if not (math.isfinite(value[0]) and math.isfinite(value[1])):
-            raise ValueError(f"{name} must be finite [x, y] values in [{unit}]")
+            raise InputError(f"{name} must be finite [x, y] values in [{unit}]")
         return np.array(value, dtype=float)
     arr = real_array(value, name, unit)
     if arr.ndim == 0 or arr.shape[-1] != 2:
-        raise ValueError(f"{name} must be an [x, y] pair in [{unit}], got shape {arr.shape}")
+        raise InputError(f"{name} must be an [x, y] pair in [{unit}], got shape {arr.shape}")
     if not np.isfinite(arr).all():
-        raise ValueError(f"{name} must be finite [x, y] values in [{unit}]")
+        raise InputError(f"{name} must be finite [x, y] values in [{unit}]")
     return arr
 
 
 def _one_number(value, name: str) -> float:
     arr = real_array(value, name)
     if arr.size != 1:
-        raise ValueError(f"{name} must be a single number (the case's default), "
+        raise InputError(f"{name} must be a single number (the case's default), "
                          f"got shape {arr.shape}")
     return float(arr.reshape(()))
 
@@ -64,11 +85,50 @@ def _one_number(value, name: str) -> float:
 def _finite(arr: np.ndarray, name: str, unit: str) -> np.ndarray:
     if type(arr) is np.float64:   # a scalar from _scalar's fast path
         if not math.isfinite(arr):
-            raise ValueError(f"{name} must be a finite number in [{unit}]")
+            raise InputError(f"{name} must be a finite number in [{unit}]")
         return arr
     if not np.isfinite(arr).all():
-        raise ValueError(f"{name} must be a finite number in [{unit}]")
+        raise InputError(f"{name} must be a finite number in [{unit}]")
     return arr
+
+
+def _within(value, scalar: bool, bounds: tuple, name: str, unit: str) -> None:
+    """InputError unless every finite ``value`` lies in ``bounds`` (inf: a fixed obstacle)."""
+    low, high = bounds
+    if scalar:
+        bad = not (low <= value <= high or math.isinf(value))
+    else:
+        bad = bool(((value < low) | ((value > high) & np.isfinite(value))).any())
+    if bad:
+        raise InputError(f"{name} must be in [{low:g}, {high:g}] [{unit}] (or inf for a fixed "
+                         f"obstacle), got {float(value) if np.size(value) == 1 else 'others'}")
+
+
+def _check_conditioning(case) -> None:
+    """InputError when a moving body's m |C - CG|^2 / I exceeds :data:`MAX_ARM_RATIO`."""
+    point = case.impact.point
+    px, py = point.tolist() if point.shape == (2,) else (None, None)
+    for i, v in ((1, case.vehicle1), (2, case.vehicle2)):
+        if px is not None and type(v.mass) is np.float64 and v.cg.shape == (2,):
+            mass, (cx, cy) = float(v.mass), v.cg.tolist()     # the single case, in floats
+            if mass == math.inf or mass * ((px - cx) ** 2 + (py - cy) ** 2) <= (
+                    MAX_ARM_RATIO * float(v.yaw_inertia)):
+                continue
+        arm = point - v.cg
+        with np.errstate(invalid="ignore", over="ignore"):
+            ratio = v.mass * (arm[..., 0] ** 2 + arm[..., 1] ** 2) / v.yaw_inertia
+        if not bool(np.any(ratio > MAX_ARM_RATIO)):     # NaN (a fixed body, inf/inf) passes
+            continue
+        worst = int(np.nanargmax(np.ravel(np.where(np.isnan(ratio), 0.0, ratio))))
+        r = float(np.sqrt(np.ravel(np.broadcast_to(arm[..., 0] ** 2 + arm[..., 1] ** 2,
+                                                   np.shape(ratio)))[worst]))
+        k = float(np.ravel(np.broadcast_to(np.sqrt(v.yaw_inertia / v.mass),
+                                           np.shape(ratio)))[worst])
+        raise InputError(
+            f"vehicle{i}.yaw_inertia: the radius of gyration sqrt(I/m) = {k:.3g} m is too "
+            f"small for the arm |C - CG| = {r:.3g} m (m arm^2 / I = {r * r / (k * k):.3g} > "
+            f"{MAX_ARM_RATIO:g}): the impulse would lose more than 10 significant digits; "
+            f"the radius of gyration must be at least {r / math.sqrt(MAX_ARM_RATIO):.3g} m")
 
 
 @dataclass(frozen=True, eq=False)
@@ -90,8 +150,11 @@ class Vehicle:
     heading : array_like
         Direction the vehicle's nose points [rad] from +x; used for PDOF and drawing only.
     length, width : float, optional
-        Outline of the vehicle [m], a rectangle centred on the CG; used for drawing and
+        Outline of the vehicle [m], a rectangle along the heading; used for drawing and
         for the optional outline contact of the simulator, never by the impact equations.
+    cg_to_front : float, optional
+        Distance [m] from the CG forward to the front of the outline, in [0, length];
+        default ``length / 2`` (the outline centred on the CG). Needs ``length``.
     """
 
     mass: np.ndarray
@@ -102,6 +165,7 @@ class Vehicle:
     heading: np.ndarray = 0.0
     length: float | None = None
     width: float | None = None
+    cg_to_front: float | None = None
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
@@ -109,12 +173,14 @@ class Vehicle:
         inertia = _scalar(self.yaw_inertia, "yaw_inertia", "kg m^2")
         scalars = type(mass) is np.float64 and type(inertia) is np.float64
         if not (mass > 0 if scalars else (mass > 0).all()):
-            raise ValueError("mass must be > 0 [kg] (or inf for a fixed obstacle)")
+            raise InputError("mass must be > 0 [kg] (or inf for a fixed obstacle)")
         if not (inertia > 0 if scalars else (inertia > 0).all()):
-            raise ValueError("yaw_inertia must be > 0 [kg m^2] (or inf for a fixed obstacle)")
+            raise InputError("yaw_inertia must be > 0 [kg m^2] (or inf for a fixed obstacle)")
         if (math.isinf(mass) != math.isinf(inertia) if scalars
                 else (np.isinf(mass) != np.isinf(inertia)).any()):
-            raise ValueError("mass and yaw_inertia must both be inf for a fixed obstacle")
+            raise InputError("mass and yaw_inertia must both be inf for a fixed obstacle")
+        _within(mass, scalars, MASS_RANGE, "mass", "kg")
+        _within(inertia, scalars, INERTIA_RANGE, "yaw_inertia", "kg m^2")
         set_(self, "mass", mass)
         set_(self, "yaw_inertia", inertia)
         set_(self, "cg", _vector(self.cg, "cg", "m"))
@@ -127,24 +193,34 @@ class Vehicle:
             fixed, moving = np.broadcast_arrays(
                 fixed, np.abs(self.velocity).sum(-1) + np.abs(self.yaw_rate))
             if (fixed & (moving != 0)).any():
-                raise ValueError("velocity and yaw_rate of a fixed obstacle must be 0")
+                raise InputError("velocity and yaw_rate of a fixed obstacle must be 0")
         for name in ("length", "width"):
             value = getattr(self, name)
             if value is not None:
                 value = _one_number(value, name)
                 if not (np.isfinite(value) and value > 0):
-                    raise ValueError(f"{name} must be > 0 [m], got {value}")
+                    raise InputError(f"{name} must be > 0 [m], got {value}")
                 set_(self, name, value)
+        if self.cg_to_front is not None:
+            a = _one_number(self.cg_to_front, "cg_to_front")
+            if self.length is None:
+                raise InputError("cg_to_front needs length (the outline it places the CG in)")
+            if not 0.0 <= a <= self.length:
+                raise InputError(f"cg_to_front must be in [0, length = {self.length:g}] [m], "
+                                 f"got {a:g}")
+            set_(self, "cg_to_front", a)
 
     @classmethod
-    def obstacle(cls, cg=(0.0, 0.0), heading=0.0, length=None, width=None) -> Vehicle:
+    def obstacle(cls, cg=(0.0, 0.0), heading=0.0, length=None, width=None,
+                 cg_to_front=None) -> Vehicle:
         """A fixed barrier or pole: infinite mass and yaw inertia, at rest.
 
         Its ``cg`` [m] and ``heading`` [rad] do not change the impact (its arm is multiplied
         by a zero inverse inertia); they only place an outline in drawings.
         """
         return cls(mass=np.inf, yaw_inertia=np.inf, cg=cg, velocity=(0.0, 0.0),
-                   yaw_rate=0.0, heading=heading, length=length, width=width)
+                   yaw_rate=0.0, heading=heading, length=length, width=width,
+                   cg_to_front=cg_to_front)
 
     @property
     def fixed(self) -> np.ndarray:
@@ -199,12 +275,12 @@ class Impact:
         if self.restitution is not None:
             eps = _one_number(self.restitution, "restitution")
             if not 0.0 <= eps <= 1.0:
-                raise ValueError(f"restitution must be in [0, 1], got {eps}")
+                raise InputError(f"restitution must be in [0, 1], got {eps}")
             object.__setattr__(self, "restitution", eps)
         if self.beta is not None:
             beta = _one_number(self.beta, "beta")
             if not np.isfinite(beta):
-                raise ValueError(f"beta must be a finite number (usually in [0, 1]), got {beta}")
+                raise InputError(f"beta must be a finite number (usually in [0, 1]), got {beta}")
             object.__setattr__(self, "beta", beta)
         self._check_law()
 
@@ -212,18 +288,18 @@ class Impact:
         """The law is known, and takes the parameters given."""
         law = self.law
         if law is not None and (not isinstance(law, str) or law not in LAWS):
-            raise ValueError(f"law must be one of {', '.join(map(repr, LAWS))}, got {law!r}")
+            raise InputError(f"law must be one of {', '.join(map(repr, LAWS))}, got {law!r}")
         if self.contact_friction is not None:
             mu_c = _one_number(self.contact_friction, "contact_friction")
             if not mu_c >= 0.0:
-                raise ValueError(f"contact_friction must be >= 0 (a friction coefficient; inf: "
+                raise InputError(f"contact_friction must be >= 0 (a friction coefficient; inf: "
                                  f"always stick), got {mu_c}")
             if law not in FRICTION_LAWS:
-                raise ValueError(f"contact_friction needs law = 'kudlich-slibar' or "
+                raise InputError(f"contact_friction needs law = 'kudlich-slibar' or "
                                  f"'brach-capped' (law is {law or 'brach'!r})")
             object.__setattr__(self, "contact_friction", mu_c)
         if law == "kudlich-slibar" and self.beta is not None:
-            raise ValueError("beta does not apply to law 'kudlich-slibar' (its parameters "
+            raise InputError("beta does not apply to law 'kudlich-slibar' (its parameters "
                              "are restitution k and contact_friction mu_c)")
 
     @property
@@ -274,7 +350,7 @@ class Measured:
             if value is not None:
                 value = _one_number(value, name)
                 if not np.isfinite(value):
-                    raise ValueError(f"{name} must be a finite number in [rad/s]")
+                    raise InputError(f"{name} must be a finite number in [rad/s]")
                 object.__setattr__(self, name, value)
         for name, unit in (("velocity1", "m/s"), ("velocity2", "m/s"), ("yaw_rate1", "rad/s"),
                            ("yaw_rate2", "rad/s")):
@@ -282,11 +358,11 @@ class Measured:
             if sigma is None:
                 continue
             if getattr(self, name) is None:
-                raise ValueError(f"{name}_sigma is given but {name} is not measured")
+                raise InputError(f"{name}_sigma is given but {name} is not measured")
             sigma = (_vector(sigma, name + "_sigma", unit) if name.startswith("velocity")
                      else _one_number(sigma, name + "_sigma"))
             if not np.all(np.isfinite(sigma)) or np.any(np.asarray(sigma) <= 0):
-                raise ValueError(f"{name}_sigma must be finite and > 0 [{unit}], got {sigma}")
+                raise InputError(f"{name}_sigma must be finite and > 0 [{unit}], got {sigma}")
             object.__setattr__(self, name + "_sigma", sigma)
 
 
@@ -335,12 +411,13 @@ class Case:
     def __post_init__(self) -> None:
         for name, kind in (("vehicle1", Vehicle), ("vehicle2", Vehicle), ("impact", Impact)):
             if not isinstance(getattr(self, name), kind):
-                raise ValueError(f"{name} must be a pim.{kind.__name__}, got "
+                raise InputError(f"{name} must be a pim.{kind.__name__}, got "
                                  f"{type(getattr(self, name)).__name__}")
         if self.units not in ("si", "us"):
-            raise ValueError(f"units must be 'si' or 'us', got {self.units!r}")
+            raise InputError(f"units must be 'si' or 'us', got {self.units!r}")
         if self.vehicle1.fixed.any():
-            raise ValueError("vehicle1.mass must be finite: only vehicle2 may be a fixed obstacle")
+            raise InputError("vehicle1.mass must be finite: only vehicle2 may be a fixed obstacle")
+        _check_conditioning(self)
 
     @cached_property
     def shape(self) -> tuple:
@@ -386,7 +463,7 @@ class Case:
     def swapped(self) -> Case:
         """The same scene with the vehicles' roles exchanged (n flips: Gamma + pi)."""
         if self.vehicle2.fixed.any():
-            raise ValueError("vehicle2 is a fixed obstacle; it cannot become vehicle1")
+            raise InputError("vehicle2 is a fixed obstacle; it cannot become vehicle1")
         measured = self.measured
         if measured is not None:
             measured = Measured(measured.velocity2, measured.velocity1,

@@ -40,6 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .numbers import InputError
 from .quantities import UNCERTAIN
 from .solver import defaults
 
@@ -77,12 +78,12 @@ class Distribution:
 
     def __post_init__(self) -> None:
         if self.kind not in KINDS:
-            raise ValueError(f"distribution kind {self.kind!r} unknown "
+            raise InputError(f"distribution kind {self.kind!r} unknown "
                              f"(allowed: {', '.join(KINDS)})")
         if self.kind == "prior":
             v = np.asarray(self.values if self.values is not None else (), dtype=float)
             if v.ndim != 1 or v.size < 2 or not np.isfinite(v).all():
-                raise ValueError(f"prior {self.label!r} needs at least 2 finite values")
+                raise InputError(f"prior {self.label!r} needs at least 2 finite values")
             object.__setattr__(self, "values", tuple(float(x) for x in np.sort(v)))
 
     def bounds(self, nominal: float) -> tuple[float, float]:
@@ -113,7 +114,7 @@ class Distribution:
         low, high = _RANGE.get(name, (-np.inf, np.inf))
         c_low, c_high = ndtr((low - mean) / sd), ndtr((high - mean) / sd)
         if c_high - c_low < 1e-9:
-            raise ValueError(f"uncertainty.{name}: normal(mean {mean:g}, sd {sd:g}) has almost "
+            raise InputError(f"uncertainty.{name}: normal(mean {mean:g}, sd {sd:g}) has almost "
                              f"no probability inside the admissible range [{low:g}, {high:g}]")
         x = mean + sd * ndtri(c_low + (c_high - c_low) * u)
         return np.clip(x, low, high)  # guards round-off only
@@ -125,7 +126,7 @@ class Distribution:
         if self.kind == "normal":
             mean = nominal if self.a is None else self.a
             if not (low <= mean <= high) or (open_low and mean <= low):
-                raise ValueError(f"uncertainty.{name}: mean {mean:g} outside the admissible "
+                raise InputError(f"uncertainty.{name}: mean {mean:g} outside the admissible "
                                  f"range [{low:g}, {high:g}]")
             return
         if self.kind == "prior":
@@ -134,7 +135,7 @@ class Distribution:
             values = (self.a,) if self.kind == "fixed" else self.bounds(nominal)
         for v in values:
             if not (low <= v <= high) or (open_low and v <= low):
-                raise ValueError(f"uncertainty.{name}: value {v:g} outside the admissible "
+                raise InputError(f"uncertainty.{name}: value {v:g} outside the admissible "
                                  f"range {'(' if open_low else '['}{low:g}, {high:g}]")
 
     @property
@@ -158,10 +159,10 @@ class UncertaintyTable:
     def __post_init__(self) -> None:
         for name, dist in self.inputs.items():
             if name not in UNCERTAIN:
-                raise ValueError(f"uncertainty: unknown input {name!r} "
+                raise InputError(f"uncertainty: unknown input {name!r} "
                                  f"(allowed: {', '.join(UNCERTAIN)})")
             if not isinstance(dist, Distribution):
-                raise ValueError(f"uncertainty.{name} must be a Distribution")
+                raise InputError(f"uncertainty.{name} must be a Distribution")
 
 
 def nominal_values(case, eps=None, beta=None) -> dict:
@@ -180,9 +181,9 @@ def nominal_values(case, eps=None, beta=None) -> dict:
                 "impact.beta": defaults(case, 0.0, beta)[1]})
     for name, value in out.items():
         if value is None:
-            raise ValueError(f"{name} has no nominal value: give eps (impact.restitution)")
+            raise InputError(f"{name} has no nominal value: give eps (impact.restitution)")
         if np.size(value) != 1:
-            raise ValueError("uncertainty needs a scalar case (one scene), "
+            raise InputError("uncertainty needs a scalar case (one scene), "
                              f"but {name} has shape {np.shape(value)}")
         out[name] = float(np.asarray(value).reshape(()))
     return out
@@ -204,10 +205,10 @@ def sample_inputs(uncertainty: UncertaintyTable, nominal: dict, n: int, rng) -> 
         if fixed_obstacle and name in ("vehicle2.mass", "vehicle2.yaw_inertia",
                                        "vehicle2.velocity_x", "vehicle2.velocity_y",
                                        "vehicle2.yaw_rate"):
-            raise ValueError(f"uncertainty.{name}: vehicle2 is a fixed obstacle; "
+            raise InputError(f"uncertainty.{name}: vehicle2 is a fixed obstacle; "
                              f"its {name.split('.')[1]} cannot be uncertain")
         if name not in nominal:
-            raise ValueError(f"uncertainty.{name}: the case has no nominal value for it "
+            raise InputError(f"uncertainty.{name}: the case has no nominal value for it "
                              f"(an evidence input needs that vehicle's [evidence] table)")
         dist.check(nominal[name], name)
         if not dist.varies:

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .numbers import InputError
 from .runout import RunoutVehicle
 
 __all__ = ["VehicleEvidence", "Evidence", "UNKNOWN_KINDS"]
@@ -62,20 +63,20 @@ class VehicleEvidence:
     def __post_init__(self):
         w = self.where
         if not (np.isfinite(self.friction) and self.friction > 0):
-            raise ValueError(f"{w}.friction must be a finite number > 0, got {self.friction!r}")
+            raise InputError(f"{w}.friction must be a finite number > 0, got {self.friction!r}")
         for name in ("wheelbase", "track", "position_sigma", "heading_sigma"):
             value = getattr(self, name)
             if not (np.isfinite(value) and value > 0):
-                raise ValueError(f"{w}.{name} must be finite and > 0, got {value!r}")
+                raise InputError(f"{w}.{name} must be finite and > 0, got {value!r}")
         if not 0 <= self.cg_to_front <= self.wheelbase:
-            raise ValueError(f"{w}.cg_to_front must be in [0, wheelbase = "
+            raise InputError(f"{w}.cg_to_front must be in [0, wheelbase = "
                              f"{self.wheelbase:g} m], got {self.cg_to_front!r}")
         if len(self.braking) != 4 or not all(0 <= b <= 1 for b in self.braking):
-            raise ValueError(f"{w}.braking must be four fractions in [0, 1] (front-left, "
+            raise InputError(f"{w}.braking must be four fractions in [0, 1] (front-left, "
                              f"front-right, rear-left, rear-right), got {self.braking!r}")
         for name in ("rest_position", "path_points"):
             if not np.all(np.isfinite(getattr(self, name))):
-                raise ValueError(f"{w}.{name} must be finite")
+                raise InputError(f"{w}.{name} must be finite")
 
     def runout_vehicle(self, mass, yaw_inertia) -> RunoutVehicle:
         """The :class:`RunoutVehicle` of this evidence with the given mass and inertia."""

@@ -23,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from .case import Case
-from .numbers import real_array
+from .numbers import InputError, real_array
 from .result import Result
 from .solver import constraints, solve
 
@@ -75,9 +75,9 @@ def solve_capped(case: Case, eps=None, beta=None, limit=np.inf) -> Result:
     """
     limit = real_array(limit, "friction limit")
     if np.isnan(limit).any() or (limit < 0).any():
-        raise ValueError("friction limit must be >= 0 (inf for no cap)")
+        raise InputError("friction limit must be >= 0 (inf for no cap)")
     eps, beta = constraints(case, eps, beta)
     if (beta < 0).any():
-        raise ValueError("beta must be >= 0 with a friction limit (the cap bounds |mu|)")
+        raise InputError("beta must be >= 0 with a friction limit (the cap bounds |mu|)")
     critical = solve(case, eps, 1.0)
     return solve(case, eps, capped_beta(critical.mu0, beta, limit))

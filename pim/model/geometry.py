@@ -93,20 +93,25 @@ def radius_of_gyration(mass, inertia) -> np.ndarray:
     return np.where(np.isinf(mass), 0.0, k)
 
 
-def outline_corners(length, width) -> np.ndarray:
-    """Corners of a length x width rectangle centred on the CG, in the body frame [m].
+def outline_corners(length, width, cg_to_front=None) -> np.ndarray:
+    """Corners of a length x width rectangle around the CG, in the body frame [m].
 
-    Counter-clockwise from the front left corner: (l/2, w/2), (-l/2, w/2), (-l/2, -w/2),
-    (l/2, -w/2), with the body's x axis along its heading. Shape (4, 2).
+    Counter-clockwise from the front left corner: (a, w/2), (a - l, w/2), (a - l, -w/2),
+    (a, -w/2), with the body's x axis along its heading and ``a = cg_to_front`` [m] the
+    distance from the CG forward to the front (default ``l/2``: centred on the CG).
+    Shape (4, 2).
     """
-    hl, hw = float(length) / 2.0, float(width) / 2.0
-    return np.array([[hl, hw], [-hl, hw], [-hl, -hw], [hl, -hw]])
+    hw = float(width) / 2.0
+    front = float(length) / 2.0 if cg_to_front is None else float(cg_to_front)
+    rear = front - float(length)
+    return np.array([[front, hw], [rear, hw], [rear, -hw], [front, -hw]])
 
 
-def outline_world(length, width, cg, heading) -> np.ndarray:
+def outline_world(length, width, cg, heading, cg_to_front=None) -> np.ndarray:
     """Corners [m] of the rectangle of :func:`outline_corners` placed at ``cg``, turned to
     ``heading`` [rad], in the global frame. Shape (4, 2)."""
-    return rotate(outline_corners(length, width), heading) + np.asarray(cg, dtype=float)
+    return (rotate(outline_corners(length, width, cg_to_front), heading)
+            + np.asarray(cg, dtype=float))
 
 
 def outline_distance(angle, length, width, cg_to_front=None) -> np.ndarray:
@@ -123,7 +128,7 @@ def outline_distance(angle, length, width, cg_to_front=None) -> np.ndarray:
     width = np.asarray(width, dtype=float)
     a = length / 2 if cg_to_front is None else np.asarray(cg_to_front, dtype=float)
     c, s = np.cos(angle), np.sin(angle)
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", over="ignore"):
         tx = np.where(c > 0, a / c, np.where(c < 0, (a - length) / c, np.inf))
         ty = np.where(s != 0, (width / 2) / np.abs(s), np.inf)
     return np.minimum(tx, ty)

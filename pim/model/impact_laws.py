@@ -50,7 +50,7 @@ import numpy as np
 from .case import FRICTION_LAWS, LAWS, Case
 from .friction_cap import solve_capped
 from .geometry import contact_velocity, cross, dot, perp, vec
-from .numbers import real_array
+from .numbers import InputError, real_array
 from .result import Result
 from .solver import APPROACH_TOLERANCE, SINGULAR_TOLERANCE, solve
 
@@ -63,7 +63,7 @@ def check_restitution(k, name: str = "restitution k") -> np.ndarray:
     """k as an array, checked to lie in [0, 1]; the error names ``name``."""
     k = real_array(k, name)
     if np.isnan(k).any() or ((k < 0) | (k > 1)).any():
-        raise ValueError(f"{name} must be in [0, 1], got {_show(k)}")
+        raise InputError(f"{name} must be in [0, 1], got {_show(k)}")
     return k
 
 
@@ -71,7 +71,7 @@ def check_contact_friction(mu_c, name: str = "contact_friction mu_c") -> np.ndar
     """mu_c as an array, checked to be >= 0 (inf allowed: always stick)."""
     mu_c = real_array(mu_c, name)
     if np.isnan(mu_c).any() or (mu_c < 0).any():
-        raise ValueError(f"{name} must be >= 0 (inf: always stick), got {_show(mu_c)}")
+        raise InputError(f"{name} must be >= 0 (inf: always stick), got {_show(mu_c)}")
     return mu_c
 
 
@@ -255,14 +255,14 @@ def solve_kudlich_slibar(case: Case, k=None, mu_c=None, approach_tol: float = AP
     mu_c t) = 0) the outputs are NaN and ``q_singular`` is True.
     """
     if not isinstance(case, Case):
-        raise ValueError(f"case must be a pim.Case, got {type(case).__name__}")
+        raise InputError(f"case must be a pim.Case, got {type(case).__name__}")
     k = case.impact.restitution if k is None else k
     mu_c = case.impact.contact_friction if mu_c is None else mu_c
     if k is None:
-        raise ValueError("restitution k is required for law 'kudlich-slibar': give it or set "
+        raise InputError("restitution k is required for law 'kudlich-slibar': give it or set "
                          "impact.restitution in the case")
     if mu_c is None:
-        raise ValueError("contact_friction mu_c is required for law 'kudlich-slibar': give it "
+        raise InputError("contact_friction mu_c is required for law 'kudlich-slibar': give it "
                          "or set impact.contact_friction in the case")
     k, mu_c = check_restitution(k), check_contact_friction(mu_c)
     fields, beta = _fields(case, k, mu_c, approach_tol, singular_tol)
@@ -273,7 +273,7 @@ def law_of(case: Case, law: str | None = None) -> str:
     """The law to apply: ``law`` if given, else the case's ``impact.law``, else "brach"."""
     law = law or case.impact.law or "brach"
     if law not in LAWS:
-        raise ValueError(f"law must be one of {', '.join(map(repr, LAWS))}, got {law!r}")
+        raise InputError(f"law must be one of {', '.join(map(repr, LAWS))}, got {law!r}")
     return law
 
 
@@ -308,18 +308,18 @@ def solve_law(case: Case, law: str | None = None, restitution=None, beta=None,
     law = law_of(case, law)
     if law == "kudlich-slibar":
         if beta is not None:
-            raise ValueError("beta does not apply to law 'kudlich-slibar' (its parameters are "
+            raise InputError("beta does not apply to law 'kudlich-slibar' (its parameters are "
                              "restitution k and contact friction mu_c)")
         return solve_kudlich_slibar(case, restitution, contact_friction)
     if law == "brach":
         if contact_friction is not None:
-            raise ValueError("contact friction mu_c does not apply to law 'brach' (use law "
+            raise InputError("contact friction mu_c does not apply to law 'brach' (use law "
                              "'kudlich-slibar' or 'brach-capped')")
         return solve(case, restitution, beta)
     if contact_friction is None:
         contact_friction = case.impact.contact_friction
     if contact_friction is None:
-        raise ValueError("contact_friction mu_c (the cap) is required for law 'brach-capped'")
+        raise InputError("contact_friction mu_c (the cap) is required for law 'brach-capped'")
     return solve_capped(case, restitution, beta,
                         check_contact_friction(contact_friction, "contact_friction mu_c"))
 

@@ -38,6 +38,7 @@ from numba import njit, prange
 
 from . import formula
 from .numba_cache import files_stamp, stamped_cache
+from .numbers import InputError
 from .quantities import FIELDS, VECTOR_FIELDS
 from .result import Result
 
@@ -504,10 +505,10 @@ def solve_case(case, eps, beta, approach_tol: float, singular_tol: float,
     out = solve_arrays(inputs, approach_tol, singular_tol, fast_trig=fast_trig)
     bad_eps, bad_beta = out.pop("bad_eps"), out.pop("bad_beta")
     if bad_eps:
-        raise ValueError(f"eps (coefficient of restitution) must be in [0, 1] "
+        raise InputError(f"eps (coefficient of restitution) must be in [0, 1] "
                          f"({bad_eps} values are not)")
     if bad_beta:
-        raise ValueError(f"beta (fraction of mu0) must be a finite number, usually in [0, 1] "
+        raise InputError(f"beta (fraction of mu0) must be a finite number, usually in [0, 1] "
                          f"({bad_beta} values are not)")
 
     def fill() -> dict:

@@ -23,6 +23,7 @@ from typing import Literal, Protocol, runtime_checkable
 import numpy as np
 
 from .geometry import radius_of_gyration
+from .numbers import InputError
 
 __all__ = ["PostImpactMotion", "MotionValues", "Term", "QUANTITIES", "TERMS", "as_terms",
            "velocity_changes", "impact_error"]
@@ -117,9 +118,9 @@ class Term:
 
     def __post_init__(self) -> None:
         if self.vehicle not in (1, 2):
-            raise ValueError(f"Term.vehicle must be 1 or 2, got {self.vehicle!r}")
+            raise InputError(f"Term.vehicle must be 1 or 2, got {self.vehicle!r}")
         if self.quantity not in QUANTITIES:
-            raise ValueError(f"Term.quantity must be one of {', '.join(QUANTITIES)}, "
+            raise InputError(f"Term.quantity must be one of {', '.join(QUANTITIES)}, "
                              f"got {self.quantity!r}")
 
     @property
@@ -186,6 +187,6 @@ def as_terms(terms) -> tuple[Term, ...]:
         elif t in _BY_NAME:
             out.append(_BY_NAME[t])
         else:
-            raise ValueError(f"unknown post-impact term {t!r} (allowed: "
+            raise InputError(f"unknown post-impact term {t!r} (allowed: "
                              f"{', '.join(_BY_NAME)})")
     return tuple(out)

@@ -3,13 +3,26 @@ booleans, complex numbers or None read as numbers."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-__all__ = ["real_array"]
+__all__ = ["InputError", "real_array", "checked_number", "checked_count", "check_counts",
+           "check_numbers"]
+
+
+class InputError(ValueError):
+    """Bad user input: a case file, an option or an argument outside what the model accepts.
+
+    The message names the field (``vehicle1.mass``, ``--friction-limit``, ``samples``) and
+    the allowed range. The command line turns this error, and only this one, into one line
+    and exit code 2; any other exception is a bug and surfaces with its traceback. It is a
+    ``ValueError``, so code that catches ``ValueError`` keeps working.
+    """
 
 
 def real_array(value, name: str, unit: str = "-") -> np.ndarray:
-    """``value`` as a float array, or a ValueError naming the field.
+    """``value`` as a float array, or an :class:`InputError` naming the field.
 
     Parameters
     ----------
@@ -22,16 +35,82 @@ def real_array(value, name: str, unit: str = "-") -> np.ndarray:
 
     Raises
     ------
-    ValueError
+    InputError
         A string, bytes, boolean, None, complex or object value (``"1000"``, ``True``) or
         a ragged sequence.
     """
     if isinstance(value, str | bytes | bool | np.bool_) or value is None:
-        raise ValueError(f"{name} must be a number in [{unit}], got {value!r}")
+        raise InputError(f"{name} must be a number in [{unit}], got {value!r}")
     try:
         arr = np.asarray(value)
     except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be numbers in [{unit}] ({exc})") from None
+        raise InputError(f"{name} must be numbers in [{unit}] ({exc})") from None
     if arr.dtype.kind not in "fiu":
-        raise ValueError(f"{name} must be real numbers in [{unit}], got {arr.dtype} values")
+        raise InputError(f"{name} must be real numbers in [{unit}], got {arr.dtype} values")
     return arr.astype(float, copy=False)
+
+
+def checked_number(value, name: str, *, low: float | None = None, high: float | None = None,
+                   low_open: bool = False, unit: str = "-"):
+    """``value`` as a finite float within [low, high] (or (low, high] with ``low_open``).
+
+    The one check of a scalar numeric argument of the public API (``approach_tol``,
+    ``friction_limit`` ...): an :class:`InputError` naming ``name``, its unit and range for
+    a string, boolean, None, complex, NaN, inf or out-of-range value.
+    """
+    if type(value) is not float:        # the common case goes straight to the range check
+        if isinstance(value, str | bytes | bool | np.bool_) or value is None or not isinstance(
+                value, int | float | np.integer | np.floating):
+            raise InputError(f"{name} must be a number [{unit}]{_range(low, high, low_open)}, "
+                             f"got {value!r}")
+        value = float(value)
+    if not (math.isfinite(value) and (low is None or value > low or (value == low and not low_open))
+            and (high is None or value <= high)):
+        raise InputError(f"{name} must be a finite number [{unit}]"
+                         f"{_range(low, high, low_open)}, got {value!r}")
+    return value
+
+
+def checked_count(value, name: str, *, low: int = 1, none: bool = False):
+    """``value`` as an int >= ``low`` (None passes when ``none``): the one check of a
+    count argument (``samples``, ``max_starts``, ``max_workers``, ``chunksize``, ``blocks``).
+
+    Integral floats (``1e6``) are taken; strings, booleans, fractions and NaN are an
+    :class:`InputError` naming ``name``.
+    """
+    if value is None and none:
+        return None
+    if isinstance(value, int | np.integer) and not isinstance(value, bool | np.bool_):
+        number = int(value)
+    elif isinstance(value, float | np.floating) and math.isfinite(value) and value == int(value):
+        number = int(value)
+    else:
+        raise InputError(f"{name} must be an integer >= {low}"
+                         f"{' or None' if none else ''}, got {value!r}")
+    if number < low:
+        raise InputError(f"{name} must be an integer >= {low}{' or None' if none else ''}, "
+                         f"got {number}")
+    return number
+
+
+def check_counts(**counts) -> None:
+    """:func:`checked_count` of each keyword (>= 1, None allowed: "the default"), for a
+    one-line check at the top of a public function."""
+    for name, value in counts.items():
+        checked_count(value, name, none=True)
+
+
+def _range(low, high, low_open: bool) -> str:
+    if low is not None and high is not None:
+        return f" in {'(' if low_open else '['}{low:g}, {high:g}]"
+    if low is not None:
+        return f" {'>' if low_open else '>='} {low:g}"
+    return f" <= {high:g}" if high is not None else ""
+
+
+def check_numbers(**values) -> None:
+    """Each keyword None (the default) or finite real numbers (:func:`real_array`): a
+    one-line check of optional numeric arguments such as ``eps`` and ``beta``."""
+    for name, value in values.items():
+        if value is not None and not np.isfinite(real_array(value, name)).all():
+            raise InputError(f"{name} must be finite, got {value!r}")

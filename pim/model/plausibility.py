@@ -20,24 +20,33 @@ PLAUSIBLE_MU0 = 1.0
 
 
 def bare_angle_warning(field: str, value) -> str | None:
-    """A warning when a bare number given for an angle exceeds 2 pi: it reads as radians,
-    but was probably meant in degrees."""
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        return None
-    if abs(value) <= 2 * np.pi:
+    """A warning when a non-zero bare number is given for an angle: it reads as radians,
+    which a reader may not expect (the case file refuses bare angles beyond 2 pi)."""
+    if isinstance(value, bool) or not isinstance(value, int | float) or value == 0:
         return None
     return (f"{field} = {value} has no unit and is read as {value} rad "
-            f"({np.degrees(value) % 360:.0f} deg mod 360); did you mean \"{value} deg\"?")
+            f"({np.degrees(value):.4g} deg); write \"{np.degrees(value):.4g} deg\" or "
+            f"\"{value} rad\" to say so")
 
 
-def no_impact_message(result: Result) -> str | None:
-    """"no impact: ..." when the vehicles do not approach at C (a single case), else None."""
+def no_impact_message(result: Result, speed_unit: str = "m/s",
+                      speed_scale: float = 1.0) -> str | None:
+    """"no impact: ..." when the vehicles do not approach at C (a single case), else None.
+
+    The approach velocity u_n [m/s] is printed times ``speed_scale`` in ``speed_unit`` (the
+    case's units, converted at the edge), with a hint for the commonest cause, a normal
+    drawn the wrong way round.
+    """
     if bool(np.all(result.approaching)):
         return None
-    u_n = float(np.max(result.approach_n))
+    u_n = float(np.max(result.approach_n)) * speed_scale
+    gamma = float(np.degrees(np.max(result.case.impact.normal_angle)))
+    hint = (f"; n = (cos Gamma, sin Gamma) must point from vehicle 2 toward vehicle 1 "
+            f"(impact.normal_angle = {gamma:.4g} deg): if the vehicles do collide, "
+            f"the normal may be flipped (try {(gamma + 180) % 360:.4g} deg)")
     if u_n > 0:
-        return f"no impact: the vehicles separate at C (u_n = {u_n:.4g} m/s > 0)"
-    return "no impact: the vehicles do not approach at C (u_n = 0)"
+        return f"no impact: the vehicles separate at C (u_n = {u_n:.4g} {speed_unit} > 0){hint}"
+    return f"no impact: the vehicles do not approach at C (u_n = 0){hint}"
 
 
 def plausibility_warnings(result: Result, friction_limit: float | None = None) -> list[str]:

@@ -15,6 +15,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from .numbers import InputError
+
 __all__ = ["Quantity", "FIELDS", "INPUTS", "EVIDENCE_INPUTS", "UNCERTAIN", "MEASURED", "OUTPUTS",
            "VECTOR_FIELDS", "field_of"]
 
@@ -95,7 +97,7 @@ def field_of(name: str) -> tuple[str, int | None]:
             return name[:-2], axis
     if name in FIELDS:
         return name, None
-    raise ValueError(f"unknown input {name!r} (allowed: {', '.join(INPUTS)})")
+    raise InputError(f"unknown input {name!r} (allowed: {', '.join(INPUTS)})")
 
 
 def _outputs() -> dict[str, Quantity]:

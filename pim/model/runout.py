@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .numbers import real_array
+from .numbers import InputError, real_array
 from .tyres import (
     DEFAULT_REGULARISATION,
     STANDARD_GRAVITY,
@@ -77,23 +77,23 @@ class RunoutVehicle:
                            ("track", "m"), ("friction", "-")):
             value = real_array(getattr(self, name), f"runout.{name}", unit)
             if not np.all(np.isfinite(value)) or np.any(value <= 0):
-                raise ValueError(f"runout.{name} must be finite and > 0 [{unit}], "
+                raise InputError(f"runout.{name} must be finite and > 0 [{unit}], "
                                  f"got {getattr(self, name)!r}")
         a = real_array(self.cg_to_front, "runout.cg_to_front", "m")
         length = real_array(self.wheelbase, "runout.wheelbase", "m")
         if not np.all(np.isfinite(a)) or np.any(a < 0) or np.any(a > length):
-            raise ValueError(f"runout.cg_to_front must be in [0, wheelbase] [m], "
+            raise InputError(f"runout.cg_to_front must be in [0, wheelbase] [m], "
                              f"got {self.cg_to_front!r}")
         braking = real_array(self.braking, "runout.braking", "-")
         if braking.shape[-1:] != (4,) or not np.all((braking >= 0) & (braking <= 1)):
-            raise ValueError(f"runout.braking must be four fractions in [0, 1] (front-left, "
+            raise InputError(f"runout.braking must be four fractions in [0, 1] (front-left, "
                              f"front-right, rear-left, rear-right), got {self.braking!r}")
         steer = real_array(self.steer, "runout.steer", "rad")
         if steer.shape[-1:] not in ((4,), ()) or not np.all(np.isfinite(steer)):
-            raise ValueError(f"runout.steer must be four finite angles [rad], "
+            raise InputError(f"runout.steer must be four finite angles [rad], "
                              f"got {self.steer!r}")
         if not self.regularisation > 0:
-            raise ValueError(f"runout.regularisation must be > 0 [m/s], "
+            raise InputError(f"runout.regularisation must be > 0 [m/s], "
                              f"got {self.regularisation!r}")
 
     @property
@@ -188,7 +188,7 @@ def _initial_state(position, heading, velocity, yaw_rate) -> np.ndarray:
     for name, value in (("position", position), ("velocity", velocity),
                         ("heading", heading), ("yaw_rate", yaw_rate)):
         if not np.all(np.isfinite(value)):
-            raise ValueError(f"runout.{name} must be finite, got {value!r}")
+            raise InputError(f"runout.{name} must be finite, got {value!r}")
     position, velocity = np.broadcast_arrays(position, velocity)
     heading, yaw_rate = np.broadcast_arrays(heading, yaw_rate)
     return np.concatenate([position, heading[..., None], velocity, yaw_rate[..., None]],

@@ -21,6 +21,7 @@ from numba import njit, prange
 
 from . import tyres
 from .numba_cache import stamped_cache
+from .numbers import InputError
 from .runout import MAX_TIME, RunoutVehicle
 
 __all__ = ["integrate_many", "RUNOUT_STEP"]
@@ -148,7 +149,7 @@ def integrate_many(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate
     y0[:, 3:5] = velocity
     y0[:, 5] = np.broadcast_to(np.asarray(yaw_rate, dtype=float), (n,))
     if not np.all(np.isfinite(y0)):
-        raise ValueError("runout: the post-impact states must be finite")
+        raise InputError("runout: the post-impact states must be finite")
     positions = np.broadcast_to(vehicle.positions, (n, 4, 2))
     px = np.ascontiguousarray(positions[..., 0])
     py = np.ascontiguousarray(positions[..., 1])

@@ -30,7 +30,7 @@ import numpy as np
 from . import formula
 from .case import Case
 from .geometry import vec
-from .numbers import real_array
+from .numbers import InputError, checked_number, real_array
 from .result import Result
 
 __all__ = ["solve", "constraints", "APPROACH_TOLERANCE", "SINGULAR_TOLERANCE",
@@ -85,7 +85,7 @@ def defaults(case: Case, eps=None, beta=None):
         if eps is None:
             hint = ("; this case names unknowns in [unknown]: `pim reconstruct` solves them"
                     if getattr(case, "unknown", None) else "")
-            raise ValueError("eps is required: give it or set impact.restitution in the "
+            raise InputError("eps is required: give it or set impact.restitution in the "
                              f"case{hint}")
     if beta is None:
         beta = 1.0 if case.impact.beta is None else case.impact.beta
@@ -95,14 +95,14 @@ def defaults(case: Case, eps=None, beta=None):
 def _check_eps(eps) -> np.ndarray:
     eps = real_array(eps, "eps (coefficient of restitution)")
     if np.isnan(eps).any() or ((eps < 0) | (eps > 1)).any():
-        raise ValueError("eps (coefficient of restitution) must be in [0, 1]")
+        raise InputError("eps (coefficient of restitution) must be in [0, 1]")
     return eps
 
 
 def _check_beta(beta) -> np.ndarray:
     beta = real_array(beta, "beta (fraction of mu0)")
     if not np.isfinite(beta).all():
-        raise ValueError("beta (fraction of mu0) must be a finite number, usually in [0, 1]")
+        raise InputError("beta (fraction of mu0) must be a finite number, usually in [0, 1]")
     return beta
 
 
@@ -117,7 +117,7 @@ def _is_float(x) -> bool:
 def _use_kernel(case: Case, eps, beta, backend: str) -> bool:
     """Whether :func:`solve` should run :mod:`pim.model.kernel` (imports numba only if so)."""
     if backend not in ("auto", "numpy", "numba"):
-        raise ValueError(f"backend must be 'auto', 'numpy' or 'numba', got {backend!r}")
+        raise InputError(f"backend must be 'auto', 'numpy' or 'numba', got {backend!r}")
     if backend == "numpy":
         return False
     if backend == "auto":
@@ -128,9 +128,16 @@ def _use_kernel(case: Case, eps, beta, backend: str) -> bool:
         import numba  # noqa: F401
     except ImportError:
         if backend == "numba":
-            raise ValueError("backend='numba' needs numba installed (pip install numba)") from None
+            raise InputError("backend='numba' needs numba installed (pip install numba)") from None
         return False
     return True
+
+
+def _check_tolerances(approach_tol, singular_tol) -> None:
+    if approach_tol is not APPROACH_TOLERANCE:
+        checked_number(approach_tol, "approach_tol", low=0.0)
+    if singular_tol is not SINGULAR_TOLERANCE:
+        checked_number(singular_tol, "singular_tol", low=0.0)
 
 
 def solve(case: Case, eps=None, beta=None, backend: str = "auto", fast_trig: bool = True,
@@ -188,8 +195,9 @@ def solve(case: Case, eps=None, beta=None, backend: str = "auto", fast_trig: boo
     >>> round(float(r.mu0), 3)          # the sheet prints mu0(0.355) = 0.512
     0.512
     """
+    _check_tolerances(approach_tol, singular_tol)
     if not isinstance(case, Case):
-        raise ValueError(f"case must be a pim.Case (e.g. pim.load_case(...)), got "
+        raise InputError(f"case must be a pim.Case (e.g. pim.load_case(...)), got "
                          f"{type(case).__name__}")
     eps, beta = defaults(case, eps, beta)
     if (backend == "auto" and case.is_scalar and _is_float(eps) and _is_float(beta)):
@@ -198,7 +206,7 @@ def solve(case: Case, eps=None, beta=None, backend: str = "auto", fast_trig: boo
     try:
         np.broadcast_shapes(case.shape, eps.shape, beta.shape)
     except ValueError:
-        raise ValueError(f"the shapes of eps {eps.shape}, beta {beta.shape} and the case's "
+        raise InputError(f"the shapes of eps {eps.shape}, beta {beta.shape} and the case's "
                          f"inputs {case.shape} do not broadcast together") from None
     if _use_kernel(case, eps, beta, backend):
         from .kernel import solve_case  # numba loads only for the batch path
@@ -211,9 +219,9 @@ def _solve_scalar(case: Case, eps: float, beta: float, approach_tol: float,
                   singular_tol: float) -> Result:
     """:mod:`pim.model.formula` on plain floats: one case."""
     if not (0.0 <= eps <= 1.0):
-        raise ValueError("eps (coefficient of restitution) must be in [0, 1]")
+        raise InputError("eps (coefficient of restitution) must be in [0, 1]")
     if not math.isfinite(beta):
-        raise ValueError("beta (fraction of mu0) must be a finite number, usually in [0, 1]")
+        raise InputError("beta (fraction of mu0) must be a finite number, usually in [0, 1]")
     v1, v2, imp = case.vehicle1, case.vehicle2, case.impact
     m1, i1, w1, m2, i2, w2, gamma = (float(x) for x in (
         v1.mass, v1.yaw_inertia, v1.yaw_rate, v2.mass, v2.yaw_inertia, v2.yaw_rate,

@@ -23,7 +23,8 @@ def outline(vehicle: Vehicle):
     None when the vehicle has no outline data."""
     if vehicle.length is None or vehicle.width is None:
         return None
-    return outline_world(vehicle.length, vehicle.width, vehicle.cg, float(vehicle.heading))
+    return outline_world(vehicle.length, vehicle.width, vehicle.cg, float(vehicle.heading),
+                         vehicle.cg_to_front)
 
 
 _BOX = dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.8)

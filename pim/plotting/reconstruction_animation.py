@@ -19,6 +19,7 @@ from ..analysis.reconstruction import PostImpact
 from ..io.files import atomic_path
 from ..io.units import convert
 from ..model.geometry import outline_world
+from ..model.numbers import InputError
 from .reconstruction_scene import COLOURS
 
 __all__ = ["FrameStates", "frame_states", "write_reconstruction_mp4", "DEFAULT_FPS",
@@ -46,11 +47,11 @@ def frame_states(post: PostImpact, fps: int = DEFAULT_FPS,
     stored states (the heading is integrated continuously, so it interpolates without a
     jump at +-180 deg)."""
     if not (isinstance(fps, int | np.integer) and fps >= 1):
-        raise ValueError(f"fps must be a positive integer, got {fps!r}")
+        raise InputError(f"fps must be a positive integer, got {fps!r}")
     if not (np.isfinite(hold) and hold >= 0):
-        raise ValueError(f"hold must be >= 0 [s], got {hold!r}")
+        raise InputError(f"hold must be >= 0 [s], got {hold!r}")
     if not post.runouts:
-        raise ValueError("the reconstruction has no run-out to animate (no [evidence])")
+        raise InputError("the reconstruction has no run-out to animate (no [evidence])")
     end = max(float(f.runout.time[-1]) for f in post.runouts.values())
     times = np.arange(int(np.ceil((end + hold) * fps)) + 1) / fps
     states = {}
@@ -103,14 +104,16 @@ def write_reconstruction_mp4(post: PostImpact, path, *, units: str = "si",
         colour = COLOURS[i]
         path_xy = fit.runout.states[:, :2] * scale
         ax.plot(path_xy[:, 0], path_xy[:, 1], "-", color=colour, lw=0.8, alpha=0.5)
-        rest = outline_world(length, width, evidence.rest_position, evidence.rest_heading)
+        rest = outline_world(length, width, evidence.rest_position, evidence.rest_heading,
+                             vehicle.cg_to_front)
         closed = np.vstack([rest, rest[:1]]) * scale
         ax.plot(closed[:, 0], closed[:, 1], "--", color="k", lw=1.0)
-        start = outline_world(length, width, frames.states[i][0, :2], frames.states[i][0, 2])
+        start = outline_world(length, width, frames.states[i][0, :2], frames.states[i][0, 2],
+                              vehicle.cg_to_front)
         patch = Polygon(start * scale, closed=True, facecolor=colour, alpha=0.6,
                         edgecolor=colour, label=f"vehicle {i}")
         ax.add_patch(patch)
-        patches[i] = (patch, length, width)
+        patches[i] = (patch, length, width, vehicle.cg_to_front)
         extent += [path_xy, closed]
     ax.plot([], [], "--", color="k", label="measured rest")
     ax.plot(*(np.asarray(case.impact.point) * scale), "*", color="k", ms=10, label="C")
@@ -131,9 +134,9 @@ def write_reconstruction_mp4(post: PostImpact, path, *, units: str = "si",
                                     ffmpeg_log_level="error")
         try:
             for k, t in enumerate(frames.times):
-                for i, (patch, length, width) in patches.items():
+                for i, (patch, length, width, front) in patches.items():
                     x, y, h = frames.states[i][k]
-                    patch.set_xy(outline_world(length, width, (x, y), h) * scale)
+                    patch.set_xy(outline_world(length, width, (x, y), h, front) * scale)
                 clock.set_text(f"{case.name}: t = {t:5.2f} s after the impact")
                 canvas.draw()
                 rgba = np.asarray(canvas.buffer_rgba())

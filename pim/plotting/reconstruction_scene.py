@@ -46,7 +46,7 @@ def reconstruction_figure(post: PostImpact, units: str = "si"):
         width = vehicle.width if vehicle.width is not None else 1.8
         for cg, heading, style in ((vehicle.cg, float(vehicle.heading), "-"),
                                    (fit.rest_position, fit.rest_heading, "--")):
-            corners = outline_world(length, width, cg, heading) * scale
+            corners = outline_world(length, width, cg, heading, vehicle.cg_to_front) * scale
             closed = np.vstack([corners, corners[:1]])
             ax.plot(closed[:, 0], closed[:, 1], style, color=colour, lw=1.0)
         ax.plot(*(np.asarray(vehicle.cg) * scale), "o", color=colour, ms=5)

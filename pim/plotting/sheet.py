@@ -31,6 +31,7 @@ from ..analysis.residuals import has_measured_terms, residuals
 from ..io.files import save_figure
 from ..io.units import convert
 from ..model.case import Case
+from ..model.numbers import InputError
 from ..model.result import Result
 from ..model.solver import defaults, solve
 
@@ -230,7 +231,7 @@ def _title(fig, sweep_or_case, text):
 def plot_velocity_error(sweep: EpsilonSweep, fit_result: FitResult, units: str = "si"):
     """Least-squares cost vs epsilon: lowest over beta, and at each swept beta."""
     if sweep.cost is None:
-        raise ValueError("the sweep has no cost: nothing was measured")
+        raise InputError("the sweep has no cost: nothing was measured")
     f2, cost_label = _cost_axis(fit_result, units)
     fig, ax = _figure()
     ax.plot(sweep.eps, sweep.profile_cost * f2, color="k", lw=2.4,
@@ -420,9 +421,9 @@ def write_plots(case: Case, fit_result: FitResult | None, out_dir, formats=("png
     formats = tuple(formats)
     for fmt in formats:
         if fmt not in ("png", "svg", "pdf"):
-            raise ValueError(f"formats must be among png, svg, pdf; got {fmt!r}")
+            raise InputError(f"formats must be among png, svg, pdf; got {fmt!r}")
     if fit_result is None and has_measured_terms(case):
-        raise ValueError("the case has measured values: pass its fit (pim.fit(case))")
+        raise InputError("the case has measured values: pass its fit (pim.fit(case))")
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     sweep = sweep_epsilon(case, fit_result)

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..io.units import convert
+from ..model.numbers import InputError
 from ..model.result import Result
 
 __all__ = ["Row", "summarize", "format_table", "rows_to_json"]
@@ -31,7 +32,7 @@ def _f(x) -> float:
 def summarize(result: Result, units: str = "si") -> list[Row]:
     """Rows describing one impact (a Result of size 1) in the ``units`` system ("si"/"us")."""
     if np.size(result.impulse_n) != 1:
-        raise ValueError("summarize needs a single case; index the Result first")
+        raise InputError("summarize needs a single case; index the Result first")
     rows: list[Row] = []
     barrier = bool(np.asarray(result.case.vehicle2.fixed).reshape(()))
 
