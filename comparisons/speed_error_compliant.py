@@ -43,7 +43,8 @@ from .tables import Table, fmt_error
 
 __all__ = ["CompliantPoint", "CompliantSpeedStudy", "compliant_sweep", "STEPS", "RTOLS",
            "TARGET", "SCENES", "COARSE", "REFERENCE_RTOLS", "REFERENCE_BUDGET", "RUN_BUDGET",
-           "reference_within_budget", "Reference", "plot_compliant_speed_error", "write_compliant_study"]
+           "reference_within_budget", "Reference", "plot_compliant_speed_error",
+           "write_compliant_study"]
 
 STEPS = (10, 20, 40, 80, 160, 320, 640, 1280, 2560)
 RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
@@ -173,9 +174,12 @@ def _ladders(case, eps, k, mu, steps, rtols, methods):
             case, eps, k, friction=mu, settings=s)))
     out = [("pymunk", pymunk)]
     for method in methods:
-        out.append((method, [(rtol, lambda s=sim.CompliantSettings(
-            record=False, rtol=rtol, method=method): sim.reference_compliant(
-                case, eps, k, friction=mu, settings=s)) for rtol in sorted(rtols, reverse=True)]))
+        ladder = []
+        for rtol in sorted(rtols, reverse=True):
+            settings = sim.CompliantSettings(record=False, rtol=rtol, method=method)
+            ladder.append((rtol, lambda s=settings: sim.reference_compliant(
+                case, eps, k, friction=mu, settings=s)))
+        out.append((method, ladder))
     return out
 
 
