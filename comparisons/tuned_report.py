@@ -92,9 +92,15 @@ def verdict(study: ClassStudy, units: str = "si") -> str:
     """One sentence: which model predicts the held-out tests better, by how much."""
     a = median_errors(study.rows("PIM", "leave-one-out"))
     b = median_errors(study.rows("scene", "leave-one-out"))
-    if not a["n"]:
-        return f"{study.crash_class}: too few tests for leave-one-out."
     su = convert(1.0, "speed", units)[1]
+    if not a["n"]:
+        a = median_errors(study.rows("PIM", "per-test fit"))
+        b = median_errors(study.rows("scene", "per-test fit"))
+        return (f"{study.crash_class} ({a['n']} test(s), too few for leave-one-out): fitted "
+                f"with its own parameters, PIM misses the post-impact velocity by "
+                f"{_speed(a['v'], units):.2f} {su} and the yaw rate by "
+                f"{math.degrees(a['yaw']):.1f} deg/s, the tuned scene by "
+                f"{_speed(b['v'], units):.2f} {su} and {math.degrees(b['yaw']):.1f} deg/s.")
     better = "the tuned scene" if b["v"] < a["v"] else "PIM"
     ratio = max(a["v"], b["v"]) / max(min(a["v"], b["v"]), 1e-12)
     return (f"{study.crash_class} ({a['n']} tests, leave-one-out): {better} predicts the "
@@ -116,9 +122,9 @@ def plot_tuned_study(studies, units: str = "si"):
     fig = Figure(figsize=(4.2 * len(studies), 7.6), layout="constrained")
     axes = np.atleast_2d(fig.subplots(2, len(studies), squeeze=False))
     for j, st in enumerate(studies):
-        pim_rows = {r.test: r for r in st.rows("PIM", "leave-one-out")}
-        pairs = [(pim_rows[r.test], r) for r in st.rows("scene", "leave-one-out")
-                 if r.test in pim_rows]
+        kind = "leave-one-out" if st.rows("PIM", "leave-one-out") else "per-test fit"
+        pim_rows = {r.test: r for r in st.rows("PIM", kind)}
+        pairs = [(pim_rows[r.test], r) for r in st.rows("scene", kind) if r.test in pim_rows]
         for i, (attr, scale, label) in enumerate(
                 (("velocity_error", lambda x: _speed(x, units), f"velocity error [{su}]"),
                  ("yaw_error", math.degrees, "yaw-rate error [deg/s]"))):
@@ -134,8 +140,7 @@ def plot_tuned_study(studies, units: str = "si"):
             ax.set_ylabel(f"tuned scene, {label}")
             ax.grid(alpha=0.3)
             if i == 0:
-                ax.set_title(f"{st.crash_class}\nleave-one-out, {len(pairs)} tests",
-                             fontsize=9)
+                ax.set_title(f"{st.crash_class}\n{kind}, {len(pairs)} test(s)", fontsize=9)
     return fig
 
 
