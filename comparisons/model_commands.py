@@ -8,9 +8,14 @@ from __future__ import annotations
 from pathlib import Path
 
 import click
+from tqdm.auto import tqdm
 
 from pim.cli import echo_json, json_option
 from pim.io.files import save_figure, writable_folder, write_text
+
+from .pulses import compare_pulses, plot_pulses, pulse_table
+from .tuned_report import verdict, write_tuned_study
+from .tuned_scene import COARSE_STEPS, coarse_check, crash_classes, study_class
 
 __all__ = ["validate_models", "pulses"]
 
@@ -44,11 +49,6 @@ def validate_models(out, max_tests, steps, units, progress, as_json):
     tuned-scene.md (one sentence per class on which model predicts the held-out tests
     better), tuned-scene-summary.csv, tuned-scene-predictions.csv and tuned-scene.png.
     """
-    from tqdm.auto import tqdm
-
-    from .tuned_report import verdict, write_tuned_study
-    from .tuned_scene import COARSE_STEPS, coarse_check, crash_classes, study_class
-
     folder = writable_folder(Path(out) if out else Path("out") / "validate-models")
     steps = COARSE_STEPS if steps is None else steps
     classes = crash_classes(max_tests)
@@ -88,8 +88,6 @@ def pulses(out, stiffness, eps, units, as_json):
     Writes pulses.md (the table of duration, peak force, crush at peak, rebound, each with
     its error), pulses-nhtsa10146.csv and pulses.png.
     """
-    from .pulses import compare_pulses, plot_pulses, pulse_table
-
     folder = writable_folder(Path(out) if out else Path("out") / "pulses")
     c = compare_pulses(stiffness, eps)
     table = pulse_table(c, units)

@@ -25,9 +25,11 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.integrate import cumulative_trapezoid
 
 import pim
 import sim
+from pim.io.units import convert
 from sim.crash_data import CrashTest, nhtsa10146
 
 from .tables import Table
@@ -94,8 +96,6 @@ def simulate_pulse(mass: float, speed: float, stiffness: float, eps: float,
                    rtol: float = 1e-9) -> Pulse:
     """The contact law's pulse of a car into a barrier (module notes); the velocity is
     ``speed`` minus the integral of the force over the mass (trapezoids)."""
-    from scipy.integrate import cumulative_trapezoid
-
     r = sim.reference_compliant(barrier_pulse_case(mass, speed), eps, stiffness,
                                 settings=sim.CompliantSettings(rtol=rtol, record=True))
     h = r.history
@@ -158,8 +158,6 @@ _ROWS = (("contact duration (force > 5 % of peak)", "duration", 1e3, "ms"),
 
 def pulse_table(c: PulseComparison, units: str = "si") -> Table:
     """Measured against modelled metrics, with the error and the relative error."""
-    from pim.io.units import convert
-
     rows = []
     for label, attr, factor, unit in _ROWS:
         a, b = getattr(c.measured_metrics, attr), getattr(c.model_metrics, attr)
@@ -181,8 +179,6 @@ def pulse_table(c: PulseComparison, units: str = "si") -> Table:
 def plot_pulses(c: PulseComparison, units: str = "si"):
     """Force-time, delta-V-time and force-crush, measured against the law (a Figure)."""
     from matplotlib.figure import Figure
-
-    from pim.io.units import convert
 
     fig = Figure(figsize=(13.5, 4.2), layout="constrained")
     axes = fig.subplots(1, 3)
