@@ -10,9 +10,10 @@ vehicles (stick-slip). Each is integrated
   (implicit) at rtol in :data:`RTOLS`,
 
 against the reference: DOP853 at the tightest rtol of :data:`REFERENCE_RTOLS` (1e-8, 1e-9,
-1e-10) that fits the time budget :data:`REFERENCE_BUDGET` (each tighter rung is tried only
-when the last one took under a quarter of the budget; tighter tolerances approach round-off
-and can cost 10^4-10^5 steps: the pickup-into-sedan case took 262 s at rtol 1e-12). The
+1e-10) that fits the budget :data:`REFERENCE_STEPS` (each tighter rung is tried only when the
+last one took under a quarter of the budget's steps: a step count, so the choice does not
+depend on the machine's load; tighter tolerances approach round-off and can cost 10^4-10^5
+steps: the pickup-into-sedan case took 262 s and 63 359 steps at rtol 1e-12). The
 tolerance reached and the reference's spread (its difference from the rung before) are
 reported. Swept rtols tighter than 10x the reference's are dropped (they would measure the
 reference), and a method's tighter rtols (or pymunk's finer steps) are skipped as
@@ -42,7 +43,7 @@ from .speed_error import ERROR_FLOOR, pareto_front
 from .tables import Table, fmt_error
 
 __all__ = ["CompliantPoint", "CompliantSpeedStudy", "compliant_sweep", "STEPS", "RTOLS",
-           "TARGET", "SCENES", "COARSE", "REFERENCE_RTOLS", "REFERENCE_BUDGET", "RUN_BUDGET",
+           "TARGET", "SCENES", "COARSE", "REFERENCE_RTOLS", "REFERENCE_STEPS", "RUN_BUDGET",
            "reference_within_budget", "Reference", "plot_compliant_speed_error",
            "write_compliant_study"]
 
@@ -54,9 +55,9 @@ TARGET = 1e-3
 SCENES = {"frictionless": 0.0, "friction 0.5": 0.5}
 #: Tolerances tried for the reference, loosest first [-].
 REFERENCE_RTOLS = (1e-8, 1e-9, 1e-10)
-#: Wall time one reference scene may cost [s] (the next rung runs only if the last took
-#: under a quarter of it).
-REFERENCE_BUDGET = 8.0
+#: Integration steps one reference scene may cost (the next rung runs only if the last took
+#: under a quarter of them; 46-172 steps at rtol 1e-10 on the bundled cases).
+REFERENCE_STEPS = 2000
 #: Wall time of one swept run above which the next finer setting is not tried [s] (x 3).
 RUN_BUDGET = 6.0
 #: The coarse grid (``pim speed-error --coarse``): seconds, not a minute.
@@ -137,17 +138,17 @@ class Reference:
 
 
 def reference_within_budget(case: pim.Case, eps: float, stiffness: float, friction: float,
-                            rtols=REFERENCE_RTOLS, budget: float = REFERENCE_BUDGET
+                            rtols=REFERENCE_RTOLS, budget: int = REFERENCE_STEPS
                             ) -> Reference:
-    """DOP853 at the tightest of ``rtols`` (loosest first) that fits ``budget`` [s].
+    """DOP853 at the tightest of ``rtols`` (loosest first) that fits ``budget`` steps.
 
-    The next rung runs only if the last took under budget / 4 (module notes). ``spread`` is
+    The next rung runs only if the last took under budget / 4 steps (module notes). ``spread`` is
     :func:`sim.error_measure.impact_error` of the last rung against the one before (NaN
     with a single rung): an upper estimate of the reference's own error.
     """
     results, spent = [], 0.0
     for rtol in rtols:
-        if results and results[-1][1].wall_time > budget / 4.0:
+        if results and results[-1][1].steps > budget / 4.0:
             break
         out = sim.reference_compliant(case, eps, stiffness, friction=friction,
                                       settings=sim.CompliantSettings(record=False, rtol=rtol))
@@ -206,11 +207,11 @@ def _run_ladder(case, scene, ref, integrator, ladder, repeats, bar, run_budget):
 def compliant_sweep(case: pim.Case, eps: float | None = None, *, steps=STEPS, rtols=RTOLS,
                     methods=METHODS, scenes=None, repeats: int = 3,
                     progress: bool | None = None, reference_rtols=REFERENCE_RTOLS,
-                    reference_budget: float = REFERENCE_BUDGET,
+                    reference_budget: int = REFERENCE_STEPS,
                     run_budget: float = RUN_BUDGET) -> CompliantSpeedStudy:
     """Run the study (module notes) for ``case`` at restitution ``eps`` (default: the case's,
-    else 0.3). ``reference_rtols``, ``reference_budget`` [s] and ``run_budget`` [s] bound the
-    cost (module notes)."""
+    else 0.3). ``reference_rtols``, ``reference_budget`` [steps] and ``run_budget`` [s] bound
+    the cost (module notes)."""
     from tqdm.auto import tqdm
 
     wall0 = time.perf_counter()
@@ -302,7 +303,7 @@ def write_compliant_study(study: CompliantSpeedStudy, out_dir, stem: str,
     lines += [f"Point contact, epsilon = {study.eps:.4g}, k = {study.stiffness:.3g} N/m; "
               f"pymunk over dt (10 ... 2560 steps per estimated contact time), solve_ivp "
               f"DOP853 and Radau over rtol, against DOP853 at rtol {study.reference_rtol:g} "
-              f"(the tightest within {REFERENCE_BUDGET:g} s per scene; it differs from the "
+              f"(the tightest within {REFERENCE_STEPS} steps per scene; it differs from the "
               f"rung before by {study.reference_spread:.1e}). Whole study: "
               f"{study.wall_time:.1f} s. Error: the largest error in "
               f"the impact's velocity changes, relative to the largest change.", ""]
