@@ -53,7 +53,7 @@ def validate_models(out, max_tests, steps, units, progress, as_json):
     steps = COARSE_STEPS if steps is None else steps
     classes = crash_classes(max_tests)
     studies, checks = [], {}
-    with tqdm(desc="validate-models", unit="scene", disable=None if progress is None
+    with tqdm(desc="validate-models", unit="run", disable=None if progress is None
               else not progress) as bar:
         for name, tests in classes.items():
             st = study_class(name, tests, steps=steps, bar=bar)

@@ -208,7 +208,7 @@ def fit_parameters(model: Model, tests, start=None, fixed: dict | None = None,
     max_nfev : int, optional
         Residual evaluations allowed (``least_squares``; its default if None).
     bar : tqdm, optional
-        Advanced by one per scene run.
+        Advanced by one per model run (a scene or a PIM solve).
     """
     fixed = dict(fixed or {})
     x0 = np.array(model.start if start is None else start, float)
