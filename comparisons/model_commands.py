@@ -25,14 +25,18 @@ _progress = click.option("--progress/--no-progress", default=None,
                          help="Progress bar on stderr (default: only on a terminal).")
 
 
+def _out_option(name: str):
+    return click.option("--out", "out", type=click.Path(file_okay=False), default=None,
+                        help=f"Output folder (default: out/{name}).")
+
+
 def _command(name: str, **opts) -> str:
     return " ".join([f"pim {name}"] + [f"--{k.replace('_', '-')} {v}" for k, v in opts.items()
                                        if v is not None])
 
 
 @click.command("validate-models")
-@click.option("--out", "out", type=click.Path(file_okay=False), default=None,
-              help="Output folder (default: out/validate-models).")
+@_out_option("validate-models")
 @click.option("--max-tests", type=click.IntRange(3, None), default=None,
               help="Only the first N tests of each class (a quick look), >= 3.")
 @click.option("--steps", type=click.IntRange(10, 2000), default=None,
@@ -73,8 +77,7 @@ def validate_models(out, max_tests, steps, units, progress, as_json):
 
 
 @click.command("pulses")
-@click.option("--out", "out", type=click.Path(file_okay=False), default=None,
-              help="Output folder (default: out/pulses).")
+@_out_option("pulses")
 @click.option("--stiffness", type=click.FloatRange(1e3, 1e9), default=None,
               help="Linear crush stiffness [N/m] (default sim.DEFAULT_STIFFNESS, 7.5e5).")
 @click.option("--eps", type=click.FloatRange(0.0, 1.0), default=None,
