@@ -9,7 +9,15 @@ vehicles (stick-slip). Each is integrated
 * by ``solve_ivp`` (:func:`sim.reference_compliant`) with DOP853 (explicit) and Radau
   (implicit) at rtol in :data:`RTOLS`,
 
-against the reference: DOP853 at rtol 1e-13. The error is
+against the reference: DOP853 at the tightest rtol of :data:`REFERENCE_RTOLS` (1e-8, 1e-9,
+1e-10) that fits the budget :data:`REFERENCE_STEPS` (each tighter rung is tried only when the
+last one took under a quarter of the budget's steps: a step count, so the choice does not
+depend on the machine's load; tighter tolerances approach round-off and can cost 10^4-10^5
+steps: the pickup-into-sedan case took 262 s and 63 359 steps at rtol 1e-12). The
+tolerance reached and the reference's spread (its difference from the rung before) are
+reported. Swept rtols tighter than 10x the reference's are dropped (they would measure the
+reference), and a method's tighter rtols (or pymunk's finer steps) are skipped as
+"over_budget" once the last run took more than a third of :data:`RUN_BUDGET`. The error is
 :func:`sim.error_measure.impact_error` (largest error in the impact's velocity changes,
 relative to the largest change); the wall time per impact is the best of ``repeats`` runs.
 The Pareto front is :func:`comparisons.speed_error.pareto_front`; the recommended setting is
@@ -20,6 +28,7 @@ fastest reaching 1e-6 is reported per integrator.
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -34,15 +43,23 @@ from .speed_error import ERROR_FLOOR, pareto_front
 from .tables import Table, fmt_error
 
 __all__ = ["CompliantPoint", "CompliantSpeedStudy", "compliant_sweep", "STEPS", "RTOLS",
-           "TARGET", "SCENES", "COARSE", "plot_compliant_speed_error", "write_compliant_study"]
+           "TARGET", "SCENES", "COARSE", "REFERENCE_RTOLS", "REFERENCE_STEPS", "RUN_BUDGET",
+           "reference_within_budget", "Reference", "plot_compliant_speed_error",
+           "write_compliant_study"]
 
 STEPS = (10, 20, 40, 80, 160, 320, 640, 1280, 2560)
-RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-8, 1e-10, 1e-12)
+RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
 METHODS = ("DOP853", "Radau")
 TARGET = 1e-3
 #: scene name -> friction mu_c between the vehicles
 SCENES = {"frictionless": 0.0, "friction 0.5": 0.5}
-REFERENCE_RTOL = 1e-13
+#: Tolerances tried for the reference, loosest first [-].
+REFERENCE_RTOLS = (1e-8, 1e-9, 1e-10)
+#: Integration steps one reference scene may cost (the next rung runs only if the last took
+#: under a quarter of them; 46-172 steps at rtol 1e-10 on the bundled cases).
+REFERENCE_STEPS = 2000
+#: Wall time of one swept run above which the next finer setting is not tried [s] (x 3).
+RUN_BUDGET = 6.0
 #: The coarse grid (``pim speed-error --coarse``): seconds, not a minute.
 COARSE = dict(steps=(10, 40, 160, 640), rtols=(1e-3, 1e-6, 1e-9), repeats=1)
 
@@ -77,8 +94,10 @@ class CompliantSpeedStudy:
     eps: float
     stiffness: float
     points: tuple
-    reference_spread: float   # |DOP853 - Radau| at the tightest rtol, on the error scale
+    reference_spread: float   # reference against the rung before it, on the error scale
     target: float = TARGET
+    reference_rtol: float = math.nan   # tightest rtol the reference reached (all scenes)
+    wall_time: float = math.nan        # wall time of the whole study [s]
 
     def scene_points(self, scene: str) -> list:
         return [p for p in self.points if p.scene == scene and p.ok]
@@ -98,66 +117,128 @@ class CompliantSpeedStudy:
 
 
 def _timed(func, repeats: int):
+    """Best wall time of ``repeats`` runs; a run slower than a second is not repeated."""
     best, out = math.inf, None
     for _ in range(max(1, repeats)):
         out = func()
         best = min(best, out.wall_time)
+        if out.wall_time > 1.0:
+            break
     return out, best
+
+
+@dataclass(frozen=True, eq=False)
+class Reference:
+    """The reference of one scene: the result, the rtol it reached, its spread and cost."""
+
+    result: object
+    rtol: float
+    spread: float
+    wall_time: float
+
+
+def reference_within_budget(case: pim.Case, eps: float, stiffness: float, friction: float,
+                            rtols=REFERENCE_RTOLS, budget: int = REFERENCE_STEPS
+                            ) -> Reference:
+    """DOP853 at the tightest of ``rtols`` (loosest first) that fits ``budget`` steps.
+
+    The next rung runs only if the last took under budget / 4 steps (module notes). ``spread`` is
+    :func:`sim.error_measure.impact_error` of the last rung against the one before (NaN
+    with a single rung): an upper estimate of the reference's own error.
+    """
+    results, spent = [], 0.0
+    for rtol in rtols:
+        if results and results[-1][1].steps > budget / 4.0:
+            break
+        out = sim.reference_compliant(case, eps, stiffness, friction=friction,
+                                      settings=sim.CompliantSettings(record=False, rtol=rtol))
+        spent += out.wall_time
+        results.append((rtol, out))
+    rtol, ref = results[-1]
+    spread = math.nan
+    if len(results) > 1:
+        prev = results[-2][1]
+        spread = float(impact_error(case, ref, prev.velocity1, prev.velocity2,
+                                    prev.yaw_rate1, prev.yaw_rate2))
+    return Reference(ref, rtol, spread, spent)
+
+
+def _ladders(case, eps, k, mu, steps, rtols, methods):
+    """(integrator, [(setting, run), ...]) from the cheapest setting to the dearest."""
+    pymunk = []
+    for n in steps:
+        settings = sim.CompliantSettings(record=False, steps_per_contact=int(n),
+                                         min_steps=min(10, int(n)))
+        dt = sim.compliant.step_size(sim.compliant_setup.build_problem(
+            case, eps, k, mu, settings=settings))
+        pymunk.append((dt, lambda s=settings: sim.simulate_compliant(
+            case, eps, k, friction=mu, settings=s)))
+    out = [("pymunk", pymunk)]
+    for method in methods:
+        ladder = []
+        for rtol in sorted(rtols, reverse=True):
+            settings = sim.CompliantSettings(record=False, rtol=rtol, method=method)
+            ladder.append((rtol, lambda s=settings: sim.reference_compliant(
+                case, eps, k, friction=mu, settings=s)))
+        out.append((method, ladder))
+    return out
+
+
+def _run_ladder(case, scene, ref, integrator, ladder, repeats, bar, run_budget):
+    points, last = [], 0.0
+    for setting, run in ladder:
+        if last > run_budget / 3.0:
+            points.append(CompliantPoint(scene, integrator, setting, 0, math.nan, math.nan,
+                                         "over_budget"))
+        else:
+            try:
+                out, wall = _timed(run, repeats)
+                last = out.wall_time
+                err = float(impact_error(case, ref, out.velocity1, out.velocity2,
+                                         out.yaw_rate1, out.yaw_rate2))
+                points.append(CompliantPoint(scene, integrator, setting, out.steps, err, wall))
+            except sim.SimulationError as exc:
+                points.append(CompliantPoint(scene, integrator, setting, 0, math.nan,
+                                             math.nan, exc.kind))
+        bar.update(1)
+    return points
 
 
 def compliant_sweep(case: pim.Case, eps: float | None = None, *, steps=STEPS, rtols=RTOLS,
                     methods=METHODS, scenes=None, repeats: int = 3,
-                    progress: bool | None = None) -> CompliantSpeedStudy:
+                    progress: bool | None = None, reference_rtols=REFERENCE_RTOLS,
+                    reference_budget: int = REFERENCE_STEPS,
+                    run_budget: float = RUN_BUDGET) -> CompliantSpeedStudy:
     """Run the study (module notes) for ``case`` at restitution ``eps`` (default: the case's,
-    else 0.3)."""
+    else 0.3). ``reference_rtols``, ``reference_budget`` [steps] and ``run_budget`` [s] bound
+    the cost (module notes)."""
     from tqdm.auto import tqdm
 
+    wall0 = time.perf_counter()
     if eps is None:
         eps = case.impact.restitution if case.impact.restitution is not None else 0.3
     eps = sim.contact_law.check_fraction(eps, "eps")
     k = sim.DEFAULT_STIFFNESS
     scenes = dict(SCENES if scenes is None else scenes)
-    total = len(scenes) * (len(steps) + len(rtols) * len(methods))
-    bar = tqdm(total=total, desc=f"compliant {case.name}", unit="run", leave=False,
+    bar = tqdm(total=len(scenes) * (len(steps) + len(rtols) * len(methods)),
+               desc=f"compliant {case.name}", unit="run", leave=False,
                disable=None if progress is None else not progress)
-    points = []
-    spread = 0.0
+    points, spread, reached = [], 0.0, 0.0
     try:
         for scene, mu in scenes.items():
-            ref = sim.reference_compliant(case, eps, k, friction=mu, settings=sim.CompliantSettings(
-                record=False, rtol=REFERENCE_RTOL))
-            alt = sim.reference_compliant(case, eps, k, friction=mu, settings=sim.CompliantSettings(
-                record=False, rtol=1e-12, method="Radau"))
-            spread = max(spread, float(impact_error(case, ref, alt.velocity1, alt.velocity2,
-                                                    alt.yaw_rate1, alt.yaw_rate2)))
-
-            def record(integrator, setting, run, scene=scene, ref=ref):
-                try:
-                    out, wall = _timed(run, repeats)
-                    err = float(impact_error(case, ref, out.velocity1, out.velocity2,
-                                             out.yaw_rate1, out.yaw_rate2))
-                    points.append(CompliantPoint(scene, integrator, setting, out.steps, err,
-                                                 wall))
-                except sim.SimulationError as exc:
-                    points.append(CompliantPoint(scene, integrator, setting, 0, math.nan,
-                                                 math.nan, exc.kind))
-                bar.update(1)
-
-            for n in steps:
-                settings = sim.CompliantSettings(record=False, steps_per_contact=int(n),
-                                                 min_steps=min(10, int(n)))
-                dt = sim.compliant.step_size(sim.compliant_setup.build_problem(
-                    case, eps, k, mu, settings=settings))
-                record("pymunk", dt, lambda s=settings, mu=mu: sim.simulate_compliant(
-                    case, eps, k, friction=mu, settings=s))
-            for method in methods:
-                for rtol in rtols:
-                    settings = sim.CompliantSettings(record=False, rtol=rtol, method=method)
-                    record(method, rtol, lambda s=settings, mu=mu: sim.reference_compliant(
-                        case, eps, k, friction=mu, settings=s))
+            ref = reference_within_budget(case, eps, k, mu, reference_rtols, reference_budget)
+            spread = max(spread, 0.0 if math.isnan(ref.spread) else ref.spread)
+            reached = max(reached, ref.rtol)
+            usable = [r for r in rtols if r >= 10.0 * ref.rtol]
+            bar.update(len(methods) * (len(rtols) - len(usable)))
+            for integrator, ladder in _ladders(case, eps, k, mu, steps, usable, methods):
+                points += _run_ladder(case, scene, ref.result, integrator, ladder, repeats,
+                                      bar, run_budget)
     finally:
         bar.close()
-    return CompliantSpeedStudy(case.name, float(eps), k, tuple(points), spread)
+    return CompliantSpeedStudy(case.name, float(eps), k, tuple(points), spread,
+                               reference_rtol=reached,
+                               wall_time=time.perf_counter() - wall0)
 
 
 def compliant_table(study: CompliantSpeedStudy, name: str) -> Table:
@@ -204,7 +285,7 @@ def plot_compliant_speed_error(study: CompliantSpeedStudy):
         ax.set_title(f"{study.case_name}, {scene}", fontsize=10)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7.5)
-    axes[0].set_ylabel("error against solve_ivp at rtol 1e-13 [-]")
+    axes[0].set_ylabel(f"error against solve_ivp at rtol {study.reference_rtol:g} [-]")
     return fig
 
 
@@ -221,8 +302,10 @@ def write_compliant_study(study: CompliantSpeedStudy, out_dir, stem: str,
         lines += [f"Regenerate with `{command}`.", ""]
     lines += [f"Point contact, epsilon = {study.eps:.4g}, k = {study.stiffness:.3g} N/m; "
               f"pymunk over dt (10 ... 2560 steps per estimated contact time), solve_ivp "
-              f"DOP853 and Radau over rtol, against DOP853 at rtol 1e-13 (which Radau at "
-              f"1e-12 matches to {study.reference_spread:.1e}). Error: the largest error in "
+              f"DOP853 and Radau over rtol, against DOP853 at rtol {study.reference_rtol:g} "
+              f"(the tightest within {REFERENCE_STEPS} steps per scene; it differs from the "
+              f"rung before by {study.reference_spread:.1e}). Whole study: "
+              f"{study.wall_time:.1f} s. Error: the largest error in "
               f"the impact's velocity changes, relative to the largest change.", ""]
     for scene in dict.fromkeys(p.scene for p in study.points):
         rec = study.recommended(scene)
