@@ -189,8 +189,30 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM, raised like Ctrl-C so that every atomic writer removes its temporary file."""
 
 
+#: Signals received during this run (an error that follows one is reported as the interrupt:
+#: ffmpeg or a worker in the same process group may fail first with a broken pipe).
+_received: list[int] = []
+
+
 def _on_sigterm(signum, frame):
+    _received.append(signum)
     raise Terminated()
+
+
+def _on_sigint(signum, frame):
+    _received.append(signum)
+    raise KeyboardInterrupt()
+
+
+def _interrupted_code() -> int | None:
+    """130/143 (with one line on stderr) when SIGINT/SIGTERM arrived during the run."""
+    import signal
+
+    if not _received:
+        return None
+    terminated = _received[-1] == signal.SIGTERM
+    click.echo("terminated" if terminated else "aborted", err=True)
+    return 143 if terminated else 130
 
 
 def main(argv=None) -> int:
@@ -202,14 +224,16 @@ def main(argv=None) -> int:
     import signal
     import threading
 
-    previous = None
+    previous = {}
+    _received.clear()
     if threading.current_thread() is threading.main_thread():
-        previous = signal.signal(signal.SIGTERM, _on_sigterm)
+        previous = {signal.SIGTERM: signal.signal(signal.SIGTERM, _on_sigterm),
+                    signal.SIGINT: signal.signal(signal.SIGINT, _on_sigint)}
     try:
         return _main(argv)
     finally:
-        if previous is not None:
-            signal.signal(signal.SIGTERM, previous)
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
 
 
 def _main(argv) -> int:
@@ -227,10 +251,13 @@ def _main(argv) -> int:
     except Terminated:
         click.echo("terminated", err=True)
         return 143
-    except ValueError as exc:
-        click.echo(f"error: {exc}", err=True)
-        return 2
-    except OSError as exc:      # e.g. a disk full or a folder removed while writing
+    except (ValueError, OSError) as exc:
+        code = _interrupted_code()
+        if code is not None:
+            return code
+        if isinstance(exc, ValueError):
+            click.echo(f"error: {exc}", err=True)
+            return 2
         where = f"{exc.filename}: " if exc.filename else ""
         click.echo(f"error: cannot write {where}{exc.strerror or exc}", err=True)
         return 2
