@@ -5,42 +5,38 @@ in that second would print Python's traceback of the import. This module imports
 heavy: it handles SIGINT and SIGTERM (exit 130 and 143, one line) before importing
 :mod:`pim.cli.main`, whose :func:`~pim.cli.main.main` then handles them for the run, and
 ignores them once the run's exit code is known (the interpreter's shutdown, which joins
-worker processes, is not interrupted).
+worker processes, is not interrupted). A signal while loading ends the process at once
+(nothing has been written yet).
 """
 
+import os
 import signal
 import sys
 
 __all__ = ["run"]
 
 
-class _Interrupted(BaseException):
-    """A signal during the import of pim."""
-
-
 def _during_import(signum, frame):
-    raise _Interrupted(signum)
-
-
-def _exit(code: int | None = None, signum: int | None = None) -> None:
-    """Ignore further signals and exit (with 130/143 and one line when ``signum`` is given)."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, signal.SIG_IGN)
-    if signum is not None:
-        terminated = signum == signal.SIGTERM
-        print("terminated" if terminated else "aborted", file=sys.stderr)
-        code = 143 if terminated else 130
-    sys.exit(code)
+    """Nothing is written yet: leave at once (an exception raised inside an extension
+    module's import may be swallowed or turned into an ImportError)."""
+    terminated = signum == signal.SIGTERM
+    os.write(2, b"terminated\n" if terminated else b"aborted\n")
+    os._exit(143 if terminated else 130)
 
 
 def run() -> None:
     """Exit with ``pim.cli.main.main()``'s code; 130/143 when interrupted while loading."""
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, _during_import)
-    try:
-        from pim.cli.main import main
+    from pim.cli.main import main
 
-        code = main()           # handles SIGINT/SIGTERM itself while it runs
-    except _Interrupted as exc:
-        _exit(signum=exc.args[0])
-    _exit(code)
+    code = main()           # handles SIGINT/SIGTERM itself while it runs
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
+    if code in (130, 143):
+        # Interrupted (its files already removed): leave without the interpreter's
+        # finalization, which a signal still on its way can turn into a death by SIGINT.
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(code)
+    sys.exit(code)

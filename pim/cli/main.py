@@ -14,6 +14,7 @@ from importlib.metadata import entry_points
 
 import click
 
+from ..io.output import note_signal, signal_received
 from ..model.plausibility import warnings_of
 
 __all__ = ["main", "cli", "case_argument", "eps_option", "beta_option", "units_option",
@@ -189,28 +190,29 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM, raised like Ctrl-C so that every atomic writer removes its temporary file."""
 
 
-#: Signals received during this run (an error that follows one is reported as the interrupt:
-#: ffmpeg or a worker in the same process group may fail first with a broken pipe).
-_received: list[int] = []
-
-
 def _on_sigterm(signum, frame):
-    _received.append(signum)
+    note_signal(signum)
     raise Terminated()
 
 
 def _on_sigint(signum, frame):
-    _received.append(signum)
+    note_signal(signum)
     raise KeyboardInterrupt()
 
 
 def _interrupted_code() -> int | None:
-    """130/143 (with one line on stderr) when SIGINT/SIGTERM arrived during the run."""
+    """130/143 (with one line on stderr) when SIGINT/SIGTERM arrived during the run.
+
+    An error that follows a signal is reported as the interrupt (ffmpeg or a worker in the
+    same process group may fail first, with a broken pipe); so is a run whose interrupt was
+    swallowed on its way (its output folder was not swapped in).
+    """
     import signal
 
-    if not _received:
+    signum = signal_received()
+    if signum is None:
         return None
-    terminated = _received[-1] == signal.SIGTERM
+    terminated = signum == signal.SIGTERM
     click.echo("terminated" if terminated else "aborted", err=True)
     return 143 if terminated else 130
 
@@ -225,7 +227,7 @@ def main(argv=None) -> int:
     import threading
 
     previous = {}
-    _received.clear()
+    note_signal(None)
     if threading.current_thread() is threading.main_thread():
         previous = {signal.SIGTERM: signal.signal(signal.SIGTERM, _on_sigterm),
                     signal.SIGINT: signal.signal(signal.SIGINT, _on_sigint)}
@@ -244,13 +246,13 @@ def _main(argv) -> int:
     except click.ClickException as exc:
         exc.show()
         return exc.exit_code
-    except click.exceptions.Abort as exc:
-        terminated = isinstance(exc.__context__, Terminated)
+    except (click.exceptions.Abort, KeyboardInterrupt) as exc:
+        code = _interrupted_code()
+        if code is not None:
+            return code
+        terminated = isinstance(exc, Terminated) or isinstance(exc.__context__, Terminated)
         click.echo("terminated" if terminated else "aborted", err=True)
         return 143 if terminated else 130
-    except Terminated:
-        click.echo("terminated", err=True)
-        return 143
     except (ValueError, OSError) as exc:
         code = _interrupted_code()
         if code is not None:
@@ -261,7 +263,7 @@ def _main(argv) -> int:
         where = f"{exc.filename}: " if exc.filename else ""
         click.echo(f"error: cannot write {where}{exc.strerror or exc}", err=True)
         return 2
-    return code if isinstance(code, int) else 0
+    return _interrupted_code() or (code if isinstance(code, int) else 0)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -39,12 +39,31 @@ from collections.abc import Iterable, Iterator
 from pathlib import Path
 
 __all__ = ["output_folder", "OutputError", "MARKER", "rebase", "held_signals", "ignore_interrupts",
-           "worker_pool", "stop_workers"]
+           "worker_pool", "stop_workers", "note_signal", "signal_received"]
 
 #: File in every output folder marking it as a pim run (replaceable by the next run).
 MARKER = ".pim-run"
 #: Marker of the folders written before MARKER existed (its content is never read).
 LEGACY_MARKERS = (".pim-compare-files",)
+
+
+#: SIGINT/SIGTERM received during the run (:func:`note_signal`, called by the command line's
+#: handlers): a run that received one is never swapped in, even when the interrupt was
+#: swallowed on its way (an extension's callback that ignores exceptions).
+_SIGNALS: list[int] = []
+
+
+def note_signal(signum: int | None) -> None:
+    """Record a received SIGINT/SIGTERM (None: forget the earlier ones, a new run starts)."""
+    if signum is None:
+        _SIGNALS.clear()
+    else:
+        _SIGNALS.append(signum)
+
+
+def signal_received() -> int | None:
+    """The last SIGINT/SIGTERM recorded by :func:`note_signal`, or None."""
+    return _SIGNALS[-1] if _SIGNALS else None
 
 
 class OutputError(ValueError):
@@ -56,16 +75,24 @@ def held_signals() -> Iterator[None]:
     """Hold SIGINT and SIGTERM back for the block (delivered when it ends).
 
     Used for the few steps that must not be cut in two: swapping a folder in, deleting a
-    temporary one. Outside the main thread (where signals are not delivered) a no-op.
+    temporary one. The signals' handlers are replaced by one that only records them (a
+    signal mask would not do: the signal may go to any thread of the process); on leaving
+    the block the handlers are restored and a recorded signal is raised again. Outside the
+    main thread (where handlers cannot be set) a no-op.
     """
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
+    pending: list[int] = []
+    previous = {s: signal.signal(s, lambda signum, frame: pending.append(signum))
+                for s in (signal.SIGINT, signal.SIGTERM)}
     try:
         yield
     finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+        for signum in dict.fromkeys(pending):
+            signal.raise_signal(signum)
 
 
 def _target(path, option: str) -> Path:
@@ -209,6 +236,8 @@ def output_folder(path, option: str = "--out", *, command: str = "pim") -> Itera
         tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.pim-tmp-", dir=path.parent))
         try:
             yield tmp
+            if signal_received() is not None:       # an interrupt that was swallowed
+                raise KeyboardInterrupt
             (tmp / MARKER).write_text(f"written by {command}; the next pim run into this "
                                       "folder replaces it whole\n", encoding="utf-8")
             os.chmod(tmp, 0o777 & ~_umask())
