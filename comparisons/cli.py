@@ -205,7 +205,7 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, progress
     for n in case_names:
         names += [c for c, _ in list_cases() if c.startswith("hard-")] if n == "hard" else [n]
     folder = Path(out) if out else Path("out") / "speed-error"
-    with output_folder(folder, command="pim speed-error") as tmp:
+    with output_folder(folder, command="pim speed-error", merge=True) as tmp:
         results = _speed_error_runs(names, tmp, out, eps, beta, repeats, coarse, compliant,
                                     progress, as_json)
     for r in results:
@@ -298,7 +298,7 @@ def hard_cases(out, units, progress, as_json):
     from .hard_cases import run_hard_cases, write_hard_cases
 
     folder = Path(out) if out else Path("out") / "hard-cases"
-    with output_folder(folder, command="pim hard-cases") as tmp:
+    with output_folder(folder, command="pim hard-cases", merge=True) as tmp:
         study = run_hard_cases(progress=progress)
         files = rebase(write_hard_cases(study, tmp, units), tmp, folder)
     if as_json:

@@ -34,8 +34,14 @@ def run() -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_IGN)
     if code in (130, 143):
-        # Interrupted (its files already removed): leave without the interpreter's
-        # finalization, which a signal still on its way can turn into a death by SIGINT.
+        # Interrupted (its files already removed). A KeyboardInterrupt that went through
+        # an extension's PyRun_* call (a lazy import) leaves the interpreter's flag that
+        # makes it end by SIGINT (-2) after any normal exit; leave with os._exit instead,
+        # once the dropped worker pools' semaphores are freed (gc runs their finalizers,
+        # else multiprocessing's resource tracker warns of leaked semaphores).
+        import gc
+
+        gc.collect()
         sys.stdout.flush()
         sys.stderr.flush()
         os._exit(code)

@@ -135,3 +135,20 @@ def test_held_signals_delivers_the_interrupt_after_the_block():
             os.kill(os.getpid(), signal.SIGINT)
             done.append(1)             # still runs: the signal waits
     assert done == [1]
+
+
+def test_a_shared_folder_gets_the_runs_files_and_keeps_the_others(tmp_path):
+    docs = tmp_path / "docs"
+    docs.mkdir()
+    (docs / "README.md").write_text("mine")
+    (docs / "hard-cases.md").write_text("old")
+    with pytest.raises(KeyboardInterrupt), output_folder(docs, merge=True) as tmp:
+        (tmp / "hard-cases.md").write_text("half")
+        raise KeyboardInterrupt
+    assert (docs / "hard-cases.md").read_text() == "old"
+    with output_folder(docs, merge=True) as tmp:
+        (tmp / "hard-cases.md").write_text("new")
+        (tmp / "hard-cases.csv").write_text("new")
+    assert tree(docs) == {"README.md": b"mine", "hard-cases.md": b"new",
+                          "hard-cases.csv": b"new"}
+    assert litter(tmp_path) == []

@@ -19,6 +19,11 @@ its own ``.NAME.pim-*`` siblings is ever deleted. Each run leaves a marker file
 (:data:`MARKER`) in its folder; an existing non-empty folder without one (the user's own files)
 is never replaced: that is an :class:`OutputError` too.
 
+A folder shared by design (``pim speed-error --out docs``, ``pim hard-cases --out docs``)
+is written with ``merge=True``: the same lock, temporary folder and cleanup, but at the end
+the run's files are moved into the folder together, replacing files of the same name and
+keeping the others.
+
 Single files (``pim animate --out x.mp4``, ``pim draw``) are written by
 :func:`pim.io.files.atomic_path`, which checks the written file before renaming it.
 """
@@ -188,6 +193,18 @@ def _exchange(a: Path, b: Path) -> bool:
     raise OSError(code, os.strerror(code), str(b))
 
 
+def _merge_in(tmp: Path, path: Path) -> None:
+    """Move every file of the finished run ``tmp`` into ``path`` (replacing files of the
+    same name, keeping the others); delete ``tmp``. Run with signals held back."""
+    path.mkdir(exist_ok=True)
+    for src in sorted(tmp.rglob("*")):
+        if src.is_file():
+            dst = path / src.relative_to(tmp)
+            dst.parent.mkdir(parents=True, exist_ok=True)
+            os.replace(src, dst)
+    shutil.rmtree(tmp, ignore_errors=True)
+
+
 def _swap_in(tmp: Path, path: Path) -> None:
     """Put the finished run ``tmp`` at ``path``; delete the old run (signals held back)."""
     if not path.exists():
@@ -203,7 +220,8 @@ def _swap_in(tmp: Path, path: Path) -> None:
 
 
 @contextlib.contextmanager
-def output_folder(path, option: str = "--out", *, command: str = "pim") -> Iterator[Path]:
+def output_folder(path, option: str = "--out", *, command: str = "pim",
+                  merge: bool = False) -> Iterator[Path]:
     """Write a run into a temporary folder and swap it in for ``path`` when the block ends.
 
     Parameters
@@ -215,6 +233,11 @@ def output_folder(path, option: str = "--out", *, command: str = "pim") -> Itera
         The command-line option named in error messages.
     command : str
         Written into the folder's marker file (:data:`MARKER`).
+    merge : bool
+        For a folder shared by design (``pim speed-error --out docs``): at the end the run's
+        files are moved into ``path`` all together (signals held back), replacing files of
+        the same name and keeping every other file; no marker. The lock, the temporary
+        folder and the cleanup on an error or interrupt are the same.
 
     Yields
     ------
@@ -232,17 +255,22 @@ def output_folder(path, option: str = "--out", *, command: str = "pim") -> Itera
     fd = _lock(path, option)
     try:
         _sweep(path)
-        _check_replaceable(path, option)
+        if merge:
+            if path.exists() and not path.is_dir():
+                raise OutputError(f"{option} {path}: not a folder")
+        else:
+            _check_replaceable(path, option)
         tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.pim-tmp-", dir=path.parent))
         try:
             yield tmp
             if signal_received() is not None:       # an interrupt that was swallowed
                 raise KeyboardInterrupt
-            (tmp / MARKER).write_text(f"written by {command}; the next pim run into this "
-                                      "folder replaces it whole\n", encoding="utf-8")
             os.chmod(tmp, 0o777 & ~_umask())
+            if not merge:
+                (tmp / MARKER).write_text(f"written by {command}; the next pim run into this "
+                                          "folder replaces it whole\n", encoding="utf-8")
             with held_signals():
-                _swap_in(tmp, path)
+                (_merge_in if merge else _swap_in)(tmp, path)
         except BaseException:
             with held_signals():
                 shutil.rmtree(tmp, ignore_errors=True)
