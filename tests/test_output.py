@@ -152,3 +152,12 @@ def test_a_shared_folder_gets_the_runs_files_and_keeps_the_others(tmp_path):
     assert tree(docs) == {"README.md": b"mine", "hard-cases.md": b"new",
                           "hard-cases.csv": b"new"}
     assert litter(tmp_path) == []
+
+
+def test_the_current_directory_is_never_replaced(tmp_path, monkeypatch):
+    work = tmp_path / "work"
+    work.mkdir()
+    monkeypatch.chdir(work)
+    with pytest.raises(OutputError, match="current directory"), output_folder("."):
+        pass
+    assert work.is_dir()

@@ -163,6 +163,10 @@ def _check_replaceable(path: Path, option: str) -> None:
     """An existing folder may be replaced only when it is empty or a pim run."""
     if not path.exists():
         return
+    cwd = Path(os.path.realpath(os.getcwd()))
+    if cwd == path or path in cwd.parents:
+        raise OutputError(f"{option} {path}: the folder holds the current directory; pim "
+                          "replaces its output folder whole, so choose another folder")
     if path.is_symlink() or not path.is_dir():
         raise OutputError(f"{option} {path}: not a folder")
     if any(path.iterdir()) and not any((path / m).is_file()
