@@ -161,3 +161,30 @@ def test_the_current_directory_is_never_replaced(tmp_path, monkeypatch):
     with pytest.raises(OutputError, match="current directory"), output_folder("."):
         pass
     assert work.is_dir()
+
+
+def test_a_command_that_fails_midway_keeps_the_earlier_run(tmp_path, monkeypatch, capsys):
+    """`pim plot` (as every folder-writing command) through output_folder: a full disk half
+    way leaves the earlier run whole, one line, exit 2."""
+    import errno
+
+    import pim.plotting.sheet as sheet
+    from pim.cli import main
+
+    out = tmp_path / "plots"
+    assert main(["plot", "ricsac9", "--out", str(out), "--format", "png"]) == 0
+    before = tree(out)
+    real = sheet.write_plots
+
+    def disk_full(case, result, folder, **kwargs):
+        real(case, result, folder, **kwargs)
+        raise OSError(errno.ENOSPC, "No space left on device", str(folder / "pdof.png"))
+
+    monkeypatch.setattr(sheet, "write_plots", disk_full)
+    capsys.readouterr()
+    assert main(["plot", "ricsac9", "--out", str(out), "--format", "png", "--format",
+                 "svg"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "No space left" in err and len(err.splitlines()) == 1
+    assert tree(out) == before
+    assert litter(tmp_path) == []
