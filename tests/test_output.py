@@ -6,6 +6,7 @@ import signal
 import subprocess
 import sys
 import textwrap
+from pathlib import Path
 
 import pytest
 
@@ -125,7 +126,7 @@ def test_below_a_file_or_unwritable_is_an_output_error(tmp_path):
 
 def test_rebase_maps_temporary_paths_to_the_final_folder(tmp_path):
     assert rebase([tmp_path / "t" / "plots" / "a.png"], tmp_path / "t", "out") == [
-        __import__("pathlib").Path("out/plots/a.png")]
+        Path("out/plots/a.png")]
 
 
 def test_held_signals_delivers_the_interrupt_after_the_block():
@@ -178,7 +179,7 @@ def test_a_command_that_fails_midway_keeps_the_earlier_run(tmp_path, monkeypatch
 
     def disk_full(case, result, folder, **kwargs):
         real(case, result, folder, **kwargs)
-        raise OSError(errno.ENOSPC, "No space left on device", str(folder / "pdof.png"))
+        raise OSError(errno.ENOSPC, "No space left on device", str(Path(folder) / "x.png"))
 
     monkeypatch.setattr(sheet, "write_plots", disk_full)
     capsys.readouterr()
