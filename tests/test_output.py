@@ -6,6 +6,7 @@ import signal
 import subprocess
 import sys
 import textwrap
+import time
 from pathlib import Path
 
 import pytest
@@ -189,3 +190,39 @@ def test_a_command_that_fails_midway_keeps_the_earlier_run(tmp_path, monkeypatch
     assert "No space left" in err and len(err.splitlines()) == 1
     assert tree(out) == before
     assert litter(tmp_path) == []
+
+
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
+def test_pool_workers_print_nothing_and_end_with_the_parent(tmp_path, signum):
+    """Issue 22: a Ctrl-C to the process group printed each worker's KeyboardInterrupt
+    traceback; a parent's SIGTERM handler inherited by forked workers did the same."""
+    script = tmp_path / "run.py"
+    script.write_text(textwrap.dedent("""
+        import signal, sys, time
+        from pim.io.output import worker_pool
+
+        def task():
+            time.sleep(30)
+
+        def on_term(signum, frame):
+            raise KeyboardInterrupt
+
+        if __name__ == "__main__":
+            signal.signal(signal.SIGTERM, on_term)      # as the pim command line does
+            try:
+                with worker_pool(2) as pool:
+                    futures = [pool.submit(task) for _ in range(2)]
+                    print("started", flush=True)
+                    futures[0].result()
+            except KeyboardInterrupt:
+                sys.exit(130)
+    """))
+    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+    assert proc.stdout.readline().strip() == "started"
+    time.sleep(0.5)                                  # the workers are in their task
+    start = time.time()
+    os.killpg(proc.pid, signum)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and err == "", err
+    assert time.time() - start < 10                  # ended, not waited for (30 s)
