@@ -11,6 +11,7 @@ import pim
 from pim.analysis.reconstruction import reconstruct
 from pim.cli.main import main
 from pim.io.casefile import load_case
+from pim.io.output import MARKER
 
 KNOWN = 31.09 * 0.3048
 
@@ -35,7 +36,7 @@ def test_ricsac9_turned_around_covers_the_staged_speeds(tmp_path, capsys):
         assert row["p5"] < staged < row["p95"], (key, row)
         assert row["p5"] < row["p50"] < row["p95"]
     assert {"impact.restitution", "impact.beta"} <= set(data["unknowns"])
-    assert {p.name for p in tmp_path.iterdir()} == {"report.md", "reconstruction.csv"}
+    assert {p.name for p in tmp_path.iterdir()} == {"report.md", "reconstruction.csv", MARKER}
     csv = (tmp_path / "reconstruction.csv").read_text()
     assert "vehicle1.speed,mph," in csv          # US case: mph in, mph out
 

@@ -17,7 +17,7 @@ is 2: never a number.
 
 from __future__ import annotations
 
-from concurrent.futures import ProcessPoolExecutor
+import contextlib
 from pathlib import Path
 
 import click
@@ -26,6 +26,7 @@ from ..analysis.reconstruction import Reconstruction
 from ..analysis.reconstruction import reconstruct as run_reconstruction
 from ..io.casefile import load_case
 from ..io.files import save_figure, write_text
+from ..io.output import output_folder, worker_pool
 from ..io.units import convert
 from ..model.evidence import UNKNOWN_KINDS
 from ..model.numbers import InputError
@@ -133,12 +134,25 @@ def _json(case, rows: list[dict], samples: int, messages, units: str) -> dict:
 @units_option
 @json_option
 def reconstruct(case_name, out, samples, seed, workers, video, units, as_json):
-    """Reconstruct CASE's unknowns (e.g. the impact speeds) from its evidence."""
+    """Reconstruct CASE's unknowns (e.g. the impact speeds) from its evidence.
+
+    With --out the folder is written whole at the end (or not at all: an error or an
+    interrupt leaves an earlier run there as it was); its lock is taken before the work.
+    """
     case = load_case(case_name)
     require_brach(case, "pim reconstruct")
     units = units or case.units
+    with output_folder(out, command="pim reconstruct") if out else \
+            contextlib.nullcontext() as tmp:
+        rec, rows = _reconstruct(case, samples, seed, workers, units, as_json)
+        if tmp is not None:
+            _write_folder(tmp, rec, rows, units, video)
+
+
+def _reconstruct(case, samples, seed, workers, units, as_json):
+    """Run the reconstruction and print its table (or JSON); return it and its rows."""
     if workers > 1:
-        with ProcessPoolExecutor(workers) as pool:
+        with worker_pool(workers) as pool:
             rec = run_reconstruction(case, samples=samples, seed=seed, executor=pool,
                                      blocks=2 * workers)
     else:
@@ -160,17 +174,17 @@ def reconstruct(case_name, out, samples, seed, workers, video, units, as_json):
                        f"{spread_text(r, samples)}")
         if rec.goodness is not None:
             click.echo(f"goodness of fit: {rec.goodness.summary()}")
-    if out:
-        directory = Path(out)
-        directory.mkdir(parents=True, exist_ok=True)
-        csv = ["name,unit,value,p5,p50,p95,main_driver"] + [
-            f"{r['name']},{r['unit']},{r['value']:.6g},{r['p5']:.6g},{r['p50']:.6g},"
-            f"{r['p95']:.6g},{r['driver']}" for r in rows]
-        write_text(directory / "reconstruction.csv", "\n".join(csv) + "\n")
-        if rec.post is not None:
-            save_figure(reconstruction_figure(rec.post, units), directory / "scene.png")
-            if video:
-                write_reconstruction_mp4(rec.post, directory / "reconstruction.mp4",
-                                         units=units)
-        write_text(directory / "report.md",
-                   _report(rec, rows, units, rec.post is not None, video))
+    return rec, rows
+
+
+def _write_folder(directory: Path, rec, rows, units: str, video: bool) -> None:
+    """reconstruction.csv, scene.png, reconstruction.mp4 and report.md into ``directory``."""
+    csv = ["name,unit,value,p5,p50,p95,main_driver"] + [
+        f"{r['name']},{r['unit']},{r['value']:.6g},{r['p5']:.6g},{r['p50']:.6g},"
+        f"{r['p95']:.6g},{r['driver']}" for r in rows]
+    write_text(directory / "reconstruction.csv", "\n".join(csv) + "\n")
+    if rec.post is not None:
+        save_figure(reconstruction_figure(rec.post, units), directory / "scene.png")
+        if video:
+            write_reconstruction_mp4(rec.post, directory / "reconstruction.mp4", units=units)
+    write_text(directory / "report.md", _report(rec, rows, units, rec.post is not None, video))
