@@ -45,6 +45,7 @@ import numpy as np
 import pim
 import sim
 from pim.io.files import save_figure, write_text
+from pim.io.units import convert
 from sim.compliant_setup import build_problem
 from sim.contact_law import stiffness_for_duration
 from sim.sweep import sweep
@@ -368,8 +369,13 @@ def run_assumptions(case: pim.Case, eps: float | None = None, beta: float | None
                            anim)
 
 
-def assumption_table(study: AssumptionStudy, name: str = "assumptions") -> Table:
-    """PIM's errors at the typical values, the effective (epsilon, beta) and C."""
+def assumption_table(study: AssumptionStudy, name: str = "assumptions",
+                     units: str = "si") -> Table:
+    """PIM's errors at the typical values, the effective (epsilon, beta) and C; the fit's
+    rms and C in the ``units`` system ("si" or "us"; the rest is dimensionless, deg/s or
+    ms in both)."""
+    (speed,), v_unit = convert([1.0], "velocity", units)
+    (length,), l_unit = convert([1.0], "length", units)
     rows = []
     for s in study.sweeps:
         o = s.typical
@@ -377,15 +383,15 @@ def assumption_table(study: AssumptionStudy, name: str = "assumptions") -> Table
         rows.append((s.title, f"{s.parameter} {_fmt(o.value)} {s.unit}".replace(" -", ""),
                      e["delta_v1"], e["delta_v2"], e["speed1"], e["speed2"], e["yaw1"],
                      e["yaw2"], o.yaw_error_deg[0], o.yaw_error_deg[1], o.eps_eff, o.beta_eff,
-                     o.fit_rms, float(o.point_eff[0]), float(o.point_eff[1]),
-                     o.point_distance, 1e3 * o.contact_duration,
-                     o.stick_fraction, o.slip_reversed, o.energy_loss, o.pim_energy_loss,
-                     o.failure or ""))
+                     o.fit_rms * speed, float(o.point_eff[0]) * length,
+                     float(o.point_eff[1]) * length, o.point_distance * length,
+                     1e3 * o.contact_duration, o.stick_fraction, o.slip_reversed,
+                     o.energy_loss, o.pim_energy_loss, o.failure or ""))
     columns = ("assumption", "at", "err |dV1| [-]", "err |dV2| [-]", "err speed1 [-]",
                "err speed2 [-]", "err yaw1 [-]", "err yaw2 [-]", "err yaw1 [deg/s]",
-               "err yaw2 [deg/s]", "eps_eff [-]", "beta_eff [-]", "fit rms [m/s]",
-               "C_eff x [m]", "C_eff y [m]", "|C_eff - C| [m]", "contact [ms]",
-               "stick fraction [-]", "slip reversed", "energy loss sim [-]",
+               "err yaw2 [deg/s]", "eps_eff [-]", "beta_eff [-]", f"fit rms [{v_unit}]",
+               f"C_eff x [{l_unit}]", f"C_eff y [{l_unit}]", f"|C_eff - C| [{l_unit}]",
+               "contact [ms]", "stick fraction [-]", "slip reversed", "energy loss sim [-]",
                "energy loss PIM [-]", "failure")
     fmts = {c: fmt_error for c in columns if c.startswith("err ") and "deg" not in c}
     return Table(name, "PIM's error at typical values, effective coefficients and C",
