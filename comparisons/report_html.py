@@ -42,14 +42,15 @@ ASSUMPTION_GROUPS = (
 
 
 def html_table(table: Table, *, columns=None, title: str | None = None, note: str = "",
-               cls: str = "") -> str:
-    """``table`` (or its ``columns`` only) as HTML, cells formatted as in the Markdown."""
+               cls: str = "", part: int | None = None) -> str:
+    """``table`` (or its ``columns`` only: ``part`` numbers the part) as HTML, cells
+    formatted as in the Markdown; its id is ``table-NAME`` (``table-NAME-PART``)."""
     columns = list(table.columns if columns is None else columns)
     index = [table.columns.index(c) for c in columns]
     rows = [[table.formats.get(table.columns[i], fmt_value)(row[i]) for i in index]
             for row in table.rows]
     return h.table(columns, rows, title=table.title if title is None else title, note=note,
-                   id=f"table-{table.name}", cls=cls)
+                   id=f"table-{table.name}" + ("" if part is None else f"-{part}"), cls=cls)
 
 
 def split_columns(columns, groups, key: str) -> list[tuple[str, list[str]]]:
@@ -202,9 +203,9 @@ def _assumptions(data: ReportData) -> str:
     if data.assumptions is None or "assumptions" not in data.tables:
         return ""
     table = data.tables["assumptions"]
-    parts = [html_table(table, columns=cols, title=caption, cls="split")
-             for caption, cols in split_columns(table.columns, ASSUMPTION_GROUPS,
-                                                table.columns[0])]
+    parts = [html_table(table, columns=cols, title=caption, cls="split", part=i)
+             for i, (caption, cols) in enumerate(split_columns(
+                 table.columns, ASSUMPTION_GROUPS, table.columns[0]), start=1)]
     return h.section("PIM's assumptions (finite-duration crush scene)", [
         h.paragraph("Each scene relaxes one of PIM's assumptions at a typical value (100 ms "
                     "contact, tyre friction 0.7, the case's outlines, friction 0.5 between the "
