@@ -82,12 +82,11 @@ def _csv(table: Table) -> str:
 
 def _facts(data: ReportData) -> str:
     r, s = data.result, data.sources
-    items = [("epsilon", f"{data.eps:.4g} ({s['eps']})"), ("beta", f"{data.beta:.4g} "
-                                                              f"({s['beta']})"),
-             ("impulse ratio mu", f"{float(r.mu):.4g} (mu0 = {float(r.mu0):.4g})")]
+    items = [("epsilon", f"{data.eps:.4g}", s["eps"]), ("beta", f"{data.beta:.4g}", s["beta"]),
+             ("impulse ratio mu", f"{float(r.mu):.4g}", f"mu0 = {float(r.mu0):.4g}")]
     if data.simulated is not None:
-        items.append(("pymunk against PIM", f"{data.error:.1e}"))
-    items.append(("units", data.units.upper()))
+        items.append(("pymunk against PIM", f"{data.error:.1e}", "relative error"))
+    items.append(("units", data.units.upper(), "--units changes them"))
     return h.facts(items)
 
 
@@ -244,7 +243,7 @@ def render_html(data: ReportData, folder) -> str:
         contents.append(("assumptions", "Assumptions"))
     contents.append(("files", "Files"))
     description = getattr(data.case, "description", None) or ""
-    subtitle = (f"{description} " if description else "") + (
+    subtitle = (description.rstrip(".") + ". " if description else "") + (
         f"Written by `pim compare` in {data.units.upper()} units: Brach's "
         "Planar Impact Mechanics (PIM) with a pymunk (Chipmunk2D) cross-check.")
     return h.page(f"{data.case.name or 'case'}: reconstruction report", sections,

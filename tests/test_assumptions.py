@@ -1,6 +1,7 @@
 """`pim assumptions`: the study's scenes, errors, effective coefficients, verdicts, files."""
 
 import math
+import re
 from dataclasses import replace
 
 import numpy as np
@@ -84,7 +85,11 @@ def test_tables_and_plots(summary, tmp_path):
     files = A.write_assumptions(summary, tmp_path, animation=False)
     text = (tmp_path / "assumptions.md").read_text()
     assert "## Verdicts" in text and "eps_eff" in text
-    assert {f.name for f in files} >= {"assumptions.md", "assumptions.csv", "assumptions.png"}
+    assert {f.name for f in files} >= {"assumptions.md", "assumptions.csv", "assumptions.png",
+                                       "assumptions.html"}
+    page = (tmp_path / "assumptions.html").read_text()
+    assert len(re.findall(r'<table id="table-assumptions-\d"', page)) == 4   # split
+    assert page.count("data:image/png;base64,") == 5 and "<video" not in page
 
 
 def test_cli_bad_eps_is_one_line_and_exit_code_2(tmp_path, capsys):

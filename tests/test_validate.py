@@ -19,6 +19,16 @@ def report(tmp_path_factory):
     return out
 
 
+def test_the_html_report_holds_the_same_tables_and_figures_inline(report):
+    page = (report / "report.html").read_text()
+    for key in ("barrier", "consistency", "coefficients"):
+        assert f'id="table-{key}"' in page, key
+    assert page.count("data:image/png;base64,") == 2            # both figures, inline
+    assert "dVx meas [ft/s]" in page and "[m/s]" not in page
+    assert '<section id="summary"' in page and "SAE 2014-01-0469" in page
+    assert "https://" not in page and "<script" not in page
+
+
 def test_report_files_and_summary(report, capsys):
     for name in ("report.md", "barrier.csv", "consistency.csv", "coefficients.csv",
                  "predicted_vs_measured.png", "coefficients.png"):

@@ -19,7 +19,10 @@ import re
 from collections.abc import Iterable, Sequence
 from pathlib import Path
 
-__all__ = ["esc", "inline", "data_uri", "table", "figure", "video", "still_frame", "section",
+import imageio.v2 as imageio
+
+__all__ = ["esc", "inline", "data_uri", "table", "figure", "video", "still_frame", "video_info",
+           "section",
            "paragraph", "bullets", "facts", "page", "HTML_REPORT_NAME"]
 
 #: File name of the HTML report beside report.md.
@@ -98,27 +101,33 @@ def figure(image, *, alt: str, caption: str = "", mime: str = "image/png") -> st
 
 def still_frame(mp4, at: float = 0.5) -> bytes:
     """A PNG of the frame at fraction ``at`` of the video ``mp4`` (a file path)."""
-    import imageio.v2 as imageio
     from PIL import Image
 
-    reader = imageio.get_reader(str(mp4), format="FFMPEG")
-    try:
+    with imageio.get_reader(str(mp4), format="FFMPEG") as reader:
         n = reader.count_frames()
         frame = reader.get_data(min(max(int(at * n), 0), max(n - 1, 0)))
-    finally:
-        reader.close()
     buf = io.BytesIO()
     Image.fromarray(frame).save(buf, format="PNG", optimize=True)
     return buf.getvalue()
 
 
-def video(mp4, *, caption: str = "", frames: int, fps: float, size=None,
-          still: bytes | None = None) -> str:
+def video_info(mp4) -> tuple[int, float, tuple[int, int]]:
+    """Frames, frames per second and (width, height) [px] of the video file ``mp4``."""
+    with imageio.get_reader(str(mp4), format="FFMPEG") as reader:
+        meta = reader.get_meta_data()
+        return reader.count_frames(), float(meta["fps"]), tuple(meta["size"])
+
+
+def video(mp4, *, caption: str = "", frames: int | None = None, fps: float | None = None,
+          size=None, still: bytes | None = None) -> str:
     """An inline MP4 (``mp4``: bytes or a file path; H.264/yuv420p) that plays in the page.
 
     ``frames`` and ``fps`` give its duration, stated in the caption and in the element's
-    ``data-duration`` [s]; ``still`` (PNG bytes) is the poster and what a printout shows.
+    ``data-duration`` [s] (read from the file when not given, with its size); ``still``
+    (PNG bytes) is the poster and what a printout shows.
     """
+    if frames is None or fps is None:
+        frames, fps, size = video_info(mp4)
     duration = frames / fps
     poster = f' poster="{data_uri(still, "image/png")}"' if still else ""
     dims = f' width="{int(size[0])}" height="{int(size[1])}"' if size else ""
@@ -145,10 +154,13 @@ def bullets(items: Iterable[str], cls: str = "") -> str:
     return f"<ul{c}>" + "".join(f"<li>{inline(i)}</li>" for i in items) + "</ul>"
 
 
-def facts(items: Iterable[tuple[str, str]]) -> str:
-    """Key figures as a row of labelled boxes: (label, value) pairs."""
-    return '<dl class="facts">' + "".join(
-        f"<div><dt>{esc(k)}</dt><dd>{inline(v)}</dd></div>" for k, v in items) + "</dl>"
+def facts(items: Iterable[tuple]) -> str:
+    """Key figures as a row of labelled boxes: (label, value) or (label, value, note)."""
+    def box(label, value, note=""):
+        note = f' <span class="note">{inline(note)}</span>' if note else ""
+        return f"<div><dt>{esc(label)}</dt><dd>{inline(value)}{note}</dd></div>"
+
+    return '<dl class="facts">' + "".join(box(*item) for item in items) + "</dl>"
 
 
 def section(title: str, body: str | Iterable[str], *, id: str, level: int = 2,
@@ -222,6 +234,7 @@ dl.facts div{border:1px solid var(--line);border-left:3px solid var(--accent);
 padding:3px 10px;background:#fbfcfe}
 dl.facts dt{font-size:.72rem;color:var(--muted);text-transform:uppercase;letter-spacing:.03em}
 dl.facts dd{margin:0;font-weight:600;font-size:.95rem}
+dl.facts dd .note{font-weight:400;color:var(--muted);font-size:.82rem}
 .warn{border-left:4px solid #c77700;background:#fff7e8;padding:4px 12px;margin:8px 0}
 .print-only{display:none}
 @media print{
