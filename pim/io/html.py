@@ -216,7 +216,8 @@ code{font:0.88em ui-monospace,SFMono-Regular,Menlo,Consolas,monospace;background
 padding:0 3px;border-radius:3px}
 .table-wrap{overflow-x:auto;margin:8px 0 14px;max-width:100%}
 table.data{border-collapse:collapse;font-size:.86rem;font-variant-numeric:tabular-nums}
-table.data caption{caption-side:top;text-align:left;font-weight:600;padding:0 0 4px}
+table.data caption{caption-side:top;text-align:left;font-weight:600;padding:0 0 4px;
+white-space:nowrap}
 table.data caption .note{font-weight:400;color:var(--muted);margin-left:8px}
 table.data th,table.data td{border:1px solid var(--line);padding:3px 9px;vertical-align:top}
 table.data th{background:var(--head);text-align:left;font-weight:600}
@@ -226,7 +227,7 @@ table.split caption{font-size:.92rem}
 .grid{display:flex;flex-wrap:wrap;gap:14px;align-items:flex-start}
 .grid > *{flex:1 1 420px;min-width:0}
 figure{margin:8px 0 14px}
-figure.plot img{max-width:100%;height:auto;border:1px solid var(--line);background:#fff}
+figure.plot img{max-width:min(100%,960px);height:auto;border:1px solid var(--line);background:#fff}
 figure.video video{max-width:100%;height:auto;background:#000;border:1px solid var(--line)}
 figcaption{font-size:.84rem;color:var(--muted);max-width:62rem}
 dl.facts{display:flex;flex-wrap:wrap;gap:8px;margin:6px 0 10px}
@@ -247,6 +248,7 @@ section{break-before:page}
 section.keep{break-before:auto}
 h2,h3,caption{break-after:avoid}
 table.data{font-size:8.5pt}
+table.data caption{white-space:normal}
 table.data tr,figure{break-inside:avoid}
 .table-wrap{overflow:visible}
 video{display:none!important}
