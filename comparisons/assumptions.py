@@ -53,7 +53,7 @@ from sim.sweep import sweep
 
 from .animation import build_renderer, write_animation
 from .coefficients import coefficients
-from .report_html import ASSUMPTION_GROUPS, html_table, split_columns
+from .report_html import assumption_tables
 from .tables import Table, fmt_error
 
 __all__ = ["ASSUMPTIONS", "Outcome", "AssumptionSweep", "AssumptionStudy", "run_assumptions",
@@ -503,9 +503,7 @@ def assumptions_html(study: AssumptionStudy, table: Table, out_dir, info=None,
     split into parts one screen wide, the plots and the animation inline (read from
     ``out_dir``, where :func:`write_assumptions` wrote them)."""
     out = Path(out_dir)
-    parts = [html_table(table, columns=cols, title=caption, cls="split", part=i)
-             for i, (caption, cols) in enumerate(split_columns(
-                 table.columns, ASSUMPTION_GROUPS, table.columns[0]), start=1)]
+    parts = assumption_tables(table)
     sections = [h.section("Verdicts", [h.bullets(study.verdicts()), h.paragraph(
         f"epsilon = {study.eps:.4g} is the crush hysteresis' restitution; the stiffness is set "
         f"from the contact time (k = {study.stiffness_typical:.3g} N/m for 100 ms). Errors are "

@@ -14,12 +14,13 @@ import shlex
 from pathlib import Path
 
 from pim.io import html as h
+from pim.io.html import split_columns
 from pim.io.units import convert
 
 from .report_data import ReportData
 from .tables import Table, fmt_value
 
-__all__ = ["render_html", "html_table", "split_columns", "ASSUMPTION_GROUPS", "HTML_NAME"]
+__all__ = ["render_html", "html_table", "assumption_tables", "ASSUMPTION_GROUPS", "HTML_NAME"]
 
 #: File name of the HTML report.
 HTML_NAME = h.HTML_REPORT_NAME
@@ -53,23 +54,12 @@ def html_table(table: Table, *, columns=None, title: str | None = None, note: st
                    id=f"table-{table.name}" + ("" if part is None else f"-{part}"), cls=cls)
 
 
-def split_columns(columns, groups, key: str) -> list[tuple[str, list[str]]]:
-    """``columns`` in ``groups`` ((caption, names) pairs), each group led by column ``key``;
-    a name matches a header or the header without its unit; leftovers form a last group."""
-    def stem(c):
-        return c.split(" [", 1)[0]
-
-    used, parts = {key}, []
-    for caption, names in groups:
-        cols = [c for n in names for c in columns
-                if c not in used and (c == n or stem(c) == n)]
-        used.update(cols)
-        if cols:
-            parts.append((caption, [key] + cols))
-    rest = [c for c in columns if c not in used]
-    if rest:
-        parts.append(("Other columns", [key] + rest))
-    return parts
+def assumption_tables(table: Table) -> list[str]:
+    """The assumptions table (:func:`comparisons.assumptions.assumption_table`) as HTML tables
+    one screen wide (:data:`ASSUMPTION_GROUPS`), one row per assumption in each."""
+    return [html_table(table, columns=cols, title=caption, cls="split", part=i)
+            for i, (caption, cols) in enumerate(split_columns(
+                table.columns, ASSUMPTION_GROUPS, table.columns[0]), start=1)]
 
 
 def _command(data: ReportData, name: str) -> str:
@@ -202,9 +192,7 @@ def _assumptions(data: ReportData) -> str:
     if data.assumptions is None or "assumptions" not in data.tables:
         return ""
     table = data.tables["assumptions"]
-    parts = [html_table(table, columns=cols, title=caption, cls="split", part=i)
-             for i, (caption, cols) in enumerate(split_columns(
-                 table.columns, ASSUMPTION_GROUPS, table.columns[0]), start=1)]
+    parts = assumption_tables(table)
     return h.section("PIM's assumptions (finite-duration crush scene)", [
         h.paragraph("Each scene relaxes one of PIM's assumptions at a typical value (100 ms "
                     "contact, tyre friction 0.7, the case's outlines, friction 0.5 between the "

@@ -42,6 +42,19 @@ def test_a_text_column_stays_left_aligned():
     assert 'class="num"' not in out
 
 
+def test_columns_no_group_names_are_shown_last():
+    parts = h.split_columns(("k", "a [m]", "b", "new"), (("A", ("a",)), ("B", ("b",))), "k")
+    assert parts == [("A", ["k", "a [m]"]), ("B", ["k", "b"]), ("Other columns", ["k", "new"])]
+
+
+def test_a_split_table_keeps_every_row_and_leads_each_part_with_the_key():
+    out = h.split_table(("k", "a", "b"), [("r1", "1", "2"), ("r2", "3", "4")],
+                        (("A", ("a",)), ("B", ("b",))), "k", note="n", id="t")
+    assert out.count("<table") == 2 and 'id="t-1"' in out and 'id="t-2"' in out
+    assert out.count("<td>r1</td>") == 2 and out.count("<td>r2</td>") == 2
+    assert out.count('class="note"') == 1
+
+
 def test_figure_inlines_the_image_bytes(tmp_path):
     (tmp_path / "p.png").write_bytes(PNG)
     out = h.figure(tmp_path / "p.png", alt='a "plot"', caption="c")

@@ -20,7 +20,8 @@ import pytest
 
 import pim
 from comparisons.report import compare_case
-from comparisons.report_html import ASSUMPTION_GROUPS, render_html, split_columns
+from comparisons.report_html import ASSUMPTION_GROUPS, render_html
+from pim.io.html import split_columns
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 CHROMEDRIVER = shutil.which("chromedriver")
@@ -74,11 +75,6 @@ def test_the_assumptions_table_is_split_into_parts_that_fit_a_screen(report):
     assert sorted(shown) == sorted(table.columns[1:])          # each column once
     assert "Other columns" not in [c for c, _ in parts]        # the groups name them all
     assert len(re.findall(r'id="table-assumptions-\d"', text)) == len(parts)
-
-
-def test_columns_no_group_names_are_shown_last():
-    parts = split_columns(("k", "a [m]", "b", "new"), (("A", ("a",)), ("B", ("b",))), "k")
-    assert parts == [("A", ["k", "a [m]"]), ("B", ["k", "b"]), ("Other columns", ["k", "new"])]
 
 
 def test_text_is_escaped(report):

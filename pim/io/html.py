@@ -21,9 +21,9 @@ from pathlib import Path
 
 import imageio.v2 as imageio
 
-__all__ = ["esc", "inline", "data_uri", "table", "figure", "video", "still_frame", "video_info",
-           "section",
-           "paragraph", "bullets", "facts", "page", "HTML_REPORT_NAME"]
+__all__ = ["esc", "inline", "data_uri", "table", "split_columns", "split_table", "figure",
+           "video", "still_frame", "video_info", "section", "paragraph", "bullets", "facts",
+           "page", "HTML_REPORT_NAME"]
 
 #: File name of the HTML report beside report.md.
 HTML_REPORT_NAME = "report.html"
@@ -90,6 +90,41 @@ def table(columns: Sequence[str], rows: Iterable[Sequence[str]], *, title: str =
     ident = f' id="{esc(id)}"' if id else ""
     return (f'<div class="table-wrap"><table{ident} class="data {esc(cls)}">{caption}'
             f"<thead><tr>{head}</tr></thead>\n<tbody>\n{body}\n</tbody></table></div>")
+
+
+def split_columns(columns: Sequence[str], groups, key: str) -> list[tuple[str, list[str]]]:
+    """``columns`` in ``groups`` ((caption, names) pairs) that fit a screen, each group led
+    by column ``key``; a name matches a header, or the header without its unit
+    (``"fit rms"`` matches ``"fit rms [ft/s]"``); columns no group names form a last group,
+    so none is lost."""
+    def stem(c):
+        return c.split(" [", 1)[0]
+
+    used, parts = {key}, []
+    for caption, names in groups:
+        cols = [c for n in names for c in columns
+                if c not in used and (c == n or stem(c) == n)]
+        used.update(cols)
+        if cols:
+            parts.append((caption, [key] + cols))
+    rest = [c for c in columns if c not in used]
+    if rest:
+        parts.append(("Other columns", [key] + rest))
+    return parts
+
+
+def split_table(columns: Sequence[str], rows: Sequence[Sequence[str]], groups, key: str, *,
+                note: str = "", id: str = "") -> str:
+    """A wide table as several tables one screen wide (:func:`split_columns`), one row per
+    row of the original in each; their ids are ``id-1``, ``id-2``, ..."""
+    columns = list(columns)
+    parts = []
+    for i, (caption, cols) in enumerate(split_columns(columns, groups, key), start=1):
+        index = [columns.index(c) for c in cols]
+        parts.append(table(cols, [[row[j] for j in index] for row in rows], title=caption,
+                           note=note if i == 1 else "", id=f"{id}-{i}" if id else "",
+                           cls="split"))
+    return "\n".join(parts)
 
 
 def figure(image, *, alt: str, caption: str = "", mime: str = "image/png") -> str:

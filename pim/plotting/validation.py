@@ -208,6 +208,19 @@ TABLES = (("barrier", "IIHS small-overlap barrier tests"),
           ("coefficients", "Coefficients by crash class"))
 
 
+#: The barrier table's columns in groups one screen wide (:func:`pim.io.html.split_table`).
+BARRIER_GROUPS = (
+    ("Measured, and the radius of gyration k (per test and per class)",
+     ("group", "vehicle", "k", "k class", "dVx meas", "dVy meas", "Omega meas")),
+    ("PIM with the published coefficients",
+     ("dVx pub", "dVy pub", "Omega pub", "dV err pub", "Omega err pub", "dV err pub, class k",
+      "Omega err pub, class k")),
+    ("The published method's refit (eps, beta, phi) against the published values",
+     ("e pub", "e fit", "beta pub", "beta fit", "phi pub", "phi fit", "dV err fit",
+      "Omega err fit")),
+)
+
+
 def write_validation_report(out, sections: dict, units: str = "si") -> list[Path]:
     """Write ``report.md``, ``report.html`` and the CSVs/PNGs of ``sections`` into directory
     ``out``.
@@ -248,8 +261,12 @@ def validation_html(out, sections: dict, units: str = "si") -> str:
     for key, title in TABLES:
         if key in sections:
             header, rows = sections[key]
-            parts.append((key, title, html.table(header, [[str(x) for x in r] for r in rows],
-                                                 note=f"CSV: `{key}.csv`", id=f"table-{key}")))
+            cells = [[str(x) for x in r] for r in rows]
+            note = f"CSV: `{key}.csv`"
+            parts.append((key, title, html.split_table(
+                header, cells, BARRIER_GROUPS, header[0], note=note, id=f"table-{key}")
+                if key == "barrier" else html.table(header, cells, note=note,
+                                                    id=f"table-{key}")))
     figures = [html.figure(out / f"{name}.png", alt=name, caption=f"`{name}.png`")
                for name in sections.get("figures", {})]
     if figures:
