@@ -18,7 +18,8 @@ animation and the sweep run in this one (``parallel=False`` for one process).
 
 The work is split into gathering (:func:`gather_report` fills a
 :class:`~comparisons.report_data.ReportData`) and rendering it
-(:mod:`comparisons.report_render`: Markdown and CSV).
+(:mod:`comparisons.report_render`: Markdown and CSV; :mod:`comparisons.report_html`:
+report.html, the same report as one self-contained page).
 
 The appendix also summarises PIM's assumptions at typical values (the finite-duration crush
 scene, :mod:`comparisons.assumptions`; assumptions.csv); the full study is
