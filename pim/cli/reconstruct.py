@@ -177,8 +177,11 @@ def _write_folder(directory: Path, rec, rows, units: str, video: bool) -> None:
 def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: bool) -> str:
     """report.html: the table, what drives each spread, the warnings, the scene and the
     animation inline (read from ``directory``), by the blocks of :mod:`pim.io.html`."""
-    cells = [(r["name"], f"{r['value']:.4g}", f"{r['p5']:.4g}", f"{r['p50']:.4g}",
-              f"{r['p95']:.4g}", r["unit"], _driver(r)) for r in rows]
+    def g(x):
+        return "" if x != x else f"{x:.4g}"          # no percentiles: an empty cell
+
+    cells = [(r["name"], g(r["value"]), g(r["p5"]), g(r["p50"]), g(r["p95"]), r["unit"],
+              _driver(r)) for r in rows]
     n = rec.samples.n if rec.samples else 0
     body = [html.paragraph(
         "Post-impact motion from " + ("the run-out inverse of each vehicle's rest evidence"
