@@ -40,6 +40,7 @@ def test_ricsac9_turned_around_covers_the_staged_speeds(tmp_path, capsys):
     page = (tmp_path / "report.html").read_text()
     table = page.split('id="table-reconstruction"')[1].split("</table>")[0]
     assert "<td>vehicle1.speed</td>" in table and "<td>mph</td>" in table
+    assert "momentum check" in table and "nan" not in table     # no percentiles: empty
     assert "<video" not in page and "https://" not in page
 
 
