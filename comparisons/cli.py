@@ -112,7 +112,8 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
 @click.command()
 @case_argument
 @click.option("--out", "out", type=click.Path(dir_okay=False), default=None,
-              help="MP4 file to write (default: out/CASE/animation.mp4).")
+              help="MP4 file to write (default: out/CASE-animation.mp4, beside pim "
+                   "compare's folder out/CASE, which each compare run replaces whole).")
 @eps_option
 @beta_option
 @click.option("--gif", "gif", type=click.Path(dir_okay=False), default=None,
@@ -144,7 +145,7 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
     eps_, beta_ = sim.scene.resolve_coefficients(case, eps, beta)
     if tyre < 0:
         raise ValueError(f"--tyre-friction must be >= 0, got {tyre}")
-    path = Path(out) if out else _out(None, case.name, "case") / "animation.mp4"
+    path = Path(out) if out else Path("out") / f"{case.name or 'case'}-animation.mp4"
     try:
         info = animate_case(case, eps_, beta_, path, gif=gif, progress=progress, fps=fps,
                             before=before, after=after, size=size, tyre=tyre,

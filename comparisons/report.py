@@ -496,6 +496,6 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
     if info is not None:
         info = replace(info, path=out / "animation.mp4",
                        gif=out / "animation.gif" if info.gif else None)
-    return Report(out_dir=out, files=rebase(files[:-1], tmp, out) + [out / REPORT_NAME],
+    return Report(out_dir=out, files=rebase(files, tmp, out),
                   eps=data.eps, beta=data.beta, error=data.error, seconds=data.seconds,
                   animation=info, study=data.study, assumptions=data.assumptions, data=data)

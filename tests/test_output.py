@@ -6,6 +6,8 @@ import signal
 import subprocess
 import sys
 import textwrap
+import time
+from pathlib import Path
 
 import pytest
 
@@ -125,7 +127,7 @@ def test_below_a_file_or_unwritable_is_an_output_error(tmp_path):
 
 def test_rebase_maps_temporary_paths_to_the_final_folder(tmp_path):
     assert rebase([tmp_path / "t" / "plots" / "a.png"], tmp_path / "t", "out") == [
-        __import__("pathlib").Path("out/plots/a.png")]
+        Path("out/plots/a.png")]
 
 
 def test_held_signals_delivers_the_interrupt_after_the_block():
@@ -152,3 +154,75 @@ def test_a_shared_folder_gets_the_runs_files_and_keeps_the_others(tmp_path):
     assert tree(docs) == {"README.md": b"mine", "hard-cases.md": b"new",
                           "hard-cases.csv": b"new"}
     assert litter(tmp_path) == []
+
+
+def test_the_current_directory_is_never_replaced(tmp_path, monkeypatch):
+    work = tmp_path / "work"
+    work.mkdir()
+    monkeypatch.chdir(work)
+    with pytest.raises(OutputError, match="current directory"), output_folder("."):
+        pass
+    assert work.is_dir()
+
+
+def test_a_command_that_fails_midway_keeps_the_earlier_run(tmp_path, monkeypatch, capsys):
+    """`pim plot` (as every folder-writing command) through output_folder: a full disk half
+    way leaves the earlier run whole, one line, exit 2."""
+    import errno
+
+    import pim.plotting.sheet as sheet
+    from pim.cli import main
+
+    out = tmp_path / "plots"
+    assert main(["plot", "ricsac9", "--out", str(out), "--format", "png"]) == 0
+    before = tree(out)
+    real = sheet.write_plots
+
+    def disk_full(case, result, folder, **kwargs):
+        real(case, result, folder, **kwargs)
+        raise OSError(errno.ENOSPC, "No space left on device", str(Path(folder) / "x.png"))
+
+    monkeypatch.setattr(sheet, "write_plots", disk_full)
+    capsys.readouterr()
+    assert main(["plot", "ricsac9", "--out", str(out), "--format", "png", "--format",
+                 "svg"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "No space left" in err and len(err.splitlines()) == 1
+    assert tree(out) == before
+    assert litter(tmp_path) == []
+
+
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
+def test_pool_workers_print_nothing_and_end_with_the_parent(tmp_path, signum):
+    """Issue 22: a Ctrl-C to the process group printed each worker's KeyboardInterrupt
+    traceback; a parent's SIGTERM handler inherited by forked workers did the same."""
+    script = tmp_path / "run.py"
+    script.write_text(textwrap.dedent("""
+        import signal, sys, time
+        from pim.io.output import worker_pool
+
+        def task():
+            time.sleep(30)
+
+        def on_term(signum, frame):
+            raise KeyboardInterrupt
+
+        if __name__ == "__main__":
+            signal.signal(signal.SIGTERM, on_term)      # as the pim command line does
+            try:
+                with worker_pool(2) as pool:
+                    futures = [pool.submit(task) for _ in range(2)]
+                    print("started", flush=True)
+                    futures[0].result()
+            except KeyboardInterrupt:
+                sys.exit(130)
+    """))
+    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+    assert proc.stdout.readline().strip() == "started"
+    time.sleep(0.5)                                  # the workers are in their task
+    start = time.time()
+    os.killpg(proc.pid, signum)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and err == "", err
+    assert time.time() - start < 10                  # ended, not waited for (30 s)

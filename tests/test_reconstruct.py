@@ -11,6 +11,7 @@ import pim
 from pim.analysis.reconstruction import reconstruct
 from pim.cli.main import main
 from pim.io.casefile import load_case
+from pim.io.output import MARKER
 
 KNOWN = 31.09 * 0.3048
 
@@ -33,8 +34,8 @@ def test_ricsac9_turned_around_covers_the_staged_speeds(tmp_path, capsys):
         assert row["p5"] < staged < row["p95"], (key, row)
         assert row["p5"] < row["p50"] < row["p95"]
     assert {"impact.restitution", "impact.beta"} <= set(data["unknowns"])
-    written = {p.name for p in tmp_path.iterdir()} - {".pim-run"}   # the folder's marker
-    assert written == {"report.md", "report.html", "reconstruction.csv"}
+    assert {p.name for p in tmp_path.iterdir()} == {"report.md", "report.html",
+                                                    "reconstruction.csv", MARKER}
     csv = (tmp_path / "reconstruction.csv").read_text()
     assert "vehicle1.speed,mph," in csv          # US case: mph in, mph out
     page = (tmp_path / "report.html").read_text()
@@ -73,9 +74,9 @@ def test_synthetic_case_report_and_json(tmp_path, capsys):
         row = data["unknowns"][key]
         assert row["value"] == pytest.approx(KNOWN, abs=1e-5)
         assert row["p5"] < KNOWN < row["p95"]
-    written = {p.name for p in tmp_path.iterdir()} - {".pim-run"}   # the folder's marker
-    assert written == {"report.md", "reconstruction.csv", "scene.png", "reconstruction.mp4",
-                       "report.html"}
+    assert {p.name for p in tmp_path.iterdir()} == {"report.md", "reconstruction.csv",
+                                                    "scene.png", "reconstruction.mp4",
+                                                    "report.html", MARKER}
     page = (tmp_path / "report.html").read_text()
     assert page.count("data:image/png;base64,") >= 2 and "data:video/mp4;base64," in page
     assert "vehicle1.speed" in (tmp_path / "report.md").read_text()

@@ -282,6 +282,14 @@ def test_report_data_is_gathered_once_and_rendered(quick):
     assert {"results", "inputs", "fit", "crosscheck", "assumptions"} <= set(data.tables)
 
 
+def test_suggested_commands_name_the_case_as_given_and_run_in_a_shell(quick):
+    _, rep = quick
+    text = render_markdown(replace(rep.data, case_path="cases/my case.toml"))
+    assert "`pim assumptions 'cases/my case.toml'`" in text
+    assert "pim assumptions ricsac9" not in text
+
+
+@pytest.mark.slow
 def test_suggested_commands_use_the_case_path_the_user_gave(tmp_path):
     """Issue 22: the report said `pim assumptions pickup-sedan` (the case's name), which
     fails when the case came from a file; now it prints the path given."""

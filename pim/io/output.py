@@ -163,6 +163,10 @@ def _check_replaceable(path: Path, option: str) -> None:
     """An existing folder may be replaced only when it is empty or a pim run."""
     if not path.exists():
         return
+    cwd = Path(os.path.realpath(os.getcwd()))
+    if cwd == path or path in cwd.parents:
+        raise OutputError(f"{option} {path}: the folder holds the current directory; pim "
+                          "replaces its output folder whole, so choose another folder")
     if path.is_symlink() or not path.is_dir():
         raise OutputError(f"{option} {path}: not a folder")
     if any(path.iterdir()) and not any((path / m).is_file()
@@ -292,12 +296,16 @@ def rebase(paths: Iterable, tmp, folder) -> list[Path]:
 
 
 def ignore_interrupts() -> None:
-    """Initializer of worker processes: ignore Ctrl-C (the parent handles it and ends them).
+    """Initializer of worker processes: ignore Ctrl-C (the parent handles it and ends them)
+    and let SIGTERM end the worker silently.
 
     A Ctrl-C reaches every process of the terminal's process group; a worker that raised
-    KeyboardInterrupt would print its own traceback.
+    KeyboardInterrupt would print its own traceback. A forked worker inherits the parent's
+    SIGTERM handler (which raises an exception, printed from inside a simulation's
+    callback); the default action ends it without a word.
     """
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
 def stop_workers(pool) -> None:
