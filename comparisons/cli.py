@@ -68,7 +68,8 @@ compare_beta_option = click.option(
 @json_option
 def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
             no_speed_error, no_assumptions, tyre, progress, as_json):
-    """Write a reconstruction report of CASE to a folder (report.md, CSVs, PNGs, MP4).
+    """Write a reconstruction report of CASE to a folder (report.html, report.md, CSVs,
+    PNGs, MP4; report.html is one self-contained page with the plots and the animation).
 
     The report opens with the results a reconstruction hands on (delta-V, PDOF, post-impact
     speeds and yaw rates, energy loss and its crush split, epsilon and beta with their source

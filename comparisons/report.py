@@ -18,7 +18,8 @@ animation and the sweep run in this one (``parallel=False`` for one process).
 
 The work is split into gathering (:func:`gather_report` fills a
 :class:`~comparisons.report_data.ReportData`) and rendering it
-(:mod:`comparisons.report_render`: Markdown and CSV).
+(:mod:`comparisons.report_render`: Markdown and CSV; :mod:`comparisons.report_html`:
+report.html, the same report as one self-contained page).
 
 The appendix also summarises PIM's assumptions at typical values (the finite-duration crush
 scene, :mod:`comparisons.assumptions`; assumptions.csv); the full study is
@@ -55,6 +56,7 @@ from .animation import build_renderer, write_animation
 from .assumptions import assumption_table, run_assumptions
 from .coefficients import coefficients
 from .report_data import ReportData
+from .report_html import HTML_NAME, render_html
 from .report_render import REPORT_NAME, render_csv, render_markdown
 from .speed_error import COARSE, pareto_table, plot_speed_error, study_table, sweep
 from .tables import Table, fmt_error
@@ -425,20 +427,21 @@ def gather_report(case: pim.Case, folder, options: CompareOptions,
         t0 = time.perf_counter()
         data.assumptions = run_assumptions(case, data.eps, data.beta, executor="serial",
                                            progress=False, animation_after=None, sweeps=False)
-        data.add_table(assumption_table(data.assumptions))
+        data.add_table(assumption_table(data.assumptions, units=units))
         steps.done("assumptions", t0)
     data.seconds["CPU of this process"] = time.process_time() - cpu0
     return data
 
 
 def write_report(data: ReportData, folder) -> list[Path]:
-    """Write the report's CSVs and report.md (last) into ``folder``; return every file of
-    the run (figures and animation included)."""
+    """Write the report's CSVs, report.html and report.md (last) into ``folder``; return
+    every file of the run (figures and animation included)."""
     folder = Path(folder)
     csvs = render_csv(data)
-    data.files += list(csvs)
+    data.files += list(csvs) + [HTML_NAME]
     for name, text in csvs.items():
         write_text(folder / name, text)
+    write_text(folder / HTML_NAME, render_html(data, folder))
     write_text(folder / REPORT_NAME, render_markdown(data))
     return [folder / rel for rel in data.files] + [folder / REPORT_NAME]
 
