@@ -199,3 +199,15 @@ def test_tiny_mass_or_inertia_is_refused_not_nan(ricsac9, field):
     """Before: 1e-300 returned NaN/inf with no flag."""
     with pytest.raises(InputError, match=f"{field} must be in"):
         replace(ricsac9.vehicle2, **{field: 1e-300})
+
+
+def test_conditioning_check_takes_a_scalar_mass_with_batched_inertias():
+    """A single mass with an array of yaw inertias (the validation's radius-of-gyration
+    search) raised TypeError in the conditioning check's single-case fast path."""
+    import pim
+    case = pim.load_case("ricsac9")
+    v1 = case.vehicle1
+    batched = pim.Vehicle(float(v1.mass), np.array([1.0, 2.0]) * float(v1.yaw_inertia),
+                          v1.cg, v1.velocity)
+    c = pim.Case(batched, case.vehicle2, case.impact)
+    assert np.shape(pim.solve(c, 0.3, 1.0).yaw_rate1) == (2,)

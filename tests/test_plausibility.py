@@ -61,7 +61,8 @@ def test_barrier_has_no_pdof(capsys):
 def test_bare_angle_and_no_impact_messages():
     from pim.model.plausibility import bare_angle_warning, no_impact_message
 
-    assert bare_angle_warning("impact.normal_angle", 1.5) is None     # plausible radians
+    assert bare_angle_warning("impact.normal_angle", 0) is None       # 0 is 0 in any unit
+    assert "1.5 rad" in bare_angle_warning("impact.normal_angle", 1.5)  # read as radians, said
     assert "impact.normal_angle" in bare_angle_warning("impact.normal_angle", 90)
     case = pim.load_case("ricsac9")
     assert no_impact_message(pim.solve(case, 0.355, 1.0)) is None

@@ -109,7 +109,8 @@ def _check_conditioning(case) -> None:
     point = case.impact.point
     px, py = point.tolist() if point.shape == (2,) else (None, None)
     for i, v in ((1, case.vehicle1), (2, case.vehicle2)):
-        if px is not None and type(v.mass) is np.float64 and v.cg.shape == (2,):
+        if (px is not None and type(v.mass) is np.float64 and type(v.yaw_inertia) is np.float64
+                and v.cg.shape == (2,)):
             mass, (cx, cy) = float(v.mass), v.cg.tolist()     # the single case, in floats
             if mass == math.inf or mass * ((px - cx) ** 2 + (py - cy) ** 2) <= (
                     MAX_ARM_RATIO * float(v.yaw_inertia)):
