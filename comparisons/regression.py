@@ -235,8 +235,8 @@ def load_references(path) -> dict:
     return out
 
 
-def _fail(path, why: str) -> ValueError:
-    return ValueError(f"{path}: not a pim baseline ({why}); make one with pim baseline")
+def _fail(path, why: str) -> InputError:
+    return InputError(f"{path}: not a pim baseline ({why}); make one with pim baseline")
 
 
 def _check_entry(path, i: int, entry) -> None:
