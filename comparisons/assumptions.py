@@ -180,7 +180,36 @@ def ladder_scenes(duration: float, has_outline: bool, tyre_friction: float | Non
 class SceneRun:
     """One simulated scene: post-impact motion (SI) and what the contact did.
 
-    ``failure`` says why a simulation failed (then the numbers are NaN).
+    Attributes
+    ----------
+    scene : Scene
+        The scene simulated.
+    velocity1, velocity2 : numpy.ndarray
+        Post-impact CG velocities of vehicles 1 and 2, shape (2,) [m/s].
+    yaw_rate1, yaw_rate2 : float
+        Post-impact yaw rates, CCW positive [rad/s].
+    contact_duration : float
+        Contact time [s].
+    impact_point : numpy.ndarray
+        Impulse centroid, shape (2,) [m] (global frame).
+    normal : numpy.ndarray
+        Mean contact (impulse) normal, unit, shape (2,) [-].
+    contact_start : float
+        Time of first contact [s].
+    point_body1 : numpy.ndarray
+        Impulse centroid relative to vehicle 1's CG in its body frame, shape (2,) [m].
+    normal_body2 : numpy.ndarray
+        Mean contact normal in vehicle 2's body frame, unit, shape (2,) [-].
+    energy_loss : float
+        Kinetic energy lost, as a share of the energy before [-].
+    stick_fraction : float
+        Share of the contact time the contact stuck [-].
+    slip_reversed : bool
+        Whether the tangential slip reversed during contact.
+    tangential_recovery : float
+        Share r of the stored tangential energy the contact gives back [-].
+    failure : str or None
+        Why the simulation failed (then the numbers are NaN); None when it ran.
     """
 
     scene: Scene
@@ -223,6 +252,8 @@ class Rung:
         impact_error of PIM against this scene [-].
     eps_eff, beta_eff : float
         :func:`pim.fit` to the simulated motion (what PIM would need); NaN if not fitted.
+    fit_rms : float
+        RMS residual of that fit [m/s]; NaN if not fitted.
     """
 
     key: str
@@ -245,7 +276,15 @@ class Rung:
 
 @dataclass(frozen=True)
 class Ladder:
-    """The rungs at one contact time ``duration`` [s], bottom (PIM) first."""
+    """The rungs at one contact time, bottom (PIM) first.
+
+    Attributes
+    ----------
+    duration : float
+        Contact time of the ladder's scenes [s].
+    rungs : tuple of Rung
+        The rungs, bottom (PIM) first.
+    """
 
     duration: float
     rungs: tuple
@@ -275,8 +314,12 @@ class AssumptionStudy:
         |impulse centroid - C| [m] of the outlines at the typical contact time.
     normal_turn : float
         Angle [deg] from the case's normal Gamma to the outlines' mean contact normal there.
+    stiffness_typical : float
+        Contact stiffness k giving the typical contact time [N/m].
     seconds : float
         Wall time of the study [s].
+    animation_result : sim.CompliantResult or None
+        The recorded run for the animation (None when not asked for or the run failed).
     outline_note : str
         Why the outline rungs are missing ("" when they ran).
     """
@@ -328,7 +371,29 @@ LEGACY_KEYS = {"duration": "instantaneous", "tyres": "no_external_forces",
 @dataclass(frozen=True)
 class LegacyOutcome:
     """PIM's per-vehicle errors against one rung's scene (:func:`outcome_errors`) and the
-    rung's effective coefficients, named as the former study named them."""
+    rung's effective coefficients, named as the former study named them.
+
+    Attributes
+    ----------
+    value : float
+        The swept value: the contact time of the typical ladder [s].
+    errors : dict
+        Per-vehicle relative errors of PIM (:func:`outcome_errors`) [-].
+    eps_eff, beta_eff : float
+        Coefficients :func:`pim.fit` finds for the simulated motion [-].
+    fit_rms : float
+        RMS residual of that fit [m/s].
+    energy_loss : float
+        Simulated kinetic energy lost, as a share of the energy before [-].
+    pim_energy_loss : float
+        PIM's kinetic energy lost, as a share of the energy before [-].
+    stick_fraction : float
+        Share of the contact time the contact stuck [-].
+    point_distance : float
+        Distance from the impulse centroid to the case's impact point C [m].
+    failure : str or None
+        Why the simulation failed; None when it ran.
+    """
 
     value: float
     errors: dict
@@ -344,6 +409,16 @@ class LegacyOutcome:
 
 @dataclass(frozen=True)
 class LegacySweep:
+    """One rung under the former study's name.
+
+    Attributes
+    ----------
+    key : str
+        The former study's name of the rung.
+    typical : LegacyOutcome
+        Its outcome at the typical contact time.
+    """
+
     key: str
     typical: LegacyOutcome
 

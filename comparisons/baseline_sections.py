@@ -90,6 +90,8 @@ class Recorded:
         Where the tolerance comes from.
     exact_same_versions : bool
         Bit for bit when the dependency versions are the baseline's (seeded Monte Carlo).
+    extra : dict
+        Further plain data stored with the record (empty by default).
     """
 
     name: str

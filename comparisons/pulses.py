@@ -43,7 +43,27 @@ THRESHOLD = 0.05
 
 @dataclass(frozen=True)
 class PulseMetrics:
-    """Numbers of one crash pulse [SI]."""
+    """Numbers of one crash pulse [SI].
+
+    Attributes
+    ----------
+    duration : float
+        Contact duration, while the force exceeds :data:`THRESHOLD` of its peak [s].
+    peak_force : float
+        Largest barrier force [N].
+    peak_force_time : float
+        Time of the peak force [s].
+    crush_at_peak_force : float
+        Crush at the peak force [m].
+    max_crush : float
+        Largest crush [m].
+    max_crush_time : float
+        Time of the largest crush [s].
+    rebound_speed : float
+        Speed away from the barrier at the end [m/s] (0 if still moving towards it).
+    delta_v : float
+        Velocity change over the pulse [m/s].
+    """
 
     duration: float
     peak_force: float
@@ -84,7 +104,19 @@ def barrier_pulse_case(mass: float, speed: float) -> pim.Case:
 
 @dataclass(frozen=True, eq=False)
 class Pulse:
-    """A pulse's samples [SI]: time, barrier force, crush, velocity towards the barrier."""
+    """A pulse's samples [SI].
+
+    Attributes
+    ----------
+    time : numpy.ndarray
+        Sample times from first contact [s].
+    force : numpy.ndarray
+        Barrier force, >= 0 pushing the car back [N].
+    crush : numpy.ndarray
+        Crush [m].
+    velocity : numpy.ndarray
+        The car's velocity towards the barrier [m/s].
+    """
 
     time: np.ndarray
     force: np.ndarray
@@ -106,7 +138,29 @@ def simulate_pulse(mass: float, speed: float, stiffness: float, eps: float,
 
 @dataclass(frozen=True, eq=False)
 class PulseComparison:
-    """Measured and modelled pulses, their metrics and the curves' RMS differences."""
+    """Measured and modelled pulses, their metrics and the curves' RMS differences.
+
+    Attributes
+    ----------
+    measured, model : Pulse
+        The test's pulse and the contact law's.
+    measured_metrics, model_metrics : PulseMetrics
+        Their numbers.
+    stiffness : float
+        Contact stiffness k of the model [N/m].
+    eps : float
+        Restitution of the model [-].
+    speed : float
+        Impact speed [m/s].
+    mass : float
+        The car's mass [kg].
+    force_rms : float
+        RMS difference of the force curves on the measured times [N].
+    delta_v_rms : float
+        RMS difference of the velocity curves on the measured times [m/s].
+    source : str
+        Where the test's data come from.
+    """
 
     measured: Pulse
     model: Pulse

@@ -275,7 +275,29 @@ def load_baseline(path) -> dict:
 
 @dataclass
 class Drift:
-    """One quantity outside its tolerance (values SI; ``unit`` names the unit)."""
+    """One quantity outside its tolerance (values SI; ``unit`` names the unit).
+
+    Attributes
+    ----------
+    case : str
+        Name of the case.
+    quantity : str
+        ``section.quantity`` that drifted.
+    baseline : float or None
+        Recorded (or reference) value [SI ``unit``] (None where undefined).
+    now : float or None
+        Value now [SI ``unit``] (None where undefined or it no longer runs).
+    difference : float or None
+        ``now - baseline`` [SI ``unit``] (None where either is undefined).
+    tolerance : float
+        Allowed difference [SI ``unit``].
+    unit : str
+        SI unit of the values.
+    kind : str
+        Unit kind (a key of :data:`pim.io.units.SI_UNITS`), for display.
+    against : str
+        ``"baseline"`` or the source of the reference value compared with.
+    """
 
     case: str
     quantity: str
@@ -290,7 +312,25 @@ class Drift:
 
 @dataclass
 class CheckReport:
-    """Outcome of :func:`check_baseline`."""
+    """Outcome of :func:`check_baseline`.
+
+    Attributes
+    ----------
+    path : str
+        The baseline file checked.
+    drifts : list of Drift
+        Quantities outside their tolerance.
+    checked : int
+        Number of quantities compared.
+    input_changes : list of str
+        Cases whose case file changed since the baseline.
+    version_changes : dict
+        Dependency name -> [baseline version, version now] where they differ.
+    notes : list of str
+        Sections that no longer run or now run, and quantities new since the baseline.
+    units : dict
+        Case name -> unit system of its case file, for display.
+    """
 
     path: str
     drifts: list = field(default_factory=list)

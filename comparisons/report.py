@@ -232,7 +232,33 @@ def _coefficient_sources(case, eps, beta) -> tuple[float, float, dict, object]:
 
 @dataclass(frozen=True)
 class CompareOptions:
-    """What :func:`compare_case` includes and how (its keyword arguments, documented there)."""
+    """What :func:`compare_case` includes and how (its keyword arguments, detailed there).
+
+    Attributes
+    ----------
+    eps, beta : float or None
+        Restitution and friction coefficients [-] to use instead of fitting (None: fit).
+    gif : bool
+        Also write animation.gif.
+    animation, speed_error : bool
+        Include the animation and the coarse speed-error sweep.
+    tyre : float
+        Tyre friction coefficient [-] after the impact in the animation (0: none).
+    assumptions : bool
+        Include PIM's assumptions at typical values.
+    progress : bool or None
+        tqdm bars on stderr (None: only on a terminal).
+    units : str or None
+        Unit system of the report, "si" or "us" (None: the case file's).
+    parallel : bool
+        Render the plots in a forked worker process.
+    uncertainty_samples : int
+        Monte Carlo samples for the 5-95 % intervals.
+    friction_limit : float or None
+        Warn when |mu| [-] exceeds it (None: no warning).
+    case_path : str or None
+        The case as the user named it, for the commands the report suggests.
+    """
 
     eps: float | None = None
     beta: float | None = None

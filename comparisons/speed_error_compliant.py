@@ -129,7 +129,19 @@ def _timed(func, repeats: int):
 
 @dataclass(frozen=True, eq=False)
 class Reference:
-    """The reference of one scene: the result, the rtol it reached, its spread and cost."""
+    """The reference of one scene: the result, the rtol it reached, its spread and cost.
+
+    Attributes
+    ----------
+    result : sim.CompliantResult
+        The DOP853 run at the tightest tolerance reached.
+    rtol : float
+        Its relative tolerance [-].
+    spread : float
+        :func:`sim.error_measure.impact_error` against the rung before [-] (NaN with one).
+    wall_time : float
+        Wall time of all the rungs run [s].
+    """
 
     result: object
     rtol: float

@@ -88,8 +88,17 @@ UNRUNNABLE = {"iihs-car-to-car": "the table gives no masses, yaw inertias or imp
 
 @dataclass(frozen=True, eq=False)
 class TestCase:
-    """One crash test as both models see it: its class, its name and its :class:`pim.Case`
-    (with ``measured`` post-impact motion)."""
+    """One crash test as both models see it.
+
+    Attributes
+    ----------
+    crash_class : str
+        The crash class it belongs to.
+    name : str
+        The test's name.
+    case : pim.Case
+        The test as a case, with ``measured`` post-impact motion [SI].
+    """
 
     crash_class: str
     name: str
@@ -131,8 +140,22 @@ def scene_settings(steps: int = COARSE_STEPS) -> sim.CompliantSettings:
 
 @dataclass(frozen=True)
 class Model:
-    """A model's parameters (names, bounds, default start) and its prediction function
-    ``run(test, x, steps) -> (v1, w1, v2, w2)`` [SI]."""
+    """A model's parameters and its prediction function.
+
+    Attributes
+    ----------
+    name : str
+        The model's name.
+    parameters : tuple of str
+        Names of its parameters.
+    lower, upper : tuple of float
+        Bounds of the parameters [their units].
+    start : tuple of float
+        Default start of a fit [their units].
+    run : callable
+        ``run(test, x, steps) -> (v1, w1, v2, w2)``: the predicted post-impact velocities
+        [m/s] and yaw rates [rad/s].
+    """
 
     name: str
     parameters: tuple[str, ...]
@@ -181,8 +204,19 @@ def _residuals(model, tests, x, steps):
 
 @dataclass(frozen=True)
 class FitResult:
-    """Fitted parameters (all of the model's, the fixed ones included), the root-mean-square
-    scaled residual, the function evaluations and the wall time [s]."""
+    """A least-squares fit of a model's parameters.
+
+    Attributes
+    ----------
+    x : tuple of float
+        Fitted parameters, all of the model's (the fixed ones included) [their units].
+    rms : float
+        Root-mean-square scaled residual [-].
+    evaluations : int
+        Function evaluations.
+    wall_time : float
+        Wall time of the fit [s].
+    """
 
     x: tuple
     rms: float
@@ -242,11 +276,28 @@ def fit_parameters(model: Model, tests, start=None, fixed: dict | None = None,
 class Prediction:
     """One model's prediction of one test with one parameter set, and its errors [SI].
 
-    ``kind``: "per-test fit", "class fit" or "leave-one-out". Errors per moving vehicle,
-    the largest kept: ``delta_v_error`` (|dV predicted| - |dV measured|, signed, of the
-    vehicle where it is largest), ``velocity_error`` (length of the post-impact velocity
-    error vector), ``yaw_error`` (|omega predicted - omega measured|); ``wall_time`` one
-    prediction's cost [s]. NaN errors when the scene failed.
+    Errors are per moving vehicle, the largest kept; NaN when the scene failed.
+
+    Attributes
+    ----------
+    crash_class : str
+        The test's crash class.
+    test : str
+        The test's name.
+    model : str
+        The model's name.
+    kind : str
+        "per-test fit", "class fit" or "leave-one-out".
+    x : tuple of float
+        The parameters used [their units].
+    delta_v_error : float
+        |dV predicted| - |dV measured|, signed, of the vehicle where it is largest [m/s].
+    velocity_error : float
+        Length of the post-impact velocity error vector [m/s].
+    yaw_error : float
+        |omega predicted - omega measured| [rad/s].
+    wall_time : float
+        One prediction's cost [s].
     """
 
     crash_class: str
@@ -298,7 +349,21 @@ def leave_one_out(model: Model, tests, per_test: dict, fixed: dict | None = None
 @dataclass(frozen=True, eq=False)
 class ClassStudy:
     """One crash class: both models' per-test fits, class fits and leave-one-out
-    predictions (:class:`Prediction` rows), and the fits' parameters."""
+    predictions, and the fits' parameters.
+
+    Attributes
+    ----------
+    crash_class : str
+        The class's name.
+    tests : tuple of str
+        Names of its tests.
+    predictions : tuple of Prediction
+        Per-test fit, class fit and leave-one-out rows of both models.
+    class_fits : dict
+        Model name -> :class:`FitResult` of the class fit.
+    wall_time : float
+        Wall time of the study [s].
+    """
 
     crash_class: str
     tests: tuple

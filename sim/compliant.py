@@ -162,9 +162,25 @@ class ContactMemory:
 
 @dataclass(frozen=True)
 class ContactGeometry:
-    """Where and how the bodies touch at one state: point, normal n, tangent t, crush
-    delta [m], tangential and normal relative velocity at the point [m/s], and whether the
-    outlines overlap (always True for the point contact)."""
+    """Where and how the bodies touch at one state.
+
+    Attributes
+    ----------
+    point : numpy.ndarray
+        Contact point, shape (2,) [m] (global frame).
+    normal : numpy.ndarray
+        Unit contact normal n, shape (2,) [-].
+    tangent : numpy.ndarray
+        Unit tangent t, shape (2,) [-].
+    delta : float
+        Crush along the normal [m].
+    slip_t : float
+        Relative velocity at the point along t [m/s].
+    slip_n : float
+        Relative velocity at the point along n [m/s].
+    overlap : bool
+        Whether the outlines overlap (always True for the point contact).
+    """
 
     point: np.ndarray
     normal: np.ndarray
@@ -177,7 +193,19 @@ class ContactGeometry:
 
 @dataclass(frozen=True)
 class ContactForce:
-    """The contact force of one step: total on vehicle 1 [N], F_n, F_t [N], sticking."""
+    """The contact force of one step.
+
+    Attributes
+    ----------
+    force : numpy.ndarray
+        Total contact force on vehicle 1, shape (2,) [N].
+    normal_force : float
+        Normal component F_n [N].
+    tangential_force : float
+        Tangential (friction) component F_t [N].
+    sticking : bool
+        Whether the friction spring sticks in this step (no sliding).
+    """
 
     force: np.ndarray
     normal_force: float
@@ -285,7 +313,41 @@ def tyre_loads(problem: CompliantProblem, kin: Kinematics):
 
 @dataclass
 class ContactTally:
-    """What the result reports, summed over the contact steps (SI)."""
+    """What the result reports, summed over the contact steps (SI).
+
+    Attributes
+    ----------
+    impulse : numpy.ndarray
+        Contact impulse on vehicle 1, sum of F dt, shape (2,) [N s].
+    moment_sum : numpy.ndarray
+        Sum of |F| dt times the contact point, shape (2,) [N s m] (impulse centroid numerator).
+    normal_sum : numpy.ndarray
+        Sum of |F| dt times the contact normal, shape (2,) [N s].
+    body_point_sum : numpy.ndarray
+        As ``moment_sum`` with the point relative to vehicle 1's CG in its body frame [N s m].
+    body_normal_sum : numpy.ndarray
+        As ``normal_sum`` with the normal in vehicle 2's body frame [N s].
+    weight : float
+        Sum of |F| dt, the weight of the centroids above [N s].
+    peak : float
+        Largest contact force magnitude [N].
+    tyre_work : float
+        Work done by the tyre forces during contact [J].
+    stick_time : float
+        Time the friction spring stuck [s].
+    contact_time : float
+        Time in contact [s].
+    directions : set
+        Signs (+1, -1) of the friction-spring stretch z while the contact slid.
+    initial_sign : float or None
+        Sign of the tangential slip at first contact (None before contact) [-].
+    last_slip : float
+        Tangential slip velocity in the last contact step [m/s].
+    last_slip_n : float
+        Outline contact: normal relative velocity v_rel . n in the last contact step [m/s].
+    rows : list or None
+        The contact history, one tuple per step (None when not recorded).
+    """
 
     impulse: np.ndarray = field(default_factory=lambda: np.zeros(2))
     moment_sum: np.ndarray = field(default_factory=lambda: np.zeros(2))

@@ -158,8 +158,22 @@ def simulate_kudlich_slibar(case: pim.Case, k: float, mu_c: float,
 class KudlichSlibarCheck:
     """:func:`pim.model.impact_laws.solve_kudlich_slibar` against the two-phase pymunk run.
 
-    ``rows`` and ``error`` are those of :func:`sim.error_measure.compare_results` and
-    :func:`sim.error_measure.impact_error`.
+    Attributes
+    ----------
+    case_name : str
+        Name of the case compared.
+    k : float
+        Kudlich-Slibar restitution factor k [-].
+    mu_c : float
+        Coefficient of friction mu_c of the contact [-].
+    rows : list
+        Per-quantity comparison rows of :func:`sim.error_measure.compare_results` (SI).
+    error : float
+        :func:`sim.error_measure.impact_error` of the analytic result against the run [-].
+    analytic : pim.Result
+        :func:`pim.model.impact_laws.solve_kudlich_slibar`'s result.
+    run : KudlichSlibarRun
+        The two-phase pymunk run.
     """
 
     case_name: str

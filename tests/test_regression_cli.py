@@ -7,6 +7,7 @@ from importlib import resources
 
 import pytest
 
+from comparisons import regression_cli
 from pim.cli import main
 
 RICSAC9 = resources.files("pim.io") / "cases" / "ricsac9.toml"
@@ -27,6 +28,19 @@ def test_baseline_then_check_is_exit_0(folder, capsys):
     assert doc["sections"] == ["solve", "fit", "crosscheck", "reconstruct"]
     assert main(["check", str(folder / "b.json")]) == 0
     assert "within tolerance" in capsys.readouterr().out
+
+
+def test_the_commands_run_from_their_module(folder, tmp_path, capsys):
+    """regression_cli's click commands on their own (outside pim's group): check returns 0
+    on the unchanged baseline and DRIFT_EXIT_CODE after the case file changed."""
+    assert regression_cli.check.main([str(folder / "b.json"), "--json"],
+                                      standalone_mode=False) == 0
+    assert json.loads(capsys.readouterr().out)["ok"] is True
+    shutil.copy(folder / "b.json", tmp_path / "b.json")
+    text = (folder / "mine.toml").read_text().replace("4896.2 lbf", "5200 lbf")
+    (tmp_path / "mine.toml").write_text(text)
+    assert regression_cli.check.main([str(tmp_path / "b.json")], standalone_mode=False) \
+        == regression_cli.DRIFT_EXIT_CODE == 1
 
 
 def test_a_changed_mass_is_exit_1_with_a_readable_table(folder, tmp_path, capsys):

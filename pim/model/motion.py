@@ -54,7 +54,15 @@ class PostImpactMotion(Protocol):
 @dataclass(frozen=True)
 class MotionValues:
     """Plain post-impact motion (a :class:`PostImpactMotion`): arrays as given, unchecked
-    (NaN allowed, e.g. for failed simulation runs) [m/s, rad/s]."""
+    (NaN allowed, e.g. for failed simulation runs) [m/s, rad/s].
+
+    Attributes
+    ----------
+    velocity1, velocity2 : array_like
+        Post-impact CG velocities of vehicles 1 and 2, shape (..., 2) [m/s].
+    yaw_rate1, yaw_rate2 : array_like
+        Post-impact yaw rates of vehicles 1 and 2, CCW positive [rad/s].
+    """
 
     velocity1: object
     velocity2: object
