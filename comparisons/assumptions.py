@@ -72,7 +72,7 @@ __all__ = ["Scene", "SceneRun", "Rung", "Ladder", "AssumptionStudy", "RUNGS", "T
            "DURATIONS", "STIFF_LIMIT", "HOLDS", "ROUGHLY", "ASSUMPTION_FIELDS",
            "changed_assumptions", "ladder_scenes", "run_assumptions", "assumption_table",
            "sweep_table", "plot_overview", "write_assumptions", "assumptions_markdown",
-           "outcome_errors", "LEGACY_KEYS", "legacy_sweeps"]
+           "outcome_errors", "LEGACY_KEYS", "legacy_sweeps", "ladder_intro"]
 
 #: Marginal effect below which an assumption is negligible, and below which it is moderate.
 HOLDS, ROUGHLY = 0.05, 0.15
@@ -355,6 +355,10 @@ class AssumptionStudy:
     def verdicts(self) -> list[str]:
         """One sentence per relaxed assumption, naming it and the effect measured."""
         return verdicts(self)
+
+    def intro(self, command: str) -> str:
+        """The sentence a report puts before the verdicts (:func:`ladder_intro`)."""
+        return ladder_intro(command)
 
     @property
     def sweeps(self) -> tuple:
@@ -763,6 +767,19 @@ def _recovery_words(study: AssumptionStudy) -> str:
         parts.append(f"{' / '.join(_pct(v) for v in values)} at mu_c {mu:g} ({how})")
     return (f"; with tangential recovery r = {' / '.join(f'{r:.3g}' for r in rs)} the "
             f"friction effect is {'; '.join(parts)}")
+
+
+def ladder_intro(command: str) -> str:
+    """The sentence a report puts before the verdicts: what the ladder is, at which typical
+    values (from :data:`TYPICAL`), and the command of the whole study."""
+    return (f"A ladder of crush scenes relaxes PIM's assumptions one at a time, each scene "
+            f"differing from the one below in one assumption; the marginal effect is against "
+            f"the scene below at the same contact time, the cumulative one is PIM's error "
+            f"against the scene (typical values: {1e3 * TYPICAL['duration']:g} ms contact, "
+            f"tyre friction {TYPICAL['tyre_friction']:g}, friction "
+            f"{TYPICAL['friction']:g} between the vehicles); docs/contact-model.md has the "
+            f"model. The study over contact times, its plots and an animation are "
+            f"`{command}`.")
 
 
 def verdicts(study: AssumptionStudy) -> list[str]:

@@ -190,10 +190,7 @@ def _assumptions(data: ReportData) -> str:
     table = data.tables["assumptions"]
     parts = assumption_tables(table)
     return h.section("PIM's assumptions (finite-duration crush scene)", [
-        h.paragraph("Each scene relaxes one of PIM's assumptions at a typical value (100 ms "
-                    "contact, tyre friction 0.7, the case's outlines, friction 0.5 between the "
-                    "vehicles); docs/contact-model.md has the model. The sweeps, plots and an "
-                    f"animation are `{_command(data, 'assumptions')}`."),
+        h.paragraph(data.assumptions.intro(_command(data, "assumptions"))),
         h.bullets(data.assumptions.verdicts()),
         h.paragraph(f"The table at typical values, in {len(parts)} parts (one row per "
                     f"assumption in each; all columns: `{table.name}.csv`)."),

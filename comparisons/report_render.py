@@ -192,10 +192,7 @@ def _assumptions(data: ReportData) -> list[str]:
     if data.assumptions is None:
         return []
     return (["## PIM's assumptions (finite-duration crush scene)", "",
-             "Each scene relaxes one of PIM's assumptions at a typical value (100 ms "
-             "contact, tyre friction 0.7, the case's outlines, friction 0.5 between the "
-             "vehicles); docs/contact-model.md has the model. The sweeps, plots and an "
-             f"animation are `{_command(data, 'assumptions')}`.", ""]
+             data.assumptions.intro(_command(data, "assumptions")), ""]
             + [f"- {v}" for v in data.assumptions.verdicts()] + [""]
             + [md_table(data.tables["assumptions"])])
 
