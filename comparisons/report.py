@@ -567,3 +567,8 @@ def _markdown(case, fit, eps, beta, sources, result, simulated, sim_error, limit
         lines.append(f"- [{path}]({path})")
     lines += ["", "Timings: " + ", ".join(f"{k} {v:.2f} s" for k, v in rep.seconds.items()), ""]
     return "\n".join(lines)
+
+
+#: Public names of the folder helpers, for the reports of the other impact laws
+#: (:mod:`comparisons.law_report`).
+stale_files, replace_manifest = _stale_files, _replace_manifest
