@@ -331,8 +331,8 @@ def test_solve_command_errors(capsys, args, message):
     assert message in capsys.readouterr().err
 
 
-@pytest.mark.parametrize("command", ["compare", "animate", "fit", "uncertainty", "reconstruct",
-                                     "sensitivity", "assumptions"])
+@pytest.mark.parametrize("command", ["fit", "uncertainty", "reconstruct", "sensitivity",
+                                     "assumptions"])
 def test_commands_that_cannot_use_the_law_yet_say_so(tmp_path, capsys, command):
     path = write_case(tmp_path, 'law = "kudlich-slibar"\nrestitution = 0.1\n'
                                 'contact_friction = 0.6')
