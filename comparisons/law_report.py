@@ -38,6 +38,7 @@ from .report import (
     crosscheck_table,
     fit_table,
     inputs_table,
+    md_table,
     replace_manifest,
     results_table,
     stale_files,
@@ -61,10 +62,6 @@ def law_table(setup: LawSetup) -> Table:
     rows.append((label, setup.beta, "-"))
     return Table("law", "Impact law and its parameters", ("quantity", "value", "unit"),
                  tuple(rows))
-
-
-def _md(table: Table) -> str:
-    return f"**{table.title}** ([{table.name}.csv]({table.name}.csv))\n\n{table.to_markdown()}\n"
 
 
 def _fit(case: pim.Case, setup: LawSetup):
@@ -182,14 +179,14 @@ def _markdown(case, setup, fit, mapped, run, info, tables, rep, units) -> str:
               f"**{setup.describe()}** (docs/impact-laws.md).", "", "## Results", ""]
     r = setup.result
     lines += [f"- **{setup.parameters()}**; impulse ratio Pt / Pn = {float(r.mu):.4g}.", "",
-              _md(by_name["results"]), _md(by_name["law"])]
+              md_table(by_name["results"]), md_table(by_name["law"])]
     warnings = warnings_of(case, r)
     if warnings:
         lines += ["Warnings:", ""] + [f"- {p}" for p in warnings] + [""]
     lines += ["## Coefficients", ""] + _fit_lines(setup, fit, mapped)
     if "fit" in by_name:
-        lines += [_md(by_name["fit"])]
-    lines += ["## Case inputs", "", _md(by_name["inputs"]), "## Animation", ""]
+        lines += [md_table(by_name["fit"])]
+    lines += ["## Case inputs", "", md_table(by_name["inputs"]), "## Animation", ""]
     if isinstance(info, sim.SimulationError):
         lines += [f"No animation: the simulation failed ({info.kind}): {info}", ""]
     elif info is not None:
@@ -208,7 +205,7 @@ def _markdown(case, setup, fit, mapped, run, info, tables, rep, units) -> str:
                else "the rigid Brach scene at the effective beta")
         lines += [f"pymunk run ({how}). Largest error in the impact's velocity changes: "
                   f"**{rep.error:.2e}** (relative to the largest change).", "",
-                  _md(by_name["crosscheck"])]
+                  md_table(by_name["crosscheck"])]
     lines += ["## Not run for this law", "", f"- {NOT_RUN}.", "", "## Files", ""]
     for path in sorted({p.relative_to(rep.out_dir).as_posix() for p in rep.files}
                        | {"report.md"}):

@@ -571,4 +571,4 @@ def _markdown(case, fit, eps, beta, sources, result, simulated, sim_error, limit
 
 #: Public names of the folder helpers, for the reports of the other impact laws
 #: (:mod:`comparisons.law_report`).
-stale_files, replace_manifest = _stale_files, _replace_manifest
+stale_files, replace_manifest, md_table = _stale_files, _replace_manifest, _md_table
