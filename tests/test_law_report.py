@@ -73,6 +73,8 @@ def test_animate_command_plays_the_two_phase_run_with_the_analytic_ghost(tmp_pat
                  "--no-progress", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["law"] == "kudlich-slibar" and data["contact_friction"] == 0.6
+    r = pim.solve_law(pim.load_case("ricsac9"), "kudlich-slibar", 0.1, None, 0.6)
+    assert (data["restitution"], data["beta"]) == (0.1, float(r.beta))
     assert data["max_ghost_offset_px"] < 1e-6       # the run and the law agree
     frames = list(iio.imiter(out))
     assert frames[0].shape == (240, 320, 3)
