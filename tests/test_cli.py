@@ -126,12 +126,14 @@ def test_input_error_is_one_line_and_exit_2(capsys):
 
 def test_an_internal_bug_is_not_disguised_as_bad_input(monkeypatch):
     """Before: any ValueError, internal bugs included, became "error: ..." and exit 2."""
+    import pim.model.impact_laws
     import pim.model.solver
 
     def broken(*args, **kwargs):
         raise ValueError("an internal bug")
 
     monkeypatch.setattr(pim.model.solver, "solve", broken)
+    monkeypatch.setattr(pim.model.impact_laws, "solve", broken)   # pim solve: solve_law
     with pytest.raises(ValueError, match="an internal bug"):
         main(["solve", "ricsac9"])
 
