@@ -54,6 +54,7 @@ import numpy as np
 
 import pim
 import sim
+from pim.io import html as h
 from pim.io.files import save_figure, write_text
 from pim.io.units import convert
 from pim.model.numbers import InputError
@@ -64,6 +65,7 @@ from sim.sweep import sweep
 
 from .animation import build_renderer, write_animation
 from .coefficients import coefficients
+from .report_html import assumption_tables
 from .tables import Table, fmt_error
 
 __all__ = ["Scene", "SceneRun", "Rung", "Ladder", "AssumptionStudy", "RUNGS", "TYPICAL",
@@ -848,9 +850,44 @@ def write_assumptions(study: AssumptionStudy, out_dir, *, animation: bool = True
                   f"beta = {study.beta_pim:g}")
         info = write_animation(renderer, out / "assumptions.mp4", progress=progress)
         files.append(info.path)
+    files.append(write_text(out / "assumptions.html",
+                            assumptions_html(study, table, out, info, command)))
     files.append(write_text(out / "assumptions.md",
                             assumptions_markdown(study, table, info, command)))
     return files
+
+
+def assumptions_html(study: AssumptionStudy, table: Table, out_dir, info=None,
+                     command: str = "") -> str:
+    """The study as one self-contained HTML page: the verdicts, the table at typical values
+    split into parts one screen wide, the plots and the animation inline (read from
+    ``out_dir``, where :func:`write_assumptions` wrote them)."""
+    out = Path(out_dir)
+    parts = assumption_tables(table)
+    sections = [h.section("Verdicts", [h.bullets(study.verdicts()), h.paragraph(
+        f"epsilon = {study.eps:.4g} is the crush hysteresis' restitution; the stiffness is set "
+        f"from the contact time (k = {study.stiffness_typical:.3g} N/m for 100 ms). Errors are "
+        f"relative to the simulated |delta-V| of each vehicle.")], id="verdicts", cls="keep"),
+        h.section("At typical values", [*parts, h.paragraph(
+            "eps_eff, beta_eff: what `pim fit` needs to reproduce the simulated motion; C_eff: "
+            "the impulse centroid. Every scene: `assumption_sweeps.csv`.")], id="typical"),
+        h.section("Sweeps", h.figure(out / "assumptions.png", alt="overview") + '<div class="'
+                  'grid">' + "".join(h.figure(out / f"assumption-{s.key}.png", alt=s.key)
+                                     for s in study.sweeps) + "</div>", id="sweeps")]
+    if info is not None:
+        mp4 = out / "assumptions.mp4"
+        sections.append(h.section("Animation", h.video(
+            mp4, frames=info.frames, fps=info.fps, size=info.size,
+            still=h.still_frame(mp4, 0.5), caption="The finite-duration scene (filled) with "
+            "PIM's answer as a dashed ghost: `assumptions.mp4`.")
+            + ("" if info.secondary_impact is None else h.paragraph(
+                f"**Warning:** {info.secondary_impact.message()}.")), id="animation"))
+    return h.page(f"{study.case.name or 'case'}: which of PIM's assumptions hold", sections,
+                  subtitle=(f"Regenerate with `{command}`. " if command else "")
+                  + "The same as text: `assumptions.md`.",
+                  contents=[("verdicts", "Verdicts"), ("typical", "At typical values"),
+                            ("sweeps", "Sweeps"), ("animation", "Animation")][:len(sections)],
+                  generator="pim assumptions")
 
 
 def assumptions_markdown(study: AssumptionStudy, table: Table, info=None,

@@ -4,6 +4,7 @@ pyproject.toml)."""
 
 from __future__ import annotations
 
+import contextlib
 import sys
 import time
 from pathlib import Path
@@ -69,7 +70,8 @@ compare_beta_option = click.option(
 @json_option
 def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
             no_speed_error, no_assumptions, tyre, law, k, mu_c, progress, as_json):
-    """Write a reconstruction report of CASE to a folder (report.md, CSVs, PNGs, MP4).
+    """Write a reconstruction report of CASE to a folder (report.html, report.md, CSVs,
+    PNGs, MP4; report.html is one self-contained page with the plots and the animation).
 
     The report opens with the results a reconstruction hands on (delta-V, PDOF, post-impact
     speeds and yaw rates, energy loss and its crush split, epsilon and beta with their source
@@ -85,7 +87,6 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
     (k, mu_c) (docs/impact-laws.md).
     """
     from pim.io.casefile import load_case
-    from pim.io.files import writable_folder
     from pim.model.impact_laws import law_of
 
     from .report import compare_case
@@ -93,7 +94,7 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
     if tyre < 0:
         raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
     case = load_case(case_name)
-    folder = writable_folder(_out(out, case.name, "case"), "--out")
+    folder = _out(out, case.name, "case")
     if law_of(case, law) != "brach" or k is not None or mu_c is not None:
         _compare_law(case, folder, eps, beta, law, k, mu_c, units, gif=gif, tyre=tyre,
                      animation=not no_animation, progress=progress, as_json=as_json)
@@ -103,7 +104,7 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
     rep = compare_case(case, folder, eps=eps, beta=beta, gif=gif, animation=not no_animation,
                        speed_error=not no_speed_error, tyre=tyre,
                        assumptions=not no_assumptions, progress=progress,
-                       units=units, friction_limit=friction_limit)
+                       units=units, friction_limit=friction_limit, case_path=case_name)
     if as_json:
         echo_json({"case": case.name, "out": str(folder), "eps": rep.eps, "beta": rep.beta,
                    "error": rep.error, "seconds": rep.seconds,
@@ -154,7 +155,8 @@ def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, **kwa
 @click.command()
 @case_argument
 @click.option("--out", "out", type=click.Path(dir_okay=False), default=None,
-              help="MP4 file to write (default: out/CASE/animation.mp4).")
+              help="MP4 file to write (default: out/CASE-animation.mp4, beside pim "
+                   "compare's folder out/CASE, which each compare run replaces whole).")
 @eps_option
 @beta_option
 @click.option("--gif", "gif", type=click.Path(dir_okay=False), default=None,
@@ -189,10 +191,12 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
     from .animation import animate_case, animation_settings
     from .law_runs import law_setup, simulate_law
 
+    _check_suffix(out, "--out", ".mp4")
+    _check_suffix(gif, "--gif", ".gif")
     case = load_case(case_name)
     if tyre < 0:
         raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
-    path = Path(out) if out else _out(None, case.name, "case") / "animation.mp4"
+    path = Path(out) if out else Path("out") / f"{case.name or 'case'}-animation.mp4"
     kwargs = dict(gif=gif, progress=progress, fps=fps, before=before, after=after, size=size,
                   tyre=tyre, ghost=not no_ghost, units=units or case.units)
     setup = None
@@ -233,6 +237,12 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
         click.echo(f"warning: {info.secondary_impact.message()}")
 
 
+def _check_suffix(path, option: str, suffix: str) -> None:
+    """A file option must name a ``suffix`` file (checked before any work)."""
+    if path is not None and Path(path).suffix.lower() != suffix:
+        raise InputError(f"{option} {path}: the file must end in {suffix}")
+
+
 @click.command("speed-error")
 @click.argument("case_names", metavar="CASE...", nargs=-1, required=True)
 @click.option("--out", "out", type=click.Path(file_okay=False), default=None,
@@ -256,9 +266,8 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, progress
     finite-duration contact stepped by pymunk over dt and integrated by solve_ivp over
     rtol, against a tight solve_ivp reference. "hard" stands for every bundled hard case.
     """
-    from pim.io.casefile import list_cases, load_case
-
-    from .speed_error import COARSE, sweep, write_study
+    from pim.io.casefile import list_cases
+    from pim.io.output import output_folder, rebase
 
     if repeats < 1:
         raise InputError(f"--repeats must be >= 1, got {repeats}")
@@ -266,6 +275,26 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, progress
     for n in case_names:
         names += [c for c, _ in list_cases() if c.startswith("hard-")] if n == "hard" else [n]
     folder = Path(out) if out else Path("out") / "speed-error"
+    with output_folder(folder, command="pim speed-error", merge=True) as tmp:
+        results = _speed_error_runs(names, tmp, out, eps, beta, repeats, coarse, compliant,
+                                    progress, as_json)
+    for r in results:
+        r["files"] = [str(p) for p in rebase(r["files"], tmp, folder)]
+        line = r.pop("line", None)
+        if line is not None:
+            click.echo(f"{line}; wrote {r['files'][0]}")
+    if as_json:
+        echo_json(results)
+
+
+def _speed_error_runs(names, folder, out, eps, beta, repeats, coarse, compliant, progress,
+                      as_json) -> list[dict]:
+    """Sweep each case and write its files into ``folder``; one JSON-ready dict per case
+    (with the line to print under ``"line"``)."""
+    from pim.io.casefile import load_case
+
+    from .speed_error import COARSE, sweep, write_study
+
     results = []
     for name in names:
         case = load_case(name)
@@ -315,9 +344,8 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, progress
                     f"start, {rec.contact} contact: error {rec.error:.2e}, "
                     f"{rec.wall_time * 1e3:.3g} ms/impact (PIM {study.analytic_time * 1e3:.3g} "
                     f"ms/call)")
-            click.echo(f"{stem}: {text}; wrote {files[0]}")
-    if as_json:
-        echo_json(results)
+            results[-1]["line"] = f"{stem}: {text}"
+    return results
 
 
 def _command(name: str, coarse: bool, repeats: int, out) -> str:
@@ -336,13 +364,14 @@ def _command(name: str, coarse: bool, repeats: int, out) -> str:
 def hard_cases(out, units, progress, as_json):
     """Run every bundled hard case through PIM and the simulator; table of results, errors,
     and the dt / iterations the simulator needs to reach 1e-6 (or why it cannot)."""
-    from pim.io.files import writable_folder
+    from pim.io.output import output_folder, rebase
 
     from .hard_cases import run_hard_cases, write_hard_cases
 
-    folder = writable_folder(Path(out) if out else Path("out") / "hard-cases", "--out")
-    study = run_hard_cases(progress=progress)
-    files = write_hard_cases(study, folder, units)
+    folder = Path(out) if out else Path("out") / "hard-cases"
+    with output_folder(folder, command="pim hard-cases", merge=True) as tmp:
+        study = run_hard_cases(progress=progress)
+        files = rebase(write_hard_cases(study, tmp, units), tmp, folder)
     if as_json:
         echo_json({"files": [str(f) for f in files], "cases": study.to_json()})
         return
@@ -354,7 +383,9 @@ def hard_cases(out, units, progress, as_json):
 
 @click.command("assumptions")
 @case_argument
-@out_option
+@click.option("--out", "out", type=click.Path(file_okay=False), default=None,
+              help="Output folder (default: out/CASE-assumptions, beside pim compare's "
+                   "out/CASE: each command's folder holds its own run whole).")
 @eps_option
 @beta_option
 @click.option("--executor", type=click.Choice(["process", "serial"]), default="process",
@@ -374,17 +405,22 @@ def assumptions(case_name, out, eps, beta, executor, no_animation, progress, as_
     PIM's ghost.
     """
     from pim.io.casefile import load_case
+    from pim.io.output import output_folder, rebase, worker_pool
 
     from .assumptions import run_assumptions, write_assumptions
 
     case = load_case(case_name)
     require_brach(case, "pim assumptions")
-    folder = _out(out, case.name, "case")
-    study = run_assumptions(case, eps, beta, executor=executor, progress=progress,
-                            animation_after=None if no_animation else 2.0)
+    folder = Path(out) if out is not None else Path("out") / f"{case.name or 'case'}-assumptions"
     command = f"pim assumptions {case_name}" + (f" --out {out}" if out else "")
-    files = write_assumptions(study, folder, animation=not no_animation, progress=progress,
-                              command=command)
+    with output_folder(folder, command="pim assumptions") as tmp, \
+            contextlib.ExitStack() as stack:
+        if executor == "process":
+            executor = stack.enter_context(worker_pool())
+        study = run_assumptions(case, eps, beta, executor=executor, progress=progress,
+                                animation_after=None if no_animation else 2.0)
+        files = rebase(write_assumptions(study, tmp, animation=not no_animation,
+                                         progress=progress, command=command), tmp, folder)
     if as_json:
         echo_json({"case": case.name, "eps": study.eps, "beta": study.beta,
                    "beta_pim": study.beta_pim, "verdicts": study.verdicts(),

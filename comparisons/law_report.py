@@ -22,27 +22,21 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import pim
 import sim
 from pim.analysis.residuals import has_measured_terms
 from pim.io.files import write_text
+from pim.io.output import output_folder, rebase
 from pim.model.plausibility import warnings_of
 from sim.error_measure import compare_results, impact_error
 
 from .animation import animation_settings, build_renderer, write_animation
 from .law_runs import LawSetup, brach_equivalent, simulate_law
-from .report import (
-    Report,
-    crosscheck_table,
-    fit_table,
-    inputs_table,
-    md_table,
-    replace_manifest,
-    results_table,
-    stale_files,
-)
+from .report import Report, crosscheck_table, fit_table, inputs_table, results_table
+from .report_render import md_table
 from .tables import Table
 
 __all__ = ["compare_law_case", "law_table", "NOT_RUN"]
@@ -123,12 +117,21 @@ def compare_law_case(case: pim.Case, out_dir, setup: LawSetup, *, gif: bool = Fa
     Report
         ``eps`` is the law's restitution, ``beta`` its (effective or equivalent) PIM beta.
     """
-    started = time.perf_counter()
     units = units or case.units
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    stale_files(out)
-    rep = Report(out_dir=out, eps=setup.restitution, beta=setup.beta)
+    with output_folder(out, command="pim compare") as tmp:
+        rep = _write(case, tmp, setup, gif, animation, tyre, progress, units)
+    info = rep.animation
+    if info is not None:
+        info = replace(info, path=out / "animation.mp4",
+                       gif=out / "animation.gif" if info.gif else None)
+    return replace(rep, out_dir=out, files=rebase(rep.files, tmp, out), animation=info)
+
+
+def _write(case, folder: Path, setup, gif, animation, tyre, progress, units) -> Report:
+    """Gather and write the report into ``folder`` (the temporary output folder)."""
+    started = time.perf_counter()
+    rep = Report(out_dir=folder, eps=setup.restitution, beta=setup.beta)
     fit, mapped = _fit(case, setup)
     tables = [results_table(setup.result, units), law_table(setup), inputs_table(case, units)]
     if fit is not None:
@@ -138,16 +141,15 @@ def compare_law_case(case: pim.Case, out_dir, setup: LawSetup, *, gif: bool = Fa
         tables.append(table)
     info = None
     if animation:
-        info = _animation(case, setup, out, gif, tyre, units, progress)
+        info = _animation(case, setup, folder, gif, tyre, units, progress)
         if not isinstance(info, sim.SimulationError):
             rep.files += [p for p in (info.path, info.gif) if p is not None]
             rep.animation = info
     for t in tables:
-        rep.files.append(t.write_csv(out))
+        rep.files.append(t.write_csv(folder))
     rep.seconds["report"] = time.perf_counter() - started
     text = _markdown(case, setup, fit, mapped, run, info, tables, rep, units)
-    rep.files.append(write_text(out / "report.md", text))
-    replace_manifest(out, rep.files)
+    rep.files.append(write_text(folder / "report.md", text))
     return rep
 
 

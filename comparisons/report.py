@@ -10,11 +10,16 @@ PIM-against-pymunk cross-check (crosscheck.csv) and a coarse speed-against-error
 (speed_error*.csv, speed_error.png; the full study is ``pim speed-error``). Every number is
 in the case file's unit system unless ``units`` says otherwise.
 
-Each file is written atomically and report.md last, so it only exists when every file it
-links does. A rerun into the same folder removes the files of the earlier run that this run
-does not write (the folder's ``.pim-compare-files`` lists them) and temporary files left by
-killed runs, so the folder never mixes runs. The plots render in a forked worker process
-while the animation and the sweep run in this one (``parallel=False`` for one process).
+The folder is a transaction (:func:`pim.io.output.output_folder`): the run is written into a
+temporary sibling folder and swapped in whole at the end, so the folder holds one complete
+run, the earlier one until the new one is complete; a second run into the same folder at
+the same time fails at once. The plots render in a forked worker process while the
+animation and the sweep run in this one (``parallel=False`` for one process).
+
+The work is split into gathering (:func:`gather_report` fills a
+:class:`~comparisons.report_data.ReportData`) and rendering it
+(:mod:`comparisons.report_render`: Markdown and CSV; :mod:`comparisons.report_html`:
+report.html, the same report as one self-contained page).
 
 The appendix also summarises PIM's assumptions at typical values (the finite-duration crush
 scene, :mod:`comparisons.assumptions`; assumptions.csv); the full study is
@@ -26,8 +31,11 @@ other again after the impact (a secondary impact PIM does not model,
 from __future__ import annotations
 
 import math
+import multiprocessing
 import time
-from dataclasses import dataclass, field
+from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -36,6 +44,7 @@ import pim
 import sim
 from pim.analysis.residuals import has_measured_terms
 from pim.io.files import save_figure, write_text
+from pim.io.output import ignore_interrupts, output_folder, rebase, stop_workers
 from pim.io.units import convert
 from pim.model.plausibility import warnings_of
 from pim.model.quantities import OUTPUTS as QUANTITIES
@@ -46,14 +55,14 @@ from sim.error_measure import KIND_OF_UNIT, compare_results, impact_error
 from .animation import build_renderer, write_animation
 from .assumptions import assumption_table, run_assumptions
 from .coefficients import coefficients
+from .report_data import ReportData
+from .report_html import HTML_NAME, render_html
+from .report_render import REPORT_NAME, render_csv, render_markdown
 from .speed_error import COARSE, pareto_table, plot_speed_error, study_table, sweep
 from .tables import Table, fmt_error
 
-__all__ = ["Report", "compare_case", "inputs_table", "fit_table", "crosscheck_table",
-           "results_table", "MANIFEST"]
-
-#: File in the report folder listing the files the last run wrote (relative paths).
-MANIFEST = ".pim-compare-files"
+__all__ = ["Report", "CompareOptions", "compare_case", "gather_report", "write_report",
+           "inputs_table", "fit_table", "crosscheck_table", "results_table"]
 
 
 def _f(x) -> float:
@@ -73,10 +82,11 @@ class Report:
     animation: object = None
     study: object = None
     assumptions: object = None
+    data: ReportData | None = None
 
     @property
     def report(self) -> Path:
-        return self.out_dir / "report.md"
+        return self.out_dir / REPORT_NAME
 
 
 def inputs_table(case: pim.Case, units: str = "si") -> Table:
@@ -192,8 +202,6 @@ def fit_table(fit, units: str = "si") -> Table:
                  ("quantity", "value", "unit"), tuple(rows))
 
 
-
-
 def crosscheck_table(errors, units: str = "si") -> Table:
     """Analytic against simulated, every post-impact quantity, in the ``units`` system."""
     rows = []
@@ -205,10 +213,6 @@ def crosscheck_table(errors, units: str = "si") -> Table:
     return Table("crosscheck", "PIM (analytic) against pymunk (simulated), post-impact",
                  ("quantity", "unit", "PIM", "pymunk", "absolute error", "relative error"),
                  rows, formats={"absolute error": fmt_error, "relative error": fmt_error})
-
-
-def _md_table(table: Table) -> str:
-    return f"**{table.title}** ([{table.name}.csv]({table.name}.csv))\n\n{table.to_markdown()}\n"
 
 
 def _coefficient_sources(case, eps, beta) -> tuple[float, float, dict, object]:
@@ -225,25 +229,44 @@ def _coefficient_sources(case, eps, beta) -> tuple[float, float, dict, object]:
     return eps, beta, sources, fit
 
 
-def _stale_files(out: Path) -> None:
-    """Remove temporary files that killed runs left in ``out`` (atomic_path's names)."""
-    for folder in (out, out / "plots"):
-        if folder.is_dir():
-            for path in folder.glob(".*-*.tmp*"):
-                if path.is_file():
-                    path.unlink(missing_ok=True)
+
+@dataclass(frozen=True)
+class CompareOptions:
+    """What :func:`compare_case` includes and how (its keyword arguments, documented there)."""
+
+    eps: float | None = None
+    beta: float | None = None
+    gif: bool = False
+    animation: bool = True
+    speed_error: bool = True
+    tyre: float = 0.0
+    assumptions: bool = True
+    progress: bool | None = None
+    units: str | None = None
+    parallel: bool = True
+    uncertainty_samples: int = 2000
+    friction_limit: float | None = None
+    case_path: str | None = None
 
 
-def _replace_manifest(out: Path, files: list[Path]) -> None:
-    """Delete the earlier run's files this run did not write; record this run's files."""
-    manifest = out / MANIFEST
-    new = {p.relative_to(out).as_posix() for p in files}
-    if manifest.is_file():
-        for rel in manifest.read_text(encoding="utf-8").split("\n"):
-            rel = rel.strip()
-            if rel and rel not in new and ".." not in Path(rel).parts:
-                (out / rel).unlink(missing_ok=True)
-    write_text(manifest, "\n".join(sorted(new)) + "\n")
+class _Steps:
+    """The progress bar over a report's steps and the wall time of each."""
+
+    def __init__(self, case, options: CompareOptions):
+        from tqdm import tqdm
+
+        steps = ["fit", "simulate", "plots"] + (["animation"] if options.animation else []) \
+            + (["speed-error"] if options.speed_error else []) \
+            + (["assumptions"] if options.assumptions else []) + ["report"]
+        self.seconds: dict = {}
+        self.bar = tqdm(total=len(steps), desc=f"compare {case.name or ''}".strip(),
+                        unit="step", disable=None if options.progress is None
+                        else not options.progress)
+
+    def done(self, name: str | None, t0: float) -> None:
+        if name is not None:
+            self.seconds[name] = time.perf_counter() - t0
+        self.bar.update(1)
 
 
 def _warm_up() -> None:
@@ -258,20 +281,186 @@ def _render_plots(case, fit, folder, units):
     return files, time.process_time() - cpu
 
 
+class _PlotWorker:
+    """The sheet's plots in a worker process (forkserver: safe after OpenMP threads ran),
+    started at once so that its imports overlap with the fit; in this process when
+    ``parallel`` is False or the worker dies. The worker ignores Ctrl-C (this process
+    handles it) and is killed when this process leaves the block with an error or an
+    interrupt, before the run's temporary folder is removed."""
+
+    def __init__(self, parallel: bool):
+        self.pool, self.future, self.args = None, None, None
+        if parallel:
+            try:
+                self.pool = ProcessPoolExecutor(
+                    1, mp_context=multiprocessing.get_context("forkserver"),
+                    initializer=ignore_interrupts)
+                self.pool.submit(_warm_up)
+            except (ValueError, OSError):
+                self.pool = None
+
+    def __enter__(self):
+        return self
+
+    def submit(self, *args) -> None:
+        self.args = args
+        if self.pool is not None:
+            try:
+                self.future = self.pool.submit(_render_plots, *args)
+            except BrokenProcessPool:          # the worker died while warming up
+                self.future = None
+
+    def result(self):
+        """The plot files and their CPU seconds (rendered here if the worker died)."""
+        if self.future is not None:
+            try:
+                return self.future.result()
+            except BrokenProcessPool:
+                pass
+        return _render_plots(*self.args)
+
+    def __exit__(self, exc_type, exc, tb):
+        if self.pool is None:
+            return
+        if exc_type is not None:
+            stop_workers(self.pool)
+        self.pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _gather_results(case, options: CompareOptions, units: str) -> ReportData:
+    """Coefficients (fitted or given), PIM's answer, the Monte Carlo spread, the tables."""
+    eps, beta, sources, fit = _coefficient_sources(case, options.eps, options.beta)
+    result = pim.solve(case, eps, beta)
+    spread = None
+    if case.uncertainty is not None:
+        spread = pim.uncertainty(case, n=options.uncertainty_samples, seed=0, eps=eps,
+                                 beta=beta)
+    data = ReportData(case=case, case_path=options.case_path or case.name or "CASE",
+                      units=units, eps=eps, beta=beta, sources=sources, result=result, fit=fit,
+                      warnings=warnings_of(case, result, options.friction_limit),
+                      animation_requested=options.animation)
+    data.add_table(results_table(result, units, spread))
+    data.add_table(inputs_table(case, units))
+    if fit is not None:
+        data.add_table(fit_table(fit, units))
+    return data
+
+
+def _gather_crosscheck(data: ReportData) -> None:
+    """The pymunk simulation of the same impact and its errors against PIM."""
+    case, eps, beta = data.case, data.eps, data.beta
+    data.limits = sim.limitations(case, eps, beta)
+    try:
+        data.simulated = sim.simulate(case, eps, beta, analytic=pim.solve(case, eps, 1.0))
+    except sim.SimulationError as exc:
+        data.sim_error = exc
+        return
+    s = data.simulated
+    data.add_table(crosscheck_table(compare_results(case, data.result, s), data.units))
+    data.error = float(impact_error(case, data.result, s.velocity1, s.velocity2, s.yaw_rate1,
+                                    s.yaw_rate2))
+
+
+def _gather_animation(data: ReportData, folder: Path, options: CompareOptions) -> None:
+    """animation.mp4 (and .gif): the simulation with PIM's ghost."""
+    try:
+        renderer = build_renderer(data.case, data.eps, data.beta, result=data.result,
+                                  tyre=options.tyre, units=data.units)
+        data.animation = write_animation(renderer, folder / "animation.mp4",
+                                         gif=folder / "animation.gif" if options.gif else None,
+                                         progress=options.progress)
+    except sim.SimulationError as exc:
+        data.animation_error = exc
+        return
+    data.files += ["animation.mp4"] + (["animation.gif"] if options.gif else [])
+
+
+def _gather_speed_error(data: ReportData, folder: Path, options: CompareOptions) -> None:
+    """The coarse sweep of the simulator's speed against its error (speed_error.png)."""
+    data.study = sweep(data.case, data.eps, data.beta, progress=options.progress, **COARSE)
+    data.add_table(pareto_table(data.study))
+    data.add_table(study_table(data.study))
+    save_figure(plot_speed_error(data.study), folder / "speed_error.png")
+    data.files.append("speed_error.png")
+
+
+def gather_report(case: pim.Case, folder, options: CompareOptions,
+                  steps: _Steps | None = None) -> ReportData:
+    """Compute everything the report of ``case`` shows; write its figures and animation
+    into ``folder`` (the tables and the text are the renderers' part: :func:`write_report`).
+    ``steps`` (progress bar and timings) is made here unless given.
+    """
+    cpu0 = time.process_time()
+    folder = Path(folder)
+    units = options.units or case.units
+    steps = steps or _Steps(case, options)
+    seconds = steps.seconds
+    with _PlotWorker(options.parallel) as worker:
+        t0 = time.perf_counter()
+        data = _gather_results(case, options, units)
+        data.seconds = seconds
+        steps.done("fit", t0)
+        t0 = time.perf_counter()
+        plot_case = case if data.fit is not None or not has_measured_terms(case) \
+            else replace(case, measured=None)
+        worker.submit(plot_case, data.fit, folder / "plots", units)
+        t1 = time.perf_counter()
+        _gather_crosscheck(data)
+        steps.done("simulate", t1)
+        if options.animation:
+            t1 = time.perf_counter()
+            _gather_animation(data, folder, options)
+            steps.done("animation", t1)
+        if options.speed_error:
+            t1 = time.perf_counter()
+            _gather_speed_error(data, folder, options)
+            steps.done("speed-error", t1)
+        plot_files, plot_cpu = worker.result()
+        parallel = worker.pool is not None
+    data.plot_files = [Path(p).relative_to(folder).as_posix() for p in plot_files]
+    data.files += data.plot_files
+    seconds["plots (parallel: wall time of simulate to plots)" if parallel
+            else "plots"] = time.perf_counter() - t0
+    seconds["plots CPU"] = plot_cpu
+    steps.done(None, t0)
+    if options.assumptions:
+        t0 = time.perf_counter()
+        data.assumptions = run_assumptions(case, data.eps, data.beta, executor="serial",
+                                           progress=False, animation_after=None, sweeps=False)
+        data.add_table(assumption_table(data.assumptions, units=units))
+        steps.done("assumptions", t0)
+    data.seconds["CPU of this process"] = time.process_time() - cpu0
+    return data
+
+
+def write_report(data: ReportData, folder) -> list[Path]:
+    """Write the report's CSVs, report.html and report.md (last) into ``folder``; return
+    every file of the run (figures and animation included)."""
+    folder = Path(folder)
+    csvs = render_csv(data)
+    data.files += list(csvs) + [HTML_NAME]
+    for name, text in csvs.items():
+        write_text(folder / name, text)
+    write_text(folder / HTML_NAME, render_html(data, folder))
+    write_text(folder / REPORT_NAME, render_markdown(data))
+    return [folder / rel for rel in data.files] + [folder / REPORT_NAME]
+
+
 def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
                  beta: float | None = None, gif: bool = False, animation: bool = True,
                  speed_error: bool = True, tyre: float = 0.0, assumptions: bool = True,
                  progress: bool | None = None, units: str | None = None,
-                 parallel: bool = True, uncertainty_samples: int = 20_000,
-                 friction_limit: float | None = None) -> Report:
-    """Write the comparison report of one case to ``out_dir`` (see the module docstring).
+                 parallel: bool = True, uncertainty_samples: int = 2000,
+                 friction_limit: float | None = None, case_path: str | None = None) -> Report:
+    """Write the report of ``case`` into folder ``out_dir`` (report.md, CSVs, PNGs, MP4).
 
     Parameters
     ----------
     case : pim.Case
         A single case.
     out_dir : path
-        Folder to write (created; the earlier run's files are replaced or removed).
+        Folder to write: replaced whole by this run when it is complete
+        (:func:`pim.io.output.output_folder`; an error or interrupt leaves it as it was).
     eps, beta : float, optional
         Use these instead of fitting; both given: no fit even when the case has
         measurements (one given: the other is fitted when the case has measurements).
@@ -294,281 +483,29 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
         ``[uncertainty]`` table.
     friction_limit : float, optional
         Warn in the report when |mu| exceeds it.
+    case_path : str, optional
+        The case as the user named it (bundled name or file path), used in the commands the
+        report suggests (default: ``case.name``).
     """
-    from dataclasses import replace
-
-    from tqdm import tqdm
-
-
-    cpu0 = time.process_time()
-    units = units or case.units
+    options = CompareOptions(eps=eps, beta=beta, gif=gif, animation=animation,
+                             speed_error=speed_error, tyre=tyre, assumptions=assumptions,
+                             progress=progress, units=units, parallel=parallel,
+                             uncertainty_samples=uncertainty_samples,
+                             friction_limit=friction_limit, case_path=case_path)
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    _stale_files(out)
-    rep = Report(out_dir=out)
-    steps = ["fit", "simulate", "plots"] + (["animation"] if animation else []) \
-        + (["speed-error"] if speed_error else []) \
-        + (["assumptions"] if assumptions else []) + ["report"]
-    bar = tqdm(total=len(steps), desc=f"compare {case.name or ''}".strip(), unit="step",
-               disable=None if progress is None else not progress)
-
-    def tick(name, t0):
-        rep.seconds[name] = time.perf_counter() - t0
-        bar.update(1)
-
-    # The plot worker: a fresh process (forkserver, safe after OpenMP threads ran), started
-    # now so that its imports overlap with the fit.
-    pool = None
-    if parallel:
-        import multiprocessing
-        from concurrent.futures import ProcessPoolExecutor
-
-        try:
-            pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("forkserver"))
-            pool.submit(_warm_up)
-        except (ValueError, OSError):
-            pool = None
-
-    # Results and coefficients ------------------------------------------------------------
-    t0 = time.perf_counter()
-    has_measured = has_measured_terms(case)
-    eps, beta, sources, fit = _coefficient_sources(case, eps, beta)
-    rep.eps, rep.beta = eps, beta
-    result = pim.solve(case, eps, beta)
-    spread = None
-    if case.uncertainty is not None:
-        spread = pim.uncertainty(case, n=uncertainty_samples, seed=0, eps=eps, beta=beta)
-    tables = [results_table(result, units, spread), inputs_table(case, units)]
-    if fit is not None:
-        tables.append(fit_table(fit, units))
-    tick("fit", t0)
-
-    # Plots: in the worker while this process simulates and animates ---------------------
-    t0 = time.perf_counter()
-    plot_case = case if fit is not None or not has_measured else replace(case, measured=None)
-    plots_future = None
-    if pool is not None:
-        from concurrent.futures.process import BrokenProcessPool
-
-        try:
-            plots_future = pool.submit(_render_plots, plot_case, fit, out / "plots", units)
-        except BrokenProcessPool:          # the worker died while warming up
-            plots_future = None
+    steps = _Steps(case, options)
     try:
-        # Cross-check ---------------------------------------------------------------------
-        t1 = time.perf_counter()
-        limits = sim.limitations(case, eps, beta)
-        sim_error = None
-        simulated = None
-        try:
-            simulated = sim.simulate(case, eps, beta, analytic=pim.solve(case, eps, 1.0))
-        except sim.SimulationError as exc:
-            sim_error = exc
-        if simulated is not None:
-            errors = compare_results(case, result, simulated)
-            tables.append(crosscheck_table(errors, units))
-            rep.error = float(impact_error(case, result, simulated.velocity1,
-                                           simulated.velocity2, simulated.yaw_rate1,
-                                           simulated.yaw_rate2))
-        tick("simulate", t1)
-
-        # Animation -----------------------------------------------------------------------
-        info = None
-        anim_error = None
-        if animation:
-            t1 = time.perf_counter()
-            try:
-                renderer = build_renderer(case, eps, beta, result=result, tyre=tyre,
-                                          units=units)
-                info = write_animation(renderer, out / "animation.mp4",
-                                       gif=out / "animation.gif" if gif else None,
-                                       progress=progress)
-                rep.files.append(info.path)
-                if info.gif:
-                    rep.files.append(info.gif)
-            except sim.SimulationError as exc:
-                anim_error = exc
-            rep.animation = info
-            tick("animation", t1)
-
-        # Speed against error -------------------------------------------------------------
-        study = None
-        if speed_error:
-            t1 = time.perf_counter()
-            study = sweep(case, eps, beta, progress=progress, **COARSE)
-            rep.study = study
-            tables += [pareto_table(study), study_table(study)]
-            rep.files.append(save_figure(plot_speed_error(study), out / "speed_error.png"))
-            tick("speed-error", t1)
-
-        plot_files = None
-        if plots_future is not None:
-            from concurrent.futures.process import BrokenProcessPool
-
-            try:
-                plot_files, plot_cpu = plots_future.result()
-            except BrokenProcessPool:      # the worker died: render here instead
-                plot_files = None
-        if plot_files is None:
-            plot_files, plot_cpu = _render_plots(plot_case, fit, out / "plots", units)
+        with output_folder(out, command="pim compare") as tmp:
+            data = gather_report(case, tmp, options, steps)
+            t0 = time.perf_counter()
+            files = write_report(data, tmp)
+            steps.done("report", t0)
     finally:
-        if pool is not None:
-            pool.shutdown(wait=True, cancel_futures=True)
-    rep.files += plot_files
-    rep.seconds["plots (parallel: wall time of simulate to plots)" if pool is not None
-                else "plots"] = time.perf_counter() - t0
-    rep.seconds["plots CPU"] = plot_cpu
-    bar.update(1)
-
-    # Assumptions at typical values ---------------------------------------------------------
-    if assumptions:
-        t0 = time.perf_counter()
-        rep.assumptions = run_assumptions(case, eps, beta, executor="serial", progress=False,
-                                          animation_after=None, sweeps=False)
-        tables.append(assumption_table(rep.assumptions))
-        tick("assumptions", t0)
-
-    # CSVs and report.md --------------------------------------------------------------------
-    t0 = time.perf_counter()
-    for table in tables:
-        rep.files.append(table.write_csv(out))
-    text = _markdown(case, fit, eps, beta, sources, result, simulated, sim_error, limits,
-                     tables, plot_files, out, info, anim_error, study, rep, units,
-                     friction_limit)
-    rep.files.append(write_text(out / "report.md", text))
-    _replace_manifest(out, rep.files)
-    tick("report", t0)
-    rep.seconds["CPU of this process"] = time.process_time() - cpu0
-    bar.close()
-    return rep
-
-
-def _describe(dist, kind: str, units: str) -> str:
-    """A distribution of the [uncertainty] table in words, in display units."""
-    def v(x):
-        return f"{float(convert(x, kind, units)[0]):.4g}" if kind != "dimensionless" \
-            else f"{x:.4g}"
-
-    if dist.kind == "uniform":
-        return f"uniform on [{v(dist.a)}, {v(dist.b)}]"
-    if dist.kind == "plusminus":
-        return f"nominal +- {v(dist.b)} (uniform)"
-    if dist.kind == "normal":
-        return "normal, sd " + v(dist.b) + ("" if dist.a is None else f", mean {v(dist.a)}")
-    return f"fixed at {v(dist.a)}"
-
-
-def _markdown(case, fit, eps, beta, sources, result, simulated, sim_error, limits, tables,
-              plot_files, out, info, anim_error, study, rep, units,
-              friction_limit=None) -> str:
-    by_name = {t.name: t for t in tables}
-    name = case.name or "case"
-    lines = [f"# {name}: reconstruction report", ""]
-    if getattr(case, "description", None):
-        lines += [case.description, ""]
-    lines += [f"Written by `pim compare` in {units.upper()} units (`--units` changes them). "
-              "Brach's Planar Impact Mechanics (PIM) gives the post-impact motion in closed "
-              "form from the case's inputs and two coefficients, epsilon (restitution) and "
-              "beta (the fraction of the impulse ratio that stops the sliding at C). The "
-              "appendix checks PIM against a pymunk (Chipmunk2D) simulation of the same "
-              "impact.", ""]
-    lines += ["## Results", ""]
-    lines += [f"- **epsilon = {eps:.6g}** ({sources['eps']}), "
-              f"**beta = {beta:.6g}** ({sources['beta']}); impulse ratio mu = "
-              f"{float(result.mu):.4g} (mu0 = {float(result.mu0):.4g})."]
-    table = case.uncertainty
-    if table is not None:
-        dists = table.inputs
-        for key, label in (("impact.restitution", "epsilon"), ("impact.beta", "beta")):
-            if key in dists:
-                lines.append(f"- {label} in the `[uncertainty]` table: "
-                             f"{_describe(dists[key], 'dimensionless', units)}.")
-        lines.append("- 5-95 % intervals: Monte Carlo of the case's `[uncertainty]` table "
-                     "(`pim uncertainty`), at the coefficients above unless the table varies "
-                     "them.")
-    if bool(np.asarray(case.vehicle2.fixed)):
-        lines.append("- Vehicle 2 is a fixed obstacle: it has no delta-V and no PDOF.")
-    lines += ["", _md_table(by_name["results"])]
-    warnings = warnings_of(case, result, friction_limit)
-    if warnings:
-        lines += ["Warnings:", ""] + [f"- {p}" for p in warnings] + [""]
-    lines += ["## Coefficients", ""]
-    if fit is not None:
-        rms, unit = convert(fit.rms, "velocity", units)
-        lines += [f"Fitted to the measured post-impact velocities (least squares, "
-                  f"`pim fit`): epsilon = {fit.eps:.6g}, beta = {fit.beta:.6g} "
-                  f"(rms residual {float(rms):.4g} {unit}).", "", _md_table(by_name["fit"])]
-    else:
-        lines += [f"epsilon from the {sources['eps']}, beta from the {sources['beta']} "
-                  f"(no fit).", ""]
-    lines += ["## Case inputs", "", _md_table(by_name["inputs"])]
-    lines += ["## The design sheet's plots", ""]
-    for path in plot_files:
-        rel = path.relative_to(out).as_posix()
-        lines += [f"![{path.stem}]({rel})", ""]
-    lines += ["## Animation", ""]
+        steps.bar.close()
+    info = data.animation
     if info is not None:
-        lines += [f"[animation.mp4](animation.mp4) ({info.frames} frames at {info.fps} fps, "
-                  f"{info.size[0]} x {info.size[1]} px"
-                  + (", also [animation.gif](animation.gif)" if info.gif else "") + "). "
-                  "Filled outlines: the pymunk simulation; dashed magenta outlines: PIM's "
-                  "post-impact motion (free rigid motion from the impact configuration with "
-                  "PIM's velocities and yaw rates); red: the impulse on vehicle 1 at C; green: "
-                  "C, the contact plane and the normal n. "
-                  f"Largest offset between ghost and simulation after the impact: "
-                  f"{info.max_ghost_offset_px:.2g} px.", ""]
-        if info.secondary_impact is not None:
-            lines += [f"**Plausibility:** {info.secondary_impact.message()}; the animation "
-                      f"marks it.", ""]
-    elif anim_error is not None:
-        lines += [f"No animation: the simulation failed ({anim_error.kind}): {anim_error}", ""]
-    else:
-        lines += ["(not written: --no-animation)", ""]
-    lines += ["## Appendix A: PIM against a pymunk simulation", ""]
-    if simulated is not None:
-        s = simulated
-        lines += [f"pymunk settings: dt = {s.settings.dt:g} s, {s.iterations} solver iterations "
-                  f"(automatic), {s.settings.contact} contact, {s.settings.start} start; "
-                  f"wall time {s.wall_time * 1e3:.3g} ms. Largest error in the impact's "
-                  f"velocity changes: **{rep.error:.2e}** (relative to the largest change; "
-                  f"see docs/comparisons.md).", "", _md_table(by_name["crosscheck"])]
-    else:
-        lines += [f"The simulation failed ({sim_error.kind}): {sim_error}", ""]
-    if limits:
-        lines += ["Where the simulator cannot reproduce PIM here:", ""]
-        lines += [f"- {t}" for t in limits] + [""]
-    if study is not None:
-        rec = study.recommended()
-        lines += ["## Appendix B: simulator speed against error (coarse)", ""]
-        lines += [f"{len(study.points)} simulator runs over dt, solver iterations, contact "
-                  f"start and contact geometry; the full study is `pim speed-error {name}`.", ""]
-        if rec is not None:
-            its = "automatic" if rec.iterations is None else rec.iterations
-            lines += [f"Recommended: dt = {rec.dt:g} s, {its} iterations "
-                      f"({rec.iterations_used} sweeps), {rec.start} start, {rec.contact} "
-                      f"contact: error {rec.error:.2e} in {rec.wall_time * 1e3:.3g} ms per "
-                      f"impact, against PIM's {study.analytic_time * 1e3:.3g} ms per call "
-                      f"({study.analytic_batch_time * 1e6:.3g} us per case in a batch).", ""]
-        else:
-            lines += [f"No run reached the target error {study.target:g}.", ""]
-        lines += ["![speed against error](speed_error.png)", "",
-                  _md_table(by_name["speed_error_pareto"]),
-                  "Every run: [speed_error.csv](speed_error.csv).", ""]
-    if rep.assumptions is not None:
-        lines += ["## PIM's assumptions (finite-duration crush scene)", ""]
-        lines += ["Each scene relaxes one of PIM's assumptions at a typical value (100 ms "
-                  "contact, tyre friction 0.7, the case's outlines, friction 0.5 between the "
-                  "vehicles); docs/contact-model.md has the model. The sweeps, plots and an "
-                  f"animation are `pim assumptions {name}`.", ""]
-        lines += [f"- {v}" for v in rep.assumptions.verdicts()] + [""]
-        lines += [_md_table(by_name["assumptions"])]
-    lines += ["## Files", ""]
-    for path in sorted({p.relative_to(out).as_posix() for p in rep.files} | {"report.md"}):
-        lines.append(f"- [{path}]({path})")
-    lines += ["", "Timings: " + ", ".join(f"{k} {v:.2f} s" for k, v in rep.seconds.items()), ""]
-    return "\n".join(lines)
-
-
-#: Public names of the folder helpers, for the reports of the other impact laws
-#: (:mod:`comparisons.law_report`).
-stale_files, replace_manifest, md_table = _stale_files, _replace_manifest, _md_table
+        info = replace(info, path=out / "animation.mp4",
+                       gif=out / "animation.gif" if info.gif else None)
+    return Report(out_dir=out, files=rebase(files, tmp, out),
+                  eps=data.eps, beta=data.beta, error=data.error, seconds=data.seconds,
+                  animation=info, study=data.study, assumptions=data.assumptions, data=data)

@@ -115,3 +115,40 @@ def test_impulse_label_speaks_the_case_units():
     si = build_renderer(CASE, 0.355, 1.0, units="si", after=0.2)
     assert us.impulse_unit[1] == "lbf s" and si.impulse_unit[1] == "N s"
     assert us.impulse_unit[0] == pytest.approx(1 / (0.45359237 * 9.80665))
+@pytest.mark.parametrize("option, name", [("--out", "film.txt"), ("--gif", "small.png")])
+def test_animate_to_a_wrong_suffix_is_one_line_and_exit_2(tmp_path, capsys, option, name):
+    """Issue 22: `pim animate --out file.txt` gave a RuntimeError traceback from imageio."""
+    args = ["animate", "hard-pole", "--no-progress", "--after", "0.1"]
+    args += ["--out", str(tmp_path / "a.mp4")] if option == "--gif" else []
+    assert main(args + [option, str(tmp_path / name)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith(f"error: {option}") and len(err.splitlines()) == 1, err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_failed_trailer_is_an_error_with_nothing_written(tmp_path, capsys, monkeypatch):
+    """Issue 22: a full disk (ffmpeg's "Error writing trailer") gave exit 0 and a truncated
+    MP4; the encoder's result is now checked: exit 2, one line, no file, no litter."""
+    import os
+
+    import imageio.v2
+
+    real = imageio.v2.get_writer
+
+    def truncating(path, *args, **kwargs):
+        writer = real(path, *args, **kwargs)
+        close = writer.close
+
+        def close_and_cut():
+            close()
+            os.truncate(path, os.path.getsize(path) * 2 // 3)
+        writer.close = close_and_cut
+        return writer
+
+    monkeypatch.setattr(imageio.v2, "get_writer", truncating)
+    out = tmp_path / "a.mp4"
+    assert main(["animate", "hard-pole", "--out", str(out), "--before", "0.1", "--after",
+                 "0.3", "--no-progress"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "incomplete" in err and len(err.splitlines()) == 1, err
+    assert list(tmp_path.iterdir()) == []

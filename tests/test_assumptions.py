@@ -1,6 +1,7 @@
 """`pim assumptions`: the ladder of scenes, one assumption per rung, effects, verdicts, files."""
 
 import math
+import re
 from dataclasses import replace
 
 import numpy as np
@@ -169,7 +170,11 @@ def test_tables_and_plots(summary, tmp_path):
     text = (tmp_path / "assumptions.md").read_text()
     assert "## Verdicts" in text and "marginal" in text and "cumulative" in text
     assert {f.name for f in files} >= {"assumptions.md", "assumptions.csv", "assumptions.png",
-                                       "assumption_sweeps.csv"}
+                                       "assumption_sweeps.csv", "assumptions.html"}
+    page = (tmp_path / "assumptions.html").read_text()
+    assert len(re.findall(r'<table id="table-assumptions-\d"', page)) == 4   # split
+    pngs = [f for f in files if f.suffix == ".png"]
+    assert page.count("data:image/png;base64,") == len(pngs) and "<video" not in page
 
 
 def test_cli_bad_eps_is_one_line_and_exit_code_2(tmp_path, capsys):

@@ -87,7 +87,7 @@ def test_animate_command_names_the_law(tmp_path, capsys):
     assert "friction-capped Brach (PIM), epsilon = 0.1" in capsys.readouterr().out
 
 
-@pytest.mark.parametrize("command", ["compare", "animate"])
-def test_law_options_are_checked(tmp_path, capsys, command):
-    assert main([command, "ricsac9", "--k", "0.5", "--out", str(tmp_path / "x")]) == 2
+@pytest.mark.parametrize("command,out", [("compare", "x"), ("animate", "x.mp4")])
+def test_law_options_are_checked(tmp_path, capsys, command, out):
+    assert main([command, "ricsac9", "--k", "0.5", "--out", str(tmp_path / out)]) == 2
     assert "--k is the restitution of law kudlich-slibar" in capsys.readouterr().err

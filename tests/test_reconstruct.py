@@ -11,6 +11,7 @@ import pim
 from pim.analysis.reconstruction import reconstruct
 from pim.cli.main import main
 from pim.io.casefile import load_case
+from pim.io.output import MARKER
 
 KNOWN = 31.09 * 0.3048
 
@@ -35,9 +36,15 @@ def test_ricsac9_turned_around_covers_the_staged_speeds(tmp_path, capsys):
         assert row["p5"] < staged < row["p95"], (key, row)
         assert row["p5"] < row["p50"] < row["p95"]
     assert {"impact.restitution", "impact.beta"} <= set(data["unknowns"])
-    assert {p.name for p in tmp_path.iterdir()} == {"report.md", "reconstruction.csv"}
+    assert {p.name for p in tmp_path.iterdir()} == {"report.md", "report.html",
+                                                    "reconstruction.csv", MARKER}
     csv = (tmp_path / "reconstruction.csv").read_text()
     assert "vehicle1.speed,mph," in csv          # US case: mph in, mph out
+    page = (tmp_path / "report.html").read_text()
+    table = page.split('id="table-reconstruction"')[1].split("</table>")[0]
+    assert "<td>vehicle1.speed</td>" in table and "<td>mph</td>" in table
+    assert "momentum check" in table and "nan" not in table     # no percentiles: empty
+    assert "<video" not in page and "https://" not in page
 
 
 def test_under_determined_is_said_not_a_number(tmp_path, capsys):
@@ -72,7 +79,10 @@ def test_synthetic_case_report_and_json(tmp_path, capsys):
         assert row["value"] == pytest.approx(KNOWN, abs=1e-5)
         assert row["p5"] < KNOWN < row["p95"]
     assert {p.name for p in tmp_path.iterdir()} == {"report.md", "reconstruction.csv",
-                                                    "scene.png", "reconstruction.mp4"}
+                                                    "scene.png", "reconstruction.mp4",
+                                                    "report.html", MARKER}
+    page = (tmp_path / "report.html").read_text()
+    assert page.count("data:image/png;base64,") >= 2 and "data:video/mp4;base64," in page
     assert "vehicle1.speed" in (tmp_path / "report.md").read_text()
 
 

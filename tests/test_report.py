@@ -1,18 +1,25 @@
 """The `pim compare` report as a colleague reads it (issue 12): results first, the case
-file's units, coefficients with their source, output folders that never mix runs."""
+file's units, coefficients with their source, output folders that never mix runs (issue 22:
+interrupts, concurrent runs, a failed encoder, a hostile manifest), the report's data
+gathered into one object and rendered (issue 21)."""
 
 import os
 import re
+import shutil
 import signal
 import subprocess
 import sys
 import time
+from dataclasses import replace
 
 import pytest
 
 import pim
-from comparisons.report import MANIFEST, compare_case
+from comparisons.report import compare_case
+from comparisons.report_data import ReportData
+from comparisons.report_render import render_csv, render_markdown
 from pim.cli import main
+from pim.io.output import MARKER
 
 
 def sections(text):
@@ -66,20 +73,46 @@ def test_eps_and_beta_skip_the_fit_even_with_measurements(tmp_path, capsys):
     assert not (tmp_path / "fit.csv").exists()
 
 
+def listed_files(out):
+    """The files report.md's Files section lists."""
+    text = (out / "report.md").read_text().split("## Files")[1]
+    return set(re.findall(r"^- \[(.+?)\]", text, flags=re.M))
+
+
+def on_disk(out):
+    return {p.relative_to(out).as_posix() for p in out.rglob("*")
+            if p.is_file() and p.name != MARKER}
+
+
 def test_rerun_never_mixes_runs(tmp_path):
     case = pim.load_case("ricsac9")
-    compare_case(case, tmp_path, animation=False, speed_error=False, progress=False)
-    assert (tmp_path / "fit.csv").exists()
-    stale = tmp_path / "plots" / ".pdof-abc123.tmp.png"      # left by a killed run
-    stale.write_bytes(b"half")
-    compare_case(case, tmp_path, eps=0.4, beta=0.8, animation=False, speed_error=False,
-                 progress=False)
-    assert not (tmp_path / "fit.csv").exists()           # the earlier run's file is gone
-    assert not stale.exists()
-    listed = set((tmp_path / MANIFEST).read_text().split())
-    on_disk = {p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*")
-               if p.is_file() and p.name != MANIFEST}
-    assert on_disk == listed
+    out = tmp_path / "r"
+    compare_case(case, out, animation=False, speed_error=False, progress=False,
+                 assumptions=False, parallel=False)
+    assert (out / "fit.csv").exists()
+    stray = out / "animation.mp4"                       # an earlier run's video
+    stray.write_bytes(b"old video")
+    compare_case(case, out, eps=0.4, beta=0.8, animation=False, speed_error=False,
+                 progress=False, assumptions=False, parallel=False)
+    assert not (out / "fit.csv").exists()           # the earlier run's files are gone
+    assert not stray.exists()
+    assert on_disk(out) == listed_files(out)
+    assert [p.name for p in tmp_path.iterdir()] == ["r"]     # no temporary litter
+
+
+def test_a_hostile_manifest_deletes_nothing_outside_the_folder(tmp_path):
+    """Issue 22: a rerun deleted every path listed in .pim-compare-files, absolute ones too."""
+    out = tmp_path / "r"
+    out.mkdir()
+    victim = tmp_path / "victim.txt"
+    victim.write_text("precious")
+    sibling = tmp_path / "sibling.txt"
+    sibling.write_text("precious")
+    (out / ".pim-compare-files").write_text(f"{victim}\n../sibling.txt\n{sibling}\n")
+    compare_case(pim.load_case("ricsac9"), out, eps=0.4, beta=0.8, animation=False,
+                 speed_error=False, progress=False, assumptions=False, parallel=False)
+    assert victim.read_text() == "precious" and sibling.read_text() == "precious"
+    assert (out / "report.md").exists()
 
 
 def test_out_below_a_regular_file_is_one_line(tmp_path, capsys):
@@ -114,20 +147,161 @@ def test_no_impact_is_one_line_and_exit_1(tmp_path, capsys):
     assert not (tmp_path / "r" / "report.md").exists()
 
 
-def test_sigterm_removes_temporary_files(tmp_path):
+def pim_command():
+    """What the `pim` console script runs (pyproject.toml: pim = "pim_entry:run")."""
+    return [sys.executable, "-m", "pim_entry"]
+
+
+def snapshot(folder):
+    return {p.relative_to(folder).as_posix(): p.read_bytes()
+            for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+@pytest.fixture(scope="module")
+def old_run(tmp_path_factory):
+    """A complete earlier run (eps and beta given: no fit.csv) to copy into a folder."""
+    out = tmp_path_factory.mktemp("old") / "r"
+    compare_case(pim.load_case("ricsac9"), out, eps=0.4, beta=0.8, animation=False,
+                 speed_error=False, progress=False, assumptions=False, parallel=False)
+    return out
+
+
+def copy_run(old_run, parent):
+    out = parent / "r"
+    shutil.copytree(old_run, out)
+    return out, snapshot(out)
+
+
+def new_files(parent, since):
+    """Files written since ``since`` under their final names (not atomic_path's temporary
+    .NAME-XXXX.tmp files), in the folder or in a temporary folder beside it."""
+    return [p for p in parent.rglob("*") if p.is_file() and not p.name.startswith(".")
+            and p.stat().st_mtime > since]
+
+
+def interrupt_at(parent, signum, seconds):
+    """Start `pim compare` (with animation and the assumptions step: well over 5 s) into
+    parent/r, signal it after ``seconds`` (or "writing": as soon as it has written a file,
+    into the folder or beside it) while it still runs; return code and stderr."""
+    start = time.time()
+    proc = subprocess.Popen(pim_command() + ["compare", "ricsac9", "--out", str(parent / "r"),
+                                             "--no-progress", "--no-speed-error"],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    if seconds == "writing":
+        while not new_files(parent, start) and proc.poll() is None \
+                and time.time() < start + 120:
+            time.sleep(0.02)
+    else:
+        time.sleep(seconds)
+    running = proc.poll() is None
+    os.killpg(proc.pid, signum)             # the whole group, as a terminal's Ctrl-C does
+    _, err = proc.communicate(timeout=120)
+    assert running, f"the run ended before the signal at {seconds} s: the test proves nothing"
+    return proc.returncode, err
+
+
+@pytest.mark.parametrize("signum, seconds", [
+    (signal.SIGINT, 0.5), (signal.SIGTERM, "writing"),
+    pytest.param(signal.SIGINT, "writing", marks=pytest.mark.slow),
+    pytest.param(signal.SIGTERM, 2.0, marks=pytest.mark.slow),
+    pytest.param(signal.SIGINT, 2.0, marks=pytest.mark.slow),
+    pytest.param(signal.SIGTERM, 0.5, marks=pytest.mark.slow),
+    pytest.param(signal.SIGINT, 4.0, marks=pytest.mark.slow),
+    pytest.param(signal.SIGTERM, 4.0, marks=pytest.mark.slow)])
+def test_a_killed_run_keeps_the_old_run_whole(old_run, tmp_path, signum, seconds):
+    """Issue 22: an interrupt left the new MP4 and plots beside the old report, or printed
+    the worker's traceback; now: the old run untouched, exit 130/143, one line, no litter."""
+    out, before = copy_run(old_run, tmp_path)
+    code, err = interrupt_at(tmp_path, signum, seconds)
+    assert code == (130 if signum == signal.SIGINT else 143), err
+    assert "Traceback" not in err and "Error" not in err, err
+    assert err.strip() in ("aborted", "terminated"), err
+    assert snapshot(out) == before
+    assert [p.name for p in tmp_path.iterdir()] == ["r"]     # no temporary litter
+
+
+def test_two_runs_into_one_folder_leave_one_run_whole(old_run, tmp_path):
+    """Issue 22: two runs started together ended with files of both; now the second fails
+    at once (exit 2, one line) and the folder holds one run."""
+    out, _ = copy_run(old_run, tmp_path)
+    args = ["compare", "ricsac9", "--out", str(out), "--no-progress", "--no-speed-error",
+            "--no-animation", "--no-assumptions"]
+    procs = [subprocess.Popen(pim_command() + args + extra, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.PIPE, text=True)
+             for extra in ([], ["--eps", "0.4", "--beta", "0.8"])]
+    results = [(p.wait(timeout=300), p.stderr.read()) for p in procs]
+    codes = sorted(code for code, _ in results)
+    assert codes == [0, 2], results
+    err = next(e for code, e in results if code == 2).strip()
+    assert "another pim run is writing" in err and len(err.splitlines()) == 1
+    assert on_disk(out) == listed_files(out)
+    fitted = (out / "fit.csv").exists()
+    assert ("(fit to the measured motion)" in (out / "report.md").read_text()) == fitted
+    assert [p.name for p in tmp_path.iterdir()] == ["r"]
+
+
+def test_a_truncated_video_is_an_error_and_keeps_the_old_run(old_run, tmp_path,
+                                                             monkeypatch, capsys):
+    """Issue 22: a full disk (ffmpeg's "Error writing trailer") left a truncated
+    animation.mp4 under its final name; now exit 2, one line, the old run whole."""
+    import imageio.v2
+
+    real = imageio.v2.get_writer
+
+    class Truncating:
+        def __init__(self, path, *args, **kwargs):
+            self.path, self.writer = path, real(path, *args, **kwargs)
+
+        def append_data(self, frame):
+            self.writer.append_data(frame)
+
+        def close(self):
+            self.writer.close()
+            size = os.path.getsize(self.path)
+            os.truncate(self.path, size // 2)        # the trailer never reached the disk
+
+    monkeypatch.setattr(imageio.v2, "get_writer", Truncating)
+    out, before = copy_run(old_run, tmp_path)
+    assert main(["compare", "ricsac9", "--out", str(out), "--no-progress",
+                 "--no-speed-error", "--no-assumptions"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "incomplete" in err and len(err.splitlines()) == 1, err
+    assert snapshot(out) == before
+    assert [p.name for p in tmp_path.iterdir()] == ["r"]
+
+
+def test_report_data_is_gathered_once_and_rendered(quick):
+    out, rep = quick
+    data = rep.data
+    assert isinstance(data, ReportData)
+    shown = {k: v for k, v in data.seconds.items() if k != "report"}    # timed after it
+    assert (out / "report.md").read_text() == render_markdown(replace(data, seconds=shown))
+    for name, text in render_csv(data).items():
+        assert (out / name).read_text() == text
+    assert {"results", "inputs", "fit", "crosscheck", "assumptions"} <= set(data.tables)
+
+
+def test_suggested_commands_name_the_case_as_given_and_run_in_a_shell(quick):
+    _, rep = quick
+    text = render_markdown(replace(rep.data, case_path="cases/my case.toml"))
+    assert "`pim assumptions 'cases/my case.toml'`" in text
+    assert "pim assumptions ricsac9" not in text
+
+
+@pytest.mark.slow
+def test_suggested_commands_use_the_case_path_the_user_gave(tmp_path):
+    """Issue 22: the report said `pim assumptions pickup-sedan` (the case's name), which
+    fails when the case came from a file; now it prints the path given."""
+    from importlib import resources
+    src = resources.files("pim.io") / "cases" / "ricsac9.toml"
+    path = tmp_path / "my case.toml"
+    path.write_text(src.read_text())
     out = tmp_path / "r"
-    proc = subprocess.Popen([sys.executable, "-m", "pim.cli.main", "compare", "ricsac9",
-                             "--out", str(out), "--no-progress", "--no-speed-error"],
-                            stderr=subprocess.PIPE, text=True)
-    # Wait until the run is writing (a file or a temporary file appears), then terminate.
-    deadline = time.time() + 60
-    while time.time() < deadline and not any(out.rglob("*.tmp*")) and proc.poll() is None:
-        time.sleep(0.01)
-    proc.send_signal(signal.SIGTERM)
-    proc.wait(timeout=60)
-    assert not [p for p in out.rglob("*") if ".tmp" in p.name]
-    if proc.returncode != 0:          # it may have finished before the signal arrived
-        assert proc.returncode == 143 and "terminated" in proc.stderr.read()
+    assert main(["compare", str(path), "--out", str(out), "--no-progress", "--no-animation",
+                 "--no-speed-error"]) == 0
+    text = (out / "report.md").read_text()
+    assert f"`pim assumptions '{path}'`" in text
 
 
 def test_fit_table_with_sigmas_is_a_unit_free_chi_square():

@@ -2,6 +2,7 @@
 
 import csv
 import json
+import re
 from importlib import resources
 
 import pytest
@@ -17,6 +18,21 @@ def report(tmp_path_factory):
     out = tmp_path_factory.mktemp("validate")
     assert main(["validate", "--out", str(out), "--units", "us", "--json"]) == 0
     return out
+
+
+def test_the_html_report_holds_the_same_tables_and_figures_inline(report):
+    page = (report / "report.html").read_text()
+    for key in ("consistency", "coefficients"):
+        assert f'id="table-{key}"' in page, key
+    barrier = re.findall(r'id="table-barrier-\d".*?</thead>', page, re.S)
+    assert len(barrier) == 3                                    # split to fit a screen
+    headers = [len(re.findall(r"<th[ >]", b)) for b in barrier]
+    assert max(headers) <= 10 and sum(h - 1 for h in headers) == 22   # all but 'test' once
+    assert "Other columns" not in page
+    assert page.count("data:image/png;base64,") == 2            # both figures, inline
+    assert "dVx meas [ft/s]" in page and "[m/s]" not in page
+    assert '<section id="summary"' in page and "SAE 2014-01-0469" in page
+    assert "https://" not in page and "<script" not in page
 
 
 def test_report_files_and_summary(report, capsys):

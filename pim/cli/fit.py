@@ -378,6 +378,7 @@ def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units)
     """
     from ..analysis.residuals import has_measured_terms
     from ..io.casefile import load_case
+    from ..io.output import output_folder, rebase
     from ..plotting.sheet import write_plots
 
     case = load_case(case_name)
@@ -388,5 +389,7 @@ def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units)
     else:
         result = None
         click.echo("note: nothing measured; plotting without the fit", err=True)
-    for path in write_plots(case, result, out_dir, formats=formats, units=units):
+    with output_folder(out_dir, command="pim plot") as tmp:
+        files = write_plots(case, result, tmp, formats=formats, units=units)
+    for path in rebase(files, tmp, out_dir):
         click.echo(str(path))

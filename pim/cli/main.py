@@ -16,6 +16,7 @@ from importlib.metadata import entry_points
 
 import click
 
+from ..io.output import OutputError, note_signal, signal_received
 from ..model.numbers import InputError
 from ..model.plausibility import warnings_of
 
@@ -322,7 +323,30 @@ class Terminated(KeyboardInterrupt):
 
 
 def _on_sigterm(signum, frame):
+    note_signal(signum)
     raise Terminated()
+
+
+def _on_sigint(signum, frame):
+    note_signal(signum)
+    raise KeyboardInterrupt()
+
+
+def _interrupted_code() -> int | None:
+    """130/143 (with one line on stderr) when SIGINT/SIGTERM arrived during the run.
+
+    An error that follows a signal is reported as the interrupt (ffmpeg or a worker in the
+    same process group may fail first, with a broken pipe); so is a run whose interrupt was
+    swallowed on its way (its output folder was not swapped in).
+    """
+    import signal
+
+    signum = signal_received()
+    if signum is None:
+        return None
+    terminated = signum == signal.SIGTERM
+    click.echo("terminated" if terminated else "aborted", err=True)
+    return 143 if terminated else 130
 
 
 def main(argv=None) -> int:
@@ -334,14 +358,16 @@ def main(argv=None) -> int:
     import signal
     import threading
 
-    previous = None
+    previous = {}
+    note_signal(None)
     if threading.current_thread() is threading.main_thread():
-        previous = signal.signal(signal.SIGTERM, _on_sigterm)
+        previous = {signal.SIGTERM: signal.signal(signal.SIGTERM, _on_sigterm),
+                    signal.SIGINT: signal.signal(signal.SIGINT, _on_sigint)}
     try:
         return _main(argv)
     finally:
-        if previous is not None:
-            signal.signal(signal.SIGTERM, previous)
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
 
 
 def _main(argv) -> int:
@@ -352,21 +378,29 @@ def _main(argv) -> int:
     except click.ClickException as exc:
         exc.show()
         return exc.exit_code
-    except click.exceptions.Abort as exc:
-        terminated = isinstance(exc.__context__, Terminated)
+    except (click.exceptions.Abort, KeyboardInterrupt) as exc:
+        code = _interrupted_code()
+        if code is not None:
+            return code
+        terminated = isinstance(exc, Terminated) or isinstance(exc.__context__, Terminated)
         click.echo("terminated" if terminated else "aborted", err=True)
         return 143 if terminated else 130
-    except Terminated:
-        click.echo("terminated", err=True)
-        return 143
-    except InputError as exc:
-        click.echo(f"error: {exc}", err=True)
-        return 2
-    except OSError as exc:      # e.g. a disk full or a folder removed while writing
+    except (InputError, OutputError, OSError) as exc:
+        code = _interrupted_code()
+        if code is not None:
+            return code
+        if not isinstance(exc, OSError):
+            click.echo(f"error: {exc}", err=True)
+            return 2
         where = f"{exc.filename}: " if exc.filename else ""
         click.echo(f"error: cannot write {where}{exc.strerror or exc}", err=True)
         return 2
-    return code if isinstance(code, int) else 0
+    except Exception:
+        code = _interrupted_code()      # e.g. ffmpeg's broken pipe after Ctrl-C
+        if code is not None:
+            return code
+        raise                           # anything else is a bug in pim: its traceback
+    return _interrupted_code() or (code if isinstance(code, int) else 0)
 
 
 if __name__ == "__main__":  # pragma: no cover

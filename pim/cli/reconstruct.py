@@ -7,7 +7,8 @@ stated uncertainties (``--samples``) for each unknown's 5/50/95 % and its drivin
 Prints the table in the case's units (``--units`` to change; speeds in mph in US units, the
 customary unit of impact speeds); ``--json`` prints each unknown
 by its dotted name with its value, percentiles and unit in the same units (``units`` names
-the system), and the momentum check beside them. Writes DIR/report.md,
+the system), and the momentum check beside them. Writes DIR/report.md, DIR/report.html
+(the same as one self-contained page, figure and video inline),
 DIR/reconstruction.csv and, with evidence, DIR/scene.png and DIR/reconstruction.mp4 (the
 reconstructed crash from the impact to rest).
 
@@ -17,15 +18,17 @@ is 2: never a number.
 
 from __future__ import annotations
 
-from concurrent.futures import ProcessPoolExecutor
+import contextlib
 from pathlib import Path
 
 import click
 
 from ..analysis.reconstruction import Reconstruction
 from ..analysis.reconstruction import reconstruct as run_reconstruction
+from ..io import html
 from ..io.casefile import load_case
 from ..io.files import save_figure, write_text
+from ..io.output import output_folder, worker_pool
 from ..io.units import convert
 from ..model.evidence import UNKNOWN_KINDS
 from ..model.numbers import InputError
@@ -67,6 +70,19 @@ def spread_text(row: dict, samples: int, sep: str = ", ") -> str:
     if row["p5"] != row["p5"]:
         return "(5/50/95 %: no usable Monte Carlo sample)"
     return f"[{row['p5']:.4g}{sep}{row['p50']:.4g}{sep}{row['p95']:.4g}]"
+def _driver(row: dict) -> str:
+    """The main driver of a row's spread, with its index when it has one."""
+    index = row["driver_index"]
+    return f"{row['driver']} ({index:.2f})" if index == index else row["driver"]
+
+
+def _spread_drivers(rec: Reconstruction) -> list[str]:
+    """One line per unknown: the inputs that drive its spread, with their indices."""
+    lines = []
+    for r in rec.table():
+        top = ", ".join(f"{k} {v:.2f}" for k, v in r["drivers"][:4] if v > 0.005)
+        lines.append(f"{r['name']}: {top or 'no single input dominates'}")
+    return lines
 
 
 def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
@@ -91,9 +107,7 @@ def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
     if rec.samples:
         lines += ["## What drives each unknown's spread", "",
                   "First-order variance indices (correlation ratio) of the sampled inputs.", ""]
-        for r in rec.table():
-            top = ", ".join(f"{k} {v:.2f}" for k, v in r["drivers"][:4] if v > 0.005)
-            lines.append(f"- {r['name']}: {top or 'no single input dominates'}")
+        lines += [f"- {line}" for line in _spread_drivers(rec)]
         lines.append("")
     if rec.goodness is not None:
         lines += [f"Goodness of fit: {rec.goodness.summary()}.", ""]
@@ -121,7 +135,7 @@ def _json(case, rows: list[dict], samples: int, messages, units: str) -> dict:
 @click.command()
 @case_argument
 @click.option("--out", "out", type=click.Path(file_okay=False), default=None,
-              help="Directory for report.md, reconstruction.csv and scene.png.")
+              help="Directory for report.md, report.html, reconstruction.csv and scene.png.")
 @click.option("--samples", type=click.IntRange(min=0), default=10_000, show_default=True,
               help="Monte Carlo samples over the stated uncertainties (0: none).")
 @click.option("--seed", type=int, default=0, show_default=True, help="Monte Carlo seed.")
@@ -133,12 +147,25 @@ def _json(case, rows: list[dict], samples: int, messages, units: str) -> dict:
 @units_option
 @json_option
 def reconstruct(case_name, out, samples, seed, workers, video, units, as_json):
-    """Reconstruct CASE's unknowns (e.g. the impact speeds) from its evidence."""
+    """Reconstruct CASE's unknowns (e.g. the impact speeds) from its evidence.
+
+    With --out the folder is written whole at the end (or not at all: an error or an
+    interrupt leaves an earlier run there as it was); its lock is taken before the work.
+    """
     case = load_case(case_name)
     require_brach(case, "pim reconstruct")
     units = units or case.units
+    with output_folder(out, command="pim reconstruct") if out else \
+            contextlib.nullcontext() as tmp:
+        rec, rows = _reconstruct(case, samples, seed, workers, units, as_json)
+        if tmp is not None:
+            _write_folder(tmp, rec, rows, units, video)
+
+
+def _reconstruct(case, samples, seed, workers, units, as_json):
+    """Run the reconstruction and print its table (or JSON); return it and its rows."""
     if workers > 1:
-        with ProcessPoolExecutor(workers) as pool:
+        with worker_pool(workers) as pool:
             rec = run_reconstruction(case, samples=samples, seed=seed, executor=pool,
                                      blocks=2 * workers)
     else:
@@ -160,17 +187,57 @@ def reconstruct(case_name, out, samples, seed, workers, video, units, as_json):
                        f"{spread_text(r, samples)}")
         if rec.goodness is not None:
             click.echo(f"goodness of fit: {rec.goodness.summary()}")
-    if out:
-        directory = Path(out)
-        directory.mkdir(parents=True, exist_ok=True)
-        csv = ["name,unit,value,p5,p50,p95,main_driver"] + [
-            f"{r['name']},{r['unit']},{r['value']:.6g},{r['p5']:.6g},{r['p50']:.6g},"
-            f"{r['p95']:.6g},{r['driver']}" for r in rows]
-        write_text(directory / "reconstruction.csv", "\n".join(csv) + "\n")
-        if rec.post is not None:
-            save_figure(reconstruction_figure(rec.post, units), directory / "scene.png")
-            if video:
-                write_reconstruction_mp4(rec.post, directory / "reconstruction.mp4",
-                                         units=units)
-        write_text(directory / "report.md",
-                   _report(rec, rows, units, rec.post is not None, video))
+    return rec, rows
+
+
+def _write_folder(directory: Path, rec, rows, units: str, video: bool) -> None:
+    """reconstruction.csv, scene.png, reconstruction.mp4, report.html and report.md into
+    ``directory``."""
+    csv = ["name,unit,value,p5,p50,p95,main_driver"] + [
+        f"{r['name']},{r['unit']},{r['value']:.6g},{r['p5']:.6g},{r['p50']:.6g},"
+        f"{r['p95']:.6g},{r['driver']}" for r in rows]
+    write_text(directory / "reconstruction.csv", "\n".join(csv) + "\n")
+    if rec.post is not None:
+        save_figure(reconstruction_figure(rec.post, units), directory / "scene.png")
+        if video:
+            write_reconstruction_mp4(rec.post, directory / "reconstruction.mp4", units=units)
+    write_text(directory / "report.html", _html_report(rec, rows, directory, video))
+    write_text(directory / "report.md", _report(rec, rows, units, rec.post is not None, video))
+
+
+def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: bool) -> str:
+    """report.html: the table, what drives each spread, the warnings, the scene and the
+    animation inline (read from ``directory``), by the blocks of :mod:`pim.io.html`."""
+    def g(x):
+        return "" if x != x else f"{x:.4g}"          # no percentiles: an empty cell
+
+    cells = [(r["name"], g(r["value"]), g(r["p5"]), g(r["p50"]), g(r["p95"]), r["unit"],
+              _driver(r)) for r in rows]
+    n = rec.samples.n if rec.samples else 0
+    body = [html.paragraph(
+        "Post-impact motion from " + ("the run-out inverse of each vehicle's rest evidence"
+                                      if rec.post else "the case's [measured] post-impact "
+                                      "motion") + "; unknowns by the inverse PIM; "
+        + (f"5/50/95 % from a Monte Carlo of {n} samples ({rec.samples.n_used} used)."
+           if n else "no Monte Carlo (--samples 0).")),
+        html.table(("unknown", "value", "5 %", "50 %", "95 %", "unit",
+                    "main driver of the spread"), cells, title="Reconstructed unknowns",
+                   note="CSV: `reconstruction.csv`", id="table-reconstruction"),
+        html.bullets(rec.messages or ["No warnings."], cls="messages")]
+    sections = [html.section("Results", body, id="results", cls="keep")]
+    if rec.samples:
+        sections.append(html.section("What drives each unknown's spread", [html.paragraph(
+            "First-order variance indices (correlation ratio) of the sampled inputs."),
+            html.bullets(_spread_drivers(rec))], id="drivers"))
+    if (directory / "scene.png").exists():
+        media = [html.figure(directory / "scene.png", alt="scene", caption="`scene.png`")]
+        mp4 = directory / "reconstruction.mp4"
+        if video and mp4.exists():
+            media.append(html.video(mp4, caption="From the impact to rest: "
+                                    "`reconstruction.mp4`.", still=html.still_frame(mp4, 0.5)))
+        sections.append(html.section("Scene and animation", media, id="scene"))
+    return html.page(f"Reconstruction of {rec.case.name}", sections,
+                     subtitle="Written by `pim reconstruct` (the same as text: `report.md`).",
+                     contents=[("results", "Results"), ("drivers", "Drivers"),
+                               ("scene", "Scene")][:len(sections)],
+                     generator="pim reconstruct")

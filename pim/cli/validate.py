@@ -16,6 +16,7 @@ from ..analysis.validation import (
     summary_errors,
 )
 from ..io.datasets import DATASETS, load_dataset
+from ..io.output import output_folder, rebase
 from ..io.units import convert
 from ..plotting.validation import (
     barrier_table,
@@ -168,8 +169,9 @@ def validate(dataset, out, units, as_json):
     to those the data are published in: us for the IIHS tests (and all), si for RICSAC.
     """
     units = units or ("si" if dataset == "ricsac" else "us")
-    sections, summary = run_validation(dataset, units)
-    written = write_validation_report(out, sections, units)
+    with output_folder(out, command="pim validate") as tmp:
+        sections, summary = run_validation(dataset, units)
+        written = rebase(write_validation_report(tmp, sections, units), tmp, out)
     if as_json:
         echo_json({"dataset": dataset, "units": units, "summary": summary,
                    "files": [str(p) for p in written]})

@@ -4,11 +4,15 @@ Every file the project writes (figures, reports, tables, animations) goes throug
 :func:`atomic_path`: the content is written to a temporary file in the same directory, which
 is then renamed onto the target (``os.replace`` is atomic on one file system). On any error,
 or KeyboardInterrupt, the temporary file is removed and the target is left as it was.
+Before the rename the written file is checked (:func:`check_complete`): an MP4 whose encoder
+failed to write its trailer (a full disk), a cut GIF or PNG is an error, never a file under
+the final name. Whole output folders are transactions of their own (:mod:`pim.io.output`).
 """
 
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
 import tempfile
 from collections.abc import Iterator
@@ -16,7 +20,7 @@ from pathlib import Path
 
 from ..model.numbers import InputError
 
-__all__ = ["atomic_path", "write_text", "save_figure", "writable_folder"]
+__all__ = ["atomic_path", "write_text", "save_figure", "writable_folder", "check_complete"]
 
 
 @contextlib.contextmanager
@@ -34,6 +38,7 @@ def atomic_path(path) -> Iterator[Path]:
     tmp = Path(tmp)
     try:
         yield tmp
+        check_complete(tmp, path)
         mask = os.umask(0)
         os.umask(mask)
         os.chmod(tmp, 0o666 & ~mask)
@@ -41,6 +46,53 @@ def atomic_path(path) -> Iterator[Path]:
     finally:
         if tmp.exists():
             tmp.unlink()
+
+
+def _mp4_boxes(data: bytes) -> list[bytes] | None:
+    """Top-level box types of an MP4 file, or None when the boxes do not add up to the file."""
+    types, at = [], 0
+    while at < len(data):
+        if len(data) - at < 8:
+            return None
+        size = int.from_bytes(data[at:at + 4], "big")
+        header = 8
+        if size == 1:
+            if len(data) - at < 16:
+                return None
+            size, header = int.from_bytes(data[at + 8:at + 16], "big"), 16
+        elif size == 0:
+            size = len(data) - at
+        if size < header or at + size > len(data):
+            return None
+        types.append(data[at + 4:at + 8])
+        at += size
+    return types
+
+
+def check_complete(tmp, path=None) -> None:
+    """Raise OSError when the written file ``tmp`` is cut short (checked by ``path``'s suffix).
+
+    MP4: the top-level boxes add up to the file and include ``moov`` and ``mdat`` (ffmpeg
+    writes ``moov`` in the trailer: a failed trailer leaves none). GIF: ends with the trailer
+    byte 0x3B. PNG: ends with the IEND chunk. Other suffixes are not checked.
+    """
+    tmp = Path(tmp)
+    suffix = Path(path if path is not None else tmp).suffix.lower()
+    if suffix not in (".mp4", ".gif", ".png"):
+        return
+    data = tmp.read_bytes()
+    if suffix == ".mp4":
+        boxes = _mp4_boxes(data)
+        ok = bool(data) and boxes is not None and b"moov" in boxes and b"mdat" in boxes
+    elif suffix == ".gif":
+        ok = data[:4] == b"GIF8" and data[-1:] == b";"
+    else:
+        ok = data[:8] == b"\x89PNG\r\n\x1a\n" and data[-12:-8] == b"\0\0\0\0" \
+            and data[-8:-4] == b"IEND"
+    if not ok:
+        raise OSError(errno.EIO, f"the {suffix[1:].upper()} writer left an incomplete file "
+                                 "(disk full or encoder failed); nothing written",
+                      str(path if path is not None else tmp))
 
 
 def write_text(path, text: str) -> Path:

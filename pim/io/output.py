@@ -1,0 +1,338 @@
+"""Output folders as transactions: a run is written whole or not at all, one run at a time.
+
+Every command that writes a folder (``pim compare``, ``assumptions``, ``validate``,
+``reconstruct``, ``plot``, ``hard-cases``, ``speed-error``) writes it through
+:func:`output_folder`:
+
+1. A lock file beside the folder (``.NAME.pim-lock``, an ``fcntl.flock`` lock) makes a second
+   run into the same folder fail at once with :class:`OutputError` (one line, exit code 2 on
+   the command line) instead of mixing its files with the first run's.
+2. The run writes into a temporary sibling folder (``.NAME.pim-tmp-XXXX``).
+3. At the end the temporary folder is swapped in for the old one (``renameat2`` with
+   ``RENAME_EXCHANGE`` where the kernel has it: one atomic step), with SIGINT and SIGTERM held
+   back, and the old run is deleted. The folder holds the new run whole: a file of the old run
+   that this run does not write (an MP4 after ``--no-animation``) is gone.
+
+Any error or interrupt before the swap (Ctrl-C, SIGTERM, a full disk, an encoder that fails)
+deletes the temporary folder and leaves the old run as it was. Nothing outside the folder and
+its own ``.NAME.pim-*`` siblings is ever deleted. Each run leaves a marker file
+(:data:`MARKER`) in its folder; an existing non-empty folder without one (the user's own files)
+is never replaced: that is an :class:`OutputError` too.
+
+A folder shared by design (``pim speed-error --out docs``, ``pim hard-cases --out docs``)
+is written with ``merge=True``: the same lock, temporary folder and cleanup, but at the end
+the run's files are moved into the folder together, replacing files of the same name and
+keeping the others.
+
+Single files (``pim animate --out x.mp4``, ``pim draw``) are written by
+:func:`pim.io.files.atomic_path`, which checks the written file before renaming it.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import ctypes
+import ctypes.util
+import errno
+import fcntl
+import os
+import shutil
+import signal
+import tempfile
+import threading
+from collections.abc import Iterable, Iterator
+from pathlib import Path
+
+__all__ = ["output_folder", "OutputError", "MARKER", "rebase", "held_signals", "ignore_interrupts",
+           "worker_pool", "stop_workers", "note_signal", "signal_received"]
+
+#: File in every output folder marking it as a pim run (replaceable by the next run).
+MARKER = ".pim-run"
+#: Marker of the folders written before MARKER existed (its content is never read).
+LEGACY_MARKERS = (".pim-compare-files",)
+
+
+#: SIGINT/SIGTERM received during the run (:func:`note_signal`, called by the command line's
+#: handlers): a run that received one is never swapped in, even when the interrupt was
+#: swallowed on its way (an extension's callback that ignores exceptions).
+_SIGNALS: list[int] = []
+
+
+def note_signal(signum: int | None) -> None:
+    """Record a received SIGINT/SIGTERM (None: forget the earlier ones, a new run starts)."""
+    if signum is None:
+        _SIGNALS.clear()
+    else:
+        _SIGNALS.append(signum)
+
+
+def signal_received() -> int | None:
+    """The last SIGINT/SIGTERM recorded by :func:`note_signal`, or None."""
+    return _SIGNALS[-1] if _SIGNALS else None
+
+
+class OutputError(ValueError):
+    """An output folder that cannot be written (busy, a file, not pim's, not writable)."""
+
+
+@contextlib.contextmanager
+def held_signals() -> Iterator[None]:
+    """Hold SIGINT and SIGTERM back for the block (delivered when it ends).
+
+    Used for the few steps that must not be cut in two: swapping a folder in, deleting a
+    temporary one. The signals' handlers are replaced by one that only records them (a
+    signal mask would not do: the signal may go to any thread of the process); on leaving
+    the block the handlers are restored and a recorded signal is raised again. Outside the
+    main thread (where handlers cannot be set) a no-op.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    pending: list[int] = []
+    previous = {s: signal.signal(s, lambda signum, frame: pending.append(signum))
+                for s in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+        for signum in dict.fromkeys(pending):
+            signal.raise_signal(signum)
+
+
+def _target(path, option: str) -> Path:
+    """The absolute folder ``path`` (symbolic links resolved), checked to be creatable."""
+    path = Path(os.path.realpath(Path(path).expanduser()))
+    for parent in [path, *path.parents]:
+        if parent.exists() and not parent.is_dir():
+            raise OutputError(f"{option} {path}: {parent} is a file, not a folder")
+    if path == path.parent:
+        raise OutputError(f"{option} {path}: the root folder cannot be an output folder")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise OutputError(f"{option} {path}: cannot create the folder ({exc.strerror})") \
+            from None
+    if not os.access(path.parent, os.W_OK | os.X_OK):
+        raise OutputError(f"{option} {path}: the folder is not writable")
+    return path
+
+
+def _lock(path: Path, option: str) -> int:
+    """Take the lock of folder ``path``; return its file descriptor (see :func:`_unlock`)."""
+    lock = path.parent / f".{path.name}.pim-lock"
+    while True:
+        try:
+            fd = os.open(lock, os.O_RDWR | os.O_CREAT, 0o644)
+        except OSError as exc:
+            raise OutputError(f"{option} {path}: cannot create the lock file {lock} "
+                              f"({exc.strerror})") from None
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            os.close(fd)
+            raise OutputError(f"{option} {path}: another pim run is writing this folder "
+                              f"(lock {lock.name}); wait for it to end or choose another "
+                              "folder") from None
+        # The holder before us may have removed the lock file after we opened it: then our
+        # lock is on a deleted file and we try again.
+        try:
+            if os.stat(lock).st_ino == os.fstat(fd).st_ino:
+                return fd
+        except FileNotFoundError:
+            pass
+        os.close(fd)
+
+
+def _unlock(path: Path, fd: int) -> None:
+    """Remove the lock file (while still holding it) and release the lock."""
+    with contextlib.suppress(FileNotFoundError):
+        os.unlink(path.parent / f".{path.name}.pim-lock")
+    os.close(fd)
+
+
+def _sweep(path: Path) -> None:
+    """Delete temporary siblings that killed runs left (we hold the lock: none is in use)."""
+    for pattern in (f".{path.name}.pim-tmp-*", f".{path.name}.pim-old-*"):
+        for stale in path.parent.glob(pattern):
+            if stale.is_dir() and not stale.is_symlink():
+                shutil.rmtree(stale, ignore_errors=True)
+
+
+def _check_replaceable(path: Path, option: str) -> None:
+    """An existing folder may be replaced only when it is empty or a pim run."""
+    if not path.exists():
+        return
+    cwd = Path(os.path.realpath(os.getcwd()))
+    if cwd == path or path in cwd.parents:
+        raise OutputError(f"{option} {path}: the folder holds the current directory; pim "
+                          "replaces its output folder whole, so choose another folder")
+    if path.is_symlink() or not path.is_dir():
+        raise OutputError(f"{option} {path}: not a folder")
+    if any(path.iterdir()) and not any((path / m).is_file()
+                                       for m in (MARKER, *LEGACY_MARKERS)):
+        raise OutputError(f"{option} {path}: the folder holds files that pim did not write "
+                          f"(no {MARKER} file); pim replaces its output folder whole, so "
+                          "choose a new or empty folder")
+
+
+_RENAME_EXCHANGE = 2
+_AT_FDCWD = -100
+
+
+def _exchange(a: Path, b: Path) -> bool:
+    """Swap folders ``a`` and ``b`` in one atomic step (Linux renameat2); False if unsupported."""
+    try:
+        libc = ctypes.CDLL(ctypes.util.find_library("c"), use_errno=True)
+        renameat2 = libc.renameat2
+    except (OSError, AttributeError, TypeError):
+        return False
+    renameat2.argtypes = [ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p,
+                          ctypes.c_uint]
+    if renameat2(_AT_FDCWD, os.fsencode(a), _AT_FDCWD, os.fsencode(b), _RENAME_EXCHANGE) == 0:
+        return True
+    code = ctypes.get_errno()
+    if code in (errno.EINVAL, errno.ENOSYS, errno.EOPNOTSUPP):
+        return False
+    raise OSError(code, os.strerror(code), str(b))
+
+
+def _merge_in(tmp: Path, path: Path) -> None:
+    """Move every file of the finished run ``tmp`` into ``path`` (replacing files of the
+    same name, keeping the others); delete ``tmp``. Run with signals held back."""
+    path.mkdir(exist_ok=True)
+    for src in sorted(tmp.rglob("*")):
+        if src.is_file():
+            dst = path / src.relative_to(tmp)
+            dst.parent.mkdir(parents=True, exist_ok=True)
+            os.replace(src, dst)
+    shutil.rmtree(tmp, ignore_errors=True)
+
+
+def _swap_in(tmp: Path, path: Path) -> None:
+    """Put the finished run ``tmp`` at ``path``; delete the old run (signals held back)."""
+    if not path.exists():
+        os.rename(tmp, path)
+        return
+    if _exchange(tmp, path):
+        shutil.rmtree(tmp, ignore_errors=True)          # tmp now holds the old run
+        return
+    old = Path(tempfile.mkdtemp(prefix=f".{path.name}.pim-old-", dir=path.parent))
+    os.rename(path, old / "run")
+    os.rename(tmp, path)
+    shutil.rmtree(old, ignore_errors=True)
+
+
+@contextlib.contextmanager
+def output_folder(path, option: str = "--out", *, command: str = "pim",
+                  merge: bool = False) -> Iterator[Path]:
+    """Write a run into a temporary folder and swap it in for ``path`` when the block ends.
+
+    Parameters
+    ----------
+    path : path
+        The output folder (created with its parents; an existing one is replaced whole when
+        it is empty or was written by pim).
+    option : str
+        The command-line option named in error messages.
+    command : str
+        Written into the folder's marker file (:data:`MARKER`).
+    merge : bool
+        For a folder shared by design (``pim speed-error --out docs``): at the end the run's
+        files are moved into ``path`` all together (signals held back), replacing files of
+        the same name and keeping every other file; no marker. The lock, the temporary
+        folder and the cleanup on an error or interrupt are the same.
+
+    Yields
+    ------
+    Path
+        The temporary folder to write into (a sibling of ``path``). Paths inside it become
+        paths inside ``path`` after the block (:func:`rebase`).
+
+    Raises
+    ------
+    OutputError
+        ``path`` is below a file, not writable, holds files pim did not write, or another run
+        holds its lock.
+    """
+    path = _target(path, option)
+    fd = _lock(path, option)
+    try:
+        _sweep(path)
+        if merge:
+            if path.exists() and not path.is_dir():
+                raise OutputError(f"{option} {path}: not a folder")
+        else:
+            _check_replaceable(path, option)
+        tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.pim-tmp-", dir=path.parent))
+        try:
+            yield tmp
+            if signal_received() is not None:       # an interrupt that was swallowed
+                raise KeyboardInterrupt
+            os.chmod(tmp, 0o777 & ~_umask())
+            if not merge:
+                (tmp / MARKER).write_text(f"written by {command}; the next pim run into this "
+                                          "folder replaces it whole\n", encoding="utf-8")
+            with held_signals():
+                (_merge_in if merge else _swap_in)(tmp, path)
+        except BaseException:
+            with held_signals():
+                shutil.rmtree(tmp, ignore_errors=True)
+            raise
+    finally:
+        _unlock(path, fd)
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def rebase(paths: Iterable, tmp, folder) -> list[Path]:
+    """Paths written inside ``tmp`` as they are after the swap: inside ``folder``."""
+    tmp, folder = Path(tmp), Path(folder)
+    return [folder / Path(p).relative_to(tmp) for p in paths]
+
+
+def ignore_interrupts() -> None:
+    """Initializer of worker processes: ignore Ctrl-C (the parent handles it and ends them)
+    and let SIGTERM end the worker silently.
+
+    A Ctrl-C reaches every process of the terminal's process group; a worker that raised
+    KeyboardInterrupt would print its own traceback. A forked worker inherits the parent's
+    SIGTERM handler (which raises an exception, printed from inside a simulation's
+    callback); the default action ends it without a word.
+    """
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+def stop_workers(pool) -> None:
+    """End the worker processes of ``pool`` (a ProcessPoolExecutor) at once.
+
+    ``ProcessPoolExecutor.shutdown`` waits for running tasks; after an interrupt they must
+    not run on (nor write into a folder that is being removed).
+    """
+    for process in list((getattr(pool, "_processes", None) or {}).values()):
+        process.terminate()
+
+
+@contextlib.contextmanager
+def worker_pool(max_workers: int | None = None, mp_context=None):
+    """A ProcessPoolExecutor whose workers ignore Ctrl-C and end with an error or interrupt.
+
+    On leaving the block normally the pool shuts down as usual; on an exception (Ctrl-C,
+    SIGTERM, an error) its workers are ended first and pending tasks are cancelled.
+    """
+    from concurrent.futures import ProcessPoolExecutor
+
+    pool = ProcessPoolExecutor(max_workers, mp_context=mp_context,
+                               initializer=ignore_interrupts)
+    try:
+        yield pool
+    except BaseException:
+        stop_workers(pool)
+        raise
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
