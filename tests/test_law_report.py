@@ -91,3 +91,16 @@ def test_animate_command_names_the_law(tmp_path, capsys):
 def test_law_options_are_checked(tmp_path, capsys, command, out):
     assert main([command, "ricsac9", "--k", "0.5", "--out", str(tmp_path / out)]) == 2
     assert "--k is the restitution of law kudlich-slibar" in capsys.readouterr().err
+
+
+def test_a_rerun_replaces_the_folder_whole(tmp_path):
+    """The law's report is written through pim.io.output.output_folder like Brach's: a
+    second run without the animation leaves no MP4 of the first."""
+    case = pim.load_case("ricsac9-pccrash")
+    setup = law_setup(case)
+    first = compare_law_case(case, tmp_path / "r", setup, animation=True)
+    assert (tmp_path / "r" / "animation.mp4").is_file()
+    assert first.animation.path == tmp_path / "r" / "animation.mp4"
+    second = compare_law_case(case, tmp_path / "r", setup, animation=False)
+    assert not (tmp_path / "r" / "animation.mp4").exists()
+    assert all(p.parent == tmp_path / "r" and p.is_file() for p in second.files)
