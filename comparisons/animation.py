@@ -35,6 +35,7 @@ from pim.model.numbers import InputError
 from .motion import Motion, analytic_motion, simulated_motion
 
 __all__ = ["AnimationInfo", "Renderer", "build_renderer", "frame_times", "simulate_for_animation",
+           "animation_settings",
            "write_animation", "animate_case", "DEFAULT_SIZE", "DEFAULT_FPS"]
 
 DEFAULT_SIZE = (960, 720)
@@ -89,10 +90,14 @@ def _auto_before(case: pim.Case) -> float:
 def simulate_for_animation(case: pim.Case, eps: float, beta: float, after: float,
                            tyre: float = 0.0, dt: float = 1e-3):
     """Run the simulator with a recorded trajectory reaching ``after`` seconds past impact."""
+    return sim.simulate(case, eps, beta, animation_settings(after, tyre, dt))
 
-    settings = sim.Settings(dt=dt, record=True, duration=after + 2 * dt,
-                            tyre_friction=float(tyre) if tyre else False)
-    return sim.simulate(case, eps, beta, settings)
+
+def animation_settings(after: float, tyre: float = 0.0, dt: float = 1e-3) -> sim.Settings:
+    """Simulator settings recording ``after`` seconds past the impact, tyre friction ``tyre``
+    [-] after it (0: none)."""
+    return sim.Settings(dt=dt, record=True, duration=after + 2 * dt,
+                        tyre_friction=float(tyre) if tyre else False)
 
 
 def _corners(vehicle: pim.Vehicle) -> np.ndarray | None:

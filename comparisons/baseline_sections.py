@@ -147,11 +147,11 @@ ROUND_OFF_MOVES = ((1e-14, (0.0, 0.0)), (-1e-14, (0.0, 0.0)), (0.0, (1e-13, -1e-
 def _solve(case: pim.Case, settings: dict) -> list[Recorded]:
     if case.impact.restitution is None:
         raise LookupError("the case gives no impact.restitution")
-    values = _outputs(pim.solve(case))
+    values = _outputs(pim.solve_law(case))          # the case's impact law
     kinds = {k: _kind(OUTPUTS[k].kind if k in OUTPUTS else "energy") for k in values}
     rows = _scaled(values, kinds, CLOSED_FORM_REL, CLOSED_FORM_REL, "solve",
                    "round-off of the closed form and the case's conditioning")
-    moved = [_outputs(pim.solve(case.transformed(a, b))) for a, b in ROUND_OFF_MOVES]
+    moved = [_outputs(pim.solve_law(case.transformed(a, b))) for a, b in ROUND_OFF_MOVES]
     for r in rows:
         key = r.name[len("solve."):]
         spread = [abs(m[key] - r.value) for m in moved if math.isfinite(m[key] - r.value)]
@@ -300,6 +300,10 @@ def run_section(section: str, case: pim.Case, settings: dict) -> list[Recorded]:
     """
     if section not in _RUNNERS:
         raise InputError(f"unknown section {section!r} (allowed: {', '.join(SECTIONS)})")
+    law = case.impact.law or "brach"
+    if section != "solve" and law != "brach":
+        raise LookupError(f"the {section} section applies Brach's (eps, beta); the case's "
+                          f"impact law is {law!r}")
     try:
         return _RUNNERS[section](case, settings)
     except ValueError as exc:

@@ -20,6 +20,7 @@ from pim.cli import (
     eps_option,
     friction_limit_option,
     json_option,
+    law_options,
     require_brach,
     solve_with_options,
     units_option,
@@ -64,10 +65,11 @@ compare_beta_option = click.option(
 @click.option("--tyre-friction", "tyre", type=FiniteFloat(), default=0.0, show_default=True,
               help="Tyre/ground friction coefficient after impact in the animation (the "
                    "ghost decelerates alike); 0 = free motion.")
+@law_options
 @progress_option
 @json_option
 def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
-            no_speed_error, no_assumptions, tyre, progress, as_json):
+            no_speed_error, no_assumptions, tyre, law, k, mu_c, progress, as_json):
     """Write a reconstruction report of CASE to a folder (report.html, report.md, CSVs,
     PNGs, MP4; report.html is one self-contained page with the plots and the animation).
 
@@ -78,16 +80,25 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
     simulator's speed against its error. (epsilon, beta) are fitted to the measured motion
     when the case has some; --eps and --beta together skip the fit (one of them: the other
     is fitted). Exit code 1 with one line when the vehicles do not approach at C.
+
+    Under another impact law (the case's impact.law or --law: kudlich-slibar with --k and
+    --mu-c, brach-capped) the report is that law's answer, its pymunk run (two phases for
+    kudlich-slibar) and animation; a fit to measured motion is Brach's, with the mapped
+    (k, mu_c) (docs/impact-laws.md).
     """
     from pim.io.casefile import load_case
+    from pim.model.impact_laws import law_of
 
     from .report import compare_case
 
     if tyre < 0:
         raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
     case = load_case(case_name)
-    require_brach(case, "pim compare")
     folder = _out(out, case.name, "case")
+    if law_of(case, law) != "brach" or k is not None or mu_c is not None:
+        _compare_law(case, folder, eps, beta, law, k, mu_c, units, gif=gif, tyre=tyre,
+                     animation=not no_animation, progress=progress, as_json=as_json)
+        return
     solve_with_options(case, 0.0, 1.0)      # exits 1 with one line when there is no impact
     started = time.perf_counter()
     rep = compare_case(case, folder, eps=eps, beta=beta, gif=gif, animation=not no_animation,
@@ -113,6 +124,34 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
                f"{time.perf_counter() - started:.1f} s")
 
 
+def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, **kwargs):
+    """``pim compare`` under an impact law other than Brach's (comparisons.law_report)."""
+    from pim.model.impact_laws import law_of
+
+    from .law_report import compare_law_case
+    from .law_runs import law_setup
+
+    started = time.perf_counter()
+    result = solve_with_options(case, eps, beta, None, False, law, k, mu_c, units)
+    setup = law_setup(case, law, result.eps,
+                      None if law_of(case, law) == "kudlich-slibar" else beta, mu_c)
+    rep = compare_law_case(case, folder, setup, units=units, **kwargs)
+    if as_json:
+        echo_json({"case": case.name, "out": str(folder), "law": setup.law,
+                   "restitution": setup.restitution, "beta": setup.beta,
+                   "contact_friction": setup.contact_friction, "error": rep.error,
+                   "files": sorted(str(p) for p in rep.files)})
+        return
+    error = ("simulation failed" if rep.error != rep.error
+             else f"pymunk vs analytic error {rep.error:.2e}")
+    click.echo(f"{case.name}: {setup.describe()}; {error}")
+    for text in warnings_of(case, setup.result):
+        click.echo(f"warning: {text}", err=True)
+    click.echo(f"wrote {rep.report} ({len(rep.files)} files) in "
+               f"{time.perf_counter() - started:.1f} s")
+
+
+
 @click.command()
 @case_argument
 @click.option("--out", "out", type=click.Path(dir_okay=False), default=None,
@@ -132,29 +171,48 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
 @click.option("--tyre-friction", "tyre", type=FiniteFloat(), default=0.0, show_default=True,
               help="Tyre/ground friction coefficient after the impact (ghost alike).")
 @click.option("--no-ghost", is_flag=True, help="Do not draw PIM's answer as a ghost.")
+@law_options
 @units_option
 @progress_option
 @json_option
-def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_ghost, units,
-            progress, as_json):
-    """Animate CASE: pymunk simulation solid, PIM's post-impact motion as a ghost (MP4)."""
+def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_ghost, law, k,
+            mu_c, units, progress, as_json):
+    """Animate CASE: pymunk simulation solid, the analytic post-impact motion as a ghost (MP4).
+
+    Under the case's impact law (or --law): Brach's PIM and friction-capped Brach play the
+    rigid scene at (eps, effective beta); the Kudlich-Slibar law plays its two-phase run
+    (compression by the engine at mu_c, then k times its impulse) and continues after
+    separation (docs/impact-laws.md).
+    """
     import sim
     from pim.io.casefile import load_case
+    from pim.model.impact_laws import law_of
 
-    from .animation import animate_case
+    from .animation import animate_case, animation_settings
+    from .law_runs import law_setup, simulate_law
 
     _check_suffix(out, "--out", ".mp4")
     _check_suffix(gif, "--gif", ".gif")
     case = load_case(case_name)
-    require_brach(case, "pim animate")
-    eps_, beta_ = sim.scene.resolve_coefficients(case, eps, beta)
     if tyre < 0:
         raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
     path = Path(out) if out else Path("out") / f"{case.name or 'case'}-animation.mp4"
+    kwargs = dict(gif=gif, progress=progress, fps=fps, before=before, after=after, size=size,
+                  tyre=tyre, ghost=not no_ghost, units=units or case.units)
+    setup = None
+    if law_of(case, law) == "brach" and k is None and mu_c is None:
+        eps_, beta_ = sim.scene.resolve_coefficients(case, eps, beta)
+    else:
+        result = solve_with_options(case, eps, beta, None, False, law, k, mu_c, units)
+        setup = law_setup(case, law, result.eps, None if law_of(case, law) == "kudlich-slibar"
+                          else beta, mu_c)
+        eps_, beta_ = setup.restitution, setup.beta
     try:
-        info = animate_case(case, eps_, beta_, path, gif=gif, progress=progress, fps=fps,
-                            before=before, after=after, size=size, tyre=tyre,
-                            ghost=not no_ghost, units=units or case.units)
+        if setup is not None:
+            kwargs.update(result=setup.result, title=f"{case.name or 'case'}: {setup.describe()}",
+                          simulated=simulate_law(case, setup,
+                                                 animation_settings(after, tyre)))
+        info = animate_case(case, eps_, beta_, path, **kwargs)
     except sim.SimulationError as exc:
         click.echo(f"simulation failed ({exc.kind}): {exc}", err=True)
         sys.exit(1)
@@ -163,9 +221,14 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
                    "frames": info.frames, "fps": info.fps, "size": list(info.size),
                    "render_fps": info.render_fps, "write_seconds": info.write_seconds,
                    "max_ghost_offset_px": info.max_ghost_offset_px,
+                   "law": setup.law if setup else "brach",
+                   "restitution": eps_, "beta": beta_,
+                   "contact_friction": setup.contact_friction if setup else None,
                    "secondary_impact": None if info.secondary_impact is None
                    else info.secondary_impact.time})
         return
+    if setup is not None:
+        click.echo(f"{case.name or 'case'}: {setup.describe()}")
     click.echo(f"wrote {info.path}" + (f" and {info.gif}" if info.gif else "")
                + f": {info.frames} frames at {info.fps} fps, rendered at "
                  f"{info.render_fps:.0f} frames/s, encoded in {info.write_seconds:.2f} s; "

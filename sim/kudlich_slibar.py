@@ -36,7 +36,8 @@ from pim.model.numbers import InputError
 
 from .convergence import auto_iterations, contraction_rate
 from .error_measure import ERROR_DEFINITION, KIND_OF_UNIT, compare_results, impact_error
-from .run import run_scene
+from .result import Trajectory
+from .run import body_state, continue_after_impact, run_scene, trajectory_of
 from .scene import build_scene
 from .settings import Settings
 
@@ -64,6 +65,11 @@ class KudlichSlibarRun:
         Kinetic energy before and after the impact [J].
     wall_time : float
         Building and running the scene [s].
+    trajectory : Trajectory
+        Recorded motion: the start, the state after both phases at t = 0 (the impact
+        configuration), then ``settings.duration`` of free motion when recording.
+    settings : Settings
+        The settings used.
     """
 
     velocity1: np.ndarray
@@ -76,6 +82,8 @@ class KudlichSlibarRun:
     energy_before: float = 0.0
     energy_after: float = 0.0
     wall_time: float = 0.0
+    trajectory: Trajectory | None = None
+    settings: Settings | None = None
 
 
 def _compression_scene(case: pim.Case, mu_c: float, settings: Settings):
@@ -109,7 +117,9 @@ def simulate_kudlich_slibar(case: pim.Case, k: float, mu_c: float,
         Contact friction mu_c [-] >= 0 (finite: the engine's Coulomb coefficient).
     settings : Settings, optional
         Numerics; ``contact`` must be "point" and ``start`` "exact" (the law's impulse acts
-        at C at the impact configuration). Default ``Settings()``.
+        at C at the impact configuration). ``duration``, ``record`` and ``tyre_friction``
+        continue the run after separation as :func:`sim.simulate` does (for animations).
+        Default ``Settings()``.
 
     Returns
     -------
@@ -131,10 +141,9 @@ def simulate_kudlich_slibar(case: pim.Case, k: float, mu_c: float,
     if settings.contact != "point" or settings.start != "exact":
         raise InputError("the two-phase Kudlich-Slibar run needs contact='point' and "
                          "start='exact' (the impulse acts at C)")
-    settings = replace(settings, duration=0.0)
     started = time.perf_counter()
-    scene = _compression_scene(case, mu_c, settings)
-    out = run_scene(scene, settings)
+    scene = _compression_scene(case, mu_c, replace(settings, duration=0.0))
+    out = run_scene(scene, replace(settings, duration=0.0))
     compression = np.asarray(out["impulse"], float)
     c = (float(scene.point[0]), float(scene.point[1]))
     restitution = k * compression
@@ -142,16 +151,29 @@ def simulate_kudlich_slibar(case: pim.Case, k: float, mu_c: float,
     if not scene.fixed2:
         scene.body2.apply_impulse_at_world_point(tuple(-restitution), c)
     b1, b2 = scene.body1, scene.body2
-    wall = time.perf_counter() - started
     v1, v2 = np.array(b1.velocity), np.array(b2.velocity)
     w1, w2 = float(b1.angular_velocity), float(b2.angular_velocity)
+    trajectory = _continue(scene, settings, out)
+    wall = time.perf_counter() - started
     after = float(kinetic_energy(case.vehicle1.mass, case.vehicle1.yaw_inertia, v1, w1)
                   + kinetic_energy(case.vehicle2.mass, case.vehicle2.yaw_inertia, v2, w2))
     return KudlichSlibarRun(
         velocity1=v1, velocity2=v2, yaw_rate1=w1, yaw_rate2=w2,
         compression_impulse=compression, impulse=(1.0 + k) * compression,
         iterations=int(scene.iterations), energy_before=float(scene.energy_before),
-        energy_after=after, wall_time=wall)
+        energy_after=after, wall_time=wall, trajectory=trajectory, settings=settings)
+
+
+def _continue(scene, settings: Settings, out: dict) -> Trajectory:
+    """The recorded trajectory: the compression run's rows before the impact, the state
+    after both phases at the impact instant, then the free motion after separation."""
+    tr = out["trajectory"]
+    idx = tr.impact_index
+    rows = np.column_stack([tr.time, tr.position1, tr.angle1, tr.position2, tr.angle2,
+                            tr.velocity1, tr.yaw_rate1, tr.velocity2, tr.yaw_rate2])
+    states = [tuple(r) for r in rows[:idx]] + [body_state(float(tr.time[idx]), scene)]
+    continue_after_impact(scene, settings, int(out["steps"]), states)
+    return trajectory_of(scene, states, idx)
 
 
 @dataclass(frozen=True, eq=False)

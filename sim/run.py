@@ -39,7 +39,8 @@ from .result import SimResult, Trajectory
 from .scene import TYPE1, TYPE2, Scene, build_scene, resolve_coefficients
 from .settings import Settings
 
-__all__ = ["simulate", "run_scene", "APPROACH_TOLERANCE"]
+__all__ = ["simulate", "run_scene", "continue_after_impact", "trajectory_of", "body_state",
+           "APPROACH_TOLERANCE"]
 
 #: A contact point approaches when its relative normal velocity is below -this x speed scale.
 APPROACH_TOLERANCE = 1e-9
@@ -232,7 +233,29 @@ def run_scene(scene: Scene, settings: Settings) -> dict:
             f"(+{gain:.3g} J, {100 * gain / max(scene.energy_before, 1e-300):.3g} %) in the "
             f"impact" if finite else "the engine returned a non-finite state", step)
 
-    # ---- after separation: free motion (point contact removed), tyre friction -----------
+    step = continue_after_impact(scene, settings, step, states)
+    trajectory = trajectory_of(scene, states, impact_index)
+    return dict(iterations=scene.iterations, contraction_rate=scene.contraction_rate,
+        velocity1=velocity1, velocity2=velocity2, yaw_rate1=float(yaw_rate1),
+        yaw_rate2=float(yaw_rate2), impulse=np.array(mon.impulse),
+        contact_duration=contact_steps * dt, contact_steps=contact_steps,
+        contact_points=mon.max_points, steps=step, energy_before=scene.energy_before,
+        energy_after=energy_after, trajectory=trajectory,
+        final_velocity1=np.array(b1.velocity), final_velocity2=np.array(b2.velocity),
+        final_yaw_rate1=float(b1.angular_velocity), final_yaw_rate2=float(b2.angular_velocity))
+
+
+def body_state(t: float, scene: Scene) -> tuple:
+    """One row of a recorded trajectory: time and both bodies' poses and velocities."""
+    return _state(t, scene.body1, scene.body2)
+
+
+def continue_after_impact(scene: Scene, settings: Settings, step: int, states: list) -> int:
+    """Free motion after separation for ``settings.duration`` (point contact removed, tyre
+    friction if set), appending to ``states`` when recording; the last state is always
+    appended. Returns the step count reached."""
+    space, b1, b2, dt = scene.space, scene.body1, scene.body2, settings.dt
+    record = settings.record
     if settings.duration > 0:
         if settings.contact == "point":
             space.remove(*scene.contact_shapes)
@@ -257,21 +280,17 @@ def run_scene(scene: Scene, settings: Settings) -> dict:
                 break
     if states[-1][0] != scene.start_time + step * dt:
         states.append(_state(scene.start_time + step * dt, b1, b2))
+    return step
 
+
+def trajectory_of(scene: Scene, states: list, impact_index: int) -> Trajectory:
+    """The :class:`Trajectory` of recorded rows (:func:`body_state`)."""
     arr = np.array(states, dtype=float)
-    trajectory = Trajectory(
+    return Trajectory(
         time=arr[:, 0], position1=arr[:, 1:3], angle1=arr[:, 3], position2=arr[:, 4:6],
         angle2=arr[:, 6], velocity1=arr[:, 7:9], yaw_rate1=arr[:, 9], velocity2=arr[:, 10:12],
         yaw_rate2=arr[:, 12], impact_index=int(impact_index), outline1=scene.outline1,
         outline2=scene.outline2, fixed2=scene.fixed2)
-    return dict(iterations=scene.iterations, contraction_rate=scene.contraction_rate,
-        velocity1=velocity1, velocity2=velocity2, yaw_rate1=float(yaw_rate1),
-        yaw_rate2=float(yaw_rate2), impulse=np.array(mon.impulse),
-        contact_duration=contact_steps * dt, contact_steps=contact_steps,
-        contact_points=mon.max_points, steps=step, energy_before=scene.energy_before,
-        energy_after=energy_after, trajectory=trajectory,
-        final_velocity1=np.array(b1.velocity), final_velocity2=np.array(b2.velocity),
-        final_yaw_rate1=float(b1.angular_velocity), final_yaw_rate2=float(b2.angular_velocity))
 
 
 def _not_converged_message(scene: Scene, mon: _Monitor) -> str:

@@ -1,6 +1,7 @@
 """Bad input: every mistake gives a ValueError naming the field (library) or one line and
 exit code 2 (command line); and US and SI inputs describe the same physics."""
 
+import math
 from importlib import resources
 
 import numpy as np
@@ -259,3 +260,25 @@ def test_flipped_normal_hints_at_its_direction_in_the_case_units(tmp_path, capsy
     err = capsys.readouterr().err
     assert "ft/s" in err and "m/s" not in err
     assert "from vehicle 2 toward vehicle 1" in err and "try 0 deg" in err
+
+
+@pytest.mark.parametrize("psi", ["90 deg", "-90 deg", "270 deg"])
+def test_contact_plane_angle_gives_the_normal_toward_vehicle_1(tmp_path, psi):
+    """PC-Crash's contact plane by its direction psi: Gamma = psi +- 90 deg, the normal
+    pointing toward vehicle 1's CG (RICSAC 9: the plane is the y axis, vehicle 1 at +x)."""
+    path = variant(tmp_path, 'normal_angle = "0 deg"', f'contact_plane_angle = "{psi}"')
+    gamma = float(pim.load_case(str(path)).impact.normal_angle)
+    assert (math.cos(gamma), math.sin(gamma)) == pytest.approx((1.0, 0.0), abs=1e-15)
+
+
+@pytest.mark.parametrize("new,words", [
+    ('point = [0, 0]\nnormal_angle = "0 deg"\ncontact_plane_angle = "90 deg"', "not both"),
+    ('point = ["0 ft", "0.5017366 ft"]\ncontact_plane_angle = "0 deg"', "through vehicle 1"),
+    ('point = [0, 0]\ncontact_plane_angle = "ninety"', "impact.contact_plane_angle"),
+])
+def test_contact_plane_angle_errors_name_the_field(tmp_path, new, words):
+    text = RICSAC.replace('point = ["0 ft", "0 ft"]\nnormal_angle = "0 deg"', new)
+    path = tmp_path / "case.toml"
+    path.write_text(text)
+    with pytest.raises(ValueError, match=words):
+        pim.load_case(str(path))

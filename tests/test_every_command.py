@@ -18,6 +18,10 @@ ALL_CASES = [name for name, _ in list_cases()]
 #: Cases a forward command can run: those with a restitution (a reconstruction case such as
 #: ricsac9-reconstruct has its speeds and coefficients as unknowns; see test_reconstruct).
 CASES = [name for name in ALL_CASES if pim.load_case(name).impact.restitution is not None]
+#: Cases under Brach's law: the commands that apply only Brach's (eps, beta) (fit,
+#: sensitivity, uncertainty) refuse the others with what to do (see
+#: test_brach_only_commands_on_another_law_say_what_to_do).
+BRACH_CASES = [name for name in CASES if (pim.load_case(name).impact.law or "brach") == "brach"]
 NAN = re.compile(r"\bnan\b", re.IGNORECASE)
 
 
@@ -69,19 +73,20 @@ def test_sim(name, capsys):
     check(name, code, out, err)
 
 
-@pytest.mark.parametrize("name", CASES)
+@pytest.mark.parametrize("name", BRACH_CASES)
 def test_sensitivity(name, capsys):
     code, out, err = run(["sensitivity", name, "--top", "3"], capsys)
     check(name, code, out, err, allow_failure=False)
 
 
-@pytest.mark.parametrize("name", [n for n in CASES if pim.load_case(n).measured is not None])
+@pytest.mark.parametrize("name", [n for n in BRACH_CASES
+                                  if pim.load_case(n).measured is not None])
 def test_fit(name, capsys):
     code, out, err = run(["fit", name], capsys)
     check(name, code, out, err, allow_failure=False)
 
 
-@pytest.mark.parametrize("name", [n for n in CASES
+@pytest.mark.parametrize("name", [n for n in BRACH_CASES
                                   if pim.load_case(n).uncertainty is not None])
 def test_uncertainty(name, capsys):
     code, out, err = run(["uncertainty", name, "-n", "2000"], capsys)
@@ -123,3 +128,11 @@ def test_animate_and_draw(name, tmp_path, capsys):
 def test_forward_command_on_a_reconstruction_case_says_what_to_run(name, capsys):
     code, out, err = run(["solve", name], capsys)
     assert code == 2 and "pim reconstruct" in err and len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("name", sorted(set(CASES) - set(BRACH_CASES)))
+@pytest.mark.parametrize("command", ["fit", "sensitivity"])
+def test_brach_only_commands_on_another_law_say_what_to_do(name, command, capsys):
+    code, out, err = run([command, name], capsys)
+    assert code == 2 and len(err.strip().splitlines()) == 1
+    assert "cannot use impact law" in err and 'set impact.law = "brach"' in err

@@ -118,3 +118,27 @@ def test_sim_command_runs_the_capped_law_at_its_effective_beta(tmp_path, capsys)
     out = json.loads(capsys.readouterr().out)
     capped = pim.solve_law(pim.load_case(path))
     assert out["beta"] == pytest.approx(float(capped.beta)) and out["error"] < 1e-9
+
+
+@pytest.mark.parametrize("name,k,mu_c", [("ricsac9", 0.1, 0.6), ("hard-gamma37", 0.3, 0.2),
+                                         ("hard-barrier", 0.0, 5.0)])
+def test_recorded_trajectory_carries_the_two_phase_state_through_free_motion(name, k, mu_c):
+    """The recorded state at t = 0 is the state after both phases (the cross-check's), at
+    the impact configuration; afterwards the vehicles move freely with it."""
+    case = pim.load_case(name)
+    check = simulate_kudlich_slibar(case, k, mu_c)
+    run = simulate_kudlich_slibar(case, k, mu_c, sim.Settings(record=True, duration=0.5))
+    tr = run.trajectory
+    i = tr.impact_index
+    assert tr.time[i] == 0.0 and tr.time[-1] == pytest.approx(0.5)
+    for j, v in ((1, case.vehicle1), (2, case.vehicle2)):
+        vel, w = getattr(run, f"velocity{j}"), getattr(run, f"yaw_rate{j}")
+        np.testing.assert_array_equal(vel, getattr(check, f"velocity{j}"))
+        np.testing.assert_array_equal(getattr(tr, f"velocity{j}")[i], vel)
+        np.testing.assert_array_equal(getattr(tr, f"yaw_rate{j}")[i], w)
+        np.testing.assert_allclose(getattr(tr, f"position{j}")[i], v.cg, atol=1e-12)
+        # free motion: the final position is the impact configuration plus velocity x time
+        expected = np.asarray(v.cg) + (0 if v.fixed else 1) * vel * tr.time[-1]
+        np.testing.assert_allclose(getattr(tr, f"position{j}")[-1], expected, atol=1e-9)
+    r = solve_kudlich_slibar(case, k, mu_c)
+    assert relative_error(run, r) < 1e-7

@@ -205,11 +205,37 @@ def solve_with_options(case, eps, beta, friction_limit=None, cap_friction=False,
 
 def require_brach(case, command: str) -> None:
     """A ValueError (one line, exit 2) when ``case`` names an impact law other than Brach's,
-    which ``command`` cannot apply yet: never silently Brach's answer instead."""
+    which ``command`` cannot apply yet: never silently Brach's answer instead. The message
+    says what to do: the Brach (eps, beta) giving the same answer for this case
+    (docs/impact-laws.md), or, for ``pim reconstruct``, why there is none."""
     law = case.impact.law or "brach"
-    if law != "brach":
-        raise InputError(f"{command} cannot use impact law {law!r} yet (only 'brach'); "
-                         f"`pim solve` can, or set impact.law = \"brach\"")
+    if law == "brach":
+        return
+    text = f"{command} cannot use impact law {law!r} yet (only 'brach'); "
+    if command == "pim reconstruct":
+        text += ("its equivalent Brach beta depends on the unknown speeds, so reconstruct "
+                 "under law 'brach' with impact.restitution = k and impact.beta in [unknown] "
+                 "(docs/impact-laws.md), then check the speeds with `pim solve --law "
+                 f"{law}`")
+    else:
+        text += f"{_brach_equivalent(case, law)}; `pim solve`, `pim sim`, `pim compare` and " \
+                "`pim animate` apply the law itself"
+    raise InputError(text)
+
+
+def _brach_equivalent(case, law: str) -> str:
+    """Brach's (eps, beta) with the same answer as ``case`` under ``law``, in words."""
+    from ..model.impact_laws import solve_law
+
+    try:
+        result = solve_law(case, law)
+        eps, beta = float(result.eps), float(result.beta)
+    except ValueError as exc:
+        return f"fix the case first ({exc})"
+    if not (math.isfinite(eps) and math.isfinite(beta)):
+        return "this case has no Brach equivalent (no impact at C)"
+    return (f"the same answer is Brach's at eps = {eps:.6g}, beta = {beta:.6g}: set "
+            f"impact.law = \"brach\", restitution = {eps:.6g}, beta = {beta:.6g} to run it")
 
 
 #: Exit code of a command whose case has no impact (the vehicles separate at C).

@@ -20,6 +20,8 @@ Unknown keys are errors, so a typo is never silently ignored; every error is a
     [impact]
     point = [0, 0]
     normal_angle = "0 deg"          # Gamma: n points from vehicle 2 toward vehicle 1
+    # or contact_plane_angle = "90 deg": PC-Crash's contact plane (its direction psi);
+    #    Gamma = psi +- 90 deg, whichever normal points toward vehicle 1's CG
     restitution = 0.355             # optional defaults for solve (k for kudlich-slibar)
     beta = 1
     law = "brach"                   # or "kudlich-slibar", "brach-capped" (docs/impact-laws.md)
@@ -69,7 +71,8 @@ _VEHICLE = {"mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "
 MAX_DEPTH = 8
 #: Longest ``name``, ``description`` or ``source`` [characters].
 MAX_TEXT = {"name": 200, "description": 10_000, "source": 10_000}
-_IMPACT = {"point", "normal_angle", "restitution", "beta", "law", "contact_friction"}
+_IMPACT = {"point", "normal_angle", "contact_plane_angle", "restitution", "beta", "law",
+           "contact_friction"}
 
 
 def _require(table: dict, key: str, where: str):
@@ -190,19 +193,26 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
         point = _pair(_require(impact_table, "point", "impact"), "length", "impact.point")
     else:
         point = np.zeros(2)
-    normal_angle = parse(_require(impact_table, "normal_angle", "impact"), "angle",
-                         "impact.normal_angle")
+    normal_angle = None
+    if "contact_plane_angle" not in impact_table:
+        normal_angle = parse(_require(impact_table, "normal_angle", "impact"), "angle",
+                             "impact.normal_angle")
+    elif "normal_angle" in impact_table:
+        raise InputError("impact: give normal_angle or contact_plane_angle, not both")
     eps = _optional(impact_table, "restitution", "dimensionless", "impact")
     beta = _optional(impact_table, "beta", "dimensionless", "impact")
     # the impact law and its contact friction (docs/impact-laws.md)
     law = impact_table.get("law")
     contact_friction = _optional(impact_table, "contact_friction", "dimensionless", "impact")
-    impact = _wrap("impact", Impact, point=point, normal_angle=normal_angle,
-                   restitution=eps, beta=beta, law=law, contact_friction=contact_friction)
     vehicles = [
         _vehicle(_require(data, f"vehicle{i}", source), f"vehicle{i}", convention, point, i)
         for i in (1, 2)
     ]
+    if normal_angle is None:
+        normal_angle = _plane_normal(impact_table["contact_plane_angle"], point,
+                                     vehicles[0].cg)
+    impact = _wrap("impact", Impact, point=point, normal_angle=normal_angle,
+                   restitution=eps, beta=beta, law=law, contact_friction=contact_friction)
     name = data.get("name", Path(source).stem)
     description = data.get("description", "")
     for key, value in (("name", name), ("description", description),
@@ -217,6 +227,20 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
                 notes=_angle_notes(data),
                 evidence=parse_evidence(data.get("evidence")),
                 unknown=parse_unknown(data.get("unknown")))
+
+
+def _plane_normal(value, point, cg1) -> float:
+    """Gamma [rad] from PC-Crash's contact plane angle psi: psi + 90 deg or psi - 90 deg,
+    whichever normal n points from the plane toward vehicle 1's CG (docs/impact-laws.md)."""
+    psi = parse(value, "angle", "impact.contact_plane_angle")
+    gamma = psi + np.pi / 2
+    side = float(np.dot([np.cos(gamma), np.sin(gamma)],
+                        np.asarray(cg1, float).reshape(2) - np.asarray(point, float).reshape(2)))
+    if not abs(side) > 1e-9 * (1.0 + float(np.hypot(*np.asarray(cg1, float).reshape(2)))):
+        raise InputError("impact.contact_plane_angle: the contact plane passes through vehicle "
+                         "1's CG, so the side of vehicle 1 (the normal's sign) is undefined; "
+                         "give impact.normal_angle")
+    return gamma if side > 0 else psi - np.pi / 2
 
 
 def _check_depth(data, source: str) -> None:
@@ -238,7 +262,7 @@ def _angle_notes(data) -> tuple[str, ...]:
     """Warnings for bare numbers above 2 pi given for angles (degrees without a unit?)."""
     notes = []
     for table in ("vehicle1", "vehicle2", "impact"):
-        for key in ("heading", "theta", "phi", "normal_angle"):
+        for key in ("heading", "theta", "phi", "normal_angle", "contact_plane_angle"):
             value = data.get(table, {}).get(key)
             note = bare_angle_warning(f"{table}.{key}", value)
             if note:
