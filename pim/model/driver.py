@@ -58,12 +58,12 @@ class DriverInputs:
 
     @property
     def brake_start(self) -> float:
-        """First time [s] at which any wheel brakes (where the brake build-up starts)."""
+        """Time [s] at which the braking starts rising from zero (where the brake build-up
+        starts); ``-inf`` when the table brakes from its first entry (no build-up) or never."""
         on = np.flatnonzero(np.any(self.brake > 0, axis=-1))
-        if on.size == 0:
-            return 0.0
-        i = on[0]
-        return float(self.time[i - 1]) if i > 0 else float(self.time[0])
+        if on.size == 0 or on[0] == 0:
+            return -np.inf
+        return float(self.time[on[0] - 1])
 
 
 def wheel_tables(driver: DriverInputs | None, braking, steer):

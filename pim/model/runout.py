@@ -165,7 +165,7 @@ def _inputs_at(t, tables, buildup):
     """Steer [rad] and braking [-] of the four wheels at time ``t`` (braking times the
     build-up ramp)."""
     time, steer, brake, start = tables
-    ramp = brake_ramp(t, start, buildup)
+    ramp = 1.0 if buildup is None else brake_ramp(t, start, buildup)
     return (np.array([np.interp(t, time, steer[:, w]) for w in range(4)]),
             np.array([np.interp(t, time, brake[:, w]) for w in range(4)]) * ramp)
 
@@ -191,7 +191,7 @@ def timed_rhs(t, state, vehicle: RunoutVehicle, tables=None) -> np.ndarray:
     if tables is None:
         tables = wheel_tables(vehicle.driver, vehicle.braking, vehicle.steer)
     tyre = vehicle.tyre
-    steer, brake = _inputs_at(t, tables, 0.0 if tyre is None else tyre.buildup_time)
+    steer, brake = _inputs_at(t, tables, None if tyre is None else tyre.buildup_time)
     _, _, psi, vx, vy, om = np.asarray(state, dtype=float)
     c, s = np.cos(psi), np.sin(psi)
     cw, sw = np.cos(psi + steer), np.sin(psi + steer)
