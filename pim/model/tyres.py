@@ -297,7 +297,7 @@ def field_wheel_force(c, s, vx, vy, omega, px, py, cw, sw, load, mu, braking, vr
     ``F_x = -C_x kappa``, ``F_y = -C_y tan(alpha)`` (linear); full sliding (``psi >= 1``):
     ``F = -mu N V_s / |V_s|``, the Coulomb law of :func:`wheel_force`, regularised the same way
     (``V_s / sqrt(|V_s|^2 + v_r^2)`` on a locked wheel; on a rolling wheel the
-    regularisation fades as ``v_r^2 / sqrt(v_r^2 + V_r^2)`` so that the small sliding
+    regularisation fades as ``v_r^3 / (v_r^2 + V_r^2)`` so that the small sliding
     velocity of a slip-controlled wheel keeps its direction).
 
     Wheel rotation (quasi-static, no spin state): a braking fraction ``f < 1`` holds the
@@ -338,8 +338,9 @@ def field_wheel_force(c, s, vx, vy, omega, px, py, cw, sw, load, mu, braking, vr
     psi = weighted / np.maximum(np.maximum(weighted, 3.0 * grip * v_roll), 1e-12)
     adhesion = 3.0 * grip * psi * (1.0 - psi) ** 2 / np.maximum(weighted, 1e-12)
     vr2 = vr * vr                              # Coulomb's regularisation, faded out with
-    sliding = grip * psi * psi * (3.0 - 2.0 * psi) / np.sqrt(     # rolling speed
-        slide_x * slide_x + w * w + vr2 * vr2 / (vr2 + v_roll * v_roll))
+    fade = vr2 / (vr2 + v_roll * v_roll)       # the rolling speed
+    sliding = grip * psi * psi * (3.0 - 2.0 * psi) / np.sqrt(
+        slide_x * slide_x + w * w + vr2 * fade * fade)
     roll = (1.0 - locked) * rolling * load * u / np.sqrt(u * u + vr * vr)
     f_long = -(adhesion * kx + sliding * slide_x + roll)
     f_lat = -(adhesion * ky + sliding * w)
