@@ -56,6 +56,12 @@ def reconstruction_rows(rec: Reconstruction, units: str) -> list[dict]:
     return rows
 
 
+def tyre_models_line(rec: Reconstruction) -> str:
+    """Which tyre law each vehicle's run-out used (one line for the report and the CLI)."""
+    return "Run-out tyre model: " + ", ".join(
+        f"vehicle {i} {fit.tyre_model}" for i, fit in sorted(rec.post.runouts.items())) + "."
+
+
 def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
             with_video: bool = False) -> str:
     n = rec.samples.n if rec.samples else 0
@@ -66,7 +72,8 @@ def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
              f"over the measured velocities and yaw rates, exact derivatives); "
              + (f"5/50/95 % from a Monte Carlo of {n} samples over the stated uncertainties "
                 f"({rec.samples.n_used} used)." if n else "no Monte Carlo (--samples 0)."),
-             "", "| unknown | value | 5 % | 50 % | 95 % | unit | main driver of the spread |",
+             ""] + ([tyre_models_line(rec), ""] if rec.post else []) + [
+             "| unknown | value | 5 % | 50 % | 95 % | unit | main driver of the spread |",
              "|---|---|---|---|---|---|---|"]
     for r in rows:
         driver = (f"{r['driver']} ({r['driver_index']:.2f})" if r["driver_index"] == r[
@@ -123,10 +130,14 @@ def reconstruct(case_name, out, samples, seed, workers, video, units, as_json):
     if as_json:
         echo_json({"case": case.name, "units": "si", "samples": samples,
                    "messages": rec.messages,
+                   "tyre_models": ({f"vehicle{i}": fit.tyre_model for i, fit in
+                                    rec.post.runouts.items()} if rec.post else {}),
                    "goodness_of_fit": rec.goodness.to_dict() if rec.goodness else None,
                    "unknowns": {r["name"]: {k: r[k] for k in ("value", "p5", "p50", "p95")}
                                 for r in rec.table()}})
     else:
+        if rec.post is not None:
+            click.echo(tyre_models_line(rec))
         for r in rows:
             click.echo(f"{r['name']:32s} {r['value']:10.4g}  [{r['p5']:.4g}, {r['p50']:.4g}, "
                        f"{r['p95']:.4g}] {r['unit']}")
