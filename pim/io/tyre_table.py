@@ -22,6 +22,7 @@ Coulomb tyre; a ``[driver.vehicleN]`` table replaces the evidence's constant ``w
 
 from __future__ import annotations
 
+import re
 from dataclasses import replace
 
 from ..model.driver import DriverInputs
@@ -48,12 +49,22 @@ def _quantity(value, unit: str, field: str) -> float:
                          f"(e.g. '1 {unit}')") from None
 
 
+def _stiffness(value, unit: str, field: str) -> float:
+    """A stiffness; per angle (``unit`` "N/rad") the string must name its angle unit, since
+    pint takes radians as dimensionless ("80 kN" is no cornering stiffness)."""
+    if unit == "N/rad" and isinstance(value, str) and not re.search(
+            r"/\s*(rad|radian|deg|degree)s?\s*$", value):
+        raise ValueError(f"{field}: {value!r} is not a force per angle (e.g. '80 kN/rad', "
+                         f"'1400 N/deg')")
+    return _quantity(value, unit, field)
+
+
 def _one_or_four(value, unit: str, field: str):
     if isinstance(value, list):
         if len(value) != 4:
             raise ValueError(f"{field} must be one value or four (FL, FR, RL, RR)")
-        return tuple(_quantity(v, unit, f"{field}[{i}]") for i, v in enumerate(value))
-    return _quantity(value, unit, field)
+        return tuple(_stiffness(v, unit, f"{field}[{i}]") for i, v in enumerate(value))
+    return _stiffness(value, unit, field)
 
 
 def _tyre(table, where) -> TyreData:

@@ -43,7 +43,7 @@ from .tyres import (
 )
 
 __all__ = ["RunoutVehicle", "Runout", "RunoutBatch", "runout_rhs", "runout", "runout_many",
-           "MAX_TIME", "timed_rhs", "pre_impact_motion", "FRONT", "LEFT"]
+           "MAX_TIME", "timed_rhs", "TimedRhs", "pre_impact_motion", "FRONT", "LEFT"]
 
 FRONT = np.array([1.0, 1.0, 0.0, 0.0])  # per wheel (FL, FR, RL, RR): front axle
 LEFT = np.array([1.0, 0.0, 1.0, 0.0])   # per wheel: left side
@@ -188,32 +188,45 @@ def timed_rhs(t, state, vehicle: RunoutVehicle, tables=None) -> np.ndarray:
     tables : tuple, optional
         ``wheel_tables(vehicle.driver, vehicle.braking, vehicle.steer)``, precomputed.
     """
-    if tables is None:
-        tables = wheel_tables(vehicle.driver, vehicle.braking, vehicle.steer)
-    tyre = vehicle.tyre
-    steer, brake = _inputs_at(t, tables, None if tyre is None else tyre.buildup_time)
-    _, _, psi, vx, vy, om = np.asarray(state, dtype=float)
-    c, s = np.cos(psi), np.sin(psi)
-    cw, sw = np.cos(psi + steer), np.sin(psi + steer)
-    pos, static = vehicle.positions, vehicle.loads
-    mu, vr = vehicle.friction, vehicle.regularisation
-    if tyre is None:
-        fx, fy, mz = wheel_force(c, s, vx, vy, om, pos[:, 0], pos[:, 1], cw, sw, static, mu,
-                                 brake, vr)
-    else:
-        c_long = tyre.per_wheel("longitudinal_stiffness")
-        c_lat = tyre.per_wheel("cornering_stiffness")
-        loads = static
-        for _ in range(2):
-            fx, fy, mz = field_wheel_force(c, s, vx, vy, om, pos[:, 0], pos[:, 1], cw, sw,
-                                           loads, mu, brake, vr, c_long, c_lat,
-                                           tyre.rolling_resistance)
-            ax, ay = fx.sum() / vehicle.mass, fy.sum() / vehicle.mass
-            loads = transferred_load(static, vehicle.mass, c * ax + s * ay, -s * ax + c * ay,
-                                     tyre.cg_height, vehicle.wheelbase, vehicle.track,
-                                     vehicle.cg_to_front, FRONT, LEFT)
-    return np.array([vx, vy, om, fx.sum() / vehicle.mass, fy.sum() / vehicle.mass,
-                     mz.sum() / vehicle.yaw_inertia])
+    return TimedRhs(vehicle, tables)(t, state)
+
+
+class TimedRhs:
+    """:func:`timed_rhs` with the vehicle's constant parts computed once (for solve_ivp)."""
+
+    def __init__(self, vehicle: RunoutVehicle, tables=None):
+        self.vehicle = vehicle
+        self.tables = (wheel_tables(vehicle.driver, vehicle.braking, vehicle.steer)
+                       if tables is None else tables)
+        self.positions, self.static = vehicle.positions, vehicle.loads
+        tyre = vehicle.tyre
+        self.buildup = None if tyre is None else tyre.buildup_time
+        if tyre is not None:
+            self.c_long = tyre.per_wheel("longitudinal_stiffness")
+            self.c_lat = tyre.per_wheel("cornering_stiffness")
+
+    def __call__(self, t, state) -> np.ndarray:
+        vehicle, tyre = self.vehicle, self.vehicle.tyre
+        steer, brake = _inputs_at(t, self.tables, self.buildup)
+        _, _, psi, vx, vy, om = np.asarray(state, dtype=float)
+        c, s = np.cos(psi), np.sin(psi)
+        cw, sw = np.cos(psi + steer), np.sin(psi + steer)
+        px, py, static = self.positions[:, 0], self.positions[:, 1], self.static
+        mu, vr, mass = vehicle.friction, vehicle.regularisation, vehicle.mass
+        if tyre is None:
+            fx, fy, mz = wheel_force(c, s, vx, vy, om, px, py, cw, sw, static, mu, brake, vr)
+        else:
+            loads = static
+            for _ in range(2):
+                fx, fy, mz = field_wheel_force(c, s, vx, vy, om, px, py, cw, sw, loads, mu,
+                                               brake, vr, self.c_long, self.c_lat,
+                                               tyre.rolling_resistance)
+                ax, ay = fx.sum() / mass, fy.sum() / mass
+                loads = transferred_load(static, mass, c * ax + s * ay, -s * ax + c * ay,
+                                         tyre.cg_height, vehicle.wheelbase, vehicle.track,
+                                         vehicle.cg_to_front, FRONT, LEFT)
+        return np.array([vx, vy, om, fx.sum() / mass, fy.sum() / mass,
+                         mz.sum() / vehicle.yaw_inertia])
 
 
 def pre_impact_motion(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate,
@@ -230,9 +243,8 @@ def pre_impact_motion(vehicle: RunoutVehicle, position, heading, velocity, yaw_r
     if not start_time < 0:
         raise ValueError(f"pre_impact_motion: start_time must be < 0 [s], got {start_time!r}")
     y0 = _initial_state(position, heading, velocity, yaw_rate)
-    tables = wheel_tables(vehicle.driver, vehicle.braking, vehicle.steer)
-    sol = solve_ivp(lambda t, y: timed_rhs(t, y, vehicle, tables), (start_time, 0.0), y0,
-                    method="DOP853", rtol=rtol, atol=atol)
+    sol = solve_ivp(TimedRhs(vehicle), (start_time, 0.0), y0, method="LSODA", rtol=rtol,
+                    atol=atol)
     end = sol.y[:, -1]
     if np.hypot(end[3], end[4]) < vehicle.regularisation:
         raise ValueError("pre_impact_motion: the vehicle stops before the impact")
@@ -306,7 +318,7 @@ def _stop_measure(state, reach) -> np.ndarray:
 
 def runout(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *,
            max_time=MAX_TIME, stop_speed=None, rtol=1e-8, atol=1e-10,
-           method="DOP853", dense_output=False) -> Runout:
+           method=None, dense_output=False) -> Runout:
     """Integrate one vehicle from its post-impact state to rest with scipy ``solve_ivp``.
 
     Parameters
@@ -320,7 +332,9 @@ def runout(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *,
     stop_speed : float, optional
         [m/s]; default ``regularisation / 5``.
     rtol, atol, method, dense_output
-        Passed to ``scipy.integrate.solve_ivp``.
+        Passed to ``scipy.integrate.solve_ivp``; ``method`` defaults to "DOP853" for the
+        Coulomb tyre, "LSODA" for the field tyre or driver tables (stiff at low rolling
+        speed: the lateral force's slope ``C_y / V_r``).
     """
     from scipy.integrate import solve_ivp
 
@@ -340,14 +354,12 @@ def runout(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *,
     event.terminal = True
     event.direction = -1
     if vehicle.timed:
-        tables = wheel_tables(vehicle.driver, vehicle.braking, vehicle.steer)
-
-        def fun(t, y):
-            return timed_rhs(t, y, vehicle, tables)
+        fun = TimedRhs(vehicle)
+        method = method or "LSODA"     # the brush tyre is stiff at low rolling speed
     else:
         def fun(t, y):
             return runout_rhs(y, *args)
-    sol = solve_ivp(fun, (0.0, max_time), y0, method=method,
+    sol = solve_ivp(fun, (0.0, max_time), y0, method=method or "DOP853",
                     rtol=rtol, atol=atol, events=event, dense_output=dense_output)
     stopped = sol.status == 1
     states = sol.y.T
