@@ -4,12 +4,14 @@ synthetic case's report files and JSON (slow: two run-out fits)."""
 import json
 from dataclasses import replace
 from importlib import resources
+from types import SimpleNamespace
 
 import pytest
 
 import pim
 from pim.analysis.reconstruction import reconstruct
 from pim.cli.main import main
+from pim.cli.reconstruct import tyre_models_line
 from pim.io.casefile import load_case
 
 KNOWN = 31.09 * 0.3048
@@ -70,3 +72,20 @@ def test_synthetic_case_report_and_json(tmp_path, capsys):
     assert {p.name for p in tmp_path.iterdir()} == {"report.md", "reconstruction.csv",
                                                     "scene.png", "reconstruction.mp4"}
     assert "vehicle1.speed" in (tmp_path / "report.md").read_text()
+
+
+def test_the_tyre_model_line_names_each_vehicles_run_out_law():
+    rec = SimpleNamespace(post=SimpleNamespace(runouts={2: SimpleNamespace(tyre_model="coulomb"),
+                                                        1: SimpleNamespace(tyre_model="brush")}))
+    assert tyre_models_line(rec) == ("Run-out tyre model: vehicle 1 brush, "
+                                     "vehicle 2 coulomb.")
+
+
+@pytest.mark.slow
+def test_reconstruct_on_the_field_tyre_says_so(tmp_path, capsys):
+    case = tmp_path / "case.toml"
+    case.write_text((resources.files("pim.io") / "cases" / "synthetic-runout.toml").read_text()
+                    + '\n[tyres.vehicle1]\ncg_height = "0.5 m"\n')
+    assert main(["reconstruct", str(case), "--samples", "0", "--no-video", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["tyre_models"] == {"vehicle1": "brush", "vehicle2": "coulomb"}
