@@ -309,12 +309,8 @@ def field_wheel_force(c, s, vx, vy, omega, px, py, cw, sw, load, mu, braking, vr
 
     Parameters
     ----------
-    c, s : cos and sin of the vehicle's heading psi.
-    vx, vy : CG velocity [m/s]; omega : yaw rate [rad/s].
-    px, py : tyre position in the body frame [m].
-    cw, sw : cos and sin of the wheel's heading psi + delta.
-    load : normal load N [N] (>= 0); mu : friction coefficient [-]; braking : f in [0, 1].
-    vr : slip regularisation v_r [m/s].
+    c, s, vx, vy, omega, px, py, cw, sw, load, mu, braking, vr
+        As :func:`wheel_force` (``load`` >= 0 [N], the transferred load).
     c_long : longitudinal stiffness C_x [N per unit slip]; c_lat : cornering stiffness C_y
         [N/rad]; rolling : rolling-resistance coefficient c_rr [-].
 
