@@ -48,47 +48,49 @@ def _table(times, table, w, t):  # pragma: no cover - compiled
 
 
 @njit(inline="always", error_model="numpy")
+def _wheel(t, w, c, s, psi, vx, vy, om, px, py, ld, mu, vr, times, steer_tab, brake_tab,
+           ramp, tyre):  # pragma: no cover - compiled
+    """One wheel's force and moment at load ``ld`` with its inputs at time ``t``."""
+    d = _table(times, steer_tab, w, t)
+    cw, sw = np.cos(psi + d), np.sin(psi + d)
+    br = _table(times, brake_tab, w, t) * ramp
+    if tyre.shape[0] == 0:
+        return _wheel_force(c, s, vx, vy, om, px[w], py[w], cw, sw, ld, mu, br, vr)
+    return _field_force(c, s, vx, vy, om, px[w], py[w], cw, sw, ld, mu, br, vr, tyre[w],
+                        tyre[4 + w], tyre[10])
+
+
+@njit(inline="always", error_model="numpy")
 def _rhs(t, x, y, psi, vx, vy, om, mass, inertia, px, py, load, mu, vr, times, steer_tab,
          brake_tab, tyre):  # pragma: no cover - compiled
-    """State derivative; ``tyre`` is None-like (empty) for Coulomb, else (c_long (4),
-    c_lat (4), rolling, height, wheelbase, track, cg_to_front, buildup, brake_start)."""
+    """State derivative; ``tyre`` is empty for Coulomb, else (c_long (4), c_lat (4),
+    brake_start, buildup, rolling, height, wheelbase, track, cg_to_front)."""
     c, s = np.cos(psi), np.sin(psi)
     brush = tyre.shape[0] > 0
     ramp = _ramp(t, tyre[8], tyre[9]) if brush else 1.0
-    cws = np.empty(4)
-    sws = np.empty(4)
-    brs = np.empty(4)
-    for w in range(4):
-        d = _table(times, steer_tab, w, t)
-        cws[w], sws[w] = np.cos(psi + d), np.sin(psi + d)
-        brs[w] = _table(times, brake_tab, w, t) * ramp
     fx = 0.0
     fy = 0.0
     mz = 0.0
+    for w in range(4):                 # static loads
+        a, b, m = _wheel(t, w, c, s, psi, vx, vy, om, px, py, load[w], mu, vr, times,
+                         steer_tab, brake_tab, ramp, tyre)
+        fx += a
+        fy += b
+        mz += m
     if not brush:
-        for w in range(4):
-            a, b, m = _wheel_force(c, s, vx, vy, om, px[w], py[w], cws[w], sws[w], load[w], mu,
-                                   brs[w], vr)
-            fx += a
-            fy += b
-            mz += m
         return vx, vy, om, fx / mass, fy / mass, mz / inertia
-    loads = load.copy()
-    for _ in range(2):        # static loads, then the loads their acceleration transfers
-        fx = 0.0
-        fy = 0.0
-        mz = 0.0
-        for w in range(4):
-            a, b, m = _field_force(c, s, vx, vy, om, px[w], py[w], cws[w], sws[w], loads[w],
-                                   mu, brs[w], vr, tyre[w], tyre[4 + w], tyre[10])
-            fx += a
-            fy += b
-            mz += m
-        ax, ay = fx / mass, fy / mass
-        for w in range(4):
-            loads[w] = _transferred(load[w], mass, c * ax + s * ay, -s * ax + c * ay,
-                                    tyre[11], tyre[12], tyre[13], tyre[14], _FRONT[w],
-                                    _LEFT[w])
+    along, across = (c * fx + s * fy) / mass, (-s * fx + c * fy) / mass
+    fx = 0.0
+    fy = 0.0
+    mz = 0.0
+    for w in range(4):                 # the loads that acceleration transfers
+        ld = _transferred(load[w], mass, along, across, tyre[11], tyre[12], tyre[13],
+                          tyre[14], _FRONT[w], _LEFT[w])
+        a, b, m = _wheel(t, w, c, s, psi, vx, vy, om, px, py, ld, mu, vr, times, steer_tab,
+                         brake_tab, ramp, tyre)
+        fx += a
+        fy += b
+        mz += m
     return vx, vy, om, fx / mass, fy / mass, mz / inertia
 
 
