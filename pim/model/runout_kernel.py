@@ -51,8 +51,12 @@ def _table(times, table, w, t):  # pragma: no cover - compiled
 def _wheel(t, w, c, s, psi, vx, vy, om, px, py, ld, mu, vr, times, steer_tab, brake_tab,
            ramp, tyre):  # pragma: no cover - compiled
     """One wheel's force and moment at load ``ld`` with its inputs at time ``t``."""
-    d = _table(times, steer_tab, w, t)
-    cw, sw = np.cos(psi + d), np.sin(psi + d)
+    if times.shape[0] == 1:            # constant steer: its cos and sin precomputed
+        cd, sd = steer_tab[0, w], steer_tab[1, w]
+    else:
+        d = np.interp(t, times, steer_tab[:, w])
+        cd, sd = np.cos(d), np.sin(d)
+    cw, sw = c * cd - s * sd, s * cd + c * sd          # psi + steer angle
     br = _table(times, brake_tab, w, t) * ramp
     if tyre.shape[0] == 0:
         return _wheel_force(c, s, vx, vy, om, px[w], py[w], cw, sw, ld, mu, br, vr)
@@ -175,7 +179,8 @@ def _tyre_rows(vehicle: RunoutVehicle, n: int, brake_start: float) -> np.ndarray
 
 def _input_tables(vehicle: RunoutVehicle, n: int):
     """``(time (k,), steer (n, k, 4), brake (n, k, 4), brake_start)``: the driver's tables,
-    or the per-sample constant ``braking`` and ``steer`` as one-row tables."""
+    or the per-sample constant ``braking`` and ``steer`` as one-row tables (then ``steer``
+    is (n, 2, 4): the cos and sin of the constant angles, precomputed)."""
     if vehicle.driver is not None:
         time, steer, brake, start = wheel_tables(vehicle.driver, None, None)
         return (np.ascontiguousarray(time), np.ascontiguousarray(np.broadcast_to(
@@ -183,7 +188,7 @@ def _input_tables(vehicle: RunoutVehicle, n: int):
                 brake, (n,) + brake.shape)), start)
     steer = np.broadcast_to(np.asarray(vehicle.steer, dtype=float), (n, 4))
     brake = np.broadcast_to(np.asarray(vehicle.braking, dtype=float), (n, 4))
-    return (np.zeros(1), np.ascontiguousarray(steer[:, None, :]),
+    return (np.zeros(1), np.ascontiguousarray(np.stack([np.cos(steer), np.sin(steer)], axis=1)),
             np.ascontiguousarray(brake[:, None, :]), 0.0)
 
 
