@@ -3,7 +3,9 @@ of :mod:`pim.model.tyres` is applied at the CG (force and yaw moment) every step
 
 This checks :func:`pim.model.runout.runout`'s equations of motion and integration with an
 independent integrator (Chipmunk's semi-implicit Euler); the force law itself is the one
-under test in tests/test_tyres.py against closed forms.
+under test in tests/test_tyres.py against closed forms. A vehicle on the field tyre or with
+driver tables (``vehicle.timed``) gets the same forces as the run-out
+(:class:`pim.model.runout.TimedRhs`: brush law, load transfer, inputs at pymunk's time).
 """
 
 from __future__ import annotations
@@ -11,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import pymunk
 
-from pim.model.runout import MAX_TIME, Runout, RunoutVehicle
+from pim.model.runout import MAX_TIME, Runout, RunoutVehicle, TimedRhs
 from pim.model.tyres import net_force_and_moment, tyre_forces
 
 __all__ = ["pymunk_runout"]
@@ -38,6 +40,15 @@ def pymunk_runout(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate,
     body.angular_velocity = float(yaw_rate)
     space.add(body)
     times, states = [], []
+    timed = TimedRhs(vehicle) if vehicle.timed else None
+
+    def forces_at(t, v):
+        if timed is not None:
+            rate = timed(t, [0.0, 0.0, body.angle, v[0], v[1], body.angular_velocity])
+            return vehicle.mass * rate[3:5], vehicle.yaw_inertia * rate[5]
+        forces = tyre_forces(v, body.angular_velocity, body.angle, positions, loads,
+                             vehicle.friction, braking, steer, vehicle.regularisation)
+        return net_force_and_moment(forces, positions, body.angle)
 
     def record(t):
         times.append(t)
@@ -52,9 +63,7 @@ def pymunk_runout(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate,
         if np.hypot(*v) + abs(body.angular_velocity) * reach < stop_speed:
             stopped = True
             break
-        forces = tyre_forces(v, body.angular_velocity, body.angle, positions, loads,
-                             vehicle.friction, braking, steer, vehicle.regularisation)
-        force, moment = net_force_and_moment(forces, positions, body.angle)
+        force, moment = forces_at(t, v)
         body.force = tuple(map(float, force))
         body.torque = float(moment)
         space.step(dt)

@@ -4,12 +4,14 @@ synthetic case's report files and JSON (slow: two run-out fits)."""
 import json
 from dataclasses import replace
 from importlib import resources
+from types import SimpleNamespace
 
 import pytest
 
 import pim
 from pim.analysis.reconstruction import reconstruct
 from pim.cli.main import main
+from pim.cli.reconstruct import tyre_models_line
 from pim.io.casefile import load_case
 from pim.io.output import MARKER
 
@@ -99,3 +101,18 @@ def test_no_monte_carlo_prints_no_nan_and_json_speaks_the_case_units(capsys):
     assert 10 < data["unknowns"]["vehicle1.speed"]["value"] < 30          # mph, not m/s
     check = data["momentum_check"]["vehicle1.speed"]
     assert check["unit"] == "mph" and check["sd"] > 0
+def test_the_tyre_model_line_names_each_vehicles_run_out_law():
+    rec = SimpleNamespace(post=SimpleNamespace(runouts={2: SimpleNamespace(tyre_model="coulomb"),
+                                                        1: SimpleNamespace(tyre_model="brush")}))
+    assert tyre_models_line(rec) == ("Run-out tyre model: vehicle 1 brush, "
+                                     "vehicle 2 coulomb.")
+
+
+@pytest.mark.slow
+def test_reconstruct_on_the_field_tyre_says_so(tmp_path, capsys):
+    case = tmp_path / "case.toml"
+    case.write_text((resources.files("pim.io") / "cases" / "synthetic-runout.toml").read_text()
+                    + '\n[tyres.vehicle1]\ncg_height = "0.5 m"\n')
+    assert main(["reconstruct", str(case), "--samples", "0", "--no-video", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["tyre_models"] == {"vehicle1": "brush", "vehicle2": "coulomb"}

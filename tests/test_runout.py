@@ -1,11 +1,19 @@
 """Run-out forward model (pim.model.runout) against closed forms, and the batched
 fixed-step integrator against the solve_ivp reference."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
+from pim.model.driver import DriverInputs
 from pim.model.runout import RunoutVehicle, runout, runout_many
-from pim.model.tyres import STANDARD_GRAVITY, regularised_slide_distance
+from pim.model.tyres import (
+    STANDARD_GRAVITY,
+    TyreData,
+    linear_buildup_stopping_distance,
+    regularised_slide_distance,
+)
 
 CAR = RunoutVehicle(mass=1500.0, yaw_inertia=2500.0, wheelbase=2.7, track=1.5,
                     cg_to_front=1.2, friction=0.8)
@@ -103,3 +111,61 @@ def test_bad_vehicle_names_the_field(field, value):
 def test_nan_state_names_the_field():
     with pytest.raises(ValueError, match="runout.velocity"):
         runout(CAR, [0, 0], 0.0, [np.nan, 1.0], 0.0)
+
+
+# ---- the field tyre and driver inputs against closed forms ----------------------------------
+
+def _field_car(**tyre):
+    settings = {"cg_height": 0.0, "rolling_resistance": 0.0, **tyre}
+    return RunoutVehicle(1500.0, 2500.0, 2.7, 1.5, 1.2, 0.8, tyre=TyreData(**settings))
+
+
+def test_locked_spinning_slide_with_the_field_tyre_is_the_coulomb_run_out():
+    # locked wheels slide: the brush law is Coulomb's there, so the whole run-out is the same
+    coulomb = runout(CAR, [1.0, -2.0], 0.4, [14.0, 5.0], 2.5)
+    field = runout(_field_car(), [1.0, -2.0], 0.4, [14.0, 5.0], 2.5)
+    assert CAR.tyre_model == "coulomb" and _field_car().tyre_model == "brush"
+    np.testing.assert_allclose(field.rest_position, coulomb.rest_position, atol=1e-6)
+    assert field.rest_heading == pytest.approx(coulomb.rest_heading, abs=1e-7)
+
+
+@pytest.mark.parametrize("fraction, buildup, height", [(1.0, 0.3, 0.55), (0.5, 0.2, 0.55),
+                                                       (0.7, 0.0, 0.0)])
+def test_straight_braking_distance_with_a_linear_build_up(fraction, buildup, height):
+    # closed form s = v0^2 / (2a) + v0 t_b / 2 - a t_b^2 / 24 (derived in
+    # pim.model.tyres.linear_buildup_stopping_distance, checked there by quadrature); the
+    # load transfer moves load to the front but keeps sum(f mu N) = f mu m g
+    car = replace(_field_car(buildup_time=buildup, cg_height=height),
+                  braking=(fraction,) * 4)
+    v0 = 20.0
+    r = runout(car, [0.0, 0.0], 0.0, [v0, 0.0], 0.0)
+    expected = linear_buildup_stopping_distance(v0, fraction * 0.8 * STANDARD_GRAVITY, buildup)
+    assert r.stopped and r.distance == pytest.approx(expected, rel=5e-4)
+
+
+def _understeer_gradient(car, c_front, c_rear):
+    """Bicycle model (Gillespie 1992, eq. 6-15; Milliken & Milliken 1995, ch. 5):
+    delta = L / R + K a_y, K = m / L (b / C_f - a / C_r) [rad s^2 / m], C per axle."""
+    a = car.cg_to_front
+    b = car.wheelbase - a
+    return car.mass / car.wheelbase * (b / (2 * c_front) - a / (2 * c_rear))
+
+
+@pytest.mark.parametrize("speed", [10.0, 25.0])
+def test_j_turn_settles_to_the_bicycle_models_steady_state_cornering(speed):
+    # a J-turn (steer ramp 0 -> delta over 0.5 s, driver table) at small lateral
+    # acceleration: the yaw rate settles to r = v delta / (L + K v^2) and the radius to
+    # R = (L + K v^2) / delta; mu is large so the brush stays at its linear slope
+    c_front, c_rear = 60e3, 90e3
+    delta = 0.01
+    car = RunoutVehicle(1500.0, 2500.0, 2.7, 1.5, 1.2, 20.0,
+                        tyre=TyreData(cornering_stiffness=(c_front, c_front, c_rear, c_rear),
+                                      cg_height=0.55, rolling_resistance=0.0),
+                        driver=DriverInputs([0.0, 0.5], [0.0, delta], np.zeros((2, 4))))
+    r = runout(car, [0.0, 0.0], 0.0, [speed, 0.0], 0.0, max_time=4.0)
+    vx, vy, omega = r.states[-1, 3:]
+    v = np.hypot(vx, vy)
+    k = _understeer_gradient(car, c_front, c_rear)
+    assert k > 0                                          # understeer
+    assert omega == pytest.approx(v * delta / (car.wheelbase + k * v * v), rel=3e-3)
+    assert v / omega == pytest.approx((car.wheelbase + k * v * v) / delta, rel=3e-3)

@@ -2,12 +2,15 @@
 fixed-step integrator (same scheme: agreement to round-off), solve_ivp (the reference), and
 the path-point distance against geometry."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
+from pim.model.driver import DriverInputs
 from pim.model.runout import RunoutVehicle, runout, runout_many
 from pim.model.runout_kernel import integrate_many
-from pim.model.tyres import regularised_slide_distance
+from pim.model.tyres import TyreData, regularised_slide_distance
 
 CAR = RunoutVehicle(mass=1500.0, yaw_inertia=2500.0, wheelbase=2.7, track=1.5,
                     cg_to_front=1.2, friction=0.8, braking=(1.0, 1.0, 0.3, 0.3),
@@ -64,3 +67,21 @@ def test_free_rolling_is_flagged_not_stopped():
 def test_non_finite_state_is_an_error():
     with pytest.raises(ValueError, match="finite"):
         integrate_many(CAR, [[0.0, np.nan]], [0.0], [[1.0, 0.0]], [0.0])
+
+
+def test_field_tyre_and_driver_tables_match_solve_ivp():
+    # the compiled brush law with load transfer, build-up and a steer/brake table against
+    # the numpy right-hand side integrated by solve_ivp
+    driver = DriverInputs([0.0, 0.4, 1.0], [0.0, 0.15, 0.05],
+                          [[0, 0, 0, 0], [0.6, 0.6, 0.2, 0.2], [1, 1, 0.3, 0.3]])
+    car = replace(CAR, tyre=TyreData(buildup_time=0.2), driver=driver)
+    pos = np.array([[0.0, 0.0], [1.0, 2.0], [-1.0, 0.5]])
+    psi = np.array([0.3, -1.0, 2.0])
+    vel = np.array([[18.0, 4.0], [-6.0, 7.0], [3.0, -9.0]])
+    omega = np.array([1.0, -2.0, 0.0])
+    final, _, stopped, _ = integrate_many(car, pos, psi, vel, omega)
+    assert stopped.all()
+    for k in range(3):
+        ref = runout(car, pos[k], psi[k], vel[k], omega[k], rtol=1e-10, atol=1e-12)
+        assert np.hypot(*(final[k, :2] - ref.rest_position)) < 1e-2
+        assert abs(final[k, 2] - ref.rest_heading) < 2e-3

@@ -10,10 +10,16 @@ from scipy.integrate import quad
 from pim.model.geometry import perp, rotate
 from pim.model.tyres import (
     STANDARD_GRAVITY,
+    TyreData,
+    brake_ramp,
+    field_wheel_force,
+    linear_buildup_stopping_distance,
     net_force_and_moment,
     regularised_slide_distance,
     static_loads,
+    transferred_load,
     tyre_forces,
+    wheel_force,
     wheel_positions,
 )
 
@@ -81,3 +87,122 @@ def test_regularised_slide_distance_is_the_integral(v0):
         expected, rel=1e-10)
     assert regularised_slide_distance(v0, mu, regularisation=1e-9) == pytest.approx(
         v0 * v0 / (2 * mu * STANDARD_GRAVITY), rel=1e-9)
+
+
+# ---- the field tyre: combined-slip brush (pim.model.tyres.field_wheel_force) ---------------
+
+def _field(u, w, braking, load=4000.0, mu=0.8, c_long=150e3, c_lat=80e3, rolling=0.0,
+           vr=0.05):
+    """Force (longitudinal, lateral) of a tyre at the origin heading +x with contact-point
+    velocity (u, w) [m/s]."""
+    fx, fy, _ = field_wheel_force(1.0, 0.0, u, w, 0.0, 0.0, 0.0, 1.0, 0.0, load, mu, braking,
+                                  vr, c_long, c_lat, rolling)
+    return np.asarray(fx), np.asarray(fy)
+
+
+def test_field_tyre_is_linear_at_small_slip():
+    # lateral: F_y = -C_y tan(alpha), the small-slip limit of the brush (Pacejka 2012 sec. 3.2)
+    u, alpha = 20.0, np.radians(0.002)   # psi = 1e-4: the brush is linear to 1e-4
+    _, fy = _field(u, u * np.tan(alpha), 0.0)
+    assert fy == pytest.approx(-80e3 * np.tan(alpha), rel=2e-3)
+    # longitudinal: f = 0.003 of the grip gives F_x = -C_x sigma_x with the inverted brush
+    fx, _ = _field(u, 0.0, 0.003)
+    assert fx == pytest.approx(-0.003 * 0.8 * 4000.0, rel=1e-4)
+
+
+@settings(max_examples=80, deadline=None)
+@given(st.floats(0.0, 0.999), st.floats(2.0, 40.0))
+def test_straight_braking_force_is_the_demanded_fraction_of_the_grip(f, u):
+    # exact but for the slip regularisation (rolling speed sqrt(u^2 + v_r^2)), ~ (v_r / u)^2
+    fx, fy = _field(u, 0.0, f)
+    assert fx == pytest.approx(-f * 0.8 * 4000.0, rel=1e-3, abs=1e-6)
+    assert fy == pytest.approx(0.0, abs=1e-9)
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.floats(-30, 30), st.floats(-30, 30), st.floats(0, 1), st.floats(1e3, 3e5),
+       st.floats(1e3, 3e5))
+def test_field_tyre_never_exceeds_the_friction_circle(u, w, f, c_long, c_lat):
+    fx, fy = _field(u, w, f, c_long=c_long, c_lat=c_lat)
+    assert np.hypot(fx, fy) <= 0.8 * 4000.0 * (1 + 1e-12)
+    assert fx * u + fy * w <= 1e-9            # dissipative
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.floats(-30, 30), st.floats(-30, 30), st.floats(-3, 3))
+def test_locked_wheel_is_the_coulomb_law(u, w, omega):
+    # the high-slip limit: a locked wheel slides, F = -mu N V_s / |V_s| (regularised alike)
+    args = (np.cos(0.4), np.sin(0.4), u, w, omega, 1.2, 0.75, np.cos(0.5), np.sin(0.5), 4000.0,
+            0.8, 1.0, 0.05)
+    new = field_wheel_force(*args, 150e3, 80e3, 0.013)
+    old = wheel_force(*args)
+    np.testing.assert_allclose(new, old, rtol=1e-12, atol=1e-9)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.floats(0.0, 20.0), st.floats(0.2, 30.0).map(lambda x: x * np.sign(x)))
+def test_free_rolling_beyond_the_saturation_slip_angle_is_the_coulomb_law(u, w):
+    # free rolling at a slip angle with C_y tan(alpha) >= 3 mu N: full sliding sideways
+    if 80e3 * w < 3 * 0.8 * 4000.0 * np.hypot(u, 0.05):
+        return
+    new = field_wheel_force(1.0, 0.0, u, w, 0.0, 0.0, 0.0, 1.0, 0.0, 4000.0, 0.8, 0.0, 0.05,
+                            150e3, 80e3, 0.0)
+    old = wheel_force(1.0, 0.0, u, w, 0.0, 0.0, 0.0, 1.0, 0.0, 4000.0, 0.8, 0.0, 0.05)
+    # equal up to the regularisation, which differs by at most (v_r / w)^2 / 2
+    np.testing.assert_allclose(new, old, rtol=(0.05 / w) ** 2 / 2 + 1e-12, atol=1e-9)
+
+
+def test_brush_curve_is_pacejkas_isotropic_brush():
+    # C_x = C_y: F = mu N (3 psi - 3 psi^2 + psi^3) against the slip, psi = C sigma / (3 mu N)
+    # (Pacejka 2012, sec. 3.2.2); free rolling so sigma = tan(alpha) = w / u
+    u = 10.0
+    for alpha in np.radians([1.0, 3.0, 6.0]):
+        psi = 80e3 * np.tan(alpha) / (3 * 0.8 * 4000.0)
+        _, fy = _field(u, u * np.tan(alpha), 0.0, c_long=80e3, vr=1e-9)
+        expected = 0.8 * 4000.0 * (3 * psi - 3 * psi**2 + psi**3) if psi < 1 else 3200.0
+        assert -fy == pytest.approx(expected, rel=1e-9)
+
+
+def test_rolling_resistance_of_a_free_rolling_wheel():
+    fx, fy = _field(15.0, 0.0, 0.0, rolling=0.013)
+    assert fx == pytest.approx(-0.013 * 4000.0, rel=1e-5) and fy == 0
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.floats(-8, 8), st.floats(-8, 8))
+def test_load_transfer_keeps_weight_and_balances_the_inertial_moments(a_long, a_lat):
+    mass, length, track, a, h = 1500.0, 2.7, 1.5, 1.2, 0.55
+    static = static_loads(mass, length, a)
+    front, left = np.array([1.0, 1, 0, 0]), np.array([1.0, 0, 1, 0])
+    loads = transferred_load(static, mass, a_long, a_lat, h, length, track, a, front, left)
+    if np.any(loads == 0):                       # a wheel lifted off: no balance expected
+        return
+    pos = wheel_positions(length, track, a)
+    assert loads.sum() == pytest.approx(mass * STANDARD_GRAVITY, rel=1e-12)
+    # pitch: sum N x = -m a_x h (braking loads the front); roll: sum N y = -m a_y h
+    assert (loads * pos[:, 0]).sum() == pytest.approx(-mass * a_long * h, abs=1e-6)
+    assert (loads * pos[:, 1]).sum() == pytest.approx(-mass * a_lat * h, abs=1e-6)
+
+
+def test_brake_ramp_and_the_build_up_stopping_distance():
+    assert brake_ramp(np.array([-1.0, 0.0, 0.1, 0.2, 1.0]), 0.0, 0.2).tolist() == pytest.approx(
+        [0, 0, 0.5, 1, 1])
+    assert brake_ramp(0.0, 0.0, 0.0) == 1.0
+    # closed form against the integral of v(t) (independent: quadrature of the speed)
+    v0, a, tb = 20.0, 7.0, 0.4
+
+    def speed(t):
+        return v0 - a * t * t / (2 * tb) if t < tb else v0 - a * tb / 2 - a * (t - tb)
+    stop = tb + (v0 - a * tb / 2) / a
+    distance, _ = quad(speed, 0, stop, points=[tb])
+    assert linear_buildup_stopping_distance(v0, a, tb) == pytest.approx(distance, rel=1e-10)
+    with pytest.raises(ValueError, match="build-up"):
+        linear_buildup_stopping_distance(1.0, 7.0, 1.0)
+
+
+def test_tyre_data_checks_its_fields():
+    assert TyreData().per_wheel("cornering_stiffness").shape == (4,)
+    with pytest.raises(ValueError, match="tyres.cornering_stiffness"):
+        TyreData(cornering_stiffness=-1.0)
+    with pytest.raises(ValueError, match="tyres.cg_height"):
+        TyreData(cg_height=float("nan"))

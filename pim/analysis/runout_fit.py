@@ -49,6 +49,8 @@ class RunoutFit:
     on_bound : tuple of the parameters ("speed", "yaw_rate") on a bound
     minima : list of (cost, speed, direction, yaw_rate) distinct local minima, best first
     message : str, plain-language summary (empty when all is well)
+    tyre_model : str, the run-out's tyre law: "coulomb" (:func:`pim.model.tyres.wheel_force`)
+        or "brush" (the field tyre, :func:`pim.model.tyres.field_wheel_force`)
     """
 
     velocity: np.ndarray
@@ -67,6 +69,7 @@ class RunoutFit:
     on_bound: tuple
     minima: list
     message: str
+    tyre_model: str = "coulomb"
 
 
 def path_distance(points, run: Runout, signed: bool = False) -> np.ndarray:
@@ -359,7 +362,7 @@ def fit_runout(vehicle: RunoutVehicle, position, heading, rest_position, rest_he
                      covariance, bool(reachable), bool(run.stopped), on_bound,
                      [m[:4] for m in distinct],
                      _messages(problem, run, reachable, miss, heading_miss, distinct,
-                               equally_good))
+                               equally_good), vehicle.tyre_model)
 
 
 def _finite(value, name, unit, shape):

@@ -49,6 +49,7 @@ class RunoutFitBatch:
     stopped : (n,) bool, it stops within ``max_time``
     converged : (n,) bool
     iterations : (n,) int
+    tyre_model : str, the run-out's tyre law ("coulomb" or "brush")
     """
 
     velocity: np.ndarray
@@ -62,6 +63,7 @@ class RunoutFitBatch:
     stopped: np.ndarray
     converged: np.ndarray
     iterations: np.ndarray
+    tyre_model: str = "coulomb"
 
 
 def _per_sample(value, shape, name, unit):
@@ -124,7 +126,8 @@ class _Samples:
     def run(self, x, idx):
         sub = RunoutVehicle(**{k: v[idx] for k, v in self.fields.items()},
                             gravity=self.vehicle.gravity,
-                            regularisation=self.vehicle.regularisation)
+                            regularisation=self.vehicle.regularisation,
+                            tyre=self.vehicle.tyre, driver=self.vehicle.driver)
         velocity = x[:, :1] * np.stack([np.cos(x[:, 1]), np.sin(x[:, 1])], axis=-1)
         return integrate_many(sub, self.position[idx], self.heading[idx], velocity, x[:, 2],
                               path_points=self.points[idx], dt=self.dt,
@@ -221,4 +224,5 @@ def fit_runout_many(vehicle: RunoutVehicle, position, heading, rest_position, re
         yaw_rate=omega, speed=speed, direction=direction, rest_position=final[:, :2],
         rest_heading=final[:, 2], cost=out.cost,
         reachable=(miss <= position_tolerance) & (heading_miss <= heading_tolerance),
-        stopped=stopped, converged=out.converged, iterations=out.iterations)
+        stopped=stopped, converged=out.converged, iterations=out.iterations,
+        tyre_model=vehicle.tyre_model)

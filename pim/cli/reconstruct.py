@@ -70,6 +70,14 @@ def spread_text(row: dict, samples: int, sep: str = ", ") -> str:
     if row["p5"] != row["p5"]:
         return "(5/50/95 %: no usable Monte Carlo sample)"
     return f"[{row['p5']:.4g}{sep}{row['p50']:.4g}{sep}{row['p95']:.4g}]"
+
+
+def tyre_models_line(rec: Reconstruction) -> str:
+    """Which tyre law each vehicle's run-out used (one line for the report and the CLI)."""
+    return "Run-out tyre model: " + ", ".join(
+        f"vehicle {i} {fit.tyre_model}" for i, fit in sorted(rec.post.runouts.items())) + "."
+
+
 def _driver(row: dict) -> str:
     """The main driver of a row's spread, with its index when it has one."""
     index = row["driver_index"]
@@ -95,7 +103,8 @@ def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
              f"over the measured velocities and yaw rates, exact derivatives); "
              + (f"5/50/95 % from a Monte Carlo of {n} samples over the stated uncertainties "
                 f"({rec.samples.n_used} used)." if n else "no Monte Carlo (--samples 0)."),
-             "", "| unknown | value | 5 % | 50 % | 95 % | unit | main driver of the spread |",
+             ""] + ([tyre_models_line(rec), ""] if rec.post else []) + [
+             "| unknown | value | 5 % | 50 % | 95 % | unit | main driver of the spread |",
              "|---|---|---|---|---|---|---|"]
     for r in rows:
         driver = (f"{r['driver']} ({r['driver_index']:.2f})" if r["driver_index"] == r[
@@ -177,9 +186,13 @@ def _reconstruct(case, samples, seed, workers, units, as_json):
     rows = reconstruction_rows(rec, units)
     if as_json:
         data = _json(case, rows, samples, rec.messages, units)
+        data["tyre_models"] = ({f"vehicle{i}": fit.tyre_model for i, fit in
+                                rec.post.runouts.items()} if rec.post else {})
         data["goodness_of_fit"] = rec.goodness.to_dict() if rec.goodness else None
         echo_json(data)
     else:
+        if rec.post is not None:
+            click.echo(tyre_models_line(rec))
         for message in rec.messages:        # before the table, where a reader sees them
             click.echo(f"warning: {message}")
         for r in rows:

@@ -56,13 +56,14 @@ from .brach import cg_from_brach, heading_from_theta
 from .evidence_table import parse_evidence, parse_unknown
 from .measured_table import parse_measured
 from .toml_tables import check_keys
+from .tyre_table import attach_tyres
 from .uncertainty_table import parse_uncertainty
 from .units import LIMITS, parse, registry, unit_system_of
 
 __all__ = ["load_case", "list_cases", "parse_case"]
 
 _TOP = {"name", "description", "source", "convention", "vehicle1", "vehicle2", "impact",
-        "measured", "uncertainty", "evidence", "unknown"}
+        "measured", "uncertainty", "evidence", "unknown", "tyres", "driver"}
 _VEHICLE = {"mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
             "length", "width", "cg_to_front", "fixed", "cg", "heading", "theta", "phi", "d"}
 
@@ -225,7 +226,8 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
                 measured=parse_measured(data.get("measured")), name=name, description=description,
                 uncertainty=_uncertainty(data.get("uncertainty")), units=_unit_system(data),
                 notes=_angle_notes(data),
-                evidence=parse_evidence(data.get("evidence")),
+                evidence=attach_tyres(parse_evidence(data.get("evidence")), data.get("tyres"),
+                                      data.get("driver")),
                 unknown=parse_unknown(data.get("unknown")))
 
 

@@ -11,8 +11,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .driver import DriverInputs
 from .numbers import InputError
 from .runout import RunoutVehicle
+from .tyres import TyreData
 
 __all__ = ["VehicleEvidence", "Evidence", "UNKNOWN_KINDS"]
 
@@ -45,6 +47,8 @@ class VehicleEvidence:
     heading_sigma : float [rad] standard deviation of the measured heading
     path_points : ndarray (k, 2) [m] points the CG passed through (e.g. tyre-mark ends)
     where : str, the case-file table named in error messages (e.g. ``evidence.vehicle1``)
+    tyre : TyreData or None, the field tyre ([tyres.vehicleN]); None: the Coulomb tyre
+    driver : DriverInputs or None, inputs over time ([driver.vehicleN])
     """
 
     rest_position: np.ndarray
@@ -59,6 +63,8 @@ class VehicleEvidence:
     heading_sigma: float = float(np.radians(2.0))
     path_points: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     where: str = "evidence"
+    tyre: TyreData | None = None
+    driver: DriverInputs | None = None
 
     def __post_init__(self):
         w = self.where
@@ -81,7 +87,8 @@ class VehicleEvidence:
     def runout_vehicle(self, mass, yaw_inertia) -> RunoutVehicle:
         """The :class:`RunoutVehicle` of this evidence with the given mass and inertia."""
         return RunoutVehicle(mass, yaw_inertia, self.wheelbase, self.track, self.cg_to_front,
-                             self.friction, braking=self.braking, steer=self.steer)
+                             self.friction, braking=self.braking, steer=self.steer,
+                             tyre=self.tyre, driver=self.driver)
 
 
 @dataclass(frozen=True)

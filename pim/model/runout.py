@@ -26,18 +26,27 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .driver import DriverInputs, wheel_tables
 from .numbers import InputError, real_array
 from .tyres import (
     DEFAULT_REGULARISATION,
     STANDARD_GRAVITY,
+    TyreData,
+    brake_ramp,
+    field_wheel_force,
     net_force_and_moment,
     static_loads,
+    transferred_load,
     tyre_forces,
+    wheel_force,
     wheel_positions,
 )
 
 __all__ = ["RunoutVehicle", "Runout", "RunoutBatch", "runout_rhs", "runout", "runout_many",
-           "MAX_TIME"]
+           "MAX_TIME", "timed_rhs", "TimedRhs", "pre_impact_motion", "FRONT", "LEFT"]
+
+FRONT = np.array([1.0, 1.0, 0.0, 0.0])  # per wheel (FL, FR, RL, RR): front axle
+LEFT = np.array([1.0, 0.0, 1.0, 0.0])   # per wheel: left side
 
 MAX_TIME = 60.0  # [s] simulated time after which a vehicle that still moves is flagged
 
@@ -59,6 +68,10 @@ class RunoutVehicle:
     steer : [rad] four fixed steer angles (counter-clockwise)
     gravity : [m/s^2]
     regularisation : [m/s] slip regularisation (see :mod:`pim.model.tyres`)
+    tyre : TyreData or None; None: the Coulomb law (:func:`pim.model.tyres.wheel_force`),
+        else the field tyre (:func:`pim.model.tyres.field_wheel_force`, load transfer,
+        rolling resistance, brake build-up)
+    driver : DriverInputs or None; when given, its tables replace ``braking`` and ``steer``
     """
 
     mass: object
@@ -71,6 +84,19 @@ class RunoutVehicle:
     steer: object = (0.0, 0.0, 0.0, 0.0)
     gravity: float = STANDARD_GRAVITY
     regularisation: float = DEFAULT_REGULARISATION
+    tyre: TyreData | None = None
+    driver: DriverInputs | None = None
+
+    @property
+    def tyre_model(self) -> str:
+        """``"brush"`` (the field tyre) or ``"coulomb"``."""
+        return "coulomb" if self.tyre is None else "brush"
+
+    @property
+    def timed(self) -> bool:
+        """True when the forces depend on time or on the field tyre (the timed right-hand
+        side :func:`timed_rhs`)."""
+        return self.tyre is not None or self.driver is not None
 
     def __post_init__(self):
         for name, unit in (("mass", "kg"), ("yaw_inertia", "kg m^2"), ("wheelbase", "m"),
@@ -133,6 +159,96 @@ def runout_rhs(state, mass, yaw_inertia, positions, loads, friction, braking, st
                            force / np.asarray(mass, dtype=float)[..., None],
                            (moment / np.asarray(yaw_inertia, dtype=float))[..., None]],
                           axis=-1)
+
+
+def _inputs_at(t, tables, buildup):
+    """Steer [rad] and braking [-] of the four wheels at time ``t`` (braking times the
+    build-up ramp)."""
+    time, steer, brake, start = tables
+    ramp = 1.0 if buildup is None else brake_ramp(t, start, buildup)
+    return (np.array([np.interp(t, time, steer[:, w]) for w in range(4)]),
+            np.array([np.interp(t, time, brake[:, w]) for w in range(4)]) * ramp)
+
+
+def timed_rhs(t, state, vehicle: RunoutVehicle, tables=None) -> np.ndarray:
+    """Time derivative of one vehicle's run-out state with driver inputs and either tyre law.
+
+    The inputs at ``t`` come from ``tables`` (:func:`pim.model.driver.wheel_tables`, default:
+    the vehicle's own). With the field tyre the loads are transferred quasi-statically
+    (:func:`pim.model.tyres.transferred_load`) from the acceleration the static loads give,
+    and the forces evaluated again at those loads (one fixed-point pass: the algebraic loop
+    load -> force -> acceleration -> load closed once). The compiled kernel
+    (:mod:`pim.model.runout_kernel`) computes the same.
+
+    Parameters
+    ----------
+    t : float [s] time since the impact.
+    state : array_like (6,) ``(x, y, psi, v_x, v_y, omega)``.
+    vehicle : RunoutVehicle with scalar fields.
+    tables : tuple, optional
+        ``wheel_tables(vehicle.driver, vehicle.braking, vehicle.steer)``, precomputed.
+    """
+    return TimedRhs(vehicle, tables)(t, state)
+
+
+class TimedRhs:
+    """:func:`timed_rhs` with the vehicle's constant parts computed once (for solve_ivp)."""
+
+    def __init__(self, vehicle: RunoutVehicle, tables=None):
+        self.vehicle = vehicle
+        self.tables = (wheel_tables(vehicle.driver, vehicle.braking, vehicle.steer)
+                       if tables is None else tables)
+        self.positions, self.static = vehicle.positions, vehicle.loads
+        tyre = vehicle.tyre
+        self.buildup = None if tyre is None else tyre.buildup_time
+        if tyre is not None:
+            self.c_long = tyre.per_wheel("longitudinal_stiffness")
+            self.c_lat = tyre.per_wheel("cornering_stiffness")
+
+    def __call__(self, t, state) -> np.ndarray:
+        vehicle, tyre = self.vehicle, self.vehicle.tyre
+        steer, brake = _inputs_at(t, self.tables, self.buildup)
+        _, _, psi, vx, vy, om = np.asarray(state, dtype=float)
+        c, s = np.cos(psi), np.sin(psi)
+        cw, sw = np.cos(psi + steer), np.sin(psi + steer)
+        px, py, static = self.positions[:, 0], self.positions[:, 1], self.static
+        mu, vr, mass = vehicle.friction, vehicle.regularisation, vehicle.mass
+        if tyre is None:
+            fx, fy, mz = wheel_force(c, s, vx, vy, om, px, py, cw, sw, static, mu, brake, vr)
+        else:
+            loads = static
+            for _ in range(2):
+                fx, fy, mz = field_wheel_force(c, s, vx, vy, om, px, py, cw, sw, loads, mu,
+                                               brake, vr, self.c_long, self.c_lat,
+                                               tyre.rolling_resistance)
+                ax, ay = fx.sum() / mass, fy.sum() / mass
+                loads = transferred_load(static, mass, c * ax + s * ay, -s * ax + c * ay,
+                                         tyre.cg_height, vehicle.wheelbase, vehicle.track,
+                                         vehicle.cg_to_front, FRONT, LEFT)
+        return np.array([vx, vy, om, fx.sum() / mass, fy.sum() / mass,
+                         mz.sum() / vehicle.yaw_inertia])
+
+
+def pre_impact_motion(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate,
+                      start_time, *, rtol=1e-8, atol=1e-10):
+    """The approach: integrate a vehicle from its state at ``start_time`` < 0 to the impact.
+
+    The driver's tables are read at negative times (a vehicle braking into the impact:
+    ``time = ["-1.2 s", "-1 s", "0 s"]``, ``brake`` rising from 0); the result is the state
+    at ``t = 0`` as ``(position (2,), heading, velocity (2,), yaw_rate)``, SI, global frame,
+    the impact's pre-impact motion. A vehicle that stops before the impact raises.
+    """
+    from scipy.integrate import solve_ivp
+
+    if not start_time < 0:
+        raise InputError(f"pre_impact_motion: start_time must be < 0 [s], got {start_time!r}")
+    y0 = _initial_state(position, heading, velocity, yaw_rate)
+    sol = solve_ivp(TimedRhs(vehicle), (start_time, 0.0), y0, method="LSODA", rtol=rtol,
+                    atol=atol)
+    end = sol.y[:, -1]
+    if np.hypot(end[3], end[4]) < vehicle.regularisation:
+        raise InputError("pre_impact_motion: the vehicle stops before the impact")
+    return end[:2].copy(), float(end[2]), end[3:5].copy(), float(end[5])
 
 
 @dataclass(frozen=True)
@@ -202,7 +318,7 @@ def _stop_measure(state, reach) -> np.ndarray:
 
 def runout(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *,
            max_time=MAX_TIME, stop_speed=None, rtol=1e-8, atol=1e-10,
-           method="DOP853", dense_output=False) -> Runout:
+           method=None, dense_output=False) -> Runout:
     """Integrate one vehicle from its post-impact state to rest with scipy ``solve_ivp``.
 
     Parameters
@@ -216,7 +332,9 @@ def runout(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *,
     stop_speed : float, optional
         [m/s]; default ``regularisation / 5``.
     rtol, atol, method, dense_output
-        Passed to ``scipy.integrate.solve_ivp``.
+        Passed to ``scipy.integrate.solve_ivp``; ``method`` defaults to "DOP853" for the
+        Coulomb tyre, "LSODA" for the field tyre or driver tables (stiff at low rolling
+        speed: the lateral force's slope ``C_y / V_r``).
     """
     from scipy.integrate import solve_ivp
 
@@ -235,7 +353,13 @@ def runout(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *,
 
     event.terminal = True
     event.direction = -1
-    sol = solve_ivp(lambda t, y: runout_rhs(y, *args), (0.0, max_time), y0, method=method,
+    if vehicle.timed:
+        fun = TimedRhs(vehicle)
+        method = method or "LSODA"     # the brush tyre is stiff at low rolling speed
+    else:
+        def fun(t, y):
+            return runout_rhs(y, *args)
+    sol = solve_ivp(fun, (0.0, max_time), y0, method=method or "DOP853",
                     rtol=rtol, atol=atol, events=event, dense_output=dense_output)
     stopped = sol.status == 1
     states = sol.y.T
@@ -265,6 +389,9 @@ def runout_many(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *
     -------
     RunoutBatch
     """
+    if vehicle.timed:
+        raise InputError("runout_many: the field tyre and driver tables run in the compiled "
+                         "run-out (pim.model.runout_kernel.integrate_many) or runout()")
     y = np.atleast_2d(_initial_state(position, heading, velocity, yaw_rate)).copy()
     n = y.shape[0]
     stop_speed = vehicle.regularisation / 5 if stop_speed is None else stop_speed

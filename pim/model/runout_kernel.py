@@ -1,7 +1,9 @@
 """Compiled, parallel fixed-step integration of many run-outs (the Monte Carlo's forward model).
 
-The same equations as :mod:`pim.model.runout` and the same tyre law: numba compiles
-:func:`pim.model.tyres.wheel_force` itself (one law, two evaluators, as
+The same equations as :mod:`pim.model.runout` and the same tyre laws: numba compiles
+:func:`pim.model.tyres.wheel_force` (Coulomb) and :func:`pim.model.tyres.field_wheel_force`
+with :func:`pim.model.tyres.transferred_load` (the field tyre, as
+:func:`pim.model.runout.timed_rhs`) themselves (one law, two evaluators, as
 :mod:`pim.model.kernel` compiles the PIM formula). Each sample is integrated by the
 classical Runge-Kutta method with a fixed step until it stops (``|v| + |omega| r_max <
 stop_speed``) or ``max_time`` passes, on all cores (``prange`` over samples, each with its
@@ -20,6 +22,7 @@ import numpy as np
 from numba import njit, prange
 
 from . import tyres
+from .driver import wheel_tables
 from .numba_cache import stamped_cache
 from .numbers import InputError
 from .runout import MAX_TIME, RunoutVehicle
@@ -30,19 +33,66 @@ __all__ = ["integrate_many", "RUNOUT_STEP"]
 RUNOUT_STEP = 0.004
 
 _wheel_force = njit(inline="always", error_model="numpy")(tyres.wheel_force)
+_field_force = njit(inline="always", error_model="numpy")(tyres.field_wheel_force)
+_transferred = njit(inline="always", error_model="numpy")(tyres.transferred_load)
+_ramp = njit(inline="always", error_model="numpy")(tyres.brake_ramp)
+_FRONT = np.array([1.0, 1.0, 0.0, 0.0])
+_LEFT = np.array([1.0, 0.0, 1.0, 0.0])
 
 
 @njit(inline="always", error_model="numpy")
-def _rhs(x, y, psi, vx, vy, om, mass, inertia, px, py, load, mu, braking, cd, sd,
-         vr):  # pragma: no cover - compiled
+def _table(times, table, w, t):  # pragma: no cover - compiled
+    """Wheel ``w``'s input at time ``t`` from a (k, 4) table (held when k = 1)."""
+    if times.shape[0] == 1:
+        return table[0, w]
+    return np.interp(t, times, table[:, w])
+
+
+@njit(inline="always", error_model="numpy")
+def _wheel(t, w, c, s, psi, vx, vy, om, px, py, ld, mu, vr, times, steer_tab, brake_tab,
+           ramp, tyre):  # pragma: no cover - compiled
+    """One wheel's force and moment at load ``ld`` with its inputs at time ``t``."""
+    if times.shape[0] == 1:            # constant steer: its cos and sin precomputed
+        cd, sd = steer_tab[0, w], steer_tab[1, w]
+    else:
+        d = np.interp(t, times, steer_tab[:, w])
+        cd, sd = np.cos(d), np.sin(d)
+    cw, sw = c * cd - s * sd, s * cd + c * sd          # psi + steer angle
+    br = _table(times, brake_tab, w, t) * ramp
+    if tyre.shape[0] == 0:
+        return _wheel_force(c, s, vx, vy, om, px[w], py[w], cw, sw, ld, mu, br, vr)
+    return _field_force(c, s, vx, vy, om, px[w], py[w], cw, sw, ld, mu, br, vr, tyre[w],
+                        tyre[4 + w], tyre[10])
+
+
+@njit(inline="always", error_model="numpy")
+def _rhs(t, x, y, psi, vx, vy, om, mass, inertia, px, py, load, mu, vr, times, steer_tab,
+         brake_tab, tyre):  # pragma: no cover - compiled
+    """State derivative; ``tyre`` is empty for Coulomb, else (c_long (4), c_lat (4),
+    brake_start, buildup, rolling, height, wheelbase, track, cg_to_front)."""
     c, s = np.cos(psi), np.sin(psi)
+    brush = tyre.shape[0] > 0
+    ramp = _ramp(t, tyre[8], tyre[9]) if brush else 1.0
     fx = 0.0
     fy = 0.0
     mz = 0.0
-    for w in range(4):
-        cw, sw = c * cd[w] - s * sd[w], s * cd[w] + c * sd[w]    # psi + steer angle
-        a, b, m = _wheel_force(c, s, vx, vy, om, px[w], py[w], cw, sw, load[w], mu,
-                               braking[w], vr)
+    for w in range(4):                 # static loads
+        a, b, m = _wheel(t, w, c, s, psi, vx, vy, om, px, py, load[w], mu, vr, times,
+                         steer_tab, brake_tab, ramp, tyre)
+        fx += a
+        fy += b
+        mz += m
+    if not brush:
+        return vx, vy, om, fx / mass, fy / mass, mz / inertia
+    along, across = (c * fx + s * fy) / mass, (-s * fx + c * fy) / mass
+    fx = 0.0
+    fy = 0.0
+    mz = 0.0
+    for w in range(4):                 # the loads that acceleration transfers
+        ld = _transferred(load[w], mass, along, across, tyre[11], tyre[12], tyre[13],
+                          tyre[14], _FRONT[w], _LEFT[w])
+        a, b, m = _wheel(t, w, c, s, psi, vx, vy, om, px, py, ld, mu, vr, times, steer_tab,
+                         brake_tab, ramp, tyre)
         fx += a
         fy += b
         mz += m
@@ -64,9 +114,8 @@ def _segment_distance(ax, ay, bx, by, qx, qy):  # pragma: no cover - compiled
 
 @stamped_cache(tyres)
 @njit(parallel=True, cache=True, error_model="numpy")
-def _integrate(y0, mass, inertia, px, py, load, mu, braking, cos_steer, sin_steer, vr, reach,
-               dt,
-               max_steps, stop_speed, points, out, stop_time, stopped,
+def _integrate(y0, mass, inertia, px, py, load, mu, times, steer_tab, brake_tab, tyre, vr,
+               reach, dt, max_steps, stop_speed, points, out, stop_time, stopped,
                distance):  # pragma: no cover - compiled
     n = y0.shape[0]
     k = points.shape[1]
@@ -78,17 +127,21 @@ def _integrate(y0, mass, inertia, px, py, load, mu, braking, cos_steer, sin_stee
             distance[i, j] = np.sqrt(qx * qx + qy * qy)
         done = np.sqrt(vx * vx + vy * vy) + abs(om) * reach[i] < stop_speed
         steps = 0
+        m, ii, p1, p2, ld, f = mass[i], inertia[i], px[i], py[i], load[i], mu[i]
+        st, bt, ty = steer_tab[i], brake_tab[i], tyre[i]
         while not done and steps < max_steps:
-            m, ii, p1, p2, ld = mass[i], inertia[i], px[i], py[i], load[i]
-            f, br, cd, sd = mu[i], braking[i], cos_steer[i], sin_steer[i]
-            k1 = _rhs(x, y, psi, vx, vy, om, m, ii, p1, p2, ld, f, br, cd, sd, vr)
+            t = steps * dt
             h = 0.5 * dt
-            k2 = _rhs(x + h * k1[0], y + h * k1[1], psi + h * k1[2], vx + h * k1[3],
-                      vy + h * k1[4], om + h * k1[5], m, ii, p1, p2, ld, f, br, cd, sd, vr)
-            k3 = _rhs(x + h * k2[0], y + h * k2[1], psi + h * k2[2], vx + h * k2[3],
-                      vy + h * k2[4], om + h * k2[5], m, ii, p1, p2, ld, f, br, cd, sd, vr)
-            k4 = _rhs(x + dt * k3[0], y + dt * k3[1], psi + dt * k3[2], vx + dt * k3[3],
-                      vy + dt * k3[4], om + dt * k3[5], m, ii, p1, p2, ld, f, br, cd, sd, vr)
+            k1 = _rhs(t, x, y, psi, vx, vy, om, m, ii, p1, p2, ld, f, vr, times, st, bt, ty)
+            k2 = _rhs(t + h, x + h * k1[0], y + h * k1[1], psi + h * k1[2], vx + h * k1[3],
+                      vy + h * k1[4], om + h * k1[5], m, ii, p1, p2, ld, f, vr, times, st, bt,
+                      ty)
+            k3 = _rhs(t + h, x + h * k2[0], y + h * k2[1], psi + h * k2[2], vx + h * k2[3],
+                      vy + h * k2[4], om + h * k2[5], m, ii, p1, p2, ld, f, vr, times, st, bt,
+                      ty)
+            k4 = _rhs(t + dt, x + dt * k3[0], y + dt * k3[1], psi + dt * k3[2],
+                      vx + dt * k3[3], vy + dt * k3[4], om + dt * k3[5], m, ii, p1, p2, ld, f,
+                      vr, times, st, bt, ty)
             w = dt / 6.0
             nx = x + w * (k1[0] + 2.0 * k2[0] + 2.0 * k3[0] + k4[0])
             ny = y + w * (k1[1] + 2.0 * k2[1] + 2.0 * k3[1] + k4[1])
@@ -107,6 +160,37 @@ def _integrate(y0, mass, inertia, px, py, load, mu, braking, cos_steer, sin_stee
         out[i, 3], out[i, 4], out[i, 5] = vx, vy, om
         stop_time[i] = steps * dt
         stopped[i] = done
+
+
+def _tyre_rows(vehicle: RunoutVehicle, n: int, brake_start: float) -> np.ndarray:
+    """Per-sample field-tyre data for the kernel, (n, 15), or (n, 0) for Coulomb: c_long (4),
+    c_lat (4), brake_start, buildup, rolling, cg_height, wheelbase, track, cg_to_front."""
+    tyre = vehicle.tyre
+    if tyre is None:
+        return np.zeros((n, 0))
+    rows = np.empty((n, 15))
+    rows[:, 0:4] = tyre.per_wheel("longitudinal_stiffness")
+    rows[:, 4:8] = tyre.per_wheel("cornering_stiffness")
+    for col, value in enumerate((brake_start, tyre.buildup_time, tyre.rolling_resistance,
+                                 tyre.cg_height, vehicle.wheelbase, vehicle.track,
+                                 vehicle.cg_to_front), start=8):
+        rows[:, col] = np.broadcast_to(np.asarray(value, dtype=float), (n,))
+    return rows
+
+
+def _input_tables(vehicle: RunoutVehicle, n: int):
+    """``(time (k,), steer (n, k, 4), brake (n, k, 4), brake_start)``: the driver's tables,
+    or the per-sample constant ``braking`` and ``steer`` as one-row tables (then ``steer``
+    is (n, 2, 4): the cos and sin of the constant angles, precomputed)."""
+    if vehicle.driver is not None:
+        time, steer, brake, start = wheel_tables(vehicle.driver, None, None)
+        return (np.ascontiguousarray(time), np.ascontiguousarray(np.broadcast_to(
+            steer, (n,) + steer.shape)), np.ascontiguousarray(np.broadcast_to(
+                brake, (n,) + brake.shape)), start)
+    steer = np.broadcast_to(np.asarray(vehicle.steer, dtype=float), (n, 4))
+    brake = np.broadcast_to(np.asarray(vehicle.braking, dtype=float), (n, 4))
+    return (np.zeros(1), np.ascontiguousarray(np.stack([np.cos(steer), np.sin(steer)], axis=1)),
+            np.ascontiguousarray(brake[:, None, :]), 0.0)
 
 
 def integrate_many(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *,
@@ -159,7 +243,7 @@ def integrate_many(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate
         return np.ascontiguousarray(np.broadcast_to(np.asarray(value, dtype=float), shape))
 
     reach = np.max(np.hypot(px, py), axis=-1)
-    steer = per_sample(vehicle.steer, (n, 4))
+    times, steer_tab, brake_tab, brake_start = _input_tables(vehicle, n)
     if path_points is None:
         points = np.zeros((n, 0, 2))
     else:
@@ -172,8 +256,8 @@ def integrate_many(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate
     stopped = np.empty(n, dtype=np.bool_)
     distance = np.empty((n, points.shape[1]))
     _integrate(y0, per_sample(vehicle.mass, (n,)), per_sample(vehicle.yaw_inertia, (n,)), px,
-               py, load, per_sample(vehicle.friction, (n,)), per_sample(vehicle.braking, (n, 4)),
-               np.cos(steer), np.sin(steer), float(vehicle.regularisation), reach,
+               py, load, per_sample(vehicle.friction, (n,)), times, steer_tab, brake_tab,
+               _tyre_rows(vehicle, n, brake_start), float(vehicle.regularisation), reach,
                float(dt), int(np.ceil(max_time / dt)), stop_speed, points, out, stop_time,
                stopped, distance)
     return out, stop_time, stopped, distance

@@ -29,13 +29,18 @@ at mu = 0.8 (the exact regularised stopping distance is :func:`regularised_slide
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from .geometry import rotate
+from .numbers import InputError
 
 __all__ = ["WHEELS", "STANDARD_GRAVITY", "DEFAULT_REGULARISATION", "wheel_positions",
            "static_loads", "tyre_forces", "wheel_force", "net_force_and_moment",
-           "regularised_slide_distance"]
+           "regularised_slide_distance", "SEDAN_TYRE", "TyreData", "TYRE_MODELS",
+           "field_wheel_force", "transferred_load", "brake_ramp",
+           "linear_buildup_stopping_distance"]
 
 WHEELS = ("front_left", "front_right", "rear_left", "rear_right")
 STANDARD_GRAVITY = 9.80665  # [m/s^2]
@@ -215,3 +220,183 @@ def regularised_slide_distance(speed, friction, gravity=STANDARD_GRAVITY,
     vr = regularisation
     return (v0 * np.sqrt(v0 * v0 + vr * vr) + vr * vr * np.arcsinh(v0 / vr)) / (
         2.0 * np.asarray(friction, dtype=float) * gravity)
+
+
+# --------------------------------------------------------------------------------------------
+# The field tyre: combined-slip brush model with load transfer, rolling resistance, build-up
+# --------------------------------------------------------------------------------------------
+
+#: Defaults for a mid-size sedan (sources in docs/tyres.md): cornering stiffness per tyre
+#: [N/rad] (Rajamani 2012, Vehicle Dynamics and Control, 2nd ed., sec. 2.3 example:
+#: C_alpha = 80 000 N/rad per tyre), longitudinal stiffness per tyre [N per unit slip]
+#: (Pacejka 2012, Tire and Vehicle Dynamics, 3rd ed., sec. 1.2/3.2: C_Fkappa ~ 1.5-2 C_Falpha
+#: for passenger-car tyres), CG height [m] (Heydinger et al. 1999, SAE 1999-01-1336, NHTSA
+#: measured sedans 0.52-0.58 m), rolling resistance [-] (Gillespie 1992, Fundamentals of
+#: Vehicle Dynamics, sec. 4: 0.010-0.015 on hard roads), brake build-up time [s] (0: the
+#: wheels' state at separation holds at once; a driver's build-up is about 0.15-0.2 s,
+#: Burg & Moser, Handbuch Verkehrsunfallrekonstruktion, 2017).
+SEDAN_TYRE = {"cornering_stiffness": 80_000.0, "longitudinal_stiffness": 150_000.0,
+              "cg_height": 0.55, "rolling_resistance": 0.013, "buildup_time": 0.0}
+
+TYRE_MODELS = ("coulomb", "brush")
+
+
+@dataclass(frozen=True)
+class TyreData:
+    """Per-vehicle data of the field tyre (:func:`field_wheel_force`), SI; defaults
+    :data:`SEDAN_TYRE` (a mid-size sedan).
+
+    Attributes
+    ----------
+    cornering_stiffness : [N/rad] per tyre, one value or four (FL, FR, RL, RR), > 0
+    longitudinal_stiffness : [N per unit slip] per tyre, one value or four, > 0
+    cg_height : [m] CG height above the road, >= 0 (load transfer)
+    rolling_resistance : [-] rolling-resistance coefficient, >= 0
+    buildup_time : [s] brake build-up time, >= 0
+    """
+
+    cornering_stiffness: object = SEDAN_TYRE["cornering_stiffness"]
+    longitudinal_stiffness: object = SEDAN_TYRE["longitudinal_stiffness"]
+    cg_height: float = SEDAN_TYRE["cg_height"]
+    rolling_resistance: float = SEDAN_TYRE["rolling_resistance"]
+    buildup_time: float = SEDAN_TYRE["buildup_time"]
+
+    def __post_init__(self):
+        for name, unit, positive in (("cornering_stiffness", "N/rad", True),
+                                     ("longitudinal_stiffness", "N", True),
+                                     ("cg_height", "m", False),
+                                     ("rolling_resistance", "-", False),
+                                     ("buildup_time", "s", False)):
+            value = np.asarray(getattr(self, name), dtype=float)
+            bad = value <= 0 if positive else value < 0
+            if value.shape not in ((), (4,)) or not np.all(np.isfinite(value)) or np.any(bad):
+                raise InputError(f"tyres.{name} must be one finite value or four, "
+                                 f"{'> 0' if positive else '>= 0'} [{unit}], "
+                                 f"got {getattr(self, name)!r}")
+
+    def per_wheel(self, name) -> np.ndarray:
+        """A stiffness as four values [N/rad or N] (FL, FR, RL, RR)."""
+        return np.broadcast_to(np.asarray(getattr(self, name), dtype=float), (4,)).copy()
+
+
+def field_wheel_force(c, s, vx, vy, omega, px, py, cw, sw, load, mu, braking, vr, c_long,
+                      c_lat, rolling):
+    """Force of one tyre [N] (global frame) and its yaw moment [N m]: combined-slip brush.
+
+    Plain arithmetic on numbers or broadcasting arrays (numba compiles this same function in
+    :mod:`pim.model.runout_kernel`). Source: the brush model of Pacejka (2012), *Tire and
+    Vehicle Dynamics*, 3rd ed., sec. 3.2 (parabolic pressure, combined slip, eqs. 3.50-3.62):
+    with the theoretical slip ``sigma = V_s / V_r`` (sliding velocity over rolling speed) and
+    ``psi = |(C_x sigma_x, C_y sigma_y)| / (3 mu N)``, the force magnitude is
+
+    ``F = mu N (3 psi - 3 psi^2 + psi^3)`` for ``psi < 1``, ``F = mu N`` beyond,
+
+    the sum of the adhesion part ``F_a = 3 mu N psi (1 - psi)^2`` (along the stiffness-
+    weighted slip ``(C_x sigma_x, C_y sigma_y)``, the bristles' deflection) and the sliding
+    part ``F_s = mu N psi^2 (3 - 2 psi)`` (against the sliding velocity, Coulomb's law; with
+    ``C_x = C_y`` both directions coincide and this is Pacejka's isotropic brush). Small slip:
+    ``F_x = -C_x kappa``, ``F_y = -C_y tan(alpha)`` (linear); full sliding (``psi >= 1``):
+    ``F = -mu N V_s / |V_s|``, the Coulomb law of :func:`wheel_force`, regularised the same way
+    (``V_s / sqrt(|V_s|^2 + v_r^2)`` on a locked wheel; on a rolling wheel the
+    regularisation fades as ``v_r^3 / (v_r^2 + V_r^2)`` so that the small sliding
+    velocity of a slip-controlled wheel keeps its direction).
+
+    Wheel rotation (quasi-static, no spin state): a braking fraction ``f < 1`` holds the
+    longitudinal slip at the value whose pure-braking force is ``f mu N``
+    (``C_x sigma_x / (3 mu N) = 1 - (1 - f)^(1/3)``, the brush curve inverted: an ideal
+    slip-controlled brake, so straight braking decelerates at ``f mu g``); ``f = 1`` is a
+    locked wheel (``V_r = 0``, full sliding). Rolling resistance ``-c_rr N sign(u)`` along
+    the wheel acts on the unlocked wheels.
+
+    Parameters
+    ----------
+    c, s, vx, vy, omega, px, py, cw, sw, load, mu, braking, vr
+        As :func:`wheel_force` (``load`` >= 0 [N], the transferred load).
+    c_long : longitudinal stiffness C_x [N per unit slip]; c_lat : cornering stiffness C_y
+        [N/rad]; rolling : rolling-resistance coefficient c_rr [-].
+
+    Returns
+    -------
+    fx, fy, moment
+    """
+    ax = c * px - s * py                       # arm R(psi) p, global frame
+    ay = s * px + c * py
+    gx = vx - omega * ay                       # velocity of the contact point
+    gy = vy + omega * ax
+    u = gx * cw + gy * sw                      # along the wheel
+    w = -gx * sw + gy * cw                     # across the wheel
+    grip = mu * load
+    locked = np.floor(braking)                 # 1 for f = 1, else 0
+    sigma_x = (1.0 - (1.0 - braking) ** (1.0 / 3.0)) * 3.0 * grip / c_long
+    v_roll = (1.0 - locked) * np.sqrt(u * u + vr * vr) / (1.0 + sigma_x)
+    slide_x = locked * u + (1.0 - locked) * u * sigma_x / (1.0 + sigma_x)
+    kx, ky = c_long * slide_x, c_lat * w       # stiffness-weighted slip (times V_r)
+    weighted = np.sqrt(kx * kx + ky * ky)
+    psi = weighted / np.maximum(np.maximum(weighted, 3.0 * grip * v_roll), 1e-12)
+    adhesion = 3.0 * grip * psi * (1.0 - psi) ** 2 / np.maximum(weighted, 1e-12)
+    vr2 = vr * vr                              # Coulomb's regularisation, faded out with
+    fade = vr2 / (vr2 + v_roll * v_roll)       # the rolling speed
+    sliding = grip * psi * psi * (3.0 - 2.0 * psi) / np.sqrt(
+        slide_x * slide_x + w * w + vr2 * fade * fade)
+    roll = (1.0 - locked) * rolling * load * u / np.sqrt(u * u + vr * vr)
+    f_long = -(adhesion * kx + sliding * slide_x + roll)
+    f_lat = -(adhesion * ky + sliding * w)
+    fx = f_long * cw - f_lat * sw
+    fy = f_long * sw + f_lat * cw
+    return fx, fy, ax * fy - ay * fx
+
+
+def transferred_load(static, mass, a_long, a_lat, cg_height, wheelbase, track, cg_to_front,
+                     front, left):
+    """Normal load of one tyre [N] with quasi-static load transfer (plain arithmetic).
+
+    Longitudinal: the front axle gains ``-m a_x h / L`` (half per wheel); lateral: the outer
+    wheels gain ``m a_y h / T`` in all, shared by the axles as the static load is (front
+    ``(L - a) / L``, rear ``a / L``; equal roll stiffness distribution). Rigid body, no
+    suspension dynamics (Gillespie 1992, sec. 2 and 6; Milliken & Milliken 1995, ch. 18).
+    A wheel whose load would fall below zero has lifted off (load 0).
+
+    Parameters
+    ----------
+    static : static load of the tyre [N] (:func:`static_loads`).
+    mass : [kg]; a_long, a_lat : CG acceleration along the body's x (forward) and y (left)
+        [m/s^2]; cg_height : h [m]; wheelbase, track, cg_to_front : L, T, a [m].
+    front : 1 for a front tyre, 0 for a rear one; left : 1 for a left tyre, 0 for a right one.
+    """
+    axle_sign = 2.0 * front - 1.0              # +1 front, -1 rear
+    side_sign = 2.0 * left - 1.0               # +1 left, -1 right
+    share = front * (wheelbase - cg_to_front) / wheelbase + (1.0 - front) * (
+        cg_to_front / wheelbase)
+    delta = -axle_sign * mass * a_long * cg_height / (2.0 * wheelbase) - side_sign * (
+        mass * a_lat * cg_height * share / track)
+    return np.maximum(static + delta, 0.0)
+
+
+def brake_ramp(time, start, buildup):
+    """Fraction of the demanded braking reached at ``time`` [s]: a linear build-up.
+
+    ``0`` before ``start``, ``(t - start) / t_b`` during the build-up time ``t_b``, ``1``
+    after it (``t_b = 0``: at once). Plain arithmetic (compiled by numba as well).
+    """
+    return np.minimum(np.maximum((time - start - buildup) / np.maximum(buildup, 1e-12) + 1.0,
+                                 0.0), 1.0)
+
+
+def linear_buildup_stopping_distance(speed, deceleration, buildup):
+    """Stopping distance [m] with a deceleration rising linearly to ``a`` over ``t_b``.
+
+    Derivation: ``a(t) = a t / t_b`` for ``t < t_b``; over the build-up the speed falls by
+    ``a t_b / 2`` and the vehicle covers ``v0 t_b - a t_b^2 / 6``; from ``v1 = v0 - a t_b / 2``
+    it then needs ``v1^2 / (2 a)``. In all
+
+    ``s = v0^2 / (2 a) + v0 t_b / 2 - a t_b^2 / 24``   (valid for ``v0 >= a t_b / 2``).
+
+    Parameters
+    ----------
+    speed : v0 [m/s]; deceleration : a [m/s^2] > 0; buildup : t_b [s] >= 0.
+    """
+    v0, a, tb = (np.asarray(x, dtype=float) for x in (speed, deceleration, buildup))
+    if np.any(v0 < a * tb / 2):
+        raise InputError("linear_buildup_stopping_distance: the vehicle stops during the "
+                         "build-up (speed < deceleration * buildup / 2)")
+    return v0 * v0 / (2 * a) + v0 * tb / 2 - a * tb * tb / 24
