@@ -956,16 +956,19 @@ def assumptions_html(study: AssumptionStudy, table: Table, out_dir, info=None,
     ``out_dir``, where :func:`write_assumptions` wrote them)."""
     out = Path(out_dir)
     parts = assumption_tables(table)
-    sections = [h.section("Verdicts", [h.bullets(study.verdicts()), h.paragraph(
-        f"epsilon = {study.eps:.4g} is the crush hysteresis' restitution; the stiffness is set "
-        f"from the contact time (k = {study.stiffness_typical:.3g} N/m for 100 ms). Errors are "
-        f"relative to the simulated |delta-V| of each vehicle.")], id="verdicts", cls="keep"),
-        h.section("At typical values", [*parts, h.paragraph(
+    sections = [
+        h.section("Verdicts", [h.paragraph(
+            f"A ladder of finite-duration crush scenes (docs/contact-model.md), each differing "
+            f"from the one below in one assumption of PIM; epsilon = {study.eps:.4g}, PIM at "
+            f"beta = {study.beta_pim:g}. The marginal effect of an assumption is the impact "
+            f"error between its scene and the scene below at the same contact time; the "
+            f"cumulative one is PIM's error against the scene. Impact error: "
+            f"{ERROR_DEFINITION}."), h.bullets(study.verdicts())], id="verdicts", cls="keep"),
+        h.section(f"The ladder at {1e3 * study.typical.duration:g} ms", [*parts, h.paragraph(
             "eps_eff, beta_eff: what `pim fit` needs to reproduce the simulated motion; C_eff: "
             "the impulse centroid. Every scene: `assumption_sweeps.csv`.")], id="typical"),
-        h.section("Sweeps", h.figure(out / "assumptions.png", alt="overview") + '<div class="'
-                  'grid">' + "".join(h.figure(out / f"assumption-{s.key}.png", alt=s.key)
-                                     for s in study.sweeps) + "</div>", id="sweeps")]
+        h.section("Over contact times, tyre friction and the tangential recovery",
+                  h.figure(out / "assumptions.png", alt="the ladder's effects"), id="sweeps")]
     if info is not None:
         mp4 = out / "assumptions.mp4"
         sections.append(h.section("Animation", h.video(
@@ -977,8 +980,8 @@ def assumptions_html(study: AssumptionStudy, table: Table, out_dir, info=None,
     return h.page(f"{study.case.name or 'case'}: which of PIM's assumptions hold", sections,
                   subtitle=(f"Regenerate with `{command}`. " if command else "")
                   + "The same as text: `assumptions.md`.",
-                  contents=[("verdicts", "Verdicts"), ("typical", "At typical values"),
-                            ("sweeps", "Sweeps"), ("animation", "Animation")][:len(sections)],
+                  contents=[("verdicts", "Verdicts"), ("typical", "The ladder"),
+                            ("sweeps", "Plots"), ("animation", "Animation")][:len(sections)],
                   generator="pim assumptions")
 
 
