@@ -28,6 +28,10 @@ def run() -> None:
     """Exit with ``pim.cli.main.main()``'s code; 130/143 when interrupted while loading."""
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, _during_import)
+    # An interrupted run leaves by os._exit: multiprocessing's resource tracker (a process of
+    # its own, started with these -W options) must not then warn of a worker pool's
+    # semaphore below the one line "aborted"/"terminated".
+    sys.warnoptions.append("ignore:resource_tracker:UserWarning")
     from pim.cli.main import main
 
     code = main()           # handles SIGINT/SIGTERM itself while it runs
