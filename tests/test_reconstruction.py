@@ -104,3 +104,29 @@ def test_unreachable_or_never_stopping_evidence_is_answered_at_once(tmp_path, ol
         post_impact_motion(case)
     assert time.perf_counter() - start < 1.0
     assert all(w in str(info.value) for w in words), str(info.value)
+
+
+def test_progress_names_each_stage_in_order():
+    """Issue 22: pim reconstruct ran for minutes with no word; the stages are now reported
+    (and the result does not depend on it)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    case = pim.load_case("ricsac9-reconstruct")
+    seen = []
+    with ThreadPoolExecutor(2) as pool:
+        rec = reconstruct(case, samples=60, seed=3, executor=pool, blocks=2,
+                          progress=seen.append)
+    assert seen == ["inverse PIM", "Monte Carlo", "Monte Carlo block 1/2",
+                    "Monte Carlo block 2/2"]
+    with ThreadPoolExecutor(2) as pool:
+        quiet = reconstruct(case, samples=60, seed=3, executor=pool, blocks=2)
+    assert rec.values == quiet.values
+    assert rec.samples.stats == quiet.samples.stats
+
+
+def test_the_command_shows_its_stages_on_request(capsys):
+    from pim.cli import main
+
+    assert main(["reconstruct", "ricsac9-reconstruct", "--samples", "50", "--progress"]) == 0
+    err = capsys.readouterr().err
+    assert "pim reconstruct" in err and "Monte Carlo" in err

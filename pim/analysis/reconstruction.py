@@ -232,7 +232,7 @@ class Reconstruction:
 
 def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, seed: int = 0,
                 include_yaw: bool = True, post_impact_samples=None, executor=None,
-                blocks: int | None = None) -> Reconstruction:
+                blocks: int | None = None, progress=None) -> Reconstruction:
     """Evidence (or measured post-impact motion) -> impact speeds, eps, beta, with intervals.
 
     Parameters
@@ -257,6 +257,10 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         block count); None: one block in this process (numpy and numba's threads).
     blocks : int, optional
         Number of blocks with an executor (default 4).
+    progress : callable, optional
+        Called with the name of each stage as it starts ("run-out fits", "inverse PIM",
+        "Monte Carlo") and once per finished Monte Carlo block ("Monte Carlo block i/k"),
+        e.g. to move a progress bar; the results do not depend on it.
 
     Returns
     -------
@@ -272,6 +276,9 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
                          "table (e.g. vehicle1.speed = {bounds = [\"0 mph\", \"80 mph\"]})")
     has_evidence = case.evidence is not None and (case.evidence.vehicle1 is not None
                                                    or case.evidence.vehicle2 is not None)
+    say = progress or (lambda stage: None)
+    if has_evidence:
+        say("run-out fits")
     post = post_impact_motion(case) if has_evidence else None
     solved = post.case if post else case
     if solved.measured is None:
@@ -285,6 +292,7 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
     if why:
         return Reconstruction(solved, unknown, post, None, {}, momentum, None, False,
                               messages + [why])
+    say("inverse PIM")
     fitted = inverse_pim(solved, unknown, include_yaw=include_yaw)
     determined, said = _judge(fitted)
     messages += said
@@ -295,8 +303,9 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
             momentum = _momentum_of(solved, s_hat)
     mc = None
     if determined and samples:
+        say("Monte Carlo")
         mc = _monte_carlo(case, post, solved, fitted, unknown, samples, seed, include_yaw,
-                          post_impact_samples, executor, blocks)
+                          post_impact_samples, executor, blocks, say)
         messages += mc.messages
     return Reconstruction(solved, unknown, post, fitted, values, momentum, mc, determined,
                           messages)
@@ -323,7 +332,7 @@ def _judge(fitted: FitResult) -> tuple[bool, list[str]]:
 
 
 def _monte_carlo(case, post, solved, fitted, unknown, samples, seed, include_yaw,
-                 post_impact_samples, executor, blocks) -> ReconstructionSamples:
+                 post_impact_samples, executor, blocks, say) -> ReconstructionSamples:
     """The Monte Carlo of :func:`reconstruct`: in this process, or in seeded blocks on the
     executor."""
     if executor is None or post_impact_samples is not None:
@@ -340,7 +349,11 @@ def _monte_carlo(case, post, solved, fitted, unknown, samples, seed, include_yaw
     pool = executor.get_executor() if hasattr(executor, "get_executor") else executor
     jobs = [(solved, fitted, unknown, size, sq, include_yaw, case, post)
             for size, sq in zip(sizes, seeds, strict=True)]
-    return summarise(fitted, list(pool.map(sample_block, jobs)))
+    done = []
+    for block in pool.map(sample_block, jobs):      # in order: the pooled result repeats
+        done.append(block)
+        say(f"Monte Carlo block {len(done)}/{len(jobs)}")
+    return summarise(fitted, done)
 
 
 def _momentum_of(case: Case, sigma: float | None = None) -> MomentumSpeeds | None:

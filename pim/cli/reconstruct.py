@@ -153,9 +153,11 @@ def _json(case, rows: list[dict], samples: int, messages, units: str) -> dict:
                    "which already uses every core for the run-outs).")
 @click.option("--video/--no-video", default=True, show_default=True,
               help="With evidence, also write DIR/reconstruction.mp4 (impact to rest).")
+@click.option("--progress/--no-progress", default=None,
+              help="Progress of the stages on stderr (default: only on a terminal).")
 @units_option
 @json_option
-def reconstruct(case_name, out, samples, seed, workers, video, units, as_json):
+def reconstruct(case_name, out, samples, seed, workers, video, progress, units, as_json):
     """Reconstruct CASE's unknowns (e.g. the impact speeds) from its evidence.
 
     With --out the folder is written whole at the end (or not at all: an error or an
@@ -166,19 +168,38 @@ def reconstruct(case_name, out, samples, seed, workers, video, units, as_json):
     units = units or case.units
     with output_folder(out, command="pim reconstruct") if out else \
             contextlib.nullcontext() as tmp:
-        rec, rows = _reconstruct(case, samples, seed, workers, units, as_json)
+        with _stages(case, samples, workers, progress) as say:
+            rec, rows = _reconstruct(case, samples, seed, workers, units, as_json, say)
         if tmp is not None:
             _write_folder(tmp, rec, rows, units, video)
 
 
-def _reconstruct(case, samples, seed, workers, units, as_json):
+@contextlib.contextmanager
+def _stages(case, samples: int, workers: int, progress):
+    """A tqdm bar over the reconstruction's stages (run-out fits, inverse PIM, Monte Carlo
+    and its blocks); yields the callback that moves it."""
+    from tqdm import tqdm
+
+    has_evidence = case.evidence is not None
+    total = int(has_evidence) + 1 + (0 if not samples else 1 if workers == 1 else
+                                     1 + 2 * workers)
+    with tqdm(total=total, desc="pim reconstruct", unit="stage", leave=False,
+              disable=None if progress is None else not progress) as bar:
+        def say(stage: str) -> None:
+            if bar.n < bar.total:
+                bar.update(1)
+            bar.set_postfix_str(stage)
+        yield say
+
+
+def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
     """Run the reconstruction and print its table (or JSON); return it and its rows."""
     if workers > 1:
         with worker_pool(workers) as pool:
             rec = run_reconstruction(case, samples=samples, seed=seed, executor=pool,
-                                     blocks=2 * workers)
+                                     blocks=2 * workers, progress=say)
     else:
-        rec = run_reconstruction(case, samples=samples, seed=seed)
+        rec = run_reconstruction(case, samples=samples, seed=seed, progress=say)
     if not rec.determined:
         raise InputError(next((m for m in rec.messages if "under-determined" in m
                                or "family" in m or "equally well" in m),
