@@ -74,6 +74,17 @@ def _vector(value, name: str, unit: str) -> np.ndarray:
     return arr
 
 
+#: The types of a plain Python number (bool excluded: ``type(True) is bool``).
+_PLAIN = (float, int)
+
+
+def _plain_pair(value) -> bool:
+    """A tuple or list of two finite plain Python numbers (the fast path of one case)."""
+    return ((type(value) is tuple or type(value) is list) and len(value) == 2
+            and type(value[0]) in _PLAIN and type(value[1]) in _PLAIN
+            and -math.inf < value[0] < math.inf and -math.inf < value[1] < math.inf)
+
+
 def _one_number(value, name: str) -> float:
     arr = real_array(value, name)
     if arr.size != 1:
@@ -169,6 +180,34 @@ class Vehicle:
     cg_to_front: float | None = None
 
     def __post_init__(self) -> None:
+        if not self._set_plain():
+            self._set_checked()
+        self._check_outline()
+
+    def _set_plain(self) -> bool:
+        """The single moving body given as plain Python floats (or ints): every check of
+        :meth:`_set_checked` holds by the conditions tested here (masses within their ranges,
+        so finite and > 0; finite yaw rate, heading and [x, y] pairs), so the fields are
+        converted directly. False, with nothing set, when any field needs the full checks."""
+        mass, inertia, yaw_rate, heading = self.mass, self.yaw_inertia, self.yaw_rate, self.heading
+        cg, velocity = self.cg, self.velocity
+        if not (type(mass) in _PLAIN and MASS_RANGE[0] <= mass <= MASS_RANGE[1]
+                and type(inertia) in _PLAIN and INERTIA_RANGE[0] <= inertia <= INERTIA_RANGE[1]
+                and type(yaw_rate) in _PLAIN and -math.inf < yaw_rate < math.inf
+                and type(heading) in _PLAIN and -math.inf < heading < math.inf
+                and _plain_pair(cg) and _plain_pair(velocity)):
+            return False
+        set_ = object.__setattr__
+        set_(self, "mass", np.float64(mass))
+        set_(self, "yaw_inertia", np.float64(inertia))
+        set_(self, "cg", np.array(cg, dtype=float))
+        set_(self, "velocity", np.array(velocity, dtype=float))
+        set_(self, "yaw_rate", np.float64(yaw_rate))
+        set_(self, "heading", np.float64(heading))
+        return True
+
+    def _set_checked(self) -> None:
+        """Every field checked and converted (arrays, obstacles, any input)."""
         set_ = object.__setattr__
         mass = _scalar(self.mass, "mass", "kg")
         inertia = _scalar(self.yaw_inertia, "yaw_inertia", "kg m^2")
@@ -195,6 +234,10 @@ class Vehicle:
                 fixed, np.abs(self.velocity).sum(-1) + np.abs(self.yaw_rate))
             if (fixed & (moving != 0)).any():
                 raise InputError("velocity and yaw_rate of a fixed obstacle must be 0")
+
+    def _check_outline(self) -> None:
+        """length, width and cg_to_front: single positive numbers, the CG inside the outline."""
+        set_ = object.__setattr__
         for name in ("length", "width"):
             value = getattr(self, name)
             if value is not None:
@@ -271,7 +314,11 @@ class Impact:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "point", _vector(self.point, "point", "m"))
-        angle = _finite(_scalar(self.normal_angle, "normal_angle", "rad"), "normal_angle", "rad")
+        angle = self.normal_angle
+        if type(angle) in _PLAIN and -math.inf < angle < math.inf:   # one case, fast
+            angle = np.float64(angle)
+        else:
+            angle = _finite(_scalar(angle, "normal_angle", "rad"), "normal_angle", "rad")
         object.__setattr__(self, "normal_angle", angle)
         if self.restitution is not None:
             eps = _one_number(self.restitution, "restitution")
@@ -416,7 +463,8 @@ class Case:
                                  f"{type(getattr(self, name)).__name__}")
         if self.units not in ("si", "us"):
             raise InputError(f"units must be 'si' or 'us', got {self.units!r}")
-        if self.vehicle1.fixed.any():
+        mass = self.vehicle1.mass
+        if mass == math.inf if type(mass) is np.float64 else self.vehicle1.fixed.any():
             raise InputError("vehicle1.mass must be finite: only vehicle2 may be a fixed obstacle")
         _check_conditioning(self)
 
@@ -434,10 +482,12 @@ class Case:
     def is_scalar(self) -> bool:
         """True for a single case (every input a scalar or one [x, y] pair)."""
         v1, v2, imp = self.vehicle1, self.vehicle2, self.impact
-        if all(type(x) is np.float64 for x in (v1.mass, v1.yaw_inertia, v1.yaw_rate, v2.mass,
-                                                 v2.yaw_inertia, v2.yaw_rate,
-                                                 imp.normal_angle)) and all(
-                x.shape == (2,) for x in (v1.cg, v1.velocity, v2.cg, v2.velocity, imp.point)):
+        f64 = np.float64
+        if (type(v1.mass) is f64 and type(v1.yaw_inertia) is f64 and type(v1.yaw_rate) is f64
+                and type(v2.mass) is f64 and type(v2.yaw_inertia) is f64
+                and type(v2.yaw_rate) is f64 and type(imp.normal_angle) is f64
+                and v1.cg.shape == v1.velocity.shape == v2.cg.shape == v2.velocity.shape
+                == imp.point.shape == (2,)):
             return True   # the common single case, without broadcasting shapes
         return self.shape == ()
 
