@@ -49,6 +49,17 @@ INERTIA_RANGE = (1e-60, 1e60)
 MAX_ARM_RATIO = 1e8
 
 
+#: The types of a plain Python number (bool excluded: ``type(True) is bool``).
+_PLAIN = (float, int)
+
+
+def _plain_pair(value) -> bool:
+    """A tuple or list of two finite plain Python numbers (the fast path of one case)."""
+    return ((type(value) is tuple or type(value) is list) and len(value) == 2
+            and type(value[0]) in _PLAIN and type(value[1]) in _PLAIN
+            and -math.inf < value[0] < math.inf and -math.inf < value[1] < math.inf)
+
+
 def _scalar(value, name: str, unit: str = "SI") -> np.ndarray:
     if type(value) is float or type(value) is int:    # the common single case, fast
         if value != value:
@@ -61,10 +72,7 @@ def _scalar(value, name: str, unit: str = "SI") -> np.ndarray:
 
 
 def _vector(value, name: str, unit: str) -> np.ndarray:
-    if (type(value) is tuple or type(value) is list) and len(value) == 2 and all(
-            type(x) is float or type(x) is int for x in value):   # fast path
-        if not (math.isfinite(value[0]) and math.isfinite(value[1])):
-            raise InputError(f"{name} must be finite [x, y] values in [{unit}]")
+    if _plain_pair(value):   # fast path: a finite [x, y] of plain numbers
         return np.array(value, dtype=float)
     arr = real_array(value, name, unit)
     if arr.ndim == 0 or arr.shape[-1] != 2:
@@ -72,17 +80,6 @@ def _vector(value, name: str, unit: str) -> np.ndarray:
     if not np.isfinite(arr).all():
         raise InputError(f"{name} must be finite [x, y] values in [{unit}]")
     return arr
-
-
-#: The types of a plain Python number (bool excluded: ``type(True) is bool``).
-_PLAIN = (float, int)
-
-
-def _plain_pair(value) -> bool:
-    """A tuple or list of two finite plain Python numbers (the fast path of one case)."""
-    return ((type(value) is tuple or type(value) is list) and len(value) == 2
-            and type(value[0]) in _PLAIN and type(value[1]) in _PLAIN
-            and -math.inf < value[0] < math.inf and -math.inf < value[1] < math.inf)
 
 
 def _one_number(value, name: str) -> float:
@@ -113,6 +110,17 @@ def _within(value, scalar: bool, bounds: tuple, name: str, unit: str) -> None:
     if bad:
         raise InputError(f"{name} must be in [{low:g}, {high:g}] [{unit}] (or inf for a fixed "
                          f"obstacle), got {float(value) if np.size(value) == 1 else 'others'}")
+
+
+def _single(v1, v2, imp) -> bool:
+    """Every input of the case a numpy scalar or one [x, y] pair: a single case, known
+    without broadcasting shapes."""
+    f64 = np.float64
+    return (type(v1.mass) is f64 and type(v1.yaw_inertia) is f64 and type(v1.yaw_rate) is f64
+            and type(v2.mass) is f64 and type(v2.yaw_inertia) is f64
+            and type(v2.yaw_rate) is f64 and type(imp.normal_angle) is f64
+            and v1.cg.shape == v1.velocity.shape == v2.cg.shape == v2.velocity.shape
+            == imp.point.shape == (2,))
 
 
 def _check_conditioning(case) -> None:
@@ -197,13 +205,11 @@ class Vehicle:
                 and type(heading) in _PLAIN and -math.inf < heading < math.inf
                 and _plain_pair(cg) and _plain_pair(velocity)):
             return False
-        set_ = object.__setattr__
-        set_(self, "mass", np.float64(mass))
-        set_(self, "yaw_inertia", np.float64(inertia))
-        set_(self, "cg", np.array(cg, dtype=float))
-        set_(self, "velocity", np.array(velocity, dtype=float))
-        set_(self, "yaw_rate", np.float64(yaw_rate))
-        set_(self, "heading", np.float64(heading))
+        f64 = np.float64
+        self.__dict__.update(   # the frozen fields, set once (as object.__setattr__ would)
+            mass=f64(mass), yaw_inertia=f64(inertia), cg=np.array(cg, dtype=float),
+            velocity=np.array(velocity, dtype=float), yaw_rate=f64(yaw_rate),
+            heading=f64(heading))
         return True
 
     def _set_checked(self) -> None:
@@ -457,16 +463,24 @@ class Case:
     unknown: dict | None = None  # dotted key -> (low, high) SI bounds, the [unknown] table
 
     def __post_init__(self) -> None:
+        if not (type(self.vehicle1) is Vehicle and type(self.vehicle2) is Vehicle
+                and type(self.impact) is Impact):   # else subclasses, or an error
+            self._check_types()
+        if self.units not in ("si", "us"):
+            raise InputError(f"units must be 'si' or 'us', got {self.units!r}")
+        single = _single(self.vehicle1, self.vehicle2, self.impact)
+        if self.vehicle1.mass == math.inf if single else self.vehicle1.fixed.any():
+            raise InputError("vehicle1.mass must be finite: only vehicle2 may be a fixed obstacle")
+        _check_conditioning(self)
+        if single:
+            self.__dict__["is_scalar"] = True    # the cached property, known already
+
+    def _check_types(self) -> None:
+        """vehicle1 and vehicle2 are Vehicles, impact an Impact."""
         for name, kind in (("vehicle1", Vehicle), ("vehicle2", Vehicle), ("impact", Impact)):
             if not isinstance(getattr(self, name), kind):
                 raise InputError(f"{name} must be a pim.{kind.__name__}, got "
                                  f"{type(getattr(self, name)).__name__}")
-        if self.units not in ("si", "us"):
-            raise InputError(f"units must be 'si' or 'us', got {self.units!r}")
-        mass = self.vehicle1.mass
-        if mass == math.inf if type(mass) is np.float64 else self.vehicle1.fixed.any():
-            raise InputError("vehicle1.mass must be finite: only vehicle2 may be a fixed obstacle")
-        _check_conditioning(self)
 
     @cached_property
     def shape(self) -> tuple:
@@ -481,13 +495,7 @@ class Case:
     @cached_property
     def is_scalar(self) -> bool:
         """True for a single case (every input a scalar or one [x, y] pair)."""
-        v1, v2, imp = self.vehicle1, self.vehicle2, self.impact
-        f64 = np.float64
-        if (type(v1.mass) is f64 and type(v1.yaw_inertia) is f64 and type(v1.yaw_rate) is f64
-                and type(v2.mass) is f64 and type(v2.yaw_inertia) is f64
-                and type(v2.yaw_rate) is f64 and type(imp.normal_angle) is f64
-                and v1.cg.shape == v1.velocity.shape == v2.cg.shape == v2.velocity.shape
-                == imp.point.shape == (2,)):
+        if _single(self.vehicle1, self.vehicle2, self.impact):
             return True   # the common single case, without broadcasting shapes
         return self.shape == ()
 
