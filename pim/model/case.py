@@ -123,9 +123,19 @@ def _single(v1, v2, imp) -> bool:
             == imp.point.shape == (2,))
 
 
-def _check_conditioning(case) -> None:
-    """InputError when a moving body's m |C - CG|^2 / I exceeds :data:`MAX_ARM_RATIO`."""
+def _check_conditioning(case, single: bool = False) -> None:
+    """InputError when a moving body's m |C - CG|^2 / I exceeds :data:`MAX_ARM_RATIO`
+    (``single``: the case is known to hold scalars and [x, y] pairs only, :func:`_single`)."""
     point = case.impact.point
+    if single:
+        px, py = point.tolist()
+        v1, v2 = case.vehicle1, case.vehicle2
+        (c1x, c1y), (c2x, c2y) = v1.cg.tolist(), v2.cg.tolist()
+        m1, m2 = float(v1.mass), float(v2.mass)     # finite for vehicle1 (checked before)
+        if m1 * ((px - c1x) ** 2 + (py - c1y) ** 2) <= MAX_ARM_RATIO * float(v1.yaw_inertia) and (
+                m2 == math.inf or m2 * ((px - c2x) ** 2 + (py - c2y) ** 2)
+                <= MAX_ARM_RATIO * float(v2.yaw_inertia)):
+            return
     px, py = point.tolist() if point.shape == (2,) else (None, None)
     for i, v in ((1, case.vehicle1), (2, case.vehicle2)):
         if (px is not None and type(v.mass) is np.float64 and type(v.yaw_inertia) is np.float64
@@ -471,7 +481,7 @@ class Case:
         single = _single(self.vehicle1, self.vehicle2, self.impact)
         if self.vehicle1.mass == math.inf if single else self.vehicle1.fixed.any():
             raise InputError("vehicle1.mass must be finite: only vehicle2 may be a fixed obstacle")
-        _check_conditioning(self)
+        _check_conditioning(self, single)
         if single:
             self.__dict__["is_scalar"] = True    # the cached property, known already
 
