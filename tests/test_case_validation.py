@@ -259,3 +259,19 @@ def test_plain_float_fast_path_builds_the_same_vehicle():
     assert pim.Vehicle(mass=True and 1500, yaw_inertia=2500, cg=[0, 0]).mass == 1500.0
     with pytest.raises(InputError, match="mass"):
         pim.Vehicle(mass=True, yaw_inertia=2500.0, cg=(0.0, 0.0))
+
+
+@pytest.mark.parametrize("which", [1, 2])
+@pytest.mark.parametrize("plain", [True, False])
+def test_conditioning_refused_for_plain_floats_and_arrays(which, plain):
+    """m |C - CG|^2 / I = 1500 * 5 / 1e-5 > MAX_ARM_RATIO on either body, whether the case
+    takes the single-case fast path (plain floats) or the full check (0-d arrays)."""
+    number = float if plain else np.array
+    good = dict(mass=number(1500.0), yaw_inertia=number(2500.0), cg=(1.0, 2.0),
+                velocity=(10.0, -1.0))
+    tiny = {**good, "yaw_inertia": number(1e-5)}
+    v1, v2 = (tiny, good) if which == 1 else (good, tiny)
+    impact = pim.Impact((0.0, 0.0), 1.0)
+    with pytest.raises(InputError, match=f"vehicle{which}.yaw_inertia"):
+        pim.Case(pim.Vehicle(**v1), pim.Vehicle(**v2), impact)
+    assert pim.Case(pim.Vehicle(**good), pim.Vehicle(**good), impact).is_scalar
