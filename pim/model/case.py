@@ -329,13 +329,14 @@ class Impact:
     contact_friction: float | None = None
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "point", _vector(self.point, "point", "m"))
-        angle = self.normal_angle
-        if type(angle) in _PLAIN and -math.inf < angle < math.inf:   # one case, fast
-            angle = np.float64(angle)
+        point, angle = self.point, self.normal_angle
+        if _plain_pair(point) and type(angle) in _PLAIN and -math.inf < angle < math.inf:
+            self.__dict__.update(point=np.array(point, dtype=float),   # one case, fast
+                                 normal_angle=np.float64(angle))
         else:
+            object.__setattr__(self, "point", _vector(point, "point", "m"))
             angle = _finite(_scalar(angle, "normal_angle", "rad"), "normal_angle", "rad")
-        object.__setattr__(self, "normal_angle", angle)
+            object.__setattr__(self, "normal_angle", angle)
         if self.restitution is not None:
             eps = _one_number(self.restitution, "restitution")
             if not 0.0 <= eps <= 1.0:
@@ -346,7 +347,8 @@ class Impact:
             if not np.isfinite(beta):
                 raise InputError(f"beta must be a finite number (usually in [0, 1]), got {beta}")
             object.__setattr__(self, "beta", beta)
-        self._check_law()
+        if self.law is not None or self.contact_friction is not None:
+            self._check_law()        # nothing to check for Brach's law without mu_c
 
     def _check_law(self) -> None:
         """The law is known, and takes the parameters given."""
