@@ -165,12 +165,38 @@ def run_scene(scene: Scene, settings: Settings) -> dict:
     mon = _Monitor(scene, settings)
     space.on_collision(TYPE1, TYPE2, pre_solve=_pre_solve, post_solve=_post_solve, data=mon)
 
+    states = [_state(scene.start_time, b1, b2)]
+    step, contact_steps, impact_index = _step_impact(scene, settings, mon, states)
+    _check_impulse(mon, contact_steps, step)
+    velocity1 = np.array(b1.velocity)
+    velocity2 = np.array(b2.velocity)
+    yaw_rate1, yaw_rate2 = b1.angular_velocity, b2.angular_velocity
+    energy_after = _kinetic(b1) + _kinetic(b2)
+    _check_energy(scene, settings, energy_after,
+                  np.r_[velocity1, velocity2, yaw_rate1, yaw_rate2], step)
+
+    step = continue_after_impact(scene, settings, step, states)
+    trajectory = trajectory_of(scene, states, impact_index)
+    return dict(iterations=scene.iterations, contraction_rate=scene.contraction_rate,
+        velocity1=velocity1, velocity2=velocity2, yaw_rate1=float(yaw_rate1),
+        yaw_rate2=float(yaw_rate2), impulse=np.array(mon.impulse),
+        contact_duration=contact_steps * dt, contact_steps=contact_steps,
+        contact_points=mon.max_points, steps=step, energy_before=scene.energy_before,
+        energy_after=energy_after, trajectory=trajectory,
+        final_velocity1=np.array(b1.velocity), final_velocity2=np.array(b2.velocity),
+        final_yaw_rate1=float(b1.angular_velocity), final_yaw_rate2=float(b2.angular_velocity))
+
+
+def _step_impact(scene: Scene, settings: Settings, mon: _Monitor, states: list) -> tuple:
+    """Step from the start until the contact has ended (run_scene), appending the recorded
+    states to ``states``; return (steps, contact steps, index of the first contact state)."""
+    space, b1, b2 = scene.space, scene.body1, scene.body2
+    dt = settings.dt
     if settings.contact == "point":
         search_end = (0.0 if settings.start == "exact" else dt) + 0.5 * dt
     else:
         search_end = settings.max_contact_time
     record = settings.record
-    states = [_state(scene.start_time, b1, b2)]
     step = 0
     contact_steps = 0
     impact_index = None
@@ -214,16 +240,21 @@ def run_scene(scene: Scene, settings: Settings) -> dict:
             break                      # contact began earlier and is over: separated
         if now > search_end:
             raise SimulationError("no_contact", _no_contact_message(scene, settings, now), step)
+    return step, contact_steps, impact_index
 
+
+def _check_impulse(mon: _Monitor, contact_steps: int, step: int) -> None:
+    """A touch that applied no impulse is no impact (run_scene)."""
     if not np.any(np.asarray(mon.impulse, dtype=float) != 0):
         raise SimulationError(
             "no_contact", f"the shapes touched for {contact_steps} step(s) but no impulse was "
             f"applied (a grazing touch, not an impact)", step)
-    velocity1 = np.array(b1.velocity)
-    velocity2 = np.array(b2.velocity)
-    yaw_rate1, yaw_rate2 = b1.angular_velocity, b2.angular_velocity
-    energy_after = _kinetic(b1) + _kinetic(b2)
-    finite = np.isfinite(np.r_[velocity1, velocity2, yaw_rate1, yaw_rate2]).all()
+
+
+def _check_energy(scene: Scene, settings: Settings, energy_after: float, motion, step: int
+                  ) -> None:
+    """The impact may not gain kinetic energy nor leave a non-finite ``motion`` (run_scene)."""
+    finite = np.isfinite(motion).all()
     limit = scene.energy_before * (1.0 + settings.energy_tolerance) + 1e-12
     if not finite or energy_after > limit:
         gain = energy_after - scene.energy_before
@@ -233,16 +264,35 @@ def run_scene(scene: Scene, settings: Settings) -> dict:
             f"(+{gain:.3g} J, {100 * gain / max(scene.energy_before, 1e-300):.3g} %) in the "
             f"impact" if finite else "the engine returned a non-finite state", step)
 
-    step = continue_after_impact(scene, settings, step, states)
-    trajectory = trajectory_of(scene, states, impact_index)
-    return dict(iterations=scene.iterations, contraction_rate=scene.contraction_rate,
-        velocity1=velocity1, velocity2=velocity2, yaw_rate1=float(yaw_rate1),
-        yaw_rate2=float(yaw_rate2), impulse=np.array(mon.impulse),
-        contact_duration=contact_steps * dt, contact_steps=contact_steps,
-        contact_points=mon.max_points, steps=step, energy_before=scene.energy_before,
-        energy_after=energy_after, trajectory=trajectory,
-        final_velocity1=np.array(b1.velocity), final_velocity2=np.array(b2.velocity),
-        final_yaw_rate1=float(b1.angular_velocity), final_yaw_rate2=float(b2.angular_velocity))
+
+def _run_after(scene: Scene, settings: Settings, states: list, step: int) -> int:
+    """Free motion after separation (run_scene): the point contact removed, tyre friction,
+    for ``settings.duration``; append the recorded states; return the step count."""
+    space, b1, b2 = scene.space, scene.body1, scene.body2
+    dt = settings.dt
+    record = settings.record
+    if settings.contact == "point":
+        space.remove(*scene.contact_shapes)
+    coefficient = settings.tyre_coefficient
+    decel = coefficient * settings.gravity
+    yaw1 = yaw2 = 0.0
+    if coefficient > 0:
+        if b1.body_type == pymunk.Body.DYNAMIC:
+            yaw1 = decel * scene.lever1 / (b1.moment / b1.mass)
+        if b2.body_type == pymunk.Body.DYNAMIC:
+            yaw2 = decel * scene.lever2 / (b2.moment / b2.mass)
+    extra = int(np.ceil(settings.duration / dt - 1e-9))
+    for _ in range(extra):
+        space.step(dt)
+        step += 1
+        rest = False
+        if coefficient > 0:
+            rest = _tyre_step(b1, decel, yaw1, dt) & _tyre_step(b2, decel, yaw2, dt)
+        if record:
+            states.append(_state(scene.start_time + step * dt, b1, b2))
+        if rest:
+            break
+    return step
 
 
 def body_state(t: float, scene: Scene) -> tuple:
@@ -254,37 +304,17 @@ def continue_after_impact(scene: Scene, settings: Settings, step: int, states: l
     """Free motion after separation for ``settings.duration`` (point contact removed, tyre
     friction if set), appending to ``states`` when recording; the last state is always
     appended. Returns the step count reached."""
-    space, b1, b2, dt = scene.space, scene.body1, scene.body2, settings.dt
-    record = settings.record
     if settings.duration > 0:
-        if settings.contact == "point":
-            space.remove(*scene.contact_shapes)
-        coefficient = settings.tyre_coefficient
-        decel = coefficient * settings.gravity
-        yaw1 = yaw2 = 0.0
-        if coefficient > 0:
-            if b1.body_type == pymunk.Body.DYNAMIC:
-                yaw1 = decel * scene.lever1 / (b1.moment / b1.mass)
-            if b2.body_type == pymunk.Body.DYNAMIC:
-                yaw2 = decel * scene.lever2 / (b2.moment / b2.mass)
-        extra = int(np.ceil(settings.duration / dt - 1e-9))
-        for _ in range(extra):
-            space.step(dt)
-            step += 1
-            rest = False
-            if coefficient > 0:
-                rest = _tyre_step(b1, decel, yaw1, dt) & _tyre_step(b2, decel, yaw2, dt)
-            if record:
-                states.append(_state(scene.start_time + step * dt, b1, b2))
-            if rest:
-                break
-    if states[-1][0] != scene.start_time + step * dt:
-        states.append(_state(scene.start_time + step * dt, b1, b2))
+        step = _run_after(scene, settings, states, step)
+    t = scene.start_time + step * settings.dt
+    if states[-1][0] != t:
+        states.append(_state(t, scene.body1, scene.body2))
     return step
 
 
 def trajectory_of(scene: Scene, states: list, impact_index: int) -> Trajectory:
-    """The :class:`Trajectory` of recorded rows (:func:`body_state`)."""
+    """The :class:`Trajectory` of recorded rows (:func:`body_state`): time, then each body's
+    pose and velocity."""
     arr = np.array(states, dtype=float)
     return Trajectory(
         time=arr[:, 0], position1=arr[:, 1:3], angle1=arr[:, 3], position2=arr[:, 4:6],

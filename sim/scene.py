@@ -130,6 +130,72 @@ class Scene:
     k: tuple = (0.0, 0.0, 0.0)     # K_nn, K_nt, K_tt of PIM's contact [1/kg]
 
 
+def _make_body(vehicle: pim.Vehicle, lead: float) -> pymunk.Body:
+    """A pymunk body for ``vehicle``, started ``lead`` [s] before the impact pose (static if
+    fixed)."""
+    cg = np.asarray(vehicle.cg, float).reshape(2)
+    heading = float(vehicle.heading)
+    if vehicle.fixed:
+        body = pymunk.Body(body_type=pymunk.Body.STATIC)
+        body.position = (float(cg[0]), float(cg[1]))
+        body.angle = heading
+        return body
+    vel = np.asarray(vehicle.velocity, float).reshape(2)
+    w = float(vehicle.yaw_rate)
+    body = pymunk.Body(float(vehicle.mass), float(vehicle.yaw_inertia))
+    start = cg - vel * lead
+    body.position = (float(start[0]), float(start[1]))
+    body.angle = heading - w * lead
+    body.velocity = (float(vel[0]), float(vel[1]))
+    body.angular_velocity = w
+    return body
+
+
+def _local(vehicle: pim.Vehicle, world) -> tuple[float, float]:
+    """World point at the impact configuration -> the vehicle's body frame."""
+    p = geometry.rotate(np.asarray(world, float) - np.asarray(vehicle.cg, float).reshape(2),
+                        -float(vehicle.heading))
+    return float(p[0]), float(p[1])
+
+
+def _contact_shapes(case: pim.Case, body1: pymunk.Body, body2: pymunk.Body, point, n, t, u,
+                    lead: float, settings: Settings, eps: float, friction: float) -> list:
+    """The contact shapes (a point: a circle on 1 and a segment on 2; an outline: the two
+    boxes or a barrier face), with their collision types, restitution and friction."""
+    v1, v2 = case.vehicle1, case.vehicle2
+    fixed2 = bool(v2.fixed)
+    shapes = []
+    rc = settings.contact_radius
+    if settings.contact == "point":
+        overlap = EXACT_OVERLAP * rc if settings.start == "exact" else 0.0
+        circle = pymunk.Circle(body1, rc, _local(v1, point + (rc - overlap) * n))
+        reach = abs(float(u @ t)) * (lead + settings.dt) + 4.0 * rc
+        half = max(1.0, 2.0 * reach)
+        segment = pymunk.Segment(body2, _local(v2, point - half * t), _local(v2, point + half * t),
+                                 0.0)
+        pairs = [(circle, TYPE1, eps, friction), (segment, TYPE2, 1.0, 1.0)]
+    else:
+        corners1, corners2 = outline_corners(v1), outline_corners(v2)
+        if corners1 is None:
+            raise InputError("contact='outline' needs vehicle1.length and vehicle1.width")
+        if corners2 is None and not fixed2:
+            raise InputError("contact='outline' needs vehicle2.length and vehicle2.width")
+        box1 = pymunk.Poly(body1, [tuple(c) for c in corners1])
+        if corners2 is not None:
+            box2 = pymunk.Poly(body2, [tuple(c) for c in corners2])
+        else:  # a barrier without dimensions: a long straight face through C along t
+            half = max(100.0, 10.0 * float(np.hypot(*(np.asarray(v1.cg).reshape(2) - point))))
+            box2 = pymunk.Segment(body2, _local(v2, point - half * t), _local(v2, point + half * t),
+                                  0.0)
+        pairs = [(box1, TYPE1, eps, friction), (box2, TYPE2, 1.0, 1.0)]
+    for shape, kind, elasticity, mu in pairs:
+        shape.collision_type = kind
+        shape.elasticity = elasticity
+        shape.friction = mu
+        shapes.append(shape)
+    return shapes
+
+
 def build_scene(case: pim.Case, eps=None, beta=None, settings: Settings | None = None,
                 analytic: pim.Result | None = None) -> Scene:
     """A pymunk Space recreating ``case`` at (eps, beta), ready to step.
@@ -181,66 +247,14 @@ def build_scene(case: pim.Case, eps=None, beta=None, settings: Settings | None =
     space.damping = 1.0
     space.collision_slop = 1e-4 * settings.contact_radius
 
-    def make_body(vehicle: pim.Vehicle) -> pymunk.Body:
-        cg = np.asarray(vehicle.cg, float).reshape(2)
-        heading = float(vehicle.heading)
-        if vehicle.fixed:
-            body = pymunk.Body(body_type=pymunk.Body.STATIC)
-            body.position = (float(cg[0]), float(cg[1]))
-            body.angle = heading
-            return body
-        vel = np.asarray(vehicle.velocity, float).reshape(2)
-        w = float(vehicle.yaw_rate)
-        body = pymunk.Body(float(vehicle.mass), float(vehicle.yaw_inertia))
-        start = cg - vel * lead
-        body.position = (float(start[0]), float(start[1]))
-        body.angle = heading - w * lead
-        body.velocity = (float(vel[0]), float(vel[1]))
-        body.angular_velocity = w
-        return body
-
-    body1, body2 = make_body(v1), make_body(v2)
-
-    def local(vehicle: pim.Vehicle, world) -> tuple[float, float]:
-        """World point at the impact configuration -> the vehicle's body frame."""
-        p = geometry.rotate(np.asarray(world, float) - np.asarray(vehicle.cg, float).reshape(2),
-                            -float(vehicle.heading))
-        return float(p[0]), float(p[1])
+    body1, body2 = _make_body(v1, lead), _make_body(v2, lead)
 
     u = analytic.approach_velocity
     u = np.asarray(u, float).reshape(2)
     speed_scale = max(float(np.hypot(*u)), float(np.hypot(*np.asarray(v1.velocity).reshape(2))),
                       0.0 if fixed2 else float(np.hypot(*np.asarray(v2.velocity).reshape(2))),
                       1e-6)
-    shapes = []
-    rc = settings.contact_radius
-    if settings.contact == "point":
-        overlap = EXACT_OVERLAP * rc if settings.start == "exact" else 0.0
-        circle = pymunk.Circle(body1, rc, local(v1, point + (rc - overlap) * n))
-        reach = abs(float(u @ t)) * (lead + settings.dt) + 4.0 * rc
-        half = max(1.0, 2.0 * reach)
-        segment = pymunk.Segment(body2, local(v2, point - half * t), local(v2, point + half * t),
-                                 0.0)
-        pairs = [(circle, TYPE1, eps, friction), (segment, TYPE2, 1.0, 1.0)]
-    else:
-        corners1, corners2 = outline_corners(v1), outline_corners(v2)
-        if corners1 is None:
-            raise InputError("contact='outline' needs vehicle1.length and vehicle1.width")
-        if corners2 is None and not fixed2:
-            raise InputError("contact='outline' needs vehicle2.length and vehicle2.width")
-        box1 = pymunk.Poly(body1, [tuple(c) for c in corners1])
-        if corners2 is not None:
-            box2 = pymunk.Poly(body2, [tuple(c) for c in corners2])
-        else:  # a barrier without dimensions: a long straight face through C along t
-            half = max(100.0, 10.0 * float(np.hypot(*(np.asarray(v1.cg).reshape(2) - point))))
-            box2 = pymunk.Segment(body2, local(v2, point - half * t), local(v2, point + half * t),
-                                  0.0)
-        pairs = [(box1, TYPE1, eps, friction), (box2, TYPE2, 1.0, 1.0)]
-    for shape, kind, elasticity, mu in pairs:
-        shape.collision_type = kind
-        shape.elasticity = elasticity
-        shape.friction = mu
-        shapes.append(shape)
+    shapes = _contact_shapes(case, body1, body2, point, n, t, u, lead, settings, eps, friction)
     space.add(body1, body2, *shapes)
 
     return Scene(space=space, body1=body1, body2=body2, contact_shapes=shapes, fixed2=fixed2,

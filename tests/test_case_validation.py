@@ -211,3 +211,67 @@ def test_conditioning_check_takes_a_scalar_mass_with_batched_inertias():
                           v1.cg, v1.velocity)
     c = pim.Case(batched, case.vehicle2, case.impact)
     assert np.shape(pim.solve(c, 0.3, 1.0).yaw_rate1) == (2,)
+
+
+# The fast path for plain Python floats (Vehicle._set_plain, Impact's angle) must refuse
+# exactly what the full checks refuse: each bad value given as a plain float raises the same
+# message as the same value given as a numpy scalar (which takes the full checks).
+_GOOD = dict(mass=1500.0, yaw_inertia=2500.0, cg=(1.0, 2.0), velocity=(10.0, -1.0),
+             yaw_rate=0.5, heading=1.0)
+_BAD_NUMBERS = (float("nan"), float("inf"), -float("inf"), 0.0, -1.0, 1e-61, 1e61)
+
+
+def _error(make):
+    with pytest.raises(InputError) as info:
+        make()
+    return str(info.value)
+
+
+@pytest.mark.parametrize("field", ["mass", "yaw_inertia", "yaw_rate", "heading"])
+@pytest.mark.parametrize("bad", _BAD_NUMBERS)
+def test_plain_float_fast_path_refuses_what_the_full_checks_refuse(field, bad):
+    if field in ("yaw_rate", "heading") and np.isfinite(bad):
+        return              # any finite yaw rate or heading is allowed
+    plain = _error(lambda: pim.Vehicle(**{**_GOOD, field: bad}))
+    assert plain == _error(lambda: pim.Vehicle(**{**_GOOD, field: np.float64(bad)}))
+
+
+@pytest.mark.parametrize("field", ["cg", "velocity"])
+@pytest.mark.parametrize("bad", [(float("nan"), 0.0), (0.0, float("inf")), (1.0,),
+                                 (1.0, 2.0, 3.0), ("1", 0.0)])
+def test_plain_pair_fast_path_refuses_what_the_full_checks_refuse(field, bad):
+    assert _error(lambda: pim.Vehicle(**{**_GOOD, field: bad})).startswith(field)
+    assert _error(lambda: pim.Vehicle(**{**_GOOD, field: list(bad)})).startswith(field)
+
+
+@pytest.mark.parametrize("bad", [float("nan"), float("inf"), True])
+def test_plain_angle_fast_path_refuses(bad):
+    assert "normal_angle" in _error(lambda: pim.Impact((0.0, 0.0), bad))
+
+
+def test_plain_float_fast_path_builds_the_same_vehicle():
+    fast = pim.Vehicle(**_GOOD)
+    full = pim.Vehicle(**{k: np.float64(v) if np.ndim(v) == 0 else np.array(v)
+                          for k, v in _GOOD.items()})
+    for name in _GOOD:
+        assert np.array_equal(getattr(fast, name), getattr(full, name)), name
+    assert type(fast.mass) is np.float64 and fast.cg.dtype == float
+    assert pim.Vehicle(mass=True and 1500, yaw_inertia=2500, cg=[0, 0]).mass == 1500.0
+    with pytest.raises(InputError, match="mass"):
+        pim.Vehicle(mass=True, yaw_inertia=2500.0, cg=(0.0, 0.0))
+
+
+@pytest.mark.parametrize("which", [1, 2])
+@pytest.mark.parametrize("plain", [True, False])
+def test_conditioning_refused_for_plain_floats_and_arrays(which, plain):
+    """m |C - CG|^2 / I = 1500 * 5 / 1e-5 > MAX_ARM_RATIO on either body, whether the case
+    takes the single-case fast path (plain floats) or the full check (0-d arrays)."""
+    number = float if plain else np.array
+    good = dict(mass=number(1500.0), yaw_inertia=number(2500.0), cg=(1.0, 2.0),
+                velocity=(10.0, -1.0))
+    tiny = {**good, "yaw_inertia": number(1e-5)}
+    v1, v2 = (tiny, good) if which == 1 else (good, tiny)
+    impact = pim.Impact((0.0, 0.0), 1.0)
+    with pytest.raises(InputError, match=f"vehicle{which}.yaw_inertia"):
+        pim.Case(pim.Vehicle(**v1), pim.Vehicle(**v2), impact)
+    assert pim.Case(pim.Vehicle(**good), pim.Vehicle(**good), impact).is_scalar

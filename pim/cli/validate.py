@@ -57,91 +57,93 @@ NOTES = [
 ]
 
 
-def run_validation(dataset: str = "all", units: str = "si") -> tuple[dict, list[str]]:
-    """Build the report sections and the summary lines of ``pim validate``."""
-    names = list(DATASETS) if dataset == "all" else [dataset]
-    records = {name: load_dataset(name) for name in names}
-    sections, summary = {"notes": list(NOTES), "figures": {}}, []
-    if "iihs-barrier" in records:
-        tests = records["iihs-barrier"]
-        published = reproduce_barrier(tests)
-        usable = [r for r in published if r.test.group != "OUTLIER"]
-        class_k = class_radius_of_gyration(usable)
-        with_class = reproduce_barrier(tests, {t.test_id: class_k[t.vehicle_type] for t in tests})
-        per_test_k = {r.test.test_id: r.radius_of_gyration for r in published}
-        class_ks = {t.test_id: class_k[t.vehicle_type] for t in tests}
-        refitted = refit_barrier(tests, per_test_k)
-        refitted_class = refit_barrier(tests, class_ks)
-        # the published method (Brach et al.): eps, beta and phi at the published d1
-        method = refit_barrier(tests, per_test_k, free_phi=True)
-        method_class = refit_barrier(tests, class_ks, free_phi=True)
-        sections["barrier"] = barrier_table(published, with_class, method, units=units)
-        ks = [r.radius_of_gyration for r in usable]
-        lu = convert(1.0, "length", units)[1]
-        k_lo, k_hi = (float(convert(x, "length", units)[0]) for x in (min(ks), max(ks)))
-        for group, label in (("NS", "non-sideswipe"), ("SS", "sideswipe")):
-            rows = [r for r in published if r.test.group == group]
-            summary.append(summary_line(f"iihs-barrier {label}, published coefficients, "
-                                        f"per-test k", rows, units))
-            rows = [r for r in with_class if r.test.group == group]
-            summary.append(summary_line(f"iihs-barrier {label}, published coefficients, "
-                                        f"class k", rows, units))
-            for fits, how in ((method, "per-test k"), (method_class, "class k")):
-                rows = [r for r in fits if r.test.group == group]
-                summary.append(summary_line(
-                    f"iihs-barrier {label}, refitted by the published method (eps, beta, phi "
-                    f"at the published d1), {how}", rows, units))
-                dphi = summary_errors([np.degrees(r.phi - r.test.phi) for r in rows])
-                summary.append(f"iihs-barrier {label}, published-method refit ({how}) minus "
-                               f"published: |d phi| median {dphi['median']:.2f} deg, max "
-                               f"{dphi['max']:.2f} deg")
-            for fits, how in ((refitted, "per-test k"), (refitted_class, "class k")):
-                rows = [r for r in fits if r.test.group == group]
-                summary.append(summary_line(f"iihs-barrier {label}, refitted (eps, beta), {how}",
-                                            rows, units))
-                de = summary_errors([r.restitution - r.test.restitution for r in rows])
-                db = summary_errors([r.beta - r.test.beta for r in rows])
-                summary.append(f"iihs-barrier {label}, refitted ({how}) minus published: "
-                               f"|d eps| median {de['median']:.3f}, max {de['max']:.3f}; "
-                               f"|d beta| median {db['median']:.3f}, max {db['max']:.3f}")
-        summary.append(f"iihs-barrier: fitted radius of gyration {k_lo:.3f}-{k_hi:.3f} {lu} "
-                       f"over {len(ks)} tests; class medians " + ", ".join(
-                           f"{c} {float(convert(k, 'length', units)[0]):.3f} {lu}"
-                           for c, k in class_k.items()))
-        sections["figures"]["predicted_vs_measured"] = plot_predicted_vs_measured(
-            {"non-sideswipe, per-test k": [r for r in published if r.test.group == "NS"],
-             "sideswipe, per-test k": [r for r in published if r.test.group == "SS"],
-             "all, class k": [r for r in with_class if r.test.group != "OUTLIER"],
-             "all, refitted (eps, beta, phi)": [r for r in method
-                                                if r.test.group != "OUTLIER"]}, units)
-    if "ricsac" in records:
-        checks = check_ricsac(records["ricsac"])
-        sections["consistency"] = consistency_table(checks)
-        flagged = [c.test.split()[1] for c in checks if c.flagged]
-        summary.append(f"ricsac: {len(checks)} tests checked, momentum-inconsistent: "
-                       f"{', '.join(flagged) or 'none'}")
-        fits = refit_ricsac(records["ricsac"])
-        sections["ricsac_refit"] = ricsac_refit_table(fits, flagged, units)
-        ok = [f for f in fits if not f.message]
-        dv = summary_errors([f.velocity_error for f in ok])
-        om = summary_errors([np.degrees(f.yaw_error) for f in ok])
-        su = convert(1.0, "speed", units)[1]
-        sv = lambda x: float(convert(x, "speed", units)[0])  # noqa: E731
-        summary.append(
-            f"ricsac refit (eps, beta, C along the contact plane on the crush-edge geometry): "
-            f"{len(ok)} tests, worst-car velocity error median {sv(dv['median']):.2f} {su}, "
-            f"p90 {sv(dv['p90']):.2f} {su}; yaw-rate error median {om['median']:.1f} deg/s, "
-            f"p90 {om['p90']:.1f} deg/s; {sum(f.within_tolerance for f in ok)}/{len(ok)} "
-            f"within 1 mph and 10 deg/s (consistent tests only: "
-            f"{sum(f.within_tolerance for f in ok if str(f.test.number) not in flagged)}/"
-            f"{sum(str(f.test.number) not in flagged for f in ok)})")
-        su = convert(1.0, "speed", units)[1]
-        for name, errors in ricsac_published_errors(records["ricsac"]).items():
-            s = summary_errors([e for _, _, e in errors])
-            summary.append(f"ricsac published delta-V {name} vs measured velocities: "
-                           f"median {float(convert(s['median'], 'speed', units)[0]):.2f} {su}, "
-                           f"p90 {float(convert(s['p90'], 'speed', units)[0]):.2f} {su} "
-                           f"({s['n']} vehicles)")
+def _barrier_sections(tests, sections: dict, summary: list, units: str) -> None:
+    """Add the iihs-barrier table, figure and summary lines (run_validation)."""
+    published = reproduce_barrier(tests)
+    usable = [r for r in published if r.test.group != "OUTLIER"]
+    class_k = class_radius_of_gyration(usable)
+    with_class = reproduce_barrier(tests, {t.test_id: class_k[t.vehicle_type] for t in tests})
+    per_test_k = {r.test.test_id: r.radius_of_gyration for r in published}
+    class_ks = {t.test_id: class_k[t.vehicle_type] for t in tests}
+    refitted = refit_barrier(tests, per_test_k)
+    refitted_class = refit_barrier(tests, class_ks)
+    # the published method (Brach et al.): eps, beta and phi at the published d1
+    method = refit_barrier(tests, per_test_k, free_phi=True)
+    method_class = refit_barrier(tests, class_ks, free_phi=True)
+    sections["barrier"] = barrier_table(published, with_class, method, units=units)
+    ks = [r.radius_of_gyration for r in usable]
+    lu = convert(1.0, "length", units)[1]
+    k_lo, k_hi = (float(convert(x, "length", units)[0]) for x in (min(ks), max(ks)))
+    for group, label in (("NS", "non-sideswipe"), ("SS", "sideswipe")):
+        rows = [r for r in published if r.test.group == group]
+        summary.append(summary_line(f"iihs-barrier {label}, published coefficients, "
+                                    f"per-test k", rows, units))
+        rows = [r for r in with_class if r.test.group == group]
+        summary.append(summary_line(f"iihs-barrier {label}, published coefficients, "
+                                    f"class k", rows, units))
+        for fits, how in ((method, "per-test k"), (method_class, "class k")):
+            rows = [r for r in fits if r.test.group == group]
+            summary.append(summary_line(
+                f"iihs-barrier {label}, refitted by the published method (eps, beta, phi "
+                f"at the published d1), {how}", rows, units))
+            dphi = summary_errors([np.degrees(r.phi - r.test.phi) for r in rows])
+            summary.append(f"iihs-barrier {label}, published-method refit ({how}) minus "
+                           f"published: |d phi| median {dphi['median']:.2f} deg, max "
+                           f"{dphi['max']:.2f} deg")
+        for fits, how in ((refitted, "per-test k"), (refitted_class, "class k")):
+            rows = [r for r in fits if r.test.group == group]
+            summary.append(summary_line(f"iihs-barrier {label}, refitted (eps, beta), {how}",
+                                        rows, units))
+            de = summary_errors([r.restitution - r.test.restitution for r in rows])
+            db = summary_errors([r.beta - r.test.beta for r in rows])
+            summary.append(f"iihs-barrier {label}, refitted ({how}) minus published: "
+                           f"|d eps| median {de['median']:.3f}, max {de['max']:.3f}; "
+                           f"|d beta| median {db['median']:.3f}, max {db['max']:.3f}")
+    summary.append(f"iihs-barrier: fitted radius of gyration {k_lo:.3f}-{k_hi:.3f} {lu} "
+                   f"over {len(ks)} tests; class medians " + ", ".join(
+                       f"{c} {float(convert(k, 'length', units)[0]):.3f} {lu}"
+                       for c, k in class_k.items()))
+    sections["figures"]["predicted_vs_measured"] = plot_predicted_vs_measured(
+        {"non-sideswipe, per-test k": [r for r in published if r.test.group == "NS"],
+         "sideswipe, per-test k": [r for r in published if r.test.group == "SS"],
+         "all, class k": [r for r in with_class if r.test.group != "OUTLIER"],
+         "all, refitted (eps, beta, phi)": [r for r in method
+                                            if r.test.group != "OUTLIER"]}, units)
+
+
+def _ricsac_sections(tests, sections: dict, summary: list, units: str) -> None:
+    """Add the RICSAC consistency and refit tables and summary lines (run_validation)."""
+    checks = check_ricsac(tests)
+    sections["consistency"] = consistency_table(checks)
+    flagged = [c.test.split()[1] for c in checks if c.flagged]
+    summary.append(f"ricsac: {len(checks)} tests checked, momentum-inconsistent: "
+                   f"{', '.join(flagged) or 'none'}")
+    fits = refit_ricsac(tests)
+    sections["ricsac_refit"] = ricsac_refit_table(fits, flagged, units)
+    ok = [f for f in fits if not f.message]
+    dv = summary_errors([f.velocity_error for f in ok])
+    om = summary_errors([np.degrees(f.yaw_error) for f in ok])
+    su = convert(1.0, "speed", units)[1]
+    sv = lambda x: float(convert(x, "speed", units)[0])  # noqa: E731
+    summary.append(
+        f"ricsac refit (eps, beta, C along the contact plane on the crush-edge geometry): "
+        f"{len(ok)} tests, worst-car velocity error median {sv(dv['median']):.2f} {su}, "
+        f"p90 {sv(dv['p90']):.2f} {su}; yaw-rate error median {om['median']:.1f} deg/s, "
+        f"p90 {om['p90']:.1f} deg/s; {sum(f.within_tolerance for f in ok)}/{len(ok)} "
+        f"within 1 mph and 10 deg/s (consistent tests only: "
+        f"{sum(f.within_tolerance for f in ok if str(f.test.number) not in flagged)}/"
+        f"{sum(str(f.test.number) not in flagged for f in ok)})")
+    su = convert(1.0, "speed", units)[1]
+    for name, errors in ricsac_published_errors(tests).items():
+        s = summary_errors([e for _, _, e in errors])
+        summary.append(f"ricsac published delta-V {name} vs measured velocities: "
+                       f"median {float(convert(s['median'], 'speed', units)[0]):.2f} {su}, "
+                       f"p90 {float(convert(s['p90'], 'speed', units)[0]):.2f} {su} "
+                       f"({s['n']} vehicles)")
+
+
+def _coefficient_sections(records: dict, sections: dict, summary: list) -> None:
+    """Add the coefficient statistics table, figure and summary lines (run_validation)."""
     stats = coefficient_stats(records)
     if stats:
         sections["coefficients"] = coefficient_table(stats)
@@ -149,6 +151,18 @@ def run_validation(dataset: str = "all", units: str = "si") -> tuple[dict, list[
         for s in stats:
             summary.append(f"{s.crash_class} {s.coefficient}: median {s.median:.3f}, "
                            f"mean {s.mean:.3f}, sd {s.sd:.3f} (n = {s.n})")
+
+
+def run_validation(dataset: str = "all", units: str = "si") -> tuple[dict, list[str]]:
+    """Build the report sections and the summary lines of ``pim validate``."""
+    names = list(DATASETS) if dataset == "all" else [dataset]
+    records = {name: load_dataset(name) for name in names}
+    sections, summary = {"notes": list(NOTES), "figures": {}}, []
+    if "iihs-barrier" in records:
+        _barrier_sections(records["iihs-barrier"], sections, summary, units)
+    if "ricsac" in records:
+        _ricsac_sections(records["ricsac"], sections, summary, units)
+    _coefficient_sections(records, sections, summary)
     sections["summary"] = summary
     return sections, summary
 

@@ -175,6 +175,48 @@ def unit_system_of(value) -> str | None:
     return "us" if set(names) & US_UNIT_NAMES else "si"
 
 
+def _parse_number(value, kind: str, field: str) -> float:
+    """A bare number for :func:`parse`: SI, and a bare angle within [-2 pi, 2 pi]."""
+    try:
+        number = float(value)
+    except OverflowError:
+        raise InputError(f"{field}: {str(value)[:20]}... is too large a number") from None
+    if kind == "angle" and abs(number) > 2 * np.pi:
+        raise InputError(f"{field} = {value!r} has no unit; a bare angle is read in "
+                         f"radians and must lie within [-2 pi, 2 pi]: write "
+                         f"'{value} deg' (or '{value} rad' if radians are meant)")
+    return number
+
+
+def _parse_string(value: str, kind: str, field: str, unit: str) -> float:
+    """A quantity string for :func:`parse`: its magnitude in ``unit``, the kind's SI unit."""
+    magnitude, text = _split(value, field)
+    if not text:
+        if kind in ("angle", "angular_velocity"):
+            raise InputError(f"{field}: {value!r} has no unit; write e.g. "
+                             f"'{value.strip()} {'deg' if kind == 'angle' else 'deg/s'}'")
+        text = ""
+    try:
+        parsed, root = _unit(text) if text else (None, None)
+    except Exception as exc:
+        hint = _suggestion(magnitude, text, kind, "")
+        raise InputError(f"{field}: unknown unit in {value!r} ({exc}){hint}") from None
+    _, wanted = _unit(unit) if unit else (None, None)
+    none = registry().Unit("")
+    if (none if root is None else root) != (none if wanted is None else wanted):
+        what = kind.replace("_", " ")
+        dim = parsed.dimensionality if parsed is not None else ""
+        expected = wanted.dimensionality if wanted is not None else ""
+        raise InputError(f"{field}: {value!r} is not a{'n' if what[0] in 'aeiou' else ''} "
+                         f"{what} (its unit has dimension {dim or 'dimensionless'}, "
+                         f"expected {expected or 'dimensionless'}: a unit like "
+                         f"{unit or 'none, a bare number'})"
+                         f"{_suggestion(magnitude, text, kind, str(dim))}")
+    if parsed is None:
+        return magnitude
+    return float(registry().Quantity(magnitude, parsed).to(unit).magnitude)
+
+
 def parse(value, kind: str, field: str) -> float:
     """Convert one input value to SI.
 
@@ -210,42 +252,9 @@ def parse(value, kind: str, field: str) -> float:
     if isinstance(value, bool):
         raise InputError(f"{field} must be a number or a quantity string, got {value!r}")
     if isinstance(value, int | float):
-        try:
-            number = float(value)
-        except OverflowError:
-            raise InputError(f"{field}: {str(value)[:20]}... is too large a number") from None
-        if kind == "angle" and abs(number) > 2 * np.pi:
-            raise InputError(f"{field} = {value!r} has no unit; a bare angle is read in "
-                             f"radians and must lie within [-2 pi, 2 pi]: write "
-                             f"'{value} deg' (or '{value} rad' if radians are meant)")
+        number = _parse_number(value, kind, field)
     elif isinstance(value, str):
-        magnitude, text = _split(value, field)
-        if not text:
-            if kind in ("angle", "angular_velocity"):
-                raise InputError(f"{field}: {value!r} has no unit; write e.g. "
-                                 f"'{value.strip()} {'deg' if kind == 'angle' else 'deg/s'}'")
-            text = ""
-        try:
-            parsed, root = _unit(text) if text else (None, None)
-        except Exception as exc:
-            hint = _suggestion(magnitude, text, kind, "")
-            raise InputError(f"{field}: unknown unit in {value!r} ({exc}){hint}") from None
-        _, wanted = _unit(unit) if unit else (None, None)
-        none = registry().Unit("")
-        if (none if root is None else root) != (none if wanted is None else wanted):
-            what = kind.replace("_", " ")
-            dim = parsed.dimensionality if parsed is not None else ""
-            expected = wanted.dimensionality if wanted is not None else ""
-            raise InputError(f"{field}: {value!r} is not a{'n' if what[0] in 'aeiou' else ''} "
-                             f"{what} (its unit has dimension {dim or 'dimensionless'}, "
-                             f"expected {expected or 'dimensionless'}: a unit like "
-                             f"{unit or 'none, a bare number'})"
-                             f"{_suggestion(magnitude, text, kind, str(dim))}")
-        if parsed is None:
-            number = magnitude
-        else:
-            ureg = registry()
-            number = float(ureg.Quantity(magnitude, parsed).to(unit).magnitude)
+        number = _parse_string(value, kind, field, unit)
     else:
         raise InputError(f"{field} must be a number or a quantity string, got {value!r}")
     if not np.isfinite(number):

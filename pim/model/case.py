@@ -49,6 +49,17 @@ INERTIA_RANGE = (1e-60, 1e60)
 MAX_ARM_RATIO = 1e8
 
 
+#: The types of a plain Python number (bool excluded: ``type(True) is bool``).
+_PLAIN = (float, int)
+
+
+def _plain_pair(value) -> bool:
+    """A tuple or list of two finite plain Python numbers (the fast path of one case)."""
+    return ((type(value) is tuple or type(value) is list) and len(value) == 2
+            and type(value[0]) in _PLAIN and type(value[1]) in _PLAIN
+            and -math.inf < value[0] < math.inf and -math.inf < value[1] < math.inf)
+
+
 def _scalar(value, name: str, unit: str = "SI") -> np.ndarray:
     if type(value) is float or type(value) is int:    # the common single case, fast
         if value != value:
@@ -61,10 +72,7 @@ def _scalar(value, name: str, unit: str = "SI") -> np.ndarray:
 
 
 def _vector(value, name: str, unit: str) -> np.ndarray:
-    if (type(value) is tuple or type(value) is list) and len(value) == 2 and all(
-            type(x) is float or type(x) is int for x in value):   # fast path
-        if not (math.isfinite(value[0]) and math.isfinite(value[1])):
-            raise InputError(f"{name} must be finite [x, y] values in [{unit}]")
+    if _plain_pair(value):   # fast path: a finite [x, y] of plain numbers
         return np.array(value, dtype=float)
     arr = real_array(value, name, unit)
     if arr.ndim == 0 or arr.shape[-1] != 2:
@@ -104,9 +112,30 @@ def _within(value, scalar: bool, bounds: tuple, name: str, unit: str) -> None:
                          f"obstacle), got {float(value) if np.size(value) == 1 else 'others'}")
 
 
-def _check_conditioning(case) -> None:
-    """InputError when a moving body's m |C - CG|^2 / I exceeds :data:`MAX_ARM_RATIO`."""
+def _single(v1, v2, imp) -> bool:
+    """Every input of the case a numpy scalar or one [x, y] pair: a single case, known
+    without broadcasting shapes."""
+    f64 = np.float64
+    return (type(v1.mass) is f64 and type(v1.yaw_inertia) is f64 and type(v1.yaw_rate) is f64
+            and type(v2.mass) is f64 and type(v2.yaw_inertia) is f64
+            and type(v2.yaw_rate) is f64 and type(imp.normal_angle) is f64
+            and v1.cg.shape == v1.velocity.shape == v2.cg.shape == v2.velocity.shape
+            == imp.point.shape == (2,))
+
+
+def _check_conditioning(case, single: bool = False) -> None:
+    """InputError when a moving body's m |C - CG|^2 / I exceeds :data:`MAX_ARM_RATIO`
+    (``single``: the case is known to hold scalars and [x, y] pairs only, :func:`_single`)."""
     point = case.impact.point
+    if single:
+        px, py = point.tolist()
+        v1, v2 = case.vehicle1, case.vehicle2
+        (c1x, c1y), (c2x, c2y) = v1.cg.tolist(), v2.cg.tolist()
+        m1, m2 = float(v1.mass), float(v2.mass)     # finite for vehicle1 (checked before)
+        if m1 * ((px - c1x) ** 2 + (py - c1y) ** 2) <= MAX_ARM_RATIO * float(v1.yaw_inertia) and (
+                m2 == math.inf or m2 * ((px - c2x) ** 2 + (py - c2y) ** 2)
+                <= MAX_ARM_RATIO * float(v2.yaw_inertia)):
+            return
     px, py = point.tolist() if point.shape == (2,) else (None, None)
     for i, v in ((1, case.vehicle1), (2, case.vehicle2)):
         if (px is not None and type(v.mass) is np.float64 and type(v.yaw_inertia) is np.float64
@@ -169,6 +198,32 @@ class Vehicle:
     cg_to_front: float | None = None
 
     def __post_init__(self) -> None:
+        if not self._set_plain():
+            self._set_checked()
+        self._check_outline()
+
+    def _set_plain(self) -> bool:
+        """The single moving body given as plain Python floats (or ints): every check of
+        :meth:`_set_checked` holds by the conditions tested here (masses within their ranges,
+        so finite and > 0; finite yaw rate, heading and [x, y] pairs), so the fields are
+        converted directly. False, with nothing set, when any field needs the full checks."""
+        mass, inertia, yaw_rate, heading = self.mass, self.yaw_inertia, self.yaw_rate, self.heading
+        cg, velocity = self.cg, self.velocity
+        if not (type(mass) in _PLAIN and MASS_RANGE[0] <= mass <= MASS_RANGE[1]
+                and type(inertia) in _PLAIN and INERTIA_RANGE[0] <= inertia <= INERTIA_RANGE[1]
+                and type(yaw_rate) in _PLAIN and -math.inf < yaw_rate < math.inf
+                and type(heading) in _PLAIN and -math.inf < heading < math.inf
+                and _plain_pair(cg) and _plain_pair(velocity)):
+            return False
+        f64 = np.float64
+        self.__dict__.update(   # the frozen fields, set once (as object.__setattr__ would)
+            mass=f64(mass), yaw_inertia=f64(inertia), cg=np.array(cg, dtype=float),
+            velocity=np.array(velocity, dtype=float), yaw_rate=f64(yaw_rate),
+            heading=f64(heading))
+        return True
+
+    def _set_checked(self) -> None:
+        """Every field checked and converted (arrays, obstacles, any input)."""
         set_ = object.__setattr__
         mass = _scalar(self.mass, "mass", "kg")
         inertia = _scalar(self.yaw_inertia, "yaw_inertia", "kg m^2")
@@ -195,6 +250,10 @@ class Vehicle:
                 fixed, np.abs(self.velocity).sum(-1) + np.abs(self.yaw_rate))
             if (fixed & (moving != 0)).any():
                 raise InputError("velocity and yaw_rate of a fixed obstacle must be 0")
+
+    def _check_outline(self) -> None:
+        """length, width and cg_to_front: single positive numbers, the CG inside the outline."""
+        set_ = object.__setattr__
         for name in ("length", "width"):
             value = getattr(self, name)
             if value is not None:
@@ -270,9 +329,14 @@ class Impact:
     contact_friction: float | None = None
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "point", _vector(self.point, "point", "m"))
-        angle = _finite(_scalar(self.normal_angle, "normal_angle", "rad"), "normal_angle", "rad")
-        object.__setattr__(self, "normal_angle", angle)
+        point, angle = self.point, self.normal_angle
+        if _plain_pair(point) and type(angle) in _PLAIN and -math.inf < angle < math.inf:
+            self.__dict__.update(point=np.array(point, dtype=float),   # one case, fast
+                                 normal_angle=np.float64(angle))
+        else:
+            object.__setattr__(self, "point", _vector(point, "point", "m"))
+            angle = _finite(_scalar(angle, "normal_angle", "rad"), "normal_angle", "rad")
+            object.__setattr__(self, "normal_angle", angle)
         if self.restitution is not None:
             eps = _one_number(self.restitution, "restitution")
             if not 0.0 <= eps <= 1.0:
@@ -283,7 +347,8 @@ class Impact:
             if not np.isfinite(beta):
                 raise InputError(f"beta must be a finite number (usually in [0, 1]), got {beta}")
             object.__setattr__(self, "beta", beta)
-        self._check_law()
+        if self.law is not None or self.contact_friction is not None:
+            self._check_law()        # nothing to check for Brach's law without mu_c
 
     def _check_law(self) -> None:
         """The law is known, and takes the parameters given."""
@@ -410,15 +475,24 @@ class Case:
     unknown: dict | None = None  # dotted key -> (low, high) SI bounds, the [unknown] table
 
     def __post_init__(self) -> None:
+        if not (type(self.vehicle1) is Vehicle and type(self.vehicle2) is Vehicle
+                and type(self.impact) is Impact):   # else subclasses, or an error
+            self._check_types()
+        if self.units not in ("si", "us"):
+            raise InputError(f"units must be 'si' or 'us', got {self.units!r}")
+        single = _single(self.vehicle1, self.vehicle2, self.impact)
+        if self.vehicle1.mass == math.inf if single else self.vehicle1.fixed.any():
+            raise InputError("vehicle1.mass must be finite: only vehicle2 may be a fixed obstacle")
+        _check_conditioning(self, single)
+        if single:
+            self.__dict__["is_scalar"] = True    # the cached property, known already
+
+    def _check_types(self) -> None:
+        """vehicle1 and vehicle2 are Vehicles, impact an Impact."""
         for name, kind in (("vehicle1", Vehicle), ("vehicle2", Vehicle), ("impact", Impact)):
             if not isinstance(getattr(self, name), kind):
                 raise InputError(f"{name} must be a pim.{kind.__name__}, got "
                                  f"{type(getattr(self, name)).__name__}")
-        if self.units not in ("si", "us"):
-            raise InputError(f"units must be 'si' or 'us', got {self.units!r}")
-        if self.vehicle1.fixed.any():
-            raise InputError("vehicle1.mass must be finite: only vehicle2 may be a fixed obstacle")
-        _check_conditioning(self)
 
     @cached_property
     def shape(self) -> tuple:
@@ -433,11 +507,7 @@ class Case:
     @cached_property
     def is_scalar(self) -> bool:
         """True for a single case (every input a scalar or one [x, y] pair)."""
-        v1, v2, imp = self.vehicle1, self.vehicle2, self.impact
-        if all(type(x) is np.float64 for x in (v1.mass, v1.yaw_inertia, v1.yaw_rate, v2.mass,
-                                                 v2.yaw_inertia, v2.yaw_rate,
-                                                 imp.normal_angle)) and all(
-                x.shape == (2,) for x in (v1.cg, v1.velocity, v2.cg, v2.velocity, imp.point)):
+        if _single(self.vehicle1, self.vehicle2, self.impact):
             return True   # the common single case, without broadcasting shapes
         return self.shape == ()
 

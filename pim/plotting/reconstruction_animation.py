@@ -63,38 +63,13 @@ def frame_states(post: PostImpact, fps: int = DEFAULT_FPS,
     return FrameStates(times=times, states=states)
 
 
-def write_reconstruction_mp4(post: PostImpact, path, *, units: str = "si",
-                             fps: int = DEFAULT_FPS, hold: float = DEFAULT_HOLD,
-                             size=(8.0, 6.0), dpi: int = 100) -> Path:
-    """Write the animation of ``post`` to ``path`` (MP4, H.264) atomically; return the path.
-
-    Parameters
-    ----------
-    post : PostImpact
-        The reconstruction's post-impact motion (with the fitted run-outs).
-    path : path
-        The MP4 file.
-    units : str
-        "si" or "us": the axes' length unit.
-    fps : int
-        Frames per second.
-    hold : float
-        [s] the rest poses are held this long at the end.
-    size, dpi :
-        Figure size [in] and resolution (the frame is size * dpi pixels, rounded to even).
-    """
-    import imageio.v2 as imageio
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
+def _draw_scene(ax, post: PostImpact, frames, scale: float, unit: str) -> dict:
+    """Draw the run-out paths, measured rest poses and C on ``ax`` (lengths times ``scale``,
+    labelled in ``unit``); return {vehicle: (patch, length, width, cg_to_front)}, the
+    patches each frame moves."""
     from matplotlib.patches import Polygon
 
-    frames = frame_states(post, fps, hold)
-    scale, unit = convert(1.0, "length", units)
-    scale = float(scale)
     case = post.case
-    fig = Figure(figsize=size, dpi=dpi)
-    canvas = FigureCanvasAgg(fig)
-    ax = fig.add_subplot()
     patches, extent = {}, []
     for i, fit in post.runouts.items():
         vehicle = getattr(case, f"vehicle{i}")
@@ -126,6 +101,41 @@ def write_reconstruction_mp4(post: PostImpact, path, *, units: str = "si",
     ax.set_ylabel(f"y [{unit}]")
     ax.grid(True, alpha=0.3)
     ax.legend(loc="upper right", fontsize=8)
+    return patches
+
+
+def write_reconstruction_mp4(post: PostImpact, path, *, units: str = "si",
+                             fps: int = DEFAULT_FPS, hold: float = DEFAULT_HOLD,
+                             size=(8.0, 6.0), dpi: int = 100) -> Path:
+    """Write the animation of ``post`` to ``path`` (MP4, H.264) atomically; return the path.
+
+    Parameters
+    ----------
+    post : PostImpact
+        The reconstruction's post-impact motion (with the fitted run-outs).
+    path : path
+        The MP4 file.
+    units : str
+        "si" or "us": the axes' length unit.
+    fps : int
+        Frames per second.
+    hold : float
+        [s] the rest poses are held this long at the end.
+    size, dpi :
+        Figure size [in] and resolution (the frame is size * dpi pixels, rounded to even).
+    """
+    import imageio.v2 as imageio
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    frames = frame_states(post, fps, hold)
+    scale, unit = convert(1.0, "length", units)
+    scale = float(scale)
+    case = post.case
+    fig = Figure(figsize=size, dpi=dpi)
+    canvas = FigureCanvasAgg(fig)
+    ax = fig.add_subplot()
+    patches = _draw_scene(ax, post, frames, scale, unit)
     clock = ax.set_title("")
     path = Path(path)
     with atomic_path(path) as tmp:
