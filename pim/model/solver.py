@@ -223,9 +223,9 @@ def _solve_scalar(case: Case, eps: float, beta: float, approach_tol: float,
     if not math.isfinite(beta):
         raise InputError("beta (fraction of mu0) must be a finite number, usually in [0, 1]")
     v1, v2, imp = case.vehicle1, case.vehicle2, case.impact
-    m1, i1, w1, m2, i2, w2, gamma = (float(x) for x in (
-        v1.mass, v1.yaw_inertia, v1.yaw_rate, v2.mass, v2.yaw_inertia, v2.yaw_rate,
-        imp.normal_angle))
+    m1, i1, w1 = float(v1.mass), float(v1.yaw_inertia), float(v1.yaw_rate)
+    m2, i2, w2 = float(v2.mass), float(v2.yaw_inertia), float(v2.yaw_rate)
+    gamma = float(imp.normal_angle)
     a1, b1, a2, b2 = 1.0 / m1, 1.0 / i1, 1.0 / m2, 1.0 / i2
     px, py = imp.point.tolist()
     g1x, g1y = v1.cg.tolist()
