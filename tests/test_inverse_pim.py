@@ -110,6 +110,11 @@ def test_any_scene_gives_back_its_speeds_and_eps(case, eps, beta):
     speeds = np.hypot(*np.moveaxis(np.asarray(case.vehicle1.velocity), -1, 0)), \
         np.hypot(*np.moveaxis(np.asarray(case.vehicle2.velocity), -1, 0))
     assume(bool(truth.approaching) and min(speeds) > 1.0 and abs(float(truth.q)) < 20)
+    # two vehicles cannot have their CGs within a metre of each other (the strategy allows
+    # coincident CGs; on such a scene, masses 100/100, CGs both at the origin, the Sobol
+    # starts all fell where the vehicles do not approach: see the closing note of issue 21)
+    assume(float(np.hypot(*(np.asarray(case.vehicle1.cg) - np.asarray(case.vehicle2.cg))))
+           > 1.0)
     measured = pim.Measured(velocity1=truth.velocity1, velocity2=truth.velocity2,
                             yaw_rate1=float(truth.yaw_rate1), yaw_rate2=float(truth.yaw_rate2))
     problem = replace(case, measured=measured, impact=replace(case.impact, beta=beta,

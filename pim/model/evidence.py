@@ -47,7 +47,7 @@ class VehicleEvidence:
     heading_sigma : float [rad] standard deviation of the measured heading
     path_points : ndarray (k, 2) [m] points the CG passed through (e.g. tyre-mark ends)
     where : str, the case-file table named in error messages (e.g. ``evidence.vehicle1``)
-    tyre : TyreData or None, the field tyre ([tyres.vehicleN]); None: the Coulomb tyre
+    tyre : TyreData or None, the field tyre ([tyres.vehicleN]), or None for the Coulomb tyre
     driver : DriverInputs or None, inputs over time ([driver.vehicleN])
     """
 

@@ -68,10 +68,10 @@ class RunoutVehicle:
     steer : [rad] four fixed steer angles (counter-clockwise)
     gravity : [m/s^2]
     regularisation : [m/s] slip regularisation (see :mod:`pim.model.tyres`)
-    tyre : TyreData or None; None: the Coulomb law (:func:`pim.model.tyres.wheel_force`),
+    tyre : TyreData or None (None: the Coulomb law (:func:`pim.model.tyres.wheel_force`),
         else the field tyre (:func:`pim.model.tyres.field_wheel_force`, load transfer,
-        rolling resistance, brake build-up)
-    driver : DriverInputs or None; when given, its tables replace ``braking`` and ``steer``
+        rolling resistance, brake build-up))
+    driver : DriverInputs or None (when given, its tables replace ``braking`` and ``steer``)
     """
 
     mass: object
