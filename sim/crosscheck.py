@@ -4,12 +4,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numpy as np
-
 import pim
-from pim.io.units import convert
 
-from .error_measure import ERROR_DEFINITION, KIND_OF_UNIT, compare_results, impact_error
+from .error_measure import ERROR_DEFINITION, TABLE_HEADER, compare_results, impact_error
 from .limits import limitations
 from .result import SimResult
 from .run import simulate
@@ -59,14 +56,8 @@ class CrossCheck:
         s = self.simulated
         lines = [f"{self.case_name}: epsilon = {self.eps:g}, beta = {self.beta:g}  "
                  f"(pymunk: dt = {s.settings.dt:g} s, {s.iterations} iterations, contact = "
-                 f"{s.settings.contact}, start = {s.settings.start})",
-                 f"{'quantity':<26}{'unit':<7}{'analytic':>15}{'simulated':>15}"
-                 f"{'abs error':>12}{'rel error':>12}"]
-        for r in self.rows:
-            (a, b, e), unit = convert(np.array([r.analytic, r.simulated, r.absolute]),
-                                      KIND_OF_UNIT[r.unit], units)
-            rel = "-" if r.relative != r.relative else f"{r.relative:.3g}"
-            lines.append(f"{r.label:<26}{unit:<7}{a:>15.8g}{b:>15.8g}{e:>12.3g}{rel:>12}")
+                 f"{s.settings.contact}, start = {s.settings.start})", TABLE_HEADER]
+        lines += [r.line(units) for r in self.rows]
         lines.append(f"error {self.error:.3g} ({ERROR_DEFINITION})")
         lines.append(f"wall time {1e3 * s.wall_time:.3f} ms, {s.steps} steps, contact "
                      f"{s.contact_steps} step(s) = {s.contact_duration:.6g} s, "
@@ -78,15 +69,9 @@ class CrossCheck:
         ``units``; each row carries its unit; times in s)."""
         s = self.simulated
 
-        def row(r):
-            (a, b, e), unit = convert(np.array([r.analytic, r.simulated, r.absolute]),
-                                      KIND_OF_UNIT[r.unit], units)
-            return {"key": r.key, "label": r.label, "unit": unit, "analytic": float(a),
-                    "simulated": float(b), "abs_error": float(e), "rel_error": r.relative}
-
         return {
             "case": self.case_name, "units": units, "eps": self.eps, "beta": self.beta,
-            "rows": [row(r) for r in self.rows],
+            "rows": [r.to_json(units) for r in self.rows],
             "error": self.error, "error_definition": ERROR_DEFINITION,
             "limitations": list(self.limitations),
             "wall_time": s.wall_time, "steps": s.steps, "contact_steps": s.contact_steps,

@@ -28,10 +28,11 @@ from dataclasses import dataclass
 import numpy as np
 
 import pim
+from pim.io.units import convert
 from pim.model import motion
 
 __all__ = ["QuantityError", "compare_results", "impact_error", "analytic_residual",
-           "ERROR_DEFINITION", "QUANTITIES", "KIND_OF_UNIT"]
+           "ERROR_DEFINITION", "QUANTITIES", "KIND_OF_UNIT", "TABLE_HEADER"]
 
 #: One line saying what :func:`impact_error` measures, printed next to it by every command.
 ERROR_DEFINITION = ("largest error in the velocity changes, yaw rates times the radius of "
@@ -65,6 +66,25 @@ class QuantityError:
     simulated: float
     absolute: float
     relative: float
+
+    def to_json(self, units: str = "si") -> dict:
+        """The row for ``--json``, its values in the ``units`` system with their unit."""
+        (a, b, e), unit = convert(np.array([self.analytic, self.simulated, self.absolute]),
+                                  KIND_OF_UNIT[self.unit], units)
+        return {"key": self.key, "label": self.label, "unit": unit, "analytic": float(a),
+                "simulated": float(b), "abs_error": float(e), "rel_error": self.relative}
+
+    def line(self, units: str = "si") -> str:
+        """The row of a plain-text comparison table (:data:`TABLE_HEADER`'s columns)."""
+        d = self.to_json(units)
+        rel = "-" if self.relative != self.relative else f"{self.relative:.3g}"
+        return (f"{self.label:<26}{d['unit']:<7}{d['analytic']:>15.8g}{d['simulated']:>15.8g}"
+                f"{d['abs_error']:>12.3g}{rel:>12}")
+
+
+#: Header of the plain-text comparison tables (:meth:`QuantityError.line`).
+TABLE_HEADER = (f"{'quantity':<26}{'unit':<7}{'analytic':>15}{'simulated':>15}"
+                f"{'abs error':>12}{'rel error':>12}")
 
 
 def _sim_quantities(case: pim.Case, result: pim.Result, s) -> dict:

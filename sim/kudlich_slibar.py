@@ -25,7 +25,6 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 import pim
-from pim.io.units import convert
 from pim.model.geometry import kinetic_energy
 from pim.model.impact_laws import (
     check_contact_friction,
@@ -35,7 +34,7 @@ from pim.model.impact_laws import (
 from pim.model.numbers import InputError
 
 from .convergence import auto_iterations, contraction_rate
-from .error_measure import ERROR_DEFINITION, KIND_OF_UNIT, compare_results, impact_error
+from .error_measure import ERROR_DEFINITION, TABLE_HEADER, compare_results, impact_error
 from .result import Trajectory
 from .run import body_state, continue_after_impact, run_scene, trajectory_of
 from .scene import build_scene
@@ -210,14 +209,8 @@ class KudlichSlibarCheck:
         """A plain-text table of the comparison, in the ``units`` system."""
         lines = [f"{self.case_name}: Kudlich-Slibar law, k = {self.k:g}, mu_c = {self.mu_c:g}  "
                  f"(pymunk: compression at restitution 0 and friction mu_c, "
-                 f"{self.run.iterations} iterations; restitution k x its impulse)",
-                 f"{'quantity':<26}{'unit':<7}{'analytic':>15}{'simulated':>15}"
-                 f"{'abs error':>12}{'rel error':>12}"]
-        for r in self.rows:
-            (a, b, e), unit = convert(np.array([r.analytic, r.simulated, r.absolute]),
-                                      KIND_OF_UNIT[r.unit], units)
-            rel = "-" if r.relative != r.relative else f"{r.relative:.3g}"
-            lines.append(f"{r.label:<26}{unit:<7}{a:>15.8g}{b:>15.8g}{e:>12.3g}{rel:>12}")
+                 f"{self.run.iterations} iterations; restitution k x its impulse)", TABLE_HEADER]
+        lines += [r.line(units) for r in self.rows]
         lines.append(f"error {self.error:.3g} ({ERROR_DEFINITION})")
         lines.append(f"wall time {1e3 * self.run.wall_time:.3f} ms")
         return "\n".join(lines)
@@ -225,15 +218,9 @@ class KudlichSlibarCheck:
     def to_json(self, units: str = "si") -> dict:
         """Plain data for ``--json``, the quantities in the ``units`` system (named in
         ``units``; each row carries its unit; times in s)."""
-        def row(r):
-            (a, b, e), unit = convert(np.array([r.analytic, r.simulated, r.absolute]),
-                                      KIND_OF_UNIT[r.unit], units)
-            return {"key": r.key, "label": r.label, "unit": unit, "analytic": float(a),
-                    "simulated": float(b), "abs_error": float(e), "rel_error": r.relative}
-
         return {"case": self.case_name, "units": units, "law": "kudlich-slibar", "k": self.k,
                 "mu_c": self.mu_c, "error": self.error, "error_definition": ERROR_DEFINITION,
-                "rows": [row(r) for r in self.rows],
+                "rows": [r.to_json(units) for r in self.rows],
                 "iterations": self.run.iterations, "wall_time": self.run.wall_time}
 
 
