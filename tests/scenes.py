@@ -46,3 +46,21 @@ def random_cases(n: int, seed: int = 0, fixed: bool = False) -> pim.Case:
                          rng.uniform(-np.pi, np.pi, n))
     impact = pim.Impact(rng.uniform(-3, 3, (n, 2)), rng.uniform(-np.pi, np.pi, n))
     return pim.Case(v1, v2, impact)
+
+
+#: Two cars at right angles as case-file tables (SI), for tests that write a case file with
+#: an [impact] table of their own (the impact-law tests).
+TWO_CARS_TOML = """
+[vehicle1]
+mass = 1500
+yaw_inertia = 2500
+cg = [1.5, 0.4]
+heading = "180 deg"
+velocity = [-12, 0]
+[vehicle2]
+mass = 1200
+yaw_inertia = 1800
+cg = [-0.5, -1.6]
+heading = "90 deg"
+velocity = [0, 8]
+"""

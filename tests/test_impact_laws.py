@@ -23,7 +23,7 @@ from pim.model.impact_laws import (
     solve_kudlich_slibar,
     solve_law,
 )
-from tests.scenes import random_cases, scenes
+from tests.scenes import TWO_CARS_TOML, random_cases, scenes
 
 KS = "kudlich-slibar"
 ANY_SCENE = st.one_of(scenes(), scenes(fixed=True))    # two vehicles, or a fixed obstacle
@@ -257,25 +257,11 @@ point = [0, 0]
 normal_angle = "0 deg"
 {impact}
 """
-VEHICLES = """
-[vehicle1]
-mass = 1500
-yaw_inertia = 2500
-cg = [1.5, 0.4]
-heading = "180 deg"
-velocity = [-12, 0]
-[vehicle2]
-mass = 1200
-yaw_inertia = 1800
-cg = [-0.5, -1.6]
-heading = "90 deg"
-velocity = [0, 8]
-"""
 
 
 def write_case(tmp_path, impact: str):
     path = tmp_path / "ks.toml"
-    path.write_text(VEHICLES + KS_IMPACT.format(impact=impact))
+    path.write_text(TWO_CARS_TOML + KS_IMPACT.format(impact=impact))
     return path
 
 

@@ -15,7 +15,7 @@ import sim
 from pim.cli import main
 from pim.model.impact_laws import solve_kudlich_slibar
 from sim.kudlich_slibar import crosscheck_kudlich_slibar, simulate_kudlich_slibar
-from tests.scenes import random_cases
+from tests.scenes import TWO_CARS_TOML, random_cases
 
 
 def relative_error(run, r):
@@ -77,19 +77,7 @@ def test_bad_parameters_name_the_field(k, mu_c, message):
         simulate_kudlich_slibar(pim.load_case("ricsac9"), k, mu_c)
 
 
-CASE = """
-[vehicle1]
-mass = 1500
-yaw_inertia = 2500
-cg = [1.5, 0.4]
-heading = "180 deg"
-velocity = [-12, 0]
-[vehicle2]
-mass = 1200
-yaw_inertia = 1800
-cg = [-0.5, -1.6]
-heading = "90 deg"
-velocity = [0, 8]
+CASE = TWO_CARS_TOML + """
 [impact]
 point = [0, 0]
 normal_angle = "0 deg"
