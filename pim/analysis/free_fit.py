@@ -36,7 +36,6 @@ from functools import lru_cache
 import numpy as np
 
 from ..model.case import Case
-from ..model.dual import MOTION_INPUTS, motion_of_inputs
 from ..model.motion import as_terms
 from .free_inputs import (
     FREE_KEYS,
@@ -46,6 +45,7 @@ from .free_inputs import (
     current_value,
     free_inputs,
     set_inputs,
+    state_motion,
 )
 from .least_squares_batch import least_squares_batch
 from .residuals import residual_terms
@@ -213,7 +213,7 @@ def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True
 
     Parameters
     ----------
-    base : Case or array_like (21,) or (m, 21)
+    base : Case or array_like (23,) or (m, 23)
         Everything not freed (:func:`pim.analysis.free_inputs.free_inputs`).
     keys : sequence of str
         Free keys, the columns of ``x``.
@@ -233,9 +233,7 @@ def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True
         d r / d x, zero where the penalty stands.
     """
     state, dstate = free_inputs(base, keys, x, jacobian=jacobian)
-    n_in = len(MOTION_INPUTS)
-    values, dvalues = motion_of_inputs(state[:, :n_in], jacobian=jacobian,
-                                       tangent=None if dstate is None else dstate[:, :n_in, :])
+    values, dvalues = state_motion(state, dstate, jacobian=jacobian)    # under the state's law
     r = (values[:, rows] - target) * factor
     bad = ~np.all(np.isfinite(r), axis=1)
     r = np.where(bad[:, None], PENALTY, r)
@@ -280,7 +278,8 @@ def sobol_sample(d: int, samples: int, seed: int) -> np.ndarray:
 
 
 def fit_free(case: Case, box: dict, terms, eps: float = 0.5, beta: float = 0.5,
-             samples: int = 256, max_starts: int = 5, seed: int = 0) -> FreeFit:
+             samples: int = 256, max_starts: int = 5, seed: int = 0,
+             mu_c: float | None = None) -> FreeFit:
     """Bounded least squares of the residual ``terms`` over the parameters of ``box``.
 
     Parameters
@@ -300,12 +299,15 @@ def fit_free(case: Case, box: dict, terms, eps: float = 0.5, beta: float = 0.5,
         Number of best samples refined locally (distinct ones only).
     seed : int
         Seed of the scrambled Sobol sample.
+    mu_c : float, optional
+        Contact friction where ``impact.mu_c`` is not in ``box`` (default the case's). The
+        impact law is the case's (``impact.law``).
     """
     keys = tuple(box)
     check_free_for_case(case, keys)
     lo, hi = (np.array([box[k][j] for k in keys], dtype=float) for j in (0, 1))
     width = hi - lo
-    base = case_state(case, eps, beta)
+    base = case_state(case, eps, beta, contact_friction=mu_c)
     rows, target, factor = residual_terms(case, terms)
 
     def resid(x, jacobian=True):
@@ -323,7 +325,7 @@ def fit_free(case: Case, box: dict, terms, eps: float = 0.5, beta: float = 0.5,
     r, jac = out.residuals[best], out.jacobian[best]
     values = dict(zip(keys, map(float, out.x[best]), strict=True))
     fitted = set_inputs(case, {k: v for k, v in values.items()
-                               if k not in ("impact.restitution", "impact.beta")})
+                               if k not in ("impact.restitution", "impact.beta", "impact.k")})
     return FreeFit(keys=keys, x=out.x[best], box=np.stack([lo, hi], axis=1), case=fitted,
                    cost=float(r @ r), residuals=r, side=out.on_bound[best].astype(int),
                    gradient=2.0 * (r @ jac),

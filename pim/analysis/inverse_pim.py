@@ -108,7 +108,7 @@ def inverse_pim_many(base, keys, bounds, x0, rows, target, factor) -> BatchFit:
 
     Parameters
     ----------
-    base : ndarray (m, 21)
+    base : ndarray (m, 23)
         Everything not solved for, per sample.
     keys : sequence of str
         The unknowns (restitution and beta first when they are unknown).
