@@ -31,7 +31,7 @@ from ..model.distributions import UncertaintyTable, nominal_values, sample_input
 from ..model.motion import as_terms
 from ..model.numbers import InputError, checked_count
 from .fitting import FitResult
-from .free_inputs import STATE, fields_set_by
+from .free_inputs import STATE, fields_set_by, friction_floor, law_values
 from .inverse_pim import inverse_pim_many
 from .montecarlo import PERCENTILES, first_order_indices
 from .residuals import measured_terms, residual_terms
@@ -172,7 +172,8 @@ def solve_samples(case, fit_result: FitResult, unknown: dict, n: int, rng, *,
     keys = tuple(fit_result.values)
     eps0 = fit_result.eps
     beta0 = fit_result.beta
-    nominal = {**nominal_values(case, eps0, beta0), **(extra_nominal or {})}
+    nominal = {**nominal_values(case, eps0, beta0), **(extra_nominal or {}),
+               **law_values(fit_result.law, fit_result.contact_friction)}
     solved = {f for k in keys for f in fields_set_by(k)}
     uncertain = UncertaintyTable({k: d for k, d in (dists.inputs.items() if dists else ())
                                   if k not in solved and k in nominal})
@@ -204,7 +205,12 @@ def solve_samples(case, fit_result: FitResult, unknown: dict, n: int, rng, *,
     x0 = np.array([fit_result.values[k] for k in keys])
     out = inverse_pim_many(base, keys, bounds, x0, rows, targets, factor)
     ok = out.converged & ok_post & np.all(np.isfinite(out.x), axis=1)
-    return SampleBlock(out.x, ok, uniforms, source, messages)
+    x, floored = friction_floor(base, keys, out.x)     # an unreached mu_c: its lower bound
+    if floored[ok].any():
+        messages.append(f"impact.mu_c only has a lower bound in {int(floored[ok].sum())} of "
+                        f"{int(ok.sum())} samples (the contact sticks); its percentiles are "
+                        "those of that bound")
+    return SampleBlock(x, ok, uniforms, source, messages)
 
 
 def summarise(fit_result: FitResult, blocks) -> ReconstructionSamples:
