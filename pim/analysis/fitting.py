@@ -433,8 +433,19 @@ def _ks_box(bounds, eps, beta, mu_c, free: dict) -> tuple:
 
 def _floor(case: Case, raw: FreeFit, terms, base) -> tuple[FreeFit, dict]:
     """``raw`` with an unreached contact friction replaced by its lower bound
-    (:func:`pim.analysis.free_inputs.friction_floor`), the minima that then coincide merged,
-    and the identifiability of the other parameters with the lower bound stated."""
+    (:func:`pim.analysis.free_inputs.friction_floor`) in the optimum and every minimum (the
+    minima that then coincide merged), and the identifiability of the other parameters
+    with the lower bound stated."""
+    if "impact.mu_c" not in raw.keys:
+        return raw, {}
+    width = raw.box[:, 1] - raw.box[:, 0]
+    xs, _ = friction_floor(base, raw.keys, np.array([m for m, _ in raw.minima]))
+    minima, kept = [], []
+    for xm, (_, cost) in zip(xs, raw.minima, strict=True):
+        if all(np.max(np.abs(xm - k) / width) > MERGE for k in kept):
+            kept.append(xm)
+            minima.append((xm, cost))
+    raw = replace(raw, minima=tuple(minima))
     x, floored = friction_floor(base, raw.keys, raw.x[None])
     if not floored[0]:
         return raw, {}
@@ -442,7 +453,6 @@ def _floor(case: Case, raw: FreeFit, terms, base) -> tuple[FreeFit, dict]:
     bound = float(x[0, j])
     rows, target, factor = residual_terms(case, terms)
     _, jac = free_residuals(base, raw.keys, x, rows, target, factor)
-    width = raw.box[:, 1] - raw.box[:, 0]
     keep = [i for i in range(len(raw.keys)) if i != j]
     ident = identifiability(jac[0][:, keep] * width[keep], tuple(raw.keys[i] for i in keep),
                             as_terms(terms))
@@ -450,14 +460,8 @@ def _floor(case: Case, raw: FreeFit, terms, base) -> tuple[FreeFit, dict]:
             f"answer (the contact does not reach its friction: it sticks); {bound:.4g} "
             "stands for it")
     ident = replace(ident, warnings=(said, *ident.warnings))
-    xs, _ = friction_floor(base, raw.keys, np.array([m for m, _ in raw.minima]))
-    minima, kept = [], []
-    for xm, (_, cost) in zip(xs, raw.minima, strict=True):
-        if all(np.max(np.abs(xm - k) / width) > MERGE for k in kept):
-            kept.append(xm)
-            minima.append((xm, cost))
     side = raw.side.copy()
     side[j] = 0
     fitted = replace(raw.case, impact=replace(raw.case.impact, contact_friction=bound))
-    return replace(raw, x=x[0], side=side, minima=tuple(minima), identifiability=ident,
-                   case=fitted), {"impact.mu_c": bound}
+    return replace(raw, x=x[0], side=side, identifiability=ident, case=fitted), {
+        "impact.mu_c": bound}
