@@ -16,8 +16,8 @@ from hypothesis import strategies as st
 
 import pim
 from pim.cli import main
-from pim.model.friction_cap import solve_capped
 from pim.model.dual import MOTION_OUTPUTS, motion_inputs
+from pim.model.friction_cap import solve_capped
 from pim.model.impact_laws import (
     LAW_INPUTS,
     brach_as_kudlich_slibar,

@@ -243,9 +243,12 @@ def _print_fit(case, result, include_yaw, free, units) -> None:
     fv, uv = convert(1.0, "velocity", units)
     fw, uw = convert(1.0, "angular_velocity", units)
     fixed = f" (fixed: {', '.join(result.fixed)})" if result.fixed else ""
-    law = {"kudlich-slibar": " under the Kudlich-Slibar law (k, mu_c)",
-           "brach-capped": " under the friction-capped Brach law (eps, beta; cap mu_c = "
-           f"{result.contact_friction:g})"}.get(result.law, "")
+    law = ""
+    if result.law == "kudlich-slibar":
+        law = " under the Kudlich-Slibar law (k, mu_c)"
+    elif result.law == "brach-capped":
+        law = (" under the friction-capped Brach law (eps, beta; cap mu_c = "
+               f"{result.contact_friction:g})")
     click.echo(f"{case.name}: least-squares fit{law} of the post-impact "
                f"{'velocities and yaw rates' if include_yaw else 'velocities'}{fixed}")
     for line in _coefficient_lines(result):

@@ -54,7 +54,7 @@ from .friction_cap import capped_beta, solve_capped
 from .geometry import contact_velocity, cross, dot, perp, vec
 from .numbers import InputError, real_array
 from .result import Result
-from .solver import APPROACH_TOLERANCE, SINGULAR_TOLERANCE, solve
+from .solver import APPROACH_TOLERANCE, SINGULAR_TOLERANCE, solve, unknown_hint
 
 __all__ = ["LAWS", "FRICTION_LAWS", "LawResult", "kudlich_slibar_impulse",
            "solve_kudlich_slibar", "solve_law", "law_of", "kudlich_slibar_as_brach",
@@ -264,10 +264,10 @@ def solve_kudlich_slibar(case: Case, k=None, mu_c=None, approach_tol: float = AP
     mu_c = case.impact.contact_friction if mu_c is None else mu_c
     if k is None:
         raise InputError("restitution k is required for law 'kudlich-slibar': give it or set "
-                         "impact.restitution in the case")
+                         f"impact.restitution in the case{unknown_hint(case)}")
     if mu_c is None:
         raise InputError("contact_friction mu_c is required for law 'kudlich-slibar': give it "
-                         "or set impact.contact_friction in the case")
+                         f"or set impact.contact_friction in the case{unknown_hint(case)}")
     k, mu_c = check_restitution(k), check_contact_friction(mu_c)
     fields, beta = _fields(case, k, mu_c, approach_tol, singular_tol)
     return LawResult(case, k, beta, fields, law="kudlich-slibar", contact_friction=mu_c)
