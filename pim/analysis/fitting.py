@@ -363,7 +363,7 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
         the law does not take, or no approach.
     """
     check_counts(max_starts=max_starts, samples=samples)
-    check_numbers(eps=eps, beta=beta, mu_c=mu_c)
+    check_numbers(eps=eps, beta=beta)     # mu_c may be inf (always stick): _law_case checks
     if np.size(case.vehicle1.mass) != 1 or np.shape(case.impact.point) != (2,):
         raise InputError("fit needs a single case, not a batch of cases")
     law = law_of(case, law)

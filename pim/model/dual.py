@@ -7,7 +7,9 @@ differentiates the post-impact motion of a case with respect to epsilon, beta, G
 the pre-impact velocities and yaw rates, the CG positions, masses and yaw inertias
 (:data:`MOTION_INPUTS`); :func:`motion_of_inputs` does the same from a plain array of those
 inputs, which is what a fit of any inputs iterates on. The hand-derived derivatives in the
-test oracle ``tests/closed_form.py`` are tested against it.
+test oracle ``tests/closed_form.py`` are tested against it. The other impact laws
+(friction-capped Brach, Kudlich-Slibar) run the same formula with their impulse ratio on
+these duals (:func:`pim.model.impact_laws.motion_of_law`; :func:`where` selects a cap's side).
 """
 
 from __future__ import annotations

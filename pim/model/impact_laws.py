@@ -41,6 +41,12 @@ and mu_c = |beta mu0(eps)| when its mu has the sign of mu0(0) and |mu| <= |mu0(0
 (:func:`brach_as_kudlich_slibar`, NaN otherwise). Both assume the sticking compression
 impulse pushes (Pn_c > 0). The laws are planar: the impact point's height, pitch and roll
 are outside their scope.
+
+*Fits.* :func:`motion_of_law` evaluates every law on dual numbers (:mod:`pim.model.dual`)
+through the one formula with the law's impulse ratio (:func:`kudlich_slibar_ratio`,
+:func:`pim.model.friction_cap.capped_beta`), so that the fitting engine fits (k, mu_c) with
+exact derivatives, one-sided at the cap; :func:`needed_friction` is the friction above
+which mu_c no longer matters (a fit then states it as a lower bound).
 """
 
 from __future__ import annotations
