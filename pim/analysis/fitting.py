@@ -96,7 +96,7 @@ class FitResult:
     include_yaw : bool
         Whether the yaw rates were fitted.
     bounds : ((float, float), (float, float))
-        The search box of (eps, beta).
+        The search box of (eps, beta); of (k, mu_c) under "kudlich-slibar".
     fixed : tuple of str
         Parameters held fixed ("eps" and/or "beta"); they are not fitted.
     on_bound : dict
@@ -205,8 +205,9 @@ class FitResult:
             "cost_kind": "chi-square" if self.chi_square else "sum of squares",
             "rms": self.rms, "rms_unit": "m/s",
             "residuals": dict(zip(self.residual_names, map(float, self.residuals), strict=True)),
-            "include_yaw": self.include_yaw, "bounds": {"eps": list(self.bounds[0]),
-                                                        "beta": list(self.bounds[1])},
+            "include_yaw": self.include_yaw,
+            "bounds": dict(zip(("k", "mu_c") if self.law == "kudlich-slibar" else
+                               ("eps", "beta"), map(list, self.bounds), strict=True)),
             "fixed": list(self.fixed), "on_bound": dict(self.on_bound),
             "gradient": {"eps": float(self.gradient[0]), "beta": float(self.gradient[1])},
             "minima": [{"eps": e, "beta": b, "cost": c} for e, b, c in self.minima],
@@ -387,9 +388,13 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
     raw = fit_free(case, box, terms, eps0, beta0, samples=samples, max_starts=max_starts,
                    seed=seed)
     raw, lower = _floor(case, raw, terms, case_state(case, eps0, beta0))
-    fixed = tuple(n for n, v in (("eps", eps_fixed), ("beta", beta_fixed),
+    fixed = tuple(n for n, v in (("k" if law == "kudlich-slibar" else "eps", eps_fixed),
+                                 ("beta", beta_fixed),
                                  ("mu_c", None if "impact.mu_c" in box else mu_c))
                   if v is not None)
+    if law == "kudlich-slibar":          # the box of (k, mu_c) as searched
+        box_eb = (tuple(box.get("impact.k", box_eb[0])),
+                  tuple(box.get("impact.mu_c", MU_C_BOUNDS)))
     return _fit_result(case, raw, terms, include_yaw, box_eb, fixed, eps_fixed, beta_fixed,
                        weights, law, case.impact.contact_friction, lower)
 

@@ -227,8 +227,8 @@ def _coefficient_lines(result) -> list[str]:
     mu_c = result.contact_friction
     lower = result.lower_bounds.get("impact.mu_c")
     shown = (f">= {lower:.6f}   (only a lower bound: the contact sticks)" if lower is not None
-             else f"= {mu_c:.6f}   " + ("(fixed)" if "mu_c" in result.fixed else "fitted"))
-    return [f"  k       = {result.eps:.6f}   {where(0, 'eps')}", f"  mu_c    {shown}",
+             else f"= {mu_c:.6f}   {where(1, 'mu_c')}")
+    return [f"  k       = {result.eps:.6f}   {where(0, 'k')}", f"  mu_c    {shown}",
             f"  (impulse ratio Pt / Pn = {float(solved.mu):.4f}; the same answer is Brach's "
             f"at eps = {result.eps:.6g}, beta = {result.beta:.6g})"]
 
