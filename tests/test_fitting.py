@@ -430,3 +430,20 @@ def test_fit_command_under_the_kudlich_slibar_law(capsys):
     assert "hold k with --k" in capsys.readouterr().err
     assert main(["fit", "ricsac9", "--k", "0.3"]) == 2
     assert "--k is the restitution of law kudlich-slibar" in capsys.readouterr().err
+
+
+def test_kudlich_slibar_families_with_the_contact_plane_free(ricsac9):
+    """Sliding: P = (1 + k) Pn_c (n + sigma mu_c t) has two numbers, so (k, mu_c, Gamma)
+    trade as Brach's (eps, beta, Gamma) do. Sticking: P = -(1 + k) K^-1 u does not depend
+    on the contact plane at all, so Gamma alone is undecided (the law's full impact)."""
+    free = {"impact.normal_angle": (-0.5, 0.5)}
+    sliding = fit(_ks_measured(ricsac9, 0.3, 0.4), include_yaw=True, free=free)
+    assert sliding.identifiability.families == (("impact.k", "impact.mu_c",
+                                                 "impact.normal_angle"),)
+    sticking = fit(_ks_measured(ricsac9, 0.3, 1.4), include_yaw=True, free=free)
+    assert sticking.values["impact.k"] == pytest.approx(0.3, abs=1e-7)
+    assert sticking.identifiability.families == (("impact.normal_angle",),)
+    assert any("impact.normal_angle does not change the fitted motion" in w
+               for w in sticking.identifiability.warnings)
+    # with the plane given, both are decided (sliding) or k is and mu_c has its lower bound
+    assert fit(_ks_measured(ricsac9, 0.3, 0.4), include_yaw=True).identifiability.identifiable

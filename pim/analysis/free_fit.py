@@ -148,7 +148,9 @@ def identifiability(jac: np.ndarray, names: tuple, residual_names: tuple,
     for fam in families:
         warnings.append(f"family of equally good fits: {', '.join(fam)} trade against each "
                         f"other (the data fix only a combination of them); fix one of them "
-                        f"to get a unique answer")
+                        f"to get a unique answer" if len(fam) > 1 else
+                        f"family of equally good fits: {fam[0]} does not change the fitted "
+                        f"motion (the data say nothing about it); fix it")
     if rank == n and n:
         for a in range(n):
             for b in range(a + 1, n):
