@@ -152,7 +152,8 @@ class SampleBlock:
     """Raw Monte Carlo samples of a reconstruction (one block; blocks concatenate).
 
     ``x`` (n, n_unknowns) in the order of the nominal fit's ``values``; ``ok`` (n,) the
-    samples used; ``uniforms`` the uniform variate of every varying quantity (n,).
+    samples used; ``uniforms`` the uniform variate of every varying quantity (n,);
+    ``floored`` (n,) the samples whose ``impact.mu_c`` is only a lower bound.
     """
 
     x: np.ndarray
@@ -160,6 +161,7 @@ class SampleBlock:
     uniforms: dict
     source: str
     messages: list
+    floored: np.ndarray | None = None
 
 
 def solve_samples(case, fit_result: FitResult, unknown: dict, n: int, rng, *,
@@ -206,11 +208,7 @@ def solve_samples(case, fit_result: FitResult, unknown: dict, n: int, rng, *,
     out = inverse_pim_many(base, keys, bounds, x0, rows, targets, factor)
     ok = out.converged & ok_post & np.all(np.isfinite(out.x), axis=1)
     x, floored = friction_floor(base, keys, out.x)     # an unreached mu_c: its lower bound
-    if floored[ok].any():
-        messages.append(f"impact.mu_c only has a lower bound in {int(floored[ok].sum())} of "
-                        f"{int(ok.sum())} samples (the contact sticks); its percentiles are "
-                        "those of that bound")
-    return SampleBlock(x, ok, uniforms, source, messages)
+    return SampleBlock(x, ok, uniforms, source, messages, floored)
 
 
 def summarise(fit_result: FitResult, blocks) -> ReconstructionSamples:
@@ -226,6 +224,12 @@ def summarise(fit_result: FitResult, blocks) -> ReconstructionSamples:
     if n_used < n:
         messages.append(f"{n - n_used} of {n} samples left out (fit not converged or no "
                         f"post-impact motion reaching the evidence)")
+    floored = np.concatenate([np.zeros(len(b.ok), bool) if b.floored is None else b.floored
+                              for b in blocks])[ok]
+    if floored.any():
+        messages.append(f"impact.mu_c only has a lower bound in {int(floored.sum())} of "
+                        f"{n_used} samples (the contact sticks); its percentiles are those "
+                        "of that bound")
     u_ok = {k: u[ok] for k, u in uniforms.items()}
     stats, samples = {}, {}
     for j, key in enumerate(keys):
