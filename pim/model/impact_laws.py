@@ -420,7 +420,7 @@ def _contact(seed, inverse, cs, sn, eps, beta, approach_tol, singular_tol):
     px, py = seed(3), seed(4)
     args = (inverse(15), inverse(16), px - seed(11), py - seed(12), seed(5), seed(6), seed(7),
             inverse(17), inverse(18), px - seed(13), py - seed(14), seed(8), seed(9), seed(10))
-    return formula.contact(cs, sn, *args[:7], *args[7:], eps, beta, approach_tol,
+    return formula.contact(cs, sn, *args, eps, beta, approach_tol,
                            singular_tol), args
 
 
