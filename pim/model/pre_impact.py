@@ -135,7 +135,7 @@ def speed_at_mark_start(impact_speed, length, friction, braking=1.0, grade=0.0,
                          f"friction holds (braking {f_k:g} x friction {mu_k:g} = "
                          f"{f_k * mu_k:g} < {-g_k:g}, the downhill grade): the sliding car "
                          f"would speed up along the marks")
-    return np.sqrt(v * v + 2.0 * a * length)
+    return np.hypot(v, np.sqrt(2.0 * a * length))      # no under- or overflow of v^2
 
 
 @dataclass(frozen=True)
