@@ -19,13 +19,13 @@ Two kinds of evidence turn a vehicle's impact speed into its speed earlier on:
   with ``S_1^2 = 30 d (f +- G)`` [mph, ft] (Fricke, L. B., *Traffic Accident Reconstruction*,
   Northwestern University Traffic Institute, 1990, speed from skidmarks; Brach, R. M. &
   Brach, R. M., *Vehicle Accident Analysis and Reconstruction Methods*, 2nd ed., SAE 2011,
-  ch. 2, constant-deceleration motion). The textbooks' ``f +- G`` is the small-angle form of
-  ``f cos(theta) + sin(theta)``; (1) is exact for a rigid vehicle on a plane incline. A
-  yawing (side-slipping) car slides on all four tyres: ``braking = 1`` whatever its brakes
-  did. The per-wheel drag fraction (:func:`drag_fraction`) weighs each wheel's braking
-  fraction with its static load, as the Coulomb run-out tyre does (straight braking at
-  ``f mu g``, :mod:`pim.model.tyres`); the textbooks' "braking efficiency" is the same
-  number.
+  straight-line motion at constant deceleration). The textbooks' ``f +- G`` is the
+  small-angle form of ``f cos(theta) + sin(theta)``; (1) is exact for a rigid vehicle on a
+  plane incline. A yawing (side-slipping) car slides on all four tyres: ``braking = 1``
+  whatever its brakes did. The per-wheel drag fraction (:func:`drag_fraction`) weighs each
+  wheel's braking fraction with its static load, as the Coulomb run-out tyre does
+  (straight braking at ``f mu g``, :mod:`pim.model.tyres`); the textbooks' "braking
+  efficiency" is the same number.
 - **Driver inputs over time** (a ``[driver.vehicleN]`` table starting at a negative time
   ``t0``): :func:`driver_start_speed` finds the speed at ``t0`` from which the vehicle,
   driven by the table on either run-out tyre (:func:`pim.model.runout.pre_impact_motion`),
@@ -37,7 +37,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from .numbers import InputError, real_array
 from .runout import RunoutVehicle, pre_impact_motion
@@ -234,6 +233,8 @@ def driver_start_speed(vehicle: RunoutVehicle, impact_speed: float, start_time=N
         No negative start time, an impact speed at which the vehicle is (nearly) at rest
         (no start speed reaches it), or no start speed in the bracket reaching it.
     """
+    from scipy.optimize import brentq  # scipy on use: `import pim` stays light
+
     if start_time is None:
         if vehicle.driver is None:
             raise InputError(f"{where}: no driver table and no start time")
