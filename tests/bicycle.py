@@ -37,13 +37,15 @@ def matrices(mass, yaw_inertia, cg_to_front, wheelbase, c_front, c_rear, speed):
 
 
 def ramp_response(A, B, t) -> np.ndarray:
-    """State (len(t), 2) after a unit ramp ``delta = t`` from rest (zero for ``t <= 0``)."""
+    """State (len(t), 2) after a unit ramp ``delta = t`` from rest (zero for ``t <= 0``);
+    ``e^(A t) B`` through A's eigenvectors (checked against ``scipy.linalg.expm``)."""
+    t = np.atleast_1d(np.asarray(t, dtype=float))
     inv = np.linalg.inv(A)
-    out = np.zeros((np.size(t), 2))
-    for i, ti in enumerate(np.atleast_1d(t)):
-        if ti > 0:
-            out[i] = inv @ inv @ (expm(A * ti) - np.eye(2)) @ B - inv @ B * ti
-    return out
+    values, vectors = np.linalg.eig(A)
+    modal = np.linalg.solve(vectors, B)
+    tau = np.maximum(t, 0.0)
+    exp_b = np.real((np.exp(np.outer(tau, values)) * modal) @ vectors.T)    # e^(A t) B
+    return (exp_b - B) @ (inv @ inv).T - np.outer(tau, inv @ B)
 
 
 def table_response(A, B, times, steer, t) -> np.ndarray:
@@ -57,6 +59,16 @@ def table_response(A, B, times, steer, t) -> np.ndarray:
     t = np.asarray(t, dtype=float)
     return sum(c * ramp_response(A, B, t - t0) for c, t0 in zip(changes, times, strict=True)
                if c != 0)
+
+
+def ramp_response_expm(A, B, t) -> np.ndarray:
+    """:func:`ramp_response` by ``scipy.linalg.expm`` at each time (the slow reference)."""
+    inv = np.linalg.inv(A)
+    out = np.zeros((np.size(t), 2))
+    for i, ti in enumerate(np.atleast_1d(t)):
+        if ti > 0:
+            out[i] = inv @ inv @ (expm(A * ti) - np.eye(2)) @ B - inv @ B * ti
+    return out
 
 
 def understeer_gradient(mass, cg_to_front, wheelbase, c_front, c_rear) -> float:

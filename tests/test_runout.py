@@ -14,7 +14,14 @@ from pim.model.tyres import (
     linear_buildup_stopping_distance,
     regularised_slide_distance,
 )
-from tests.bicycle import matrices, table_response, understeer_gradient, yaw_rate_gain
+from tests.bicycle import (
+    matrices,
+    ramp_response,
+    ramp_response_expm,
+    table_response,
+    understeer_gradient,
+    yaw_rate_gain,
+)
 
 CAR = RunoutVehicle(mass=1500.0, yaw_inertia=2500.0, wheelbase=2.7, track=1.5,
                     cg_to_front=1.2, friction=0.8)
@@ -162,6 +169,13 @@ def test_j_turn_settles_to_the_bicycle_models_steady_state_cornering(speed):
     assert k > 0                                          # understeer
     assert omega == pytest.approx(v * delta / (car.wheelbase + k * v * v), rel=3e-3)
     assert v / omega == pytest.approx((car.wheelbase + k * v * v) / delta, rel=3e-3)
+
+
+def test_bicycle_oracles_eigenvector_form_is_the_matrix_exponential():
+    a_mat, b_vec = matrices(1500.0, 2500.0, 1.2, 2.7, 110e3, 150e3, 20.0)
+    t = np.linspace(-0.5, 3.0, 36)
+    np.testing.assert_allclose(ramp_response(a_mat, b_vec, t),
+                               ramp_response_expm(a_mat, b_vec, t), atol=1e-12)
 
 
 @pytest.mark.parametrize("speed, ramp", [(20.0, 0.05), (30.0, 0.2)])
