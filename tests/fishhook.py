@@ -69,13 +69,18 @@ class Published:
     roll: np.ndarray
 
 
+def published_table(name: str) -> dict:
+    """Columns of a tests/data CSV (``#`` source lines, one header line, numbers) by name."""
+    lines = [line for line in (DATA / name).read_text().splitlines()
+             if not line.startswith("#")]
+    table = np.atleast_2d(np.loadtxt(lines[1:], delimiter=","))
+    return {column: table[:, i] for i, column in enumerate(lines[0].split(","))}
+
+
 def load(speed_mph: int) -> Published:
     """The published run at ``speed_mph`` (35, 40 or 45), converted to SI; the yaw rate is
     the published yaw angle's central difference (``numpy.gradient``)."""
-    lines = [line for line in (DATA / f"pccrash-fishhook-malibu-{speed_mph}mph.csv")
-             .read_text().splitlines() if not line.startswith("#")]
-    table = np.loadtxt(lines[1:], delimiter=",")
-    col = {name: table[:, i] for i, name in enumerate(lines[0].split(","))}
+    col = published_table(f"pccrash-fishhook-malibu-{speed_mph}mph.csv")
     time, yaw = col["time_s"], np.radians(col["yaw_deg"])
     motion = Motion(time, col["x_ft"] * FT, col["y_ft"] * FT, yaw, np.gradient(yaw, time),
                     col["lat_accel_g"] * STANDARD_GRAVITY)

@@ -22,6 +22,7 @@ from tests.bicycle import (
     understeer_gradient,
     yaw_rate_gain,
 )
+from tests.fishhook import published_table
 
 CAR = RunoutVehicle(mass=1500.0, yaw_inertia=2500.0, wheelbase=2.7, track=1.5,
                     cg_to_front=1.2, friction=0.8)
@@ -220,3 +221,42 @@ def test_locked_spin_on_the_field_tyre_turns_through_the_closed_form_angle():
     np.testing.assert_allclose(r.rest_position, 0.0, atol=1e-9)
     coulomb = w0 ** 2 * 2500.0 / (2 * 0.8 * 1500.0 * STANDARD_GRAVITY * rho)
     assert r.rest_heading - 0.5 == pytest.approx(coulomb, abs=3e-3)
+
+
+def _constant_steer_gradient(car, delta, speeds=(10.0, 15.0, 20.0, 25.0, 30.0)):
+    """ISO 4138 constant-steer-angle method: settle at each speed with the front wheels
+    held at ``delta``; the understeer gradient is the slope of ``delta - L / R`` against
+    ``a_y`` [rad s^2/m] (Gillespie eq. 6-15), ``R = v / r``. Returns (gradient, max a_y)."""
+    lateral, excess = [], []
+    for speed in speeds:
+        vx, vy, omega = runout(replace(car, steer=(delta, delta, 0.0, 0.0)), [0, 0], 0.0,
+                               [speed, 0.0], 0.0, max_time=6.0).states[-1, 3:]
+        v = np.hypot(vx, vy)
+        lateral.append(v * omega)
+        excess.append(delta - car.wheelbase * omega / v)
+    return np.polyfit(lateral, excess, 1)[0], max(lateral)
+
+
+def test_steady_state_circular_driving_gives_a_measured_cars_understeer_gradient():
+    # a 2007 Acura TSX (tests/data, measured on the road: D_f = 6.7, D_r = 3.1, K = 3.6
+    # deg/g): the axle cornering stiffnesses are the measured compliances (C = axle weight /
+    # D), split over two tyres; friction 0.9 (dry road), CG height 0.55 m and track 1.52 m
+    # assumed. In the linear range (0.1 deg held, a_y < 0.02 g) the four-wheel brush model
+    # with load transfer gives the car's K to the published digit; at 0.5 deg (a_y up to
+    # 0.09 g) the brush's saturation already raises it (progressive understeer, about 5 %)
+    tsx = {k: float(v[0]) for k, v in published_table(
+        "acura-tsx-2007-cornering-compliance.csv").items()}
+    a, b, m = tsx["cg_to_front_m"], tsx["cg_to_rear_m"], tsx["mass_kg"]
+    length, per_g = a + b, np.radians(1.0) / STANDARD_GRAVITY        # deg/g -> rad s^2/m
+    c_front = m * b / length / (tsx["front_compliance_deg_per_g"] * per_g) / 2
+    c_rear = m * a / length / (tsx["rear_compliance_deg_per_g"] * per_g) / 2
+    car = RunoutVehicle(m, tsx["yaw_inertia_kgm2"], length, 1.52, a, 0.9,
+                        braking=(0, 0, 0, 0),
+                        tyre=TyreData(cornering_stiffness=(c_front, c_front, c_rear, c_rear),
+                                      cg_height=0.55, rolling_resistance=0.0))
+    linear, top = _constant_steer_gradient(car, np.radians(0.1))
+    assert top < 0.02 * STANDARD_GRAVITY
+    assert linear / per_g == pytest.approx(tsx["understeer_gradient_deg_per_g"], abs=0.1)
+    higher, top = _constant_steer_gradient(car, np.radians(0.5))
+    assert 0.08 * STANDARD_GRAVITY < top < 0.1 * STANDARD_GRAVITY
+    assert 1.02 * linear < higher < 1.08 * linear
