@@ -279,3 +279,33 @@ def test_bad_profiles_name_the_field(kw, message):
 def test_crush_energy_needs_two_depths():
     with pytest.raises(ValueError, match="1 given, at least 2"):
         crush_energy(1.0, [0.1], A, B)
+
+
+# CRASH3 User's Guide and Technical Manual (NHTSA DOT-HS-805-732), Section 5 sample run,
+# damage summary (manual p. 73), as quoted in the public documentation of the Locus crash
+# tool (docs/methods/crash-stiffness.md): category 4 stiffnesses of Table 8-2 in lb/in,
+# lb/in^2 and lb (G as listed, not A^2/2B), inputs printed to 0.1 in, energies in ft-lb.
+CRASH3_SAMPLE_RUN = [
+    # A, B, G, L [in], depths [in], force-balance factor, printed energy [ft-lb]
+    (356.0, 34.0, 1874.0, 73.0, (2.7, 3.6), 1.0, 19245.3),        # vehicle 1, front
+    (143.0, 50.0, 203.0, 84.5, (6.2, 8.3, 9.2, 5.9, 4.4, 0.8), 2.0, 31220.8),  # 2, side, 45 deg
+]
+
+
+@pytest.mark.parametrize("a, b, g, width, depths, factor, printed", CRASH3_SAMPLE_RUN)
+def test_crash3_manual_sample_run_energies(a, b, g, width, depths, factor, printed):
+    """Each printed energy lies within the energies of the inputs rounded by +-0.05 in (the
+    energy grows with every depth and the width, so the bounds are the all-low and all-high
+    inputs); the nominal inputs give it to 0.5 %."""
+    inch, lbf, ft_lbf = 0.0254, 4.4482216152605, 1.3558179483314
+
+    def energy(shift):
+        cs = [(c + shift) * inch for c in depths]
+        e = crush_energy((width + shift) * inch, cs, a * lbf / inch, b * lbf / inch**2, g * lbf)
+        return factor * e / ft_lbf
+
+    assert energy(-0.05) < printed < energy(0.05)
+    assert energy(0.0) == pytest.approx(printed, rel=5e-3)
+    alpha = math.radians(45.0)
+    assert force_balance_factor(math.cos(alpha), math.sin(alpha), 0.0, 1.0) == (
+        pytest.approx(2.0))

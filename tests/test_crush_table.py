@@ -4,7 +4,8 @@ profile, vehicle-class defaults, and every bad input named with its field and ra
 import numpy as np
 import pytest
 
-from pim.io.crush_table import CRUSH_KEYS, parse_crush
+from pim.io.crush_table import CRUSH_KEYS, STIFFNESS_CLASS_FILE, load_stiffness_classes, parse_crush
+from pim.io.datasets import data_path, source_lines
 from pim.io.units import convert, parse
 
 WHERE = "evidence.vehicle1.crush"
@@ -134,3 +135,42 @@ def test_damage_must_fit_on_the_vehicle():
     assert "beyond the end of the front side; allowed: |offset| + width/2 <= 0.9 m" in _error(
         shifted, vehicle_width=1.8)
     assert parse_crush(US, WHERE, vehicle_length=4.5, vehicle_width=1.8).width == 1.524
+
+
+def test_class_defaults_from_the_bundled_table():
+    """CRASH3 Table 8-2 category 4 (the bundled "midsize car"): front 356 lb/in, 34 lb/in^2,
+    G 1874 lb; side 143 lb/in, 50 lb/in^2, G 203 lb."""
+    table = {k: v for k, v in US.items() if not k.startswith("stiffness")}
+    front = parse_crush(dict(table, **{"class": "Midsize Car"}), WHERE)
+    assert front.stiffness_a == pytest.approx(356 * LBF_IN, rel=1e-9)
+    assert front.stiffness_b == pytest.approx(34 * LBF_IN2, rel=1e-9)
+    assert front.stiffness_g == pytest.approx(1874 * 4.4482216152605, rel=1e-9)
+    side = parse_crush(dict(table, side="right", **{"class": "midsize car"}), WHERE)
+    assert side.stiffness_a == pytest.approx(143 * LBF_IN, rel=1e-9)
+    classes = load_stiffness_classes()
+    assert classes["midsize car", "left"].stiffness_b == pytest.approx(50 * LBF_IN2)
+    assert "CRASH3" in " ".join(source_lines(data_path(STIFFNESS_CLASS_FILE)))
+    assert _error(dict(table, **{"class": "bus"})) == (
+        f"{WHERE}.class = 'bus' has no front stiffness (known classes: midsize car)")
+    assert _error(dict(table, side="rear", **{"class": "midsize car"})) == (
+        f"{WHERE}.class = 'midsize car' has no rear stiffness (known classes: none)")
+    assert "or a class (known: midsize car)" in _error(
+        {k: v for k, v in US.items() if k != "stiffness_b"})
+
+
+def test_class_table_errors_name_file_line_and_column(tmp_path):
+    path = tmp_path / "classes.csv"
+    header = "class,side,A_lbf_per_in,B_lbf_per_in2,G_lbf,A_sd_lbf_per_in,B_sd_lbf_per_in2,source"
+    for row, message in [("x,top,1,1,,,,s", "classes.csv line 3: side 'top' is not one of"),
+                         ("x,front,-1,1,,,,s", "line 3 column 'A_lbf_per_in': '-1' must be a "
+                                               "finite number > 0"),
+                         ("x,front,1,b,,,,s", "column 'B_lbf_per_in2': 'b' is not a number"),
+                         ("x,front,1,1,,,s", "line 3: 7 fields, expected 8")]:
+        path.write_text(f"# source\n{header}\n{row}\n")
+        with pytest.raises(ValueError, match=message):
+            load_stiffness_classes(path)
+    path.write_text("# source\nclass,side\n")
+    with pytest.raises(ValueError, match="header must be"):
+        load_stiffness_classes(path)
+    with pytest.raises(ValueError, match="cannot read the stiffness classes"):
+        load_stiffness_classes(tmp_path / "missing.csv")

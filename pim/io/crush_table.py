@@ -33,7 +33,7 @@ from ..model.crush import SIDES, CrushProfile
 from ..model.numbers import InputError
 from .datasets import data_path, source_lines
 from .toml_tables import check_keys
-from .units import parse
+from .units import parse, registry
 
 __all__ = ["parse_crush", "CRUSH_KEYS", "StiffnessClass", "load_stiffness_classes",
            "STIFFNESS_CLASS_FILE"]
@@ -58,6 +58,8 @@ class StiffnessClass:
         The damaged side it applies to.
     stiffness_a, stiffness_b : float
         A [N/m] and B [N/m^2] per unit width.
+    stiffness_g : float or None
+        G [N] where the source lists it (else A^2 / 2B).
     stiffness_a_sigma, stiffness_b_sigma : float
         Their scatter within the class [N/m, N/m^2] (0 where the source gives none).
     source : str
@@ -68,15 +70,18 @@ class StiffnessClass:
     side: str
     stiffness_a: float
     stiffness_b: float
+    stiffness_g: float | None
     stiffness_a_sigma: float
     stiffness_b_sigma: float
     source: str
 
 
-_CLASS_COLUMNS = ["class", "side", "A_lbf_per_in", "B_lbf_per_in2", "A_sd_lbf_per_in",
-                  "B_sd_lbf_per_in2", "source"]
-_LBF_PER_IN = 175.12683524647636        # N/m per lbf/in (pint: (1 lbf/in).to("N/m"))
-_LBF_PER_IN2 = 68947.57293168361        # N/m^2 per lbf/in^2
+_CLASS_COLUMNS = ["class", "side", "A_lbf_per_in", "B_lbf_per_in2", "G_lbf",
+                  "A_sd_lbf_per_in", "B_sd_lbf_per_in2", "source"]
+#: The SI unit of each number column (the file's units are US, as published).
+_CLASS_UNITS = {"A_lbf_per_in": ("lbf/inch", "N/m"), "B_lbf_per_in2": ("lbf/inch**2", "N/m**2"),
+                "G_lbf": ("lbf", "N"), "A_sd_lbf_per_in": ("lbf/inch", "N/m"),
+                "B_sd_lbf_per_in2": ("lbf/inch**2", "N/m**2")}
 
 
 def _class_row(name: str, line: int, fields: list[str]) -> StiffnessClass:
@@ -87,23 +92,23 @@ def _class_row(name: str, line: int, fields: list[str]) -> StiffnessClass:
     if row["side"] not in SIDES:
         raise InputError(f"{where}: side {row['side']!r} is not one of {', '.join(SIDES)}")
     numbers = {}
-    for column in _CLASS_COLUMNS[2:6]:
-        scatter = "_sd_" in column
-        text = row[column] or ("0" if scatter else "")
+    for column, (unit, si) in _CLASS_UNITS.items():
+        optional = column != "A_lbf_per_in" and column != "B_lbf_per_in2"
+        text = row[column] or ("0" if optional else "")
         try:
             value = float(text)
         except ValueError:
             raise InputError(f"{where} column {column!r}: {row[column]!r} is not a number") \
                 from None
-        if not math.isfinite(value) or value < 0 or (value == 0 and not scatter):
+        if not math.isfinite(value) or value < 0 or (value == 0 and not optional):
             raise InputError(f"{where} column {column!r}: {row[column]!r} must be a finite "
-                             f"number {'>= 0' if scatter else '> 0'}")
-        numbers[column] = value
-    return StiffnessClass(row["class"].lower(), row["side"],
-                          numbers["A_lbf_per_in"] * _LBF_PER_IN,
-                          numbers["B_lbf_per_in2"] * _LBF_PER_IN2,
-                          numbers["A_sd_lbf_per_in"] * _LBF_PER_IN,
-                          numbers["B_sd_lbf_per_in2"] * _LBF_PER_IN2, row["source"])
+                             f"number {'>= 0' if optional else '> 0'}")
+        numbers[column] = float(registry().Quantity(value, unit).to(si).magnitude)
+    return StiffnessClass(row["class"].lower(), row["side"], numbers["A_lbf_per_in"],
+                          numbers["B_lbf_per_in2"],
+                          numbers["G_lbf"] if row["G_lbf"] else None,
+                          numbers["A_sd_lbf_per_in"], numbers["B_sd_lbf_per_in2"],
+                          row["source"])
 
 
 @lru_cache(maxsize=4)
@@ -111,8 +116,9 @@ def load_stiffness_classes(path=None) -> dict:
     """The vehicle-class default stiffnesses: ``{(class, side): StiffnessClass}`` (SI).
 
     The CSV (default: the bundled :data:`STIFFNESS_CLASS_FILE`) opens with ``#`` source
-    lines, then the header ``class,side,A_lbf_per_in,B_lbf_per_in2,A_sd_lbf_per_in,
-    B_sd_lbf_per_in2,source`` (US units as published; standard deviations may be empty).
+    lines, then the header ``class,side,A_lbf_per_in,B_lbf_per_in2,G_lbf,A_sd_lbf_per_in,
+    B_sd_lbf_per_in2,source`` (US units as published; G and the standard deviations may be
+    empty).
     """
     path = path or data_path(STIFFNESS_CLASS_FILE)
     try:
@@ -135,7 +141,8 @@ def load_stiffness_classes(path=None) -> dict:
 
 
 def _known_classes(side: str) -> str:
-    return ", ".join(sorted({name for name, s in load_stiffness_classes() if s == side}))
+    names = sorted({name for name, s in load_stiffness_classes() if s == side})
+    return ", ".join(names) or "none"
 
 
 def _depths(value, where: str) -> tuple:
@@ -170,6 +177,8 @@ def _stiffness(table, where: str, side: str) -> dict:
         out = {"stiffness_a": entry.stiffness_a, "stiffness_b": entry.stiffness_b,
                "stiffness_a_sigma": entry.stiffness_a_sigma,
                "stiffness_b_sigma": entry.stiffness_b_sigma}
+        if entry.stiffness_g is not None:
+            out["stiffness_g"] = entry.stiffness_g
     elif len(given) == 2:
         out = {"stiffness_a": parse(table["stiffness_a"], "force_per_length",
                                     f"{where}.stiffness_a"),
