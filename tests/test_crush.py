@@ -309,3 +309,20 @@ def test_crash3_manual_sample_run_energies(a, b, g, width, depths, factor, print
     alpha = math.radians(45.0)
     assert force_balance_factor(math.cos(alpha), math.sin(alpha), 0.0, 1.0) == (
         pytest.approx(2.0))
+
+
+def test_global_normal_and_corrected_energy_follow_the_heading():
+    p = _profile(side="left")
+    nx, ny = p.normal(np.radians(90.0))
+    assert (nx, ny) == pytest.approx((-1.0, 0.0), abs=1e-15)   # left of a car heading +y
+    # impulse along the global normal: no correction; at 30 deg to it: 1 + tan^2 30
+    assert p.corrected_energy(-5e3, 0.0, np.radians(90.0)) == pytest.approx(p.energy)
+    a = np.radians(30.0)
+    assert p.corrected_energy(math.cos(a), math.sin(a), np.radians(90.0)) == pytest.approx(
+        p.energy * 4 / 3, rel=1e-12)
+    h = Dual(np.radians(100.0), [1.0])
+    e = p.corrected_energy(1.0, 0.3, h)
+    step = 1e-7
+    fd = (p.corrected_energy(1.0, 0.3, np.radians(100.0) + step)
+          - p.corrected_energy(1.0, 0.3, np.radians(100.0) - step)) / (2 * step)
+    assert e.grad[0] == pytest.approx(fd, rel=1e-6)
