@@ -3,6 +3,7 @@ barrier identity, the force-balance factor (also on duals), the crush-energy del
 one-dimensional impact mechanics, and the profile's checks."""
 
 import math
+from functools import cached_property
 
 import numpy as np
 import pytest
@@ -24,6 +25,7 @@ from pim.model.crush import (
     sqrt_of,
 )
 from pim.model.dual import Dual
+from pim.model.result import Result
 
 A, B = 52538.0, 689476.0          # 300 lbf/in, 10 lbf/in^2 in N/m, N/m^2
 G = A * A / (2 * B)
@@ -220,6 +222,8 @@ def test_partitions_name_the_compared_pim_energy():
     normal = compared_energy("normal")
     assert normal.attribute == "crush_energy_normal" and not normal.force_balance
     assert set(PARTITIONS) == {"total", "normal"}
+    for comparison in PARTITIONS.values():      # the named energies exist on a PIM result
+        assert isinstance(getattr(Result, comparison.attribute), cached_property)
     with pytest.raises(ValueError, match=r"partition = 'shear' is not known \(allowed: total, "
                                          r"normal\)"):
         compared_energy("shear")

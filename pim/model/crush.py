@@ -296,6 +296,11 @@ def compared_energy(partition: str = "total") -> CrushComparison:
     crush energy and with the tangential energy loss): E1 + E2 = the normal crush energy
     (:attr:`pim.Result.crush_energy_normal`), without a correction factor.
 
+    Both PIM energies are *dissipated* energies. Stiffness coefficients fitted to barrier
+    impact speeds give the *absorbed* energy at maximum crush, which for a restitution e
+    exceeds the normal loss by 1 / (1 - e^2) (Ziernicki & Rose, SAE 2005-01-1200); a caller
+    with e > 0 may compare (1 - e^2) times the crush energy (see :func:`crush_impulse`).
+
     Raises
     ------
     InputError
