@@ -273,6 +273,9 @@ def test_energy_sigma_first_order_matches_sampling():
     ({"stiffness_a": -1.0}, r"crush\.stiffness_a = -1 N/m must be finite and > 0"),
     ({"stiffness_b": 0.0}, r"crush\.stiffness_b = 0 N/m\^2 must be finite and > 0"),
     ({"depth_sigma": -0.1}, r"crush\.depth_sigma = -0.1 m must be finite and >= 0"),
+    ({"stiffness_g": -1.0}, r"crush\.stiffness_g = -1 N must be finite and >= 0"),
+    ({"energy_sigma_relative": float("inf")}, r"crush\.energy_sigma_relative = inf - must be "
+                                               r"finite and >= 0"),
     ({"offset": float("nan")}, r"crush\.offset = nan must be finite"),
 ])
 def test_bad_profiles_name_the_field(kw, message):
