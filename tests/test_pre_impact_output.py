@@ -82,6 +82,8 @@ def test_pim_reconstruct_shows_the_speeds_before_the_impact(fast_reconstruction,
     assert row["value"] == pytest.approx(v, rel=1e-9)
     assert row["p5"] < row["p50"] < row["p95"] and row["p5"] < row["value"] < row["p95"]
     assert row["varied"] == ["evidence.vehicle1.pre_impact.friction"]
+    assert {name for name, _ in row["drivers"]} == {"vehicle1.speed (impact)",
+                                                     "evidence.vehicle1.pre_impact.friction"}
     out = tmp_path / "out"
     assert main(["reconstruct", "ricsac9-reconstruct", "--samples", "400", "--out",
                  str(out)]) == 0

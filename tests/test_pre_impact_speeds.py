@@ -85,6 +85,9 @@ def test_interval_coverage_with_drawn_friction():
     for p, mu in ((row.p5, 0.61), (row.p50, 0.70), (row.p95, 0.79)):
         assert p == pytest.approx(speed_at_mark_start(12.0, 15.0, mu), rel=2e-3)
     assert row.varied == ("evidence.vehicle1.pre_impact.friction",) and row.n_used == 20_000
+    # the friction alone varies: it drives all of the spread
+    assert row.drivers[0][0] == "evidence.vehicle1.pre_impact.friction"
+    assert row.drivers[0][1] == pytest.approx(1.0, abs=0.02)
 
 
 def test_without_drawn_marks_the_percentiles_are_those_of_the_impact_speed_carried_over():
@@ -94,6 +97,21 @@ def test_without_drawn_marks_the_percentiles_are_those_of_the_impact_speed_carri
     for p, q in zip((row.p5, row.p50, row.p95), np.percentile(v, [5, 50, 95]), strict=True):
         assert p == pytest.approx(speed_at_mark_start(q, 15.0, 0.7), rel=1e-3)
     assert row.p5 < row.start_speed < row.p95
+    (driver,) = row.drivers                    # nothing drawn for the marks: all the impact's
+    assert driver[0] == "vehicle1.speed (impact)" and driver[1] == pytest.approx(1, abs=0.02)
+
+
+def test_drivers_split_the_spread_between_impact_speed_and_friction():
+    marks = PreImpactMarks(15.0, 0.7, where="evidence.vehicle1.pre_impact")
+    table = UncertaintyTable({"evidence.vehicle1.pre_impact.friction":
+                              Distribution("plusminus", None, 0.1)})
+    v = np.random.default_rng(4).normal(12.0, 1.0, 20_000)
+    (row,) = reconstruction_pre_impact(_fake_reconstruction(v, marks, table), seed=1)
+    drivers = dict(row.drivers)
+    # additive to first order: the two first-order indices nearly exhaust the variance
+    assert drivers["vehicle1.speed (impact)"] > 0.4 and drivers[
+        "evidence.vehicle1.pre_impact.friction"] > 0.1
+    assert sum(drivers.values()) == pytest.approx(1.0, abs=0.03)
 
 
 def test_driver_table_percentiles_through_the_root_find():
@@ -119,9 +137,9 @@ def test_drawn_length_is_truncated_at_zero_and_friction_checked():
     marks = PreImpactMarks(0.5, 0.7)
     table = UncertaintyTable({"evidence.vehicle1.pre_impact.skid_length":
                               Distribution("normal", None, 1.0)})
-    length, friction, varied = draw_marks(marks, table, 1, 2000, np.random.default_rng(0))
-    assert length.min() >= 0 and np.all(friction == 0.7) and varied == (
-        "evidence.vehicle1.pre_impact.skid_length",)
+    length, friction, uniforms = draw_marks(marks, table, 1, 2000, np.random.default_rng(0))
+    assert length.min() >= 0 and np.all(friction == 0.7) and list(uniforms) == [
+        "evidence.vehicle1.pre_impact.skid_length"]
     table = UncertaintyTable({"evidence.vehicle1.pre_impact.friction":
                               Distribution("plusminus", None, 0.8)})
     with pytest.raises(InputError, match=r"pre_impact\.friction: value -0\.1 outside"):

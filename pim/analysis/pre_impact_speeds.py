@@ -28,7 +28,7 @@ from ..model.distributions import UncertaintyTable, sample_inputs
 from ..model.numbers import InputError
 from ..model.pre_impact import PreImpactMarks, driver_start_speed
 from .free_inputs import STATE, case_state, free_inputs
-from .montecarlo import PERCENTILES
+from .montecarlo import PERCENTILES, first_order_indices
 
 __all__ = ["PreImpactSpeed", "case_pre_impact", "reconstruction_pre_impact",
            "impact_speed_samples", "draw_marks", "PRE_IMPACT_SEED_KEY"]
@@ -53,6 +53,9 @@ class PreImpactSpeed:
     marks : PreImpactMarks or None
     start_time : float [s] or None, the driver table's first time
     varied : tuple of str, the inputs drawn besides the impact speed
+    drivers : tuple of (str, float), first-order variance indices of the start speed over
+        the samples (the impact speed ranked as its empirical CDF, and the drawn marks),
+        largest first (empty without a Monte Carlo of the marks)
     """
 
     vehicle: int
@@ -66,6 +69,7 @@ class PreImpactSpeed:
     marks: PreImpactMarks | None = None
     start_time: float | None = None
     varied: tuple = field(default=())
+    drivers: tuple = field(default=())
 
     @property
     def name(self) -> str:
@@ -141,7 +145,7 @@ def impact_speed_samples(rec) -> dict:
 
 
 def draw_marks(marks: PreImpactMarks, uncertainty, i: int, n: int, rng):
-    """The marks' ``(length (n,), friction (n,), varied names)`` drawn from the
+    """The marks' ``(length (n,), friction (n,), uniforms)`` drawn from the
     ``[uncertainty]`` entries ``evidence.vehicle<i>.pre_impact.skid_length`` and
     ``.friction`` (their nominal values where none is given)."""
     prefix = f"evidence.vehicle{i}.pre_impact."
@@ -151,7 +155,17 @@ def draw_marks(marks: PreImpactMarks, uncertainty, i: int, n: int, rng):
     values, uniforms = sample_inputs(table, nominal, n, rng)
     each = [np.broadcast_to(np.asarray(values[prefix + k], dtype=float), (n,))
             for k in ("skid_length", "friction")]
-    return each[0], each[1], tuple(uniforms)
+    return each[0], each[1], uniforms
+
+
+def _drivers(start, impact, uniforms, i) -> tuple:
+    """First-order indices of the start speeds: the impact speed (ranked: its empirical CDF,
+    a monotone map like the inverse-CDF draws) and the drawn marks."""
+    if start.size < 10:
+        return ()
+    ranks = (np.argsort(np.argsort(impact, kind="stable"), kind="stable") + 0.5) / impact.size
+    found = first_order_indices(start, {f"vehicle{i}.speed (impact)": ranks, **uniforms})
+    return tuple((name, float(index)) for name, index in found)
 
 
 def _check_uncertainty(case, sources) -> None:
@@ -181,16 +195,17 @@ def reconstruction_pre_impact(rec, seed: int = 0) -> list[PreImpactSpeed]:
     for row in nominal:
         v = impact[row.vehicle]
         if row.source == "marks":
-            length, friction, varied = draw_marks(row.marks, case.uncertainty, row.vehicle,
-                                                  v.size, rng)
+            length, friction, uniforms = draw_marks(row.marks, case.uncertainty, row.vehicle,
+                                                    v.size, rng)
             start = row.marks.start_speed(v, length=length, friction=friction)
             p = np.percentile(start, PERCENTILES)
+            varied, drivers = tuple(uniforms), _drivers(start, v, uniforms, row.vehicle)
         else:
             ev = getattr(case.evidence, f"vehicle{row.vehicle}")
             p = [_driver_start(case, row.vehicle, ev, q, row.start_time)
                  for q in np.percentile(v, PERCENTILES)]
-            varied = ()
+            varied, drivers = (), ()
         out.append(PreImpactSpeed(row.vehicle, row.source, row.impact_speed, row.start_speed,
                                   *(float(x) for x in p), n_used=int(v.size), marks=row.marks,
-                                  start_time=row.start_time, varied=varied))
+                                  start_time=row.start_time, varied=varied, drivers=drivers))
     return out

@@ -40,7 +40,8 @@ def pre_impact_rows(speeds, units: str) -> list[dict]:
         v = [float(x) for x in values]
         rows.append({"name": s.name, "unit": unit, "value": v[0], "p5": v[1], "p50": v[2],
                      "p95": v[3], "impact": v[4], "what": _what(s, units),
-                     "source": s.source, "varied": list(s.varied)})
+                     "source": s.source, "varied": list(s.varied),
+                     "drivers": [[k, x] for k, x in s.drivers]})
     return rows
 
 
@@ -50,32 +51,42 @@ def _spread(row) -> str:
     return f"  [{row['p5']:.4g}, {row['p50']:.4g}, {row['p95']:.4g}]"
 
 
+def _main_driver(row) -> str:
+    top = [(k, x) for k, x in row["drivers"][:1] if x > 0.005]
+    return "".join(f"; main driver of the spread {k} ({x:.2f})" for k, x in top)
+
+
 def pre_impact_lines(rows) -> list[str]:
-    """Text lines: each speed with its 5/50/95 % (when computed) and where it holds."""
+    """Text lines: each speed with its 5/50/95 % (when computed), where it holds and the
+    main driver of its spread."""
     return [f"{r['name']:32s} {r['value']:10.4g} {r['unit']}{_spread(r)}  ({r['what']}; "
-            f"impact speed {r['impact']:.4g} {r['unit']})" for r in rows]
+            f"impact speed {r['impact']:.4g} {r['unit']}{_main_driver(r)})" for r in rows]
 
 
 def pre_impact_json(rows) -> dict:
     """``--json``'s ``pre_impact`` entry: name -> value, percentiles, unit, impact speed and
     where it holds (NaN percentiles become null in :func:`pim.cli.main.echo_json`)."""
     return {r["name"]: {k: r[k] for k in ("unit", "value", "p5", "p50", "p95", "impact",
-                                           "source", "what", "varied")} for r in rows}
+                                           "source", "what", "varied", "drivers")}
+            for r in rows}
 
 
 def _cells(r) -> tuple:
     def g(x):
         return "" if x != x else f"{x:.4g}"
 
+    drivers = ", ".join(f"{k} {x:.2f}" for k, x in r["drivers"][:3] if x > 0.005)
     return (r["name"], g(r["value"]), g(r["p5"]), g(r["p50"]), g(r["p95"]), r["unit"],
-            g(r["impact"]), r["what"])
+            g(r["impact"]), r["what"], drivers)
 
 
-_COLUMNS = ("speed", "value", "5 %", "50 %", "95 %", "unit", "impact speed", "where, from what")
+_COLUMNS = ("speed", "value", "5 %", "50 %", "95 %", "unit", "impact speed", "where, from what",
+            "drivers of the spread")
 _NOTE = ("Marks: v_start = sqrt(v_impact^2 + 2 g L (f mu cos(theta) + sin(theta))) "
          "(Fricke 1990; Brach & Brach 2011); the 5/50/95 % carry each Monte Carlo sample's "
-         "impact speed with the marks' friction and length drawn from [uncertainty]. Driver "
-         "table: the start speed whose motion under the table reaches the impact speed.")
+         "impact speed with the marks' friction and length drawn from [uncertainty]; their "
+         "drivers are first-order variance indices (correlation ratio). Driver table: the "
+         "start speed whose motion under the table reaches the impact speed.")
 
 
 def pre_impact_markdown(rows) -> list[str]:
