@@ -39,7 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .numbers import InputError, real_array
-from .runout import RunoutVehicle, pre_impact_motion
+from .runout import RunoutVehicle, StoppedBeforeImpact, pre_impact_motion
 from .tyres import STANDARD_GRAVITY
 
 __all__ = ["PreImpactMarks", "drag_fraction", "mark_deceleration", "speed_at_mark_start",
@@ -195,10 +195,8 @@ def driver_speed_at_impact(vehicle: RunoutVehicle, start_speed: float, start_tim
     try:
         _, _, velocity, _ = pre_impact_motion(vehicle, (0.0, 0.0), 0.0, (start_speed, 0.0),
                                               0.0, start_time, rtol=rtol, atol=atol)
-    except InputError as exc:
-        if "stops before the impact" in str(exc):
-            return 0.0
-        raise
+    except StoppedBeforeImpact:
+        return 0.0
     return float(np.hypot(*velocity))
 
 
