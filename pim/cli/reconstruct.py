@@ -26,6 +26,7 @@ from pathlib import Path
 
 import click
 
+from ..analysis.pre_impact_speeds import reconstruction_pre_impact
 from ..analysis.reconstruction import Reconstruction
 from ..analysis.reconstruction import reconstruct as run_reconstruction
 from ..io import html
@@ -38,6 +39,13 @@ from ..model.numbers import InputError
 from ..plotting.reconstruction_animation import write_reconstruction_mp4
 from ..plotting.reconstruction_scene import reconstruction_figure
 from .main import case_argument, echo_json, json_option, units_option
+from .pre_impact_output import (
+    pre_impact_html,
+    pre_impact_json,
+    pre_impact_lines,
+    pre_impact_markdown,
+    pre_impact_rows,
+)
 
 __all__ = ["reconstruct", "reconstruction_rows", "law_line"]
 
@@ -110,7 +118,7 @@ def _spread_drivers(rec: Reconstruction) -> list[str]:
 
 
 def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
-            with_video: bool = False) -> str:
+            with_video: bool = False, pre_impact=()) -> str:
     n = rec.samples.n if rec.samples else 0
     source = ("the run-out inverse of each vehicle's rest evidence" if rec.post else
               "the case's [measured] post-impact motion")
@@ -129,6 +137,7 @@ def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
                   else " | ".join(["-"] * 3))
         lines.append(f"| {r['name']} | {_value(r)} | {spread} | {r['unit']} | {driver} |")
     lines.append("")
+    lines += pre_impact_markdown(pre_impact)
     if rec.samples:
         lines += ["## What drives each unknown's spread", "",
                   "First-order variance indices (correlation ratio) of the sampled inputs.", ""]
@@ -190,9 +199,9 @@ def reconstruct(case_name, out, samples, seed, workers, video, progress, units, 
     with output_folder(out, command="pim reconstruct") if out else \
             contextlib.nullcontext() as tmp:
         with _stages(case, samples, workers, progress) as say:
-            rec, rows = _reconstruct(case, samples, seed, workers, units, as_json, say)
+            rec, rows, pre = _reconstruct(case, samples, seed, workers, units, as_json, say)
         if tmp is not None:
-            _write_folder(tmp, rec, rows, units, video)
+            _write_folder(tmp, rec, rows, units, video, pre)
 
 
 @contextlib.contextmanager
@@ -214,7 +223,8 @@ def _stages(case, samples: int, workers: int, progress):
 
 
 def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
-    """Run the reconstruction and print its table (or JSON); return it and its rows."""
+    """Run the reconstruction and print its table (or JSON); return it, its rows and the
+    rows of the speeds before the impact (:mod:`pim.cli.pre_impact_output`)."""
     if workers > 1:
         with worker_pool(workers) as pool:
             rec = run_reconstruction(case, samples=samples, seed=seed, executor=pool,
@@ -226,8 +236,10 @@ def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
                                or "family" in m or "equally well" in m),
                               "; ".join(rec.messages)))
     rows = reconstruction_rows(rec, units)
+    pre = pre_impact_rows(reconstruction_pre_impact(rec, seed), units)
     if as_json:
         data = _json(case, rows, samples, rec.messages, units)
+        data["pre_impact"] = pre_impact_json(pre)
         data["tyre_models"] = ({f"vehicle{i}": fit.tyre_model for i, fit in
                                 rec.post.runouts.items()} if rec.post else {})
         data["goodness_of_fit"] = rec.goodness.to_dict() if rec.goodness else None
@@ -242,27 +254,33 @@ def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
         for r in rows:
             click.echo(f"{r['name']:32s} {_value(r):>10s} {r['unit']}  "
                        f"{spread_text(r, samples)}")
+        for line in pre_impact_lines(pre):
+            click.echo(line)
         if rec.goodness is not None:
             click.echo(f"goodness of fit: {rec.goodness.summary()}")
-    return rec, rows
+    return rec, rows, pre
 
 
-def _write_folder(directory: Path, rec, rows, units: str, video: bool) -> None:
+def _write_folder(directory: Path, rec, rows, units: str, video: bool, pre=()) -> None:
     """reconstruction.csv, scene.png, reconstruction.mp4, report.html and report.md into
     ``directory``."""
     csv = ["name,unit,value,p5,p50,p95,main_driver"] + [
         f"{r['name']},{r['unit']},{r['value']:.6g},{r['p5']:.6g},{r['p50']:.6g},"
-        f"{r['p95']:.6g},{r['driver']}" for r in rows]
+        f"{r['p95']:.6g},{r['driver']}" for r in rows] + [
+        f"{r['name']},{r['unit']},{r['value']:.6g},{r['p5']:.6g},{r['p50']:.6g},"
+        f"{r['p95']:.6g},\"{r['what']}\"" for r in pre]
     write_text(directory / "reconstruction.csv", "\n".join(csv) + "\n")
     if rec.post is not None:
         save_figure(reconstruction_figure(rec.post, units), directory / "scene.png")
         if video:
             write_reconstruction_mp4(rec.post, directory / "reconstruction.mp4", units=units)
-    write_text(directory / "report.html", _html_report(rec, rows, directory, video))
-    write_text(directory / "report.md", _report(rec, rows, units, rec.post is not None, video))
+    write_text(directory / "report.html", _html_report(rec, rows, directory, video, pre))
+    write_text(directory / "report.md", _report(rec, rows, units, rec.post is not None, video,
+                                                pre))
 
 
-def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: bool) -> str:
+def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: bool,
+                 pre=()) -> str:
     """report.html: the table, what drives each spread, the warnings, the scene and the
     animation inline (read from ``directory``), by the blocks of :mod:`pim.io.html`."""
     def g(x):
@@ -283,6 +301,7 @@ def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: 
                    note="CSV: `reconstruction.csv`", id="table-reconstruction"),
         html.bullets(rec.messages or ["No warnings."], cls="messages")]
     sections = [html.section("Results", body, id="results", cls="keep")]
+    sections += pre_impact_html(pre)
     if rec.samples:
         sections.append(html.section("What drives each unknown's spread", [html.paragraph(
             "First-order variance indices (correlation ratio) of the sampled inputs."),
@@ -296,6 +315,7 @@ def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: 
         sections.append(html.section("Scene and animation", media, id="scene"))
     return html.page(f"Reconstruction of {rec.case.name}", sections,
                      subtitle="Written by `pim reconstruct` (the same as text: `report.md`).",
-                     contents=[("results", "Results"), ("drivers", "Drivers"),
-                               ("scene", "Scene")][:len(sections)],
+                     contents=[("results", "Results"),
+                               *([("pre-impact", "Before the impact")] if pre else []),
+                               ("drivers", "Drivers"), ("scene", "Scene")][:len(sections)],
                      generator="pim reconstruct")

@@ -14,6 +14,10 @@ position_sigma = "0.3 ft"    # optional
 heading_sigma = "2 deg"      # optional
 path_points = [["10 ft", "3 ft"]]   # optional
 
+[evidence.vehicle1.pre_impact]   # optional: marks before the impact (pim.io.pre_impact_table)
+skid_length = "42 ft"
+friction = 0.7
+
 [unknown]
 vehicle1.speed = {bounds = ["0 mph", "80 mph"]}
 impact.restitution = {bounds = [0, 1]}
@@ -26,13 +30,14 @@ import numpy as np
 
 from ..model.evidence import UNKNOWN_KINDS, Evidence, VehicleEvidence
 from ..model.numbers import InputError
+from .pre_impact_table import parse_pre_impact
 from .toml_tables import check_keys
 from .units import parse
 
 __all__ = ["parse_evidence", "parse_unknown"]
 
 _EVIDENCE = {"rest_position", "rest_heading", "wheelbase", "track", "cg_to_front", "friction",
-             "wheels", "steer", "position_sigma", "heading_sigma", "path_points"}
+             "wheels", "steer", "position_sigma", "heading_sigma", "path_points", "pre_impact"}
 _WHEEL_WORDS = {"locked": 1.0, "free": 0.0, "free-rolling": 0.0}
 
 
@@ -87,6 +92,12 @@ def _vehicle(table, where) -> VehicleEvidence:
     if "heading_sigma" in table:
         kwargs["heading_sigma"] = parse(table["heading_sigma"], "angle",
                                         f"{where}.heading_sigma")
+    if "pre_impact" in table:      # per-wheel braking weighs by the static axle loads
+        a = (parse(table["cg_to_front"], "length", f"{where}.cg_to_front")
+             if "cg_to_front" in table else wheelbase / 2)
+        share = 1 - a / wheelbase if wheelbase > 0 else 0.5
+        kwargs["pre_impact"] = parse_pre_impact(table["pre_impact"], f"{where}.pre_impact",
+                                                front_share=min(max(share, 0.0), 1.0))
     return VehicleEvidence(
         rest_position=_point(table["rest_position"], f"{where}.rest_position"),
         rest_heading=parse(table["rest_heading"], "angle", f"{where}.rest_heading"),

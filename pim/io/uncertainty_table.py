@@ -75,12 +75,17 @@ def parse_uncertainty(table) -> UncertaintyTable | None:
                                                       for e in evidence.values()):
             raise InputError("uncertainty.evidence must hold vehicle1 / vehicle2 tables, e.g. "
                              "evidence.vehicle1.friction = {plusminus = 0.1}")
-        groups += [(f"evidence.{g}", e) for g, e in evidence.items()]
+        for g, e in evidence.items():       # and its marks before the impact
+            e = dict(e)
+            marks = e.pop("pre_impact", None)
+            groups += [(f"evidence.{g}", e)] + ([] if marks is None else
+                                                 [(f"evidence.{g}.pre_impact", marks)])
     for group, entries in groups:
         if group.split(".")[0] not in ("vehicle1", "vehicle2", "impact", "evidence") or \
                 not isinstance(entries, dict):
             raise InputError(f"uncertainty: unknown input {group!r} (use vehicle1.<input>, "
-                             f"vehicle2.<input>, impact.<input> or evidence.vehicleN.friction; "
+                             f"vehicle2.<input>, impact.<input>, evidence.vehicleN.friction or "
+                             f"evidence.vehicleN.pre_impact.friction / .skid_length; "
                              f"allowed: {', '.join(UNCERTAIN)})")
         for key, spec in entries.items():
             name = f"{group}.{key}"

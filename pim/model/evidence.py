@@ -13,6 +13,7 @@ import numpy as np
 
 from .driver import DriverInputs
 from .numbers import InputError
+from .pre_impact import PreImpactMarks
 from .runout import RunoutVehicle
 from .tyres import TyreData
 
@@ -49,6 +50,8 @@ class VehicleEvidence:
     where : str, the case-file table named in error messages (e.g. ``evidence.vehicle1``)
     tyre : TyreData or None, the field tyre ([tyres.vehicleN]), or None for the Coulomb tyre
     driver : DriverInputs or None, inputs over time ([driver.vehicleN])
+    pre_impact : PreImpactMarks or None, tyre marks before the impact
+        ([evidence.vehicleN.pre_impact], :mod:`pim.model.pre_impact`)
     """
 
     rest_position: np.ndarray
@@ -65,6 +68,7 @@ class VehicleEvidence:
     where: str = "evidence"
     tyre: TyreData | None = None
     driver: DriverInputs | None = None
+    pre_impact: PreImpactMarks | None = None
 
     def __post_init__(self):
         w = self.where

@@ -72,9 +72,13 @@ INPUTS: dict[str, Quantity] = _components()
 #: Inputs of a reconstruction's evidence that an ``[uncertainty]`` table may also vary (they
 #: act on the run-out, not on the impact).
 EVIDENCE_INPUTS: dict[str, Quantity] = {
-    f"evidence.vehicle{i}.friction": Quantity("dimensionless",
-                                             f"tyre-road friction of vehicle {i}")
-    for i in (1, 2)}
+    **{f"evidence.vehicle{i}.friction": Quantity("dimensionless",
+                                                f"tyre-road friction of vehicle {i}")
+       for i in (1, 2)},
+    **{f"evidence.vehicle{i}.pre_impact.{key}": Quantity(kind, f"{label} of vehicle {i}")
+       for i in (1, 2) for key, kind, label in (
+           ("friction", "dimensionless", "tyre-road friction along the pre-impact marks"),
+           ("skid_length", "length", "length of the pre-impact marks"))}}
 #: Every name an ``[uncertainty]`` table accepts.
 UNCERTAIN: dict[str, Quantity] = {**INPUTS, **EVIDENCE_INPUTS}
 
