@@ -9,11 +9,17 @@ after it has moved *all* bodies in the step, so the force is evaluated at the ne
 
     x_{n+1} = x_n + v_n dt,    v_{n+1} = v_n + F(x_{n+1}, v_n) dt / m,
 
-first order, stable for omega dt < 2, with linear momentum and angular momentum about any
-fixed point conserved to round-off (both bodies receive equal and opposite forces at the
-same point in the same step). The memory of the contact law is updated by its implicit
-step: delta_max = max(delta_max, delta), the friction spring by
-:func:`sim.contact_law.tangential_step`.
+stable for omega dt < 2, with linear momentum and angular momentum about any fixed point
+conserved to round-off (both bodies receive equal and opposite forces at the same point in
+the same step). Its velocities belong to the middle of the steps (the leapfrog, second
+order for forces of the positions): the slip the friction spring integrates is taken at the
+middle of the step (:func:`midstep`), the tyre forces at its end (:meth:`_Stepper.ahead`),
+the run starts with a half kick and the post-impact velocities are taken back to the
+separation instant, so that every scene converges at second order except a jump of the
+force inside a step (tangential recovery r = 0), which stays first order
+(docs/contact-model.md, "Convergence of pymunk to the reference"). The memory of the
+contact law is updated by its implicit step: delta_max = max(delta_max, delta), the
+friction spring by :func:`sim.contact_law.tangential_step`.
 
 The contact ends when the normal force has returned to zero on unloading (delta below the
 permanent crush); the separation time is interpolated inside the last step. A step too

@@ -17,6 +17,10 @@ fixed steps:
   sliding (z on the cone, dz/dt = +-dz_max/dt with dz_max/dt = mu_c (dF_n/d delta)
   (d delta/dt) / k_t, F_t = -+mu_c F_n) until the slip stops pushing outward.
 
+Each smooth phase is one ``solve_ivp`` call; ``settings.max_phases`` caps the phases (a
+chattering stick/slip switch) and ``settings.max_steps`` the accepted steps over all of them
+(a stiff scene), both raising ``SimulationError("not_converged")``.
+
 State: x1, y1, theta1, vx1, vy1, w1, x2, y2, theta2, vx2, vy2, w2, z (a fixed vehicle 2
 keeps zero velocity). Nothing is shared with the pymunk stepping of :mod:`sim.compliant`.
 """
@@ -349,7 +353,8 @@ def reference_compliant(case: pim.Case, eps, stiffness, friction=0.0, geometry="
         Bad input, or a geometry other than "point".
     SimulationError
         "no_contact" (no approach at C), "never_separated", "not_converged" (solve_ivp
-        failed).
+        failed, or more than ``settings.max_phases`` phases or ``settings.max_steps``
+        steps: the message names the cap and how to raise it).
     """
     wall = time.perf_counter()
     if geometry != "point":
