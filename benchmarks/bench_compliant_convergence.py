@@ -6,8 +6,8 @@ For RICSAC 9 (eps 0.355, k = 7.5e5 N/m) and each scene (frictionless; mu_c 0.5, 
 mu_c 3 sticking with r = eps^2 and r = 1; r = 0; tyres mu_tyre 0.7) prints the largest error
 in the post-impact velocities [m/s] of ``sim.simulate_compliant`` against
 ``sim.reference_compliant`` (DOP853, rtol 1e-12) at each step count per contact time, and
-the order between consecutive counts (docs/contact-model.md, "Convergence of pymunk to the
-reference"). About a minute on a shared 2-core machine.
+the order per halving of dt between consecutive counts (docs/contact-model.md,
+"Convergence of pymunk to the reference"). About a minute on a shared 2-core machine.
 """
 
 from __future__ import annotations
@@ -55,7 +55,8 @@ def main() -> None:
     print("scene".ljust(22) + "".join(f"{n:>12d}" for n in steps) + "   orders")
     for name, scene in SCENES.items():
         err = errors(case, steps, **scene)
-        orders = [math.log2(err[a] / err[b]) for a, b in zip(steps[:-1], steps[1:], strict=True)]
+        orders = [math.log2(err[a] / err[b]) / math.log2(b / a)
+                  for a, b in zip(steps[:-1], steps[1:], strict=True)]
         print(name.ljust(22) + "".join(f"{err[n]:12.2e}" for n in steps) + "   "
               + " ".join(f"{o:5.2f}" for o in orders), flush=True)
 
