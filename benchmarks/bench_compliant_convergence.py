@@ -3,7 +3,8 @@
 Run:  python benchmarks/bench_compliant_convergence.py [--steps 800,1600,3200,6400]
 
 For RICSAC 9 (eps 0.355, k = 7.5e5 N/m) and each scene (frictionless; mu_c 0.5, sliding;
-mu_c 3 sticking with r = eps^2 and r = 1; r = 0; tyres mu_tyre 0.7) prints the largest error
+mu_c 3 sticking with r = eps^2 and r = 1; r = 0 at mu_c 0.5 and 3;
+tyres mu_tyre 0.7) prints the largest error
 in the post-impact velocities [m/s] of ``sim.simulate_compliant`` against
 ``sim.reference_compliant`` (DOP853, rtol 1e-12) at each step count per contact time, and
 the order per halving of dt between consecutive counts (docs/contact-model.md,
@@ -27,6 +28,7 @@ SCENES = {
     "mu_c 3, r = eps^2": dict(friction=3.0),
     "mu_c 3, r = 1": dict(friction=3.0, recovery=1.0),
     "mu_c 0.5, r = 0": dict(friction=0.5, recovery=0.0),
+    "mu_c 3, r = 0": dict(friction=3.0, recovery=0.0),
     "tyres 0.7": dict(friction=0.0, tyre_friction=0.7),
 }
 

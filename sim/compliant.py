@@ -14,9 +14,9 @@ conserved to round-off (both bodies receive equal and opposite forces at the sam
 the same step). Its velocities belong to the middle of the steps (the leapfrog, second
 order for forces of the positions): the slip the friction spring integrates is taken at the
 middle of the step (:func:`midstep`), the tyre forces at its end (:meth:`_Stepper.ahead`),
-the run starts with a half kick and the post-impact velocities are taken back to the
-separation instant, so that every scene converges at second order except a jump of the
-force inside a step (tangential recovery r = 0), which stays first order
+the run starts with a half kick, the post-impact velocities are taken back to the
+separation instant and the release of a plastic friction force (r = 0) is located inside
+its step (:func:`plastic_release`), so that every scene converges at second order
 (docs/contact-model.md, "Convergence of pymunk to the reference"). The memory of the
 contact law is updated by its implicit step: delta_max = max(delta_max, delta), the
 friction spring by :func:`sim.contact_law.tangential_step`.
@@ -154,6 +154,10 @@ class ContactMemory:
         Outline contact: the normal of the last step with overlap.
     separated : bool
         The normal force returned to zero on unloading in this step.
+    slip : float
+        Tangential slip of the last step [m/s] (at the middle of the step).
+    friction_force : ndarray (2,) or None
+        Friction force on vehicle 1 applied in the last step [N].
     """
 
     on: bool = True
@@ -164,6 +168,8 @@ class ContactMemory:
     z: float = 0.0
     normal: np.ndarray | None = None
     separated: bool = False
+    slip: float = 0.0
+    friction_force: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -310,8 +316,29 @@ def contact_step(problem: CompliantProblem, memory: ContactMemory, geo: ContactG
         sticking = abs(z) < limit * (1 - 1e-9)
     new = replace(memory, on=on, started=started, delta_max=delta_max, delta=delta,
                   prev_delta=memory.delta, z=z,
-                  normal=geo.normal if geo.overlap else memory.normal, separated=not on)
-    return new, ContactForce(fn * geo.normal + ft * geo.tangent, fn, ft, sticking)
+                  normal=geo.normal if geo.overlap else memory.normal, separated=not on,
+                  slip=geo.slip_t, friction_force=ft * geo.tangent)
+    force = fn * geo.normal + ft * geo.tangent + plastic_release(problem, memory, geo)
+    return new, ContactForce(force, fn, ft, sticking)
+
+
+def plastic_release(problem: CompliantProblem, memory: ContactMemory,
+                    geo: ContactGeometry) -> np.ndarray:
+    """Correction [N] for a friction force released inside the last kick (r = 0).
+
+    With tangential recovery r = 0 the friction force drops to zero the moment the slip
+    turns back against z. The last kick applied the force ``memory.friction_force`` over
+    the whole of [t_{n-1/2}, t_{n+1/2}] (the mid-steps where the slips ``memory.slip`` and
+    ``geo.slip_t`` belong); the slip, interpolated linearly, turned at t* inside it, so the
+    share (t_{n+1/2} - t*) / dt = s_1 / (s_1 - s_0) of that impulse is taken back in this
+    step. Without it the jump is located to within a step only and the scene converges at
+    first order (docs/contact-model.md, "Convergence of pymunk to the reference").
+    """
+    s0, s1 = memory.slip, geo.slip_t
+    if (problem.tangential_recovery > 0.0 or memory.friction_force is None
+            or not (memory.z * s1 < 0.0 and s0 * s1 < 0.0)):
+        return np.zeros(2)
+    return -memory.friction_force * (s1 / (s1 - s0))
 
 
 def moments(point, force, x1, x2) -> tuple[float, float]:

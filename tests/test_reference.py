@@ -127,13 +127,15 @@ def test_history_is_recorded(ricsac9):
 @pytest.mark.parametrize("recovery", [0.0, 0.5])
 def test_tangential_recovery_modes_agree_with_the_stepper(ricsac9, recovery):
     # sticking contact (mu_c = 3): sticking, unloading at v_t / r and sliding as modes with
-    # events, against pymunk's implicit step (first order: 400 steps per contact)
+    # events, against pymunk's implicit step at 400 steps per contact (second order):
+    # measured 7.0e-5 (r = 0) and 1.1e-5 (r = 0.5); 6.7e-3 and 7.8e-5 before the r = 0
+    # release was located inside the step and the slip taken at the middle of the step
     settings = CompliantSettings(tangential_recovery=recovery, record=False)
     ref = sim.reference_compliant(ricsac9, 0.355, K, friction=3.0,
                                   settings=CompliantSettings(tangential_recovery=recovery,
                                                              record=False, rtol=1e-8))
     got = sim.simulate_compliant(ricsac9, 0.355, K, friction=3.0, settings=settings)
-    assert np.abs(post(ref) - post(got)).max() < 1e-2
+    assert np.abs(post(ref) - post(got)).max() < 2e-4
     assert ref.stick_fraction > 0.9 and got.stick_fraction > 0.9
     assert ref.tangential_recovery == recovery
 
