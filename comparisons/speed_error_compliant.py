@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -154,7 +154,9 @@ def reference_within_budget(case: pim.Case, eps: float, stiffness: float, fricti
                             ) -> Reference:
     """DOP853 at the tightest of ``rtols`` (loosest first) that fits ``budget`` steps.
 
-    The next rung runs only if the last took under budget / 4 steps (module notes). ``spread`` is
+    The next rung runs only if the last took under budget / 4 steps (module notes), and
+    stops at ``budget`` steps (``CompliantSettings.max_steps``): a rung that would take more
+    is abandoned and the one before it is the reference. ``spread`` is
     :func:`sim.error_measure.impact_error` of the last rung against the one before (NaN
     with a single rung): an upper estimate of the reference's own error.
     """
@@ -162,8 +164,18 @@ def reference_within_budget(case: pim.Case, eps: float, stiffness: float, fricti
     for rtol in rtols:
         if results and results[-1][1].steps > budget / 4.0:
             break
-        out = sim.reference_compliant(case, eps, stiffness, friction=friction,
-                                      settings=sim.CompliantSettings(record=False, rtol=rtol))
+        settings = sim.CompliantSettings(record=False, rtol=rtol)
+        if results:                       # the first rung runs whatever it costs
+            settings = replace(settings, max_steps=budget)
+        start = time.perf_counter()
+        try:
+            out = sim.reference_compliant(case, eps, stiffness, friction=friction,
+                                          settings=settings)
+        except sim.SimulationError as exc:
+            if not results or exc.kind != "not_converged":
+                raise
+            spent += time.perf_counter() - start
+            break
         spent += out.wall_time
         results.append((rtol, out))
     rtol, ref = results[-1]
