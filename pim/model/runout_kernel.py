@@ -5,7 +5,9 @@ The same equations as :mod:`pim.model.runout` and the same tyre laws: numba comp
 with :func:`pim.model.tyres.transferred_load` (the field tyre, as
 :func:`pim.model.runout.timed_rhs`) themselves (one law, two evaluators, as
 :mod:`pim.model.kernel` compiles the PIM formula). Each sample is integrated by the
-classical Runge-Kutta method with a fixed step until it stops (``|v| + |omega| r_max <
+classical Runge-Kutta method with a fixed step (for the field tyre, shrunk with the speed
+near rest, where its lateral slope ``C_y / V_r`` is stiff: ``h <= 2.7 sqrt(S^2 + v_r^2) /
+sum_w C_y,w (1/m + r_w^2/I)``, ``S`` the stop measure) until it stops (``|v| + |omega| r_max <
 stop_speed``) or ``max_time`` passes, on all cores (``prange`` over samples, each with its
 own early stop, so a short run-out does not wait for a long one). Along the way the distance
 from each given path point to the CG's polyline is tracked (closest point on each step's
@@ -281,7 +283,8 @@ def integrate_many(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate
     path_points : array_like (n, k, 2) or (k, 2), optional
         Points [m] whose distance to each CG path is returned.
     dt : float
-        [s] fixed step (see :func:`pim.model.runout.runout_many` for its stability limit).
+        [s] fixed step (see :func:`pim.model.runout.runout_many` for its stability limit);
+        with the field tyre the step shrinks below it near rest (module notes).
     max_time : float
         [s] a sample still moving after it is flagged (``stopped`` False).
     stop_speed : float, optional
