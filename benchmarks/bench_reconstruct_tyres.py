@@ -38,7 +38,7 @@ def main(argv=None):
     figures = {}
     for name in ("synthetic-runout", "synthetic-runout-field"):
         case = pim.load_case(name)
-        reconstruct(case, samples=8, seed=1)     # compile / load the kernels, warm imports
+        reconstruct(case, samples=10, seed=1)    # compile / load the kernels, warm imports
         nominal = timed(case, 0)
         whole = timed(case, args.samples)
         rec = nominal[2]
