@@ -162,9 +162,12 @@ def _solve(case: pim.Case, settings: dict) -> list[Recorded]:
 def _fit(case: pim.Case, settings: dict) -> list[Recorded]:
     if not has_measured_terms(case):
         raise LookupError("the case has no [measured] motion")
-    fitted = pim.fit(case)
-    values = {"eps": fitted.eps, "beta": fitted.beta, "rms": fitted.rms}
-    kinds = {"eps": "dimensionless", "beta": "dimensionless", "rms": "velocity"}
+    fitted = pim.fit(case)                          # under the case's impact law
+    if fitted.law == "kudlich-slibar":              # k, and mu_c (or its lower bound)
+        values = {"k": fitted.eps, "mu_c": fitted.contact_friction, "rms": fitted.rms}
+    else:
+        values = {"eps": fitted.eps, "beta": fitted.beta, "rms": fitted.rms}
+    kinds = dict.fromkeys(values, "dimensionless") | {"rms": "velocity"}
     for row in fitted.residual_table:
         values[f"{row['name']}"] = row["fitted"]
         kinds[row["name"]] = "velocity" if row["unit"] == "m/s" else "angular_velocity"
@@ -282,6 +285,9 @@ def _assumptions(case: pim.Case, settings: dict) -> list[Recorded]:
     return rows
 
 
+#: Sections that run under the case's impact law (the others apply Brach's eps and beta).
+LAW_SECTIONS = ("solve", "fit", "reconstruct")
+
 _RUNNERS = {"solve": _solve, "fit": _fit, "crosscheck": _crosscheck,
             "uncertainty": _uncertainty, "reconstruct": _reconstruct,
             "assumptions": _assumptions}
@@ -301,7 +307,7 @@ def run_section(section: str, case: pim.Case, settings: dict) -> list[Recorded]:
     if section not in _RUNNERS:
         raise InputError(f"unknown section {section!r} (allowed: {', '.join(SECTIONS)})")
     law = case.impact.law or "brach"
-    if section != "solve" and law != "brach":
+    if section not in LAW_SECTIONS and law != "brach":
         raise LookupError(f"the {section} section applies Brach's (eps, beta); the case's "
                           f"impact law is {law!r}")
     try:

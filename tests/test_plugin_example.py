@@ -28,9 +28,16 @@ def test_bundled_case_matches_its_baseline(pim_check, case):
     pim_check(case, BUNDLED)
 
 
-def test_synthetic_runout_matches_its_baseline(pim_check):
-    # its reconstruction (minutes) is in slow.json
-    pim_check("synthetic-runout", BASELINES / "synthetic-runout.json")
+@pytest.mark.parametrize("case", ["synthetic-runout", "synthetic-runout-field"])
+def test_synthetic_runout_matches_its_baseline(pim_check, case):
+    # its reconstruction (minutes) is in slow.json (synthetic-runout's); the field-tyre
+    # case's reconstruction is checked against its known speeds (tests/test_reconstruction.py)
+    pim_check(case, BASELINES / f"{case}.json")
+
+
+def test_a_kudlich_slibar_reconstruction_matches_its_baseline(pim_check):
+    # speeds, k and mu_c (a lower bound: the contact sticks) under the case's law
+    pim_check("ricsac9-pccrash-reconstruct", BASELINES / "ricsac9-pccrash-reconstruct.json")
 
 
 def test_pre_impact_skids_matches_its_baseline(pim_check):
@@ -46,7 +53,9 @@ def test_reconstruction_and_assumptions_match_their_baseline(pim_check, case):
 
 def test_every_bundled_case_has_a_committed_baseline():
     held = set(_cases(BUNDLED)) | set(_cases(BASELINES / "synthetic-runout.json")) | set(
-        _cases(BASELINES / "pre-impact-skids.json"))
+        _cases(BASELINES / "pre-impact-skids.json")) | set(
+        _cases(BASELINES / "synthetic-runout-field.json")) | set(
+        _cases(BASELINES / "ricsac9-pccrash-reconstruct.json"))
     assert held == {name for name, _ in pim.list_cases()}
 
 

@@ -12,6 +12,7 @@ import pytest
 import pim
 from pim.analysis.reconstruction import approach_direction, post_impact_motion, reconstruct
 from pim.model.numbers import InputError
+from pim.model.runout import runout
 
 KNOWN = 31.09 * 0.3048  # [m/s], both vehicles
 
@@ -31,6 +32,29 @@ def test_synthetic_case_gives_back_the_known_motion_and_speeds():
     assert post.momentum.speed2 == pytest.approx(KNOWN, abs=1e-6)
     # and the propagated interval covers them with room (sigma from 0.1 m, 2 deg evidence)
     assert 0 < post.momentum.sigma1 < 1.0 and 0 < post.momentum.sigma2 < 1.0
+
+
+@pytest.mark.slow
+def test_field_tyre_case_evidence_is_the_numpy_forward_models_and_gives_back_the_speeds():
+    """pim/io/cases/synthetic-runout-field.toml: its rest states are the numpy brush run-out
+    (TimedRhs, LSODA) from the known post-impact motion, and the chain (run-out inverse on
+    the compiled right-hand side, inverse PIM) gives the known speeds back."""
+    case = pim.load_case("synthetic-runout-field")
+    truth = pim.solve(pim.load_case("ricsac9"), eps=0.355, beta=1.0)
+    for i in (1, 2):
+        vehicle, ev = getattr(case, f"vehicle{i}"), getattr(case.evidence, f"vehicle{i}")
+        car = ev.runout_vehicle(float(vehicle.mass), float(vehicle.yaw_inertia))
+        assert car.tyre_model == "brush"
+        run = runout(car, vehicle.cg, float(vehicle.heading), getattr(truth, f"velocity{i}"),
+                     float(getattr(truth, f"yaw_rate{i}")), rtol=1e-12, atol=1e-13)
+        np.testing.assert_allclose(run.rest_position, ev.rest_position, atol=1e-7)
+        assert run.rest_heading == pytest.approx(ev.rest_heading, abs=1e-7)
+    rec = reconstruct(case)
+    assert rec.determined and rec.messages == []
+    assert {i: f.tyre_model for i, f in rec.post.runouts.items()} == {1: "brush", 2: "brush"}
+    assert rec.values["vehicle1.speed"] == pytest.approx(KNOWN, abs=1e-5)
+    assert rec.values["vehicle2.speed"] == pytest.approx(KNOWN, abs=1e-5)
+    assert rec.values["impact.restitution"] == pytest.approx(0.355, abs=1e-5)
 
 
 def test_a_case_without_evidence_is_refused():

@@ -296,6 +296,7 @@ def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: 
                                       "motion") + "; unknowns by the inverse PIM; "
         + (f"5/50/95 % from a Monte Carlo of {n} samples ({rec.samples.n_used} used)."
            if n else "no Monte Carlo (--samples 0).") + " " + law_line(rec)),
+        *([html.paragraph(tyre_models_line(rec))] if rec.post else []),
         html.table(("unknown", "value", "5 %", "50 %", "95 %", "unit",
                     "main driver of the spread"), cells, title="Reconstructed unknowns",
                    note="CSV: `reconstruction.csv`", id="table-reconstruction"),

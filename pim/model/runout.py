@@ -323,7 +323,7 @@ def _stop_measure(state, reach) -> np.ndarray:
 
 def runout(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *,
            max_time=MAX_TIME, stop_speed=None, rtol=1e-8, atol=1e-10,
-           method=None, dense_output=False) -> Runout:
+           method=None, dense_output=False, rhs=None) -> Runout:
     """Integrate one vehicle from its post-impact state to rest with scipy ``solve_ivp``.
 
     Parameters
@@ -340,6 +340,11 @@ def runout(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *,
         Passed to ``scipy.integrate.solve_ivp``; ``method`` defaults to "DOP853" for the
         Coulomb tyre, "LSODA" for the field tyre or driver tables (stiff at low rolling
         speed: the lateral force's slope ``C_y / V_r``).
+    rhs : callable, optional
+        ``rhs(t, y) -> dy/dt`` of this vehicle to integrate instead of the numpy one
+        (:func:`runout_rhs`, :class:`TimedRhs`): the compiled
+        :class:`pim.model.runout_kernel.CompiledRhs`, the same equations, for repeated runs
+        (the run-out inverse).
     """
     from scipy.integrate import solve_ivp
 
@@ -359,8 +364,10 @@ def runout(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *,
     event.terminal = True
     event.direction = -1
     if vehicle.timed:
-        fun = TimedRhs(vehicle)
+        fun = TimedRhs(vehicle) if rhs is None else rhs
         method = method or "LSODA"     # the brush tyre is stiff at low rolling speed
+    elif rhs is not None:
+        fun = rhs
     else:
         def fun(t, y):
             return runout_rhs(y, *args)
