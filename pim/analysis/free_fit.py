@@ -36,10 +36,11 @@ from functools import lru_cache
 import numpy as np
 
 from ..model.case import Case
-from ..model.dual import MOTION_INPUTS, motion_of_inputs
-from ..model.motion import as_terms
+from ..model.dual import MOTION_INPUTS, MOTION_OUTPUTS, motion_of_inputs
+from ..model.evidence_terms import ModelQuantities, as_residual_terms, split_terms
 from .free_inputs import (
     FREE_KEYS,
+    STATE,
     case_state,
     check_free,
     check_free_for_case,
@@ -208,7 +209,21 @@ class FreeFit:
         return dict(zip(self.keys, map(float, self.x), strict=True))
 
 
-def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True):
+def evidence_values(state, dstate, values, dvalues, evidence) -> tuple:
+    """The evidence terms' model values (m, k) and, with ``dstate``, their exact Jacobian
+    (m, k, n) by the chain rule: each term (:class:`pim.model.evidence_terms.EvidenceTerm`)
+    is evaluated on dual numbers that carry d state / d x and d output / d x."""
+    q = ModelQuantities(STATE, state, dstate, MOTION_OUTPUTS, values, dvalues)
+    out = [t.value(q) for t in evidence]
+    if dstate is None:
+        return np.stack(out, axis=-1), None
+    return (np.stack([o.value for o in out], axis=-1),
+            np.stack([np.broadcast_to(o.grad, dstate.shape[:1] + dstate.shape[2:])
+                      for o in out], axis=-2))
+
+
+def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True,
+                   evidence=()):
     """Weighted residuals at the free parameters ``x`` (m, n), and their exact Jacobian.
 
     Parameters
@@ -219,11 +234,14 @@ def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True
         Free keys, the columns of ``x``.
     x : array_like (m, n)
         Parameter vectors [SI].
-    rows, target, factor : array_like (k,) / (k,) or (m, k) / (k,) or (m, k)
-        The residual terms (:func:`pim.analysis.residuals.residual_terms`); target and
-        factor per row or shared.
+    rows, target, factor : array_like (j,) / (k,) or (m, k) / (k,) or (m, k)
+        The residual terms (:func:`pim.analysis.residuals.residual_terms`): rows of the
+        motion terms, then targets and factors of every term; target and factor per row or
+        shared.
     jacobian : bool
         Also return the Jacobian.
+    evidence : sequence of EvidenceTerm
+        The evidence terms after the motion rows (k = j + len(evidence)).
 
     Returns
     -------
@@ -236,12 +254,19 @@ def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True
     n_in = len(MOTION_INPUTS)
     values, dvalues = motion_of_inputs(state[:, :n_in], jacobian=jacobian,
                                        tangent=None if dstate is None else dstate[:, :n_in, :])
-    r = (values[:, rows] - target) * factor
+    out = values[:, rows]
+    dout = None if dvalues is None else dvalues[:, rows, :]
+    if len(evidence):
+        ev, dev = evidence_values(state, dstate, values, dvalues, evidence)
+        out = np.concatenate([out, ev], axis=1)
+        dout = None if dev is None else np.concatenate([dout, dev], axis=1)
+    with np.errstate(invalid="ignore"):
+        r = (out - target) * factor
     bad = ~np.all(np.isfinite(r), axis=1)
     r = np.where(bad[:, None], PENALTY, r)
     if not jacobian:
         return r, None
-    jac = dvalues[:, rows, :] * np.asarray(factor)[..., None]
+    jac = dout * np.asarray(factor)[..., None]
     jac = np.where(bad[:, None, None] | ~np.isfinite(jac), 0.0, jac)
     return r, jac
 
@@ -307,9 +332,11 @@ def fit_free(case: Case, box: dict, terms, eps: float = 0.5, beta: float = 0.5,
     width = hi - lo
     base = case_state(case, eps, beta)
     rows, target, factor = residual_terms(case, terms)
+    evidence = split_terms(terms)[1]
 
     def resid(x, jacobian=True):
-        return free_residuals(base, keys, x, rows, target, factor, jacobian=jacobian)
+        return free_residuals(base, keys, x, rows, target, factor, jacobian=jacobian,
+                              evidence=evidence)
 
     # coarse global search: one vectorised evaluation of the Sobol sample
     u = sobol_sample(len(keys), samples, seed)
@@ -328,5 +355,5 @@ def fit_free(case: Case, box: dict, terms, eps: float = 0.5, beta: float = 0.5,
                    cost=float(r @ r), residuals=r, side=out.on_bound[best].astype(int),
                    gradient=2.0 * (r @ jac),
                    minima=tuple((out.x[k], float(out.cost[k])) for k in order),
-                   identifiability=identifiability(jac * width, keys, as_terms(terms)),
+                   identifiability=identifiability(jac * width, keys, as_residual_terms(terms)),
                    nfev=int(out.nfev), converged=bool(out.converged.all()))

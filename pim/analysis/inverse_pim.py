@@ -102,7 +102,7 @@ def inverse_pim(case: Case, unknown: dict | None = None, *, include_yaw: bool = 
                samples=samples, seed=seed)
 
 
-def inverse_pim_many(base, keys, bounds, x0, rows, target, factor) -> BatchFit:
+def inverse_pim_many(base, keys, bounds, x0, rows, target, factor, evidence=()) -> BatchFit:
     """Many inverse problems at once: sample p has state ``base[p]`` (the model's inputs,
     :func:`pim.analysis.free_inputs.case_state`) and measured ``target[p]``.
 
@@ -119,6 +119,8 @@ def inverse_pim_many(base, keys, bounds, x0, rows, target, factor) -> BatchFit:
     rows, target, factor :
         Residual terms (:func:`pim.analysis.free_fit.residual_terms`); target and factor
         (m, k) or (k,).
+    evidence : sequence of EvidenceTerm
+        The evidence terms after the motion rows (:func:`pim.analysis.free_fit.free_residuals`).
 
     Returns
     -------
@@ -126,13 +128,15 @@ def inverse_pim_many(base, keys, bounds, x0, rows, target, factor) -> BatchFit:
     """
     base = np.asarray(base, dtype=float)
     m = base.shape[0]
-    target = np.broadcast_to(np.asarray(target, dtype=float), (m, len(rows)))
-    factor = np.broadcast_to(np.asarray(factor, dtype=float), (m, len(rows)))
+    k = len(rows) + len(evidence)
+    target = np.broadcast_to(np.asarray(target, dtype=float), (m, k))
+    factor = np.broadcast_to(np.asarray(factor, dtype=float), (m, k))
     lo = np.array([b[0] for b in bounds], dtype=float)
     hi = np.array([b[1] for b in bounds], dtype=float)
     x0 = np.broadcast_to(np.asarray(x0, dtype=float), (m, len(keys)))
 
     def fun(x, idx):
-        return free_residuals(base[idx], keys, x, rows, target[idx], factor[idx])
+        return free_residuals(base[idx], keys, x, rows, target[idx], factor[idx],
+                              evidence=evidence)
 
     return least_squares_batch(fun, x0, lo, hi, max_iter=100)

@@ -21,11 +21,12 @@ that drive its spread.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
 from ..model.case import Case, Measured
+from ..model.motion import Term
 from ..model.numbers import InputError, check_counts, checked_count
 from ..model.tyres import STANDARD_GRAVITY
 from .fitting import FitResult
@@ -172,8 +173,17 @@ def post_impact_motion(case: Case, *, speed_bounds=(0.0, 60.0),
                                    runouts[2].velocity, vel_cov[1], vel_cov[2])
         if momentum.message:
             messages.append(f"linear momentum: {momentum.message}")
-    return PostImpact(replace(case, measured=Measured(**measured)), runouts, vel_cov,
-                      yaw_sigma, momentum, messages)
+    return PostImpact(replace(case, measured=_with_motion(case.measured, measured)), runouts,
+                      vel_cov, yaw_sigma, momentum, messages)
+
+
+def _with_motion(measured: Measured | None, motion: dict) -> Measured:
+    """``measured`` with the run-out fits' post-impact ``motion`` in place of its own (the
+    recorder's delta-V and pre-crash speed and the energy loss are kept)."""
+    kept = {} if measured is None else {
+        f.name: getattr(measured, f.name) for f in fields(Measured)
+        if not f.name.startswith(("velocity", "yaw_rate"))}
+    return Measured(**kept, **motion)
 
 
 @dataclass(frozen=True)
@@ -432,7 +442,7 @@ def evidence_sampler(case: Case, post: PostImpact, include_yaw: bool = True):
                 heading_sigma=ev.heading_sigma)
             ok &= fit.converged & fit.stopped
             for j, term in enumerate(terms):
-                if term.vehicle == i:
+                if isinstance(term, Term) and term.vehicle == i:
                     targets[:, j] = (fit.velocity[:, term.axis] if term.is_velocity
                                      else fit.yaw_rate)
         return targets, ok, extra

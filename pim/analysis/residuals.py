@@ -6,6 +6,11 @@ the vehicle's radius of gyration (the speed that spin gives a point at distance 
 CG). With the ``[measured]`` standard deviations each residual is divided by its sigma
 (k sigma for a yaw rate): the sum of squares is then a chi-square [-], and
 :func:`goodness_of_fit` says whether the data fit the model at the stated sigmas.
+
+Evidence on the model's inputs and outputs beyond the post-impact motion (a recorder's
+delta-V and pre-crash speed, the energy loss: :class:`pim.model.evidence_terms.EvidenceTerm`)
+joins as further terms, value - measured [m/s or J], always with its sigma; the residuals
+are ordered motion terms first, then evidence terms.
 """
 
 from __future__ import annotations
@@ -16,12 +21,19 @@ import numpy as np
 
 from ..model.case import Case
 from ..model.dual import MOTION_OUTPUTS
+from ..model.evidence_terms import (
+    EvidenceTerm,
+    as_residual_terms,
+    evidence_terms_of,
+    result_quantities,
+)
 from ..model.geometry import radius_of_gyration
-from ..model.motion import Term, as_terms
+from ..model.motion import Term
 from ..model.numbers import InputError
 from ..model.result import Result
 
 __all__ = ["measured_terms", "has_measured_terms", "residuals", "residual_terms",
+           "model_value", "measured_value",
            "measured_weights", "GoodnessOfFit", "goodness_of_fit", "P_INCONSISTENT",
            "cost_label"]
 
@@ -29,8 +41,9 @@ __all__ = ["measured_terms", "has_measured_terms", "residuals", "residual_terms"
 P_INCONSISTENT = 0.01
 
 
-def measured_terms(case: Case, include_yaw: bool) -> tuple[Term, ...]:
-    """The terms ``case.measured`` holds (velocities; yaw rates with ``include_yaw``).
+def measured_terms(case: Case, include_yaw: bool) -> tuple[Term | EvidenceTerm, ...]:
+    """The terms ``case.measured`` holds: velocities (yaw rates with ``include_yaw``), then
+    the evidence terms (recorded delta-V and pre-crash speed, energy loss).
 
     Raises
     ------
@@ -38,7 +51,7 @@ def measured_terms(case: Case, include_yaw: bool) -> tuple[Term, ...]:
         Nothing measured to fit, with a hint when only yaw rates are measured.
     """
     m = case.measured
-    terms: list[Term] = []
+    terms: list = []
     if m is not None:
         for i in (1, 2):
             if getattr(m, f"velocity{i}") is not None:
@@ -46,13 +59,15 @@ def measured_terms(case: Case, include_yaw: bool) -> tuple[Term, ...]:
         for i in (1, 2) if include_yaw else ():
             if getattr(m, f"yaw_rate{i}") is not None:
                 terms.append(Term(i, "omega"))
+        terms += evidence_terms_of(m)
     if not terms:
         has_yaw = m is not None and (m.yaw_rate1 is not None or m.yaw_rate2 is not None)
         hint = (" (only yaw rates are measured: use include_yaw=True / --include-yaw)"
                 if has_yaw and not include_yaw else "")
         raise InputError(
             f"case {case.name or '(unnamed)'}: nothing to fit; case.measured needs a "
-            f"post-impact velocity1 or velocity2 [m/s]{hint}")
+            f"post-impact velocity1 or velocity2 [m/s], a recorded delta_v or "
+            f"pre_crash_speed, or an energy_loss{hint}")
     return tuple(terms)
 
 
@@ -61,15 +76,21 @@ def _gyration(case: Case, term: Term) -> float:
     return float(radius_of_gyration(v.mass, v.yaw_inertia))
 
 
+def _scale(case: Case, term) -> float:
+    """k_i for a yaw-rate term (its residual is k_i (Omega - Omega_m) [m/s]), else 1."""
+    return _gyration(case, term) if isinstance(term, Term) and not term.is_velocity else 1.0
+
+
 def measured_weights(case: Case, terms) -> np.ndarray | None:
     """Weights that turn the residuals into standardised ones, or None when unweighted.
 
     With the ``[measured]`` standard deviations (``Measured.velocity1_sigma`` [m/s],
     ``yaw_rate1_sigma`` [rad/s] ...), the velocity residual V - V_m is divided by its sigma
     and the yaw residual k (Omega - Omega_m) by k sigma, so that sum (w r)^2 is a chi-square.
-    Either every fitted term has a sigma or none has: a mix is an error naming what is missing.
+    Either every fitted term has a sigma or none has: a mix is an error naming what is missing
+    (evidence terms always have one, so with them every motion term needs one too).
     """
-    terms = as_terms(terms)
+    terms = as_residual_terms(terms)
     sigmas = [t.sigma_of(case.measured) for t in terms]
     missing = [t.name for t, s in zip(terms, sigmas, strict=True) if s is None]
     if len(missing) == len(terms):
@@ -78,21 +99,36 @@ def measured_weights(case: Case, terms) -> np.ndarray | None:
         raise InputError(f"measured: standard deviations are given for some fitted terms but "
                          f"not for {', '.join(missing)}; give a *_sigma for every measured "
                          f"quantity that is fitted, or for none")
-    return np.array([1.0 / (s if t.is_velocity else _gyration(case, t) * s)
-                     for t, s in zip(terms, sigmas, strict=True)])
+    return np.array([1.0 / (_scale(case, t) * s) for t, s in zip(terms, sigmas, strict=True)])
 
 
 def residual_terms(case: Case, terms) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Rows of :data:`pim.model.dual.MOTION_OUTPUTS`, measured targets and factors of the
-    residual ``terms`` of ``case``: residual = (output - target) * factor, the factor being 1
-    for a velocity and k_i for a yaw rate, times the ``[measured]`` weight 1/sigma when
-    standard deviations are given (:func:`measured_weights`)."""
-    terms = as_terms(terms)
-    rows = np.array([MOTION_OUTPUTS.index(t.name) for t in terms])
-    target = np.array([float(t.of(case.measured)) for t in terms])
-    scale = np.array([1.0 if t.is_velocity else _gyration(case, t) for t in terms])
+    """Rows of :data:`pim.model.dual.MOTION_OUTPUTS` of the motion terms among ``terms``, and
+    the measured targets and factors of every term (motion terms first, then evidence terms,
+    :func:`pim.model.evidence_terms.as_residual_terms`): residual = (value - target) *
+    factor, the factor being 1 for a velocity or an evidence term and k_i for a yaw rate,
+    times the ``[measured]`` weight 1/sigma when standard deviations are given
+    (:func:`measured_weights`)."""
+    terms = as_residual_terms(terms)
+    rows = np.array([MOTION_OUTPUTS.index(t.name) for t in terms if isinstance(t, Term)],
+                    dtype=int)
+    target = np.array([float(t.of(case.measured)) if isinstance(t, Term)
+                       else t.target_of(case.measured) for t in terms])
+    scale = np.array([_scale(case, t) for t in terms])
     w = measured_weights(case, terms)
     return rows, target, scale * (1.0 if w is None else w)
+
+
+def model_value(result: Result, term) -> np.ndarray:
+    """The model's value of a residual term in a solved ``result`` [SI]."""
+    if isinstance(term, EvidenceTerm):
+        return np.asarray(term.value(result_quantities(result)), dtype=float)
+    return term.of(result)
+
+
+def measured_value(measured, term) -> float:
+    """The measured value of a residual term [SI]."""
+    return float(term.of(measured)) if isinstance(term, Term) else term.target_of(measured)
 
 
 def residuals(result: Result, terms, *, weighted: bool = False) -> np.ndarray:
@@ -103,21 +139,22 @@ def residuals(result: Result, terms, *, weighted: bool = False) -> np.ndarray:
     result : Result
         Solve of a single case (any shape of eps, beta); its ``case.measured`` holds the
         targets.
-    terms : sequence of Term or str
+    terms : sequence of Term, EvidenceTerm or str
         ``velocity{1,2}_{x,y}`` -> V - V_measured [m/s], ``yaw_rate{1,2}`` ->
-        k (Omega - Omega_measured) [m/s] with k = sqrt(I / m) the radius of gyration.
+        k (Omega - Omega_measured) [m/s] with k = sqrt(I / m) the radius of gyration;
+        evidence terms -> value - measured [m/s or J].
     weighted : bool
         Divide by the ``[measured]`` standard deviations (when given): residuals [-] whose
         sum of squares is the chi-square.
     """
-    terms = as_terms(terms)
+    terms = as_residual_terms(terms)
     case = result.case
-    scale = np.array([1.0 if t.is_velocity else _gyration(case, t) for t in terms])
+    scale = np.array([_scale(case, t) for t in terms])
     if weighted:
         w = measured_weights(case, terms)
         scale = scale * (1.0 if w is None else w)
-    values = np.stack(np.broadcast_arrays(*(t.of(result) for t in terms)), axis=-1)
-    target = np.array([float(t.of(case.measured)) for t in terms])
+    values = np.stack(np.broadcast_arrays(*(model_value(result, t) for t in terms)), axis=-1)
+    target = np.array([measured_value(case.measured, t) for t in terms])
     return (values - target) * scale
 
 
@@ -127,7 +164,7 @@ def has_measured_terms(case: Case, include_yaw: bool = False) -> bool:
     m = case.measured
     if m is None:
         return False
-    if m.velocity1 is not None or m.velocity2 is not None:
+    if m.velocity1 is not None or m.velocity2 is not None or evidence_terms_of(m):
         return True
     return include_yaw and (m.yaw_rate1 is not None or m.yaw_rate2 is not None)
 

@@ -68,16 +68,21 @@ def parse_uncertainty(table) -> UncertaintyTable | None:
     if not isinstance(table, dict):
         raise InputError("uncertainty must be a table")
     flat = {}
-    groups = [(g, e) for g, e in table.items() if g != "evidence"]
-    evidence = table.get("evidence")
-    if evidence is not None:
-        if not isinstance(evidence, dict) or not all(isinstance(e, dict)
-                                                      for e in evidence.values()):
-            raise InputError("uncertainty.evidence must hold vehicle1 / vehicle2 tables, e.g. "
-                             "evidence.vehicle1.friction = {plusminus = 0.1}")
-        groups += [(f"evidence.{g}", e) for g, e in evidence.items()]
+    groups = [(g, e) for g, e in table.items() if g not in ("evidence", "measured")]
+    for top, example in (("evidence", "evidence.vehicle1.friction = {plusminus = 0.1}"),
+                         ("measured", "measured.vehicle1.delta_v_scale = "
+                                      "{uniform = [0.88, 1.0]}")):
+        nested = table.get(top)
+        if nested is None:
+            continue
+        if not isinstance(nested, dict) or not all(isinstance(e, dict)
+                                                    for e in nested.values()):
+            raise InputError(f"uncertainty.{top} must hold vehicle1 / vehicle2 tables, e.g. "
+                             f"{example}")
+        groups += [(f"{top}.{g}", e) for g, e in nested.items()]
     for group, entries in groups:
-        if group.split(".")[0] not in ("vehicle1", "vehicle2", "impact", "evidence") or \
+        if group.split(".")[0] not in ("vehicle1", "vehicle2", "impact", "evidence",
+                                       "measured") or \
                 not isinstance(entries, dict):
             raise InputError(f"uncertainty: unknown input {group!r} (use vehicle1.<input>, "
                              f"vehicle2.<input>, impact.<input> or evidence.vehicleN.friction; "

@@ -27,6 +27,7 @@ DIMENSIONS = {
     "velocity": "m/s",
     "angle": "rad",
     "angular_velocity": "rad/s",
+    "energy": "J",
     "dimensionless": "",
 }
 
@@ -42,6 +43,7 @@ LIMITS = {
     "velocity": (0.0, 1e4),
     "angle": (0.0, 1e4),
     "angular_velocity": (0.0, 1e4),
+    "energy": (0.0, 1e12),
     "dimensionless": (0.0, 1e6),
 }
 

@@ -17,8 +17,8 @@ from dataclasses import dataclass
 
 from .numbers import InputError
 
-__all__ = ["Quantity", "FIELDS", "INPUTS", "EVIDENCE_INPUTS", "UNCERTAIN", "MEASURED", "OUTPUTS",
-           "VECTOR_FIELDS", "field_of"]
+__all__ = ["Quantity", "FIELDS", "INPUTS", "EVIDENCE_INPUTS", "MEASURED_INPUTS", "UNCERTAIN",
+           "MEASURED", "OUTPUTS", "VECTOR_FIELDS", "field_of"]
 
 
 @dataclass(frozen=True)
@@ -75,8 +75,14 @@ EVIDENCE_INPUTS: dict[str, Quantity] = {
     f"evidence.vehicle{i}.friction": Quantity("dimensionless",
                                              f"tyre-road friction of vehicle {i}")
     for i in (1, 2)}
+#: Factors on measured evidence that an ``[uncertainty]`` table may vary: the event data
+#: recorder's under-reporting, recorded delta-V = scale x true delta-V
+#: (:data:`pim.model.evidence_terms.DELTA_V_SCALE`).
+MEASURED_INPUTS: dict[str, Quantity] = {
+    f"measured.vehicle{i}.delta_v_scale": Quantity(
+        "dimensionless", f"recorded / true delta-V of vehicle {i}") for i in (1, 2)}
 #: Every name an ``[uncertainty]`` table accepts.
-UNCERTAIN: dict[str, Quantity] = {**INPUTS, **EVIDENCE_INPUTS}
+UNCERTAIN: dict[str, Quantity] = {**INPUTS, **EVIDENCE_INPUTS, **MEASURED_INPUTS}
 
 
 #: The measured post-impact motion of a case file's ``[measured]`` table, as inputs of a fit.
