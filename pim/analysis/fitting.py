@@ -39,8 +39,22 @@ from ..model.motion import Term
 from ..model.numbers import InputError, check_counts, check_numbers
 from ..model.result import Result
 from ..model.solver import solve
-from .free_fit import FREE_KEYS, FreeFit, Identifiability, check_free, fit_free
-from .residuals import GoodnessOfFit, goodness_of_fit, measured_terms, measured_weights
+from .free_fit import (
+    FREE_KEYS,
+    FreeFit,
+    Identifiability,
+    check_free,
+    fit_free,
+    variance_shares,
+)
+from .residuals import (
+    GoodnessOfFit,
+    goodness_of_fit,
+    measured_terms,
+    measured_value,
+    measured_weights,
+    model_value,
+)
 
 __all__ = ["fit", "FitResult", "FREE_KEYS", "DEFAULT_BOUNDS", "DEFAULT_GRID", "MAX_STARTS",
            "SAMPLES", "SHORT_NAMES"]
@@ -106,6 +120,12 @@ class FitResult:
         The residual terms, typed.
     goodness : GoodnessOfFit or None
         Chi-square, degrees of freedom and p-value; None without standard deviations.
+    standard_errors : dict
+        Fitted key -> its standard error from (J^T J)^-1 of the weighted Jacobian [SI]
+        (empty without standard deviations or when the data do not decide the parameters).
+    evidence_shares : dict
+        Fitted key -> {evidence group: share of its variance [-]}
+        (:func:`pim.analysis.free_fit.variance_shares`): which evidence drove it.
     """
 
     case: Case
@@ -127,14 +147,16 @@ class FitResult:
     weights: np.ndarray | None = field(default=None, repr=False)
     terms: tuple[Term, ...] = field(default=(), repr=False)
     goodness: GoodnessOfFit | None = field(default=None, repr=False)
+    standard_errors: dict = field(default_factory=dict, repr=False)
+    evidence_shares: dict = field(default_factory=dict, repr=False)
 
     @property
     def residual_table(self) -> list[dict]:
         """Per measured quantity: name, measured, fitted, error, unit, residual [SI]."""
         rows = []
         for term, r in zip(self.terms, self.residuals, strict=True):
-            measured = float(term.of(self.case.measured))
-            fitted = float(term.of(self.result))
+            measured = measured_value(self.case.measured, term)
+            fitted = float(model_value(self.result, term))
             rows.append({"name": term.name, "measured": measured, "fitted": fitted,
                          "error": fitted - measured, "unit": term.unit, "residual": float(r)})
         return rows
@@ -174,6 +196,8 @@ class FitResult:
             "minima": [{"eps": e, "beta": b, "cost": c} for e, b, c in self.minima],
             "values": dict(self.values),
             "goodness_of_fit": None if self.goodness is None else self.goodness.to_dict(),
+            "standard_errors": dict(self.standard_errors),
+            "evidence_shares": {k: dict(v) for k, v in self.evidence_shares.items()},
             "admissible": bool(self.result.admissible), "problems": self.result.problems(),
         }
 
@@ -248,8 +272,9 @@ def _fit_result(case, raw: FreeFit, terms, include_yaw, bounds, fixed, eps, beta
     minima_values = tuple((dict(zip(raw.keys, map(float, x), strict=True)), c)
                           for x, c in raw.minima)
     r = raw.residuals / (1.0 if weights is None else weights)
-    goodness = None if weights is None else goodness_of_fit(raw.cost, len(terms),
-                                                            len(raw.keys))
+    sd, shares = ({}, {}) if weights is None or raw.jacobian is None else _drivers(raw, terms)
+    goodness = None if weights is None else goodness_of_fit(
+        raw.cost, len(terms), len(raw.keys), raw.residuals, [t.name for t in terms])
     return FitResult(
         case=raw.case, eps=float(e_opt), beta=float(b_opt), cost=raw.cost, residuals=r,
         residual_names=tuple(t.name for t in terms), include_yaw=bool(include_yaw),
@@ -257,7 +282,17 @@ def _fit_result(case, raw: FreeFit, terms, include_yaw, bounds, fixed, eps, beta
         gradient=np.array([grad.get("impact.restitution", 0.0), grad.get("impact.beta", 0.0)]),
         minima=tuple((*pair(v), c) for v, c in minima_values), nfev=raw.nfev + 1,
         values={k: float(v) for k, v in values.items()}, identifiability=raw.identifiability,
-        minima_values=minima_values, weights=weights, terms=tuple(terms), goodness=goodness)
+        minima_values=minima_values, weights=weights, terms=tuple(terms), goodness=goodness,
+        standard_errors=sd, evidence_shares=shares)
+
+
+def _drivers(raw: FreeFit, terms) -> tuple[dict, dict]:
+    """Standard errors and evidence shares of the fitted keys (:func:`variance_shares`)."""
+    sd, shares = variance_shares(raw.jacobian, [t.group for t in terms])
+    if not shares:
+        return {}, {}
+    return ({k: float(s) for k, s in zip(raw.keys, sd, strict=True)},
+            {k: {g: float(v[j]) for g, v in shares.items()} for j, k in enumerate(raw.keys)})
 
 
 def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=None, beta=None,

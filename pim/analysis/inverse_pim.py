@@ -25,7 +25,13 @@ from ..model.case import Case
 from ..model.numbers import InputError
 from ..model.solver import defaults
 from .fitting import FitResult, fit
-from .free_fit import free_residuals
+from .free_fit import (
+    candidate_evidence,
+    evidence_list,
+    free_residuals,
+    identifiability,
+    terms_jacobian,
+)
 from .free_inputs import check_free
 from .least_squares_batch import BatchFit, least_squares_batch
 from .residuals import measured_terms
@@ -45,10 +51,13 @@ def fixed_coefficients(case: Case, unknown: dict) -> tuple:
 
 
 def under_determined(case: Case, unknown: dict, include_yaw: bool = True) -> str:
-    """Why the unknowns cannot be decided by the measured motion, or "" when they may be.
+    """Why the unknowns cannot be decided by the measured data, or "" when they may be.
 
     Counts the unknowns (with restitution and beta when named) against the measured
-    quantities, and names the vehicles whose post-impact motion is missing.
+    quantities, names the vehicles whose post-impact motion is missing and the evidence that
+    would decide the unknowns: each candidate's Jacobian rows, at the middle of the
+    unknowns' bounds, tested against the null directions of the data's Jacobian
+    (:func:`pim.analysis.free_fit.deciding_evidence`).
     """
     names = measured_terms(case, include_yaw)
     n_unknown, n_data = len(unknown), len(names)
@@ -60,8 +69,27 @@ def under_determined(case: Case, unknown: dict, include_yaw: bool = True) -> str
         ("yaw rate", getattr(m, f"yaw_rate{i}") if include_yaw else 0.0)) if value is None]
     hint = (f"; missing: {', '.join(missing)} (evidence of that vehicle's rest position "
             "gives it)" if missing else "; fix some of them (e.g. beta = 1) instead")
+    deciding = _deciding(case, unknown, names)
+    if deciding:
+        hint += f"; evidence that would decide it: {evidence_list(deciding)}"
     return (f"under-determined: {n_unknown} unknowns ({', '.join(unknown)}) but only "
             f"{n_data} measured quantities ({', '.join(t.name for t in names)}){hint}")
+
+
+def _deciding(case: Case, unknown: dict, names) -> list[str]:
+    """Labels of the candidate evidence that would decide some of the unknowns' null
+    directions at the middle of their bounds (:func:`pim.analysis.free_fit.deciding_evidence`)."""
+    keys = tuple(unknown)
+    lo, hi = (np.array([unknown[k][j] for k in keys], dtype=float) for j in (0, 1))
+    x, width = (lo + hi) / 2, hi - lo
+    eps = 0.5 if case.impact.restitution is None else case.impact.restitution
+    beta = 1.0 if case.impact.beta is None else case.impact.beta
+    groups = {"data": names, **candidate_evidence(case, names)}
+    jac = {k: v * width for k, v in terms_jacobian(case, keys, x, eps, beta, groups).items()}
+    data = jac.pop("data")
+    ident = identifiability(np.where(np.isfinite(data), data, 0.0), keys, names,
+                            candidates=jac)
+    return [label for label, _ in ident.deciding]
 
 
 def inverse_pim(case: Case, unknown: dict | None = None, *, include_yaw: bool = True,

@@ -182,11 +182,15 @@ class GoodnessOfFit:
     p_value : float
         Probability of a chi-square at least this large if the model holds and the sigmas
         are right (``scipy.stats.chi2.sf``); NaN when ``dof`` is 0 or less.
+    largest : tuple of (str, float)
+        The terms with the largest standardised residuals (model - measured) / sigma [-],
+        largest first (at most :data:`LARGEST`): where the evidence conflicts.
     """
 
     chi_square: float
     dof: int
     p_value: float
+    largest: tuple = ()
 
     @property
     def consistent(self) -> bool | None:
@@ -201,9 +205,11 @@ class GoodnessOfFit:
             return ("no degree of freedom left (as many fitted parameters as measured "
                     "terms): the fit cannot test the model")
         if not self.consistent:
+            worst = ", ".join(f"{name} {z:+.2g} sigma" for name, z in self.largest)
             return (f"the measurements are inconsistent with PIM at the stated sigmas "
                     f"(p = {self.p_value:.2g} < {P_INCONSISTENT:g}): the model, the inputs "
-                    f"or the sigmas are wrong")
+                    f"or the sigmas are wrong"
+                    + (f"; the evidence in conflict: {worst}" if worst else ""))
         return f"the measurements are consistent with PIM at the stated sigmas (p = " \
                f"{self.p_value:.2g})"
 
@@ -216,16 +222,29 @@ class GoodnessOfFit:
     def to_dict(self) -> dict:
         return {"chi_square": self.chi_square, "dof": self.dof,
                 "p_value": None if not np.isfinite(self.p_value) else self.p_value,
-                "consistent": self.consistent, "verdict": self.verdict()}
+                "consistent": self.consistent, "verdict": self.verdict(),
+                "largest_standardised_residuals": dict(self.largest)}
 
 
-def goodness_of_fit(chi_square: float, n_data: int, n_parameters: int) -> GoodnessOfFit:
-    """The chi-square test of a weighted fit: dof = n_data - n_parameters, p = chi2.sf."""
+#: How many terms :class:`GoodnessOfFit` names as the largest standardised residuals.
+LARGEST = 3
+
+
+def goodness_of_fit(chi_square: float, n_data: int, n_parameters: int,
+                    standardised=None, names=()) -> GoodnessOfFit:
+    """The chi-square test of a weighted fit: dof = n_data - n_parameters, p = chi2.sf;
+    with the ``standardised`` residuals (w r, one per term of ``names``) it names the
+    :data:`LARGEST` largest."""
     from scipy.stats import chi2
 
     dof = int(n_data) - int(n_parameters)
     p = float(chi2.sf(chi_square, dof)) if dof > 0 else float("nan")
-    return GoodnessOfFit(float(chi_square), dof, p)
+    largest = ()
+    if standardised is not None and len(names):
+        z = np.asarray(standardised, dtype=float)
+        largest = tuple((str(names[j]), float(z[j]))
+                        for j in np.argsort(-np.abs(z), kind="stable")[:LARGEST])
+    return GoodnessOfFit(float(chi_square), dof, p, largest)
 
 
 def cost_label(weighted: bool, velocity_unit: str) -> str:
