@@ -36,7 +36,8 @@ from .free_inputs import check_free
 from .least_squares_batch import BatchFit, least_squares_batch
 from .residuals import measured_terms
 
-__all__ = ["inverse_pim", "inverse_pim_many", "under_determined", "fixed_coefficients"]
+__all__ = ["inverse_pim", "inverse_pim_many", "under_determined", "fixed_coefficients",
+           "check_evidence"]
 
 
 def fixed_coefficients(case: Case, unknown: dict) -> tuple:
@@ -48,6 +49,24 @@ def fixed_coefficients(case: Case, unknown: dict) -> tuple:
                          "[unknown]; give it or solve for it")
     beta = None if "impact.beta" in unknown else defaults(case, 0.0, None)[1]
     return eps, beta
+
+
+def check_evidence(case: Case, unknown: dict) -> None:
+    """InputError naming the field when the recorded evidence cannot agree with the
+    unknowns' bounds: a recorded delta-V of a vehicle larger than every speed bound of the
+    ``[unknown]`` table (no impact within the bounds changes a speed by more than the
+    closing speed, itself within them)."""
+    bounds = [hi for key, (_, hi) in unknown.items() if key.endswith(".speed")]
+    m = case.measured
+    if not bounds or m is None:
+        return
+    for i in (1, 2):
+        dv = getattr(m, f"delta_v{i}")
+        if dv is not None and float(np.hypot(*dv)) > max(bounds):
+            raise InputError(f"measured.vehicle{i}.delta_v: |delta-V| = "
+                             f"{float(np.hypot(*dv)):.4g} m/s is larger than every speed "
+                             f"bound of [unknown] (at most {max(bounds):.4g} m/s); check its "
+                             f"unit and the bounds")
 
 
 def under_determined(case: Case, unknown: dict, include_yaw: bool = True) -> str:
@@ -122,6 +141,7 @@ def inverse_pim(case: Case, unknown: dict | None = None, *, include_yaw: bool = 
     unknown = check_free(case.unknown if unknown is None else unknown)
     if not unknown:
         raise InputError("unknown: nothing to solve for (the case has no [unknown] table)")
+    check_evidence(case, unknown)
     why = under_determined(case, unknown, include_yaw)
     if why:
         raise InputError(why)

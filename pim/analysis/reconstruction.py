@@ -31,7 +31,7 @@ from ..model.numbers import InputError, check_counts, checked_count
 from ..model.tyres import STANDARD_GRAVITY
 from .fitting import FitResult
 from .free_inputs import approach_direction, check_free
-from .inverse_pim import inverse_pim, under_determined
+from .inverse_pim import check_evidence, inverse_pim, under_determined
 from .momentum import MomentumSpeeds, momentum_speeds
 from .reconstruction_mc import (
     ReconstructionSamples,
@@ -284,6 +284,7 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
     if not unknown:
         raise InputError("unknown: nothing to solve for; name the unknowns in an [unknown] "
                          "table (e.g. vehicle1.speed = {bounds = [\"0 mph\", \"80 mph\"]})")
+    check_evidence(case, unknown)
     has_evidence = case.evidence is not None and (case.evidence.vehicle1 is not None
                                                    or case.evidence.vehicle2 is not None)
     say = progress or (lambda stage: None)
@@ -292,8 +293,9 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
     post = post_impact_motion(case) if has_evidence else None
     solved = post.case if post else case
     if solved.measured is None:
-        raise InputError("reconstruct: the case has neither [evidence] nor [measured] "
-                         "post-impact motion")
+        raise InputError("reconstruct: the case has neither [evidence] of a run-out nor "
+                         "[measured] data (post-impact motion, a recorded delta_v or "
+                         "pre_crash_speed, an energy_loss)")
     messages = list(post.messages) if post else []
     momentum = post.momentum if post else _momentum_of(solved)
     if momentum is not None and momentum.message and not post:

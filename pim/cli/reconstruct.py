@@ -36,16 +36,15 @@ from ..plotting.reconstruction_animation import write_reconstruction_mp4
 from ..plotting.reconstruction_scene import reconstruction_figure
 from .main import case_argument, echo_json, json_option, require_brach, units_option
 
-__all__ = ["reconstruct", "reconstruction_rows"]
+__all__ = ["reconstruct", "reconstruction_rows", "evidence_drivers", "driver_lines"]
 
 
 def reconstruction_rows(rec: Reconstruction, units: str) -> list[dict]:
     """Table rows in ``units``: name, unit, value, p5, p50, p95, main driver."""
     rows = []
     for r in rec.table():
-        kind = ("impact_speed" if r["name"].endswith(".speed")
-                else UNKNOWN_KINDS.get(r["name"], "dimensionless"))
-        values, unit = convert([r["value"], r["p5"], r["p50"], r["p95"]], kind, units)
+        values, unit = convert([r["value"], r["p5"], r["p50"], r["p95"]], _kind(r["name"]),
+                               units)
         driver = r["drivers"][0] if r["drivers"] else ("", float("nan"))
         rows.append({"name": r["name"], "unit": unit, "value": float(values[0]),
                      "p5": float(values[1]), "p50": float(values[2]), "p95": float(values[3]),
@@ -59,6 +58,45 @@ def reconstruction_rows(rec: Reconstruction, units: str) -> list[dict]:
                          "p95": float("nan"), "driver": f"1 sd = {float(values[1]):.3g} {unit}",
                          "driver_index": float("nan"), "sd": float(values[1])})
     return rows
+
+
+def _kind(name: str) -> str:
+    """Unit kind of an unknown (impact speeds in the system's impact-speed unit)."""
+    return ("impact_speed" if name.endswith(".speed")
+            else UNKNOWN_KINDS.get(name, "dimensionless"))
+
+
+def evidence_drivers(rec: Reconstruction, units: str) -> dict:
+    """Which evidence drove each unknown: name -> {"sd", "unit", "shares": {evidence: share}}
+    in ``units`` (the standard error from the weighted Jacobian and each evidence group's
+    share of the variance, :func:`pim.analysis.free_fit.variance_shares`); empty without
+    standard deviations or a fit. A vehicle's post-impact motion from its run-out is called
+    its rest position."""
+    fit = rec.fit
+    if fit is None or not fit.evidence_shares:
+        return {}
+    runouts = rec.post.runouts if rec.post else {}
+
+    def label(group: str) -> str:
+        for i in runouts:
+            if group == f"vehicle{i} post-impact motion":
+                return f"vehicle{i} rest position (run-out)"
+        return group
+
+    out = {}
+    for key, shares in fit.evidence_shares.items():
+        sd, unit = convert(fit.standard_errors[key], _kind(key), units)
+        out[key] = {"sd": float(sd), "unit": unit,
+                    "shares": {label(g): v for g, v in sorted(shares.items(),
+                                                              key=lambda kv: -kv[1])}}
+    return out
+
+
+def driver_lines(drivers: dict) -> list[str]:
+    """One line per unknown: its standard error and the evidence shares, largest first."""
+    return [f"{key} (1 sd = {d['sd']:.3g} {d['unit']}): " + ", ".join(
+        f"{g} {100 * v:.0f} %" for g, v in d["shares"].items() if v >= 0.005)
+        for key, d in drivers.items()]
 
 
 def spread_text(row: dict, samples: int, sep: str = ", ") -> str:
@@ -118,6 +156,12 @@ def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
                   "First-order variance indices (correlation ratio) of the sampled inputs.", ""]
         lines += [f"- {line}" for line in _spread_drivers(rec)]
         lines.append("")
+    drivers = driver_lines(evidence_drivers(rec, units))
+    if drivers:
+        lines += ["## Which evidence drove each unknown", "",
+                  "Share of each unknown's variance from each piece of evidence (weighted "
+                  "Jacobian at the solution: (J^T J)^-1 split by evidence).", ""]
+        lines += [f"- {line}" for line in drivers] + [""]
     if rec.goodness is not None:
         lines += [f"Goodness of fit: {rec.goodness.summary()}.", ""]
     lines += [f"- {m}" for m in rec.messages] or ["No warnings."]
@@ -180,7 +224,8 @@ def _stages(case, samples: int, workers: int, progress):
     and its blocks); yields the callback that moves it."""
     from tqdm import tqdm
 
-    has_evidence = case.evidence is not None
+    has_evidence = case.evidence is not None and (case.evidence.vehicle1 is not None
+                                                   or case.evidence.vehicle2 is not None)
     total = int(has_evidence) + 1 + (0 if not samples else 1 if workers == 1 else
                                      1 + 2 * workers)
     with tqdm(total=total, desc="pim reconstruct", unit="stage", leave=False,
@@ -210,6 +255,7 @@ def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
         data["tyre_models"] = ({f"vehicle{i}": fit.tyre_model for i, fit in
                                 rec.post.runouts.items()} if rec.post else {})
         data["goodness_of_fit"] = rec.goodness.to_dict() if rec.goodness else None
+        data["evidence_drivers"] = evidence_drivers(rec, units)
         echo_json(data)
     else:
         if rec.post is not None:
@@ -219,6 +265,8 @@ def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
         for r in rows:
             click.echo(f"{r['name']:32s} {r['value']:10.4g} {r['unit']}  "
                        f"{spread_text(r, samples)}")
+        for line in driver_lines(evidence_drivers(rec, units)):
+            click.echo(f"evidence: {line}")
         if rec.goodness is not None:
             click.echo(f"goodness of fit: {rec.goodness.summary()}")
     return rec, rows
@@ -235,11 +283,12 @@ def _write_folder(directory: Path, rec, rows, units: str, video: bool) -> None:
         save_figure(reconstruction_figure(rec.post, units), directory / "scene.png")
         if video:
             write_reconstruction_mp4(rec.post, directory / "reconstruction.mp4", units=units)
-    write_text(directory / "report.html", _html_report(rec, rows, directory, video))
+    write_text(directory / "report.html", _html_report(rec, rows, directory, video, units))
     write_text(directory / "report.md", _report(rec, rows, units, rec.post is not None, video))
 
 
-def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: bool) -> str:
+def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: bool,
+                 units: str = "si") -> str:
     """report.html: the table, what drives each spread, the warnings, the scene and the
     animation inline (read from ``directory``), by the blocks of :mod:`pim.io.html`."""
     def g(x):
@@ -258,6 +307,10 @@ def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: 
                     "main driver of the spread"), cells, title="Reconstructed unknowns",
                    note="CSV: `reconstruction.csv`", id="table-reconstruction"),
         html.bullets(rec.messages or ["No warnings."], cls="messages")]
+    drivers = driver_lines(evidence_drivers(rec, units))
+    if drivers:
+        body += [html.paragraph("Which evidence drove each unknown (share of its variance):"),
+                 html.bullets(drivers)]
     sections = [html.section("Results", body, id="results", cls="keep")]
     if rec.samples:
         sections.append(html.section("What drives each unknown's spread", [html.paragraph(

@@ -13,6 +13,8 @@ steer = "0 deg"              # optional: one angle (front wheels) or four
 position_sigma = "0.3 ft"    # optional
 heading_sigma = "2 deg"      # optional
 path_points = [["10 ft", "3 ft"]]   # optional
+# every run-out key above may be left out when the vehicle has other evidence only (its
+# sub-tables, :data:`SUBTABLES`): then it has no run-out
 
 [unknown]
 vehicle1.speed = {bounds = ["0 mph", "80 mph"]}
@@ -29,10 +31,13 @@ from ..model.numbers import InputError
 from .toml_tables import check_keys
 from .units import parse
 
-__all__ = ["parse_evidence", "parse_unknown"]
+__all__ = ["parse_evidence", "parse_unknown", "SUBTABLES"]
 
 _EVIDENCE = {"rest_position", "rest_heading", "wheelbase", "track", "cg_to_front", "friction",
              "wheels", "steer", "position_sigma", "heading_sigma", "path_points"}
+#: Sub-tables of ``[evidence.vehicleN]`` beside the run-out keys (each optional; a vehicle
+#: may have only these): the crush profile, the marks before the impact.
+SUBTABLES = {"crush": "crush-profile evidence", "pre_impact": "pre-impact (skid-mark) evidence"}
 _WHEEL_WORDS = {"locked": 1.0, "free": 0.0, "free-rolling": 0.0}
 
 
@@ -62,8 +67,16 @@ def _wheels(value, where):
     return tuple(out)
 
 
-def _vehicle(table, where) -> VehicleEvidence:
-    check_keys(table, _EVIDENCE, where)
+def _vehicle(table, where) -> VehicleEvidence | None:
+    """The run-out evidence of ``[evidence.vehicleN]``, or None when the table holds only
+    sub-tables of other evidence (:data:`SUBTABLES`)."""
+    check_keys(table, _EVIDENCE | set(SUBTABLES), where)
+    for key in SUBTABLES:
+        if key in table:
+            raise InputError(f"{where}.{key}: {SUBTABLES[key]} is not supported by this "
+                             f"version")
+    if not set(table) - set(SUBTABLES):
+        return None
     for key in ("rest_position", "rest_heading", "wheelbase", "track", "friction"):
         if key not in table:
             raise InputError(f"{where}: missing {key}")
