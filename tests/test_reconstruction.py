@@ -130,3 +130,108 @@ def test_the_command_shows_its_stages_on_request(capsys):
     assert main(["reconstruct", "ricsac9-reconstruct", "--samples", "50", "--progress"]) == 0
     err = capsys.readouterr().err
     assert "pim reconstruct" in err and "Monte Carlo" in err
+
+
+# --- evidence other than rest positions (issue 19): RICSAC 9's scene solved forward at
+# known speeds; each kind of evidence alone and together gives the speeds back ----------
+
+S1, S2 = 9.5, 8.0
+SPEEDS = {"vehicle1.speed": (0.0, 35.0), "vehicle2.speed": (0.0, 35.0)}
+
+
+def _truth():
+    from pim.io.casefile import load_case
+    from pim.model.evidence_terms import EvidenceTerm, result_quantities
+
+    case = load_case("ricsac9-reconstruct")
+    case = replace(case, uncertainty=None,
+                   vehicle1=replace(case.vehicle1, velocity=(-S1, 0.0)),
+                   vehicle2=replace(case.vehicle2, velocity=(0.0, S2)),
+                   impact=replace(case.impact, restitution=0.2, beta=0.8))
+    res = pim.solve(case)
+    q = result_quantities(res)
+    dv = {i: [float(EvidenceTerm("delta_v", i, a).value(q)) for a in (0, 1)] for i in (1, 2)}
+    return case, res, dv
+
+
+def _evidence(kind):
+    case, res, dv = _truth()
+    sig = {"velocity1_sigma": [0.2, 0.2], "velocity2_sigma": [0.2, 0.2]}
+    data = {
+        "delta_v + pre-crash speed": dict(delta_v1=dv[1], delta_v1_sigma=[0.3, 0.3],
+                                          pre_crash_speed2=S2, pre_crash_speed2_sigma=0.3),
+        "delta_v of both": dict(delta_v1=dv[1], delta_v1_sigma=[0.3, 0.3], delta_v2=dv[2],
+                                delta_v2_sigma=[0.3, 0.3], pre_crash_speed1=S1,
+                                pre_crash_speed1_sigma=0.3),
+        "energy + velocity": dict(velocity1=res.velocity1, velocity2=res.velocity2, **sig,
+                                  energy_loss=float(res.energy_loss), energy_loss_sigma=4e3),
+        "all": dict(velocity1=res.velocity1, velocity2=res.velocity2, **sig,
+                    energy_loss=float(res.energy_loss), energy_loss_sigma=4e3,
+                    delta_v1=dv[1], delta_v1_sigma=[0.3, 0.3], pre_crash_speed2=S2,
+                    pre_crash_speed2_sigma=0.3),
+    }[kind]
+    return replace(case, measured=pim.Measured(**data))
+
+
+@pytest.mark.parametrize("kind, unknown", [
+    ("delta_v + pre-crash speed", SPEEDS),
+    ("delta_v of both", SPEEDS),
+    ("energy + velocity", {**SPEEDS, "impact.restitution": (0.0, 1.0)}),
+    ("all", {**SPEEDS, "impact.restitution": (0.0, 1.0)})])
+def test_each_kind_of_evidence_gives_back_the_known_speeds(kind, unknown):
+    rec = reconstruct(_evidence(kind), unknown=unknown, samples=0)
+    assert rec.determined, rec.messages
+    assert rec.values["vehicle1.speed"] == pytest.approx(S1, abs=1e-5)
+    assert rec.values["vehicle2.speed"] == pytest.approx(S2, abs=1e-5)
+    if "impact.restitution" in unknown:
+        assert rec.values["impact.restitution"] == pytest.approx(0.2, abs=1e-5)
+    shares = rec.fit.evidence_shares
+    for key in SPEEDS:      # each speed's variance is split over the evidence, summing to 1
+        assert sum(shares[key].values()) == pytest.approx(1.0, abs=1e-9)
+
+
+def test_the_recorder_under_reporting_moves_the_monte_carlo_up():
+    """The recorder sees scale x the true delta-V with the scale in [0.88, 1] by default:
+    the nominal speed takes the recording at face value, the Monte Carlo's median of
+    vehicle 1's speed (whose delta-V drives it) lies above it."""
+    rec = reconstruct(_evidence("delta_v + pre-crash speed"), unknown=SPEEDS, samples=300)
+    st = rec.samples.stats["vehicle1.speed"]
+    assert "measured.vehicle1.delta_v_scale" in rec.samples.varying
+    assert st.p50 > S1 + 0.1 and st.p5 > S1 - 1.0
+    assert "measured.vehicle1.delta_v_scale" in [d for d, _ in st.drivers[:2]]
+
+
+def test_the_driving_evidence_is_named():
+    """vehicle 2's speed from its recorded pre-crash speed, vehicle 1's from its delta-V."""
+    rec = reconstruct(_evidence("delta_v + pre-crash speed"), unknown=SPEEDS, samples=0)
+    sh = rec.fit.evidence_shares
+    assert max(sh["vehicle1.speed"], key=sh["vehicle1.speed"].get) == "vehicle1 recorded delta-V"
+    assert max(sh["vehicle2.speed"], key=sh["vehicle2.speed"].get) == \
+        "vehicle2 recorded pre-crash speed"
+
+
+def test_conflicting_evidence_names_the_terms_in_conflict():
+    case = _evidence("all")
+    m = replace(case.measured, pre_crash_speed2=S2 + 3.0)     # 10 sigma off
+    rec = reconstruct(replace(case, measured=m), unknown=SPEEDS, samples=0)
+    g = rec.goodness
+    assert g.consistent is False and g.largest[0][0] == "pre_crash_speed2"
+    assert "pre_crash_speed2" in g.summary()
+
+
+def test_one_delta_v_alone_names_the_evidence_that_would_decide():
+    _, _, dv = _truth()
+    case = replace(_truth()[0], measured=pim.Measured(delta_v1=dv[1], delta_v1_sigma=[.3, .3]))
+    rec = reconstruct(case, unknown={**SPEEDS, "impact.restitution": (0.0, 1.0)}, samples=0)
+    assert not rec.determined
+    msg = " ".join(rec.messages)
+    assert "evidence that would decide it" in msg and "an energy loss (crush)" in msg
+    assert "vehicle1's recorded pre-crash speed" in msg
+
+
+def test_a_delta_v_beyond_every_speed_bound_is_refused():
+    case = _evidence("delta_v + pre-crash speed")
+    m = replace(case.measured, delta_v1=np.array([-60.0, 0.0]))
+    with pytest.raises(InputError, match=r"measured.vehicle1.delta_v: .*larger than every "
+                                         r"speed bound"):
+        reconstruct(replace(case, measured=m), unknown=SPEEDS, samples=0)

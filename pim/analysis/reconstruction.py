@@ -293,8 +293,8 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
     post = post_impact_motion(case) if has_evidence else None
     solved = post.case if post else case
     if solved.measured is None:
-        raise InputError("reconstruct: the case has neither [evidence] of a run-out nor "
-                         "[measured] data (post-impact motion, a recorded delta_v or "
+        raise InputError("reconstruct: the case has neither [evidence] nor [measured] data "
+                         "(a run-out's rest position, post-impact motion, a recorded delta_v or "
                          "pre_crash_speed, an energy_loss)")
     messages = list(post.messages) if post else []
     momentum = post.momentum if post else _momentum_of(solved)
