@@ -57,3 +57,12 @@ def test_unknown_bounds_in_si():
 def test_bad_unknown_names_the_key(table, match):
     with pytest.raises(ValueError, match=match):
         parse_unknown(table)
+
+
+def test_run_out_keys_are_optional_and_sub_tables_reserved():
+    """A vehicle may have evidence other than a run-out (issue 19): no run-out keys -> no
+    run-out evidence; a pre_impact sub-table is named as not supported (yet)."""
+    ev = parse_evidence({"vehicle1": {}})
+    assert ev.vehicle1 is None and ev.vehicle2 is None
+    with pytest.raises(ValueError, match=r"evidence.vehicle2.pre_impact: .* not supported"):
+        parse_evidence({"vehicle2": {"pre_impact": {}}})

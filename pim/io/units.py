@@ -104,6 +104,7 @@ COMMON_UNITS = {
     "velocity": ("m/s", "km/h", "kph", "mph", "ft/s", "knot"),
     "angle": ("deg", "rad", "degree", "radian"),
     "angular_velocity": ("deg/s", "rad/s", "rpm"),
+    "energy": ("J", "kJ", "ft*lbf", "N*m"),
     "dimensionless": (),
 }
 
