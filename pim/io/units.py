@@ -28,13 +28,16 @@ DIMENSIONS = {
     "angle": "rad",
     "angular_velocity": "rad/s",
     "energy": "J",
+    "force_per_length": "N/m",
+    "force_per_area": "N/m**2",
     "dimensionless": "",
 }
 
 #: Largest magnitude [SI unit of the kind] an input may have, and for masses, inertias and
 #: forces (weights) also the smallest. These bounds lie far outside any vehicle collision
 #: (a 1e5 m scene, 1e4 m/s, a 1 g to 1e9 kg body) and keep every product the solver forms
-#: (m v^2, I w^2, m k^2) far from float overflow and underflow.
+#: (m v^2, I w^2, m k^2) far from float overflow and underflow. The crush stiffnesses A
+#: [N/m] and B [N/m^2] of cars are 1e4-1e6 and 1e5-1e7; their bounds are as wide.
 LIMITS = {
     "length": (0.0, 1e5),
     "mass": (1e-3, 1e9),
@@ -44,6 +47,8 @@ LIMITS = {
     "angle": (0.0, 1e4),
     "angular_velocity": (0.0, 1e4),
     "energy": (0.0, 1e12),
+    "force_per_length": (1.0, 1e10),
+    "force_per_area": (1.0, 1e12),
     "dimensionless": (0.0, 1e6),
 }
 
@@ -55,10 +60,12 @@ US_UNIT_NAMES = frozenset({"foot", "inch", "yard", "mile", "mile_per_hour", "for
 DISPLAY_UNITS = {
     "si": {"velocity": "m/s", "speed": "m/s", "angular_velocity": "deg/s", "impulse": "N*s",
            "energy": "kJ", "length": "m", "mass": "kg", "inertia": "kg*m**2", "angle": "deg",
-           "force": "N", "impact_speed": "m/s", "dimensionless": "dimensionless"},
+           "force": "N", "impact_speed": "m/s", "force_per_length": "kN/m",
+           "force_per_area": "kN/m**2", "dimensionless": "dimensionless"},
     "us": {"velocity": "ft/s", "speed": "ft/s", "angular_velocity": "deg/s", "impulse": "lbf*s",
            "energy": "ft*lbf", "length": "ft", "mass": "slug", "inertia": "slug*ft**2",
            "angle": "deg", "force": "lbf", "impact_speed": "mph",
+           "force_per_length": "lbf/inch", "force_per_area": "lbf/inch**2",
            "dimensionless": "dimensionless"},
 }
 UNIT_SYSTEMS = tuple(DISPLAY_UNITS)
@@ -66,7 +73,8 @@ UNIT_SYSTEMS = tuple(DISPLAY_UNITS)
 #: SI unit of each output kind.
 SI_UNITS = {"velocity": "m/s", "speed": "m/s", "angular_velocity": "rad/s", "impulse": "N*s",
             "energy": "J", "length": "m", "mass": "kg", "inertia": "kg*m**2", "angle": "rad",
-            "force": "N", "impact_speed": "m/s", "dimensionless": "dimensionless"}
+            "force": "N", "impact_speed": "m/s", "force_per_length": "N/m",
+            "force_per_area": "N/m**2", "dimensionless": "dimensionless"}
 
 
 @lru_cache(maxsize=1)
@@ -105,6 +113,8 @@ COMMON_UNITS = {
     "angle": ("deg", "rad", "degree", "radian"),
     "angular_velocity": ("deg/s", "rad/s", "rpm"),
     "energy": ("J", "kJ", "ft*lbf", "N*m"),
+    "force_per_length": ("N/m", "kN/m", "lbf/in", "lbf/ft"),
+    "force_per_area": ("N/m**2", "kN/m**2", "lbf/in**2", "lbf/ft**2"),
     "dimensionless": (),
 }
 
