@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..model.case import Case
+from ..model.case import Case, Measured
 from ..model.numbers import InputError
 from ..model.solver import defaults
 from .fitting import FitResult, fit
@@ -82,10 +82,11 @@ def under_determined(case: Case, unknown: dict, include_yaw: bool = True) -> str
     n_unknown, n_data = len(unknown), len(names)
     if n_unknown <= n_data:
         return ""
-    m = case.measured
+    m = case.measured if case.measured is not None else Measured()
     missing = [f"vehicle{i}'s post-impact {what}" for i in (1, 2) for what, value in (
         ("velocity", getattr(m, f"velocity{i}")),
-        ("yaw rate", getattr(m, f"yaw_rate{i}") if include_yaw else 0.0)) if value is None]
+        ("yaw rate", getattr(m, f"yaw_rate{i}") if include_yaw else 0.0)) if value is None
+        and not np.any(getattr(case, f"vehicle{i}").fixed)]
     hint = (f"; missing: {', '.join(missing)} (evidence of that vehicle's rest position "
             "gives it)" if missing else "; fix some of them (e.g. beta = 1) instead")
     deciding = _deciding(case, unknown, names)
@@ -185,6 +186,6 @@ def inverse_pim_many(base, keys, bounds, x0, rows, target, factor, evidence=()) 
 
     def fun(x, idx):
         return free_residuals(base[idx], keys, x, rows, target[idx], factor[idx],
-                              evidence=evidence)
+                              evidence=[t.take(idx) for t in evidence])
 
     return least_squares_batch(fun, x0, lo, hi, max_iter=100)

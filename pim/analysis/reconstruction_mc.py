@@ -23,12 +23,19 @@ run-outs reached their evidence); the first-order indices (correlation ratio,
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..model.crush import crush_energy
 from ..model.distributions import Distribution, UncertaintyTable, nominal_values, sample_inputs
-from ..model.evidence_terms import DELTA_V_SCALE, EvidenceTerm, as_residual_terms, split_terms
+from ..model.evidence_terms import (
+    DELTA_V_SCALE,
+    CrushEnergyTerm,
+    EvidenceTerm,
+    as_residual_terms,
+    split_terms,
+)
 from ..model.numbers import InputError, checked_count
 from .fitting import FitResult
 from .free_inputs import STATE, fields_set_by
@@ -176,12 +183,15 @@ def solve_samples(case, fit_result: FitResult, unknown: dict, n: int, rng, *,
     evidence = split_terms(names)[1]
     scales = _delta_v_scales(dists, evidence)
     nominal = {**nominal_values(case, eps0, beta0), **(extra_nominal or {}),
-               **dict.fromkeys(scales, 1.0)}
+               **dict.fromkeys(scales, 1.0), **crush_nominal(case)}
     solved = {f for k in keys for f in fields_set_by(k)}
     uncertain = UncertaintyTable({**{k: d for k, d in (dists.inputs.items() if dists else ())
                                      if k not in solved and k in nominal}, **scales})
     values, uniforms = sample_inputs(uncertain, nominal, n, rng)
     rows, target, factor = residual_terms(case, names)
+    names = tuple(crush_sampled(t, case, values, rng, n) if isinstance(t, CrushEnergyTerm)
+                  else t for t in names)
+    evidence = split_terms(names)[1]
     messages = []
     if post_impact is None:
         targets, source = _draw_measured(case, names, fit_result, target, rng, uniforms, n,
@@ -214,6 +224,9 @@ def _draw_measured(case, names, fit_result, target, rng, uniforms, n, messages):
     sigma, source = _measured_sigmas(case, names, fit_result)
     targets = np.empty((n, len(names)))
     for j, term in enumerate(names):
+        if isinstance(term, CrushEnergyTerm):     # its energies are drawn inside it
+            targets[:, j] = target[j]
+            continue
         u = rng.random(n) + 2.0**-54
         uniforms[f"measured.{term.name}"] = u
         targets[:, j] = target[j] + sigma[j] * ndtri(u)
@@ -222,6 +235,40 @@ def _draw_measured(case, names, fit_result, target, rng, uniforms, n, messages):
                         f"error of the nominal fit ({residual_standard_error(fit_result):.3g}"
                         f" m/s) stands for them")
     return targets, source
+
+
+#: The crush inputs an ``[uncertainty]`` table may vary (``evidence.vehicleN.crush.<key>``).
+CRUSH_INPUTS = ("stiffness_a", "stiffness_b", "width", "depth_scale")
+
+
+def crush_nominal(case) -> dict:
+    """Nominal values of the crush inputs of :data:`CRUSH_INPUTS` [SI] (depth_scale 1)."""
+    ev = case.evidence
+    out = {}
+    for i, p in ({} if ev is None else ev.crush).items():
+        key = f"evidence.vehicle{i}.crush."
+        out.update({key + "stiffness_a": p.stiffness_a, key + "stiffness_b": p.stiffness_b,
+                    key + "width": p.width, key + "depth_scale": 1.0})
+    return out
+
+
+def crush_sampled(term: CrushEnergyTerm, case, values: dict, rng, n: int) -> CrushEnergyTerm:
+    """The crush term with each vehicle's energy per sample: from the sampled crush inputs
+    where the ``[uncertainty]`` table varies any of them (:func:`pim.model.crush.crush_energy`),
+    else drawn with the profile's own standard deviations
+    (:meth:`pim.model.crush.CrushProfile.sample_energy`)."""
+    energies = list(term.energies)
+    for i, p in case.evidence.crush.items():
+        key = {k: f"evidence.vehicle{i}.crush.{k}" for k in CRUSH_INPUTS}
+        if any(np.ndim(values[k]) for k in key.values()):
+            scale = values[key["depth_scale"]]
+            energy = crush_energy(values[key["width"]], [c * scale for c in p.depths],
+                                  values[key["stiffness_a"]], values[key["stiffness_b"]],
+                                  p.stiffness_g)
+            energies[i - 1] = np.broadcast_to(np.asarray(energy, dtype=float), (n,))
+        else:
+            energies[i - 1] = p.sample_energy(rng, n)
+    return replace(term, energies=tuple(energies))
 
 
 def _delta_v_scales(dists, evidence) -> dict:

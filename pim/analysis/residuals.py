@@ -22,6 +22,7 @@ import numpy as np
 from ..model.case import Case
 from ..model.dual import MOTION_OUTPUTS
 from ..model.evidence_terms import (
+    CrushEnergyTerm,
     EvidenceTerm,
     as_residual_terms,
     evidence_terms_of,
@@ -33,7 +34,7 @@ from ..model.numbers import InputError
 from ..model.result import Result
 
 __all__ = ["measured_terms", "has_measured_terms", "residuals", "residual_terms",
-           "model_value", "measured_value",
+           "model_value", "measured_value", "crush_terms",
            "measured_weights", "GoodnessOfFit", "goodness_of_fit", "P_INCONSISTENT",
            "cost_label"]
 
@@ -41,9 +42,11 @@ __all__ = ["measured_terms", "has_measured_terms", "residuals", "residual_terms"
 P_INCONSISTENT = 0.01
 
 
-def measured_terms(case: Case, include_yaw: bool) -> tuple[Term | EvidenceTerm, ...]:
+def measured_terms(case: Case,
+                   include_yaw: bool) -> tuple[Term | EvidenceTerm | CrushEnergyTerm, ...]:
     """The terms ``case.measured`` holds: velocities (yaw rates with ``include_yaw``), then
-    the evidence terms (recorded delta-V and pre-crash speed, energy loss).
+    the evidence terms (recorded delta-V and pre-crash speed, energy loss), then the crush
+    energy of the case's crush profiles.
 
     Raises
     ------
@@ -60,6 +63,7 @@ def measured_terms(case: Case, include_yaw: bool) -> tuple[Term | EvidenceTerm, 
             if getattr(m, f"yaw_rate{i}") is not None:
                 terms.append(Term(i, "omega"))
         terms += evidence_terms_of(m)
+    terms += crush_terms(case)
     if not terms:
         has_yaw = m is not None and (m.yaw_rate1 is not None or m.yaw_rate2 is not None)
         hint = (" (only yaw rates are measured: use include_yaw=True / --include-yaw)"
@@ -69,6 +73,21 @@ def measured_terms(case: Case, include_yaw: bool) -> tuple[Term | EvidenceTerm, 
             f"post-impact velocity1 or velocity2 [m/s], a recorded delta_v or "
             f"pre_crash_speed, or an energy_loss{hint}")
     return tuple(terms)
+
+
+def crush_terms(case: Case) -> tuple[CrushEnergyTerm, ...]:
+    """The crush-energy term of the case's crush profiles (``[evidence.vehicleN.crush]``),
+    or none: energies E_i and their sigmas from :class:`pim.model.crush.CrushProfile`."""
+    ev = case.evidence
+    if ev is None or not ev.crush:
+        return ()
+    profiles = ev.crush
+    return (CrushEnergyTerm(
+        energies=tuple(profiles[i].energy if i in profiles else 0.0 for i in (1, 2)),
+        normals_body=tuple(profiles[i].normal_body if i in profiles else None
+                           for i in (1, 2)),
+        sigma=float(np.sqrt(sum(p.energy_sigma ** 2 for p in profiles.values()))),
+        partition=ev.crush_partition),)
 
 
 def _gyration(case: Case, term: Term) -> float:
@@ -121,7 +140,7 @@ def residual_terms(case: Case, terms) -> tuple[np.ndarray, np.ndarray, np.ndarra
 
 def model_value(result: Result, term) -> np.ndarray:
     """The model's value of a residual term in a solved ``result`` [SI]."""
-    if isinstance(term, EvidenceTerm):
+    if not isinstance(term, Term):
         return np.asarray(term.value(result_quantities(result)), dtype=float)
     return term.of(result)
 
@@ -162,6 +181,8 @@ def has_measured_terms(case: Case, include_yaw: bool = False) -> bool:
     """Whether the case has anything to fit: a measured post-impact velocity (or, with
     ``include_yaw``, a measured yaw rate)."""
     m = case.measured
+    if crush_terms(case):
+        return True
     if m is None:
         return False
     if m.velocity1 is not None or m.velocity2 is not None or evidence_terms_of(m):

@@ -99,6 +99,22 @@ def driver_lines(drivers: dict) -> list[str]:
         for key, d in drivers.items()]
 
 
+def crush_lines(rec: Reconstruction, units: str) -> list[str]:
+    """Per vehicle with a crush profile: crush energy (times its force-balance factor), EES,
+    and the crush-energy delta-V beside the solution's, in ``units``."""
+    lines = []
+    for c in rec.crush:
+        (e, sd, ef), e_unit = convert([c.energy, c.energy_sigma, c.energy * c.factor],
+                                      "energy", units)
+        (ees, dv, dvm), v_unit = convert([c.ees, c.delta_v_crush, c.delta_v_model],
+                                         "impact_speed", units)
+        lines.append(f"vehicle{c.vehicle}: crush energy {e:.4g} +- {sd:.2g} {e_unit} x "
+                     f"force-balance {c.factor:.3f} = {ef:.4g} {e_unit}; EES {ees:.4g} "
+                     f"{v_unit}; delta-V from crush {dv:.4g} {v_unit} (PIM solution "
+                     f"{dvm:.4g} {v_unit})")
+    return lines
+
+
 def spread_text(row: dict, samples: int, sep: str = ", ") -> str:
     """"[p5, p50, p95]" of a table row, or why there is none (never "[nan, nan, nan]")."""
     if row["name"].startswith("momentum check"):
@@ -156,6 +172,8 @@ def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
                   "First-order variance indices (correlation ratio) of the sampled inputs.", ""]
         lines += [f"- {line}" for line in _spread_drivers(rec)]
         lines.append("")
+    if rec.crush:
+        lines += ["## Crush energy", ""] + [f"- {c}" for c in crush_lines(rec, units)] + [""]
     drivers = driver_lines(evidence_drivers(rec, units))
     if drivers:
         lines += ["## Which evidence drove each unknown", "",
@@ -256,6 +274,7 @@ def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
                                 rec.post.runouts.items()} if rec.post else {})
         data["goodness_of_fit"] = rec.goodness.to_dict() if rec.goodness else None
         data["evidence_drivers"] = evidence_drivers(rec, units)
+        data["crush"] = _crush_json(rec, units)
         echo_json(data)
     else:
         if rec.post is not None:
@@ -265,11 +284,29 @@ def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
         for r in rows:
             click.echo(f"{r['name']:32s} {r['value']:10.4g} {r['unit']}  "
                        f"{spread_text(r, samples)}")
+        for line in crush_lines(rec, units):
+            click.echo(f"crush: {line}")
         for line in driver_lines(evidence_drivers(rec, units)):
             click.echo(f"evidence: {line}")
         if rec.goodness is not None:
             click.echo(f"goodness of fit: {rec.goodness.summary()}")
     return rec, rows
+
+
+def _crush_json(rec: Reconstruction, units: str) -> dict:
+    """``--json``'s crush outputs per vehicle, each value with its unit in ``units``."""
+    out = {}
+    for c in rec.crush:
+        (e, sd), e_unit = convert([c.energy, c.energy_sigma], "energy", units)
+        (ees, dv, dvm), v_unit = convert([c.ees, c.delta_v_crush, c.delta_v_model],
+                                         "impact_speed", units)
+        out[f"vehicle{c.vehicle}"] = {
+            "energy": {"value": float(e), "sd": float(sd), "unit": e_unit},
+            "force_balance_factor": c.factor,
+            "ees": {"value": float(ees), "unit": v_unit},
+            "delta_v_crush": {"value": float(dv), "unit": v_unit},
+            "delta_v_model": {"value": float(dvm), "unit": v_unit}}
+    return out
 
 
 def _write_folder(directory: Path, rec, rows, units: str, video: bool) -> None:
@@ -307,6 +344,8 @@ def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: 
                     "main driver of the spread"), cells, title="Reconstructed unknowns",
                    note="CSV: `reconstruction.csv`", id="table-reconstruction"),
         html.bullets(rec.messages or ["No warnings."], cls="messages")]
+    if rec.crush:
+        body += [html.paragraph("Crush energy:"), html.bullets(crush_lines(rec, units))]
     drivers = driver_lines(evidence_drivers(rec, units))
     if drivers:
         body += [html.paragraph("Which evidence drove each unknown (share of its variance):"),

@@ -87,6 +87,9 @@ def parse_uncertainty(table) -> UncertaintyTable | None:
             raise InputError(f"uncertainty: unknown input {group!r} (use vehicle1.<input>, "
                              f"vehicle2.<input>, impact.<input> or evidence.vehicleN.friction; "
                              f"allowed: {', '.join(UNCERTAIN)})")
+        if group.startswith("evidence.") and isinstance(entries.get("crush"), dict):
+            entries = {**{k: v for k, v in entries.items() if k != "crush"},
+                       **{f"crush.{k}": v for k, v in entries["crush"].items()}}
         for key, spec in entries.items():
             name = f"{group}.{key}"
             if name not in UNCERTAIN:

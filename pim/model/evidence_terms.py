@@ -22,22 +22,28 @@ the duals). The kinds:
 
 The residual of a term is (value - measured) / sigma; the measured values and sigmas are the
 ``[measured]`` table's (:class:`pim.Measured`).
+
+:class:`CrushEnergyTerm` compares PIM's energy loss with both vehicles' crush energies from
+their crush profiles (:mod:`pim.model.crush`), each times its force-balance factor, which
+depends on the model's impulse direction (so it too is differentiated exactly).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Literal
 
 import numpy as np
 
+from .crush import compared_energy, force_balance_factor
 from .dual import Dual, cos_sin
-from .motion import as_terms
+from .motion import Term, as_terms
 from .numbers import InputError
 
 __all__ = ["EvidenceTerm", "EVIDENCE_KINDS", "DELTA_V_SCALE", "delta_v_vehicle_frame",
            "impulse_work", "hypot", "evidence_terms_of", "ModelQuantities", "EVIDENCE_TERMS",
-           "result_quantities", "as_residual_terms", "split_terms"]
+           "result_quantities", "as_residual_terms", "split_terms", "CrushEnergyTerm",
+           "energy_loss_of", "normal_crush_energy_of"]
 
 #: Default range of the recorder's under-reporting, recorded delta-V = scale x true delta-V
 #: (uniform [low, high], used by a reconstruction's Monte Carlo unless ``[uncertainty]``
@@ -202,15 +208,11 @@ class EvidenceTerm:
 
     @staticmethod
     def _energy(q: ModelQuantities):
-        px_, py_ = q["impact.point_x"], q["impact.point_y"]
-        r = [(px_ - q[f"vehicle{i}.cg_x"], py_ - q[f"vehicle{i}.cg_y"]) for i in (1, 2)]
-        pre = [_contact(q[f"vehicle{i}.velocity_x"], q[f"vehicle{i}.velocity_y"],
-                        q[f"vehicle{i}.yaw_rate"], *r[i - 1]) for i in (1, 2)]
-        post = [_contact(q[f"velocity{i}_x"], q[f"velocity{i}_y"], q[f"yaw_rate{i}"],
-                         *r[i - 1]) for i in (1, 2)]
-        return impulse_work(q["impulse_x"], q["impulse_y"], pre[0][0] - pre[1][0],
-                            pre[0][1] - pre[1][1], post[0][0] - post[1][0],
-                            post[0][1] - post[1][1])
+        return energy_loss_of(q)
+
+    def take(self, rows) -> EvidenceTerm:
+        """The term for a subset of a batch's rows (it holds no per-row data: itself)."""
+        return self
 
     def target_of(self, measured) -> float | None:
         """The measured value in a :class:`pim.Measured` [SI], or None when not measured."""
@@ -236,6 +238,127 @@ class EvidenceTerm:
         return self.name
 
 
+def _relative_contact(q):
+    """Relative velocity (x, y) of the contact points, vehicle 1 minus vehicle 2, before (u)
+    and after (U) the impact [m/s]: ((u_x, u_y), (U_x, U_y))."""
+    px_, py_ = q["impact.point_x"], q["impact.point_y"]
+    r = [(px_ - q[f"vehicle{i}.cg_x"], py_ - q[f"vehicle{i}.cg_y"]) for i in (1, 2)]
+    pre = [_contact(q[f"vehicle{i}.velocity_x"], q[f"vehicle{i}.velocity_y"],
+                    q[f"vehicle{i}.yaw_rate"], *r[i - 1]) for i in (1, 2)]
+    post = [_contact(q[f"velocity{i}_x"], q[f"velocity{i}_y"], q[f"yaw_rate{i}"],
+                     *r[i - 1]) for i in (1, 2)]
+    return ((pre[0][0] - pre[1][0], pre[0][1] - pre[1][1]),
+            (post[0][0] - post[1][0], post[0][1] - post[1][1]))
+
+
+def energy_loss_of(q):
+    """T_L = -P.(u + U)/2 [J] of the named inputs and outputs ``q`` (:func:`impulse_work`)."""
+    u, big_u = _relative_contact(q)
+    return impulse_work(q["impulse_x"], q["impulse_y"], *u, *big_u)
+
+
+def normal_crush_energy_of(q):
+    """-P_n (u_n + U_n)/2 [J], the normal part of :func:`energy_loss_of` (Brach & Welsh,
+    SAE 2007-01-0737; :attr:`pim.Result.crush_energy_normal`), n = (cos Gamma, sin Gamma)."""
+    c, s = cos_sin(q["impact.normal_angle"])
+    u, big_u = _relative_contact(q)
+    p_n = q["impulse_x"] * c + q["impulse_y"] * s
+    return -0.5 * p_n * ((u[0] + big_u[0]) * c + (u[1] + big_u[1]) * s)
+
+
+@dataclass(frozen=True, eq=False)
+class CrushEnergyTerm:
+    """Crush-energy evidence: PIM's energy against both vehicles' measured crush energies.
+
+    With the partition "total" (CRASH3) the value is
+
+        T_L(model) - sum_i E_i (1 + tan^2 alpha_i)                              [J],
+
+    alpha_i the angle between the impulse and vehicle i's damaged side's outward normal
+    (the body-frame normal turned by the heading into the global frame;
+    :func:`pim.model.crush.force_balance_factor`, capped); with "normal" (Brach & Welsh)
+    it is -P_n (u_n + U_n)/2 - sum_i E_i. The measured value is 0 and the standard deviation
+    that of sum_i E_i (:attr:`pim.model.crush.CrushProfile.energy_sigma` in quadrature; the
+    factor, between 1 and its cap, is left out of the sigma).
+
+    Attributes
+    ----------
+    energies : tuple of (float or ndarray (m,))
+        E_1, E_2 [J] before the factor (0 without a profile); per row in a Monte Carlo.
+    normals_body : tuple of (ndarray (2,) or None)
+        Each damaged side's outward unit normal in its body frame (x forward, y left).
+    sigma : float
+        [J], > 0.
+    partition : str
+        "total" or "normal" (:func:`pim.model.crush.compared_energy`).
+    """
+
+    energies: tuple
+    normals_body: tuple
+    sigma: float
+    partition: str = "total"
+
+    kind = "crush_energy"
+    vehicle = 0
+    name = "crush_energy"
+    group = "crush energy"
+    unit = "J"
+    kind_of_unit = "energy"
+    is_velocity = False
+
+    def __post_init__(self) -> None:
+        compared_energy(self.partition)
+        if not (np.isfinite(self.sigma) and self.sigma > 0):
+            raise InputError(f"crush energy: its standard deviation must be > 0 [J], got "
+                             f"{self.sigma!r} (give depth_sigma, stiffness sigmas or "
+                             f"energy_sigma in [evidence.vehicleN.crush])")
+
+    def value(self, q: ModelQuantities):
+        """The model's energy minus the crush energies [J] (class notes)."""
+        if not compared_energy(self.partition).force_balance:
+            return normal_crush_energy_of(q) - (self.energies[0] + self.energies[1])
+        out = energy_loss_of(q)
+        for i, (energy, normal) in enumerate(zip(self.energies, self.normals_body,
+                                                 strict=True), start=1):
+            if normal is None:
+                continue
+            c, s = cos_sin(q[f"vehicle{i}.heading"])
+            factor = force_balance_factor(q["impulse_x"], q["impulse_y"],
+                                          c * normal[0] - s * normal[1],
+                                          s * normal[0] + c * normal[1])
+            out = out - factor * energy
+        return out
+
+    def factors(self, q) -> tuple:
+        """The force-balance factor of each vehicle (1 without a profile) [-]."""
+        out = []
+        for i, normal in enumerate(self.normals_body, start=1):
+            if normal is None or not compared_energy(self.partition).force_balance:
+                out.append(1.0)
+                continue
+            c, s = cos_sin(q[f"vehicle{i}.heading"])
+            out.append(force_balance_factor(q["impulse_x"], q["impulse_y"],
+                                            c * normal[0] - s * normal[1],
+                                            s * normal[0] + c * normal[1]))
+        return tuple(out)
+
+    def target_of(self, measured) -> float:
+        """The measured value: 0 (the energies are inside the term)."""
+        return 0.0
+
+    def sigma_of(self, measured) -> float:
+        """Its standard deviation [J]."""
+        return float(self.sigma)
+
+    def take(self, rows) -> CrushEnergyTerm:
+        """The term for the subset ``rows`` of a batch (per-row energies sliced)."""
+        return replace(self, energies=tuple(e[rows] if np.ndim(e) else e
+                                            for e in self.energies))
+
+    def __str__(self) -> str:
+        return self.name
+
+
 #: Every evidence term, in output order.
 EVIDENCE_TERMS = (tuple(EvidenceTerm("delta_v", i, a) for i in (1, 2) for a in (0, 1))
                   + tuple(EvidenceTerm("pre_crash_speed", i) for i in (1, 2))
@@ -254,6 +377,7 @@ def result_quantities(result) -> dict:
     :class:`pim.Result` (arrays of its shape)."""
     case = result.case
     q = {"impact.point_x": case.impact.point[..., 0], "impact.point_y": case.impact.point[..., 1],
+         "impact.normal_angle": case.impact.normal_angle,
          "impulse_x": result.impulse[..., 0], "impulse_y": result.impulse[..., 1]}
     for i in (1, 2):
         v, g = getattr(case, f"vehicle{i}"), f"vehicle{i}."
@@ -275,7 +399,7 @@ def as_residual_terms(terms) -> tuple:
     given."""
     motion, evidence = [], []
     for t in terms:
-        if isinstance(t, EvidenceTerm):
+        if isinstance(t, EvidenceTerm | CrushEnergyTerm):
             evidence.append(t)
         elif isinstance(t, str) and t in _BY_NAME:
             evidence.append(_BY_NAME[t])
@@ -287,5 +411,5 @@ def as_residual_terms(terms) -> tuple:
 def split_terms(terms) -> tuple[tuple, tuple]:
     """(motion terms, evidence terms) of :func:`as_residual_terms`."""
     terms = as_residual_terms(terms)
-    return (tuple(t for t in terms if not isinstance(t, EvidenceTerm)),
-            tuple(t for t in terms if isinstance(t, EvidenceTerm)))
+    return (tuple(t for t in terms if isinstance(t, Term)),
+            tuple(t for t in terms if not isinstance(t, Term)))

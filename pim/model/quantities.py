@@ -70,11 +70,17 @@ def _components() -> dict[str, Quantity]:
 INPUTS: dict[str, Quantity] = _components()
 
 #: Inputs of a reconstruction's evidence that an ``[uncertainty]`` table may also vary (they
-#: act on the run-out, not on the impact).
+#: act on the run-out or on the crush energy, not on the impact).
 EVIDENCE_INPUTS: dict[str, Quantity] = {
-    f"evidence.vehicle{i}.friction": Quantity("dimensionless",
-                                             f"tyre-road friction of vehicle {i}")
-    for i in (1, 2)}
+    **{f"evidence.vehicle{i}.friction": Quantity("dimensionless",
+                                                f"tyre-road friction of vehicle {i}")
+       for i in (1, 2)},
+    **{f"evidence.vehicle{i}.crush.{key}": Quantity(kind, f"{label} of vehicle {i}")
+       for i in (1, 2) for key, kind, label in (
+           ("stiffness_a", "force_per_length", "crush stiffness A"),
+           ("stiffness_b", "force_per_area", "crush stiffness B"),
+           ("width", "length", "damage width"),
+           ("depth_scale", "dimensionless", "factor on every crush depth"))}}
 #: Factors on measured evidence that an ``[uncertainty]`` table may vary: the event data
 #: recorder's under-reporting, recorded delta-V = scale x true delta-V
 #: (:data:`pim.model.evidence_terms.DELTA_V_SCALE`).
