@@ -66,3 +66,27 @@ def test_run_out_keys_are_optional_and_sub_tables_reserved():
     assert ev.vehicle1 is None and ev.vehicle2 is None
     with pytest.raises(ValueError, match=r"evidence.vehicle2.pre_impact: .* not supported"):
         parse_evidence({"vehicle2": {"pre_impact": {}}})
+
+
+CRUSH = {"side": "front", "width": "1.2 m", "depths": ["0.2 m", "0.3 m"],
+         "stiffness_a": "35 kN/m", "stiffness_b": "170 kN/m^2"}
+
+
+def test_a_vehicle_may_have_only_a_crush_profile():
+    ev = parse_evidence({"vehicle1": {"crush": CRUSH}})
+    assert ev.vehicle1 is None and ev.crush1.side == "front" and ev.crush_partition == "total"
+    assert list(ev.crush) == [1] and not ev.has_runout
+
+
+def test_crush_partitions_must_agree_and_exist():
+    with pytest.raises(ValueError, match="different partitions"):
+        parse_evidence({"vehicle1": {"crush": {**CRUSH, "partition": "normal"}},
+                        "vehicle2": {"crush": {**CRUSH, "side": "left"}}})
+    with pytest.raises(ValueError, match="partition = 'shear' is not known"):
+        parse_evidence({"vehicle1": {"crush": {**CRUSH, "partition": "shear"}}})
+
+
+def test_a_crush_wider_than_the_car_names_the_field():
+    with pytest.raises(ValueError, match=r"evidence.vehicle1.crush.width"):
+        parse_evidence({"vehicle1": {"crush": {**CRUSH, "width": "3 m"}}},
+                       {1: (4.5, 1.8), 2: (4.5, 1.8)})

@@ -114,3 +114,68 @@ def test_names_groups_and_order():
 def test_bad_terms_are_refused(args, words):
     with pytest.raises(ValueError, match=words):
         EvidenceTerm(*args)
+
+
+# --- crush energy ---------------------------------------------------------------------
+
+FRONT, RIGHT = np.array([1.0, 0.0]), np.array([0.0, -1.0])
+
+
+def crush_term(e1=17e3, e2=15e3, partition="total"):
+    from pim.model.evidence_terms import CrushEnergyTerm
+
+    return CrushEnergyTerm((e1, e2), (FRONT, RIGHT), 3e3, partition)
+
+
+def test_crush_term_is_the_energy_loss_minus_the_corrected_crush_energies():
+    """Independent check of the CRASH3 factor: 1 / cos^2 of the angle between the impulse
+    and each damaged side's normal, turned into the global frame by the heading."""
+    res = pim.solve(scene())
+    q = result_quantities(res)
+    p = np.asarray(res.impulse, dtype=float)
+    f = []
+    for normal, heading in ((FRONT, np.pi), (RIGHT, np.pi / 2)):
+        n = np.array([np.cos(heading) * normal[0] - np.sin(heading) * normal[1],
+                      np.sin(heading) * normal[0] + np.cos(heading) * normal[1]])
+        cos2 = (p @ n) ** 2 / (p @ p)
+        f.append(min(1.0 / cos2, 2.0))
+    expected = float(res.energy_loss) - 17e3 * f[0] - 15e3 * f[1]
+    assert float(crush_term().value(q)) == pytest.approx(expected, rel=1e-12)
+    normal = crush_term(partition="normal")
+    assert float(normal.value(q)) == pytest.approx(float(res.crush_energy_normal) - 32e3,
+                                                   rel=1e-12)
+
+
+@pytest.mark.parametrize("partition", ["total", "normal"])
+def test_crush_jacobian_matches_finite_differences(partition):
+    case = scene()
+    base = case_state(case)
+    term = (crush_term(partition=partition),)
+    x = np.array([[9.5, 8.0, 0.2, 0.8, np.pi, 0.05]])
+    rows = np.zeros(0, dtype=int)
+    _, jac = free_residuals(base, KEYS, x, rows, np.zeros(1), np.ones(1), evidence=term)
+    for j in range(len(KEYS)):
+        h = 1e-6 * max(1.0, abs(x[0, j]))
+        xp, xm = x.copy(), x.copy()
+        xp[0, j] += h
+        xm[0, j] -= h
+        rp = free_residuals(base, KEYS, xp, rows, np.zeros(1), np.ones(1), evidence=term,
+                            jacobian=False)[0]
+        rm = free_residuals(base, KEYS, xm, rows, np.zeros(1), np.ones(1), evidence=term,
+                            jacobian=False)[0]
+        fd = float((rp - rm)[0, 0] / (2 * h))
+        assert jac[0, 0, j] == pytest.approx(fd, rel=1e-5, abs=1e-3)
+
+
+def test_crush_term_rows_are_taken_per_sample():
+    t = crush_term(np.array([1.0, 2.0, 3.0]), np.array([4.0, 5.0, 6.0]))
+    sub = t.take(np.array([2, 0]))
+    assert list(sub.energies[0]) == [3.0, 1.0] and list(sub.energies[1]) == [6.0, 4.0]
+    assert crush_term().take(np.array([0])).energies == (17e3, 15e3)
+
+
+def test_crush_term_needs_a_sigma():
+    from pim.model.evidence_terms import CrushEnergyTerm
+
+    with pytest.raises(ValueError, match="standard deviation must be > 0"):
+        CrushEnergyTerm((1.0, 0.0), (FRONT, None), 0.0)

@@ -235,3 +235,39 @@ def test_a_delta_v_beyond_every_speed_bound_is_refused():
     with pytest.raises(InputError, match=r"measured.vehicle1.delta_v: .*larger than every "
                                          r"speed bound"):
         reconstruct(replace(case, measured=m), unknown=SPEEDS, samples=0)
+
+
+def test_crush_profiles_and_a_pre_crash_speed_give_back_the_speeds():
+    """synthetic-crush: crush profiles made so that each vehicle's corrected crush energy is
+    half the true energy loss; with vehicle 2's recorded speed the speeds come back, and the
+    Monte Carlo varies the named stiffness B."""
+    from pim.io.casefile import load_case
+
+    case = load_case("synthetic-crush")
+    assert case.evidence.vehicle1 is None and case.evidence.crush1.side == "front"
+    rec = reconstruct(case, samples=200)
+    assert rec.determined, rec.messages
+    assert rec.values["vehicle1.speed"] == pytest.approx(S1, abs=2e-3)
+    assert rec.values["vehicle2.speed"] == pytest.approx(S2, abs=2e-3)
+    assert max(rec.fit.evidence_shares["vehicle1.speed"].items(),
+               key=lambda kv: kv[1])[0] == "crush energy"
+    assert "evidence.vehicle1.crush.stiffness_b" in rec.samples.varying
+    st = rec.samples.stats["vehicle1.speed"]
+    assert st.p5 < S1 < st.p95
+    c1, c2 = rec.crush
+    assert c1.factor == pytest.approx(1.1568, abs=1e-4) and c1.energy == pytest.approx(
+        16956.5, rel=1e-4)
+    assert c1.ees == pytest.approx(np.sqrt(2 * c1.energy * c1.factor
+                                           / float(case.vehicle1.mass)), rel=1e-12)
+    assert c1.delta_v_crush > 0 and c1.delta_v_model > 0
+
+
+def test_crush_alone_is_under_determined_and_says_what_decides():
+    from pim.io.casefile import load_case
+
+    case = replace(load_case("synthetic-crush"), measured=None)
+    rec = reconstruct(case, samples=0)
+    assert not rec.determined
+    msg = " ".join(rec.messages)
+    assert "under-determined: 2 unknowns" in msg and "crush_energy" in msg
+    assert "evidence that would decide it" in msg

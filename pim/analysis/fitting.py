@@ -158,13 +158,17 @@ class FitResult:
             measured = measured_value(self.case.measured, term)
             fitted = float(model_value(self.result, term))
             rows.append({"name": term.name, "measured": measured, "fitted": fitted,
-                         "error": fitted - measured, "unit": term.unit, "residual": float(r)})
+                         "error": fitted - measured, "unit": term.unit, "residual": float(r),
+                         "kind": term.kind if isinstance(term, Term) else term.kind_of_unit})
         return rows
 
     @property
     def rms(self) -> float:
-        """Root-mean-square residual [m/s]."""
-        return float(np.sqrt(np.mean(np.square(self.residuals))))
+        """Root-mean-square residual [m/s] of the terms in m/s (velocities, yaw rates times
+        k_i, recorded delta-V and speeds; energies left out)."""
+        r = np.array([x for t, x in zip(self.terms, self.residuals, strict=True)
+                      if t.unit != "J"]) if self.terms else np.asarray(self.residuals)
+        return float(np.sqrt(np.mean(np.square(r)))) if r.size else float("nan")
 
     @property
     def fitted_keys(self) -> tuple[str, ...]:
