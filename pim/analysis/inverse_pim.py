@@ -83,13 +83,18 @@ def under_determined(case: Case, unknown: dict, include_yaw: bool = True) -> str
     if n_unknown <= n_data:
         return ""
     m = case.measured if case.measured is not None else Measured()
-    missing = [f"vehicle{i}'s post-impact {what}" for i in (1, 2) for what, value in (
+    deciding = _deciding(case, unknown, names)
+    # a vehicle's missing motion is named when its rest position would help (or when the
+    # candidates could not be evaluated)
+    helps = [i for i in (1, 2) if not deciding
+             or f"vehicle{i}'s rest position (its post-impact motion)" in deciding]
+    missing = [f"vehicle{i}'s post-impact {what}" for i in helps for what, value in (
         ("velocity", getattr(m, f"velocity{i}")),
         ("yaw rate", getattr(m, f"yaw_rate{i}") if include_yaw else 0.0)) if value is None
         and not np.any(getattr(case, f"vehicle{i}").fixed)]
     hint = (f"; missing: {', '.join(missing)} (evidence of that vehicle's rest position "
-            "gives it)" if missing else "; fix some of them (e.g. beta = 1) instead")
-    deciding = _deciding(case, unknown, names)
+            "gives it)" if missing else "" if deciding else
+            "; fix some of them (e.g. beta = 1) instead")
     if deciding:
         hint += f"; evidence that would decide it: {evidence_list(deciding)}"
     return (f"under-determined: {n_unknown} unknowns ({', '.join(unknown)}) but only "

@@ -360,17 +360,8 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         raise InputError("unknown: nothing to solve for; name the unknowns in an [unknown] "
                          "table (e.g. vehicle1.speed = {bounds = [\"0 mph\", \"80 mph\"]})")
     check_evidence(case, unknown)
-    has_evidence = case.evidence is not None and (case.evidence.vehicle1 is not None
-                                                   or case.evidence.vehicle2 is not None)
     say = progress or (lambda stage: None)
-    if has_evidence:
-        say("run-out fits")
-    post = post_impact_motion(case) if has_evidence else None
-    solved = post.case if post else case
-    if solved.measured is None and not crush_terms(solved):
-        raise InputError("reconstruct: the case has neither [evidence] nor [measured] data "
-                         "(a run-out's rest position, post-impact motion, a recorded delta_v or "
-                         "pre_crash_speed, an energy_loss)")
+    post, solved = _post_impact(case, say)
     messages = list(post.messages) if post else []
     momentum = post.momentum if post else _momentum_of(solved)
     if momentum is not None and momentum.message and not post:
@@ -397,6 +388,21 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
     crush = crush_outputs(solved, fitted) if determined else ()
     return Reconstruction(solved, unknown, post, fitted, values, momentum, mc, determined,
                           messages, crush)
+
+
+def _post_impact(case: Case, say) -> tuple[PostImpact | None, Case]:
+    """Step 1 when the case has run-out evidence (else None), and the case to solve:
+    refused when it has no data at all."""
+    has_runout = case.evidence is not None and case.evidence.has_runout
+    if has_runout:
+        say("run-out fits")
+    post = post_impact_motion(case) if has_runout else None
+    solved = post.case if post else case
+    if solved.measured is None and not crush_terms(solved):
+        raise InputError("reconstruct: the case has neither [evidence] nor [measured] data "
+                         "(a run-out's rest position, post-impact motion, a recorded delta_v or "
+                         "pre_crash_speed, an energy_loss)")
+    return post, solved
 
 
 def _judge(fitted: FitResult) -> tuple[bool, list[str]]:

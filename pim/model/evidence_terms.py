@@ -48,7 +48,7 @@ __all__ = ["EvidenceTerm", "EVIDENCE_KINDS", "DELTA_V_SCALE", "delta_v_vehicle_f
 #: Default range of the recorder's under-reporting, recorded delta-V = scale x true delta-V
 #: (uniform [low, high], used by a reconstruction's Monte Carlo unless ``[uncertainty]``
 #: names ``measured.vehicleN.delta_v_scale``). Niehoff, Gabler et al., "Evaluation of event
-#: data recorders in full systems crash tests", ESV 2005 (paper 05-0271): with the full crash
+#: data recorders in full systems crash tests", 19th ESV Conference, 2005: with the full crash
 #: pulse recorded, the average delta-V error in frontal tests was just under 6 %, the
 #: recorder reading low; a range of 0 to 12 % under-reporting (mean 6 %) covers it
 #: (docs/reconstruction.md).
