@@ -27,7 +27,7 @@ from PIL import Image, ImageDraw, ImageFont
 
 import pim
 import sim
-from pim.io.files import atomic_path
+from pim.io.files import atomic_paths
 from pim.io.units import convert
 from pim.model.geometry import outline_corners
 from pim.model.numbers import InputError
@@ -466,10 +466,12 @@ def write_animation(renderer: Renderer, path, fps: int = DEFAULT_FPS, gif=None,
     render = 0.0
     start = _time.perf_counter()
     thumbs = []
-    with atomic_path(path) as tmp:
-        writer = imageio.get_writer(tmp, format="FFMPEG", mode="I", fps=fps, codec="libx264",
-                                    pixelformat="yuv420p", quality=7, macro_block_size=2,
-                                    ffmpeg_log_level="error")
+    gif_path = None if gif is None else Path(gif)
+    targets = (path,) if gif_path is None else (path, gif_path)
+    with atomic_paths(*targets) as temps:
+        writer = imageio.get_writer(temps[0], format="FFMPEG", mode="I", fps=fps,
+                                    codec="libx264", pixelformat="yuv420p", quality=7,
+                                    macro_block_size=2, ffmpeg_log_level="error")
         try:
             for i in tqdm(range(len(renderer)), desc="animation", unit="frame", leave=False,
                           disable=None if progress is None else not progress):
@@ -477,16 +479,13 @@ def write_animation(renderer: Renderer, path, fps: int = DEFAULT_FPS, gif=None,
                 img = renderer.frame(i)
                 render += _time.perf_counter() - t0
                 writer.append_data(_pixels(img))
-                if gif is not None:
+                if gif_path is not None:
                     thumbs.append(img.resize((img.width // 2, img.height // 2),
                                              Image.Resampling.BILINEAR))
         finally:
             writer.close()
-    gif_path = None
-    if gif is not None:
-        gif_path = Path(gif)
-        with atomic_path(gif_path) as tmp:
-            thumbs[0].save(tmp, format="GIF", save_all=True, append_images=thumbs[1:],
+        if gif_path is not None:
+            thumbs[0].save(temps[1], format="GIF", save_all=True, append_images=thumbs[1:],
                            duration=round(1000 / fps), loop=0, optimize=False)
     total = _time.perf_counter() - start
     return AnimationInfo(path=path, gif=gif_path, frames=len(renderer), fps=int(fps),

@@ -42,7 +42,10 @@ import numpy as np
 
 import pim
 import sim
+from pim.analysis.pre_impact_speeds import case_pre_impact
 from pim.analysis.residuals import has_measured_terms
+from pim.cli.pre_impact_output import TITLE as PRE_IMPACT_TITLE
+from pim.cli.pre_impact_output import pre_impact_rows
 from pim.io.files import save_figure, write_text
 from pim.io.output import ignore_interrupts, output_folder, rebase, stop_workers
 from pim.io.units import convert
@@ -62,7 +65,8 @@ from .speed_error import COARSE, pareto_table, plot_speed_error, study_table, sw
 from .tables import Table, fmt_error
 
 __all__ = ["Report", "CompareOptions", "compare_case", "gather_report", "write_report",
-           "inputs_table", "fit_table", "crosscheck_table", "results_table"]
+           "inputs_table", "fit_table", "crosscheck_table", "results_table",
+           "pre_impact_table"]
 
 
 def _f(x) -> float:
@@ -175,6 +179,19 @@ def results_table(result: pim.Result, units: str = "si", spread=None) -> Table:
     if spread is not None:
         columns += ("vehicle 1, 5-95 %", "vehicle 2, 5-95 %")
     return Table("results", "Reconstruction results", columns, tuple(rows))
+
+
+def pre_impact_table(case: pim.Case, units: str = "si") -> Table | None:
+    """The speed at the start of each vehicle's pre-impact marks (or driver table) from the
+    case's impact velocities (:mod:`pim.analysis.pre_impact_speeds`); None without such
+    evidence."""
+    rows = pre_impact_rows(case_pre_impact(case), units)
+    if not rows:
+        return None
+    unit = rows[0]["unit"]
+    return Table("pre_impact", PRE_IMPACT_TITLE, ("speed", f"value [{unit}]",
+                                                  f"impact speed [{unit}]", "where, from what"),
+                 tuple((r["name"], r["value"], r["impact"], r["what"]) for r in rows))
 
 
 def _cost_rows(fit, f: float, unit: str) -> list[tuple]:
@@ -366,6 +383,9 @@ def _gather_results(case, options: CompareOptions, units: str) -> ReportData:
                       warnings=warnings_of(case, result, options.friction_limit),
                       animation_requested=options.animation)
     data.add_table(results_table(result, units, spread))
+    pre_impact = pre_impact_table(case, units)
+    if pre_impact is not None:
+        data.add_table(pre_impact)
     data.add_table(inputs_table(case, units))
     if fit is not None:
         data.add_table(fit_table(fit, units))

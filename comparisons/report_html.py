@@ -87,6 +87,8 @@ def _results(data: ReportData) -> str:
         notes.append("Vehicle 2 is a fixed obstacle: it has no delta-V and no PDOF.")
     body = [_facts(data), html_table(data.tables["results"],
                                      note=_csv(data.tables["results"]))]
+    if "pre_impact" in data.tables:
+        body.append(html_table(data.tables["pre_impact"], note=_csv(data.tables["pre_impact"])))
     if notes:
         body.append(h.bullets(notes))
     if data.warnings:

@@ -93,6 +93,8 @@ def _results(data: ReportData) -> list[str]:
     if bool(np.asarray(data.case.vehicle2.fixed)):
         lines.append("- Vehicle 2 is a fixed obstacle: it has no delta-V and no PDOF.")
     lines += ["", md_table(data.tables["results"])]
+    if "pre_impact" in data.tables:
+        lines += [md_table(data.tables["pre_impact"])]
     if data.warnings:
         lines += ["Warnings:", ""] + [f"- {p}" for p in data.warnings] + [""]
     return lines

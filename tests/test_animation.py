@@ -102,6 +102,22 @@ def test_animate_command_writes_a_readable_mp4(tmp_path):
     assert (tmp_path / "a.gif").stat().st_size > 1000
 
 
+def test_a_failed_gif_leaves_no_mp4_either(tmp_path, capsys, monkeypatch):
+    """A GIF that could not be written left the MP4 of the same run behind (the two files
+    were renamed one after the other): now neither is written, exit 2, one line."""
+    from PIL import Image
+
+    def full_disk(self, *args, **kwargs):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(Image.Image, "save", full_disk)
+    assert main(["animate", "hard-pole", "--out", str(tmp_path / "a.mp4"), "--after", "0.1",
+                 "--no-progress", "--gif", str(tmp_path / "a.gif")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "No space left" in err, err
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_render_rate_is_reported(tmp_path, renderer):
     info = write_animation(renderer, tmp_path / "x.mp4", progress=False)
     assert info.frames == len(renderer)

@@ -3,6 +3,7 @@ barrier identity, the force-balance factor (also on duals), the crush-energy del
 one-dimensional impact mechanics, and the profile's checks."""
 
 import math
+from functools import cached_property
 
 import numpy as np
 import pytest
@@ -24,6 +25,7 @@ from pim.model.crush import (
     sqrt_of,
 )
 from pim.model.dual import Dual
+from pim.model.result import Result
 
 A, B = 52538.0, 689476.0          # 300 lbf/in, 10 lbf/in^2 in N/m, N/m^2
 G = A * A / (2 * B)
@@ -220,6 +222,8 @@ def test_partitions_name_the_compared_pim_energy():
     normal = compared_energy("normal")
     assert normal.attribute == "crush_energy_normal" and not normal.force_balance
     assert set(PARTITIONS) == {"total", "normal"}
+    for comparison in PARTITIONS.values():      # the named energies exist on a PIM result
+        assert isinstance(getattr(Result, comparison.attribute), cached_property)
     with pytest.raises(ValueError, match=r"partition = 'shear' is not known \(allowed: total, "
                                          r"normal\)"):
         compared_energy("shear")
@@ -269,6 +273,9 @@ def test_energy_sigma_first_order_matches_sampling():
     ({"stiffness_a": -1.0}, r"crush\.stiffness_a = -1 N/m must be finite and > 0"),
     ({"stiffness_b": 0.0}, r"crush\.stiffness_b = 0 N/m\^2 must be finite and > 0"),
     ({"depth_sigma": -0.1}, r"crush\.depth_sigma = -0.1 m must be finite and >= 0"),
+    ({"stiffness_g": -1.0}, r"crush\.stiffness_g = -1 N must be finite and >= 0"),
+    ({"energy_sigma_relative": float("inf")}, r"crush\.energy_sigma_relative = inf - must be "
+                                               r"finite and >= 0"),
     ({"offset": float("nan")}, r"crush\.offset = nan must be finite"),
 ])
 def test_bad_profiles_name_the_field(kw, message):
@@ -309,3 +316,20 @@ def test_crash3_manual_sample_run_energies(a, b, g, width, depths, factor, print
     alpha = math.radians(45.0)
     assert force_balance_factor(math.cos(alpha), math.sin(alpha), 0.0, 1.0) == (
         pytest.approx(2.0))
+
+
+def test_global_normal_and_corrected_energy_follow_the_heading():
+    p = _profile(side="left")
+    nx, ny = p.normal(np.radians(90.0))
+    assert (nx, ny) == pytest.approx((-1.0, 0.0), abs=1e-15)   # left of a car heading +y
+    # impulse along the global normal: no correction; at 30 deg to it: 1 + tan^2 30
+    assert p.corrected_energy(-5e3, 0.0, np.radians(90.0)) == pytest.approx(p.energy)
+    a = np.radians(30.0)
+    assert p.corrected_energy(math.cos(a), math.sin(a), np.radians(90.0)) == pytest.approx(
+        p.energy * 4 / 3, rel=1e-12)
+    h = Dual(np.radians(100.0), [1.0])
+    e = p.corrected_energy(1.0, 0.3, h)
+    step = 1e-7
+    fd = (p.corrected_energy(1.0, 0.3, np.radians(100.0) + step)
+          - p.corrected_energy(1.0, 0.3, np.radians(100.0) - step)) / (2 * step)
+    assert e.grad[0] == pytest.approx(fd, rel=1e-6)

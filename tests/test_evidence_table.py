@@ -59,12 +59,13 @@ def test_bad_unknown_names_the_key(table, match):
         parse_unknown(table)
 
 
-def test_run_out_keys_are_optional_and_sub_tables_reserved():
+def test_run_out_keys_are_optional_but_pre_impact_needs_them():
     """A vehicle may have evidence other than a run-out (issue 19): no run-out keys -> no
-    run-out evidence; a pre_impact sub-table is named as not supported (yet)."""
+    run-out evidence; marks before the impact without the run-out are refused by name."""
     ev = parse_evidence({"vehicle1": {}})
     assert ev.vehicle1 is None and ev.vehicle2 is None
-    with pytest.raises(ValueError, match=r"evidence.vehicle2.pre_impact: .* not supported"):
+    with pytest.raises(ValueError, match=r"evidence.vehicle2.pre_impact needs the vehicle's "
+                                         r"run-out evidence"):
         parse_evidence({"vehicle2": {"pre_impact": {}}})
 
 

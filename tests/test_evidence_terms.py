@@ -121,10 +121,16 @@ def test_bad_terms_are_refused(args, words):
 FRONT, RIGHT = np.array([1.0, 0.0]), np.array([0.0, -1.0])
 
 
+def profile(side):
+    from pim.model.crush import CrushProfile
+
+    return CrushProfile(side, 1.2, (0.2, 0.3), 3.5e4, 1.7e5)
+
+
 def crush_term(e1=17e3, e2=15e3, partition="total"):
     from pim.model.evidence_terms import CrushEnergyTerm
 
-    return CrushEnergyTerm((e1, e2), (FRONT, RIGHT), 3e3, partition)
+    return CrushEnergyTerm((e1, e2), (profile("front"), profile("right")), 3e3, partition)
 
 
 def test_crush_term_is_the_energy_loss_minus_the_corrected_crush_energies():
@@ -178,4 +184,4 @@ def test_crush_term_needs_a_sigma():
     from pim.model.evidence_terms import CrushEnergyTerm
 
     with pytest.raises(ValueError, match="standard deviation must be > 0"):
-        CrushEnergyTerm((1.0, 0.0), (FRONT, None), 0.0)
+        CrushEnergyTerm((1.0, 0.0), (profile("front"), None), 0.0)

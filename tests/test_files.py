@@ -3,7 +3,7 @@
 import pytest
 from matplotlib.figure import Figure
 
-from pim.io.files import atomic_path, check_complete, save_figure, write_text
+from pim.io.files import atomic_path, atomic_paths, check_complete, save_figure, write_text
 
 
 def test_failed_write_keeps_the_old_file_and_no_temporary(tmp_path):
@@ -65,3 +65,20 @@ def test_a_real_encoder_output_passes_and_its_truncation_fails(tmp_path):
     path.write_bytes(data[: len(data) - 20])
     with pytest.raises(OSError, match="incomplete"):
         check_complete(path)
+
+
+def test_a_set_of_files_is_renamed_only_when_every_one_is_complete(tmp_path):
+    """Files that belong together are one set: a cut GIF leaves neither file, the old one as
+    it was and no temporary."""
+    md = write_text(tmp_path / "a.md", "old")
+    with pytest.raises(OSError, match="incomplete"), atomic_paths(
+            md, tmp_path / "a.gif") as (t_md, t_gif):
+        t_md.write_text("new")
+        t_gif.write_bytes(b"GIF89a" + b"cut")          # no trailer byte
+    assert md.read_text() == "old"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.md"]
+    with atomic_paths(md, tmp_path / "b.txt") as (t_a, t_b):
+        t_a.write_text("new")
+        t_b.write_text("b")
+    assert md.read_text() == "new" and (tmp_path / "b.txt").read_text() == "b"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.md", "b.txt"]

@@ -33,6 +33,11 @@ def test_synthetic_runout_matches_its_baseline(pim_check):
     pim_check("synthetic-runout", BASELINES / "synthetic-runout.json")
 
 
+def test_pre_impact_skids_matches_its_baseline(pim_check):
+    # synthetic-runout with marks before the impact; its reconstruction takes minutes too
+    pim_check("pre-impact-skids", BASELINES / "pre-impact-skids.json")
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("case", ["synthetic-runout", "ricsac9"])
 def test_reconstruction_and_assumptions_match_their_baseline(pim_check, case):
@@ -40,7 +45,8 @@ def test_reconstruction_and_assumptions_match_their_baseline(pim_check, case):
 
 
 def test_every_bundled_case_has_a_committed_baseline():
-    held = set(_cases(BUNDLED)) | set(_cases(BASELINES / "synthetic-runout.json"))
+    held = set(_cases(BUNDLED)) | set(_cases(BASELINES / "synthetic-runout.json")) | set(
+        _cases(BASELINES / "pre-impact-skids.json"))
     assert held == {name for name, _ in pim.list_cases()}
 
 

@@ -320,3 +320,25 @@ def test_fit_table_with_sigmas_is_a_unit_free_chi_square():
         assert not any("^2" in str(v) for row in rows.values() for v in row)
     assert "cost (sum of squared velocity errors)" in {
         r[0] for r in fit_table(pim.fit(case), "us").rows}
+
+
+def test_pre_impact_table_from_the_case_velocities():
+    """pre-impact-skids: vehicle 1 slid 30 ft locked (friction 0.7) into the impact at
+    31.09 ft/s: sqrt(31.09^2 + 2 x 32.174 x 0.7 x 30) = 48.14 ft/s = 32.83 mph."""
+    from comparisons.report import pre_impact_table
+
+    table = pre_impact_table(pim.load_case("pre-impact-skids"), "us")
+    assert table.name == "pre_impact" and table.columns[1] == "value [mph]"
+    rows = {r[0]: r[1:] for r in table.rows}
+    assert rows["vehicle1.speed_at_marks_start"][0] == pytest.approx(48.14 / 1.46667, rel=1e-3)
+    assert "30 ft of marks" in rows["vehicle1.speed_at_marks_start"][2]
+    assert pre_impact_table(pim.load_case("ricsac9")) is None
+
+
+def test_compare_report_shows_the_speeds_before_the_impact(tmp_path):
+    out = tmp_path / "report"
+    assert main(["compare", "pre-impact-skids", "--out", str(out), "--no-animation",
+                 "--no-speed-error", "--no-assumptions", "--no-progress"]) == 0
+    assert "**Speeds before the impact** ([pre_impact.csv]" in (out / "report.md").read_text()
+    assert 'id="table-pre_impact"' in (out / "report.html").read_text()
+    assert (out / "pre_impact.csv").read_text().startswith("speed,value [mph],")

@@ -84,8 +84,7 @@ def crush_terms(case: Case) -> tuple[CrushEnergyTerm, ...]:
     profiles = ev.crush
     return (CrushEnergyTerm(
         energies=tuple(profiles[i].energy if i in profiles else 0.0 for i in (1, 2)),
-        normals_body=tuple(profiles[i].normal_body if i in profiles else None
-                           for i in (1, 2)),
+        profiles=tuple(profiles.get(i) for i in (1, 2)),
         sigma=float(np.sqrt(sum(p.energy_sigma ** 2 for p in profiles.values()))),
         partition=ev.crush_partition),)
 

@@ -257,15 +257,20 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, unit
 
     Prints each vehicle's post-impact velocity, speed and yaw rate, delta-V, PDOF, the
     impulse, Brach's coefficients and the energy loss with its normal/tangential split, then
-    warnings. Exit code 1 with one line when the vehicles do not approach at C (no impact).
+    warnings; with pre-impact evidence (tyre marks before the impact, a driver table from a
+    negative time) each vehicle's speed at their start. Exit code 1 with one line when the
+    vehicles do not approach at C (no impact).
     """
+    from ..analysis.pre_impact_speeds import case_pre_impact
     from ..io.casefile import load_case
     from ..plotting.tables import format_table, rows_to_json, summarize
+    from .pre_impact_output import pre_impact_json, pre_impact_lines, pre_impact_rows
 
     case = load_case(case_name)
     units = units or case.units
     result = solve_with_options(case, eps, beta, friction_limit, cap_friction, law, k, mu_c,
                                 units)
+    pre_impact = pre_impact_rows(case_pre_impact(case), units)     # marks, driver tables
     if result.q_singular.any():
         problems = result.problems()
         raise InputError(problems[0] if problems else "q is singular")
@@ -276,11 +281,15 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, unit
     if as_json:
         echo_json({"case": case.name, "units": units, "law": law,
                    "admissible": bool(result.admissible), "problems": warnings,
-                   "results": rows_to_json(rows)})
+                   "results": rows_to_json(rows), "pre_impact": pre_impact_json(pre_impact)})
         return
     for text in warnings:       # before the table, where a reader sees them
         click.echo(f"warning: {text}", err=True)
     click.echo(format_table(rows, _title(case, result, law)))
+    if pre_impact:
+        click.echo("\nSpeeds before the impact (from the case's impact velocities):")
+        for line in pre_impact_lines(pre_impact):
+            click.echo(line)
 
 
 def _title(case, result, law: str) -> str:

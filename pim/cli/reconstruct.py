@@ -23,6 +23,7 @@ from pathlib import Path
 
 import click
 
+from ..analysis.pre_impact_speeds import reconstruction_pre_impact
 from ..analysis.reconstruction import Reconstruction
 from ..analysis.reconstruction import reconstruct as run_reconstruction
 from ..io import html
@@ -35,6 +36,13 @@ from ..model.numbers import InputError
 from ..plotting.reconstruction_animation import write_reconstruction_mp4
 from ..plotting.reconstruction_scene import reconstruction_figure
 from .main import case_argument, echo_json, json_option, require_brach, units_option
+from .pre_impact_output import (
+    pre_impact_html,
+    pre_impact_json,
+    pre_impact_lines,
+    pre_impact_markdown,
+    pre_impact_rows,
+)
 
 __all__ = ["reconstruct", "reconstruction_rows", "evidence_drivers", "driver_lines"]
 
@@ -148,7 +156,7 @@ def _spread_drivers(rec: Reconstruction) -> list[str]:
 
 
 def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
-            with_video: bool = False) -> str:
+            with_video: bool = False, pre_impact=()) -> str:
     n = rec.samples.n if rec.samples else 0
     source = ("the run-out inverse of each vehicle's rest evidence" if rec.post else
               "the case's [measured] post-impact motion")
@@ -167,6 +175,7 @@ def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
                   else " | ".join(["-"] * 3))
         lines.append(f"| {r['name']} | {r['value']:.4g} | {spread} | {r['unit']} | {driver} |")
     lines.append("")
+    lines += pre_impact_markdown(pre_impact)
     if rec.samples:
         lines += ["## What drives each unknown's spread", "",
                   "First-order variance indices (correlation ratio) of the sampled inputs.", ""]
@@ -231,9 +240,9 @@ def reconstruct(case_name, out, samples, seed, workers, video, progress, units, 
     with output_folder(out, command="pim reconstruct") if out else \
             contextlib.nullcontext() as tmp:
         with _stages(case, samples, workers, progress) as say:
-            rec, rows = _reconstruct(case, samples, seed, workers, units, as_json, say)
+            rec, rows, pre = _reconstruct(case, samples, seed, workers, units, as_json, say)
         if tmp is not None:
-            _write_folder(tmp, rec, rows, units, video)
+            _write_folder(tmp, rec, rows, units, video, pre)
 
 
 @contextlib.contextmanager
@@ -256,7 +265,8 @@ def _stages(case, samples: int, workers: int, progress):
 
 
 def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
-    """Run the reconstruction and print its table (or JSON); return it and its rows."""
+    """Run the reconstruction and print its table (or JSON); return it, its rows and the
+    rows of the speeds before the impact (:mod:`pim.cli.pre_impact_output`)."""
     if workers > 1:
         with worker_pool(workers) as pool:
             rec = run_reconstruction(case, samples=samples, seed=seed, executor=pool,
@@ -268,8 +278,10 @@ def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
                                or "family" in m or "equally well" in m),
                               "; ".join(rec.messages)))
     rows = reconstruction_rows(rec, units)
+    pre = pre_impact_rows(reconstruction_pre_impact(rec, seed), units)
     if as_json:
         data = _json(case, rows, samples, rec.messages, units)
+        data["pre_impact"] = pre_impact_json(pre)
         data["tyre_models"] = ({f"vehicle{i}": fit.tyre_model for i, fit in
                                 rec.post.runouts.items()} if rec.post else {})
         data["goodness_of_fit"] = rec.goodness.to_dict() if rec.goodness else None
@@ -284,13 +296,15 @@ def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
         for r in rows:
             click.echo(f"{r['name']:32s} {r['value']:10.4g} {r['unit']}  "
                        f"{spread_text(r, samples)}")
+        for line in pre_impact_lines(pre):
+            click.echo(line)
         for line in crush_lines(rec, units):
             click.echo(f"crush: {line}")
         for line in driver_lines(evidence_drivers(rec, units)):
             click.echo(f"evidence: {line}")
         if rec.goodness is not None:
             click.echo(f"goodness of fit: {rec.goodness.summary()}")
-    return rec, rows
+    return rec, rows, pre
 
 
 def _crush_json(rec: Reconstruction, units: str) -> dict:
@@ -309,23 +323,27 @@ def _crush_json(rec: Reconstruction, units: str) -> dict:
     return out
 
 
-def _write_folder(directory: Path, rec, rows, units: str, video: bool) -> None:
+def _write_folder(directory: Path, rec, rows, units: str, video: bool, pre=()) -> None:
     """reconstruction.csv, scene.png, reconstruction.mp4, report.html and report.md into
     ``directory``."""
     csv = ["name,unit,value,p5,p50,p95,main_driver"] + [
         f"{r['name']},{r['unit']},{r['value']:.6g},{r['p5']:.6g},{r['p50']:.6g},"
-        f"{r['p95']:.6g},{r['driver']}" for r in rows]
+        f"{r['p95']:.6g},{r['driver']}" for r in rows] + [
+        f"{r['name']},{r['unit']},{r['value']:.6g},{r['p5']:.6g},{r['p50']:.6g},"
+        f"{r['p95']:.6g},\"{r['what']}\"" for r in pre]
     write_text(directory / "reconstruction.csv", "\n".join(csv) + "\n")
     if rec.post is not None:
         save_figure(reconstruction_figure(rec.post, units), directory / "scene.png")
         if video:
             write_reconstruction_mp4(rec.post, directory / "reconstruction.mp4", units=units)
-    write_text(directory / "report.html", _html_report(rec, rows, directory, video, units))
-    write_text(directory / "report.md", _report(rec, rows, units, rec.post is not None, video))
+    write_text(directory / "report.html", _html_report(rec, rows, directory, video, pre,
+                                                       units))
+    write_text(directory / "report.md", _report(rec, rows, units, rec.post is not None, video,
+                                                pre))
 
 
 def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: bool,
-                 units: str = "si") -> str:
+                 pre=(), units: str = "si") -> str:
     """report.html: the table, what drives each spread, the warnings, the scene and the
     animation inline (read from ``directory``), by the blocks of :mod:`pim.io.html`."""
     def g(x):
@@ -351,6 +369,7 @@ def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: 
         body += [html.paragraph("Which evidence drove each unknown (share of its variance):"),
                  html.bullets(drivers)]
     sections = [html.section("Results", body, id="results", cls="keep")]
+    sections += pre_impact_html(pre)
     if rec.samples:
         sections.append(html.section("What drives each unknown's spread", [html.paragraph(
             "First-order variance indices (correlation ratio) of the sampled inputs."),
@@ -364,6 +383,7 @@ def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: 
         sections.append(html.section("Scene and animation", media, id="scene"))
     return html.page(f"Reconstruction of {rec.case.name}", sections,
                      subtitle="Written by `pim reconstruct` (the same as text: `report.md`).",
-                     contents=[("results", "Results"), ("drivers", "Drivers"),
-                               ("scene", "Scene")][:len(sections)],
+                     contents=[("results", "Results"),
+                               *([("pre-impact", "Before the impact")] if pre else []),
+                               ("drivers", "Drivers"), ("scene", "Scene")][:len(sections)],
                      generator="pim reconstruct")

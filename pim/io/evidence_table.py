@@ -13,6 +13,12 @@ steer = "0 deg"              # optional: one angle (front wheels) or four
 position_sigma = "0.3 ft"    # optional
 heading_sigma = "2 deg"      # optional
 path_points = [["10 ft", "3 ft"]]   # optional
+# the run-out keys above may all be left out when the vehicle has only a crush sub-table
+# (:data:`SUBTABLES`; not with pre_impact, which needs the run-out): then it has no run-out
+
+[evidence.vehicle1.pre_impact]   # optional: marks before the impact (pim.io.pre_impact_table)
+skid_length = "42 ft"
+friction = 0.7
 
 [evidence.vehicle2.crush]    # a crush profile (pim.io.crush_table); vehicle2 has no run-out
 side = "left"
@@ -20,8 +26,6 @@ width = "60 in"
 depths = ["2 in", "8 in", "9 in", "3 in"]
 class = "midsize car"
 partition = "total"          # optional: "total" (CRASH3, default) or "normal" (Brach & Welsh)
-# every run-out key above may be left out when the vehicle has other evidence only (its
-# sub-tables, :data:`SUBTABLES`): then it has no run-out
 
 [unknown]
 vehicle1.speed = {bounds = ["0 mph", "80 mph"]}
@@ -36,6 +40,7 @@ import numpy as np
 from ..model.evidence import UNKNOWN_KINDS, Evidence, VehicleEvidence
 from ..model.numbers import InputError
 from .crush_table import parse_crush
+from .pre_impact_table import parse_pre_impact
 from .toml_tables import check_keys
 from .units import parse
 
@@ -47,7 +52,7 @@ _EVIDENCE = {"rest_position", "rest_heading", "wheelbase", "track", "cg_to_front
 #: may have only these): the crush profile, the marks before the impact.
 SUBTABLES = {"crush": "crush-profile evidence", "pre_impact": "pre-impact (skid-mark) evidence"}
 #: The sub-tables this version reads.
-_PARSED = ("crush",)
+_PARSED = ("crush", "pre_impact")
 _WHEEL_WORDS = {"locked": 1.0, "free": 0.0, "free-rolling": 0.0}
 
 
@@ -86,6 +91,9 @@ def _vehicle(table, where) -> VehicleEvidence | None:
             raise InputError(f"{where}.{key}: {SUBTABLES[key]} is not supported by this "
                              f"version")
     if not set(table) - set(SUBTABLES):
+        if "pre_impact" in table:
+            raise InputError(f"{where}.pre_impact needs the vehicle's run-out evidence "
+                             f"(rest_position, rest_heading, wheelbase, track, friction)")
         return None
     for key in ("rest_position", "rest_heading", "wheelbase", "track", "friction"):
         if key not in table:
@@ -110,6 +118,12 @@ def _vehicle(table, where) -> VehicleEvidence | None:
     if "heading_sigma" in table:
         kwargs["heading_sigma"] = parse(table["heading_sigma"], "angle",
                                         f"{where}.heading_sigma")
+    if "pre_impact" in table:      # per-wheel braking weighs by the static axle loads
+        a = (parse(table["cg_to_front"], "length", f"{where}.cg_to_front")
+             if "cg_to_front" in table else wheelbase / 2)
+        share = 1 - a / wheelbase if wheelbase > 0 else 0.5
+        kwargs["pre_impact"] = parse_pre_impact(table["pre_impact"], f"{where}.pre_impact",
+                                                front_share=min(max(share, 0.0), 1.0))
     return VehicleEvidence(
         rest_position=_point(table["rest_position"], f"{where}.rest_position"),
         rest_heading=parse(table["rest_heading"], "angle", f"{where}.rest_heading"),

@@ -20,32 +20,49 @@ from pathlib import Path
 
 from ..model.numbers import InputError
 
-__all__ = ["atomic_path", "write_text", "save_figure", "writable_folder", "check_complete"]
+__all__ = ["atomic_path", "atomic_paths", "write_text", "save_figure", "writable_folder",
+           "check_complete"]
+
+
+@contextlib.contextmanager
+def atomic_paths(*paths) -> Iterator[tuple[Path, ...]]:
+    """Yield temporary paths next to ``paths``; on success rename every one onto its path.
+
+    Several files that belong together (an animation's MP4 and its GIF) are written as a set:
+    each temporary file keeps its target's suffix (writers such as imageio pick the format
+    from it), every one is checked (:func:`check_complete`) before the first rename, and on
+    any error, or KeyboardInterrupt, all temporary files are removed and no target is
+    touched. The final files get the usual permissions (0666 less the umask).
+    """
+    paths = [Path(p) for p in paths]
+    temps: list[Path] = []
+    try:
+        for path in paths:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}-", suffix=f".tmp{path.suffix}",
+                                       dir=path.parent)
+            os.close(fd)
+            temps.append(Path(tmp))
+        yield tuple(temps)
+        for tmp, path in zip(temps, paths, strict=True):
+            check_complete(tmp, path)
+        mask = os.umask(0)
+        os.umask(mask)
+        for tmp, path in zip(temps, paths, strict=True):
+            os.chmod(tmp, 0o666 & ~mask)
+            os.replace(tmp, path)
+    finally:
+        for tmp in temps:
+            if tmp.exists():
+                tmp.unlink()
 
 
 @contextlib.contextmanager
 def atomic_path(path) -> Iterator[Path]:
-    """Yield a temporary path next to ``path``; on success rename it onto ``path``.
-
-    The temporary file keeps ``path``'s suffix (writers such as imageio pick the format from
-    it); the final file gets the usual permissions (0666 less the umask).
-    """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}-", suffix=f".tmp{path.suffix}",
-                               dir=path.parent)
-    os.close(fd)
-    tmp = Path(tmp)
-    try:
+    """Yield a temporary path next to ``path``; on success rename it onto ``path``
+    (:func:`atomic_paths` of one file)."""
+    with atomic_paths(path) as (tmp,):
         yield tmp
-        check_complete(tmp, path)
-        mask = os.umask(0)
-        os.umask(mask)
-        os.chmod(tmp, 0o666 & ~mask)
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
 
 
 def _mp4_boxes(data: bytes) -> list[bytes] | None:

@@ -79,13 +79,18 @@ def parse_uncertainty(table) -> UncertaintyTable | None:
                                                     for e in nested.values()):
             raise InputError(f"uncertainty.{top} must hold vehicle1 / vehicle2 tables, e.g. "
                              f"{example}")
-        groups += [(f"{top}.{g}", e) for g, e in nested.items()]
+        for g, e in nested.items():       # and the evidence's marks before the impact
+            e = dict(e)
+            marks = e.pop("pre_impact", None) if top == "evidence" else None
+            groups += [(f"{top}.{g}", e)] + ([] if marks is None else
+                                              [(f"{top}.{g}.pre_impact", marks)])
     for group, entries in groups:
         if group.split(".")[0] not in ("vehicle1", "vehicle2", "impact", "evidence",
                                        "measured") or \
                 not isinstance(entries, dict):
             raise InputError(f"uncertainty: unknown input {group!r} (use vehicle1.<input>, "
-                             f"vehicle2.<input>, impact.<input> or evidence.vehicleN.friction; "
+                             f"vehicle2.<input>, impact.<input>, evidence.vehicleN.friction or "
+                             f"evidence.vehicleN.pre_impact.friction / .skid_length; "
                              f"allowed: {', '.join(UNCERTAIN)})")
         if group.startswith("evidence.") and isinstance(entries.get("crush"), dict):
             entries = {**{k: v for k, v in entries.items() if k != "crush"},

@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .dual import Dual
+from .dual import Dual, cos_sin
 from .numbers import InputError
 
 __all__ = ["CrushProfile", "SIDES", "SIDE_NORMALS", "crush_energy", "force_balance_factor",
@@ -296,6 +296,11 @@ def compared_energy(partition: str = "total") -> CrushComparison:
     crush energy and with the tangential energy loss): E1 + E2 = the normal crush energy
     (:attr:`pim.Result.crush_energy_normal`), without a correction factor.
 
+    Both PIM energies are *dissipated* energies. Stiffness coefficients fitted to barrier
+    impact speeds give the *absorbed* energy at maximum crush, which for a restitution e
+    exceeds the normal loss by 1 / (1 - e^2) (Ziernicki & Rose, SAE 2005-01-1200); a caller
+    with e > 0 may compare (1 - e^2) times the crush energy (see :func:`crush_impulse`).
+
     Raises
     ------
     InputError
@@ -389,6 +394,21 @@ class CrushProfile:
     def normal_body(self) -> np.ndarray:
         """Outward unit normal of the damaged side in the body frame (x forward, y left)."""
         return np.array(SIDE_NORMALS[self.side])
+
+    def normal(self, heading):
+        """Outward unit normal of the damaged side in the global frame, (n_x, n_y), for the
+        vehicle's heading [rad] (number, array or :class:`Dual`): the body normal rotated
+        by the heading (CCW from +x)."""
+        c, s = cos_sin(heading)
+        nx, ny = SIDE_NORMALS[self.side]
+        return c * nx - s * ny, s * nx + c * ny
+
+    def corrected_energy(self, impulse_x, impulse_y, heading, cap=FORCE_BALANCE_CAP):
+        """Crush energy times the force-balance factor of the impulse [J] (CRASH3), the
+        impulse in the global frame [N s] and the vehicle's heading [rad]; numbers, arrays
+        or :class:`Dual` (the sign of the impulse does not matter)."""
+        nx, ny = self.normal(heading)
+        return self.energy * force_balance_factor(impulse_x, impulse_y, nx, ny, cap)
 
     @property
     def centroid_body(self) -> np.ndarray:

@@ -49,7 +49,8 @@ __all__ = ["Distribution", "UncertaintyTable", "nominal_values", "sample_inputs"
 #: Admissible (low, high) of inputs that have one; low is exclusive for mass and inertia.
 _RANGE = {"impact.restitution": (0.0, 1.0),
           **{f"vehicle{i}.{k}": (0.0, np.inf) for i in (1, 2) for k in ("mass", "yaw_inertia")},
-          **{f"evidence.vehicle{i}.friction": (0.0, np.inf) for i in (1, 2)}}
+          **{f"evidence.vehicle{i}.{k}": (0.0, np.inf) for i in (1, 2)
+             for k in ("friction", "pre_impact.friction", "pre_impact.skid_length")}}
 KINDS = ("normal", "uniform", "plusminus", "fixed", "prior")
 
 

@@ -14,6 +14,7 @@ import numpy as np
 from .crush import CrushProfile, compared_energy
 from .driver import DriverInputs
 from .numbers import InputError
+from .pre_impact import PreImpactMarks
 from .runout import RunoutVehicle
 from .tyres import TyreData
 
@@ -50,6 +51,8 @@ class VehicleEvidence:
     where : str, the case-file table named in error messages (e.g. ``evidence.vehicle1``)
     tyre : TyreData or None, the field tyre ([tyres.vehicleN]), or None for the Coulomb tyre
     driver : DriverInputs or None, inputs over time ([driver.vehicleN])
+    pre_impact : PreImpactMarks or None, tyre marks before the impact
+        ([evidence.vehicleN.pre_impact], :mod:`pim.model.pre_impact`)
     """
 
     rest_position: np.ndarray
@@ -66,6 +69,7 @@ class VehicleEvidence:
     where: str = "evidence"
     tyre: TyreData | None = None
     driver: DriverInputs | None = None
+    pre_impact: PreImpactMarks | None = None
 
     def __post_init__(self):
         w = self.where

@@ -285,8 +285,8 @@ class CrushEnergyTerm:
     ----------
     energies : tuple of (float or ndarray (m,))
         E_1, E_2 [J] before the factor (0 without a profile); per row in a Monte Carlo.
-    normals_body : tuple of (ndarray (2,) or None)
-        Each damaged side's outward unit normal in its body frame (x forward, y left).
+    profiles : tuple of (CrushProfile or None)
+        Each vehicle's crush profile (its damaged side), None without one.
     sigma : float
         [J], > 0.
     partition : str
@@ -294,7 +294,7 @@ class CrushEnergyTerm:
     """
 
     energies: tuple
-    normals_body: tuple
+    profiles: tuple
     sigma: float
     partition: str = "total"
 
@@ -318,28 +318,22 @@ class CrushEnergyTerm:
         if not compared_energy(self.partition).force_balance:
             return normal_crush_energy_of(q) - (self.energies[0] + self.energies[1])
         out = energy_loss_of(q)
-        for i, (energy, normal) in enumerate(zip(self.energies, self.normals_body,
-                                                 strict=True), start=1):
-            if normal is None:
-                continue
-            c, s = cos_sin(q[f"vehicle{i}.heading"])
-            factor = force_balance_factor(q["impulse_x"], q["impulse_y"],
-                                          c * normal[0] - s * normal[1],
-                                          s * normal[0] + c * normal[1])
+        for energy, factor in zip(self.energies, self.factors(q), strict=True):
             out = out - factor * energy
         return out
 
     def factors(self, q) -> tuple:
-        """The force-balance factor of each vehicle (1 without a profile) [-]."""
+        """The force-balance factor of each vehicle at the model's impulse (1 without a
+        profile or with the "normal" partition) [-]: its damaged side's normal in the global
+        frame (:meth:`pim.model.crush.CrushProfile.normal`) against the impulse
+        (:func:`pim.model.crush.force_balance_factor`)."""
         out = []
-        for i, normal in enumerate(self.normals_body, start=1):
-            if normal is None or not compared_energy(self.partition).force_balance:
+        for i, profile in enumerate(self.profiles, start=1):
+            if profile is None or not compared_energy(self.partition).force_balance:
                 out.append(1.0)
                 continue
-            c, s = cos_sin(q[f"vehicle{i}.heading"])
             out.append(force_balance_factor(q["impulse_x"], q["impulse_y"],
-                                            c * normal[0] - s * normal[1],
-                                            s * normal[0] + c * normal[1]))
+                                            *profile.normal(q[f"vehicle{i}.heading"])))
         return tuple(out)
 
     def target_of(self, measured) -> float:

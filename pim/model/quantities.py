@@ -80,7 +80,11 @@ EVIDENCE_INPUTS: dict[str, Quantity] = {
            ("stiffness_a", "force_per_length", "crush stiffness A"),
            ("stiffness_b", "force_per_area", "crush stiffness B"),
            ("width", "length", "damage width"),
-           ("depth_scale", "dimensionless", "factor on every crush depth"))}}
+           ("depth_scale", "dimensionless", "factor on every crush depth"))},
+    **{f"evidence.vehicle{i}.pre_impact.{key}": Quantity(kind, f"{label} of vehicle {i}")
+       for i in (1, 2) for key, kind, label in (
+           ("friction", "dimensionless", "tyre-road friction along the pre-impact marks"),
+           ("skid_length", "length", "length of the pre-impact marks"))}}
 #: Factors on measured evidence that an ``[uncertainty]`` table may vary: the event data
 #: recorder's under-reporting, recorded delta-V = scale x true delta-V
 #: (:data:`pim.model.evidence_terms.DELTA_V_SCALE`).

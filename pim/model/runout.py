@@ -42,13 +42,18 @@ from .tyres import (
     wheel_positions,
 )
 
-__all__ = ["RunoutVehicle", "Runout", "RunoutBatch", "runout_rhs", "runout", "runout_many",
-           "MAX_TIME", "timed_rhs", "TimedRhs", "pre_impact_motion", "FRONT", "LEFT"]
+__all__ = ["StoppedBeforeImpact", "RunoutVehicle", "Runout", "RunoutBatch", "runout_rhs",
+           "runout", "runout_many", "MAX_TIME", "timed_rhs", "TimedRhs", "pre_impact_motion",
+           "FRONT", "LEFT"]
 
 FRONT = np.array([1.0, 1.0, 0.0, 0.0])  # per wheel (FL, FR, RL, RR): front axle
 LEFT = np.array([1.0, 0.0, 1.0, 0.0])   # per wheel: left side
 
 MAX_TIME = 60.0  # [s] simulated time after which a vehicle that still moves is flagged
+
+
+class StoppedBeforeImpact(InputError):
+    """:func:`pre_impact_motion`: the vehicle comes to rest before it reaches the impact."""
 
 
 @dataclass(frozen=True)
@@ -247,7 +252,7 @@ def pre_impact_motion(vehicle: RunoutVehicle, position, heading, velocity, yaw_r
                     atol=atol)
     end = sol.y[:, -1]
     if np.hypot(end[3], end[4]) < vehicle.regularisation:
-        raise InputError("pre_impact_motion: the vehicle stops before the impact")
+        raise StoppedBeforeImpact("pre_impact_motion: the vehicle stops before the impact")
     return end[:2].copy(), float(end[2]), end[3:5].copy(), float(end[5])
 
 
