@@ -271,3 +271,24 @@ def test_crush_alone_is_under_determined_and_says_what_decides():
     msg = " ".join(rec.messages)
     assert "under-determined: 2 unknowns" in msg and "crush_energy" in msg
     assert "evidence that would decide it" in msg
+
+
+def test_a_family_names_the_evidence_that_would_decide_it():
+    """vehicle 1's delta-V and vehicle 2's speed fix the impulse and vehicle 2's speed, but
+    vehicle 1's speed trades against the restitution: its rest position, its recorded speed
+    or the energy loss would decide it; vehicle 2's evidence would not (the Jacobian rows of
+    each candidate against the fit's null direction)."""
+    case, _, dv = _truth()
+    m = pim.Measured(delta_v1=dv[1], delta_v1_sigma=[.3, .3], pre_crash_speed2=S2,
+                     pre_crash_speed2_sigma=0.3)
+    rec = reconstruct(replace(case, measured=m),
+                      unknown={**SPEEDS, "impact.restitution": (0.0, 1.0)}, samples=0)
+    assert not rec.determined
+    family = next(x for x in rec.messages if x.startswith("family"))
+    assert "impact.restitution, vehicle1.speed trade against each other" in family
+    assert ("vehicle1's rest position (its post-impact motion), vehicle1's recorded "
+            "pre-crash speed or an energy loss (crush) would decide it") in family
+    assert "vehicle2's rest position" not in family
+    deciding = dict(rec.fit.identifiability.deciding)
+    assert set(deciding) == {"vehicle1's rest position (its post-impact motion)",
+                             "vehicle1's recorded pre-crash speed", "an energy loss (crush)"}
