@@ -102,6 +102,13 @@ MEASURED: dict[str, Quantity] = {
        for i in (1, 2) for a in "xy"},
     **{f"measured.yaw_rate{i}": Quantity(
         "angular_velocity", f"measured post-impact yaw rate of vehicle {i}") for i in (1, 2)},
+    **{f"measured.delta_v{i}_{a}": Quantity(
+        "velocity", f"recorded delta-V of vehicle {i}, {a}")
+       for i in (1, 2) for a in ("long", "lat")},
+    **{f"measured.pre_crash_speed{i}": Quantity(
+        "velocity", f"recorded pre-crash speed of vehicle {i}") for i in (1, 2)},
+    "measured.energy_loss": Quantity("energy", "measured energy loss"),
+    "measured.crush_energy": Quantity("energy", "energy loss minus the crush energies"),
 }
 
 
