@@ -292,3 +292,24 @@ def test_a_family_names_the_evidence_that_would_decide_it():
     deciding = dict(rec.fit.identifiability.deciding)
     assert set(deciding) == {"vehicle1's rest position (its post-impact motion)",
                              "vehicle1's recorded pre-crash speed", "an energy loss (crush)"}
+
+
+@pytest.mark.slow
+def test_rest_positions_mixed_with_recorded_delta_v_and_energy():
+    """synthetic-runout's rest evidence plus vehicle 1's recorded delta-V and the energy loss
+    of its own forward solution: the run-outs' motion and the new terms fit together, and
+    the speeds come back (21.2 mph each)."""
+    from pim.model.evidence_terms import EvidenceTerm, result_quantities
+
+    case = pim.load_case("synthetic-runout")
+    res = pim.solve(case)
+    q = result_quantities(res)
+    dv = [float(EvidenceTerm("delta_v", 1, a).value(q)) for a in (0, 1)]
+    mixed = replace(case, measured=pim.Measured(
+        delta_v1=dv, delta_v1_sigma=[0.3, 0.3], energy_loss=float(res.energy_loss),
+        energy_loss_sigma=5e3))
+    rec = reconstruct(mixed, samples=0)
+    assert rec.determined and rec.post is not None
+    assert {"delta_v1_long", "energy_loss", "velocity2_x"} <= set(rec.fit.residual_names)
+    for key in ("vehicle1.speed", "vehicle2.speed"):
+        assert rec.values[key] == pytest.approx(21.2 * 0.44704, abs=0.01)
