@@ -83,8 +83,8 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
 
     Under another impact law (the case's impact.law or --law: kudlich-slibar with --k and
     --mu-c, brach-capped) the report is that law's answer, its pymunk run (two phases for
-    kudlich-slibar) and animation; a fit to measured motion is Brach's, with the mapped
-    (k, mu_c) (docs/impact-laws.md).
+    kudlich-slibar) and animation; a fit to measured motion is done under that law ((k, mu_c)
+    for kudlich-slibar; docs/impact-laws.md).
     """
     from pim.io.casefile import load_case
     from pim.model.impact_laws import law_of

@@ -8,14 +8,13 @@ opens with the law, its parameters and the results a reconstruction hands on
 law's pymunk run solid, the analytic post-impact motion as the ghost), and the appendix
 compares the analytic answer with that run (:func:`comparisons.law_runs.simulate_law`).
 
-*What is fitted.* The one fitting engine (:func:`pim.fit`) fits Brach's (eps, beta). When
-the case has measured motion, the report gives that fit, states that it is done under
-Brach's law, and for "kudlich-slibar" gives the (k, mu_c) with the same answer
-(:func:`pim.model.impact_laws.brach_as_kudlich_slibar`; none where the fitted answer is
-outside the law's reach); the results stay at the law's parameters from the case file or
-the command line. The design sheet's plots, the speed-error sweep, the uncertainty
-intervals and the assumptions study are Brach's (eps, beta) studies: the report says they
-are not run for this law.
+*What is fitted.* The one fitting engine (:func:`pim.fit`) fits the law's own parameters:
+(k, mu_c) under "kudlich-slibar" (mu_c stated as a lower bound where the contact sticks),
+(eps, beta) under the cap mu_c for "brach-capped". When the case has measured motion, the
+report gives that fit and names the law it was done under; the results stay at the law's
+parameters from the case file or the command line. The design sheet's plots, the
+speed-error sweep, the uncertainty intervals and the assumptions study are Brach's (eps,
+beta) studies: the report says they are not run for this law.
 """
 
 from __future__ import annotations
@@ -34,7 +33,7 @@ from pim.model.plausibility import warnings_of
 from sim.error_measure import compare_results, impact_error
 
 from .animation import animation_settings, build_renderer, write_animation
-from .law_runs import LawSetup, brach_equivalent, simulate_law
+from .law_runs import LawSetup, simulate_law
 from .report import Report, crosscheck_table, fit_table, inputs_table, results_table
 from .report_render import md_table
 from .tables import Table
@@ -59,11 +58,12 @@ def law_table(setup: LawSetup) -> Table:
 
 
 def _fit(case: pim.Case, setup: LawSetup):
-    """Brach's fit to the measured motion (or None) and its Kudlich-Slibar equivalent."""
+    """The fit of the law's parameters to the measured motion under the law (or None):
+    (k, mu_c) for "kudlich-slibar", (eps, beta) under the cap for "brach-capped"."""
     if not has_measured_terms(case):
-        return None, (math.nan, math.nan)
-    fit = pim.fit(case)
-    return fit, brach_equivalent(case, fit.eps, fit.beta)
+        return None
+    return pim.fit(case, law=setup.law,
+                   mu_c=setup.contact_friction if setup.law == "brach-capped" else None)
 
 
 def _crosscheck(case, setup, units):
@@ -132,7 +132,7 @@ def _write(case, folder: Path, setup, gif, animation, tyre, progress, units) -> 
     """Gather and write the report into ``folder`` (the temporary output folder)."""
     started = time.perf_counter()
     rep = Report(out_dir=folder, eps=setup.restitution, beta=setup.beta)
-    fit, mapped = _fit(case, setup)
+    fit = _fit(case, setup)
     tables = [results_table(setup.result, units), law_table(setup), inputs_table(case, units)]
     if fit is not None:
         tables.append(fit_table(fit, units))
@@ -148,30 +148,33 @@ def _write(case, folder: Path, setup, gif, animation, tyre, progress, units) -> 
     for t in tables:
         rep.files.append(t.write_csv(folder))
     rep.seconds["report"] = time.perf_counter() - started
-    text = _markdown(case, setup, fit, mapped, run, info, tables, rep, units)
+    text = _markdown(case, setup, fit, run, info, tables, rep, units)
     rep.files.append(write_text(folder / "report.md", text))
     return rep
 
 
-def _fit_lines(setup, fit, mapped) -> list[str]:
+def _fit_lines(setup, fit) -> list[str]:
     if fit is None:
         return [f"No measured motion in the case: {setup.parameters()} from the case file or "
                 "the command line (no fit).", ""]
-    lines = [f"The fit is done under **Brach's law** (the one fitting engine, `pim fit`): "
-             f"epsilon = {fit.eps:.6g}, beta = {fit.beta:.6g}."]
-    if setup.law == "kudlich-slibar":
-        k, mu_c = mapped
-        lines.append(
-            f"Under the Kudlich-Slibar law the same answer is k = {k:.6g}, mu_c = {mu_c:.6g} "
-            f"(`brach_as_kudlich_slibar`; `pim compare CASE --k {k:.4g} --mu-c {mu_c:.4g}` "
-            "reports it)." if not math.isnan(k) else
-            "No (k, mu_c) gives that answer under the Kudlich-Slibar law (its impulse ratio "
-            "is the compression phase's sticking ratio, capped: see docs/impact-laws.md).")
+    if fit.law == "kudlich-slibar":
+        lower = fit.lower_bounds.get("impact.mu_c")
+        mu_c = (f"mu_c >= {lower:.6g} (only a lower bound: the fitted contact sticks, and any "
+                f"mu_c above it gives the same answer)" if lower is not None
+                else f"mu_c = {fit.contact_friction:.6g}")
+        lines = [f"The fit is done under the **Kudlich-Slibar law** (the one fitting engine, "
+                 f"`pim fit`, exact derivatives): k = {fit.eps:.6g}, {mu_c}; `pim compare "
+                 f"CASE --k {fit.eps:.4g} --mu-c {fit.contact_friction:.4g}` reports the law "
+                 "there."]
+    else:
+        lines = [f"The fit is done under the **friction-capped Brach law** (cap mu_c = "
+                 f"{fit.contact_friction:.6g}; the one fitting engine, `pim fit`): epsilon = "
+                 f"{fit.eps:.6g}, beta = {fit.beta:.6g}."]
     lines.append(f"The results above stay at the law's parameters ({setup.parameters()}).")
     return [" ".join(lines), ""]
 
 
-def _markdown(case, setup, fit, mapped, run, info, tables, rep, units) -> str:
+def _markdown(case, setup, fit, run, info, tables, rep, units) -> str:
     by_name = {t.name: t for t in tables}
     name = case.name or "case"
     lines = [f"# {name}: reconstruction report", ""]
@@ -185,7 +188,7 @@ def _markdown(case, setup, fit, mapped, run, info, tables, rep, units) -> str:
     warnings = warnings_of(case, r)
     if warnings:
         lines += ["Warnings:", ""] + [f"- {p}" for p in warnings] + [""]
-    lines += ["## Coefficients", ""] + _fit_lines(setup, fit, mapped)
+    lines += ["## Coefficients", ""] + _fit_lines(setup, fit)
     if "fit" in by_name:
         lines += [md_table(by_name["fit"])]
     lines += ["## Case inputs", "", md_table(by_name["inputs"]), "## Animation", ""]

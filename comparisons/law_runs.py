@@ -18,10 +18,10 @@ from dataclasses import dataclass
 
 import pim
 import sim
-from pim.model.impact_laws import brach_as_kudlich_slibar, law_of
+from pim.model.impact_laws import law_of
 from sim.kudlich_slibar import simulate_kudlich_slibar
 
-__all__ = ["LawSetup", "law_setup", "simulate_law", "brach_equivalent", "LAW_NAMES"]
+__all__ = ["LawSetup", "law_setup", "simulate_law", "LAW_NAMES"]
 
 #: How the report and the animation name each law.
 LAW_NAMES = {"brach": "Brach's PIM", "brach-capped": "friction-capped Brach (PIM)",
@@ -88,13 +88,6 @@ def law_setup(case: pim.Case, law: str | None = None, restitution=None, beta=Non
         mu_c = float(contact_friction if contact_friction is not None
                      else case.impact.contact_friction)
     return LawSetup(law, result, float(result.eps), float(result.beta), mu_c)
-
-
-def brach_equivalent(case: pim.Case, eps: float, beta: float) -> tuple[float, float]:
-    """The Kudlich-Slibar (k, mu_c) giving Brach's answer at (eps, beta), NaN where none
-    does (:func:`pim.model.impact_laws.brach_as_kudlich_slibar`)."""
-    k, mu_c = brach_as_kudlich_slibar(case, eps, beta)
-    return float(k), float(mu_c)
 
 
 def simulate_law(case: pim.Case, setup: LawSetup, settings: sim.Settings | None = None):

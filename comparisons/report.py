@@ -205,17 +205,31 @@ def _cost_rows(fit, f: float, unit: str) -> list[tuple]:
 
 
 def fit_table(fit, units: str = "si") -> Table:
-    """The fitted (epsilon, beta) and the quality of the fit, in the ``units`` system."""
+    """The fitted law parameters ((epsilon, beta), or (k, mu_c) under the Kudlich-Slibar
+    law) and the quality of the fit, in the ``units`` system."""
     f, unit = convert(1.0, "velocity", units)
     f = float(f)
-    rows = [("epsilon", fit.eps, "-"), ("beta", fit.beta, "-"),
+    law = getattr(fit, "law", "brach")
+    coefficients = [("epsilon", fit.eps, "-"), ("beta", fit.beta, "-")]
+    title = "(epsilon, beta)"
+    if law == "kudlich-slibar":
+        lower = "impact.mu_c" in fit.lower_bounds
+        coefficients = [("impact law", law, ""), ("k", fit.eps, "-"),
+                        ("mu_c (lower bound: the contact sticks)" if lower else "mu_c",
+                         fit.contact_friction, "-"), ("equivalent PIM beta", fit.beta, "-")]
+        title = "(k, mu_c) under the Kudlich-Slibar law"
+    elif law == "brach-capped":
+        coefficients = [("impact law", law, ""), *coefficients,
+                        ("cap mu_c", fit.contact_friction, "-")]
+        title = "(epsilon, beta) under the friction cap"
+    rows = [*coefficients,
             *_cost_rows(fit, f, unit),
             ("rms residual", fit.rms * f, unit),
             ("on a bound", ", ".join(f"{k} {v}" for k, v in fit.on_bound.items()) or "no", ""),
             ("local minima found", len(fit.minima), "")]
     rows += [(f"residual {name}", float(r) * f, unit)
              for name, r in zip(fit.residual_names, fit.residuals, strict=True)]
-    return Table("fit", "Least-squares fit of (epsilon, beta) to the measured motion",
+    return Table("fit", f"Least-squares fit of {title} to the measured motion",
                  ("quantity", "value", "unit"), tuple(rows))
 
 

@@ -88,3 +88,15 @@ def test_tangent_carries_the_chain_rule():
     v2, j2 = motion_of_inputs(x, tangent=t)
     np.testing.assert_array_equal(values, v2)
     np.testing.assert_allclose(j2, jac @ t, rtol=1e-12, atol=1e-12)
+
+
+def test_where_selects_value_and_gradient_of_the_side_taken():
+    from pim.model.dual import value_of, where
+
+    a = Dual(np.array([1.0, 2.0]), np.array([[1.0, 0.0], [0.0, 1.0]]))
+    out = where(np.array([True, False]), a, 5.0)
+    np.testing.assert_array_equal(out.value, [1.0, 5.0])
+    np.testing.assert_array_equal(out.grad, [[1.0, 0.0], [0.0, 0.0]])
+    np.testing.assert_array_equal(where([False, True], 0.0, np.array([3.0, 4.0])), [3.0, 0.0])
+    np.testing.assert_array_equal(value_of(out), out.value)
+    assert value_of(2.0) == 2.0

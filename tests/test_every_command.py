@@ -131,7 +131,7 @@ def test_forward_command_on_a_reconstruction_case_says_what_to_run(name, capsys)
 
 
 @pytest.mark.parametrize("name", sorted(set(CASES) - set(BRACH_CASES)))
-@pytest.mark.parametrize("command", ["fit", "sensitivity"])
+@pytest.mark.parametrize("command", ["sensitivity", "uncertainty"])
 def test_brach_only_commands_on_another_law_say_what_to_do(name, command, capsys):
     code, out, err = run([command, name], capsys)
     assert code == 2 and len(err.strip().splitlines()) == 1

@@ -340,3 +340,110 @@ def test_cli_free_bad_input_is_one_line_and_exit_2(arg, words, capsys):
     assert main(["fit", "ricsac9", "--free", arg]) == 2
     err = capsys.readouterr().err
     assert words in err and len(err.strip().splitlines()) == 1
+
+
+# ---- the Kudlich-Slibar law: the engine fits its own (k, mu_c) ------------------------------
+def _ks_measured(case, k, mu_c):
+    """``case`` under the Kudlich-Slibar law with its post-impact motion measured, solved
+    forward by the vector-form solver (pim.model.impact_laws.solve_kudlich_slibar): a path
+    independent of the dual-number formula the fit iterates on."""
+    from pim.model.impact_laws import solve_kudlich_slibar
+
+    ks = replace(case, impact=replace(case.impact, law="kudlich-slibar", beta=None,
+                                      restitution=None, contact_friction=None))
+    r = solve_kudlich_slibar(ks, k, mu_c)
+    return replace(ks, measured=pim.Measured(velocity1=r.velocity1, velocity2=r.velocity2,
+                                             yaw_rate1=float(r.yaw_rate1),
+                                             yaw_rate2=float(r.yaw_rate2)))
+
+
+@pytest.mark.parametrize("k, mu_c", [(0.3, 0.4), (0.0, 0.1), (0.8, 0.55)])
+def test_kudlich_slibar_fit_recovers_a_sliding_contacts_k_and_mu_c(ricsac9, k, mu_c):
+    # RICSAC 9 sticks only with mu_c >= mu0(0) = 0.634: these contacts slide
+    case = _ks_measured(ricsac9, k, mu_c)
+    result = fit(case, include_yaw=True)
+    assert result.law == "kudlich-slibar" and result.lower_bounds == {}
+    assert result.values["impact.k"] == pytest.approx(k, abs=1e-7)
+    assert result.values["impact.mu_c"] == pytest.approx(mu_c, abs=1e-7)
+    assert (result.eps, result.contact_friction) == (result.values["impact.k"],
+                                                     result.values["impact.mu_c"])
+    assert result.identifiability.identifiable and result.cost < 1e-16
+    # the result solves under the law fitted
+    assert float(result.result.yaw_rate1) == pytest.approx(case.measured.yaw_rate1, rel=1e-7)
+
+
+def test_kudlich_slibar_fit_of_a_sticking_contact_gives_mu_c_as_a_lower_bound(ricsac9):
+    case = _ks_measured(ricsac9, 0.2, 1.5)
+    result = fit(case, include_yaw=True)
+    needed = float(pim.solve(case, 0.0, 1.0).mu0)       # Brach's sticking ratio at eps = 0
+    assert result.values["impact.k"] == pytest.approx(0.2, abs=1e-7)
+    assert result.lower_bounds == {"impact.mu_c": pytest.approx(needed, rel=1e-9)}
+    assert result.values["impact.mu_c"] == pytest.approx(needed, rel=1e-9)
+    said = result.identifiability.warnings[0]
+    assert f"any mu_c >= {needed:.4g} gives the same answer" in said
+    # k alone is decided, and the equally good starts merged into one answer
+    assert result.identifiability.names == ("impact.k",) and result.identifiability.identifiable
+    assert len(result.minima_values) == 1 and result.on_bound == {}
+    # fixing k leaves mu_c, still a lower bound
+    fixed = fit(case, include_yaw=True, eps=0.2)
+    assert fixed.fitted_keys == ("impact.mu_c",) and "impact.mu_c" in fixed.lower_bounds
+
+
+def test_kudlich_slibar_fit_refuses_what_the_law_does_not_take(ricsac9):
+    case = _ks_measured(ricsac9, 0.3, 0.4)
+    with pytest.raises(ValueError, match="beta does not apply to law 'kudlich-slibar'"):
+        fit(case, beta=1.0)
+    with pytest.raises(ValueError, match="impact.beta does not apply|beta does not apply"):
+        fit(case, free={"impact.beta": (0, 1)})
+    with pytest.raises(ValueError, match="k and mu_c are both fixed"):
+        fit(case, eps=0.3, mu_c=0.4)
+    with pytest.raises(ValueError, match="impact.k does not apply to impact law 'brach'"):
+        fit(ricsac9, free={"impact.k": (0, 1)})
+
+
+def test_fit_under_the_capped_law_uses_the_cap(ricsac9):
+    from pim.model.friction_cap import solve_capped
+
+    capped = replace(ricsac9, impact=replace(ricsac9.impact, law="brach-capped",
+                                             contact_friction=0.3))
+    r = solve_capped(capped, 0.4, 0.9, 0.3)
+    case = replace(capped, measured=pim.Measured(velocity1=r.velocity1, velocity2=r.velocity2))
+    result = fit(case, eps=0.4)
+    assert result.law == "brach-capped" and result.contact_friction == 0.3
+    # above the cap every beta gives the capped answer: the fit reproduces the motion
+    assert result.cost < 1e-16
+    np.testing.assert_allclose(result.result.velocity1, r.velocity1, atol=1e-8)
+
+
+def test_fit_command_under_the_kudlich_slibar_law(capsys):
+    """`pim fit` on the PC-Crash case fits (k, mu_c) (it refused the law before)."""
+    assert main(["fit", "ricsac9-pccrash", "--include-yaw", "--units", "si"]) == 0
+    out = capsys.readouterr().out
+    assert "under the Kudlich-Slibar law (k, mu_c)" in out and "mu_c    = " in out
+    assert main(["fit", "ricsac9-pccrash", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["law"] == "kudlich-slibar" and data["units"] == "us"
+    assert data["lower_bounds"]["impact.mu_c"] == pytest.approx(
+        float(pim.solve(pim.load_case("ricsac9-pccrash"), 0.0, 1.0).mu0), rel=1e-9)
+    assert data["rms_unit"] == "ft/s"
+    assert main(["fit", "ricsac9-pccrash", "--eps", "0.3"]) == 2
+    assert "hold k with --k" in capsys.readouterr().err
+    assert main(["fit", "ricsac9", "--k", "0.3"]) == 2
+    assert "--k is the restitution of law kudlich-slibar" in capsys.readouterr().err
+
+
+def test_kudlich_slibar_families_with_the_contact_plane_free(ricsac9):
+    """Sliding: P = (1 + k) Pn_c (n + sigma mu_c t) has two numbers, so (k, mu_c, Gamma)
+    trade as Brach's (eps, beta, Gamma) do. Sticking: P = -(1 + k) K^-1 u does not depend
+    on the contact plane at all, so Gamma alone is undecided (the law's full impact)."""
+    free = {"impact.normal_angle": (-0.5, 0.5)}
+    sliding = fit(_ks_measured(ricsac9, 0.3, 0.4), include_yaw=True, free=free)
+    assert sliding.identifiability.families == (("impact.k", "impact.mu_c",
+                                                 "impact.normal_angle"),)
+    sticking = fit(_ks_measured(ricsac9, 0.3, 1.4), include_yaw=True, free=free)
+    assert sticking.values["impact.k"] == pytest.approx(0.3, abs=1e-7)
+    assert sticking.identifiability.families == (("impact.normal_angle",),)
+    assert any("impact.normal_angle does not change the fitted motion" in w
+               for w in sticking.identifiability.warnings)
+    # with the plane given, both are decided (sliding) or k is and mu_c has its lower bound
+    assert fit(_ks_measured(ricsac9, 0.3, 0.4), include_yaw=True).identifiability.identifiable

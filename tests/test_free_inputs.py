@@ -80,7 +80,9 @@ def test_the_map_jacobian_is_exact(ricsac9):
         xp, xm = x0.copy(), x0.copy()
         xp[j] += h
         xm[j] -= h
-        fd = (free_inputs(ricsac9, keys, xp[None])[0] - free_inputs(ricsac9, keys, xm[None])[0])
+        sp, sm = free_inputs(ricsac9, keys, xp[None])[0], free_inputs(ricsac9, keys, xm[None])[0]
+        with np.errstate(invalid="ignore"):       # an unused mu_c column is inf in both
+            fd = np.where(sp == sm, 0.0, sp - sm)
         np.testing.assert_allclose(jac[0, :, j], fd[0] / (2 * h), rtol=1e-6, atol=1e-7,
                                    err_msg=keys[j])
 
@@ -109,3 +111,68 @@ def test_bad_free_parameters_are_named(free, words):
 def test_every_extra_key_is_a_free_key():
     for key in ("impact.point_along", "vehicle1.phi", "vehicle2.d", "vehicle1.speed"):
         assert key in FREE_KEYS
+
+
+# ---- the law keys: impact.k, impact.mu_c, the law in the state -------------------------------
+@pytest.fixture(scope="module")
+def pccrash():
+    return pim.load_case("ricsac9-pccrash")
+
+
+def test_law_keys_set_the_restitution_and_friction_columns(pccrash):
+    from pim.analysis.free_inputs import fields_set_by, state_law
+
+    state, jac = free_inputs(pccrash, ("impact.k", "impact.mu_c"), [[0.25, 0.3]],
+                             jacobian=True)
+    assert state[0, STATE.index("impact.restitution")] == 0.25
+    assert state[0, STATE.index("impact.contact_friction")] == 0.3
+    assert jac[0, STATE.index("impact.restitution"), 0] == 1.0
+    assert jac[0, STATE.index("impact.contact_friction"), 1] == 1.0
+    assert state_law(state) == "kudlich-slibar"
+    assert fields_set_by("impact.k") == ("impact.restitution",)
+    assert fields_set_by("impact.mu_c") == ("impact.contact_friction",)
+    assert {"impact.k", "impact.mu_c"} <= set(FREE_KEYS)
+    moved = set_inputs(pccrash, {"impact.k": 0.25, "impact.mu_c": 0.3})
+    assert (moved.impact.restitution, moved.impact.contact_friction) == (0.25, 0.3)
+    assert (current_value(moved, "impact.k"), current_value(moved, "impact.mu_c")) == (0.25,
+                                                                                       0.3)
+
+
+def test_a_case_without_contact_friction_has_none_in_its_state(ricsac9):
+    s = case_state(ricsac9)
+    assert np.isinf(s[STATE.index("impact.contact_friction")])
+    assert s[STATE.index("impact.law")] == 0.0          # Brach's
+
+
+@pytest.mark.parametrize("free, words", [
+    ({"impact.k": (0.0, 1.5)}, "must lie in [0, 1]"),
+    ({"impact.mu_c": (-0.1, 1.0)}, "must be >= 0"),
+    ({"impact.k": (0, 1), "impact.restitution": (0, 1)}, "set the same field"),
+])
+def test_law_key_bounds_are_checked(free, words):
+    with pytest.raises(ValueError, match=words.replace("[", r"\[").replace("]", r"\]")):
+        check_free(free)
+
+
+def test_law_keys_need_their_law(ricsac9, pccrash):
+    from pim.analysis.free_inputs import check_free_for_case
+
+    with pytest.raises(ValueError, match="impact.k does not apply to impact law 'brach'"):
+        check_free_for_case(ricsac9, ("impact.k",))
+    with pytest.raises(ValueError, match="impact.beta does not apply to impact law "
+                                         "'kudlich-slibar'"):
+        check_free_for_case(pccrash, ("impact.beta",))
+    check_free_for_case(pccrash, ("impact.k", "impact.mu_c", "vehicle1.speed"))
+    check_free_for_case(ricsac9, ("impact.mu_c",), law="brach-capped")
+
+
+def test_friction_floor_replaces_an_unreached_mu_c_by_the_sticking_ratio(pccrash):
+    from pim.analysis.free_inputs import friction_floor
+
+    needed = float(pim.solve(pccrash, 0.0, 1.0).mu0)        # Brach's mu0 at eps = 0
+    x, floored = friction_floor(case_state(pccrash), ("impact.k", "impact.mu_c"),
+                                [[0.3, 0.4], [0.3, 1.7], [0.3, needed]])
+    np.testing.assert_array_equal(floored, [False, True, True])
+    np.testing.assert_allclose(x[:, 1], [0.4, needed, needed], rtol=1e-12)
+    same, none = friction_floor(case_state(pccrash), ("impact.k",), [[0.3]])
+    assert same[0, 0] == 0.3 and not none.any()

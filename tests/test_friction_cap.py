@@ -44,3 +44,17 @@ def test_friction_limit_warns_and_grazing_is_flagged(capsys):
     captured = capsys.readouterr()
     assert "friction-capped" in captured.out and "exceeds" not in captured.err
     assert main(["solve", "ricsac9", "--cap-friction"]) == 2
+
+
+def test_capped_beta_on_dual_numbers_is_one_sided_at_the_cap():
+    """The same function serves the dual-number fit: below the cap d beta_eff = d beta,
+    above it d(limit / |mu0|)."""
+    from pim.model.dual import Dual
+
+    mu0 = Dual(np.array([0.5, 0.5]), np.array([[1.0, 0.0, 0.0], [1.0, 0.0, 0.0]]))
+    beta = Dual(np.array([0.4, 0.9]), np.array([[0.0, 1.0, 0.0], [0.0, 1.0, 0.0]]))
+    limit = Dual(np.array([0.3, 0.3]), np.array([[0.0, 0.0, 1.0], [0.0, 0.0, 1.0]]))
+    out = capped_beta(mu0, beta, limit)
+    np.testing.assert_allclose(out.value, capped_beta([0.5, 0.5], [0.4, 0.9], 0.3))
+    np.testing.assert_allclose(out.grad[0], [0.0, 1.0, 0.0])                 # not capped
+    np.testing.assert_allclose(out.grad[1], [-0.3 / 0.25, 0.0, 1 / 0.5])     # capped

@@ -16,10 +16,14 @@ from hypothesis import strategies as st
 
 import pim
 from pim.cli import main
+from pim.model.dual import MOTION_OUTPUTS, motion_inputs
 from pim.model.friction_cap import solve_capped
 from pim.model.impact_laws import (
+    LAW_INPUTS,
     brach_as_kudlich_slibar,
     kudlich_slibar_as_brach,
+    motion_of_law,
+    needed_friction,
     solve_kudlich_slibar,
     solve_law,
 )
@@ -317,16 +321,92 @@ def test_solve_command_errors(capsys, args, message):
     assert message in capsys.readouterr().err
 
 
-@pytest.mark.parametrize("command", ["fit", "uncertainty", "reconstruct", "sensitivity",
-                                     "assumptions"])
+@pytest.mark.parametrize("command", ["uncertainty", "sensitivity", "assumptions"])
 def test_commands_that_cannot_use_the_law_yet_say_so(tmp_path, capsys, command):
     path = write_case(tmp_path, 'law = "kudlich-slibar"\nrestitution = 0.1\n'
                                 'contact_friction = 0.6')
     assert main([command, str(path)]) == 2
     err = capsys.readouterr().err
     assert f"pim {command} cannot use impact law 'kudlich-slibar' yet" in err
-    if command == "reconstruct":
-        assert "impact.beta in [unknown]" in err
-    else:   # the Brach equivalent of this case, by the mapping
-        eps, beta = kudlich_slibar_as_brach(pim.load_case(str(path)), 0.1, 0.6)
-        assert f"restitution = {float(eps):.6g}, beta = {float(beta):.6g}" in err
+    assert "`pim reconstruct` apply the law itself" in err
+    # the Brach equivalent of this case, by the mapping
+    eps, beta = kudlich_slibar_as_brach(pim.load_case(str(path)), 0.1, 0.6)
+    assert f"restitution = {float(eps):.6g}, beta = {float(beta):.6g}" in err
+
+
+# ---- the laws on dual numbers (motion_of_law): values and exact one-sided derivatives ------
+def law_row(case, restitution, beta, mu_c):
+    """The inputs of motion_of_law (LAW_INPUTS) of a scalar case."""
+    return np.concatenate([motion_inputs(case, restitution, beta), [mu_c]])
+
+
+def as_outputs(r):
+    """A Result as the vector of MOTION_OUTPUTS [SI]."""
+    return np.array([r.impulse_n, r.impulse_t, *r.impulse, *r.velocity1, *r.velocity2,
+                     r.yaw_rate1, r.yaw_rate2], dtype=float)
+
+
+def central_differences(x, law, h_rel=1e-6):
+    """d output / d input by central differences of the plain (no dual) evaluation."""
+    fd = np.zeros((len(MOTION_OUTPUTS), len(x)))
+    for i in range(len(x)):
+        h = h_rel * max(1.0, abs(x[i]))
+        xp, xm = x.copy(), x.copy()
+        xp[i] += h
+        xm[i] -= h
+        fd[:, i] = (motion_of_law(xp, law, jacobian=False)[0]
+                    - motion_of_law(xm, law, jacobian=False)[0]) / (2 * h)
+    return fd
+
+
+# RICSAC 9 needs mu0(0) = 0.634 to stick: mu_c = 0.4 slides, 0.9 sticks; capped Brach at
+# eps = 0.3, beta = 0.8 needs beta |mu0(0.3)| (about 0.42): 0.2 is capped, 2 is not.
+@pytest.mark.parametrize("law, restitution, beta, mu_c, side", [
+    (KS, 0.355, 1.0, 0.4, "sliding"), (KS, 0.355, 1.0, 0.9, "sticking"),
+    (KS, 0.1, 1.0, 0.0, "sliding"), (KS, 0.8, 1.0, np.inf, "sticking"),
+    ("brach-capped", 0.3, 0.8, 0.2, "sliding"), ("brach-capped", 0.3, 0.8, 2.0, "sticking")])
+def test_law_motion_and_its_jacobian_on_both_sides_of_the_cap(law, restitution, beta, mu_c,
+                                                              side):
+    case = pim.load_case("ricsac9")
+    x = law_row(case, restitution, beta, mu_c)
+    assert (needed_friction(x, law) > mu_c) == (side == "sliding")
+    values, jac = motion_of_law(x, law)
+    # values: the vector-form solver (solve_kudlich_slibar; solve_capped), an independent path
+    ref = as_outputs(solve_law(case, law, restitution, None if law == KS else beta, mu_c))
+    np.testing.assert_allclose(values, ref, rtol=1e-12, atol=1e-12 * np.abs(ref).max())
+    finite = np.isfinite(x)
+    fd = central_differences(np.where(finite, x, 1e6), law)     # mu_c = inf: a huge one
+    np.testing.assert_allclose(jac[:, finite], fd[:, finite], rtol=1e-5,
+                               atol=1e-6 * np.abs(jac).max())
+    mu = LAW_INPUTS.index("impact.contact_friction")
+    if side == "sticking":                      # the cap is not reached: mu_c does nothing
+        assert np.all(jac[:, mu] == 0.0)
+    else:
+        assert np.abs(jac[:, mu]).max() > 0
+
+
+def test_at_the_cap_the_derivative_is_the_sticking_sides():
+    """The kink: at mu_c = mu0(0) exactly the Jacobian is the sticking side's (one-sided)."""
+    case = pim.load_case("ricsac9")
+    x = law_row(case, 0.355, 1.0, 0.0)
+    x[-1] = needed_friction(x, KS)
+    _, at = motion_of_law(x, KS)
+    above = x.copy()
+    above[-1] *= 1.0 + 1e-9
+    _, stick = motion_of_law(above, KS)
+    np.testing.assert_allclose(at, stick, rtol=1e-6, atol=1e-9 * np.abs(at).max())
+    below = x.copy()
+    below[-1] *= 1.0 - 1e-6
+    _, slide = motion_of_law(below, KS)
+    assert np.abs(slide[:, -1]).max() > 0 and np.all(at[:, -1] == 0.0)
+
+
+@given(ANY_SCENE, st.floats(0.0, 1.0), st.floats(0.0, 3.0))
+@settings(**SETTINGS)
+def test_law_motion_is_the_vector_solver_on_random_scenes(case, k, mu_c):
+    assume(compression_pushes(case))
+    ks = solve_kudlich_slibar(case, k, mu_c)
+    assume(not bool(ks.q_singular))
+    values, _ = motion_of_law(law_row(case, k, 1.0, mu_c), KS, jacobian=False)
+    ref = as_outputs(ks)
+    np.testing.assert_allclose(values, ref, rtol=1e-8, atol=1e-8 * (1 + np.abs(ref).max()))

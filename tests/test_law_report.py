@@ -12,7 +12,6 @@ import pim
 from comparisons.law_report import NOT_RUN, compare_law_case
 from comparisons.law_runs import law_setup
 from pim.cli import main
-from pim.model.impact_laws import brach_as_kudlich_slibar
 
 
 def rows(path):
@@ -20,18 +19,21 @@ def rows(path):
         return list(csv.reader(f))
 
 
-def test_report_gives_the_laws_answer_its_run_and_the_fit_under_brachs_law(tmp_path):
+def test_report_gives_the_laws_answer_its_run_and_the_fit_under_the_law(tmp_path):
     case = pim.load_case("ricsac9")
     setup = law_setup(case, "kudlich-slibar", 0.1, None, 0.6)
     rep = compare_law_case(case, tmp_path, setup, animation=False, units="si")
     text = (tmp_path / "report.md").read_text()
     assert "Impact law: **Kudlich-Slibar law (PC-Crash, Virtual CRASH), k = 0.1, mu_c = 0.6**" \
         in text
-    # the fit is Brach's, with the (k, mu_c) giving the same answer
-    fit = pim.fit(case)
-    k, mu_c = brach_as_kudlich_slibar(case, fit.eps, fit.beta)
-    assert "The fit is done under **Brach's law**" in text
-    assert f"k = {float(k):.6g}, mu_c = {float(mu_c):.6g}" in text
+    # the fit is the law's own (k, mu_c), not Brach's with a mapping
+    fit = pim.fit(case, law="kudlich-slibar")
+    assert fit.law == "kudlich-slibar"
+    assert "The fit is done under the **Kudlich-Slibar law**" in text
+    assert "Brach's law" not in text and f"k = {fit.eps:.6g}, mu_c" in text
+    fitted = {r[0]: r[1] for r in rows(tmp_path / "fit.csv")}
+    assert fitted["impact law"] == "kudlich-slibar" and float(fitted["k"]) == pytest.approx(
+        fit.eps)
     assert NOT_RUN in text
     # results.csv holds solve_law's numbers (SI)
     table = {r[0]: r for r in rows(tmp_path / "results.csv")}

@@ -51,7 +51,12 @@ def test_compare_runs_the_case_law(tmp_path, capsys):
     said = capsys.readouterr().out
     assert "Kudlich-Slibar law (PC-Crash, Virtual CRASH), k = 0.355, mu_c = 0.512" in said
     report = (out / "report.md").read_text()
-    assert "The fit is done under **Brach's law**" in report
+    # the fit is the law's own (k, mu_c); RICSAC 9's measured velocities ask for a sticking
+    # contact, so mu_c has only a lower bound: the compression's sticking ratio mu0(0)
+    assert "The fit is done under the **Kudlich-Slibar law**" in report
+    assert "Brach's law" not in report
+    mu0_0 = float(pim.solve(pim.load_case(NAME), 0.0, 1.0).mu0)      # Brach's solver
+    assert f"mu_c >= {mu0_0:.6g} (only a lower bound" in report
     r = solve_kudlich_slibar(pim.load_case(NAME))
     yaw = next(line for line in (out / "results.csv").read_text().splitlines()
                if line.startswith("post-impact yaw rate"))
@@ -64,3 +69,18 @@ def test_animate_runs_the_case_law(tmp_path, capsys):
                  "240", "--no-progress"]) == 0
     said = capsys.readouterr().out
     assert "k = 0.355, mu_c = 0.512" in said and out.stat().st_size > 1000
+
+
+def test_the_reconstruction_variant_is_the_same_scene_with_unknowns():
+    """ricsac9-pccrash-reconstruct: the scene of ricsac9-pccrash (same vehicles, POI, contact
+    plane, law, measured motion) with the speeds, k and mu_c in [unknown]."""
+    pc, rec = pim.load_case(NAME), pim.load_case("ricsac9-pccrash-reconstruct")
+    for v, w in ((pc.vehicle1, rec.vehicle1), (pc.vehicle2, rec.vehicle2)):
+        assert (float(v.mass), float(v.yaw_inertia), float(v.heading)) == pytest.approx(
+            (float(w.mass), float(w.yaw_inertia), float(w.heading)))
+        np.testing.assert_allclose(v.cg, w.cg)
+    np.testing.assert_allclose(pc.impact.point, rec.impact.point)
+    assert float(rec.impact.normal_angle) == pytest.approx(float(pc.impact.normal_angle))
+    assert rec.impact.law == "kudlich-slibar" and rec.impact.restitution is None
+    np.testing.assert_allclose(rec.measured.velocity1, pc.measured.velocity1)
+    assert set(rec.unknown) == {"vehicle1.speed", "vehicle2.speed", "impact.k", "impact.mu_c"}

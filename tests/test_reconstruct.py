@@ -149,3 +149,29 @@ def test_a_delta_v_beyond_the_speed_bounds_is_one_line_and_exit_2(tmp_path, caps
     assert main(["reconstruct", str(path), "--samples", "0"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "measured.vehicle1.delta_v" in err[0]
+
+
+def test_a_kudlich_slibar_case_is_reconstructed_under_its_law(tmp_path, capsys):
+    """RICSAC 9 written the PC-Crash way (law kudlich-slibar, POI, contact plane) with the
+    speeds, k and mu_c unknown: `pim reconstruct` solves it under that law (it refused the
+    law before, exit 2) and the staged 21.2 mph of each car (Brach & Brach 2011) lies inside
+    the 5-95 % interval."""
+    assert main(["reconstruct", "ricsac9-pccrash-reconstruct", "--out", str(tmp_path),
+                 "--json", "--samples", "400"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["law"] == "kudlich-slibar" and data["units"] == "us"
+    for key in ("vehicle1.speed", "vehicle2.speed"):
+        row = data["unknowns"][key]
+        assert row["unit"] == "mph" and row["p5"] < 21.2 < row["p95"], (key, row)
+    assert {"impact.k", "impact.mu_c"} <= set(data["unknowns"])
+    assert data["unknowns"]["impact.k"]["unit"] == "-"
+    # the fitted contact sticks: mu_c is a lower bound, and the output says so
+    assert data["unknowns"]["impact.mu_c"]["lower_bound"] is True
+    assert any("mu_c only has a lower bound" in m for m in data["messages"])
+    report = (tmp_path / "report.md").read_text()
+    assert "Impact law: Kudlich-Slibar" in report and "| impact.mu_c | >= " in report
+    assert main(["reconstruct", "ricsac9-pccrash-reconstruct", "--samples", "0",
+                 "--units", "si"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("Impact law: Kudlich-Slibar") and "m/s" in out and "mph" not in out
+    assert ">= " in next(line for line in out.splitlines() if line.startswith("impact.mu_c"))

@@ -313,3 +313,47 @@ def test_rest_positions_mixed_with_recorded_delta_v_and_energy():
     assert {"delta_v1_long", "energy_loss", "velocity2_x"} <= set(rec.fit.residual_names)
     for key in ("vehicle1.speed", "vehicle2.speed"):
         assert rec.values[key] == pytest.approx(21.2 * 0.44704, abs=0.01)
+
+
+# ---- a case written the PC-Crash way: the Kudlich-Slibar law, unknown speeds, k, mu_c -------
+def _pccrash_measured(speed1, speed2, k, mu_c):
+    """ricsac9-pccrash-reconstruct with its measured motion replaced by the post-impact
+    motion at known speeds (along the headings), k and mu_c, solved forward by the vector-form
+    solver (pim.model.impact_laws.solve_kudlich_slibar, independent of the fit's formula)."""
+    from pim.model.impact_laws import solve_kudlich_slibar
+
+    case = pim.load_case("ricsac9-pccrash-reconstruct")
+    moving = replace(case, vehicle1=replace(case.vehicle1, velocity=(-speed1, 0.0)),
+                     vehicle2=replace(case.vehicle2, velocity=(0.0, speed2)))
+    r = solve_kudlich_slibar(moving, k, mu_c)
+    return replace(case, measured=pim.Measured(
+        velocity1=r.velocity1, velocity2=r.velocity2, yaw_rate1=float(r.yaw_rate1),
+        yaw_rate2=float(r.yaw_rate2)))
+
+
+def test_kudlich_slibar_case_reconstruct_recovers_known_speeds_k_and_mu_c():
+    case = _pccrash_measured(9.0, 11.0, 0.3, 0.4)        # slides: mu0(0) = 0.634 > 0.4
+    rec = reconstruct(case)
+    assert rec.determined and rec.fit.law == "kudlich-slibar", rec.messages
+    assert rec.values["vehicle1.speed"] == pytest.approx(9.0, abs=1e-6)
+    assert rec.values["vehicle2.speed"] == pytest.approx(11.0, abs=1e-6)
+    assert rec.values["impact.k"] == pytest.approx(0.3, abs=1e-6)
+    assert rec.values["impact.mu_c"] == pytest.approx(0.4, abs=1e-6)
+    assert rec.fit.lower_bounds == {}
+
+
+def test_kudlich_slibar_reconstruct_of_a_sticking_contact_says_mu_c_is_a_lower_bound():
+    case = _pccrash_measured(9.0, 11.0, 0.3, 1.2)
+    rec = reconstruct(case, samples=40, seed=1)
+    needed = float(pim.solve(replace(case, vehicle1=replace(
+        case.vehicle1, velocity=(-9.0, 0.0)), vehicle2=replace(
+        case.vehicle2, velocity=(0.0, 11.0))), 0.0, 1.0).mu0)      # Brach's, at eps = 0
+    assert rec.determined, rec.messages
+    assert rec.values["vehicle1.speed"] == pytest.approx(9.0, abs=1e-6)
+    assert rec.values["vehicle2.speed"] == pytest.approx(11.0, abs=1e-6)
+    assert rec.values["impact.mu_c"] == pytest.approx(needed, rel=1e-6)
+    assert any(f"any mu_c >= {needed:.4g} gives the same answer" in m for m in rec.messages)
+    # the Monte Carlo runs under the law; mu_c's percentiles are its lower bounds
+    assert rec.samples.n_used > 30
+    assert rec.samples.stats["vehicle1.speed"].p5 < 9.0 < rec.samples.stats["vehicle1.speed"].p95
+    assert any("lower bound in" in m for m in rec.samples.messages)

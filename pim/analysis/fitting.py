@@ -29,24 +29,30 @@ cannot cross.
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 
 import numpy as np
 
 from ..model.case import Case
+from ..model.evidence_terms import as_residual_terms, split_terms
+from ..model.impact_laws import check_contact_friction, law_of, solve_law
 from ..model.motion import Term
 from ..model.numbers import InputError, check_counts, check_numbers
 from ..model.result import Result
 from ..model.solver import solve
 from .free_fit import (
     FREE_KEYS,
+    MERGE,
     FreeFit,
     Identifiability,
     check_free,
     fit_free,
+    free_residuals,
+    identifiability,
     variance_shares,
 )
+from .free_inputs import MU_C_BOUNDS, case_state, friction_floor
 from .residuals import (
     GoodnessOfFit,
     goodness_of_fit,
@@ -54,6 +60,7 @@ from .residuals import (
     measured_value,
     measured_weights,
     model_value,
+    residual_terms,
 )
 
 __all__ = ["fit", "FitResult", "FREE_KEYS", "DEFAULT_BOUNDS", "DEFAULT_GRID", "MAX_STARTS",
@@ -68,7 +75,8 @@ MAX_STARTS = 5
 #: Default size of the coarse Sobol sample.
 SAMPLES = 256
 #: The short names of restitution and beta in ``on_bound``, ``fixed`` and messages.
-SHORT_NAMES = {"impact.restitution": "eps", "impact.beta": "beta"}
+SHORT_NAMES = {"impact.restitution": "eps", "impact.beta": "beta", "impact.k": "k",
+               "impact.mu_c": "mu_c"}
 
 
 @dataclass(frozen=True, eq=False)
@@ -92,7 +100,7 @@ class FitResult:
     include_yaw : bool
         Whether the yaw rates were fitted.
     bounds : ((float, float), (float, float))
-        The search box of (eps, beta).
+        The search box of (eps, beta); of (k, mu_c) under "kudlich-slibar".
     fixed : tuple of str
         Parameters held fixed ("eps" and/or "beta"); they are not fitted.
     on_bound : dict
@@ -102,7 +110,8 @@ class FitResult:
         d cost / d (eps, beta) at the optimum (0 for a fixed one): nonzero on an active
         bound, where its sign shows the direction in which the cost would keep falling.
     minima : tuple of (eps, beta, cost)
-        Every refined local minimum, best first (more than one means several basins).
+        Every refined local minimum, best first (more than one means several basins);
+        (k, mu_c, cost) under "kudlich-slibar".
     nfev : int
         Number of evaluations of the residuals in the local refinement (each over every
         start still running; the coarse sample counts as one).
@@ -120,6 +129,16 @@ class FitResult:
         The residual terms, typed.
     goodness : GoodnessOfFit or None
         Chi-square, degrees of freedom and p-value; None without standard deviations.
+    law : str
+        The impact law fitted under ("brach", "brach-capped" or "kudlich-slibar"). Under
+        "kudlich-slibar" ``eps`` is its restitution k and ``beta`` the PIM beta with the
+        same answer (docs/impact-laws.md).
+    contact_friction : float or None
+        mu_c (fitted or fixed) of "kudlich-slibar" and "brach-capped", else None.
+    lower_bounds : dict
+        Key -> value of the parameters that only have a lower bound (``impact.mu_c`` where
+        the contact does not reach it: any mu_c >= the value gives the same answer; the
+        value stands in ``values``).
     standard_errors : dict
         Fitted key -> its standard error from (J^T J)^-1 of the weighted Jacobian [SI]
         (empty without standard deviations or when the data do not decide the parameters).
@@ -147,6 +166,9 @@ class FitResult:
     weights: np.ndarray | None = field(default=None, repr=False)
     terms: tuple[Term, ...] = field(default=(), repr=False)
     goodness: GoodnessOfFit | None = field(default=None, repr=False)
+    law: str = "brach"
+    contact_friction: float | None = None
+    lower_bounds: dict = field(default_factory=dict)
     standard_errors: dict = field(default_factory=dict, repr=False)
     evidence_shares: dict = field(default_factory=dict, repr=False)
 
@@ -182,19 +204,26 @@ class FitResult:
 
     @cached_property
     def result(self) -> Result:
-        """The solve at the optimum."""
-        return solve(self.case, self.eps, self.beta)
+        """The solve at the optimum, under the law fitted."""
+        if self.law == "brach":
+            return solve(self.case, self.eps, self.beta)
+        return solve_law(self.case, self.law, self.eps,
+                         None if self.law == "kudlich-slibar" else self.beta,
+                         self.contact_friction)
 
     def to_dict(self) -> dict:
         """JSON-ready summary (SI units)."""
         return {
-            "case": self.case.name, "eps": self.eps, "beta": self.beta, "cost": self.cost,
+            "case": self.case.name, "law": self.law, "eps": self.eps, "beta": self.beta,
+            "contact_friction": self.contact_friction, "lower_bounds": dict(self.lower_bounds),
+            "cost": self.cost,
             "cost_unit": "-" if self.chi_square else "m^2/s^2",
             "cost_kind": "chi-square" if self.chi_square else "sum of squares",
             "rms": self.rms, "rms_unit": "m/s",
             "residuals": dict(zip(self.residual_names, map(float, self.residuals), strict=True)),
-            "include_yaw": self.include_yaw, "bounds": {"eps": list(self.bounds[0]),
-                                                        "beta": list(self.bounds[1])},
+            "include_yaw": self.include_yaw,
+            "bounds": dict(zip(("k", "mu_c") if self.law == "kudlich-slibar" else
+                               ("eps", "beta"), map(list, self.bounds), strict=True)),
             "fixed": list(self.fixed), "on_bound": dict(self.on_bound),
             "gradient": {"eps": float(self.gradient[0]), "beta": float(self.gradient[1])},
             "minima": [{"eps": e, "beta": b, "cost": c} for e, b, c in self.minima],
@@ -261,16 +290,21 @@ def _box(bounds, eps, beta, free: dict) -> dict:
 
 
 def _fit_result(case, raw: FreeFit, terms, include_yaw, bounds, fixed, eps, beta,
-                weights) -> FitResult:
+                weights, law: str = "brach", mu_c=None, lower: dict | None = None) -> FitResult:
     """Wrap the engine's outcome into a :class:`FitResult` (one bound detection: ``side``)."""
     values = raw.values
-    e_opt = values.get("impact.restitution", eps)
+    e_opt = values.get("impact.restitution", values.get("impact.k", eps))
     b_opt = values.get("impact.beta", beta)
+    mu_c = values.get("impact.mu_c", mu_c)
+    if law == "kudlich-slibar":          # the PIM beta with the same answer
+        b_opt = float(solve_law(raw.case, law, e_opt, None, mu_c).beta)
     grad = dict(zip(raw.keys, raw.gradient, strict=True))
     on_bound = {SHORT_NAMES.get(k, k): ("lower" if s < 0 else "upper")
                 for k, s in zip(raw.keys, raw.side, strict=True) if s}
 
     def pair(x):
+        if law == "kudlich-slibar":
+            return (float(x.get("impact.k", eps)), float(x.get("impact.mu_c", mu_c)))
         return (float(x.get("impact.restitution", eps)), float(x.get("impact.beta", beta)))
 
     minima_values = tuple((dict(zip(raw.keys, map(float, x), strict=True)), c)
@@ -287,7 +321,8 @@ def _fit_result(case, raw: FreeFit, terms, include_yaw, bounds, fixed, eps, beta
         minima=tuple((*pair(v), c) for v, c in minima_values), nfev=raw.nfev + 1,
         values={k: float(v) for k, v in values.items()}, identifiability=raw.identifiability,
         minima_values=minima_values, weights=weights, terms=tuple(terms), goodness=goodness,
-        standard_errors=sd, evidence_shares=shares)
+        law=law, contact_friction=None if mu_c is None else float(mu_c),
+        lower_bounds=dict(lower or {}), standard_errors=sd, evidence_shares=shares)
 
 
 def _drivers(raw: FreeFit, terms) -> tuple[dict, dict]:
@@ -299,11 +334,41 @@ def _drivers(raw: FreeFit, terms) -> tuple[dict, dict]:
             {k: {g: float(v[j]) for g, v in shares.items()} for j, k in enumerate(raw.keys)})
 
 
+def _law_box(law: str, box_eb, eps, beta, mu_c, free_box: dict) -> tuple:
+    """(eps or k fixed, beta fixed, the box of every fitted key) under ``law``."""
+    if law == "kudlich-slibar":
+        eps_fixed, box = _ks_box(box_eb, eps, beta, mu_c, free_box)
+        return eps_fixed, None, box
+    eps_fixed, beta_fixed = _check_fixed(eps, beta, free_box)
+    return eps_fixed, beta_fixed, _box(box_eb, eps_fixed, beta_fixed, free_box)
+
+
+def _fixed_and_searched(law: str, box: dict, box_eb, eps_fixed, beta_fixed, mu_c) -> tuple:
+    """The names of the parameters held fixed, and the box of the law's two parameters as
+    searched ((k, mu_c) under Kudlich-Slibar)."""
+    fixed = tuple(n for n, v in (("k" if law == "kudlich-slibar" else "eps", eps_fixed),
+                                 ("beta", beta_fixed),
+                                 ("mu_c", None if "impact.mu_c" in box else mu_c))
+                  if v is not None)
+    if law == "kudlich-slibar":
+        box_eb = (tuple(box.get("impact.k", box_eb[0])),
+                  tuple(box.get("impact.mu_c", MU_C_BOUNDS)))
+    return fixed, box_eb
+
+
+def _check_approach(case: Case, eps0: float, beta0: float, free_box: dict) -> None:
+    """No impact to fit when the vehicles do not approach (and no input is freed)."""
+    if not free_box and not np.any(solve(case, eps0, beta0).approaching):
+        raise InputError(f"case {case.name or '(unnamed)'}: the vehicles do not approach at C "
+                         "(u_n >= 0): there is no impact to fit")
+
+
 def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=None, beta=None,
         grid=DEFAULT_GRID, max_starts: int = MAX_STARTS, free=None,
-        samples: int = SAMPLES, seed: int = 0) -> FitResult:
-    """Least-squares (epsilon, beta), and optionally other inputs, that best reproduce the
-    measured post-impact motion.
+        samples: int = SAMPLES, seed: int = 0, law: str | None = None,
+        mu_c=None) -> FitResult:
+    """Least-squares impact-law parameters, and optionally other inputs, that best reproduce
+    the measured post-impact motion.
 
     Parameters
     ----------
@@ -314,9 +379,11 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
     bounds : ((float, float), (float, float))
         Search box ((eps_min, eps_max), (beta_min, beta_max)); default ((0, 1), (0, 1)),
         the sheet's eps >= 0, beta <= 1 with beta >= 0. eps must stay within [0, 1]; beta
-        may be widened (values outside [0, 1] are flagged by ``result.problems()``).
+        may be widened (values outside [0, 1] are flagged by ``result.problems()``). Under
+        "kudlich-slibar" the first pair bounds k.
     eps, beta : float, optional
-        Hold that parameter fixed at the given value and fit only the other one.
+        Hold that parameter fixed at the given value and fit only the other one (under
+        "kudlich-slibar" ``eps`` fixes k; ``beta`` does not apply).
     grid : (int, int)
         No longer used (the coarse search is the Sobol sample); validated, and a
         DeprecationWarning when not the default.
@@ -327,36 +394,124 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
         (:data:`pim.analysis.free_fit.FREE_KEYS`: the scalar inputs of ``[uncertainty]``,
         e.g. ``impact.normal_angle``, ``impact.point_x``, ``vehicle1.yaw_rate``, plus
         ``vehicle{1,2}.radius_of_gyration`` and ``vehicle{1,2}.speed``;
-        ``impact.restitution`` / ``impact.beta`` here replace ``bounds``).
+        ``impact.restitution`` / ``impact.beta`` / ``impact.k`` / ``impact.mu_c`` here
+        replace ``bounds``).
     samples, seed : int
         Size and seed of the coarse Sobol sample.
+    law : {"brach", "brach-capped", "kudlich-slibar"}, optional
+        The impact law to fit under (default the case's ``impact.law``, else "brach").
+        "kudlich-slibar" fits (k, mu_c) (mu_c in :data:`MU_C_BOUNDS` unless ``free`` bounds
+        it); "brach-capped" fits (eps, beta) under the cap mu_c.
+    mu_c : float, optional
+        Hold the contact friction fixed (default under "kudlich-slibar": fitted; under
+        "brach-capped": the case's cap).
 
     Returns
     -------
     FitResult
+        Where the contact does not reach a fitted mu_c (a sticking Kudlich-Slibar contact,
+        an uncapped Brach one), mu_c only has a lower bound: ``values`` holds that bound,
+        ``lower_bounds`` names it, and the identifiability says so (module
+        :func:`pim.analysis.free_inputs.friction_floor`).
 
     Raises
     ------
     ValueError
-        Nothing measured, a batched case, bad bounds, both parameters fixed, or no approach.
+        Nothing measured, a batched case, bad bounds, both parameters fixed, a parameter
+        the law does not take, or no approach.
     """
     check_counts(max_starts=max_starts, samples=samples)
-    check_numbers(eps=eps, beta=beta)
+    check_numbers(eps=eps, beta=beta)     # mu_c may be inf (always stick): _law_case checks
     if np.size(case.vehicle1.mass) != 1 or np.shape(case.impact.point) != (2,):
         raise InputError("fit needs a single case, not a batch of cases")
+    law = law_of(case, law)
+    case = _law_case(case, law, mu_c)
     terms = measured_terms(case, include_yaw)
     box_eb = _check_bounds(bounds)
     free_box = check_free(free or {})
-    eps_fixed, beta_fixed = _check_fixed(eps, beta, free_box)
+    eps_fixed, beta_fixed, box = _law_box(law, box_eb, eps, beta, mu_c, free_box)
     _check_grid(grid)
     eps0 = 0.5 if eps_fixed is None else eps_fixed
     beta0 = 0.5 if beta_fixed is None else beta_fixed
-    if not free_box and not np.any(solve(case, eps0, beta0).approaching):
-        raise InputError(f"case {case.name or '(unnamed)'}: the vehicles do not approach at C "
-                         "(u_n >= 0): there is no impact to fit")
+    _check_approach(case, eps0, beta0, free_box)
     weights = measured_weights(case, terms)
-    raw = fit_free(case, _box(box_eb, eps_fixed, beta_fixed, free_box), terms, eps0, beta0,
-                   samples=samples, max_starts=max_starts, seed=seed)
-    fixed = tuple(n for n, v in (("eps", eps_fixed), ("beta", beta_fixed)) if v is not None)
+    raw = fit_free(case, box, terms, eps0, beta0, samples=samples, max_starts=max_starts,
+                   seed=seed)
+    raw, lower = _floor(case, raw, terms, case_state(case, eps0, beta0))
+    fixed, box_eb = _fixed_and_searched(law, box, box_eb, eps_fixed, beta_fixed, mu_c)
     return _fit_result(case, raw, terms, include_yaw, box_eb, fixed, eps_fixed, beta_fixed,
-                       weights)
+                       weights, law, case.impact.contact_friction, lower)
+
+
+def _law_case(case: Case, law: str, mu_c) -> Case:
+    """``case`` under ``law`` with contact friction ``mu_c`` (when given): beta dropped
+    under "kudlich-slibar", the friction dropped under "brach"."""
+    imp = case.impact
+    friction = imp.contact_friction if mu_c is None else float(
+        check_contact_friction(mu_c, "mu_c (contact friction)"))
+    if law == (imp.law or "brach") and friction == imp.contact_friction:
+        return case
+    changes = {"law": law, "contact_friction": None if law == "brach" else friction}
+    if law == "kudlich-slibar":
+        changes["beta"] = None
+    return replace(case, impact=replace(imp, **changes))
+
+
+def _ks_box(bounds, eps, beta, mu_c, free: dict) -> tuple:
+    """(fixed k or None, box) under "kudlich-slibar": k (``bounds[0]``, or ``free``'s
+    ``impact.k`` / ``impact.restitution``) unless fixed, mu_c (:data:`MU_C_BOUNDS`, or
+    ``free``'s) unless fixed, then the other ``free`` keys."""
+    if beta is not None or "impact.beta" in free:
+        raise InputError("beta does not apply to law 'kudlich-slibar' (its parameters are "
+                         "restitution k and contact friction mu_c)")
+    free = dict(free)
+    k_bounds = free.pop("impact.restitution", None) or free.pop("impact.k", bounds[0])
+    mu_bounds = free.pop("impact.mu_c", MU_C_BOUNDS)
+    if eps is not None:
+        eps = float(eps)
+        if not 0.0 <= eps <= 1.0:
+            raise InputError(f"k (fixed restitution) must be in [0, 1], got {eps}")
+    if eps is not None and mu_c is not None and not free:
+        raise InputError("k and mu_c are both fixed: nothing to fit (fix at most one, or "
+                         "free other inputs)")
+    box = {} if eps is not None else {"impact.k": tuple(k_bounds)}
+    if mu_c is None:
+        box["impact.mu_c"] = tuple(mu_bounds)
+    return eps, {**box, **free}
+
+
+def _floor(case: Case, raw: FreeFit, terms, base) -> tuple[FreeFit, dict]:
+    """``raw`` with an unreached contact friction replaced by its lower bound
+    (:func:`pim.analysis.free_inputs.friction_floor`) in the optimum and every minimum (the
+    minima that then coincide merged), and the identifiability of the other parameters
+    with the lower bound stated."""
+    if "impact.mu_c" not in raw.keys:
+        return raw, {}
+    width = raw.box[:, 1] - raw.box[:, 0]
+    xs, _ = friction_floor(base, raw.keys, np.array([m for m, _ in raw.minima]))
+    minima, kept = [], []
+    for xm, (_, cost) in zip(xs, raw.minima, strict=True):
+        if all(np.max(np.abs(xm - k) / width) > MERGE for k in kept):
+            kept.append(xm)
+            minima.append((xm, cost))
+    raw = replace(raw, minima=tuple(minima))
+    x, floored = friction_floor(base, raw.keys, raw.x[None])
+    if not floored[0]:
+        return raw, {}
+    j = raw.keys.index("impact.mu_c")
+    bound = float(x[0, j])
+    rows, target, factor = residual_terms(case, terms)
+    _, jac = free_residuals(base, raw.keys, x, rows, target, factor,
+                            evidence=split_terms(terms)[1])
+    keep = [i for i in range(len(raw.keys)) if i != j]
+    ident = identifiability(jac[0][:, keep] * width[keep], tuple(raw.keys[i] for i in keep),
+                            as_residual_terms(terms))
+    said = (f"impact.mu_c only has a lower bound: any mu_c >= {bound:.4g} gives the same "
+            f"answer (the contact does not reach its friction: it sticks); {bound:.4g} "
+            "stands for it")
+    ident = replace(ident, warnings=(said, *ident.warnings))
+    side = raw.side.copy()
+    side[j] = 0
+    fitted = replace(raw.case, impact=replace(raw.case.impact, contact_friction=bound))
+    return replace(raw, x=x[0], side=side, identifiability=ident, case=fitted), {
+        "impact.mu_c": bound}

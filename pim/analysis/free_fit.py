@@ -36,7 +36,7 @@ from functools import lru_cache
 import numpy as np
 
 from ..model.case import Case
-from ..model.dual import MOTION_INPUTS, MOTION_OUTPUTS, motion_of_inputs
+from ..model.dual import MOTION_OUTPUTS
 from ..model.evidence_terms import (
     EvidenceTerm,
     ModelQuantities,
@@ -53,6 +53,7 @@ from .free_inputs import (
     current_value,
     free_inputs,
     set_inputs,
+    state_motion,
 )
 from .least_squares_batch import least_squares_batch
 from .residuals import residual_terms
@@ -232,10 +233,16 @@ def _family_warnings(families, deciders) -> list[str]:
     it when there is any."""
     out = []
     for fam, labels in zip(families, deciders, strict=True):
-        decide = (f"; {evidence_list(labels)} would decide it, or fix one of them" if labels
-                  else "; fix one of them to get a unique answer")
-        out.append(f"family of equally good fits: {', '.join(fam)} trade against each "
-                   f"other (the data fix only a combination of them){decide}")
+        if len(fam) > 1:
+            decide = (f"; {evidence_list(labels)} would decide it, or fix one of them"
+                      if labels else "; fix one of them to get a unique answer")
+            out.append(f"family of equally good fits: {', '.join(fam)} trade against each "
+                       f"other (the data fix only a combination of them){decide}")
+        else:
+            decide = f"; {evidence_list(labels)} would decide it, or fix it" if labels else \
+                "; fix it"
+            out.append(f"family of equally good fits: {fam[0]} does not change the fitted "
+                       f"motion (the data say nothing about it){decide}")
     return out
 
 
@@ -309,7 +316,7 @@ def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True
 
     Parameters
     ----------
-    base : Case or array_like (21,) or (m, 21)
+    base : Case or array_like (23,) or (m, 23)
         Everything not freed (:func:`pim.analysis.free_inputs.free_inputs`).
     keys : sequence of str
         Free keys, the columns of ``x``.
@@ -332,9 +339,7 @@ def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True
         d r / d x, zero where the penalty stands.
     """
     state, dstate = free_inputs(base, keys, x, jacobian=jacobian)
-    n_in = len(MOTION_INPUTS)
-    values, dvalues = motion_of_inputs(state[:, :n_in], jacobian=jacobian,
-                                       tangent=None if dstate is None else dstate[:, :n_in, :])
+    values, dvalues = state_motion(state, dstate, jacobian=jacobian)    # under the state's law
     out = values[:, rows]
     dout = None if dvalues is None else dvalues[:, rows, :]
     if len(evidence):
@@ -370,10 +375,12 @@ def candidate_evidence(case: Case, present) -> dict[str, tuple]:
     return {label: terms for label, terms in groups.items() if not set(terms) <= present}
 
 
-def terms_jacobian(case: Case, keys, x, eps, beta, groups: dict) -> dict:
+def terms_jacobian(case: Case, keys, x, eps, beta, groups: dict,
+                   contact_friction=None) -> dict:
     """label -> d value / d x (c, n) of each group's terms at the single parameter vector
-    ``x`` [SI] (unweighted; :func:`free_residuals` with zero targets)."""
-    base = case_state(case, eps, beta)
+    ``x`` [SI] (unweighted; :func:`free_residuals` with zero targets), under the case's
+    impact law (``contact_friction``: its mu_c, default the case's)."""
+    base = case_state(case, eps, beta, contact_friction=contact_friction)
     out = {}
     for label, terms in groups.items():
         motion, evidence = split_terms(terms)
@@ -456,7 +463,8 @@ def sobol_sample(d: int, samples: int, seed: int) -> np.ndarray:
 
 
 def fit_free(case: Case, box: dict, terms, eps: float = 0.5, beta: float = 0.5,
-             samples: int = 256, max_starts: int = 5, seed: int = 0) -> FreeFit:
+             samples: int = 256, max_starts: int = 5, seed: int = 0,
+             mu_c: float | None = None) -> FreeFit:
     """Bounded least squares of the residual ``terms`` over the parameters of ``box``.
 
     Parameters
@@ -476,12 +484,15 @@ def fit_free(case: Case, box: dict, terms, eps: float = 0.5, beta: float = 0.5,
         Number of best samples refined locally (distinct ones only).
     seed : int
         Seed of the scrambled Sobol sample.
+    mu_c : float, optional
+        Contact friction where ``impact.mu_c`` is not in ``box`` (default the case's). The
+        impact law is the case's (``impact.law``).
     """
     keys = tuple(box)
     check_free_for_case(case, keys)
     lo, hi = (np.array([box[k][j] for k in keys], dtype=float) for j in (0, 1))
     width = hi - lo
-    base = case_state(case, eps, beta)
+    base = case_state(case, eps, beta, contact_friction=mu_c)
     rows, target, factor = residual_terms(case, terms)
     evidence = split_terms(terms)[1]
 
@@ -501,11 +512,11 @@ def fit_free(case: Case, box: dict, terms, eps: float = 0.5, beta: float = 0.5,
     r, jac = out.residuals[best], out.jacobian[best]
     values = dict(zip(keys, map(float, out.x[best]), strict=True))
     fitted = set_inputs(case, {k: v for k, v in values.items()
-                               if k not in ("impact.restitution", "impact.beta")})
+                               if k not in ("impact.restitution", "impact.beta", "impact.k")})
     ident = identifiability(jac * width, keys, as_residual_terms(terms))
     if not ident.identifiable:      # name the evidence that would decide it
         candidates = terms_jacobian(case, keys, out.x[best], eps, beta,
-                                    candidate_evidence(case, terms))
+                                    candidate_evidence(case, terms), contact_friction=mu_c)
         ident = identifiability(jac * width, keys, as_residual_terms(terms),
                                 candidates={k: v * width for k, v in candidates.items()})
     return FreeFit(keys=keys, x=out.x[best], box=np.stack([lo, hi], axis=1), case=fitted,

@@ -14,6 +14,10 @@ after the plain inputs):
     (of its heading where the velocity is zero).
 ``vehicle{1,2}.radius_of_gyration`` [m]
     The yaw inertia becomes m k^2 (m the vehicle's mass, fitted or not).
+``impact.k`` [-], ``impact.mu_c`` [-]
+    The Kudlich-Slibar law's restitution k (the restitution column, as
+    ``impact.restitution``) and contact friction mu_c (>= 0; also the cap of
+    "brach-capped"): the unknowns a PC-Crash user states (docs/impact-laws.md).
 ``vehicle{1,2}.phi`` [rad], ``vehicle{1,2}.d`` [m]
     Brach's angle and length of the arm CG -> C (:mod:`pim.io.brach`: the arm points at
     heading + phi). The CG moves to C - d (cos(h + phi), sin(h + phi)) about the (possibly
@@ -33,13 +37,15 @@ import numpy as np
 from ..model.case import Case
 from ..model.dual import MOTION_INPUTS, Dual, cos_sin, motion_inputs
 from ..model.geometry import radius_of_gyration
+from ..model.impact_laws import LAW_CODES, LAW_INPUTS, law_of, motion_of_law, needed_friction
 from ..model.numbers import InputError
 from ..model.pdof import wrap_angle
 from ..model.quantities import INPUTS
 
 __all__ = ["FREE_KEYS", "EXTRA_KEYS", "STATE", "check_free", "check_free_for_case", "fields_set_by",
            "case_state", "free_inputs", "set_inputs", "current_value",
-           "approach_direction", "unit_or_heading"]
+           "approach_direction", "unit_or_heading", "law_values", "state_law", "state_motion",
+           "friction_floor", "MU_C_BOUNDS"]
 
 #: Keys accepted beyond :data:`INPUTS`, with their meaning (module notes).
 EXTRA_KEYS = {
@@ -51,11 +57,23 @@ EXTRA_KEYS = {
     **{f"vehicle{i}.phi": "Brach's angle of the arm CG -> C from the heading [rad]"
        for i in (1, 2)},
     **{f"vehicle{i}.d": "Brach's length of the arm CG -> C [m]" for i in (1, 2)},
+    "impact.k": "restitution k of the Kudlich-Slibar law [-] in [0, 1]",
+    "impact.mu_c": "contact friction mu_c [-] >= 0 (Kudlich-Slibar; the cap of brach-capped)",
 }
+#: Default search range of ``impact.mu_c`` [-] when a fit frees it without bounds.
+MU_C_BOUNDS = (0.0, 2.0)
 #: Every key a fit accepts.
 FREE_KEYS = tuple(INPUTS) + tuple(EXTRA_KEYS)
-#: Columns of the state :func:`free_inputs` returns: the model's inputs, then the headings.
-STATE = MOTION_INPUTS + ("vehicle1.heading", "vehicle2.heading")
+#: Columns of the state :func:`free_inputs` returns: the model's inputs, the headings, the
+#: contact friction mu_c (inf where the law has none) and the impact law's code
+#: (:data:`pim.model.impact_laws.LAW_CODES`).
+STATE = MOTION_INPUTS + ("vehicle1.heading", "vehicle2.heading", "impact.contact_friction",
+                         "impact.law")
+#: Free keys that set a state column of another name.
+_ALIAS = {"impact.k": "impact.restitution", "impact.mu_c": "impact.contact_friction"}
+#: The laws each law-specific key needs.
+_LAWS_OF = {"impact.k": ("kudlich-slibar",), "impact.mu_c": ("kudlich-slibar", "brach-capped"),
+            "impact.beta": ("brach", "brach-capped")}
 
 _COLUMN = {name: k for k, name in enumerate(STATE)}
 _POSITIVE = ("mass", "yaw_inertia", "radius_of_gyration", "d")
@@ -63,7 +81,8 @@ _POSITIVE = ("mass", "yaw_inertia", "radius_of_gyration", "d")
 _CLASHES = tuple((f"vehicle{i}.{a}", f"vehicle{i}.{b}") for i in (1, 2) for a, b in (
     ("speed", "velocity_x"), ("speed", "velocity_y"),
     ("radius_of_gyration", "yaw_inertia"),
-    ("phi", "cg_x"), ("phi", "cg_y"), ("d", "cg_x"), ("d", "cg_y")))
+    ("phi", "cg_x"), ("phi", "cg_y"), ("d", "cg_x"), ("d", "cg_y"))) + (
+    ("impact.k", "impact.restitution"),)
 
 
 def check_free(free: dict) -> dict:
@@ -87,10 +106,12 @@ def check_free(free: dict) -> dict:
         attr = key.split(".", 1)[1]
         if attr in _POSITIVE and lo <= 0:
             raise InputError(f"free parameter {key}: bounds must be > 0, got ({lo}, {hi})")
-        if key == "impact.restitution" and not (0.0 <= lo and hi <= 1.0):
+        if key in ("impact.restitution", "impact.k") and not (0.0 <= lo and hi <= 1.0):
             raise InputError(f"free parameter {key}: bounds must lie in [0, 1], got ({lo}, {hi})")
         if attr == "speed" and lo < 0:
             raise InputError(f"free parameter {key}: bounds must be >= 0 [m/s], got ({lo}, {hi})")
+        if key == "impact.mu_c" and lo < 0:
+            raise InputError(f"free parameter {key}: bounds must be >= 0, got ({lo}, {hi})")
         out[key] = (lo, hi)
     for a, b in _CLASHES:
         if a in out and b in out:
@@ -100,8 +121,8 @@ def check_free(free: dict) -> dict:
 
 def fields_set_by(key: str) -> tuple[str, ...]:
     """The inputs (:data:`STATE` names) that free key ``key`` overwrites."""
-    if key in _COLUMN:
-        return (key,)
+    if key in _COLUMN or key in _ALIAS:
+        return (_ALIAS.get(key, key),)
     group, attr = key.split(".", 1)
     return {"point_along": ("impact.point_x", "impact.point_y"),
             "speed": (f"{group}.velocity_x", f"{group}.velocity_y"),
@@ -110,9 +131,14 @@ def fields_set_by(key: str) -> tuple[str, ...]:
             "d": (f"{group}.cg_x", f"{group}.cg_y")}[attr]
 
 
-def check_free_for_case(case: Case, keys) -> None:
-    """Refuse keys that cannot move in ``case``: a fixed obstacle's motion or inertia."""
+def check_free_for_case(case: Case, keys, law: str | None = None) -> None:
+    """Refuse keys that cannot move in ``case``: a fixed obstacle's motion or inertia, and
+    a law's parameter under another law (``law``: default the case's)."""
+    law = law_of(case, law)
     for key in keys:
+        if law not in _LAWS_OF.get(key, (law,)):
+            raise InputError(f"free parameter {key} does not apply to impact law {law!r} "
+                             f"(it is a parameter of {' or '.join(_LAWS_OF[key])})")
         group, attr = key.split(".", 1)
         if group.startswith("vehicle") and attr not in ("heading",):
             vehicle = getattr(case, group)
@@ -138,18 +164,89 @@ def unit_or_heading(vx, vy, heading) -> tuple[np.ndarray, np.ndarray]:
             np.where(moving, vy / safe, np.sin(heading)))
 
 
-def case_state(case: Case, eps=None, beta=None) -> np.ndarray:
-    """The state (:data:`STATE`) of ``case`` [SI], shape S + (21,), for any case shape.
+def case_state(case: Case, eps=None, beta=None, *, law: str | None = None,
+               contact_friction=None) -> np.ndarray:
+    """The state (:data:`STATE`) of ``case`` [SI], shape S + (23,), for any case shape.
 
-    ``eps`` and ``beta`` default to the case's impact (0 and 1 where it has none).
+    ``eps`` and ``beta`` default to the case's impact (0 and 1 where it has none); ``law``
+    and ``contact_friction`` to the case's (mu_c inf where it has none).
     """
     imp = case.impact
     eps = imp.restitution if eps is None else eps
     beta = imp.beta if beta is None else beta
     x = motion_inputs(case, 0.0 if eps is None else eps, 1.0 if beta is None else beta)
-    h1 = np.broadcast_to(np.asarray(case.vehicle1.heading, dtype=float), x.shape[:-1])
-    h2 = np.broadcast_to(np.asarray(case.vehicle2.heading, dtype=float), x.shape[:-1])
-    return np.concatenate([x, h1[..., None], h2[..., None]], axis=-1)
+    shape = x.shape[:-1]
+    extra = [case.vehicle1.heading, case.vehicle2.heading]
+    extra += list(law_values(law_of(case, law), imp.contact_friction if contact_friction
+                             is None else contact_friction).values())
+    extra = [np.broadcast_to(np.asarray(e, dtype=float), shape)[..., None] for e in extra]
+    return np.concatenate([x, *extra], axis=-1)
+
+
+def law_values(law: str, contact_friction=None) -> dict:
+    """The state columns of an impact law: ``impact.contact_friction`` (inf when None) and
+    ``impact.law`` (its code, :data:`pim.model.impact_laws.LAW_CODES`)."""
+    return {"impact.contact_friction": np.inf if contact_friction is None
+            else contact_friction, "impact.law": LAW_CODES[law]}
+
+
+def state_law(state) -> str:
+    """The impact law of state rows (one law for all rows)."""
+    codes = np.unique(np.asarray(state, dtype=float)[..., _COLUMN["impact.law"]])
+    names = [name for name, code in LAW_CODES.items() if code in codes]
+    if len(names) != 1 or len(codes) != 1:
+        raise InputError(f"state rows must share one impact law, got codes {codes.tolist()}")
+    return names[0]
+
+
+_LAW_COLUMNS = [_COLUMN[name] for name in LAW_INPUTS]
+
+
+def state_motion(state, dstate=None, *, jacobian: bool = True):
+    """Post-impact motion of state rows under their impact law, and d motion / d p.
+
+    ``state`` (m, 23) as :func:`free_inputs` returns it, ``dstate`` (m, 23, n) its
+    derivative with respect to n parameters; :func:`pim.model.impact_laws.motion_of_law`.
+    """
+    state = np.asarray(state, dtype=float)
+    return motion_of_law(state[..., _LAW_COLUMNS], state_law(state), jacobian=jacobian,
+                         tangent=None if dstate is None else dstate[..., _LAW_COLUMNS, :])
+
+
+def friction_floor(state, keys, x) -> tuple[np.ndarray, np.ndarray]:
+    """Fitted values with a contact friction that is not reached replaced by its floor.
+
+    Where ``impact.mu_c`` is among ``keys`` and the contact does not reach it (the
+    Kudlich-Slibar compression sticks, or the Brach cap is not met), any mu_c above the
+    needed friction (:func:`pim.model.impact_laws.needed_friction`) gives the same answer:
+    mu_c only has a lower bound, and that bound stands for it.
+
+    Parameters
+    ----------
+    state : array_like (23,) or (m, 23)
+        The base state (everything not fitted).
+    keys : sequence of str
+        The fitted keys, the columns of ``x``.
+    x : array_like (m, n)
+        Fitted values [SI].
+
+    Returns
+    -------
+    x : ndarray (m, n)
+        ``x`` with mu_c replaced by its lower bound where it only has one.
+    floored : ndarray (m,) of bool
+        Where mu_c only has a lower bound (all False without ``impact.mu_c``).
+    """
+    x = np.array(np.atleast_2d(x), dtype=float)
+    keys = tuple(keys)
+    if "impact.mu_c" not in keys:
+        return x, np.zeros(len(x), bool)
+    j = keys.index("impact.mu_c")
+    full, _ = free_inputs(np.asarray(state, dtype=float), keys, x)
+    need = needed_friction(full[:, _LAW_COLUMNS], state_law(full))
+    floored = np.isfinite(need) & (x[:, j] >= need)
+    x[:, j] = np.where(floored, need, x[:, j])
+    return x, floored
 
 
 def free_inputs(base, keys, x, *, jacobian: bool = False):
@@ -157,7 +254,7 @@ def free_inputs(base, keys, x, *, jacobian: bool = False):
 
     Parameters
     ----------
-    base : Case or array_like (21,) or (m, 21)
+    base : Case or array_like (23,) or (m, 23)
         The values of everything not freed: a single case, or state rows
         (:func:`case_state`), one per parameter vector or one for all.
     keys : sequence of str
@@ -169,9 +266,9 @@ def free_inputs(base, keys, x, *, jacobian: bool = False):
 
     Returns
     -------
-    state : ndarray (m, 21)
+    state : ndarray (m, 23)
         Columns :data:`STATE` [SI].
-    jac : ndarray (m, 21, n) or None
+    jac : ndarray (m, 23, n) or None
     """
     keys = tuple(keys)
     x = np.atleast_2d(np.asarray(x, dtype=float))
@@ -191,8 +288,8 @@ def free_inputs(base, keys, x, *, jacobian: bool = False):
 
     given = {k: value(j) for j, k in enumerate(keys)}
     for key, v in given.items():
-        if key in _COLUMN:
-            cols[_COLUMN[key]] = v
+        if _ALIAS.get(key, key) in _COLUMN:
+            cols[_COLUMN[_ALIAS.get(key, key)]] = v
     cx, cy = _COLUMN["impact.point_x"], _COLUMN["impact.point_y"]
     if "impact.point_along" in given:
         g0 = base[:, _COLUMN["impact.normal_angle"]]
@@ -271,10 +368,12 @@ def set_inputs(case: Case, values: dict) -> Case:
     if "impact" in moved:
         imp = {"point": (s["impact.point_x"], s["impact.point_y"]),
                "normal_angle": s["impact.normal_angle"]}
-        if "impact.restitution" in keys:
+        if "impact.restitution" in keys or "impact.k" in keys:
             imp["restitution"] = s["impact.restitution"]
         if "impact.beta" in keys:
             imp["beta"] = s["impact.beta"]
+        if "impact.mu_c" in keys:
+            imp["contact_friction"] = s["impact.contact_friction"]
         changes["impact"] = replace(case.impact, **imp)
     return replace(case, **changes)
 
@@ -287,8 +386,9 @@ def current_value(case: Case, key: str) -> float:
     if key == "impact.point_along":
         return 0.0
     group, attr = key.split(".", 1)
-    if key in ("impact.restitution", "impact.beta"):
-        v = getattr(case.impact, attr)
+    if key in ("impact.restitution", "impact.beta", "impact.k", "impact.mu_c"):
+        v = getattr(case.impact, {"k": "restitution", "mu_c": "contact_friction"}.get(attr,
+                                                                                     attr))
         return float("nan") if v is None else float(v)
     state = case_state(case)
     if np.shape(state) != (len(STATE),):

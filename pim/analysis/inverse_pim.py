@@ -42,11 +42,20 @@ __all__ = ["inverse_pim", "inverse_pim_many", "under_determined", "fixed_coeffic
 
 def fixed_coefficients(case: Case, unknown: dict) -> tuple:
     """(eps, beta) held fixed: None where the table names it as unknown, else the case's
-    (beta defaults to 1)."""
-    eps = None if "impact.restitution" in unknown else case.impact.restitution
-    if "impact.restitution" not in unknown and eps is None:
+    (beta defaults to 1). Under "kudlich-slibar": (k, mu_c), k named ``impact.k`` or
+    ``impact.restitution``."""
+    ks = case.impact.law == "kudlich-slibar"
+    named = "impact.restitution" in unknown or (ks and "impact.k" in unknown)
+    eps = None if named else case.impact.restitution
+    if not named and eps is None:
         raise InputError("impact.restitution: not given in [impact] and not named in "
                          "[unknown]; give it or solve for it")
+    if ks:
+        mu_c = None if "impact.mu_c" in unknown else case.impact.contact_friction
+        if mu_c is None and "impact.mu_c" not in unknown:
+            raise InputError("impact.contact_friction: not given in [impact] and not named "
+                             "in [unknown] (impact.mu_c); give it or solve for it")
+        return eps, mu_c
     beta = None if "impact.beta" in unknown else defaults(case, 0.0, None)[1]
     return eps, beta
 
@@ -151,8 +160,11 @@ def inverse_pim(case: Case, unknown: dict | None = None, *, include_yaw: bool = 
     why = under_determined(case, unknown, include_yaw)
     if why:
         raise InputError(why)
-    eps, beta = fixed_coefficients(case, unknown)
-    return fit(case, include_yaw=include_yaw, eps=eps, beta=beta, free=unknown,
+    eps, second = fixed_coefficients(case, unknown)
+    if case.impact.law == "kudlich-slibar":
+        return fit(case, include_yaw=include_yaw, eps=eps, mu_c=second, free=unknown,
+                   samples=samples, seed=seed)
+    return fit(case, include_yaw=include_yaw, eps=eps, beta=second, free=unknown,
                samples=samples, seed=seed)
 
 
@@ -162,7 +174,7 @@ def inverse_pim_many(base, keys, bounds, x0, rows, target, factor, evidence=()) 
 
     Parameters
     ----------
-    base : ndarray (m, 21)
+    base : ndarray (m, 23)
         Everything not solved for, per sample.
     keys : sequence of str
         The unknowns (restitution and beta first when they are unknown).

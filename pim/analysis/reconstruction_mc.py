@@ -38,7 +38,7 @@ from ..model.evidence_terms import (
 )
 from ..model.numbers import InputError, checked_count
 from .fitting import FitResult
-from .free_inputs import STATE, fields_set_by
+from .free_inputs import STATE, fields_set_by, friction_floor, law_values
 from .inverse_pim import inverse_pim_many
 from .montecarlo import PERCENTILES, first_order_indices
 from .residuals import measured_terms, residual_terms
@@ -159,7 +159,8 @@ class SampleBlock:
     """Raw Monte Carlo samples of a reconstruction (one block; blocks concatenate).
 
     ``x`` (n, n_unknowns) in the order of the nominal fit's ``values``; ``ok`` (n,) the
-    samples used; ``uniforms`` the uniform variate of every varying quantity (n,).
+    samples used; ``uniforms`` the uniform variate of every varying quantity (n,);
+    ``floored`` (n,) the samples whose ``impact.mu_c`` is only a lower bound.
     """
 
     x: np.ndarray
@@ -167,6 +168,7 @@ class SampleBlock:
     uniforms: dict
     source: str
     messages: list
+    floored: np.ndarray | None = None
 
 
 def solve_samples(case, fit_result: FitResult, unknown: dict, n: int, rng, *,
@@ -183,6 +185,7 @@ def solve_samples(case, fit_result: FitResult, unknown: dict, n: int, rng, *,
     evidence = split_terms(names)[1]
     scales = _delta_v_scales(dists, evidence)
     nominal = {**nominal_values(case, eps0, beta0), **(extra_nominal or {}),
+               **law_values(fit_result.law, fit_result.contact_friction),
                **dict.fromkeys(scales, 1.0), **crush_nominal(case)}
     solved = {f for k in keys for f in fields_set_by(k)}
     uncertain = UncertaintyTable({**{k: d for k, d in (dists.inputs.items() if dists else ())
@@ -211,7 +214,8 @@ def solve_samples(case, fit_result: FitResult, unknown: dict, n: int, rng, *,
     x0 = np.array([fit_result.values[k] for k in keys])
     out = inverse_pim_many(base, keys, bounds, x0, rows, targets, factor, evidence=evidence)
     ok = out.converged & ok_post & np.all(np.isfinite(out.x), axis=1)
-    return SampleBlock(out.x, ok, uniforms, source, messages)
+    x, floored = friction_floor(base, keys, out.x)     # an unreached mu_c: its lower bound
+    return SampleBlock(x, ok, uniforms, source, messages, floored)
 
 
 def _draw_measured(case, names, fit_result, target, rng, uniforms, n, messages):
@@ -311,6 +315,12 @@ def summarise(fit_result: FitResult, blocks) -> ReconstructionSamples:
     if n_used < n:
         messages.append(f"{n - n_used} of {n} samples left out (fit not converged or no "
                         f"post-impact motion reaching the evidence)")
+    floored = np.concatenate([np.zeros(len(b.ok), bool) if b.floored is None else b.floored
+                              for b in blocks])[ok]
+    if floored.any():
+        messages.append(f"impact.mu_c only has a lower bound in {int(floored.sum())} of "
+                        f"{n_used} samples (the contact sticks); its percentiles are those "
+                        "of that bound")
     u_ok = {k: u[ok] for k, u in uniforms.items()}
     stats, samples = {}, {}
     for j, key in enumerate(keys):

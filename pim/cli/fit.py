@@ -33,13 +33,21 @@ beta_range_option = click.option("--beta-range", type=FiniteFloat(), nargs=2, de
                                       "beta <= 1 (wider ranges are flagged).")
 
 
+fixed_k_option = click.option("--k", "k", type=FiniteFloat(), default=None,
+                              help="Kudlich-Slibar law: hold the restitution k fixed at this "
+                                   "value and fit mu_c only.")
+fixed_mu_c_option = click.option("--mu-c", "mu_c", type=FiniteFloat(), default=None,
+                                 help="Kudlich-Slibar law: hold the contact friction mu_c fixed "
+                                      "and fit k only (friction-capped Brach: the cap).")
+
 free_option = click.option(
     "--free", "free", multiple=True, metavar='KEY="LO,HI"',
     help="Also fit this input within [LO, HI] (unit strings), by its case-file key, e.g. "
          '--free impact.normal_angle="0 deg,90 deg" --free vehicle1.radius_of_gyration='
          '"1 m,1.6 m"; repeatable. Keys: every [uncertainty] input, '
          "vehicleN.radius_of_gyration, vehicleN.speed, Brach's vehicleN.phi and vehicleN.d, "
-         "impact.point_along (C along the contact plane).")
+         "impact.point_along (C along the contact plane), impact.k and impact.mu_c "
+         "(Kudlich-Slibar; impact.mu_c's range, default 0 to 2).")
 
 
 def _kind_of(key: str) -> str:
@@ -120,11 +128,11 @@ def fit_json(data: dict, units: str) -> dict:
     return out
 
 
-def _fit(case, include_yaw, eps, beta, eps_range, beta_range, free=None):
+def _fit(case, include_yaw, eps, beta, eps_range, beta_range, free=None, mu_c=None):
     from ..analysis.fitting import fit as fit_case
 
     return fit_case(case, include_yaw=include_yaw, bounds=(eps_range, beta_range),
-                    eps=eps, beta=beta, free=free or None)
+                    eps=eps, beta=beta, free=free or None, mu_c=mu_c)
 
 
 def _describe_bounds(result, units) -> list[str]:
@@ -163,60 +171,98 @@ def _cost_lines(result, fv: float, uv: str) -> list[str]:
 @include_yaw_option
 @fixed_eps_option
 @fixed_beta_option
+@fixed_k_option
+@fixed_mu_c_option
 @eps_range_option
 @beta_range_option
 @free_option
 @units_option
 @json_option
-def fit(case_name, include_yaw, eps, beta, eps_range, beta_range, free, units, as_json):
-    """Least-squares (epsilon, beta) matching CASE's measured post-impact motion.
+def fit(case_name, include_yaw, eps, beta, k, mu_c, eps_range, beta_range, free, units,
+        as_json):
+    """Least-squares impact-law parameters matching CASE's measured post-impact motion:
+    Brach's (epsilon, beta), or under the case's law "kudlich-slibar" its (k, mu_c).
 
-    Searches the whole (epsilon, beta) box on a grid, then refines the best minima, so it
-    finds the global optimum. --eps or --beta fits the other parameter alone; --free adds
-    any other input, and the output then says whether the data determine them all
-    (rank, families of equally good fits, under-determined).
+    Searches the whole box with a Sobol sample, then refines the best minima, so it finds
+    the global optimum. --eps or --beta (--k or --mu-c) fits the other parameter alone;
+    --free adds any other input, and the output then says whether the data determine them
+    all (rank, families of equally good fits, under-determined, a mu_c that only has a
+    lower bound).
     """
     from ..io.casefile import load_case
-    from ..io.units import convert
 
     case = load_case(case_name)
-    require_brach(case, "pim fit")
     units = units or case.units
-    result = _fit(case, include_yaw, eps, beta, eps_range, beta_range, parse_free(free))
+    ks = (case.impact.law or "brach") == "kudlich-slibar"
+    if k is not None and not ks:
+        raise InputError("--k is the restitution of law kudlich-slibar (use --eps)")
+    if ks and eps is not None:
+        raise InputError("--eps: the case's law is kudlich-slibar; hold k with --k")
+    result = _fit(case, include_yaw, k if ks else eps, beta, eps_range, beta_range,
+                  parse_free(free), mu_c)
     ident = result.identifiability
     if as_json:
         data = fit_json(result.to_dict(), units)
-        if free:
+        if free or ks:
             shown = {k: _shown(v, _kind_of(k), units) for k, v in result.values.items()}
             data["values"] = {k: s["value"] for k, s in shown.items()}
             data["value_units"] = {k: s["unit"] for k, s in shown.items()}
             data["identifiability"] = ident.to_dict() if ident is not None else None
         echo_json(data)
         return
+    _print_fit(case, result, include_yaw, free, units)
+
+
+def _coefficient_lines(result) -> list[str]:
+    """The fitted law's coefficients, one line each, with their search ranges."""
     solved = result.result
-    for text in [*case.notes, *solved.problems()]:     # before the table
-        click.echo(f"warning: {text}", err=True)
-    fv, uv = convert(1.0, "velocity", units)
-    fw, uw = convert(1.0, "angular_velocity", units)
-    fixed = f" (fixed: {', '.join(result.fixed)})" if result.fixed else ""
-    click.echo(f"{case.name}: least-squares fit of the post-impact "
-               f"{'velocities and yaw rates' if include_yaw else 'velocities'}{fixed}")
+
     def where(k, name):
         if name in result.fixed:
             return "(fixed)"
         return f"search range [{result.bounds[k][0]:g}, {result.bounds[k][1]:g}]"
 
-    click.echo(f"  epsilon = {result.eps:.6f}   {where(0, 'eps')}")
-    click.echo(f"  beta    = {result.beta:.6f}   {where(1, 'beta')}   "
-               f"(mu = {float(solved.mu):.4f}, mu0 = {float(solved.mu0):.4f})")
+    if result.law != "kudlich-slibar":
+        return [f"  epsilon = {result.eps:.6f}   {where(0, 'eps')}",
+                f"  beta    = {result.beta:.6f}   {where(1, 'beta')}   "
+                f"(mu = {float(solved.mu):.4f}, mu0 = {float(solved.mu0):.4f})"]
+    mu_c = result.contact_friction
+    lower = result.lower_bounds.get("impact.mu_c")
+    shown = (f">= {lower:.6f}   (only a lower bound: the contact sticks)" if lower is not None
+             else f"= {mu_c:.6f}   {where(1, 'mu_c')}")
+    return [f"  k       = {result.eps:.6f}   {where(0, 'k')}", f"  mu_c    {shown}",
+            f"  (impulse ratio Pt / Pn = {float(solved.mu):.4f}; the same answer is Brach's "
+            f"at eps = {result.eps:.6g}, beta = {result.beta:.6g})"]
+
+
+def _print_fit(case, result, include_yaw, free, units) -> None:
+    """``pim fit``'s text output."""
+    from ..io.units import convert
+
+    ident = result.identifiability
+    for text in [*case.notes, *result.result.problems()]:     # before the table
+        click.echo(f"warning: {text}", err=True)
+    fv, uv = convert(1.0, "velocity", units)
+    fw, uw = convert(1.0, "angular_velocity", units)
+    fixed = f" (fixed: {', '.join(result.fixed)})" if result.fixed else ""
+    law = ""
+    if result.law == "kudlich-slibar":
+        law = " under the Kudlich-Slibar law (k, mu_c)"
+    elif result.law == "brach-capped":
+        law = (" under the friction-capped Brach law (eps, beta; cap mu_c = "
+               f"{result.contact_friction:g})")
+    click.echo(f"{case.name}: least-squares fit{law} of the post-impact "
+               f"{'velocities and yaw rates' if include_yaw else 'velocities'}{fixed}")
+    for line in _coefficient_lines(result):
+        click.echo(line)
     for line in _cost_lines(result, fv, uv):
         click.echo(line)
     for key, value in (result.values.items() if free else ()):
-        if key in ("impact.restitution", "impact.beta"):
+        if key in ("impact.restitution", "impact.beta", "impact.k", "impact.mu_c"):
             continue
         shown, unit = convert(value, _kind_of(key), units)
         click.echo(f"  {key} = {float(shown):.6g} {unit}")
-    if free and ident is not None:
+    if (free or result.law == "kudlich-slibar") and ident is not None:
         click.echo(f"  identifiability: rank {ident.rank} of {len(ident.names)} parameters, "
                    f"{ident.n_data} measured quantities")
         for text in ident.warnings:
@@ -225,7 +271,8 @@ def fit(case_name, include_yaw, eps, beta, eps_range, beta_range, free, units, a
         click.echo(f"  note: {line}")
     if len(result.minima) > 1:
         scale = 1.0 if result.chi_square else fv * fv
-        click.echo("  other local minima (eps, beta, cost): " + ", ".join(
+        names = "k, mu_c" if result.law == "kudlich-slibar" else "eps, beta"
+        click.echo(f"  other local minima ({names}, cost): " + ", ".join(
             f"({e:.4f}, {b:.4f}, {c * scale:.4g})" for e, b, c in result.minima[1:]))
     click.echo("")
     header = f"  {'term':<14} {'model':>10} {'measured':>10} {'residual':>10}  unit"

@@ -207,20 +207,13 @@ def require_brach(case, command: str) -> None:
     """A ValueError (one line, exit 2) when ``case`` names an impact law other than Brach's,
     which ``command`` cannot apply yet: never silently Brach's answer instead. The message
     says what to do: the Brach (eps, beta) giving the same answer for this case
-    (docs/impact-laws.md), or, for ``pim reconstruct``, why there is none."""
+    (docs/impact-laws.md), and which commands apply the law itself."""
     law = case.impact.law or "brach"
     if law == "brach":
         return
-    text = f"{command} cannot use impact law {law!r} yet (only 'brach'); "
-    if command == "pim reconstruct":
-        text += ("its equivalent Brach beta depends on the unknown speeds, so reconstruct "
-                 "under law 'brach' with impact.restitution = k and impact.beta in [unknown] "
-                 "(docs/impact-laws.md), then check the speeds with `pim solve --law "
-                 f"{law}`")
-    else:
-        text += f"{_brach_equivalent(case, law)}; `pim solve`, `pim sim`, `pim compare` and " \
-                "`pim animate` apply the law itself"
-    raise InputError(text)
+    raise InputError(f"{command} cannot use impact law {law!r} yet (only 'brach'); "
+                     f"{_brach_equivalent(case, law)}; `pim solve`, `pim sim`, `pim fit`, "
+                     "`pim compare`, `pim animate` and `pim reconstruct` apply the law itself")
 
 
 def _brach_equivalent(case, law: str) -> str:

@@ -13,7 +13,10 @@ DIR/reconstruction.csv and, with evidence, DIR/scene.png and DIR/reconstruction.
 reconstructed crash from the impact to rest).
 
 When the data cannot decide the unknowns, one line says what is missing and the exit code
-is 2: never a number.
+is 2: never a number. The inverse PIM applies the case's impact law (``impact.law``: Brach's
+(eps, beta), the friction-capped Brach law, or Kudlich-Slibar's (k, mu_c) with
+``impact.k`` / ``impact.mu_c`` in ``[unknown]``); the output names it, and a contact
+friction the contact does not reach is given as the lower bound it is (">= X").
 """
 
 from __future__ import annotations
@@ -35,7 +38,7 @@ from ..model.evidence import UNKNOWN_KINDS
 from ..model.numbers import InputError
 from ..plotting.reconstruction_animation import write_reconstruction_mp4
 from ..plotting.reconstruction_scene import reconstruction_figure
-from .main import case_argument, echo_json, json_option, require_brach, units_option
+from .main import case_argument, echo_json, json_option, units_option
 from .pre_impact_output import (
     pre_impact_html,
     pre_impact_json,
@@ -44,19 +47,33 @@ from .pre_impact_output import (
     pre_impact_rows,
 )
 
-__all__ = ["reconstruct", "reconstruction_rows", "evidence_drivers", "driver_lines"]
+__all__ = ["reconstruct", "reconstruction_rows", "law_line", "evidence_drivers",
+           "driver_lines"]
+
+#: How each impact law is named in the output.
+LAW_NAMES = {"brach": "Brach's PIM (eps, beta)",
+             "brach-capped": "friction-capped Brach (eps, beta, cap mu_c)",
+             "kudlich-slibar": "Kudlich-Slibar, PC-Crash / Virtual CRASH (k, mu_c)"}
+
+
+def law_line(rec: Reconstruction) -> str:
+    """The impact law the inverse PIM applied (one line for the report and the CLI)."""
+    law = rec.fit.law if rec.fit is not None else (rec.case.impact.law or "brach")
+    return f"Impact law: {LAW_NAMES[law]} (docs/impact-laws.md)."
 
 
 def reconstruction_rows(rec: Reconstruction, units: str) -> list[dict]:
     """Table rows in ``units``: name, unit, value, p5, p50, p95, main driver."""
     rows = []
+    lower = rec.fit.lower_bounds if rec.fit is not None else {}
     for r in rec.table():
         values, unit = convert([r["value"], r["p5"], r["p50"], r["p95"]], _kind(r["name"]),
                                units)
         driver = r["drivers"][0] if r["drivers"] else ("", float("nan"))
         rows.append({"name": r["name"], "unit": unit, "value": float(values[0]),
                      "p5": float(values[1]), "p50": float(values[2]), "p95": float(values[3]),
-                     "driver": driver[0], "driver_index": float(driver[1])})
+                     "driver": driver[0], "driver_index": float(driver[1]),
+                     "lower_bound": r["name"] in lower})
     if rec.momentum is not None:
         m = rec.momentum
         for i, (s, sd) in enumerate(((m.speed1, m.sigma1), (m.speed2, m.sigma2)), start=1):
@@ -160,7 +177,7 @@ def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
     n = rec.samples.n if rec.samples else 0
     source = ("the run-out inverse of each vehicle's rest evidence" if rec.post else
               "the case's [measured] post-impact motion")
-    lines = [f"# Reconstruction of {rec.case.name}", "",
+    lines = [f"# Reconstruction of {rec.case.name}", "", law_line(rec), "",
              f"Post-impact motion from {source}; unknowns by the inverse PIM (least squares "
              f"over the measured velocities and yaw rates, exact derivatives); "
              + (f"5/50/95 % from a Monte Carlo of {n} samples over the stated uncertainties "
@@ -173,7 +190,7 @@ def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
             "driver_index"] else r["driver"])
         spread = (f"{r['p5']:.4g} | {r['p50']:.4g} | {r['p95']:.4g}" if r["p5"] == r["p5"]
                   else " | ".join(["-"] * 3))
-        lines.append(f"| {r['name']} | {r['value']:.4g} | {spread} | {r['unit']} | {driver} |")
+        lines.append(f"| {r['name']} | {_value(r)} | {spread} | {r['unit']} | {driver} |")
     lines.append("")
     lines += pre_impact_markdown(pre_impact)
     if rec.samples:
@@ -199,6 +216,11 @@ def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
     return "\n".join(lines) + "\n"
 
 
+def _value(row: dict) -> str:
+    """A row's value; ">= X" where it only has a lower bound."""
+    return (">= " if row.get("lower_bound") else "") + f"{row['value']:.4g}"
+
+
 def _json(case, rows: list[dict], samples: int, messages, units: str) -> dict:
     """``--json``'s data: every value in ``units`` with its unit (NaN becomes null)."""
     def pick(r, keys):
@@ -207,7 +229,8 @@ def _json(case, rows: list[dict], samples: int, messages, units: str) -> dict:
     unknowns = [r for r in rows if not r["name"].startswith("momentum check")]
     momentum = [r for r in rows if r["name"].startswith("momentum check")]
     return {"case": case.name, "units": units, "samples": samples, "messages": messages,
-            "unknowns": {r["name"]: pick(r, ("value", "p5", "p50", "p95")) for r in unknowns},
+            "unknowns": {r["name"]: pick(r, ("value", "p5", "p50", "p95", "lower_bound"))
+                         for r in unknowns},
             "momentum_check": {r["name"].removeprefix("momentum check: "): pick(r, ("value",))
                                | {"sd": r["sd"]} for r in momentum}}
 
@@ -235,7 +258,6 @@ def reconstruct(case_name, out, samples, seed, workers, video, progress, units, 
     interrupt leaves an earlier run there as it was); its lock is taken before the work.
     """
     case = load_case(case_name)
-    require_brach(case, "pim reconstruct")
     units = units or case.units
     with output_folder(out, command="pim reconstruct") if out else \
             contextlib.nullcontext() as tmp:
@@ -287,14 +309,16 @@ def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
         data["goodness_of_fit"] = rec.goodness.to_dict() if rec.goodness else None
         data["evidence_drivers"] = evidence_drivers(rec, units)
         data["crush"] = _crush_json(rec, units)
+        data["law"] = rec.fit.law
         echo_json(data)
     else:
+        click.echo(law_line(rec))
         if rec.post is not None:
             click.echo(tyre_models_line(rec))
         for message in rec.messages:        # before the table, where a reader sees them
             click.echo(f"warning: {message}")
         for r in rows:
-            click.echo(f"{r['name']:32s} {r['value']:10.4g} {r['unit']}  "
+            click.echo(f"{r['name']:32s} {_value(r):>10s} {r['unit']}  "
                        f"{spread_text(r, samples)}")
         for line in pre_impact_lines(pre):
             click.echo(line)
@@ -349,7 +373,8 @@ def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: 
     def g(x):
         return "" if x != x else f"{x:.4g}"          # no percentiles: an empty cell
 
-    cells = [(r["name"], g(r["value"]), g(r["p5"]), g(r["p50"]), g(r["p95"]), r["unit"],
+    cells = [(r["name"], _value(r) if r["value"] == r["value"] else "", g(r["p5"]),
+              g(r["p50"]), g(r["p95"]), r["unit"],
               _driver(r)) for r in rows]
     n = rec.samples.n if rec.samples else 0
     body = [html.paragraph(
@@ -357,7 +382,7 @@ def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: 
                                       if rec.post else "the case's [measured] post-impact "
                                       "motion") + "; unknowns by the inverse PIM; "
         + (f"5/50/95 % from a Monte Carlo of {n} samples ({rec.samples.n_used} used)."
-           if n else "no Monte Carlo (--samples 0).")),
+           if n else "no Monte Carlo (--samples 0).") + " " + law_line(rec)),
         html.table(("unknown", "value", "5 %", "50 %", "95 %", "unit",
                     "main driver of the spread"), cells, title="Reconstructed unknowns",
                    note="CSV: `reconstruction.csv`", id="table-reconstruction"),

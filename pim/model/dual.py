@@ -7,7 +7,9 @@ differentiates the post-impact motion of a case with respect to epsilon, beta, G
 the pre-impact velocities and yaw rates, the CG positions, masses and yaw inertias
 (:data:`MOTION_INPUTS`); :func:`motion_of_inputs` does the same from a plain array of those
 inputs, which is what a fit of any inputs iterates on. The hand-derived derivatives in the
-test oracle ``tests/closed_form.py`` are tested against it.
+test oracle ``tests/closed_form.py`` are tested against it. The other impact laws
+(friction-capped Brach, Kudlich-Slibar) run the same formula with their impulse ratio on
+these duals (:func:`pim.model.impact_laws.motion_of_law`; :func:`where` selects a cap's side).
 """
 
 from __future__ import annotations
@@ -17,8 +19,8 @@ import numpy as np
 from . import formula
 from .case import Case
 
-__all__ = ["Dual", "cos_sin", "motion_jacobian", "motion_inputs", "motion_of_inputs",
-           "MOTION_OUTPUTS", "MOTION_INPUTS"]
+__all__ = ["Dual", "cos_sin", "where", "value_of", "seed_inputs", "motion_jacobian",
+           "motion_inputs", "motion_of_inputs", "MOTION_OUTPUTS", "MOTION_INPUTS"]
 
 
 class Dual:
@@ -117,6 +119,24 @@ def cos_sin(x):
     return Dual(c, -s[..., None] * x.grad), Dual(s, c[..., None] * x.grad)
 
 
+def value_of(x) -> np.ndarray:
+    """The value of a :class:`Dual`, or ``x`` as a float array."""
+    return x.value if isinstance(x, Dual) else np.asarray(x, dtype=float)
+
+
+def where(condition, a, b):
+    """``np.where(condition, a, b)`` for numbers, arrays and :class:`Dual` s: the value and
+    the gradient of the branch selected (a kink's derivative is that of the side taken)."""
+    if not isinstance(a, Dual) and not isinstance(b, Dual):
+        return np.where(condition, a, b)
+    (av, ag), (bv, bg) = Dual._split(a), Dual._split(b)
+    cond = np.asarray(condition, dtype=bool)
+    value = np.where(cond, av, bv)
+    width = (a if isinstance(a, Dual) else b).grad.shape[-1]
+    grad = np.where(cond[..., None], ag, bg)
+    return Dual(value, np.broadcast_to(grad, value.shape + (width,)))
+
+
 #: Inputs :func:`motion_jacobian` differentiates with respect to, in column order [SI].
 MOTION_INPUTS = ("impact.restitution", "impact.beta", "impact.normal_angle", "impact.point_x",
                  "impact.point_y", "vehicle1.velocity_x", "vehicle1.velocity_y",
@@ -168,14 +188,15 @@ def motion_jacobian(case: Case, eps, beta, approach_tol: float = 1e-12,
     return motion_of_inputs(motion_inputs(case, eps, beta), approach_tol, singular_tol)
 
 
-def _seeds(x: np.ndarray, tangent, jacobian: bool):
-    """The formula's inputs from the rows ``x``: ``seed(i)`` (input i), ``inverse(i)`` (its
-    inverse, d(1/m) = -dm/m^2, zero at infinite mass), cos and sin of Gamma (input 2), and
-    the gradient width; dual numbers carrying ``tangent`` (default: the identity) when
-    ``jacobian``, plain arrays otherwise."""
-    shape = x.shape[:-1]
+def seed_inputs(x: np.ndarray, tangent, jacobian: bool):
+    """The formula's inputs from the rows ``x`` (:data:`MOTION_INPUTS` first, any further
+    columns after them): ``seed(i)`` (input i), ``inverse(i)`` (its inverse, d(1/m) =
+    -dm/m^2, zero at infinite mass), cos and sin of Gamma (input 2), and the gradient width;
+    dual numbers carrying ``tangent`` (default: the identity) when ``jacobian``, plain
+    arrays otherwise."""
+    shape, n = x.shape[:-1], x.shape[-1]
     if tangent is None:
-        tangent = np.broadcast_to(np.eye(len(MOTION_INPUTS)), shape + (len(MOTION_INPUTS),) * 2)
+        tangent = np.broadcast_to(np.eye(n), shape + (n, n))
     tangent = np.asarray(tangent, dtype=float)
 
     def seed(index):
@@ -230,7 +251,7 @@ def motion_of_inputs(x, approach_tol: float = 1e-12, singular_tol: float = 1e-12
     """
     x = np.asarray(x, dtype=float)
     shape = x.shape[:-1]
-    seed, inverse, cs, sn, k = _seeds(x, tangent if jacobian else None, jacobian)
+    seed, inverse, cs, sn, k = seed_inputs(x, tangent if jacobian else None, jacobian)
     e, b = seed(0), seed(1)
     px, py = seed(3), seed(4)
     v1x, v1y, w1 = seed(5), seed(6), seed(7)

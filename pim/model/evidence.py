@@ -29,7 +29,7 @@ UNKNOWN_KINDS = {
         ("radius_of_gyration", "length"), ("yaw_inertia", "inertia"))},
     "impact.restitution": "dimensionless", "impact.beta": "dimensionless",
     "impact.normal_angle": "angle", "impact.point_x": "length", "impact.point_y": "length",
-    "impact.point_along": "length",
+    "impact.point_along": "length", "impact.k": "dimensionless", "impact.mu_c": "dimensionless",
 }
 
 

@@ -23,6 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from .case import Case
+from .dual import Dual, where
 from .numbers import InputError, real_array
 from .result import Result
 from .solver import constraints, solve
@@ -30,29 +31,32 @@ from .solver import constraints, solve
 __all__ = ["capped_beta", "solve_capped"]
 
 
-def capped_beta(mu0, beta, limit) -> np.ndarray:
+def capped_beta(mu0, beta, limit):
     """Effective fraction of mu0 under a friction cap: min(beta, limit / |mu0|) [-].
 
     Parameters
     ----------
-    mu0 : array_like
+    mu0 : array_like or Dual
         Critical impulse ratio [-] (Brach eq. 6.60).
-    beta : array_like
+    beta : array_like or Dual
         Requested fraction of mu0 [-], >= 0.
-    limit : array_like
+    limit : array_like or Dual
         Friction limit [-], >= 0: the largest |Pt / Pn| the contact can transmit.
 
     Returns
     -------
-    ndarray
+    ndarray or Dual
         beta_eff, such that beta_eff mu0 = sign(mu0) min(beta |mu0|, limit); equal to beta
-        where mu0 = 0.
+        where mu0 = 0. On dual numbers (:mod:`pim.model.dual`) the derivative is that of
+        the side taken: beta's where beta |mu0| <= limit (the cap is not reached, ties
+        included), limit / |mu0|'s beyond (the cap is a kink).
     """
-    mu0, beta, limit = np.broadcast_arrays(np.asarray(mu0, float), np.asarray(beta, float),
-                                           np.asarray(limit, float))
-    ratio = np.divide(limit, np.abs(mu0), out=np.full(mu0.shape, np.inf),
-                      where=np.abs(mu0) > 0)
-    return np.minimum(beta, ratio)
+    if not any(isinstance(v, Dual) for v in (mu0, beta, limit)):
+        mu0, beta, limit = np.broadcast_arrays(np.asarray(mu0, float), np.asarray(beta, float),
+                                               np.asarray(limit, float))
+    size = abs(mu0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return where(beta * size <= limit, beta, limit / size)
 
 
 def solve_capped(case: Case, eps=None, beta=None, limit=np.inf) -> Result:

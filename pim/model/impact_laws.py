@@ -41,22 +41,32 @@ and mu_c = |beta mu0(eps)| when its mu has the sign of mu0(0) and |mu| <= |mu0(0
 (:func:`brach_as_kudlich_slibar`, NaN otherwise). Both assume the sticking compression
 impulse pushes (Pn_c > 0). The laws are planar: the impact point's height, pitch and roll
 are outside their scope.
+
+*Fits.* :func:`motion_of_law` evaluates every law on dual numbers (:mod:`pim.model.dual`)
+through the one formula with the law's impulse ratio (:func:`kudlich_slibar_ratio`,
+:func:`pim.model.friction_cap.capped_beta`), so that the fitting engine fits (k, mu_c) with
+exact derivatives, one-sided at the cap; :func:`needed_friction` is the friction above
+which mu_c no longer matters (a fit then states it as a lower bound).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from . import formula
 from .case import FRICTION_LAWS, LAWS, Case
-from .friction_cap import solve_capped
+from .dual import MOTION_INPUTS, motion_of_inputs, seed_inputs, value_of, where
+from .friction_cap import capped_beta, solve_capped
 from .geometry import contact_velocity, cross, dot, perp, vec
 from .numbers import InputError, real_array
 from .result import Result
-from .solver import APPROACH_TOLERANCE, SINGULAR_TOLERANCE, solve
+from .solver import APPROACH_TOLERANCE, SINGULAR_TOLERANCE, solve, unknown_hint
 
 __all__ = ["LAWS", "FRICTION_LAWS", "LawResult", "kudlich_slibar_impulse",
            "solve_kudlich_slibar", "solve_law", "law_of", "kudlich_slibar_as_brach",
-           "brach_as_kudlich_slibar", "check_restitution", "check_contact_friction"]
+           "brach_as_kudlich_slibar", "check_restitution", "check_contact_friction",
+           "kudlich_slibar_ratio", "LAW_CODES", "LAW_INPUTS", "motion_of_law",
+           "needed_friction"]
 
 
 def check_restitution(k, name: str = "restitution k") -> np.ndarray:
@@ -260,10 +270,10 @@ def solve_kudlich_slibar(case: Case, k=None, mu_c=None, approach_tol: float = AP
     mu_c = case.impact.contact_friction if mu_c is None else mu_c
     if k is None:
         raise InputError("restitution k is required for law 'kudlich-slibar': give it or set "
-                         "impact.restitution in the case")
+                         f"impact.restitution in the case{unknown_hint(case)}")
     if mu_c is None:
         raise InputError("contact_friction mu_c is required for law 'kudlich-slibar': give it "
-                         "or set impact.contact_friction in the case")
+                         f"or set impact.contact_friction in the case{unknown_hint(case)}")
     k, mu_c = check_restitution(k), check_contact_friction(mu_c)
     fields, beta = _fields(case, k, mu_c, approach_tol, singular_tol)
     return LawResult(case, k, beta, fields, law="kudlich-slibar", contact_friction=mu_c)
@@ -342,7 +352,7 @@ def kudlich_slibar_as_brach(case: Case, k, mu_c) -> tuple[np.ndarray, np.ndarray
     """
     k, mu_c = check_restitution(k), check_contact_friction(mu_c)
     mu0_0, mu0_k = _mu0(case, 0.0), _mu0(case, k)
-    mu = np.sign(mu0_0) * np.minimum(np.abs(mu0_0), mu_c)
+    mu = kudlich_slibar_ratio(mu0_0, mu_c)
     with np.errstate(divide="ignore", invalid="ignore"):
         beta = np.where(mu == 0, np.where(mu0_k == 0, 1.0, 0.0), mu / mu0_k)
     return np.broadcast_to(k, np.shape(beta)).astype(float), beta
@@ -367,3 +377,156 @@ def brach_as_kudlich_slibar(case: Case, eps, beta) -> tuple[np.ndarray, np.ndarr
                       & (np.abs(mu) <= np.abs(mu0_0) * (1 + 1e-12)))
     mu_c = np.where(ok, np.abs(mu), np.nan)
     return np.where(ok, eps, np.nan), mu_c
+
+
+def kudlich_slibar_ratio(mu0_0, mu_c):
+    """PIM's impulse ratio mu = Pt / Pn of the Kudlich-Slibar law [-]:
+    sign(mu0(0)) min(|mu0(0)|, mu_c).
+
+    Parameters
+    ----------
+    mu0_0 : array_like or Dual
+        The compression phase's sticking ratio mu0 at eps = 0 [-].
+    mu_c : array_like or Dual
+        Contact friction [-] >= 0 (inf: always stick).
+
+    Returns
+    -------
+    ndarray or Dual
+        mu [-]. On dual numbers the derivative is the sticking side's (d mu0(0)) where
+        |mu0(0)| <= mu_c, ties included, and the sliding side's (sign(mu0(0)) d mu_c)
+        beyond: the cap is a kink, its derivative one-sided.
+
+    Notes
+    -----
+    Kudlich (1966), Slibar; Steffan & Moser, SAE 960886: the compression impulse sticks
+    unless that needs |Pt| > mu_c Pn, then slides at the cap (module docstring).
+    """
+    with np.errstate(invalid="ignore"):
+        return where(abs(mu0_0) <= mu_c, mu0_0, np.sign(value_of(mu0_0)) * mu_c)
+
+
+#: Codes of the impact laws in a numeric state row (:data:`LAW_INPUTS`' last column).
+LAW_CODES = {"brach": 0.0, "brach-capped": 1.0, "kudlich-slibar": 2.0}
+#: Inputs of :func:`motion_of_law`: :data:`pim.model.dual.MOTION_INPUTS` (restitution is
+#: eps or k, beta is unused by "kudlich-slibar"), then the contact friction mu_c (the cap of
+#: "brach-capped"; unused by "brach").
+LAW_INPUTS = MOTION_INPUTS + ("impact.contact_friction",)
+
+
+def _contact(seed, inverse, cs, sn, eps, beta, approach_tol, singular_tol):
+    """:func:`pim.model.formula.contact` of the seeded inputs (the arms, inverse masses and
+    motion of :data:`MOTION_INPUTS`) at ``eps`` and ``beta``, and those inputs."""
+    px, py = seed(3), seed(4)
+    args = (inverse(15), inverse(16), px - seed(11), py - seed(12), seed(5), seed(6), seed(7),
+            inverse(17), inverse(18), px - seed(13), py - seed(14), seed(8), seed(9), seed(10))
+    return formula.contact(cs, sn, *args, eps, beta, approach_tol,
+                           singular_tol), args
+
+
+def _ratio_and_contact(x, law, approach_tol, singular_tol, jacobian, tangent):
+    """The law's contact at its restitution, the tangential impulse per unit scale
+    mu Pn0 [N s], the formula's other inputs and the gradient width."""
+    seed, inverse, cs, sn, width = seed_inputs(x, tangent, jacobian)
+    restitution, mu_c = seed(0), seed(len(MOTION_INPUTS))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        if law == "brach-capped":       # mu = sign(mu0) min(beta |mu0(eps)|, mu_c)
+            c, args = _contact(seed, inverse, cs, sn, restitution, 1.0, approach_tol,
+                               singular_tol)
+            tangential = capped_beta(c[8] / c[7], seed(1), mu_c) * c[8]
+        else:                           # mu = sign(mu0(0)) min(|mu0(0)|, mu_c), eps = k
+            c0, _ = _contact(seed, inverse, cs, sn, 0.0, 1.0, approach_tol, singular_tol)
+            c, args = _contact(seed, inverse, cs, sn, restitution, 1.0, approach_tol,
+                               singular_tol)
+            tangential = kudlich_slibar_ratio(c0[8] / c0[7], mu_c) * c[7]
+    return c, tangential, args, cs, sn, width
+
+
+def motion_of_law(x, law: str = "brach", approach_tol: float = 1e-12,
+                  singular_tol: float = 1e-12, jacobian: bool = True, tangent=None):
+    """Post-impact motion of the inputs ``x`` under an impact law, and its exact Jacobian.
+
+    Parameters
+    ----------
+    x : array_like, shape S + (20,)
+        Values of :data:`LAW_INPUTS` [SI].
+    law : {"brach", "brach-capped", "kudlich-slibar"}
+        The impact law (module docstring).
+    approach_tol, singular_tol : float
+        As in :func:`pim.solve`.
+    jacobian : bool
+        False: plain arithmetic, no derivatives.
+    tangent : array_like, shape S + (20, n), optional
+        d x / d p for n parameters p (as in :func:`pim.model.dual.motion_of_inputs`).
+
+    Returns
+    -------
+    values : ndarray, shape S + (10,)
+        :data:`pim.model.dual.MOTION_OUTPUTS` [N s, m/s, rad/s].
+    jacobian : ndarray, shape S + (10, 20) (S + (10, n) with ``tangent``), or None
+        d output / d input by dual numbers; zero where the vehicles do not approach, NaN
+        where the impulse is unbounded.
+
+    Notes
+    -----
+    Every law is PIM with an impulse ratio mu = Pt / Pn (docs/impact-laws.md): Brach's
+    mu = beta mu0(eps) (:func:`pim.model.dual.motion_of_inputs`); friction-capped Brach
+    mu = sign(mu0) min(beta |mu0(eps)|, mu_c) (:func:`pim.model.friction_cap.capped_beta`);
+    Kudlich-Slibar eps = k and mu = sign(mu0(0)) min(|mu0(0)|, mu_c)
+    (:func:`kudlich_slibar_ratio`). With the critical impulse (Pn0, Pt0) at eps, the normal
+    row K_nn Pn + K_nt Pt = -(1 + eps) u_n with Pt = mu Pn gives Pn = s Pn0, Pt = s mu Pn0,
+    s = drive / (drive + K_nt (mu Pn0 - Pt0)) (drive = -(1 + eps) u_n; Brach & Brach 2011,
+    eqs. 6.55-6.62), free of a division by mu0(eps). The caps are kinks: at them the
+    Jacobian is the derivative of the side taken (the uncapped one at a tie), one-sided.
+    """
+    x = np.asarray(x, dtype=float)
+    n_in = len(MOTION_INPUTS)
+    if law == "brach":
+        return motion_of_inputs(x[..., :n_in], approach_tol, singular_tol, jacobian,
+                                None if tangent is None else np.asarray(tangent)[..., :n_in, :])
+    if law not in LAW_CODES:
+        raise InputError(f"law must be one of {', '.join(map(repr, LAWS))}, got {law!r}")
+    c, tangential, args, cs, sn, width = _ratio_and_contact(
+        x, law, approach_tol, singular_tol, jacobian, tangent if jacobian else None)
+    k_nt, pn0, pt0, drive, appr = c[5], c[7], c[8], c[9], c[11]
+    excess = k_nt * (tangential - pt0)
+    denom = drive + excess
+    singular = appr & (abs(value_of(denom)) <= singular_tol * (
+        abs(value_of(drive)) + abs(value_of(excess))))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        scale = where(appr & ~singular, drive / denom, 0.0) * np.where(singular, np.nan, 1.0)
+    out = formula.post_impact(scale, pn0, tangential, 1.0, cs, sn, *args)
+    shape = x.shape[:-1]
+    values = np.stack([np.broadcast_to(value_of(o), shape) for o in out], axis=-1)
+    if not jacobian:
+        return values, None
+    jac = np.stack([np.broadcast_to(o.grad, shape + (width,)) for o in out], axis=-2)
+    return values, jac
+
+
+def needed_friction(x, law: str) -> np.ndarray:
+    """The least contact friction that leaves the law's answer uncapped [-].
+
+    "kudlich-slibar": |mu0(0)|, the sticking ratio of the compression phase (any
+    mu_c >= it gives the sticking answer); "brach-capped": beta |mu0(eps)|; "brach": 0.
+
+    Parameters
+    ----------
+    x : array_like, shape S + (20,)
+        Values of :data:`LAW_INPUTS` [SI].
+    law : str
+        The impact law.
+
+    Returns
+    -------
+    ndarray, shape S
+        [-]; NaN where the vehicles do not approach.
+    """
+    x = np.asarray(x, dtype=float)
+    if law == "brach":
+        return np.zeros(x.shape[:-1])
+    seed, inverse, cs, sn, _ = seed_inputs(x, None, False)
+    eps, beta = (0.0, 1.0) if law == "kudlich-slibar" else (seed(0), seed(1))
+    c, _ = _contact(seed, inverse, cs, sn, eps, 1.0, 1e-12, 1e-12)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(c[11], np.abs(beta * c[8] / c[7]), np.nan)

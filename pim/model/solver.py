@@ -33,7 +33,7 @@ from .geometry import vec
 from .numbers import InputError, checked_number, real_array
 from .result import Result
 
-__all__ = ["solve", "constraints", "APPROACH_TOLERANCE", "SINGULAR_TOLERANCE",
+__all__ = ["solve", "constraints", "unknown_hint", "APPROACH_TOLERANCE", "SINGULAR_TOLERANCE",
            "FAST_PATH_MIN_SIZE"]
 
 #: A normal approach u_n smaller than this fraction of |u_n| + |u_t| is round-off, not an
@@ -83,13 +83,17 @@ def defaults(case: Case, eps=None, beta=None):
     if eps is None:
         eps = case.impact.restitution
         if eps is None:
-            hint = ("; this case names unknowns in [unknown]: `pim reconstruct` solves them"
-                    if getattr(case, "unknown", None) else "")
             raise InputError("eps is required: give it or set impact.restitution in the "
-                             f"case{hint}")
+                             f"case{unknown_hint(case)}")
     if beta is None:
         beta = 1.0 if case.impact.beta is None else case.impact.beta
     return eps, beta
+
+
+def unknown_hint(case: Case) -> str:
+    """What to run when a case's missing coefficient is one of its ``[unknown]``s ("" else)."""
+    return ("; this case names unknowns in [unknown]: `pim reconstruct` solves them"
+            if getattr(case, "unknown", None) else "")
 
 
 def _check_eps(eps) -> np.ndarray:
