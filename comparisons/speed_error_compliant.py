@@ -10,26 +10,27 @@ vehicles (stick-slip). Each is integrated
   (implicit) at rtol in :data:`RTOLS`,
 
 against the reference: DOP853 at the tightest rtol of :data:`REFERENCE_RTOLS` (1e-8, 1e-9,
-1e-10) that fits the budget :data:`REFERENCE_STEPS` (each tighter rung is tried only when the
-last one took under a quarter of the budget's steps: a step count, so the choice does not
-depend on the machine's load; tighter tolerances approach round-off and can cost 10^4-10^5
-steps: the pickup-into-sedan case took 262 s and 63 359 steps at rtol 1e-12). The
-tolerance reached and the reference's spread (its difference from the rung before) are
-reported. Swept rtols tighter than 10x the reference's are dropped (they would measure the
-reference), and a method's tighter rtols (or pymunk's finer steps) are skipped as
-"over_budget" once the last run took more than a third of :data:`RUN_BUDGET`. The error is
-:func:`sim.error_measure.impact_error` (largest error in the impact's velocity changes,
-relative to the largest change); the wall time per impact is the best of ``repeats`` runs.
-The Pareto front is :func:`comparisons.speed_error.pareto_front`; the recommended setting is
-the fastest run on the front that reaches :data:`TARGET` (1e-3, the issue's goal), and the
-fastest reaching 1e-6 is reported per integrator.
+1e-10) that fits the budget :data:`REFERENCE_STEPS` (each tighter rung is tried only when
+the last one took under a quarter of the budget's steps, and is stopped at the budget
+(``CompliantSettings.max_steps``), the rung before it then being the reference: a step
+count, so the choice does not depend on the machine's load; tighter tolerances approach
+round-off and can cost 10^4-10^5 steps: the pickup-into-sedan case took 262 s and 63 359
+steps at rtol 1e-12). The tolerance reached and the reference's spread (its difference from
+the rung before) are reported. Swept rtols tighter than 10x the reference's are dropped
+(they would measure the reference), and a method's tighter rtols (or pymunk's finer steps)
+are skipped as "over_budget" once the last run took more than a third of :data:`RUN_BUDGET`.
+The error is :func:`sim.error_measure.impact_error` (largest error in the impact's velocity
+changes, relative to the largest change); the wall time per impact is the best of
+``repeats`` runs. The Pareto front is :func:`comparisons.speed_error.pareto_front`; the
+recommended setting is the fastest run on the front that reaches :data:`TARGET` (1e-3, the
+issue's goal), and the fastest reaching 1e-6 is reported per integrator.
 """
 
 from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -154,7 +155,9 @@ def reference_within_budget(case: pim.Case, eps: float, stiffness: float, fricti
                             ) -> Reference:
     """DOP853 at the tightest of ``rtols`` (loosest first) that fits ``budget`` steps.
 
-    The next rung runs only if the last took under budget / 4 steps (module notes). ``spread`` is
+    The next rung runs only if the last took under budget / 4 steps (module notes), and
+    stops at ``budget`` steps (``CompliantSettings.max_steps``): a rung that would take more
+    is abandoned and the one before it is the reference. ``spread`` is
     :func:`sim.error_measure.impact_error` of the last rung against the one before (NaN
     with a single rung): an upper estimate of the reference's own error.
     """
@@ -162,8 +165,18 @@ def reference_within_budget(case: pim.Case, eps: float, stiffness: float, fricti
     for rtol in rtols:
         if results and results[-1][1].steps > budget / 4.0:
             break
-        out = sim.reference_compliant(case, eps, stiffness, friction=friction,
-                                      settings=sim.CompliantSettings(record=False, rtol=rtol))
+        settings = sim.CompliantSettings(record=False, rtol=rtol)
+        if results:                       # the first rung runs whatever it costs
+            settings = replace(settings, max_steps=budget)
+        start = time.perf_counter()
+        try:
+            out = sim.reference_compliant(case, eps, stiffness, friction=friction,
+                                          settings=settings)
+        except sim.SimulationError as exc:
+            if not results or exc.kind != "not_converged":
+                raise
+            spent += time.perf_counter() - start
+            break
         spent += out.wall_time
         results.append((rtol, out))
     rtol, ref = results[-1]

@@ -9,11 +9,17 @@ after it has moved *all* bodies in the step, so the force is evaluated at the ne
 
     x_{n+1} = x_n + v_n dt,    v_{n+1} = v_n + F(x_{n+1}, v_n) dt / m,
 
-first order, stable for omega dt < 2, with linear momentum and angular momentum about any
-fixed point conserved to round-off (both bodies receive equal and opposite forces at the
-same point in the same step). The memory of the contact law is updated by its implicit
-step: delta_max = max(delta_max, delta), the friction spring by
-:func:`sim.contact_law.tangential_step`.
+stable for omega dt < 2, with linear momentum and angular momentum about any fixed point
+conserved to round-off (both bodies receive equal and opposite forces at the same point in
+the same step). Its velocities belong to the middle of the steps (the leapfrog, second
+order for forces of the positions): the slip the friction spring integrates is taken at the
+middle of the step (:func:`midstep`), the tyre forces at its end (:meth:`_Stepper.ahead`),
+the run starts with a half kick, the post-impact velocities are taken back to the
+separation instant and the release of a plastic friction force (r = 0) is located inside
+its step (:func:`plastic_release`), so that every scene converges at second order
+(docs/contact-model.md, "Convergence of pymunk to the reference"). The memory of the
+contact law is updated by its implicit step: delta_max = max(delta_max, delta), the
+friction spring by :func:`sim.contact_law.tangential_step`.
 
 The contact ends when the normal force has returned to zero on unloading (delta below the
 permanent crush); the separation time is interpolated inside the last step. A step too
@@ -148,6 +154,10 @@ class ContactMemory:
         Outline contact: the normal of the last step with overlap.
     separated : bool
         The normal force returned to zero on unloading in this step.
+    slip : float
+        Tangential slip of the last step [m/s] (at the middle of the step).
+    friction_force : ndarray (2,) or None
+        Friction force on vehicle 1 applied in the last step [N].
     """
 
     on: bool = True
@@ -158,6 +168,8 @@ class ContactMemory:
     z: float = 0.0
     normal: np.ndarray | None = None
     separated: bool = False
+    slip: float = 0.0
+    friction_force: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -225,9 +237,28 @@ def read_kinematics(body1, body2) -> Kinematics:
     return tuple(out)
 
 
+def midstep(kin: Kinematics, dt: float) -> Kinematics:
+    """``kin`` with the positions and angles moved back half a step of their velocities.
+
+    In the velocity callback pymunk has moved the bodies from t_n to t_{n+1} with the
+    velocities it holds, x_{n+1} = x_n + v dt: those velocities are the ones of the middle
+    of the step, and this is the state that goes with them (docs/contact-model.md,
+    "Integration").
+    """
+    x1, a1, v1, w1, x2, a2, v2, w2 = kin
+    h = 0.5 * dt
+    return (x1 - v1 * h, a1 - w1 * h, v1, w1, x2 - v2 * h, a2 - w2 * h, v2, w2)
+
+
 def contact_geometry(problem: CompliantProblem, memory: ContactMemory, kin: Kinematics,
-                     obstacle, when: float) -> ContactGeometry:
+                     obstacle, when: float, dt: float = 0.0) -> ContactGeometry:
     """The point or outline contact at ``kin`` (docs/contact-model.md).
+
+    The point contact's crush is taken at ``kin`` (the end of the step) and, with ``dt`` >
+    0, its tangential slip at :func:`midstep` (the middle of the step, where pymunk's
+    velocities belong): the slip the friction spring integrates over the step is then
+    second-order accurate, as the crush is (with the slip at the end of the step a sticking
+    contact converged to first order only).
 
     Raises
     ------
@@ -236,6 +267,8 @@ def contact_geometry(problem: CompliantProblem, memory: ContactMemory, kin: Kine
     """
     if problem.geometry == "point":
         point, n, t, delta, slip_n, slip_t = point_contact(problem, *kin)
+        if dt > 0.0:
+            slip_t = point_contact(problem, *midstep(kin, dt))[5]
         return ContactGeometry(point, n, t, delta, slip_t, slip_n)
     x1, a1, v1, w1, x2, a2, v2, w2 = kin
     poly1, poly2 = placed_outlines(problem, np.r_[x1, a1, v1, w1, x2, a2, v2, w2])
@@ -283,8 +316,29 @@ def contact_step(problem: CompliantProblem, memory: ContactMemory, geo: ContactG
         sticking = abs(z) < limit * (1 - 1e-9)
     new = replace(memory, on=on, started=started, delta_max=delta_max, delta=delta,
                   prev_delta=memory.delta, z=z,
-                  normal=geo.normal if geo.overlap else memory.normal, separated=not on)
-    return new, ContactForce(fn * geo.normal + ft * geo.tangent, fn, ft, sticking)
+                  normal=geo.normal if geo.overlap else memory.normal, separated=not on,
+                  slip=geo.slip_t, friction_force=ft * geo.tangent)
+    force = fn * geo.normal + ft * geo.tangent + plastic_release(problem, memory, geo)
+    return new, ContactForce(force, fn, ft, sticking)
+
+
+def plastic_release(problem: CompliantProblem, memory: ContactMemory,
+                    geo: ContactGeometry) -> np.ndarray:
+    """Correction [N] for a friction force released inside the last kick (r = 0).
+
+    With tangential recovery r = 0 the friction force drops to zero the moment the slip
+    turns back against z. The last kick applied the force ``memory.friction_force`` over
+    the whole of [t_{n-1/2}, t_{n+1/2}] (the mid-steps where the slips ``memory.slip`` and
+    ``geo.slip_t`` belong); the slip, interpolated linearly, turned at t* inside it, so the
+    share (t_{n+1/2} - t*) / dt = s_1 / (s_1 - s_0) of that impulse is taken back in this
+    step. Without it the jump is located to within a step only and the scene converges at
+    first order (docs/contact-model.md, "Convergence of pymunk to the reference").
+    """
+    s0, s1 = memory.slip, geo.slip_t
+    if (problem.tangential_recovery > 0.0 or memory.friction_force is None
+            or not (memory.z * s1 < 0.0 and s0 * s1 < 0.0)):
+        return np.zeros(2)
+    return -memory.friction_force * (s1 / (s1 - s0))
 
 
 def moments(point, force, x1, x2) -> tuple[float, float]:
@@ -408,6 +462,38 @@ class _Stepper:
         if body2.body_type == pymunk.Body.DYNAMIC:
             body2.velocity_func = self.velocity2
 
+    def accelerations(self) -> tuple:
+        """(a1 (2,), yaw acceleration 1, a2, yaw acceleration 2) of the last kick [SI]."""
+        (fx1, fy1, m1), (fx2, fy2, m2) = self.loads
+        p = self.p
+        if p.fixed2:
+            return np.array([fx1, fy1]) / p.mass1, m1 / p.inertia1, np.zeros(2), 0.0
+        return (np.array([fx1, fy1]) / p.mass1, m1 / p.inertia1,
+                np.array([fx2, fy2]) / p.mass2, m2 / p.inertia2)
+
+    def ahead(self, kin: Kinematics, span: float | None = None) -> Kinematics:
+        """``kin`` with the velocities moved on by ``span`` (default dt / 2) of the last
+        kick's accelerations: from the middle of the step, where pymunk's velocities
+        belong, to its end, where the velocity-dependent tyre force is wanted."""
+        x1, a1, v1, w1, x2, a2, v2, w2 = kin
+        h = 0.5 * self.dt if span is None else span
+        acc1, alpha1, acc2, alpha2 = self.accelerations()
+        return (x1, a1, v1 + acc1 * h, w1 + alpha1 * h, x2, a2, v2 + acc2 * h,
+                w2 + alpha2 * h)
+
+    def half_kick(self) -> None:
+        """Start the leapfrog: the velocities of the first step are those at dt / 2, so the
+        forces at t = 0 (the tyres; the contact force is zero there) act for half a step."""
+        if self.p.tyre_friction <= 0.0:
+            return
+        t1, n1, t2, n2, _ = tyre_loads(self.p, read_kinematics(self.b1, self.b2))
+        self.loads = ((float(t1[0]), float(t1[1]), float(n1)),
+                      (float(t2[0]), float(t2[1]), float(n2)))
+        _, _, v1, w1, _, _, v2, w2 = self.ahead(read_kinematics(self.b1, self.b2))
+        for body, v, w in ((self.b1, v1, w1), (self.b2, v2, w2)):
+            if body.body_type == pymunk.Body.DYNAMIC:
+                body.velocity, body.angular_velocity = (float(v[0]), float(v[1])), float(w)
+
     def step(self) -> None:
         """One pymunk step; re-raises what a callback raised."""
         self.space.step(self.dt)
@@ -442,7 +528,7 @@ class _Stepper:
         when = self.start + (self.step_count + 1) * self.dt
         mem, tally = self.memory, self.tally
         if mem.on:
-            geo = contact_geometry(self.p, mem, kin, self.obstacle, when)
+            geo = contact_geometry(self.p, mem, kin, self.obstacle, when, self.dt)
             if mem.started or geo.delta > 0.0:
                 if tally.initial_sign is None:
                     tally.initial_sign = math.copysign(1.0, geo.slip_t) if geo.slip_t else 0.0
@@ -455,7 +541,7 @@ class _Stepper:
                 tally.add(geo, cf, mem.z, self.dt, when, self.p.friction, kin)
                 f1, f2 = cf.force, -cf.force
                 m1, m2 = moments(geo.point, cf.force, kin[0], kin[4])
-        t1, n1, t2, n2, power = tyre_loads(self.p, kin)
+        t1, n1, t2, n2, power = tyre_loads(self.p, self.ahead(kin))
         tally.tyre_work += power * self.dt
         f1, f2, m1, m2 = f1 + t1, f2 + t2, m1 + n1, m2 + n2
         return ((float(f1[0]), float(f1[1]), float(m1)), (float(f2[0]), float(f2[1]),
@@ -530,6 +616,21 @@ def _separation_time(stepper: _Stepper, delta_p: float) -> float:
     return stepper.start + (stepper.step_count - 1 + frac) * stepper.dt
 
 
+def _post_velocities(stepper: _Stepper, t_end: float) -> tuple:
+    """(v1, v2, w1, w2) at the separation instant ``t_end``.
+
+    pymunk's velocities after the last step belong half a step past its end; without tyres
+    nothing acts after separation and they are the answer; with tyres they are taken back
+    to ``t_end`` along the last kick's (tyre) accelerations.
+    """
+    now = stepper.start + stepper.step_count * stepper.dt
+    kin = read_kinematics(stepper.b1, stepper.b2)
+    if stepper.p.tyre_friction > 0.0:
+        kin = stepper.ahead(kin, -(0.5 * stepper.dt + now - t_end))
+    _, _, v1, w1, _, _, v2, w2 = kin
+    return np.array(v1), np.array(v2), float(w1), float(w2)
+
+
 def _records(problem: CompliantProblem, rows: list, stepper: _Stepper, separation: int):
     """Trajectory, contact history and the secondary impact time from the recorded rows."""
     arr = np.array(rows, float)
@@ -594,13 +695,13 @@ def simulate_compliant(case: pim.Case, eps, stiffness, friction=0.0, geometry="p
     space, body1, body2 = _space(problem, state)
     stepper = _Stepper(problem, space, body1, body2, dt, start)
     rows = [_row(start, body1, body2)] if s.record else None
+    stepper.half_kick()
     _run_contact(stepper, rows)
-    # the force was zero in the last step: these are the post-impact velocities
+    # the contact force was zero in the last step: these are the post-impact velocities
     delta_p = float(permanent_crush(stepper.memory.delta_max, problem.eps, problem.preload,
                                     problem.stiffness))
     t_end = _separation_time(stepper, delta_p)
-    post = (np.array(body1.velocity), np.array(body2.velocity),
-            float(body1.angular_velocity), float(body2.angular_velocity))
+    post = _post_velocities(stepper, t_end)
     separation_index = len(rows) - 1 if rows is not None else 0
     stepper.memory = replace(stepper.memory, on=False)   # free motion; tyres still act
     for _ in range(int(math.ceil(s.duration / dt)) if s.duration > 0 else 0):

@@ -85,6 +85,15 @@ class CompliantSettings:
         Free-rolling wheels (lateral tyre force only) or locked wheels.
     max_contact_time : float
         Longest contact accepted [s], > 0; longer is "never_separated".
+    max_phases : int
+        Most smooth phases (between two crush or friction mode switches) the reference
+        :func:`sim.reference_compliant` integrates, >= 1; more is "not_converged" (a
+        chattering stick/slip switch). The bundled cases need at most 8
+        (docs/contact-model.md, "Caps of the reference").
+    max_steps : int
+        Most accepted ``solve_ivp`` steps of the reference over all phases, >= 1; more is
+        "not_converged" (a stiff scene on an explicit method, or a tolerance near round-off).
+        The bundled cases need at most 24 502 at the default rtol.
     duration : float
         Free motion simulated after separation [s], >= 0 (animation, secondary impacts);
         tyre forces keep acting in it when tyre friction is on.
@@ -104,6 +113,8 @@ class CompliantSettings:
     preload: float = 0.0
     tyre_mode: str = "rolling"
     max_contact_time: float = 1.0
+    max_phases: int = 1000
+    max_steps: int = 1_000_000
     duration: float = 0.0
     record: bool = True
     gravity: float = STANDARD_GRAVITY
@@ -115,7 +126,8 @@ class CompliantSettings:
             if dt > 1.0:
                 raise InputError(f"settings.dt must be in (0, 1] [s], got {dt!r}")
             set_(self, "dt", dt)
-        for name, low in (("min_steps", 2), ("steps_per_contact", 2)):
+        for name, low in (("min_steps", 2), ("steps_per_contact", 2), ("max_phases", 1),
+                          ("max_steps", 1)):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int) or value < low:
                 raise InputError(f"settings.{name} must be an integer >= {low}, got {value!r}")

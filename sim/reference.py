@@ -17,6 +17,10 @@ fixed steps:
   sliding (z on the cone, dz/dt = +-dz_max/dt with dz_max/dt = mu_c (dF_n/d delta)
   (d delta/dt) / k_t, F_t = -+mu_c F_n) until the slip stops pushing outward.
 
+Each smooth phase is one ``solve_ivp`` call; ``settings.max_phases`` caps the phases (a
+chattering stick/slip switch) and ``settings.max_steps`` the accepted steps over all of them
+(a stiff scene), both raising ``SimulationError("not_converged")``.
+
 State: x1, y1, theta1, vx1, vy1, w1, x2, y2, theta2, vx2, vy2, w2, z (a fixed vehicle 2
 keeps zero velocity). Nothing is shared with the pymunk stepping of :mod:`sim.compliant`.
 """
@@ -212,8 +216,32 @@ def _first_mode(model: _Model, y, directions: set) -> None:
             directions.add(model.mode)
 
 
-def _phase(model: _Model, y, t0: float, events: dict, atol):
-    """solve_ivp over one smooth phase, with the impulse quadratures appended."""
+class _StepCap(Exception):
+    """Raised from inside ``solve_ivp`` when a phase used up the steps left."""
+
+
+def _step_counter(budget: int):
+    """A ``solve_ivp`` event that never fires and counts the accepted steps.
+
+    solve_ivp evaluates every event once at the start and once after each accepted step
+    (root finding calls only the events that changed sign, which this one never does), so
+    the calls after the first are the accepted steps; past ``budget`` it raises
+    :class:`_StepCap`.
+    """
+    calls = [-1]
+
+    def count(t, y):
+        calls[0] += 1
+        if calls[0] > budget:
+            raise _StepCap
+        return 1.0
+
+    return count
+
+
+def _phase(model: _Model, y, t0: float, events: dict, atol, budget: int):
+    """solve_ivp over one smooth phase, with the impulse quadratures appended; at most
+    ``budget`` accepted steps (:class:`_StepCap` beyond)."""
     from scipy.integrate import solve_ivp
 
     s = model.p.settings
@@ -224,9 +252,37 @@ def _phase(model: _Model, y, t0: float, events: dict, atol):
     def wrap(ev):
         return _event(lambda t, yq: ev(t, yq[:13]), ev.direction)
 
+    counter = _step_counter(budget)
     return solve_ivp(rhs, (t0, t0 + s.max_contact_time), np.r_[y, np.zeros(5)],
                      method=s.method, rtol=s.rtol, atol=np.r_[atol, np.full(5, s.rtol * 1e-6)],
-                     events=[wrap(e) for e in events.values()], dense_output=s.record)
+                     events=[wrap(e) for e in events.values()] + [counter],
+                     dense_output=s.record)
+
+
+def _capped_phase(model: _Model, y, t0: float, events: dict, atol, steps: int,
+                  phases: int):
+    """:func:`_phase` within the caps of the settings (``max_phases``, ``max_steps``).
+
+    Raises
+    ------
+    SimulationError
+        "not_converged", naming the cap that was reached and how to raise it.
+    """
+    s = model.p.settings
+    if phases >= s.max_phases:
+        raise SimulationError(
+            "not_converged", f"the reference switched crush or friction mode {phases} times "
+            f"by t = {t0:.6g} s without separating (settings.max_phases = {s.max_phases}): "
+            f"a chattering stick/slip switch? Raise CompliantSettings(max_phases=...) if "
+            f"the contact really has that many phases", steps)
+    try:
+        return _phase(model, y, t0, events, atol, s.max_steps - steps)
+    except _StepCap:
+        raise SimulationError(
+            "not_converged", f"solve_ivp ({s.method}, rtol {s.rtol:g}) took more than "
+            f"settings.max_steps = {s.max_steps} steps by phase {phases + 1} without "
+            f"separating: a stiff scene (try method='Radau') or a tolerance near round-off; "
+            f"raise CompliantSettings(max_steps=...) to let it run longer", steps) from None
 
 
 def _integrate(model: _Model, y):
@@ -236,12 +292,13 @@ def _integrate(model: _Model, y):
     atol, d, v = _tolerances(problem)
     t0, steps, stick_time, directions = 0.0, 0, 0.0, set()
     _first_mode(model, y, directions)
-    impulse, pieces = np.zeros(5), []
+    impulse, pieces, phases = np.zeros(5), [], 0
     while True:
         if not model.loading and model.contact(y)[3] <= model.delta_p + 1e-12 * d:
             break                               # released exactly at a mode switch
         events = _phase_events(model, y, d, v)
-        sol = _phase(model, y, t0, events, atol)
+        sol = _capped_phase(model, y, t0, events, atol, steps, phases)
+        phases += 1
         if sol.status < 0:
             raise SimulationError("not_converged", f"solve_ivp ({s.method}) failed: "
                                   f"{sol.message}", steps)
@@ -255,7 +312,7 @@ def _integrate(model: _Model, y):
                                   f"{s.max_contact_time:g} s (max_contact_time)", steps)
         stick_time += (sol.t[-1] - sol.t[0]) if model.mode in (STICK, UNLOAD) else 0.0
         t0 = sol.t[-1]
-        fired = [name for name, e in zip(events, sol.t_events, strict=True) if len(e)]
+        fired = [name for name, e in zip(events, sol.t_events[:-1], strict=True) if len(e)]
         if _after_event(model, y, fired, directions):
             break
     return y, t0, impulse, steps, pieces, stick_time, directions
@@ -296,7 +353,8 @@ def reference_compliant(case: pim.Case, eps, stiffness, friction=0.0, geometry="
         Bad input, or a geometry other than "point".
     SimulationError
         "no_contact" (no approach at C), "never_separated", "not_converged" (solve_ivp
-        failed).
+        failed, or more than ``settings.max_phases`` phases or ``settings.max_steps``
+        steps: the message names the cap and how to raise it).
     """
     wall = time.perf_counter()
     if geometry != "point":
