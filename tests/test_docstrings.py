@@ -121,7 +121,7 @@ NO_SECTION = {
     "pim/analysis/validation.py:CoefficientStats", "pim/analysis/validation.py:RicsacRefit",
     "pim/io/datasets.py:BarrierTest", "pim/io/datasets.py:CarToCarVehicle",
     "pim/io/datasets.py:RicsacTest", "pim/model/distributions.py:UncertaintyTable",
-    "pim/model/evidence.py:Evidence", "pim/model/quantities.py:Quantity",
+    "pim/model/quantities.py:Quantity",
     "pim/model/runout.py:RunoutBatch", "pim/plotting/reconstruction_animation.py:FrameStates",
     "pim/plotting/tables.py:Row", "sim/compliant_setup.py:CompliantProblem",
     "sim/crash_data.py:CrashTest", "sim/scene.py:Scene"}

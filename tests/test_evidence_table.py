@@ -57,3 +57,37 @@ def test_unknown_bounds_in_si():
 def test_bad_unknown_names_the_key(table, match):
     with pytest.raises(ValueError, match=match):
         parse_unknown(table)
+
+
+def test_run_out_keys_are_optional_but_pre_impact_needs_them():
+    """A vehicle may have evidence other than a run-out (issue 19): no run-out keys -> no
+    run-out evidence; marks before the impact without the run-out are refused by name."""
+    ev = parse_evidence({"vehicle1": {}})
+    assert ev.vehicle1 is None and ev.vehicle2 is None
+    with pytest.raises(ValueError, match=r"evidence.vehicle2.pre_impact needs the vehicle's "
+                                         r"run-out evidence"):
+        parse_evidence({"vehicle2": {"pre_impact": {}}})
+
+
+CRUSH = {"side": "front", "width": "1.2 m", "depths": ["0.2 m", "0.3 m"],
+         "stiffness_a": "35 kN/m", "stiffness_b": "170 kN/m^2"}
+
+
+def test_a_vehicle_may_have_only_a_crush_profile():
+    ev = parse_evidence({"vehicle1": {"crush": CRUSH}})
+    assert ev.vehicle1 is None and ev.crush1.side == "front" and ev.crush_partition == "total"
+    assert list(ev.crush) == [1] and not ev.has_runout
+
+
+def test_crush_partitions_must_agree_and_exist():
+    with pytest.raises(ValueError, match="different partitions"):
+        parse_evidence({"vehicle1": {"crush": {**CRUSH, "partition": "normal"}},
+                        "vehicle2": {"crush": {**CRUSH, "side": "left"}}})
+    with pytest.raises(ValueError, match="partition = 'shear' is not known"):
+        parse_evidence({"vehicle1": {"crush": {**CRUSH, "partition": "shear"}}})
+
+
+def test_a_crush_wider_than_the_car_names_the_field():
+    with pytest.raises(ValueError, match=r"evidence.vehicle1.crush.width"):
+        parse_evidence({"vehicle1": {"crush": {**CRUSH, "width": "3 m"}}},
+                       {1: (4.5, 1.8), 2: (4.5, 1.8)})

@@ -236,3 +236,31 @@ def test_the_fit_jacobian_is_exact(ricsac9):
         fd = (free_residuals(base, keys, xp[None], *terms, jacobian=False)[0]
               - free_residuals(base, keys, xm[None], *terms, jacobian=False)[0]) / (2 * h)
         np.testing.assert_allclose(jac[0, :, j], fd[0], rtol=1e-6, atol=1e-7, err_msg=keys[j])
+
+
+def test_variance_shares_split_the_covariance_by_evidence():
+    """Closed form: two independent measurements of one parameter with sigmas 1 and 2
+    (J rows 1 and 1/2) give variance 1 / (1 + 1/4) = 0.8 and shares 0.8 and 0.2."""
+    from pim.analysis.free_fit import variance_shares
+
+    sd, shares = variance_shares(np.array([[1.0], [0.5]]), ["a", "b"])
+    assert sd[0] == pytest.approx(np.sqrt(0.8))
+    assert shares["a"][0] == pytest.approx(0.8) and shares["b"][0] == pytest.approx(0.2)
+    sd, shares = variance_shares(np.array([[1.0, 1.0]]), ["a"])      # rank deficient
+    assert np.isnan(sd).all() and shares == {}
+
+
+def test_deciding_evidence_is_the_rank_it_adds_on_the_null_space():
+    from pim.analysis.free_fit import deciding_evidence, evidence_list, identifiability
+
+    jac = np.array([[1.0, 1.0, 0.0]])               # x + y measured; y - x and z free
+    cands = {"z alone": np.array([[0.0, 0.0, 1.0]]), "x + y again": np.array([[2.0, 2.0, 0.0]]),
+             "x and z": np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])}
+    ident = identifiability(jac, ("x", "y", "z"), ("s",), candidates=cands)
+    assert dict(ident.deciding) == {"z alone": 1, "x and z": 2}
+    assert "evidence that would decide it: z alone or x and z" in ident.warnings[0]
+    null = np.array([[0.0, 0.0, 1.0]])
+    assert deciding_evidence(null, {"x": np.array([[1.0, 0.0, 1e-5]])}) == []
+    assert evidence_list(["a recorded delta-V of vehicle1", "a recorded delta-V of vehicle2",
+                          "an energy loss (crush)"]) == \
+        "a recorded delta-V of either vehicle or an energy loss (crush)"

@@ -145,6 +145,39 @@ def test_reconstruct_on_the_field_tyre_gives_back_the_speeds_and_says_so(tmp_pat
     assert "Run-out tyre model: vehicle 1 brush, vehicle 2 coulomb." in capsys.readouterr().out
 
 
+def test_recorder_evidence_says_which_evidence_drove_each_speed(capsys):
+    """synthetic-edr (vehicle 1's recorded delta-V, vehicle 2's recorded pre-crash speed):
+    the text names the driving evidence per speed in the case's units, the JSON too."""
+    assert main(["reconstruct", "synthetic-edr", "--samples", "0", "--units", "si"]) == 0
+    out = capsys.readouterr().out
+    assert "evidence: vehicle1.speed (1 sd = " in out and "m/s): vehicle1 recorded delta-V" in out
+    assert main(["reconstruct", "synthetic-edr", "--samples", "0", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["unknowns"]["vehicle1.speed"]["value"] == pytest.approx(9.5 / 0.44704, abs=0.01)
+    drivers = data["evidence_drivers"]["vehicle2.speed"]
+    assert drivers["unit"] == "mph" and max(drivers["shares"], key=drivers["shares"].get) == \
+        "vehicle2 recorded pre-crash speed"
+
+
+def test_crush_outputs_in_the_report(tmp_path, capsys):
+    assert main(["reconstruct", "synthetic-crush", "--samples", "0", "--units", "si",
+                 "--out", str(tmp_path / "out")]) == 0
+    out = capsys.readouterr().out
+    assert "crush: vehicle1: crush energy 16.96" in out and "EES" in out
+    report = (tmp_path / "out" / "report.md").read_text()
+    assert "## Crush energy" in report and "delta-V from crush" in report
+    assert "## Which evidence drove each unknown" in report
+
+
+def test_a_delta_v_beyond_the_speed_bounds_is_one_line_and_exit_2(tmp_path, capsys):
+    text = (resources.files("pim.io") / "cases" / "synthetic-edr.toml").read_text()
+    path = tmp_path / "bad.toml"
+    path.write_text(text.replace('"-23.65 km/h", "-9.36 km/h"', '"-200 km/h", "0 km/h"'))
+    assert main(["reconstruct", str(path), "--samples", "0"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "measured.vehicle1.delta_v" in err[0]
+
+
 def test_a_kudlich_slibar_case_is_reconstructed_under_its_law(tmp_path, capsys):
     """RICSAC 9 written the PC-Crash way (law kudlich-slibar, POI, contact plane) with the
     speeds, k and mu_c unknown: `pim reconstruct` solves it under that law (it refused the

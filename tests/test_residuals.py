@@ -76,3 +76,13 @@ def test_nothing_measured(ricsac9):
     assert not has_measured_terms(only_yaw) and has_measured_terms(only_yaw, include_yaw=True)
     with pytest.raises(ValueError, match="--include-yaw"):
         measured_terms(only_yaw, include_yaw=False)
+
+
+def test_goodness_names_the_largest_standardised_residuals():
+    from pim.analysis.residuals import goodness_of_fit
+
+    g = goodness_of_fit(50.0, 5, 2, np.array([0.1, -6.5, 2.0, 0.3, -3.1]),
+                        ["a", "b", "c", "d", "e"])
+    assert g.largest == (("b", -6.5), ("e", -3.1), ("c", 2.0))
+    assert g.consistent is False and "the evidence in conflict: b -6.5 sigma" in g.summary()
+    assert g.to_dict()["largest_standardised_residuals"] == {"b": -6.5, "e": -3.1, "c": 2.0}

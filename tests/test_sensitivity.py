@@ -171,3 +171,15 @@ def test_stated_sigmas_weight_the_fit_and_size_the_inputs(noisy):
     k2 = d[0.3].inputs.index("measured.velocity2_x")
     assert abs(d[0.6].derivative[0, k1]) < abs(d[0.3].derivative[0, k1])
     assert abs(d[0.6].derivative[0, k2]) > abs(d[0.3].derivative[0, k2])
+
+
+def test_sensitivity_of_a_fit_to_recorded_evidence():
+    """A fit to a recorded delta-V and pre-crash speed (synthetic-edr): the recorded values
+    are inputs of the sensitivity like measured motion, each with its stated sigma."""
+    from pim.analysis.sensitivity import sensitivity
+
+    case = pim.load_case("synthetic-edr")
+    s = sensitivity(case)
+    i = s.inputs.index("measured.delta_v1_long")
+    assert s.sigma[i] == pytest.approx(1 / 3.6)
+    assert np.all(np.isfinite(s.derivative[:, i])) and np.any(s.derivative[:, i] != 0)

@@ -52,3 +52,17 @@ def test_evidence_friction_is_an_uncertain_input():
                       np.random.default_rng(0))
     with pytest.raises(ValueError, match=r"\[evidence\]"):
         sample_inputs(table, {}, 10, np.random.default_rng(0))
+
+
+def test_recorder_scale_and_crush_inputs_are_uncertain_inputs():
+    from pim.io.uncertainty_table import parse_uncertainty
+
+    t = parse_uncertainty({"measured": {"vehicle1": {"delta_v_scale": {"uniform": [0.9, 1.0]}}},
+                           "evidence": {"vehicle2": {"crush": {
+                               "stiffness_a": {"normal": "5 kN/m"},
+                               "depth_scale": {"plusminus": 0.05}}}}})
+    assert t.inputs["measured.vehicle1.delta_v_scale"].a == 0.9
+    assert t.inputs["evidence.vehicle2.crush.stiffness_a"].b == pytest.approx(5000.0)
+    assert "evidence.vehicle2.crush.depth_scale" in t.inputs
+    with pytest.raises(ValueError, match="unknown input 'measured.vehicle1.delta_v'"):
+        parse_uncertainty({"measured": {"vehicle1": {"delta_v": {"normal": 1}}}})

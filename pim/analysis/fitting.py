@@ -35,8 +35,9 @@ from functools import cached_property
 import numpy as np
 
 from ..model.case import Case
+from ..model.evidence_terms import as_residual_terms, split_terms
 from ..model.impact_laws import check_contact_friction, law_of, solve_law
-from ..model.motion import Term, as_terms
+from ..model.motion import Term
 from ..model.numbers import InputError, check_counts, check_numbers
 from ..model.result import Result
 from ..model.solver import solve
@@ -49,13 +50,16 @@ from .free_fit import (
     fit_free,
     free_residuals,
     identifiability,
+    variance_shares,
 )
 from .free_inputs import MU_C_BOUNDS, case_state, friction_floor
 from .residuals import (
     GoodnessOfFit,
     goodness_of_fit,
     measured_terms,
+    measured_value,
     measured_weights,
+    model_value,
     residual_terms,
 )
 
@@ -135,6 +139,12 @@ class FitResult:
         Key -> value of the parameters that only have a lower bound (``impact.mu_c`` where
         the contact does not reach it: any mu_c >= the value gives the same answer; the
         value stands in ``values``).
+    standard_errors : dict
+        Fitted key -> its standard error from (J^T J)^-1 of the weighted Jacobian [SI]
+        (empty without standard deviations or when the data do not decide the parameters).
+    evidence_shares : dict
+        Fitted key -> {evidence group: share of its variance [-]}
+        (:func:`pim.analysis.free_fit.variance_shares`): which evidence drove it.
     """
 
     case: Case
@@ -159,22 +169,28 @@ class FitResult:
     law: str = "brach"
     contact_friction: float | None = None
     lower_bounds: dict = field(default_factory=dict)
+    standard_errors: dict = field(default_factory=dict, repr=False)
+    evidence_shares: dict = field(default_factory=dict, repr=False)
 
     @property
     def residual_table(self) -> list[dict]:
         """Per measured quantity: name, measured, fitted, error, unit, residual [SI]."""
         rows = []
         for term, r in zip(self.terms, self.residuals, strict=True):
-            measured = float(term.of(self.case.measured))
-            fitted = float(term.of(self.result))
+            measured = measured_value(self.case.measured, term)
+            fitted = float(model_value(self.result, term))
             rows.append({"name": term.name, "measured": measured, "fitted": fitted,
-                         "error": fitted - measured, "unit": term.unit, "residual": float(r)})
+                         "error": fitted - measured, "unit": term.unit, "residual": float(r),
+                         "kind": term.kind if isinstance(term, Term) else term.kind_of_unit})
         return rows
 
     @property
     def rms(self) -> float:
-        """Root-mean-square residual [m/s]."""
-        return float(np.sqrt(np.mean(np.square(self.residuals))))
+        """Root-mean-square residual [m/s] of the terms in m/s (velocities, yaw rates times
+        k_i, recorded delta-V and speeds; energies left out)."""
+        r = np.array([x for t, x in zip(self.terms, self.residuals, strict=True)
+                      if t.unit != "J"]) if self.terms else np.asarray(self.residuals)
+        return float(np.sqrt(np.mean(np.square(r)))) if r.size else float("nan")
 
     @property
     def fitted_keys(self) -> tuple[str, ...]:
@@ -213,6 +229,8 @@ class FitResult:
             "minima": [{"eps": e, "beta": b, "cost": c} for e, b, c in self.minima],
             "values": dict(self.values),
             "goodness_of_fit": None if self.goodness is None else self.goodness.to_dict(),
+            "standard_errors": dict(self.standard_errors),
+            "evidence_shares": {k: dict(v) for k, v in self.evidence_shares.items()},
             "admissible": bool(self.result.admissible), "problems": self.result.problems(),
         }
 
@@ -292,8 +310,9 @@ def _fit_result(case, raw: FreeFit, terms, include_yaw, bounds, fixed, eps, beta
     minima_values = tuple((dict(zip(raw.keys, map(float, x), strict=True)), c)
                           for x, c in raw.minima)
     r = raw.residuals / (1.0 if weights is None else weights)
-    goodness = None if weights is None else goodness_of_fit(raw.cost, len(terms),
-                                                            len(raw.keys))
+    sd, shares = ({}, {}) if weights is None or raw.jacobian is None else _drivers(raw, terms)
+    goodness = None if weights is None else goodness_of_fit(
+        raw.cost, len(terms), len(raw.keys), raw.residuals, [t.name for t in terms])
     return FitResult(
         case=raw.case, eps=float(e_opt), beta=float(b_opt), cost=raw.cost, residuals=r,
         residual_names=tuple(t.name for t in terms), include_yaw=bool(include_yaw),
@@ -303,7 +322,45 @@ def _fit_result(case, raw: FreeFit, terms, include_yaw, bounds, fixed, eps, beta
         values={k: float(v) for k, v in values.items()}, identifiability=raw.identifiability,
         minima_values=minima_values, weights=weights, terms=tuple(terms), goodness=goodness,
         law=law, contact_friction=None if mu_c is None else float(mu_c),
-        lower_bounds=dict(lower or {}))
+        lower_bounds=dict(lower or {}), standard_errors=sd, evidence_shares=shares)
+
+
+def _drivers(raw: FreeFit, terms) -> tuple[dict, dict]:
+    """Standard errors and evidence shares of the fitted keys (:func:`variance_shares`)."""
+    sd, shares = variance_shares(raw.jacobian, [t.group for t in terms])
+    if not shares:
+        return {}, {}
+    return ({k: float(s) for k, s in zip(raw.keys, sd, strict=True)},
+            {k: {g: float(v[j]) for g, v in shares.items()} for j, k in enumerate(raw.keys)})
+
+
+def _law_box(law: str, box_eb, eps, beta, mu_c, free_box: dict) -> tuple:
+    """(eps or k fixed, beta fixed, the box of every fitted key) under ``law``."""
+    if law == "kudlich-slibar":
+        eps_fixed, box = _ks_box(box_eb, eps, beta, mu_c, free_box)
+        return eps_fixed, None, box
+    eps_fixed, beta_fixed = _check_fixed(eps, beta, free_box)
+    return eps_fixed, beta_fixed, _box(box_eb, eps_fixed, beta_fixed, free_box)
+
+
+def _fixed_and_searched(law: str, box: dict, box_eb, eps_fixed, beta_fixed, mu_c) -> tuple:
+    """The names of the parameters held fixed, and the box of the law's two parameters as
+    searched ((k, mu_c) under Kudlich-Slibar)."""
+    fixed = tuple(n for n, v in (("k" if law == "kudlich-slibar" else "eps", eps_fixed),
+                                 ("beta", beta_fixed),
+                                 ("mu_c", None if "impact.mu_c" in box else mu_c))
+                  if v is not None)
+    if law == "kudlich-slibar":
+        box_eb = (tuple(box.get("impact.k", box_eb[0])),
+                  tuple(box.get("impact.mu_c", MU_C_BOUNDS)))
+    return fixed, box_eb
+
+
+def _check_approach(case: Case, eps0: float, beta0: float, free_box: dict) -> None:
+    """No impact to fit when the vehicles do not approach (and no input is freed)."""
+    if not free_box and not np.any(solve(case, eps0, beta0).approaching):
+        raise InputError(f"case {case.name or '(unnamed)'}: the vehicles do not approach at C "
+                         "(u_n >= 0): there is no impact to fit")
 
 
 def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=None, beta=None,
@@ -372,29 +429,16 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
     terms = measured_terms(case, include_yaw)
     box_eb = _check_bounds(bounds)
     free_box = check_free(free or {})
-    if law == "kudlich-slibar":
-        eps_fixed, box = _ks_box(box_eb, eps, beta, mu_c, free_box)
-        beta_fixed = None
-    else:
-        eps_fixed, beta_fixed = _check_fixed(eps, beta, free_box)
-        box = _box(box_eb, eps_fixed, beta_fixed, free_box)
+    eps_fixed, beta_fixed, box = _law_box(law, box_eb, eps, beta, mu_c, free_box)
     _check_grid(grid)
     eps0 = 0.5 if eps_fixed is None else eps_fixed
     beta0 = 0.5 if beta_fixed is None else beta_fixed
-    if not free_box and not np.any(solve(case, eps0, beta0).approaching):
-        raise InputError(f"case {case.name or '(unnamed)'}: the vehicles do not approach at C "
-                         "(u_n >= 0): there is no impact to fit")
+    _check_approach(case, eps0, beta0, free_box)
     weights = measured_weights(case, terms)
     raw = fit_free(case, box, terms, eps0, beta0, samples=samples, max_starts=max_starts,
                    seed=seed)
     raw, lower = _floor(case, raw, terms, case_state(case, eps0, beta0))
-    fixed = tuple(n for n, v in (("k" if law == "kudlich-slibar" else "eps", eps_fixed),
-                                 ("beta", beta_fixed),
-                                 ("mu_c", None if "impact.mu_c" in box else mu_c))
-                  if v is not None)
-    if law == "kudlich-slibar":          # the box of (k, mu_c) as searched
-        box_eb = (tuple(box.get("impact.k", box_eb[0])),
-                  tuple(box.get("impact.mu_c", MU_C_BOUNDS)))
+    fixed, box_eb = _fixed_and_searched(law, box, box_eb, eps_fixed, beta_fixed, mu_c)
     return _fit_result(case, raw, terms, include_yaw, box_eb, fixed, eps_fixed, beta_fixed,
                        weights, law, case.impact.contact_friction, lower)
 
@@ -457,10 +501,11 @@ def _floor(case: Case, raw: FreeFit, terms, base) -> tuple[FreeFit, dict]:
     j = raw.keys.index("impact.mu_c")
     bound = float(x[0, j])
     rows, target, factor = residual_terms(case, terms)
-    _, jac = free_residuals(base, raw.keys, x, rows, target, factor)
+    _, jac = free_residuals(base, raw.keys, x, rows, target, factor,
+                            evidence=split_terms(terms)[1])
     keep = [i for i in range(len(raw.keys)) if i != j]
     ident = identifiability(jac[0][:, keep] * width[keep], tuple(raw.keys[i] for i in keep),
-                            as_terms(terms))
+                            as_residual_terms(terms))
     said = (f"impact.mu_c only has a lower bound: any mu_c >= {bound:.4g} gives the same "
             f"answer (the contact does not reach its friction: it sticks); {bound:.4g} "
             "stands for it")

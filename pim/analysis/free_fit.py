@@ -36,9 +36,17 @@ from functools import lru_cache
 import numpy as np
 
 from ..model.case import Case
-from ..model.motion import as_terms
+from ..model.dual import MOTION_OUTPUTS
+from ..model.evidence_terms import (
+    EvidenceTerm,
+    ModelQuantities,
+    as_residual_terms,
+    split_terms,
+)
+from ..model.motion import Term
 from .free_inputs import (
     FREE_KEYS,
+    STATE,
     case_state,
     check_free,
     check_free_for_case,
@@ -52,7 +60,8 @@ from .residuals import residual_terms
 
 __all__ = ["FREE_KEYS", "Identifiability", "FreeFit", "set_inputs", "check_free",
            "current_value", "fit_free", "identifiability", "free_residuals",
-           "residual_terms"]
+           "residual_terms", "evidence_values", "deciding_evidence", "evidence_list",
+           "candidate_evidence", "terms_jacobian", "variance_shares"]
 
 #: Box-scaled distance within which two starts of the local search count as one minimum.
 MERGE = 1e-3
@@ -83,6 +92,9 @@ class Identifiability:
         Number of residual terms (measured quantities).
     warnings : tuple of str
         Plain-language statements of the above.
+    deciding : tuple of (str, int)
+        Evidence not in the fit that would decide its null directions, with how many
+        (:func:`deciding_evidence`); empty when identifiable or when no candidate was given.
     """
 
     names: tuple
@@ -93,6 +105,7 @@ class Identifiability:
     under_determined: bool
     n_data: int
     warnings: tuple = ()
+    deciding: tuple = ()
 
     @property
     def identifiable(self) -> bool:
@@ -106,7 +119,8 @@ class Identifiability:
                                         None).tolist(),
                 "families": [list(f) for f in self.families],
                 "under_determined": self.under_determined, "n_data": self.n_data,
-                "warnings": list(self.warnings)}
+                "warnings": list(self.warnings),
+                "deciding": [{"evidence": e, "decides": k} for e, k in self.deciding]}
 
 
 #: Relative singular value below which a direction counts as null (a family of fits).
@@ -115,9 +129,55 @@ NULL_TOL = 1e-6
 FAMILY_WEIGHT = 0.05
 
 
+#: Share of a candidate row's length that must lie in the null space for it to decide.
+DECIDE_TOL = 1e-3
+
+
+def deciding_evidence(null: np.ndarray, candidates: dict) -> list[tuple[str, int]]:
+    """Which candidate evidence would decide the null directions ``null`` (k, n), and how
+    many of them each decides: the rank that its Jacobian rows (c, n, columns scaled as
+    the fit's) add, i.e. the rank of their projection on the null space, each row taken at
+    unit length (a row nearly orthogonal to the null space decides nothing)."""
+    out = []
+    if not len(null):
+        return out
+    for label, rows in candidates.items():
+        rows = np.asarray(rows, dtype=float)
+        norm = np.linalg.norm(rows, axis=1, keepdims=True)
+        rows = rows[np.isfinite(norm[:, 0]) & (norm[:, 0] > 0)]
+        if not len(rows):
+            continue
+        proj = (rows / np.linalg.norm(rows, axis=1, keepdims=True)) @ null.T
+        gain = int(np.count_nonzero(np.linalg.svd(proj, compute_uv=False) > DECIDE_TOL))
+        if gain:
+            out.append((label, gain))
+    return out
+
+
+def evidence_list(labels) -> str:
+    """"a, b or c", the two vehicles' versions of one piece of evidence said once
+    ("a recorded delta-V of either vehicle")."""
+    labels = list(dict.fromkeys(labels))
+    for one, two, both in (("a recorded delta-V of vehicle1", "a recorded delta-V of vehicle2",
+                            "a recorded delta-V of either vehicle"),
+                           ("vehicle1's recorded pre-crash speed",
+                            "vehicle2's recorded pre-crash speed",
+                            "either vehicle's recorded pre-crash speed")):
+        if one in labels and two in labels:
+            labels[labels.index(one)] = both
+            labels.remove(two)
+    return labels[0] if len(labels) == 1 else ", ".join(labels[:-1]) + " or " + labels[-1]
+
+
 def identifiability(jac: np.ndarray, names: tuple, residual_names: tuple,
-                    null_tol: float = NULL_TOL) -> Identifiability:
-    """Rank, singular values, correlations and families of a scaled Jacobian (m, n)."""
+                    null_tol: float = NULL_TOL, candidates: dict | None = None
+                    ) -> Identifiability:
+    """Rank, singular values, correlations and families of a scaled Jacobian (m, n).
+
+    ``candidates`` (label -> Jacobian rows (c, n) of evidence not in the fit, columns scaled
+    as ``jac``'s) lets the messages name the evidence that would decide an under-determined
+    fit or a family (:func:`deciding_evidence`).
+    """
     m, n = jac.shape
     s, vt = (np.linalg.svd(jac, full_matrices=True)[1:] if m else
              (np.zeros(0), np.eye(n)))
@@ -126,31 +186,22 @@ def identifiability(jac: np.ndarray, names: tuple, residual_names: tuple,
     smax = s_full.max() if n else 0.0
     tol = null_tol * max(smax, 1e-300)
     rank = int(np.count_nonzero(s_full > tol))
-    families = []
+    families, deciders = [], []
     for k in range(rank, n):
         v = vt[k]
         members = tuple(names[j] for j in np.flatnonzero(np.abs(v) > FAMILY_WEIGHT))
         if members and members not in families:
             families.append(members)
+            deciders.append([label for label, _ in deciding_evidence(v[None], candidates or {})])
     if rank == n and n:
         cov = np.linalg.inv(jac.T @ jac)
         d = np.sqrt(np.diag(cov))
         corr = cov / np.outer(d, d)
     else:
         corr = np.full((n, n), np.nan)
-    warnings = []
-    under = n > m or rank < n
-    if n > m:
-        warnings.append(f"under-determined: {n} free parameters ({', '.join(names)}) but only "
-                        f"{m} measured quantities ({', '.join(map(str, residual_names))}); measure "
-                        f"{n - m} more (e.g. the other vehicle's velocity or the yaw rates "
-                        f"with include_yaw) or fix {n - m} parameter(s)")
-    for fam in families:
-        warnings.append(f"family of equally good fits: {', '.join(fam)} trade against each "
-                        f"other (the data fix only a combination of them); fix one of them "
-                        f"to get a unique answer" if len(fam) > 1 else
-                        f"family of equally good fits: {fam[0]} does not change the fitted "
-                        f"motion (the data say nothing about it); fix it")
+    deciding = tuple(deciding_evidence(vt[rank:], candidates or {}))
+    warnings = _count_warning(names, residual_names, m, n, deciding)
+    warnings += _family_warnings(families, deciders)
     if rank == n and n:
         for a in range(n):
             for b in range(a + 1, n):
@@ -158,8 +209,41 @@ def identifiability(jac: np.ndarray, names: tuple, residual_names: tuple,
                     warnings.append(f"{names[a]} and {names[b]} are strongly correlated "
                                     f"(r = {corr[a, b]:+.3f})")
     return Identifiability(names=tuple(names), rank=rank, singular_values=s_full,
-                           correlation=corr, families=tuple(families), under_determined=under,
-                           n_data=m, warnings=tuple(warnings))
+                           correlation=corr, families=tuple(families),
+                           under_determined=n > m or rank < n, n_data=m,
+                           warnings=tuple(warnings), deciding=deciding)
+
+
+def _count_warning(names, residual_names, m: int, n: int, deciding) -> list[str]:
+    """The under-determined message (more parameters than data), naming what would decide."""
+    if n <= m:
+        return []
+    hint = (f"measure {n - m} more (e.g. the other vehicle's velocity or the yaw rates "
+            f"with include_yaw) or fix {n - m} parameter(s)")
+    if deciding:
+        hint = (f"evidence that would decide it: {evidence_list(d for d, _ in deciding)} "
+                f"(together at least {n - m} more independent data), or fix {n - m} "
+                f"parameter(s)")
+    return [f"under-determined: {n} free parameters ({', '.join(names)}) but only {m} "
+            f"measured quantities ({', '.join(map(str, residual_names))}); {hint}"]
+
+
+def _family_warnings(families, deciders) -> list[str]:
+    """One message per family of equally good fits, naming the evidence that would decide
+    it when there is any."""
+    out = []
+    for fam, labels in zip(families, deciders, strict=True):
+        if len(fam) > 1:
+            decide = (f"; {evidence_list(labels)} would decide it, or fix one of them"
+                      if labels else "; fix one of them to get a unique answer")
+            out.append(f"family of equally good fits: {', '.join(fam)} trade against each "
+                       f"other (the data fix only a combination of them){decide}")
+        else:
+            decide = f"; {evidence_list(labels)} would decide it, or fix it" if labels else \
+                "; fix it"
+            out.append(f"family of equally good fits: {fam[0]} does not change the fitted "
+                       f"motion (the data say nothing about it){decide}")
+    return out
 
 
 @dataclass(frozen=True)
@@ -189,6 +273,8 @@ class FreeFit:
     identifiability : Identifiability
     nfev : int
     converged : bool
+    jacobian : ndarray (k, n) or None
+        d residuals / d x at the optimum (weighted as ``residuals``).
     """
 
     keys: tuple
@@ -203,6 +289,7 @@ class FreeFit:
     identifiability: Identifiability
     nfev: int
     converged: bool
+    jacobian: np.ndarray | None = None
 
     @property
     def values(self) -> dict:
@@ -210,7 +297,21 @@ class FreeFit:
         return dict(zip(self.keys, map(float, self.x), strict=True))
 
 
-def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True):
+def evidence_values(state, dstate, values, dvalues, evidence) -> tuple:
+    """The evidence terms' model values (m, k) and, with ``dstate``, their exact Jacobian
+    (m, k, n) by the chain rule: each term (:class:`pim.model.evidence_terms.EvidenceTerm`)
+    is evaluated on dual numbers that carry d state / d x and d output / d x."""
+    q = ModelQuantities(STATE, state, dstate, MOTION_OUTPUTS, values, dvalues)
+    out = [t.value(q) for t in evidence]
+    if dstate is None:
+        return np.stack(out, axis=-1), None
+    return (np.stack([o.value for o in out], axis=-1),
+            np.stack([np.broadcast_to(o.grad, dstate.shape[:1] + dstate.shape[2:])
+                      for o in out], axis=-2))
+
+
+def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True,
+                   evidence=()):
     """Weighted residuals at the free parameters ``x`` (m, n), and their exact Jacobian.
 
     Parameters
@@ -221,11 +322,14 @@ def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True
         Free keys, the columns of ``x``.
     x : array_like (m, n)
         Parameter vectors [SI].
-    rows, target, factor : array_like (k,) / (k,) or (m, k) / (k,) or (m, k)
-        The residual terms (:func:`pim.analysis.residuals.residual_terms`); target and
-        factor per row or shared.
+    rows, target, factor : array_like (j,) / (k,) or (m, k) / (k,) or (m, k)
+        The residual terms (:func:`pim.analysis.residuals.residual_terms`): rows of the
+        motion terms, then targets and factors of every term; target and factor per row or
+        shared.
     jacobian : bool
         Also return the Jacobian.
+    evidence : sequence of EvidenceTerm
+        The evidence terms after the motion rows (k = j + len(evidence)).
 
     Returns
     -------
@@ -236,14 +340,93 @@ def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True
     """
     state, dstate = free_inputs(base, keys, x, jacobian=jacobian)
     values, dvalues = state_motion(state, dstate, jacobian=jacobian)    # under the state's law
-    r = (values[:, rows] - target) * factor
+    out = values[:, rows]
+    dout = None if dvalues is None else dvalues[:, rows, :]
+    if len(evidence):
+        ev, dev = evidence_values(state, dstate, values, dvalues, evidence)
+        out = np.concatenate([out, ev], axis=1)
+        dout = None if dev is None else np.concatenate([dout, dev], axis=1)
+    with np.errstate(invalid="ignore"):
+        r = (out - target) * factor
     bad = ~np.all(np.isfinite(r), axis=1)
     r = np.where(bad[:, None], PENALTY, r)
     if not jacobian:
         return r, None
-    jac = dvalues[:, rows, :] * np.asarray(factor)[..., None]
+    jac = dout * np.asarray(factor)[..., None]
     jac = np.where(bad[:, None, None] | ~np.isfinite(jac), 0.0, jac)
     return r, jac
+
+
+def candidate_evidence(case: Case, present) -> dict[str, tuple]:
+    """Evidence not (wholly) in the fit that an engineer could gather, by label: each
+    vehicle's post-impact motion (what its rest position gives), a recorded delta-V and
+    pre-crash speed of each vehicle, the energy loss; a fixed obstacle's left out."""
+    present = set(as_residual_terms(present))
+    groups: dict[str, tuple] = {}
+    for i in (1, 2):
+        if bool(np.any(getattr(case, f"vehicle{i}").fixed)):
+            continue
+        groups[f"vehicle{i}'s rest position (its post-impact motion)"] = (
+            Term(i, "vx"), Term(i, "vy"), Term(i, "omega"))
+        groups[f"a recorded delta-V of vehicle{i}"] = (EvidenceTerm("delta_v", i, 0),
+                                                       EvidenceTerm("delta_v", i, 1))
+        groups[f"vehicle{i}'s recorded pre-crash speed"] = (EvidenceTerm("pre_crash_speed", i),)
+    groups["an energy loss (crush)"] = (EvidenceTerm("energy_loss"),)
+    return {label: terms for label, terms in groups.items() if not set(terms) <= present}
+
+
+def terms_jacobian(case: Case, keys, x, eps, beta, groups: dict,
+                   contact_friction=None) -> dict:
+    """label -> d value / d x (c, n) of each group's terms at the single parameter vector
+    ``x`` [SI] (unweighted; :func:`free_residuals` with zero targets), under the case's
+    impact law (``contact_friction``: its mu_c, default the case's)."""
+    base = case_state(case, eps, beta, contact_friction=contact_friction)
+    out = {}
+    for label, terms in groups.items():
+        motion, evidence = split_terms(terms)
+        rows = np.array([MOTION_OUTPUTS.index(t.name) for t in motion], dtype=int)
+        k = len(motion) + len(evidence)
+        _, jac = free_residuals(base, keys, np.asarray(x, dtype=float)[None], rows,
+                                np.zeros(k), np.ones(k), evidence=evidence)
+        out[label] = jac[0]
+    return out
+
+
+def variance_shares(jac: np.ndarray, groups) -> tuple[np.ndarray, dict]:
+    """Standard errors of the parameters and the share of each one's variance that each
+    group of residuals contributes.
+
+    With the weighted (standardised) Jacobian J (k, n) at the optimum, the parameters'
+    covariance is C = (J^T J)^-1 and the estimate's change with the data is C J^T, so
+    C = sum_g C J_g^T J_g C over the groups g of rows: the diagonal of each term, divided by
+    diag(C), is group g's share of the variance (shares sum to 1 per parameter).
+
+    Parameters
+    ----------
+    jac : ndarray (k, n)
+        Weighted Jacobian [1 / SI unit of each parameter].
+    groups : sequence of str (k,)
+        The group of each row.
+
+    Returns
+    -------
+    sd : ndarray (n,)
+        sqrt(diag C) [SI]; NaN when J is rank deficient.
+    shares : dict
+        group -> ndarray (n,) of shares [-] (empty when rank deficient).
+    """
+    jac = np.asarray(jac, dtype=float)
+    n = jac.shape[1]
+    if jac.shape[0] < n or np.linalg.matrix_rank(jac) < n:
+        return np.full(n, np.nan), {}
+    cov = np.linalg.inv(jac.T @ jac)
+    var = np.diag(cov)
+    shares = {}
+    for g in dict.fromkeys(groups):
+        rows = jac[[j for j, h in enumerate(groups) if h == g]]
+        a = cov @ rows.T
+        shares[g] = np.sum(a * a, axis=1) / var
+    return np.sqrt(var), shares
 
 
 def _starts(u: np.ndarray, costs: np.ndarray, max_starts: int) -> list[int]:
@@ -311,9 +494,11 @@ def fit_free(case: Case, box: dict, terms, eps: float = 0.5, beta: float = 0.5,
     width = hi - lo
     base = case_state(case, eps, beta, contact_friction=mu_c)
     rows, target, factor = residual_terms(case, terms)
+    evidence = split_terms(terms)[1]
 
     def resid(x, jacobian=True):
-        return free_residuals(base, keys, x, rows, target, factor, jacobian=jacobian)
+        return free_residuals(base, keys, x, rows, target, factor, jacobian=jacobian,
+                              evidence=evidence)
 
     # coarse global search: one vectorised evaluation of the Sobol sample
     u = sobol_sample(len(keys), samples, seed)
@@ -328,9 +513,15 @@ def fit_free(case: Case, box: dict, terms, eps: float = 0.5, beta: float = 0.5,
     values = dict(zip(keys, map(float, out.x[best]), strict=True))
     fitted = set_inputs(case, {k: v for k, v in values.items()
                                if k not in ("impact.restitution", "impact.beta", "impact.k")})
+    ident = identifiability(jac * width, keys, as_residual_terms(terms))
+    if not ident.identifiable:      # name the evidence that would decide it
+        candidates = terms_jacobian(case, keys, out.x[best], eps, beta,
+                                    candidate_evidence(case, terms), contact_friction=mu_c)
+        ident = identifiability(jac * width, keys, as_residual_terms(terms),
+                                candidates={k: v * width for k, v in candidates.items()})
     return FreeFit(keys=keys, x=out.x[best], box=np.stack([lo, hi], axis=1), case=fitted,
                    cost=float(r @ r), residuals=r, side=out.on_bound[best].astype(int),
                    gradient=2.0 * (r @ jac),
                    minima=tuple((out.x[k], float(out.cost[k])) for k in order),
-                   identifiability=identifiability(jac * width, keys, as_terms(terms)),
+                   identifiability=ident, jacobian=jac,
                    nfev=int(out.nfev), converged=bool(out.converged.all()))

@@ -21,16 +21,23 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..model.case import Case
+from ..model.case import Case, Measured
 from ..model.numbers import InputError
 from ..model.solver import defaults
 from .fitting import FitResult, fit
-from .free_fit import free_residuals
+from .free_fit import (
+    candidate_evidence,
+    evidence_list,
+    free_residuals,
+    identifiability,
+    terms_jacobian,
+)
 from .free_inputs import check_free
 from .least_squares_batch import BatchFit, least_squares_batch
 from .residuals import measured_terms
 
-__all__ = ["inverse_pim", "inverse_pim_many", "under_determined", "fixed_coefficients"]
+__all__ = ["inverse_pim", "inverse_pim_many", "under_determined", "fixed_coefficients",
+           "check_evidence"]
 
 
 def fixed_coefficients(case: Case, unknown: dict) -> tuple:
@@ -53,24 +60,70 @@ def fixed_coefficients(case: Case, unknown: dict) -> tuple:
     return eps, beta
 
 
+def check_evidence(case: Case, unknown: dict) -> None:
+    """InputError naming the field when the recorded evidence cannot agree with the
+    unknowns' bounds: a recorded delta-V of a vehicle larger than every speed bound of the
+    ``[unknown]`` table (no impact within the bounds changes a speed by more than the
+    closing speed, itself within them)."""
+    bounds = [hi for key, (_, hi) in unknown.items() if key.endswith(".speed")]
+    m = case.measured
+    if not bounds or m is None:
+        return
+    for i in (1, 2):
+        dv = getattr(m, f"delta_v{i}")
+        if dv is not None and float(np.hypot(*dv)) > max(bounds):
+            raise InputError(f"measured.vehicle{i}.delta_v: |delta-V| = "
+                             f"{float(np.hypot(*dv)):.4g} m/s is larger than every speed "
+                             f"bound of [unknown] (at most {max(bounds):.4g} m/s); check its "
+                             f"unit and the bounds")
+
+
 def under_determined(case: Case, unknown: dict, include_yaw: bool = True) -> str:
-    """Why the unknowns cannot be decided by the measured motion, or "" when they may be.
+    """Why the unknowns cannot be decided by the measured data, or "" when they may be.
 
     Counts the unknowns (with restitution and beta when named) against the measured
-    quantities, and names the vehicles whose post-impact motion is missing.
+    quantities, names the vehicles whose post-impact motion is missing and the evidence that
+    would decide the unknowns: each candidate's Jacobian rows, at the middle of the
+    unknowns' bounds, tested against the null directions of the data's Jacobian
+    (:func:`pim.analysis.free_fit.deciding_evidence`).
     """
     names = measured_terms(case, include_yaw)
     n_unknown, n_data = len(unknown), len(names)
     if n_unknown <= n_data:
         return ""
-    m = case.measured
-    missing = [f"vehicle{i}'s post-impact {what}" for i in (1, 2) for what, value in (
+    m = case.measured if case.measured is not None else Measured()
+    deciding = _deciding(case, unknown, names)
+    # a vehicle's missing motion is named when its rest position would help (or when the
+    # candidates could not be evaluated)
+    helps = [i for i in (1, 2) if not deciding
+             or f"vehicle{i}'s rest position (its post-impact motion)" in deciding]
+    missing = [f"vehicle{i}'s post-impact {what}" for i in helps for what, value in (
         ("velocity", getattr(m, f"velocity{i}")),
-        ("yaw rate", getattr(m, f"yaw_rate{i}") if include_yaw else 0.0)) if value is None]
+        ("yaw rate", getattr(m, f"yaw_rate{i}") if include_yaw else 0.0)) if value is None
+        and not np.any(getattr(case, f"vehicle{i}").fixed)]
     hint = (f"; missing: {', '.join(missing)} (evidence of that vehicle's rest position "
-            "gives it)" if missing else "; fix some of them (e.g. beta = 1) instead")
+            "gives it)" if missing else "" if deciding else
+            "; fix some of them (e.g. beta = 1) instead")
+    if deciding:
+        hint += f"; evidence that would decide it: {evidence_list(deciding)}"
     return (f"under-determined: {n_unknown} unknowns ({', '.join(unknown)}) but only "
             f"{n_data} measured quantities ({', '.join(t.name for t in names)}){hint}")
+
+
+def _deciding(case: Case, unknown: dict, names) -> list[str]:
+    """Labels of the candidate evidence that would decide some of the unknowns' null
+    directions at the middle of their bounds (:func:`pim.analysis.free_fit.deciding_evidence`)."""
+    keys = tuple(unknown)
+    lo, hi = (np.array([unknown[k][j] for k in keys], dtype=float) for j in (0, 1))
+    x, width = (lo + hi) / 2, hi - lo
+    eps = 0.5 if case.impact.restitution is None else case.impact.restitution
+    beta = 1.0 if case.impact.beta is None else case.impact.beta
+    groups = {"data": names, **candidate_evidence(case, names)}
+    jac = {k: v * width for k, v in terms_jacobian(case, keys, x, eps, beta, groups).items()}
+    data = jac.pop("data")
+    ident = identifiability(np.where(np.isfinite(data), data, 0.0), keys, names,
+                            candidates=jac)
+    return [label for label, _ in ident.deciding]
 
 
 def inverse_pim(case: Case, unknown: dict | None = None, *, include_yaw: bool = True,
@@ -103,6 +156,7 @@ def inverse_pim(case: Case, unknown: dict | None = None, *, include_yaw: bool = 
     unknown = check_free(case.unknown if unknown is None else unknown)
     if not unknown:
         raise InputError("unknown: nothing to solve for (the case has no [unknown] table)")
+    check_evidence(case, unknown)
     why = under_determined(case, unknown, include_yaw)
     if why:
         raise InputError(why)
@@ -114,7 +168,7 @@ def inverse_pim(case: Case, unknown: dict | None = None, *, include_yaw: bool = 
                samples=samples, seed=seed)
 
 
-def inverse_pim_many(base, keys, bounds, x0, rows, target, factor) -> BatchFit:
+def inverse_pim_many(base, keys, bounds, x0, rows, target, factor, evidence=()) -> BatchFit:
     """Many inverse problems at once: sample p has state ``base[p]`` (the model's inputs,
     :func:`pim.analysis.free_inputs.case_state`) and measured ``target[p]``.
 
@@ -131,6 +185,8 @@ def inverse_pim_many(base, keys, bounds, x0, rows, target, factor) -> BatchFit:
     rows, target, factor :
         Residual terms (:func:`pim.analysis.free_fit.residual_terms`); target and factor
         (m, k) or (k,).
+    evidence : sequence of EvidenceTerm
+        The evidence terms after the motion rows (:func:`pim.analysis.free_fit.free_residuals`).
 
     Returns
     -------
@@ -138,13 +194,15 @@ def inverse_pim_many(base, keys, bounds, x0, rows, target, factor) -> BatchFit:
     """
     base = np.asarray(base, dtype=float)
     m = base.shape[0]
-    target = np.broadcast_to(np.asarray(target, dtype=float), (m, len(rows)))
-    factor = np.broadcast_to(np.asarray(factor, dtype=float), (m, len(rows)))
+    k = len(rows) + len(evidence)
+    target = np.broadcast_to(np.asarray(target, dtype=float), (m, k))
+    factor = np.broadcast_to(np.asarray(factor, dtype=float), (m, k))
     lo = np.array([b[0] for b in bounds], dtype=float)
     hi = np.array([b[1] for b in bounds], dtype=float)
     x0 = np.broadcast_to(np.asarray(x0, dtype=float), (m, len(keys)))
 
     def fun(x, idx):
-        return free_residuals(base[idx], keys, x, rows, target[idx], factor[idx])
+        return free_residuals(base[idx], keys, x, rows, target[idx], factor[idx],
+                              evidence=[t.take(idx) for t in evidence])
 
     return least_squares_batch(fun, x0, lo, hi, max_iter=100)

@@ -21,16 +21,19 @@ that drive its spread.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
 from ..model.case import Case, Measured
+from ..model.crush import crush_delta_v, effective_mass, equivalent_energy_speed, moment_arm
+from ..model.evidence_terms import result_quantities
+from ..model.motion import Term
 from ..model.numbers import InputError, check_counts, checked_count
 from ..model.tyres import STANDARD_GRAVITY
 from .fitting import FitResult
 from .free_inputs import approach_direction, check_free
-from .inverse_pim import inverse_pim, under_determined
+from .inverse_pim import check_evidence, inverse_pim, under_determined
 from .momentum import MomentumSpeeds, momentum_speeds
 from .reconstruction_mc import (
     ReconstructionSamples,
@@ -39,11 +42,11 @@ from .reconstruction_mc import (
     solve_samples,
     summarise,
 )
-from .residuals import GoodnessOfFit, measured_terms
+from .residuals import GoodnessOfFit, crush_terms, measured_terms
 from .runout_fit import RunoutFit, fit_runout
 
 __all__ = ["PostImpact", "post_impact_motion", "check_reachable", "approach_direction",
-           "Reconstruction",
+           "Reconstruction", "CrushOutput", "crush_outputs",
            "reconstruct", "evidence_sampler", "evidence_nominal", "sample_block"]
 
 
@@ -172,8 +175,86 @@ def post_impact_motion(case: Case, *, speed_bounds=(0.0, 60.0),
                                    runouts[2].velocity, vel_cov[1], vel_cov[2])
         if momentum.message:
             messages.append(f"linear momentum: {momentum.message}")
-    return PostImpact(replace(case, measured=Measured(**measured)), runouts, vel_cov,
-                      yaw_sigma, momentum, messages)
+    return PostImpact(replace(case, measured=_with_motion(case.measured, measured)), runouts,
+                      vel_cov, yaw_sigma, momentum, messages)
+
+
+def _with_motion(measured: Measured | None, motion: dict) -> Measured:
+    """``measured`` with the run-out fits' post-impact ``motion`` in place of its own (the
+    recorder's delta-V and pre-crash speed and the energy loss are kept)."""
+    kept = {} if measured is None else {
+        f.name: getattr(measured, f.name) for f in fields(Measured)
+        if not f.name.startswith(("velocity", "yaw_rate"))}
+    return Measured(**kept, **motion)
+
+
+@dataclass(frozen=True)
+class CrushOutput:
+    """One vehicle's crush evidence at the reconstructed impact (SI).
+
+    Attributes
+    ----------
+    vehicle : int
+    energy, energy_sigma : float
+        Crush energy of its profile before the force-balance factor and its sd [J].
+    factor : float
+        Force-balance factor 1 + tan^2(alpha) at the solution's impulse [-] (1 with the
+        "normal" partition).
+    ees : float
+        Equivalent energy speed sqrt(2 E factor / m) [m/s].
+    delta_v_crush : float
+        Crush-energy delta-V |dV| of its CG from both vehicles' corrected energies, the
+        solution's restitution and effective masses (:func:`pim.model.crush.crush_delta_v`)
+        [m/s].
+    delta_v_model : float
+        |V' - V| of the PIM solution (momentum) [m/s], beside it.
+    """
+
+    vehicle: int
+    energy: float
+    energy_sigma: float
+    factor: float
+    ees: float
+    delta_v_crush: float
+    delta_v_model: float
+
+    def to_dict(self) -> dict:
+        return dict(vars(self))
+
+
+def crush_outputs(case: Case, fitted: FitResult) -> tuple[CrushOutput, ...]:
+    """EES, crush energy and crush-energy delta-V of each vehicle with a crush profile, at
+    the inverse PIM's solution (its impulse sets the force-balance factors and, through the
+    line of action at C, the effective masses gamma m = m I / (I + m h^2))."""
+    terms = crush_terms(case)
+    if not terms:
+        return ()
+    res = fitted.result
+    q = result_quantities(res)
+    factors = [float(np.asarray(f)) for f in terms[0].factors(q)]
+    profiles = case.evidence.crush
+    total = sum(p.energy * factors[i - 1] for i, p in profiles.items())
+    p_vec = np.asarray(res.impulse, dtype=float)
+    gammas, masses = [], []
+    for i in (1, 2):
+        v = getattr(res.case, f"vehicle{i}")
+        arm = np.asarray(res.case.impact.point, float) - np.asarray(v.cg, float)
+        h = moment_arm(arm[0], arm[1], p_vec[0], p_vec[1])
+        masses.append(float(v.mass))
+        gammas.append(float(effective_mass(v.mass, v.yaw_inertia, h)) / float(v.mass))
+    # the corrected crush energies equal T_L, the energy dissipated (not the energy at
+    # maximum engagement): CRASH3's delta-V with restitution in its "dissipated" reading
+    dv = crush_delta_v(total, masses[0], masses[1], fitted.eps, energy_is="dissipated",
+                       gamma1=gammas[0], gamma2=gammas[1])
+    out = []
+    for i, p in profiles.items():
+        v = getattr(res.case, f"vehicle{i}")
+        model = np.asarray(getattr(res, f"velocity{i}"), float) - np.asarray(v.velocity, float)
+        out.append(CrushOutput(i, p.energy, p.energy_sigma, factors[i - 1],
+                               float(equivalent_energy_speed(p.energy * factors[i - 1],
+                                                             masses[i - 1])),
+                               float(dv[i - 1]), float(np.hypot(*model))))
+    return tuple(out)
 
 
 @dataclass(frozen=True)
@@ -200,6 +281,9 @@ class Reconstruction:
     determined : bool
         False when the data cannot decide the unknowns (``messages`` says why).
     messages : list of str
+    crush : tuple of CrushOutput
+        Per vehicle with a crush profile: EES, crush energy, crush-energy delta-V beside the
+        solution's delta-V (empty without crush evidence or a solution).
     """
 
     case: Case
@@ -211,6 +295,7 @@ class Reconstruction:
     samples: ReconstructionSamples | None
     determined: bool
     messages: list
+    crush: tuple = ()
 
     @property
     def goodness(self) -> GoodnessOfFit | None:
@@ -274,16 +359,9 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
     if not unknown:
         raise InputError("unknown: nothing to solve for; name the unknowns in an [unknown] "
                          "table (e.g. vehicle1.speed = {bounds = [\"0 mph\", \"80 mph\"]})")
-    has_evidence = case.evidence is not None and (case.evidence.vehicle1 is not None
-                                                   or case.evidence.vehicle2 is not None)
+    check_evidence(case, unknown)
     say = progress or (lambda stage: None)
-    if has_evidence:
-        say("run-out fits")
-    post = post_impact_motion(case) if has_evidence else None
-    solved = post.case if post else case
-    if solved.measured is None:
-        raise InputError("reconstruct: the case has neither [evidence] nor [measured] "
-                         "post-impact motion")
+    post, solved = _post_impact(case, say)
     messages = list(post.messages) if post else []
     momentum = post.momentum if post else _momentum_of(solved)
     if momentum is not None and momentum.message and not post:
@@ -307,8 +385,24 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         mc = _monte_carlo(case, post, solved, fitted, unknown, samples, seed, include_yaw,
                           post_impact_samples, executor, blocks, say)
         messages += mc.messages
+    crush = crush_outputs(solved, fitted) if determined else ()
     return Reconstruction(solved, unknown, post, fitted, values, momentum, mc, determined,
-                          messages)
+                          messages, crush)
+
+
+def _post_impact(case: Case, say) -> tuple[PostImpact | None, Case]:
+    """Step 1 when the case has run-out evidence (else None), and the case to solve:
+    refused when it has no data at all."""
+    has_runout = case.evidence is not None and case.evidence.has_runout
+    if has_runout:
+        say("run-out fits")
+    post = post_impact_motion(case) if has_runout else None
+    solved = post.case if post else case
+    if solved.measured is None and not crush_terms(solved):
+        raise InputError("reconstruct: the case has neither [evidence] nor [measured] data "
+                         "(a run-out's rest position, post-impact motion, a recorded delta_v or "
+                         "pre_crash_speed, an energy_loss)")
+    return post, solved
 
 
 def _judge(fitted: FitResult) -> tuple[bool, list[str]]:
@@ -360,8 +454,8 @@ def _momentum_of(case: Case, sigma: float | None = None) -> MomentumSpeeds | Non
     """The linear-momentum speeds of the measured motion; ``sigma`` [m/s] (isotropic)
     replaces the stated standard deviations."""
     m = case.measured
-    if m.velocity1 is None or m.velocity2 is None or np.any(case.vehicle2.fixed) or np.any(
-            case.vehicle1.fixed):
+    if (m is None or m.velocity1 is None or m.velocity2 is None
+            or np.any(case.vehicle2.fixed) or np.any(case.vehicle1.fixed)):
         return None
     return momentum_speeds(float(case.vehicle1.mass), float(case.vehicle2.mass),
                            approach_direction(case.vehicle1),
@@ -432,7 +526,7 @@ def evidence_sampler(case: Case, post: PostImpact, include_yaw: bool = True):
                 heading_sigma=ev.heading_sigma)
             ok &= fit.converged & fit.stopped
             for j, term in enumerate(terms):
-                if term.vehicle == i:
+                if isinstance(term, Term) and term.vehicle == i:
                     targets[:, j] = (fit.velocity[:, term.axis] if term.is_velocity
                                      else fit.yaw_rate)
         return targets, ok, extra

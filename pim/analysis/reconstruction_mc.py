@@ -23,12 +23,19 @@ run-outs reached their evidence); the first-order indices (correlation ratio,
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..model.distributions import UncertaintyTable, nominal_values, sample_inputs
-from ..model.motion import as_terms
+from ..model.crush import crush_energy
+from ..model.distributions import Distribution, UncertaintyTable, nominal_values, sample_inputs
+from ..model.evidence_terms import (
+    DELTA_V_SCALE,
+    CrushEnergyTerm,
+    EvidenceTerm,
+    as_residual_terms,
+    split_terms,
+)
 from ..model.numbers import InputError, checked_count
 from .fitting import FitResult
 from .free_inputs import STATE, fields_set_by, friction_floor, law_values
@@ -97,7 +104,7 @@ def residual_standard_error(fit_result: FitResult) -> float:
 
 def _measured_sigmas(case, names, fit_result) -> tuple[np.ndarray, str]:
     """Per residual term: the sigma of the measured value [m/s or rad/s] and its source."""
-    sig = [t.sigma_of(case.measured) for t in as_terms(names)]
+    sig = [t.sigma_of(case.measured) for t in as_residual_terms(names)]
     if all(s is not None for s in sig):
         return np.array(sig), "stated"
     s = residual_standard_error(fit_result)
@@ -174,41 +181,125 @@ def solve_samples(case, fit_result: FitResult, unknown: dict, n: int, rng, *,
     keys = tuple(fit_result.values)
     eps0 = fit_result.eps
     beta0 = fit_result.beta
-    nominal = {**nominal_values(case, eps0, beta0), **(extra_nominal or {}),
-               **law_values(fit_result.law, fit_result.contact_friction)}
-    solved = {f for k in keys for f in fields_set_by(k)}
-    uncertain = UncertaintyTable({k: d for k, d in (dists.inputs.items() if dists else ())
-                                  if k not in solved and k in nominal})
-    values, uniforms = sample_inputs(uncertain, nominal, n, rng)
     names = measured_terms(case, include_yaw)
+    evidence = split_terms(names)[1]
+    scales = _delta_v_scales(dists, evidence)
+    nominal = {**nominal_values(case, eps0, beta0), **(extra_nominal or {}),
+               **law_values(fit_result.law, fit_result.contact_friction),
+               **dict.fromkeys(scales, 1.0), **crush_nominal(case)}
+    solved = {f for k in keys for f in fields_set_by(k)}
+    uncertain = UncertaintyTable({**{k: d for k, d in (dists.inputs.items() if dists else ())
+                                     if k not in solved and k in nominal}, **scales})
+    values, uniforms = sample_inputs(uncertain, nominal, n, rng)
     rows, target, factor = residual_terms(case, names)
+    names = tuple(crush_sampled(t, case, values, rng, n) if isinstance(t, CrushEnergyTerm)
+                  else t for t in names)
+    evidence = split_terms(names)[1]
     messages = []
     if post_impact is None:
-        from scipy.special import ndtri
-
-        sigma, source = _measured_sigmas(case, names, fit_result)
-        targets = np.empty((n, len(names)))
-        for j, term in enumerate(names):
-            u = rng.random(n) + 2.0**-54
-            uniforms[f"measured.{term.name}"] = u
-            targets[:, j] = target[j] + sigma[j] * ndtri(u)
+        targets, source = _draw_measured(case, names, fit_result, target, rng, uniforms, n,
+                                         messages)
         ok_post = np.ones(n, dtype=bool)
-        if source != "stated":
-            messages.append(f"measured: no standard deviations stated; the residual standard "
-                            f"error of the nominal fit ({residual_standard_error(fit_result):.3g}"
-                            f" m/s) stands for them")
     else:
         targets, ok_post, extra = post_impact(values, uniforms, rng, n)
         uniforms.update(extra)
+        first = len(names) - len(evidence)        # the evidence terms beside the run-outs
+        targets[:, first:] = _draw_measured(case, evidence, fit_result, target[first:], rng,
+                                            uniforms, n, messages)[0]
         source = "evidence"
+    targets, factor = _recorder_scale(names, targets, factor, values, n)
     base = np.stack([np.broadcast_to(np.asarray(values[name], dtype=float), (n,))
                      for name in STATE], axis=-1)
     bounds = [unknown[k] for k in keys]
     x0 = np.array([fit_result.values[k] for k in keys])
-    out = inverse_pim_many(base, keys, bounds, x0, rows, targets, factor)
+    out = inverse_pim_many(base, keys, bounds, x0, rows, targets, factor, evidence=evidence)
     ok = out.converged & ok_post & np.all(np.isfinite(out.x), axis=1)
     x, floored = friction_floor(base, keys, out.x)     # an unreached mu_c: its lower bound
     return SampleBlock(x, ok, uniforms, source, messages, floored)
+
+
+def _draw_measured(case, names, fit_result, target, rng, uniforms, n, messages):
+    """The measured values of ``names`` per sample, normal about ``target`` with their
+    sigmas (stated, or the residual standard error of the nominal fit, said in
+    ``messages``); the uniform variates go into ``uniforms``. Returns (targets (n, k),
+    source)."""
+    from scipy.special import ndtri
+
+    sigma, source = _measured_sigmas(case, names, fit_result)
+    targets = np.empty((n, len(names)))
+    for j, term in enumerate(names):
+        if isinstance(term, CrushEnergyTerm):     # its energies are drawn inside it
+            targets[:, j] = target[j]
+            continue
+        u = rng.random(n) + 2.0**-54
+        uniforms[f"measured.{term.name}"] = u
+        targets[:, j] = target[j] + sigma[j] * ndtri(u)
+    if source != "stated":
+        messages.append(f"measured: no standard deviations stated; the residual standard "
+                        f"error of the nominal fit ({residual_standard_error(fit_result):.3g}"
+                        f" m/s) stands for them")
+    return targets, source
+
+
+#: The crush inputs an ``[uncertainty]`` table may vary (``evidence.vehicleN.crush.<key>``).
+CRUSH_INPUTS = ("stiffness_a", "stiffness_b", "width", "depth_scale")
+
+
+def crush_nominal(case) -> dict:
+    """Nominal values of the crush inputs of :data:`CRUSH_INPUTS` [SI] (depth_scale 1)."""
+    ev = case.evidence
+    out = {}
+    for i, p in ({} if ev is None else ev.crush).items():
+        key = f"evidence.vehicle{i}.crush."
+        out.update({key + "stiffness_a": p.stiffness_a, key + "stiffness_b": p.stiffness_b,
+                    key + "width": p.width, key + "depth_scale": 1.0})
+    return out
+
+
+def crush_sampled(term: CrushEnergyTerm, case, values: dict, rng, n: int) -> CrushEnergyTerm:
+    """The crush term with each vehicle's energy per sample: from the sampled crush inputs
+    where the ``[uncertainty]`` table varies any of them (:func:`pim.model.crush.crush_energy`),
+    else drawn with the profile's own standard deviations
+    (:meth:`pim.model.crush.CrushProfile.sample_energy`)."""
+    energies = list(term.energies)
+    for i, p in case.evidence.crush.items():
+        key = {k: f"evidence.vehicle{i}.crush.{k}" for k in CRUSH_INPUTS}
+        if any(np.ndim(values[k]) for k in key.values()):
+            scale = values[key["depth_scale"]]
+            energy = crush_energy(values[key["width"]], [c * scale for c in p.depths],
+                                  values[key["stiffness_a"]], values[key["stiffness_b"]],
+                                  p.stiffness_g)
+            energies[i - 1] = np.broadcast_to(np.asarray(energy, dtype=float), (n,))
+        else:
+            energies[i - 1] = p.sample_energy(rng, n)
+    return replace(term, energies=tuple(energies))
+
+
+def _delta_v_scales(dists, evidence) -> dict:
+    """``measured.vehicleN.delta_v_scale`` -> its distribution for every vehicle with a
+    recorded delta-V: the ``[uncertainty]`` table's, else uniform on
+    :data:`pim.model.evidence_terms.DELTA_V_SCALE`."""
+    given = dists.inputs if dists else {}
+    out = {}
+    for t in evidence:
+        if t.kind == "delta_v":
+            key = f"measured.vehicle{t.vehicle}.delta_v_scale"
+            out[key] = given.get(key, Distribution("uniform", *DELTA_V_SCALE))
+    return out
+
+
+def _recorder_scale(names, targets, factor, values, n) -> tuple:
+    """The recorder sees scale x the true delta-V: the residual (s dV - recorded) / sigma is
+    (dV - recorded / s) * (s / sigma), so each sample's target is divided and its factor
+    multiplied by its scale s."""
+    factor = np.broadcast_to(np.asarray(factor, dtype=float), (n, len(names))).copy()
+    for j, term in enumerate(names):
+        if isinstance(term, EvidenceTerm) and term.kind == "delta_v":
+            s = np.broadcast_to(np.asarray(
+                values[f"measured.vehicle{term.vehicle}.delta_v_scale"], dtype=float), (n,))
+            targets[:, j] = targets[:, j] / s
+            factor[:, j] = factor[:, j] * s
+    return targets, factor
 
 
 def summarise(fit_result: FitResult, blocks) -> ReconstructionSamples:

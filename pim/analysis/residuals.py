@@ -6,6 +6,11 @@ the vehicle's radius of gyration (the speed that spin gives a point at distance 
 CG). With the ``[measured]`` standard deviations each residual is divided by its sigma
 (k sigma for a yaw rate): the sum of squares is then a chi-square [-], and
 :func:`goodness_of_fit` says whether the data fit the model at the stated sigmas.
+
+Evidence on the model's inputs and outputs beyond the post-impact motion (a recorder's
+delta-V and pre-crash speed, the energy loss: :class:`pim.model.evidence_terms.EvidenceTerm`)
+joins as further terms, value - measured [m/s or J], always with its sigma; the residuals
+are ordered motion terms first, then evidence terms.
 """
 
 from __future__ import annotations
@@ -16,12 +21,20 @@ import numpy as np
 
 from ..model.case import Case
 from ..model.dual import MOTION_OUTPUTS
+from ..model.evidence_terms import (
+    CrushEnergyTerm,
+    EvidenceTerm,
+    as_residual_terms,
+    evidence_terms_of,
+    result_quantities,
+)
 from ..model.geometry import radius_of_gyration
-from ..model.motion import Term, as_terms
+from ..model.motion import Term
 from ..model.numbers import InputError
 from ..model.result import Result
 
 __all__ = ["measured_terms", "has_measured_terms", "residuals", "residual_terms",
+           "model_value", "measured_value", "crush_terms",
            "measured_weights", "GoodnessOfFit", "goodness_of_fit", "P_INCONSISTENT",
            "cost_label"]
 
@@ -29,8 +42,11 @@ __all__ = ["measured_terms", "has_measured_terms", "residuals", "residual_terms"
 P_INCONSISTENT = 0.01
 
 
-def measured_terms(case: Case, include_yaw: bool) -> tuple[Term, ...]:
-    """The terms ``case.measured`` holds (velocities; yaw rates with ``include_yaw``).
+def measured_terms(case: Case,
+                   include_yaw: bool) -> tuple[Term | EvidenceTerm | CrushEnergyTerm, ...]:
+    """The terms ``case.measured`` holds: velocities (yaw rates with ``include_yaw``), then
+    the evidence terms (recorded delta-V and pre-crash speed, energy loss), then the crush
+    energy of the case's crush profiles.
 
     Raises
     ------
@@ -38,7 +54,7 @@ def measured_terms(case: Case, include_yaw: bool) -> tuple[Term, ...]:
         Nothing measured to fit, with a hint when only yaw rates are measured.
     """
     m = case.measured
-    terms: list[Term] = []
+    terms: list = []
     if m is not None:
         for i in (1, 2):
             if getattr(m, f"velocity{i}") is not None:
@@ -46,19 +62,41 @@ def measured_terms(case: Case, include_yaw: bool) -> tuple[Term, ...]:
         for i in (1, 2) if include_yaw else ():
             if getattr(m, f"yaw_rate{i}") is not None:
                 terms.append(Term(i, "omega"))
+        terms += evidence_terms_of(m)
+    terms += crush_terms(case)
     if not terms:
         has_yaw = m is not None and (m.yaw_rate1 is not None or m.yaw_rate2 is not None)
         hint = (" (only yaw rates are measured: use include_yaw=True / --include-yaw)"
                 if has_yaw and not include_yaw else "")
         raise InputError(
             f"case {case.name or '(unnamed)'}: nothing to fit; case.measured needs a "
-            f"post-impact velocity1 or velocity2 [m/s]{hint}")
+            f"post-impact velocity1 or velocity2 [m/s], a recorded delta_v or "
+            f"pre_crash_speed, or an energy_loss{hint}")
     return tuple(terms)
+
+
+def crush_terms(case: Case) -> tuple[CrushEnergyTerm, ...]:
+    """The crush-energy term of the case's crush profiles (``[evidence.vehicleN.crush]``),
+    or none: energies E_i and their sigmas from :class:`pim.model.crush.CrushProfile`."""
+    ev = case.evidence
+    if ev is None or not ev.crush:
+        return ()
+    profiles = ev.crush
+    return (CrushEnergyTerm(
+        energies=tuple(profiles[i].energy if i in profiles else 0.0 for i in (1, 2)),
+        profiles=tuple(profiles.get(i) for i in (1, 2)),
+        sigma=float(np.sqrt(sum(p.energy_sigma ** 2 for p in profiles.values()))),
+        partition=ev.crush_partition),)
 
 
 def _gyration(case: Case, term: Term) -> float:
     v = getattr(case, f"vehicle{term.vehicle}")
     return float(radius_of_gyration(v.mass, v.yaw_inertia))
+
+
+def _scale(case: Case, term) -> float:
+    """k_i for a yaw-rate term (its residual is k_i (Omega - Omega_m) [m/s]), else 1."""
+    return _gyration(case, term) if isinstance(term, Term) and not term.is_velocity else 1.0
 
 
 def measured_weights(case: Case, terms) -> np.ndarray | None:
@@ -67,9 +105,10 @@ def measured_weights(case: Case, terms) -> np.ndarray | None:
     With the ``[measured]`` standard deviations (``Measured.velocity1_sigma`` [m/s],
     ``yaw_rate1_sigma`` [rad/s] ...), the velocity residual V - V_m is divided by its sigma
     and the yaw residual k (Omega - Omega_m) by k sigma, so that sum (w r)^2 is a chi-square.
-    Either every fitted term has a sigma or none has: a mix is an error naming what is missing.
+    Either every fitted term has a sigma or none has: a mix is an error naming what is missing
+    (evidence terms always have one, so with them every motion term needs one too).
     """
-    terms = as_terms(terms)
+    terms = as_residual_terms(terms)
     sigmas = [t.sigma_of(case.measured) for t in terms]
     missing = [t.name for t, s in zip(terms, sigmas, strict=True) if s is None]
     if len(missing) == len(terms):
@@ -78,21 +117,36 @@ def measured_weights(case: Case, terms) -> np.ndarray | None:
         raise InputError(f"measured: standard deviations are given for some fitted terms but "
                          f"not for {', '.join(missing)}; give a *_sigma for every measured "
                          f"quantity that is fitted, or for none")
-    return np.array([1.0 / (s if t.is_velocity else _gyration(case, t) * s)
-                     for t, s in zip(terms, sigmas, strict=True)])
+    return np.array([1.0 / (_scale(case, t) * s) for t, s in zip(terms, sigmas, strict=True)])
 
 
 def residual_terms(case: Case, terms) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Rows of :data:`pim.model.dual.MOTION_OUTPUTS`, measured targets and factors of the
-    residual ``terms`` of ``case``: residual = (output - target) * factor, the factor being 1
-    for a velocity and k_i for a yaw rate, times the ``[measured]`` weight 1/sigma when
-    standard deviations are given (:func:`measured_weights`)."""
-    terms = as_terms(terms)
-    rows = np.array([MOTION_OUTPUTS.index(t.name) for t in terms])
-    target = np.array([float(t.of(case.measured)) for t in terms])
-    scale = np.array([1.0 if t.is_velocity else _gyration(case, t) for t in terms])
+    """Rows of :data:`pim.model.dual.MOTION_OUTPUTS` of the motion terms among ``terms``, and
+    the measured targets and factors of every term (motion terms first, then evidence terms,
+    :func:`pim.model.evidence_terms.as_residual_terms`): residual = (value - target) *
+    factor, the factor being 1 for a velocity or an evidence term and k_i for a yaw rate,
+    times the ``[measured]`` weight 1/sigma when standard deviations are given
+    (:func:`measured_weights`)."""
+    terms = as_residual_terms(terms)
+    rows = np.array([MOTION_OUTPUTS.index(t.name) for t in terms if isinstance(t, Term)],
+                    dtype=int)
+    target = np.array([float(t.of(case.measured)) if isinstance(t, Term)
+                       else t.target_of(case.measured) for t in terms])
+    scale = np.array([_scale(case, t) for t in terms])
     w = measured_weights(case, terms)
     return rows, target, scale * (1.0 if w is None else w)
+
+
+def model_value(result: Result, term) -> np.ndarray:
+    """The model's value of a residual term in a solved ``result`` [SI]."""
+    if not isinstance(term, Term):
+        return np.asarray(term.value(result_quantities(result)), dtype=float)
+    return term.of(result)
+
+
+def measured_value(measured, term) -> float:
+    """The measured value of a residual term [SI]."""
+    return float(term.of(measured)) if isinstance(term, Term) else term.target_of(measured)
 
 
 def residuals(result: Result, terms, *, weighted: bool = False) -> np.ndarray:
@@ -103,21 +157,22 @@ def residuals(result: Result, terms, *, weighted: bool = False) -> np.ndarray:
     result : Result
         Solve of a single case (any shape of eps, beta); its ``case.measured`` holds the
         targets.
-    terms : sequence of Term or str
+    terms : sequence of Term, EvidenceTerm or str
         ``velocity{1,2}_{x,y}`` -> V - V_measured [m/s], ``yaw_rate{1,2}`` ->
-        k (Omega - Omega_measured) [m/s] with k = sqrt(I / m) the radius of gyration.
+        k (Omega - Omega_measured) [m/s] with k = sqrt(I / m) the radius of gyration;
+        evidence terms -> value - measured [m/s or J].
     weighted : bool
         Divide by the ``[measured]`` standard deviations (when given): residuals [-] whose
         sum of squares is the chi-square.
     """
-    terms = as_terms(terms)
+    terms = as_residual_terms(terms)
     case = result.case
-    scale = np.array([1.0 if t.is_velocity else _gyration(case, t) for t in terms])
+    scale = np.array([_scale(case, t) for t in terms])
     if weighted:
         w = measured_weights(case, terms)
         scale = scale * (1.0 if w is None else w)
-    values = np.stack(np.broadcast_arrays(*(t.of(result) for t in terms)), axis=-1)
-    target = np.array([float(t.of(case.measured)) for t in terms])
+    values = np.stack(np.broadcast_arrays(*(model_value(result, t) for t in terms)), axis=-1)
+    target = np.array([measured_value(case.measured, t) for t in terms])
     return (values - target) * scale
 
 
@@ -125,9 +180,11 @@ def has_measured_terms(case: Case, include_yaw: bool = False) -> bool:
     """Whether the case has anything to fit: a measured post-impact velocity (or, with
     ``include_yaw``, a measured yaw rate)."""
     m = case.measured
+    if crush_terms(case):
+        return True
     if m is None:
         return False
-    if m.velocity1 is not None or m.velocity2 is not None:
+    if m.velocity1 is not None or m.velocity2 is not None or evidence_terms_of(m):
         return True
     return include_yaw and (m.yaw_rate1 is not None or m.yaw_rate2 is not None)
 
@@ -145,11 +202,15 @@ class GoodnessOfFit:
     p_value : float
         Probability of a chi-square at least this large if the model holds and the sigmas
         are right (``scipy.stats.chi2.sf``); NaN when ``dof`` is 0 or less.
+    largest : tuple of (str, float)
+        The terms with the largest standardised residuals (model - measured) / sigma [-],
+        largest first (at most :data:`LARGEST`): where the evidence conflicts.
     """
 
     chi_square: float
     dof: int
     p_value: float
+    largest: tuple = ()
 
     @property
     def consistent(self) -> bool | None:
@@ -164,9 +225,11 @@ class GoodnessOfFit:
             return ("no degree of freedom left (as many fitted parameters as measured "
                     "terms): the fit cannot test the model")
         if not self.consistent:
+            worst = ", ".join(f"{name} {z:+.2g} sigma" for name, z in self.largest)
             return (f"the measurements are inconsistent with PIM at the stated sigmas "
                     f"(p = {self.p_value:.2g} < {P_INCONSISTENT:g}): the model, the inputs "
-                    f"or the sigmas are wrong")
+                    f"or the sigmas are wrong"
+                    + (f"; the evidence in conflict: {worst}" if worst else ""))
         return f"the measurements are consistent with PIM at the stated sigmas (p = " \
                f"{self.p_value:.2g})"
 
@@ -179,16 +242,29 @@ class GoodnessOfFit:
     def to_dict(self) -> dict:
         return {"chi_square": self.chi_square, "dof": self.dof,
                 "p_value": None if not np.isfinite(self.p_value) else self.p_value,
-                "consistent": self.consistent, "verdict": self.verdict()}
+                "consistent": self.consistent, "verdict": self.verdict(),
+                "largest_standardised_residuals": dict(self.largest)}
 
 
-def goodness_of_fit(chi_square: float, n_data: int, n_parameters: int) -> GoodnessOfFit:
-    """The chi-square test of a weighted fit: dof = n_data - n_parameters, p = chi2.sf."""
+#: How many terms :class:`GoodnessOfFit` names as the largest standardised residuals.
+LARGEST = 3
+
+
+def goodness_of_fit(chi_square: float, n_data: int, n_parameters: int,
+                    standardised=None, names=()) -> GoodnessOfFit:
+    """The chi-square test of a weighted fit: dof = n_data - n_parameters, p = chi2.sf;
+    with the ``standardised`` residuals (w r, one per term of ``names``) it names the
+    :data:`LARGEST` largest."""
     from scipy.stats import chi2
 
     dof = int(n_data) - int(n_parameters)
     p = float(chi2.sf(chi_square, dof)) if dof > 0 else float("nan")
-    return GoodnessOfFit(float(chi_square), dof, p)
+    largest = ()
+    if standardised is not None and len(names):
+        z = np.asarray(standardised, dtype=float)
+        largest = tuple((str(names[j]), float(z[j]))
+                        for j in np.argsort(-np.abs(z), kind="stable")[:LARGEST])
+    return GoodnessOfFit(float(chi_square), dof, p, largest)
 
 
 def cost_label(weighted: bool, velocity_unit: str) -> str:

@@ -16,8 +16,9 @@ import numpy as np
 
 from ..model.case import Case
 from ..model.dual import MOTION_OUTPUTS, motion_jacobian
+from ..model.evidence_terms import as_residual_terms, split_terms
 from ..model.geometry import radius_of_gyration
-from ..model.motion import as_terms
+from ..model.motion import Term
 from ..model.numbers import InputError, check_numbers
 from ..model.quantities import INPUTS as QUANTITY_INPUTS
 from ..model.quantities import MEASURED, OUTPUTS, Quantity
@@ -26,7 +27,7 @@ from .fitting import FitResult
 from .fitting import fit as fit_case
 from .free_fit import free_residuals
 from .free_inputs import STATE, case_state
-from .residuals import has_measured_terms, residual_terms
+from .residuals import has_measured_terms, measured_value, residual_terms
 
 __all__ = ["sensitivity", "Sensitivity", "TypicalUncertainty", "INPUTS", "SENSITIVITY_OUTPUTS"]
 
@@ -215,7 +216,8 @@ def _nominal_and_sigma(case: Case, unc: TypicalUncertainty, terms) -> tuple[list
     for term in terms:
         stated = term.sigma_of(m)
         typical = unc.measured_velocity if term.is_velocity else unc.measured_yaw_rate
-        rows.append((f"measured.{term.name}", term.of(m), typical if stated is None else stated))
+        rows.append((f"measured.{term.name}", measured_value(m, term),
+                     typical if stated is None else stated))
     keys = [r[0] for r in rows]
     return keys, [float(r[1]) for r in rows], [float(r[2]) for r in rows]
 
@@ -236,14 +238,16 @@ def _cost_gradient(cases: Case, terms, eps, beta, fit_case_: Case) -> tuple:
     x = np.stack([np.broadcast_to(e, (m,)), np.broadcast_to(b, (m,))], axis=-1)
     rows, target, factor = residual_terms(fit_case_, terms)
     # a yaw term's factor is k_i = sqrt(I_i / m_i) of the (perturbed) case itself
-    factor = np.broadcast_to(factor, (m, len(rows))).copy()
-    for col, term in enumerate(as_terms(terms)):
-        if not term.is_velocity:
+    terms = as_residual_terms(terms)
+    factor = np.broadcast_to(factor, (m, len(terms))).copy()
+    for col, term in enumerate(terms):
+        if isinstance(term, Term) and not term.is_velocity:
             v0, v = (getattr(c, f"vehicle{term.vehicle}") for c in (fit_case_, cases))
             k0 = float(radius_of_gyration(v0.mass, v0.yaw_inertia))
             ratio = radius_of_gyration(v.mass, v.yaw_inertia) / k0 if k0 > 0 else np.ones(1)
             factor[:, col] *= np.broadcast_to(ratio.reshape(-1), (m,))
-    r, j = free_residuals(state, _EPS_BETA, x, rows, target, factor)
+    r, j = free_residuals(state, _EPS_BETA, x, rows, target, factor,
+                          evidence=split_terms(terms)[1])
     return 2.0 * np.einsum("pk,pkn->pn", r, j), j, factor
 
 
@@ -303,7 +307,7 @@ def sensitivity(case: Case, fit_result=None, *, eps=None, beta=None, uncertainty
         if not isinstance(fit_result, FitResult):
             raise InputError("fit_result must be a FitResult from pim.fit")
         eps, beta = fit_result.eps, fit_result.beta
-        terms = fit_result.terms or as_terms(fit_result.residual_names)
+        terms = fit_result.terms or as_residual_terms(fit_result.residual_names)
     else:
         terms = ()
         eps, beta = defaults(case, eps, beta)

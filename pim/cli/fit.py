@@ -118,10 +118,12 @@ def fit_json(data: dict, units: str) -> dict:
             out["gradient"] = {k: v * scale for k, v in data.get("gradient", {}).items()}
     fv, uv = convert(1.0, "velocity", units)
     fw, uw = convert(1.0, "angular_velocity", units)
-    out["residuals"] = {name: value * float(fv if name.startswith("velocity") else fw)
+    kinds = {name: ("angular_velocity" if name.startswith("yaw_rate") else "energy"
+                    if name in ("energy_loss", "crush_energy") else "velocity")
+             for name in data.get("residuals", {})}
+    out["residuals"] = {name: value * _factor(kinds[name], units)[0]
                         for name, value in data.get("residuals", {}).items()}
-    out["residual_units"] = {name: uv if name.startswith("velocity") else uw
-                             for name in data.get("residuals", {})}
+    out["residual_units"] = {name: _factor(kinds[name], units)[1] for name in kinds}
     out["units"] = units
     return out
 
@@ -277,7 +279,7 @@ def _print_fit(case, result, include_yaw, free, units) -> None:
     click.echo(header)
     click.echo("  " + "-" * (len(header) - 2))
     for row in result.residual_table:
-        f, unit = (fv, uv) if row["unit"] == "m/s" else (fw, uw)
+        f, unit = _factor(row["kind"], units)
         model, meas = row["fitted"] * f, row["measured"] * f
         click.echo(f"  {row['name']:<14} {model:10.4f} {meas:10.4f} {model - meas:10.4f}  {unit}")
 

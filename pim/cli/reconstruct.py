@@ -47,7 +47,8 @@ from .pre_impact_output import (
     pre_impact_rows,
 )
 
-__all__ = ["reconstruct", "reconstruction_rows", "law_line"]
+__all__ = ["reconstruct", "reconstruction_rows", "law_line", "evidence_drivers",
+           "driver_lines"]
 
 #: How each impact law is named in the output.
 LAW_NAMES = {"brach": "Brach's PIM (eps, beta)",
@@ -66,9 +67,8 @@ def reconstruction_rows(rec: Reconstruction, units: str) -> list[dict]:
     rows = []
     lower = rec.fit.lower_bounds if rec.fit is not None else {}
     for r in rec.table():
-        kind = ("impact_speed" if r["name"].endswith(".speed")
-                else UNKNOWN_KINDS.get(r["name"], "dimensionless"))
-        values, unit = convert([r["value"], r["p5"], r["p50"], r["p95"]], kind, units)
+        values, unit = convert([r["value"], r["p5"], r["p50"], r["p95"]], _kind(r["name"]),
+                               units)
         driver = r["drivers"][0] if r["drivers"] else ("", float("nan"))
         rows.append({"name": r["name"], "unit": unit, "value": float(values[0]),
                      "p5": float(values[1]), "p50": float(values[2]), "p95": float(values[3]),
@@ -83,6 +83,61 @@ def reconstruction_rows(rec: Reconstruction, units: str) -> list[dict]:
                          "p95": float("nan"), "driver": f"1 sd = {float(values[1]):.3g} {unit}",
                          "driver_index": float("nan"), "sd": float(values[1])})
     return rows
+
+
+def _kind(name: str) -> str:
+    """Unit kind of an unknown (impact speeds in the system's impact-speed unit)."""
+    return ("impact_speed" if name.endswith(".speed")
+            else UNKNOWN_KINDS.get(name, "dimensionless"))
+
+
+def evidence_drivers(rec: Reconstruction, units: str) -> dict:
+    """Which evidence drove each unknown: name -> {"sd", "unit", "shares": {evidence: share}}
+    in ``units`` (the standard error from the weighted Jacobian and each evidence group's
+    share of the variance, :func:`pim.analysis.free_fit.variance_shares`); empty without
+    standard deviations or a fit. A vehicle's post-impact motion from its run-out is called
+    its rest position."""
+    fit = rec.fit
+    if fit is None or not fit.evidence_shares:
+        return {}
+    runouts = rec.post.runouts if rec.post else {}
+
+    def label(group: str) -> str:
+        for i in runouts:
+            if group == f"vehicle{i} post-impact motion":
+                return f"vehicle{i} rest position (run-out)"
+        return group
+
+    out = {}
+    for key, shares in fit.evidence_shares.items():
+        sd, unit = convert(fit.standard_errors[key], _kind(key), units)
+        out[key] = {"sd": float(sd), "unit": unit,
+                    "shares": {label(g): v for g, v in sorted(shares.items(),
+                                                              key=lambda kv: -kv[1])}}
+    return out
+
+
+def driver_lines(drivers: dict) -> list[str]:
+    """One line per unknown: its standard error and the evidence shares, largest first."""
+    return [f"{key} (1 sd = {d['sd']:.3g} {d['unit']}): " + ", ".join(
+        f"{g} {100 * v:.0f} %" for g, v in d["shares"].items() if v >= 0.005)
+        for key, d in drivers.items()]
+
+
+def crush_lines(rec: Reconstruction, units: str) -> list[str]:
+    """Per vehicle with a crush profile: crush energy (times its force-balance factor), EES,
+    and the crush-energy delta-V beside the solution's, in ``units``."""
+    lines = []
+    for c in rec.crush:
+        (e, sd, ef), e_unit = convert([c.energy, c.energy_sigma, c.energy * c.factor],
+                                      "energy", units)
+        (ees, dv, dvm), v_unit = convert([c.ees, c.delta_v_crush, c.delta_v_model],
+                                         "impact_speed", units)
+        lines.append(f"vehicle{c.vehicle}: crush energy {e:.4g} +- {sd:.2g} {e_unit} x "
+                     f"force-balance {c.factor:.3f} = {ef:.4g} {e_unit}; EES {ees:.4g} "
+                     f"{v_unit}; delta-V from crush {dv:.4g} {v_unit} (PIM solution "
+                     f"{dvm:.4g} {v_unit})")
+    return lines
 
 
 def spread_text(row: dict, samples: int, sep: str = ", ") -> str:
@@ -143,6 +198,14 @@ def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
                   "First-order variance indices (correlation ratio) of the sampled inputs.", ""]
         lines += [f"- {line}" for line in _spread_drivers(rec)]
         lines.append("")
+    if rec.crush:
+        lines += ["## Crush energy", ""] + [f"- {c}" for c in crush_lines(rec, units)] + [""]
+    drivers = driver_lines(evidence_drivers(rec, units))
+    if drivers:
+        lines += ["## Which evidence drove each unknown", "",
+                  "Share of each unknown's variance from each piece of evidence (weighted "
+                  "Jacobian at the solution: (J^T J)^-1 split by evidence).", ""]
+        lines += [f"- {line}" for line in drivers] + [""]
     if rec.goodness is not None:
         lines += [f"Goodness of fit: {rec.goodness.summary()}.", ""]
     lines += [f"- {m}" for m in rec.messages] or ["No warnings."]
@@ -210,7 +273,8 @@ def _stages(case, samples: int, workers: int, progress):
     and its blocks); yields the callback that moves it."""
     from tqdm import tqdm
 
-    has_evidence = case.evidence is not None
+    has_evidence = case.evidence is not None and (case.evidence.vehicle1 is not None
+                                                   or case.evidence.vehicle2 is not None)
     total = int(has_evidence) + 1 + (0 if not samples else 1 if workers == 1 else
                                      1 + 2 * workers)
     with tqdm(total=total, desc="pim reconstruct", unit="stage", leave=False,
@@ -243,6 +307,8 @@ def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
         data["tyre_models"] = ({f"vehicle{i}": fit.tyre_model for i, fit in
                                 rec.post.runouts.items()} if rec.post else {})
         data["goodness_of_fit"] = rec.goodness.to_dict() if rec.goodness else None
+        data["evidence_drivers"] = evidence_drivers(rec, units)
+        data["crush"] = _crush_json(rec, units)
         data["law"] = rec.fit.law
         echo_json(data)
     else:
@@ -256,9 +322,29 @@ def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
                        f"{spread_text(r, samples)}")
         for line in pre_impact_lines(pre):
             click.echo(line)
+        for line in crush_lines(rec, units):
+            click.echo(f"crush: {line}")
+        for line in driver_lines(evidence_drivers(rec, units)):
+            click.echo(f"evidence: {line}")
         if rec.goodness is not None:
             click.echo(f"goodness of fit: {rec.goodness.summary()}")
     return rec, rows, pre
+
+
+def _crush_json(rec: Reconstruction, units: str) -> dict:
+    """``--json``'s crush outputs per vehicle, each value with its unit in ``units``."""
+    out = {}
+    for c in rec.crush:
+        (e, sd), e_unit = convert([c.energy, c.energy_sigma], "energy", units)
+        (ees, dv, dvm), v_unit = convert([c.ees, c.delta_v_crush, c.delta_v_model],
+                                         "impact_speed", units)
+        out[f"vehicle{c.vehicle}"] = {
+            "energy": {"value": float(e), "sd": float(sd), "unit": e_unit},
+            "force_balance_factor": c.factor,
+            "ees": {"value": float(ees), "unit": v_unit},
+            "delta_v_crush": {"value": float(dv), "unit": v_unit},
+            "delta_v_model": {"value": float(dvm), "unit": v_unit}}
+    return out
 
 
 def _write_folder(directory: Path, rec, rows, units: str, video: bool, pre=()) -> None:
@@ -274,13 +360,14 @@ def _write_folder(directory: Path, rec, rows, units: str, video: bool, pre=()) -
         save_figure(reconstruction_figure(rec.post, units), directory / "scene.png")
         if video:
             write_reconstruction_mp4(rec.post, directory / "reconstruction.mp4", units=units)
-    write_text(directory / "report.html", _html_report(rec, rows, directory, video, pre))
+    write_text(directory / "report.html", _html_report(rec, rows, directory, video, pre,
+                                                       units))
     write_text(directory / "report.md", _report(rec, rows, units, rec.post is not None, video,
                                                 pre))
 
 
 def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: bool,
-                 pre=()) -> str:
+                 pre=(), units: str = "si") -> str:
     """report.html: the table, what drives each spread, the warnings, the scene and the
     animation inline (read from ``directory``), by the blocks of :mod:`pim.io.html`."""
     def g(x):
@@ -301,6 +388,12 @@ def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: 
                     "main driver of the spread"), cells, title="Reconstructed unknowns",
                    note="CSV: `reconstruction.csv`", id="table-reconstruction"),
         html.bullets(rec.messages or ["No warnings."], cls="messages")]
+    if rec.crush:
+        body += [html.paragraph("Crush energy:"), html.bullets(crush_lines(rec, units))]
+    drivers = driver_lines(evidence_drivers(rec, units))
+    if drivers:
+        body += [html.paragraph("Which evidence drove each unknown (share of its variance):"),
+                 html.bullets(drivers)]
     sections = [html.section("Results", body, id="results", cls="keep")]
     sections += pre_impact_html(pre)
     if rec.samples:

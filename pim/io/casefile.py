@@ -226,8 +226,9 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
                 measured=parse_measured(data.get("measured")), name=name, description=description,
                 uncertainty=_uncertainty(data.get("uncertainty")), units=_unit_system(data),
                 notes=_angle_notes(data),
-                evidence=attach_tyres(parse_evidence(data.get("evidence")), data.get("tyres"),
-                                      data.get("driver")),
+                evidence=attach_tyres(parse_evidence(data.get("evidence"), {
+                    i + 1: (v.length, v.width) for i, v in enumerate(vehicles)}),
+                    data.get("tyres"), data.get("driver")),
                 unknown=parse_unknown(data.get("unknown")))
 
 

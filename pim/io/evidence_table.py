@@ -13,10 +13,19 @@ steer = "0 deg"              # optional: one angle (front wheels) or four
 position_sigma = "0.3 ft"    # optional
 heading_sigma = "2 deg"      # optional
 path_points = [["10 ft", "3 ft"]]   # optional
+# the run-out keys above may all be left out when the vehicle has only a crush sub-table
+# (:data:`SUBTABLES`; not with pre_impact, which needs the run-out): then it has no run-out
 
 [evidence.vehicle1.pre_impact]   # optional: marks before the impact (pim.io.pre_impact_table)
 skid_length = "42 ft"
 friction = 0.7
+
+[evidence.vehicle2.crush]    # a crush profile (pim.io.crush_table); vehicle2 has no run-out
+side = "left"
+width = "60 in"
+depths = ["2 in", "8 in", "9 in", "3 in"]
+class = "midsize car"
+partition = "total"          # optional: "total" (CRASH3, default) or "normal" (Brach & Welsh)
 
 [unknown]
 vehicle1.speed = {bounds = ["0 mph", "80 mph"]}
@@ -30,14 +39,20 @@ import numpy as np
 
 from ..model.evidence import UNKNOWN_KINDS, Evidence, VehicleEvidence
 from ..model.numbers import InputError
+from .crush_table import parse_crush
 from .pre_impact_table import parse_pre_impact
 from .toml_tables import check_keys
 from .units import parse
 
-__all__ = ["parse_evidence", "parse_unknown"]
+__all__ = ["parse_evidence", "parse_unknown", "SUBTABLES"]
 
 _EVIDENCE = {"rest_position", "rest_heading", "wheelbase", "track", "cg_to_front", "friction",
-             "wheels", "steer", "position_sigma", "heading_sigma", "path_points", "pre_impact"}
+             "wheels", "steer", "position_sigma", "heading_sigma", "path_points"}
+#: Sub-tables of ``[evidence.vehicleN]`` beside the run-out keys (each optional; a vehicle
+#: may have only these): the crush profile, the marks before the impact.
+SUBTABLES = {"crush": "crush-profile evidence", "pre_impact": "pre-impact (skid-mark) evidence"}
+#: The sub-tables this version reads.
+_PARSED = ("crush", "pre_impact")
 _WHEEL_WORDS = {"locked": 1.0, "free": 0.0, "free-rolling": 0.0}
 
 
@@ -67,8 +82,19 @@ def _wheels(value, where):
     return tuple(out)
 
 
-def _vehicle(table, where) -> VehicleEvidence:
-    check_keys(table, _EVIDENCE, where)
+def _vehicle(table, where) -> VehicleEvidence | None:
+    """The run-out evidence of ``[evidence.vehicleN]``, or None when the table holds only
+    sub-tables of other evidence (:data:`SUBTABLES`)."""
+    check_keys(table, _EVIDENCE | set(SUBTABLES), where)
+    for key in set(SUBTABLES) - set(_PARSED):
+        if key in table:
+            raise InputError(f"{where}.{key}: {SUBTABLES[key]} is not supported by this "
+                             f"version")
+    if not set(table) - set(SUBTABLES):
+        if "pre_impact" in table:
+            raise InputError(f"{where}.pre_impact needs the vehicle's run-out evidence "
+                             f"(rest_position, rest_heading, wheelbase, track, friction)")
+        return None
     for key in ("rest_position", "rest_heading", "wheelbase", "track", "friction"):
         if key not in table:
             raise InputError(f"{where}: missing {key}")
@@ -109,19 +135,44 @@ def _vehicle(table, where) -> VehicleEvidence:
         path_points=path.reshape(-1, 2), where=where, **kwargs)
 
 
-def parse_evidence(table) -> Evidence | None:
+def parse_evidence(table, dimensions=None) -> Evidence | None:
     """Parse the ``[evidence]`` table (already read by tomllib), or None when absent.
+
+    Parameters
+    ----------
+    table : dict or None
+    dimensions : dict, optional
+        Vehicle number -> (length, width) [m] (None where unknown): a crush profile must fit
+        on its vehicle (:func:`pim.io.crush_table.parse_crush`).
 
     Raises
     ------
     ValueError
-        Unknown key, missing field, bad unit, NaN, friction <= 0, ...; naming the field.
+        Unknown key, missing field, bad unit, NaN, friction <= 0, bad crush, ...; naming
+        the field.
     """
     if table is None:
         return None
     if not isinstance(table, dict) or not set(table) <= {"vehicle1", "vehicle2"}:
         raise InputError("evidence must hold [evidence.vehicle1] and/or [evidence.vehicle2]")
-    return Evidence(**{k: _vehicle(v, f"evidence.{k}") for k, v in table.items()})
+    for k, v in table.items():
+        check_keys(v, _EVIDENCE | set(SUBTABLES), f"evidence.{k}")
+    crush, partitions = {}, {}
+    for k, v in table.items():
+        if "crush" in v:
+            i = int(k[-1])
+            where = f"evidence.{k}.crush"
+            length, width = (dimensions or {}).get(i, (None, None))
+            crush[f"crush{i}"] = parse_crush(v["crush"], where, length, width,
+                                             extra_keys=("partition",))
+            partitions[where] = v["crush"].get("partition", "total")
+    if len(set(partitions.values())) > 1:
+        raise InputError(f"evidence: the crush tables ask for different partitions "
+                         f"({', '.join(f'{w}.partition = {p!r}' for w, p in partitions.items())}"
+                         f"); the comparison is of both vehicles' energies together")
+    partition = next(iter(partitions.values()), "total")
+    return Evidence(**{k: _vehicle(v, f"evidence.{k}") for k, v in table.items()}, **crush,
+                    crush_partition=partition)
 
 
 def parse_unknown(table) -> dict[str, tuple[float, float]] | None:

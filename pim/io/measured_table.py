@@ -8,9 +8,22 @@
 
 A ``*_sigma`` is the standard deviation of the measured quantity of the same name (> 0, any
 unit of its kind); :func:`pim.fit` then divides that residual by it (a chi-square cost).
+
+Evidence other than the post-impact motion (:mod:`pim.model.evidence_terms`), each with
+its sigma (required):
+
+    [measured]
+    vehicle1.delta_v = ["-25 km/h", "3 km/h"]    # recorder: [longitudinal, lateral],
+    vehicle1.delta_v_sigma = "1 km/h"            # vehicle frame (x forward, y left)
+    vehicle2.pre_crash_speed = "40 km/h"         # recorder: |V| before the impact
+    vehicle2.pre_crash_speed_sigma = "1 km/h"
+    energy_loss = "95 kJ"                         # kinetic energy lost (e.g. crush)
+    energy_loss_sigma = "15 kJ"
 """
 
 from __future__ import annotations
+
+import re
 
 import numpy as np
 
@@ -22,7 +35,10 @@ from .units import parse
 __all__ = ["parse_measured", "MEASURED_KEYS"]
 
 #: Keys allowed in ``[measured.vehicleN]``.
-MEASURED_KEYS = ("velocity", "velocity_sigma", "yaw_rate", "yaw_rate_sigma")
+MEASURED_KEYS = ("velocity", "velocity_sigma", "yaw_rate", "yaw_rate_sigma", "delta_v",
+                 "delta_v_sigma", "pre_crash_speed", "pre_crash_speed_sigma")
+#: Keys allowed at the top of ``[measured]`` beside the vehicles.
+PAIR_KEYS = ("energy_loss", "energy_loss_sigma")
 
 
 def _pair(value, field: str, allow_one: bool) -> np.ndarray:
@@ -47,8 +63,9 @@ def parse_measured(table) -> Measured | None:
     """
     if table is None:
         return None
-    check_keys(table, ("vehicle1", "vehicle2"), "measured")
-    values = {}
+    check_keys(table, ("vehicle1", "vehicle2") + PAIR_KEYS, "measured")
+    values = {key: parse(table[key], "energy", f"measured.{key}") for key in PAIR_KEYS
+              if key in table}
     for i in (1, 2):
         where = f"measured.vehicle{i}"
         sub = table.get(f"vehicle{i}", {})
@@ -62,7 +79,30 @@ def parse_measured(table) -> Measured | None:
             if key in sub:
                 values[key.replace("yaw_rate", f"yaw_rate{i}")] = parse(
                     sub[key], "angular_velocity", f"{where}.{key}")
+        values.update(_recorder(sub, i, where))
     try:
         return Measured(**values)
     except ValueError as exc:
-        raise InputError(f"measured: {exc}") from None
+        raise InputError(f"measured: {_field_names(str(exc))}") from None
+
+
+def _recorder(sub: dict, i: int, where: str) -> dict:
+    """The event data recorder's fields of ``[measured.vehicleN]`` as :class:`Measured`
+    keyword arguments [SI]."""
+    out = {}
+    if "delta_v" in sub:
+        out[f"delta_v{i}"] = _pair(sub["delta_v"], f"{where}.delta_v", False)
+    if "delta_v_sigma" in sub:
+        out[f"delta_v{i}_sigma"] = _pair(sub["delta_v_sigma"], f"{where}.delta_v_sigma", True)
+    for key in ("pre_crash_speed", "pre_crash_speed_sigma"):
+        if key in sub:
+            out[key.replace("speed", f"speed{i}")] = parse(sub[key], "velocity",
+                                                           f"{where}.{key}")
+    return out
+
+
+def _field_names(message: str) -> str:
+    """A :class:`Measured` message with its field names as the case file spells them
+    (``delta_v1_sigma`` -> ``vehicle1.delta_v_sigma``)."""
+    return re.sub(r"\b(delta_v|pre_crash_speed)([12])(_sigma)?\b",
+                  lambda m: f"vehicle{m[2]}.{m[1]}{m[3] or ''}", message)

@@ -68,25 +68,33 @@ def parse_uncertainty(table) -> UncertaintyTable | None:
     if not isinstance(table, dict):
         raise InputError("uncertainty must be a table")
     flat = {}
-    groups = [(g, e) for g, e in table.items() if g != "evidence"]
-    evidence = table.get("evidence")
-    if evidence is not None:
-        if not isinstance(evidence, dict) or not all(isinstance(e, dict)
-                                                      for e in evidence.values()):
-            raise InputError("uncertainty.evidence must hold vehicle1 / vehicle2 tables, e.g. "
-                             "evidence.vehicle1.friction = {plusminus = 0.1}")
-        for g, e in evidence.items():       # and its marks before the impact
+    groups = [(g, e) for g, e in table.items() if g not in ("evidence", "measured")]
+    for top, example in (("evidence", "evidence.vehicle1.friction = {plusminus = 0.1}"),
+                         ("measured", "measured.vehicle1.delta_v_scale = "
+                                      "{uniform = [0.88, 1.0]}")):
+        nested = table.get(top)
+        if nested is None:
+            continue
+        if not isinstance(nested, dict) or not all(isinstance(e, dict)
+                                                    for e in nested.values()):
+            raise InputError(f"uncertainty.{top} must hold vehicle1 / vehicle2 tables, e.g. "
+                             f"{example}")
+        for g, e in nested.items():       # and the evidence's marks before the impact
             e = dict(e)
-            marks = e.pop("pre_impact", None)
-            groups += [(f"evidence.{g}", e)] + ([] if marks is None else
-                                                 [(f"evidence.{g}.pre_impact", marks)])
+            marks = e.pop("pre_impact", None) if top == "evidence" else None
+            groups += [(f"{top}.{g}", e)] + ([] if marks is None else
+                                              [(f"{top}.{g}.pre_impact", marks)])
     for group, entries in groups:
-        if group.split(".")[0] not in ("vehicle1", "vehicle2", "impact", "evidence") or \
+        if group.split(".")[0] not in ("vehicle1", "vehicle2", "impact", "evidence",
+                                       "measured") or \
                 not isinstance(entries, dict):
             raise InputError(f"uncertainty: unknown input {group!r} (use vehicle1.<input>, "
                              f"vehicle2.<input>, impact.<input>, evidence.vehicleN.friction or "
                              f"evidence.vehicleN.pre_impact.friction / .skid_length; "
                              f"allowed: {', '.join(UNCERTAIN)})")
+        if group.startswith("evidence.") and isinstance(entries.get("crush"), dict):
+            entries = {**{k: v for k, v in entries.items() if k != "crush"},
+                       **{f"crush.{k}": v for k, v in entries["crush"].items()}}
         for key, spec in entries.items():
             name = f"{group}.{key}"
             if name not in UNCERTAIN:

@@ -395,6 +395,20 @@ class Measured:
         Standard deviations of the measured velocity components [m/s], > 0.
     yaw_rate1_sigma, yaw_rate2_sigma : float, optional
         Standard deviations of the measured yaw rates [rad/s], > 0.
+    delta_v1, delta_v2 : array_like, shape (2,), optional
+        Recorded delta-V (event data recorder), [longitudinal, lateral] in the vehicle frame
+        at impact: x forward along the heading, y to the left [m/s]
+        (:mod:`pim.model.evidence_terms`).
+    delta_v1_sigma, delta_v2_sigma : array_like, shape (2,), optional
+        Their standard deviations [m/s], > 0 (required with the delta-V).
+    pre_crash_speed1, pre_crash_speed2 : float, optional
+        Recorded pre-impact speed |V_i| [m/s], >= 0.
+    pre_crash_speed1_sigma, pre_crash_speed2_sigma : float, optional
+        Their standard deviations [m/s], > 0 (required with the speed).
+    energy_loss : float, optional
+        Kinetic energy lost in the impact (e.g. from a crush analysis) [J], > 0.
+    energy_loss_sigma : float, optional
+        Its standard deviation [J], > 0 (required with the energy loss).
     """
 
     velocity1: np.ndarray | None = None
@@ -405,8 +419,58 @@ class Measured:
     velocity2_sigma: np.ndarray | None = None
     yaw_rate1_sigma: float | None = None
     yaw_rate2_sigma: float | None = None
+    delta_v1: np.ndarray | None = None
+    delta_v2: np.ndarray | None = None
+    delta_v1_sigma: np.ndarray | None = None
+    delta_v2_sigma: np.ndarray | None = None
+    pre_crash_speed1: float | None = None
+    pre_crash_speed2: float | None = None
+    pre_crash_speed1_sigma: float | None = None
+    pre_crash_speed2_sigma: float | None = None
+    energy_loss: float | None = None
+    energy_loss_sigma: float | None = None
 
     def __post_init__(self) -> None:
+        self._check_motion()
+        self._check_recorded()
+
+    @property
+    def has_post_impact_motion(self) -> bool:
+        """Whether a post-impact velocity or yaw rate is measured."""
+        return any(getattr(self, f) is not None for f in
+                   ("velocity1", "velocity2", "yaw_rate1", "yaw_rate2"))
+
+    def _check_recorded(self) -> None:
+        """The recorder's delta-V and pre-crash speed and the energy loss: finite, speeds
+        >= 0, energy > 0, each with its sigma > 0."""
+        for name, unit in (("delta_v1", "m/s"), ("delta_v2", "m/s"), ("pre_crash_speed1", "m/s"),
+                           ("pre_crash_speed2", "m/s"), ("energy_loss", "J")):
+            value, sigma = getattr(self, name), getattr(self, name + "_sigma")
+            if value is None:
+                if sigma is not None:
+                    raise InputError(f"{name}_sigma is given but {name} is not measured")
+                continue
+            value = (_vector(value, name, unit) if name.startswith("delta_v")
+                     else _one_number(value, name))
+            if not np.all(np.isfinite(value)):
+                raise InputError(f"{name} must be finite [{unit}], got {value}")
+            if name.startswith("pre_crash_speed") and value < 0:
+                raise InputError(f"{name} must be >= 0 [{unit}] (a speed), got {value:g}")
+            if name == "energy_loss" and value <= 0:
+                raise InputError(f"{name} must be > 0 [{unit}] (energy absorbed in the "
+                                 f"impact), got {value:g}")
+            if sigma is None:
+                raise InputError(f"{name}_sigma is required with {name} (its standard "
+                                 f"deviation [{unit}], > 0)")
+            sigma = (_vector(sigma, name + "_sigma", unit) if name.startswith("delta_v")
+                     else _one_number(sigma, name + "_sigma"))
+            if not np.all(np.isfinite(sigma)) or np.any(np.asarray(sigma) <= 0):
+                raise InputError(f"{name}_sigma must be finite and > 0 [{unit}], got {sigma}")
+            object.__setattr__(self, name, value)
+            object.__setattr__(self, name + "_sigma", sigma)
+
+    def _check_motion(self) -> None:
+        """The post-impact velocities and yaw rates and their sigmas."""
         for name, unit in (("velocity1", "m/s"), ("velocity2", "m/s")):
             value = getattr(self, name)
             if value is not None:

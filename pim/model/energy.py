@@ -12,7 +12,8 @@ from functools import cached_property
 
 import numpy as np
 
-from .geometry import contact_velocity, dot, kinetic_energy
+from .evidence_terms import impulse_work
+from .geometry import contact_velocity, kinetic_energy
 
 __all__ = ["EnergyOutputs"]
 
@@ -50,7 +51,9 @@ class EnergyOutputs:
                   - contact_velocity(v2.velocity, v2.yaw_rate, r2))
         after = (contact_velocity(self.velocity1, self.yaw_rate1, r1)
                  - contact_velocity(self.velocity2, self.yaw_rate2, r2))
-        return -0.5 * dot(self.impulse, before + after)
+        p = self.impulse
+        return impulse_work(p[..., 0], p[..., 1], before[..., 0], before[..., 1],
+                            after[..., 0], after[..., 1])
 
     @cached_property
     def energy_loss_percent(self) -> np.ndarray:

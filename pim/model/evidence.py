@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .crush import CrushProfile, compared_energy
 from .driver import DriverInputs
 from .numbers import InputError
 from .pre_impact import PreImpactMarks
@@ -97,7 +98,34 @@ class VehicleEvidence:
 
 @dataclass(frozen=True)
 class Evidence:
-    """The post-impact evidence of the two vehicles (either may be missing)."""
+    """The evidence of the two vehicles (any part may be missing).
+
+    Attributes
+    ----------
+    vehicle1, vehicle2 : VehicleEvidence or None
+        Run-out evidence (rest positions ...): None for a vehicle without a run-out.
+    crush1, crush2 : CrushProfile or None
+        Measured crush profiles with their stiffness (:mod:`pim.model.crush`).
+    crush_partition : str
+        Which PIM energy the crush energies are compared with
+        (:func:`pim.model.crush.compared_energy`): "total" or "normal".
+    """
 
     vehicle1: VehicleEvidence | None = None
     vehicle2: VehicleEvidence | None = None
+    crush1: CrushProfile | None = None
+    crush2: CrushProfile | None = None
+    crush_partition: str = "total"
+
+    def __post_init__(self):
+        compared_energy(self.crush_partition)      # a clear error for an unknown one
+
+    @property
+    def has_runout(self) -> bool:
+        """Whether any vehicle has run-out evidence (rest position ...)."""
+        return self.vehicle1 is not None or self.vehicle2 is not None
+
+    @property
+    def crush(self) -> dict:
+        """Vehicle number -> its CrushProfile (only the vehicles with one)."""
+        return {i: p for i, p in ((1, self.crush1), (2, self.crush2)) if p is not None}

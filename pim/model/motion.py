@@ -152,6 +152,11 @@ class Term:
         return self.field + {"vx": "_x", "vy": "_y", "omega": ""}[self.quantity]
 
     @property
+    def group(self) -> str:
+        """The piece of evidence it belongs to: the vehicle's post-impact motion."""
+        return f"vehicle{self.vehicle} post-impact motion"
+
+    @property
     def unit(self) -> str:
         """SI unit of the quantity."""
         return "m/s" if self.is_velocity else "rad/s"

@@ -17,8 +17,8 @@ from dataclasses import dataclass
 
 from .numbers import InputError
 
-__all__ = ["Quantity", "FIELDS", "INPUTS", "EVIDENCE_INPUTS", "UNCERTAIN", "MEASURED", "OUTPUTS",
-           "VECTOR_FIELDS", "field_of"]
+__all__ = ["Quantity", "FIELDS", "INPUTS", "EVIDENCE_INPUTS", "MEASURED_INPUTS", "UNCERTAIN",
+           "MEASURED", "OUTPUTS", "VECTOR_FIELDS", "field_of"]
 
 
 @dataclass(frozen=True)
@@ -70,17 +70,29 @@ def _components() -> dict[str, Quantity]:
 INPUTS: dict[str, Quantity] = _components()
 
 #: Inputs of a reconstruction's evidence that an ``[uncertainty]`` table may also vary (they
-#: act on the run-out, not on the impact).
+#: act on the run-out or on the crush energy, not on the impact).
 EVIDENCE_INPUTS: dict[str, Quantity] = {
     **{f"evidence.vehicle{i}.friction": Quantity("dimensionless",
                                                 f"tyre-road friction of vehicle {i}")
        for i in (1, 2)},
+    **{f"evidence.vehicle{i}.crush.{key}": Quantity(kind, f"{label} of vehicle {i}")
+       for i in (1, 2) for key, kind, label in (
+           ("stiffness_a", "force_per_length", "crush stiffness A"),
+           ("stiffness_b", "force_per_area", "crush stiffness B"),
+           ("width", "length", "damage width"),
+           ("depth_scale", "dimensionless", "factor on every crush depth"))},
     **{f"evidence.vehicle{i}.pre_impact.{key}": Quantity(kind, f"{label} of vehicle {i}")
        for i in (1, 2) for key, kind, label in (
            ("friction", "dimensionless", "tyre-road friction along the pre-impact marks"),
            ("skid_length", "length", "length of the pre-impact marks"))}}
+#: Factors on measured evidence that an ``[uncertainty]`` table may vary: the event data
+#: recorder's under-reporting, recorded delta-V = scale x true delta-V
+#: (:data:`pim.model.evidence_terms.DELTA_V_SCALE`).
+MEASURED_INPUTS: dict[str, Quantity] = {
+    f"measured.vehicle{i}.delta_v_scale": Quantity(
+        "dimensionless", f"recorded / true delta-V of vehicle {i}") for i in (1, 2)}
 #: Every name an ``[uncertainty]`` table accepts.
-UNCERTAIN: dict[str, Quantity] = {**INPUTS, **EVIDENCE_INPUTS}
+UNCERTAIN: dict[str, Quantity] = {**INPUTS, **EVIDENCE_INPUTS, **MEASURED_INPUTS}
 
 
 #: The measured post-impact motion of a case file's ``[measured]`` table, as inputs of a fit.
@@ -90,6 +102,13 @@ MEASURED: dict[str, Quantity] = {
        for i in (1, 2) for a in "xy"},
     **{f"measured.yaw_rate{i}": Quantity(
         "angular_velocity", f"measured post-impact yaw rate of vehicle {i}") for i in (1, 2)},
+    **{f"measured.delta_v{i}_{a}": Quantity(
+        "velocity", f"recorded delta-V of vehicle {i}, {a}")
+       for i in (1, 2) for a in ("long", "lat")},
+    **{f"measured.pre_crash_speed{i}": Quantity(
+        "velocity", f"recorded pre-crash speed of vehicle {i}") for i in (1, 2)},
+    "measured.energy_loss": Quantity("energy", "measured energy loss"),
+    "measured.crush_energy": Quantity("energy", "energy loss minus the crush energies"),
 }
 
 
