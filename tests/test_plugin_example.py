@@ -40,6 +40,12 @@ def test_a_kudlich_slibar_reconstruction_matches_its_baseline(pim_check):
     pim_check("ricsac9-pccrash-reconstruct", BASELINES / "ricsac9-pccrash-reconstruct.json")
 
 
+@pytest.mark.parametrize("case", ["synthetic-edr", "synthetic-energy", "synthetic-crush"])
+def test_each_kind_of_evidence_matches_its_baseline(pim_check, case):
+    # recorded delta-V and pre-crash speed; energy loss; crush profiles (issue 19)
+    pim_check(case, BASELINES / "evidence-cases.json")
+
+
 def test_pre_impact_skids_matches_its_baseline(pim_check):
     # synthetic-runout with marks before the impact; its reconstruction takes minutes too
     pim_check("pre-impact-skids", BASELINES / "pre-impact-skids.json")
@@ -55,7 +61,8 @@ def test_every_bundled_case_has_a_committed_baseline():
     held = set(_cases(BUNDLED)) | set(_cases(BASELINES / "synthetic-runout.json")) | set(
         _cases(BASELINES / "pre-impact-skids.json")) | set(
         _cases(BASELINES / "synthetic-runout-field.json")) | set(
-        _cases(BASELINES / "ricsac9-pccrash-reconstruct.json"))
+        _cases(BASELINES / "ricsac9-pccrash-reconstruct.json")) | set(
+        _cases(BASELINES / "evidence-cases.json"))
     assert held == {name for name, _ in pim.list_cases()}
 
 

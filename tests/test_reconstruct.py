@@ -113,7 +113,7 @@ def test_report_md_and_html_name_the_tyre_model(tmp_path):
     # report.md did)
     rec = SimpleNamespace(post=SimpleNamespace(runouts={1: SimpleNamespace(tyre_model="brush"),
                                                         2: SimpleNamespace(tyre_model="coulomb")}),
-                          samples=None, messages=[], goodness=None, fit=None,
+                          samples=None, messages=[], goodness=None, fit=None, crush=None,
                           case=SimpleNamespace(name="field",
                                                impact=SimpleNamespace(law=None)))
     line = "Run-out tyre model: vehicle 1 brush, vehicle 2 coulomb."
