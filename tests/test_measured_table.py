@@ -24,8 +24,10 @@ def test_sigmas_in_units():
 
 @pytest.mark.parametrize("table, words", [
     ({"vehicle1": {"velocity_sigma": "1 m/s"}}, ["velocity1_sigma", "not measured"]),
-    ({"vehicle1": {"velocity": [1, 2], "velocity_sigma": "0 m/s"}}, ["velocity1_sigma", "> 0"]),
-    ({"vehicle1": {"yaw_rate": 1, "yaw_rate_sigma": "-1 deg/s"}}, ["yaw_rate1_sigma", "> 0"]),
+    ({"vehicle1": {"velocity": [1, 2], "velocity_sigma": "0 m/s"}},
+     ["measured.vehicle1.velocity_sigma", "> 0", "'0 m/s'"]),
+    ({"vehicle1": {"yaw_rate": 1, "yaw_rate_sigma": "-1 deg/s"}},     # as written, not rad/s
+     ["measured.vehicle1.yaw_rate_sigma", "> 0", "'-1 deg/s'"]),
     ({"vehicle1": {"velocity": [1, 2], "velocity_sigma": ["1 m/s"]}},
      ["measured.vehicle1.velocity_sigma", "two values"]),
     ({"vehicle1": {"speed_sigma": 1}}, ["measured.vehicle1", "speed_sigma", "allowed"]),
@@ -63,15 +65,15 @@ def test_recorder_and_energy_fields_parse_in_si():
 
 @pytest.mark.parametrize("table, words", [
     ({"vehicle1": {"delta_v": ["-9 m/s", "1 m/s"], "delta_v_sigma": "0 m/s"}},
-     r"measured: vehicle1.delta_v_sigma must be finite and > 0"),
+     r"measured.vehicle1.delta_v_sigma must be > 0, got '0 m/s'"),
     ({"vehicle1": {"delta_v": ["-9 m/s", "1 m/s"], "delta_v_sigma": "-1 m/s"}},
-     r"vehicle1.delta_v_sigma must be finite and > 0"),
+     r"vehicle1.delta_v_sigma must be > 0, got '-1 m/s'"),
     ({"vehicle1": {"delta_v": ["-9 m/s", "1 m/s"]}}, r"vehicle1.delta_v_sigma is required"),
     ({"energy_loss": "0 kJ", "energy_loss_sigma": "1 kJ"}, r"energy_loss must be > 0"),
     ({"energy_loss": "-5 kJ", "energy_loss_sigma": "1 kJ"}, r"energy_loss must be > 0"),
     ({"energy_loss": "50 kJ", "energy_loss_sigma": "0 kJ"}, r"energy_loss_sigma must be"),
-    ({"vehicle2": {"pre_crash_speed": "-3 m/s", "pre_crash_speed_sigma": "1 m/s"}},
-     r"vehicle2.pre_crash_speed must be >= 0"),
+    ({"vehicle2": {"pre_crash_speed": "-3 mph", "pre_crash_speed_sigma": "1 mph"}},
+     r"vehicle2.pre_crash_speed must be >= 0 \(a speed\), got '-3 mph'"),
     ({"vehicle1": {"delta_v": "-9 m/s", "delta_v_sigma": "1 m/s"}}, r"vehicle1.delta_v must "
                                                                     r"be a list of two"),
     ({"energy_loss": "50 m/s", "energy_loss_sigma": "1 kJ"}, r"measured.energy_loss")])

@@ -80,6 +80,8 @@ def parse_measured(table) -> Measured | None:
                 values[key.replace("yaw_rate", f"yaw_rate{i}")] = parse(
                     sub[key], "angular_velocity", f"{where}.{key}")
         values.update(_recorder(sub, i, where))
+        _check_signs(sub, values, i, where)
+    _check_signs(table, values, None, "measured")
     try:
         return Measured(**values)
     except ValueError as exc:
@@ -99,6 +101,23 @@ def _recorder(sub: dict, i: int, where: str) -> dict:
             out[key.replace("speed", f"speed{i}")] = parse(sub[key], "velocity",
                                                            f"{where}.{key}")
     return out
+
+
+def _check_signs(table: dict, values: dict, i: int | None, where: str) -> None:
+    """InputError naming the field, with the value as written (the case's units), for a
+    sigma <= 0, an energy loss <= 0 or a pre-crash speed < 0 (:class:`Measured` checks the
+    same in SI)."""
+    for key, text in table.items():
+        name = key if i is None else (key.replace("_sigma", f"{i}_sigma") if key.endswith(
+            "_sigma") else f"{key}{i}")
+        if name not in values or isinstance(text, dict):
+            continue
+        value = np.asarray(values[name], dtype=float)
+        if key.endswith("_sigma") or key == "energy_loss":
+            if np.any(value <= 0):
+                raise InputError(f"{where}.{key} must be > 0, got {text!r}")
+        elif key == "pre_crash_speed" and np.any(value < 0):
+            raise InputError(f"{where}.{key} must be >= 0 (a speed), got {text!r}")
 
 
 def _field_names(message: str) -> str:
