@@ -112,13 +112,9 @@ def drift(fields: list, members: set, doc: str) -> list[str]:
 
 #: Public dataclasses documented in prose, without a checked section (to be converted).
 NO_SECTION = {
-    "comparisons/hard_cases.py:HardCaseStudy", "comparisons/report.py:Report",
-    "comparisons/speed_error_compliant.py:CompliantPoint",
-    "comparisons/speed_error_compliant.py:CompliantSpeedStudy",
-    "comparisons/stiff_limit.py:StiffLimit", "pim/analysis/consistency.py:MomentumCheck",
-    "pim/analysis/reconstruction_mc.py:SampleBlock",
-    "pim/analysis/reconstruction_mc.py:UnknownStats", "pim/analysis/validation.py:BarrierRefit",
-    "pim/analysis/validation.py:CoefficientStats", "pim/analysis/validation.py:RicsacRefit",
+   
+   
+   
     "pim/io/datasets.py:BarrierTest", "pim/io/datasets.py:CarToCarVehicle",
     "pim/io/datasets.py:RicsacTest", "pim/model/distributions.py:UncertaintyTable",
     "pim/model/quantities.py:Quantity",
