@@ -115,8 +115,8 @@ NO_SECTION = {
    
    
    
-    "pim/io/datasets.py:BarrierTest", "pim/io/datasets.py:CarToCarVehicle",
-    "pim/io/datasets.py:RicsacTest", "pim/model/distributions.py:UncertaintyTable",
+   
+    "pim/model/distributions.py:UncertaintyTable",
     "pim/model/quantities.py:Quantity",
     "pim/model/runout.py:RunoutBatch", "pim/plotting/reconstruction_animation.py:FrameStates",
     "pim/plotting/tables.py:Row", "sim/compliant_setup.py:CompliantProblem",
