@@ -154,7 +154,13 @@ class HardCase:
 
 @dataclass(frozen=True, eq=False)
 class HardCaseStudy:
-    """All hard cases."""
+    """All hard cases.
+
+    Attributes
+    ----------
+    cases : tuple of HardCase
+        One entry per hard case, in the order run (looked up by name with ``study[name]``).
+    """
 
     cases: tuple[HardCase, ...]
 

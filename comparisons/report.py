@@ -75,7 +75,32 @@ def _f(x) -> float:
 
 @dataclass
 class Report:
-    """What :func:`compare_case` wrote and measured."""
+    """What :func:`compare_case` wrote and measured.
+
+    Attributes
+    ----------
+    out_dir : Path
+        The report folder.
+    files : list of Path
+        Every file written, in ``out_dir`` (report.md last).
+    eps, beta : float
+        Restitution and impulse ratio used [-] (fitted or given).
+    error : float
+        Largest relative error of the impact's velocity changes, pymunk against PIM [-]
+        (NaN when the cross-check failed).
+    seconds : dict of str to float
+        Wall and CPU time per step [s].
+    animation : comparisons.animation.AnimationInfo or None
+        The animation written (paths in ``out_dir``), if any.
+    study : comparisons.speed_error.SpeedErrorStudy or None
+        The coarse speed-against-error sweep, if run.
+    assumptions : comparisons.assumptions.AssumptionStudy or None
+        PIM's assumptions at typical values, if run.
+    data : ReportData or None
+        Everything the report shows (paths relative to the report folder).
+    report : Path
+        The report itself, ``out_dir / "report.md"`` (property).
+    """
 
     out_dir: Path
     files: list[Path] = field(default_factory=list)

@@ -67,7 +67,30 @@ COARSE = dict(steps=(10, 40, 160, 640), rtols=(1e-3, 1e-6, 1e-9), repeats=1)
 
 @dataclass(frozen=True)
 class CompliantPoint:
-    """One integrator setting and how it did on one scene."""
+    """One integrator setting and how it did on one scene.
+
+    Attributes
+    ----------
+    scene : str
+        Scene name, a key of :data:`SCENES` ("frictionless", "friction 0.5").
+    integrator : str
+        "pymunk", "DOP853" or "Radau".
+    setting : float
+        Time step dt [s] for pymunk, relative tolerance rtol [-] for solve_ivp.
+    steps : int
+        Integration steps the run took [-] (0 when it failed or was skipped).
+    error : float
+        :func:`sim.error_measure.impact_error` against the scene's reference [-] (NaN when
+        the run failed or was skipped).
+    wall_time : float
+        Best wall time of the ``repeats`` runs [s] (NaN when failed or skipped).
+    failure : str or None
+        Why there is no result: a :class:`sim.SimulationError` kind, or "over_budget".
+    ok : bool
+        A finite error and no failure (property).
+    label : str
+        "INTEGRATOR dt=..." or "INTEGRATOR rtol=..." (property).
+    """
 
     scene: str
     integrator: str          # "pymunk", "DOP853", "Radau"
@@ -89,7 +112,30 @@ class CompliantPoint:
 
 @dataclass(frozen=True, eq=False)
 class CompliantSpeedStudy:
-    """Outcome of :func:`compliant_sweep`."""
+    """Outcome of :func:`compliant_sweep`.
+
+    Attributes
+    ----------
+    case_name : str
+        The case's name.
+    eps : float
+        Restitution used [-].
+    stiffness : float
+        Linear contact stiffness of the scenes [N/m] (:data:`sim.DEFAULT_STIFFNESS`).
+    points : tuple of CompliantPoint
+        Every run, all scenes and integrators.
+    reference_spread : float
+        Largest over the scenes of the reference's spread: its
+        :func:`sim.error_measure.impact_error` against the rung before it [-] (0 with one
+        rung).
+    target : float
+        Error the recommended setting must reach [-] (:data:`TARGET`).
+    reference_rtol : float
+        Loosest over the scenes of the rtol their reference reached [-] (the tightest all
+        reached).
+    wall_time : float
+        Wall time of the whole study [s].
+    """
 
     case_name: str
     eps: float

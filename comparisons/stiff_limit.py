@@ -26,7 +26,23 @@ DURATIONS = (0.04, 0.02, 0.01, 0.005, 0.0025)
 
 @dataclass(frozen=True, eq=False)
 class StiffLimit:
-    """Errors against PIM (beta = 0) over contact durations, and the fitted order."""
+    """Errors against PIM (beta = 0) over contact durations, and the fitted order.
+
+    Attributes
+    ----------
+    case_name : str
+        The case's name.
+    eps : float
+        Restitution [-].
+    durations : ndarray (n,)
+        Requested contact times [s].
+    contact : ndarray (n,)
+        Simulated contact times [s].
+    errors : ndarray (n,)
+        :func:`sim.error_measure.impact_error` of each simulation against PIM [-].
+    order : float
+        Slope of log(error) against log(simulated contact time) [-] (property).
+    """
 
     case_name: str
     eps: float

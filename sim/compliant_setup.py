@@ -183,6 +183,65 @@ class CompliantProblem:
 
     ``state0`` is the state at t = 0 (point contact: first contact at C), 12 numbers:
     x1, y1, theta1, vx1, vy1, w1, x2, y2, theta2, vx2, vy2, w2.
+
+    Attributes
+    ----------
+    case : pim.Case
+        The (single) case.
+    eps : float
+        Restitution epsilon [-], in [0, 1].
+    stiffness : float
+        Loading stiffness b (k) of the loading curve F = a + b delta [N/m].
+    preload : float
+        Force at zero crush a of the loading curve [N] (``settings.preload``).
+    friction : float
+        Coulomb coefficient mu_c between the vehicles [-].
+    tangential_stiffness : float
+        k_t of the elastoplastic friction spring [N/m] (``stiffness`` unless set).
+    tangential_recovery : float
+        Share r of the stored tangential energy given back [-] (eps^2 unless set).
+    geometry : str
+        Contact geometry, "point" or "outline".
+    tyre_friction : float
+        Tyre friction coefficient during the contact [-] (0: no tyre forces).
+    tyre_mode : str
+        "rolling" (lateral tyre force only) or "locked" wheels.
+    mass1, mass2 : float
+        Masses [kg].
+    inertia1, inertia2 : float
+        Yaw inertias about the CGs [kg m^2].
+    fixed2 : bool
+        Vehicle 2 is a fixed obstacle.
+    state0 : ndarray (12,)
+        The state at t = 0 [m, m, rad, m/s, m/s, rad/s per vehicle] (order above).
+    arm1_body : ndarray (2,)
+        P - CG1 at t = 0, in vehicle 1's body frame [m].
+    arm2_body : ndarray (2,)
+        Q - CG2 at t = 0, in vehicle 2's body frame [m].
+    normal2_body : ndarray (2,)
+        The contact normal n, a unit vector in vehicle 2's body frame [-].
+    wheels1 : ndarray (4, 2)
+        Vehicle 1's wheel positions in its body frame [m] (front left, front right, rear
+        left, rear right).
+    wheels2 : ndarray (4, 2) or None
+        Vehicle 2's, as ``wheels1`` (None when fixed).
+    load1, load2 : float
+        Static load per tyre, m g / 4 [N] (``load2`` 0 when fixed).
+    outline1, outline2 : ndarray (4, 2) or None
+        Corners of each length x width outline in its body frame [m] (None without length
+        and width).
+    k_nn : float
+        K_nn = 1/m1 + 1/m2 + (r1 x n)^2 / I1 + (r2 x n)^2 / I2 of the contact at t = 0
+        [1/kg] (vehicle 2's terms left out when fixed).
+    duration_estimate : float
+        Contact time of the frictionless linear law [s]
+        (:func:`sim.contact_law.contact_duration_estimate`).
+    speed_scale : float
+        Largest pre-impact speed of the two vehicles [m/s] (at least 1e-6), for tolerances.
+    energy_before : float
+        Kinetic energy of both vehicles before the impact [J].
+    settings : CompliantSettings
+        The numerical settings used.
     """
 
     case: pim.Case

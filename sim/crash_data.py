@@ -26,7 +26,23 @@ NHTSA10146_MASS = 1719.0
 
 @dataclass(frozen=True, eq=False)
 class CrashTest:
-    """A barrier test's history (SI): time [s], crush [m], velocity [m/s], force [N]."""
+    """A barrier test's history (SI): time [s], crush [m], velocity [m/s], force [N].
+
+    Attributes
+    ----------
+    time : ndarray (n,)
+        Time since the impact (the record's zero) [s].
+    crush : ndarray (n,)
+        Dynamic crush [m].
+    velocity : ndarray (n,)
+        Vehicle velocity towards the barrier [m/s] (negative after rebound).
+    force : ndarray (n,)
+        Barrier force [N].
+    mass : float
+        Test mass [kg].
+    source : str
+        Where the data come from (the data file's first line).
+    """
 
     time: np.ndarray
     crush: np.ndarray

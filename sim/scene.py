@@ -105,7 +105,50 @@ def footprint_lever(vehicle: pim.Vehicle) -> float:
 
 @dataclass(eq=False)
 class Scene:
-    """A built pymunk scene and what the runner needs to know about it."""
+    """A built pymunk scene and what the runner needs to know about it.
+
+    Attributes
+    ----------
+    space : pymunk.Space
+        The space, bodies and contact shapes added (no collision handler yet).
+    body1, body2 : pymunk.Body
+        The vehicles (``body2`` static when fixed).
+    contact_shapes : list of pymunk.Shape
+        The colliding shapes: circle on 1 and segment on 2 (point contact), or the outlines.
+    fixed2 : bool
+        Vehicle 2 is a fixed obstacle.
+    eps : float
+        Restitution epsilon [-].
+    beta : float
+        Fraction of mu0 [-].
+    friction : float
+        Coulomb coefficient u of the contact [-]: STICK_MARGIN |mu0| (at least 1) for
+        beta = 1, beta |mu0| below (mu_c in a Kudlich-Slibar scene).
+    start_time : float
+        Time at which the bodies start [s] (<= 0; t = 0 is PIM's impact instant).
+    point : ndarray (2,)
+        The impact point C [m].
+    normal : ndarray (2,)
+        The contact normal n = (cos Gamma, sin Gamma) [-].
+    approach_n : float
+        Normal approach velocity u_n at C before the impact [m/s] (negative: approaching).
+    speed_scale : float
+        Largest of |u| and the pre-impact speeds [m/s] (at least 1e-6), for tolerances.
+    energy_before : float
+        Kinetic energy of both vehicles before the impact [J].
+    outline1, outline2 : ndarray (4, 2) or None
+        Corners of each length x width outline in its body frame [m] (None without length
+        and width).
+    lever1, lever2 : float
+        Mean distance of each footprint from its CG [m] (:func:`footprint_lever`; for tyre
+        friction after separation; ``lever2`` 0 when fixed).
+    iterations : int
+        Solver sweeps per step in use [-].
+    contraction_rate : float
+        Predicted error factor per sweep rho [-] (:mod:`sim.convergence`).
+    k : tuple of float
+        K_nn, K_nt, K_tt of PIM's contact [1/kg].
+    """
 
     space: pymunk.Space
     body1: pymunk.Body

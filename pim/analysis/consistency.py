@@ -40,7 +40,31 @@ DEFAULT_MAX_ARM = 3.0      # m: about half the diagonal of a large car
 
 @dataclass(frozen=True)
 class MomentumCheck:
-    """The momentum balance of one test (module notes); ``flagged`` names what failed."""
+    """The momentum balance of one test (module notes); ``flagged`` names what failed.
+
+    Attributes
+    ----------
+    test : str
+        Test name for the report.
+    impulse_ratio : float or None
+        m1 |dv1| / (m2 |dv2|) - 1 from the published delta-V magnitudes [-] (None without
+        them).
+    linear_imbalance : float or None
+        |m1 dv1 + m2 dv2| / max(|m1 dv1|, |m2 dv2|) from the measured velocity vectors [-]
+        (None without them).
+    arm1, arm2 : float or None
+        Distance of the impulse's line of action from each CG implied by the angular
+        balance, I_i |dw_i| / P [m] (P the mean of |m1 dv1| and |m2 dv2|; None without the
+        velocities, yaw inertia or yaw-rate change).
+    tolerance : float
+        Largest allowed ``|impulse_ratio|`` and ``linear_imbalance`` [-].
+    max_arm : float
+        Largest allowed arm [m].
+    reasons : list of str
+        Why the test is inconsistent, in words (property; empty when it is not).
+    flagged : bool
+        True when any reason applies (property).
+    """
 
     test: str
     impulse_ratio: float | None

@@ -51,7 +51,19 @@ __all__ = ["UnknownStats", "ReconstructionSamples", "reconstruction_samples",
 class UnknownStats:
     """One unknown over the Monte Carlo samples [SI].
 
-    ``drivers`` lists (input, first-order index) by decreasing index.
+    Attributes
+    ----------
+    name : str
+        The unknown's key (e.g. "vehicle1.speed").
+    nominal : float
+        Its value in the nominal fit [SI: the unknown's unit, m/s, m, rad or -].
+    p5, p50, p95 : float
+        5th, 50th and 95th percentiles over the used samples [SI] (NaN when none).
+    mean, std : float
+        Mean and standard deviation (population, ddof 0) over the used samples [SI].
+    drivers : list of (str, float)
+        (input, first-order index [-]) by decreasing index
+        (:func:`pim.analysis.montecarlo.first_order_indices`).
     """
 
     name: str
@@ -158,9 +170,24 @@ def reconstruction_samples(case, fit_result: FitResult, unknown: dict, n: int = 
 class SampleBlock:
     """Raw Monte Carlo samples of a reconstruction (one block; blocks concatenate).
 
-    ``x`` (n, n_unknowns) in the order of the nominal fit's ``values``; ``ok`` (n,) the
-    samples used; ``uniforms`` the uniform variate of every varying quantity (n,);
-    ``floored`` (n,) the samples whose ``impact.mu_c`` is only a lower bound.
+    Attributes
+    ----------
+    x : ndarray (n, n_unknowns)
+        Each sample's solved unknowns, in the order of the nominal fit's ``values`` [SI:
+        each unknown's own unit, m/s, m, rad or -]; an unreached ``impact.mu_c`` is
+        replaced by its lower bound.
+    ok : ndarray of bool (n,)
+        The samples used (fit converged, finite, and with a post-impact model, its run-out
+        reaching the evidence).
+    uniforms : dict of str to ndarray (n,)
+        Varying quantity -> the uniform variate in (0, 1) it was drawn from [-].
+    source : str
+        Where the measured values' sigmas come from: "stated", "residual standard error",
+        or "evidence" (drawn by a post-impact model).
+    messages : list of str
+        Notes on the sampling, in words.
+    floored : ndarray of bool (n,) or None
+        The samples whose ``impact.mu_c`` is only a lower bound (None: none).
     """
 
     x: np.ndarray

@@ -189,8 +189,26 @@ def reproduce_barrier(tests, radius_of_gyration=None) -> list[BarrierReproductio
 class BarrierRefit(BarrierReproduction):
     """A barrier test refitted with :func:`pim.fit`: the fitted coefficients and their motion.
 
-    ``restitution``, ``beta`` [-] and ``phi`` [rad] as fitted (phi is the published one when it
-    was held fixed); ``on_bound`` names the fitted parameters that sit on a bound.
+    Attributes
+    ----------
+    test : BarrierTest
+        The published test (:mod:`pim.io.datasets`).
+    radius_of_gyration : float
+        Radius of gyration used [m].
+    predicted, measured : tuple
+        (dVx, dVy, Omega) [m/s, m/s, rad/s], PIM's with the refitted coefficients and the
+        test's.
+    restitution : float
+        Fitted restitution epsilon [-].
+    beta : float
+        Fitted impulse ratio beta [-].
+    phi : float
+        Brach's phi of vehicle 1 [rad], as fitted (the published one when it was held
+        fixed).
+    on_bound : tuple of str
+        The fitted parameters that sit on a bound (short names, e.g. "eps").
+    delta_v_error, delta_v_magnitude_error, yaw_error, within_tolerance
+        As :class:`BarrierReproduction` (properties).
     """
 
     restitution: float
@@ -276,8 +294,30 @@ def ricsac_case(test) -> Case:
 class RicsacRefit:
     """One RICSAC test refitted: (eps, beta) and C along the contact plane [SI].
 
-    ``residuals`` maps each measured term to model minus measured (m/s, rad/s);
-    ``error`` is None when the test could not be fitted, with ``message`` saying why.
+    Attributes
+    ----------
+    test : RicsacTest
+        The published test (:mod:`pim.io.datasets`).
+    restitution : float
+        Fitted restitution epsilon [-] (NaN when the fit failed).
+    beta : float
+        Fitted impulse ratio beta [-] (NaN when the fit failed).
+    along : float
+        Fitted position of C along the contact plane, ``impact.point_along`` [m] (NaN when
+        the fit failed).
+    residuals : dict of str to float
+        Measured term ("velocity1_x", ..., "yaw_rate2") -> model minus measured [m/s or
+        rad/s] (empty when the fit failed).
+    on_bound : tuple of str
+        The fitted parameters that sit on a bound (short names, e.g. "eps").
+    message : str
+        Why the test could not be fitted ("" when it was).
+    velocity_error : float
+        Largest post-impact velocity error (vector length) of the two cars [m/s] (property).
+    yaw_error : float
+        Largest post-impact yaw-rate error [rad/s] (property).
+    within_tolerance : bool
+        Both cars within 1 mph and 10 deg/s (property).
     """
 
     test: object
@@ -353,7 +393,24 @@ def summary_errors(values) -> dict:
 
 @dataclass(frozen=True)
 class CoefficientStats:
-    """Distribution of one coefficient over the tests of one crash class."""
+    """Distribution of one coefficient over the tests of one crash class.
+
+    Attributes
+    ----------
+    crash_class : str
+        A key of :data:`CRASH_CLASSES` ("barrier non-sideswipe", "barrier sideswipe",
+        "car-to-car").
+    coefficient : str
+        "epsilon" (restitution) or "beta" (mu/mu0).
+    values : tuple of float
+        The published coefficient of each test of the class [-].
+    n : int
+        Number of tests (property).
+    median, mean : float
+        Of ``values`` [-] (properties).
+    sd : float
+        Sample standard deviation (n - 1) [-] (property).
+    """
 
     crash_class: str
     coefficient: str

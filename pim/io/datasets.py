@@ -51,6 +51,46 @@ class BarrierTest:
     ``delta_v_x``/``delta_v_y`` the measured longitudinal/lateral delta-V magnitudes [m/s],
     ``delta_v`` the tabulated resultant [m/s], ``yaw_rate`` the measured yaw rate magnitude
     [rad/s]; ``beta`` = mu/mu0 [-].
+
+    Attributes
+    ----------
+    test_id : str
+        IIHS test number (e.g. "CEN1212").
+    group : str
+        Crash class, a key of :data:`GROUPS`: "NS" (non-sideswipe), "SS" (sideswipe) or
+        "OUTLIER" (excluded by the authors).
+    model_year : int
+        The vehicle's model year.
+    vehicle : str
+        Make and model.
+    vehicle_type : str
+        Body type as tabulated (e.g. "Sedan").
+    barrier : str
+        Barrier as tabulated (e.g. "Flat 150 barrier").
+    overlap_pct : float
+        Overlap of the barrier with the vehicle's width [%].
+    restitution : float
+        Brach et al.'s fitted restitution e [-].
+    beta : float
+        Their fitted mu as a fraction of mu0 [-].
+    d : float
+        Distance of the impact point C from the CG [m].
+    phi : float
+        Brach's angle phi locating C from the CG [rad].
+    normal_angle : float
+        Gamma, the angle of the contact plane's normal [rad].
+    speed : float
+        Impact speed [m/s].
+    delta_v_x : float
+        Measured longitudinal delta-V magnitude [m/s].
+    delta_v : float
+        Tabulated resultant delta-V [m/s].
+    delta_v_y : float
+        Measured lateral delta-V magnitude [m/s].
+    yaw_rate : float
+        Measured yaw-rate magnitude [rad/s].
+    line : int
+        Line of the row in the CSV (for error messages).
     """
 
     test_id: str
@@ -75,7 +115,35 @@ class BarrierTest:
 
 @dataclass(frozen=True)
 class CarToCarVehicle:
-    """One vehicle of an IIHS small-overlap car-to-car test (Brach et al., App. 2 part 2) [SI]."""
+    """One vehicle of an IIHS small-overlap car-to-car test (Brach et al., App. 2 part 2) [SI].
+
+    Attributes
+    ----------
+    test_id : str
+        IIHS test number with "a" or "b" for the vehicle (e.g. "CF09009a").
+    group : str
+        "NS" (non-sideswipe) or "SS" (sideswipe); the same for both vehicles.
+    vehicle : str
+        Model year, make and model.
+    overlap : str
+        Overlap as tabulated (e.g. "28%", "15 deg oblique").
+    restitution : float
+        Brach et al.'s fitted restitution e of the impact [-] (the same for both vehicles).
+    beta : float
+        Their fitted mu as a fraction of mu0 [-] (the same for both vehicles).
+    phi : float
+        The tabulated Phi of this vehicle [rad].
+    normal_angle : float
+        Gamma, the angle of the contact plane's normal [rad] (the same for both vehicles).
+    speed : float
+        Impact speed [m/s].
+    delta_v : float
+        Tabulated resultant delta-V [m/s].
+    yaw_rate : float
+        Measured yaw-rate magnitude [rad/s].
+    line : int
+        Line of the row in the CSV (for error messages).
+    """
 
     test_id: str
     group: str
@@ -99,6 +167,37 @@ class RicsacTest:
     their Table 2 (Brach's theta, phi; Gamma). ``published_delta_v`` maps an analysis name
     (``raw_JB``, ``BrachSmith2002``, ``McHenry``, ``PIM1991``, ``PIM1998``, ``PIM2002``) to
     (dV1, dV2) [m/s].
+
+    Attributes
+    ----------
+    number : int
+        RICSAC test number.
+    vehicle1, vehicle2 : str
+        The vehicles' names, where a source states them ("" otherwise).
+    mass1, mass2 : float
+        Masses [kg].
+    yaw_inertia1, yaw_inertia2 : float
+        Yaw inertias [kg m^2] (mass x a class k^2 in the source, not measured).
+    speed1_measured, speed2_measured : float
+        Measured pre-impact speeds [m/s].
+    normal_angle : float or None
+        Gamma, the angle of the contact plane's normal [rad].
+    theta1, theta2 : float or None
+        Brach's vehicle angles theta [rad].
+    phi1, phi2 : float or None
+        Brach's angles phi locating C from each CG [rad].
+    velocity1_pre, velocity2_pre : tuple of float (2,) or None
+        Pre-impact velocities (x, y) [m/s].
+    velocity1_post, velocity2_post : tuple of float (2,) or None
+        Post-impact velocities (x, y) [m/s].
+    yaw_rate1_post, yaw_rate2_post : float or None
+        Post-impact yaw rates [rad/s].
+    published_delta_v : dict of str to tuple
+        Analysis name -> (dV1, dV2) [m/s] (an entry None where the source gives none).
+    line : int
+        Line of the row in the CSV (for error messages).
+    has_motion : bool
+        True when measured pre- and post-impact motion is available (property).
     """
 
     number: int

@@ -153,7 +153,15 @@ class Distribution:
 
 @dataclass(frozen=True)
 class UncertaintyTable:
-    """The distributions of a case's uncertain inputs (dotted name -> :class:`Distribution`)."""
+    """The distributions of a case's uncertain inputs (dotted name -> :class:`Distribution`).
+
+    Attributes
+    ----------
+    inputs : dict of str to Distribution
+        Dotted input name (a key of :data:`pim.model.quantities.UNCERTAIN`, e.g.
+        "vehicle1.mass") -> its distribution, in the input's SI unit; an unknown name or a
+        value that is not a :class:`Distribution` raises :class:`InputError`.
+    """
 
     inputs: dict
 

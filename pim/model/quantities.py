@@ -23,7 +23,16 @@ __all__ = ["Quantity", "FIELDS", "INPUTS", "EVIDENCE_INPUTS", "MEASURED_INPUTS",
 
 @dataclass(frozen=True)
 class Quantity:
-    """What a named input or output is: its unit kind and a label for tables and plots."""
+    """What a named input or output is: its unit kind and a label for tables and plots.
+
+    Attributes
+    ----------
+    kind : str or None
+        Unit kind: a key of :data:`pim.io.units.DIMENSIONS` (e.g. "velocity", "angle",
+        "dimensionless"), "percent", or None for a dimensionless number [-].
+    label : str
+        Plain-language name for tables and plots (e.g. "mass of vehicle 1").
+    """
 
     kind: str | None
     label: str

@@ -291,6 +291,23 @@ class RunoutBatch:
     """Run-outs of many samples (SI, global frame); arrays have the samples on axis 0.
 
     ``trajectory`` (steps, n, 6) is kept only when ``record=True``.
+
+    Attributes
+    ----------
+    rest_position : ndarray (n, 2)
+        CG position at rest (or at ``max_time`` when not stopped) [m].
+    rest_heading : ndarray (n,)
+        Heading psi at rest, integrated continuously (not wrapped) [rad].
+    stop_time : ndarray (n,)
+        Time from the impact to rest [s] (``max_time`` when not stopped).
+    stopped : ndarray of bool (n,)
+        True where the sample came to rest (``|v| + |omega| r_max < stop_speed``) within
+        ``max_time``.
+    time : ndarray (steps,) or None
+        Times of the recorded states [s] (None without ``record``).
+    trajectory : ndarray (steps, n, 6) or None
+        Every step's state ``(x, y, psi, v_x, v_y, omega)`` [m, m, rad, m/s, m/s, rad/s]
+        (None without ``record``).
     """
 
     rest_position: np.ndarray

@@ -34,6 +34,14 @@ class FrameStates:
     """Per frame: the time [s] after the impact and each car's (x, y, heading) [m, m, rad].
 
     ``states`` maps the vehicle number to an array (n_frames, 3).
+
+    Attributes
+    ----------
+    times : ndarray (n_frames,)
+        Time of each frame after the impact [s].
+    states : dict of int to ndarray (n_frames, 3)
+        Vehicle number (1, 2) -> its pose (x, y, heading) per frame [m, m, rad] (the rest
+        pose once it has stopped; only the vehicles with a run-out).
     """
 
     times: np.ndarray

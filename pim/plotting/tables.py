@@ -15,7 +15,24 @@ __all__ = ["Row", "summarize", "format_table", "rows_to_json"]
 
 @dataclass(frozen=True)
 class Row:
-    """One line of a result table: a quantity per vehicle (or one shared value) and its unit."""
+    """One line of a result table: a quantity per vehicle (or one shared value) and its unit.
+
+    Attributes
+    ----------
+    key : str
+        Machine name of the quantity (the key in JSON output, e.g. "delta_v").
+    label : str
+        Plain-language label (e.g. "|delta-V|").
+    vehicle1 : float or None
+        Vehicle 1's value, or the shared value of a ``single`` row, in ``unit``.
+    vehicle2 : float or None
+        Vehicle 2's value in ``unit`` (None for a ``single`` row, or a quantity a fixed
+        barrier does not have).
+    unit : str
+        Unit symbol of the values in the table's unit system ("" when dimensionless).
+    single : bool
+        One shared value (in ``vehicle1``), not one per vehicle.
+    """
 
     key: str
     label: str
