@@ -19,6 +19,10 @@ from pim.model import kernel
 from pim.model.numba_cache import cache_stamp
 from pim.model.solver import APPROACH_TOLERANCE, SINGULAR_TOLERANCE
 
+# one xdist worker runs this file (--dist loadgroup): its kernels' specialisations are
+# compiled once instead of once per worker on a fresh clone
+pytestmark = pytest.mark.xdist_group("pim_kernel")
+
 FIELDS = ["velocity1", "velocity2", "yaw_rate1", "yaw_rate2", "impulse", "impulse_n",
           "impulse_t", "critical_impulse_n", "critical_impulse_t", "normal", "tangent", "arm1",
           "arm2", "approach_velocity", "approach_n", "approach_t", "k_nn", "k_nt", "k_tt", "mu0"]

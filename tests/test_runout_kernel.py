@@ -12,6 +12,10 @@ from pim.model.runout import RunoutVehicle, runout, runout_many
 from pim.model.runout_kernel import integrate_many
 from pim.model.tyres import TyreData, regularised_slide_distance
 
+# one xdist worker runs every test of the compiled run-out (--dist loadgroup): two workers
+# would each compile it at once (about a minute each on a fresh clone)
+pytestmark = pytest.mark.xdist_group("runout_kernel")
+
 CAR = RunoutVehicle(mass=1500.0, yaw_inertia=2500.0, wheelbase=2.7, track=1.5,
                     cg_to_front=1.2, friction=0.8, braking=(1.0, 1.0, 0.3, 0.3),
                     steer=(0.2, 0.2, 0.0, 0.0))
