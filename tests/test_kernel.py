@@ -19,6 +19,10 @@ from pim.model import kernel
 from pim.model.numba_cache import cache_stamp
 from pim.model.solver import APPROACH_TOLERANCE, SINGULAR_TOLERANCE
 
+# one xdist worker runs this file (--dist loadgroup): its kernels' specialisations are
+# compiled once instead of once per worker on a fresh clone
+pytestmark = pytest.mark.xdist_group("pim_kernel")
+
 FIELDS = ["velocity1", "velocity2", "yaw_rate1", "yaw_rate2", "impulse", "impulse_n",
           "impulse_t", "critical_impulse_n", "critical_impulse_t", "normal", "tangent", "arm1",
           "arm2", "approach_velocity", "approach_n", "approach_t", "k_nn", "k_nt", "k_tt", "mu0"]
@@ -165,6 +169,24 @@ def _sincos_array(x):
     return s, c
 
 
+def test_scalar_loop_kernels_compile_once_for_every_input_layout():
+    """Arrays, scalars broadcast as stride-0 views, an obstacle (scalar mass and velocity):
+    one compiled version each of the library-trig and full-pass kernels (a compilation costs
+    5-20 s; numba used to compile one per mix of contiguous and stride-0 inputs)."""
+    case, eps, beta = random_case(50, seed=30)
+    obstacle = pim.Case(case.vehicle1, pim.Vehicle.obstacle(cg=(1.0, 0.0)), case.impact)
+    for scene in (case, obstacle):
+        for e, b in ((eps, beta), (0.3, 0.8)):
+            inputs = kernel.case_inputs(scene, e, b)
+            ref = pim.solve(scene, e, b, backend="numpy")
+            for fast_trig in (False, True):
+                out = kernel.solve_arrays(inputs, APPROACH_TOLERANCE, SINGULAR_TOLERANCE,
+                                          full=True, fast_trig=fast_trig)
+                np.testing.assert_allclose(out["k_nt"], ref.k_nt, rtol=1e-12, atol=0)
+    for dispatcher in (kernel._solve_kernel_libm, kernel._solve_kernel_fast):
+        assert len(dispatcher.signatures) == 1, dispatcher.signatures
+
+
 def test_huge_angles_fall_back_to_library_trig():
     case, eps, beta = random_case(1000, seed=7)
     far = pim.Case(case.vehicle1, case.vehicle2,
@@ -293,7 +315,8 @@ def test_vectorised_kernel_equals_the_scalar_kernel_bitwise(fixed):
     simd = kernel.solve_arrays(inputs, APPROACH_TOLERANCE, SINGULAR_TOLERANCE, fast_trig=True)
     args = kernel.flatten_inputs(inputs, (n,))
     out = kernel.allocate(n, False)
-    kernel._solve_kernel_fast(*args, APPROACH_TOLERANCE, SINGULAR_TOLERANCE, False, *out)
+    kernel.scalar_kernel(kernel._solve_kernel_fast)(*args, APPROACH_TOLERANCE,
+                                                    SINGULAR_TOLERANCE, False, *out)
     scalar = dict(zip(kernel.CORE_VECTORS, out[0], strict=True))
     scalar.update(zip(kernel.CORE_SCALARS, out[1], strict=True))
     scalar.update(approaching=out[2], q_singular=out[3])

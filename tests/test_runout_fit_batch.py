@@ -9,6 +9,10 @@ from pim.analysis.runout_fit import fit_runout
 from pim.analysis.runout_fit_batch import fit_runout_many
 from pim.model.runout import RunoutVehicle, runout
 
+# one xdist worker runs every test of the compiled run-out (--dist loadgroup): two workers
+# would each compile it at once (about a minute each on a fresh clone)
+pytestmark = pytest.mark.xdist_group("runout_kernel")
+
 CAR = RunoutVehicle(mass=1500.0, yaw_inertia=2500.0, wheelbase=2.7, track=1.5,
                     cg_to_front=1.2, friction=0.8, braking=(1.0, 1.0, 0.3, 0.3))
 V, OMEGA, PSI = np.array([6.0, 1.5]), 1.2, 0.4

@@ -12,6 +12,10 @@ from pim.model.runout import RunoutVehicle, TimedRhs, runout, runout_many, runou
 from pim.model.runout_kernel import CompiledRhs, integrate_many
 from pim.model.tyres import TyreData, regularised_slide_distance
 
+# one xdist worker runs every test of the compiled run-out (--dist loadgroup): two workers
+# would each compile it at once (about a minute each on a fresh clone)
+pytestmark = pytest.mark.xdist_group("runout_kernel")
+
 CAR = RunoutVehicle(mass=1500.0, yaw_inertia=2500.0, wheelbase=2.7, track=1.5,
                     cg_to_front=1.2, friction=0.8, braking=(1.0, 1.0, 0.3, 0.3),
                     steer=(0.2, 0.2, 0.0, 0.0))
@@ -141,3 +145,26 @@ def test_field_tyre_rest_state_is_smooth_in_the_initial_speed():
         assert np.std(wobble) < 1e-6
     ref = runout(car, [0.0, 0.0], 0.4, velocity[k // 2], 1.5, rtol=1e-11, atol=1e-12)
     assert np.hypot(*(final[k // 2, :2] - ref.rest_position)) < 1e-4
+
+
+def test_every_call_has_the_one_compiled_signature(monkeypatch):
+    # numba compiles the kernel once per tuple of argument types (about a minute each):
+    # one sample (read-only broadcast views), many, per-sample vehicle data, a driver table,
+    # the field tyre and path points must all reach it with the same types
+    import numba
+
+    from pim.model import runout_kernel
+
+    seen = set()
+    monkeypatch.setattr(runout_kernel, "_integrate",
+                        lambda *args: seen.add(tuple(numba.typeof(a) for a in args)))
+    driver = DriverInputs([0.0, 0.4, 1.0], [0.0, 0.15, 0.05],
+                          [[0, 0, 0, 0], [0.6, 0.6, 0.2, 0.2], [1, 1, 0.3, 0.3]])
+    per_sample = replace(CAR, mass=np.array([1500.0, 1400.0, 1300.0]),
+                         friction=np.array([0.8, 0.7, 0.75]))
+    for car, n, points in [(CAR, 1, None), (CAR, 3, None), (per_sample, 3, [[5.0, 0.7]]),
+                           (replace(CAR, tyre=TyreData(), driver=driver), 1, None),
+                           (replace(per_sample, tyre=TyreData()), 3, [[1.0, 2.0], [3, 4]])]:
+        integrate_many(car, np.zeros((n, 2)), np.zeros(n), np.ones((n, 2)), np.zeros(n),
+                       path_points=points, stop_speed=np.float64(0.1))
+    assert len(seen) == 1, seen

@@ -34,7 +34,7 @@ The unit normal and tangent share one buffer ``(-sin G, cos G, sin G)`` of shape
 from __future__ import annotations
 
 import numpy as np
-from numba import njit, prange
+from numba import njit, prange, types
 
 from . import formula
 from .numba_cache import files_stamp, stamped_cache
@@ -42,8 +42,8 @@ from .numbers import InputError
 from .quantities import FIELDS, VECTOR_FIELDS
 from .result import Result
 
-__all__ = ["solve_case", "solve_arrays", "stream_copy", "INPUTS", "CORE_VECTORS", "CORE_SCALARS",
-           "AUX"]
+__all__ = ["solve_case", "solve_arrays", "stream_copy", "scalar_kernel", "INPUTS", "CORE_VECTORS",
+           "CORE_SCALARS", "AUX", "SCALAR_SIGNATURE"]
 
 #: Input names, in the order the compiled functions take them (vectors have a trailing 2):
 #: the case's fields of :data:`pim.model.quantities.FIELDS` but the headings.
@@ -373,6 +373,41 @@ def _copy_kernel(m1, i1, cg1, v1, w1, m2, i2, cg2, v2, w2, pt, gamma, eps, beta,
     return 0, 0, 0
 
 
+def _any_layout_signature() -> tuple:
+    """The argument types of the scalar-loop kernels (:func:`_solve_kernel_fast`,
+    :func:`_solve_kernel_libm`): the inputs read-only of any layout, then the two tolerances,
+    ``full`` and the C-contiguous output buffers of :func:`allocate`."""
+    def array(ndim, layout="A", dtype=types.float64, readonly=False):
+        return types.Array(dtype, ndim, layout, readonly=readonly)
+
+    inputs = [array(2 if name in VECTOR_FIELDS else 1, readonly=True) for name in INPUTS]
+    outputs = [array(3, "C"), array(2, "C"), array(1, "C", types.boolean),
+               array(1, "C", types.boolean), array(3, "C"), array(2, "C"), array(2, "C")]
+    return (*inputs, types.float64, types.float64, types.boolean, *outputs)
+
+
+#: The one signature each scalar-loop kernel is compiled for (:func:`scalar_kernel`).
+SCALAR_SIGNATURE = _any_layout_signature()
+
+
+def scalar_kernel(dispatcher):
+    """``dispatcher`` (:func:`_solve_kernel_fast` or :func:`_solve_kernel_libm`) compiled once,
+    for :data:`SCALAR_SIGNATURE`, on first use (from numba's cache when it holds it).
+
+    numba compiles a kernel anew for every tuple of argument types, and a scalar input
+    broadcast to the batch is a stride-0 view (layout "A") where an array is contiguous
+    ("C"): each mix of the two cost a compilation of 5-20 s. These kernels keep their loop
+    scalar (library or branchy trig, the auxiliary fields), so reading every input through
+    its strides costs nothing measurable (1e6 cases: 3.3-3.8 M cases/s either way, the
+    values bitwise the same); the vectorised :func:`_solve_kernel_simd` keeps its
+    contiguous specialisations (any-layout inputs run it at a third of the speed).
+    """
+    if SCALAR_SIGNATURE not in dispatcher.overloads:
+        dispatcher.compile(SCALAR_SIGNATURE)
+        dispatcher.disable_compile()   # later calls convert their arrays to these types
+    return dispatcher
+
+
 def _flat(value, shape: tuple, vector: bool) -> np.ndarray:
     """``value`` broadcast to ``shape`` (+ (2,) for vectors), flattened to (N,) or (N, 2).
 
@@ -452,12 +487,13 @@ def solve_arrays(inputs: dict, approach_tol: float, singular_tol: float, full: b
         out[2] = (code & 1).view(bool)
         out[3] = (code >> 1).view(bool)
     else:
-        kernel = _copy_kernel if copy_only else (_solve_kernel_fast if fast_trig
-                                                 else _solve_kernel_libm)
+        kernel = _copy_kernel if copy_only else scalar_kernel(
+            _solve_kernel_fast if fast_trig else _solve_kernel_libm)
         bad_eps, bad_beta, big = kernel(*args, *tols, bool(full), *out)
     if big:  # some |Gamma| beyond the range of the kernel's own sine and cosine: redo
         out = allocate(n, full)
-        bad_eps, bad_beta, big = _solve_kernel_libm(*args, *tols, bool(full), *out)
+        bad_eps, bad_beta, big = scalar_kernel(_solve_kernel_libm)(*args, *tols, bool(full),
+                                                                   *out)
     cvec, csc, appr, sing, avec, asc, trig = out
     fields = {name: cvec[k].reshape(shape + (2,)) for k, name in enumerate(CORE_VECTORS)}
     fields.update({name: csc[k].reshape(shape) for k, name in enumerate(CORE_SCALARS)})

@@ -29,7 +29,7 @@ from .numba_cache import stamped_cache
 from .numbers import InputError
 from .runout import MAX_TIME, RunoutVehicle
 
-__all__ = ["integrate_many", "RUNOUT_STEP", "CompiledRhs"]
+__all__ = ["integrate_many", "one_signature", "RUNOUT_STEP", "CompiledRhs"]
 
 #: Default fixed step [s] (as :func:`pim.model.runout.runout_many`).
 RUNOUT_STEP = 0.004
@@ -237,6 +237,20 @@ class CompiledRhs:
         return _rhs_one(float(t), np.asarray(y, dtype=float), *self.args)
 
 
+def one_signature(*args) -> tuple:
+    """The kernel's arguments with one numba type each, whatever the caller passed: arrays
+    C-contiguous and writable (a copy of a read-only ``np.broadcast_to`` view, which numba
+    types apart from a writable array of the same shape), numbers as Python floats and ints.
+
+    numba compiles :func:`_integrate` once per distinct tuple of argument types (about a
+    minute each); with this the run-outs of one sample or many, with per-sample or shared
+    vehicle data, a driver table or not, the field tyre or Coulomb, all share one compiled
+    version. Only the arrays' memory layout changes, never a value.
+    """
+    return tuple(np.require(a, requirements="CW") if isinstance(a, np.ndarray)
+                 else int(a) if isinstance(a, (int, np.integer)) else float(a) for a in args)
+
+
 def _tyre_rows(vehicle: RunoutVehicle, n: int, brake_start: float) -> np.ndarray:
     """Per-sample field-tyre data for the kernel, (n, 15), or (n, 0) for Coulomb: c_long (4),
     c_lat (4), brake_start, buildup, rolling, cg_height, wheelbase, track, cg_to_front."""
@@ -331,9 +345,9 @@ def integrate_many(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate
     stop_time = np.empty(n)
     stopped = np.empty(n, dtype=np.bool_)
     distance = np.empty((n, points.shape[1]))
-    _integrate(y0, per_sample(vehicle.mass, (n,)), per_sample(vehicle.yaw_inertia, (n,)), px,
-               py, load, per_sample(vehicle.friction, (n,)), times, steer_tab, brake_tab,
-               _tyre_rows(vehicle, n, brake_start), float(vehicle.regularisation), reach,
-               float(dt), float(max_time), stop_speed, points, out, stop_time,
-               stopped, distance)
+    _integrate(*one_signature(
+        y0, per_sample(vehicle.mass, (n,)), per_sample(vehicle.yaw_inertia, (n,)), px, py,
+        load, per_sample(vehicle.friction, (n,)), times, steer_tab, brake_tab,
+        _tyre_rows(vehicle, n, brake_start), float(vehicle.regularisation), reach, float(dt),
+        float(max_time), stop_speed, points, out, stop_time, stopped, distance))
     return out, stop_time, stopped, distance
