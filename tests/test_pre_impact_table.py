@@ -50,7 +50,7 @@ def test_per_wheel_braking_weighs_the_axle_loads():
     ({"skid_length": "42 ft", "friction": 0.7, "braking": 1.5}, "braking must be a braking "
      "fraction in [0, 1]"),
     ({"skid_length": "42 ft", "friction": 0.7, "braking": [1, 1, 1]}, "braking must be one "
-     "fraction or four"),
+     "state or four"),
     ({"skid_length": "42 ft", "friction": 0.7, "braking": ["locked", "stuck", 1, 1]},
      "braking[1]"),
     ({"skid_length": "42 ft", "friction": 0.3, "grade": "-40 %"}, "grade -40 % is steeper "

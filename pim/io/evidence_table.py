@@ -43,6 +43,7 @@ from .crush_table import parse_crush
 from .pre_impact_table import parse_pre_impact
 from .toml_tables import check_keys
 from .units import parse
+from .wheels import wheel_fractions
 
 __all__ = ["parse_evidence", "parse_unknown", "SUBTABLES"]
 
@@ -53,33 +54,12 @@ _EVIDENCE = {"rest_position", "rest_heading", "wheelbase", "track", "cg_to_front
 SUBTABLES = {"crush": "crush-profile evidence", "pre_impact": "pre-impact (skid-mark) evidence"}
 #: The sub-tables this version reads.
 _PARSED = ("crush", "pre_impact")
-_WHEEL_WORDS = {"locked": 1.0, "free": 0.0, "free-rolling": 0.0}
 
 
 def _point(value, where):
     if not isinstance(value, list) or len(value) != 2:
         raise InputError(f"{where} must be [x, y], got {value!r}")
     return np.array([parse(v, "length", f"{where}[{i}]") for i, v in enumerate(value)])
-
-
-def _wheels(value, where):
-    values = value if isinstance(value, list) else [value] * 4
-    if len(values) != 4:
-        raise InputError(f"{where} must be one state or four (front-left, front-right, "
-                         f"rear-left, rear-right), got {value!r}")
-    out = []
-    for i, v in enumerate(values):
-        if isinstance(v, str):
-            if v not in _WHEEL_WORDS:
-                raise InputError(f"{where}[{i}] must be 'locked', 'free' or a braking "
-                                 f"fraction in [0, 1], got {v!r}")
-            out.append(_WHEEL_WORDS[v])
-        else:
-            fraction = parse(v, "dimensionless", f"{where}[{i}]")
-            if not 0 <= fraction <= 1:
-                raise InputError(f"{where}[{i}] braking fraction must be in [0, 1], got {v!r}")
-            out.append(fraction)
-    return tuple(out)
 
 
 def _vehicle(table, where) -> VehicleEvidence | None:
@@ -131,7 +111,7 @@ def _vehicle(table, where) -> VehicleEvidence | None:
         cg_to_front=(parse(table["cg_to_front"], "length", f"{where}.cg_to_front")
                      if "cg_to_front" in table else wheelbase / 2),
         friction=parse(table["friction"], "dimensionless", f"{where}.friction"),
-        braking=_wheels(table.get("wheels", "locked"), f"{where}.wheels"), steer=steer,
+        braking=wheel_fractions(table.get("wheels", "locked"), f"{where}.wheels"), steer=steer,
         path_points=path.reshape(-1, 2), where=where, **kwargs)
 
 

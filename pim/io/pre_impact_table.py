@@ -25,34 +25,12 @@ from ..model.numbers import InputError
 from ..model.pre_impact import PreImpactMarks
 from .toml_tables import check_keys
 from .units import parse
+from .wheels import wheel_fractions
 
 __all__ = ["parse_pre_impact", "PRE_IMPACT_KEYS"]
 
 #: Keys of a ``pre_impact`` sub-table.
 PRE_IMPACT_KEYS = ("skid_length", "friction", "braking", "grade", "length_sigma")
-_WHEEL_WORDS = {"locked": 1.0, "free": 0.0, "free-rolling": 0.0}
-
-
-def _fraction(value, where) -> float:
-    if isinstance(value, str) and value in _WHEEL_WORDS:
-        return _WHEEL_WORDS[value]
-    if isinstance(value, str) and value.strip() in ("", "-"):
-        raise InputError(f"{where} must be 'locked', 'free' or a braking fraction in [0, 1], "
-                         f"got {value!r}")
-    fraction = parse(value, "dimensionless", where)
-    if not 0 <= fraction <= 1:
-        raise InputError(f"{where} must be a braking fraction in [0, 1] (1 locked, 0 "
-                         f"free-rolling), got {value!r}")
-    return fraction
-
-
-def _braking(value, where) -> tuple:
-    if isinstance(value, list):
-        if len(value) != 4:
-            raise InputError(f"{where} must be one fraction or four (front-left, front-right, "
-                             f"rear-left, rear-right), got {value!r}")
-        return tuple(_fraction(v, f"{where}[{i}]") for i, v in enumerate(value))
-    return (_fraction(value, where),) * 4
 
 
 def _grade(value, where) -> float:
@@ -100,5 +78,5 @@ def parse_pre_impact(table, where: str, front_share: float = 0.5) -> PreImpactMa
     return PreImpactMarks(
         skid_length=parse(table["skid_length"], "length", f"{where}.skid_length"),
         friction=parse(table["friction"], "dimensionless", f"{where}.friction"),
-        braking=_braking(table.get("braking", 1.0), f"{where}.braking"),
+        braking=wheel_fractions(table.get("braking", 1.0), f"{where}.braking"),
         front_share=front_share, where=where, **kwargs)

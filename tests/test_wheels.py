@@ -1,0 +1,46 @@
+"""pim/io/wheels.py: the wheel states shared by the run-out evidence and the pre-impact marks."""
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from pim.io.evidence_table import parse_evidence
+from pim.io.wheels import WHEEL_WORDS, braking_fraction, wheel_fractions
+
+
+def test_words_numbers_and_one_or_four_states():
+    assert wheel_fractions("locked", "w") == (1.0,) * 4
+    assert wheel_fractions(["locked", "free", "free-rolling", 0.3], "w") == (1, 0, 0, 0.3)
+    assert wheel_fractions([1, "0.5", 0, 0.25], "w") == (1, 0.5, 0, 0.25)
+    assert braking_fraction(" locked ", "w") == 1.0
+
+
+@given(st.floats(0.0, 1.0))
+def test_any_fraction_in_0_1_is_kept(f):
+    assert braking_fraction(f, "w") == f and wheel_fractions(f, "w") == (f,) * 4
+
+
+@pytest.mark.parametrize("value, words", [
+    ("skidding", ["evidence.vehicle1.wheels", "'locked', 'free'"]),
+    (1.5, ["evidence.vehicle1.wheels", "[0, 1]"]),
+    (["locked", "free"], ["evidence.vehicle1.wheels", "one state or four"]),
+    (["locked", "free", "free", "sliding"], ["evidence.vehicle1.wheels[3]", "'locked'"]),
+    ("nan", ["evidence.vehicle1.wheels"]),
+])
+def test_bad_states_name_the_field(value, words):
+    with pytest.raises(ValueError) as info:
+        wheel_fractions(value, "evidence.vehicle1.wheels")
+    assert all(w in str(info.value) for w in words), str(info.value)
+
+
+def test_both_tables_read_the_same_states():
+    """The run-out's ``wheels`` and the marks' ``braking`` were parsed by two copies of the
+    word table; a word one of them knew the other refused ('free-rolling' as braking)."""
+    table = {"vehicle1": {"rest_position": [1, 1], "rest_heading": 0, "wheelbase": "2.7 m",
+                          "track": "1.5 m", "friction": 0.7,
+                          "wheels": ["free-rolling", "locked", "0.5", 0.5],
+                          "pre_impact": {"skid_length": "10 m", "friction": 0.7,
+                                         "braking": ["free-rolling", "locked", "0.5", 0.5]}}}
+    ev = parse_evidence(table).vehicle1
+    assert ev.braking == (0.0, 1.0, 0.5, 0.5)
+    assert set(WHEEL_WORDS) == {"locked", "free", "free-rolling"}
