@@ -67,6 +67,11 @@ __all__ = ["FREE_KEYS", "Identifiability", "FreeFit", "set_inputs", "check_free"
 MERGE = 1e-3
 #: Residual that stands for a failed evaluation (singular q, no approach) [weighted units].
 PENALTY = 1e6
+_IMPULSE_N = MOTION_OUTPUTS.index("impulse_n")
+#: Admissible coarse samples wanted per refined start before the sample is extended, and
+#: the successive factors by which it grows (:func:`_coarse_search`).
+MIN_ADMISSIBLE = 4
+EXTEND = (16, 16)
 
 
 @dataclass(frozen=True)
@@ -311,7 +316,7 @@ def evidence_values(state, dstate, values, dvalues, evidence) -> tuple:
 
 
 def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True,
-                   evidence=()):
+                   evidence=(), approach: bool = False):
     """Weighted residuals at the free parameters ``x`` (m, n), and their exact Jacobian.
 
     Parameters
@@ -330,6 +335,9 @@ def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True
         Also return the Jacobian.
     evidence : sequence of EvidenceTerm
         The evidence terms after the motion rows (k = j + len(evidence)).
+    approach : bool
+        Also return whether each row's vehicles approach at C (a nonzero normal impulse;
+        where they do not, the formula returns the motion before the impact).
 
     Returns
     -------
@@ -337,6 +345,8 @@ def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True
         (output - target) * factor; :data:`PENALTY` where q is singular.
     jac : ndarray (m, k, n) or None
         d r / d x, zero where the penalty stands.
+    approaching : ndarray (m,) of bool
+        Only with ``approach``.
     """
     state, dstate = free_inputs(base, keys, x, jacobian=jacobian)
     values, dvalues = state_motion(state, dstate, jacobian=jacobian)    # under the state's law
@@ -350,10 +360,12 @@ def free_residuals(base, keys, x, rows, target, factor, *, jacobian: bool = True
         r = (out - target) * factor
     bad = ~np.all(np.isfinite(r), axis=1)
     r = np.where(bad[:, None], PENALTY, r)
-    if not jacobian:
-        return r, None
-    jac = dout * np.asarray(factor)[..., None]
-    jac = np.where(bad[:, None, None] | ~np.isfinite(jac), 0.0, jac)
+    jac = None
+    if jacobian:
+        jac = dout * np.asarray(factor)[..., None]
+        jac = np.where(bad[:, None, None] | ~np.isfinite(jac), 0.0, jac)
+    if approach:
+        return r, jac, ~bad & (values[:, _IMPULSE_N] != 0)
     return r, jac
 
 
@@ -429,15 +441,49 @@ def variance_shares(jac: np.ndarray, groups) -> tuple[np.ndarray, dict]:
     return np.sqrt(var), shares
 
 
-def _starts(u: np.ndarray, costs: np.ndarray, max_starts: int) -> list[int]:
-    """The best samples of the coarse search, at most one per box-scaled cell of 1/8."""
+def _starts(u: np.ndarray, costs: np.ndarray, max_starts: int, approaching=None) -> list[int]:
+    """The best samples of the coarse search, at most one per box-scaled cell of 1/8.
+
+    With ``approaching`` (bool per sample) and none of those starts approaching, the best
+    approaching samples are added (as many again): a sample where the vehicles do not
+    approach scores the motion before the impact, which can beat every approaching sample,
+    and the refinement from it may stay where the impulse is zero."""
+    starts = _best_cells(u, costs, max_starts, np.arange(len(costs)))
+    if approaching is not None and not np.any(np.asarray(approaching)[starts]):
+        starts += _best_cells(u, costs, max_starts, np.flatnonzero(approaching))
+    return starts
+
+
+def _best_cells(u, costs, max_starts: int, among) -> list[int]:
+    """The best of the samples ``among``, at most one per box-scaled cell of 1/8."""
     starts: list[int] = []
-    for i in np.argsort(costs, kind="stable"):
+    for i in among[np.argsort(costs[among], kind="stable")]:
         if len(starts) >= max(1, int(max_starts)):
             break
         if all(np.max(np.abs(u[i] - u[j])) > 0.125 for j in starts):
             starts.append(int(i))
     return starts
+
+
+def _coarse_search(resid, lo, width, samples: int, seed: int, max_starts: int):
+    """The coarse sample ``u`` (unit cube), its residuals and whether each approaches.
+
+    ``resid(x)`` returns (residuals, approaching). The Sobol sample of ``samples`` points;
+    where fewer than :data:`MIN_ADMISSIBLE` points per refined start approach (q regular;
+    as when the approach region is a narrow wedge of the box), the same Sobol sequence
+    continued to :data:`EXTEND` times as many points, until enough approach. A sample with
+    enough approaching points is left as it is."""
+    u = sobol_sample(len(lo), samples, seed)
+    r, approaching = resid(lo + u * width)
+    need = MIN_ADMISSIBLE * max(1, int(max_starts))
+    for factor in EXTEND:
+        if np.count_nonzero(approaching) >= need:
+            break
+        more = sobol_sample(len(lo), len(u) * factor, seed)[len(u):]
+        r_more, a_more = resid(lo + more * width)
+        u, r = np.concatenate([u, more]), np.concatenate([r, r_more])
+        approaching = np.concatenate([approaching, a_more])
+    return u, r, approaching
 
 
 def _distinct(x: np.ndarray, cost: np.ndarray, width: np.ndarray) -> list[int]:
@@ -500,11 +546,14 @@ def fit_free(case: Case, box: dict, terms, eps: float = 0.5, beta: float = 0.5,
         return free_residuals(base, keys, x, rows, target, factor, jacobian=jacobian,
                               evidence=evidence)
 
-    # coarse global search: one vectorised evaluation of the Sobol sample
-    u = sobol_sample(len(keys), samples, seed)
+    # coarse global search: one vectorised evaluation of the Sobol sample, extended where
+    # too few of its points are admissible (the vehicles approach, q regular)
+    u, r0, approaching = _coarse_search(
+        lambda x: free_residuals(base, keys, x, rows, target, factor, jacobian=False,
+                                 evidence=evidence, approach=True)[::2],
+        lo, width, samples, seed, max_starts)
     xs = lo + u * width
-    r0, _ = resid(xs, jacobian=False)
-    starts = _starts(u, np.sum(r0 * r0, axis=1), max_starts)
+    starts = _starts(u, np.sum(r0 * r0, axis=1), max_starts, approaching)
     # local refinement of every start at once, exact derivatives
     out = least_squares_batch(lambda x, idx: resid(x), xs[starts], lo, hi, merge=MERGE)
     order = _distinct(out.x, out.cost, width)
