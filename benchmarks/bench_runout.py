@@ -25,7 +25,7 @@ def compiled_speeds(car: RunoutVehicle, heading, velocity, yaw_rate) -> dict:
     speeds = {}
     for name, tyre in (("coulomb", None), ("brush", TyreData())):
         vehicle = RunoutVehicle(car.mass, car.yaw_inertia, car.wheelbase, car.track,
-                                car.cg_to_front, car.friction, braking=car.braking, tyre=tyre)
+                                car.cg_to_front_axle, car.friction, braking=car.braking, tyre=tyre)
         warm = replace(vehicle, friction=np.asarray(car.friction)[:2])
         integrate_many(warm, np.zeros((2, 2)), heading[:2], velocity[:2], yaw_rate[:2])
         t0 = time.perf_counter()

@@ -37,7 +37,7 @@ from .contact_law import (
     contact_duration_estimate,
     tangential_recovery_default,
 )
-from .contact_tyres import TYRE_MODES, wheels_from_outline
+from .contact_tyres import TYRE_MODES, wheel_loads, wheels_from_outline
 from .overlap import place
 from .result import Trajectory
 from .scene import outline_corners
@@ -265,8 +265,8 @@ class CompliantProblem:
     normal2_body: np.ndarray    # n in vehicle 2's body frame
     wheels1: np.ndarray
     wheels2: np.ndarray | None
-    load1: float                # static load per tyre [N]
-    load2: float
+    load1: np.ndarray           # static loads of the four tyres [N]
+    load2: np.ndarray | float
     outline1: np.ndarray | None
     outline2: np.ndarray | None
     k_nn: float                 # K_nn of the contact at t = 0 [1/kg]
@@ -334,9 +334,9 @@ def build_problem(case: pim.Case, eps, stiffness, friction=0.0, geometry="point"
                        cg2[0], cg2[1], h2, vel2[0], vel2[1], w2])
     g = settings.gravity
     wheels1 = wheels_from_outline(v1.length, v1.width,
-                                  float(radius_of_gyration(m1, i1)))
+                                  float(radius_of_gyration(m1, i1)), v1.cg_to_front)
     wheels2 = None if fixed2 else wheels_from_outline(
-        v2.length, v2.width, float(radius_of_gyration(m2, i2)))
+        v2.length, v2.width, float(radius_of_gyration(m2, i2)), v2.cg_to_front)
     speeds = [np.hypot(*vel1), 0.0 if fixed2 else np.hypot(*vel2)]
     kt = settings.tangential_stiffness or stiffness
     recovery = (float(tangential_recovery_default(eps)) if settings.tangential_recovery is None
@@ -348,7 +348,7 @@ def build_problem(case: pim.Case, eps, stiffness, friction=0.0, geometry="point"
         tyre_mode=settings.tyre_mode, mass1=m1, inertia1=i1, mass2=m2, inertia2=i2,
         fixed2=fixed2, state0=state0, arm1_body=rotate(r1, -h1), arm2_body=rotate(r2, -h2),
         normal2_body=rotate(n, -h2), wheels1=wheels1, wheels2=wheels2,
-        load1=m1 * g / 4.0, load2=0.0 if fixed2 else m2 * g / 4.0,
+        load1=wheel_loads(m1, wheels1, g), load2=0.0 if fixed2 else wheel_loads(m2, wheels2, g),
         outline1=outline1, outline2=outline2, k_nn=float(k_nn),
         duration_estimate=float(contact_duration_estimate(stiffness, k_nn, eps)),
         speed_scale=max(max(speeds), 1e-6),

@@ -4,8 +4,11 @@ The force law is the project's one tyre model, :mod:`pim.model.tyres` (the run-o
 uses it too); this module only places the wheels from a vehicle's outline and sums the
 forces for the contact scenes.
 
-Four tyres per vehicle, each at its static load N = m g / 4 (the CG midway between the
-axles and the wheels), at body-frame positions (+-wheelbase/2, +-track/2). Each tyre
+Four tyres per vehicle at body-frame positions (a, +-track/2) and (a - wheelbase, +-track/2),
+the axles centred on the OUTLINE (a = cg_to_front - length/2 + wheelbase/2, with the case's
+``cg_to_front``, the CG to the bumper; a = wheelbase/2 for an outline centred on the CG),
+each at its static load (:func:`pim.model.tyres.static_loads`: m g / 4 when the CG is
+midway between the axles). Each tyre
 pushes with Coulomb friction mu_tyre N against its slip velocity:
 
 * free-rolling ("rolling"): only the lateral component of the wheel's ground velocity
@@ -28,7 +31,7 @@ from pim.model import tyres
 from pim.model.numbers import InputError
 
 __all__ = ["TYRE_MODES", "WHEELBASE_FRACTION", "TRACK_FRACTION", "SLIP_REGULARISATION",
-           "wheels_from_outline", "tyre_force"]
+           "wheels_from_outline", "wheel_loads", "tyre_force"]
 
 TYRE_MODES = ("rolling", "locked")
 #: Wheelbase / length and track / width of the four-tyre model [-].
@@ -38,9 +41,10 @@ TRACK_FRACTION = 0.86
 SLIP_REGULARISATION = 0.05
 
 
-def wheels_from_outline(length, width, radius_of_gyration=None) -> np.ndarray:
+def wheels_from_outline(length, width, radius_of_gyration=None,
+                        cg_to_front=None) -> np.ndarray:
     """Body-frame positions (4, 2) [m] of the wheels (front left, front right, rear left,
-    rear right; :func:`pim.model.tyres.wheel_positions` with the CG midway between axles).
+    rear right; :func:`pim.model.tyres.wheel_positions`), the axles centred on the outline.
 
     Parameters
     ----------
@@ -48,6 +52,10 @@ def wheels_from_outline(length, width, radius_of_gyration=None) -> np.ndarray:
         Outline [m]; None: from ``radius_of_gyration`` (module notes).
     radius_of_gyration : float, optional
         sqrt(I / m) [m], used only without an outline.
+    cg_to_front : float, optional
+        CG to the front of the OUTLINE [m] (:attr:`pim.Vehicle.cg_to_front`, the bumper;
+        default length / 2); the CG to the front axle is then
+        ``a = cg_to_front - length / 2 + wheelbase / 2``, which must lie in [0, wheelbase].
     """
     if length is None or width is None:
         if radius_of_gyration is None:
@@ -56,7 +64,22 @@ def wheels_from_outline(length, width, radius_of_gyration=None) -> np.ndarray:
         length = float(radius_of_gyration) / 0.3
         width = 0.4 * length
     wheelbase = WHEELBASE_FRACTION * float(length)
-    return tyres.wheel_positions(wheelbase, TRACK_FRACTION * float(width), 0.5 * wheelbase)
+    front = 0.5 * float(length) if cg_to_front is None else float(cg_to_front)
+    axle = front - 0.5 * float(length) + 0.5 * wheelbase
+    if not 0 <= axle <= wheelbase:
+        raise InputError(f"cg_to_front = {front:g} m puts the CG outside the axles of the "
+                         f"four-tyre model (wheelbase {WHEELBASE_FRACTION:g} x length, centred "
+                         f"on the outline): it must lie in [{front - axle:g}, "
+                         f"{front - axle + wheelbase:g}] m")
+    return tyres.wheel_positions(wheelbase, TRACK_FRACTION * float(width), axle)
+
+
+def wheel_loads(mass, wheels, gravity=tyres.STANDARD_GRAVITY) -> np.ndarray:
+    """Static loads (4,) [N] of the wheels at ``wheels`` (:func:`wheels_from_outline`):
+    :func:`pim.model.tyres.static_loads` with their wheelbase and CG-to-front-axle distance.
+    """
+    wheels = np.asarray(wheels, dtype=float)
+    return tyres.static_loads(mass, wheels[0, 0] - wheels[2, 0], wheels[0, 0], gravity)
 
 
 def tyre_force(velocity, yaw_rate, angle, wheels, load, mu, mode="rolling",
@@ -73,8 +96,8 @@ def tyre_force(velocity, yaw_rate, angle, wheels, load, mu, mode="rolling",
         Heading [rad] from +x.
     wheels : ndarray (4, 2)
         Wheel positions in the body frame [m] (:func:`wheels_from_outline`).
-    load : float
-        Normal load per tyre [N].
+    load : float or array_like (4,)
+        Normal load per tyre [N] (:func:`wheel_loads`).
     mu : float
         Tyre/ground friction coefficient [-].
     mode : {"rolling", "locked"}
@@ -93,7 +116,8 @@ def tyre_force(velocity, yaw_rate, angle, wheels, load, mu, mode="rolling",
     if mode not in TYRE_MODES:
         raise InputError(f"tyre mode must be one of {TYRE_MODES}, got {mode!r}")
     braking = np.full(4, 1.0 if mode == "locked" else 0.0)
-    forces = tyres.tyre_forces(velocity, yaw_rate, angle, wheels, np.full(4, float(load)), mu,
-                               braking, regularisation=regularisation)
+    loads = np.broadcast_to(np.asarray(load, dtype=float), (4,))
+    forces = tyres.tyre_forces(velocity, yaw_rate, angle, wheels, loads, mu, braking,
+                               regularisation=regularisation)
     force, moment = tyres.net_force_and_moment(forces, wheels, angle)
     return force, float(moment)

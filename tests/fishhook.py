@@ -40,7 +40,7 @@ SLUG_FT2 = 14.59390294 * FT * FT
 
 #: 2004 Chevrolet Malibu as entered in PC-Crash (the source's notebook), SI.
 MALIBU = {"mass": 3298 * LB, "yaw_inertia": 2040 * SLUG_FT2, "wheelbase": 106 * INCH,
-          "track": 60 * INCH, "cg_to_front": 38.1 * INCH, "friction": 0.76}
+          "track": 60 * INCH, "cg_to_front_axle": 38.1 * INCH, "friction": 0.76}
 MALIBU_CG_HEIGHT = 21.5 * INCH
 SLIP_AT_MAX_FORCE = np.radians(10.0)   # PC-Crash tyre: slip angle at maximum lateral force
 STEER_START = 1.0                      # [s] the published steer leaves zero after this
@@ -93,7 +93,7 @@ def malibu(driver: DriverInputs, mapping: str = "saturation") -> RunoutVehicle:
     its speed once straight), cornering stiffness per tyre by ``mapping``."""
     if mapping not in MAPPINGS:
         raise ValueError(f"mapping must be one of {MAPPINGS}, got {mapping!r}")
-    loads = static_loads(MALIBU["mass"], MALIBU["wheelbase"], MALIBU["cg_to_front"])
+    loads = static_loads(MALIBU["mass"], MALIBU["wheelbase"], MALIBU["cg_to_front_axle"])
     mu = MALIBU["friction"]
     stiffness = (3 * mu * loads / np.tan(SLIP_AT_MAX_FORCE) if mapping == "saturation"
                  else mu * loads / SLIP_AT_MAX_FORCE)

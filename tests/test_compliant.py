@@ -9,6 +9,7 @@ import pytest
 import pim
 import sim
 from sim import CompliantSettings
+from sim.compliant_setup import build_problem
 from sim.contact_law import stiffness_for_duration
 
 from .scenes import random_cases
@@ -340,3 +341,16 @@ def test_no_approach_is_no_contact(ricsac9):
     with pytest.raises(sim.SimulationError) as err:
         sim.simulate_compliant(away, 0.3, K)
     assert err.value.kind == "no_contact"
+
+
+def test_wheels_follow_the_outline_when_the_cg_is_off_centre(ricsac9):
+    # RICSAC 9's car 1 (3.9624 m long) with its CG 1.5 m behind the bumper: the axles
+    # (0.6 x length) sit mid-outline, front axle 1.5 - 0.2 * 3.9624 m ahead of the CG
+    length = ricsac9.vehicle1.length
+    case = replace(ricsac9, vehicle1=replace(ricsac9.vehicle1, cg_to_front=1.5))
+    problem = build_problem(case, 0.3, 1e6, tyre_friction=0.7)
+    a, b = 1.5 - 0.2 * length, 0.6 * length - (1.5 - 0.2 * length)
+    np.testing.assert_allclose(problem.wheels1[:, 0], [a, a, -b, -b], atol=1e-12)
+    weight = ricsac9.vehicle1.mass * CompliantSettings().gravity
+    np.testing.assert_allclose(problem.load1[:2], weight * b / (a + b) / 2, rtol=1e-12)
+    assert problem.load1.sum() == pytest.approx(weight, rel=1e-12)

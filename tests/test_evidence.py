@@ -20,13 +20,13 @@ def test_runout_vehicle_carries_the_evidence():
 @pytest.mark.parametrize("kwargs, match", [
     (dict(friction=0.0), "evidence.vehicle2.friction"),
     (dict(friction=float("nan")), "evidence.vehicle2.friction"),
-    (dict(cg_to_front=3.0), "evidence.vehicle2.cg_to_front"),
+    (dict(cg_to_front_axle=3.0), "evidence.vehicle2.cg_to_front_axle"),
     (dict(rest_position=np.array([np.nan, 0.0])), "evidence.vehicle2.rest_position"),
     (dict(braking=(1, 1, 2, 0)), "evidence.vehicle2.braking"),
 ])
 def test_bad_evidence_names_the_field(kwargs, match):
     args = dict(rest_position=np.zeros(2), rest_heading=0.0, wheelbase=2.6, track=1.5,
-                cg_to_front=1.0, friction=0.7, where="evidence.vehicle2")
+                cg_to_front_axle=1.0, friction=0.7, where="evidence.vehicle2")
     args.update(kwargs)
     with pytest.raises(ValueError, match=match):
         VehicleEvidence(**args)

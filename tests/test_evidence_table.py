@@ -1,11 +1,16 @@
 """The [evidence] and [unknown] tables (pim.io.evidence_table) and their errors."""
 
+import logging
 import math
 
 import numpy as np
 import pytest
 
+import pim
+from pim.io import evidence_table
 from pim.io.evidence_table import parse_evidence, parse_unknown
+from pim.model.evidence import VehicleEvidence
+from pim.model.runout import RunoutVehicle
 
 GOOD = {"vehicle1": {"rest_position": ["30 ft", "12 ft"], "rest_heading": "95 deg",
                      "wheelbase": "108 in", "track": "58 in", "friction": 0.75,
@@ -17,7 +22,8 @@ def test_parses_in_si():
     ev = parse_evidence(GOOD).vehicle1
     np.testing.assert_allclose(ev.rest_position, [30 * 0.3048, 12 * 0.3048], rtol=1e-12)
     assert ev.rest_heading == pytest.approx(math.radians(95))
-    assert ev.wheelbase == pytest.approx(108 * 0.0254) and ev.cg_to_front == ev.wheelbase / 2
+    assert ev.wheelbase == pytest.approx(108 * 0.0254)
+    assert ev.cg_to_front_axle == ev.wheelbase / 2
     assert ev.braking == (1.0, 1.0, 0.0, 0.3)
     assert ev.steer == pytest.approx((math.radians(5), math.radians(5), 0.0, 0.0))
     assert ev.path_points.shape == (1, 2)
@@ -91,3 +97,38 @@ def test_a_crush_wider_than_the_car_names_the_field():
     with pytest.raises(ValueError, match=r"evidence.vehicle1.crush.width"):
         parse_evidence({"vehicle1": {"crush": {**CRUSH, "width": "3 m"}}},
                        {1: (4.5, 1.8), 2: (4.5, 1.8)})
+
+
+def test_cg_to_front_axle_is_read():
+    table = {"vehicle1": dict(GOOD["vehicle1"], cg_to_front_axle="45 in")}
+    ev = parse_evidence(table).vehicle1
+    assert ev.cg_to_front_axle == pytest.approx(45 * 0.0254)
+    np.testing.assert_allclose(ev.runout_vehicle(1500.0, 2500.0).positions[0],
+                               [45 * 0.0254, 58 * 0.0254 / 2])
+
+
+def test_old_key_is_read_as_the_axle_with_one_message(monkeypatch, caplog):
+    monkeypatch.setattr(evidence_table, "_deprecation_shown", [])
+    table = {"vehicle1": dict(GOOD["vehicle1"], cg_to_front="45 in"),
+             "vehicle2": dict(GOOD["vehicle1"], cg_to_front="40 in")}
+    with caplog.at_level(logging.WARNING, logger="pim.io.evidence_table"):
+        ev = parse_evidence(table)
+        parse_evidence(table)
+    assert ev.vehicle1.cg_to_front_axle == pytest.approx(45 * 0.0254)
+    assert ev.vehicle2.cg_to_front_axle == pytest.approx(40 * 0.0254)
+    assert len(caplog.records) == 1
+    assert "cg_to_front_axle" in caplog.text and "deprecated" in caplog.text
+
+
+def test_old_and_new_key_together_is_an_error():
+    table = {"vehicle1": dict(GOOD["vehicle1"], cg_to_front="45 in", cg_to_front_axle="45 in")}
+    with pytest.raises(ValueError, match="cg_to_front_axle"):
+        parse_evidence(table)
+
+
+def test_the_two_lengths_are_documented_differently():
+    outline = pim.Vehicle.__doc__.split("cg_to_front :")[1].split("\n\n")[0]
+    assert "OUTLINE" in outline and "axle" in outline.split("Not")[1]
+    for kind in (VehicleEvidence, RunoutVehicle):
+        axle = kind.__doc__.split("cg_to_front_axle :")[1]
+        assert "front AXLE" in axle.split("\n    friction")[0]

@@ -68,7 +68,7 @@ def test_fishhook_steer_table_at_small_amplitude_is_the_linear_bicycle_models():
     t = np.linspace(0.0, 8.0, 161)
     omega = r.interpolant(t)[5]
     c = np.asarray(car.tyre.cornering_stiffness)
-    a_mat, b_vec = matrices(MALIBU["mass"], MALIBU["yaw_inertia"], MALIBU["cg_to_front"],
+    a_mat, b_vec = matrices(MALIBU["mass"], MALIBU["yaw_inertia"], MALIBU["cg_to_front_axle"],
                             MALIBU["wheelbase"], c[0] + c[1], c[2] + c[3], speed)
     expected = table_response(a_mat, b_vec, run.motion.time, steer, t)[:, 1]
     peak = np.abs(expected).max()

@@ -121,7 +121,9 @@ def test_any_scene_gives_back_its_speeds_and_eps(case, eps, beta):
                                                               restitution=eps))
     unknown = {"vehicle1.speed": (0.0, 60.0), "vehicle2.speed": (0.0, 60.0),
                "impact.restitution": (0.0, 1.0)}
-    f = inverse_pim(problem, unknown)
+    # 1024 coarse samples: at the default 256 the search misses some scenes (one is pinned
+    # below as a strict xfail, test_a_known_miss_with_the_cgs_apart)
+    f = inverse_pim(problem, unknown, samples=1024)
     scale = 1.0 + float(np.max(np.abs(np.concatenate([truth.velocity1, truth.velocity2]))))
     assert f.rms < 1e-6 * scale                     # an exact fit is found
     exact = [v for v, c in f.minima_values if c < 1e-16 * scale ** 2]
@@ -131,3 +133,21 @@ def test_any_scene_gives_back_its_speeds_and_eps(case, eps, beta):
         assert f.values["vehicle1.speed"] == pytest.approx(speeds[0], rel=1e-6, abs=1e-6)
         assert f.values["vehicle2.speed"] == pytest.approx(speeds[1], rel=1e-6, abs=1e-6)
         assert f.eps == pytest.approx(eps, abs=1e-5)
+
+
+@pytest.mark.xfail(strict=True, reason="known miss of the global search (rms 1.09 m/s)")
+def test_a_known_miss_with_the_cgs_apart():
+    """A scene hypothesis found (CGs 1.9 m apart, masses 100 and 673 kg): with the default
+    256 coarse samples the global search ends at rms 1.09 m/s instead of the exact fit (1024
+    samples find it). Kept as a strict xfail so the limitation
+    is visible and a better search shows up as an XPASS (docs/reconstruction.md)."""
+    case = pim.Case(pim.Vehicle(100.0, 100.0, (2.0, 4.0), (-7.5, 2.0), 4.75),
+                    pim.Vehicle(673.0, 168.25, (3.0, 2.375), (0.5, 1.0), 5.0),
+                    pim.Impact((-3.0, 0.0), -0.5))
+    truth = pim.solve(case, 0.75, 0.75)
+    case = replace(case, measured=pim.Measured(
+        velocity1=truth.velocity1, velocity2=truth.velocity2,
+        yaw_rate1=float(truth.yaw_rate1), yaw_rate2=float(truth.yaw_rate2)))
+    f = inverse_pim(case, {"vehicle1.speed": (0.0, 60.0), "vehicle2.speed": (0.0, 60.0),
+                           "impact.restitution": (0.0, 1.0)})
+    assert f.rms < 1e-6 * 10

@@ -55,7 +55,7 @@ def test_the_bundled_case_from_its_impact_velocities():
 
 def vehicle_evidence(**kwargs):
     return VehicleEvidence(rest_position=np.zeros(2), rest_heading=0.0, wheelbase=2.6,
-                           track=1.5, cg_to_front=1.2, friction=0.7, **kwargs)
+                           track=1.5, cg_to_front_axle=1.2, friction=0.7, **kwargs)
 
 
 def _fake_reconstruction(v_samples, marks, uncertainty=None, driver=None):

@@ -25,7 +25,7 @@ from tests.bicycle import (
 from tests.fishhook import published_table
 
 CAR = RunoutVehicle(mass=1500.0, yaw_inertia=2500.0, wheelbase=2.7, track=1.5,
-                    cg_to_front=1.2, friction=0.8)
+                    cg_to_front_axle=1.2, friction=0.8)
 
 
 @pytest.mark.parametrize("v0, psi", [(20.0, 0.3), (8.0, -2.0), (31.0, 1.0)])
@@ -111,7 +111,7 @@ def test_batched_rk4_matches_solve_ivp():
                                           ("mass", float("nan")), ("wheelbase", "2.7")])
 def test_bad_vehicle_names_the_field(field, value):
     kwargs = dict(mass=1500.0, yaw_inertia=2500.0, wheelbase=2.7, track=1.5,
-                  cg_to_front=1.2, friction=0.8)
+                  cg_to_front_axle=1.2, friction=0.8)
     kwargs[field] = value
     with pytest.raises(ValueError, match=f"runout.{field}"):
         RunoutVehicle(**kwargs)
@@ -166,7 +166,7 @@ def test_j_turn_settles_to_the_bicycle_models_steady_state_cornering(speed):
     r = runout(car, [0.0, 0.0], 0.0, [speed, 0.0], 0.0, max_time=4.0)
     vx, vy, omega = r.states[-1, 3:]
     v = np.hypot(vx, vy)
-    k = understeer_gradient(car.mass, car.cg_to_front, car.wheelbase, 2 * c_front, 2 * c_rear)
+    k = understeer_gradient(car.mass, car.cg_to_front_axle, car.wheelbase, 2 * c_front, 2 * c_rear)
     assert k > 0                                          # understeer
     assert omega == pytest.approx(v * delta / (car.wheelbase + k * v * v), rel=3e-3)
     assert v / omega == pytest.approx((car.wheelbase + k * v * v) / delta, rel=3e-3)
@@ -196,10 +196,10 @@ def test_step_steer_transient_is_the_linear_bicycle_models(speed, ramp):
     t = np.linspace(0.0, 2.5, 126)
     x, y, psi, vx, vy, omega = r.interpolant(t)
     lateral = -np.sin(psi) * vx + np.cos(psi) * vy                  # body frame
-    a_mat, b_vec = matrices(car.mass, car.yaw_inertia, car.cg_to_front, car.wheelbase,
+    a_mat, b_vec = matrices(car.mass, car.yaw_inertia, car.cg_to_front_axle, car.wheelbase,
                             2 * c_front, 2 * c_rear, speed)
     expected = table_response(a_mat, b_vec, [0.0, ramp], [0.0, delta], t)
-    steady = yaw_rate_gain(car.mass, car.cg_to_front, car.wheelbase, 2 * c_front,
+    steady = yaw_rate_gain(car.mass, car.cg_to_front_axle, car.wheelbase, 2 * c_front,
                            2 * c_rear, speed) * delta
     assert expected[-1, 1] == pytest.approx(steady, rel=1e-3)       # settled by 2.5 s
     np.testing.assert_allclose(omega, expected[:, 1], atol=5e-3 * steady)

@@ -51,7 +51,7 @@ def test_pymunk_j_turn_settles_to_the_bicycle_models_steady_state():
                         driver=DriverInputs([0.0, 0.3], [0.0, delta], np.zeros((2, 4))))
     pm = pymunk_runout(car, [0.0, 0.0], 0.0, [speed, 0.0], 0.0, dt=1e-3, max_time=3.0)
     vx, vy, omega = pm.states[-1, 3:]
-    expected = yaw_rate_gain(car.mass, car.cg_to_front, car.wheelbase, 2 * c_front,
+    expected = yaw_rate_gain(car.mass, car.cg_to_front_axle, car.wheelbase, 2 * c_front,
                              2 * c_rear, speed) * delta
     assert not pm.stopped
     assert omega == pytest.approx(expected, rel=3e-3)

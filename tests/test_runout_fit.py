@@ -73,7 +73,7 @@ def test_path_distance_is_to_the_continuous_path_not_its_chords():
     from pim.model.runout import RunoutVehicle, runout
 
     car = RunoutVehicle(mass=1500.0, yaw_inertia=2500.0, wheelbase=2.7, track=1.5,
-                        cg_to_front=1.2, friction=0.8, braking=(1.0, 1.0, 0.3, 0.3))
+                        cg_to_front_axle=1.2, friction=0.8, braking=(1.0, 1.0, 0.3, 0.3))
     run = runout(car, [0, 0], 0.4, [6.17, 1.53], 1.2, rtol=1e-9, atol=1e-11,
                  dense_output=True)
     points = np.array([[1.63987893, 0.49641693], [2.5, 1.3]])

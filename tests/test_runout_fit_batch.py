@@ -14,7 +14,7 @@ from pim.model.runout import RunoutVehicle, runout
 pytestmark = pytest.mark.xdist_group("runout_kernel")
 
 CAR = RunoutVehicle(mass=1500.0, yaw_inertia=2500.0, wheelbase=2.7, track=1.5,
-                    cg_to_front=1.2, friction=0.8, braking=(1.0, 1.0, 0.3, 0.3))
+                    cg_to_front_axle=1.2, friction=0.8, braking=(1.0, 1.0, 0.3, 0.3))
 V, OMEGA, PSI = np.array([6.0, 1.5]), 1.2, 0.4
 
 
@@ -57,7 +57,7 @@ def test_per_sample_inputs_and_an_unreachable_rest_is_flagged(evidence):
     rest, heading, _ = evidence
     far = rest + np.array([80.0, 0.0])
     car = RunoutVehicle(mass=[1500.0, 1400.0], yaw_inertia=[2500.0, 2300.0], wheelbase=2.7,
-                        track=1.5, cg_to_front=1.2, friction=[0.8, 0.75],
+                        track=1.5, cg_to_front_axle=1.2, friction=[0.8, 0.75],
                         braking=(1.0, 1.0, 0.3, 0.3))
     fit = fit_runout_many(car, [[0.0, 0.0]] * 2, [PSI] * 2, [rest, far], [heading] * 2,
                           start=start(), speed_bounds=(0.0, 10.0))

@@ -17,7 +17,7 @@ from pim.model.tyres import TyreData, regularised_slide_distance
 pytestmark = pytest.mark.xdist_group("runout_kernel")
 
 CAR = RunoutVehicle(mass=1500.0, yaw_inertia=2500.0, wheelbase=2.7, track=1.5,
-                    cg_to_front=1.2, friction=0.8, braking=(1.0, 1.0, 0.3, 0.3),
+                    cg_to_front_axle=1.2, friction=0.8, braking=(1.0, 1.0, 0.3, 0.3),
                     steer=(0.2, 0.2, 0.0, 0.0))
 
 

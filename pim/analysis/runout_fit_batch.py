@@ -115,7 +115,7 @@ class _Samples:
                   for name, shape, unit in (
                       ("mass", (n,), "kg"), ("yaw_inertia", (n,), "kg m^2"),
                       ("wheelbase", (n,), "m"), ("track", (n,), "m"),
-                      ("cg_to_front", (n,), "m"), ("friction", (n,), "-"),
+                      ("cg_to_front_axle", (n,), "m"), ("friction", (n,), "-"),
                       ("braking", (n, 4), "-"), ("steer", (n, 4), "rad"))}
         return cls(vehicle, fields, _per_sample(position, (n, 2), "evidence.position", "m"),
                    _per_sample(heading, (n,), "evidence.heading", "rad"),

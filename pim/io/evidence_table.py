@@ -6,7 +6,8 @@ rest_position = ["30 ft", "12 ft"]
 rest_heading = "95 deg"
 wheelbase = "108 in"
 track = "58 in"
-cg_to_front = "45 in"        # optional, default half the wheelbase
+cg_to_front_axle = "45 in"   # optional: CG to the FRONT AXLE, default half the wheelbase
+                             # (not [vehicleN] cg_to_front, the CG to the outline's front)
 friction = 0.75
 wheels = ["locked", "locked", "free", 0.3]   # or one word for all four
 steer = "0 deg"              # optional: one angle (front wheels) or four
@@ -35,6 +36,8 @@ impact.restitution = {bounds = [0, 1]}
 
 from __future__ import annotations
 
+import logging
+
 import numpy as np
 
 from ..model.evidence import UNKNOWN_KINDS, Evidence, VehicleEvidence
@@ -45,10 +48,16 @@ from .toml_tables import check_keys
 from .units import parse
 from .wheels import wheel_fractions
 
-__all__ = ["parse_evidence", "parse_unknown", "SUBTABLES"]
+__all__ = ["parse_evidence", "parse_unknown", "SUBTABLES", "OLD_AXLE_KEY", "AXLE_KEY"]
 
-_EVIDENCE = {"rest_position", "rest_heading", "wheelbase", "track", "cg_to_front", "friction",
-             "wheels", "steer", "position_sigma", "heading_sigma", "path_points"}
+#: CG to the front axle [m] in ``[evidence.vehicleN]``; its old name, still read (the same
+#: length) with a deprecation message, because ``[vehicleN] cg_to_front`` is another
+#: length (the CG to the front of the outline).
+AXLE_KEY, OLD_AXLE_KEY = "cg_to_front_axle", "cg_to_front"
+_EVIDENCE = {"rest_position", "rest_heading", "wheelbase", "track", AXLE_KEY, OLD_AXLE_KEY,
+             "friction", "wheels", "steer", "position_sigma", "heading_sigma", "path_points"}
+_LOG = logging.getLogger(__name__)
+_deprecation_shown = []     # the old key's message is shown once per process
 #: Sub-tables of ``[evidence.vehicleN]`` beside the run-out keys (each optional; a vehicle
 #: may have only these): the crush profile, the marks before the impact.
 SUBTABLES = {"crush": "crush-profile evidence", "pre_impact": "pre-impact (skid-mark) evidence"}
@@ -60,6 +69,28 @@ def _point(value, where):
     if not isinstance(value, list) or len(value) != 2:
         raise InputError(f"{where} must be [x, y], got {value!r}")
     return np.array([parse(v, "length", f"{where}[{i}]") for i, v in enumerate(value)])
+
+
+def _cg_to_front_axle(table, wheelbase, where) -> float:
+    """CG to the front axle [m] of ``[evidence.vehicleN]`` (default half the wheelbase).
+
+    The old key ``cg_to_front`` (always the axle distance in this table) is read as the same
+    length, with a message on stderr (once) naming the new key: old case files keep their
+    results, and a reader who meant the bumper distance of ``[vehicleN] cg_to_front`` is told
+    which length this is. Both keys at once are an error."""
+    if OLD_AXLE_KEY in table:
+        if AXLE_KEY in table:
+            raise InputError(f"{where}: give {AXLE_KEY} (CG to the front axle) only, not "
+                             f"also its old name {OLD_AXLE_KEY}")
+        if not _deprecation_shown:
+            _deprecation_shown.append(True)
+            _LOG.warning(f"{where}.{OLD_AXLE_KEY} is deprecated: it is read as the CG to the "
+                         f"FRONT AXLE; rename it {AXLE_KEY} ([vehicleN] {OLD_AXLE_KEY} is the "
+                         f"CG to the outline's front)")
+        return parse(table[OLD_AXLE_KEY], "length", f"{where}.{OLD_AXLE_KEY}")
+    if AXLE_KEY in table:
+        return parse(table[AXLE_KEY], "length", f"{where}.{AXLE_KEY}")
+    return wheelbase / 2
 
 
 def _vehicle(table, where) -> VehicleEvidence | None:
@@ -98,9 +129,8 @@ def _vehicle(table, where) -> VehicleEvidence | None:
     if "heading_sigma" in table:
         kwargs["heading_sigma"] = parse(table["heading_sigma"], "angle",
                                         f"{where}.heading_sigma")
+    a = _cg_to_front_axle(table, wheelbase, where)
     if "pre_impact" in table:      # per-wheel braking weighs by the static axle loads
-        a = (parse(table["cg_to_front"], "length", f"{where}.cg_to_front")
-             if "cg_to_front" in table else wheelbase / 2)
         share = 1 - a / wheelbase if wheelbase > 0 else 0.5
         kwargs["pre_impact"] = parse_pre_impact(table["pre_impact"], f"{where}.pre_impact",
                                                 front_share=min(max(share, 0.0), 1.0))
@@ -108,8 +138,7 @@ def _vehicle(table, where) -> VehicleEvidence | None:
         rest_position=_point(table["rest_position"], f"{where}.rest_position"),
         rest_heading=parse(table["rest_heading"], "angle", f"{where}.rest_heading"),
         wheelbase=wheelbase, track=parse(table["track"], "length", f"{where}.track"),
-        cg_to_front=(parse(table["cg_to_front"], "length", f"{where}.cg_to_front")
-                     if "cg_to_front" in table else wheelbase / 2),
+        cg_to_front_axle=a,
         friction=parse(table["friction"], "dimensionless", f"{where}.friction"),
         braking=wheel_fractions(table.get("wheels", "locked"), f"{where}.wheels"), steer=steer,
         path_points=path.reshape(-1, 2), where=where, **kwargs)

@@ -183,8 +183,10 @@ class Vehicle:
         Outline of the vehicle [m], a rectangle along the heading; used for drawing and
         for the optional outline contact of the simulator, never by the impact equations.
     cg_to_front : float, optional
-        Distance [m] from the CG forward to the front of the outline, in [0, length];
-        default ``length / 2`` (the outline centred on the CG). Needs ``length``.
+        Distance [m] from the CG forward to the front of the OUTLINE (the bumper), in
+        [0, length]; default ``length / 2`` (the outline centred on the CG). Needs
+        ``length``. Not the CG to the front axle (the run-out's
+        :attr:`pim.model.evidence.VehicleEvidence.cg_to_front_axle`).
     """
 
     mass: np.ndarray

@@ -41,7 +41,10 @@ class VehicleEvidence:
     ----------
     rest_position : ndarray (2,) [m] measured CG at rest
     rest_heading : float [rad] measured heading at rest
-    wheelbase, track, cg_to_front : float [m] (see :mod:`pim.model.tyres`)
+    wheelbase, track : float [m] (see :mod:`pim.model.tyres`)
+    cg_to_front_axle : float [m] CG forward to the front AXLE, in [0, wheelbase]
+        (``[evidence.vehicleN] cg_to_front_axle``); not :attr:`pim.Vehicle.cg_to_front`,
+        the CG to the front of the outline (bumper)
     friction : float [-] tyre-road friction coefficient (> 0)
     braking : tuple of four fractions in [0, 1] (0 free-rolling, 1 locked)
     steer : tuple of four angles [rad]
@@ -59,7 +62,7 @@ class VehicleEvidence:
     rest_heading: float
     wheelbase: float
     track: float
-    cg_to_front: float
+    cg_to_front_axle: float
     friction: float
     braking: tuple = (1.0, 1.0, 1.0, 1.0)
     steer: tuple = (0.0, 0.0, 0.0, 0.0)
@@ -79,9 +82,9 @@ class VehicleEvidence:
             value = getattr(self, name)
             if not (np.isfinite(value) and value > 0):
                 raise InputError(f"{w}.{name} must be finite and > 0, got {value!r}")
-        if not 0 <= self.cg_to_front <= self.wheelbase:
-            raise InputError(f"{w}.cg_to_front must be in [0, wheelbase = "
-                             f"{self.wheelbase:g} m], got {self.cg_to_front!r}")
+        if not 0 <= self.cg_to_front_axle <= self.wheelbase:
+            raise InputError(f"{w}.cg_to_front_axle must be in [0, wheelbase = "
+                             f"{self.wheelbase:g} m], got {self.cg_to_front_axle!r}")
         if len(self.braking) != 4 or not all(0 <= b <= 1 for b in self.braking):
             raise InputError(f"{w}.braking must be four fractions in [0, 1] (front-left, "
                              f"front-right, rear-left, rear-right), got {self.braking!r}")
@@ -89,11 +92,17 @@ class VehicleEvidence:
             if not np.all(np.isfinite(getattr(self, name))):
                 raise InputError(f"{w}.{name} must be finite")
 
+    @property
+    def cg_to_front(self) -> float:
+        """The old name of :attr:`cg_to_front_axle` [m] (CG to the front AXLE), kept for
+        code written before the rename."""
+        return self.cg_to_front_axle
+
     def runout_vehicle(self, mass, yaw_inertia) -> RunoutVehicle:
         """The :class:`RunoutVehicle` of this evidence with the given mass and inertia."""
-        return RunoutVehicle(mass, yaw_inertia, self.wheelbase, self.track, self.cg_to_front,
-                             self.friction, braking=self.braking, steer=self.steer,
-                             tyre=self.tyre, driver=self.driver)
+        return RunoutVehicle(mass, yaw_inertia, self.wheelbase, self.track,
+                             self.cg_to_front_axle, self.friction, braking=self.braking,
+                             steer=self.steer, tyre=self.tyre, driver=self.driver)
 
 
 @dataclass(frozen=True)

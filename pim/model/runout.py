@@ -66,7 +66,8 @@ class RunoutVehicle:
     yaw_inertia : [kg m^2] > 0
     wheelbase : [m] > 0
     track : [m] > 0
-    cg_to_front : [m], CG to front axle, in [0, wheelbase]
+    cg_to_front_axle : [m], CG forward to the front AXLE, in [0, wheelbase] (not
+        :attr:`pim.Vehicle.cg_to_front`, the CG to the front of the outline)
     friction : [-] tyre-road friction coefficient > 0
     braking : [-] four braking fractions in [0, 1] (front-left, front-right, rear-left,
         rear-right): 0 free-rolling, 1 locked
@@ -83,7 +84,7 @@ class RunoutVehicle:
     yaw_inertia: object
     wheelbase: object
     track: object
-    cg_to_front: object
+    cg_to_front_axle: object
     friction: object
     braking: object = (1.0, 1.0, 1.0, 1.0)
     steer: object = (0.0, 0.0, 0.0, 0.0)
@@ -91,6 +92,12 @@ class RunoutVehicle:
     regularisation: float = DEFAULT_REGULARISATION
     tyre: TyreData | None = None
     driver: DriverInputs | None = None
+
+    @property
+    def cg_to_front(self):
+        """The old name of :attr:`cg_to_front_axle` [m] (CG to the front AXLE), kept for
+        code written before the rename."""
+        return self.cg_to_front_axle
 
     @property
     def tyre_model(self) -> str:
@@ -110,11 +117,11 @@ class RunoutVehicle:
             if not np.all(np.isfinite(value)) or np.any(value <= 0):
                 raise InputError(f"runout.{name} must be finite and > 0 [{unit}], "
                                  f"got {getattr(self, name)!r}")
-        a = real_array(self.cg_to_front, "runout.cg_to_front", "m")
+        a = real_array(self.cg_to_front_axle, "runout.cg_to_front_axle", "m")
         length = real_array(self.wheelbase, "runout.wheelbase", "m")
         if not np.all(np.isfinite(a)) or np.any(a < 0) or np.any(a > length):
-            raise InputError(f"runout.cg_to_front must be in [0, wheelbase] [m], "
-                             f"got {self.cg_to_front!r}")
+            raise InputError(f"runout.cg_to_front_axle must be in [0, wheelbase] [m], "
+                             f"got {self.cg_to_front_axle!r}")
         braking = real_array(self.braking, "runout.braking", "-")
         if braking.shape[-1:] != (4,) or not np.all((braking >= 0) & (braking <= 1)):
             raise InputError(f"runout.braking must be four fractions in [0, 1] (front-left, "
@@ -130,12 +137,12 @@ class RunoutVehicle:
     @property
     def positions(self) -> np.ndarray:
         """Tyre positions in the body frame [m], shape (..., 4, 2)."""
-        return wheel_positions(self.wheelbase, self.track, self.cg_to_front)
+        return wheel_positions(self.wheelbase, self.track, self.cg_to_front_axle)
 
     @property
     def loads(self) -> np.ndarray:
         """Static tyre loads [N], shape (..., 4)."""
-        return static_loads(self.mass, self.wheelbase, self.cg_to_front, self.gravity)
+        return static_loads(self.mass, self.wheelbase, self.cg_to_front_axle, self.gravity)
 
 
 def runout_rhs(state, mass, yaw_inertia, positions, loads, friction, braking, steer,
@@ -229,7 +236,7 @@ class TimedRhs:
                 ax, ay = fx.sum() / mass, fy.sum() / mass
                 loads = transferred_load(static, mass, c * ax + s * ay, -s * ax + c * ay,
                                          tyre.cg_height, vehicle.wheelbase, vehicle.track,
-                                         vehicle.cg_to_front, FRONT, LEFT)
+                                         vehicle.cg_to_front_axle, FRONT, LEFT)
         return np.array([vx, vy, om, fx.sum() / mass, fy.sum() / mass,
                          mz.sum() / vehicle.yaw_inertia])
 

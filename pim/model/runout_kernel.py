@@ -262,7 +262,7 @@ def _tyre_rows(vehicle: RunoutVehicle, n: int, brake_start: float) -> np.ndarray
     rows[:, 4:8] = tyre.per_wheel("cornering_stiffness")
     for col, value in enumerate((brake_start, tyre.buildup_time, tyre.rolling_resistance,
                                  tyre.cg_height, vehicle.wheelbase, vehicle.track,
-                                 vehicle.cg_to_front), start=8):
+                                 vehicle.cg_to_front_axle), start=8):
         rows[:, col] = np.broadcast_to(np.asarray(value, dtype=float), (n,))
     return rows
 

@@ -57,7 +57,8 @@ def wheel_positions(wheelbase, track, cg_to_front) -> np.ndarray:
     track : array_like
         Distance left - right tyre ``T`` [m] (same front and rear).
     cg_to_front : array_like
-        Distance from the CG back to the front axle ``a`` [m], 0 <= a <= L.
+        Distance from the CG forward to the front AXLE ``a`` [m], 0 <= a <= L (a case
+        file's ``[evidence.vehicleN] cg_to_front_axle``; not the outline's ``cg_to_front``).
 
     Returns
     -------
