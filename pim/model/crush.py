@@ -29,7 +29,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .dual import Dual, cos_sin
+from .dual import Dual, cos_sin, hypot
+from .dual import sqrt as sqrt_of  # re-exported: the square root on duals lives in dual
 from .numbers import InputError
 
 __all__ = ["CrushProfile", "SIDES", "SIDE_NORMALS", "crush_energy", "force_balance_factor",
@@ -53,15 +54,6 @@ FORCE_BALANCE_CAP = 2.0
 #: Added to numerator and denominator of the force-balance factor so that a zero impulse
 #: gives 1 instead of 0/0; far below any impulse^2 of a collision (1 N s)^2.
 _TINY = 1e-300
-
-
-def sqrt_of(x):
-    """Square root of a number, an array or a :class:`Dual` (d sqrt x = dx / (2 sqrt x))."""
-    if isinstance(x, Dual):
-        root = np.sqrt(x.value)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return Dual(root, x.grad / (2.0 * root)[..., None])
-    return np.sqrt(x)
 
 
 def crush_energy(width, depths, stiffness_a, stiffness_b, stiffness_g=None):
@@ -169,7 +161,7 @@ def moment_arm(point_x, point_y, direction_x, direction_y):
         The line's direction (the PDOF or impulse), any length, same frame.
     """
     cross = point_x * direction_y - point_y * direction_x
-    return abs(cross) / sqrt_of(direction_x * direction_x + direction_y * direction_y)
+    return abs(cross) / hypot(direction_x, direction_y)
 
 
 def effective_mass(mass, yaw_inertia, arm):

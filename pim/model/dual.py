@@ -19,8 +19,9 @@ import numpy as np
 from . import formula
 from .case import Case
 
-__all__ = ["Dual", "cos_sin", "where", "value_of", "seed_inputs", "motion_jacobian",
-           "motion_inputs", "motion_of_inputs", "MOTION_OUTPUTS", "MOTION_INPUTS"]
+__all__ = ["Dual", "cos_sin", "sqrt", "hypot", "where", "value_of", "seed_inputs",
+           "motion_jacobian", "motion_inputs", "motion_of_inputs", "MOTION_OUTPUTS",
+           "MOTION_INPUTS"]
 
 
 class Dual:
@@ -117,6 +118,26 @@ def cos_sin(x):
         return np.cos(x), np.sin(x)
     c, s = np.cos(x.value), np.sin(x.value)
     return Dual(c, -s[..., None] * x.grad), Dual(s, c[..., None] * x.grad)
+
+
+def sqrt(x):
+    """Square root of a number, an array or a :class:`Dual` (d sqrt x = dx / (2 sqrt x))."""
+    if not isinstance(x, Dual):
+        return np.sqrt(x)
+    root = np.sqrt(x.value)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return Dual(root, x.grad / (2.0 * root)[..., None])
+
+
+def hypot(x, y):
+    """sqrt(x^2 + y^2) of arrays or :class:`Dual` numbers (gradient (x dx + y dy) / r, 0 at
+    r = 0)."""
+    if not isinstance(x, Dual) and not isinstance(y, Dual):
+        return np.hypot(x, y)
+    (xv, xg), (yv, yg) = Dual._split(x), Dual._split(y)
+    r = np.hypot(xv, yv)
+    safe = np.where(r > 0, r, 1.0)
+    return Dual(r, (xv / safe)[..., None] * xg + (yv / safe)[..., None] * yg)
 
 
 def value_of(x) -> np.ndarray:

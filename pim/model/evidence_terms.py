@@ -36,7 +36,7 @@ from typing import Literal
 import numpy as np
 
 from .crush import compared_energy, force_balance_factor
-from .dual import Dual, cos_sin
+from .dual import Dual, cos_sin, hypot
 from .motion import Term, as_terms
 from .numbers import InputError
 
@@ -57,23 +57,6 @@ DELTA_V_SCALE = (0.88, 1.0)
 #: The kinds of evidence term, with their SI unit and unit kind (:mod:`pim.io.units`).
 EVIDENCE_KINDS = {"delta_v": ("m/s", "velocity"), "pre_crash_speed": ("m/s", "velocity"),
                   "energy_loss": ("J", "energy")}
-
-
-def hypot(x, y):
-    """sqrt(x^2 + y^2) of arrays or :class:`Dual` numbers (gradient (x dx + y dy) / r, 0 at
-    r = 0)."""
-    if not isinstance(x, Dual) and not isinstance(y, Dual):
-        return np.hypot(x, y)
-    xv, xg = _parts(x)
-    yv, yg = _parts(y)
-    r = np.hypot(xv, yv)
-    safe = np.where(r > 0, r, 1.0)
-    return Dual(r, (xv / safe)[..., None] * xg + (yv / safe)[..., None] * yg)
-
-
-def _parts(x):
-    """(value, gradient) of a Dual; (array, 0) of a plain number."""
-    return (x.value, x.grad) if isinstance(x, Dual) else (np.asarray(x, dtype=float), 0.0)
 
 
 def delta_v_vehicle_frame(vx_before, vy_before, vx_after, vy_after, heading):
