@@ -222,16 +222,12 @@ class CompiledRhs:
     def __init__(self, vehicle: RunoutVehicle):
         times, steer_tab, brake_tab, brake_start = _input_tables(vehicle, 1)
         positions = vehicle.positions
-
-        def scalar(value):
-            return float(np.asarray(value, dtype=float))
-
-        self.args = (scalar(vehicle.mass), scalar(vehicle.yaw_inertia),
-                     np.ascontiguousarray(positions[:, 0]),
-                     np.ascontiguousarray(positions[:, 1]),
-                     np.ascontiguousarray(vehicle.loads), scalar(vehicle.friction),
-                     float(vehicle.regularisation), times, steer_tab[0], brake_tab[0],
-                     np.ascontiguousarray(_tyre_rows(vehicle, 1, brake_start)[0]))
+        self.args = one_signature(
+            float(np.asarray(vehicle.mass, dtype=float)),
+            float(np.asarray(vehicle.yaw_inertia, dtype=float)), positions[:, 0],
+            positions[:, 1], np.asarray(vehicle.loads, dtype=float),
+            float(np.asarray(vehicle.friction, dtype=float)), float(vehicle.regularisation),
+            times, steer_tab[0], brake_tab[0], _tyre_rows(vehicle, 1, brake_start)[0])
 
     def __call__(self, t, y) -> np.ndarray:
         return _rhs_one(float(t), np.asarray(y, dtype=float), *self.args)
