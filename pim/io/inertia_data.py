@@ -138,7 +138,7 @@ def estimate_notes(case, units: str) -> list[str]:
     not given: estimated 2981 kg m^2 ±7.0 % (1 sd) = D m a (L - a), ... (mass m 1500 kg,
     wheelbase L 2.7 m; a = L/2 assumed; Heydinger et al. 1999)"."""
     lines = []
-    for e in case.estimates:
+    for e in getattr(case, "estimates", ()):
         figures = ", ".join(f"{label} {_figure(v, kind, units)}" for label, v, kind in e.inputs)
         assumed = "".join(f"; {a} assumed" for a in e.assumptions)
         value = _figure(e.value, UNCERTAIN[e.name].kind, units)
@@ -152,7 +152,7 @@ def estimate_records(case, units: str) -> list[dict]:
     """The estimated inputs of ``case`` for ``--json``: name, value and sd in ``units``
     ("si" or "us") with the unit, the method, the source and what was assumed."""
     out = []
-    for e in case.estimates:
+    for e in getattr(case, "estimates", ()):
         (value, sd), unit = convert([e.value, e.sd], UNCERTAIN[e.name].kind, units)
         out.append({"input": e.name, "value": float(value), "sd": float(sd), "unit": unit,
                     "method": e.method, "source": e.source,
