@@ -32,6 +32,7 @@ from pim.analysis.reconstruction import reconstruct as run_reconstruction
 from pim.io import html
 from pim.io.casefile import load_case
 from pim.io.files import save_figure, write_text
+from pim.io.inertia_data import estimate_notes, estimate_records
 from pim.io.output import output_folder, worker_pool
 from pim.io.units import convert
 from pim.model.evidence import UNKNOWN_KINDS
@@ -192,6 +193,11 @@ def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
                   else " | ".join(["-"] * 3))
         lines.append(f"| {r['name']} | {_value(r)} | {spread} | {r['unit']} | {driver} |")
     lines.append("")
+    estimates = estimate_notes(rec.case, units)
+    if estimates:
+        lines += ["Estimated inputs (drawn with their scatter in the Monte Carlo unless the "
+                  "`[uncertainty]` table says otherwise):", ""]
+        lines += [f"- {line}" for line in estimates] + [""]
     lines += pre_impact_markdown(pre_impact)
     if rec.samples:
         lines += ["## What drives each unknown's spread", "",
@@ -229,6 +235,7 @@ def _json(case, rows: list[dict], samples: int, messages, units: str) -> dict:
     unknowns = [r for r in rows if not r["name"].startswith("momentum check")]
     momentum = [r for r in rows if r["name"].startswith("momentum check")]
     return {"case": case.name, "units": units, "samples": samples, "messages": messages,
+            "estimates": estimate_records(case, units),
             "unknowns": {r["name"]: pick(r, ("value", "p5", "p50", "p95", "lower_bound"))
                          for r in unknowns},
             "momentum_check": {r["name"].removeprefix("momentum check: "): pick(r, ("value",))
@@ -388,6 +395,11 @@ def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: 
                     "main driver of the spread"), cells, title="Reconstructed unknowns",
                    note="CSV: `reconstruction.csv`", id="table-reconstruction"),
         html.bullets(rec.messages or ["No warnings."], cls="messages")]
+    estimates = estimate_notes(rec.case, units)
+    if estimates:
+        body += [html.paragraph("Estimated inputs (drawn with their scatter in the Monte "
+                                "Carlo unless the `[uncertainty]` table says otherwise):"),
+                 html.bullets(estimates)]
     if rec.crush:
         body += [html.paragraph("Crush energy:"), html.bullets(crush_lines(rec, units))]
     drivers = driver_lines(evidence_drivers(rec, units))

@@ -57,7 +57,8 @@ class SampleCount(click.ParamType):
 @units_option
 @json_option
 def uncertainty(case_name, samples, seed, eps, beta, png, top, progress, units, as_json):
-    """Monte Carlo of CASE's [uncertainty] table: 5/50/95 % and ranked input contributions.
+    """Monte Carlo of CASE's [uncertainty] table (and of the scatter of inputs pim estimated,
+    e.g. a missing yaw inertia): 5/50/95 % and ranked input contributions.
 
     Contributions are first-order variance-based (Sobol) indices: the share of an output's
     variance explained by one input alone.
@@ -67,6 +68,7 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, progress, units, 
     from pim.analysis.montecarlo import OUTPUTS, available_memory, memory_estimate
     from pim.analysis.montecarlo import uncertainty as run
     from pim.io.casefile import load_case
+    from pim.io.inertia_data import estimate_records
     from pim.io.units import convert
     from pim.model.quantities import OUTPUTS as QUANTITIES
 
@@ -100,7 +102,8 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, progress, units, 
     if as_json:
         echo_json({"case": case.name, "samples": result.n, "seed": seed,
                    "admissible": result.n_admissible, "problems": result.problems,
-                   "units": units, "outputs": rows})
+                   "units": units, "estimates": estimate_records(case, units),
+                   "outputs": rows})
         return
     for text in result.problems:        # before the table, where a reader sees them
         click.echo(f"warning: {text}; those samples are left out", err=True)

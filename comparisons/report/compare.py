@@ -129,8 +129,10 @@ def inputs_table(case: pim.Case, units: str = "si") -> Table:
         return f"{a:.6g}, {b:.6g}", unit
 
     rows = []
+    estimated = {e.name: e for e in case.estimates}
     for i, v in ((1, case.vehicle1), (2, case.vehicle2)):
         fixed = bool(v.fixed)
+        estimate = estimated.get(f"vehicle{i}.yaw_inertia")
         mass, mass_unit = val(_f(v.mass), "mass")
         inertia, inertia_unit = val(_f(v.yaw_inertia), "inertia")
         cg, length_unit = pair(v.cg, "length")
@@ -140,7 +142,8 @@ def inputs_table(case: pim.Case, units: str = "si") -> Table:
             f"{float(val(v.length, 'length')[0]):.4g} x {float(val(v.width, 'length')[0]):.4g}"
         rows += [
             (f"vehicle {i}", "mass", "fixed obstacle" if fixed else float(mass), mass_unit),
-            (f"vehicle {i}", "yaw inertia", "" if fixed else float(inertia), inertia_unit),
+            (f"vehicle {i}", "yaw inertia" + (f" ({estimate.short})" if estimate else ""),
+             "" if fixed else float(inertia), inertia_unit),
             (f"vehicle {i}", "CG x, y", cg, length_unit),
             (f"vehicle {i}", "heading", math.degrees(_f(v.heading)), "deg"),
             (f"vehicle {i}", "velocity x, y", vel, vel_unit),

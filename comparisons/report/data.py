@@ -14,7 +14,19 @@ import pim
 
 from comparisons.report.tables import Table
 
-__all__ = ["ReportData"]
+__all__ = ["ReportData", "monte_carlo_note"]
+
+
+def monte_carlo_note(case) -> str:
+    """How the report's 5-95 % intervals were drawn (one sentence, Markdown): the case's
+    ``[uncertainty]`` table, and the scatter of each input the program estimated."""
+    drawn = [e for e in case.estimates if e.name in case.uncertainty.inputs]
+    stated = set(case.uncertainty.inputs) - {e.name for e in drawn}
+    parts = (["the case's `[uncertainty]` table"] if stated else []) + [
+        f"the scatter of the estimated `{e.name}` (normal, ±{100 * e.relative_sd:.1f} % "
+        f"1 sd; the case file gives it no distribution)" for e in drawn]
+    return (f"5-95 % intervals: Monte Carlo (`pim uncertainty`) of {' and '.join(parts)}, "
+            f"at the coefficients above unless the table varies them.")
 
 
 @dataclass

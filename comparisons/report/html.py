@@ -15,9 +15,10 @@ from pathlib import Path
 
 from pim.io import html as h
 from pim.io.html import split_columns
+from pim.io.inertia_data import estimate_notes
 from pim.io.units import convert
 
-from comparisons.report.data import ReportData
+from comparisons.report.data import ReportData, monte_carlo_note
 from comparisons.report.tables import Table, fmt_value
 
 __all__ = ["render_html", "html_table", "assumption_tables", "ASSUMPTION_GROUPS", "HTML_NAME"]
@@ -80,9 +81,7 @@ def _results(data: ReportData) -> str:
     notes = []
     table = data.case.uncertainty
     if table is not None:
-        notes.append("5-95 % intervals: Monte Carlo of the case's `[uncertainty]` table "
-                     "(`pim uncertainty`), at the coefficients above unless the table varies "
-                     "them.")
+        notes.append(monte_carlo_note(data.case))
     if bool(data.case.vehicle2.fixed):
         notes.append("Vehicle 2 is a fixed obstacle: it has no delta-V and no PDOF.")
     body = [_facts(data), html_table(data.tables["results"],
@@ -112,9 +111,11 @@ def _coefficients(data: ReportData) -> str:
 
 
 def _inputs(data: ReportData) -> str:
-    return h.section("Case inputs", html_table(data.tables["inputs"],
-                                               note=_csv(data.tables["inputs"])),
-                     id="inputs")
+    body = [html_table(data.tables["inputs"], note=_csv(data.tables["inputs"]))]
+    notes = estimate_notes(data.case, data.units)
+    if notes:
+        body.append(h.bullets(notes))
+    return h.section("Case inputs", body, id="inputs")
 
 
 def _plots(data: ReportData, folder: Path) -> str:

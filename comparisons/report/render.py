@@ -12,9 +12,10 @@ import shlex
 
 import numpy as np
 
+from pim.io.inertia_data import estimate_notes
 from pim.io.units import convert
 
-from comparisons.report.data import ReportData
+from comparisons.report.data import ReportData, monte_carlo_note
 from comparisons.report.tables import Table
 
 __all__ = ["render_markdown", "render_csv", "md_table", "REPORT_NAME"]
@@ -87,9 +88,7 @@ def _results(data: ReportData) -> list[str]:
             if key in table.inputs:
                 lines.append(f"- {label} in the `[uncertainty]` table: "
                              f"{_describe(table.inputs[key], 'dimensionless', data.units)}.")
-        lines.append("- 5-95 % intervals: Monte Carlo of the case's `[uncertainty]` table "
-                     "(`pim uncertainty`), at the coefficients above unless the table varies "
-                     "them.")
+        lines.append(f"- {monte_carlo_note(data.case)}")
     if bool(np.asarray(data.case.vehicle2.fixed)):
         lines.append("- Vehicle 2 is a fixed obstacle: it has no delta-V and no PDOF.")
     lines += ["", md_table(data.tables["results"])]
@@ -114,7 +113,9 @@ def _coefficients(data: ReportData) -> list[str]:
 
 
 def _inputs(data: ReportData) -> list[str]:
-    return ["## Case inputs", "", md_table(data.tables["inputs"])]
+    notes = [f"- {line}" for line in estimate_notes(data.case, data.units)]
+    return ["## Case inputs", "", md_table(data.tables["inputs"])] + (notes + [""] if notes
+                                                                      else [])
 
 
 def _plots(data: ReportData) -> list[str]:

@@ -10,7 +10,9 @@ Unknown keys are errors, so a typo is never silently ignored; every error is a
     description = "..."
     [vehicle1]                      # and [vehicle2]
     mass = "..."                    # or weight = "... lbf" (divided by standard gravity)
-    yaw_inertia = "..."             # or radius_of_gyration = "... ft"
+    yaw_inertia = "..."             # or radius_of_gyration = "... ft"; or neither, with
+    wheelbase = "2.7 m"             #   wheelbase (and optionally cg_to_front_axle = "1.2 m",
+    body = "car"                    #   body = "car" / "suv" / "pickup" / "van"): estimated
     cg = ["4.774 ft", "0.502 ft"]
     heading = "180 deg"
     velocity = ["-31.09 ft/s", 0]
@@ -30,6 +32,14 @@ Unknown keys are errors, so a typo is never silently ignored; every error is a
     vehicle1.velocity = ["-5.1 ft/s", "17.6 ft/s"]
     vehicle1.yaw_rate = "-180 deg/s"
 
+A vehicle without ``yaw_inertia`` and ``radius_of_gyration`` gets its yaw inertia estimated
+from its mass and wheelbase by the yaw dynamic index of its body class (NHTSA's measured
+vehicles, :mod:`pim.model.inertia`; docs/inertia-estimate.md): the case records the estimate
+(``Case.estimates``), the Monte Carlo draws it with its scatter unless ``[uncertainty]`` gives
+``vehicleN.yaw_inertia`` a distribution, and loading the file writes one line on stderr
+naming the vehicle, the value and the method. The wheelbase and CG-to-front-axle distance
+may come from ``[evidence.vehicleN]`` instead (they must agree where both give them).
+
 ``fixed = true`` in ``[vehicle2]`` makes it a barrier or pole (no mass, inertia, velocity;
 ``cg`` defaults to the impact point and ``heading`` to 0, as neither changes the answer).
 
@@ -43,6 +53,7 @@ the commands print in unless ``--units`` says otherwise.
 
 from __future__ import annotations
 
+import logging
 import tomllib
 from importlib import resources
 from pathlib import Path
@@ -50,10 +61,12 @@ from pathlib import Path
 import numpy as np
 
 from ..model.case import Case, Impact, Vehicle
+from ..model.distributions import Distribution, UncertaintyTable
 from ..model.numbers import InputError
 from ..model.plausibility import bare_angle_warning
 from .brach import cg_from_brach, heading_from_theta
-from .evidence_table import parse_evidence, parse_unknown
+from .evidence_table import AXLE_KEY, OLD_AXLE_KEY, parse_evidence, parse_unknown
+from .inertia_data import estimate_notes, estimate_yaw_inertia
 from .measured_table import parse_measured
 from .toml_tables import check_keys
 from .tyre_table import attach_tyres
@@ -65,7 +78,12 @@ __all__ = ["load_case", "list_cases", "parse_case"]
 _TOP = {"name", "description", "source", "convention", "vehicle1", "vehicle2", "impact",
         "measured", "uncertainty", "evidence", "unknown", "tyres", "driver"}
 _VEHICLE = {"mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
-            "length", "width", "cg_to_front", "fixed", "cg", "heading", "theta", "phi", "d"}
+            "length", "width", "cg_to_front", "fixed", "cg", "heading", "theta", "phi", "d",
+            "wheelbase", "cg_to_front_axle", "body"}
+#: Keys of a moving vehicle that a fixed obstacle must not have.
+_MOVING = ("mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
+           "wheelbase", "cg_to_front_axle", "body")
+_LOG = logging.getLogger(__name__)
 
 #: Deepest nesting of tables and lists a case file may have: the deepest legitimate value,
 #: ``[measured] vehicle1.velocity = [..]``, sits at depth 4.
@@ -99,7 +117,10 @@ def _optional(table: dict, key: str, kind: str, where: str):
     return parse(table[key], kind, f"{where}.{key}") if key in table else None
 
 
-def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int) -> Vehicle:
+def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int,
+             evidence=None) -> tuple[Vehicle, object]:
+    """The vehicle of ``[vehicleN]`` and the estimate of its yaw inertia (None when given);
+    ``evidence`` is its raw ``[evidence.vehicleN]`` table, if any (wheelbase, axle)."""
     table = check_keys(table, _VEHICLE, where)
     placement = {"global": ("cg", "heading"), "brach": ("theta", "phi", "d")}[convention]
     stray = sorted(set(table) & ({"cg", "heading", "theta", "phi", "d"} - set(placement)))
@@ -121,45 +142,87 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int)
         d = parse(_require(table, "d", where), "length", f"{where}.d")
         cg = cg_from_brach(theta, phi, d, number, point)
         heading = float(heading_from_theta(theta, number))
-    length = _optional(table, "length", "length", where)
-    width = _optional(table, "width", "length", where)
-    cg_to_front = _optional(table, "cg_to_front", "length", where)
-
+    outline = {k: _optional(table, k, "length", where) for k in ("length", "width",
+                                                                "cg_to_front")}
     if fixed:
         if number == 1:
             raise InputError(f"{where}.fixed: only vehicle2 may be a fixed obstacle")
-        extra = sorted(set(table) & {"mass", "weight", "yaw_inertia", "radius_of_gyration",
-                                     "velocity", "yaw_rate"})
+        extra = sorted(set(table) & set(_MOVING))
         if extra:
             raise InputError(f"{where}.{extra[0]}: a fixed obstacle has no {extra[0]}")
-        return _wrap(where, Vehicle.obstacle, cg=cg, heading=heading, length=length, width=width,
-                     cg_to_front=cg_to_front)
-
-    if _one_of(table, "mass", "weight", where) == "mass":
-        mass = parse(table["mass"], "mass", f"{where}.mass")
-    else:
-        weight = parse(table["weight"], "force", f"{where}.weight")
-        if weight <= 0:
-            raise InputError(f"{where}.weight must be > 0, got {table['weight']!r}")
-        mass = weight / registry().Quantity(1, "standard_gravity").to("m/s**2").magnitude
-    if _one_of(table, "yaw_inertia", "radius_of_gyration", where) == "yaw_inertia":
-        inertia = parse(table["yaw_inertia"], "inertia", f"{where}.yaw_inertia")
-    else:
-        k = parse(table["radius_of_gyration"], "length", f"{where}.radius_of_gyration")
-        if k <= 0:
-            raise InputError(f"{where}.radius_of_gyration must be > 0, "
-                             f"got {table['radius_of_gyration']!r}")
-        inertia = mass * k * k
-        low, high = LIMITS["inertia"]
-        if mass > 0 and not low <= inertia <= high:
-            raise InputError(f"{where}.radius_of_gyration = {table['radius_of_gyration']!r} "
-                             f"gives a yaw inertia m k^2 = {inertia:.3g} kg m^2 outside "
-                             f"[{low:g}, {high:g}] kg m^2")
+        return _wrap(where, Vehicle.obstacle, cg=cg, heading=heading, **outline), None
+    mass = _mass(table, where)
+    inertia, estimate = _inertia(table, mass, where, evidence)
     velocity = _pair(_require(table, "velocity", where), "velocity", f"{where}.velocity")
     yaw_rate = parse(table.get("yaw_rate", 0.0), "angular_velocity", f"{where}.yaw_rate")
     return _wrap(where, Vehicle, mass=mass, yaw_inertia=inertia, cg=cg, velocity=velocity,
-                 yaw_rate=yaw_rate, heading=heading, length=length, width=width,
-                 cg_to_front=cg_to_front)
+                 yaw_rate=yaw_rate, heading=heading, **outline), estimate
+
+
+def _mass(table, where: str) -> float:
+    """``mass``, or ``weight`` divided by standard gravity [kg]."""
+    if _one_of(table, "mass", "weight", where) == "mass":
+        return parse(table["mass"], "mass", f"{where}.mass")
+    weight = parse(table["weight"], "force", f"{where}.weight")
+    if weight <= 0:
+        raise InputError(f"{where}.weight must be > 0, got {table['weight']!r}")
+    return weight / registry().Quantity(1, "standard_gravity").to("m/s**2").magnitude
+
+
+def _inertia(table, mass: float, where: str, evidence) -> tuple[float, object]:
+    """The yaw inertia [kg m^2] (given, from the radius of gyration, or estimated from the
+    mass and wheelbase) and its :class:`pim.model.inertia.InputEstimate` (None unless
+    estimated)."""
+    given = [k for k in ("yaw_inertia", "radius_of_gyration") if k in table]
+    if len(given) > 1:
+        raise InputError(f"{where}: give exactly one of 'yaw_inertia' or 'radius_of_gyration'")
+    if not given:
+        return _estimated_inertia(table, mass, where, evidence)
+    if given[0] == "yaw_inertia":
+        return parse(table["yaw_inertia"], "inertia", f"{where}.yaw_inertia"), None
+    k = parse(table["radius_of_gyration"], "length", f"{where}.radius_of_gyration")
+    if k <= 0:
+        raise InputError(f"{where}.radius_of_gyration must be > 0, "
+                         f"got {table['radius_of_gyration']!r}")
+    inertia = mass * k * k
+    low, high = LIMITS["inertia"]
+    if mass > 0 and not low <= inertia <= high:
+        raise InputError(f"{where}.radius_of_gyration = {table['radius_of_gyration']!r} "
+                         f"gives a yaw inertia m k^2 = {inertia:.3g} kg m^2 outside "
+                         f"[{low:g}, {high:g}] kg m^2")
+    return inertia, None
+
+
+def _estimated_inertia(table, mass: float, where: str, evidence) -> tuple[float, object]:
+    """The yaw dynamic index's estimate (:func:`pim.io.inertia_data.estimate_yaw_inertia`)
+    from the wheelbase and CG-to-front-axle distance of ``[vehicleN]`` or
+    ``[evidence.vehicleN]``; an error naming what is missing when there is no wheelbase."""
+    wheelbase = _dimension(table, evidence, ("wheelbase",), where)
+    if wheelbase is None:
+        raise InputError(f"{where}: no yaw_inertia (or radius_of_gyration) given, and no "
+                         f"wheelbase to estimate it from: give {where}.yaw_inertia, or "
+                         f"{where}.wheelbase (with cg_to_front_axle and body, optional) for "
+                         f"an estimate by the yaw dynamic index of NHTSA's measured vehicles")
+    axle = _dimension(table, evidence, (AXLE_KEY, OLD_AXLE_KEY), where)
+    body = table.get("body", "car")
+    estimate = estimate_yaw_inertia(mass, wheelbase, axle, body, where)
+    return estimate.value, estimate
+
+
+def _dimension(table, evidence, keys: tuple, where: str) -> float | None:
+    """A length [m] given in ``[vehicleN]`` (``keys[0]``) and/or ``[evidence.vehicleN]``
+    (any of ``keys``, the axle's old name included); an error when the two disagree."""
+    mine = _optional(table, keys[0], "length", where)
+    theirs, key = None, keys[0]
+    if isinstance(evidence, dict):
+        for key in (k for k in keys if k in evidence):
+            theirs = parse(evidence[key], "length", f"evidence.{where}.{key}")
+            break
+    if mine is not None and theirs is not None and not np.isclose(mine, theirs, rtol=1e-9):
+        raise InputError(f"{where}.{keys[0]} = {table[keys[0]]!r} differs from "
+                         f"evidence.{where}.{key} = {evidence[key]!r}: give it once, or the "
+                         f"same length in both")
+    return mine if mine is not None else theirs
 
 
 def _wrap(where: str, factory, **kwargs):
@@ -205,10 +268,11 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
     # the impact law and its contact friction (docs/impact-laws.md)
     law = impact_table.get("law")
     contact_friction = _optional(impact_table, "contact_friction", "dimensionless", "impact")
-    vehicles = [
-        _vehicle(_require(data, f"vehicle{i}", source), f"vehicle{i}", convention, point, i)
-        for i in (1, 2)
-    ]
+    evidence = data.get("evidence") if isinstance(data.get("evidence"), dict) else {}
+    vehicles, estimates = zip(*(
+        _vehicle(_require(data, f"vehicle{i}", source), f"vehicle{i}", convention, point, i,
+                 evidence.get(f"vehicle{i}")) for i in (1, 2)))
+    estimates = tuple(e for e in estimates if e is not None)
     if normal_angle is None:
         normal_angle = _plane_normal(impact_table["contact_plane_angle"], point,
                                      vehicles[0].cg)
@@ -222,14 +286,28 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
             raise InputError(f"{key} must be a string, got {value!r}")
         if len(value) > MAX_TEXT[key]:
             raise InputError(f"{key} has {len(value)} characters; at most {MAX_TEXT[key]}")
-    return Case(vehicle1=vehicles[0], vehicle2=vehicles[1], impact=impact,
+    case = Case(vehicle1=vehicles[0], vehicle2=vehicles[1], impact=impact,
                 measured=parse_measured(data.get("measured")), name=name, description=description,
-                uncertainty=_uncertainty(data.get("uncertainty")), units=_unit_system(data),
-                notes=_angle_notes(data),
+                uncertainty=_with_estimates(_uncertainty(data.get("uncertainty")), estimates),
+                units=_unit_system(data), notes=_angle_notes(data),
                 evidence=attach_tyres(parse_evidence(data.get("evidence"), {
                     i + 1: (v.length, v.width) for i, v in enumerate(vehicles)}),
                     data.get("tyres"), data.get("driver")),
-                unknown=parse_unknown(data.get("unknown")))
+                unknown=parse_unknown(data.get("unknown")), estimates=estimates)
+    for line in estimate_notes(case, case.units):
+        _LOG.warning(f"note: {source}: {line}")
+    return case
+
+
+def _with_estimates(table, estimates) -> UncertaintyTable | None:
+    """The ``[uncertainty]`` table with a normal distribution (sd: the estimate's) for each
+    estimated input it does not give one, so that the Monte Carlo draws the estimate's
+    scatter (None when there is neither)."""
+    extra = {e.name: Distribution("normal", None, e.sd) for e in estimates
+             if table is None or e.name not in table.inputs}
+    if not extra:
+        return table
+    return UncertaintyTable({**({} if table is None else table.inputs), **extra})
 
 
 def _plane_normal(value, point, cg1) -> float:

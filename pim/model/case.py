@@ -16,6 +16,7 @@ from functools import cached_property
 import numpy as np
 
 from .geometry import rotate
+from .inertia import InputEstimate
 from .numbers import InputError, real_array
 
 __all__ = ["Vehicle", "Impact", "Case", "Measured", "LAWS", "MASS_RANGE", "INERTIA_RANGE",
@@ -513,8 +514,9 @@ class Case:
     name, description : str
         Labels for reports.
     uncertainty : pim.model.distributions.UncertaintyTable, optional
-        Distributions of uncertain inputs (the case file's ``[uncertainty]`` table), used by
-        :func:`pim.uncertainty`.
+        Distributions of uncertain inputs (the case file's ``[uncertainty]`` table, and for
+        each estimated input the table leaves out a normal distribution with the estimate's
+        sd), used by :func:`pim.uncertainty` and the reconstruction's Monte Carlo.
     units : {"si", "us"}
         The unit system the case was written in (its file's units); results are presented
         in it unless asked otherwise.
@@ -526,6 +528,9 @@ class Case:
         :mod:`pim.analysis.reconstruction`.
     unknown : dict, optional
         Dotted key -> (low, high) bounds [SI] of what a reconstruction solves for.
+    estimates : tuple of pim.model.inertia.InputEstimate
+        Inputs the case file left out and the program estimated (e.g. a yaw inertia from
+        mass and wheelbase), with their scatter and source, for notes and reports.
     """
 
     vehicle1: Vehicle
@@ -539,6 +544,7 @@ class Case:
     notes: tuple = ()
     evidence: object | None = None  # pim.model.evidence.Evidence (post-impact evidence)
     unknown: dict | None = None  # dotted key -> (low, high) SI bounds, the [unknown] table
+    estimates: tuple = ()  # pim.model.inertia.InputEstimate: inputs the program estimated
 
     def __post_init__(self) -> None:
         if not (type(self.vehicle1) is Vehicle and type(self.vehicle2) is Vehicle
@@ -546,6 +552,9 @@ class Case:
             self._check_types()
         if self.units not in ("si", "us"):
             raise InputError(f"units must be 'si' or 'us', got {self.units!r}")
+        if self.estimates and not (isinstance(self.estimates, tuple) and all(
+                isinstance(e, InputEstimate) for e in self.estimates)):
+            raise InputError("estimates must be a tuple of pim.model.inertia.InputEstimate")
         single = _single(self.vehicle1, self.vehicle2, self.impact)
         if self.vehicle1.mass == math.inf if single else self.vehicle1.fixed.any():
             raise InputError("vehicle1.mass must be finite: only vehicle2 may be a fixed obstacle")
@@ -606,5 +615,9 @@ class Case:
             measured = Measured(measured.velocity2, measured.velocity1,
                                 measured.yaw_rate2, measured.yaw_rate1)
         impact = replace(self.impact, normal_angle=self.impact.normal_angle + np.pi)
+        other = {"vehicle1": "vehicle2", "vehicle2": "vehicle1"}
+        estimates = tuple(replace(e, name=".".join(other.get(p, p) if i == 0 else p
+                                                   for i, p in enumerate(e.name.split("."))))
+                          for e in self.estimates)
         return replace(self, vehicle1=self.vehicle2, vehicle2=self.vehicle1, impact=impact,
-                       measured=measured)
+                       measured=measured, estimates=estimates)
