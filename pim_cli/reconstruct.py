@@ -229,7 +229,8 @@ def _json(case, rows: list[dict], samples: int, messages, units: str) -> dict:
 
     unknowns = [r for r in rows if not r["name"].startswith("momentum check")]
     momentum = [r for r in rows if r["name"].startswith("momentum check")]
-    return {"case": case.name, "units": display_units(units).to_json(), "samples": samples, "messages": messages,
+    return {"case": case.name, "units": display_units(units).to_json(), "samples": samples,
+            "messages": messages,
             "unknowns": {r["name"]: pick(r, ("value", "p5", "p50", "p95", "lower_bound"))
                          for r in unknowns},
             "momentum_check": {r["name"].removeprefix("momentum check: "): pick(r, ("value",))

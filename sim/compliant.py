@@ -604,8 +604,8 @@ def _run_contact(stepper: _Stepper, rows: list | None) -> None:
         raise SimulationError(
             "tunnelled", f"the outlines passed through each other: their overlap ended at "
             f"t = {start + stepper.step_count * dt:.4g} s while they still approached at "
-            f"{speed_text(-tally.last_slip_n, '.3g')} (mean crush {mem.delta_max:.3g} m); the crush "
-            f"is deeper than the vehicles: raise the stiffness", stepper.step_count)
+            f"{speed_text(-tally.last_slip_n, '.3g')} (mean crush {mem.delta_max:.3g} m); the "
+            f"crush is deeper than the vehicles: raise the stiffness", stepper.step_count)
 
 
 def _separation_time(stepper: _Stepper, delta_p: float) -> float:

@@ -288,8 +288,8 @@ def _messages(problem: _Problem, run: Runout, reachable: bool, miss: float,
             f"the rest state ({rest[0]:.3f} m, {rest[1]:.3f} m, heading "
             f"{np.degrees(rest_heading):.2f} deg) is not reached by any post-impact motion "
             f"with speed from {speed_text(lo_v, 'g')} to {speed_text(hi_v, 'g')} and yaw rate "
-            f"in [{lo_w:g}, {hi_w:g}] rad/s; the closest reachable rest is ({run.rest_position[0]:.3f} m, "
-            f"{run.rest_position[1]:.3f} m, heading "
+            f"in [{lo_w:g}, {hi_w:g}] rad/s; the closest reachable rest is "
+            f"({run.rest_position[0]:.3f} m, {run.rest_position[1]:.3f} m, heading "
             f"{np.degrees(wrap_angle(run.rest_heading)):.2f} deg), "
             f"missing by {miss:.3f} m and {np.degrees(heading_miss):.2f} deg")
     if not run.stopped:
