@@ -21,6 +21,7 @@ from pim_cli.main import (
     friction_limit_option,
     json_option,
     law_options,
+    output_units,
     require_brach,
     solve_with_options,
     units_option,
@@ -68,7 +69,7 @@ compare_beta_option = click.option(
 @law_options
 @progress_option
 @json_option
-def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
+def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, no_animation,
             no_speed_error, no_assumptions, tyre, law, k, mu_c, progress, as_json):
     """Write a reconstruction report of CASE to a folder (report.html, report.md, CSVs,
     PNGs, MP4; report.html is one self-contained page with the plots and the animation).
@@ -94,19 +95,21 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
     if tyre < 0:
         raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
     case = load_case(case_name)
+    units = output_units(case, units, speed_unit)
     folder = _out(out, case.name, "case")
     if law_of(case, law) != "brach" or k is not None or mu_c is not None:
         _compare_law(case, folder, eps, beta, law, k, mu_c, units, gif=gif, tyre=tyre,
                      animation=not no_animation, progress=progress, as_json=as_json)
         return
-    solve_with_options(case, 0.0, 1.0)      # exits 1 with one line when there is no impact
+    solve_with_options(case, 0.0, 1.0, units=units)     # exit 1, one line, when no impact
     started = time.perf_counter()
     rep = compare_case(case, folder, eps=eps, beta=beta, gif=gif, animation=not no_animation,
                        speed_error=not no_speed_error, tyre=tyre,
                        assumptions=not no_assumptions, progress=progress,
                        units=units, friction_limit=friction_limit, case_path=case_name)
     if as_json:
-        echo_json({"case": case.name, "out": str(folder), "eps": rep.eps, "beta": rep.beta,
+        echo_json({"case": case.name, "units": units.to_json(), "out": str(folder),
+                   "eps": rep.eps, "beta": rep.beta,
                    "error": rep.error, "seconds": rep.seconds,
                    "files": sorted(str(p) for p in rep.files)})
         return
@@ -137,7 +140,8 @@ def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, **kwa
                       None if law_of(case, law) == "kudlich-slibar" else beta, mu_c)
     rep = compare_law_case(case, folder, setup, units=units, **kwargs)
     if as_json:
-        echo_json({"case": case.name, "out": str(folder), "law": setup.law,
+        echo_json({"case": case.name, "units": units.to_json(), "out": str(folder),
+                   "law": setup.law,
                    "restitution": setup.restitution, "beta": setup.beta,
                    "contact_friction": setup.contact_friction, "error": rep.error,
                    "files": sorted(str(p) for p in rep.files)})
@@ -176,7 +180,7 @@ def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, **kwa
 @progress_option
 @json_option
 def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_ghost, law, k,
-            mu_c, units, progress, as_json):
+            mu_c, units, speed_unit, progress, as_json):
     """Animate CASE: pymunk simulation solid, the analytic post-impact motion as a ghost (MP4).
 
     Under the case's impact law (or --law): Brach's PIM and friction-capped Brach play the
@@ -194,11 +198,12 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
     _check_suffix(out, "--out", ".mp4")
     _check_suffix(gif, "--gif", ".gif")
     case = load_case(case_name)
+    units = output_units(case, units, speed_unit)
     if tyre < 0:
         raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
     path = Path(out) if out else Path("out") / f"{case.name or 'case'}-animation.mp4"
     kwargs = dict(gif=gif, progress=progress, fps=fps, before=before, after=after, size=size,
-                  tyre=tyre, ghost=not no_ghost, units=units or case.units)
+                  tyre=tyre, ghost=not no_ghost, units=units)
     setup = None
     if law_of(case, law) == "brach" and k is None and mu_c is None:
         eps_, beta_ = sim.scene.resolve_coefficients(case, eps, beta)
@@ -357,11 +362,10 @@ def _command(name: str, coarse: bool, repeats: int, out) -> str:
 @click.command("hard-cases")
 @click.option("--out", "out", type=click.Path(file_okay=False), default=None,
               help="Output folder (default: out/hard-cases).")
-@click.option("--units", type=click.Choice(["si", "us"]), default="si", show_default=True,
-              help="Units of the results table (the hard-case files are written in SI).")
+@units_option
 @progress_option
 @json_option
-def hard_cases(out, units, progress, as_json):
+def hard_cases(out, units, speed_unit, progress, as_json):
     """Run every bundled hard case through PIM and the simulator; table of results, errors,
     and the dt / iterations the simulator needs to reach 1e-6 (or why it cannot)."""
     from pim.io.output import output_folder, rebase
@@ -369,11 +373,13 @@ def hard_cases(out, units, progress, as_json):
     from comparisons.studies.hard_cases import run_hard_cases, write_hard_cases
 
     folder = Path(out) if out else Path("out") / "hard-cases"
+    units = output_units(None, units, speed_unit)      # the hard cases are written in SI
     with output_folder(folder, command="pim hard-cases", merge=True) as tmp:
         study = run_hard_cases(progress=progress)
         files = rebase(write_hard_cases(study, tmp, units), tmp, folder)
     if as_json:
-        echo_json({"files": [str(f) for f in files], "cases": study.to_json()})
+        echo_json({"units": units.to_json(), "files": [str(f) for f in files],
+                   "cases": study.to_json()})
         return
     click.echo(study.results_table(units).to_markdown())
     click.echo("")
@@ -411,6 +417,7 @@ def assumptions(case_name, out, eps, beta, executor, no_animation, progress, as_
 
     case = load_case(case_name)
     require_brach(case, "pim assumptions")
+    output_units(case)          # messages give speeds as the case file asks (no table has any)
     folder = Path(out) if out is not None else Path("out") / f"{case.name or 'case'}-assumptions"
     command = f"pim assumptions {case_name}" + (f" --out {out}" if out else "")
     with output_folder(folder, command="pim assumptions") as tmp, \

@@ -11,6 +11,7 @@ from pim_cli.main import (
     case_argument,
     echo_json,
     json_option,
+    output_units,
     require_brach,
     units_option,
 )
@@ -100,8 +101,9 @@ _SI_LABELS = {"m/s": ("velocity", 1), "m^2/s^2": ("velocity", 2), "(m/s)^2": ("v
 
 def fit_json(data: dict, units: str) -> dict:
     """FitResult.to_dict() (SI) with its velocities, yaw rates and velocity-squared costs in
-    ``units``, each with its unit, and ``units`` naming the system."""
-    from pim.io.units import convert
+    ``units`` (a :class:`pim.io.units.DisplayUnits`), each with its unit, and ``units``
+    naming the unit of each kind of quantity."""
+    from pim.io.units import convert, display_units
 
     out = dict(data)
     for key in [k for k in data if k.endswith("_unit")]:
@@ -124,7 +126,7 @@ def fit_json(data: dict, units: str) -> dict:
     out["residuals"] = {name: value * _factor(kinds[name], units)[0]
                         for name, value in data.get("residuals", {}).items()}
     out["residual_units"] = {name: _factor(kinds[name], units)[1] for name in kinds}
-    out["units"] = units
+    out["units"] = display_units(units).to_json()
     return out
 
 
@@ -179,7 +181,7 @@ def _cost_lines(result, fv: float, uv: str) -> list[str]:
 @units_option
 @json_option
 def fit(case_name, include_yaw, eps, beta, k, mu_c, eps_range, beta_range, free, units,
-        as_json):
+        speed_unit, as_json):
     """Least-squares impact-law parameters matching CASE's measured post-impact motion:
     Brach's (epsilon, beta), or under the case's law "kudlich-slibar" its (k, mu_c).
 
@@ -192,7 +194,7 @@ def fit(case_name, include_yaw, eps, beta, k, mu_c, eps_range, beta_range, free,
     from pim.io.casefile import load_case
 
     case = load_case(case_name)
-    units = units or case.units
+    units = output_units(case, units, speed_unit)
     ks = (case.impact.law or "brach") == "kudlich-slibar"
     if k is not None and not ks:
         raise InputError("--k is the restitution of law kudlich-slibar (use --eps)")
@@ -297,6 +299,7 @@ def _factor(kind, units: str) -> tuple[float, str]:
 def sensitivity_json(sens, units: str) -> dict:
     """Sensitivity.to_dict() with every value, sigma and derivative in ``units``."""
     from pim.analysis.sensitivity import INPUTS, SENSITIVITY_OUTPUTS
+    from pim.io.units import display_units
 
     data = sens.to_dict()
     for name, entry in data["outputs"].items():
@@ -308,7 +311,7 @@ def sensitivity_json(sens, units: str) -> dict:
             row.update(sigma=row["sigma"] * fi, sigma_unit=ui,
                        per_unit=row["per_unit"] * fo / fi, per_unit_unit=_ratio_unit(uo, ui),
                        per_sigma=row["per_sigma"] * fo)
-    data["units"] = units
+    data["units"] = display_units(units).to_json()
     return data
 
 
@@ -354,7 +357,7 @@ def _parse_sigma(items) -> dict:
               help="Show only the N largest effects.")
 @units_option
 @json_option
-def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
+def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, speed_unit, as_json):
     """Which uncertain input moves the fitted (epsilon, beta) and delta-V most.
 
     For each answer, the inputs are ranked by the change that one typical uncertainty
@@ -366,7 +369,7 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
 
     case = load_case(case_name)
     require_brach(case, "pim sensitivity")
-    units = units or case.units
+    units = output_units(case, units, speed_unit)
     sens = compute(case, eps=eps, beta=beta, uncertainty=_parse_sigma(sigmas),
                    include_yaw=include_yaw)
     if as_json:
@@ -419,7 +422,7 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
 @eps_range_option
 @beta_range_option
 @units_option
-def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units):
+def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units, speed_unit):
     """Draw the design sheet's graphs for CASE into --out (PNG and SVG).
 
     Cost vs epsilon, impulse ratio, impulse on vehicle 2, PDOF, energy loss, post-impact
@@ -432,7 +435,7 @@ def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units)
 
     case = load_case(case_name)
     require_brach(case, "pim plot")
-    units = units or case.units
+    units = output_units(case, units, speed_unit)
     if has_measured_terms(case, include_yaw):
         result = _fit(case, include_yaw, None, None, eps_range, beta_range)
     else:

@@ -21,7 +21,7 @@ from pim.model.numbers import InputError
 from pim.model.plausibility import warnings_of
 
 __all__ = ["main", "cli", "FiniteFloat",
-           "case_argument", "eps_option", "beta_option", "units_option",
+           "case_argument", "eps_option", "beta_option", "units_option", "output_units",
            "json_option", "echo_json", "friction_limit_option", "cap_friction_option",
            "solve_with_options", "warnings_of", "NO_IMPACT_EXIT_CODE", "law_options",
            "require_brach"]
@@ -88,11 +88,36 @@ eps_option = click.option("--eps", type=FiniteFloat(0.0, 1.0), default=None,
 beta_option = click.option("--beta", type=FiniteFloat(), default=None,
                            help="Fraction of the critical impulse ratio, mu = beta mu0 "
                                 "(default: the case's impact.beta, else 1).")
-units_option = click.option("--units", type=click.Choice(["si", "us"]), default=None,
-                            help="Units of the printed and written results: si (m, m/s, kg, "
-                                 "N, kJ) or us (ft, ft/s, slug, lbf, ft lbf); angles in deg, "
-                                 "yaw rates in deg/s (default: the units the case file is "
-                                 "written in).")
+def units_option(command):
+    """--units (the unit system) and --speed-unit (the unit of speeds and delta-V): the
+    command's parameters ``units`` and ``speed_unit``, resolved by :func:`output_units`."""
+    from pim.model.case import SPEED_UNITS
+
+    command = click.option(
+        "--speed-unit", "speed_unit", type=click.Choice(SPEED_UNITS), default=None,
+        help="Unit of every speed, velocity and delta-V in the results (default: the case "
+             "file's [units] speed, else km/h in SI units and mph in US units).")(command)
+    return click.option(
+        "--units", type=click.Choice(["si", "us"]), default=None,
+        help="Units of the printed and written results: si (m, kg, N, kJ; speeds in km/h) "
+             "or us (ft, slug, lbf, ft lbf; speeds in mph); angles in deg, yaw rates in "
+             "deg/s (default: the case file's [units] system, else the units it is written "
+             "in).")(command)
+
+
+def output_units(case=None, units=None, speed_unit=None, default: str = "si"):
+    """The :class:`pim.io.units.DisplayUnits` of a command's output from --units and
+    --speed-unit (each default: the case file's choice, else ``default`` and its field speed
+    unit); the model's messages print speeds in them until the command ends."""
+    from pim.io.units import display_units, messages_in
+
+    shown = display_units(units or (None if case is not None else default), speed_unit, case)
+    ctx = click.get_current_context(silent=True)
+    if ctx is not None:
+        ctx.with_resource(messages_in(shown))
+    return shown
+
+
 json_option = click.option("--json", "as_json", is_flag=True, help="Print JSON instead of a table.")
 
 
@@ -186,16 +211,16 @@ def solve_with_options(case, eps, beta, friction_limit=None, cap_friction=False,
 
     Raises InputError for a bad or contradictory option, and click's Exit(1) after one line
     on stderr when the vehicles do not approach at C (no impact), with the approach
-    velocity in ``units`` (default: the case's).
+    velocity in ``units`` (default: the case's; :func:`pim.io.units.display_units`).
     """
-    from pim.io.units import convert
+    from pim.io.units import convert, display_units
     from pim.model.impact_laws import solve_law
     from pim.model.plausibility import no_impact_message
 
     law, eps, beta, mu_c = _law_parameters(case, eps, beta, friction_limit, cap_friction, law,
                                            k, mu_c)
     result = solve_law(case, law, eps, beta, mu_c)
-    scale, label = convert(1.0, "velocity", units or case.units)
+    scale, label = convert(1.0, "velocity", display_units(units, case=case))
     message = no_impact_message(result, label, float(scale))
     if message:
         click.echo(message, err=True)
@@ -244,7 +269,8 @@ NO_IMPACT_EXIT_CODE = 1
 @law_options
 @units_option
 @json_option
-def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, units, as_json):
+def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, units, speed_unit,
+          as_json):
     """Solve CASE under its impact law (default Brach's PIM) and print the post-impact
     results.
 
@@ -260,7 +286,7 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, unit
     from comparisons.report.pre_impact import pre_impact_json, pre_impact_lines, pre_impact_rows
 
     case = load_case(case_name)
-    units = units or case.units
+    units = output_units(case, units, speed_unit)
     result = solve_with_options(case, eps, beta, friction_limit, cap_friction, law, k, mu_c,
                                 units)
     pre_impact = pre_impact_rows(case_pre_impact(case), units)     # marks, driver tables
@@ -272,7 +298,7 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, unit
     law = getattr(result, "law", None) or ("brach-capped" if cap_friction
                                            else case.impact.law or "brach")
     if as_json:
-        echo_json({"case": case.name, "units": units, "law": law,
+        echo_json({"case": case.name, "units": units.to_json(), "law": law,
                    "admissible": bool(result.admissible), "problems": warnings,
                    "results": rows_to_json(rows), "pre_impact": pre_impact_json(pre_impact)})
         return
@@ -304,7 +330,7 @@ def _title(case, result, law: str) -> str:
 @eps_option
 @beta_option
 @units_option
-def draw(case_name, out, eps, beta, units):
+def draw(case_name, out, eps, beta, units, speed_unit):
     """Draw CASE's geometry and sign conventions (outlines, C, n, t, Gamma, arms, velocities,
     and the impulse when epsilon is known) to an image file; no label covers another."""
     from pim.io.casefile import load_case
@@ -316,7 +342,8 @@ def draw(case_name, out, eps, beta, units):
     result = None
     if eps is not None or case.impact.restitution is not None:
         result = solve_law(case, None, eps, beta)     # under the case's impact law
-    path = save_figure(draw_case(case, result, units=units or case.units), out)
+    path = save_figure(draw_case(case, result, units=output_units(case, units, speed_unit)),
+                       out)
     click.echo(f"wrote {path}")
 
 

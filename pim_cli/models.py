@@ -10,8 +10,9 @@ from pathlib import Path
 import click
 from tqdm.auto import tqdm
 
-from pim_cli.main import echo_json, json_option
+from pim_cli.main import echo_json, json_option, output_units, units_option
 from pim.io.files import save_figure, writable_folder, write_text
+from pim.io.units import convert
 
 from comparisons.studies.pulses import compare_pulses, plot_pulses, pulse_table
 from comparisons.report.tuned import verdict, write_tuned_study
@@ -19,8 +20,6 @@ from comparisons.studies.tuned_scene import COARSE_STEPS, coarse_check, crash_cl
 
 __all__ = ["validate_models", "pulses"]
 
-_units = click.option("--units", type=click.Choice(["si", "us"]), default="si",
-                      show_default=True, help="Units of the tables, plots and messages.")
 _progress = click.option("--progress/--no-progress", default=None,
                          help="Progress bar on stderr (default: only on a terminal).")
 
@@ -42,10 +41,10 @@ def _command(name: str, **opts) -> str:
 @click.option("--steps", type=click.IntRange(10, 2000), default=None,
               help="Scene steps per estimated contact time (default 20; checked against "
                    "10x finer).")
-@_units
+@units_option
 @_progress
 @json_option
-def validate_models(out, max_tests, steps, units, progress, as_json):
+def validate_models(out, max_tests, steps, units, speed_unit, progress, as_json):
     """PIM against the finite-duration scene tuned to the bundled crash tests.
 
     Fits both models per test, per crash class and leave-one-out within each class (IIHS
@@ -54,6 +53,7 @@ def validate_models(out, max_tests, steps, units, progress, as_json):
     better), tuned-scene-summary.csv, tuned-scene-predictions.csv and tuned-scene.png.
     """
     folder = writable_folder(Path(out) if out else Path("out") / "validate-models")
+    shown = output_units(None, units, speed_unit)
     steps = COARSE_STEPS if steps is None else steps
     classes = crash_classes(max_tests)
     studies, checks = [], {}
@@ -64,15 +64,15 @@ def validate_models(out, max_tests, steps, units, progress, as_json):
             studies.append(st)
             checks[name] = max((coarse_check(t, st.class_fits["scene"].x, steps, 10 * steps)
                                 for t in tests[:3]), key=lambda d: d[0])
-    files = write_tuned_study(studies, folder, units, _command(
+    files = write_tuned_study(studies, folder, shown, _command(
         "validate-models", out=out, max_tests=max_tests, steps=steps if steps != COARSE_STEPS
-        else None, units=units if units != "si" else None), checks)
+        else None, units=units, speed_unit=speed_unit), checks)
     if as_json:
-        echo_json({"files": [str(f) for f in files],
-                   "verdicts": [verdict(st, units) for st in studies]})
+        echo_json({"units": shown.to_json(), "files": [str(f) for f in files],
+                   "verdicts": [verdict(st, shown) for st in studies]})
         return
     for st in studies:
-        click.echo(verdict(st, units))
+        click.echo(verdict(st, shown))
     click.echo(f"wrote {files[0]}")
 
 
@@ -83,34 +83,35 @@ def validate_models(out, max_tests, steps, units, progress, as_json):
 @click.option("--eps", type=click.FloatRange(0.0, 1.0), default=None,
               help="Restitution of the crush in [0, 1] (default: the test's rebound speed "
                    "over its impact speed).")
-@_units
+@units_option
 @json_option
-def pulses(out, stiffness, eps, units, as_json):
+def pulses(out, stiffness, eps, units, speed_unit, as_json):
     """The contact law's force-time and delta-V-time against NHTSA test 10146.
 
     Writes pulses.md (the table of duration, peak force, crush at peak, rebound, each with
     its error), pulses-nhtsa10146.csv and pulses.png.
     """
     folder = writable_folder(Path(out) if out else Path("out") / "pulses")
+    shown = output_units(None, units, speed_unit)
     c = compare_pulses(stiffness, eps)
-    table = pulse_table(c, units)
-    png = save_figure(plot_pulses(c, units), folder / "pulses.png")
-    cmd = _command("pulses", out=out, stiffness=stiffness, eps=eps,
-                   units=units if units != "si" else None)
+    table = pulse_table(c, shown)
+    png = save_figure(plot_pulses(c, shown), folder / "pulses.png")
+    cmd = _command("pulses", out=out, stiffness=stiffness, eps=eps, units=units,
+                   speed_unit=speed_unit)
+    (speed, dv_rms), su = convert([c.speed, c.delta_v_rms], "speed", shown)
     text = "\n".join([
         "# Crash pulse: NHTSA 10146 against the contact law", "", f"Regenerate with `{cmd}`.",
         "", f"Source: {c.source}", "",
-        f"Contact law at the test's speed ({c.speed:.2f} m/s, {c.mass:.0f} kg): linear "
+        f"Contact law at the test's speed ({speed:.2f} {su}, {c.mass:.0f} kg): linear "
         f"loading stiffness {c.stiffness / 1e3:.0f} kN/m, restitution {c.eps:.3f}. "
         f"RMS difference over the record: force {c.force_rms / 1e3:.0f} kN, delta-V "
-        f"{c.delta_v_rms:.2f} m/s.", "", table.to_markdown(), "", "![pulses](pulses.png)",
+        f"{dv_rms:.2f} {su}.", "", table.to_markdown(), "", "![pulses](pulses.png)",
         ""])
     md = write_text(folder / "pulses.md", text)
     files = [md, table.write_csv(folder), png]
     if as_json:
-        echo_json({"files": [str(f) for f in files], "rows": [dict(zip(table.columns, r,
-                                                                        strict=True))
-                                                               for r in table.rows]})
+        echo_json({"units": shown.to_json(), "files": [str(f) for f in files],
+                   "rows": [dict(zip(table.columns, r, strict=True)) for r in table.rows]})
         return
     click.echo(table.to_markdown())
     click.echo(f"wrote {md}")

@@ -4,10 +4,11 @@ The chain of :func:`pim.analysis.reconstruction.reconstruct`: the run-out invers
 vehicle with ``[evidence]`` (or the case's ``[measured]`` post-impact motion), the inverse PIM
 for the ``[unknown]`` table, the linear-momentum check beside it, and a Monte Carlo over the
 stated uncertainties (``--samples``) for each unknown's 5/50/95 % and its driving inputs.
-Prints the table in the case's units (``--units`` to change; speeds in mph in US units, the
-customary unit of impact speeds); ``--json`` prints each unknown
-by its dotted name with its value, percentiles and unit in the same units (``units`` names
-the system), and the momentum check beside them. Writes DIR/report.md, DIR/report.html
+Prints the table in the case's units, speeds in km/h (SI) or mph (US) as the field reports
+them (``--units``, ``--speed-unit`` or the case file's ``[units]`` to change); ``--json``
+prints each unknown by its dotted name with its value, percentiles and unit in the same
+units (``units`` names the unit of each kind of quantity), and the momentum check beside
+them. Writes DIR/report.md, DIR/report.html
 (the same as one self-contained page, figure and video inline),
 DIR/reconstruction.csv and, with evidence, DIR/scene.png and DIR/reconstruction.mp4 (the
 reconstructed crash from the impact to rest).
@@ -34,12 +35,12 @@ from pim.io.casefile import load_case
 from pim.io.files import save_figure, write_text
 from pim.io.inertia_data import estimate_notes, estimate_records
 from pim.io.output import output_folder, worker_pool
-from pim.io.units import convert
+from pim.io.units import convert, display_units
 from pim.model.evidence import UNKNOWN_KINDS
 from pim.model.numbers import InputError
 from pim.plotting.reconstruction_animation import write_reconstruction_mp4
 from pim.plotting.reconstruction_scene import reconstruction_figure
-from pim_cli.main import case_argument, echo_json, json_option, units_option
+from pim_cli.main import case_argument, echo_json, json_option, output_units, units_option
 from comparisons.report.pre_impact import (
     pre_impact_html,
     pre_impact_json,
@@ -234,8 +235,8 @@ def _json(case, rows: list[dict], samples: int, messages, units: str) -> dict:
 
     unknowns = [r for r in rows if not r["name"].startswith("momentum check")]
     momentum = [r for r in rows if r["name"].startswith("momentum check")]
-    return {"case": case.name, "units": units, "samples": samples, "messages": messages,
-            "estimates": estimate_records(case, units),
+    return {"case": case.name, "units": display_units(units).to_json(), "samples": samples,
+            "messages": messages, "estimates": estimate_records(case, units),
             "unknowns": {r["name"]: pick(r, ("value", "p5", "p50", "p95", "lower_bound"))
                          for r in unknowns},
             "momentum_check": {r["name"].removeprefix("momentum check: "): pick(r, ("value",))
@@ -258,14 +259,15 @@ def _json(case, rows: list[dict], samples: int, messages, units: str) -> dict:
               help="Progress of the stages on stderr (default: only on a terminal).")
 @units_option
 @json_option
-def reconstruct(case_name, out, samples, seed, workers, video, progress, units, as_json):
+def reconstruct(case_name, out, samples, seed, workers, video, progress, units, speed_unit,
+                as_json):
     """Reconstruct CASE's unknowns (e.g. the impact speeds) from its evidence.
 
     With --out the folder is written whole at the end (or not at all: an error or an
     interrupt leaves an earlier run there as it was); its lock is taken before the work.
     """
     case = load_case(case_name)
-    units = units or case.units
+    units = output_units(case, units, speed_unit)
     with output_folder(out, command="pim reconstruct") if out else \
             contextlib.nullcontext() as tmp:
         with _stages(case, samples, workers, progress) as say:

@@ -90,20 +90,20 @@ def baseline(cases, out, extra, skip, samples, reconstruct_samples, seed, refere
               help="Check only this case of the baseline (repeatable).")
 @units_option
 @json_option
-def check(baseline_file, only, units, as_json):
+def check(baseline_file, only, units, speed_unit, as_json):
     """Rerun a baseline's cases; list every quantity that moved beyond its tolerance.
 
     Prints the quantity, its baseline and current values, the difference and the tolerance
-    (in each case's units unless --units says otherwise), whether a case file changed since
-    the baseline (its SHA-256) and which dependency versions differ (then the seeded Monte
-    Carlo is held to its statistical tolerance instead of bit for bit). Exit code 0: all
-    within tolerance; 1: drift; 2: bad input (missing or malformed baseline, one line).
+    (in each case's units unless --units or --speed-unit says otherwise), whether a case file
+    changed since the baseline (its SHA-256) and which dependency versions differ (then the
+    seeded Monte Carlo is held to its statistical tolerance instead of bit for bit). Exit code
+    0: all within tolerance; 1: drift; 2: bad input (missing or malformed baseline, one line).
     """
     bar, step = _progress(len(only) if only else None, "check")
     with bar:
         report = check_baseline(baseline_file, only or None, step)
     if as_json:
-        echo_json(report.to_json())
+        echo_json(report.to_json(units, speed_unit))
     else:
-        click.echo(format_report(report, units))
+        click.echo(format_report(report, units, speed_unit))
     return 0 if report.ok else DRIFT_EXIT_CODE

@@ -13,6 +13,7 @@ from pim_cli.main import (
     echo_json,
     eps_option,
     json_option,
+    output_units,
     units_option,
 )
 from pim.model.impact_laws import solve_law
@@ -37,7 +38,7 @@ __all__ = ["sim"]
               show_default=True, help="Place the contact at C, or let the engine find it.")
 @units_option
 @json_option
-def sim(case_name, eps, beta, dt, iterations, contact, start, units, as_json):
+def sim(case_name, eps, beta, dt, iterations, contact, start, units, speed_unit, as_json):
     """Simulate CASE with pymunk and compare with the analytic answer (pim solve) under the
     case's impact law (Brach's PIM, friction-capped Brach or Kudlich-Slibar).
 
@@ -55,7 +56,7 @@ def sim(case_name, eps, beta, dt, iterations, contact, start, units, as_json):
         kwargs["dt"] = dt
     settings = Settings(**kwargs)
     case = load_case(case_name)
-    units = units or case.units
+    units = output_units(case, units, speed_unit)
     try:
         check = _crosscheck_law(case, eps, beta, settings)
     except SimulationError as exc:

@@ -12,6 +12,7 @@ from pim_cli.main import (
     case_argument,
     echo_json,
     json_option,
+    output_units,
     require_brach,
     units_option,
 )
@@ -56,7 +57,8 @@ class SampleCount(click.ParamType):
               help="Progress bar on stderr (default: only on a terminal).")
 @units_option
 @json_option
-def uncertainty(case_name, samples, seed, eps, beta, png, top, progress, units, as_json):
+def uncertainty(case_name, samples, seed, eps, beta, png, top, progress, units, speed_unit,
+                as_json):
     """Monte Carlo of CASE's [uncertainty] table (and of the scatter of inputs pim estimated,
     e.g. a missing yaw inertia): 5/50/95 % and ranked input contributions.
 
@@ -74,7 +76,7 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, progress, units, 
 
     case = load_case(case_name)
     require_brach(case, "pim uncertainty")
-    units = units or case.units
+    units = output_units(case, units, speed_unit)
     need, free = memory_estimate(samples), available_memory()
     if free is not None and need > free:
         raise InputError(f"--samples {samples:,} needs about {need / 2**30:.1f} GiB of memory "
@@ -102,7 +104,7 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, progress, units, 
     if as_json:
         echo_json({"case": case.name, "samples": result.n, "seed": seed,
                    "admissible": result.n_admissible, "problems": result.problems,
-                   "units": units, "estimates": estimate_records(case, units),
+                   "units": units.to_json(), "estimates": estimate_records(case, units),
                    "outputs": rows})
         return
     for text in result.problems:        # before the table, where a reader sees them

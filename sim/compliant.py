@@ -38,6 +38,7 @@ import numpy as np
 import pymunk
 
 import pim
+from pim.model.numbers import speed_text
 
 from .compliant_setup import (
     CompliantProblem,
@@ -560,7 +561,7 @@ def _check_approach(problem: CompliantProblem, state: np.ndarray) -> None:
                                   state[6:8], state[8], state[9:11], state[11])
     if not slip_n < 0.0:
         raise SimulationError("no_contact", f"no contact: the vehicles do not approach at "
-                              f"C (u_n = {slip_n:.6g} m/s >= 0)", 0)
+                              f"C (u_n = {speed_text(slip_n, '.6g')} >= 0)", 0)
 
 
 def _space(problem: CompliantProblem, state: np.ndarray):
@@ -603,8 +604,8 @@ def _run_contact(stepper: _Stepper, rows: list | None) -> None:
         raise SimulationError(
             "tunnelled", f"the outlines passed through each other: their overlap ended at "
             f"t = {start + stepper.step_count * dt:.4g} s while they still approached at "
-            f"{-tally.last_slip_n:.3g} m/s (mean crush {mem.delta_max:.3g} m); the crush "
-            f"is deeper than the vehicles: raise the stiffness", stepper.step_count)
+            f"{speed_text(-tally.last_slip_n, '.3g')} (mean crush {mem.delta_max:.3g} m); the "
+            f"crush is deeper than the vehicles: raise the stiffness", stepper.step_count)
 
 
 def _separation_time(stepper: _Stepper, delta_p: float) -> float:

@@ -33,6 +33,7 @@ import pymunk
 
 import pim
 from pim.model.geometry import kinetic_energy
+from pim.model.numbers import speed_text
 
 from .failures import SimulationError
 from .result import SimResult, Trajectory
@@ -339,8 +340,9 @@ def _not_converged_message(scene: Scene, mon: _Monitor) -> str:
 
 def _no_contact_message(scene: Scene, settings: Settings, now: float) -> str:
     if not scene.approach_n < 0:
-        return (f"no contact: the vehicles do not approach at C (u_n = {scene.approach_n:.6g} "
-                f"m/s >= 0), so there is no impact to simulate")
+        return (f"no contact: the vehicles do not approach at C (u_n = "
+                f"{speed_text(scene.approach_n, '.6g')} >= 0), so there is no impact to "
+                f"simulate")
     travel = abs(scene.approach_n) * settings.dt
     # A step that covers the whole diameter can carry the circle from just outside to just
     # outside the other side: equality tunnels too.

@@ -524,7 +524,7 @@ def build_renderer(case: pim.Case, eps: float, beta: float, *, before: float | N
         ``pim.solve(case, eps, beta)`` if at hand.
     simulated : sim.SimResult or sim.CompliantResult, optional
         A simulation with a recorded trajectory reaching ``after``.
-    units : {"si", "us"}
+    units : {"si", "us"} or pim.io.units.DisplayUnits
         Units of the grid and scale bar (m or ft).
     title : str, optional
         Caption's first line (default: case, epsilon, beta, tyre friction).

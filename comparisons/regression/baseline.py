@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 import pim
-from pim.io.units import SI_UNITS, convert, registry
+from pim.io.units import SI_UNITS, DisplayUnits, convert, registry
 from pim.model.numbers import InputError
 from sim.error_measure import ERROR_DEFINITION, impact_error
 
@@ -46,6 +46,8 @@ DEPENDENCIES = ("pim-harness", "numpy", "scipy", "pymunk", "numba", "pint")
 SAME_VERSIONS_REL = 1e-12
 UNITS_NOTE = ("SI: every value is in the SI unit of its 'unit' field (m/s, rad/s, N*s, J, "
               "rad, kg, dimensionless; percent shares in %)")
+#: Columns of a drift that are values in its unit (shown in the user's units).
+DRIFT_VALUES = ("baseline", "now", "difference", "tolerance")
 
 
 def versions() -> dict:
@@ -329,7 +331,8 @@ class CheckReport:
     notes : list of str
         Sections that no longer run or now run, and quantities new since the baseline.
     units : dict
-        Case name -> unit system of its case file, for display.
+        Case name -> (unit system, speed unit or None) its case file presents results in
+        (``Case.units``, ``Case.speed_unit``), for display.
     """
 
     path: str
@@ -344,12 +347,35 @@ class CheckReport:
     def ok(self) -> bool:
         return not self.drifts
 
-    def to_json(self) -> dict:
-        """Plain data for ``--json`` (SI values, each row with its unit)."""
+    def units_of(self, case: str, units: str | None = None,
+                 speed: str | None = None) -> DisplayUnits:
+        """The display units of ``case``'s drifts: the unit system ``units`` and the speed
+        unit ``speed`` asked for (``--units``, ``--speed-unit``), each by default the case
+        file's (:func:`pim.io.units.display_units`)."""
+        system, own_speed = self.units.get(case, ("si", None))
+        return DisplayUnits(units or system, speed or own_speed)
+
+    def to_json(self, units: str | None = None, speed: str | None = None) -> dict:
+        """Plain data for ``--json``: each drift's values in its case's display units
+        (:meth:`units_of`; its ``unit`` and ``si_unit`` fields name them), and ``units``
+        naming each case's units (the baseline file itself stores SI)."""
         return {"baseline": self.path, "ok": self.ok, "checked": self.checked,
-                "drifts": [asdict(d) for d in self.drifts],
+                "drifts": [_drift_json(d, self.units_of(d.case, units, speed))
+                           for d in self.drifts],
                 "input_changes": self.input_changes, "version_changes": self.version_changes,
-                "notes": self.notes, "units": UNITS_NOTE}
+                "notes": self.notes,
+                "units": {case: self.units_of(case, units, speed).to_json()
+                          for case in self.units}}
+
+
+def _drift_json(d: Drift, units: DisplayUnits) -> dict:
+    """A drift for ``--json``: its values in ``units``, with the unit they are in."""
+    out = asdict(d)
+    for key in DRIFT_VALUES:
+        if out[key] is not None:
+            out[key] = float(convert(out[key], d.kind, units)[0])
+    out["si_unit"], out["unit"] = d.unit, convert(1.0, d.kind, units)[1]
+    return out
 
 
 def _allowed(tol: dict, reference: float) -> float:
@@ -409,7 +435,7 @@ def _check_case(entry: dict, base: Path, same_versions: bool, report: CheckRepor
         report.input_changes.append(f"{entry['case']}: the case file changed since the "
                                     f"baseline (SHA-256 differs: {label})")
     loaded = _load(label)
-    report.units[entry["case"]] = loaded.units
+    report.units[entry["case"]] = (loaded.units, loaded.speed_unit)
     now = _rerun(entry, loaded, report)
     for name, q in entry["quantities"].items():
         report.checked += 1
@@ -465,7 +491,7 @@ def check_baseline(path, cases=None, progress=None) -> CheckReport:
     return report
 
 
-def _show(value, kind: str, system: str) -> str:
+def _show(value, kind: str, system) -> str:
     if value is None:
         return "missing"
     if not math.isfinite(value):
@@ -474,11 +500,11 @@ def _show(value, kind: str, system: str) -> str:
     return f"{float(x):.10g}"
 
 
-def _short(value: float, kind: str, system: str) -> str:
+def _short(value: float, kind: str, system) -> str:
     return f"{float(convert(value, kind, system)[0]):.3g}"
 
 
-def _row(d: Drift, system: str) -> list[str]:
+def _row(d: Drift, system: DisplayUnits) -> list[str]:
     _, unit = convert(1.0, d.kind, system)
     diff = "-" if d.difference is None else _short(d.difference, d.kind, system)
     return [d.case, d.quantity, _show(d.baseline, d.kind, system),
@@ -494,10 +520,12 @@ def _by_section(report: CheckReport) -> str:
     return ", ".join(f"{k} {n}" for k, n in counts.items())
 
 
-def format_report(report: CheckReport, units: str | None = None) -> str:
+def format_report(report: CheckReport, units: str | None = None,
+                  speed: str | None = None) -> str:
     """The check as text: input and version changes, then one row per drifted quantity
-    (case, quantity, baseline, now, difference, tolerance, unit, against what) in ``units``
-    ("si" or "us"; default each case's own)."""
+    (case, quantity, baseline, now, difference, tolerance, unit, against what) in the unit
+    system ``units`` ("si" or "us") with speeds in ``speed`` (default each case's own:
+    :meth:`CheckReport.units_of`)."""
     lines = [f"input changed: {c}" for c in report.input_changes]
     lines += [f"version differs: {k} {old} -> {new} (Monte Carlo statistics are held to "
               f"their statistical tolerance, not bit for bit)"
@@ -510,7 +538,7 @@ def format_report(report: CheckReport, units: str | None = None) -> str:
                  f"beyond tolerance ({_by_section(report)})")
     rows = [["case", "quantity", "baseline", "now", "difference", "tolerance", "unit",
              "against"]]
-    rows += [_row(d, units or report.units.get(d.case, "si")) for d in report.drifts]
+    rows += [_row(d, report.units_of(d.case, units, speed)) for d in report.drifts]
     widths = [max(len(r[i]) for r in rows) for i in range(7)]
     for r in rows:
         cells = [c.ljust(w) if i in (0, 1, 6) else c.rjust(w)

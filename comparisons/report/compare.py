@@ -48,7 +48,7 @@ from comparisons.report.pre_impact import TITLE as PRE_IMPACT_TITLE
 from comparisons.report.pre_impact import pre_impact_rows
 from pim.io.files import save_figure, write_text
 from pim.io.output import ignore_interrupts, output_folder, rebase, stop_workers
-from pim.io.units import convert
+from pim.io.units import convert, display_units
 from pim.model.plausibility import warnings_of
 from pim.model.quantities import OUTPUTS as QUANTITIES
 from pim.plotting.sheet import write_plots
@@ -164,7 +164,7 @@ def inputs_table(case: pim.Case, units: str = "si") -> Table:
             if w is not None:
                 value, unit = val(w, "angular_velocity")
                 rows.append((f"measured {i}", "post-impact yaw rate", float(value), unit))
-    return Table("inputs", f"Case inputs ({units.upper()} units)",
+    return Table("inputs", f"Case inputs ({display_units(units)})",
                  ("item", "quantity", "value", "unit"), tuple(rows))
 
 
@@ -307,8 +307,9 @@ class CompareOptions:
         Include PIM's assumptions at typical values.
     progress : bool or None
         tqdm bars on stderr (None: only on a terminal).
-    units : str or None
-        Unit system of the report, "si" or "us" (None: the case file's).
+    units : str, pim.io.units.DisplayUnits or None
+        Units of the report: "si", "us" (speeds in km/h, mph) or a DisplayUnits (None: the
+        case file's, :func:`pim.io.units.display_units`).
     parallel : bool
         Render the plots in a forked worker process.
     uncertainty_samples : int
@@ -480,7 +481,7 @@ def gather_report(case: pim.Case, folder, options: CompareOptions,
     """
     cpu0 = time.process_time()
     folder = Path(folder)
-    units = options.units or case.units
+    units = display_units(options.units, case=case)
     steps = steps or _Steps(case, options)
     seconds = steps.seconds
     with _PlotWorker(options.parallel) as worker:
@@ -562,8 +563,9 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
         Tyre friction coefficient after the impact in the animation (0: none).
     progress : bool or None
         tqdm bars on stderr (None: only on a terminal).
-    units : {"si", "us"}, optional
-        Units of every number in the report (default: the case file's, ``case.units``).
+    units : {"si", "us"} or pim.io.units.DisplayUnits, optional
+        Units of every number in the report (default: the case file's, ``case.units`` with
+        its ``case.speed_unit``).
     parallel : bool
         Render the plots in a forked worker process while the animation and the sweep run.
     uncertainty_samples : int

@@ -40,7 +40,7 @@ class ReportData:
     case_path : str
         The case as the user gave it (a bundled name or a file path): the commands the
         report suggests use it, so that they run as printed.
-    units : {"si", "us"}
+    units : pim.io.units.DisplayUnits or {"si", "us"}
         Units of every number shown.
     eps, beta : float
         The coefficients used [-].
@@ -83,7 +83,7 @@ class ReportData:
 
     case: pim.Case
     case_path: str
-    units: str
+    units: object       # pim.io.units.DisplayUnits (or "si"/"us")
     eps: float
     beta: float
     sources: dict

@@ -16,7 +16,7 @@ from pathlib import Path
 from pim.io import html as h
 from pim.io.html import split_columns
 from pim.io.inertia_data import estimate_notes
-from pim.io.units import convert
+from pim.io.units import convert, display_units
 
 from comparisons.report.data import ReportData, monte_carlo_note
 from comparisons.report.tables import Table, fmt_value
@@ -73,7 +73,9 @@ def _facts(data: ReportData) -> str:
              ("impulse ratio mu", f"{float(r.mu):.4g}", f"mu0 = {float(r.mu0):.4g}")]
     if data.simulated is not None:
         items.append(("pymunk against PIM", f"{data.error:.1e}", "relative error"))
-    items.append(("units", data.units.upper(), "--units changes them"))
+    shown = display_units(data.units)
+    items.append(("units", f"{shown.system.upper()}, speeds in {shown.speed}",
+                  "--units and --speed-unit change them"))
     return h.facts(items)
 
 
@@ -228,7 +230,7 @@ def render_html(data: ReportData, folder) -> str:
     contents.append(("files", "Files"))
     description = getattr(data.case, "description", None) or ""
     subtitle = (description.rstrip(".") + ". " if description else "") + (
-        f"Written by `pim compare` in {data.units.upper()} units: Brach's "
+        f"Written by `pim compare` in {display_units(data.units)}: Brach's "
         "Planar Impact Mechanics (PIM) with a pymunk (Chipmunk2D) cross-check.")
     return h.page(f"{data.case.name or 'case'}: reconstruction report", sections,
                   subtitle=subtitle, contents=contents, generator="pim compare")

@@ -29,6 +29,7 @@ import sim
 from pim.analysis.residuals import has_measured_terms
 from pim.io.files import write_text
 from pim.io.output import output_folder, rebase
+from pim.io.units import display_units
 from pim.model.plausibility import warnings_of
 from sim.error_measure import compare_results, impact_error
 
@@ -109,7 +110,7 @@ def compare_law_case(case: pim.Case, out_dir, setup: LawSetup, *, gif: bool = Fa
         Tyre friction coefficient after the impact in the animation (0: none).
     progress : bool or None
         tqdm bar of the animation (None: only on a terminal).
-    units : {"si", "us"}, optional
+    units : {"si", "us"} or pim.io.units.DisplayUnits, optional
         Units of every number (default: the case file's).
 
     Returns
@@ -117,7 +118,7 @@ def compare_law_case(case: pim.Case, out_dir, setup: LawSetup, *, gif: bool = Fa
     Report
         ``eps`` is the law's restitution, ``beta`` its (effective or equivalent) PIM beta.
     """
-    units = units or case.units
+    units = display_units(units, case=case)
     out = Path(out_dir)
     with output_folder(out, command="pim compare") as tmp:
         rep = _write(case, tmp, setup, gif, animation, tyre, progress, units)
@@ -180,7 +181,7 @@ def _markdown(case, setup, fit, run, info, tables, rep, units) -> str:
     lines = [f"# {name}: reconstruction report", ""]
     if getattr(case, "description", None):
         lines += [case.description, ""]
-    lines += [f"Written by `pim compare` in {units.upper()} units. Impact law: "
+    lines += [f"Written by `pim compare` in {units}. Impact law: "
               f"**{setup.describe()}** (docs/impact-laws.md).", "", "## Results", ""]
     r = setup.result
     lines += [f"- **{setup.parameters()}**; impulse ratio Pt / Pn = {float(r.mu):.4g}.", "",

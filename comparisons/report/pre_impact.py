@@ -31,7 +31,7 @@ def _what(s: PreImpactSpeed, units: str) -> str:
 
 def pre_impact_rows(speeds, units: str) -> list[dict]:
     """One row per :class:`PreImpactSpeed`: name, unit, value, p5, p50, p95, impact speed
-    (``impact``) in ``units`` (impact speeds: mph in US units), and ``what`` (where the
+    (``impact``) in ``units`` (speeds in its speed unit), and ``what`` (where the
     speed holds, from what evidence)."""
     rows = []
     for s in speeds:

@@ -13,7 +13,7 @@ import shlex
 import numpy as np
 
 from pim.io.inertia_data import estimate_notes
-from pim.io.units import convert
+from pim.io.units import convert, display_units
 
 from comparisons.report.data import ReportData, monte_carlo_note
 from comparisons.report.tables import Table
@@ -68,7 +68,8 @@ def _head(data: ReportData) -> list[str]:
     if getattr(data.case, "description", None):
         lines += [data.case.description, ""]
     return lines + [
-        f"Written by `pim compare` in {data.units.upper()} units (`--units` changes them). "
+        f"Written by `pim compare` in {display_units(data.units)} (`--units` and "
+        "`--speed-unit` change them). "
         "Brach's Planar Impact Mechanics (PIM) gives the post-impact motion in closed "
         "form from the case's inputs and two coefficients, epsilon (restitution) and "
         "beta (the fraction of the impulse ratio that stops the sliding at C). The "

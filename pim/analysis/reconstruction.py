@@ -29,7 +29,7 @@ from ..model.case import Case, Measured
 from ..model.crush import crush_delta_v, effective_mass, equivalent_energy_speed, moment_arm
 from ..model.evidence_terms import result_quantities
 from ..model.motion import Term
-from ..model.numbers import InputError, check_counts, checked_count
+from ..model.numbers import InputError, check_counts, checked_count, speed_text
 from ..model.tyres import STANDARD_GRAVITY
 from .fitting import FitResult
 from .free_inputs import approach_direction, check_free
@@ -119,8 +119,9 @@ def check_reachable(ev, vehicle, speed_bounds, yaw_rate_bounds, where: str) -> N
     distance = float(np.hypot(*(np.asarray(ev.rest_position) - np.asarray(vehicle.cg))))
     if distance > reach + REACH_SLACK + 3 * ev.position_sigma:
         raise InputError(f"{where}.rest_position is {distance:.4g} m from the CG at impact, "
-                         f"beyond any run-out within the speed bound {speed_bounds[1]:g} m/s "
-                         f"and yaw-rate bound {w_max:g} rad/s (at most {reach:.4g} m with "
+                         f"beyond any run-out within the speed bound "
+                         f"{speed_text(speed_bounds[1], 'g')} and yaw-rate bound "
+                         f"{w_max:g} rad/s (at most {reach:.4g} m with "
                          f"friction {ev.friction:g} and braking {f:g} on every wheel)")
 
 

@@ -36,7 +36,7 @@ from ..model.evidence_terms import (
     as_residual_terms,
     split_terms,
 )
-from ..model.numbers import InputError, checked_count
+from ..model.numbers import InputError, checked_count, speed_text
 from .fitting import FitResult
 from .free_inputs import STATE, fields_set_by, friction_floor, law_values
 from .inverse_pim import inverse_pim_many
@@ -263,8 +263,9 @@ def _draw_measured(case, names, fit_result, target, rng, uniforms, n, messages):
         targets[:, j] = target[j] + sigma[j] * ndtri(u)
     if source != "stated":
         messages.append(f"measured: no standard deviations stated; the residual standard "
-                        f"error of the nominal fit ({residual_standard_error(fit_result):.3g}"
-                        f" m/s) stands for them")
+                        f"error of the nominal fit "
+                        f"({speed_text(residual_standard_error(fit_result), '.3g')}) stands "
+                        f"for them")
     return targets, source
 
 

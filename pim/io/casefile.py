@@ -31,6 +31,10 @@ Unknown keys are errors, so a typo is never silently ignored; every error is a
     [measured]                      # optional
     vehicle1.velocity = ["-5.1 ft/s", "17.6 ft/s"]
     vehicle1.yaw_rate = "-180 deg/s"
+    [units]                         # optional: the units results are presented in
+    system = "us"                   # "si" or "us" (default: the units the file is written in)
+    speed = "mph"                   # "km/h", "mph", "m/s" or "ft/s" (default: km/h for si,
+                                    # mph for us)
 
 A vehicle without ``yaw_inertia`` and ``radius_of_gyration`` gets its yaw inertia estimated
 from its mass and wheelbase by the yaw dynamic index of its body class (NHTSA's measured
@@ -46,7 +50,8 @@ may come from ``[evidence.vehicleN]`` instead (they must agree where both give t
 Every quantity must lie within :data:`pim.io.units.LIMITS` (e.g. lengths within 1e5 m,
 speeds within 1e4 m/s, masses between 1 g and 1e9 kg). The case records the unit system its
 file is written in (``Case.units``: "us" when any quantity uses ft, lbf, mph, slug ...), which
-the commands print in unless ``--units`` says otherwise.
+the commands print in unless ``[units] system`` or ``--units`` says otherwise, and the speed
+unit of ``[units] speed`` (``Case.speed_unit``; ``--speed-unit`` overrides it).
 ``convention = "brach"`` replaces each vehicle's ``cg`` and ``heading`` by Brach's ``theta``,
 ``phi`` and ``d`` (see :mod:`pim.io.brach`), with C at ``impact.point`` (default the origin).
 """
@@ -71,12 +76,12 @@ from .measured_table import parse_measured
 from .toml_tables import check_keys
 from .tyre_table import attach_tyres
 from .uncertainty_table import parse_uncertainty
-from .units import LIMITS, parse, registry, unit_system_of
+from .units import LIMITS, SPEED_UNITS, UNIT_SYSTEMS, parse, registry, unit_system_of
 
 __all__ = ["load_case", "list_cases", "parse_case"]
 
 _TOP = {"name", "description", "source", "convention", "vehicle1", "vehicle2", "impact",
-        "measured", "uncertainty", "evidence", "unknown", "tyres", "driver"}
+        "measured", "uncertainty", "evidence", "unknown", "tyres", "driver", "units"}
 _VEHICLE = {"mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
             "length", "width", "cg_to_front", "fixed", "cg", "heading", "theta", "phi", "d",
             "wheelbase", "cg_to_front_axle", "body"}
@@ -289,7 +294,7 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
     case = Case(vehicle1=vehicles[0], vehicle2=vehicles[1], impact=impact,
                 measured=parse_measured(data.get("measured")), name=name, description=description,
                 uncertainty=_with_estimates(_uncertainty(data.get("uncertainty")), estimates),
-                units=_unit_system(data), notes=_angle_notes(data),
+                notes=_angle_notes(data), **_presentation(data),
                 evidence=attach_tyres(parse_evidence(data.get("evidence"), {
                     i + 1: (v.length, v.width) for i, v in enumerate(vehicles)}),
                     data.get("tyres"), data.get("driver")),
@@ -351,8 +356,25 @@ def _angle_notes(data) -> tuple[str, ...]:
     return tuple(notes)
 
 
+#: Keys of the ``[units]`` table: the units results are presented in.
+_UNITS = {"system": UNIT_SYSTEMS, "speed": SPEED_UNITS}
+
+
+def _presentation(data) -> dict:
+    """``units`` and ``speed_unit`` of the Case: the ``[units]`` table's choices, else the
+    system the file is written in and the system's field speed unit (None)."""
+    table = check_keys(data.get("units", {}), _UNITS, "units")
+    for key, allowed in _UNITS.items():
+        if key in table and table[key] not in allowed:
+            raise InputError(f"units.{key} must be one of "
+                             f"{', '.join(repr(a) for a in allowed)}, got {table[key]!r}")
+    return {"units": table.get("system") or _unit_system(data),
+            "speed_unit": table.get("speed")}
+
+
 def _unit_system(data) -> str:
     """"us" when any quantity string of the file uses a US customary unit, else "si"."""
+    data = {k: v for k, v in data.items() if k != "units"}
     stack, systems = [data], set()
     while stack:
         x = stack.pop()

@@ -20,7 +20,7 @@ from .inertia import InputEstimate
 from .numbers import InputError, real_array
 
 __all__ = ["Vehicle", "Impact", "Case", "Measured", "LAWS", "MASS_RANGE", "INERTIA_RANGE",
-           "MAX_ARM_RATIO"]
+           "MAX_ARM_RATIO", "SPEED_UNITS"]
 
 #: The impact laws a case may name (``impact.law``); see :mod:`pim.model.impact_laws`.
 #: "brach": Brach's PIM (eps, beta); "brach-capped": PIM with |mu| capped at a friction
@@ -28,6 +28,9 @@ __all__ = ["Vehicle", "Impact", "Case", "Measured", "LAWS", "MASS_RANGE", "INERT
 LAWS = ("brach", "brach-capped", "kudlich-slibar")
 #: The laws that take a contact friction coefficient (``impact.contact_friction``).
 FRICTION_LAWS = ("brach-capped", "kudlich-slibar")
+#: The units results may give speeds in (``Case.speed_unit``; pint's names of km/h, mph,
+#: m/s and ft/s; :mod:`pim.io.units` converts).
+SPEED_UNITS = ("km/h", "mph", "m/s", "ft/s")
 
 #: Allowed mass [kg] and yaw inertia [kg m^2] of a moving body (inf: a fixed obstacle): where
 #: the arithmetic holds, not where vehicles lie (a case file is held to the tighter
@@ -518,8 +521,12 @@ class Case:
         each estimated input the table leaves out a normal distribution with the estimate's
         sd), used by :func:`pim.uncertainty` and the reconstruction's Monte Carlo.
     units : {"si", "us"}
-        The unit system the case was written in (its file's units); results are presented
-        in it unless asked otherwise.
+        The unit system the case was written in (its file's units, or its ``[units] system``);
+        results are presented in it unless asked otherwise.
+    speed_unit : {"km/h", "mph", "m/s", "ft/s"}, optional
+        The unit results give speeds and delta-V in (the case file's ``[units] speed``);
+        default the system's field unit, km/h for "si" and mph for "us"
+        (:class:`pim.io.units.DisplayUnits`).
     notes : tuple of str
         Plausibility warnings about the inputs found while reading the case file (e.g. a
         bare number above 2 pi given for an angle).
@@ -545,6 +552,7 @@ class Case:
     evidence: object | None = None  # pim.model.evidence.Evidence (post-impact evidence)
     unknown: dict | None = None  # dotted key -> (low, high) SI bounds, the [unknown] table
     estimates: tuple = ()  # pim.model.inertia.InputEstimate: inputs the program estimated
+    speed_unit: str | None = None   # one of SPEED_UNITS; None: the system's field unit
 
     def __post_init__(self) -> None:
         if not (type(self.vehicle1) is Vehicle and type(self.vehicle2) is Vehicle
@@ -555,6 +563,9 @@ class Case:
         if self.estimates and not (isinstance(self.estimates, tuple) and all(
                 isinstance(e, InputEstimate) for e in self.estimates)):
             raise InputError("estimates must be a tuple of pim.model.inertia.InputEstimate")
+        if self.speed_unit is not None and self.speed_unit not in SPEED_UNITS:
+            raise InputError(f"speed_unit must be one of {', '.join(SPEED_UNITS)}, got "
+                             f"{self.speed_unit!r}")
         single = _single(self.vehicle1, self.vehicle2, self.impact)
         if self.vehicle1.mass == math.inf if single else self.vehicle1.fixed.any():
             raise InputError("vehicle1.mass must be finite: only vehicle2 may be a fixed obstacle")

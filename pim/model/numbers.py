@@ -1,14 +1,17 @@
 """Input checks shared by the model's types and functions: real numbers, never strings,
-booleans, complex numbers or None read as numbers."""
+booleans, complex numbers or None read as numbers; and the one way a message prints a
+speed (:func:`speed_text`)."""
 
 from __future__ import annotations
 
 import math
+from contextlib import contextmanager
+from contextvars import ContextVar
 
 import numpy as np
 
 __all__ = ["InputError", "real_array", "checked_number", "checked_count", "check_counts",
-           "check_numbers"]
+           "check_numbers", "speed_text", "speeds_in"]
 
 
 class InputError(ValueError):
@@ -114,3 +117,28 @@ def check_numbers(**values) -> None:
     for name, value in values.items():
         if value is not None and not np.isfinite(real_array(value, name)).all():
             raise InputError(f"{name} must be finite, got {value!r}")
+
+
+#: (factor per m/s, unit label) of the speeds in messages; the edge sets it (speeds_in).
+_SPEED_UNIT: ContextVar[tuple[float, str]] = ContextVar("speed_unit", default=(1.0, "m/s"))
+
+
+def speed_text(value, spec: str = ".4g") -> str:
+    """A speed [m/s] as a message prints it: in the user's speed unit with its symbol.
+
+    The model works in SI and does not convert; the command line chooses the unit for the
+    run with :func:`pim.io.units.messages_in` (the factor comes from pint there). Outside
+    such a block speeds are printed in m/s.
+    """
+    factor, unit = _SPEED_UNIT.get()
+    return f"{float(value) * factor:{spec}} {unit}"
+
+
+@contextmanager
+def speeds_in(factor: float, unit: str):
+    """Within the block, :func:`speed_text` prints ``value * factor`` followed by ``unit``."""
+    token = _SPEED_UNIT.set((float(factor), unit))
+    try:
+        yield
+    finally:
+        _SPEED_UNIT.reset(token)

@@ -31,7 +31,7 @@ def test_ricsac9_turned_around_covers_the_staged_speeds(tmp_path, capsys):
                  "--samples", "4000"]) == 0
     data = json.loads(capsys.readouterr().out)
     staged = 21.2                               # mph: --json speaks the case's units
-    assert data["units"] == "us"
+    assert data["units"]["system"] == "us" and data["units"]["speed"] == "mph"
     for key in ("vehicle1.speed", "vehicle2.speed"):
         row = data["unknowns"][key]
         assert row["unit"] == "mph"
@@ -76,7 +76,7 @@ def test_synthetic_case_report_and_json(tmp_path, capsys):
     data = json.loads(capsys.readouterr().out)
     for key in ("vehicle1.speed", "vehicle2.speed"):
         row = data["unknowns"][key]
-        assert row["unit"] == "mph" and data["units"] == "us"
+        assert row["unit"] == "mph" and data["units"]["system"] == "us"
         row = {k: v * 0.44704 for k, v in row.items() if k != "unit"}     # mph -> m/s
         assert row["value"] == pytest.approx(KNOWN, abs=1e-5)
         assert row["p5"] < KNOWN < row["p95"]
@@ -97,7 +97,7 @@ def test_no_monte_carlo_prints_no_nan_and_json_speaks_the_case_units(capsys):
     assert "nan" not in out.lower()
     assert main(["reconstruct", "ricsac9-reconstruct", "--samples", "0", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["units"] == "us" and data["unknowns"]["vehicle1.speed"]["unit"] == "mph"
+    assert data["units"]["system"] == "us" and data["unknowns"]["vehicle1.speed"]["unit"] == "mph"
     assert 10 < data["unknowns"]["vehicle1.speed"]["value"] < 30          # mph, not m/s
     check = data["momentum_check"]["vehicle1.speed"]
     assert check["unit"] == "mph" and check["sd"] > 0
@@ -150,7 +150,7 @@ def test_recorder_evidence_says_which_evidence_drove_each_speed(capsys):
     the text names the driving evidence per speed in the case's units, the JSON too."""
     assert main(["reconstruct", "synthetic-edr", "--samples", "0", "--units", "si"]) == 0
     out = capsys.readouterr().out
-    assert "evidence: vehicle1.speed (1 sd = " in out and "m/s): vehicle1 recorded delta-V" in out
+    assert "evidence: vehicle1.speed (1 sd = " in out and "km/h): vehicle1 recorded delta-V" in out
     assert main(["reconstruct", "synthetic-edr", "--samples", "0", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["unknowns"]["vehicle1.speed"]["value"] == pytest.approx(9.5 / 0.44704, abs=0.01)
@@ -186,7 +186,7 @@ def test_a_kudlich_slibar_case_is_reconstructed_under_its_law(tmp_path, capsys):
     assert main(["reconstruct", "ricsac9-pccrash-reconstruct", "--out", str(tmp_path),
                  "--json", "--samples", "400"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["law"] == "kudlich-slibar" and data["units"] == "us"
+    assert data["law"] == "kudlich-slibar" and data["units"]["system"] == "us"
     for key in ("vehicle1.speed", "vehicle2.speed"):
         row = data["unknowns"][key]
         assert row["unit"] == "mph" and row["p5"] < 21.2 < row["p95"], (key, row)
@@ -200,5 +200,5 @@ def test_a_kudlich_slibar_case_is_reconstructed_under_its_law(tmp_path, capsys):
     assert main(["reconstruct", "ricsac9-pccrash-reconstruct", "--samples", "0",
                  "--units", "si"]) == 0
     out = capsys.readouterr().out
-    assert out.startswith("Impact law: Kudlich-Slibar") and "m/s" in out and "mph" not in out
+    assert out.startswith("Impact law: Kudlich-Slibar") and "km/h" in out and "mph" not in out
     assert ">= " in next(line for line in out.splitlines() if line.startswith("impact.mu_c"))

@@ -30,7 +30,7 @@ def test_the_html_report_holds_the_same_tables_and_figures_inline(report):
     assert max(headers) <= 10 and sum(h - 1 for h in headers) == 22   # all but 'test' once
     assert "Other columns" not in page
     assert page.count("data:image/png;base64,") == 2            # both figures, inline
-    assert "dVx meas [ft/s]" in page and "[m/s]" not in page
+    assert "dVx meas [mph]" in page and "[m/s]" not in page and "[ft/s]" not in page
     assert '<section id="summary"' in page and "SAE 2014-01-0469" in page
     assert "https://" not in page and "<script" not in page
 

@@ -70,7 +70,7 @@ def test_changing_a_mass_in_the_case_file_is_drift_and_an_input_change(recorded,
     assert {"solve.velocity1_x", "fit.eps", "crosscheck.velocity1_x"} <= names
     table = format_report(report)
     assert "input changed: mine.toml" in table and "solve.velocity1_x" in table
-    assert "ft/s" in table                   # the case's own units (ricsac9 is in ft)
+    assert "mph" in table and "ft/s" not in table     # the case's own units (ricsac9: US)
     assert all(d.case == "mine.toml" for d in report.drifts)   # hard-pole did not move
 
 

@@ -21,14 +21,14 @@ def _study(pim_v, scene_v, kind="leave-one-out"):
 def test_verdict_names_the_better_model_and_the_ratio():
     text = R.verdict(_study([1.0, 2.0, 3.0], [0.5, 1.0, 1.5]))
     assert "the tuned scene predicts" in text and "(2x)" in text
-    assert "1.00 against 2.00 m/s" in text
+    assert "3.60 against 7.20 km/h" in text             # 1 and 2 m/s; 1 km/h = 1/3.6 m/s
     text = R.verdict(_study([1.0, 1.0, 1.0], [3.0, 3.0, math.nan]), "us")
-    assert "PIM predicts" in text and "ft/s" in text and "failed on 1" in text
+    assert "PIM predicts" in text and "mph" in text and "failed on 1" in text
 
 
 def test_a_class_of_one_reports_its_fits():
     text = R.verdict(_study([0.4], [0.2], kind="per-test fit"))
-    assert "too few for leave-one-out" in text and "0.40 m/s" in text
+    assert "too few for leave-one-out" in text and "1.44 km/h" in text     # 0.4 m/s
 
 
 def test_files(tmp_path):

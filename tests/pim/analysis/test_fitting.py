@@ -242,7 +242,7 @@ def test_cli_fit(ricsac9, capsys):
     assert data["eps"] == pytest.approx(0.355, abs=0.002) and data["beta"] == 1.0
     assert main(["fit", "ricsac9", "--include-yaw", "--units", "us"]) == 0
     out = capsys.readouterr().out
-    assert "beta sits on its upper bound" in out and "ft/s" in out and "yaw_rate2" in out
+    assert "beta sits on its upper bound" in out and "mph" in out and "yaw_rate2" in out
     assert main(["fit", "ricsac9", "--beta", "1"]) == 0
     assert "fixed: beta" in capsys.readouterr().out
 
@@ -330,7 +330,8 @@ def test_cli_free_parameters_say_whether_the_data_decide_them(capsys):
     assert data["identifiability"]["rank"] == 2 and not data["identifiability"]["families"]
     # --json speaks the case's units (issue 22): the angle in degrees, its unit named
     assert -10 - 1e-6 <= data["values"]["impact.normal_angle"] <= 10 + 1e-6
-    assert data["value_units"]["impact.normal_angle"] == "deg" and data["units"] == "us"
+    assert data["value_units"]["impact.normal_angle"] == "deg"
+    assert data["units"]["system"] == "us" and data["units"]["angle"] == "deg"
 
 
 @pytest.mark.parametrize("arg, words", [("bogus=1,2", "KEY"),
@@ -422,10 +423,10 @@ def test_fit_command_under_the_kudlich_slibar_law(capsys):
     assert "under the Kudlich-Slibar law (k, mu_c)" in out and "mu_c    = " in out
     assert main(["fit", "ricsac9-pccrash", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["law"] == "kudlich-slibar" and data["units"] == "us"
+    assert data["law"] == "kudlich-slibar" and data["units"]["system"] == "us"
     assert data["lower_bounds"]["impact.mu_c"] == pytest.approx(
         float(pim.solve(pim.load_case("ricsac9-pccrash"), 0.0, 1.0).mu0), rel=1e-9)
-    assert data["rms_unit"] == "ft/s"
+    assert data["rms_unit"] == "mph"
     assert main(["fit", "ricsac9-pccrash", "--eps", "0.3"]) == 2
     assert "hold k with --k" in capsys.readouterr().err
     assert main(["fit", "ricsac9", "--k", "0.3"]) == 2

@@ -258,7 +258,8 @@ def test_flipped_normal_hints_at_its_direction_in_the_case_units(tmp_path, capsy
     path = variant(tmp_path, 'normal_angle = "0 deg"', 'normal_angle = "180 deg"')
     assert main(["solve", str(path)]) == 1
     err = capsys.readouterr().err
-    assert "ft/s" in err and "m/s" not in err
+    # u_n = 31.09 ft/s = 21.2 mph (the staged speed), in the field's unit
+    assert "u_n = 21.2 mph" in err and "m/s" not in err and "ft/s" not in err
     assert "from vehicle 2 toward vehicle 1" in err and "try 0 deg" in err
 
 
@@ -282,3 +283,44 @@ def test_contact_plane_angle_errors_name_the_field(tmp_path, new, words):
     path.write_text(text)
     with pytest.raises(ValueError, match=words):
         pim.load_case(str(path))
+
+
+# --- Issue 28: the [units] table chooses the units results are presented in -------------
+
+@pytest.mark.parametrize("table, system, speed", [
+    ("", "us", None),                                   # written in ft: us, mph by default
+    ('[units]\nspeed = "m/s"\n', "us", "m/s"),
+    ('[units]\nsystem = "si"\n', "si", None),
+    ('[units]\nsystem = "si"\nspeed = "ft/s"\n', "si", "ft/s"),
+])
+def test_the_units_table_sets_the_presentation(tmp_path, table, system, speed):
+    path = tmp_path / "case.toml"
+    path.write_text(RICSAC + "\n" + table)
+    case = pim.load_case(path)
+    assert (case.units, case.speed_unit) == (system, speed)
+    assert case.vehicle1.velocity[0] == pytest.approx(-31.09 * 0.3048)   # read as before
+
+
+def test_a_units_table_in_mph_does_not_make_an_si_file_us(tmp_path):
+    text = RICSAC.replace("lbf", "N").replace(" ft", " m").replace("slug", "kg")
+    path = tmp_path / "case.toml"
+    path.write_text(text.replace("ft/s", "km/h") + '\n[units]\nspeed = "mph"\n')
+    case = pim.load_case(path)
+    assert (case.units, case.speed_unit) == ("si", "mph")
+
+
+@pytest.mark.parametrize("table, words", [
+    ('[units]\nspeed = "kph"\n', ["units.speed", "'km/h', 'mph', 'm/s', 'ft/s'", "'kph'"]),
+    ('[units]\nsystem = "metric"\n', ["units.system", "'si', 'us'"]),
+    ('[units]\nsped = "mph"\n', ["units", "unknown key 'sped'"]),
+    ('units = "mph"\n', ["units must be a table"]),
+])
+def test_a_bad_units_table_names_the_key(tmp_path, capsys, table, words):
+    path = tmp_path / "case.toml"
+    path.write_text(table + RICSAC if not table.startswith("[") else RICSAC + "\n" + table)
+    with pytest.raises(ValueError) as info:
+        pim.load_case(path)
+    assert all(w in str(info.value) for w in words), str(info.value)
+    assert main(["solve", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: ") and err.count("\n") == 1 and words[0] in err
