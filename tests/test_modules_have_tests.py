@@ -36,6 +36,9 @@ EXCEPTIONS = {
     "comparisons/tables.py": "test_comparison_tables.py",   # test_tables: pim.plotting.tables
     "comparisons/hard_cases.py": "test_hard_case_table.py",  # test_hard_cases: pim on them
     "sim/result.py": "test_sim_result.py",                  # test_result: pim.model.result
+    "sim/compliant_batch.py": "sim/test_compliant_batch.py",
+    "sim/compliant_kernel.py": "sim/test_compliant_batch.py",   # the engine behind it
+    "sim/compliant_formula.py": "sim/test_compliant_formula.py",
 }
 COMMAND_GROUPS = {"pim": "pim.cli", "sim": "sim.cli", "comparisons": "comparisons.cli"}
 
