@@ -20,7 +20,7 @@ from sim.batch import case_element
 from sim.compliant_batch import STATUS_NAMES, CompliantBatch, contact_inputs
 from sim.contact_law import stiffness_for_duration
 
-from ..scenes import random_cases
+from tests.scenes import random_cases
 
 pytestmark = pytest.mark.xdist_group("compliant_kernel")
 K = sim.DEFAULT_STIFFNESS
