@@ -257,16 +257,18 @@ class _Stepper:
         """This step's loads into ``lo``: the contact (while on) and the tyres."""
         fx = fy = m1 = m2 = 0.0
         par, mem, dt = self.par, self.mem, self.dt
+        trig = f.angles(st)
         if mem[f.M_ON] != 0.0:
             when = self.start + (self.step_count + 1) * dt
             geo = (outline_geometry(self.p, mem, st, self.obstacle, when)
-                   if self.p.geometry == "outline" else (*point_geometry(par, st, dt), True))
+                   if self.p.geometry == "outline" else
+                   (*point_geometry(par, st, trig, dt), True))
             applied, fx, fy, m1, m2, fn, ft, sticking = contact_loads(par, mem, self.tal, st,
-                                                                      dt, *geo)
+                                                                      trig, dt, *geo)
             if applied and self.rows is not None:
                 self.rows.append((when, geo[4], fx, fy, fn, ft, geo[6], sticking, geo[0],
                                   geo[1]))
-        total_loads(par, st, self.lo, self.tal, dt, fx, fy, m1, m2)
+        total_loads(par, st, trig, self.lo, self.tal, dt, fx, fy, m1, m2)
 
 
 def _row(t: float, b1, b2) -> tuple:

@@ -27,6 +27,7 @@ from .compliant_setup import (
     CompliantResult,
     CompliantSettings,
     build_problem,
+    case_rows,
     contact_step_limit,
     parameter_rows,
     result_from_row,
@@ -274,6 +275,8 @@ def _per_scene(value, name: str, unit: str, low: float, high: float = np.inf,
 
 def _braking(tyre_mode) -> np.ndarray:
     """1.0 for "locked", 0.0 for "rolling", per scene (a string or an array of them)."""
+    if type(tyre_mode) is str and tyre_mode in TYRE_MODES:
+        return np.float64(tyre_mode == "locked")
     modes = np.asarray(tyre_mode, dtype=object)
     known = np.isin(modes, TYRE_MODES) if modes.size else np.array(True)
     if not np.all(known):
@@ -337,7 +340,8 @@ _SETUP_CACHE: OrderedDict = OrderedDict()
 
 
 def _setup(case: pim.Case, shape: tuple, gravity: float) -> dict:
-    """:func:`sim.compliant_setup.setup_arrays`, kept for the last 4 (case, shape, gravity)
+    """:func:`sim.compliant_setup.setup_arrays` with its :func:`sim.compliant_setup.case_rows`
+    (``"rows"``), kept for the last 4 (case, shape, gravity)
     of at most :data:`CACHE_SCENES` scenes: a fit that calls again and again with one case
     and new contact inputs sets the case up once. A Case is immutable (frozen), so the
     arrays stay valid; the cache holds the case itself, so its identity is not reused."""
@@ -347,6 +351,7 @@ def _setup(case: pim.Case, shape: tuple, gravity: float) -> dict:
         _SETUP_CACHE.move_to_end(key)
         return hit[1]
     arrays = setup_arrays(case, shape, gravity)
+    arrays["rows"] = case_rows(arrays)
     if arrays["mass1"].shape[0] <= CACHE_SCENES:
         for value in arrays.values():
             value.flags.writeable = False
@@ -384,7 +389,7 @@ def simulate_batch(case: pim.Case, eps, stiffness=None, friction=0.0, geometry="
     arrays = _setup(case, shape, settings.gravity)
     law, status = _law(inputs, arrays, shape, settings)
     from .compliant_kernel import integrate      # numba: compiled (or loaded) on first use
-    rows = integrate(parameter_rows(arrays, law), arrays["state0"], status)
+    rows = integrate(parameter_rows(arrays, law, arrays["rows"]), arrays["state0"], status)
     scenes = dict(law)
     scenes.update({k: arrays[k] for k in ("mass1", "inertia1", "mass2", "inertia2", "k_nn",
                                           "energy_before")})

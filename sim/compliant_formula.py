@@ -41,7 +41,7 @@ from pim.model.tyres import wheel_force
 
 __all__ = ["loading_force", "loading_work", "unloading_slope", "permanent_crush",
            "normal_force", "normal_stiffness", "tangential_step", "tangential_force",
-           "point_contact", "point_geometry", "vehicle_tyre_force", "tyre_loads", "ahead",
+           "angles", "point_contact", "point_geometry", "vehicle_tyre_force", "tyre_loads", "ahead",
            "contact_loads", "total_loads", "half_kick", "drift", "kick", "separation_time",
            "post_velocities", "slip_reversed", "write_outputs", "N_PAR", "N_MEM", "N_TAL",
            "N_OUT"]
@@ -173,15 +173,19 @@ def tangential_force(z, k_t, limit):
 
 
 # ---- kinematics of the point contact (sim.compliant_setup's module notes) ----------------------
-def point_contact(a1x, a1y, a2x, a2y, n2x, n2y, x1, y1, th1, vx1, vy1, w1, x2, y2, th2, vx2,
-                  vy2, w2):
+def angles(st):
+    """cos and sin of both headings of the state ``st``: (c1, s1, c2, s2)."""
+    return math.cos(st[2]), math.sin(st[2]), math.cos(st[8]), math.sin(st[8])
+
+
+def point_contact(a1x, a1y, a2x, a2y, n2x, n2y, x1, y1, c1, s1, vx1, vy1, w1, x2, y2, c2, s2,
+                  vx2, vy2, w2):
     """P (on vehicle 1), the normal n carried by vehicle 2, the crush delta = -(P - Q) . n,
-    and the relative velocity of P along n and t = n turned +90 deg.
+    and the relative velocity of P along n and t = n turned +90 deg; (c1, s1), (c2, s2) the
+    cos and sin of the headings.
 
     Returns (px, py, nx, ny, delta, slip_n, slip_t) [m, -, m, m/s].
     """
-    c1, s1 = math.cos(th1), math.sin(th1)
-    c2, s2 = math.cos(th2), math.sin(th2)
     px = x1 + (c1 * a1x - s1 * a1y)
     py = y1 + (s1 * a1x + c1 * a1y)
     qx = x2 + (c2 * a2x - s2 * a2y)
@@ -196,69 +200,72 @@ def point_contact(a1x, a1y, a2x, a2y, n2x, n2y, x1, y1, th1, vx1, vy1, w1, x2, y
     return px, py, nx, ny, delta, relx * nx + rely * ny, relx * -ny + rely * nx
 
 
-def _point(par, x1, y1, th1, vx1, vy1, w1, x2, y2, th2, vx2, vy2, w2):
+def _point(par, x1, y1, c1, s1, vx1, vy1, w1, x2, y2, c2, s2, vx2, vy2, w2):
     return point_contact(par[P_ARM1], par[P_ARM1 + 1], par[P_ARM2], par[P_ARM2 + 1],
-                         par[P_NORMAL2], par[P_NORMAL2 + 1], x1, y1, th1, vx1, vy1, w1, x2, y2,
-                         th2, vx2, vy2, w2)
+                         par[P_NORMAL2], par[P_NORMAL2 + 1], x1, y1, c1, s1, vx1, vy1, w1, x2,
+                         y2, c2, s2, vx2, vy2, w2)
 
 
-def point_geometry(par, st, dt):
+def point_geometry(par, st, trig, dt):
     """The point contact at the end of the step, its tangential slip at the middle.
 
     In the velocity callback the bodies have moved from t_n to t_{n+1} with the velocities
     they hold (those of the middle of the step); the slip the friction spring integrates is
     taken at the state those velocities go with, the positions moved back half a step (a
-    second-order slip; docs/contact-model.md, "Integration").
+    second-order slip; docs/contact-model.md, "Integration"). ``trig``: :func:`angles` of
+    ``st``.
 
     Returns (px, py, nx, ny, delta, slip_n, slip_t).
     """
     px, py, nx, ny, delta, slip_n, slip_t = _point(
-        par, st[0], st[1], st[2], st[3], st[4], st[5], st[6], st[7], st[8], st[9], st[10],
-        st[11])
+        par, st[0], st[1], trig[0], trig[1], st[3], st[4], st[5], st[6], st[7], trig[2],
+        trig[3], st[9], st[10], st[11])
     if dt > 0.0:
         h = 0.5 * dt
-        slip_t = _point(par, st[0] - st[3] * h, st[1] - st[4] * h, st[2] - st[5] * h, st[3],
-                        st[4], st[5], st[6] - st[9] * h, st[7] - st[10] * h,
-                        st[8] - st[11] * h, st[9], st[10], st[11])[6]
+        th1, th2 = st[2] - st[5] * h, st[8] - st[11] * h
+        slip_t = _point(par, st[0] - st[3] * h, st[1] - st[4] * h, math.cos(th1),
+                        math.sin(th1), st[3], st[4], st[5], st[6] - st[9] * h,
+                        st[7] - st[10] * h, math.cos(th2), math.sin(th2), st[9], st[10],
+                        st[11])[6]
     return px, py, nx, ny, delta, slip_n, slip_t
 
 
 # ---- tyres (sim.contact_tyres) -----------------------------------------------------------------
-def vehicle_tyre_force(wheels, loads, vx, vy, w, angle, mu, braking, vr):
+def vehicle_tyre_force(data, wheels, loads, vx, vy, w, c, s, mu, braking, vr):
     """Sum of the four tyre forces [N] and their moment about the CG [N m] on one vehicle.
 
-    ``wheels``: body-frame positions x0, y0, ..., x3, y3 [m]; ``loads`` (4) [N]; ``braking``
-    0 free-rolling, 1 locked; each tyre :func:`pim.model.tyres.wheel_force`.
+    ``data[wheels:wheels + 8]``: the body-frame wheel positions x0, y0, ..., x3, y3 [m];
+    ``data[loads:loads + 4]`` their loads [N]; (c, s) cos and sin of the heading;
+    ``braking`` 0 free-rolling, 1 locked; each tyre :func:`pim.model.tyres.wheel_force`.
     """
-    c, s = math.cos(angle), math.sin(angle)
     fx = 0.0
     fy = 0.0
     moment = 0.0
     for k in range(4):
-        a, b, m = wheel_force(c, s, vx, vy, w, wheels[2 * k], wheels[2 * k + 1], c, s,
-                              loads[k], mu, braking, vr)
+        a, b, m = wheel_force(c, s, vx, vy, w, data[wheels + 2 * k], data[wheels + 2 * k + 1],
+                              c, s, data[loads + k], mu, braking, vr)
         fx += a
         fy += b
         moment += m
     return fx, fy, moment
 
 
-def tyre_loads(par, vx1, vy1, w1, th1, vx2, vy2, w2, th2):
-    """Tyre forces and moments on both vehicles and their power [W] (zeros without tyres).
+def tyre_loads(par, vx1, vy1, w1, vx2, vy2, w2, trig):
+    """Tyre forces and moments on both vehicles and their power [W] (zeros without tyres);
+    ``trig``: cos and sin of both headings (:func:`angles`).
 
     Returns (fx1, fy1, m1, fx2, fy2, m2, power).
     """
     mu = par[P_TYRE]
     if not mu > 0.0:
         return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    f1x, f1y, m1 = vehicle_tyre_force(par[P_WHEELS1:P_WHEELS1 + 8], par[P_LOADS1:P_LOADS1 + 4],
-                                      vx1, vy1, w1, th1, mu, par[P_BRAKING], par[P_VR])
+    f1x, f1y, m1 = vehicle_tyre_force(par, P_WHEELS1, P_LOADS1, vx1, vy1, w1, trig[0],
+                                      trig[1], mu, par[P_BRAKING], par[P_VR])
     power = f1x * vx1 + f1y * vy1 + m1 * w1
     f2x, f2y, m2 = 0.0, 0.0, 0.0
     if par[P_FIXED2] == 0.0:
-        f2x, f2y, m2 = vehicle_tyre_force(par[P_WHEELS2:P_WHEELS2 + 8],
-                                          par[P_LOADS2:P_LOADS2 + 4], vx2, vy2, w2, th2, mu,
-                                          par[P_BRAKING], par[P_VR])
+        f2x, f2y, m2 = vehicle_tyre_force(par, P_WHEELS2, P_LOADS2, vx2, vy2, w2, trig[2],
+                                          trig[3], mu, par[P_BRAKING], par[P_VR])
         power += f2x * vx2 + f2y * vy2 + m2 * w2
     return f1x, f1y, m1, f2x, f2y, m2, power
 
@@ -332,7 +339,7 @@ def contact_law(par, mem, delta, slip_t, tx, ty, dt):
     return on, fn, ft, sticking, z, rx, ry
 
 
-def _tally(par, tal, st, px, py, nx, ny, fx, fy, sticking, z, dt):
+def _tally(par, tal, st, trig, px, py, nx, ny, fx, fy, sticking, z, dt):
     """Account for one step in contact (impulse, centroids, peak, stick time, directions)."""
     size = math.hypot(fx, fy)
     w = size * dt
@@ -342,13 +349,13 @@ def _tally(par, tal, st, px, py, nx, ny, fx, fy, sticking, z, dt):
     tal[T_MOMENT + 1] += w * py
     tal[T_NORMAL] += w * nx
     tal[T_NORMAL + 1] += w * ny
-    c, s = math.cos(-st[2]), math.sin(-st[2])
+    c, s = trig[0], trig[1]                 # turned back by -theta1 into vehicle 1's frame
     dx, dy = px - st[0], py - st[1]
-    tal[T_BODY_POINT] += w * (c * dx - s * dy)
-    tal[T_BODY_POINT + 1] += w * (s * dx + c * dy)
-    c, s = math.cos(-st[8]), math.sin(-st[8])
-    tal[T_BODY_NORMAL] += w * (c * nx - s * ny)
-    tal[T_BODY_NORMAL + 1] += w * (s * nx + c * ny)
+    tal[T_BODY_POINT] += w * (c * dx + s * dy)
+    tal[T_BODY_POINT + 1] += w * (c * dy - s * dx)
+    c, s = trig[2], trig[3]                 # by -theta2 into vehicle 2's
+    tal[T_BODY_NORMAL] += w * (c * nx + s * ny)
+    tal[T_BODY_NORMAL + 1] += w * (c * ny - s * nx)
     tal[T_WEIGHT] += w
     tal[T_CONTACT] += dt
     if sticking:
@@ -361,9 +368,9 @@ def _tally(par, tal, st, px, py, nx, ny, fx, fy, sticking, z, dt):
             tal[T_SLID_NEG] = 1.0
 
 
-def contact_loads(par, mem, tal, st, dt, px, py, nx, ny, delta, slip_n, slip_t, overlap):
+def contact_loads(par, mem, tal, st, trig, dt, px, py, nx, ny, delta, slip_n, slip_t, overlap):
     """The contact force of one step at the geometry (px .. slip_t, ``overlap``): the law,
-    the plastic release and the tally.
+    the plastic release and the tally (``trig``: :func:`angles` of ``st``).
 
     Returns (applied, fx, fy, m1, m2, fn, ft, sticking): the force on vehicle 1 (-F on
     vehicle 2) at P and its moments about each CG; zeros unless the contact is on and has
@@ -386,19 +393,18 @@ def contact_loads(par, mem, tal, st, dt, px, py, nx, ny, delta, slip_n, slip_t, 
         return False, 0.0, 0.0, 0.0, 0.0, fn, ft, sticking
     fx = fn * nx + ft * tx + rx
     fy = fn * ny + ft * ty + ry
-    _tally(par, tal, st, px, py, nx, ny, fx, fy, sticking, z, dt)
+    _tally(par, tal, st, trig, px, py, nx, ny, fx, fy, sticking, z, dt)
     d1x, d1y = px - st[0], py - st[1]
     d2x, d2y = px - st[6], py - st[7]
     return (True, fx, fy, d1x * fy - d1y * fx, -(d2x * fy - d2y * fx), fn, ft, sticking)
 
 
-def total_loads(par, st, lo, tal, dt, fx, fy, m1, m2):
+def total_loads(par, st, trig, lo, tal, dt, fx, fy, m1, m2):
     """The loads of this step's kick into ``lo``: the contact force (fx, fy) on vehicle 1 at
     moments m1, m2 (-F on vehicle 2) plus the tyre forces at the end of the step
     (:func:`ahead` of the last kick); adds the tyres' work to the tally."""
     vx1, vy1, w1, vx2, vy2, w2 = ahead(par, st, lo, 0.5 * dt)
-    t1x, t1y, n1, t2x, t2y, n2, power = tyre_loads(par, vx1, vy1, w1, st[2], vx2, vy2, w2,
-                                                   st[8])
+    t1x, t1y, n1, t2x, t2y, n2, power = tyre_loads(par, vx1, vy1, w1, vx2, vy2, w2, trig)
     tal[T_TYRE_WORK] += power * dt
     lo[0] = fx + t1x
     lo[1] = fy + t1y
@@ -414,8 +420,8 @@ def half_kick(par, st, lo):
     of ``st`` unchanged without tyres."""
     if not par[P_TYRE] > 0.0:
         return st[3], st[4], st[5], st[9], st[10], st[11]
-    t1x, t1y, n1, t2x, t2y, n2, _ = tyre_loads(par, st[3], st[4], st[5], st[2], st[9], st[10],
-                                               st[11], st[8])
+    t1x, t1y, n1, t2x, t2y, n2, _ = tyre_loads(par, st[3], st[4], st[5], st[9], st[10],
+                                               st[11], angles(st))
     lo[0], lo[1], lo[2], lo[3], lo[4], lo[5] = t1x, t1y, n1, t2x, t2y, n2
     return ahead(par, st, lo, 0.5 * par[P_DT])
 

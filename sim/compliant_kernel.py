@@ -49,7 +49,7 @@ def compile_module(module) -> SimpleNamespace:
 
 
 _f = compile_module(compliant_formula)
-_drift, _kick, _half_kick = _f.drift, _f.kick, _f.half_kick
+_drift, _kick, _half_kick, _angles = _f.drift, _f.kick, _f.half_kick, _f.angles
 _point_geometry, _contact_loads, _total_loads = _f.point_geometry, _f.contact_loads, _f.total_loads
 _permanent_crush, _separation_time = _f.permanent_crush, _f.separation_time
 _post_velocities, _write_outputs = _f.post_velocities, _f.write_outputs
@@ -74,7 +74,7 @@ def _scene(par, state0, out):  # pragma: no cover - compiled
     tal = np.zeros(N_TAL)
     lo = np.zeros(6)
     dt = par[P_DT]
-    if not _point_geometry(par, st, 0.0)[5] < 0.0:
+    if not _point_geometry(par, st, _angles(st), 0.0)[5] < 0.0:
         return STATUS_NO_CONTACT                  # the vehicles do not approach at C
     if par[P_TYRE] > 0.0:
         v = _half_kick(par, st, lo)
@@ -86,12 +86,13 @@ def _scene(par, state0, out):  # pragma: no cover - compiled
     while True:
         _drift(par, st, dt)
         fx = fy = m1 = m2 = 0.0
+        trig = _angles(st)
         if mem[M_ON] != 0.0:
-            px, py, nx, ny, delta, slip_n, slip_t = _point_geometry(par, st, dt)
-            res = _contact_loads(par, mem, tal, st, dt, px, py, nx, ny, delta, slip_n, slip_t,
-                                 True)
+            px, py, nx, ny, delta, slip_n, slip_t = _point_geometry(par, st, trig, dt)
+            res = _contact_loads(par, mem, tal, st, trig, dt, px, py, nx, ny, delta, slip_n,
+                                 slip_t, True)
             fx, fy, m1, m2 = res[1], res[2], res[3], res[4]
-        _total_loads(par, st, lo, tal, dt, fx, fy, m1, m2)
+        _total_loads(par, st, trig, lo, tal, dt, fx, fy, m1, m2)
         _kick(par, st, lo, dt)
         steps += 1
         if mem[M_SEPARATED] != 0.0:

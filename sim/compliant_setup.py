@@ -435,19 +435,10 @@ LAW_INPUTS = ("eps", "preload", "stiffness", "friction", "tangential_stiffness",
               "outline")
 
 
-def parameter_rows(arrays: dict, law: dict) -> np.ndarray:
-    """The ``par`` rows (n, N_PAR) of :mod:`sim.compliant_formula`: every scene's parameters.
-
-    Parameters
-    ----------
-    arrays : dict
-        The scene quantities of :func:`setup_arrays` (or :func:`problem_arrays`).
-    law : dict
-        :data:`LAW_INPUTS`, each a number or an array (n,): eps [-], preload a [N],
-        stiffness b [N/m], friction mu_c [-], tangential_stiffness k_t [N/m],
-        tangential_recovery r [-], tyre_friction [-], braking (0 rolling, 1 locked), dt [s],
-        start [s], max_steps (of the contact), outline (1 for the outline contact).
-    """
+def case_rows(arrays: dict) -> np.ndarray:
+    """The ``par`` rows (n, N_PAR) of :mod:`sim.compliant_formula` with the case's columns
+    filled (masses, inertias, arms, normal, wheels, loads, speed scale, v_r) from the scene
+    quantities of :func:`setup_arrays` (or :func:`problem_arrays`), the law's columns 0."""
     f = formula
     n = arrays["mass1"].shape[0]
     par = np.zeros((n, f.N_PAR))
@@ -460,14 +451,37 @@ def parameter_rows(arrays: dict, law: dict) -> np.ndarray:
                                 (f.P_LOADS1, "loads1", 4), (f.P_WHEELS2, "wheels2", 8),
                                 (f.P_LOADS2, "loads2", 4)):
         par[:, column:column + width] = arrays[name].reshape(n, width)
-    for column, name in ((f.P_EPS, "eps"), (f.P_PRELOAD, "preload"),
-                         (f.P_STIFFNESS, "stiffness"), (f.P_FRICTION, "friction"),
-                         (f.P_KT, "tangential_stiffness"), (f.P_RECOVERY, "tangential_recovery"),
-                         (f.P_TYRE, "tyre_friction"), (f.P_BRAKING, "braking"), (f.P_DT, "dt"),
-                         (f.P_START, "start"), (f.P_MAX_STEPS, "max_steps"),
-                         (f.P_OUTLINE, "outline")):
-        par[:, column] = law[name]
     par[:, f.P_VR] = SLIP_REGULARISATION
+    return par
+
+
+#: The ``par`` column of each of :data:`LAW_INPUTS`.
+LAW_COLUMNS = dict(eps=formula.P_EPS, preload=formula.P_PRELOAD,
+                   stiffness=formula.P_STIFFNESS, friction=formula.P_FRICTION,
+                   tangential_stiffness=formula.P_KT, tangential_recovery=formula.P_RECOVERY,
+                   tyre_friction=formula.P_TYRE, braking=formula.P_BRAKING, dt=formula.P_DT,
+                   start=formula.P_START, max_steps=formula.P_MAX_STEPS,
+                   outline=formula.P_OUTLINE)
+
+
+def parameter_rows(arrays: dict, law: dict, rows: np.ndarray | None = None) -> np.ndarray:
+    """The ``par`` rows (n, N_PAR) of :mod:`sim.compliant_formula`: every scene's parameters.
+
+    Parameters
+    ----------
+    arrays : dict
+        The scene quantities of :func:`setup_arrays` (or :func:`problem_arrays`).
+    law : dict
+        :data:`LAW_INPUTS`, each a number or an array (n,): eps [-], preload a [N],
+        stiffness b [N/m], friction mu_c [-], tangential_stiffness k_t [N/m],
+        tangential_recovery r [-], tyre_friction [-], braking (0 rolling, 1 locked), dt [s],
+        start [s], max_steps (of the contact), outline (1 for the outline contact).
+    rows : ndarray, optional
+        :func:`case_rows` of ``arrays`` made already (copied, not changed).
+    """
+    par = case_rows(arrays) if rows is None else rows.copy()
+    for name, column in LAW_COLUMNS.items():
+        par[:, column] = law[name]
     return par
 
 
@@ -488,11 +502,13 @@ def point_contact(problem: CompliantProblem, position1, angle1, velocity1, yaw_r
         v_rel . n (= -d delta / dt) and v_rel . t [m/s].
     """
     a1, a2, n2 = problem.arm1_body, problem.arm2_body, problem.normal2_body
+    angle1, angle2 = float(angle1), float(angle2)
     px, py, nx, ny, delta, slip_n, slip_t = formula.point_contact(
         float(a1[0]), float(a1[1]), float(a2[0]), float(a2[1]), float(n2[0]), float(n2[1]),
-        float(position1[0]), float(position1[1]), float(angle1), float(velocity1[0]),
-        float(velocity1[1]), float(yaw_rate1), float(position2[0]), float(position2[1]),
-        float(angle2), float(velocity2[0]), float(velocity2[1]), float(yaw_rate2))
+        float(position1[0]), float(position1[1]), math.cos(angle1), math.sin(angle1),
+        float(velocity1[0]), float(velocity1[1]), float(yaw_rate1), float(position2[0]),
+        float(position2[1]), math.cos(angle2), math.sin(angle2), float(velocity2[0]),
+        float(velocity2[1]), float(yaw_rate2))
     return (np.array([px, py]), np.array([nx, ny]), np.array([-ny, nx]), delta, slip_n,
             slip_t)
 
