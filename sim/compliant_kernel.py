@@ -26,7 +26,7 @@ from pim.model.numba_cache import stamped_cache
 
 from . import compliant_formula
 
-__all__ = ["integrate", "compile_module", "SIGNATURE", "SERIAL_BELOW"]
+__all__ = ["integrate", "compile_module", "kernels", "SIGNATURE", "SERIAL_BELOW"]
 
 
 def compile_module(module) -> SimpleNamespace:
@@ -176,6 +176,12 @@ def _ready(dispatcher):
         dispatcher.compile(SIGNATURE)
         dispatcher.disable_compile()
     return dispatcher
+
+
+def kernels() -> dict:
+    """The two compiled kernels by name ("serial", "parallel"), e.g. to count what numba
+    compiled for them (one signature each)."""
+    return {"serial": _integrate_serial, "parallel": _integrate}
 
 
 def integrate(par: np.ndarray, state0: np.ndarray, status: np.ndarray) -> np.ndarray:
