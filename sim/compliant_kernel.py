@@ -169,12 +169,17 @@ SIGNATURE = (_C2, types.Array(types.float64, 2, "C", readonly=True), _C2,
 SERIAL_BELOW = 32
 
 
+_READY: list = []
+
+
 def _ready(dispatcher):
     """``dispatcher`` compiled for :data:`SIGNATURE` only (from numba's cache when it holds
     it), on first use; later calls never compile again."""
-    if SIGNATURE not in dispatcher.overloads:
-        dispatcher.compile(SIGNATURE)
-        dispatcher.disable_compile()
+    if dispatcher not in _READY:
+        if SIGNATURE not in dispatcher.overloads:
+            dispatcher.compile(SIGNATURE)
+            dispatcher.disable_compile()
+        _READY.append(dispatcher)
     return dispatcher
 
 
