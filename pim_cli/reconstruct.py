@@ -43,6 +43,7 @@ from pim.io.inertia_data import estimate_notes, estimate_records
 from pim.io.output import output_folder, worker_pool
 from pim.io.units import convert, display_units
 from pim.model.evidence import UNKNOWN_KINDS
+from pim.model.law import LAW_NAMES, LAW_PARAMETERS
 from pim.model.numbers import InputError
 from pim.plotting.reconstruction_animation import write_reconstruction_mp4
 from pim.plotting.reconstruction_scene import reconstruction_figure
