@@ -17,16 +17,17 @@ ROOT = Path(__file__).resolve().parents[2]
 FAST = {"solve", "draw", "fit"}         # the others run under every law in slow tests
 
 
-def law_case(law: str, tmp_path) -> str:
-    """ricsac9 under ``law`` (the bundled PC-Crash case for kudlich-slibar)."""
+def law_case(law: str, tmp_path, suffix: str = "") -> str:
+    """ricsac9 under ``law`` (the bundled PC-Crash case for kudlich-slibar); ``suffix``
+    "-reconstruct" for the inverse problem."""
     if law == "kudlich-slibar":
-        return "ricsac9-pccrash"
+        return "ricsac9-pccrash" + suffix
     if law == "brach":
-        return "ricsac9"
-    text = (ROOT / "pim/io/cases/ricsac9.toml").read_text()
+        return "ricsac9" + suffix
+    text = (ROOT / f"pim/io/cases/ricsac9{suffix}.toml").read_text()
     path = tmp_path / "capped.toml"
     path.write_text(text.replace("[impact]\n", '[impact]\nlaw = "brach-capped"\n'
-                                                'contact_friction = 0.3\n'))
+                                                'contact_friction = 0.9\n'))
     return str(path)
 
 
@@ -48,7 +49,7 @@ def _params(command: str, law: str):
 @pytest.mark.parametrize("command,law", [_params(c, law) for c in COMMAND_LAWS for law in LAWS])
 def test_each_command_runs_under_each_law_or_refuses_with_the_one_message(command, law,
                                                                           tmp_path, capsys):
-    name = law_case(law, tmp_path)
+    name = law_case(law, tmp_path, "-reconstruct" if command == "reconstruct" else "")
     code = main(arguments(command, name, tmp_path))
     err = capsys.readouterr().err
     refusal = command_law_refusal(command, pim.load_case(name))
