@@ -12,6 +12,7 @@ from pathlib import Path
 import click
 
 import pim
+from pim.model.numbers import InputError
 from pim_cli.main import (
     FiniteFloat,
     beta_option,
@@ -21,13 +22,12 @@ from pim_cli.main import (
     friction_limit_option,
     json_option,
     law_options,
+    load_case_for,
     output_units,
-    require_brach,
     solve_with_options,
     units_option,
     warnings_of,
 )
-from pim.model.numbers import InputError
 
 __all__ = ["compare", "animate", "speed_error", "hard_cases", "assumptions"]
 
@@ -87,14 +87,12 @@ def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, n
     kudlich-slibar) and animation; a fit to measured motion is done under that law ((k, mu_c)
     for kudlich-slibar; docs/impact-laws.md).
     """
-    from pim.io.casefile import load_case
-    from pim.model.impact_laws import law_of
-
     from comparisons.report.compare import compare_case
+    from pim.model.impact_laws import law_of
 
     if tyre < 0:
         raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
-    case = load_case(case_name)
+    case = load_case_for("compare", case_name, law)
     units = output_units(case, units, speed_unit)
     folder = _out(out, case.name, "case")
     if law_of(case, law) != "brach" or k is not None or mu_c is not None:
@@ -129,10 +127,9 @@ def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, n
 
 def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, **kwargs):
     """``pim compare`` under an impact law other than Brach's (comparisons.report.law)."""
-    from pim.model.impact_laws import law_of
-
     from comparisons.report.law import compare_law_case
     from comparisons.studies.law_runs import law_setup
+    from pim.model.impact_laws import law_of
 
     started = time.perf_counter()
     result = solve_with_options(case, eps, beta, None, False, law, k, mu_c, units)
@@ -189,15 +186,13 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
     separation (docs/impact-laws.md).
     """
     import sim
-    from pim.io.casefile import load_case
-    from pim.model.impact_laws import law_of
-
     from comparisons.animation.render import animate_case, animation_settings
     from comparisons.studies.law_runs import law_setup, simulate_law
+    from pim.model.impact_laws import law_of
 
     _check_suffix(out, "--out", ".mp4")
     _check_suffix(gif, "--gif", ".gif")
-    case = load_case(case_name)
+    case = load_case_for("animate", case_name, law)
     units = output_units(case, units, speed_unit)
     if tyre < 0:
         raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
@@ -296,14 +291,11 @@ def _speed_error_runs(names, folder, out, eps, beta, repeats, coarse, compliant,
                       as_json) -> list[dict]:
     """Sweep each case and write its files into ``folder``; one JSON-ready dict per case
     (with the line to print under ``"line"``)."""
-    from pim.io.casefile import load_case
-
     from comparisons.studies.speed_error import COARSE, sweep, write_study
 
     results = []
     for name in names:
-        case = load_case(name)
-        require_brach(case, "pim speed-error")
+        case = load_case_for("speed-error", name)
         grid = dict(COARSE) if coarse else {}
         grid["repeats"] = repeats
         study = sweep(case, eps, beta, progress=progress, **grid)
@@ -320,7 +312,10 @@ def _speed_error_runs(names, folder, out, eps, beta, repeats, coarse, compliant,
                         "analytic_batch_time": study.analytic_batch_time})
         if compliant:
             from comparisons.studies.speed_error_compliant import COARSE as CCOARSE
-            from comparisons.studies.speed_error_compliant import compliant_sweep, write_compliant_study
+            from comparisons.studies.speed_error_compliant import (
+                compliant_sweep,
+                write_compliant_study,
+            )
 
             cgrid = dict(CCOARSE) if coarse else {"repeats": repeats}
             cstudy = compliant_sweep(case, eps, progress=progress, **cgrid)
@@ -368,9 +363,8 @@ def _command(name: str, coarse: bool, repeats: int, out) -> str:
 def hard_cases(out, units, speed_unit, progress, as_json):
     """Run every bundled hard case through PIM and the simulator; table of results, errors,
     and the dt / iterations the simulator needs to reach 1e-6 (or why it cannot)."""
-    from pim.io.output import output_folder, rebase
-
     from comparisons.studies.hard_cases import run_hard_cases, write_hard_cases
+    from pim.io.output import output_folder, rebase
 
     folder = Path(out) if out else Path("out") / "hard-cases"
     units = output_units(None, units, speed_unit)      # the hard cases are written in SI
@@ -410,13 +404,10 @@ def assumptions(case_name, out, eps, beta, executor, no_animation, progress, as_
     mu_c and the tangential recovery. Writes assumptions.md, CSVs, a plot and an MP4 with
     PIM's ghost.
     """
-    from pim.io.casefile import load_case
+    from comparisons.studies.assumptions import run_assumptions, write_assumptions
     from pim.io.output import output_folder, rebase, worker_pool
 
-    from comparisons.studies.assumptions import run_assumptions, write_assumptions
-
-    case = load_case(case_name)
-    require_brach(case, "pim assumptions")
+    case = load_case_for("assumptions", case_name)
     output_units(case)          # messages give speeds as the case file asks (no table has any)
     folder = Path(out) if out is not None else Path("out") / f"{case.name or 'case'}-assumptions"
     command = f"pim assumptions {case_name}" + (f" --out {out}" if out else "")

@@ -11,8 +11,8 @@ from pim_cli.main import (
     case_argument,
     echo_json,
     json_option,
+    load_case_for,
     output_units,
-    require_brach,
     units_option,
 )
 
@@ -191,9 +191,8 @@ def fit(case_name, include_yaw, eps, beta, k, mu_c, eps_range, beta_range, free,
     all (rank, families of equally good fits, under-determined, a mu_c that only has a
     lower bound).
     """
-    from pim.io.casefile import load_case
 
-    case = load_case(case_name)
+    case = load_case_for("fit", case_name)
     units = output_units(case, units, speed_unit)
     ks = (case.impact.law or "brach") == "kudlich-slibar"
     if k is not None and not ks:
@@ -365,10 +364,8 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, speed_uni
     """
     from pim.analysis.sensitivity import INPUTS, SENSITIVITY_OUTPUTS
     from pim.analysis.sensitivity import sensitivity as compute
-    from pim.io.casefile import load_case
 
-    case = load_case(case_name)
-    require_brach(case, "pim sensitivity")
+    case = load_case_for("sensitivity", case_name)
     units = output_units(case, units, speed_unit)
     sens = compute(case, eps=eps, beta=beta, uncertainty=_parse_sigma(sigmas),
                    include_yaw=include_yaw)
@@ -429,12 +426,10 @@ def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units,
     velocities with the measured values, and the cost map over (epsilon, beta).
     """
     from pim.analysis.residuals import has_measured_terms
-    from pim.io.casefile import load_case
     from pim.io.output import output_folder, rebase
     from pim.plotting.sheet import write_plots
 
-    case = load_case(case_name)
-    require_brach(case, "pim plot")
+    case = load_case_for("plot", case_name)
     units = output_units(case, units, speed_unit)
     if has_measured_terms(case, include_yaw):
         result = _fit(case, include_yaw, None, None, eps_range, beta_range)

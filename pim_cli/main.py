@@ -24,7 +24,7 @@ __all__ = ["main", "cli", "FiniteFloat",
            "case_argument", "eps_option", "beta_option", "units_option", "output_units",
            "json_option", "echo_json", "friction_limit_option", "cap_friction_option",
            "solve_with_options", "warnings_of", "NO_IMPACT_EXIT_CODE", "law_options",
-           "require_brach"]
+           "load_case_for", "OPTION_NAMES", "resolve_options", "solve_choice"]
 
 ENTRY_POINT_GROUP = "pim.commands"
 
@@ -176,50 +176,35 @@ def law_options(command):
              "impact.law, else brach.")(command)
 
 
-def _law_parameters(case, eps, beta, friction_limit, cap_friction, law, k, mu_c):
-    """(law, restitution, beta, contact friction) from the options, checked."""
-    from pim.model.impact_laws import check_contact_friction, check_restitution, law_of
-
-    if cap_friction:
-        if law not in (None, "brach-capped"):
-            raise InputError(f"--cap-friction is law brach-capped; it contradicts --law {law}")
-        if friction_limit is None and mu_c is None:
-            raise InputError("--cap-friction needs --friction-limit")
-        law, mu_c = "brach-capped", friction_limit if mu_c is None else mu_c
-    law = law_of(case, law)
-    if k is not None:
-        if law != "kudlich-slibar":
-            raise InputError(f"--k is the restitution of law kudlich-slibar (law is {law}; "
-                             f"use --eps)")
-        if eps is not None:
-            raise InputError("give --k or --eps, not both")
-        eps = float(check_restitution(k, "--k (restitution)"))
-    if law == "kudlich-slibar" and beta is not None:
-        raise InputError("--beta does not apply to law kudlich-slibar (use --k and --mu-c)")
-    if mu_c is not None:
-        if law == "brach":
-            raise InputError("--mu-c needs --law kudlich-slibar or brach-capped")
-        mu_c = float(check_contact_friction(mu_c, "--mu-c (contact friction)"))
-    return law, eps, beta, mu_c
+#: The command line's names of the law options, for the model's messages.
+OPTION_NAMES = {"eps": "--eps", "beta": "--beta", "law": "--law", "k": "--k", "mu_c": "--mu-c",
+                "cap_friction": "--cap-friction", "friction_limit": "--friction-limit"}
 
 
-def solve_with_options(case, eps, beta, friction_limit=None, cap_friction=False, law=None,
-                       k=None, mu_c=None, units=None):
-    """Solve ``case`` as the commands do: under the case's impact law or ``law``
-    (:func:`pim.solve_law`); ``cap_friction`` is law "brach-capped" capped at
-    ``friction_limit``.
+def resolve_options(case, eps, beta, friction_limit=None, cap_friction=False, law=None, k=None,
+                    mu_c=None):
+    """The :class:`pim.model.law.LawChoice` the law options make of ``case``
+    (:func:`pim.resolve_law`; its messages name the options)."""
+    from pim.model.law import resolve_law
 
-    Raises InputError for a bad or contradictory option, and click's Exit(1) after one line
-    on stderr when the vehicles do not approach at C (no impact), with the approach
-    velocity in ``units`` (default: the case's; :func:`pim.io.units.display_units`).
+    return resolve_law(case, eps, beta, law=law, k=k, mu_c=mu_c, cap_friction=cap_friction,
+                       friction_limit=friction_limit, names=OPTION_NAMES)
+
+
+def solve_choice(case, choice, units=None):
+    """Solve ``case`` under the :class:`pim.model.law.LawChoice` ``choice``
+    (:func:`pim.solve`).
+
+    Raises click's Exit(1) after one line on stderr when the vehicles do not approach at C
+    (no impact), with the approach velocity in ``units`` (default: the case's;
+    :func:`pim.io.units.display_units`).
     """
     from pim.io.units import convert, display_units
-    from pim.model.impact_laws import solve_law
+    from pim.model.law import solve
     from pim.model.plausibility import no_impact_message
 
-    law, eps, beta, mu_c = _law_parameters(case, eps, beta, friction_limit, cap_friction, law,
-                                           k, mu_c)
-    result = solve_law(case, law, eps, beta, mu_c)
+    result = solve(case, choice.restitution, choice.beta, law=choice.law,
+                   mu_c=choice.contact_friction)
     scale, label = convert(1.0, "velocity", display_units(units, case=case))
     message = no_impact_message(result, label, float(scale))
     if message:
@@ -228,32 +213,26 @@ def solve_with_options(case, eps, beta, friction_limit=None, cap_friction=False,
     return result
 
 
-def require_brach(case, command: str) -> None:
-    """A ValueError (one line, exit 2) when ``case`` names an impact law other than Brach's,
-    which ``command`` cannot apply yet: never silently Brach's answer instead. The message
-    says what to do: the Brach (eps, beta) giving the same answer for this case
-    (docs/impact-laws.md), and which commands apply the law itself."""
-    law = case.impact.law or "brach"
-    if law == "brach":
-        return
-    raise InputError(f"{command} cannot use impact law {law!r} yet (only 'brach'); "
-                     f"{_brach_equivalent(case, law)}; `pim solve`, `pim sim`, `pim fit`, "
-                     "`pim compare`, `pim animate` and `pim reconstruct` apply the law itself")
+def solve_with_options(case, eps, beta, friction_limit=None, cap_friction=False, law=None,
+                       k=None, mu_c=None, units=None):
+    """Solve ``case`` as the commands do: :func:`solve_choice` of :func:`resolve_options`.
+
+    Raises InputError for a bad or contradictory option, click's Exit(1) when there is no
+    impact.
+    """
+    choice = resolve_options(case, eps, beta, friction_limit, cap_friction, law, k, mu_c)
+    return solve_choice(case, choice, units)
 
 
-def _brach_equivalent(case, law: str) -> str:
-    """Brach's (eps, beta) with the same answer as ``case`` under ``law``, in words."""
-    from pim.model.impact_laws import solve_law
+def load_case_for(command: str, case_name: str, law: str | None = None):
+    """The case ``case_name`` for ``pim command``, which refuses its impact law (or ``law``)
+    here, from the one table of :func:`pim.model.law.check_command_law`."""
+    from pim.io.casefile import load_case
+    from pim.model.law import check_command_law
 
-    try:
-        result = solve_law(case, law)
-        eps, beta = float(result.eps), float(result.beta)
-    except ValueError as exc:
-        return f"fix the case first ({exc})"
-    if not (math.isfinite(eps) and math.isfinite(beta)):
-        return "this case has no Brach equivalent (no impact at C)"
-    return (f"the same answer is Brach's at eps = {eps:.6g}, beta = {beta:.6g}: set "
-            f"impact.law = \"brach\", restitution = {eps:.6g}, beta = {beta:.6g} to run it")
+    case = load_case(case_name)
+    check_command_law(command, case, law)
+    return case
 
 
 #: Exit code of a command whose case has no impact (the vehicles separate at C).
@@ -280,23 +259,21 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, unit
     negative time) each vehicle's speed at their start. Exit code 1 with one line when the
     vehicles do not approach at C (no impact).
     """
-    from pim.analysis.pre_impact_speeds import case_pre_impact
-    from pim.io.casefile import load_case
-    from pim.plotting.tables import format_table, rows_to_json, summarize
     from comparisons.report.pre_impact import pre_impact_json, pre_impact_lines, pre_impact_rows
+    from pim.analysis.pre_impact_speeds import case_pre_impact
+    from pim.plotting.tables import format_table, rows_to_json, summarize
 
-    case = load_case(case_name)
+    case = load_case_for("solve", case_name, law)
     units = output_units(case, units, speed_unit)
-    result = solve_with_options(case, eps, beta, friction_limit, cap_friction, law, k, mu_c,
-                                units)
+    choice = resolve_options(case, eps, beta, friction_limit, cap_friction, law, k, mu_c)
+    result = solve_choice(case, choice, units)
     pre_impact = pre_impact_rows(case_pre_impact(case), units)     # marks, driver tables
     if result.q_singular.any():
         problems = result.problems()
         raise InputError(problems[0] if problems else "q is singular")
     warnings = warnings_of(case, result, friction_limit)
     rows = summarize(result, units)
-    law = getattr(result, "law", None) or ("brach-capped" if cap_friction
-                                           else case.impact.law or "brach")
+    law = choice.law
     if as_json:
         echo_json({"case": case.name, "units": units.to_json(), "law": law,
                    "admissible": bool(result.admissible), "problems": warnings,
@@ -333,15 +310,14 @@ def _title(case, result, law: str) -> str:
 def draw(case_name, out, eps, beta, units, speed_unit):
     """Draw CASE's geometry and sign conventions (outlines, C, n, t, Gamma, arms, velocities,
     and the impulse when epsilon is known) to an image file; no label covers another."""
-    from pim.io.casefile import load_case
     from pim.io.files import save_figure
-    from pim.model.impact_laws import solve_law
+    from pim.model.law import solve
     from pim.plotting.drawing import draw_case
 
-    case = load_case(case_name)
+    case = load_case_for("draw", case_name)
     result = None
     if eps is not None or case.impact.restitution is not None:
-        result = solve_law(case, None, eps, beta)     # under the case's impact law
+        result = solve(case, eps, beta)     # under the case's impact law
     path = save_figure(draw_case(case, result, units=output_units(case, units, speed_unit)),
                        out)
     click.echo(f"wrote {path}")

@@ -27,20 +27,6 @@ from pathlib import Path
 
 import click
 
-from pim.analysis.pre_impact_speeds import reconstruction_pre_impact
-from pim.analysis.reconstruction import Reconstruction
-from pim.analysis.reconstruction import reconstruct as run_reconstruction
-from pim.io import html
-from pim.io.casefile import load_case
-from pim.io.files import save_figure, write_text
-from pim.io.inertia_data import estimate_notes, estimate_records
-from pim.io.output import output_folder, worker_pool
-from pim.io.units import convert, display_units
-from pim.model.evidence import UNKNOWN_KINDS
-from pim.model.numbers import InputError
-from pim.plotting.reconstruction_animation import write_reconstruction_mp4
-from pim.plotting.reconstruction_scene import reconstruction_figure
-from pim_cli.main import case_argument, echo_json, json_option, output_units, units_option
 from comparisons.report.pre_impact import (
     pre_impact_html,
     pre_impact_json,
@@ -48,20 +34,37 @@ from comparisons.report.pre_impact import (
     pre_impact_markdown,
     pre_impact_rows,
 )
+from pim.analysis.pre_impact_speeds import reconstruction_pre_impact
+from pim.analysis.reconstruction import Reconstruction
+from pim.analysis.reconstruction import reconstruct as run_reconstruction
+from pim.io import html
+from pim.io.files import save_figure, write_text
+from pim.io.inertia_data import estimate_notes, estimate_records
+from pim.io.output import output_folder, worker_pool
+from pim.io.units import convert, display_units
+from pim.model.evidence import UNKNOWN_KINDS
+from pim.model.law import LAW_NAMES, LAW_PARAMETERS
+from pim.model.numbers import InputError
+from pim.plotting.reconstruction_animation import write_reconstruction_mp4
+from pim.plotting.reconstruction_scene import reconstruction_figure
+from pim_cli.main import (
+    case_argument,
+    echo_json,
+    json_option,
+    load_case_for,
+    output_units,
+    units_option,
+)
 
 __all__ = ["reconstruct", "reconstruction_rows", "law_line", "evidence_drivers",
            "driver_lines"]
 
-#: How each impact law is named in the output.
-LAW_NAMES = {"brach": "Brach's PIM (eps, beta)",
-             "brach-capped": "friction-capped Brach (eps, beta, cap mu_c)",
-             "kudlich-slibar": "Kudlich-Slibar, PC-Crash / Virtual CRASH (k, mu_c)"}
 
 
 def law_line(rec: Reconstruction) -> str:
     """The impact law the inverse PIM applied (one line for the report and the CLI)."""
     law = rec.fit.law if rec.fit is not None else (rec.case.impact.law or "brach")
-    return f"Impact law: {LAW_NAMES[law]} (docs/impact-laws.md)."
+    return f"Impact law: {LAW_NAMES[law]} ({LAW_PARAMETERS[law]}) (docs/impact-laws.md)."
 
 
 def reconstruction_rows(rec: Reconstruction, units: str) -> list[dict]:
@@ -266,7 +269,7 @@ def reconstruct(case_name, out, samples, seed, workers, video, progress, units, 
     With --out the folder is written whole at the end (or not at all: an error or an
     interrupt leaves an earlier run there as it was); its lock is taken before the work.
     """
-    case = load_case(case_name)
+    case = load_case_for("reconstruct", case_name)
     units = output_units(case, units, speed_unit)
     with output_folder(out, command="pim reconstruct") if out else \
             contextlib.nullcontext() as tmp:

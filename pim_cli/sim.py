@@ -6,6 +6,8 @@ import sys
 
 import click
 
+from pim.model.law import solve as solve_under_law
+from pim.model.numbers import InputError
 from pim_cli.main import (
     FiniteFloat,
     beta_option,
@@ -13,12 +15,10 @@ from pim_cli.main import (
     echo_json,
     eps_option,
     json_option,
+    load_case_for,
     output_units,
     units_option,
 )
-from pim.model.impact_laws import solve_law
-from pim.model.numbers import InputError
-
 from sim.crosscheck import crosscheck
 from sim.kudlich_slibar import crosscheck_kudlich_slibar
 
@@ -46,7 +46,6 @@ def sim(case_name, eps, beta, dt, iterations, contact, start, units, speed_unit,
     relative errors, and the wall time of the simulation. Exit code 1 if the simulation
     fails (no contact, never separated, multiple contacts, energy gained, not converged).
     """
-    from pim.io.casefile import load_case
 
     from sim.failures import SimulationError
     from sim.settings import Settings
@@ -55,7 +54,7 @@ def sim(case_name, eps, beta, dt, iterations, contact, start, units, speed_unit,
     if dt is not None:
         kwargs["dt"] = dt
     settings = Settings(**kwargs)
-    case = load_case(case_name)
+    case = load_case_for("sim", case_name)
     units = output_units(case, units, speed_unit)
     try:
         check = _crosscheck_law(case, eps, beta, settings)
@@ -80,7 +79,7 @@ def _crosscheck_law(case, eps, beta, settings):
                              "impact.restitution and impact.contact_friction in the case)")
         return crosscheck_kudlich_slibar(case, settings=settings)
     if law == "brach-capped":
-        capped = solve_law(case, law, eps, beta)
+        capped = solve_under_law(case, eps, beta)
         eps, beta = float(capped.eps), float(capped.beta)
     return crosscheck(case, eps, beta, settings)
 

@@ -12,8 +12,8 @@ from pim_cli.main import (
     case_argument,
     echo_json,
     json_option,
+    load_case_for,
     output_units,
-    require_brach,
     units_option,
 )
 
@@ -69,13 +69,11 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, progress, units, 
 
     from pim.analysis.montecarlo import OUTPUTS, available_memory, memory_estimate
     from pim.analysis.montecarlo import uncertainty as run
-    from pim.io.casefile import load_case
     from pim.io.inertia_data import estimate_records
     from pim.io.units import convert
     from pim.model.quantities import OUTPUTS as QUANTITIES
 
-    case = load_case(case_name)
-    require_brach(case, "pim uncertainty")
+    case = load_case_for("uncertainty", case_name)
     units = output_units(case, units, speed_unit)
     need, free = memory_estimate(samples), available_memory()
     if free is not None and need > free:

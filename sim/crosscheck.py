@@ -89,7 +89,7 @@ def crosscheck(case: pim.Case, eps=None, beta=None,
     Raises :class:`sim.SimulationError` if the simulation fails, ValueError on bad input.
     """
     eps, beta = resolve_coefficients(case, eps, beta)
-    analytic = pim.solve(case, eps, beta)
+    analytic = pim.solve(case, eps, beta, law="brach")
     simulated = simulate(case, eps, beta, settings)
     rows = compare_results(case, analytic, simulated)
     error = float(impact_error(case, analytic, simulated.velocity1, simulated.velocity2,

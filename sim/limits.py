@@ -52,7 +52,7 @@ def limitations(case: pim.Case, eps: float, beta: float) -> list[str]:
     if not 0.0 <= beta <= 1.0:
         out.append(f"beta = {beta:g} is outside [0, 1]: Coulomb friction cannot give it")
         return out
-    result = pim.solve(case, eps, beta)
+    result = pim.solve(case, eps, beta, law="brach")
     out += [f"PIM: {text}" for text in result.problems()]
     if out or beta >= 1.0:
         return out

@@ -388,7 +388,7 @@ def simulate(case: pim.Case, eps=None, beta=None, settings: Settings | None = No
     settings = settings or Settings()
     eps, beta = resolve_coefficients(case, eps, beta)
     if analytic is None:
-        analytic = pim.solve(case, eps, 1.0)
+        analytic = pim.solve(case, eps, 1.0, law="brach")
     start = time.perf_counter()
     scene = build_scene(case, eps, beta, settings, analytic=analytic)
     fields = run_scene(scene, settings)

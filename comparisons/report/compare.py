@@ -440,7 +440,7 @@ def _gather_crosscheck(data: ReportData) -> None:
     case, eps, beta = data.case, data.eps, data.beta
     data.limits = sim.limitations(case, eps, beta)
     try:
-        data.simulated = sim.simulate(case, eps, beta, analytic=pim.solve(case, eps, 1.0))
+        data.simulated = sim.simulate(case, eps, beta, analytic=pim.solve(case, eps, 1.0, law="brach"))
     except sim.SimulationError as exc:
         data.sim_error = exc
         return

@@ -4,7 +4,7 @@ Virtual CRASH) and "brach-capped" (docs/impact-laws.md).
 The report (report.md with its CSVs and the animation, written whole or not at all by
 :func:`pim.io.output.output_folder` as :mod:`comparisons.report.compare` is; no report.html yet)
 opens with the law, its parameters and the results a reconstruction hands on
-(:func:`pim.solve_law`'s answer), then the coefficients, the inputs and the animation (the
+(:func:`pim.solve`'s answer), then the coefficients, the inputs and the animation (the
 law's pymunk run solid, the analytic post-impact motion as the ghost), and the appendix
 compares the analytic answer with that run (:func:`comparisons.studies.law_runs.simulate_law`).
 

@@ -36,7 +36,8 @@ import numpy as np
 
 from ..model.case import Case
 from ..model.evidence_terms import as_residual_terms, split_terms
-from ..model.impact_laws import check_contact_friction, law_of, solve_law
+from ..model.impact_laws import check_contact_friction, law_of
+from ..model.law import solve as solve_under_law
 from ..model.motion import Term
 from ..model.numbers import InputError, check_counts, check_numbers
 from ..model.result import Result
@@ -207,9 +208,9 @@ class FitResult:
         """The solve at the optimum, under the law fitted."""
         if self.law == "brach":
             return solve(self.case, self.eps, self.beta)
-        return solve_law(self.case, self.law, self.eps,
-                         None if self.law == "kudlich-slibar" else self.beta,
-                         self.contact_friction)
+        return solve_under_law(self.case, self.eps,
+                               None if self.law == "kudlich-slibar" else self.beta,
+                               law=self.law, mu_c=self.contact_friction)
 
     def to_dict(self) -> dict:
         """JSON-ready summary (SI units)."""
@@ -297,7 +298,7 @@ def _fit_result(case, raw: FreeFit, terms, include_yaw, bounds, fixed, eps, beta
     b_opt = values.get("impact.beta", beta)
     mu_c = values.get("impact.mu_c", mu_c)
     if law == "kudlich-slibar":          # the PIM beta with the same answer
-        b_opt = float(solve_law(raw.case, law, e_opt, None, mu_c).beta)
+        b_opt = float(solve_under_law(raw.case, e_opt, law=law, mu_c=mu_c).beta)
     grad = dict(zip(raw.keys, raw.gradient, strict=True))
     on_bound = {SHORT_NAMES.get(k, k): ("lower" if s < 0 else "upper")
                 for k, s in zip(raw.keys, raw.side, strict=True) if s}

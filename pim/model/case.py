@@ -320,7 +320,7 @@ class Impact:
     beta : float, optional
         Default fraction beta [-] of the critical impulse ratio mu0 (Brach's laws only).
     law : {"brach", "brach-capped", "kudlich-slibar"}, optional
-        The impact law :func:`pim.model.impact_laws.solve_law` applies (None: "brach").
+        The impact law :func:`pim.solve` applies (None: "brach").
         For "kudlich-slibar" ``restitution`` is PC-Crash's k.
     contact_friction : float, optional
         Friction coefficient mu_c [-] >= 0 between the vehicles (inf: always stick), for

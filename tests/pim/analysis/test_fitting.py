@@ -376,7 +376,7 @@ def test_kudlich_slibar_fit_recovers_a_sliding_contacts_k_and_mu_c(ricsac9, k, m
 def test_kudlich_slibar_fit_of_a_sticking_contact_gives_mu_c_as_a_lower_bound(ricsac9):
     case = _ks_measured(ricsac9, 0.2, 1.5)
     result = fit(case, include_yaw=True)
-    needed = float(pim.solve(case, 0.0, 1.0).mu0)       # Brach's sticking ratio at eps = 0
+    needed = float(pim.solve(case, 0.0, 1.0, law="brach").mu0)  # Brach's sticking ratio at eps = 0
     assert result.values["impact.k"] == pytest.approx(0.2, abs=1e-7)
     assert result.lower_bounds == {"impact.mu_c": pytest.approx(needed, rel=1e-9)}
     assert result.values["impact.mu_c"] == pytest.approx(needed, rel=1e-9)
@@ -425,7 +425,7 @@ def test_fit_command_under_the_kudlich_slibar_law(capsys):
     data = json.loads(capsys.readouterr().out)
     assert data["law"] == "kudlich-slibar" and data["units"]["system"] == "us"
     assert data["lower_bounds"]["impact.mu_c"] == pytest.approx(
-        float(pim.solve(pim.load_case("ricsac9-pccrash"), 0.0, 1.0).mu0), rel=1e-9)
+        float(pim.solve(pim.load_case("ricsac9-pccrash"), 0.0, 1.0, law="brach").mu0), rel=1e-9)
     assert data["rms_unit"] == "mph"
     assert main(["fit", "ricsac9-pccrash", "--eps", "0.3"]) == 2
     assert "hold k with --k" in capsys.readouterr().err
