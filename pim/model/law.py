@@ -22,7 +22,7 @@ from .friction_cap import solve_capped
 from .impact_laws import check_contact_friction, check_restitution, law_of, solve_kudlich_slibar
 from .numbers import InputError
 from .result import Result
-from .solver import APPROACH_TOLERANCE, SINGULAR_TOLERANCE
+from .solver import APPROACH_TOLERANCE, SINGULAR_TOLERANCE, unknown_hint
 from .solver import solve as solve_brach
 
 __all__ = ["LAWS", "LAW_NAMES", "LAW_PARAMETERS", "API_NAMES", "LawChoice", "resolve_law",
@@ -95,7 +95,7 @@ def _friction(case: Case, law: str, mu_c, names):
     if mu_c is None:
         what = "the cap" if law == "brach-capped" else "the contact friction"
         raise InputError(f"{names['mu_c']} ({what}) is required for law {law!r}: give it or "
-                         "set impact.contact_friction in the case")
+                         f"set impact.contact_friction in the case{unknown_hint(case)}")
     return check_contact_friction(mu_c, "impact.contact_friction")
 
 
