@@ -1,0 +1,85 @@
+"""``pim sim CASE``: analytic PIM versus the pymunk simulation, side by side."""
+
+from __future__ import annotations
+
+import sys
+
+import click
+
+from pim_cli.main import (
+    FiniteFloat,
+    beta_option,
+    case_argument,
+    echo_json,
+    eps_option,
+    json_option,
+    units_option,
+)
+from pim.model.impact_laws import solve_law
+from pim.model.numbers import InputError
+
+from sim.crosscheck import crosscheck
+from sim.kudlich_slibar import crosscheck_kudlich_slibar
+
+__all__ = ["sim"]
+
+
+@click.command()
+@case_argument
+@eps_option
+@beta_option
+@click.option("--dt", type=FiniteFloat(), default=None, help="Time step [s] (default: Settings()).")
+@click.option("--iterations", type=int, default=None,
+              help="Solver iterations per step (default: automatic from the contact).")
+@click.option("--contact", type=click.Choice(["point", "outline"]), default="point",
+              show_default=True, help="Collide a point at C, or the vehicle outlines.")
+@click.option("--start", type=click.Choice(["exact", "detected"]), default="exact",
+              show_default=True, help="Place the contact at C, or let the engine find it.")
+@units_option
+@json_option
+def sim(case_name, eps, beta, dt, iterations, contact, start, units, as_json):
+    """Simulate CASE with pymunk and compare with the analytic answer (pim solve) under the
+    case's impact law (Brach's PIM, friction-capped Brach or Kudlich-Slibar).
+
+    Prints analytic and simulated post-impact velocities and yaw rates with absolute and
+    relative errors, and the wall time of the simulation. Exit code 1 if the simulation
+    fails (no contact, never separated, multiple contacts, energy gained, not converged).
+    """
+    from pim.io.casefile import load_case
+
+    from sim.failures import SimulationError
+    from sim.settings import Settings
+
+    kwargs = {"iterations": iterations, "contact": contact, "start": start}
+    if dt is not None:
+        kwargs["dt"] = dt
+    settings = Settings(**kwargs)
+    case = load_case(case_name)
+    units = units or case.units
+    try:
+        check = _crosscheck_law(case, eps, beta, settings)
+    except SimulationError as exc:
+        click.echo(f"simulation failed ({exc.kind}): {exc}", err=True)
+        sys.exit(1)
+    if as_json:
+        echo_json(check.to_json(units))
+        return
+    for text in getattr(check, "limitations", ()):     # before the table, where a reader sees them
+        click.echo(f"note: {text}", err=True)
+    click.echo(check.format_table(units))
+
+
+def _crosscheck_law(case, eps, beta, settings):
+    """The cross-check of the case's impact law: Brach's (at the effective beta for the
+    friction-capped law) or the two-phase Kudlich-Slibar run (docs/impact-laws.md)."""
+    law = case.impact.law or "brach"
+    if law == "kudlich-slibar":
+        if eps is not None or beta is not None:
+            raise InputError("--eps and --beta do not apply to law kudlich-slibar (set "
+                             "impact.restitution and impact.contact_friction in the case)")
+        return crosscheck_kudlich_slibar(case, settings=settings)
+    if law == "brach-capped":
+        capped = solve_law(case, law, eps, beta)
+        eps, beta = float(capped.eps), float(capped.beta)
+    return crosscheck(case, eps, beta, settings)
+
