@@ -20,7 +20,7 @@ from pim.io.output import OutputError, note_signal, signal_received
 from pim.model.numbers import InputError
 from pim.model.plausibility import warnings_of
 
-__all__ = ["main", "cli", "FiniteFloat",
+__all__ = ["main", "cli", "FiniteFloat", "SEED",
            "case_argument", "eps_option", "beta_option", "units_option",
            "json_option", "echo_json", "friction_limit_option", "cap_friction_option",
            "solve_with_options", "warnings_of", "NO_IMPACT_EXIT_CODE", "law_options",
@@ -81,6 +81,9 @@ class FiniteFloat(click.ParamType):
         return number
 
 
+#: Type of every --seed option: numpy's seeds are integers >= 0 (a negative one is a usage
+#: error naming the option, exit 2, not numpy's traceback).
+SEED = click.IntRange(min=0)
 case_argument = click.argument("case_name", metavar="CASE")
 eps_option = click.option("--eps", type=FiniteFloat(0.0, 1.0), default=None,
                           help="Coefficient of restitution epsilon in [0, 1] "

@@ -38,7 +38,7 @@ from pim.model.evidence import UNKNOWN_KINDS
 from pim.model.numbers import InputError
 from pim.plotting.reconstruction_animation import write_reconstruction_mp4
 from pim.plotting.reconstruction_scene import reconstruction_figure
-from pim_cli.main import case_argument, echo_json, json_option, units_option
+from pim_cli.main import SEED, case_argument, echo_json, json_option, units_option
 from comparisons.report.pre_impact import (
     pre_impact_html,
     pre_impact_json,
@@ -241,7 +241,7 @@ def _json(case, rows: list[dict], samples: int, messages, units: str) -> dict:
               help="Directory for report.md, report.html, reconstruction.csv and scene.png.")
 @click.option("--samples", type=click.IntRange(min=0), default=10_000, show_default=True,
               help="Monte Carlo samples over the stated uncertainties (0: none).")
-@click.option("--seed", type=int, default=0, show_default=True, help="Monte Carlo seed.")
+@click.option("--seed", type=SEED, default=0, show_default=True, help="Monte Carlo seed.")
 @click.option("--workers", type=click.IntRange(min=1), default=1, show_default=True,
               help="Spread the Monte Carlo over this many processes (1: this process, "
                    "which already uses every core for the run-outs).")

@@ -354,6 +354,7 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         decide the unknowns; never a number then.
     """
     samples = checked_count(samples, "samples", low=0)
+    seed = checked_count(seed, "seed", low=0)
     check_counts(blocks=blocks)
     unknown = check_free(case.unknown if unknown is None else unknown)
     if not unknown:

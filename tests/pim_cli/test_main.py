@@ -175,3 +175,28 @@ def test_every_json_names_its_units_and_speaks_them(capsys, command):
     if command[0] == "sensitivity":
         v_us, v_si = us["outputs"]["delta_v1_magnitude"], si["outputs"]["delta_v1_magnitude"]
         assert v_us["value"] == pytest.approx(v_si["value"] / 0.3048)
+
+
+@pytest.mark.parametrize("args", [
+    ["uncertainty", "ricsac9", "--seed", "-1"],
+    ["reconstruct", "ricsac9-reconstruct", "--seed", "-5"],
+    ["baseline", "hard-pole", "--seed", "-5", "--out", "never-written.json"],
+])
+def test_a_negative_seed_is_one_line_naming_the_option(capsys, tmp_path, monkeypatch, args):
+    """Issue 28: numpy's ValueError and its traceback before."""
+    monkeypatch.chdir(tmp_path)
+    assert main(args) == 2
+    assert not (tmp_path / "never-written.json").exists()
+    err = capsys.readouterr().err
+    seed = args[args.index("--seed") + 1]
+    assert err.count("\n") == 1 and "'--seed'" in err, err
+    assert f"{seed} is not in the range x>=0" in err, err
+
+
+def test_a_negative_seed_names_the_argument_in_the_library():
+    from pim.analysis.reconstruction import reconstruct
+
+    with pytest.raises(pim.InputError, match="seed must be an integer >= 0 or None, got -1"):
+        pim.uncertainty(pim.load_case("ricsac9"), seed=-1)
+    with pytest.raises(pim.InputError, match="seed must be an integer >= 0, got -5"):
+        reconstruct(pim.load_case("ricsac9-reconstruct"), seed=-5)
