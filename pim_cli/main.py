@@ -55,17 +55,19 @@ def cli():
 
 
 class FiniteFloat(click.ParamType):
-    """A finite float (``nan`` and ``inf`` are usage errors), optionally in [low, high]."""
+    """A finite float (``nan`` and ``inf`` are usage errors), optionally in [low, high]
+    (``unit`` is named with the range in the message)."""
 
     name = "float"
 
-    def __init__(self, low: float | None = None, high: float | None = None):
-        self.low, self.high = low, high
+    def __init__(self, low: float | None = None, high: float | None = None, unit: str = ""):
+        self.low, self.high, self.unit = low, high, unit
 
     def _range(self) -> str:
+        unit = f" {self.unit}" if self.unit else ""
         if self.low is not None and self.high is not None:
-            return f" in [{self.low:g}, {self.high:g}]"
-        return f" >= {self.low:g}" if self.low is not None else ""
+            return f" in [{self.low:g}, {self.high:g}]{unit}"
+        return f" >= {self.low:g}{unit}" if self.low is not None else ""
 
     def convert(self, value, param, ctx):
         if isinstance(value, float):

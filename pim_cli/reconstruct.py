@@ -9,8 +9,8 @@ customary unit of impact speeds); ``--json`` prints each unknown
 by its dotted name with its value, percentiles and unit in the same units (``units`` names
 the system), and the momentum check beside them. Writes DIR/report.md, DIR/report.html
 (the same as one self-contained page, figure and video inline),
-DIR/reconstruction.csv and, with evidence, DIR/scene.png and DIR/reconstruction.mp4 (the
-reconstructed crash from the impact to rest).
+DIR/reconstruction.csv and, with run-out evidence (``[evidence]`` rest positions),
+DIR/scene.png and DIR/reconstruction.mp4 (the reconstructed crash from the impact to rest).
 
 When the data cannot decide the unknowns, one line says what is missing and the exit code
 is 2: never a number. The inverse PIM applies the case's impact law (``impact.law``: Brach's
@@ -238,7 +238,9 @@ def _json(case, rows: list[dict], samples: int, messages, units: str) -> dict:
 @click.command()
 @case_argument
 @click.option("--out", "out", type=click.Path(file_okay=False), default=None,
-              help="Directory for report.md, report.html, reconstruction.csv and scene.png.")
+              help="Directory for report.md, report.html and reconstruction.csv; with "
+                   "run-out evidence ([evidence] rest positions) also scene.png and "
+                   "reconstruction.mp4.")
 @click.option("--samples", type=click.IntRange(min=0), default=10_000, show_default=True,
               help="Monte Carlo samples over the stated uncertainties (0: none).")
 @click.option("--seed", type=SEED, default=0, show_default=True, help="Monte Carlo seed.")
@@ -246,13 +248,18 @@ def _json(case, rows: list[dict], samples: int, messages, units: str) -> dict:
               help="Spread the Monte Carlo over this many processes (1: this process, "
                    "which already uses every core for the run-outs).")
 @click.option("--video/--no-video", default=True, show_default=True,
-              help="With evidence, also write DIR/reconstruction.mp4 (impact to rest).")
+              help="With run-out evidence, also write DIR/reconstruction.mp4 (impact to "
+                   "rest).")
 @click.option("--progress/--no-progress", default=None,
               help="Progress of the stages on stderr (default: only on a terminal).")
 @units_option
 @json_option
 def reconstruct(case_name, out, samples, seed, workers, video, progress, units, as_json):
     """Reconstruct CASE's unknowns (e.g. the impact speeds) from its evidence.
+
+    With --out DIR: DIR/report.md, DIR/report.html and DIR/reconstruction.csv; a case
+    with run-out evidence ([evidence] rest positions) adds DIR/scene.png (the run-outs
+    drawn) and DIR/reconstruction.mp4 (unless --no-video).
 
     With --out the folder is written whole at the end (or not at all: an error or an
     interrupt leaves an earlier run there as it was); its lock is taken before the work.

@@ -333,7 +333,7 @@ def _not_converged_message(scene: Scene, mon: _Monitor) -> str:
                  "Chipmunk's sequential impulses diverge; PIM's sliding impulse cannot be "
                  "reproduced by this engine at any iteration count")
     else:
-        text += "; raise settings.iterations (or leave it None for automatic)"
+        text += "; raise the solver iterations per step (settings.iterations)"
     return text
 
 

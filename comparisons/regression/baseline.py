@@ -243,6 +243,9 @@ def _check_entry(path, i: int, entry) -> None:
     if not isinstance(entry, dict) or not {"case", "sha256", "quantities"} <= set(entry):
         raise _fail(path, f"case {i + 1} lacks case, sha256 or quantities")
     for name, q in entry["quantities"].items():
+        if (isinstance(q, dict) and q.get("kind") == "dimensionless"
+                and any(part.endswith("_percent") for part in name.split("."))):
+            q.update(kind="percent", unit=SI_UNITS["percent"])   # recorded before kind percent
         ok = (isinstance(q, dict) and isinstance(q.get("tolerance"), dict)
               and q.get("kind") in SI_UNITS
               and (q.get("value") is None or isinstance(q.get("value"), int | float)))

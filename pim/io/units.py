@@ -61,12 +61,13 @@ DISPLAY_UNITS = {
     "si": {"velocity": "m/s", "speed": "m/s", "angular_velocity": "deg/s", "impulse": "N*s",
            "energy": "kJ", "length": "m", "mass": "kg", "inertia": "kg*m**2", "angle": "deg",
            "force": "N", "impact_speed": "m/s", "force_per_length": "kN/m",
-           "force_per_area": "kN/m**2", "dimensionless": "dimensionless"},
+           "force_per_area": "kN/m**2", "dimensionless": "dimensionless",
+           "percent": "percent"},
     "us": {"velocity": "ft/s", "speed": "ft/s", "angular_velocity": "deg/s", "impulse": "lbf*s",
            "energy": "ft*lbf", "length": "ft", "mass": "slug", "inertia": "slug*ft**2",
            "angle": "deg", "force": "lbf", "impact_speed": "mph",
            "force_per_length": "lbf/inch", "force_per_area": "lbf/inch**2",
-           "dimensionless": "dimensionless"},
+           "dimensionless": "dimensionless", "percent": "percent"},
 }
 UNIT_SYSTEMS = tuple(DISPLAY_UNITS)
 
@@ -74,7 +75,7 @@ UNIT_SYSTEMS = tuple(DISPLAY_UNITS)
 SI_UNITS = {"velocity": "m/s", "speed": "m/s", "angular_velocity": "rad/s", "impulse": "N*s",
             "energy": "J", "length": "m", "mass": "kg", "inertia": "kg*m**2", "angle": "rad",
             "force": "N", "impact_speed": "m/s", "force_per_length": "N/m",
-            "force_per_area": "N/m**2", "dimensionless": "dimensionless"}
+            "force_per_area": "N/m**2", "dimensionless": "dimensionless", "percent": "percent"}
 
 
 @lru_cache(maxsize=1)
@@ -319,5 +320,6 @@ def convert(value, kind: str, system: str):
         raise InputError(f"units must be one of {', '.join(UNIT_SYSTEMS)}, got {system!r}")
     target = DISPLAY_UNITS[system][kind]
     factor = registry().Quantity(1.0, SI_UNITS[kind]).to(target).magnitude
-    label = "-" if target == "dimensionless" else target.replace("**", "^").replace("*", " ")
+    label = {"dimensionless": "-", "percent": "%"}.get(
+        target, target.replace("**", "^").replace("*", " "))
     return np.asarray(value) * factor, label

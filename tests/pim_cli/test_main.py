@@ -200,3 +200,23 @@ def test_a_negative_seed_names_the_argument_in_the_library():
         pim.uncertainty(pim.load_case("ricsac9"), seed=-1)
     with pytest.raises(pim.InputError, match="seed must be an integer >= 0, got -5"):
         reconstruct(pim.load_case("ricsac9-reconstruct"), seed=-5)
+
+
+def test_pim_sim_names_its_options_not_the_library_settings(capsys):
+    """Issue 28: `pim sim` told a command-line user to "raise settings.iterations"."""
+    assert main(["sim", "hard-grazing", "--iterations", "2"]) == 1
+    err = capsys.readouterr().err
+    assert "raise the solver iterations per step (--iterations)" in err, err
+    assert "settings." not in err, err
+    assert main(["sim", "ricsac9", "--dt", "0"]) == 2
+    err = capsys.readouterr().err
+    assert err == "error: --dt must be in (0, 1], got 0.0\n", err
+
+
+def test_animate_after_beyond_its_bound_names_the_option_and_its_unit(capsys, tmp_path):
+    """Issue 28: "settings.duration must be in [0, 1e+06]" for --after 1e7, in no unit."""
+    assert main(["animate", "ricsac9", "--after", "1e7", "--out", str(tmp_path / "a.mp4")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: Invalid value for '--after': '1e7' is not a finite number "
+                          "in [0, 600] s"), err
+    assert err.count("\n") == 1 and not (tmp_path / "a.mp4").exists()

@@ -202,3 +202,18 @@ def test_a_kudlich_slibar_case_is_reconstructed_under_its_law(tmp_path, capsys):
     out = capsys.readouterr().out
     assert out.startswith("Impact law: Kudlich-Slibar") and "m/s" in out and "mph" not in out
     assert ">= " in next(line for line in out.splitlines() if line.startswith("impact.mu_c"))
+
+
+def test_help_of_out_promises_what_a_case_without_evidence_writes(tmp_path, capsys):
+    """Issue 28: --help promised scene.png, which a case without [evidence] never writes."""
+    import re
+
+    assert main(["reconstruct", "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    out_help = text[text.index("--out DIRECTORY"):text.index("--samples")]
+    always = out_help.split("with run-out evidence")[0]
+    promised = set(re.findall(r"[\w-]+\.(?:md|html|csv|png|mp4)", always))
+    assert main(["reconstruct", "ricsac9-reconstruct", "--out", str(tmp_path / "o"),
+                 "--samples", "0"]) == 0
+    written = {p.name for p in (tmp_path / "o").iterdir()} - {MARKER}
+    assert promised == written == {"report.md", "report.html", "reconstruction.csv"}

@@ -230,3 +230,20 @@ def test_the_file_has_one_line_per_quantity_and_reads_back(recorded):
     assert json.loads(text) == json.loads(json.dumps(doc))
     line = next(x for x in text.splitlines() if '"solve.velocity1_x"' in x)
     assert json.loads(line.strip().rstrip(",").split(": ", 1)[1])["unit"] == "m/s"
+
+
+def test_energy_loss_percent_is_shown_in_percent(tmp_path):
+    """Issue 28: `check` gave energy_loss_percent the unit "-" (a percent share)."""
+    doc = make_baseline(["hard-pole"], sections=["solve"])
+    q = doc["cases"][0]["quantities"]["solve.energy_loss_percent"]
+    assert (q["kind"], q["unit"]) == ("percent", "percent")
+    # a baseline recorded before kind "percent" existed reads the same
+    old = json.loads(json.dumps(doc))
+    old["cases"][0]["quantities"]["solve.energy_loss_percent"].update(
+        kind="dimensionless", unit="dimensionless")
+    for name, data in (("new.json", doc), ("old.json", old)):
+        data["cases"][0]["quantities"]["solve.energy_loss_percent"]["value"] += 1.0
+        (tmp_path / name).write_text(json.dumps(data))
+        text = format_report(check_baseline(tmp_path / name))
+        row = next(line for line in text.splitlines() if line.startswith("hard-pole"))
+        assert row.split()[-2:] == ["%", "baseline"], row
