@@ -33,6 +33,8 @@ import pymunk
 
 import pim
 from pim.model.geometry import kinetic_energy
+from pim.model.case import checked_case
+from pim.model.numbers import check_type
 
 from .failures import SimulationError
 from .result import SimResult, Trajectory
@@ -383,7 +385,9 @@ def simulate(case: pim.Case, eps=None, beta=None, settings: Settings | None = No
     SimulationError
         The run failed: no contact, never separated, multiple contacts, energy gained.
     """
-    settings = settings or Settings()
+    checked_case(case)
+    settings = check_type(settings, "settings", Settings, "a sim.Settings (e.g. "
+                          "sim.Settings(dt=1e-4))", none=True) or Settings()
     eps, beta = resolve_coefficients(case, eps, beta)
     if analytic is None:
         analytic = pim.solve(case, eps, 1.0)

@@ -25,11 +25,11 @@ from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
-from ..model.case import Case, Measured
+from ..model.case import Case, Measured, checked_case
 from ..model.crush import crush_delta_v, effective_mass, equivalent_energy_speed, moment_arm
 from ..model.evidence_terms import result_quantities
 from ..model.motion import Term
-from ..model.numbers import InputError, check_counts, checked_count
+from ..model.numbers import ArgumentTypeError, InputError, check_counts, checked_count
 from ..model.tyres import STANDARD_GRAVITY
 from .fitting import FitResult
 from .free_inputs import approach_direction, check_free
@@ -353,8 +353,10 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         With ``determined = False`` and a message naming what is missing when the data cannot
         decide the unknowns; never a number then.
     """
+    checked_case(case)
     samples = checked_count(samples, "samples", low=0)
     seed = checked_count(seed, "seed", low=0)
+    _check_executor(executor)
     check_counts(blocks=blocks)
     unknown = check_free(case.unknown if unknown is None else unknown)
     if not unknown:
@@ -389,6 +391,15 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
     crush = crush_outputs(solved, fitted) if determined else ()
     return Reconstruction(solved, unknown, post, fitted, values, momentum, mc, determined,
                           messages, crush)
+
+
+def _check_executor(executor) -> None:
+    """None, an Executor (anything with ``map``) or a Dask client (``get_executor``)."""
+    if executor is None or hasattr(executor, "map") or hasattr(executor, "get_executor"):
+        return
+    got = repr(executor) if isinstance(executor, str) else f"a {type(executor).__name__}"
+    raise ArgumentTypeError(f"executor must be None (this process), a "
+                            f"concurrent.futures.Executor or a dask.distributed.Client, got {got}")
 
 
 def _post_impact(case: Case, say) -> tuple[PostImpact | None, Case]:

@@ -7,8 +7,8 @@ import math
 
 import numpy as np
 
-__all__ = ["InputError", "real_array", "checked_number", "checked_count", "check_counts",
-           "check_numbers"]
+__all__ = ["InputError", "ArgumentTypeError", "check_type", "real_array", "checked_number",
+           "checked_count", "check_counts", "check_numbers"]
 
 
 class InputError(ValueError):
@@ -19,6 +19,22 @@ class InputError(ValueError):
     and exit code 2; any other exception is a bug and surfaces with its traceback. It is a
     ``ValueError``, so code that catches ``ValueError`` keeps working.
     """
+
+
+class ArgumentTypeError(InputError, TypeError):
+    """An argument of the wrong type (a string where a :class:`pim.Case` is expected): a
+    ``TypeError``, as Python's own, and an :class:`InputError` (one line on the command
+    line). The message names the argument and what it takes."""
+
+
+def check_type(value, name: str, types, what: str, *, none: bool = False):
+    """``value`` if it is an instance of ``types`` (or None with ``none``), else an
+    :class:`ArgumentTypeError` naming ``name``, ``what`` it takes (e.g. "a pim.Case, e.g.
+    pim.load_case('ricsac9')") and the type given (a string is quoted)."""
+    if (value is None and none) or isinstance(value, types):
+        return value
+    got = repr(value) if isinstance(value, str) else f"a {type(value).__name__}"
+    raise ArgumentTypeError(f"{name} must be {what}{' or None' if none else ''}, got {got}")
 
 
 def real_array(value, name: str, unit: str = "-") -> np.ndarray:
