@@ -217,3 +217,15 @@ def test_help_of_out_promises_what_a_case_without_evidence_writes(tmp_path, caps
                  "--samples", "0"]) == 0
     written = {p.name for p in (tmp_path / "o").iterdir()} - {MARKER}
     assert promised == written == {"report.md", "report.html", "reconstruction.csv"}
+
+
+def test_a_rerun_keeps_the_users_notes_in_the_output_folder(tmp_path, capsys):
+    """Issue 28 (fault harness): a rerun deleted the notes.txt a user had added."""
+    out = tmp_path / "out"
+    args = ["reconstruct", "ricsac9-reconstruct", "--out", str(out), "--samples", "0"]
+    assert main(args) == 0
+    (out / "notes.txt").write_text("called the witness")
+    capsys.readouterr()
+    assert main(args) == 0
+    assert (out / "notes.txt").read_text() == "called the witness"
+    assert f"note: --out {out}: kept notes.txt (pim did not write it)" in capsys.readouterr().err
