@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import sys
 from importlib.metadata import entry_points
 
@@ -20,7 +21,7 @@ from pim.io.output import OutputError, note_signal, signal_received
 from pim.model.numbers import InputError
 from pim.model.plausibility import warnings_of
 
-__all__ = ["main", "cli", "FiniteFloat", "SEED",
+__all__ = ["main", "cli", "FiniteFloat", "SEED", "in_callback", "CALLBACK_PATHS",
            "case_argument", "eps_option", "beta_option", "units_option",
            "json_option", "echo_json", "friction_limit_option", "cap_friction_option",
            "solve_with_options", "warnings_of", "NO_IMPACT_EXIT_CODE", "law_options",
@@ -329,14 +330,47 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM, raised like Ctrl-C so that every atomic writer removes its temporary file."""
 
 
-def _on_sigterm(signum, frame):
+#: Code run from C with its exceptions printed and dropped ("Exception ignored from callback
+#: for ffi.gc"): pymunk's collision callbacks and object destructors, at-fork hooks,
+#: finalizers. A signal handled there is raised at the first moment outside it.
+CALLBACK_PATHS = (f"{os.sep}pymunk{os.sep}", f"{os.sep}cffi{os.sep}")
+CALLBACK_NAMES = frozenset({"__del__", "_releaseLock", "_acquireLock",
+                            "_after_at_fork_child_reinit_locks", "_after_fork"})
+
+
+def in_callback(frame) -> bool:
+    """Whether ``frame`` (the one a signal handler interrupted) runs inside code whose
+    exceptions are dropped (:data:`CALLBACK_PATHS`, :data:`CALLBACK_NAMES`)."""
+    while frame is not None:
+        code = frame.f_code
+        if code.co_name in CALLBACK_NAMES or any(p in code.co_filename
+                                                 for p in CALLBACK_PATHS):
+            return True
+        frame = frame.f_back
+    return False
+
+
+def _interrupt(signum, frame, error) -> None:
+    """Record the signal and raise ``error``: here, or, when ``frame`` is inside a callback
+    that would drop the exception (and let the run go on to its end), at the first event
+    of the main thread outside it (a profile hook, removed as it raises)."""
     note_signal(signum)
-    raise Terminated()
+    if not in_callback(frame):
+        raise error()
+
+    def outside(event_frame, event, arg):
+        if not in_callback(event_frame):
+            sys.setprofile(None)
+            raise error()
+    sys.setprofile(outside)
+
+
+def _on_sigterm(signum, frame):
+    _interrupt(signum, frame, Terminated)
 
 
 def _on_sigint(signum, frame):
-    note_signal(signum)
-    raise KeyboardInterrupt()
+    _interrupt(signum, frame, KeyboardInterrupt)
 
 
 def _interrupted_code() -> int | None:
@@ -371,7 +405,10 @@ def main(argv=None) -> int:
         previous = {signal.SIGTERM: signal.signal(signal.SIGTERM, _on_sigterm),
                     signal.SIGINT: signal.signal(signal.SIGINT, _on_sigint)}
     try:
-        return _main(argv)
+        try:
+            return _main(argv)
+        except KeyboardInterrupt:       # a signal after _main knew its code: still one line
+            return _interrupted_code() or 130
     finally:
         for signum, handler in previous.items():
             signal.signal(signum, handler)
