@@ -21,6 +21,7 @@ that drive its spread.
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, fields, replace
 
 import numpy as np
@@ -47,7 +48,8 @@ from .runout_fit import RunoutFit, fit_runout
 
 __all__ = ["PostImpact", "post_impact_motion", "check_reachable", "approach_direction",
            "Reconstruction", "CrushOutput", "crush_outputs",
-           "reconstruct", "evidence_sampler", "evidence_nominal", "sample_block"]
+           "reconstruct", "evidence_sampler", "evidence_nominal", "sample_block",
+           "monte_carlo_seconds", "PILOT_SAMPLES", "TIMED_SAMPLES"]
 
 
 @dataclass(frozen=True)
@@ -317,7 +319,7 @@ class Reconstruction:
 
 def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, seed: int = 0,
                 include_yaw: bool = True, post_impact_samples=None, executor=None,
-                blocks: int | None = None, progress=None) -> Reconstruction:
+                blocks: int | None = None, progress=None, estimate=None) -> Reconstruction:
     """Evidence (or measured post-impact motion) -> impact speeds, eps, beta, with intervals.
 
     Parameters
@@ -346,6 +348,10 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         Called with the name of each stage as it starts ("run-out fits", "inverse PIM",
         "Monte Carlo") and once per finished Monte Carlo block ("Monte Carlo block i/k"),
         e.g. to move a progress bar; the results do not depend on it.
+    estimate : callable, optional
+        With run-out evidence and at least :data:`TIMED_SAMPLES` samples, called before the
+        Monte Carlo with its estimated wall time in this process [s]
+        (:func:`monte_carlo_seconds`); it may raise to refuse the work.
 
     Returns
     -------
@@ -383,6 +389,10 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         if np.isfinite(s_hat):
             momentum = _momentum_of(solved, s_hat)
     mc = None
+    if determined and samples and estimate is not None and post is not None \
+            and post_impact_samples is None and samples >= TIMED_SAMPLES:
+        estimate(monte_carlo_seconds(case, post, solved, fitted, unknown, samples,
+                                     include_yaw))
     if determined and samples:
         say("Monte Carlo")
         mc = _monte_carlo(case, post, solved, fitted, unknown, samples, seed, include_yaw,
@@ -391,6 +401,35 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
     crush = crush_outputs(solved, fitted) if determined else ()
     return Reconstruction(solved, unknown, post, fitted, values, momentum, mc, determined,
                           messages, crush)
+
+
+#: Samples of the pilot that times a Monte Carlo with run-out evidence, after a warm-up of
+#: 10 (which compiles the run-out kernels); its random stream is its own (PILOT_SEED), so
+#: the run's samples are those of a run without it.
+PILOT_SAMPLES = 50
+PILOT_SEED = 20_260_228
+#: Fewest Monte Carlo samples whose time is estimated (below, the pilot would cost a
+#: sizeable share of the run).
+TIMED_SAMPLES = 1000
+
+
+def monte_carlo_seconds(case: Case, post: PostImpact, solved: Case, fitted: FitResult,
+                        unknown: dict, samples: int, include_yaw: bool = True) -> float:
+    """Estimated wall time [s] of :func:`reconstruct`'s Monte Carlo of ``samples`` samples
+    in this process with run-out evidence (every sample refits the run-outs): a pilot of
+    :data:`PILOT_SAMPLES` samples timed and scaled (its fixed costs included: an upper
+    estimate)."""
+    sampler, extra = evidence_sampler(case, post, include_yaw), evidence_nominal(case, post)
+    rng = np.random.default_rng(PILOT_SEED)
+
+    def run(n: int) -> float:
+        start = time.perf_counter()
+        solve_samples(solved, fitted, unknown, n, rng, include_yaw=include_yaw,
+                      post_impact=sampler, extra_nominal=extra)
+        return time.perf_counter() - start
+
+    run(10)
+    return run(PILOT_SAMPLES) * samples / PILOT_SAMPLES
 
 
 def _check_executor(executor) -> None:

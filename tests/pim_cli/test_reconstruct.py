@@ -229,3 +229,37 @@ def test_a_rerun_keeps_the_users_notes_in_the_output_folder(tmp_path, capsys):
     assert main(args) == 0
     assert (out / "notes.txt").read_text() == "called the witness"
     assert f"note: --out {out}: kept notes.txt (pim did not write it)" in capsys.readouterr().err
+
+
+def test_the_monte_carlo_budget_says_and_refuses_before_the_work(capsys):
+    """Issue 28: a reconstruction from run-outs ran minutes (every sample refits them) with
+    nothing said; the pilot's estimate now is said over 10 s and refused over --max-minutes."""
+    from pim_cli.reconstruct import budget
+
+    check = budget(10_000, 1, 1.0)
+    check(5.0)
+    assert capsys.readouterr().err == ""
+    check(30.0)
+    assert capsys.readouterr().err == ("note: Monte Carlo: 10000 samples, each refitting the "
+                                       "run-outs: about 30 s\n")
+    with pytest.raises(pim.InputError) as err:
+        check(600.0)
+    assert str(err.value) == ("--max-minutes 1: the Monte Carlo of 10000 samples refits the "
+                              "run-outs of each sample, about 10 min here; give --samples 1000 "
+                              "or fewer, or raise --max-minutes")
+    budget(10_000, 4, 3.0)(600.0)           # four workers: 150 s, within 3 min
+
+
+@pytest.mark.slow
+def test_a_quoted_wheel_fraction_reconstructs_within_the_stated_budget(tmp_path, capsys):
+    """The fault harness's case: synthetic-runout with `wheels = '0.3'`: exit 2 and one line
+    before the Monte Carlo when its estimate exceeds --max-minutes."""
+    text = (resources.files("pim.io") / "cases" / "synthetic-runout.toml").read_text()
+    path = tmp_path / "w.toml"
+    path.write_text(text.replace('wheels = ["locked", "locked", 0.3, 0.3]', "wheels = '0.3'"))
+    assert main(["solve", str(path)]) == 0
+    capsys.readouterr()
+    assert main(["reconstruct", str(path), "--max-minutes", "0.01"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("error: --max-minutes 0.01: the Monte Carlo of 10000 samples refits "
+                          "the run-outs of each sample, about ") and "\n" not in err, err
