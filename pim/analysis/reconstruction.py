@@ -349,9 +349,8 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         "Monte Carlo") and once per finished Monte Carlo block ("Monte Carlo block i/k"),
         e.g. to move a progress bar; the results do not depend on it.
     estimate : callable, optional
-        With run-out evidence and at least :data:`TIMED_SAMPLES` samples, called before the
-        Monte Carlo with its estimated wall time in this process [s]
-        (:func:`monte_carlo_seconds`); it may raise to refuse the work.
+        Called with the Monte Carlo's estimated time [s] before it starts (run-out evidence,
+        :func:`monte_carlo_seconds`); it may raise to refuse the work.
 
     Returns
     -------
@@ -359,10 +358,9 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         With ``determined = False`` and a message naming what is missing when the data cannot
         decide the unknowns; never a number then.
     """
-    checked_case(case)
+    _check_arguments(case, executor)
     samples = checked_count(samples, "samples", low=0)
     seed = checked_count(seed, "seed", low=0)
-    _check_executor(executor)
     check_counts(blocks=blocks)
     unknown = check_free(case.unknown if unknown is None else unknown)
     if not unknown:
@@ -389,11 +387,9 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         if np.isfinite(s_hat):
             momentum = _momentum_of(solved, s_hat)
     mc = None
-    if determined and samples and estimate is not None and post is not None \
-            and post_impact_samples is None and samples >= TIMED_SAMPLES:
-        estimate(monte_carlo_seconds(case, post, solved, fitted, unknown, samples,
-                                     include_yaw))
     if determined and samples:
+        _time_monte_carlo(estimate, case, post, fitted, unknown, samples, include_yaw,
+                          post_impact_samples)
         say("Monte Carlo")
         mc = _monte_carlo(case, post, solved, fitted, unknown, samples, seed, include_yaw,
                           post_impact_samples, executor, blocks, say)
@@ -432,8 +428,20 @@ def monte_carlo_seconds(case: Case, post: PostImpact, solved: Case, fitted: FitR
     return run(PILOT_SAMPLES) * samples / PILOT_SAMPLES
 
 
-def _check_executor(executor) -> None:
-    """None, an Executor (anything with ``map``) or a Dask client (``get_executor``)."""
+def _time_monte_carlo(estimate, case, post, fitted, unknown, samples, include_yaw,
+                      post_impact_samples) -> None:
+    """``estimate(seconds)`` of a Monte Carlo of ``samples`` that refits the run-outs (from
+    :data:`TIMED_SAMPLES` samples up; nothing to time otherwise)."""
+    if estimate is not None and post is not None and post_impact_samples is None \
+            and samples >= TIMED_SAMPLES:
+        estimate(monte_carlo_seconds(case, post, post.case, fitted, unknown, samples,
+                                     include_yaw))
+
+
+def _check_arguments(case, executor) -> None:
+    """``case`` is a Case (:func:`checked_case`); ``executor`` None, an Executor (anything
+    with ``map``) or a Dask client (``get_executor``)."""
+    checked_case(case)
     if executor is None or hasattr(executor, "map") or hasattr(executor, "get_executor"):
         return
     got = repr(executor) if isinstance(executor, str) else f"a {type(executor).__name__}"

@@ -563,17 +563,18 @@ class Case:
 
     def _check_tables(self) -> None:
         """measured, uncertainty, evidence and unknown: None or their types (a string
-        there would fail deep inside a fit or a Monte Carlo)."""
-        from .distributions import UncertaintyTable
-        from .evidence import Evidence
-
-        for name, kind, what in (
-                ("measured", Measured, "a pim.Measured"),
-                ("uncertainty", UncertaintyTable,
-                 "a pim.model.distributions.UncertaintyTable"),
-                ("evidence", Evidence, "a pim.model.evidence.Evidence"),
-                ("unknown", dict, "a dict of dotted key -> (low, high) bounds")):
+        there would fail deep inside a fit or a Monte Carlo). The uncertainty table and the
+        evidence are recognised by what they hold (their modules import this one)."""
+        for name, kind, what in (("measured", Measured, "a pim.Measured"),
+                                 ("unknown", dict, "a dict of dotted key -> (low, high) bounds")):
             check_type(getattr(self, name), name, kind, what, none=True)
+        for name, holds, what in (
+                ("uncertainty", isinstance(getattr(self.uncertainty, "inputs", None), dict),
+                 "a pim.model.distributions.UncertaintyTable"),
+                ("evidence", hasattr(self.evidence, "has_runout"),
+                 "a pim.model.evidence.Evidence")):
+            if getattr(self, name) is not None and not holds:
+                check_type(getattr(self, name), name, (), what, none=True)
 
     @cached_property
     def shape(self) -> tuple:
