@@ -18,10 +18,8 @@ Priors (the authors' outlier CF11006 is left out of all of them):
 
 from __future__ import annotations
 
-import difflib
-
 from ..model.distributions import Distribution
-from ..model.numbers import InputError
+from ..model.numbers import InputError, did_you_mean
 from .datasets import load_barrier, load_car_to_car
 
 __all__ = ["PRIORS", "PRIOR_INPUTS", "prior_values", "prior_distribution"]
@@ -51,10 +49,8 @@ def _records(name: str):
 def _unknown_prior(name, where: str) -> InputError:
     """The error of a prior name that is not one of :data:`PRIORS`: it names the field and
     the name given, the closest known prior when one is close, and the known ones."""
-    close = difflib.get_close_matches(str(name), list(PRIORS), n=1, cutoff=0.6)
-    hint = f"; did you mean {close[0]!r}?" if close else ""
-    return InputError(f"{where} = {name!r} is not a known prior{hint} (known: "
-                      f"{', '.join(PRIORS)})")
+    return InputError(f"{where} = {name!r} is not a known prior{did_you_mean(name, PRIORS)} "
+                      f"(known: {', '.join(PRIORS)})")
 
 
 def prior_values(name: str, input_name: str) -> tuple:

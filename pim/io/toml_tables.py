@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import difflib
-
-from ..model.numbers import InputError
+from ..model.numbers import InputError, did_you_mean
 
 __all__ = ["check_keys", "unknown_key"]
 
@@ -14,9 +12,8 @@ def unknown_key(key: str, allowed, where: str) -> InputError:
     allowed one when one is close ("did you mean 'yaw_rate'?", :mod:`difflib`, as the units
     do) and the allowed ones (sorted)."""
     allowed = sorted(allowed)
-    close = difflib.get_close_matches(str(key), allowed, n=1, cutoff=0.6)
-    hint = f"; did you mean {close[0]!r}?" if close else ""
-    return InputError(f"{where}: unknown key {key!r}{hint} (allowed: {', '.join(allowed)})")
+    return InputError(f"{where}: unknown key {key!r}{did_you_mean(key, allowed)} (allowed: "
+                      f"{', '.join(allowed)})")
 
 
 def check_keys(table, allowed, where: str) -> dict:

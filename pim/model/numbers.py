@@ -3,12 +3,13 @@ booleans, complex numbers or None read as numbers."""
 
 from __future__ import annotations
 
+import difflib
 import math
 
 import numpy as np
 
-__all__ = ["InputError", "ArgumentTypeError", "check_type", "real_array", "checked_number",
-           "checked_count", "check_counts", "check_numbers"]
+__all__ = ["InputError", "ArgumentTypeError", "check_type", "did_you_mean", "real_array",
+           "checked_number", "checked_count", "check_counts", "check_numbers"]
 
 
 class InputError(ValueError):
@@ -25,6 +26,13 @@ class ArgumentTypeError(InputError, TypeError):
     """An argument of the wrong type (a string where a :class:`pim.Case` is expected): a
     ``TypeError``, as Python's own, and an :class:`InputError` (one line on the command
     line). The message names the argument and what it takes."""
+
+
+def did_you_mean(word, choices) -> str:
+    """``"; did you mean 'yaw_rate'?"`` for the choice closest to a mistyped ``word``
+    (:func:`difflib.get_close_matches`, the units' suggestion), "" when none is close."""
+    close = difflib.get_close_matches(str(word), list(choices), n=1, cutoff=0.6)
+    return f"; did you mean {close[0]!r}?" if close else ""
 
 
 def check_type(value, name: str, types, what: str, *, none: bool = False):

@@ -326,3 +326,22 @@ def test_degree_and_percent_signs_in_a_case_file(tmp_path):
     assert float(case.impact.normal_angle) == pytest.approx(math.pi / 18, rel=1e-15)
     assert float(case.impact.restitution) == pytest.approx(0.355, rel=1e-15)
     assert float(case.impact.beta) == 1.0
+
+
+@pytest.mark.parametrize("table, old, new, words", [
+    ("ricsac9", 'vehicle1.mass = {normal = "1.4 slug"}', 'vehicle1.mas = {normal = "1.4 slug"}',
+     "uncertainty: unknown input 'vehicle1.mas'; did you mean 'vehicle1.mass'? (allowed: "),
+    ("ricsac9-reconstruct", 'vehicle1.speed = {bounds', 'vehicle1.sped = {bounds',
+     "unknown: 'vehicle1.sped' cannot be solved for; did you mean 'vehicle1.speed'? "
+     "(allowed: "),
+])
+def test_every_unknown_name_of_a_case_file_gets_the_closest_known_one(tmp_path, table, old,
+                                                                      new, words):
+    """Issue 28: "did you mean" for keys (the units had one) in every table."""
+    text = (resources.files("pim.io") / "cases" / f"{table}.toml").read_text()
+    assert old in text
+    path = tmp_path / "case.toml"
+    path.write_text(text.replace(old, new, 1))
+    with pytest.raises(ValueError) as info:
+        pim.load_case(path)
+    assert str(info.value).startswith(words), str(info.value)
