@@ -29,6 +29,8 @@ from pim_cli.main import (
     warnings_of,
 )
 
+from comparisons.animation.render import MAX_SHOWN
+
 __all__ = ["compare", "animate", "speed_error", "hard_cases", "assumptions"]
 
 out_option = click.option("--out", "out", type=click.Path(file_okay=False), default=None,
@@ -163,10 +165,11 @@ def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, **kwa
 @click.option("--gif", "gif", type=click.Path(dir_okay=False), default=None,
               help="Also write an animated GIF (half size) here.")
 @click.option("--fps", type=int, default=30, show_default=True, help="Frames per second.")
-@click.option("--before", type=FiniteFloat(), default=None,
-              help="Seconds shown before the impact (default: about 1.2 vehicle lengths).")
-@click.option("--after", type=FiniteFloat(), default=2.0, show_default=True,
-              help="Seconds shown after the impact.")
+@click.option("--before", type=FiniteFloat(0.0, MAX_SHOWN, "s"), default=None,
+              help=f"Seconds shown before the impact, at most {MAX_SHOWN:g} (default: about "
+                   "1.2 vehicle lengths).")
+@click.option("--after", type=FiniteFloat(0.0, MAX_SHOWN, "s"), default=2.0, show_default=True,
+              help=f"Seconds shown after the impact, at most {MAX_SHOWN:g}.")
 @click.option("--size", type=(int, int), default=(960, 720), show_default=True,
               help="Frame width and height [px], even numbers.")
 @click.option("--tyre-friction", "tyre", type=FiniteFloat(), default=0.0, show_default=True,

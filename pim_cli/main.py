@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import sys
 from importlib.metadata import entry_points
 
@@ -20,7 +21,7 @@ from pim.io.output import OutputError, note_signal, signal_received
 from pim.model.numbers import InputError
 from pim.model.plausibility import warnings_of
 
-__all__ = ["main", "cli", "FiniteFloat",
+__all__ = ["main", "cli", "FiniteFloat", "SEED", "in_callback", "CALLBACK_PATHS",
            "case_argument", "eps_option", "beta_option", "units_option", "output_units",
            "json_option", "echo_json", "friction_limit_option", "cap_friction_option",
            "solve_with_options", "warnings_of", "NO_IMPACT_EXIT_CODE", "law_options",
@@ -55,17 +56,19 @@ def cli():
 
 
 class FiniteFloat(click.ParamType):
-    """A finite float (``nan`` and ``inf`` are usage errors), optionally in [low, high]."""
+    """A finite float (``nan`` and ``inf`` are usage errors), optionally in [low, high]
+    (``unit`` is named with the range in the message)."""
 
     name = "float"
 
-    def __init__(self, low: float | None = None, high: float | None = None):
-        self.low, self.high = low, high
+    def __init__(self, low: float | None = None, high: float | None = None, unit: str = ""):
+        self.low, self.high, self.unit = low, high, unit
 
     def _range(self) -> str:
+        unit = f" {self.unit}" if self.unit else ""
         if self.low is not None and self.high is not None:
-            return f" in [{self.low:g}, {self.high:g}]"
-        return f" >= {self.low:g}" if self.low is not None else ""
+            return f" in [{self.low:g}, {self.high:g}]{unit}"
+        return f" >= {self.low:g}{unit}" if self.low is not None else ""
 
     def convert(self, value, param, ctx):
         if isinstance(value, float):
@@ -81,6 +84,9 @@ class FiniteFloat(click.ParamType):
         return number
 
 
+#: Type of every --seed option: numpy's seeds are integers >= 0 (a negative one is a usage
+#: error naming the option, exit 2, not numpy's traceback).
+SEED = click.IntRange(min=0)
 case_argument = click.argument("case_name", metavar="CASE")
 eps_option = click.option("--eps", type=FiniteFloat(0.0, 1.0), default=None,
                           help="Coefficient of restitution epsilon in [0, 1] "
@@ -327,14 +333,47 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM, raised like Ctrl-C so that every atomic writer removes its temporary file."""
 
 
-def _on_sigterm(signum, frame):
+#: Code run from C with its exceptions printed and dropped ("Exception ignored from callback
+#: for ffi.gc"): pymunk's collision callbacks and object destructors, at-fork hooks,
+#: finalizers. A signal handled there is raised at the first moment outside it.
+CALLBACK_PATHS = (f"{os.sep}pymunk{os.sep}", f"{os.sep}cffi{os.sep}")
+CALLBACK_NAMES = frozenset({"__del__", "_releaseLock", "_acquireLock",
+                            "_after_at_fork_child_reinit_locks", "_after_fork"})
+
+
+def in_callback(frame) -> bool:
+    """Whether ``frame`` (the one a signal handler interrupted) runs inside code whose
+    exceptions are dropped (:data:`CALLBACK_PATHS`, :data:`CALLBACK_NAMES`)."""
+    while frame is not None:
+        code = frame.f_code
+        if code.co_name in CALLBACK_NAMES or any(p in code.co_filename
+                                                 for p in CALLBACK_PATHS):
+            return True
+        frame = frame.f_back
+    return False
+
+
+def _interrupt(signum, frame, error) -> None:
+    """Record the signal and raise ``error``: here, or, when ``frame`` is inside a callback
+    that would drop the exception (and let the run go on to its end), at the first event
+    of the main thread outside it (a profile hook, removed as it raises)."""
     note_signal(signum)
-    raise Terminated()
+    if not in_callback(frame):
+        raise error()
+
+    def outside(event_frame, event, arg):
+        if not in_callback(event_frame):
+            sys.setprofile(None)
+            raise error()
+    sys.setprofile(outside)
+
+
+def _on_sigterm(signum, frame):
+    _interrupt(signum, frame, Terminated)
 
 
 def _on_sigint(signum, frame):
-    note_signal(signum)
-    raise KeyboardInterrupt()
+    _interrupt(signum, frame, KeyboardInterrupt)
 
 
 def _interrupted_code() -> int | None:
@@ -369,7 +408,10 @@ def main(argv=None) -> int:
         previous = {signal.SIGTERM: signal.signal(signal.SIGTERM, _on_sigterm),
                     signal.SIGINT: signal.signal(signal.SIGINT, _on_sigint)}
     try:
-        return _main(argv)
+        try:
+            return _main(argv)
+        except KeyboardInterrupt:       # a signal after _main knew its code: still one line
+            return _interrupted_code() or 130
     finally:
         for signum, handler in previous.items():
             signal.signal(signum, handler)

@@ -10,8 +10,8 @@ prints each unknown by its dotted name with its value, percentiles and unit in t
 units (``units`` names the unit of each kind of quantity), and the momentum check beside
 them. Writes DIR/report.md, DIR/report.html
 (the same as one self-contained page, figure and video inline),
-DIR/reconstruction.csv and, with evidence, DIR/scene.png and DIR/reconstruction.mp4 (the
-reconstructed crash from the impact to rest).
+DIR/reconstruction.csv and, with run-out evidence (``[evidence]`` rest positions),
+DIR/scene.png and DIR/reconstruction.mp4 (the reconstructed crash from the impact to rest).
 
 When the data cannot decide the unknowns, one line says what is missing and the exit code
 is 2: never a number. The inverse PIM applies the case's impact law (``impact.law``: Brach's
@@ -48,6 +48,8 @@ from pim.model.numbers import InputError
 from pim.plotting.reconstruction_animation import write_reconstruction_mp4
 from pim.plotting.reconstruction_scene import reconstruction_figure
 from pim_cli.main import (
+    SEED,
+    FiniteFloat,
     case_argument,
     echo_json,
     json_option,
@@ -57,8 +59,11 @@ from pim_cli.main import (
 )
 
 __all__ = ["reconstruct", "reconstruction_rows", "law_line", "evidence_drivers",
-           "driver_lines"]
+           "driver_lines", "budget", "DEFAULT_MAX_MINUTES"]
 
+#: Default of --max-minutes: the longest Monte Carlo with run-out evidence run without
+#: being asked [min].
+DEFAULT_MAX_MINUTES = 30.0
 
 
 def law_line(rec: Reconstruction) -> str:
@@ -249,22 +254,36 @@ def _json(case, rows: list[dict], samples: int, messages, units: str) -> dict:
 @click.command()
 @case_argument
 @click.option("--out", "out", type=click.Path(file_okay=False), default=None,
-              help="Directory for report.md, report.html, reconstruction.csv and scene.png.")
+              help="Directory for report.md, report.html and reconstruction.csv; with "
+                   "run-out evidence ([evidence] rest positions) also scene.png and "
+                   "reconstruction.mp4.")
 @click.option("--samples", type=click.IntRange(min=0), default=10_000, show_default=True,
               help="Monte Carlo samples over the stated uncertainties (0: none).")
-@click.option("--seed", type=int, default=0, show_default=True, help="Monte Carlo seed.")
+@click.option("--seed", type=SEED, default=0, show_default=True, help="Monte Carlo seed.")
 @click.option("--workers", type=click.IntRange(min=1), default=1, show_default=True,
               help="Spread the Monte Carlo over this many processes (1: this process, "
                    "which already uses every core for the run-outs).")
 @click.option("--video/--no-video", default=True, show_default=True,
-              help="With evidence, also write DIR/reconstruction.mp4 (impact to rest).")
+              help="With run-out evidence, also write DIR/reconstruction.mp4 (impact to "
+                   "rest).")
 @click.option("--progress/--no-progress", default=None,
               help="Progress of the stages on stderr (default: only on a terminal).")
+@click.option("--max-minutes", type=FiniteFloat(0.0, None, "min"), default=DEFAULT_MAX_MINUTES,
+              show_default=True,
+              help="With run-out evidence every Monte Carlo sample refits the run-outs: the "
+                   "Monte Carlo's time is measured on a pilot before it starts, said on "
+                   "stderr when over 10 s, and refused (exit 2, with the sample count that "
+                   "fits) when over this.")
 @units_option
 @json_option
-def reconstruct(case_name, out, samples, seed, workers, video, progress, units, speed_unit,
+def reconstruct(case_name, out, samples, seed, workers, video, progress, max_minutes, units,
+                speed_unit,
                 as_json):
     """Reconstruct CASE's unknowns (e.g. the impact speeds) from its evidence.
+
+    With --out DIR: DIR/report.md, DIR/report.html and DIR/reconstruction.csv; a case
+    with run-out evidence ([evidence] rest positions) adds DIR/scene.png (the run-outs
+    drawn) and DIR/reconstruction.mp4 (unless --no-video).
 
     With --out the folder is written whole at the end (or not at all: an error or an
     interrupt leaves an earlier run there as it was); its lock is taken before the work.
@@ -274,7 +293,8 @@ def reconstruct(case_name, out, samples, seed, workers, video, progress, units, 
     with output_folder(out, command="pim reconstruct") if out else \
             contextlib.nullcontext() as tmp:
         with _stages(case, samples, workers, progress) as say:
-            rec, rows, pre = _reconstruct(case, samples, seed, workers, units, as_json, say)
+            rec, rows, pre = _reconstruct(case, samples, seed, workers, units, as_json, say,
+                                          budget(samples, workers, max_minutes))
         if tmp is not None:
             _write_folder(tmp, rec, rows, units, video, pre)
 
@@ -298,15 +318,39 @@ def _stages(case, samples: int, workers: int, progress):
         yield say
 
 
-def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
+def budget(samples: int, workers: int, max_minutes: float):
+    """The ``estimate`` callback of :func:`pim.analysis.reconstruction.reconstruct`: says the
+    Monte Carlo's estimated time on stderr when over 10 s, refuses it (InputError naming
+    --max-minutes and the --samples that fit) when over ``max_minutes``."""
+    def check(seconds: float) -> None:
+        seconds /= workers
+        if seconds > 60.0 * max_minutes:
+            fit = int(samples * 60.0 * max_minutes / seconds)
+            raise InputError(f"--max-minutes {max_minutes:g}: the Monte Carlo of {samples} "
+                             f"samples refits the run-outs of each sample, about "
+                             f"{_duration(seconds)} here; give --samples {fit} or fewer, or "
+                             f"raise --max-minutes")
+        if seconds > 10.0:
+            click.echo(f"note: Monte Carlo: {samples} samples, each refitting the run-outs: "
+                       f"about {_duration(seconds)}", err=True)
+    return check
+
+
+def _duration(seconds: float) -> str:
+    return f"{seconds:.0f} s" if seconds < 120 else (
+        f"{seconds / 60:.0f} min" if seconds < 7200 else f"{seconds / 3600:.1f} h")
+
+
+def _reconstruct(case, samples, seed, workers, units, as_json, say=None, estimate=None):
     """Run the reconstruction and print its table (or JSON); return it, its rows and the
     rows of the speeds before the impact (:mod:`comparisons.report.pre_impact`)."""
     if workers > 1:
         with worker_pool(workers) as pool:
             rec = run_reconstruction(case, samples=samples, seed=seed, executor=pool,
-                                     blocks=2 * workers, progress=say)
+                                     blocks=2 * workers, progress=say, estimate=estimate)
     else:
-        rec = run_reconstruction(case, samples=samples, seed=seed, progress=say)
+        rec = run_reconstruction(case, samples=samples, seed=seed, progress=say,
+                                 estimate=estimate)
     if not rec.determined:
         raise InputError(next((m for m in rec.messages if "under-determined" in m
                                or "family" in m or "equally well" in m),

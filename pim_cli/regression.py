@@ -10,7 +10,7 @@ from pathlib import Path
 import click
 from tqdm import tqdm
 
-from pim_cli.main import echo_json, json_option, units_option
+from pim_cli.main import SEED, echo_json, json_option, units_option
 from pim.io.files import write_text
 
 from comparisons.regression.sections import DEFAULT_SECTIONS, DEFAULT_SETTINGS, SECTIONS
@@ -53,7 +53,7 @@ def _progress(total: int, desc: str):
 @click.option("--reconstruct-samples", type=click.IntRange(min=0), default=None,
               help=f"Monte Carlo samples of reconstruct (default "
                    f"{DEFAULT_SETTINGS['reconstruct_samples']}; 0: the solution only).")
-@click.option("--seed", type=int, default=None, help="Seed of the Monte Carlo (default 0).")
+@click.option("--seed", type=SEED, default=None, help="Seed of the Monte Carlo (default 0).")
 @click.option("--references", type=click.Path(dir_okay=False), default=None,
               help="TOML file of independent reference values with their source and "
                    "tolerance, held in the baseline beside the recorded values.")

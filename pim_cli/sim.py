@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import sys
-
 import click
 
 from pim.model.law import solve as solve_under_law
@@ -22,15 +20,16 @@ from pim_cli.main import (
 from sim.crosscheck import crosscheck
 from sim.kudlich_slibar import crosscheck_kudlich_slibar
 
-__all__ = ["sim"]
+__all__ = ["sim", "in_options", "SETTING_OPTIONS"]
 
 
 @click.command()
 @case_argument
 @eps_option
 @beta_option
-@click.option("--dt", type=FiniteFloat(), default=None, help="Time step [s] (default: Settings()).")
-@click.option("--iterations", type=int, default=None,
+@click.option("--dt", type=FiniteFloat(0.0, 1.0, "s"), default=None,
+              help="Time step [s] in (0, 1] (default: Settings()).")
+@click.option("--iterations", type=click.IntRange(1, 100_000), default=None,
               help="Solver iterations per step (default: automatic from the contact).")
 @click.option("--contact", type=click.Choice(["point", "outline"]), default="point",
               show_default=True, help="Collide a point at C, or the vehicle outlines.")
@@ -53,20 +52,36 @@ def sim(case_name, eps, beta, dt, iterations, contact, start, units, speed_unit,
     kwargs = {"iterations": iterations, "contact": contact, "start": start}
     if dt is not None:
         kwargs["dt"] = dt
-    settings = Settings(**kwargs)
+    try:
+        settings = Settings(**kwargs)
+    except InputError as exc:
+        raise InputError(in_options(str(exc))) from None
     case = load_case_for("sim", case_name)
     units = output_units(case, units, speed_unit)
     try:
         check = _crosscheck_law(case, eps, beta, settings)
     except SimulationError as exc:
-        click.echo(f"simulation failed ({exc.kind}): {exc}", err=True)
-        sys.exit(1)
+        click.echo(f"simulation failed ({exc.kind}): {in_options(str(exc))}", err=True)
+        raise click.exceptions.Exit(1) from None
     if as_json:
         echo_json(check.to_json(units))
         return
     for text in getattr(check, "limitations", ()):     # before the table, where a reader sees them
         click.echo(f"note: {text}", err=True)
     click.echo(check.format_table(units))
+
+
+#: The simulator's settings that ``pim sim`` sets from an option: its messages name the option.
+SETTING_OPTIONS = {"settings.iterations": "--iterations", "settings.dt": "--dt",
+                   "settings.contact": "--contact", "settings.start": "--start"}
+
+
+def in_options(message: str) -> str:
+    """A message of the simulator as a command-line user reads it: each setting of
+    :data:`SETTING_OPTIONS` named by its option (``settings.iterations`` -> ``--iterations``)."""
+    for setting, option in SETTING_OPTIONS.items():
+        message = message.replace(setting, option)
+    return message
 
 
 def _crosscheck_law(case, eps, beta, settings):

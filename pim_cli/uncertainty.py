@@ -8,6 +8,7 @@ import click
 
 from pim.model.numbers import InputError
 from pim_cli.main import (
+    SEED,
     FiniteFloat,
     case_argument,
     echo_json,
@@ -44,7 +45,7 @@ class SampleCount(click.ParamType):
 @click.option("--samples", "-n", type=SampleCount(), default=100_000, show_default=True,
               help="Number of Monte Carlo samples (e.g. 100000 or 1e8; over 524288 they are "
                    "solved chunk by chunk on bounded memory).")
-@click.option("--seed", type=int, default=0, show_default=True, help="Random seed.")
+@click.option("--seed", type=SEED, default=0, show_default=True, help="Random seed.")
 @click.option("--eps", type=FiniteFloat(), default=None,
               help="Nominal epsilon (default: the case's).")
 @click.option("--beta", type=FiniteFloat(), default=None,

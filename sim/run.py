@@ -33,7 +33,8 @@ import pymunk
 
 import pim
 from pim.model.geometry import kinetic_energy
-from pim.model.numbers import speed_text
+from pim.model.case import checked_case
+from pim.model.numbers import check_type, speed_text
 
 from .failures import SimulationError
 from .result import SimResult, Trajectory
@@ -334,7 +335,7 @@ def _not_converged_message(scene: Scene, mon: _Monitor) -> str:
                  "Chipmunk's sequential impulses diverge; PIM's sliding impulse cannot be "
                  "reproduced by this engine at any iteration count")
     else:
-        text += "; raise settings.iterations (or leave it None for automatic)"
+        text += "; raise the solver iterations per step (settings.iterations)"
     return text
 
 
@@ -385,7 +386,9 @@ def simulate(case: pim.Case, eps=None, beta=None, settings: Settings | None = No
     SimulationError
         The run failed: no contact, never separated, multiple contacts, energy gained.
     """
-    settings = settings or Settings()
+    checked_case(case)
+    settings = check_type(settings, "settings", Settings, "a sim.Settings (e.g. "
+                          "sim.Settings(dt=1e-4))", none=True) or Settings()
     eps, beta = resolve_coefficients(case, eps, beta)
     if analytic is None:
         analytic = pim.solve(case, eps, 1.0, law="brach")

@@ -115,7 +115,7 @@ def _f(x) -> float:
 def _kind(kind: str | None) -> str:
     if kind in SI_UNITS:
         return kind
-    return "dimensionless"   # None (a ratio) and "percent" (a share, recorded in %)
+    return "dimensionless"   # None: a ratio
 
 
 def _scaled(values: dict, kinds: dict, rel: float, floor: float, section: str,

@@ -34,12 +34,12 @@ from functools import cached_property
 
 import numpy as np
 
-from ..model.case import Case
+from ..model.case import Case, checked_case
 from ..model.evidence_terms import as_residual_terms, split_terms
 from ..model.impact_laws import check_contact_friction, law_of
 from ..model.law import solve as solve_under_law
 from ..model.motion import Term
-from ..model.numbers import InputError, check_counts, check_numbers
+from ..model.numbers import InputError, check_counts, check_numbers, checked_count
 from ..model.result import Result
 from ..model.solver import solve
 from .free_fit import (
@@ -269,10 +269,16 @@ def _check_fixed(eps, beta, free: dict) -> tuple[float | None, float | None]:
 
 def _check_grid(grid) -> None:
     """``grid`` is no longer used (the coarse search is a Sobol sample): validate, warn."""
-    if tuple(int(g) for g in grid) == DEFAULT_GRID:
+    try:
+        counts = [checked_count(g, "grid", low=3) for g in grid]
+    except (InputError, TypeError):
+        raise InputError(f"grid must be two integers >= 3 (points per axis: eps, beta), "
+                         f"got {grid!r}") from None
+    if len(counts) != 2:
+        raise InputError(f"grid must be two integers >= 3 (points per axis: eps, beta), "
+                         f"got {grid!r}")
+    if tuple(counts) == DEFAULT_GRID:
         return
-    if min(int(g) for g in grid) < 3:
-        raise InputError(f"grid must have at least 3 points per axis, got {grid}")
     warnings.warn("pim.fit(grid=...) is ignored: the coarse search is a Sobol sample of "
                   "`samples` points", DeprecationWarning, stacklevel=3)
 
@@ -421,6 +427,7 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
         Nothing measured, a batched case, bad bounds, both parameters fixed, a parameter
         the law does not take, or no approach.
     """
+    checked_case(case)
     check_counts(max_starts=max_starts, samples=samples)
     check_numbers(eps=eps, beta=beta)     # mu_c may be inf (always stick): _law_case checks
     if np.size(case.vehicle1.mass) != 1 or np.shape(case.impact.point) != (2,):

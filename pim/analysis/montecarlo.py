@@ -254,6 +254,7 @@ def _setup(case, n, seed, distributions, eps, beta, chunk_size) -> _Setup:
         raise InputError("distributions must be a pim.model.distributions.UncertaintyTable")
     n = checked_count(n, "n (samples)", low=10)
     chunk_size = checked_count(chunk_size, "chunk_size", low=10)
+    seed = checked_count(seed, "seed", low=0, none=True)
     nominal_in = nominal_values(case, eps, beta)
     # evidence inputs (run-out friction) do not act on the impact: pim reconstruct samples them
     dists = UncertaintyTable({k: d for k, d in dists.inputs.items() if k in nominal_in})

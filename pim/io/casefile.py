@@ -99,9 +99,13 @@ _IMPACT = {"point", "normal_angle", "contact_plane_angle", "restitution", "beta"
            "contact_friction"}
 
 
-def _require(table: dict, key: str, where: str):
+def _require(table: dict, key: str, where: str, *, file: bool = False):
+    """``table[key]``, or an InputError naming what is missing: ``vehicle1.cg is missing``
+    inside a table; ``FILE: [impact] is missing`` for a table of the file (``file=True``:
+    ``where`` is then the file's name, never glued to the key)."""
     if key not in table:
-        raise InputError(f"{where}.{key} is missing")
+        raise InputError(f"{where}: table [{key}] is missing" if file
+                         else f"{where}.{key} is missing")
     return table[key]
 
 
@@ -120,6 +124,32 @@ def _one_of(table: dict, a: str, b: str, where: str) -> str:
 
 def _optional(table: dict, key: str, kind: str, where: str):
     return parse(table[key], kind, f"{where}.{key}") if key in table else None
+
+
+def _length(table: dict, key: str, where: str, what: str, strict: bool = True):
+    """A length of a vehicle table [m] (None when absent), checked to be > 0 (``strict``) or
+    >= 0 here, where the value as written (its unit the case's) can be quoted."""
+    if key not in table:
+        return None
+    value = parse(table[key], "length", f"{where}.{key}")
+    if value < 0 or (strict and value == 0):
+        raise InputError(f"{where}.{key} = {table[key]!r} must be {'>' if strict else '>='} 0 "
+                         f"({what})")
+    return value
+
+
+def _cg_to_front(table: dict, length, where: str):
+    """``cg_to_front`` [m] (None when absent), inside the outline: in [0, length]."""
+    if "cg_to_front" not in table:
+        return None
+    value = parse(table["cg_to_front"], "length", f"{where}.cg_to_front")
+    if length is None:
+        raise InputError(f"{where}.cg_to_front needs {where}.length (the outline it places "
+                         f"the CG in)")
+    if not 0 <= value <= length:
+        raise InputError(f"{where}.cg_to_front = {table['cg_to_front']!r} must lie in the "
+                         f"outline: between 0 and {where}.length = {table['length']!r}")
+    return value
 
 
 def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int,
@@ -144,11 +174,15 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int,
     else:
         theta = parse(_require(table, "theta", where), "angle", f"{where}.theta")
         phi = parse(_require(table, "phi", where), "angle", f"{where}.phi")
-        d = parse(_require(table, "d", where), "length", f"{where}.d")
+        _require(table, "d", where)
+        d = _length(table, "d", where, "the distance from the CG to C", strict=False)
         cg = cg_from_brach(theta, phi, d, number, point)
         heading = float(heading_from_theta(theta, number))
-    outline = {k: _optional(table, k, "length", where) for k in ("length", "width",
-                                                                "cg_to_front")}
+    length = _length(table, "length", where, "the outline's length")
+    width = _length(table, "width", where, "the outline's width")
+    cg_to_front = _cg_to_front(table, length, where)
+
+    outline = {"length": length, "width": width, "cg_to_front": cg_to_front}
     if fixed:
         if number == 1:
             raise InputError(f"{where}.fixed: only vehicle2 may be a fixed obstacle")
@@ -257,7 +291,7 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
     convention = data.get("convention", "global")
     if convention not in ("global", "brach"):
         raise InputError(f"convention must be 'global' or 'brach', got {convention!r}")
-    impact_table = check_keys(_require(data, "impact", source), _IMPACT, "impact")
+    impact_table = check_keys(_require(data, "impact", source, file=True), _IMPACT, "impact")
     if convention == "global" or "point" in impact_table:
         point = _pair(_require(impact_table, "point", "impact"), "length", "impact.point")
     else:
@@ -275,7 +309,7 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
     contact_friction = _optional(impact_table, "contact_friction", "dimensionless", "impact")
     evidence = data.get("evidence") if isinstance(data.get("evidence"), dict) else {}
     vehicles, estimates = zip(*(
-        _vehicle(_require(data, f"vehicle{i}", source), f"vehicle{i}", convention, point, i,
+        _vehicle(_require(data, f"vehicle{i}", source, file=True), f"vehicle{i}", convention, point, i,
                  evidence.get(f"vehicle{i}")) for i in (1, 2)))
     estimates = tuple(e for e in estimates if e is not None)
     if normal_angle is None:

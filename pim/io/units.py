@@ -73,12 +73,13 @@ DISPLAY_UNITS = {
     "si": {"velocity": "km/h", "speed": "km/h", "angular_velocity": "deg/s", "impulse": "N*s",
            "energy": "kJ", "length": "m", "mass": "kg", "inertia": "kg*m**2", "angle": "deg",
            "force": "N", "impact_speed": "km/h", "force_per_length": "kN/m",
-           "force_per_area": "kN/m**2", "dimensionless": "dimensionless"},
+           "force_per_area": "kN/m**2", "dimensionless": "dimensionless",
+           "percent": "percent"},
     "us": {"velocity": "mph", "speed": "mph", "angular_velocity": "deg/s", "impulse": "lbf*s",
            "energy": "ft*lbf", "length": "ft", "mass": "slug", "inertia": "slug*ft**2",
            "angle": "deg", "force": "lbf", "impact_speed": "mph",
            "force_per_length": "lbf/inch", "force_per_area": "lbf/inch**2",
-           "dimensionless": "dimensionless"},
+           "dimensionless": "dimensionless", "percent": "percent"},
 }
 UNIT_SYSTEMS = tuple(DISPLAY_UNITS)
 
@@ -89,7 +90,7 @@ SPEED_KINDS = frozenset({"velocity", "speed", "impact_speed"})
 SI_UNITS = {"velocity": "m/s", "speed": "m/s", "angular_velocity": "rad/s", "impulse": "N*s",
             "energy": "J", "length": "m", "mass": "kg", "inertia": "kg*m**2", "angle": "rad",
             "force": "N", "impact_speed": "m/s", "force_per_length": "N/m",
-            "force_per_area": "N/m**2", "dimensionless": "dimensionless"}
+            "force_per_area": "N/m**2", "dimensionless": "dimensionless", "percent": "percent"}
 
 
 @lru_cache(maxsize=1)
@@ -142,6 +143,21 @@ def _unit(text: str):
     return unit, ureg.get_root_units(unit)[1]
 
 
+#: Unit symbols outside pint's grammar, and the unit each is: ``"10°"`` (also ``"30°/s"``)
+#: and ``"35.5 %"`` (0.355).
+SYMBOLS = {"\N{DEGREE SIGN}": "deg", "%": "percent"}
+
+
+def _symbols(unit: str) -> str:
+    """The unit text after the number with a leading symbol of :data:`SYMBOLS` spelled as
+    pint's unit (one symbol, first: ``"°/s"`` is ``"deg/s"``); any other text as it is."""
+    for symbol, name in SYMBOLS.items():
+        rest = unit[len(symbol):]
+        if unit.startswith(symbol) and symbol not in rest and rest[:1] in ("", "/", "*", " "):
+            return name + rest
+    return unit
+
+
 def _split(value: str, field: str) -> tuple[float, str]:
     """A quantity string as (number, unit text): exactly one number, then a unit or nothing.
 
@@ -160,6 +176,8 @@ def _split(value: str, field: str) -> tuple[float, str]:
         raise InputError(f"{field}: {value!r} must be one number followed by a unit, "
                          f"e.g. '1200 kg' or '90 deg'")
     number, unit = match.group(0), text[match.end():].strip()
+    if unit[:1] in SYMBOLS:
+        text, unit = f"{number} {_symbols(unit)}", _symbols(unit)
     if unit and (text[match.end()] not in " \t*/" and not unit[0].isalpha()):
         raise InputError(f"{field}: {value!r} must be one number followed by a unit, "
                          f"e.g. '1200 kg' or '90 deg'")
@@ -216,6 +234,19 @@ def _parse_number(value, kind: str, field: str) -> float:
     return number
 
 
+def _dimension(parsed, root) -> str:
+    """The dimension of a parsed unit in words: pint's (``[length] / [time]``), with the
+    angles (whose radian pint counts as dimensionless) called what they are."""
+    if parsed is None:
+        return ""
+    text = str(parsed.dimensionality)
+    radians = dict(registry().Quantity(1.0, root).unit_items()).get("radian")
+    if radians:
+        text = "angle" + ("" if text == "dimensionless" else f" times {text}")
+        text += "" if radians == 1 else f" to the power {radians:g}"
+    return text
+
+
 def _parse_string(value: str, kind: str, field: str, unit: str) -> float:
     """A quantity string for :func:`parse`: its magnitude in ``unit``, the kind's SI unit."""
     magnitude, text = _split(value, field)
@@ -232,9 +263,9 @@ def _parse_string(value: str, kind: str, field: str, unit: str) -> float:
     _, wanted = _unit(unit) if unit else (None, None)
     none = registry().Unit("")
     if (none if root is None else root) != (none if wanted is None else wanted):
-        what = kind.replace("_", " ")
-        dim = parsed.dimensionality if parsed is not None else ""
-        expected = wanted.dimensionality if wanted is not None else ""
+        what = "dimensionless number" if kind == "dimensionless" else kind.replace("_", " ")
+        dim, expected = _dimension(parsed, root), _dimension(*(_unit(unit) if unit else
+                                                              (None, None)))
         raise InputError(f"{field}: {value!r} is not a{'n' if what[0] in 'aeiou' else ''} "
                          f"{what} (its unit has dimension {dim or 'dimensionless'}, "
                          f"expected {expected or 'dimensionless'}: a unit like "
@@ -363,7 +394,8 @@ def display_units(units=None, speed: str | None = None, case=None) -> DisplayUni
 
 
 def _label(unit: str) -> str:
-    return "-" if unit == "dimensionless" else unit.replace("**", "^").replace("*", " ")
+    return {"dimensionless": "-", "percent": "%"}.get(
+        unit, unit.replace("**", "^").replace("*", " "))
 
 
 @lru_cache(maxsize=64)

@@ -17,10 +17,10 @@ import numpy as np
 
 from .geometry import rotate
 from .inertia import InputEstimate
-from .numbers import InputError, real_array
+from .numbers import InputError, check_type, real_array
 
 __all__ = ["Vehicle", "Impact", "Case", "Measured", "LAWS", "MASS_RANGE", "INERTIA_RANGE",
-           "MAX_ARM_RATIO", "SPEED_UNITS"]
+           "MAX_ARM_RATIO", "SPEED_UNITS", "checked_case"]
 
 #: The impact laws a case may name (``impact.law``); see :mod:`pim.model.impact_laws`.
 #: "brach": Brach's PIM (eps, beta); "brach-capped": PIM with |mu| capped at a friction
@@ -558,6 +558,9 @@ class Case:
         if not (type(self.vehicle1) is Vehicle and type(self.vehicle2) is Vehicle
                 and type(self.impact) is Impact):   # else subclasses, or an error
             self._check_types()
+        if not (self.measured is None and self.uncertainty is None and self.evidence is None
+                and self.unknown is None):
+            self._check_tables()
         if self.units not in ("si", "us"):
             raise InputError(f"units must be 'si' or 'us', got {self.units!r}")
         if self.estimates and not (isinstance(self.estimates, tuple) and all(
@@ -576,9 +579,22 @@ class Case:
     def _check_types(self) -> None:
         """vehicle1 and vehicle2 are Vehicles, impact an Impact."""
         for name, kind in (("vehicle1", Vehicle), ("vehicle2", Vehicle), ("impact", Impact)):
-            if not isinstance(getattr(self, name), kind):
-                raise InputError(f"{name} must be a pim.{kind.__name__}, got "
-                                 f"{type(getattr(self, name)).__name__}")
+            check_type(getattr(self, name), name, kind, f"a pim.{kind.__name__}")
+
+    def _check_tables(self) -> None:
+        """measured, uncertainty, evidence and unknown: None or their types (a string
+        there would fail deep inside a fit or a Monte Carlo). The uncertainty table and the
+        evidence are recognised by what they hold (their modules import this one)."""
+        for name, kind, what in (("measured", Measured, "a pim.Measured"),
+                                 ("unknown", dict, "a dict of dotted key -> (low, high) bounds")):
+            check_type(getattr(self, name), name, kind, what, none=True)
+        for name, holds, what in (
+                ("uncertainty", isinstance(getattr(self.uncertainty, "inputs", None), dict),
+                 "a pim.model.distributions.UncertaintyTable"),
+                ("evidence", hasattr(self.evidence, "has_runout"),
+                 "a pim.model.evidence.Evidence")):
+            if getattr(self, name) is not None and not holds:
+                check_type(getattr(self, name), name, (), what, none=True)
 
     @cached_property
     def shape(self) -> tuple:
@@ -632,3 +648,11 @@ class Case:
                           for e in self.estimates)
         return replace(self, vehicle1=self.vehicle2, vehicle2=self.vehicle1, impact=impact,
                        measured=measured, estimates=estimates)
+
+
+def checked_case(case, name: str = "case") -> Case:
+    """``case`` if it is a :class:`Case`; else an
+    :class:`~pim.model.numbers.ArgumentTypeError` naming ``name`` and how to get one
+    (a case name or path is loaded by :func:`pim.load_case`)."""
+    return check_type(case, name, Case, "a pim.Case (a case name or file is read by "
+                                        "pim.load_case(...))")

@@ -40,7 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .numbers import InputError
+from .numbers import InputError, did_you_mean
 from .quantities import UNCERTAIN
 from .solver import defaults
 
@@ -168,8 +168,9 @@ class UncertaintyTable:
     def __post_init__(self) -> None:
         for name, dist in self.inputs.items():
             if name not in UNCERTAIN:
-                raise InputError(f"uncertainty: unknown input {name!r} "
-                                 f"(allowed: {', '.join(UNCERTAIN)})")
+                raise InputError(f"uncertainty: unknown input {name!r}"
+                                 f"{did_you_mean(name, UNCERTAIN)} (allowed: "
+                                 f"{', '.join(UNCERTAIN)})")
             if not isinstance(dist, Distribution):
                 raise InputError(f"uncertainty.{name} must be a Distribution")
 

@@ -55,7 +55,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import formula
-from .case import FRICTION_LAWS, LAWS, Case
+from .case import FRICTION_LAWS, LAWS, Case, checked_case
 from .dual import MOTION_INPUTS, motion_of_inputs, seed_inputs, value_of, where
 from .friction_cap import capped_beta
 from .geometry import contact_velocity, cross, dot, perp, vec
@@ -265,8 +265,7 @@ def solve_kudlich_slibar(case: Case, k=None, mu_c=None, approach_tol: float = AP
     at C the impulse is 0; where the sliding normal impulse is unbounded (n . K (n + sigma
     mu_c t) = 0) the outputs are NaN and ``q_singular`` is True.
     """
-    if not isinstance(case, Case):
-        raise InputError(f"case must be a pim.Case, got {type(case).__name__}")
+    checked_case(case)
     k = case.impact.restitution if k is None else k
     mu_c = case.impact.contact_friction if mu_c is None else mu_c
     if k is None:

@@ -202,3 +202,64 @@ def test_a_kudlich_slibar_case_is_reconstructed_under_its_law(tmp_path, capsys):
     out = capsys.readouterr().out
     assert out.startswith("Impact law: Kudlich-Slibar") and "km/h" in out and "mph" not in out
     assert ">= " in next(line for line in out.splitlines() if line.startswith("impact.mu_c"))
+
+
+def test_help_of_out_promises_what_a_case_without_evidence_writes(tmp_path, capsys):
+    """Issue 28: --help promised scene.png, which a case without [evidence] never writes."""
+    import re
+
+    assert main(["reconstruct", "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    out_help = text[text.index("--out DIRECTORY"):text.index("--samples")]
+    always = out_help.split("with run-out evidence")[0]
+    promised = set(re.findall(r"[\w-]+\.(?:md|html|csv|png|mp4)", always))
+    assert main(["reconstruct", "ricsac9-reconstruct", "--out", str(tmp_path / "o"),
+                 "--samples", "0"]) == 0
+    written = {p.name for p in (tmp_path / "o").iterdir()} - {MARKER}
+    assert promised == written == {"report.md", "report.html", "reconstruction.csv"}
+
+
+def test_a_rerun_keeps_the_users_notes_in_the_output_folder(tmp_path, capsys):
+    """Issue 28 (fault harness): a rerun deleted the notes.txt a user had added."""
+    out = tmp_path / "out"
+    args = ["reconstruct", "ricsac9-reconstruct", "--out", str(out), "--samples", "0"]
+    assert main(args) == 0
+    (out / "notes.txt").write_text("called the witness")
+    capsys.readouterr()
+    assert main(args) == 0
+    assert (out / "notes.txt").read_text() == "called the witness"
+    assert f"note: --out {out}: kept notes.txt (pim did not write it)" in capsys.readouterr().err
+
+
+def test_the_monte_carlo_budget_says_and_refuses_before_the_work(capsys):
+    """Issue 28: a reconstruction from run-outs ran minutes (every sample refits them) with
+    nothing said; the pilot's estimate now is said over 10 s and refused over --max-minutes."""
+    from pim_cli.reconstruct import budget
+
+    check = budget(10_000, 1, 1.0)
+    check(5.0)
+    assert capsys.readouterr().err == ""
+    check(30.0)
+    assert capsys.readouterr().err == ("note: Monte Carlo: 10000 samples, each refitting the "
+                                       "run-outs: about 30 s\n")
+    with pytest.raises(pim.InputError) as err:
+        check(600.0)
+    assert str(err.value) == ("--max-minutes 1: the Monte Carlo of 10000 samples refits the "
+                              "run-outs of each sample, about 10 min here; give --samples 1000 "
+                              "or fewer, or raise --max-minutes")
+    budget(10_000, 4, 3.0)(600.0)           # four workers: 150 s, within 3 min
+
+
+@pytest.mark.slow
+def test_a_quoted_wheel_fraction_reconstructs_within_the_stated_budget(tmp_path, capsys):
+    """The fault harness's case: synthetic-runout with `wheels = '0.3'`: exit 2 and one line
+    before the Monte Carlo when its estimate exceeds --max-minutes."""
+    text = (resources.files("pim.io") / "cases" / "synthetic-runout.toml").read_text()
+    path = tmp_path / "w.toml"
+    path.write_text(text.replace('wheels = ["locked", "locked", 0.3, 0.3]', "wheels = '0.3'"))
+    assert main(["solve", str(path)]) == 0
+    capsys.readouterr()
+    assert main(["reconstruct", str(path), "--max-minutes", "0.01"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("error: --max-minutes 0.01: the Monte Carlo of 10000 samples refits "
+                          "the run-outs of each sample, about ") and "\n" not in err, err

@@ -43,7 +43,9 @@ def test_the_commands_run_from_their_module(folder, tmp_path, capsys):
         == regression_cli.DRIFT_EXIT_CODE == 1
 
 
-def test_a_changed_mass_is_exit_1_with_a_readable_table(folder, tmp_path, capsys):
+def test_a_changed_mass_is_exit_1_with_a_readable_table(folder, tmp_path, capsys,
+                                                         monkeypatch):
+    monkeypatch.chdir(tmp_path)      # the case is shown by its path from the current folder
     shutil.copy(folder / "b.json", tmp_path / "b.json")
     text = (folder / "mine.toml").read_text().replace("4896.2 lbf", "5200 lbf")
     (tmp_path / "mine.toml").write_text(text)

@@ -81,4 +81,5 @@ def test_named_prior_in_a_case_file_runs_uncertainty(tmp_path, capsys):
     bad = write_text(tmp_path / "bad.toml", text.replace("car-to-car\"}\nimpact.beta",
                                                           "car-to-carx\"}\nimpact.beta"))
     assert main(["uncertainty", str(bad), "--samples", "100"]) == 2
-    assert "unknown prior 'iihs-small-overlap-car-to-carx'" in capsys.readouterr().err
+    assert ("uncertainty.impact.restitution.prior = 'iihs-small-overlap-car-to-carx' is not a "
+            "known prior; did you mean 'iihs-small-overlap-car-to-car'?") in capsys.readouterr().err

@@ -448,3 +448,16 @@ def test_kudlich_slibar_families_with_the_contact_plane_free(ricsac9):
                for w in sticking.identifiability.warnings)
     # with the plane given, both are decided (sliding) or k is and mu_c has its lower bound
     assert fit(_ks_measured(ricsac9, 0.3, 0.4), include_yaw=True).identifiability.identifiable
+
+
+def test_fit_names_the_argument_given_a_string():
+    """Issue 28: an AttributeError deep inside (measured='x'), int()'s message (grid)."""
+    case = pim.load_case("ricsac9")
+    with pytest.raises(TypeError, match=r"^measured must be a pim.Measured or None"):
+        fit(replace(case, measured="x"))
+    with pytest.raises(TypeError, match=r"^case must be a pim.Case \(a case name or file is "
+                                        r"read by pim.load_case\(...\)\), got 'ricsac9'$"):
+        fit("ricsac9")
+    with pytest.raises(pim.InputError, match=r"^grid must be two integers >= 3 \(points per "
+                                             r"axis: eps, beta\), got \('a', 5\)$"):
+        fit(case, grid=("a", 5))

@@ -191,3 +191,28 @@ def test_messages_print_speeds_in_the_unit_the_edge_chose():
             assert speed_text(10.0, ".3g") == "36 km/h"
         assert speed_text(10.0).endswith(" mph")
     assert speed_text(10.0) == "10 m/s"
+# Issue 28: "10°" for an angle, "35.5 %" for a restitution and "100 %" for beta were refused
+# ("must be one number followed by a unit"); expected values by hand: 10 deg = pi/18 rad.
+@pytest.mark.parametrize("text, kind, si", [
+    ("10°", "angle", math.pi / 18),
+    ("10 °", "angle", math.pi / 18),
+    ("-5.5°", "angle", -5.5 * math.pi / 180),
+    ("30°/s", "angular_velocity", math.pi / 6),
+    ("35.5 %", "dimensionless", 0.355),
+    ("35.5%", "dimensionless", 0.355),
+    ("100 %", "dimensionless", 1.0),
+])
+def test_degree_and_percent_signs_are_read(text, kind, si):
+    assert parse(text, kind, "f") == pytest.approx(si, rel=1e-15)
+
+
+@pytest.mark.parametrize("text, kind, words", [
+    ("10 %", "angle", "is not an angle"),                       # a percent is no angle
+    ("10°", "dimensionless", "is not a dimensionless number (its unit has dimension angle"),
+    ("5 %%", "dimensionless", "text after its unit"),
+    ("10%s", "dimensionless", "text after its unit"),
+    ("10 °°", "angle", "text after its unit"),
+])
+def test_signs_are_read_only_as_one_unit(text, kind, words):
+    with pytest.raises(InputError, match=words.replace("(", r"\(")):
+        parse(text, kind, "f")

@@ -27,3 +27,11 @@ def test_summarize_needs_one_case():
     case = pim.load_case("ricsac9")
     with pytest.raises(ValueError, match="single case"):
         summarize(pim.solve(case, [0.2, 0.3], 1.0))
+
+
+def test_the_impulse_rows_say_whose_impulse_they_are():
+    """Issue 28: a row "impulse on vehicle x" (x is an axis, not a vehicle)."""
+    rows = {row.key: row for row in summarize(pim.solve(pim.load_case("ricsac9")), "si")}
+    assert rows["impulse_x"].label == "impulse on the vehicle, x"
+    assert rows["impulse_y"].label == "impulse on the vehicle, y"
+    assert rows["impulse_x"].vehicle2 == -rows["impulse_x"].vehicle1
