@@ -29,6 +29,7 @@ import sim
 from pim.analysis.residuals import has_measured_terms
 from pim.io.files import write_text
 from pim.io.output import output_folder, rebase
+from pim.io.units import quantity_text
 from pim.model.plausibility import warnings_of
 from sim.error_measure import compare_results, impact_error
 
@@ -185,7 +186,7 @@ def _markdown(case, setup, fit, run, info, tables, rep, units) -> str:
     r = setup.result
     lines += [f"- **{setup.parameters()}**; impulse ratio Pt / Pn = {float(r.mu):.4g}.", "",
               md_table(by_name["results"]), md_table(by_name["law"])]
-    warnings = warnings_of(case, r)
+    warnings = warnings_of(case, r, show=quantity_text(units))
     if warnings:
         lines += ["Warnings:", ""] + [f"- {p}" for p in warnings] + [""]
     lines += ["## Coefficients", ""] + _fit_lines(setup, fit)
@@ -199,6 +200,9 @@ def _markdown(case, setup, fit, run, info, tables, rep, units) -> str:
                   f"Filled outlines: the law's pymunk run; dashed magenta outlines: the "
                   f"analytic post-impact motion. Largest offset between them after the "
                   f"impact: {info.max_ghost_offset_px:.2g} px.", ""]
+        if info.secondary_impact is not None:
+            lines += [f"**Plausibility:** {info.secondary_impact.message(units)}; the "
+                      f"animation marks it.", ""]
     else:
         lines += ["(not written: --no-animation)", ""]
     lines += ["## Appendix A: the analytic answer against the law's pymunk run", ""]

@@ -48,7 +48,7 @@ from pim.cli.pre_impact_output import TITLE as PRE_IMPACT_TITLE
 from pim.cli.pre_impact_output import pre_impact_rows
 from pim.io.files import save_figure, write_text
 from pim.io.output import ignore_interrupts, output_folder, rebase, stop_workers
-from pim.io.units import convert
+from pim.io.units import convert, quantity_text
 from pim.model.plausibility import warnings_of
 from pim.model.quantities import OUTPUTS as QUANTITIES
 from pim.plotting.sheet import write_plots
@@ -419,7 +419,8 @@ def _gather_results(case, options: CompareOptions, units: str) -> ReportData:
                                  beta=beta)
     data = ReportData(case=case, case_path=options.case_path or case.name or "CASE",
                       units=units, eps=eps, beta=beta, sources=sources, result=result, fit=fit,
-                      warnings=warnings_of(case, result, options.friction_limit),
+                      warnings=warnings_of(case, result, options.friction_limit,
+                                           quantity_text(units)),
                       animation_requested=options.animation)
     data.add_table(results_table(result, units, spread))
     pre_impact = pre_impact_table(case, units)

@@ -140,7 +140,8 @@ def _animation(data: ReportData, folder: Path) -> str:
                     still=h.still_frame(mp4, 0.6))]
     if info.secondary_impact is not None:
         body.append(f'<div class="warn"><strong>Plausibility:</strong> '
-                    f"{h.esc(info.secondary_impact.message())}; the animation marks it.</div>")
+                    f"{h.esc(info.secondary_impact.message(data.units))}; the animation marks "
+                    f"it.</div>")
     return h.section("Animation", body, id="animation")
 
 

@@ -139,7 +139,7 @@ def _animation(data: ReportData) -> list[str]:
                   f"Largest offset between ghost and simulation after the impact: "
                   f"{info.max_ghost_offset_px:.2g} px.", ""]
         if info.secondary_impact is not None:
-            lines += [f"**Plausibility:** {info.secondary_impact.message()}; the animation "
+            lines += [f"**Plausibility:** {info.secondary_impact.message(data.units)}; the animation "
                       f"marks it.", ""]
     elif data.animation_error is not None:
         e = data.animation_error

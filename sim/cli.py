@@ -6,12 +6,18 @@ import sys
 
 import click
 
+import math
+
 from pim.cli import (
     FiniteFloat,
+    allow_inadmissible_option,
     beta_option,
     case_argument,
+    check_answer,
     echo_json,
     eps_option,
+    findings_json,
+    finish_answer,
     json_option,
     units_option,
 )
@@ -19,7 +25,10 @@ from pim.model.impact_laws import solve_law
 from pim.model.numbers import InputError
 
 from .crosscheck import crosscheck
-from .kudlich_slibar import crosscheck_kudlich_slibar
+from .failures import SimulationError
+from .kudlich_slibar import crosscheck_kudlich_slibar, simulate_kudlich_slibar
+from .secondary import WATCH_AFTER, find_secondary_impact, watch_after_impact
+from .settings import Settings
 
 __all__ = ["sim"]
 
@@ -36,19 +45,21 @@ __all__ = ["sim"]
 @click.option("--start", type=click.Choice(["exact", "detected"]), default="exact",
               show_default=True, help="Place the contact at C, or let the engine find it.")
 @units_option
+@allow_inadmissible_option
 @json_option
-def sim(case_name, eps, beta, dt, iterations, contact, start, units, as_json):
+def sim(case_name, eps, beta, dt, iterations, contact, start, units, allow_inadmissible,
+        as_json):
     """Simulate CASE with pymunk and compare with the analytic answer (pim solve) under the
     case's impact law (Brach's PIM, friction-capped Brach or Kudlich-Slibar).
 
     Prints analytic and simulated post-impact velocities and yaw rates with absolute and
-    relative errors, and the wall time of the simulation. Exit code 1 if the simulation
-    fails (no contact, never separated, multiple contacts, energy gained, not converged).
+    relative errors, and the wall time of the simulation; before them, a note when the
+    outlines run into each other again within 2 s after the impact (a secondary contact,
+    with its time and place). Exit code 1 if the simulation fails (no contact, never
+    separated, multiple contacts, energy gained, not converged), and after the table when
+    the analytic answer is inadmissible (the reasons first; --allow-inadmissible: exit 0).
     """
     from pim.io.casefile import load_case
-
-    from .failures import SimulationError
-    from .settings import Settings
 
     kwargs = {"iterations": iterations, "contact": contact, "start": start}
     if dt is not None:
@@ -61,12 +72,37 @@ def sim(case_name, eps, beta, dt, iterations, contact, start, units, as_json):
     except SimulationError as exc:
         click.echo(f"simulation failed ({exc.kind}): {exc}", err=True)
         sys.exit(1)
+    found = check_answer(case, check.analytic, units, allow=allow_inadmissible,
+                         as_json=as_json)
+    secondary, why = _secondary(case, check)
     if as_json:
-        echo_json(check.to_json(units))
-        return
-    for text in getattr(check, "limitations", ()):     # before the table, where a reader sees them
-        click.echo(f"note: {text}", err=True)
-    click.echo(check.format_table(units))
+        echo_json(check.to_json(units) | findings_json(found) | {
+            "secondary_impact": None if secondary is None else secondary.to_json(units)})
+    else:
+        # before the table, where a reader sees them; PIM's own flags are said above
+        for text in getattr(check, "limitations", ()):
+            if not text.startswith("PIM: "):
+                click.echo(f"note: {text}", err=True)
+        if secondary is not None or why:
+            click.echo(f"note: {why or secondary.message(units)}", err=True)
+        click.echo(check.format_table(units))
+    finish_answer(found, allow_inadmissible)
+
+
+def _secondary(case, check):
+    """(The secondary contact within :data:`sim.secondary.WATCH_AFTER` s after the impact
+    or None, why it could not be watched or ""): the rigid scene of the check played on,
+    or the Kudlich-Slibar two-phase run."""
+    try:
+        if (case.impact.law or "brach") != "kudlich-slibar":
+            return watch_after_impact(case, check.eps, check.beta), ""
+        settings = Settings(dt=1e-3, record=True, duration=WATCH_AFTER + 2e-3)
+        mu_c = check.mu_c if math.isfinite(check.mu_c) else 1e6    # always stick
+        run = simulate_kudlich_slibar(case, check.k, mu_c, settings)
+        return find_secondary_impact(run.trajectory), ""
+    except SimulationError as exc:
+        return None, (f"a secondary contact after the impact was not checked: the run on "
+                      f"after the impact failed ({exc.kind})")
 
 
 def _crosscheck_law(case, eps, beta, settings):

@@ -8,8 +8,12 @@ import click
 from ..model.numbers import InputError
 from .main import (
     FiniteFloat,
+    allow_inadmissible_option,
     case_argument,
+    check_answer,
     echo_json,
+    findings_json,
+    finish_answer,
     json_option,
     require_brach,
     units_option,
@@ -177,9 +181,10 @@ def _cost_lines(result, fv: float, uv: str) -> list[str]:
 @beta_range_option
 @free_option
 @units_option
+@allow_inadmissible_option
 @json_option
 def fit(case_name, include_yaw, eps, beta, k, mu_c, eps_range, beta_range, free, units,
-        as_json):
+        allow_inadmissible, as_json):
     """Least-squares impact-law parameters matching CASE's measured post-impact motion:
     Brach's (epsilon, beta), or under the case's law "kudlich-slibar" its (k, mu_c).
 
@@ -187,7 +192,8 @@ def fit(case_name, include_yaw, eps, beta, k, mu_c, eps_range, beta_range, free,
     the global optimum. --eps or --beta (--k or --mu-c) fits the other parameter alone;
     --free adds any other input, and the output then says whether the data determine them
     all (rank, families of equally good fits, under-determined, a mu_c that only has a
-    lower bound).
+    lower bound). Exit code 1 after the output when the fitted answer is inadmissible (the
+    reasons first; --allow-inadmissible: exit 0), e.g. beta > 1 with a --beta-range beyond 1.
     """
     from ..io.casefile import load_case
 
@@ -201,16 +207,19 @@ def fit(case_name, include_yaw, eps, beta, k, mu_c, eps_range, beta_range, free,
     result = _fit(case, include_yaw, k if ks else eps, beta, eps_range, beta_range,
                   parse_free(free), mu_c)
     ident = result.identifiability
+    found = check_answer(result.case, result.result, units, allow=allow_inadmissible,
+                         as_json=as_json)
     if as_json:
-        data = fit_json(result.to_dict(), units)
+        data = fit_json(result.to_dict(), units) | findings_json(found)
         if free or ks:
             shown = {k: _shown(v, _kind_of(k), units) for k, v in result.values.items()}
             data["values"] = {k: s["value"] for k, s in shown.items()}
             data["value_units"] = {k: s["unit"] for k, s in shown.items()}
             data["identifiability"] = ident.to_dict() if ident is not None else None
         echo_json(data)
-        return
-    _print_fit(case, result, include_yaw, free, units)
+    else:
+        _print_fit(case, result, include_yaw, free, units)
+    finish_answer(found, allow_inadmissible)
 
 
 def _coefficient_lines(result) -> list[str]:
@@ -240,8 +249,6 @@ def _print_fit(case, result, include_yaw, free, units) -> None:
     from ..io.units import convert
 
     ident = result.identifiability
-    for text in [*case.notes, *result.result.problems()]:     # before the table
-        click.echo(f"warning: {text}", err=True)
     fv, uv = convert(1.0, "velocity", units)
     fw, uw = convert(1.0, "angular_velocity", units)
     fixed = f" (fixed: {', '.join(result.fixed)})" if result.fixed else ""
@@ -353,25 +360,39 @@ def _parse_sigma(items) -> dict:
 @click.option("--top", type=click.IntRange(min=1), default=None,
               help="Show only the N largest effects.")
 @units_option
+@allow_inadmissible_option
 @json_option
-def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
+def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, allow_inadmissible,
+                as_json):
     """Which uncertain input moves the fitted (epsilon, beta) and delta-V most.
 
     For each answer, the inputs are ranked by the change that one typical uncertainty
-    (sigma) of the input causes; the derivative per unit is shown too.
+    (sigma) of the input causes; the derivative per unit is shown too. Exit code 1 after
+    the output when the answer at (epsilon, beta) is inadmissible (the reasons first;
+    --allow-inadmissible: exit 0).
     """
-    from ..analysis.sensitivity import INPUTS, SENSITIVITY_OUTPUTS
     from ..analysis.sensitivity import sensitivity as compute
     from ..io.casefile import load_case
+    from ..model.solver import solve
 
     case = load_case(case_name)
     require_brach(case, "pim sensitivity")
     units = units or case.units
     sens = compute(case, eps=eps, beta=beta, uncertainty=_parse_sigma(sigmas),
                    include_yaw=include_yaw)
+    found = check_answer(case, solve(case, sens.eps, sens.beta), units,
+                         allow=allow_inadmissible, as_json=as_json)
     if as_json:
-        echo_json(sensitivity_json(sens, units))
-        return
+        echo_json(sensitivity_json(sens, units) | findings_json(found))
+    else:
+        _print_sensitivity(case, sens, top, units)
+    finish_answer(found, allow_inadmissible)
+
+
+def _print_sensitivity(case, sens, top, units) -> None:
+    """``pim sensitivity``'s text output."""
+    from ..analysis.sensitivity import INPUTS, SENSITIVITY_OUTPUTS
+
 
     how = ("fitted to the measured motion" if sens.fit is not None
            else "at fixed epsilon, beta (nothing measured)")

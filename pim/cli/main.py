@@ -18,13 +18,14 @@ import click
 
 from ..io.output import OutputError, note_signal, signal_received
 from ..model.numbers import InputError
-from ..model.plausibility import warnings_of
+from ..model.plausibility import Findings, findings, warnings_of
 
 __all__ = ["main", "cli", "FiniteFloat",
            "case_argument", "eps_option", "beta_option", "units_option",
            "json_option", "echo_json", "friction_limit_option", "cap_friction_option",
            "solve_with_options", "warnings_of", "NO_IMPACT_EXIT_CODE", "law_options",
-           "require_brach"]
+           "require_brach", "allow_inadmissible_option", "INADMISSIBLE_EXIT_CODE",
+           "check_answer", "say_findings", "finish_answer", "findings_json"]
 
 ENTRY_POINT_GROUP = "pim.commands"
 
@@ -233,6 +234,54 @@ def _brach_equivalent(case, law: str) -> str:
 
 #: Exit code of a command whose case has no impact (the vehicles separate at C).
 NO_IMPACT_EXIT_CODE = 1
+#: Exit code of a command whose answer is inadmissible (printed, reasons first), unless
+#: --allow-inadmissible.
+INADMISSIBLE_EXIT_CODE = 1
+
+allow_inadmissible_option = click.option(
+    "--allow-inadmissible", "allow_inadmissible", is_flag=True,
+    help="Exit 0 even when the answer is inadmissible (the contact would pull, kinetic energy "
+         "is gained, beta outside [0, 1] under Brach's law, C farther from a CG than the "
+         "vehicle is long); the reasons are still printed first. Default: exit 1 after the "
+         "answer.")
+
+
+def say_findings(found: Findings, allow: bool = False, as_json: bool = False) -> None:
+    """Print ``found`` on stderr before the answer, one line each: its errors ("error:",
+    or "warning:" when ``allow``), then its warnings (left to the JSON when ``as_json``)."""
+    for text in found.errors:
+        click.echo(f"{'warning' if allow else 'error'}: {text}", err=True)
+    for text in () if as_json else found.warnings:
+        click.echo(f"warning: {text}", err=True)
+
+
+def check_answer(case, result=None, units=None, friction_limit=None, allow=False,
+                 as_json=False) -> Findings:
+    """The errors and warnings about ``case`` and its answer ``result``
+    (:func:`pim.model.plausibility.findings`), numbers in ``units`` (default: the case's),
+    printed on stderr (:func:`say_findings`); end the command with :func:`finish_answer`."""
+    from ..io.units import quantity_text
+
+    found = findings(case, result, friction_limit, quantity_text(units or case.units))
+    say_findings(found, allow, as_json)
+    return found
+
+
+def finish_answer(found: Findings, allow: bool = False) -> None:
+    """After the answer: exit :data:`INADMISSIBLE_EXIT_CODE` when ``found`` holds errors,
+    unless ``allow`` (--allow-inadmissible)."""
+    if found.errors and not allow:
+        click.echo(f"error: the answer is inadmissible ({len(found.errors)} reason"
+                   f"{'s' if len(found.errors) > 1 else ''} above); --allow-inadmissible "
+                   f"accepts it", err=True)
+        raise click.exceptions.Exit(INADMISSIBLE_EXIT_CODE)
+
+
+def findings_json(found: Findings) -> dict:
+    """The JSON fields of ``found``: admissible, inadmissible (the errors), warnings and
+    problems (both)."""
+    return {"admissible": not found.errors, "inadmissible": found.errors,
+            "warnings": found.warnings, "problems": found.all}
 
 
 @cli.command()
@@ -243,8 +292,10 @@ NO_IMPACT_EXIT_CODE = 1
 @cap_friction_option
 @law_options
 @units_option
+@allow_inadmissible_option
 @json_option
-def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, units, as_json):
+def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, units,
+          allow_inadmissible, as_json):
     """Solve CASE under its impact law (default Brach's PIM) and print the post-impact
     results.
 
@@ -252,7 +303,8 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, unit
     impulse, Brach's coefficients and the energy loss with its normal/tangential split, then
     warnings; with pre-impact evidence (tyre marks before the impact, a driver table from a
     negative time) each vehicle's speed at their start. Exit code 1 with one line when the
-    vehicles do not approach at C (no impact).
+    vehicles do not approach at C (no impact), and after the table when the answer is
+    inadmissible (the reasons first; --allow-inadmissible: exit 0).
     """
     from ..analysis.pre_impact_speeds import case_pre_impact
     from ..io.casefile import load_case
@@ -267,22 +319,20 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, unit
     if result.q_singular.any():
         problems = result.problems()
         raise InputError(problems[0] if problems else "q is singular")
-    warnings = warnings_of(case, result, friction_limit)
+    found = check_answer(case, result, units, friction_limit, allow_inadmissible, as_json)
     rows = summarize(result, units)
     law = getattr(result, "law", None) or ("brach-capped" if cap_friction
                                            else case.impact.law or "brach")
     if as_json:
-        echo_json({"case": case.name, "units": units, "law": law,
-                   "admissible": bool(result.admissible), "problems": warnings,
+        echo_json({"case": case.name, "units": units, "law": law, **findings_json(found),
                    "results": rows_to_json(rows), "pre_impact": pre_impact_json(pre_impact)})
-        return
-    for text in warnings:       # before the table, where a reader sees them
-        click.echo(f"warning: {text}", err=True)
-    click.echo(format_table(rows, _title(case, result, law)))
-    if pre_impact:
-        click.echo("\nSpeeds before the impact (from the case's impact velocities):")
-        for line in pre_impact_lines(pre_impact):
-            click.echo(line)
+    else:
+        click.echo(format_table(rows, _title(case, result, law)))
+        if pre_impact:
+            click.echo("\nSpeeds before the impact (from the case's impact velocities):")
+            for line in pre_impact_lines(pre_impact):
+                click.echo(line)
+    finish_answer(found, allow_inadmissible)
 
 
 def _title(case, result, law: str) -> str:

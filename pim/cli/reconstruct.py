@@ -38,7 +38,16 @@ from ..model.evidence import UNKNOWN_KINDS
 from ..model.numbers import InputError
 from ..plotting.reconstruction_animation import write_reconstruction_mp4
 from ..plotting.reconstruction_scene import reconstruction_figure
-from .main import case_argument, echo_json, json_option, units_option
+from .main import (
+    allow_inadmissible_option,
+    case_argument,
+    check_answer,
+    echo_json,
+    findings_json,
+    finish_answer,
+    json_option,
+    units_option,
+)
 from .pre_impact_output import (
     pre_impact_html,
     pre_impact_json,
@@ -250,21 +259,27 @@ def _json(case, rows: list[dict], samples: int, messages, units: str) -> dict:
 @click.option("--progress/--no-progress", default=None,
               help="Progress of the stages on stderr (default: only on a terminal).")
 @units_option
+@allow_inadmissible_option
 @json_option
-def reconstruct(case_name, out, samples, seed, workers, video, progress, units, as_json):
+def reconstruct(case_name, out, samples, seed, workers, video, progress, units,
+                allow_inadmissible, as_json):
     """Reconstruct CASE's unknowns (e.g. the impact speeds) from its evidence.
 
     With --out the folder is written whole at the end (or not at all: an error or an
     interrupt leaves an earlier run there as it was); its lock is taken before the work.
+    Exit code 1 after the output when the reconstructed answer is inadmissible (the
+    reasons first; --allow-inadmissible: exit 0).
     """
     case = load_case(case_name)
     units = units or case.units
     with output_folder(out, command="pim reconstruct") if out else \
             contextlib.nullcontext() as tmp:
         with _stages(case, samples, workers, progress) as say:
-            rec, rows, pre = _reconstruct(case, samples, seed, workers, units, as_json, say)
+            rec, rows, pre, found = _reconstruct(case, samples, seed, workers, units, as_json,
+                                                 say, allow_inadmissible)
         if tmp is not None:
             _write_folder(tmp, rec, rows, units, video, pre)
+    finish_answer(found, allow_inadmissible)
 
 
 @contextlib.contextmanager
@@ -286,9 +301,10 @@ def _stages(case, samples: int, workers: int, progress):
         yield say
 
 
-def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
-    """Run the reconstruction and print its table (or JSON); return it, its rows and the
-    rows of the speeds before the impact (:mod:`pim.cli.pre_impact_output`)."""
+def _reconstruct(case, samples, seed, workers, units, as_json, say=None, allow=False):
+    """Run the reconstruction and print its table (or JSON) after what is wrong or doubtful
+    about its answer; return it, its rows, the rows of the speeds before the impact
+    (:mod:`pim.cli.pre_impact_output`) and those findings."""
     if workers > 1:
         with worker_pool(workers) as pool:
             rec = run_reconstruction(case, samples=samples, seed=seed, executor=pool,
@@ -301,8 +317,9 @@ def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
                               "; ".join(rec.messages)))
     rows = reconstruction_rows(rec, units)
     pre = pre_impact_rows(reconstruction_pre_impact(rec, seed), units)
+    found = check_answer(rec.fit.case, rec.fit.result, units, allow=allow, as_json=as_json)
     if as_json:
-        data = _json(case, rows, samples, rec.messages, units)
+        data = _json(case, rows, samples, rec.messages, units) | findings_json(found)
         data["pre_impact"] = pre_impact_json(pre)
         data["tyre_models"] = ({f"vehicle{i}": fit.tyre_model for i, fit in
                                 rec.post.runouts.items()} if rec.post else {})
@@ -328,7 +345,7 @@ def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
             click.echo(f"evidence: {line}")
         if rec.goodness is not None:
             click.echo(f"goodness of fit: {rec.goodness.summary()}")
-    return rec, rows, pre
+    return rec, rows, pre, found
 
 
 def _crush_json(rec: Reconstruction, units: str) -> dict:

@@ -17,6 +17,7 @@ Unknown keys are errors, so a typo is never silently ignored; every error is a
     yaw_rate = "0 deg/s"
     length = "4.1 m"                # optional, with width: outline for drawing
     cg_to_front = "1.9 m"           # optional: CG to front bumper (default length / 2)
+    reversing = true                # optional: it moves backwards (silences that warning)
     [impact]
     point = [0, 0]
     normal_angle = "0 deg"          # Gamma: n points from vehicle 2 toward vehicle 1
@@ -65,7 +66,8 @@ __all__ = ["load_case", "list_cases", "parse_case"]
 _TOP = {"name", "description", "source", "convention", "vehicle1", "vehicle2", "impact",
         "measured", "uncertainty", "evidence", "unknown", "tyres", "driver"}
 _VEHICLE = {"mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
-            "length", "width", "cg_to_front", "fixed", "cg", "heading", "theta", "phi", "d"}
+            "length", "width", "cg_to_front", "fixed", "cg", "heading", "theta", "phi", "d",
+            "reversing"}
 
 #: Deepest nesting of tables and lists a case file may have: the deepest legitimate value,
 #: ``[measured] vehicle1.velocity = [..]``, sits at depth 4.
@@ -106,9 +108,10 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int)
     if stray:
         raise InputError(f"{where}: key {stray[0]!r} does not belong to the {convention!r} "
                          f"convention (use {', '.join(placement)})")
-    fixed = table.get("fixed", False)
-    if not isinstance(fixed, bool):
-        raise InputError(f"{where}.fixed must be true or false")
+    fixed, reversing = table.get("fixed", False), table.get("reversing", False)
+    for key, value in (("fixed", fixed), ("reversing", reversing)):
+        if not isinstance(value, bool):
+            raise InputError(f"{where}.{key} must be true or false, got {value!r}")
     if convention == "global" and fixed:
         cg = _pair(table["cg"], "length", f"{where}.cg") if "cg" in table else point
         heading = parse(table.get("heading", 0.0), "angle", f"{where}.heading")
@@ -129,7 +132,7 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int)
         if number == 1:
             raise InputError(f"{where}.fixed: only vehicle2 may be a fixed obstacle")
         extra = sorted(set(table) & {"mass", "weight", "yaw_inertia", "radius_of_gyration",
-                                     "velocity", "yaw_rate"})
+                                     "velocity", "yaw_rate", "reversing"})
         if extra:
             raise InputError(f"{where}.{extra[0]}: a fixed obstacle has no {extra[0]}")
         return _wrap(where, Vehicle.obstacle, cg=cg, heading=heading, length=length, width=width,
@@ -159,7 +162,7 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int)
     yaw_rate = parse(table.get("yaw_rate", 0.0), "angular_velocity", f"{where}.yaw_rate")
     return _wrap(where, Vehicle, mass=mass, yaw_inertia=inertia, cg=cg, velocity=velocity,
                  yaw_rate=yaw_rate, heading=heading, length=length, width=width,
-                 cg_to_front=cg_to_front)
+                 cg_to_front=cg_to_front, reversing=reversing)
 
 
 def _wrap(where: str, factory, **kwargs):

@@ -16,7 +16,7 @@ import numpy as np
 from ..model.numbers import InputError
 
 __all__ = ["registry", "parse", "convert", "DISPLAY_UNITS", "UNIT_SYSTEMS", "LIMITS",
-           "unit_system_of"]
+           "unit_system_of", "quantity_text"]
 
 #: SI unit of each kind of input quantity (its dimension is the expected one).
 DIMENSIONS = {
@@ -291,3 +291,16 @@ def convert(value, kind: str, system: str):
     factor = registry().Quantity(1.0, SI_UNITS[kind]).to(target).magnitude
     label = "-" if target == "dimensionless" else target.replace("**", "^").replace("*", " ")
     return np.asarray(value) * factor, label
+
+
+def quantity_text(system: str):
+    """A ``show(value [SI], kind) -> "149.7 ft"`` for messages in ``system``'s display units
+    (:data:`DISPLAY_UNITS`; angles in deg): what :mod:`pim.model.plausibility` takes to
+    print its numbers in the case's units."""
+    if system not in DISPLAY_UNITS:
+        raise InputError(f"units must be one of {', '.join(UNIT_SYSTEMS)}, got {system!r}")
+
+    def show(value: float, kind: str) -> str:
+        shown, label = convert(value, kind, system)
+        return f"{float(shown):.4g} {label}"
+    return show
