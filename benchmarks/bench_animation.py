@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 import pim
-from comparisons.animation import build_renderer, write_animation
+from comparisons.animation.render import build_renderer, write_animation
 
 
 def matplotlib_baseline(renderer, frames: int) -> float:

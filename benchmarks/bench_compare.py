@@ -46,7 +46,7 @@ def run_command(case: str, out: str) -> tuple[float, float, dict]:
     """Wall and CPU seconds of ``pim compare CASE`` in a fresh process, and its split."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
-    done = subprocess.run([sys.executable, "-m", "pim_entry", "compare", case, "--out", out,
+    done = subprocess.run([sys.executable, "-m", "pim_cli", "compare", case, "--out", out,
                            "--json", "--no-progress"], capture_output=True, text=True,
                           check=True)
     wall = time.perf_counter() - t0

@@ -29,9 +29,9 @@ from pim.files import save_figure
 
 import pim
 import sim
-from comparisons.assumptions import outcome_errors
-from comparisons.speed_error_compliant import compliant_sweep
-from comparisons.stiff_limit import plot_stiff_limit, stiff_limit
+from comparisons.studies.assumptions import outcome_errors
+from comparisons.studies.speed_error_compliant import compliant_sweep
+from comparisons.studies.stiff_limit import plot_stiff_limit, stiff_limit
 from sim.compliant_setup import build_problem
 from sim.contact_law import stiffness_for_duration
 
@@ -104,7 +104,7 @@ def main() -> None:
         print("\n3. pim assumptions ricsac9 end to end")
         with tempfile.TemporaryDirectory() as tmp:
             start = time.perf_counter()
-            subprocess.run([sys.executable, "-c", "from pim.cli import run; run()",
+            subprocess.run([sys.executable, "-c", "from pim_cli.main import run; run()",
                             "assumptions", "ricsac9", "--out", tmp, "--no-progress"],
                            check=True, capture_output=True)
             print(f"   {time.perf_counter() - start:.1f} s (goal < 60 s)")

@@ -19,7 +19,7 @@ from pathlib import Path
 
 from click.testing import CliRunner
 
-from comparisons.cli import speed_error
+from pim_cli.compare import speed_error
 from pim.io.casefile import list_cases
 
 USER_CASE = str(Path(__file__).resolve().parent.parent / "tests" / "data"

@@ -32,7 +32,7 @@ TABLE = {
 def peak_memory(samples: int) -> tuple[float, float]:
     """(peak resident memory [bytes], wall time [s]) of ``pim uncertainty`` in a child."""
     t0 = time.perf_counter()
-    code = ("import sys; from pim.cli.main import main; "
+    code = ("import sys; from pim_cli.main import main; "
             f"sys.exit(main(['uncertainty', 'ricsac9', '--samples', '{samples}', '--json']))")
     subprocess.run([sys.executable, "-c", code], check=True, stdout=subprocess.DEVNULL)
     # each child is waited for before the next starts, so the maximum is this child's once

@@ -20,8 +20,8 @@ with (Pn0, Pt0) = K^-1 [-(1 + eps) u_n, -u_t] (the critical impulse, affine in e
 and the derivatives of the velocities, yaw rates, energies and angles follow by the chain
 rule (each formula is next to its output in :func:`derivatives`). The closed form is tested
 against automatic differentiation of the one formula (:mod:`pim.model.dual`, forward-mode
-dual numbers; ``tests/test_dual.py``) on random scenes, and against central finite
-differences of :func:`pim.solve` (``tests/test_sensitivity.py``). For derivatives with
+dual numbers; ``tests/pim/model/test_dual.py``) on random scenes, and against central finite
+differences of :func:`pim.solve` (``tests/pim/analysis/test_sensitivity.py``). For derivatives with
 respect to the other inputs (Gamma, C, the pre-impact motion) use
 :func:`pim.model.dual.motion_jacobian`.
 """

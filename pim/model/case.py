@@ -34,7 +34,7 @@ FRICTION_LAWS = ("brach-capped", "kudlich-slibar")
 #: determinant ~ (1/m)^2, m v^2 with v <= 1e4 m/s) then stays within 1e-140 ... 1e140, far
 #: from float overflow and underflow; a mass of 1e-300 kg made 1/m^2 overflow to inf and
 #: the answer NaN. Mass ratios are no problem: 1/m1 + 1/m2 adds positive terms (a ratio of
-#: 1e12 keeps the energy loss to 1e-9, tests/test_case_validation.py).
+#: 1e12 keeps the energy loss to 1e-9, tests/pim/model/test_case_validation.py).
 MASS_RANGE = (1e-60, 1e60)
 INERTIA_RANGE = (1e-60, 1e60)
 

@@ -12,7 +12,7 @@ branch-free fdlibm polynomials (:func:`_sincos`, within 1 ulp of the C library's
 LLVM vectorise the loop (:func:`_solve_kernel_simd`, near the memory-copy bound; the figures
 are printed by ``benchmarks/bench_solve.py`` and kept in docs/performance.md). The results
 then agree with the numpy path within :data:`ULP_BOUND` ulp of each output's scale times the
-condition number of q (``tests/test_kernel.py``, hypothesis over the inputs), the approach
+condition number of q (``tests/pim/model/test_kernel.py``, hypothesis over the inputs), the approach
 and singular-q flags included. With ``fast_trig=False`` the kernel calls the C library's
 sine and cosine, as numpy does, and gives bitwise the numpy path's values, at about 0.35 of
 the copy bound (the calls keep the loop scalar). The tolerances are arguments of the
@@ -74,7 +74,7 @@ BLOCK = 8192
 #: The fast (default) kernel agrees with the numpy path within this many ulp of each output's
 #: scale (the largest magnitude among the quantities it is formed from) times the condition
 #: number of q, (|K_nn Pn0| + |beta K_nt Pt0|) / |K_nn Pn0 + beta K_nt Pt0| (measured: a few
-#: hundred at most over 10^6 random scenes; tests/test_kernel.py).
+#: hundred at most over 10^6 random scenes; tests/pim/model/test_kernel.py).
 ULP_BOUND = 1024
 
 # fdlibm's minimax coefficients of sin and cos on [-pi/4, pi/4] and its split of pi/2.

@@ -1,0 +1,52 @@
+"""pytest plugin (entry point ``pytest11``): regression fixtures for any test suite.
+
+Installed with the project, it gives every test suite two fixtures::
+
+    def test_my_case(pim_check):
+        pim_check("cases/my-case.toml", "baselines/my-cases.json")
+
+    def test_simulation_agrees(assert_agrees):
+        import pim, sim
+        case = pim.load_case("ricsac9")
+        assert_agrees(pim.solve(case), sim.simulate(case), 1e-9)
+
+``pim_check(case, baseline)`` reruns that case of a baseline (``pim baseline``) and fails
+with the table of what moved beyond tolerance (``pim check``'s); ``assert_agrees(a, b, tol)``
+fails when two answers to a case differ by more than ``tol`` in the project's one error
+measure (:func:`comparisons.regression.baseline.agreement`). See docs/regression.md.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from comparisons.regression import baseline as regression
+from comparisons.regression.baseline import check_baseline, format_report
+
+__all__ = ["pim_check", "assert_agrees", "check_case"]
+
+
+def check_case(case: str, baseline) -> None:
+    """Fail (AssertionError with the drift table) when ``case`` of ``baseline`` moved.
+
+    ``case`` is the case as the baseline stores it (a bundled name or a path relative to
+    the baseline's folder) or its name; ``baseline`` the baseline file.
+    """
+    report = check_baseline(Path(baseline), [str(case)])
+    if not report.ok:
+        raise AssertionError("\n" + format_report(report))
+
+
+@pytest.fixture
+def pim_check():
+    """``pim_check(case, baseline)``: assert that a case still matches its baseline."""
+    return check_case
+
+
+@pytest.fixture
+def assert_agrees():
+    """``assert_agrees(result_a, result_b, tol)``: assert that two answers to a case agree
+    within ``tol`` by the project's one error measure; returns the error."""
+    return regression.assert_agrees

@@ -1,0 +1,97 @@
+"""What ``pim compare`` found for one case, as one typed object that renderers consume.
+
+:func:`comparisons.report.compare.gather_report` fills a :class:`ReportData` (results, tables,
+figures, the animation, the studies, timings); :mod:`comparisons.report.render` turns it into
+Markdown and CSV files. A new format (HTML) is a new renderer of the same object: the
+gathering does not change.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import pim
+
+from comparisons.report.tables import Table
+
+__all__ = ["ReportData"]
+
+
+@dataclass
+class ReportData:
+    """Everything a report of one case shows.
+
+    Attributes
+    ----------
+    case : pim.Case
+        The case.
+    case_path : str
+        The case as the user gave it (a bundled name or a file path): the commands the
+        report suggests use it, so that they run as printed.
+    units : {"si", "us"}
+        Units of every number shown.
+    eps, beta : float
+        The coefficients used [-].
+    sources : dict
+        Where each coefficient comes from ({"eps": ..., "beta": ...}, in words).
+    result : pim.Result
+        PIM's answer at (eps, beta).
+    tables : dict of str to Table
+        The report's tables by name (results, inputs, fit, crosscheck, speed_error_pareto,
+        speed_error, assumptions), in the order they are written.
+    fit : pim.analysis.fitting.FitResult or None
+        The least-squares fit, when one was made.
+    warnings : list of str
+        Plausibility warnings (:func:`pim.model.plausibility.warnings_of`).
+    simulated : sim.SimResult or None
+        The pymunk cross-check (None when it failed: ``sim_error``).
+    sim_error : sim.SimulationError or None
+        Why the cross-check failed.
+    limits : list of str
+        Where the simulator cannot reproduce PIM for this case.
+    error : float
+        Largest relative error of the impact's velocity changes, pymunk against PIM.
+    plot_files : list of str
+        The design sheet's figures, relative to the report folder.
+    animation : comparisons.animation.render.AnimationInfo or None
+        The animation written (paths relative to the report folder), if any.
+    animation_error : sim.SimulationError or None
+        Why no animation could be simulated.
+    animation_requested : bool
+        False with ``--no-animation``.
+    study : comparisons.studies.speed_error.SpeedErrorStudy or None
+        The coarse speed-against-error sweep.
+    assumptions : comparisons.studies.assumptions.AssumptionStudy or None
+        PIM's assumptions at typical values.
+    files : list of str
+        Every file written besides the report itself, relative to the report folder.
+    seconds : dict of str to float
+        Wall and CPU time per step [s].
+    """
+
+    case: pim.Case
+    case_path: str
+    units: str
+    eps: float
+    beta: float
+    sources: dict
+    result: pim.Result
+    tables: dict = field(default_factory=dict)
+    fit: object = None
+    warnings: list = field(default_factory=list)
+    simulated: object = None
+    sim_error: object = None
+    limits: list = field(default_factory=list)
+    error: float = float("nan")
+    plot_files: list = field(default_factory=list)
+    animation: object = None
+    animation_error: object = None
+    animation_requested: bool = True
+    study: object = None
+    assumptions: object = None
+    files: list = field(default_factory=list)
+    seconds: dict = field(default_factory=dict)
+
+    def add_table(self, table: Table) -> None:
+        """Add ``table`` (its name is its key and its CSV's stem)."""
+        self.tables[table.name] = table

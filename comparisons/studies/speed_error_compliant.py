@@ -1,0 +1,395 @@
+"""Speed against error of the finite-duration contact: pymunk over dt, solve_ivp over rtol.
+
+For one case, two point-contact scenes at the default car stiffness
+(:data:`sim.DEFAULT_STIFFNESS`): frictionless, and with friction mu_c = 0.5 between the
+vehicles (stick-slip). Each is integrated
+
+* by pymunk (:func:`sim.simulate_compliant`) with dt = (estimated contact time) / n for n in
+  :data:`STEPS` (10 ... 2560 steps per contact), and
+* by ``solve_ivp`` (:func:`sim.reference_compliant`) with DOP853 (explicit) and Radau
+  (implicit) at rtol in :data:`RTOLS`,
+
+against the reference: DOP853 at the tightest rtol of :data:`REFERENCE_RTOLS` (1e-8, 1e-9,
+1e-10) that fits the budget :data:`REFERENCE_STEPS` (each tighter rung is tried only when
+the last one took under a quarter of the budget's steps, and is stopped at the budget
+(``CompliantSettings.max_steps``), the rung before it then being the reference: a step
+count, so the choice does not depend on the machine's load; tighter tolerances approach
+round-off and can cost 10^4-10^5 steps: the pickup-into-sedan case took 262 s and 63 359
+steps at rtol 1e-12). The tolerance reached and the reference's spread (its difference from
+the rung before) are reported. Swept rtols tighter than 10x the reference's are dropped
+(they would measure the reference), and a method's tighter rtols (or pymunk's finer steps)
+are skipped as "over_budget" once the last run took more than a third of :data:`RUN_BUDGET`.
+The error is :func:`sim.error_measure.impact_error` (largest error in the impact's velocity
+changes, relative to the largest change); the wall time per impact is the best of
+``repeats`` runs. The Pareto front is :func:`comparisons.studies.speed_error.pareto_front`; the
+recommended setting is the fastest run on the front that reaches :data:`TARGET` (1e-3, the
+issue's goal), and the fastest reaching 1e-6 is reported per integrator.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+
+import pim
+import sim
+from pim.io.files import save_figure, write_text
+from sim.error_measure import impact_error
+
+from comparisons.studies.speed_error import ERROR_FLOOR, pareto_front
+from comparisons.report.tables import Table, fmt_error
+
+__all__ = ["CompliantPoint", "CompliantSpeedStudy", "compliant_sweep", "STEPS", "RTOLS",
+           "TARGET", "SCENES", "COARSE", "REFERENCE_RTOLS", "REFERENCE_STEPS", "RUN_BUDGET",
+           "reference_within_budget", "Reference", "plot_compliant_speed_error",
+           "write_compliant_study"]
+
+STEPS = (10, 20, 40, 80, 160, 320, 640, 1280, 2560)
+RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
+METHODS = ("DOP853", "Radau")
+TARGET = 1e-3
+#: scene name -> friction mu_c between the vehicles
+SCENES = {"frictionless": 0.0, "friction 0.5": 0.5}
+#: Tolerances tried for the reference, loosest first [-].
+REFERENCE_RTOLS = (1e-8, 1e-9, 1e-10)
+#: Integration steps one reference scene may cost (the next rung runs only if the last took
+#: under a quarter of them; 46-172 steps at rtol 1e-10 on the bundled cases).
+REFERENCE_STEPS = 2000
+#: Wall time of one swept run above which the next finer setting is not tried [s] (x 3).
+RUN_BUDGET = 6.0
+#: The coarse grid (``pim speed-error --coarse``): seconds, not a minute.
+COARSE = dict(steps=(10, 40, 160, 640), rtols=(1e-3, 1e-6, 1e-9), repeats=1)
+
+
+@dataclass(frozen=True)
+class CompliantPoint:
+    """One integrator setting and how it did on one scene.
+
+    Attributes
+    ----------
+    scene : str
+        Scene name, a key of :data:`SCENES` ("frictionless", "friction 0.5").
+    integrator : str
+        "pymunk", "DOP853" or "Radau".
+    setting : float
+        Time step dt [s] for pymunk, relative tolerance rtol [-] for solve_ivp.
+    steps : int
+        Integration steps the run took [-] (0 when it failed or was skipped).
+    error : float
+        :func:`sim.error_measure.impact_error` against the scene's reference [-] (NaN when
+        the run failed or was skipped).
+    wall_time : float
+        Best wall time of the ``repeats`` runs [s] (NaN when failed or skipped).
+    failure : str or None
+        Why there is no result: a :class:`sim.SimulationError` kind, or "over_budget".
+    ok : bool
+        A finite error and no failure (property).
+    label : str
+        "INTEGRATOR dt=..." or "INTEGRATOR rtol=..." (property).
+    """
+
+    scene: str
+    integrator: str          # "pymunk", "DOP853", "Radau"
+    setting: float           # dt [s] for pymunk, rtol for solve_ivp
+    steps: int
+    error: float
+    wall_time: float
+    failure: str | None = None
+
+    @property
+    def ok(self) -> bool:
+        return self.failure is None and math.isfinite(self.error)
+
+    @property
+    def label(self) -> str:
+        name = "dt" if self.integrator == "pymunk" else "rtol"
+        return f"{self.integrator} {name}={self.setting:.3g}"
+
+
+@dataclass(frozen=True, eq=False)
+class CompliantSpeedStudy:
+    """Outcome of :func:`compliant_sweep`.
+
+    Attributes
+    ----------
+    case_name : str
+        The case's name.
+    eps : float
+        Restitution used [-].
+    stiffness : float
+        Linear contact stiffness of the scenes [N/m] (:data:`sim.DEFAULT_STIFFNESS`).
+    points : tuple of CompliantPoint
+        Every run, all scenes and integrators.
+    reference_spread : float
+        Largest over the scenes of the reference's spread: its
+        :func:`sim.error_measure.impact_error` against the rung before it [-] (0 with one
+        rung).
+    target : float
+        Error the recommended setting must reach [-] (:data:`TARGET`).
+    reference_rtol : float
+        Loosest over the scenes of the rtol their reference reached [-] (the tightest all
+        reached).
+    wall_time : float
+        Wall time of the whole study [s].
+    """
+
+    case_name: str
+    eps: float
+    stiffness: float
+    points: tuple
+    reference_spread: float   # reference against the rung before it, on the error scale
+    target: float = TARGET
+    reference_rtol: float = math.nan   # tightest rtol the reference reached (all scenes)
+    wall_time: float = math.nan        # wall time of the whole study [s]
+
+    def scene_points(self, scene: str) -> list:
+        return [p for p in self.points if p.scene == scene and p.ok]
+
+    def pareto(self, scene: str) -> list:
+        return pareto_front(self.scene_points(scene))
+
+    def recommended(self, scene: str) -> CompliantPoint | None:
+        """The fastest Pareto run reaching the target, or None."""
+        good = [p for p in self.pareto(scene) if p.error <= self.target]
+        return good[0] if good else None
+
+    def fastest(self, scene: str, integrator: str, target: float) -> CompliantPoint | None:
+        pts = [p for p in self.scene_points(scene) if p.integrator == integrator
+               and p.error <= target]
+        return min(pts, key=lambda p: p.wall_time) if pts else None
+
+
+def _timed(func, repeats: int):
+    """Best wall time of ``repeats`` runs; a run slower than a second is not repeated."""
+    best, out = math.inf, None
+    for _ in range(max(1, repeats)):
+        out = func()
+        best = min(best, out.wall_time)
+        if out.wall_time > 1.0:
+            break
+    return out, best
+
+
+@dataclass(frozen=True, eq=False)
+class Reference:
+    """The reference of one scene: the result, the rtol it reached, its spread and cost.
+
+    Attributes
+    ----------
+    result : sim.CompliantResult
+        The DOP853 run at the tightest tolerance reached.
+    rtol : float
+        Its relative tolerance [-].
+    spread : float
+        :func:`sim.error_measure.impact_error` against the rung before [-] (NaN with one).
+    wall_time : float
+        Wall time of all the rungs run [s].
+    """
+
+    result: object
+    rtol: float
+    spread: float
+    wall_time: float
+
+
+def reference_within_budget(case: pim.Case, eps: float, stiffness: float, friction: float,
+                            rtols=REFERENCE_RTOLS, budget: int = REFERENCE_STEPS
+                            ) -> Reference:
+    """DOP853 at the tightest of ``rtols`` (loosest first) that fits ``budget`` steps.
+
+    The next rung runs only if the last took under budget / 4 steps (module notes), and
+    stops at ``budget`` steps (``CompliantSettings.max_steps``): a rung that would take more
+    is abandoned and the one before it is the reference. ``spread`` is
+    :func:`sim.error_measure.impact_error` of the last rung against the one before (NaN
+    with a single rung): an upper estimate of the reference's own error.
+    """
+    results, spent = [], 0.0
+    for rtol in rtols:
+        if results and results[-1][1].steps > budget / 4.0:
+            break
+        settings = sim.CompliantSettings(record=False, rtol=rtol)
+        if results:                       # the first rung runs whatever it costs
+            settings = replace(settings, max_steps=budget)
+        start = time.perf_counter()
+        try:
+            out = sim.reference_compliant(case, eps, stiffness, friction=friction,
+                                          settings=settings)
+        except sim.SimulationError as exc:
+            if not results or exc.kind != "not_converged":
+                raise
+            spent += time.perf_counter() - start
+            break
+        spent += out.wall_time
+        results.append((rtol, out))
+    rtol, ref = results[-1]
+    spread = math.nan
+    if len(results) > 1:
+        prev = results[-2][1]
+        spread = float(impact_error(case, ref, prev.velocity1, prev.velocity2,
+                                    prev.yaw_rate1, prev.yaw_rate2))
+    return Reference(ref, rtol, spread, spent)
+
+
+def _ladders(case, eps, k, mu, steps, rtols, methods):
+    """(integrator, [(setting, run), ...]) from the cheapest setting to the dearest."""
+    pymunk = []
+    for n in steps:
+        settings = sim.CompliantSettings(record=False, steps_per_contact=int(n),
+                                         min_steps=min(10, int(n)))
+        dt = sim.compliant.step_size(sim.compliant_setup.build_problem(
+            case, eps, k, mu, settings=settings))
+        pymunk.append((dt, lambda s=settings: sim.simulate_compliant(
+            case, eps, k, friction=mu, settings=s)))
+    out = [("pymunk", pymunk)]
+    for method in methods:
+        ladder = []
+        for rtol in sorted(rtols, reverse=True):
+            settings = sim.CompliantSettings(record=False, rtol=rtol, method=method)
+            ladder.append((rtol, lambda s=settings: sim.reference_compliant(
+                case, eps, k, friction=mu, settings=s)))
+        out.append((method, ladder))
+    return out
+
+
+def _run_ladder(case, scene, ref, integrator, ladder, repeats, bar, run_budget):
+    points, last = [], 0.0
+    for setting, run in ladder:
+        if last > run_budget / 3.0:
+            points.append(CompliantPoint(scene, integrator, setting, 0, math.nan, math.nan,
+                                         "over_budget"))
+        else:
+            try:
+                out, wall = _timed(run, repeats)
+                last = out.wall_time
+                err = float(impact_error(case, ref, out.velocity1, out.velocity2,
+                                         out.yaw_rate1, out.yaw_rate2))
+                points.append(CompliantPoint(scene, integrator, setting, out.steps, err, wall))
+            except sim.SimulationError as exc:
+                points.append(CompliantPoint(scene, integrator, setting, 0, math.nan,
+                                             math.nan, exc.kind))
+        bar.update(1)
+    return points
+
+
+def compliant_sweep(case: pim.Case, eps: float | None = None, *, steps=STEPS, rtols=RTOLS,
+                    methods=METHODS, scenes=None, repeats: int = 3,
+                    progress: bool | None = None, reference_rtols=REFERENCE_RTOLS,
+                    reference_budget: int = REFERENCE_STEPS,
+                    run_budget: float = RUN_BUDGET) -> CompliantSpeedStudy:
+    """Run the study (module notes) for ``case`` at restitution ``eps`` (default: the case's,
+    else 0.3). ``reference_rtols``, ``reference_budget`` [steps] and ``run_budget`` [s] bound
+    the cost (module notes)."""
+    from tqdm.auto import tqdm
+
+    wall0 = time.perf_counter()
+    if eps is None:
+        eps = case.impact.restitution if case.impact.restitution is not None else 0.3
+    eps = sim.contact_law.check_fraction(eps, "eps")
+    k = sim.DEFAULT_STIFFNESS
+    scenes = dict(SCENES if scenes is None else scenes)
+    bar = tqdm(total=len(scenes) * (len(steps) + len(rtols) * len(methods)),
+               desc=f"compliant {case.name}", unit="run", leave=False,
+               disable=None if progress is None else not progress)
+    points, spread, reached = [], 0.0, 0.0
+    try:
+        for scene, mu in scenes.items():
+            ref = reference_within_budget(case, eps, k, mu, reference_rtols, reference_budget)
+            spread = max(spread, 0.0 if math.isnan(ref.spread) else ref.spread)
+            reached = max(reached, ref.rtol)
+            usable = [r for r in rtols if r >= 10.0 * ref.rtol]
+            bar.update(len(methods) * (len(rtols) - len(usable)))
+            for integrator, ladder in _ladders(case, eps, k, mu, steps, usable, methods):
+                points += _run_ladder(case, scene, ref.result, integrator, ladder, repeats,
+                                      bar, run_budget)
+    finally:
+        bar.close()
+    return CompliantSpeedStudy(case.name, float(eps), k, tuple(points), spread,
+                               reference_rtol=reached,
+                               wall_time=time.perf_counter() - wall0)
+
+
+def compliant_table(study: CompliantSpeedStudy, name: str) -> Table:
+    """Every run."""
+    fronts = {id(p) for scene in {p.scene for p in study.points} for p in study.pareto(scene)}
+    recs = {id(study.recommended(s)) for s in {p.scene for p in study.points}}
+    rows = tuple((p.scene, p.integrator, p.setting, p.steps, p.error, p.wall_time * 1e3,
+                  "yes" if id(p) in fronts else "", "yes" if id(p) in recs else "",
+                  p.failure or "") for p in study.points)
+    columns = ("scene", "integrator", "dt [s] or rtol", "steps", "error [-]",
+               "wall time [ms]", "Pareto", "recommended", "failure")
+    return Table(name, "Finite-duration contact: error against wall time", columns, rows,
+                 {"error [-]": fmt_error})
+
+
+def plot_compliant_speed_error(study: CompliantSpeedStudy):
+    """Log-log error against wall time per impact, one panel per scene (a Figure)."""
+    from matplotlib.figure import Figure
+
+    scenes = list(dict.fromkeys(p.scene for p in study.points))
+    fig = Figure(figsize=(6.0 * len(scenes), 4.8), layout="constrained")
+    axes = np.atleast_1d(fig.subplots(1, len(scenes), sharey=True))
+    style = {"pymunk": ("o", "C0"), "DOP853": ("s", "C1"), "Radau": ("^", "C2")}
+    for ax, scene in zip(axes, scenes, strict=True):
+        for name, (marker, color) in style.items():
+            pts = [p for p in study.scene_points(scene) if p.integrator == name]
+            if pts:
+                ax.plot([p.wall_time for p in pts], [max(p.error, ERROR_FLOOR) for p in pts],
+                        marker=marker, color=color, ls=":", lw=0.8,
+                        label="pymunk over dt" if name == "pymunk" else f"solve_ivp {name}")
+        front = study.pareto(scene)
+        if front:
+            ax.step([p.wall_time for p in front], [max(p.error, ERROR_FLOOR) for p in front],
+                    where="post", color="C3", lw=1.5, label="Pareto front")
+        rec = study.recommended(scene)
+        if rec is not None:
+            ax.scatter([rec.wall_time], [max(rec.error, ERROR_FLOOR)], s=260,
+                       facecolors="none", edgecolors="C3", linewidths=2, zorder=5,
+                       label=f"recommended: {rec.label}")
+        ax.axhline(study.target, color="0.4", ls="--", lw=1, label=f"target {study.target:g}")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("wall time per impact [s]")
+        ax.set_title(f"{study.case_name}, {scene}", fontsize=10)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7.5)
+    axes[0].set_ylabel(f"error against solve_ivp at rtol {study.reference_rtol:g} [-]")
+    return fig
+
+
+def write_compliant_study(study: CompliantSpeedStudy, out_dir, stem: str,
+                          command: str = "") -> list[Path]:
+    """Write ``speed-error-compliant-STEM.md``, ``.csv`` and ``.png``."""
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    table = compliant_table(study, f"speed-error-compliant-{stem}")
+    png = save_figure(plot_compliant_speed_error(study), out / f"speed-error-compliant-{stem}.png")
+    lines = [f"# Speed against error of the finite-duration contact: {study.case_name}", ""]
+    if command:
+        lines += [f"Regenerate with `{command}`.", ""]
+    lines += [f"Point contact, epsilon = {study.eps:.4g}, k = {study.stiffness:.3g} N/m; "
+              f"pymunk over dt (10 ... 2560 steps per estimated contact time), solve_ivp "
+              f"DOP853 and Radau over rtol, against DOP853 at rtol {study.reference_rtol:g} "
+              f"(the tightest within {REFERENCE_STEPS} steps per scene; it differs from the "
+              f"rung before by {study.reference_spread:.1e}). Whole study: "
+              f"{study.wall_time:.1f} s. Error: the largest error in "
+              f"the impact's velocity changes, relative to the largest change.", ""]
+    for scene in dict.fromkeys(p.scene for p in study.points):
+        rec = study.recommended(scene)
+        text = (f"**recommended {rec.label}**: error {rec.error:.1e} in "
+                f"{rec.wall_time * 1e3:.3g} ms" if rec else "no run reaches the target")
+        lines.append(f"- {scene}: {text}.")
+        for integrator in ("pymunk", "DOP853", "Radau"):
+            for target in (1e-3, 1e-6):
+                p = study.fastest(scene, integrator, target)
+                if p is not None:
+                    lines.append(f"  - {integrator} reaches {target:g} at {p.label}: "
+                                 f"{p.wall_time * 1e3:.3g} ms per impact")
+    lines += ["", f"![speed against error](speed-error-compliant-{stem}.png)", "",
+              table.to_markdown(), ""]
+    md = write_text(out / f"speed-error-compliant-{stem}.md", "\n".join(lines))
+    return [md, table.write_csv(out), png]

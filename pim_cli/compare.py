@@ -1,0 +1,478 @@
+"""Command line of the comparisons: ``pim compare``, ``pim animate``, ``pim speed-error``,
+``pim hard-cases``, ``pim assumptions`` (registered as ``pim.commands`` entry points in
+pyproject.toml)."""
+
+from __future__ import annotations
+
+import contextlib
+import sys
+import time
+from pathlib import Path
+
+import click
+
+import pim
+from pim_cli.main import (
+    FiniteFloat,
+    allow_inadmissible_option,
+    beta_option,
+    case_argument,
+    check_answer,
+    echo_json,
+    eps_option,
+    findings_json,
+    finish_answer,
+    friction_limit_option,
+    json_option,
+    law_options,
+    require_brach,
+    solve_with_options,
+    units_option,
+)
+from pim.model.numbers import InputError
+
+__all__ = ["compare", "animate", "speed_error", "hard_cases", "assumptions"]
+
+out_option = click.option("--out", "out", type=click.Path(file_okay=False), default=None,
+                          help="Output folder (default: out/CASE).")
+progress_option = click.option("--progress/--no-progress", default=None,
+                               help="Progress bars on stderr (default: only on a terminal).")
+
+
+def _out(out, name: str, default: str) -> Path:
+    return Path(out) if out is not None else Path("out") / (name or default)
+
+
+compare_eps_option = click.option(
+    "--eps", type=FiniteFloat(), default=None,
+    help="Coefficient of restitution epsilon in [0, 1] (default: fitted to the case's "
+         "measured motion, else the case's impact.restitution). With --beta: no fit.")
+compare_beta_option = click.option(
+    "--beta", type=FiniteFloat(), default=None,
+    help="Fraction of the critical impulse ratio, mu = beta mu0 (default: fitted to the "
+         "case's measured motion, else the case's impact.beta, else 1). With --eps: no fit.")
+
+
+@click.command()
+@case_argument
+@out_option
+@compare_eps_option
+@compare_beta_option
+@click.option("--gif", is_flag=True, help="Also write animation.gif (slower, larger).")
+@units_option
+@friction_limit_option
+@click.option("--no-animation", is_flag=True, help="Skip the animation.")
+@click.option("--no-speed-error", is_flag=True, help="Skip the coarse speed-error sweep.")
+@click.option("--no-assumptions", is_flag=True,
+              help="Skip PIM's assumptions at typical values (finite-duration scene).")
+@click.option("--tyre-friction", "tyre", type=FiniteFloat(), default=0.0, show_default=True,
+              help="Tyre/ground friction coefficient after impact in the animation (the "
+                   "ghost decelerates alike); 0 = free motion.")
+@law_options
+@progress_option
+@allow_inadmissible_option
+@json_option
+def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
+            no_speed_error, no_assumptions, tyre, law, k, mu_c, progress, allow_inadmissible,
+            as_json):
+    """Write a reconstruction report of CASE to a folder (report.html, report.md, CSVs,
+    PNGs, MP4; report.html is one self-contained page with the plots and the animation).
+
+    The report opens with the results a reconstruction hands on (delta-V, PDOF, post-impact
+    speeds and yaw rates, energy loss and its crush split, epsilon and beta with their source
+    and, with an [uncertainty] table, 5-95 % intervals), then the coefficients, inputs,
+    plots and animation; the appendix compares PIM with a pymunk simulation and sweeps the
+    simulator's speed against its error. (epsilon, beta) are fitted to the measured motion
+    when the case has some; --eps and --beta together skip the fit (one of them: the other
+    is fitted). Exit code 1 with one line when the vehicles do not approach at C, and
+    after the report is written when its answer is inadmissible (the reasons first, and at
+    the top of the report; --allow-inadmissible: exit 0). A secondary contact of the
+    outlines after the impact is a note with its time and place.
+
+    Under another impact law (the case's impact.law or --law: kudlich-slibar with --k and
+    --mu-c, brach-capped) the report is that law's answer, its pymunk run (two phases for
+    kudlich-slibar) and animation; a fit to measured motion is done under that law ((k, mu_c)
+    for kudlich-slibar; docs/impact-laws.md).
+    """
+    from pim.io.casefile import load_case
+    from pim.model.impact_laws import law_of
+
+    from comparisons.report.compare import compare_case
+
+    if tyre < 0:
+        raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
+    case = load_case(case_name)
+    folder = _out(out, case.name, "case")
+    if law_of(case, law) != "brach" or k is not None or mu_c is not None:
+        _compare_law(case, folder, eps, beta, law, k, mu_c, units, gif=gif, tyre=tyre,
+                     animation=not no_animation, progress=progress, as_json=as_json,
+                     allow=allow_inadmissible)
+        return
+    solve_with_options(case, 0.0, 1.0)      # exits 1 with one line when there is no impact
+    started = time.perf_counter()
+    rep = compare_case(case, folder, eps=eps, beta=beta, gif=gif, animation=not no_animation,
+                       speed_error=not no_speed_error, tyre=tyre,
+                       assumptions=not no_assumptions, progress=progress,
+                       units=units, friction_limit=friction_limit, case_path=case_name)
+    units = units or case.units
+    found = check_answer(case, pim.solve(case, rep.eps, rep.beta), units, friction_limit,
+                         allow_inadmissible, as_json)
+    secondary = _secondary_note(rep.animation, units, as_json)
+    if as_json:
+        echo_json({"case": case.name, "out": str(folder), "eps": rep.eps, "beta": rep.beta,
+                   "error": rep.error, "seconds": rep.seconds, **findings_json(found),
+                   "secondary_impact": secondary,
+                   "files": sorted(str(p) for p in rep.files)})
+    else:
+        error = ("simulation failed" if rep.error != rep.error
+                 else f"pymunk vs PIM error {rep.error:.2e}")
+        click.echo(f"{case.name}: epsilon = {rep.eps:.6g}, beta = {rep.beta:.6g}; {error}")
+        if rep.animation is not None:
+            a = rep.animation
+            click.echo(f"animation: {a.frames} frames, rendered at {a.render_fps:.0f} "
+                       f"frames/s")
+        click.echo(f"wrote {rep.report} ({len(rep.files)} files) in "
+                   f"{time.perf_counter() - started:.1f} s")
+    finish_answer(found, allow_inadmissible)
+
+
+def _secondary_note(info, units: str, as_json: bool) -> dict | None:
+    """The animation's secondary contact (``info``: an AnimationInfo or None) as a note on
+    stderr with its time and place (not with ``as_json``), and as its JSON (None: none)."""
+    found = getattr(info, "secondary_impact", None)
+    if found is None:
+        return None
+    if not as_json:
+        click.echo(f"note: {found.message(units)}", err=True)
+    return found.to_json(units)
+
+
+def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, allow, **kwargs):
+    """``pim compare`` under an impact law other than Brach's (comparisons.report.law)."""
+    from pim.model.impact_laws import law_of
+
+    from comparisons.report.law import compare_law_case
+    from comparisons.studies.law_runs import law_setup
+
+    started = time.perf_counter()
+    result = solve_with_options(case, eps, beta, None, False, law, k, mu_c, units)
+    setup = law_setup(case, law, result.eps,
+                      None if law_of(case, law) == "kudlich-slibar" else beta, mu_c)
+    rep = compare_law_case(case, folder, setup, units=units, **kwargs)
+    found = check_answer(case, setup.result, units, allow=allow, as_json=as_json)
+    secondary = _secondary_note(getattr(rep, "animation", None), units or case.units, as_json)
+    if as_json:
+        echo_json({"case": case.name, "out": str(folder), "law": setup.law,
+                   "restitution": setup.restitution, "beta": setup.beta,
+                   "contact_friction": setup.contact_friction, "error": rep.error,
+                   **findings_json(found), "secondary_impact": secondary,
+                   "files": sorted(str(p) for p in rep.files)})
+    else:
+        error = ("simulation failed" if rep.error != rep.error
+                 else f"pymunk vs analytic error {rep.error:.2e}")
+        click.echo(f"{case.name}: {setup.describe()}; {error}")
+        click.echo(f"wrote {rep.report} ({len(rep.files)} files) in "
+                   f"{time.perf_counter() - started:.1f} s")
+    finish_answer(found, allow)
+
+
+
+@click.command()
+@case_argument
+@click.option("--out", "out", type=click.Path(dir_okay=False), default=None,
+              help="MP4 file to write (default: out/CASE-animation.mp4, beside pim "
+                   "compare's folder out/CASE, which each compare run replaces whole).")
+@eps_option
+@beta_option
+@click.option("--gif", "gif", type=click.Path(dir_okay=False), default=None,
+              help="Also write an animated GIF (half size) here.")
+@click.option("--fps", type=int, default=30, show_default=True, help="Frames per second.")
+@click.option("--before", type=FiniteFloat(), default=None,
+              help="Seconds shown before the impact (default: about 1.2 vehicle lengths).")
+@click.option("--after", type=FiniteFloat(), default=2.0, show_default=True,
+              help="Seconds shown after the impact.")
+@click.option("--size", type=(int, int), default=(960, 720), show_default=True,
+              help="Frame width and height [px], even numbers.")
+@click.option("--tyre-friction", "tyre", type=FiniteFloat(), default=0.0, show_default=True,
+              help="Tyre/ground friction coefficient after the impact (ghost alike).")
+@click.option("--no-ghost", is_flag=True, help="Do not draw PIM's answer as a ghost.")
+@law_options
+@units_option
+@progress_option
+@allow_inadmissible_option
+@json_option
+def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_ghost, law, k,
+            mu_c, units, progress, allow_inadmissible, as_json):
+    """Animate CASE: pymunk simulation solid, the analytic post-impact motion as a ghost (MP4).
+
+    Under the case's impact law (or --law): Brach's PIM and friction-capped Brach play the
+    rigid scene at (eps, effective beta); the Kudlich-Slibar law plays its two-phase run
+    (compression by the engine at mu_c, then k times its impulse) and continues after
+    separation (docs/impact-laws.md). A secondary contact of the outlines after the impact
+    is marked in the frames and a note (its time and place); exit code 1 after writing when
+    the analytic answer is inadmissible (the reasons first; --allow-inadmissible: exit 0).
+    """
+    import sim
+    from pim.io.casefile import load_case
+    from pim.model.impact_laws import law_of
+
+    from comparisons.animation.render import animate_case, animation_settings
+    from comparisons.studies.law_runs import law_setup, simulate_law
+
+    _check_suffix(out, "--out", ".mp4")
+    _check_suffix(gif, "--gif", ".gif")
+    case = load_case(case_name)
+    if tyre < 0:
+        raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
+    path = Path(out) if out else Path("out") / f"{case.name or 'case'}-animation.mp4"
+    kwargs = dict(gif=gif, progress=progress, fps=fps, before=before, after=after, size=size,
+                  tyre=tyre, ghost=not no_ghost, units=units or case.units)
+    setup = None
+    if law_of(case, law) == "brach" and k is None and mu_c is None:
+        eps_, beta_ = sim.scene.resolve_coefficients(case, eps, beta)
+    else:
+        result = solve_with_options(case, eps, beta, None, False, law, k, mu_c, units)
+        setup = law_setup(case, law, result.eps, None if law_of(case, law) == "kudlich-slibar"
+                          else beta, mu_c)
+        eps_, beta_ = setup.restitution, setup.beta
+    found = check_answer(case, setup.result if setup else pim.solve(case, eps_, beta_),
+                         kwargs["units"], allow=allow_inadmissible, as_json=as_json)
+    try:
+        if setup is not None:
+            kwargs.update(result=setup.result, title=f"{case.name or 'case'}: {setup.describe()}",
+                          simulated=simulate_law(case, setup,
+                                                 animation_settings(after, tyre)))
+        info = animate_case(case, eps_, beta_, path, **kwargs)
+    except sim.SimulationError as exc:
+        click.echo(f"simulation failed ({exc.kind}): {exc}", err=True)
+        sys.exit(1)
+    secondary = _secondary_note(info, kwargs["units"], as_json)
+    if as_json:
+        echo_json({"path": str(info.path), "gif": str(info.gif) if info.gif else None,
+                   "frames": info.frames, "fps": info.fps, "size": list(info.size),
+                   "render_fps": info.render_fps, "write_seconds": info.write_seconds,
+                   "max_ghost_offset_px": info.max_ghost_offset_px,
+                   "law": setup.law if setup else "brach",
+                   "restitution": eps_, "beta": beta_,
+                   "contact_friction": setup.contact_friction if setup else None,
+                   **findings_json(found), "secondary_impact": secondary})
+    else:
+        if setup is not None:
+            click.echo(f"{case.name or 'case'}: {setup.describe()}")
+        click.echo(f"wrote {info.path}" + (f" and {info.gif}" if info.gif else "")
+                   + f": {info.frames} frames at {info.fps} fps, rendered at "
+                     f"{info.render_fps:.0f} frames/s, encoded in {info.write_seconds:.2f} s; "
+                     f"ghost offset after impact {info.max_ghost_offset_px:.2g} px")
+    finish_answer(found, allow_inadmissible)
+
+
+def _check_suffix(path, option: str, suffix: str) -> None:
+    """A file option must name a ``suffix`` file (checked before any work)."""
+    if path is not None and Path(path).suffix.lower() != suffix:
+        raise InputError(f"{option} {path}: the file must end in {suffix}")
+
+
+@click.command("speed-error")
+@click.argument("case_names", metavar="CASE...", nargs=-1, required=True)
+@click.option("--out", "out", type=click.Path(file_okay=False), default=None,
+              help="Output folder (default: out/speed-error).")
+@eps_option
+@beta_option
+@click.option("--repeats", type=int, default=3, show_default=True,
+              help="Runs per setting (the best wall time is kept).")
+@click.option("--coarse", is_flag=True, help="The report's coarse grid instead of the full one.")
+@click.option("--compliant/--no-compliant", default=True, show_default=True,
+              help="Also the finite-duration contact: pymunk over dt, solve_ivp over rtol.")
+@progress_option
+@json_option
+def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, progress, as_json):
+    """Sweep the simulator's dt, iterations, contact start and geometry for each CASE.
+
+    Writes, per case, speed-error-CASE.md (table of the Pareto front and every run),
+    speed-error-CASE.csv and speed-error-CASE.png (log-log error against wall time per
+    impact, with the Pareto front, PIM's own time and error and the recommended setting).
+    With --compliant (default) also speed-error-compliant-CASE.md/.csv/.png: the
+    finite-duration contact stepped by pymunk over dt and integrated by solve_ivp over
+    rtol, against a tight solve_ivp reference. "hard" stands for every bundled hard case.
+    """
+    from pim.io.casefile import list_cases
+    from pim.io.output import output_folder, rebase
+
+    if repeats < 1:
+        raise InputError(f"--repeats must be >= 1, got {repeats}")
+    names = []
+    for n in case_names:
+        names += [c for c, _ in list_cases() if c.startswith("hard-")] if n == "hard" else [n]
+    folder = Path(out) if out else Path("out") / "speed-error"
+    with output_folder(folder, command="pim speed-error", merge=True) as tmp:
+        results = _speed_error_runs(names, tmp, out, eps, beta, repeats, coarse, compliant,
+                                    progress, as_json)
+    for r in results:
+        r["files"] = [str(p) for p in rebase(r["files"], tmp, folder)]
+        line = r.pop("line", None)
+        if line is not None:
+            click.echo(f"{line}; wrote {r['files'][0]}")
+    if as_json:
+        echo_json(results)
+
+
+def _speed_error_runs(names, folder, out, eps, beta, repeats, coarse, compliant, progress,
+                      as_json) -> list[dict]:
+    """Sweep each case and write its files into ``folder``; one JSON-ready dict per case
+    (with the line to print under ``"line"``)."""
+    from pim.io.casefile import load_case
+
+    from comparisons.studies.speed_error import COARSE, sweep, write_study
+
+    results = []
+    for name in names:
+        case = load_case(name)
+        require_brach(case, "pim speed-error")
+        grid = dict(COARSE) if coarse else {}
+        grid["repeats"] = repeats
+        study = sweep(case, eps, beta, progress=progress, **grid)
+        stem = case.name or Path(name).stem
+        files = write_study(study, folder, stem, command=_command(name, coarse, repeats, out))
+        rec = study.recommended()
+        results.append({"case": stem, "files": [str(f) for f in files],
+                        "recommended": None if rec is None else
+                        {"dt": rec.dt, "iterations": rec.iterations,
+                         "iterations_used": rec.iterations_used, "start": rec.start,
+                         "contact": rec.contact, "error": rec.error,
+                         "wall_time": rec.wall_time},
+                        "analytic_time": study.analytic_time,
+                        "analytic_batch_time": study.analytic_batch_time})
+        if compliant:
+            from comparisons.studies.speed_error_compliant import COARSE as CCOARSE
+            from comparisons.studies.speed_error_compliant import compliant_sweep, write_compliant_study
+
+            cgrid = dict(CCOARSE) if coarse else {"repeats": repeats}
+            cstudy = compliant_sweep(case, eps, progress=progress, **cgrid)
+            cfiles = write_compliant_study(cstudy, folder, stem,
+                                           command=_command(name, coarse, repeats, out))
+            results[-1]["files"] += [str(f) for f in cfiles]
+            results[-1]["compliant"] = {
+                scene: None if cstudy.recommended(scene) is None else
+                {"integrator": cstudy.recommended(scene).integrator,
+                 "setting": cstudy.recommended(scene).setting,
+                 "error": cstudy.recommended(scene).error,
+                 "wall_time": cstudy.recommended(scene).wall_time}
+                for scene in dict.fromkeys(p.scene for p in cstudy.points)}
+            if not as_json:
+                for scene, rec_c in results[-1]["compliant"].items():
+                    click.echo(f"{stem} finite-duration ({scene}): " + (
+                        "no run reaches 1e-3" if rec_c is None else
+                        f"recommended {rec_c['integrator']} "
+                        f"{'dt' if rec_c['integrator'] == 'pymunk' else 'rtol'} = "
+                        f"{rec_c['setting']:.3g}: error {rec_c['error']:.1e}, "
+                        f"{rec_c['wall_time'] * 1e3:.3g} ms/impact"))
+        if not as_json:
+            text = ("no run reaches the target" if rec is None else
+                    f"recommended dt = {rec.dt:g} s, iterations = "
+                    f"{'auto' if rec.iterations is None else rec.iterations}, {rec.start} "
+                    f"start, {rec.contact} contact: error {rec.error:.2e}, "
+                    f"{rec.wall_time * 1e3:.3g} ms/impact (PIM {study.analytic_time * 1e3:.3g} "
+                    f"ms/call)")
+            results[-1]["line"] = f"{stem}: {text}"
+    return results
+
+
+def _command(name: str, coarse: bool, repeats: int, out) -> str:
+    return (f"pim speed-error {name}" + (" --coarse" if coarse else "")
+            + (f" --repeats {repeats}" if repeats != 3 else "")
+            + (f" --out {out}" if out else ""))
+
+
+@click.command("hard-cases")
+@click.option("--out", "out", type=click.Path(file_okay=False), default=None,
+              help="Output folder (default: out/hard-cases).")
+@click.option("--units", type=click.Choice(["si", "us"]), default="si", show_default=True,
+              help="Units of the results table (the hard-case files are written in SI).")
+@progress_option
+@json_option
+def hard_cases(out, units, progress, as_json):
+    """Run every bundled hard case through PIM and the simulator; table of results, errors,
+    and the dt / iterations the simulator needs to reach 1e-6 (or why it cannot)."""
+    from pim.io.output import output_folder, rebase
+
+    from comparisons.studies.hard_cases import run_hard_cases, write_hard_cases
+
+    folder = Path(out) if out else Path("out") / "hard-cases"
+    with output_folder(folder, command="pim hard-cases", merge=True) as tmp:
+        study = run_hard_cases(progress=progress)
+        files = rebase(write_hard_cases(study, tmp, units), tmp, folder)
+    if as_json:
+        echo_json({"files": [str(f) for f in files], "cases": study.to_json()})
+        return
+    click.echo(study.results_table(units).to_markdown())
+    click.echo("")
+    click.echo(study.needs_table().to_markdown())
+    click.echo(f"\nwrote {', '.join(str(f) for f in files)}")
+
+
+@click.command("assumptions")
+@case_argument
+@click.option("--out", "out", type=click.Path(file_okay=False), default=None,
+              help="Output folder (default: out/CASE-assumptions, beside pim compare's "
+                   "out/CASE: each command's folder holds its own run whole).")
+@eps_option
+@beta_option
+@click.option("--executor", type=click.Choice(["process", "serial"]), default="process",
+              show_default=True, help="Run the scenes on a local process pool or serially.")
+@click.option("--no-animation", is_flag=True, help="Skip the MP4 of the finite-duration scene.")
+@progress_option
+@json_option
+def assumptions(case_name, out, eps, beta, executor, no_animation, progress, as_json):
+    """Test PIM's assumptions for CASE, one at a time, on a ladder of crush scenes.
+
+    Each scene differs from the one below in one assumption (Newton's restitution and
+    mu = beta mu0, instantaneous impulse, impulse at C, one contact point, no external
+    forces, PIM's tangential law); the marginal effect of each (against the scene below, at
+    the same contact time) and the cumulative one (PIM's error) are measured at several
+    contact times, with the tyre effect over the contact time and the friction effect over
+    mu_c and the tangential recovery. Writes assumptions.md, CSVs, a plot and an MP4 with
+    PIM's ghost. A secondary contact of the outlines after separation in the animated
+    scene is a note with its time and place.
+    """
+    import sim
+    from pim.io.casefile import load_case
+    from pim.io.output import output_folder, rebase, worker_pool
+
+    from comparisons.studies.assumptions import run_assumptions, write_assumptions
+
+    case = load_case(case_name)
+    require_brach(case, "pim assumptions")
+    folder = Path(out) if out is not None else Path("out") / f"{case.name or 'case'}-assumptions"
+    command = f"pim assumptions {case_name}" + (f" --out {out}" if out else "")
+    with output_folder(folder, command="pim assumptions") as tmp, \
+            contextlib.ExitStack() as stack:
+        if executor == "process":
+            executor = stack.enter_context(worker_pool())
+        study = run_assumptions(case, eps, beta, executor=executor, progress=progress,
+                                animation_after=None if no_animation else 2.0)
+        files = rebase(write_assumptions(study, tmp, animation=not no_animation,
+                                         progress=progress, command=command), tmp, folder)
+    secondary = None
+    if study.animation_result is not None:       # the finite-duration scene played on
+        secondary = sim.find_secondary_impact(study.animation_result.trajectory)
+        if secondary is not None and not as_json:
+            click.echo(f"note: finite-duration scene: {secondary.message(case.units)}",
+                       err=True)
+    if as_json:
+        echo_json({"case": case.name, "eps": study.eps, "beta": study.beta,
+                   "beta_pim": study.beta_pim, "verdicts": study.verdicts(),
+                   "secondary_impact": None if secondary is None
+                   else secondary.to_json(case.units),
+                   "seconds": study.seconds, "files": [str(f) for f in files],
+                   "ladders": [{"contact_time_ms": 1e3 * lad.duration,
+                                "rungs": [{"key": r.key, "against": r.baseline,
+                                           "marginal": r.marginal,
+                                           "cumulative": r.cumulative,
+                                           "failure": r.run.failure}
+                                          for r in lad.rungs[1:]]}
+                               for lad in study.ladders]})
+        return
+    for verdict in study.verdicts():
+        click.echo(f"- {verdict}")
+    click.echo(f"wrote {folder / 'assumptions.md'} ({len(files)} files) in "
+               f"{study.seconds:.1f} s of simulation")

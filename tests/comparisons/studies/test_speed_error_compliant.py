@@ -1,0 +1,75 @@
+"""Speed against error of the finite-duration contact (coarse grid)."""
+
+import math
+from pathlib import Path
+
+import pytest
+
+import pim
+from comparisons.studies import speed_error_compliant as S
+from pim.io.casefile import load_case
+
+
+@pytest.fixture(scope="module")
+def study():
+    return S.compliant_sweep(pim.load_case("ricsac9"), 0.355, steps=(10, 40, 160),
+                             rtols=(1e-3, 1e-7), methods=("DOP853",),
+                             scenes={"frictionless": 0.0}, repeats=1, progress=False)
+
+
+def test_errors_fall_as_the_step_shrinks_and_the_reference_is_consistent(study):
+    pymunk = [p for p in study.points if p.integrator == "pymunk"]
+    errors = [p.error for p in sorted(pymunk, key=lambda p: -p.setting)]
+    assert errors[0] > errors[1] > errors[2]
+    assert study.reference_spread < 1e-7          # the reference against the rung before
+    assert study.reference_rtol <= 1e-9
+    tight = [p for p in study.points if p.integrator == "DOP853" and p.setting == 1e-7][0]
+    assert tight.error < 1e-5
+
+
+def test_pareto_front_and_recommendation(study, tmp_path):
+    front = study.pareto("frictionless")
+    assert all(a.wall_time <= b.wall_time and a.error > b.error
+               for a, b in zip(front, front[1:], strict=False))
+    rec = study.recommended("frictionless")
+    assert rec is not None and rec.error <= S.TARGET and rec in front
+    files = S.write_compliant_study(study, tmp_path, "ricsac9")
+    assert all(f.exists() for f in files)
+    assert "recommended" in files[0].read_text()
+
+
+PICKUP = Path(__file__).resolve().parents[2] / "data" / "pickup-into-sedan-side.toml"
+
+
+def test_reference_stops_at_the_budget_and_reports_the_tolerance_reached():
+    """The pickup-into-sedan case took 262 s (63 359 steps) at rtol 1e-12; the ladder keeps
+    a reference scene within its budget and says which rtol it reached."""
+    case = load_case(str(PICKUP))
+    assert case.units == "us"
+    ref = S.reference_within_budget(case, 0.2, 7.5e5, 0.0)
+    assert ref.result.steps <= S.REFERENCE_STEPS
+    assert ref.rtol == 1e-10 and ref.spread < 1e-6
+    first = S.reference_within_budget(case, 0.2, 7.5e5, 0.0, budget=4)
+    assert first.rtol == S.REFERENCE_RTOLS[0]        # the first rung took over budget / 4
+    loose = S.reference_within_budget(case, 0.2, 7.5e5, 0.0, rtols=(1e-6,))
+    assert loose.rtol == 1e-6 and math.isnan(loose.spread)
+
+
+def test_a_slow_run_skips_the_finer_settings_as_over_budget():
+    study = S.compliant_sweep(pim.load_case("ricsac9"), 0.355, steps=(10, 40, 160),
+                              rtols=(1e-3,), methods=("DOP853",), scenes={"f": 0.0},
+                              repeats=1, progress=False, run_budget=1e-9)
+    pymunk = [p for p in study.points if p.integrator == "pymunk"]
+    assert [p.failure for p in pymunk] == [None, "over_budget", "over_budget"]
+    assert study.wall_time > 0
+
+
+def test_a_reference_rung_over_the_budget_is_abandoned_at_it():
+    """hard-near-singular-q's frictionless reference (eps 0.1) takes 122 steps at rtol 1e-9
+    and 1 089 at 1e-10: with a budget of 600 the second rung starts (122 < 600 / 4) and
+    is stopped at 600 steps (settings.max_steps) instead of running on; the first is the
+    reference. Before the cap the 1e-10 rung ran to the end and was taken."""
+    case = pim.load_case("hard-near-singular-q")
+    ref = S.reference_within_budget(case, 0.1, 7.5e5, 0.0, rtols=(1e-9, 1e-10), budget=600)
+    assert ref.rtol == 1e-9 and ref.result.steps == 122
+    assert math.isnan(ref.spread)

@@ -1,0 +1,50 @@
+"""The README's Layout section names every module, under its own package, and no module
+that does not exist (issue 21 point 4: the layout cannot drift from the tree)."""
+
+import re
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+PACKAGES = ("pim/model", "pim/io", "pim/analysis", "pim/plotting", "sim", "comparisons/report",
+            "comparisons/studies", "comparisons/regression", "comparisons/animation", "pim_cli")
+
+
+def layout_section(readme: str) -> str:
+    start = readme.index("## Layout")
+    end = readme.index("\n## ", start + 1)
+    return readme[start:end]
+
+
+def bullets(section: str) -> dict:
+    """Package folder -> the text of its bullet (``- `pim/model/`: ...``)."""
+    out = {}
+    for item in re.split(r"\n- ", section)[1:]:
+        head = re.match(r"`([\w/]+?)/?`", item)
+        if head:
+            out[head.group(1)] = item
+    return out
+
+
+def layout_drift(readme: str, root: Path = ROOT) -> list[str]:
+    found = bullets(layout_section(readme))
+    problems = []
+    for package in PACKAGES:
+        text = found.get(package)
+        if text is None:
+            problems.append(f"no bullet for {package}/")
+            continue
+        named = set(re.findall(r"`(\w+)\.py`", text))
+        modules = {p.stem for p in (root / package).glob("*.py") if p.name not in ("__init__.py", "__main__.py")}
+        problems += [f"{package}/{m}.py not in the layout" for m in sorted(modules - named)]
+        problems += [f"{package}/{m}.py named but absent" for m in sorted(named - modules)]
+    return problems
+
+
+def test_readme_layout_names_every_module():
+    assert layout_drift((ROOT / "README.md").read_text()) == []
+
+
+def test_a_missing_or_stale_module_fails():
+    readme = (ROOT / "README.md").read_text()
+    assert layout_drift(readme.replace("`kernel.py`", "`kernal.py`")) == [
+        "pim/model/kernel.py not in the layout", "pim/model/kernal.py named but absent"]

@@ -1,0 +1,228 @@
+"""pim/io/output.py: output folders as transactions (issue 22): whole or not at all, one run
+at a time, nothing deleted outside the folder, no temporary litter."""
+
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+import pytest
+
+from pim.io.output import MARKER, OutputError, held_signals, output_folder, rebase
+
+
+def tree(folder):
+    return {p.relative_to(folder).as_posix(): p.read_bytes()
+            for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def litter(parent):
+    return [p.name for p in parent.iterdir() if ".pim-" in p.name]
+
+
+def write_run(folder, files):
+    with output_folder(folder) as tmp:
+        for name, text in files.items():
+            (tmp / name).parent.mkdir(parents=True, exist_ok=True)
+            (tmp / name).write_text(text)
+    return folder
+
+
+def test_a_run_replaces_the_folder_whole(tmp_path):
+    out = write_run(tmp_path / "out", {"a.csv": "1", "animation.mp4": "old video"})
+    write_run(out, {"a.csv": "2", "plots/p.png": "x"})
+    files = tree(out)
+    assert files.pop(MARKER)
+    assert files == {"a.csv": b"2", "plots/p.png": b"x"}       # the old MP4 is gone
+    assert litter(tmp_path) == []
+
+
+@pytest.mark.parametrize("error", [KeyboardInterrupt, OSError, RuntimeError])
+def test_an_error_keeps_the_old_run_and_leaves_no_litter(tmp_path, error):
+    out = write_run(tmp_path / "out", {"a.csv": "1"})
+    before = tree(out)
+    with pytest.raises(error), output_folder(out) as tmp:
+        (tmp / "a.csv").write_text("half")
+        (tmp / "new.png").write_text("x")
+        raise error()
+    assert tree(out) == before
+    assert litter(tmp_path) == []
+
+
+def test_a_first_run_that_fails_leaves_nothing(tmp_path):
+    with pytest.raises(KeyboardInterrupt), output_folder(tmp_path / "out") as tmp:
+        (tmp / "a.csv").write_text("half")
+        raise KeyboardInterrupt
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_second_run_into_a_busy_folder_fails_clearly(tmp_path):
+    out = tmp_path / "out"
+    with output_folder(out) as tmp:
+        (tmp / "first").write_text("1")
+        with pytest.raises(OutputError, match="another pim run is writing"), \
+                output_folder(out):
+            pass
+    assert (out / "first").exists()
+    with output_folder(out):      # the lock is free again, and its file gone
+        pass
+    assert litter(tmp_path) == []
+
+
+def test_the_lock_holds_across_processes(tmp_path):
+    out = tmp_path / "out"
+    code = textwrap.dedent(f"""
+        import sys, time
+        from pim.io.output import output_folder
+        with output_folder({str(out)!r}) as tmp:
+            print("locked", flush=True)
+            time.sleep(30)
+    """)
+    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
+    try:
+        assert proc.stdout.readline().strip() == "locked"
+        with pytest.raises(OutputError, match="another pim run"), output_folder(out):
+            pass
+    finally:
+        proc.send_signal(signal.SIGINT)
+        proc.wait(timeout=30)
+    assert litter(tmp_path) == []          # the interrupted holder removed its folder
+
+
+def test_a_folder_of_the_users_own_files_is_never_replaced(tmp_path):
+    home = tmp_path / "home"
+    home.mkdir()
+    (home / "thesis.tex").write_text("years of work")
+    with pytest.raises(OutputError, match="pim did not write"), output_folder(home):
+        pass
+    assert (home / "thesis.tex").read_text() == "years of work"
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    write_run(empty, {"a": "1"})           # an empty folder is fine
+
+
+def test_stale_temporary_folders_of_killed_runs_are_swept(tmp_path):
+    stale = tmp_path / ".out.pim-tmp-abc123"
+    stale.mkdir()
+    (stale / "animation.mp4").write_text("half")
+    unrelated = tmp_path / ".other.pim-tmp-abc123"
+    unrelated.mkdir()
+    write_run(tmp_path / "out", {"a": "1"})
+    assert not stale.exists() and unrelated.exists()
+
+
+def test_below_a_file_or_unwritable_is_an_output_error(tmp_path):
+    (tmp_path / "f").write_text("x")
+    with pytest.raises(OutputError, match="is a file"), output_folder(tmp_path / "f" / "o"):
+        pass
+    if os.geteuid() != 0:
+        ro = tmp_path / "ro"
+        ro.mkdir(mode=0o555)
+        with pytest.raises(OutputError, match="not writable"), output_folder(ro / "o"):
+            pass
+
+
+def test_rebase_maps_temporary_paths_to_the_final_folder(tmp_path):
+    assert rebase([tmp_path / "t" / "plots" / "a.png"], tmp_path / "t", "out") == [
+        Path("out/plots/a.png")]
+
+
+def test_held_signals_delivers_the_interrupt_after_the_block():
+    done = []
+    with pytest.raises(KeyboardInterrupt):
+        with held_signals():
+            os.kill(os.getpid(), signal.SIGINT)
+            done.append(1)             # still runs: the signal waits
+    assert done == [1]
+
+
+def test_a_shared_folder_gets_the_runs_files_and_keeps_the_others(tmp_path):
+    docs = tmp_path / "docs"
+    docs.mkdir()
+    (docs / "README.md").write_text("mine")
+    (docs / "hard-cases.md").write_text("old")
+    with pytest.raises(KeyboardInterrupt), output_folder(docs, merge=True) as tmp:
+        (tmp / "hard-cases.md").write_text("half")
+        raise KeyboardInterrupt
+    assert (docs / "hard-cases.md").read_text() == "old"
+    with output_folder(docs, merge=True) as tmp:
+        (tmp / "hard-cases.md").write_text("new")
+        (tmp / "hard-cases.csv").write_text("new")
+    assert tree(docs) == {"README.md": b"mine", "hard-cases.md": b"new",
+                          "hard-cases.csv": b"new"}
+    assert litter(tmp_path) == []
+
+
+def test_the_current_directory_is_never_replaced(tmp_path, monkeypatch):
+    work = tmp_path / "work"
+    work.mkdir()
+    monkeypatch.chdir(work)
+    with pytest.raises(OutputError, match="current directory"), output_folder("."):
+        pass
+    assert work.is_dir()
+
+
+def test_a_command_that_fails_midway_keeps_the_earlier_run(tmp_path, monkeypatch, capsys):
+    """`pim plot` (as every folder-writing command) through output_folder: a full disk half
+    way leaves the earlier run whole, one line, exit 2."""
+    import errno
+
+    import pim.plotting.sheet as sheet
+    from pim_cli.main import main
+
+    out = tmp_path / "plots"
+    assert main(["plot", "hard-pole", "--out", str(out), "--format", "png"]) == 0
+    before = tree(out)
+    real = sheet.write_plots
+
+    def disk_full(case, result, folder, **kwargs):
+        real(case, result, folder, **kwargs)
+        raise OSError(errno.ENOSPC, "No space left on device", str(Path(folder) / "x.png"))
+
+    monkeypatch.setattr(sheet, "write_plots", disk_full)
+    capsys.readouterr()
+    assert main(["plot", "hard-pole", "--out", str(out), "--format", "png", "--units",
+                 "us"]) == 2
+    errors = [line for line in capsys.readouterr().err.splitlines() if "error" in line]
+    assert len(errors) == 1 and "No space left" in errors[0]
+    assert tree(out) == before
+    assert litter(tmp_path) == []
+
+
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
+def test_pool_workers_print_nothing_and_end_with_the_parent(tmp_path, signum):
+    """Issue 22: a Ctrl-C to the process group printed each worker's KeyboardInterrupt
+    traceback; a parent's SIGTERM handler inherited by forked workers did the same."""
+    script = tmp_path / "run.py"
+    script.write_text(textwrap.dedent("""
+        import signal, sys, time
+        from pim.io.output import worker_pool
+
+        def task():
+            time.sleep(30)
+
+        def on_term(signum, frame):
+            raise KeyboardInterrupt
+
+        if __name__ == "__main__":
+            signal.signal(signal.SIGTERM, on_term)      # as the pim command line does
+            try:
+                with worker_pool(2) as pool:
+                    futures = [pool.submit(task) for _ in range(2)]
+                    print("started", flush=True)
+                    futures[0].result()
+            except KeyboardInterrupt:
+                sys.exit(130)
+    """))
+    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+    assert proc.stdout.readline().strip() == "started"
+    time.sleep(0.5)                                  # the workers are in their task
+    start = time.time()
+    os.killpg(proc.pid, signum)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and err == "", err
+    assert time.time() - start < 10                  # ended, not waited for (30 s)

@@ -1,0 +1,177 @@
+"""The pim command line: solve, cases, draw (text, JSON, files) and its exit codes."""
+
+import json
+from importlib import resources
+
+import pytest
+
+import pim
+from pim_cli.main import main
+
+
+def test_solve_prints_the_ricsac9_table_in_us_units(capsys):
+    assert main(["solve", "ricsac9", "--units", "us"]) == 0
+    out = capsys.readouterr().out
+    # the design sheet prints final yaw rates -199.702 and 87.322 deg/s, speeds 9.669 and
+    # 18.885 mph (shared spec ricsac9.md; relative 2e-3 for its printed digits); US output
+    # gives every speed in ft/s (one speed unit per system): 1 mph = 22/15 ft/s exactly
+    rows = {line[:40].strip(): line[40:].split() for line in out.splitlines()}
+    w1, w2, unit = rows["post-impact yaw rate"]
+    assert unit == "deg/s"
+    assert float(w1) == pytest.approx(-199.702, rel=2e-3)
+    assert float(w2) == pytest.approx(87.322, rel=2e-3)
+    s1, s2, unit = rows["post-impact speed"]
+    assert unit == "ft/s" and float(s1) == pytest.approx(9.669 * 22 / 15, rel=2e-3)
+    assert float(s2) == pytest.approx(18.885 * 22 / 15, rel=2e-3)
+    assert "ft lbf" in out and "mph" not in out
+
+
+def test_solve_json_matches_the_library(capsys):
+    assert main(["solve", "ricsac9", "--eps", "0.5", "--beta", "0.5", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    r = pim.solve(pim.load_case("ricsac9"), 0.5, 0.5)
+    assert data["admissible"] is True and data["problems"] == []
+    assert data["results"]["velocity_x"]["vehicle1"] == pytest.approx(
+        float(r.velocity1[0]) / 0.3048)
+    assert data["results"]["velocity_x"]["unit"] == "ft/s"    # ricsac9 is written in ft
+    assert data["results"]["energy_loss"]["value"] == pytest.approx(
+        float(r.energy_loss) / 1.3558179483314004)
+
+
+def test_separating_case_says_no_impact_once(tmp_path, capsys):
+    text = (resources.files("pim.io") / "cases" / "hard-eps0.toml").read_text()
+    path = tmp_path / "apart.toml"
+    path.write_text(text.replace('velocity = ["15 m/s", "0 m/s"]',
+                                 'velocity = ["-15 m/s", "0 m/s"]'))
+    assert main(["solve", str(path)]) == 1
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    assert captured.err.strip().startswith("no impact: the vehicles separate at C")
+    assert len(captured.err.strip().splitlines()) == 1 and "-0" not in captured.err
+
+
+def test_singular_q_is_an_error(capsys):
+    from tests.pim.test_hard_cases import singular_beta
+
+    beta = singular_beta(pim.load_case("hard-eps0"), 0.0)
+    assert main(["solve", "hard-eps0", "--eps", "0", "--beta", repr(beta)]) == 2
+    assert "q is singular" in capsys.readouterr().err
+
+
+def test_cases_lists_the_bundled_cases(capsys):
+    assert main(["cases"]) == 0
+    out = capsys.readouterr().out
+    for name in ("ricsac9", "ricsac9-brach", "hard-grazing", "hard-pole"):
+        assert name in out
+
+
+def test_draw_writes_an_image(tmp_path):
+    out = tmp_path / "fig" / "conventions.png"
+    assert main(["draw", "ricsac9", "--out", str(out)]) == 0
+    data = out.read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 20000
+    assert not [p for p in out.parent.iterdir() if p.name.startswith(".")]
+
+
+def test_import_is_light():
+    import subprocess
+    import sys
+
+    code = ("import sys, pim; heavy = {'matplotlib', 'pint', 'numba', 'scipy', 'pymunk'}; "
+            "print(sorted(heavy & set(sys.modules)))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"
+
+
+def test_public_functions_are_not_shadowed_by_their_modules():
+    import importlib
+    import pkgutil
+
+    modules = [m.name for m in pkgutil.walk_packages(pim.__path__, "pim.")]
+    for name in modules:
+        importlib.import_module(name)
+    # after importing every submodule, pim.fit & co. are still the functions...
+    for name in ("fit", "sensitivity", "uncertainty", "solve", "load_case"):
+        assert callable(getattr(pim, name)) and getattr(pim, name).__name__ == name
+    # ...and no public name of pim is also the name of one of its submodules
+    tops = {m.split(".")[1] for m in modules}
+    assert not tops & set(pim.__all__)
+
+
+def test_help_says_what_compare_does_with_eps(capsys):
+    # issue 12 item 6: compare's --eps default is the fit, not "the case's"
+    assert main(["compare", "--help"]) == 0
+    out = capsys.readouterr().out
+    assert "fitted to the case's" in " ".join(out.split())
+    assert "reconstruction report" in out
+
+
+def test_fit_prints_no_search_range_for_a_fixed_parameter(capsys):
+    assert main(["fit", "ricsac9", "--beta", "1"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    beta = next(line for line in lines if line.strip().startswith("beta"))
+    eps = next(line for line in lines if line.strip().startswith("epsilon"))
+    assert "search range" not in beta and "(fixed)" in beta
+    assert "search range [0, 1]" in eps
+
+
+# --- Issue 21 point 7 and issue 22: input errors exit 2, bugs keep their traceback ----
+
+
+def test_input_error_is_one_line_and_exit_2(capsys):
+    assert main(["solve", "no-such-case"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: ") and len(err.strip().splitlines()) == 1
+
+
+def test_an_internal_bug_is_not_disguised_as_bad_input(monkeypatch):
+    """Before: any ValueError, internal bugs included, became "error: ..." and exit 2."""
+    import pim.model.impact_laws
+
+    def broken(*args, **kwargs):
+        raise ValueError("an internal bug")
+
+    monkeypatch.setattr(pim.model.impact_laws, "solve", broken)    # what pim solve calls
+    with pytest.raises(ValueError, match="an internal bug"):
+        main(["solve", "ricsac9"])
+
+
+@pytest.mark.parametrize("args, words", [
+    (["solve", "ricsac9", "--friction-limit", "nan"], ["--friction-limit", "finite"]),
+    (["solve", "ricsac9", "--friction-limit", "-1"], ["--friction-limit", ">= 0"]),
+    (["solve", "ricsac9", "--eps", "inf"], ["--eps", "[0, 1]"]),
+    (["solve", "ricsac9", "--beta", "nan"], ["--beta", "finite"]),
+    (["uncertainty", "ricsac9", "--eps", "nan"], ["--eps", "finite"]),
+])
+def test_non_finite_options_are_usage_errors(capsys, args, words):
+    """Before: --friction-limit nan was accepted."""
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert all(w in err for w in words), err
+
+
+@pytest.mark.parametrize("command", [["fit"], ["sensitivity"], ["solve"],
+                                     ["uncertainty", "--samples", "200"], ["sim"]])
+def test_every_json_names_its_units_and_speaks_them(capsys, command):
+    """Before: fit, sensitivity and reconstruct --json answered in SI for a US case."""
+    args = [command[0], "ricsac9", *command[1:], "--json"]
+    try:
+        code = main(args)
+    except SystemExit as exc:           # pim sim exits through sys.exit
+        code = exc.code
+    assert code == 0
+    us = json.loads(capsys.readouterr().out)
+    assert us["units"] == "us"
+    try:
+        main([*args, "--units", "si"])
+    except SystemExit:
+        pass
+    si = json.loads(capsys.readouterr().out)
+    assert si["units"] == "si"
+    assert json.dumps(us) != json.dumps(si)
+    if command[0] == "fit":
+        assert us["rms_unit"] == "ft/s" and si["rms_unit"] == "m/s"
+        assert us["rms"] == pytest.approx(si["rms"] / 0.3048)
+    if command[0] == "sensitivity":
+        v_us, v_si = us["outputs"]["delta_v1_magnitude"], si["outputs"]["delta_v1_magnitude"]
+        assert v_us["value"] == pytest.approx(v_si["value"] / 0.3048)

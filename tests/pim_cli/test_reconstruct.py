@@ -1,0 +1,204 @@
+"""`pim reconstruct` (pim_cli.reconstruct): refusal of a case without evidence, and the
+synthetic case's report files and JSON (slow: two run-out fits)."""
+
+import json
+from dataclasses import replace
+from importlib import resources
+from types import SimpleNamespace
+
+import pytest
+
+import pim
+from pim.analysis.reconstruction import reconstruct
+from pim_cli.main import main
+from pim_cli.reconstruct import _html_report, _report, tyre_models_line
+from pim.io.casefile import load_case
+from pim.io.output import MARKER
+
+KNOWN = 31.09 * 0.3048
+
+
+def test_case_without_unknowns_is_one_line_and_exit_code_2(capsys):
+    assert main(["reconstruct", "ricsac9"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "[unknown]" in err[0]
+
+
+def test_ricsac9_turned_around_covers_the_staged_speeds(tmp_path, capsys):
+    """RICSAC 9's measured post-impact motion -> its impact speeds: the staged 21.2 mph of
+    each car (Brach & Brach 2011) lies inside the stated 5-95 % interval."""
+    assert main(["reconstruct", "ricsac9-reconstruct", "--out", str(tmp_path), "--json",
+                 "--samples", "4000"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    staged = 21.2                               # mph: --json speaks the case's units
+    assert data["units"] == "us"
+    for key in ("vehicle1.speed", "vehicle2.speed"):
+        row = data["unknowns"][key]
+        assert row["unit"] == "mph"
+        assert row["p5"] < staged < row["p95"], (key, row)
+        assert row["p5"] < row["p50"] < row["p95"]
+    assert {"impact.restitution", "impact.beta"} <= set(data["unknowns"])
+    assert {p.name for p in tmp_path.iterdir()} == {"report.md", "report.html",
+                                                    "reconstruction.csv", MARKER}
+    csv = (tmp_path / "reconstruction.csv").read_text()
+    assert "vehicle1.speed,mph," in csv          # US case: mph in, mph out
+    page = (tmp_path / "report.html").read_text()
+    table = page.split('id="table-reconstruction"')[1].split("</table>")[0]
+    assert "<td>vehicle1.speed</td>" in table and "<td>mph</td>" in table
+    assert "momentum check" in table and "nan" not in table     # no percentiles: empty
+    assert "<video" not in page and "https://" not in page
+
+
+def test_under_determined_is_said_not_a_number(tmp_path, capsys):
+    """Both speeds, eps and beta from one vehicle's post-impact motion (3 numbers): exit 2
+    and one line naming what is missing."""
+    text = (resources.files("pim.io") / "cases" / "ricsac9-reconstruct.toml").read_text()
+    kept = [line for line in text.splitlines() if not line.startswith("vehicle2.velocity =")
+            and not line.startswith("vehicle2.yaw_rate =")]
+    path = tmp_path / "one-vehicle.toml"
+    path.write_text("\n".join(kept) + "\n")
+    assert main(["reconstruct", str(path)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "under-determined" in err[0] and "vehicle2" in err[0]
+    case = load_case("ricsac9-reconstruct")
+    one = replace(case, measured=pim.Measured(velocity1=case.measured.velocity1,
+                                              yaw_rate1=case.measured.yaw_rate1))
+    rec = reconstruct(one, samples=100)
+    assert not rec.determined and rec.values == {} and rec.samples is None
+    msg = " ".join(rec.messages)
+    assert "under-determined" in msg and "vehicle2's post-impact velocity" in msg
+
+
+@pytest.mark.slow
+def test_synthetic_case_report_and_json(tmp_path, capsys):
+    assert main(["reconstruct", "synthetic-runout", "--out", str(tmp_path), "--json",
+                 "--samples", "2000"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    for key in ("vehicle1.speed", "vehicle2.speed"):
+        row = data["unknowns"][key]
+        assert row["unit"] == "mph" and data["units"] == "us"
+        row = {k: v * 0.44704 for k, v in row.items() if k != "unit"}     # mph -> m/s
+        assert row["value"] == pytest.approx(KNOWN, abs=1e-5)
+        assert row["p5"] < KNOWN < row["p95"]
+    assert {p.name for p in tmp_path.iterdir()} == {"report.md", "reconstruction.csv",
+                                                    "scene.png", "reconstruction.mp4",
+                                                    "report.html", MARKER}
+    page = (tmp_path / "report.html").read_text()
+    assert page.count("data:image/png;base64,") >= 2 and "data:video/mp4;base64," in page
+    assert "vehicle1.speed" in (tmp_path / "report.md").read_text()
+
+
+def test_no_monte_carlo_prints_no_nan_and_json_speaks_the_case_units(capsys):
+    """Issue 22: before, --samples 0 printed [nan, nan, nan] on every row (the momentum
+    check's too), and --json answered in SI for a US case."""
+    assert main(["reconstruct", "ricsac9-reconstruct", "--samples", "0"]) == 0
+    out = capsys.readouterr().out
+    assert "5/50/95 %: not computed, --samples 0" in out and "1 sd = " in out
+    assert "nan" not in out.lower()
+    assert main(["reconstruct", "ricsac9-reconstruct", "--samples", "0", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["units"] == "us" and data["unknowns"]["vehicle1.speed"]["unit"] == "mph"
+    assert 10 < data["unknowns"]["vehicle1.speed"]["value"] < 30          # mph, not m/s
+    check = data["momentum_check"]["vehicle1.speed"]
+    assert check["unit"] == "mph" and check["sd"] > 0
+def test_the_tyre_model_line_names_each_vehicles_run_out_law():
+    rec = SimpleNamespace(post=SimpleNamespace(runouts={2: SimpleNamespace(tyre_model="coulomb"),
+                                                        1: SimpleNamespace(tyre_model="brush")}))
+    assert tyre_models_line(rec) == ("Run-out tyre model: vehicle 1 brush, "
+                                     "vehicle 2 coulomb.")
+
+
+def test_report_md_and_html_name_the_tyre_model(tmp_path):
+    # report.html did not say which tyre law the run-outs used (only the CLI, --json and
+    # report.md did)
+    rec = SimpleNamespace(post=SimpleNamespace(runouts={1: SimpleNamespace(tyre_model="brush"),
+                                                        2: SimpleNamespace(tyre_model="coulomb")}),
+                          samples=None, messages=[], goodness=None, fit=None, crush=None,
+                          case=SimpleNamespace(name="field",
+                                               impact=SimpleNamespace(law=None)))
+    line = "Run-out tyre model: vehicle 1 brush, vehicle 2 coulomb."
+    assert line in _html_report(rec, [], tmp_path, video=False)
+    assert line in _report(rec, [], "si", with_scene=False)
+
+
+@pytest.mark.slow   # two field-tyre run-out fits (compiled right-hand side: seconds)
+def test_reconstruct_on_the_field_tyre_gives_back_the_speeds_and_says_so(tmp_path, capsys):
+    """The bundled field-tyre case (rest evidence generated by the numpy brush run-out from
+    21.2 mph each): the nominal speeds come back, and the CLI, --json, report.md and
+    report.html say each vehicle's run-out used the brush tyre."""
+    assert main(["reconstruct", "synthetic-runout-field", "--samples", "0", "--no-video",
+                 "--json", "--out", str(tmp_path)]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["tyre_models"] == {"vehicle1": "brush", "vehicle2": "brush"}
+    for key in ("vehicle1.speed", "vehicle2.speed"):
+        assert data["unknowns"][key]["value"] * 0.44704 == pytest.approx(KNOWN, abs=1e-5)
+    line = "Run-out tyre model: vehicle 1 brush, vehicle 2 brush."
+    assert line in (tmp_path / "report.md").read_text()
+    assert line in (tmp_path / "report.html").read_text()
+    case = tmp_path / "case.toml"
+    case.write_text((resources.files("pim.io") / "cases" / "synthetic-runout.toml").read_text()
+                    + '\n[tyres.vehicle1]\ncg_height = "0.5 m"\n')
+    assert main(["reconstruct", str(case), "--samples", "0", "--no-video", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["tyre_models"] == {"vehicle1": "brush", "vehicle2": "coulomb"}
+    assert main(["reconstruct", str(case), "--samples", "0", "--no-video"]) == 0
+    assert "Run-out tyre model: vehicle 1 brush, vehicle 2 coulomb." in capsys.readouterr().out
+
+
+def test_recorder_evidence_says_which_evidence_drove_each_speed(capsys):
+    """synthetic-edr (vehicle 1's recorded delta-V, vehicle 2's recorded pre-crash speed):
+    the text names the driving evidence per speed in the case's units, the JSON too."""
+    assert main(["reconstruct", "synthetic-edr", "--samples", "0", "--units", "si"]) == 0
+    out = capsys.readouterr().out
+    assert "evidence: vehicle1.speed (1 sd = " in out and "m/s): vehicle1 recorded delta-V" in out
+    assert main(["reconstruct", "synthetic-edr", "--samples", "0", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["unknowns"]["vehicle1.speed"]["value"] == pytest.approx(9.5 / 0.44704, abs=0.01)
+    drivers = data["evidence_drivers"]["vehicle2.speed"]
+    assert drivers["unit"] == "mph" and max(drivers["shares"], key=drivers["shares"].get) == \
+        "vehicle2 recorded pre-crash speed"
+
+
+def test_crush_outputs_in_the_report(tmp_path, capsys):
+    assert main(["reconstruct", "synthetic-crush", "--samples", "0", "--units", "si",
+                 "--out", str(tmp_path / "out")]) == 0
+    out = capsys.readouterr().out
+    assert "crush: vehicle1: crush energy 16.96" in out and "EES" in out
+    report = (tmp_path / "out" / "report.md").read_text()
+    assert "## Crush energy" in report and "delta-V from crush" in report
+    assert "## Which evidence drove each unknown" in report
+
+
+def test_a_delta_v_beyond_the_speed_bounds_is_one_line_and_exit_2(tmp_path, capsys):
+    text = (resources.files("pim.io") / "cases" / "synthetic-edr.toml").read_text()
+    path = tmp_path / "bad.toml"
+    path.write_text(text.replace('"-23.65 km/h", "-9.36 km/h"', '"-200 km/h", "0 km/h"'))
+    assert main(["reconstruct", str(path), "--samples", "0"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "measured.vehicle1.delta_v" in err[0]
+
+
+def test_a_kudlich_slibar_case_is_reconstructed_under_its_law(tmp_path, capsys):
+    """RICSAC 9 written the PC-Crash way (law kudlich-slibar, POI, contact plane) with the
+    speeds, k and mu_c unknown: `pim reconstruct` solves it under that law (it refused the
+    law before, exit 2) and the staged 21.2 mph of each car (Brach & Brach 2011) lies inside
+    the 5-95 % interval."""
+    assert main(["reconstruct", "ricsac9-pccrash-reconstruct", "--out", str(tmp_path),
+                 "--json", "--samples", "400"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["law"] == "kudlich-slibar" and data["units"] == "us"
+    for key in ("vehicle1.speed", "vehicle2.speed"):
+        row = data["unknowns"][key]
+        assert row["unit"] == "mph" and row["p5"] < 21.2 < row["p95"], (key, row)
+    assert {"impact.k", "impact.mu_c"} <= set(data["unknowns"])
+    assert data["unknowns"]["impact.k"]["unit"] == "-"
+    # the fitted contact sticks: mu_c is a lower bound, and the output says so
+    assert data["unknowns"]["impact.mu_c"]["lower_bound"] is True
+    assert any("mu_c only has a lower bound" in m for m in data["messages"])
+    report = (tmp_path / "report.md").read_text()
+    assert "Impact law: Kudlich-Slibar" in report and "| impact.mu_c | >= " in report
+    assert main(["reconstruct", "ricsac9-pccrash-reconstruct", "--samples", "0",
+                 "--units", "si"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("Impact law: Kudlich-Slibar") and "m/s" in out and "mph" not in out
+    assert ">= " in next(line for line in out.splitlines() if line.startswith("impact.mu_c"))
