@@ -36,7 +36,8 @@ from pim.io.output import output_folder, worker_pool
 from pim.io.units import convert
 from pim.model.evidence import UNKNOWN_KINDS
 from pim.model.numbers import InputError
-from pim.plotting.reconstruction_animation import write_reconstruction_mp4
+from pim.model.plausibility import secondary_contact
+from pim.plotting.reconstruction_animation import frame_states, write_reconstruction_mp4
 from pim.plotting.reconstruction_scene import reconstruction_figure
 from pim_cli.main import (
     allow_inadmissible_option,
@@ -57,7 +58,7 @@ from comparisons.report.pre_impact import (
 )
 
 __all__ = ["reconstruct", "reconstruction_rows", "law_line", "evidence_drivers",
-           "driver_lines"]
+           "driver_lines", "runout_contact"]
 
 #: How each impact law is named in the output.
 LAW_NAMES = {"brach": "Brach's PIM (eps, beta)",
@@ -318,8 +319,12 @@ def _reconstruct(case, samples, seed, workers, units, as_json, say=None, allow=F
     rows = reconstruction_rows(rec, units)
     pre = pre_impact_rows(reconstruction_pre_impact(rec, seed), units)
     found = check_answer(rec.fit.case, rec.fit.result, units, allow=allow, as_json=as_json)
+    contact = runout_contact(rec, units)
+    if contact is not None and not as_json:
+        click.echo(f"note: {contact['message']}", err=True)
     if as_json:
         data = _json(case, rows, samples, rec.messages, units) | findings_json(found)
+        data["secondary_impact"] = contact
         data["pre_impact"] = pre_impact_json(pre)
         data["tyre_models"] = ({f"vehicle{i}": fit.tyre_model for i, fit in
                                 rec.post.runouts.items()} if rec.post else {})
@@ -345,7 +350,32 @@ def _reconstruct(case, samples, seed, workers, units, as_json, say=None, allow=F
             click.echo(f"evidence: {line}")
         if rec.goodness is not None:
             click.echo(f"goodness of fit: {rec.goodness.summary()}")
+    if contact is not None:
+        rec.messages.append(contact["message"])         # into the report too
     return rec, rows, pre, found
+
+
+def runout_contact(rec: Reconstruction, units: str) -> dict | None:
+    """Where the two fitted run-outs (those the animation plays) run into each other again
+    after the impact (:func:`pim.model.plausibility.secondary_contact`): time [s], place
+    (x, y) in ``units`` and the message; None without both run-outs and outlines, or when
+    they do not."""
+    post = rec.post
+    if post is None or set(post.runouts) != {1, 2}:
+        return None
+    frames = frame_states(post, fps=100, hold=0.0)
+    hit = secondary_contact(frames.times, frames.states[1], frames.states[2],
+                            rec.case.vehicle1, rec.case.vehicle2)
+    if hit is None:
+        return None
+    time, point = hit
+    (x, y), unit = convert(point, "length", units)
+    return {"time": time, "x": float(x), "y": float(y), "length_unit": unit,
+            "message": f"secondary impact at t = {time:.2f} s after the impact at (x, y) = "
+                       f"({x:.4g} {unit}, {y:.4g} {unit}): the two fitted run-outs run into "
+                       f"each other again, a second impact the run-out model leaves out (the "
+                       f"motion after it, and the speeds fitted to the rest positions through "
+                       f"it, are not reliable)"}
 
 
 def _crush_json(rec: Reconstruction, units: str) -> dict:

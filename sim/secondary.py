@@ -47,6 +47,11 @@ class SecondaryImpact:
         Its index in the trajectory.
     overlap : float
         Overlap area then [m^2].
+    point : ndarray (2,) or None
+        Where: the centroid of the overlap then [m], global frame.
+    parts : tuple of str
+        Which parts meet: vehicle 1's and vehicle 2's (:func:`part_of`), e.g.
+        ("front right", "left side").
     """
 
     time: float

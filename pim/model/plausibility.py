@@ -40,6 +40,7 @@ import numpy as np
 from .geometry import (
     heading_velocity_angle,
     outline_penetration,
+    outline_world,
     point_outline_distance,
     radius_of_gyration,
 )
@@ -49,7 +50,8 @@ __all__ = ["plausibility_warnings", "no_impact_message", "bare_angle_warning", "
            "Findings", "findings", "inadmissible_reasons", "geometry_checks",
            "geometry_findings", "geometry_warnings", "si_text", "IMPOSSIBLE_CHECKS",
            "reference_length", "crush_limit", "C_OUTSIDE_TOLERANCE", "FAR_FROM_CG", "NEAR_CG",
-           "PLAUSIBLE_CRUSH", "CRUSH_MARGIN", "GYRATION_PER_LENGTH"]
+           "PLAUSIBLE_CRUSH", "CRUSH_MARGIN", "GYRATION_PER_LENGTH", "secondary_contact",
+           "SECONDARY_DEPTH"]
 
 #: How far [m] C may lie outside a vehicle's outline: the outline is a rectangle, the real
 #: body rounded, and C is read off a scene drawing; beyond this the vehicles cannot touch at C.
@@ -327,7 +329,7 @@ def _crush_text(case, i: int, show: Show) -> str:
     """Vehicle ``i``'s plausible crush with where it comes from, for a message."""
     limit, deepest = crush_limit(case, i)
     if deepest is None:
-        return f"{show(limit, 'length')} (no crush profile: a plausible deepest crush)"
+        return f"{show(limit, 'length')} (no crush profile given)"
     return (f"{show(limit, 'length')} (its crush profile's deepest {show(deepest, 'length')} "
             f"+ {show(CRUSH_MARGIN, 'length')})")
 
@@ -352,7 +354,8 @@ def _direction(v, index) -> tuple[float, float]:
     velocity = np.asarray(v.velocity, dtype=float)
     heading = _pick(v.heading, index)
     vx, vy = (_pick(velocity[..., k], index) for k in (0, 1))
-    return heading % (2 * np.pi), np.arctan2(vy, vx) % (2 * np.pi)
+    turn = 2 * np.pi
+    return round(heading % turn, 9) % turn, round(np.arctan2(vy, vx) % turn, 9) % turn
 
 
 def _message(case, key: str, value: float, limit: float, show: Show, index) -> str:
@@ -382,9 +385,11 @@ def _message(case, key: str, value: float, limit: float, show: Show, index) -> s
                 f"{name}.cg)")
     if key == "overlap":
         return (f"the outlines overlap by {show(value, length)} at the impact, more than both "
-                f"vehicles' plausible crush together ({_crush_text(case, 1, show)} + "
-                f"{_crush_text(case, 2, show)}): check the CGs, headings and outlines")
+                f"vehicles' plausible crush together ({show(limit, length)}: vehicle 1 "
+                f"{_crush_text(case, 1, show)}, vehicle 2 {_crush_text(case, 2, show)}): "
+                f"check the CGs, headings and outlines")
     heading, moving = _direction((case.vehicle1, case.vehicle2)[i - 1], index)
+    value = round(value, 9)         # round-off of arctan2 is no angle: 0 deg, not 3.5e-15
     angles = (f"{show(value, 'angle')} from its heading (heading {show(heading, 'angle')}, "
               f"moving toward {show(moving, 'angle')})")
     if key.startswith("forward"):
@@ -422,3 +427,55 @@ def geometry_warnings(case, show: Show = si_text) -> list[str]:
     return errors + warnings
 
 
+
+
+#: How much deeper [m] the outlines must overlap again, after their least overlap since the
+#: impact, to count as a secondary contact of two moving outlines (:func:`secondary_contact`).
+SECONDARY_DEPTH = 0.05
+
+
+def secondary_contact(times, poses1, poses2, vehicle1, vehicle2,
+                      tolerance: float = SECONDARY_DEPTH) -> tuple[float, np.ndarray] | None:
+    """When and where two vehicles' outlines run into each other again after the impact.
+
+    Parameters
+    ----------
+    times : array_like (n,)
+        Time after the impact [s], increasing from 0 (the impact pose).
+    poses1, poses2 : array_like (n, 3)
+        Each vehicle's CG position and heading (x [m], y [m], heading [rad]) at ``times``.
+    vehicle1, vehicle2 : Vehicle
+        Their outlines (``length``, ``width``, ``cg_to_front``).
+    tolerance : float
+        Growth [m] of the overlap depth over its least value since the impact that counts.
+
+    Returns
+    -------
+    (float, ndarray (2,)) or None
+        The first time [s] at which the outlines overlap (depth > 0) by more than
+        ``tolerance`` beyond their least overlap since the impact, and the deepest corner of
+        either outline inside the other then [m]; None without both outlines or when it never
+        happens (the outlines may overlap at the impact, by the crush, and part).
+
+    Notes
+    -----
+    The overlap depth is :func:`pim.model.geometry.outline_penetration` per frame; the
+    running minimum makes an overlap that only shrinks after the impact no contact.
+    """
+    if _outline(vehicle1) is None or _outline(vehicle2) is None:
+        return None
+    p1, p2 = np.asarray(poses1, dtype=float), np.asarray(poses2, dtype=float)
+    outlines = [(p[:, :2], p[:, 2], v.length, v.width, v.cg_to_front)
+                for p, v in ((p1, vehicle1), (p2, vehicle2))]
+    depth = outline_penetration(*outlines)
+    hit = np.flatnonzero((depth > 0) & (depth > np.minimum.accumulate(depth) + tolerance))
+    if not hit.size:
+        return None
+    i = int(hit[0])
+    corners = []
+    for (own, other) in ((outlines[0], outlines[1]), (outlines[1], outlines[0])):
+        cg, heading, length, width, front = own
+        world = outline_world(length, width, cg[i], heading[i], front)
+        inside = point_outline_distance(world, other[0][i], other[1][i], *other[2:])
+        corners += list(zip(inside, world, strict=True))
+    return float(np.asarray(times)[i]), min(corners, key=lambda c: c[0])[1]
