@@ -13,6 +13,7 @@ import click
 
 import pim
 from pim_cli.main import (
+    Beta,
     FiniteFloat,
     allow_inadmissible_option,
     beta_option,
@@ -48,7 +49,7 @@ compare_eps_option = click.option(
     help="Coefficient of restitution epsilon in [0, 1] (default: fitted to the case's "
          "measured motion, else the case's impact.restitution). With --beta: no fit.")
 compare_beta_option = click.option(
-    "--beta", type=FiniteFloat(), default=None,
+    "--beta", type=Beta(), default=None,
     help="Fraction of the critical impulse ratio, mu = beta mu0 (default: fitted to the "
          "case's measured motion, else the case's impact.beta, else 1). With --eps: no fit.")
 

@@ -7,6 +7,7 @@ import click
 
 from pim.model.numbers import InputError
 from pim_cli.main import (
+    Beta,
     FiniteFloat,
     allow_inadmissible_option,
     case_argument,
@@ -26,7 +27,7 @@ include_yaw_option = click.option(
     help="Also fit the measured yaw rates, weighted by each vehicle's radius of gyration.")
 fixed_eps_option = click.option("--eps", type=FiniteFloat(), default=None,
                                 help="Hold epsilon fixed at this value and fit beta only.")
-fixed_beta_option = click.option("--beta", type=FiniteFloat(), default=None,
+fixed_beta_option = click.option("--beta", type=Beta(), default=None,
                                  help="Hold beta fixed at this value and fit epsilon only.")
 eps_range_option = click.option("--eps-range", type=FiniteFloat(), nargs=2, default=(0.0, 1.0),
                                 show_default=True, metavar="MIN MAX",
@@ -350,7 +351,7 @@ def _parse_sigma(items) -> dict:
 @include_yaw_option
 @click.option("--eps", type=FiniteFloat(), default=None,
               help="Evaluate delta-V at this epsilon instead of fitting.")
-@click.option("--beta", type=FiniteFloat(), default=None,
+@click.option("--beta", type=Beta(), default=None,
               help="Evaluate delta-V at this beta instead of fitting.")
 @click.option("--sigma", "sigmas", multiple=True, metavar="KEY=VALUE",
               help="Override a typical uncertainty, e.g. --sigma point='0.2 m' "

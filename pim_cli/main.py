@@ -17,10 +17,11 @@ from importlib.metadata import entry_points
 import click
 
 from pim.io.output import OutputError, note_signal, signal_received
+from pim.model.case import BETA_RANGE_TEXT
 from pim.model.numbers import InputError
 from pim.model.plausibility import Findings, findings, warnings_of
 
-__all__ = ["main", "cli", "FiniteFloat",
+__all__ = ["main", "cli", "FiniteFloat", "Beta",
            "case_argument", "eps_option", "beta_option", "units_option",
            "json_option", "echo_json", "friction_limit_option", "cap_friction_option",
            "solve_with_options", "warnings_of", "NO_IMPACT_EXIT_CODE", "law_options",
@@ -82,11 +83,22 @@ class FiniteFloat(click.ParamType):
         return number
 
 
+class Beta(FiniteFloat):
+    """A beta option: a finite float >= 0 (:data:`pim.model.case.BETA_RANGE_TEXT`; the
+    library's formula takes any beta, e.g. the Kudlich-Slibar law's Brach equivalent)."""
+
+    def convert(self, value, param, ctx):
+        number = super().convert(value, param, ctx)
+        if number < 0:
+            self.fail(f"{value!r}: beta {BETA_RANGE_TEXT}", param, ctx)
+        return number
+
+
 case_argument = click.argument("case_name", metavar="CASE")
 eps_option = click.option("--eps", type=FiniteFloat(0.0, 1.0), default=None,
                           help="Coefficient of restitution epsilon in [0, 1] "
                                "(default: the case's impact.restitution).")
-beta_option = click.option("--beta", type=FiniteFloat(), default=None,
+beta_option = click.option("--beta", type=Beta(), default=None,
                            help="Fraction of the critical impulse ratio, mu = beta mu0 "
                                 "(default: the case's impact.beta, else 1).")
 units_option = click.option("--units", type=click.Choice(["si", "us"]), default=None,
@@ -228,6 +240,9 @@ def _brach_equivalent(case, law: str) -> str:
         return f"fix the case first ({exc})"
     if not (math.isfinite(eps) and math.isfinite(beta)):
         return "this case has no Brach equivalent (no impact at C)"
+    if beta < 0:
+        return (f"this case has no Brach equivalent within Brach's law (the same answer needs "
+                f"beta = {beta:.6g} < 0 at eps = {eps:.6g})")
     return (f"the same answer is Brach's at eps = {eps:.6g}, beta = {beta:.6g}: set "
             f"impact.law = \"brach\", restitution = {eps:.6g}, beta = {beta:.6g} to run it")
 

@@ -8,6 +8,7 @@ import click
 
 from pim.model.numbers import InputError
 from pim_cli.main import (
+    Beta,
     FiniteFloat,
     allow_inadmissible_option,
     case_argument,
@@ -51,7 +52,7 @@ class SampleCount(click.ParamType):
 @click.option("--seed", type=int, default=0, show_default=True, help="Random seed.")
 @click.option("--eps", type=FiniteFloat(), default=None,
               help="Nominal epsilon (default: the case's).")
-@click.option("--beta", type=FiniteFloat(), default=None,
+@click.option("--beta", type=Beta(), default=None,
               help="Nominal beta (default: the case's).")
 @click.option("--png", "png", type=click.Path(dir_okay=False), default=None,
               help="Write histograms of the outputs to this PNG (or .svg) file.")

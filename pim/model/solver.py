@@ -28,7 +28,7 @@ import math
 import numpy as np
 
 from . import formula
-from .case import BETA_RANGE_TEXT, Case
+from .case import Case
 from .geometry import vec
 from .numbers import InputError, checked_number, real_array
 from .result import Result
@@ -59,12 +59,12 @@ def constraints(case: Case, eps=None, beta=None) -> tuple[np.ndarray, np.ndarray
     Returns
     -------
     eps, beta : ndarray
-        Checked: eps in [0, 1], beta finite and >= 0 (:data:`pim.model.case.BETA_RANGE_TEXT`).
+        Checked: eps in [0, 1], beta finite.
 
     Raises
     ------
     ValueError
-        eps missing everywhere, outside [0, 1] or NaN; beta not finite or < 0; a string, boolean or
+        eps missing everywhere, outside [0, 1] or NaN; beta not finite; a string, boolean or
         complex value for either.
     """
     eps, beta = defaults(case, eps, beta)
@@ -105,11 +105,8 @@ def _check_eps(eps) -> np.ndarray:
 
 def _check_beta(beta) -> np.ndarray:
     beta = real_array(beta, "beta (fraction of mu0)")
-    if not np.isfinite(beta).all() or (beta < 0).any():
-        low = float(np.nanmin(np.where(np.isfinite(beta), beta, np.nan), initial=np.inf))
-        got = ("NaN or inf" if not np.isfinite(beta).all() else f"{low:g}" if beta.size == 1
-               else f"values down to {low:g}")
-        raise InputError(f"beta {BETA_RANGE_TEXT}, got {got}")
+    if not np.isfinite(beta).all():
+        raise InputError("beta (fraction of mu0) must be a finite number, usually in [0, 1]")
     return beta
 
 
@@ -161,8 +158,7 @@ def solve(case: Case, eps=None, beta=None, backend: str = "auto", fast_trig: boo
         ``case.impact.restitution``.
     beta : array_like, optional
         Fraction of the critical impulse ratio, mu = beta mu0 [-]; defaults to
-        ``case.impact.beta``, else 1; >= 0 (a negative beta is refused: the tangential
-        impulse would drive the sliding at C). Values above 1 are computed and flagged.
+        ``case.impact.beta``, else 1. Values outside [0, 1] are computed and flagged.
     backend : {"auto", "numpy", "numba"}
         "numpy" is the reference path (numpy over broadcast arrays); "numba" runs the fused
         parallel kernel of :mod:`pim.model.kernel`: the same values, every field at the full
@@ -228,8 +224,8 @@ def _solve_scalar(case: Case, eps: float, beta: float, approach_tol: float,
     """:mod:`pim.model.formula` on plain floats: one case."""
     if not (0.0 <= eps <= 1.0):
         raise InputError("eps (coefficient of restitution) must be in [0, 1]")
-    if not 0.0 <= beta < math.inf:
-        _check_beta(beta)               # the one message
+    if not math.isfinite(beta):
+        raise InputError("beta (fraction of mu0) must be a finite number, usually in [0, 1]")
     v1, v2, imp = case.vehicle1, case.vehicle2, case.impact
     m1, i1, w1 = float(v1.mass), float(v1.yaw_inertia), float(v1.yaw_rate)
     m2, i2, w2 = float(v2.mass), float(v2.yaw_inertia), float(v2.yaw_rate)

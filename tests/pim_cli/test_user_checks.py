@@ -109,16 +109,15 @@ def test_heading_270_for_a_car_driving_north_warns_reversing(tmp_path, capsys):
     assert code == 0 and err == ""
 
 
-@pytest.mark.parametrize("args, field", [
-    (["--beta", "-0.2"], "beta (fraction of mu0)"),
-    (["--beta", "-1e-12"], "beta (fraction of mu0)"),
-])
-def test_negative_beta_is_refused_with_the_range(tmp_path, capsys, args, field):
+@pytest.mark.parametrize("command", [["solve", "ricsac9"], ["sim", "ricsac9"],
+                                     ["fit", "ricsac9"], ["sensitivity", "ricsac9"],
+                                     ["uncertainty", "ricsac9"], ["draw", "ricsac9"]])
+def test_negative_beta_is_refused_with_the_range(capsys, command):
     """Before: "warning: beta < 0: the tangential impulse drives the sliding", exit 0."""
-    code, out, err = run(["solve", "ricsac9", *args], capsys)
+    code, out, err = run([*command, "--beta", "-0.2"], capsys)
     assert code == 2 and out == ""
-    assert err.startswith(f"error: {field} must be a finite number >= 0: Brach's law takes "
-                          f"beta in [0, 1]")
+    assert err.startswith("error: Invalid value for '--beta': '-0.2': beta (fraction of mu0) "
+                          "must be a finite number >= 0: Brach's law takes beta in [0, 1]")
     assert err.count("\n") == 1
 
 
@@ -126,6 +125,10 @@ def test_negative_beta_in_the_case_file_names_the_field(tmp_path, capsys):
     code, out, err = run(["solve", write(tmp_path, SUV.replace("beta = 1", "beta = -0.3"))],
                          capsys)
     assert code == 2 and err.startswith("error: impact.beta (fraction of mu0) must be")
+    text = SUV + '\n[uncertainty]\nimpact.beta = {uniform = [-0.1, 0.5]}\n'
+    code, out, err = run(["uncertainty", write(tmp_path, text, "mc.toml")], capsys)
+    assert code == 2 and "uncertainty.impact.beta: value -0.1 outside the admissible range" \
+        in err
 
 
 def test_beta_above_one_exits_1_unless_allowed(capsys):

@@ -53,26 +53,31 @@ def test_bare_angle_within_two_pi_warns_before_the_table(tmp_path):
 def test_sliding_reverses_only_when_it_does():
     case = pim.load_case("ricsac9")
     assert any("reverses" in p for p in pim.solve(case, 0.3, 1.2).problems())
+    negative = pim.solve(case, 0.3, -0.2).problems()
+    assert not any("reverses" in p for p in negative)
+    assert any("beta < 0" in p for p in negative)
     assert pim.solve(case, 0.3, 0.8).problems() == []
 
 
-@pytest.mark.parametrize("beta", [-0.2, np.array([0.5, -1e-9])])
-def test_negative_beta_is_refused_with_the_law_s_range(beta):
+def test_negative_beta_is_refused_as_input_and_inadmissible_as_an_answer():
     """Issue 28: a negative beta was only warned about ("beta < 0: the tangential impulse
     drives the sliding"), the answer printed, exit 0. Brach's law defines beta in [0, 1]
-    (design sheet: mu = beta mu0, beta the fraction of mu0 used): below 0 is refused with
-    that range, wherever beta enters."""
+    (design sheet: mu = beta mu0, beta the fraction of mu0 used): a user's beta below 0 is
+    refused with that range (the case file, the fit, the Monte Carlo's range); the formula
+    itself still takes one (the Kudlich-Slibar law's Brach equivalent may need it) and flags
+    the answer inadmissible, which the command line turns into exit 1."""
+    from pim.model.plausibility import inadmissible_reasons
+
     case = pim.load_case("ricsac9")
-    for attempt in (lambda: pim.solve(case, 0.3, beta),
-                    lambda: pim.solve(case, 0.3, beta, backend="numpy")):
-        with pytest.raises(pim.InputError, match=r"beta .* >= 0.*\[0, 1\]"):
-            attempt()
-    with pytest.raises(pim.InputError, match=r"beta .* >= 0"):
+    with pytest.raises(pim.InputError, match=r"beta .* >= 0: Brach's law takes beta in \[0, 1\]"):
         pim.Impact((0.0, 0.0), 0.0, restitution=0.3, beta=-0.2)
-    with pytest.raises(pim.InputError, match=r"beta_min"):
+    with pytest.raises(pim.InputError, match=r"0 <= beta_min"):
         pim.fit(case, bounds=((0.0, 1.0), (-0.5, 1.0)))
-    with pytest.raises(pim.InputError, match=r"beta .* >= 0"):
+    with pytest.raises(pim.InputError, match=r"beta \(fixed\) .* >= 0"):
         pim.fit(case, beta=-0.2)
+    reasons = inadmissible_reasons(pim.solve(case, 0.3, -0.2))
+    assert any(r.startswith("inadmissible answer: beta < 0: the tangential impulse drives the "
+                            "sliding") and "beta = -0.2" in r and "[0, 1]" in r for r in reasons)
 
 
 def test_barrier_has_no_pdof(capsys):
@@ -242,3 +247,18 @@ def test_findings_do_not_depend_on_the_frame(dx, dy, turn, px, py):
         if np.all(close) and not np.isclose(value, limit, rtol=1e-6, atol=1e-6).any():
             assert np.array_equal(flag, b[key][0]), key
         assert np.all(close), key
+
+
+def test_readme_states_the_thresholds_the_code_uses():
+    """The README's grades of the geometry checks quote pim.model.plausibility's constants;
+    a change of either fails here."""
+    from pim.model import plausibility as p
+
+    readme = " ".join((Path(__file__).parents[3] / "README.md").read_text().split())
+    for text in (f"C more than {p.C_OUTSIDE_TOLERANCE:g} m outside a vehicle's outline",
+                 f"deepest crush + {p.CRUSH_MARGIN:g} m, else {p.PLAUSIBLE_CRUSH:g} m)",
+                 f"C farther than {p.FAR_FROM_CG:g} x the vehicle's length",
+                 f"radius of gyration / {p.GYRATION_PER_LENGTH:g})",
+                 f"nearer a moving vehicle's CG than {p.NEAR_CG:g} x its length",
+                 "--allow-inadmissible"):
+        assert text in readme, text
