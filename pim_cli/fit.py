@@ -441,11 +441,15 @@ def _print_sensitivity(case, sens, top, units) -> None:
 @eps_range_option
 @beta_range_option
 @units_option
-def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units):
+@allow_inadmissible_option
+def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units,
+         allow_inadmissible):
     """Draw the design sheet's graphs for CASE into --out (PNG and SVG).
 
     Cost vs epsilon, impulse ratio, impulse on vehicle 2, PDOF, energy loss, post-impact
-    velocities with the measured values, and the cost map over (epsilon, beta).
+    velocities with the measured values, and the cost map over (epsilon, beta). Exit code 1
+    after writing when the fitted answer is inadmissible (the reasons first;
+    --allow-inadmissible: exit 0).
     """
     from pim.analysis.residuals import has_measured_terms
     from pim.io.casefile import load_case
@@ -460,7 +464,10 @@ def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units)
     else:
         result = None
         click.echo("note: nothing measured; plotting without the fit", err=True)
+    found = check_answer(result.case if result else case, result.result if result else None,
+                         units, allow=allow_inadmissible)
     with output_folder(out_dir, command="pim plot") as tmp:
         files = write_plots(case, result, tmp, formats=formats, units=units)
     for path in rebase(files, tmp, out_dir):
         click.echo(str(path))
+    finish_answer(found, allow_inadmissible)

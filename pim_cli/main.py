@@ -369,9 +369,12 @@ def _title(case, result, law: str) -> str:
 @eps_option
 @beta_option
 @units_option
-def draw(case_name, out, eps, beta, units):
+@allow_inadmissible_option
+def draw(case_name, out, eps, beta, units, allow_inadmissible):
     """Draw CASE's geometry and sign conventions (outlines, C, n, t, Gamma, arms, velocities,
-    and the impulse when epsilon is known) to an image file; no label covers another."""
+    and the impulse when epsilon is known) to an image file; no label covers another. What
+    is implausible about the scene is said first; exit code 1 after drawing an impossible
+    scene or an inadmissible impulse (--allow-inadmissible: exit 0)."""
     from pim.io.casefile import load_case
     from pim.io.files import save_figure
     from pim.model.impact_laws import solve_law
@@ -381,8 +384,10 @@ def draw(case_name, out, eps, beta, units):
     result = None
     if eps is not None or case.impact.restitution is not None:
         result = solve_law(case, None, eps, beta)     # under the case's impact law
+    found = check_answer(case, result, units, allow=allow_inadmissible)
     path = save_figure(draw_case(case, result, units=units or case.units), out)
     click.echo(f"wrote {path}")
+    finish_answer(found, allow_inadmissible)
 
 
 class Terminated(KeyboardInterrupt):

@@ -87,6 +87,9 @@ def _results(data: ReportData) -> str:
         notes.append("Vehicle 2 is a fixed obstacle: it has no delta-V and no PDOF.")
     body = [_facts(data), html_table(data.tables["results"],
                                      note=_csv(data.tables["results"]))]
+    if data.errors:
+        body.insert(0, '<div class="warn"><strong>Inadmissible answer</strong> (the numbers '
+                    'below are not physically possible)' + h.bullets(data.errors) + "</div>")
     if "pre_impact" in data.tables:
         body.append(html_table(data.tables["pre_impact"], note=_csv(data.tables["pre_impact"])))
     if notes:

@@ -30,7 +30,7 @@ from pim.analysis.residuals import has_measured_terms
 from pim.io.files import write_text
 from pim.io.output import output_folder, rebase
 from pim.io.units import quantity_text
-from pim.model.plausibility import warnings_of
+from pim.model.plausibility import findings
 from sim.error_measure import compare_results, impact_error
 
 from comparisons.animation.render import animation_settings, build_renderer, write_animation
@@ -184,11 +184,14 @@ def _markdown(case, setup, fit, run, info, tables, rep, units) -> str:
     lines += [f"Written by `pim compare` in {units.upper()} units. Impact law: "
               f"**{setup.describe()}** (docs/impact-laws.md).", "", "## Results", ""]
     r = setup.result
+    found = findings(case, r, show=quantity_text(units))
+    if found.errors:
+        lines += ["**Inadmissible answer** (the numbers below are not physically possible):",
+                  ""] + [f"- {p}" for p in found.errors] + [""]
     lines += [f"- **{setup.parameters()}**; impulse ratio Pt / Pn = {float(r.mu):.4g}.", "",
               md_table(by_name["results"]), md_table(by_name["law"])]
-    warnings = warnings_of(case, r, show=quantity_text(units))
-    if warnings:
-        lines += ["Warnings:", ""] + [f"- {p}" for p in warnings] + [""]
+    if found.warnings:
+        lines += ["Warnings:", ""] + [f"- {p}" for p in found.warnings] + [""]
     lines += ["## Coefficients", ""] + _fit_lines(setup, fit)
     if "fit" in by_name:
         lines += [md_table(by_name["fit"])]

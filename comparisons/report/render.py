@@ -77,8 +77,11 @@ def _head(data: ReportData) -> list[str]:
 
 def _results(data: ReportData) -> list[str]:
     r, s = data.result, data.sources
-    lines = ["## Results", "",
-             f"- **epsilon = {data.eps:.6g}** ({s['eps']}), **beta = {data.beta:.6g}** "
+    lines = ["## Results", ""]
+    if data.errors:
+        lines += ["**Inadmissible answer** (the numbers below are not physically possible):",
+                  ""] + [f"- {p}" for p in data.errors] + [""]
+    lines += [f"- **epsilon = {data.eps:.6g}** ({s['eps']}), **beta = {data.beta:.6g}** "
              f"({s['beta']}); impulse ratio mu = {float(r.mu):.4g} "
              f"(mu0 = {float(r.mu0):.4g})."]
     table = data.case.uncertainty
