@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pim.io.units import convert, quantity_text
+from pim.model.geometry import outline_penetration
 from pim.model.numbers import InputError
 
 from .overlap import clip_convex, overlap_area, place, polygon_area_centroid
@@ -122,8 +123,12 @@ def find_secondary_impact(trajectory, start_index: int | None = None,
     start = trajectory.impact_index if start_index is None else int(start_index)
     areas = [float(np.prod(np.ptp(o, axis=0))) for o in (o1, o2)]
     threshold = tolerance * min(areas)
+    apart = _apart(trajectory)
     lowest = np.inf
     for i in range(start, len(trajectory.time)):
+        if apart[i]:            # a separating axis: no overlap (the clipping is the cost)
+            lowest = 0.0
+            continue
         poly1 = place(o1, trajectory.position1[i], trajectory.angle1[i])
         poly2 = place(o2, trajectory.position2[i], trajectory.angle2[i])
         area = overlap_area(poly1, poly2)
@@ -135,6 +140,18 @@ def find_secondary_impact(trajectory, start_index: int | None = None,
                 (o2, trajectory.position2, trajectory.angle2)))
             return SecondaryImpact(float(trajectory.time[i]), i, area, point, parts)
     return None
+
+
+def _apart(trajectory) -> np.ndarray:
+    """Per recorded state: the two rectangular outlines are apart (their separating-axis
+    depth, :func:`pim.model.geometry.outline_penetration`, is <= 0), all states at once."""
+    def box(corners, position, angle):
+        front, rear = corners[:, 0].max(), corners[:, 0].min()
+        return position, angle, front - rear, np.ptp(corners[:, 1]), front
+
+    return outline_penetration(box(trajectory.outline1, trajectory.position1, trajectory.angle1),
+                               box(trajectory.outline2, trajectory.position2,
+                                   trajectory.angle2)) <= 0
 
 
 def watch_after_impact(case, eps: float, beta: float, after: float = WATCH_AFTER,
