@@ -14,11 +14,16 @@ import click
 import pim
 from pim.model.numbers import InputError
 from pim_cli.main import (
+    Beta,
     FiniteFloat,
+    allow_inadmissible_option,
     beta_option,
     case_argument,
+    check_answer,
     echo_json,
     eps_option,
+    findings_json,
+    finish_answer,
     friction_limit_option,
     json_option,
     law_options,
@@ -26,7 +31,6 @@ from pim_cli.main import (
     output_units,
     solve_with_options,
     units_option,
-    warnings_of,
 )
 
 from comparisons.animation.render import MAX_SHOWN
@@ -48,7 +52,7 @@ compare_eps_option = click.option(
     help="Coefficient of restitution epsilon in [0, 1] (default: fitted to the case's "
          "measured motion, else the case's impact.restitution). With --beta: no fit.")
 compare_beta_option = click.option(
-    "--beta", type=FiniteFloat(), default=None,
+    "--beta", type=Beta(), default=None,
     help="Fraction of the critical impulse ratio, mu = beta mu0 (default: fitted to the "
          "case's measured motion, else the case's impact.beta, else 1). With --eps: no fit.")
 
@@ -70,9 +74,11 @@ compare_beta_option = click.option(
                    "ghost decelerates alike); 0 = free motion.")
 @law_options
 @progress_option
+@allow_inadmissible_option
 @json_option
 def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, no_animation,
-            no_speed_error, no_assumptions, tyre, law, k, mu_c, progress, as_json):
+            no_speed_error, no_assumptions, tyre, law, k, mu_c, progress, allow_inadmissible,
+            as_json):
     """Write a reconstruction report of CASE to a folder (report.html, report.md, CSVs,
     PNGs, MP4; report.html is one self-contained page with the plots and the animation).
 
@@ -82,7 +88,10 @@ def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, n
     plots and animation; the appendix compares PIM with a pymunk simulation and sweeps the
     simulator's speed against its error. (epsilon, beta) are fitted to the measured motion
     when the case has some; --eps and --beta together skip the fit (one of them: the other
-    is fitted). Exit code 1 with one line when the vehicles do not approach at C.
+    is fitted). Exit code 1 with one line when the vehicles do not approach at C, and
+    after the report is written when its answer is inadmissible (the reasons first, and at
+    the top of the report; --allow-inadmissible: exit 0). A secondary contact of the
+    outlines after the impact is a note with its time and place.
 
     Under another impact law (the case's impact.law or --law: kudlich-slibar with --k and
     --mu-c, brach-capped) the report is that law's answer, its pymunk run (two phases for
@@ -99,7 +108,8 @@ def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, n
     folder = _out(out, case.name, "case")
     if law_of(case, law) != "brach" or k is not None or mu_c is not None:
         _compare_law(case, folder, eps, beta, law, k, mu_c, units, gif=gif, tyre=tyre,
-                     animation=not no_animation, progress=progress, as_json=as_json)
+                     animation=not no_animation, progress=progress, as_json=as_json,
+                     allow=allow_inadmissible)
         return
     solve_with_options(case, 0.0, 1.0, units=units)     # exit 1, one line, when no impact
     started = time.perf_counter()
@@ -107,27 +117,41 @@ def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, n
                        speed_error=not no_speed_error, tyre=tyre,
                        assumptions=not no_assumptions, progress=progress,
                        units=units, friction_limit=friction_limit, case_path=case_name)
+    units = units or case.units
+    found = check_answer(case, pim.solve(case, rep.eps, rep.beta), units, friction_limit,
+                         allow_inadmissible, as_json)
+    secondary = _secondary_note(rep.animation, units, as_json)
     if as_json:
         echo_json({"case": case.name, "units": units.to_json(), "out": str(folder),
                    "eps": rep.eps, "beta": rep.beta,
-                   "error": rep.error, "seconds": rep.seconds,
+                   "error": rep.error, "seconds": rep.seconds, **findings_json(found),
+                   "secondary_impact": secondary,
                    "files": sorted(str(p) for p in rep.files)})
-        return
-    error = ("simulation failed" if rep.error != rep.error
-             else f"pymunk vs PIM error {rep.error:.2e}")
-    click.echo(f"{case.name}: epsilon = {rep.eps:.6g}, beta = {rep.beta:.6g}; {error}")
-    if rep.animation is not None:
-        a = rep.animation
-        click.echo(f"animation: {a.frames} frames, rendered at {a.render_fps:.0f} frames/s")
-    for text in warnings_of(case, pim.solve(case, rep.eps, rep.beta), friction_limit):
-        click.echo(f"warning: {text}", err=True)
-    if rep.animation is not None and rep.animation.secondary_impact is not None:
-        click.echo(f"warning: {rep.animation.secondary_impact.message()}", err=True)
-    click.echo(f"wrote {rep.report} ({len(rep.files)} files) in "
-               f"{time.perf_counter() - started:.1f} s")
+    else:
+        error = ("simulation failed" if rep.error != rep.error
+                 else f"pymunk vs PIM error {rep.error:.2e}")
+        click.echo(f"{case.name}: epsilon = {rep.eps:.6g}, beta = {rep.beta:.6g}; {error}")
+        if rep.animation is not None:
+            a = rep.animation
+            click.echo(f"animation: {a.frames} frames, rendered at {a.render_fps:.0f} "
+                       f"frames/s")
+        click.echo(f"wrote {rep.report} ({len(rep.files)} files) in "
+                   f"{time.perf_counter() - started:.1f} s")
+    finish_answer(found, allow_inadmissible)
 
 
-def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, **kwargs):
+def _secondary_note(info, units: str, as_json: bool) -> dict | None:
+    """The animation's secondary contact (``info``: an AnimationInfo or None) as a note on
+    stderr with its time and place (not with ``as_json``), and as its JSON (None: none)."""
+    found = getattr(info, "secondary_impact", None)
+    if found is None:
+        return None
+    if not as_json:
+        click.echo(f"note: {found.message(units)}", err=True)
+    return found.to_json(units)
+
+
+def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, allow, **kwargs):
     """``pim compare`` under an impact law other than Brach's (comparisons.report.law)."""
     from comparisons.report.law import compare_law_case
     from comparisons.studies.law_runs import law_setup
@@ -138,20 +162,22 @@ def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, **kwa
     setup = law_setup(case, law, result.eps,
                       None if law_of(case, law) == "kudlich-slibar" else beta, mu_c)
     rep = compare_law_case(case, folder, setup, units=units, **kwargs)
+    found = check_answer(case, setup.result, units, allow=allow, as_json=as_json)
+    secondary = _secondary_note(getattr(rep, "animation", None), units or case.units, as_json)
     if as_json:
         echo_json({"case": case.name, "units": units.to_json(), "out": str(folder),
                    "law": setup.law,
                    "restitution": setup.restitution, "beta": setup.beta,
                    "contact_friction": setup.contact_friction, "error": rep.error,
+                   **findings_json(found), "secondary_impact": secondary,
                    "files": sorted(str(p) for p in rep.files)})
-        return
-    error = ("simulation failed" if rep.error != rep.error
-             else f"pymunk vs analytic error {rep.error:.2e}")
-    click.echo(f"{case.name}: {setup.describe()}; {error}")
-    for text in warnings_of(case, setup.result):
-        click.echo(f"warning: {text}", err=True)
-    click.echo(f"wrote {rep.report} ({len(rep.files)} files) in "
-               f"{time.perf_counter() - started:.1f} s")
+    else:
+        error = ("simulation failed" if rep.error != rep.error
+                 else f"pymunk vs analytic error {rep.error:.2e}")
+        click.echo(f"{case.name}: {setup.describe()}; {error}")
+        click.echo(f"wrote {rep.report} ({len(rep.files)} files) in "
+                   f"{time.perf_counter() - started:.1f} s")
+    finish_answer(found, allow)
 
 
 
@@ -178,15 +204,18 @@ def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, **kwa
 @law_options
 @units_option
 @progress_option
+@allow_inadmissible_option
 @json_option
 def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_ghost, law, k,
-            mu_c, units, speed_unit, progress, as_json):
+            mu_c, units, speed_unit, progress, allow_inadmissible, as_json):
     """Animate CASE: pymunk simulation solid, the analytic post-impact motion as a ghost (MP4).
 
     Under the case's impact law (or --law): Brach's PIM and friction-capped Brach play the
     rigid scene at (eps, effective beta); the Kudlich-Slibar law plays its two-phase run
     (compression by the engine at mu_c, then k times its impulse) and continues after
-    separation (docs/impact-laws.md).
+    separation (docs/impact-laws.md). A secondary contact of the outlines after the impact
+    is marked in the frames and a note (its time and place); exit code 1 after writing when
+    the analytic answer is inadmissible (the reasons first; --allow-inadmissible: exit 0).
     """
     import sim
     from comparisons.animation.render import animate_case, animation_settings
@@ -210,6 +239,8 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
         setup = law_setup(case, law, result.eps, None if law_of(case, law) == "kudlich-slibar"
                           else beta, mu_c)
         eps_, beta_ = setup.restitution, setup.beta
+    found = check_answer(case, setup.result if setup else pim.solve(case, eps_, beta_),
+                         kwargs["units"], allow=allow_inadmissible, as_json=as_json)
     try:
         if setup is not None:
             kwargs.update(result=setup.result, title=f"{case.name or 'case'}: {setup.describe()}",
@@ -219,6 +250,7 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
     except sim.SimulationError as exc:
         click.echo(f"simulation failed ({exc.kind}): {exc}", err=True)
         sys.exit(1)
+    secondary = _secondary_note(info, kwargs["units"], as_json)
     if as_json:
         echo_json({"path": str(info.path), "gif": str(info.gif) if info.gif else None,
                    "frames": info.frames, "fps": info.fps, "size": list(info.size),
@@ -227,17 +259,15 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
                    "law": setup.law if setup else "brach",
                    "restitution": eps_, "beta": beta_,
                    "contact_friction": setup.contact_friction if setup else None,
-                   "secondary_impact": None if info.secondary_impact is None
-                   else info.secondary_impact.time})
-        return
-    if setup is not None:
-        click.echo(f"{case.name or 'case'}: {setup.describe()}")
-    click.echo(f"wrote {info.path}" + (f" and {info.gif}" if info.gif else "")
-               + f": {info.frames} frames at {info.fps} fps, rendered at "
-                 f"{info.render_fps:.0f} frames/s, encoded in {info.write_seconds:.2f} s; "
-                 f"ghost offset after impact {info.max_ghost_offset_px:.2g} px")
-    if info.secondary_impact is not None:
-        click.echo(f"warning: {info.secondary_impact.message()}")
+                   **findings_json(found), "secondary_impact": secondary})
+    else:
+        if setup is not None:
+            click.echo(f"{case.name or 'case'}: {setup.describe()}")
+        click.echo(f"wrote {info.path}" + (f" and {info.gif}" if info.gif else "")
+                   + f": {info.frames} frames at {info.fps} fps, rendered at "
+                     f"{info.render_fps:.0f} frames/s, encoded in {info.write_seconds:.2f} s; "
+                     f"ghost offset after impact {info.max_ghost_offset_px:.2g} px")
+    finish_answer(found, allow_inadmissible)
 
 
 def _check_suffix(path, option: str, suffix: str) -> None:
@@ -405,8 +435,10 @@ def assumptions(case_name, out, eps, beta, executor, no_animation, progress, as_
     the same contact time) and the cumulative one (PIM's error) are measured at several
     contact times, with the tyre effect over the contact time and the friction effect over
     mu_c and the tangential recovery. Writes assumptions.md, CSVs, a plot and an MP4 with
-    PIM's ghost.
+    PIM's ghost. A secondary contact of the outlines after separation in the animated
+    scene is a note with its time and place.
     """
+    import sim
     from comparisons.studies.assumptions import run_assumptions, write_assumptions
     from pim.io.output import output_folder, rebase, worker_pool
 
@@ -422,9 +454,17 @@ def assumptions(case_name, out, eps, beta, executor, no_animation, progress, as_
                                 animation_after=None if no_animation else 2.0)
         files = rebase(write_assumptions(study, tmp, animation=not no_animation,
                                          progress=progress, command=command), tmp, folder)
+    secondary = None
+    if study.animation_result is not None:       # the finite-duration scene played on
+        secondary = sim.find_secondary_impact(study.animation_result.trajectory)
+        if secondary is not None and not as_json:
+            click.echo(f"note: finite-duration scene: {secondary.message(case.units)}",
+                       err=True)
     if as_json:
         echo_json({"case": case.name, "eps": study.eps, "beta": study.beta,
                    "beta_pim": study.beta_pim, "verdicts": study.verdicts(),
+                   "secondary_impact": None if secondary is None
+                   else secondary.to_json(case.units),
                    "seconds": study.seconds, "files": [str(f) for f in files],
                    "ladders": [{"contact_time_ms": 1e3 * lad.duration,
                                 "rungs": [{"key": r.key, "against": r.baseline,

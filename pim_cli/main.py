@@ -18,14 +18,17 @@ from importlib.metadata import entry_points
 import click
 
 from pim.io.output import OutputError, note_signal, signal_received
+from pim.model.case import BETA_RANGE_TEXT
 from pim.model.numbers import InputError
-from pim.model.plausibility import warnings_of
+from pim.model.plausibility import Findings, findings, warnings_of
 
-__all__ = ["main", "cli", "FiniteFloat", "SEED", "in_callback", "CALLBACK_PATHS",
+__all__ = ["main", "cli", "FiniteFloat", "Beta", "SEED", "in_callback", "CALLBACK_PATHS",
            "case_argument", "eps_option", "beta_option", "units_option", "output_units",
            "json_option", "echo_json", "friction_limit_option", "cap_friction_option",
            "solve_with_options", "warnings_of", "NO_IMPACT_EXIT_CODE", "law_options",
-           "load_case_for", "OPTION_NAMES", "resolve_options", "solve_choice"]
+           "load_case_for", "OPTION_NAMES", "resolve_options", "solve_choice",
+           "allow_inadmissible_option", "INADMISSIBLE_EXIT_CODE",
+           "check_answer", "say_findings", "finish_answer", "findings_json"]
 
 ENTRY_POINT_GROUP = "pim.commands"
 
@@ -87,11 +90,24 @@ class FiniteFloat(click.ParamType):
 #: Type of every --seed option: numpy's seeds are integers >= 0 (a negative one is a usage
 #: error naming the option, exit 2, not numpy's traceback).
 SEED = click.IntRange(min=0)
+
+
+class Beta(FiniteFloat):
+    """A beta option: a finite float >= 0 (:data:`pim.model.case.BETA_RANGE_TEXT`; the
+    library's formula takes any beta, e.g. the Kudlich-Slibar law's Brach equivalent)."""
+
+    def convert(self, value, param, ctx):
+        number = super().convert(value, param, ctx)
+        if number < 0:
+            self.fail(f"{value!r}: beta {BETA_RANGE_TEXT}", param, ctx)
+        return number
+
+
 case_argument = click.argument("case_name", metavar="CASE")
 eps_option = click.option("--eps", type=FiniteFloat(0.0, 1.0), default=None,
                           help="Coefficient of restitution epsilon in [0, 1] "
                                "(default: the case's impact.restitution).")
-beta_option = click.option("--beta", type=FiniteFloat(), default=None,
+beta_option = click.option("--beta", type=Beta(), default=None,
                            help="Fraction of the critical impulse ratio, mu = beta mu0 "
                                 "(default: the case's impact.beta, else 1).")
 def units_option(command):
@@ -243,6 +259,54 @@ def load_case_for(command: str, case_name: str, law: str | None = None):
 
 #: Exit code of a command whose case has no impact (the vehicles separate at C).
 NO_IMPACT_EXIT_CODE = 1
+#: Exit code of a command whose answer is inadmissible (printed, reasons first), unless
+#: --allow-inadmissible.
+INADMISSIBLE_EXIT_CODE = 1
+
+allow_inadmissible_option = click.option(
+    "--allow-inadmissible", "allow_inadmissible", is_flag=True,
+    help="Exit 0 even when the answer is inadmissible (the contact would pull, kinetic energy "
+         "is gained, beta outside [0, 1] under Brach's law, C farther from a CG than the "
+         "vehicle is long); the reasons are still printed first. Default: exit 1 after the "
+         "answer.")
+
+
+def say_findings(found: Findings, allow: bool = False, as_json: bool = False) -> None:
+    """Print ``found`` on stderr before the answer, one line each: its errors ("error:",
+    or "warning:" when ``allow``), then its warnings (left to the JSON when ``as_json``)."""
+    for text in found.errors:
+        click.echo(f"{'warning' if allow else 'error'}: {text}", err=True)
+    for text in () if as_json else found.warnings:
+        click.echo(f"warning: {text}", err=True)
+
+
+def check_answer(case, result=None, units=None, friction_limit=None, allow=False,
+                 as_json=False) -> Findings:
+    """The errors and warnings about ``case`` and its answer ``result``
+    (:func:`pim.model.plausibility.findings`), numbers in ``units`` (default: the case's),
+    printed on stderr (:func:`say_findings`); end the command with :func:`finish_answer`."""
+    from pim.io.units import quantity_text
+
+    found = findings(case, result, friction_limit, quantity_text(units or case.units))
+    say_findings(found, allow, as_json)
+    return found
+
+
+def finish_answer(found: Findings, allow: bool = False) -> None:
+    """After the answer: exit :data:`INADMISSIBLE_EXIT_CODE` when ``found`` holds errors,
+    unless ``allow`` (--allow-inadmissible)."""
+    if found.errors and not allow:
+        click.echo(f"error: the answer is inadmissible ({len(found.errors)} reason"
+                   f"{'s' if len(found.errors) > 1 else ''} above); --allow-inadmissible "
+                   f"accepts it", err=True)
+        raise click.exceptions.Exit(INADMISSIBLE_EXIT_CODE)
+
+
+def findings_json(found: Findings) -> dict:
+    """The JSON fields of ``found``: admissible, inadmissible (the errors), warnings and
+    problems (both)."""
+    return {"admissible": not found.errors, "inadmissible": found.errors,
+            "warnings": found.warnings, "problems": found.all}
 
 
 @cli.command()
@@ -253,9 +317,10 @@ NO_IMPACT_EXIT_CODE = 1
 @cap_friction_option
 @law_options
 @units_option
+@allow_inadmissible_option
 @json_option
 def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, units, speed_unit,
-          as_json):
+          allow_inadmissible, as_json):
     """Solve CASE under its impact law (default Brach's PIM) and print the post-impact
     results.
 
@@ -263,7 +328,8 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, unit
     impulse, Brach's coefficients and the energy loss with its normal/tangential split, then
     warnings; with pre-impact evidence (tyre marks before the impact, a driver table from a
     negative time) each vehicle's speed at their start. Exit code 1 with one line when the
-    vehicles do not approach at C (no impact).
+    vehicles do not approach at C (no impact), and after the table when the answer is
+    inadmissible (the reasons first; --allow-inadmissible: exit 0).
     """
     from comparisons.report.pre_impact import pre_impact_json, pre_impact_lines, pre_impact_rows
     from pim.analysis.pre_impact_speeds import case_pre_impact
@@ -277,21 +343,19 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, unit
     if result.q_singular.any():
         problems = result.problems()
         raise InputError(problems[0] if problems else "q is singular")
-    warnings = warnings_of(case, result, friction_limit)
+    found = check_answer(case, result, units, friction_limit, allow_inadmissible, as_json)
     rows = summarize(result, units)
     law = choice.law
     if as_json:
-        echo_json({"case": case.name, "units": units.to_json(), "law": law,
-                   "admissible": bool(result.admissible), "problems": warnings,
+        echo_json({"case": case.name, "units": units.to_json(), "law": law, **findings_json(found),
                    "results": rows_to_json(rows), "pre_impact": pre_impact_json(pre_impact)})
-        return
-    for text in warnings:       # before the table, where a reader sees them
-        click.echo(f"warning: {text}", err=True)
-    click.echo(format_table(rows, _title(case, result, law)))
-    if pre_impact:
-        click.echo("\nSpeeds before the impact (from the case's impact velocities):")
-        for line in pre_impact_lines(pre_impact):
-            click.echo(line)
+    else:
+        click.echo(format_table(rows, _title(case, result, law)))
+        if pre_impact:
+            click.echo("\nSpeeds before the impact (from the case's impact velocities):")
+            for line in pre_impact_lines(pre_impact):
+                click.echo(line)
+    finish_answer(found, allow_inadmissible)
 
 
 def _title(case, result, law: str) -> str:
@@ -313,9 +377,12 @@ def _title(case, result, law: str) -> str:
 @eps_option
 @beta_option
 @units_option
-def draw(case_name, out, eps, beta, units, speed_unit):
+@allow_inadmissible_option
+def draw(case_name, out, eps, beta, units, speed_unit, allow_inadmissible):
     """Draw CASE's geometry and sign conventions (outlines, C, n, t, Gamma, arms, velocities,
-    and the impulse when epsilon is known) to an image file; no label covers another."""
+    and the impulse when epsilon is known) to an image file; no label covers another. What
+    is implausible about the scene is said first; exit code 1 after drawing an impossible
+    scene or an inadmissible impulse (--allow-inadmissible: exit 0)."""
     from pim.io.files import save_figure
     from pim.model.law import solve
     from pim.plotting.drawing import draw_case
@@ -324,9 +391,11 @@ def draw(case_name, out, eps, beta, units, speed_unit):
     result = None
     if eps is not None or case.impact.restitution is not None:
         result = solve(case, eps, beta)     # under the case's impact law
-    path = save_figure(draw_case(case, result, units=output_units(case, units, speed_unit)),
-                       out)
+    units = output_units(case, units, speed_unit)
+    found = check_answer(case, result, units, allow=allow_inadmissible)
+    path = save_figure(draw_case(case, result, units=units), out)
     click.echo(f"wrote {path}")
+    finish_answer(found, allow_inadmissible)
 
 
 class Terminated(KeyboardInterrupt):

@@ -27,6 +27,7 @@ from pathlib import Path
 
 import click
 
+from pim.model.plausibility import secondary_contact
 from comparisons.report.pre_impact import (
     pre_impact_html,
     pre_impact_json,
@@ -45,13 +46,17 @@ from pim.io.units import convert, display_units
 from pim.model.evidence import UNKNOWN_KINDS
 from pim.model.law import LAW_NAMES, LAW_PARAMETERS
 from pim.model.numbers import InputError
-from pim.plotting.reconstruction_animation import write_reconstruction_mp4
+from pim.plotting.reconstruction_animation import frame_states, write_reconstruction_mp4
 from pim.plotting.reconstruction_scene import reconstruction_figure
 from pim_cli.main import (
     SEED,
     FiniteFloat,
+    allow_inadmissible_option,
     case_argument,
+    check_answer,
     echo_json,
+    findings_json,
+    finish_answer,
     json_option,
     load_case_for,
     output_units,
@@ -59,7 +64,7 @@ from pim_cli.main import (
 )
 
 __all__ = ["reconstruct", "reconstruction_rows", "law_line", "evidence_drivers",
-           "driver_lines", "budget", "DEFAULT_MAX_MINUTES"]
+           "driver_lines", "budget", "DEFAULT_MAX_MINUTES", "runout_contact"]
 
 #: Default of --max-minutes: the longest Monte Carlo with run-out evidence run without
 #: being asked [min].
@@ -275,10 +280,10 @@ def _json(case, rows: list[dict], samples: int, messages, units: str) -> dict:
                    "stderr when over 10 s, and refused (exit 2, with the sample count that "
                    "fits) when over this.")
 @units_option
+@allow_inadmissible_option
 @json_option
 def reconstruct(case_name, out, samples, seed, workers, video, progress, max_minutes, units,
-                speed_unit,
-                as_json):
+                speed_unit, allow_inadmissible, as_json):
     """Reconstruct CASE's unknowns (e.g. the impact speeds) from its evidence.
 
     With --out DIR: DIR/report.md, DIR/report.html and DIR/reconstruction.csv; a case
@@ -287,16 +292,20 @@ def reconstruct(case_name, out, samples, seed, workers, video, progress, max_min
 
     With --out the folder is written whole at the end (or not at all: an error or an
     interrupt leaves an earlier run there as it was); its lock is taken before the work.
+    Exit code 1 after the output when the reconstructed answer is inadmissible (the
+    reasons first; --allow-inadmissible: exit 0).
     """
     case = load_case_for("reconstruct", case_name)
     units = output_units(case, units, speed_unit)
     with output_folder(out, command="pim reconstruct") if out else \
             contextlib.nullcontext() as tmp:
         with _stages(case, samples, workers, progress) as say:
-            rec, rows, pre = _reconstruct(case, samples, seed, workers, units, as_json, say,
-                                          budget(samples, workers, max_minutes))
+            rec, rows, pre, found = _reconstruct(case, samples, seed, workers, units, as_json,
+                                                 say, budget(samples, workers, max_minutes),
+                                                 allow_inadmissible)
         if tmp is not None:
             _write_folder(tmp, rec, rows, units, video, pre)
+    finish_answer(found, allow_inadmissible)
 
 
 @contextlib.contextmanager
@@ -341,9 +350,11 @@ def _duration(seconds: float) -> str:
         f"{seconds / 60:.0f} min" if seconds < 7200 else f"{seconds / 3600:.1f} h")
 
 
-def _reconstruct(case, samples, seed, workers, units, as_json, say=None, estimate=None):
-    """Run the reconstruction and print its table (or JSON); return it, its rows and the
-    rows of the speeds before the impact (:mod:`comparisons.report.pre_impact`)."""
+def _reconstruct(case, samples, seed, workers, units, as_json, say=None, estimate=None,
+                 allow=False):
+    """Run the reconstruction and print its table (or JSON) after what is wrong or doubtful
+    about its answer; return it, its rows, the rows of the speeds before the impact
+    (:mod:`comparisons.report.pre_impact`) and those findings."""
     if workers > 1:
         with worker_pool(workers) as pool:
             rec = run_reconstruction(case, samples=samples, seed=seed, executor=pool,
@@ -357,8 +368,13 @@ def _reconstruct(case, samples, seed, workers, units, as_json, say=None, estimat
                               "; ".join(rec.messages)))
     rows = reconstruction_rows(rec, units)
     pre = pre_impact_rows(reconstruction_pre_impact(rec, seed), units)
+    found = check_answer(rec.fit.case, rec.fit.result, units, allow=allow, as_json=as_json)
+    contact = runout_contact(rec, units)
+    if contact is not None and not as_json:
+        click.echo(f"note: {contact['message']}", err=True)
     if as_json:
-        data = _json(case, rows, samples, rec.messages, units)
+        data = _json(case, rows, samples, rec.messages, units) | findings_json(found)
+        data["secondary_impact"] = contact
         data["pre_impact"] = pre_impact_json(pre)
         data["tyre_models"] = ({f"vehicle{i}": fit.tyre_model for i, fit in
                                 rec.post.runouts.items()} if rec.post else {})
@@ -384,7 +400,32 @@ def _reconstruct(case, samples, seed, workers, units, as_json, say=None, estimat
             click.echo(f"evidence: {line}")
         if rec.goodness is not None:
             click.echo(f"goodness of fit: {rec.goodness.summary()}")
-    return rec, rows, pre
+    if contact is not None:
+        rec.messages.append(contact["message"])         # into the report too
+    return rec, rows, pre, found
+
+
+def runout_contact(rec: Reconstruction, units: str) -> dict | None:
+    """Where the two fitted run-outs (those the animation plays) run into each other again
+    after the impact (:func:`pim.model.plausibility.secondary_contact`): time [s], place
+    (x, y) in ``units`` and the message; None without both run-outs and outlines, or when
+    they do not."""
+    post = rec.post
+    if post is None or set(post.runouts) != {1, 2}:
+        return None
+    frames = frame_states(post, fps=100, hold=0.0)
+    hit = secondary_contact(frames.times, frames.states[1], frames.states[2],
+                            rec.case.vehicle1, rec.case.vehicle2)
+    if hit is None:
+        return None
+    time, point = hit
+    (x, y), unit = convert(point, "length", units)
+    return {"time": time, "x": float(x), "y": float(y), "length_unit": unit,
+            "message": f"secondary impact at t = {time:.2f} s after the impact at (x, y) = "
+                       f"({x:.4g} {unit}, {y:.4g} {unit}): the two fitted run-outs run into "
+                       f"each other again, a second impact the run-out model leaves out (the "
+                       f"motion after it, and the speeds fitted to the rest positions through "
+                       f"it, are not reliable)"}
 
 
 def _crush_json(rec: Reconstruction, units: str) -> dict:

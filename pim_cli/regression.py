@@ -8,10 +8,21 @@ import time
 from pathlib import Path
 
 import click
+
+import pim
 from tqdm import tqdm
 
 from pim_cli.main import SEED, echo_json, json_option, units_option
 from pim.io.files import write_text
+from pim.io.units import quantity_text
+from pim.model.numbers import InputError
+from pim.model.plausibility import Findings, findings
+from pim_cli.main import (
+    allow_inadmissible_option,
+    load_case_for,
+    finish_answer,
+    say_findings,
+)
 
 from comparisons.regression.sections import DEFAULT_SECTIONS, DEFAULT_SETTINGS, SECTIONS
 from comparisons.regression.baseline import (
@@ -57,7 +68,9 @@ def _progress(total: int, desc: str):
 @click.option("--references", type=click.Path(dir_okay=False), default=None,
               help="TOML file of independent reference values with their source and "
                    "tolerance, held in the baseline beside the recorded values.")
-def baseline(cases, out, extra, skip, samples, reconstruct_samples, seed, references):
+@allow_inadmissible_option
+def baseline(cases, out, extra, skip, samples, reconstruct_samples, seed, references,
+             allow_inadmissible):
     """Record every output CASE... supports, with tolerances, in a baseline file.
 
     Per case: solve, fit (with [measured] motion), the rigid pymunk cross-check, the Monte
@@ -65,7 +78,10 @@ def baseline(cases, out, extra, skip, samples, reconstruct_samples, seed, refere
     PIM's assumptions at typical values; the SHA-256 of the case file; the versions of the
     project, numpy, scipy, pymunk, numba and pint. Values are SI, each with its unit.
     `pim check OUT` reruns them. Takes about 0.1 s per case without a fit, 1-2 s with one.
+    A case whose answer is inadmissible is not recorded: the reasons, exit code 1 and no
+    file, unless --allow-inadmissible.
     """
+    finish_answer(_cases_findings(cases, allow_inadmissible), allow_inadmissible)
     sections = tuple(s for s in SECTIONS if (s in DEFAULT_SECTIONS or s in extra)
                      and s not in skip)
     settings = dict(DEFAULT_SETTINGS)
@@ -82,6 +98,24 @@ def baseline(cases, out, extra, skip, samples, reconstruct_samples, seed, refere
     n = sum(len(c["quantities"]) for c in doc["cases"])
     click.echo(f"{out}: {n} quantities of {len(cases)} case(s) in "
                f"{time.perf_counter() - start:.1f} s ({', '.join(sections)})")
+
+
+def _cases_findings(cases, allow: bool) -> Findings:
+    """The errors and warnings about each case and its answer under its own law, each
+    prefixed with the case and printed (:func:`pim_cli.main.say_findings`)."""
+    errors, warnings = [], []
+    for name in cases:
+        case = load_case_for("baseline", name)
+        try:
+            result = pim.solve(case)
+        except InputError:          # no coefficients (a reconstruction case): the case alone
+            result = None
+        found = findings(case, result, show=quantity_text(case.units))
+        errors += [f"{name}: {text}" for text in found.errors]
+        warnings += [f"{name}: {text}" for text in found.warnings]
+    found = Findings(errors, warnings)
+    say_findings(found, allow)
+    return found
 
 
 @click.command()

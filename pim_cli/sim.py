@@ -2,23 +2,32 @@
 
 from __future__ import annotations
 
+import math
+
 import click
 
 from pim.model.law import solve as solve_under_law
 from pim.model.numbers import InputError
 from pim_cli.main import (
     FiniteFloat,
+    allow_inadmissible_option,
     beta_option,
     case_argument,
+    check_answer,
     echo_json,
     eps_option,
+    findings_json,
+    finish_answer,
     json_option,
     load_case_for,
     output_units,
     units_option,
 )
 from sim.crosscheck import crosscheck
-from sim.kudlich_slibar import crosscheck_kudlich_slibar
+from sim.failures import SimulationError
+from sim.kudlich_slibar import crosscheck_kudlich_slibar, simulate_kudlich_slibar
+from sim.secondary import WATCH_AFTER, find_secondary_impact, watch_after_impact
+from sim.settings import Settings
 
 __all__ = ["sim", "in_options", "SETTING_OPTIONS"]
 
@@ -36,18 +45,20 @@ __all__ = ["sim", "in_options", "SETTING_OPTIONS"]
 @click.option("--start", type=click.Choice(["exact", "detected"]), default="exact",
               show_default=True, help="Place the contact at C, or let the engine find it.")
 @units_option
+@allow_inadmissible_option
 @json_option
-def sim(case_name, eps, beta, dt, iterations, contact, start, units, speed_unit, as_json):
+def sim(case_name, eps, beta, dt, iterations, contact, start, units, speed_unit,
+        allow_inadmissible, as_json):
     """Simulate CASE with pymunk and compare with the analytic answer (pim solve) under the
     case's impact law (Brach's PIM, friction-capped Brach or Kudlich-Slibar).
 
     Prints analytic and simulated post-impact velocities and yaw rates with absolute and
-    relative errors, and the wall time of the simulation. Exit code 1 if the simulation
-    fails (no contact, never separated, multiple contacts, energy gained, not converged).
+    relative errors, and the wall time of the simulation; before them, a note when the
+    outlines run into each other again within 2 s after the impact (a secondary contact,
+    with its time and place). Exit code 1 if the simulation fails (no contact, never
+    separated, multiple contacts, energy gained, not converged), and after the table when
+    the analytic answer is inadmissible (the reasons first; --allow-inadmissible: exit 0).
     """
-
-    from sim.failures import SimulationError
-    from sim.settings import Settings
 
     kwargs = {"iterations": iterations, "contact": contact, "start": start}
     if dt is not None:
@@ -63,12 +74,37 @@ def sim(case_name, eps, beta, dt, iterations, contact, start, units, speed_unit,
     except SimulationError as exc:
         click.echo(f"simulation failed ({exc.kind}): {in_options(str(exc))}", err=True)
         raise click.exceptions.Exit(1) from None
+    found = check_answer(case, check.analytic, units, allow=allow_inadmissible,
+                         as_json=as_json)
+    secondary, why = _secondary(case, check)
     if as_json:
-        echo_json(check.to_json(units))
-        return
-    for text in getattr(check, "limitations", ()):     # before the table, where a reader sees them
-        click.echo(f"note: {text}", err=True)
-    click.echo(check.format_table(units))
+        echo_json(check.to_json(units) | findings_json(found) | {
+            "secondary_impact": None if secondary is None else secondary.to_json(units)})
+    else:
+        # before the table, where a reader sees them; PIM's own flags are said above
+        for text in getattr(check, "limitations", ()):
+            if not text.startswith("PIM: "):
+                click.echo(f"note: {text}", err=True)
+        if secondary is not None or why:
+            click.echo(f"note: {why or secondary.message(units)}", err=True)
+        click.echo(check.format_table(units))
+    finish_answer(found, allow_inadmissible)
+
+
+def _secondary(case, check):
+    """(The secondary contact within :data:`sim.secondary.WATCH_AFTER` s after the impact
+    or None, why it could not be watched or ""): the rigid scene of the check played on,
+    or the Kudlich-Slibar two-phase run."""
+    try:
+        if (case.impact.law or "brach") != "kudlich-slibar":
+            return watch_after_impact(case, check.eps, check.beta), ""
+        settings = Settings(dt=1e-3, record=True, duration=WATCH_AFTER + 2e-3)
+        mu_c = check.mu_c if math.isfinite(check.mu_c) else 1e6    # always stick
+        run = simulate_kudlich_slibar(case, check.k, mu_c, settings)
+        return find_secondary_impact(run.trajectory), ""
+    except SimulationError as exc:
+        return None, (f"a secondary contact after the impact was not checked: the run on "
+                      f"after the impact failed ({exc.kind})")
 
 
 #: The simulator's settings that ``pim sim`` sets from an option: its messages name the option.

@@ -24,11 +24,11 @@ from .reference import reference_compliant
 from .result import BatchResult, SimResult, Trajectory
 from .run import simulate
 from .scene import Scene, build_scene
-from .secondary import SecondaryImpact, find_secondary_impact
+from .secondary import SecondaryImpact, find_secondary_impact, watch_after_impact
 from .settings import Settings
 
 __all__ = ["Settings", "simulate", "simulate_many", "SimResult", "Trajectory", "BatchResult",
            "SimulationError", "FAILURE_KINDS", "limitations", "crosscheck", "CrossCheck",
            "Scene", "build_scene", "case_element", "simulate_compliant", "reference_compliant",
-           "CompliantSettings", "CompliantResult", "CompliantBatch", "ContactHistory", "DEFAULT_STIFFNESS",
-           "find_secondary_impact", "SecondaryImpact"]
+           "CompliantSettings", "CompliantResult", "CompliantBatch", "ContactHistory",
+           "DEFAULT_STIFFNESS", "find_secondary_impact", "SecondaryImpact", "watch_after_impact"]

@@ -48,8 +48,8 @@ from comparisons.report.pre_impact import TITLE as PRE_IMPACT_TITLE
 from comparisons.report.pre_impact import pre_impact_rows
 from pim.io.files import save_figure, write_text
 from pim.io.output import ignore_interrupts, output_folder, rebase, stop_workers
-from pim.io.units import convert, display_units
-from pim.model.plausibility import warnings_of
+from pim.io.units import convert, display_units, quantity_text
+from pim.model.plausibility import findings
 from pim.model.quantities import OUTPUTS as QUANTITIES
 from pim.plotting.sheet import write_plots
 from pim.plotting.tables import summarize
@@ -421,9 +421,10 @@ def _gather_results(case, options: CompareOptions, units: str) -> ReportData:
     if case.uncertainty is not None:
         spread = pim.uncertainty(case, n=options.uncertainty_samples, seed=0, eps=eps,
                                  beta=beta)
+    found = findings(case, result, options.friction_limit, quantity_text(units))
     data = ReportData(case=case, case_path=options.case_path or case.name or "CASE",
                       units=units, eps=eps, beta=beta, sources=sources, result=result, fit=fit,
-                      warnings=warnings_of(case, result, options.friction_limit),
+                      warnings=found.warnings, errors=found.errors,
                       animation_requested=options.animation)
     data.add_table(results_table(result, units, spread))
     pre_impact = pre_impact_table(case, units)

@@ -54,7 +54,10 @@ class ReportData:
     fit : pim.analysis.fitting.FitResult or None
         The least-squares fit, when one was made.
     warnings : list of str
-        Plausibility warnings (:func:`pim.model.plausibility.warnings_of`).
+        Plausibility warnings (:func:`pim.model.plausibility.findings`).
+    errors : list of str
+        Why the answer is inadmissible or the scene impossible (the findings' errors), said
+        before the results.
     simulated : sim.SimResult or None
         The pymunk cross-check (None when it failed: ``sim_error``).
     sim_error : sim.SimulationError or None
@@ -91,6 +94,7 @@ class ReportData:
     tables: dict = field(default_factory=dict)
     fit: object = None
     warnings: list = field(default_factory=list)
+    errors: list = field(default_factory=list)
     simulated: object = None
     sim_error: object = None
     limits: list = field(default_factory=list)

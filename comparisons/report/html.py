@@ -88,6 +88,9 @@ def _results(data: ReportData) -> str:
         notes.append("Vehicle 2 is a fixed obstacle: it has no delta-V and no PDOF.")
     body = [_facts(data), html_table(data.tables["results"],
                                      note=_csv(data.tables["results"]))]
+    if data.errors:
+        body.insert(0, '<div class="warn"><strong>Inadmissible answer</strong> (the numbers '
+                    'below are not physically possible)' + h.bullets(data.errors) + "</div>")
     if "pre_impact" in data.tables:
         body.append(html_table(data.tables["pre_impact"], note=_csv(data.tables["pre_impact"])))
     if notes:
@@ -143,7 +146,8 @@ def _animation(data: ReportData, folder: Path) -> str:
                     still=h.still_frame(mp4, 0.6))]
     if info.secondary_impact is not None:
         body.append(f'<div class="warn"><strong>Plausibility:</strong> '
-                    f"{h.esc(info.secondary_impact.message())}; the animation marks it.</div>")
+                    f"{h.esc(info.secondary_impact.message(data.units))}; the animation marks "
+                    f"it.</div>")
     return h.section("Animation", body, id="animation")
 
 

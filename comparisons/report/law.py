@@ -29,8 +29,8 @@ import sim
 from pim.analysis.residuals import has_measured_terms
 from pim.io.files import write_text
 from pim.io.output import output_folder, rebase
-from pim.io.units import display_units
-from pim.model.plausibility import warnings_of
+from pim.io.units import display_units, quantity_text
+from pim.model.plausibility import findings
 from sim.error_measure import compare_results, impact_error
 
 from comparisons.animation.render import animation_settings, build_renderer, write_animation
@@ -184,11 +184,14 @@ def _markdown(case, setup, fit, run, info, tables, rep, units) -> str:
     lines += [f"Written by `pim compare` in {units}. Impact law: "
               f"**{setup.describe()}** (docs/impact-laws.md).", "", "## Results", ""]
     r = setup.result
+    found = findings(case, r, show=quantity_text(units))
+    if found.errors:
+        lines += ["**Inadmissible answer** (the numbers below are not physically possible):",
+                  ""] + [f"- {p}" for p in found.errors] + [""]
     lines += [f"- **{setup.parameters()}**; impulse ratio Pt / Pn = {float(r.mu):.4g}.", "",
               md_table(by_name["results"]), md_table(by_name["law"])]
-    warnings = warnings_of(case, r)
-    if warnings:
-        lines += ["Warnings:", ""] + [f"- {p}" for p in warnings] + [""]
+    if found.warnings:
+        lines += ["Warnings:", ""] + [f"- {p}" for p in found.warnings] + [""]
     lines += ["## Coefficients", ""] + _fit_lines(setup, fit)
     if "fit" in by_name:
         lines += [md_table(by_name["fit"])]
@@ -200,6 +203,9 @@ def _markdown(case, setup, fit, run, info, tables, rep, units) -> str:
                   f"Filled outlines: the law's pymunk run; dashed magenta outlines: the "
                   f"analytic post-impact motion. Largest offset between them after the "
                   f"impact: {info.max_ghost_offset_px:.2g} px.", ""]
+        if info.secondary_impact is not None:
+            lines += [f"**Plausibility:** {info.secondary_impact.message(units)}; the "
+                      f"animation marks it.", ""]
     else:
         lines += ["(not written: --no-animation)", ""]
     lines += ["## Appendix A: the analytic answer against the law's pymunk run", ""]

@@ -79,8 +79,11 @@ def _head(data: ReportData) -> list[str]:
 
 def _results(data: ReportData) -> list[str]:
     r, s = data.result, data.sources
-    lines = ["## Results", "",
-             f"- **epsilon = {data.eps:.6g}** ({s['eps']}), **beta = {data.beta:.6g}** "
+    lines = ["## Results", ""]
+    if data.errors:
+        lines += ["**Inadmissible answer** (the numbers below are not physically possible):",
+                  ""] + [f"- {p}" for p in data.errors] + [""]
+    lines += [f"- **epsilon = {data.eps:.6g}** ({s['eps']}), **beta = {data.beta:.6g}** "
              f"({s['beta']}); impulse ratio mu = {float(r.mu):.4g} "
              f"(mu0 = {float(r.mu0):.4g})."]
     table = data.case.uncertainty
@@ -141,7 +144,7 @@ def _animation(data: ReportData) -> list[str]:
                   f"Largest offset between ghost and simulation after the impact: "
                   f"{info.max_ghost_offset_px:.2g} px.", ""]
         if info.secondary_impact is not None:
-            lines += [f"**Plausibility:** {info.secondary_impact.message()}; the animation "
+            lines += [f"**Plausibility:** {info.secondary_impact.message(data.units)}; the animation "
                       f"marks it.", ""]
     elif data.animation_error is not None:
         e = data.animation_error

@@ -977,7 +977,8 @@ def assumptions_html(study: AssumptionStudy, table: Table, out_dir, info=None,
             still=h.still_frame(mp4, 0.5), caption="The finite-duration scene (filled) with "
             "PIM's answer as a dashed ghost: `assumptions.mp4`.")
             + ("" if info.secondary_impact is None else h.paragraph(
-                f"**Warning:** {info.secondary_impact.message()}.")), id="animation"))
+                f"**Warning:** {info.secondary_impact.message(study.case.units)}.")),
+            id="animation"))
     return h.page(f"{study.case.name or 'case'}: which of PIM's assumptions hold", sections,
                   subtitle=(f"Regenerate with `{command}`. " if command else "")
                   + "The same as text: `assumptions.md`.",
@@ -1008,7 +1009,7 @@ def assumptions_markdown(study: AssumptionStudy, table: Table, info=None,
         lines += [f"[assumptions.mp4](assumptions.mp4): the finite-duration scene (filled) "
                   f"with PIM's answer as a dashed ghost ({info.frames} frames).", ""]
         if info.secondary_impact is not None:
-            lines += [f"**Warning:** {info.secondary_impact.message()}.", ""]
+            lines += [f"**Warning:** {info.secondary_impact.message(study.case.units)}.", ""]
     lines += [f"Every scene: [assumption_sweeps.csv](assumption_sweeps.csv). Run time "
               f"{study.seconds:.1f} s.", ""]
     return "\n".join(lines)

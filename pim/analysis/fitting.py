@@ -34,7 +34,7 @@ from functools import cached_property
 
 import numpy as np
 
-from ..model.case import Case, checked_case
+from ..model.case import BETA_RANGE_TEXT, Case, checked_case
 from ..model.evidence_terms import as_residual_terms, split_terms
 from ..model.impact_laws import check_contact_friction, law_of
 from ..model.law import solve as solve_under_law
@@ -245,9 +245,10 @@ def _check_bounds(bounds) -> tuple:
     if not (0.0 <= e_lo < e_hi <= 1.0):
         raise InputError(f"bounds on eps must satisfy 0 <= eps_min < eps_max <= 1, "
                          f"got ({e_lo}, {e_hi})")
-    if not (np.isfinite(b_lo) and np.isfinite(b_hi) and b_lo < b_hi):
-        raise InputError(f"bounds on beta must be finite with beta_min < beta_max, "
-                         f"got ({b_lo}, {b_hi})")
+    if not (np.isfinite(b_lo) and np.isfinite(b_hi) and 0.0 <= b_lo < b_hi):
+        raise InputError(f"bounds on beta must be finite with 0 <= beta_min < beta_max (beta "
+                         f"< 0 would drive the sliding at C; beta_max may exceed 1 to "
+                         f"explore, and the answer is then flagged), got ({b_lo}, {b_hi})")
     return (e_lo, e_hi), (b_lo, b_hi)
 
 
@@ -262,8 +263,8 @@ def _check_fixed(eps, beta, free: dict) -> tuple[float | None, float | None]:
             raise InputError(f"eps (fixed) must be in [0, 1], got {eps}")
     if beta is not None:
         beta = float(beta)
-        if not np.isfinite(beta):
-            raise InputError(f"beta (fixed) must be a finite number, got {beta}")
+        if not (np.isfinite(beta) and beta >= 0):
+            raise InputError(f"beta (fixed) {BETA_RANGE_TEXT}, got {beta}")
     return eps, beta
 
 

@@ -19,6 +19,7 @@ Unknown keys are errors, so a typo is never silently ignored; every error is a
     yaw_rate = "0 deg/s"
     length = "4.1 m"                # optional, with width: outline for drawing
     cg_to_front = "1.9 m"           # optional: CG to front bumper (default length / 2)
+    reversing = true                # optional: it moves backwards (silences that warning)
     [impact]
     point = [0, 0]
     normal_angle = "0 deg"          # Gamma: n points from vehicle 2 toward vehicle 1
@@ -84,10 +85,10 @@ _TOP = {"name", "description", "source", "convention", "vehicle1", "vehicle2", "
         "measured", "uncertainty", "evidence", "unknown", "tyres", "driver", "units"}
 _VEHICLE = {"mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
             "length", "width", "cg_to_front", "fixed", "cg", "heading", "theta", "phi", "d",
-            "wheelbase", "cg_to_front_axle", "body"}
+            "wheelbase", "cg_to_front_axle", "body", "reversing"}
 #: Keys of a moving vehicle that a fixed obstacle must not have.
 _MOVING = ("mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
-           "wheelbase", "cg_to_front_axle", "body")
+           "wheelbase", "cg_to_front_axle", "body", "reversing")
 _LOG = logging.getLogger(__name__)
 
 #: Deepest nesting of tables and lists a case file may have: the deepest legitimate value,
@@ -162,9 +163,10 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int,
     if stray:
         raise InputError(f"{where}: key {stray[0]!r} does not belong to the {convention!r} "
                          f"convention (use {', '.join(placement)})")
-    fixed = table.get("fixed", False)
-    if not isinstance(fixed, bool):
-        raise InputError(f"{where}.fixed must be true or false")
+    fixed, reversing = table.get("fixed", False), table.get("reversing", False)
+    for key, value in (("fixed", fixed), ("reversing", reversing)):
+        if not isinstance(value, bool):
+            raise InputError(f"{where}.{key} must be true or false, got {value!r}")
     if convention == "global" and fixed:
         cg = _pair(table["cg"], "length", f"{where}.cg") if "cg" in table else point
         heading = parse(table.get("heading", 0.0), "angle", f"{where}.heading")
@@ -195,7 +197,7 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int,
     velocity = _pair(_require(table, "velocity", where), "velocity", f"{where}.velocity")
     yaw_rate = parse(table.get("yaw_rate", 0.0), "angular_velocity", f"{where}.yaw_rate")
     return _wrap(where, Vehicle, mass=mass, yaw_inertia=inertia, cg=cg, velocity=velocity,
-                 yaw_rate=yaw_rate, heading=heading, **outline), estimate
+                 yaw_rate=yaw_rate, heading=heading, reversing=reversing, **outline), estimate
 
 
 def _mass(table, where: str) -> float:

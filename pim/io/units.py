@@ -26,7 +26,7 @@ from ..model.numbers import InputError, speeds_in
 
 __all__ = ["registry", "parse", "convert", "DISPLAY_UNITS", "UNIT_SYSTEMS", "LIMITS",
            "unit_system_of", "DisplayUnits", "display_units", "SPEED_UNITS", "SPEED_KINDS",
-           "messages_in"]
+           "messages_in", "quantity_text"]
 
 #: SI unit of each kind of input quantity (its dimension is the expected one).
 DIMENSIONS = {
@@ -434,3 +434,15 @@ def messages_in(units):
     factor, label = _factor("speed", shown.speed), _label(shown.speed)
     with speeds_in(factor, label):
         yield shown
+
+
+def quantity_text(units):
+    """A ``show(value [SI], kind) -> "149.7 ft"`` for messages in the display units ``units``
+    (a system or a :class:`DisplayUnits`; angles in deg): what :mod:`pim.model.plausibility`
+    takes to print its numbers in the case's units."""
+    shown_units = units if isinstance(units, DisplayUnits) else DisplayUnits(units)
+
+    def show(value: float, kind: str) -> str:
+        shown, label = convert(value, kind, shown_units)
+        return f"{float(shown):.4g} {label}"
+    return show

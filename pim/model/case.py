@@ -20,7 +20,7 @@ from .inertia import InputEstimate
 from .numbers import InputError, check_type, real_array
 
 __all__ = ["Vehicle", "Impact", "Case", "Measured", "LAWS", "MASS_RANGE", "INERTIA_RANGE",
-           "MAX_ARM_RATIO", "SPEED_UNITS", "checked_case"]
+           "MAX_ARM_RATIO", "SPEED_UNITS", "checked_case", "BETA_RANGE_TEXT"]
 
 #: The impact laws a case may name (``impact.law``); see :mod:`pim.model.impact_laws`.
 #: "brach": Brach's PIM (eps, beta); "brach-capped": PIM with |mu| capped at a friction
@@ -51,6 +51,17 @@ INERTIA_RANGE = (1e-60, 1e60)
 #: vehicle has a ratio near 1-10 (k of 1-1.5 m, arms of 1-3 m), a thin pole struck at
 #: 1 m with k = 1 mm a ratio of 1e6.
 MAX_ARM_RATIO = 1e8
+
+
+#: What beta may be, in words (every message refusing a beta says it). Brach's law defines
+#: mu = beta mu0 with beta in [0, 1] (the design sheet: "the fraction of mu0 used"; its fit
+#: is constrained to beta <= 1). beta < 0 would make the tangential impulse drive the sliding
+#: at C instead of resisting it, which no contact does: refused. beta > 1 (the slip at C
+#: reverses: tangential restitution, the Kudlich-Slibar law's standard) is accepted and its
+#: answer flagged inadmissible under Brach's law (:mod:`pim.model.admissibility`).
+BETA_RANGE_TEXT = ("(fraction of mu0) must be a finite number >= 0: Brach's law takes beta in "
+                   "[0, 1] (above 1 the answer is flagged inadmissible: the slip at C "
+                   "reverses)")
 
 
 #: The types of a plain Python number (bool excluded: ``type(True) is bool``).
@@ -191,6 +202,10 @@ class Vehicle:
         [0, length]; default ``length / 2`` (the outline centred on the CG). Needs
         ``length``. Not the CG to the front axle (the run-out's
         :attr:`pim.model.evidence.VehicleEvidence.cg_to_front_axle`).
+    reversing : bool
+        The vehicle is known to move backwards (velocity more than 90 deg from the heading):
+        silences the plausibility warning that asks whether it is (default False). Never
+        used by the impact equations.
     """
 
     mass: np.ndarray
@@ -202,11 +217,14 @@ class Vehicle:
     length: float | None = None
     width: float | None = None
     cg_to_front: float | None = None
+    reversing: bool = False
 
     def __post_init__(self) -> None:
         if not self._set_plain():
             self._set_checked()
         self._check_outline()
+        if type(self.reversing) is not bool:
+            raise InputError(f"reversing must be true or false, got {self.reversing!r}")
 
     def _set_plain(self) -> bool:
         """The single moving body given as plain Python floats (or ints): every check of
@@ -350,8 +368,8 @@ class Impact:
             object.__setattr__(self, "restitution", eps)
         if self.beta is not None:
             beta = _one_number(self.beta, "beta")
-            if not np.isfinite(beta):
-                raise InputError(f"beta must be a finite number (usually in [0, 1]), got {beta}")
+            if not beta >= 0 or not np.isfinite(beta):
+                raise InputError(f"beta {BETA_RANGE_TEXT}, got {beta:g}")
             object.__setattr__(self, "beta", beta)
         if self.law is not None or self.contact_friction is not None:
             self._check_law()        # nothing to check for Brach's law without mu_c

@@ -18,9 +18,10 @@ Inputs (and their unit kind): ``vehicle1.`` / ``vehicle2.`` + ``mass``, ``yaw_in
 strings or bare SI numbers, parsed by :mod:`pim.io.uncertainty_table`; unknown inputs, unknown
 distribution keys and bad bounds are errors. Inputs not listed keep their nominal value.
 
-Admissible ranges: eps in [0, 1], mass and yaw inertia > 0. A normal distribution on such an
-input is *truncated* to the range (sampled by inverse CDF between the CDF values of the bounds,
-so no sample piles up at a bound and the shape inside the range is the normal's); uniform
+Admissible ranges: eps in [0, 1], beta >= 0 (:data:`pim.model.case.BETA_RANGE_TEXT`), mass
+and yaw inertia > 0. A normal distribution on such an input is *truncated* to the range
+(sampled by inverse CDF between the CDF values of the bounds, so no sample piles up at a
+bound and the shape inside the range is the normal's); uniform
 bounds and fixed values must lie inside it (else ValueError). A fixed obstacle's mass, inertia,
 velocity and yaw rate cannot be uncertain.
 
@@ -47,7 +48,7 @@ from .solver import defaults
 __all__ = ["Distribution", "UncertaintyTable", "nominal_values", "sample_inputs"]
 
 #: Admissible (low, high) of inputs that have one; low is exclusive for mass and inertia.
-_RANGE = {"impact.restitution": (0.0, 1.0),
+_RANGE = {"impact.restitution": (0.0, 1.0), "impact.beta": (0.0, np.inf),
           **{f"vehicle{i}.{k}": (0.0, np.inf) for i in (1, 2) for k in ("mass", "yaw_inertia")},
           **{f"evidence.vehicle{i}.{k}": (0.0, np.inf) for i in (1, 2)
              for k in ("friction", "pre_impact.friction", "pre_impact.skid_length")}}
