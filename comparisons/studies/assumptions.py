@@ -522,7 +522,8 @@ def _simulate(job: tuple) -> SceneRun:
                                tangential_stiffness=STICKING["stiffness_ratio"] * k)
         r = sim.simulate_compliant(case if scene.distributed else where, eps, k, friction=mu,
                                    geometry="outline" if scene.distributed else "point",
-                                   tyre_friction=scene.tyre_friction, settings=settings)
+                                   tyre_friction=scene.tyre_friction, settings=settings,
+                                   engine="pymunk")
     except sim.SimulationError as exc:
         return SceneRun.failed(scene, f"{exc.kind}: {exc}")
     e0 = r.energy_before
@@ -725,7 +726,7 @@ def _animation(case, eps, k, has_outline, settings, after):
     try:
         return sim.simulate_compliant(
             case, eps, k, geometry="outline" if has_outline else "point",
-            settings=replace(settings, record=True, duration=float(after)))
+            settings=replace(settings, record=True, duration=float(after)), engine="pymunk")
     except sim.SimulationError:
         return None
 
