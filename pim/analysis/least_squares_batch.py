@@ -75,8 +75,7 @@ class BatchFit:
 
 def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: float = 0.0,
                         xtol: float = 1e-13, gtol: float = 1e-14,
-                        lam0: float = 1e-3, merge: float | None = None,
-                        groups=None) -> BatchFit:
+                        lam0: float = 1e-3, merge: float | None = None, groups=None) -> BatchFit:
     """Minimise ``sum r(x)^2`` for m problems at once, each x in the box [lower, upper].
 
     Parameters
@@ -99,6 +98,9 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
         For multi-start use (the m problems are one problem from m starts): a running start
         that comes within ``merge`` (box-scaled, max norm) of a converged one with no lower
         cost is stopped as a duplicate of it (``x`` and ``cost`` become the converged one's).
+    groups : array_like (m,) of int, optional
+        With ``merge``, for several problems each from several starts (the folds of a
+        leave-one-out): the problem of each row; a start merges only within its group.
 
     Returns
     -------
@@ -113,14 +115,9 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
     r = np.array(r, dtype=float)
     j = np.array(j, dtype=float) * width[:, None, :]      # d r / d u
     cost = _cost(r)
-    lam = np.full(m, float(lam0))
-    running = np.ones(m, dtype=bool)
-    converged = np.zeros(m, dtype=bool)
+    lam, group = np.full(m, float(lam0)), _groups(groups, m)
+    running, converged = np.ones(m, dtype=bool), np.zeros(m, dtype=bool)
     iterations = np.zeros(m, dtype=int)
-    group = np.zeros(m, dtype=int) if groups is None else np.asarray(groups, dtype=int)
-    if group.shape != (m,):
-        raise InputError(f"groups must hold one integer per problem ({m}), got shape "
-                         f"{group.shape}")
     for _ in range(int(max_iter)):
         idx = np.flatnonzero(running)
         if idx.size == 0:
@@ -131,8 +128,7 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
         small_grad = np.max(np.abs(gfree), axis=1) <= gtol * np.maximum(cost[idx], 1e-300) ** 0.5
         trial = np.clip(ua + step, 0.0, 1.0)
         rt, jt = fun(lo[idx] + trial * width[idx], idx)
-        nfev += 1
-        rt = np.asarray(rt, dtype=float)
+        nfev, rt = nfev + 1, np.asarray(rt, dtype=float)
         ct = _cost(rt)
         better = ct < cost[idx]
         acc = idx[better]
@@ -157,6 +153,15 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
     on_bound = np.where(u <= 0.0, -1, np.where(u >= 1.0, 1, 0)).astype(np.int8)
     return BatchFit(x=x, cost=cost, residuals=r, jacobian=j / width[:, None, :],
                     on_bound=on_bound, converged=converged, iterations=iterations, nfev=nfev)
+
+
+def _groups(groups, m: int) -> np.ndarray:
+    """The group of each of the m problems (one group when ``groups`` is None)."""
+    group = np.zeros(m, dtype=int) if groups is None else np.asarray(groups, dtype=int)
+    if group.shape != (m,):
+        raise InputError(f"groups must hold one integer per problem ({m}), got shape "
+                         f"{group.shape}")
+    return group
 
 
 def _box(lower, upper, shape) -> tuple[np.ndarray, np.ndarray]:

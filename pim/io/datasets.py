@@ -42,7 +42,8 @@ from ..model.numbers import InputError
 __all__ = ["BarrierTest", "CarToCarVehicle", "RicsacTest", "NhtsaCarToCarTest", "DATASETS",
            "load_barrier", "load_car_to_car", "load_ricsac", "load_nhtsa_car_to_car",
            "load_dataset", "data_path", "source_lines", "MEASURED", "PUBLISHED_GEOMETRY",
-           "FITTED_BY_PIM", "VEHICLE_DATA", "ESTIMATED", "ANALYSIS_INPUT", "PIM_OUTPUT", "ORIGIN_KINDS",
+           "FITTED_BY_PIM", "VEHICLE_DATA", "ESTIMATED", "ANALYSIS_INPUT", "PIM_OUTPUT",
+           "ORIGIN_KINDS",
            "BARRIER_ORIGINS", "CAR_TO_CAR_ORIGINS", "RICSAC_ORIGINS", "NHTSA_ORIGINS"]
 
 FT = 0.3048                 # m per ft (exact)
