@@ -57,9 +57,12 @@ DOCS_FILES = tuple(f for f in FILES if not f.endswith(".html"))
 _STARTS = f"{CLASS_STARTS['scene']} / {LOO_STARTS['scene']}"
 
 
-def _med(rows, attr, scale=1.0) -> str:
+def _medians(rows) -> str:
+    """'velocity [m/s] / yaw rate [deg/s]' medians of prediction rows ('' without rows)."""
     m = median_errors(rows)
-    return "" if not m["n"] or math.isnan(m[attr]) else f"{m[attr] * scale:.2f}"
+    if not m["n"] or math.isnan(m["v"]):
+        return ""
+    return f"{m['v']:.2f} / {math.degrees(m['yaw']):.1f}"
 
 
 def results_table(studies) -> Table:
@@ -68,8 +71,7 @@ def results_table(studies) -> Table:
     for st in studies:
         for v in st.variants:
             loo = {m.name: v.rows(m.name, "leave-one-out") for m in MODELS}
-            cells = [f"{_med(loo[m.name], 'v')} / {_med(loo[m.name], 'yaw', 180 / math.pi)}"
-                     for m in MODELS]
+            cells = [_medians(loo[m.name]) for m in MODELS]
             c, c0 = v.comparisons["scene"]["score"], v.comparisons["scene-mu0"]["score"]
             rows.append((st.crash_class, v.variant.name, len(st.tests), *cells, c.verdict,
                          "" if c.p_value is None else f"{c.p_value:.2g}", c0.verdict))

@@ -152,14 +152,19 @@ def verdict_table(studies) -> Table:
 
 
 def origins_table(studies) -> Table:
-    """Where each input of each class and variant comes from."""
-    rows = [(st.crash_class, v.variant.name, name, origin)
-            for st in studies for v in st.variants
-            for name, origin in v.variant.origins.items()]
-    rows += [(st.crash_class, "", "outcome (fitted and judged)", st.outcome_origin)
-             for st in studies]
+    """Where each input of each class comes from; an input a variant takes otherwise names
+    the variant."""
+    rows = []
+    for st in studies:
+        first, *others = st.variants
+        for name, origin in first.variant.origins.items():
+            alt = [f"{v.variant.name}: {v.variant.origins[name]}" for v in others
+                   if v.variant.origins.get(name, origin) != origin]
+            text = f"{first.variant.name}: {origin}; " + "; ".join(alt) if alt else origin
+            rows.append((st.crash_class, name, text))
+        rows.append((st.crash_class, "outcome (fitted and judged)", st.outcome_origin))
     return Table("tuned-scene-origins", "Where each input comes from",
-                 ("class", "variant", "input", "origin"), tuple(rows))
+                 ("class", "input", "origin"), tuple(rows))
 
 
 def verdict_sentence(study: ClassStudy, variant, units: str = "si") -> str:
@@ -168,7 +173,8 @@ def verdict_sentence(study: ClassStudy, variant, units: str = "si") -> str:
     c = variant.comparisons["scene"]
     a = median_errors(variant.rows("pim", "leave-one-out"))
     b = median_errors(variant.rows("scene", "leave-one-out"))
-    head = f"{study.crash_class} ({len(study.tests)} tests, {variant.variant.name})"
+    n = len(study.tests)
+    head = f"{study.crash_class} ({n} test{'s' if n != 1 else ''}, {variant.variant.name})"
     if not a["n"]:
         return (f"{head}: {c['score'].verdict} (a class of one: no leave-one-out; fewer than "
                 f"{minimum_tests(study.n_parameters)} tests).")
@@ -179,10 +185,23 @@ def verdict_sentence(study: ClassStudy, variant, units: str = "si") -> str:
             f"{math.degrees(b['yaw']):.1f} deg/s; score difference "
             f"{c['score'].median_difference:+.2f} [{lo:+.2f}, {hi:+.2f}]")
     if c["score"].p_value is None:
-        return text + f" (fewer than {minimum_tests(study.n_parameters)} tests: no test run)."
-    mu0 = variant.comparisons["scene-mu0"]["score"]
-    return (text + f", p = {c['score'].p_value:.2g} (velocity {c['velocity'].p_value:.2g}, "
-            f"yaw rate {c['yaw'].p_value:.2g}); with mu_c = b |mu0|: {mu0.verdict}.")
+        text += f" (fewer than {minimum_tests(study.n_parameters)} tests: no test run)"
+    else:
+        mu0 = variant.comparisons["scene-mu0"]["score"]
+        text += (f", p = {c['score'].p_value:.2g} (velocity {c['velocity'].p_value:.2g}, "
+                 f"yaw rate {c['yaw'].p_value:.2g}); with mu_c = b |mu0|: {mu0.verdict}")
+    return text + _flag_note(variant) + "."
+
+
+def _flag_note(variant) -> str:
+    """'; ... outside the physical ranges' for the scene's held-out predictions, or ''."""
+    rows = [r for m in SCENE_MODELS for r in variant.rows(m.name, "leave-one-out")]
+    flagged = [r for r in rows if r.flags]
+    if not flagged:
+        return ""
+    names = sorted({f for r in flagged for f in r.flags})
+    return (f"; {len(flagged)} of the scenes' {len(rows)} held-out predictions lie outside "
+            f"the physical ranges ({', '.join(names)})")
 
 
 def plot_tuned_study(studies, units: str = "si"):
@@ -279,7 +298,7 @@ def study_json(studies, units: str = "si", wall_time: float | None = None) -> di
 
 
 def _method_lines() -> list[str]:
-    ranges = "; ".join(f"{k} {lo:g}-{hi:g} {u} ({why})"
+    ranges = "; ".join(f"{k} {lo:g}-{hi:g} {u}: {why}"
                        for k, (lo, hi, u, why) in PHYSICAL_RANGES.items())
     return [
         "Models: PIM (epsilon, beta; mu = beta mu0); the scene with Coulomb friction (epsilon, "
@@ -295,7 +314,7 @@ def _method_lines() -> list[str]:
         f"{ALPHA:g}; the median difference with a {CONFIDENCE:.0%} percentile-bootstrap "
         f"interval ({RESAMPLES} resamples); no verdict below the larger model's parameters "
         "+ 2 tests.",
-        f"Physical ranges (flagged outside): {ranges}."]
+        f"Physical ranges of the fitted scene, flagged outside them: {ranges}."]
 
 
 def markdown_report(studies, units: str = "si", command: str = "") -> str:

@@ -61,7 +61,7 @@ from pim.io.datasets import (
 __all__ = ["CrashRecord", "InputVariant", "crash_classes", "input_variants", "UNRUNNABLE",
            "VELOCITY", "MAGNITUDES", "LEAK_FREE", "PUBLISHED_PHI", "PUBLISHED_INPUTS",
            "NON_SIDESWIPE", "SIDESWIPE", "RICSAC", "RICSAC9", "CAR_TO_CAR", "CLASS_NAMES",
-           "CLASS_KEYS",
+           "CLASS_KEYS", "USED_FIELDS",
            "fitted_radii"]
 
 NON_SIDESWIPE = "IIHS barrier, non-sideswipe"
@@ -113,7 +113,8 @@ class CrashRecord:
     outcome_origin : str
         Origin of ``observed`` (:mod:`pim.io.datasets` origins).
     origins : dict of str to str
-        Input -> origin, as the record's dataset states it.
+        Input -> origin, as the record's dataset states it, for the fields the study takes
+        (:data:`USED_FIELDS`).
     source : object
         The dataset record (:mod:`pim.io.datasets`), or None.
     """
@@ -148,6 +149,26 @@ class CrashRecord:
                               axis=-1)
 
 
+#: The dataset fields the study takes (inputs and outcome), by record type: the records'
+#: other fields (the authors' fitted e and mu, published delta-V analyses) never enter it.
+USED_FIELDS = {
+    "BarrierTest": ("speed", "d", "phi", "normal_angle", "delta_v_x", "delta_v_y",
+                    "yaw_rate"),
+    "RicsacTest": ("mass1", "mass2", "yaw_inertia1", "yaw_inertia2", "velocity1_pre",
+                   "velocity2_pre", "normal_angle", "theta1", "theta2", "phi1", "phi2",
+                   "velocity1_post", "velocity2_post", "yaw_rate1_post", "yaw_rate2_post"),
+    "NhtsaCarToCarTest": ("mass1", "mass2", "yaw_inertia1", "yaw_inertia2", "speed1",
+                          "speed2", "heading1", "heading2", "d1", "phi1", "d2", "phi2",
+                          "normal_angle", "delta_v1", "delta_v2", "yaw_change1",
+                          "yaw_change2"),
+}
+
+
+def _used(source) -> dict:
+    """The origins of the fields of ``source`` the study takes (:data:`USED_FIELDS`)."""
+    return {k: source.origins[k] for k in USED_FIELDS[type(source).__name__]}
+
+
 def _velocity_record(crash_class, name, case, origins, source=None) -> CrashRecord:
     m = case.measured
     observed = [np.asarray(m.velocity1, float), [float(m.yaw_rate1)]]
@@ -163,7 +184,7 @@ def _nhtsa_record(test) -> CrashRecord:
     observed = np.array([test.delta_v1, test.yaw_change1, test.delta_v2, test.yaw_change2])
     scale = np.array([SPEED_TOLERANCE, YAW_TOLERANCE] * 2)
     return CrashRecord(CAR_TO_CAR, f"nhtsa{test.test}", nhtsa_case(test), observed, scale,
-                       MAGNITUDES, PIM_OUTPUT, dict(test.origins), test)
+                       MAGNITUDES, PIM_OUTPUT, _used(test), test)
 
 
 def fitted_radii() -> tuple[list, dict]:
@@ -186,7 +207,7 @@ def _barrier_records(group: str, label: str, barrier, radii) -> list[CrashRecord
     out = []
     for t in tests:
         case = barrier_case(t, _fold_k(t, barrier, radii, None))
-        origins = dict(t.origins, radius_of_gyration=_K_ORIGIN)
+        origins = dict(_used(t), radius_of_gyration=_K_ORIGIN)
         out.append(_velocity_record(label, t.test_id, case, origins, t))
     return out
 
@@ -204,7 +225,7 @@ def crash_classes(max_tests: int | None = None,
     crush_edge = {"impact point C": "on the undeformed outline (length sqrt(12) k, k from the "
                                     f"inertia, {ESTIMATED}) at the published phi"}
     out[RICSAC] = [_velocity_record(RICSAC, f"ricsac{t.number}", ricsac_case(t),
-                                    dict(t.origins, **crush_edge), t)
+                                    dict(_used(t), **crush_edge), t)
                    for t in ricsac if str(t.number) not in flagged]
     sheet = {"masses, inertias, pre-impact motion": MEASURED,
              "impact point C, normal": PUBLISHED_GEOMETRY + " (the design sheet's)"}

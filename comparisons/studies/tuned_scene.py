@@ -98,10 +98,10 @@ FTOL, XTOL = 1e-6, 1e-4
 MERGE = 1e-3
 #: Physical ranges of the fitted scene (quantity -> (low, high, unit, why)); outside: flagged.
 PHYSICAL_RANGES = {
-    "contact time": (0.05, 0.25, "s", "full-scale crash pulses last about 70-150 ms (NHTSA "
-                                      "10146: 90 ms, docs/pulses.md)"),
-    "peak crush": (0.05, 1.2, "m", "the deepest crush of the bundled tests is about 0.75 m "
-                                   "(NHTSA 10146) to 1 m (small overlap)"),
+    "contact time": (0.05, 0.25, "s", "full-scale crash pulses last about 70-150 ms, NHTSA "
+                                      "10146's 90 ms (docs/pulses.md)"),
+    "peak crush": (0.05, 1.2, "m", "the deepest crush of full-scale tests is about 0.75 m "
+                                   "frontal (NHTSA 10146) to 1 m in small overlap"),
     "friction": (0.0, 1.0, "-", "sliding friction of sheet metal on sheet metal or a rigid "
                                 "barrier is below 1; more is snagging, not friction"),
     "tyre friction": (0.1, 1.0, "-", "dry asphalt peaks at about 0.8-1.0"),

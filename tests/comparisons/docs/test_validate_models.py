@@ -41,6 +41,8 @@ def test_the_docs_verdicts_are_what_their_stored_errors_give():
     tuned-scene-verdicts.csv and of the table in validation.md must be the same."""
     again = D.recomputed_verdicts(DOCS)
     stored = _csv("tuned-scene-verdicts.csv")
+    assert all(r["verdict"] == "too few tests to decide" for r in stored if r["tests"] == "0")
+    stored = [r for r in stored if r["tests"] != "0"]       # a class of one: no held-out test
     assert len(stored) == len(again["comparisons"]) > 0
     section = _section()
     for row in stored:
@@ -64,7 +66,7 @@ def test_the_docs_medians_are_what_their_stored_errors_give():
     models = [m.name for m in T.MODELS]
     for (cls, variant, model), (v, yaw) in again.items():
         cell = _row(section, cls, variant)[3 + models.index(model)]
-        assert cell == f"{v:.2f} / {math.degrees(yaw):.2f}"
+        assert cell == f"{v:.2f} / {math.degrees(yaw):.1f}"
 
 
 def test_one_class_refitted_gives_the_docs_numbers():

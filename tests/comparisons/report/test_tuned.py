@@ -51,6 +51,7 @@ def test_verdict_sentence_states_the_verdict_and_the_medians():
     text = R.verdict_sentence(st, st.variants[0])
     assert text.startswith("class A (7 tests, leak-free): the scene predicts better.")
     assert "PIM 1.50 m/s" in text and "p = 0.016" in text
+    assert "2 of the scenes' 14 held-out predictions lie outside the physical ranges" in text
     small = _study([1.0, 2.0, 3.0], [0.5, 1.0, 1.5])
     text = R.verdict_sentence(small, small.variants[0], "us")
     assert "too few tests to decide" in text and "ft/s" in text and "no test run" in text
