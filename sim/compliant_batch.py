@@ -24,9 +24,11 @@ from pim.model.numbers import InputError
 from . import compliant_formula as f
 from .batch import case_element
 from .compliant_setup import (
+    GEOMETRIES,
     CompliantResult,
     CompliantSettings,
     build_problem,
+    case_rows,
     contact_step_limit,
     parameter_rows,
     result_from_row,
@@ -68,6 +70,9 @@ class CompliantBatch:
         Yaw rates at separation [rad/s].
     contact_duration : ndarray
         Time from first contact to separation [s].
+    contact_start : ndarray
+        When the contact began [s] (0 for the point contact; the outline contact starts
+        where the outlines first touch, moved back along the free paths).
     impulse : ndarray (..., 2)
         Contact impulse on vehicle 1 [N s].
     impact_point, impact_point_body1 : ndarray (..., 2)
@@ -140,6 +145,7 @@ class CompliantBatch:
     yaw_rate1 = property(lambda self: self._column(f.O_W1))
     yaw_rate2 = property(lambda self: self._column(f.O_W2))
     contact_duration = property(lambda self: self._column(f.O_DURATION))
+    contact_start = property(lambda self: self._column(f.O_START))
     impulse = property(lambda self: self._column(f.O_IMPULSE, 2))
     impact_point = property(lambda self: self._column(f.O_POINT, 2))
     impact_point_body1 = property(lambda self: self._column(f.O_BODY_POINT, 2))
@@ -274,6 +280,8 @@ def _per_scene(value, name: str, unit: str, low: float, high: float = np.inf,
 
 def _braking(tyre_mode) -> np.ndarray:
     """1.0 for "locked", 0.0 for "rolling", per scene (a string or an array of them)."""
+    if type(tyre_mode) is str and tyre_mode in TYRE_MODES:
+        return np.float64(tyre_mode == "locked")
     modes = np.asarray(tyre_mode, dtype=object)
     known = np.isin(modes, TYRE_MODES) if modes.size else np.array(True)
     if not np.all(known):
@@ -316,7 +324,8 @@ def contact_inputs(eps, stiffness, friction, tyre_friction, settings: CompliantS
 def _law(inputs: dict, arrays: dict, shape: tuple, settings: CompliantSettings) -> dict:
     """The flat per-scene law of :func:`sim.compliant_setup.parameter_rows`, the step and
     the scenes refused before stepping (status)."""
-    flat = {k: np.broadcast_to(v, shape).reshape(-1) for k, v in inputs.items()}
+    flat = {k: v if np.ndim(v) == 0 else np.broadcast_to(v, shape).reshape(-1)
+            for k, v in inputs.items()}
     k_nn = arrays["k_nn"]
     if "contact_time" in flat:
         flat["stiffness"] = stiffness_for_duration(flat.pop("contact_time"), k_nn, flat["eps"])
@@ -337,7 +346,8 @@ _SETUP_CACHE: OrderedDict = OrderedDict()
 
 
 def _setup(case: pim.Case, shape: tuple, gravity: float) -> dict:
-    """:func:`sim.compliant_setup.setup_arrays`, kept for the last 4 (case, shape, gravity)
+    """:func:`sim.compliant_setup.setup_arrays` with its :func:`sim.compliant_setup.case_rows`
+    (``"rows"``), kept for the last 4 (case, shape, gravity)
     of at most :data:`CACHE_SCENES` scenes: a fit that calls again and again with one case
     and new contact inputs sets the case up once. A Case is immutable (frozen), so the
     arrays stay valid; the cache holds the case itself, so its identity is not reused."""
@@ -347,6 +357,7 @@ def _setup(case: pim.Case, shape: tuple, gravity: float) -> dict:
         _SETUP_CACHE.move_to_end(key)
         return hit[1]
     arrays = setup_arrays(case, shape, gravity)
+    arrays["rows"] = case_rows(arrays)
     if arrays["mass1"].shape[0] <= CACHE_SCENES:
         for value in arrays.values():
             value.flags.writeable = False
@@ -356,6 +367,31 @@ def _setup(case: pim.Case, shape: tuple, gravity: float) -> dict:
     return arrays
 
 
+def _check_geometry(case: pim.Case, geometry: str) -> None:
+    """A known contact geometry, and outlines for the outline contact (ValueError)."""
+    if geometry not in GEOMETRIES:
+        raise InputError(f"geometry must be one of {GEOMETRIES}, got {geometry!r}")
+    if geometry == "outline":
+        v1, v2 = case.vehicle1, case.vehicle2
+        if v1.length is None or v1.width is None:
+            raise InputError("geometry='outline' needs vehicle1.length and vehicle1.width")
+        if (v2.length is None or v2.width is None) and not np.all(v2.fixed):
+            raise InputError("geometry='outline' needs vehicle2.length and vehicle2.width")
+
+
+_KERNEL: list = []
+_DEFAULT_SETTINGS = CompliantSettings()
+
+
+def _integrate():
+    """:func:`sim.compliant_kernel.integrate`, imported on first use (numba: the kernel is
+    compiled, or loaded from numba's cache, then; never on ``import sim``)."""
+    if not _KERNEL:
+        from .compliant_kernel import integrate
+        _KERNEL.append(integrate)
+    return _KERNEL[0]
+
+
 def simulate_batch(case: pim.Case, eps, stiffness=None, friction=0.0, geometry="point",
                    tyre_friction=0.0, settings: CompliantSettings | None = None, *,
                    tyre_mode=None, preload=None, tangential_recovery=None,
@@ -363,15 +399,13 @@ def simulate_batch(case: pim.Case, eps, stiffness=None, friction=0.0, geometry="
     """:func:`sim.simulate_compliant` on the compiled engine (its parameters); a
     :class:`CompliantBatch` at the broadcast shape of every input."""
     wall = time.perf_counter()
-    settings = CompliantSettings() if settings is None else settings
+    settings = _DEFAULT_SETTINGS if settings is None else settings
     if not isinstance(settings, CompliantSettings):
         raise InputError(f"settings must be a sim.CompliantSettings, got "
                          f"{type(settings).__name__}")
     if not isinstance(case, pim.Case):
         raise InputError(f"case must be a pim.Case, got {type(case).__name__}")
-    if geometry != "point":
-        raise InputError(f"geometry={geometry!r} runs on engine='pymunk' only (the compiled "
-                         f"engine steps the point contact; docs/contact-model.md)")
+    _check_geometry(case, geometry)
     inputs = contact_inputs(eps, stiffness, friction, tyre_friction, settings,
                             tyre_mode=tyre_mode, preload=preload,
                             tangential_recovery=tangential_recovery, contact_time=contact_time)
@@ -383,13 +417,13 @@ def simulate_batch(case: pim.Case, eps, stiffness=None, friction=0.0, geometry="
                          f"{shapes}") from None
     arrays = _setup(case, shape, settings.gravity)
     law, status = _law(inputs, arrays, shape, settings)
-    from .compliant_kernel import integrate      # numba: compiled (or loaded) on first use
-    rows = integrate(parameter_rows(arrays, law), arrays["state0"], status)
+    law["outline"] = 1.0 if geometry == "outline" else 0.0
+    rows = _integrate()(parameter_rows(arrays, law, arrays["rows"]), arrays["state0"], status)
     scenes = dict(law)
     scenes.update({k: arrays[k] for k in ("mass1", "inertia1", "mass2", "inertia2", "k_nn",
                                           "energy_before")})
     return CompliantBatch(rows=rows, status=status.reshape(shape), scenes=scenes, case=case,
-                          geometry="point", settings=settings,
+                          geometry=geometry, settings=settings,
                           wall_time=time.perf_counter() - wall)
 
 

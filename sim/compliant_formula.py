@@ -41,10 +41,12 @@ from pim.model.tyres import wheel_force
 
 __all__ = ["loading_force", "loading_work", "unloading_slope", "permanent_crush",
            "normal_force", "normal_stiffness", "tangential_step", "tangential_force",
-           "point_contact", "point_geometry", "vehicle_tyre_force", "tyre_loads", "ahead",
+           "angles", "point_contact", "point_geometry", "place_corners", "clip_polygon",
+           "area_centroid", "separating_axis", "outline_overlap", "place_outlines",
+           "outline_geometry", "outlines_touch", "outline_start", "free_state", "vehicle_tyre_force", "tyre_loads", "ahead",
            "contact_loads", "total_loads", "half_kick", "drift", "kick", "separation_time",
            "post_velocities", "slip_reversed", "write_outputs", "N_PAR", "N_MEM", "N_TAL",
-           "N_OUT"]
+           "N_OUT", "N_WORK"]
 
 # ---- status of a scene ------------------------------------------------------------------------
 #: Status by code: 0 "ok", then the :class:`sim.SimulationError` kinds a stepped scene ends in.
@@ -65,7 +67,15 @@ P_DT, P_START = 44, 45                               # step [s], when the contac
 P_MAX_STEPS = 46                                     # most steps of the contact
 P_OUTLINE = 47                                       # 1.0 for the outline contact
 P_SPEED = 48                                         # speed scale [m/s] (tolerances)
-N_PAR = 49
+P_OUTLINE1 = 49     # vehicle 1's outline corners in its body frame (8) [m]
+P_OUTLINE2 = 57     # vehicle 2's (8), or a fixed obstacle's world corners (P_OBSTACLE)
+P_OBSTACLE = 65     # 1.0: P_OUTLINE2 holds world corners (a bare barrier's block)
+N_PAR = 66
+
+# ---- wk: scratch of the outline contact --------------------------------------------------------
+W_POLY1, W_POLY2 = 0, 8     # both outlines' world corners (4 x, y pairs each)
+W_A, W_B = 16, 48           # clipping buffers (16 x, y pairs each)
+N_WORK = 80
 
 # ---- mem: the contact law's memory -------------------------------------------------------------
 M_ON, M_STARTED, M_SEPARATED = 0, 1, 2               # flags (1.0 / 0.0)
@@ -173,15 +183,19 @@ def tangential_force(z, k_t, limit):
 
 
 # ---- kinematics of the point contact (sim.compliant_setup's module notes) ----------------------
-def point_contact(a1x, a1y, a2x, a2y, n2x, n2y, x1, y1, th1, vx1, vy1, w1, x2, y2, th2, vx2,
-                  vy2, w2):
+def angles(st):
+    """cos and sin of both headings of the state ``st``: (c1, s1, c2, s2)."""
+    return math.cos(st[2]), math.sin(st[2]), math.cos(st[8]), math.sin(st[8])
+
+
+def point_contact(a1x, a1y, a2x, a2y, n2x, n2y, x1, y1, c1, s1, vx1, vy1, w1, x2, y2, c2, s2,
+                  vx2, vy2, w2):
     """P (on vehicle 1), the normal n carried by vehicle 2, the crush delta = -(P - Q) . n,
-    and the relative velocity of P along n and t = n turned +90 deg.
+    and the relative velocity of P along n and t = n turned +90 deg; (c1, s1), (c2, s2) the
+    cos and sin of the headings.
 
     Returns (px, py, nx, ny, delta, slip_n, slip_t) [m, -, m, m/s].
     """
-    c1, s1 = math.cos(th1), math.sin(th1)
-    c2, s2 = math.cos(th2), math.sin(th2)
     px = x1 + (c1 * a1x - s1 * a1y)
     py = y1 + (s1 * a1x + c1 * a1y)
     qx = x2 + (c2 * a2x - s2 * a2y)
@@ -196,69 +210,72 @@ def point_contact(a1x, a1y, a2x, a2y, n2x, n2y, x1, y1, th1, vx1, vy1, w1, x2, y
     return px, py, nx, ny, delta, relx * nx + rely * ny, relx * -ny + rely * nx
 
 
-def _point(par, x1, y1, th1, vx1, vy1, w1, x2, y2, th2, vx2, vy2, w2):
+def _point(par, x1, y1, c1, s1, vx1, vy1, w1, x2, y2, c2, s2, vx2, vy2, w2):
     return point_contact(par[P_ARM1], par[P_ARM1 + 1], par[P_ARM2], par[P_ARM2 + 1],
-                         par[P_NORMAL2], par[P_NORMAL2 + 1], x1, y1, th1, vx1, vy1, w1, x2, y2,
-                         th2, vx2, vy2, w2)
+                         par[P_NORMAL2], par[P_NORMAL2 + 1], x1, y1, c1, s1, vx1, vy1, w1, x2,
+                         y2, c2, s2, vx2, vy2, w2)
 
 
-def point_geometry(par, st, dt):
+def point_geometry(par, st, trig, dt):
     """The point contact at the end of the step, its tangential slip at the middle.
 
     In the velocity callback the bodies have moved from t_n to t_{n+1} with the velocities
     they hold (those of the middle of the step); the slip the friction spring integrates is
     taken at the state those velocities go with, the positions moved back half a step (a
-    second-order slip; docs/contact-model.md, "Integration").
+    second-order slip; docs/contact-model.md, "Integration"). ``trig``: :func:`angles` of
+    ``st``.
 
     Returns (px, py, nx, ny, delta, slip_n, slip_t).
     """
     px, py, nx, ny, delta, slip_n, slip_t = _point(
-        par, st[0], st[1], st[2], st[3], st[4], st[5], st[6], st[7], st[8], st[9], st[10],
-        st[11])
+        par, st[0], st[1], trig[0], trig[1], st[3], st[4], st[5], st[6], st[7], trig[2],
+        trig[3], st[9], st[10], st[11])
     if dt > 0.0:
         h = 0.5 * dt
-        slip_t = _point(par, st[0] - st[3] * h, st[1] - st[4] * h, st[2] - st[5] * h, st[3],
-                        st[4], st[5], st[6] - st[9] * h, st[7] - st[10] * h,
-                        st[8] - st[11] * h, st[9], st[10], st[11])[6]
+        th1, th2 = st[2] - st[5] * h, st[8] - st[11] * h
+        slip_t = _point(par, st[0] - st[3] * h, st[1] - st[4] * h, math.cos(th1),
+                        math.sin(th1), st[3], st[4], st[5], st[6] - st[9] * h,
+                        st[7] - st[10] * h, math.cos(th2), math.sin(th2), st[9], st[10],
+                        st[11])[6]
     return px, py, nx, ny, delta, slip_n, slip_t
 
 
 # ---- tyres (sim.contact_tyres) -----------------------------------------------------------------
-def vehicle_tyre_force(wheels, loads, vx, vy, w, angle, mu, braking, vr):
+def vehicle_tyre_force(data, wheels, loads, vx, vy, w, c, s, mu, braking, vr):
     """Sum of the four tyre forces [N] and their moment about the CG [N m] on one vehicle.
 
-    ``wheels``: body-frame positions x0, y0, ..., x3, y3 [m]; ``loads`` (4) [N]; ``braking``
-    0 free-rolling, 1 locked; each tyre :func:`pim.model.tyres.wheel_force`.
+    ``data[wheels:wheels + 8]``: the body-frame wheel positions x0, y0, ..., x3, y3 [m];
+    ``data[loads:loads + 4]`` their loads [N]; (c, s) cos and sin of the heading;
+    ``braking`` 0 free-rolling, 1 locked; each tyre :func:`pim.model.tyres.wheel_force`.
     """
-    c, s = math.cos(angle), math.sin(angle)
     fx = 0.0
     fy = 0.0
     moment = 0.0
     for k in range(4):
-        a, b, m = wheel_force(c, s, vx, vy, w, wheels[2 * k], wheels[2 * k + 1], c, s,
-                              loads[k], mu, braking, vr)
+        a, b, m = wheel_force(c, s, vx, vy, w, data[wheels + 2 * k], data[wheels + 2 * k + 1],
+                              c, s, data[loads + k], mu, braking, vr)
         fx += a
         fy += b
         moment += m
     return fx, fy, moment
 
 
-def tyre_loads(par, vx1, vy1, w1, th1, vx2, vy2, w2, th2):
-    """Tyre forces and moments on both vehicles and their power [W] (zeros without tyres).
+def tyre_loads(par, vx1, vy1, w1, vx2, vy2, w2, trig):
+    """Tyre forces and moments on both vehicles and their power [W] (zeros without tyres);
+    ``trig``: cos and sin of both headings (:func:`angles`).
 
     Returns (fx1, fy1, m1, fx2, fy2, m2, power).
     """
     mu = par[P_TYRE]
     if not mu > 0.0:
         return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    f1x, f1y, m1 = vehicle_tyre_force(par[P_WHEELS1:P_WHEELS1 + 8], par[P_LOADS1:P_LOADS1 + 4],
-                                      vx1, vy1, w1, th1, mu, par[P_BRAKING], par[P_VR])
+    f1x, f1y, m1 = vehicle_tyre_force(par, P_WHEELS1, P_LOADS1, vx1, vy1, w1, trig[0],
+                                      trig[1], mu, par[P_BRAKING], par[P_VR])
     power = f1x * vx1 + f1y * vy1 + m1 * w1
     f2x, f2y, m2 = 0.0, 0.0, 0.0
     if par[P_FIXED2] == 0.0:
-        f2x, f2y, m2 = vehicle_tyre_force(par[P_WHEELS2:P_WHEELS2 + 8],
-                                          par[P_LOADS2:P_LOADS2 + 4], vx2, vy2, w2, th2, mu,
-                                          par[P_BRAKING], par[P_VR])
+        f2x, f2y, m2 = vehicle_tyre_force(par, P_WHEELS2, P_LOADS2, vx2, vy2, w2, trig[2],
+                                          trig[3], mu, par[P_BRAKING], par[P_VR])
         power += f2x * vx2 + f2y * vy2 + m2 * w2
     return f1x, f1y, m1, f2x, f2y, m2, power
 
@@ -332,9 +349,9 @@ def contact_law(par, mem, delta, slip_t, tx, ty, dt):
     return on, fn, ft, sticking, z, rx, ry
 
 
-def _tally(par, tal, st, px, py, nx, ny, fx, fy, sticking, z, dt):
+def _tally(par, tal, st, trig, px, py, nx, ny, fx, fy, sticking, z, dt):
     """Account for one step in contact (impulse, centroids, peak, stick time, directions)."""
-    size = math.hypot(fx, fy)
+    size = math.sqrt(fx * fx + fy * fy)     # not hypot: numba's and the C library's differ
     w = size * dt
     tal[T_IMPULSE] += fx * dt
     tal[T_IMPULSE + 1] += fy * dt
@@ -342,13 +359,13 @@ def _tally(par, tal, st, px, py, nx, ny, fx, fy, sticking, z, dt):
     tal[T_MOMENT + 1] += w * py
     tal[T_NORMAL] += w * nx
     tal[T_NORMAL + 1] += w * ny
-    c, s = math.cos(-st[2]), math.sin(-st[2])
+    c, s = trig[0], trig[1]                 # turned back by -theta1 into vehicle 1's frame
     dx, dy = px - st[0], py - st[1]
-    tal[T_BODY_POINT] += w * (c * dx - s * dy)
-    tal[T_BODY_POINT + 1] += w * (s * dx + c * dy)
-    c, s = math.cos(-st[8]), math.sin(-st[8])
-    tal[T_BODY_NORMAL] += w * (c * nx - s * ny)
-    tal[T_BODY_NORMAL + 1] += w * (s * nx + c * ny)
+    tal[T_BODY_POINT] += w * (c * dx + s * dy)
+    tal[T_BODY_POINT + 1] += w * (c * dy - s * dx)
+    c, s = trig[2], trig[3]                 # by -theta2 into vehicle 2's
+    tal[T_BODY_NORMAL] += w * (c * nx + s * ny)
+    tal[T_BODY_NORMAL + 1] += w * (c * ny - s * nx)
     tal[T_WEIGHT] += w
     tal[T_CONTACT] += dt
     if sticking:
@@ -361,9 +378,9 @@ def _tally(par, tal, st, px, py, nx, ny, fx, fy, sticking, z, dt):
             tal[T_SLID_NEG] = 1.0
 
 
-def contact_loads(par, mem, tal, st, dt, px, py, nx, ny, delta, slip_n, slip_t, overlap):
+def contact_loads(par, mem, tal, st, trig, dt, px, py, nx, ny, delta, slip_n, slip_t, overlap):
     """The contact force of one step at the geometry (px .. slip_t, ``overlap``): the law,
-    the plastic release and the tally.
+    the plastic release and the tally (``trig``: :func:`angles` of ``st``).
 
     Returns (applied, fx, fy, m1, m2, fn, ft, sticking): the force on vehicle 1 (-F on
     vehicle 2) at P and its moments about each CG; zeros unless the contact is on and has
@@ -386,19 +403,18 @@ def contact_loads(par, mem, tal, st, dt, px, py, nx, ny, delta, slip_n, slip_t, 
         return False, 0.0, 0.0, 0.0, 0.0, fn, ft, sticking
     fx = fn * nx + ft * tx + rx
     fy = fn * ny + ft * ty + ry
-    _tally(par, tal, st, px, py, nx, ny, fx, fy, sticking, z, dt)
+    _tally(par, tal, st, trig, px, py, nx, ny, fx, fy, sticking, z, dt)
     d1x, d1y = px - st[0], py - st[1]
     d2x, d2y = px - st[6], py - st[7]
     return (True, fx, fy, d1x * fy - d1y * fx, -(d2x * fy - d2y * fx), fn, ft, sticking)
 
 
-def total_loads(par, st, lo, tal, dt, fx, fy, m1, m2):
+def total_loads(par, st, trig, lo, tal, dt, fx, fy, m1, m2):
     """The loads of this step's kick into ``lo``: the contact force (fx, fy) on vehicle 1 at
     moments m1, m2 (-F on vehicle 2) plus the tyre forces at the end of the step
     (:func:`ahead` of the last kick); adds the tyres' work to the tally."""
     vx1, vy1, w1, vx2, vy2, w2 = ahead(par, st, lo, 0.5 * dt)
-    t1x, t1y, n1, t2x, t2y, n2, power = tyre_loads(par, vx1, vy1, w1, st[2], vx2, vy2, w2,
-                                                   st[8])
+    t1x, t1y, n1, t2x, t2y, n2, power = tyre_loads(par, vx1, vy1, w1, vx2, vy2, w2, trig)
     tal[T_TYRE_WORK] += power * dt
     lo[0] = fx + t1x
     lo[1] = fy + t1y
@@ -414,10 +430,201 @@ def half_kick(par, st, lo):
     of ``st`` unchanged without tyres."""
     if not par[P_TYRE] > 0.0:
         return st[3], st[4], st[5], st[9], st[10], st[11]
-    t1x, t1y, n1, t2x, t2y, n2, _ = tyre_loads(par, st[3], st[4], st[5], st[2], st[9], st[10],
-                                               st[11], st[8])
+    t1x, t1y, n1, t2x, t2y, n2, _ = tyre_loads(par, st[3], st[4], st[5], st[9], st[10],
+                                               st[11], angles(st))
     lo[0], lo[1], lo[2], lo[3], lo[4], lo[5] = t1x, t1y, n1, t2x, t2y, n2
     return ahead(par, st, lo, 0.5 * par[P_DT])
+
+
+# ---- the outline contact (sim.overlap's module notes) ------------------------------------------
+def place_corners(par, corners, x, y, c, s, wk, out):
+    """Body-frame corners ``par[corners:corners + 8]`` placed at (x, y), turned by the angle
+    of cos ``c`` and sin ``s``, into ``wk[out:out + 8]`` (world x, y pairs)."""
+    for k in range(4):
+        bx, by = par[corners + 2 * k], par[corners + 2 * k + 1]
+        wk[out + 2 * k] = x + c * bx - s * by
+        wk[out + 2 * k + 1] = y + s * bx + c * by
+
+
+def clip_polygon(wk, subject, m, clipper, k, buf_a, buf_b):
+    """Sutherland-Hodgman: the convex counter-clockwise polygon ``wk[subject:]`` (m x, y
+    pairs) clipped by the convex counter-clockwise ``wk[clipper:]`` (k pairs), ping-ponging
+    between the buffers ``wk[buf_a:]`` and ``wk[buf_b:]`` (m + k pairs each).
+
+    Returns (offset, count) of the intersection in ``wk`` (count 0: apart).
+    """
+    src, dst = buf_a, buf_b
+    for j in range(2 * m):
+        wk[src + j] = wk[subject + j]
+    count = m
+    for i in range(k):
+        if count == 0:
+            break
+        i2 = (i + 1) % k
+        ax, ay = wk[clipper + 2 * i], wk[clipper + 2 * i + 1]
+        ex, ey = wk[clipper + 2 * i2] - ax, wk[clipper + 2 * i2 + 1] - ay
+        out = 0
+        for j in range(count):
+            j2 = (j + 1) % count
+            xj, yj = wk[src + 2 * j], wk[src + 2 * j + 1]
+            xn, yn = wk[src + 2 * j2], wk[src + 2 * j2 + 1]
+            side = ex * (yj - ay) - ey * (xj - ax)       # inside >= 0 (left of the edge)
+            side_next = ex * (yn - ay) - ey * (xn - ax)
+            if side >= 0:
+                wk[dst + 2 * out], wk[dst + 2 * out + 1] = xj, yj
+                out += 1
+            if (side >= 0) != (side_next >= 0):
+                f = side / (side - side_next)
+                wk[dst + 2 * out] = xj + f * (xn - xj)
+                wk[dst + 2 * out + 1] = yj + f * (yn - yj)
+                out += 1
+        src, dst = dst, src
+        count = out
+    return src, count
+
+
+def area_centroid(wk, poly, m):
+    """Shoelace area [m^2] (>= 0) and centroid of ``wk[poly:]`` (m pairs, counter-clockwise);
+    (0, nan, nan) for fewer than 3 corners, the mean corner for a zero area."""
+    if m < 3:
+        return 0.0, math.nan, math.nan
+    total, sx, sy, mx, my = 0.0, 0.0, 0.0, 0.0, 0.0
+    for j in range(m):
+        j2 = (j + 1) % m
+        x, y = wk[poly + 2 * j], wk[poly + 2 * j + 1]
+        xn, yn = wk[poly + 2 * j2], wk[poly + 2 * j2 + 1]
+        cross = x * yn - xn * y
+        total += cross
+        sx += (x + xn) * cross
+        sy += (y + yn) * cross
+        mx += x
+        my += y
+    area = 0.5 * total
+    if area == 0.0:
+        return 0.0, mx / m, my / m
+    return abs(area), sx / (6.0 * area), sy / (6.0 * area)
+
+
+def _extent(wk, poly, m, ax, ay):
+    """Smallest and largest projection of the corners of ``wk[poly:]`` on (ax, ay)."""
+    low, high = math.inf, -math.inf
+    for j in range(m):
+        p = wk[poly + 2 * j] * ax + wk[poly + 2 * j + 1] * ay
+        low = min(low, p)
+        high = max(high, p)
+    return low, high
+
+
+def separating_axis(wk, p1, m1, p2, m2):
+    """The edge normal of either polygon along which they overlap least, from polygon 2
+    toward polygon 1, and that overlap [m] (negative: apart along it); the first such edge
+    (polygon 1's edges first, each polygon's in order)."""
+    best, bx, by = math.inf, math.nan, math.nan
+    for q in range(m1 + m2):
+        poly, m, e = (p1, m1, q) if q < m1 else (p2, m2, q - m1)
+        e2 = (e + 1) % m
+        ex = wk[poly + 2 * e2] - wk[poly + 2 * e]
+        ey = wk[poly + 2 * e2 + 1] - wk[poly + 2 * e + 1]
+        norm = math.sqrt(ey * ey + ex * ex)
+        ax, ay = ey / norm, -ex / norm                   # outward for counter-clockwise
+        low1, high1 = _extent(wk, p1, m1, ax, ay)
+        low2, high2 = _extent(wk, p2, m2, ax, ay)
+        forward, backward = high2 - low1, high1 - low2
+        depth = min(forward, backward)
+        if depth < best:
+            best = depth
+            bx, by = (ax, ay) if forward <= backward else (-ax, -ay)
+    return bx, by, best
+
+
+def outline_overlap(wk, p1, m1, p2, m2, buf_a, buf_b):
+    """The overlap of two convex counter-clockwise polygons (``wk[p1:]``, ``wk[p2:]``):
+    (area [m^2], centroid x, y [m], normal x, y (separating axis of least overlap, from 2
+    toward 1), width along the tangent [m], mean crush area / width [m], overlap along the
+    normal [m])."""
+    region, m = clip_polygon(wk, p1, m1, p2, m2, buf_a, buf_b)
+    area, cx, cy = area_centroid(wk, region, m)
+    nx, ny, axis_depth = separating_axis(wk, p1, m1, p2, m2)
+    if area <= 0.0:
+        return 0.0, cx, cy, nx, ny, 0.0, 0.0, axis_depth
+    low, high = _extent(wk, region, m, -ny, nx)
+    width = high - low
+    return area, cx, cy, nx, ny, width, area / width if width > 0 else 0.0, axis_depth
+
+
+def place_outlines(par, x1, y1, c1, s1, x2, y2, c2, s2, wk):
+    """Both outlines' world corners into ``wk[W_POLY1:]`` and ``wk[W_POLY2:]`` (a fixed
+    obstacle's block as it is)."""
+    place_corners(par, P_OUTLINE1, x1, y1, c1, s1, wk, W_POLY1)
+    if par[P_OBSTACLE] != 0.0:
+        for j in range(8):
+            wk[W_POLY2 + j] = par[P_OUTLINE2 + j]
+    else:
+        place_corners(par, P_OUTLINE2, x2, y2, c2, s2, wk, W_POLY2)
+
+
+def outline_geometry(par, mem, st, trig, wk):
+    """The outline contact at ``st``: (px, py, nx, ny, delta, slip_n, slip_t, overlap,
+    flipped) as :func:`point_geometry` gives the point contact's (docs/contact-model.md):
+    the force acts at the overlap's centroid along the separating axis, with the mean crush
+    area / width; apart, the crush is 0 and the normal that of the last overlap (``mem``).
+    ``flipped``: the normal turned against the last one (the outlines passed through each
+    other)."""
+    place_outlines(par, st[0], st[1], trig[0], trig[1], st[6], st[7], trig[2], trig[3], wk)
+    area, cx, cy, nx, ny, _, depth, _ = outline_overlap(wk, W_POLY1, 4, W_POLY2, 4, W_A, W_B)
+    has_normal = mem[M_HAS_NORMAL] != 0.0
+    if area <= 0.0:
+        if has_normal:
+            nx, ny = mem[M_NX], mem[M_NY]
+        return 0.0, 0.0, nx, ny, 0.0, 0.0, 0.0, False, False
+    flipped = has_normal and nx * mem[M_NX] + ny * mem[M_NY] < 0.0
+    d1x, d1y, d2x, d2y = cx - st[0], cy - st[1], cx - st[6], cy - st[7]
+    relx = st[3] + st[5] * -d1y - st[9] - st[11] * -d2y
+    rely = st[4] + st[5] * d1x - st[10] - st[11] * d2x
+    return (cx, cy, nx, ny, depth, relx * nx + rely * ny, relx * -ny + rely * nx, True,
+            flipped)
+
+
+def outlines_touch(par, s0, t, wk):
+    """Whether the outlines overlap at time ``t`` [s] along the free paths from ``s0``."""
+    th1, th2 = s0[2] + s0[5] * t, s0[8] + s0[11] * t
+    place_outlines(par, s0[0] + s0[3] * t, s0[1] + s0[4] * t, math.cos(th1), math.sin(th1),
+                   s0[6] + s0[9] * t, s0[7] + s0[10] * t, math.cos(th2), math.sin(th2), wk)
+    region, m = clip_polygon(wk, W_POLY1, 4, W_POLY2, 4, W_A, W_B)
+    return area_centroid(wk, region, m)[0] > 0.0
+
+
+def outline_start(par, s0, wk):
+    """When the outlines first touch [s] along the free pre-impact paths (<= 0; 0 when
+    apart at t = 0): stepping back 10 ms at a time, then 60 bisections. NaN when they
+    overlap along the whole 10 s back (they never approach: "tunnelled")."""
+    if not outlines_touch(par, s0, 0.0, wk):
+        return 0.0
+    step = 0.01
+    back = step
+    while outlines_touch(par, s0, -back, wk):
+        back += step
+        if back > 10.0:
+            return math.nan
+    low, high = -back, -back + step       # apart at low, overlapping at high
+    for _ in range(60):
+        mid = 0.5 * (low + high)
+        if outlines_touch(par, s0, mid, wk):
+            high = mid
+        else:
+            low = mid
+    return low
+
+
+def free_state(s0, t, st):
+    """``s0`` moved along the free paths to time ``t`` [s], into ``st``."""
+    for j in range(12):
+        st[j] = s0[j]
+    for k in range(2):
+        j = 6 * k
+        st[j] = s0[j] + s0[j + 3] * t
+        st[j + 1] = s0[j + 1] + s0[j + 4] * t
+        st[j + 2] = s0[j + 2] + s0[j + 5] * t
 
 
 # ---- Chipmunk's integration (what pymunk does in C) --------------------------------------------
@@ -481,7 +688,7 @@ def _centroid(total_x, total_y, weight):
 
 
 def _unit(total_x, total_y, weight):
-    size = math.hypot(total_x, total_y)
+    size = math.sqrt(total_x * total_x + total_y * total_y)
     if weight > 0.0 and size > 0.0:
         return total_x / size, total_y / size
     return math.nan, math.nan

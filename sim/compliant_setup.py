@@ -27,7 +27,7 @@ import numpy as np
 
 import pim
 from pim.model import geometry
-from pim.model.geometry import cross, radius_of_gyration
+from pim.model.geometry import cross, radius_of_gyration, rotate_by
 from pim.model.numbers import InputError
 from pim.model.tyres import STANDARD_GRAVITY
 
@@ -364,6 +364,42 @@ def _wheels(vehicle: pim.Vehicle, mass, inertia, gravity, fixed):
             np.where(moving[:, None], loads, 0.0))
 
 
+_COS, _SIN = np.frompyfunc(math.cos, 1, 1), np.frompyfunc(math.sin, 1, 1)
+
+
+def libm_cos_sin(angle) -> tuple[np.ndarray, np.ndarray]:
+    """cos and sin of ``angle`` [rad] from the C library (Python's ``math``), element by
+    element: what the stepping formulas use (numba calls the same library), and the same in
+    the last bit for a batch as for each of its scenes alone (numpy's vectorised cos and sin
+    can differ by an ulp between long arrays and one element)."""
+    angle = np.asarray(angle, dtype=float)
+    return _COS(angle).astype(float), _SIN(angle).astype(float)
+
+
+def obstacle_corners(point, normal) -> np.ndarray:
+    """A bare barrier's outline (..., 4, 2) [m]: a 200 m x 10 m block behind the contact
+    plane through C with normal n (counter-clockwise: its face along t through C, 10 m deep
+    on the -n side)."""
+    point, n = np.asarray(point, dtype=float), np.asarray(normal, dtype=float)
+    t = np.stack([-n[..., 1], n[..., 0]], axis=-1)
+    return np.stack([point + 100 * t, point + 100 * t - 10 * n, point - 100 * t - 10 * n,
+                     point - 100 * t], axis=-2)
+
+
+def _outlines(v1: pim.Vehicle, v2: pim.Vehicle, fixed2, point, normal):
+    """Both outlines' corners (n, 8) in the body frames (zeros without an outline), with a
+    bare barrier's block in world coordinates instead (flag (n,) 1.0) where vehicle 2 is
+    fixed and has no outline."""
+    count = point.shape[0]
+    corners = [outline_corners(v) for v in (v1, v2)]
+    out1, out2 = (np.broadcast_to(np.zeros(8) if c is None else c.reshape(8), (count, 8))
+                  for c in corners)
+    bare = fixed2 & (corners[1] is None)
+    if bare.any():
+        out2 = np.where(bare[:, None], obstacle_corners(point, normal).reshape(count, 8), out2)
+    return out1, out2, bare.astype(float)
+
+
 def setup_arrays(case: pim.Case, shape: tuple, gravity: float) -> dict:
     """The scene quantities of every case in ``case`` broadcast to ``shape`` (flattened to
     n = prod(shape) scenes): what both integrators and the pymunk scene start from.
@@ -372,7 +408,8 @@ def setup_arrays(case: pim.Case, shape: tuple, gravity: float) -> dict:
     -------
     dict
         ``mass1, inertia1, mass2, inertia2, k_nn, speed_scale, energy_before`` (n,),
-        ``fixed2`` (n,) bool, ``state0`` (n, 12), ``arm1, arm2, normal2`` (n, 2) (P - CG1 in
+        ``fixed2`` (n,) bool, ``outline1, outline2`` (n, 8) and ``obstacle`` (n,) (the
+        outlines of :func:`_outlines`), ``state0`` (n, 12), ``arm1, arm2, normal2`` (n, 2) (P - CG1 in
         vehicle 1's frame, Q - CG2 and the normal in vehicle 2's), ``wheels1, wheels2``
         (n, 4, 2) and ``loads1, loads2`` (n, 4) (zeros for a fixed vehicle 2); SI, see
         :class:`CompliantProblem`.
@@ -387,7 +424,7 @@ def setup_arrays(case: pim.Case, shape: tuple, gravity: float) -> dict:
     point = _flat_field(imp.point, shape, True)
     gamma = _flat_field(imp.normal_angle, shape)
     fixed2 = np.isinf(m2)
-    n = np.stack([np.cos(gamma), np.sin(gamma)], axis=-1)
+    n = np.stack(libm_cos_sin(gamma), axis=-1)
     r1, r2 = point - cg1, point - cg2
     # K_nn = 1/m1 + 1/m2 + (r1 x n)^2 / I1 + (r2 x n)^2 / I2 (the frequency of the contact)
     k_nn = 1.0 / m1 + cross(r1, n) ** 2 / i1
@@ -399,9 +436,12 @@ def setup_arrays(case: pim.Case, shape: tuple, gravity: float) -> dict:
     wheels2, loads2 = _wheels(v2, m2, i2, gravity, fixed2)
     speed = np.maximum(np.hypot(vel1[:, 0], vel1[:, 1]),
                        np.where(fixed2, 0.0, np.hypot(vel2[:, 0], vel2[:, 1])))
+    out1, out2, obstacle = _outlines(v1, v2, fixed2, point, n)
     return dict(
+        outline1=out1, outline2=out2, obstacle=obstacle,
         mass1=m1, inertia1=i1, mass2=m2, inertia2=i2, fixed2=fixed2, k_nn=k_nn,
-        state0=state0, arm1=rotate(r1, -h1), arm2=rotate(r2, -h2), normal2=rotate(n, -h2),
+        state0=state0, arm1=rotate_by(r1, *libm_cos_sin(-h1)),
+        arm2=rotate_by(r2, *libm_cos_sin(-h2)), normal2=rotate_by(n, *libm_cos_sin(-h2)),
         wheels1=wheels1, loads1=loads1, wheels2=wheels2, loads2=loads2,
         speed_scale=np.maximum(speed, 1e-6),
         energy_before=(geometry.kinetic_energy(m1, i1, vel1, w1)
@@ -416,17 +456,9 @@ def contact_step_limit(settings: CompliantSettings, dt):
 
 
 def problem_arrays(problem: CompliantProblem) -> dict:
-    """The one scene of ``problem`` as the arrays of :func:`setup_arrays` (n = 1)."""
-    fixed2 = problem.fixed2
-    return dict(
-        mass1=np.array([problem.mass1]), inertia1=np.array([problem.inertia1]),
-        mass2=np.array([problem.mass2]), inertia2=np.array([problem.inertia2]),
-        fixed2=np.array([fixed2]), arm1=problem.arm1_body[None], arm2=problem.arm2_body[None],
-        normal2=problem.normal2_body[None], wheels1=problem.wheels1[None],
-        loads1=problem.load1[None],
-        wheels2=np.zeros((1, 4, 2)) if fixed2 else problem.wheels2[None],
-        loads2=np.zeros((1, 4)) if fixed2 else problem.load2[None],
-        speed_scale=np.array([problem.speed_scale]))
+    """The one scene of ``problem`` as the arrays of :func:`setup_arrays` (n = 1), the very
+    values ``problem`` was built from."""
+    return setup_arrays(problem.case, (), problem.settings.gravity)
 
 
 #: The contact law's inputs of :func:`parameter_rows`, one value or one per scene.
@@ -435,7 +467,38 @@ LAW_INPUTS = ("eps", "preload", "stiffness", "friction", "tangential_stiffness",
               "outline")
 
 
-def parameter_rows(arrays: dict, law: dict) -> np.ndarray:
+def case_rows(arrays: dict) -> np.ndarray:
+    """The ``par`` rows (n, N_PAR) of :mod:`sim.compliant_formula` with the case's columns
+    filled (masses, inertias, arms, normal, wheels, loads, speed scale, v_r) from the scene
+    quantities of :func:`setup_arrays` (or :func:`problem_arrays`), the law's columns 0."""
+    f = formula
+    n = arrays["mass1"].shape[0]
+    par = np.zeros((n, f.N_PAR))
+    for column, name in ((f.P_M1, "mass1"), (f.P_I1, "inertia1"), (f.P_M2, "mass2"),
+                         (f.P_I2, "inertia2"), (f.P_FIXED2, "fixed2"),
+                         (f.P_SPEED, "speed_scale")):
+        par[:, column] = arrays[name]
+    for column, name, width in ((f.P_ARM1, "arm1", 2), (f.P_ARM2, "arm2", 2),
+                                (f.P_NORMAL2, "normal2", 2), (f.P_WHEELS1, "wheels1", 8),
+                                (f.P_LOADS1, "loads1", 4), (f.P_WHEELS2, "wheels2", 8),
+                                (f.P_LOADS2, "loads2", 4), (f.P_OUTLINE1, "outline1", 8),
+                                (f.P_OUTLINE2, "outline2", 8)):
+        par[:, column:column + width] = arrays[name].reshape(n, width)
+    par[:, f.P_OBSTACLE] = arrays["obstacle"]
+    par[:, f.P_VR] = SLIP_REGULARISATION
+    return par
+
+
+#: The ``par`` column of each of :data:`LAW_INPUTS`.
+LAW_COLUMNS = dict(eps=formula.P_EPS, preload=formula.P_PRELOAD,
+                   stiffness=formula.P_STIFFNESS, friction=formula.P_FRICTION,
+                   tangential_stiffness=formula.P_KT, tangential_recovery=formula.P_RECOVERY,
+                   tyre_friction=formula.P_TYRE, braking=formula.P_BRAKING, dt=formula.P_DT,
+                   start=formula.P_START, max_steps=formula.P_MAX_STEPS,
+                   outline=formula.P_OUTLINE)
+
+
+def parameter_rows(arrays: dict, law: dict, rows: np.ndarray | None = None) -> np.ndarray:
     """The ``par`` rows (n, N_PAR) of :mod:`sim.compliant_formula`: every scene's parameters.
 
     Parameters
@@ -447,27 +510,12 @@ def parameter_rows(arrays: dict, law: dict) -> np.ndarray:
         stiffness b [N/m], friction mu_c [-], tangential_stiffness k_t [N/m],
         tangential_recovery r [-], tyre_friction [-], braking (0 rolling, 1 locked), dt [s],
         start [s], max_steps (of the contact), outline (1 for the outline contact).
+    rows : ndarray, optional
+        :func:`case_rows` of ``arrays`` made already (copied, not changed).
     """
-    f = formula
-    n = arrays["mass1"].shape[0]
-    par = np.zeros((n, f.N_PAR))
-    for column, name in ((f.P_M1, "mass1"), (f.P_I1, "inertia1"), (f.P_M2, "mass2"),
-                         (f.P_I2, "inertia2"), (f.P_FIXED2, "fixed2"),
-                         (f.P_SPEED, "speed_scale")):
-        par[:, column] = arrays[name]
-    for column, name, width in ((f.P_ARM1, "arm1", 2), (f.P_ARM2, "arm2", 2),
-                                (f.P_NORMAL2, "normal2", 2), (f.P_WHEELS1, "wheels1", 8),
-                                (f.P_LOADS1, "loads1", 4), (f.P_WHEELS2, "wheels2", 8),
-                                (f.P_LOADS2, "loads2", 4)):
-        par[:, column:column + width] = arrays[name].reshape(n, width)
-    for column, name in ((f.P_EPS, "eps"), (f.P_PRELOAD, "preload"),
-                         (f.P_STIFFNESS, "stiffness"), (f.P_FRICTION, "friction"),
-                         (f.P_KT, "tangential_stiffness"), (f.P_RECOVERY, "tangential_recovery"),
-                         (f.P_TYRE, "tyre_friction"), (f.P_BRAKING, "braking"), (f.P_DT, "dt"),
-                         (f.P_START, "start"), (f.P_MAX_STEPS, "max_steps"),
-                         (f.P_OUTLINE, "outline")):
+    par = case_rows(arrays) if rows is None else rows.copy()
+    for name, column in LAW_COLUMNS.items():
         par[:, column] = law[name]
-    par[:, f.P_VR] = SLIP_REGULARISATION
     return par
 
 
@@ -488,11 +536,13 @@ def point_contact(problem: CompliantProblem, position1, angle1, velocity1, yaw_r
         v_rel . n (= -d delta / dt) and v_rel . t [m/s].
     """
     a1, a2, n2 = problem.arm1_body, problem.arm2_body, problem.normal2_body
+    angle1, angle2 = float(angle1), float(angle2)
     px, py, nx, ny, delta, slip_n, slip_t = formula.point_contact(
         float(a1[0]), float(a1[1]), float(a2[0]), float(a2[1]), float(n2[0]), float(n2[1]),
-        float(position1[0]), float(position1[1]), float(angle1), float(velocity1[0]),
-        float(velocity1[1]), float(yaw_rate1), float(position2[0]), float(position2[1]),
-        float(angle2), float(velocity2[0]), float(velocity2[1]), float(yaw_rate2))
+        float(position1[0]), float(position1[1]), math.cos(angle1), math.sin(angle1),
+        float(velocity1[0]), float(velocity1[1]), float(yaw_rate1), float(position2[0]),
+        float(position2[1]), math.cos(angle2), math.sin(angle2), float(velocity2[0]),
+        float(velocity2[1]), float(yaw_rate2))
     return (np.array([px, py]), np.array([nx, ny]), np.array([-ny, nx]), delta, slip_n,
             slip_t)
 

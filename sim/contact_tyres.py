@@ -25,6 +25,8 @@ car); without an outline the length is taken as k / 0.3 and the width as 0.4 tim
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from pim.model import tyres
@@ -127,8 +129,9 @@ def tyre_force(velocity, yaw_rate, angle, wheels, load, mu, mode="rolling",
         raise InputError(f"tyre mode must be one of {TYRE_MODES}, got {mode!r}")
     loads = np.broadcast_to(np.asarray(load, dtype=float), (4,))
     velocity = np.asarray(velocity, dtype=float).reshape(2)
+    angle = float(angle)
+    data = np.asarray(wheels, dtype=float).reshape(8).tolist() + loads.tolist()
     fx, fy, moment = vehicle_tyre_force(
-        np.asarray(wheels, dtype=float).reshape(8).tolist(), loads.tolist(), float(velocity[0]),
-        float(velocity[1]), float(yaw_rate), float(angle), float(mu),
-        1.0 if mode == "locked" else 0.0, float(regularisation))
+        data, 0, 8, float(velocity[0]), float(velocity[1]), float(yaw_rate), math.cos(angle),
+        math.sin(angle), float(mu), 1.0 if mode == "locked" else 0.0, float(regularisation))
     return np.array([fx, fy], dtype=float), float(moment)

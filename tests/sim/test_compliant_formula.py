@@ -93,8 +93,9 @@ def test_plastic_release_takes_back_the_share_after_the_turn():
 
 def test_point_contact_of_a_turning_plane():
     # vehicle 2 turned 90 deg: its body-frame normal (1, 0) points along +y
+    c2, s2 = math.cos(math.pi / 2), math.sin(math.pi / 2)
     px, py, nx, ny, delta, slip_n, slip_t = f.point_contact(
-        1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, -2.0, 0.5, 1.0, 0.5, math.pi / 2,
+        1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, -2.0, 0.5, 1.0, 0.5, c2, s2,
         0.0, 0.0, 0.0)
     assert (px, py) == (1.0, 0.0)
     assert nx == pytest.approx(0.0, abs=1e-16) and ny == 1.0
