@@ -29,7 +29,7 @@ from pim.files import save_figure
 
 import pim
 import sim
-from comparisons.studies.assumptions import outcome_errors
+from comparisons.studies.assumption_legacy import outcome_errors
 from comparisons.studies.speed_error_compliant import compliant_sweep
 from comparisons.studies.stiff_limit import plot_stiff_limit, stiff_limit
 from sim.compliant_setup import build_problem

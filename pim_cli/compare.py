@@ -389,25 +389,27 @@ def hard_cases(out, units, progress, as_json):
 @eps_option
 @beta_option
 @click.option("--executor", type=click.Choice(["process", "serial"]), default="process",
-              show_default=True, help="Run the scenes on a local process pool or serially.")
+              show_default=True, help="Run the pymunk scenes on a local process pool or "
+                                      "serially.")
 @click.option("--no-animation", is_flag=True, help="Skip the MP4 of the finite-duration scene.")
+@units_option
 @progress_option
 @json_option
-def assumptions(case_name, out, eps, beta, executor, no_animation, progress, as_json):
+def assumptions(case_name, out, eps, beta, executor, no_animation, units, progress, as_json):
     """Test PIM's assumptions for CASE, one at a time, on a ladder of crush scenes.
 
-    Each scene differs from the one below in one assumption (Newton's restitution and
-    mu = beta mu0, instantaneous impulse, impulse at C, one contact point, no external
-    forces, PIM's tangential law); the marginal effect of each (against the scene below, at
-    the same contact time) and the cumulative one (PIM's error) are measured at several
-    contact times, with the tyre effect over the contact time and the friction effect over
-    mu_c and the tangential recovery. Writes assumptions.md, CSVs, a plot and an MP4 with
-    PIM's ghost.
+    Each scene differs from its baseline in one assumption (Newton's restitution and
+    mu = beta mu0, instantaneous impulse, one contact point, no external forces with the
+    wheels rolling or locked, PIM's tangential law); each effect is stated over 50-150 ms
+    of contact (and the tangential recovery 0-1 for friction), in % and as the delta-V and
+    yaw rate it moves, in the case's units. Where C is stands beside the ladder as input
+    uncertainty. Writes assumptions.md and .html, CSVs, a plot and an MP4 with PIM's ghost.
     """
     from pim.io.casefile import load_case
     from pim.io.output import output_folder, rebase, worker_pool
 
-    from comparisons.studies.assumptions import run_assumptions, write_assumptions
+    from comparisons.report.assumptions import study_json, verdicts, write_assumptions
+    from comparisons.studies.assumptions import run_assumptions
 
     case = load_case(case_name)
     require_brach(case, "pim assumptions")
@@ -420,20 +422,13 @@ def assumptions(case_name, out, eps, beta, executor, no_animation, progress, as_
         study = run_assumptions(case, eps, beta, executor=executor, progress=progress,
                                 animation_after=None if no_animation else 2.0)
         files = rebase(write_assumptions(study, tmp, animation=not no_animation,
-                                         progress=progress, command=command), tmp, folder)
+                                         progress=progress, command=command, units=units),
+                       tmp, folder)
     if as_json:
-        echo_json({"case": case.name, "eps": study.eps, "beta": study.beta,
-                   "beta_pim": study.beta_pim, "verdicts": study.verdicts(),
-                   "seconds": study.seconds, "files": [str(f) for f in files],
-                   "ladders": [{"contact_time_ms": 1e3 * lad.duration,
-                                "rungs": [{"key": r.key, "against": r.baseline,
-                                           "marginal": r.marginal,
-                                           "cumulative": r.cumulative,
-                                           "failure": r.run.failure}
-                                          for r in lad.rungs[1:]]}
-                               for lad in study.ladders]})
+        echo_json({**study_json(study, units), "seconds": study.seconds,
+                   "files": [str(f) for f in files]})
         return
-    for verdict in study.verdicts():
+    for verdict in verdicts(study, units):
         click.echo(f"- {verdict}")
     click.echo(f"wrote {folder / 'assumptions.md'} ({len(files)} files) in "
-               f"{study.seconds:.1f} s of simulation")
+               f"{study.seconds:.1f} s of simulation ({study.engine})")

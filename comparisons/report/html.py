@@ -14,29 +14,16 @@ import shlex
 from pathlib import Path
 
 from pim.io import html as h
-from pim.io.html import split_columns
 from pim.io.units import convert
 
+from comparisons.report.assumptions import assumption_tables, ladder_intro, verdicts
 from comparisons.report.data import ReportData
 from comparisons.report.tables import Table, fmt_value
 
-__all__ = ["render_html", "html_table", "assumption_tables", "ASSUMPTION_GROUPS", "HTML_NAME"]
+__all__ = ["render_html", "html_table", "HTML_NAME"]
 
 #: File name of the HTML report.
 HTML_NAME = h.HTML_REPORT_NAME
-
-#: The assumptions table's columns in groups that fit a screen: (caption, columns). A
-#: column matches by its header, or by its header without the unit (``"fit rms"`` matches
-#: ``"fit rms [ft/s]"``); columns no group names are shown in a last group.
-ASSUMPTION_GROUPS = (
-    ("Effect of each assumption (marginal: against the scene below it; cumulative: PIM "
-     "against the scene)", ("against", "marginal effect [-]", "cumulative (PIM's error) [-]")),
-    ("The scene of each rung", ("scene", "contact [ms]", "failure")),
-    ("What PIM would need to reproduce the scene (effective coefficients and impact point)",
-     ("eps_eff [-]", "beta_eff [-]", "C_eff x", "C_eff y")),
-    ("Contact and energy", ("energy loss [-]", "stick fraction [-]", "slip reversed")),
-)
-
 
 def html_table(table: Table, *, columns=None, title: str | None = None, note: str = "",
                cls: str = "", part: int | None = None) -> str:
@@ -48,14 +35,6 @@ def html_table(table: Table, *, columns=None, title: str | None = None, note: st
             for row in table.rows]
     return h.table(columns, rows, title=table.title if title is None else title, note=note,
                    id=f"table-{table.name}" + ("" if part is None else f"-{part}"), cls=cls)
-
-
-def assumption_tables(table: Table) -> list[str]:
-    """The assumptions table (:func:`comparisons.studies.assumptions.assumption_table`) as HTML tables
-    one screen wide (:data:`ASSUMPTION_GROUPS`), one row per assumption in each."""
-    return [html_table(table, columns=cols, title=caption, cls="split", part=i)
-            for i, (caption, cols) in enumerate(split_columns(
-                table.columns, ASSUMPTION_GROUPS, table.columns[0]), start=1)]
 
 
 def _command(data: ReportData, name: str) -> str:
@@ -192,8 +171,8 @@ def _assumptions(data: ReportData) -> str:
     table = data.tables["assumptions"]
     parts = assumption_tables(table)
     return h.section("PIM's assumptions (finite-duration crush scene)", [
-        h.paragraph(data.assumptions.intro(_command(data, "assumptions"))),
-        h.bullets(data.assumptions.verdicts()),
+        h.paragraph(ladder_intro(_command(data, "assumptions"))),
+        h.bullets(verdicts(data.assumptions, data.units)),
         h.paragraph(f"The table at typical values, in {len(parts)} parts (one row per "
                     f"assumption in each; all columns: `{table.name}.csv`)."),
         *parts], id="assumptions")
