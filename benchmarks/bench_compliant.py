@@ -42,7 +42,7 @@ def at_100ms(name: str, eps: float, tyre: float) -> str:
     k = float(stiffness_for_duration(0.1, k_nn, eps))
     try:
         r = sim.simulate_compliant(case, eps, k, tyre_friction=tyre,
-                                   settings=sim.CompliantSettings(record=False))
+                                   settings=sim.CompliantSettings(record=False), engine="pymunk")
     except sim.SimulationError as exc:
         return f"{name:22s} tyre {tyre:3.1f}: failed ({exc.kind})"
     result = pim.solve(case, eps, 0.0)

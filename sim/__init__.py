@@ -15,6 +15,7 @@ them one at a time, and the measured accuracy and speed.
 
 from .batch import case_element, simulate_many
 from .compliant import simulate_compliant
+from .compliant_batch import CompliantBatch
 from .compliant_setup import DEFAULT_STIFFNESS, CompliantResult, CompliantSettings, ContactHistory
 from .crosscheck import CrossCheck, crosscheck
 from .failures import FAILURE_KINDS, SimulationError
@@ -29,5 +30,5 @@ from .settings import Settings
 __all__ = ["Settings", "simulate", "simulate_many", "SimResult", "Trajectory", "BatchResult",
            "SimulationError", "FAILURE_KINDS", "limitations", "crosscheck", "CrossCheck",
            "Scene", "build_scene", "case_element", "simulate_compliant", "reference_compliant",
-           "CompliantSettings", "CompliantResult", "ContactHistory", "DEFAULT_STIFFNESS",
+           "CompliantSettings", "CompliantResult", "CompliantBatch", "ContactHistory", "DEFAULT_STIFFNESS",
            "find_secondary_impact", "SecondaryImpact"]

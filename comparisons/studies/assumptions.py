@@ -293,7 +293,8 @@ def simulate_config(job: tuple) -> ConfigRun:
         case, k, mu, settings = scene_inputs(context, config, probe)
         r = sim.simulate_compliant(case, context.eps, k, friction=mu,
                                    geometry="outline" if config.distributed else "point",
-                                   tyre_friction=config.tyre_friction, settings=settings)
+                                   tyre_friction=config.tyre_friction, settings=settings,
+                                   engine="pymunk")
     except sim.SimulationError as exc:
         return ConfigRun.failed(config, f"{exc.kind}: {exc}")
     return ConfigRun.of_result(config, r)
@@ -839,7 +840,7 @@ def _animation(case, eps, k, has_outline, settings, after):
     try:
         return sim.simulate_compliant(
             case, eps, k, geometry="outline" if has_outline else "point",
-            settings=replace(settings, record=True, duration=float(after)))
+            settings=replace(settings, record=True, duration=float(after)), engine="pymunk")
     except sim.SimulationError:
         return None
 

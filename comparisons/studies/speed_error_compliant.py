@@ -243,7 +243,7 @@ def _ladders(case, eps, k, mu, steps, rtols, methods):
         dt = sim.compliant.step_size(sim.compliant_setup.build_problem(
             case, eps, k, mu, settings=settings))
         pymunk.append((dt, lambda s=settings: sim.simulate_compliant(
-            case, eps, k, friction=mu, settings=s)))
+            case, eps, k, friction=mu, settings=s, engine="pymunk")))
     out = [("pymunk", pymunk)]
     for method in methods:
         ladder = []

@@ -174,7 +174,7 @@ def _run_scene(test: TestCase, x, steps=COARSE_STEPS):
     eps, mu, duration, tyre = (float(v) for v in x)
     k = float(stiffness_for_duration(duration, test.k_nn, eps))
     r = sim.simulate_compliant(test.case, eps, k, friction=mu, tyre_friction=tyre,
-                               settings=scene_settings(steps))
+                               settings=scene_settings(steps), engine="pymunk")
     return r.velocity1, float(r.yaw_rate1), r.velocity2, float(r.yaw_rate2)
 
 

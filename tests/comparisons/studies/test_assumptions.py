@@ -165,7 +165,7 @@ def test_nearly_instantaneous_frictionless_scene_fits_back_to_eps_and_beta0():
     case = pim.load_case("hard-barrier")
     problem = sim.compliant_setup.build_problem(case, 0.3, sim.DEFAULT_STIFFNESS)
     k = float(sim.contact_law.stiffness_for_duration(0.002, problem.k_nn, 0.3))
-    r = sim.simulate_compliant(case, 0.3, k)
+    r = sim.simulate_compliant(case, 0.3, k, engine="pymunk")
     measured = pim.Measured(r.velocity1, None, r.yaw_rate1, None)
     fitted = pim.fit(replace(case, measured=measured), include_yaw=True)
     assert fitted.eps == pytest.approx(0.3, abs=0.02)
