@@ -248,10 +248,11 @@ class Plan:
 
 
 def plan(eps: float, sweeps: bool) -> Plan:
-    """The full study (``sweeps``), or the verdicts only: the range's ends and middle at
-    the typical tyre friction and mu_c (the summary of ``pim compare``)."""
+    """The full study (``sweeps``), or the verdicts only: the range's contact times at the
+    typical tyre friction and mu_c (the summary of ``pim compare``; the same verdicts and
+    ladder table as the full study)."""
     rs, r0 = recoveries(eps), float(tangential_recovery_default(eps))
     if not sweeps:
-        ends = (CONTACT_RANGE[0], TYPICAL["duration"], CONTACT_RANGE[1])
-        return Plan(ends, ends, (TYPICAL["tyre_friction"],), (TYPICAL["friction"],), rs, r0)
+        return Plan(RANGE_DURATIONS, RANGE_DURATIONS, (TYPICAL["tyre_friction"],),
+                    (TYPICAL["friction"],), rs, r0)
     return Plan(DURATIONS, RANGE_DURATIONS, TYRE_FRICTIONS, FRICTIONS, rs, r0)

@@ -39,8 +39,9 @@ import numpy as np
 import pim
 import sim
 from pim.model.numbers import InputError
+from sim.compliant_batch import STATUS_MESSAGES
 from sim.compliant_setup import build_problem, rotate
-from sim.contact_law import stiffness_for_duration
+from sim.contact_law import stiffness_for_duration, tangential_recovery_default
 from sim.error_measure import impact_error
 from sim.sweep import sweep
 
@@ -60,8 +61,9 @@ __all__ = ["ConfigRun", "Change", "Rung", "Ladder", "InputShift", "EffectRange",
            "FrictionPoint", "AssumptionStudy", "ENGINES", "run_assumptions", "change",
            "contact_case", "simulate_config"]
 
-#: The integrators a study runs on: the compiled crush scene, or pymunk (the cross-check).
-ENGINES = ("pymunk",)
+#: The integrators a study runs on: the compiled crush scene (its point contacts), or
+#: pymunk for every scene (the cross-check).
+ENGINES = ("numba", "pymunk")
 
 
 @dataclass(frozen=True)
@@ -122,13 +124,15 @@ class ConfigRun:
 
     @classmethod
     def of_result(cls, config: RungConfig, r, index=()) -> ConfigRun:
-        """From a :class:`sim.CompliantResult`, or scene ``index`` of a batch of them."""
-        def at(name):
-            return np.asarray(getattr(r, name), float)[index]
+        """From a :class:`sim.CompliantResult`, or scene ``index`` of a
+        :class:`sim.CompliantBatch` (whose point contacts start at t = 0)."""
+        def at(name, default=None):
+            value = getattr(r, name, default)
+            return np.asarray(value, float)[index] if np.ndim(value) else float(value)
         e0 = float(at("energy_before"))
         return cls(config, at("velocity1"), at("velocity2"), float(at("yaw_rate1")),
                    float(at("yaw_rate2")), float(at("contact_duration")), at("impact_point"),
-                   at("impulse_normal"), float(np.asarray(r.contact_start)[index]),
+                   at("impulse_normal"), float(at("contact_start", 0.0)),
                    at("impact_point_body1"), at("impulse_normal_body2"),
                    (e0 - float(at("energy_after"))) / e0 if e0 > 0 else math.nan,
                    float(at("stick_fraction")), bool(np.asarray(r.slip_reversed)[index]))
@@ -265,8 +269,30 @@ def _probe_usable(probe: ConfigRun | None) -> str | None:
     return None if np.isfinite(probe.point_body1).all() else "no impulse centroid"
 
 
-def scene_inputs(context: Context, config: RungConfig, probe: ConfigRun | None):
-    """(case, stiffness [N/m], mu_c [-], settings) of ``config``'s simulation."""
+@dataclass(frozen=True)
+class SceneInputs:
+    """What one configuration's simulation takes.
+
+    Attributes
+    ----------
+    case : pim.Case
+        The case (moved where the outlines' impulse acts for a point at the centroid).
+    stiffness : float
+        Loading stiffness k giving the configuration's contact time [N/m].
+    friction : float
+        mu_c between the vehicles [-].
+    settings : sim.CompliantSettings
+        Numerics, tyre mode, tangential stiffness and recovery.
+    """
+
+    case: pim.Case
+    stiffness: float
+    friction: float
+    settings: object
+
+
+def scene_inputs(context: Context, config: RungConfig, probe: ConfigRun | None) -> SceneInputs:
+    """The simulation inputs of ``config`` (``probe`` places a centroid configuration)."""
     case, eps = context.case, context.eps
     where = case if config.point == "C" else contact_case(case, probe)
     k_nn = build_problem(where, eps, sim.DEFAULT_STIFFNESS).k_nn
@@ -279,21 +305,28 @@ def scene_inputs(context: Context, config: RungConfig, probe: ConfigRun | None):
         mu = STICKING["friction"]
         settings = replace(settings, tangential_recovery=STICKING["recovery"],
                            tangential_stiffness=STICKING["stiffness_ratio"] * k)
-    return (case if config.distributed else where), k, mu, settings
+    return SceneInputs(case if config.distributed else where, k, mu, settings)
+
+
+def _unplaced(config: RungConfig, probe: ConfigRun | None) -> ConfigRun | None:
+    """The failed run of a centroid configuration without a usable probe (else None)."""
+    why = _probe_usable(probe) if config.point == "centroid" else None
+    return None if why is None else ConfigRun.failed(
+        config, f"the outline probe failed ({why})")
 
 
 def simulate_config(job: tuple) -> ConfigRun:
     """Simulate one configuration on pymunk: ``job`` = (Context, RungConfig, probe or None)
     (module level, so that it runs on a process pool)."""
     context, config, probe = job
-    why = _probe_usable(probe) if config.point == "centroid" else None
-    if why is not None:
-        return ConfigRun.failed(config, f"the outline probe failed ({why})")
+    unplaced = _unplaced(config, probe)
+    if unplaced is not None:
+        return unplaced
     try:
-        case, k, mu, settings = scene_inputs(context, config, probe)
-        r = sim.simulate_compliant(case, context.eps, k, friction=mu,
+        s = scene_inputs(context, config, probe)
+        r = sim.simulate_compliant(s.case, context.eps, s.stiffness, friction=s.friction,
                                    geometry="outline" if config.distributed else "point",
-                                   tyre_friction=config.tyre_friction, settings=settings,
+                                   tyre_friction=config.tyre_friction, settings=s.settings,
                                    engine="pymunk")
     except sim.SimulationError as exc:
         return ConfigRun.failed(config, f"{exc.kind}: {exc}")
@@ -306,12 +339,72 @@ def probe_config(duration: float) -> RungConfig:
     return RungConfig(law="crush", duration=duration, distributed=True)
 
 
-def run_configs(context: Context, configs: list, probes: dict, executor, progress) -> dict:
-    """{config: ConfigRun} of every configuration (``probes``: {contact time: probe run})."""
-    jobs = [(context, c, probes.get(c.duration)) for c in configs]
+def compiled(config: RungConfig) -> bool:
+    """Whether the compiled crush scene steps ``config`` (its point contact; the outlines'
+    distributed contact runs on pymunk)."""
+    return not config.distributed
+
+
+def _batch_group(context: Context, configs: list, probes: dict) -> dict:
+    """{(where, contact time, tangential stiffness): [(config, SceneInputs)]}: the
+    configurations one compiled call can take (one case, one set of numerics)."""
+    groups = {}
+    for c in configs:
+        s = scene_inputs(context, c, probes.get(c.duration))
+        key = (c.point, c.duration if c.point == "centroid" else None,
+               s.settings.tangential_stiffness)
+        groups.setdefault(key, []).append((c, s))
+    return groups
+
+
+def _run_batch(context: Context, members: list) -> dict:
+    """One compiled call over ``members`` [(config, SceneInputs)] sharing a case."""
+    eps, first = context.eps, members[0][1]
+    recovery = [tangential_recovery_default(eps) if s.settings.tangential_recovery is None
+                else s.settings.tangential_recovery for _, s in members]
+    b = sim.simulate_compliant(
+        first.case, eps, np.array([s.stiffness for _, s in members]),
+        friction=np.array([s.friction for _, s in members]),
+        tyre_friction=np.array([c.tyre_friction for c, _ in members]),
+        settings=first.settings, engine="numba",
+        tyre_mode=np.array([c.tyre_mode for c, _ in members]),
+        tangential_recovery=np.array(recovery, float))
+    names = b.status_name
+    return {c: ConfigRun.of_result(c, b, i) if names[i] == "ok" else
+            ConfigRun.failed(c, f"{names[i]}: {STATUS_MESSAGES[names[i]]}")
+            for i, (c, _) in enumerate(members)}
+
+
+def _run_compiled(context: Context, configs: list, probes: dict) -> dict:
+    """{config: ConfigRun} of point configurations on the compiled scene."""
+    out = {}
+    placed = []
+    for c in configs:
+        unplaced = _unplaced(c, probes.get(c.duration))
+        if unplaced is None:
+            placed.append(c)
+        else:
+            out[c] = unplaced
+    for members in _batch_group(context, placed, probes).values():
+        out.update(_run_batch(context, members))
+    return out
+
+
+def run_configs(context: Context, configs: list, probes: dict, *, engine: str = "numba",
+                executor=None, progress=False) -> dict:
+    """{config: ConfigRun} of every configuration (``probes``: {contact time: probe run}):
+    on ``engine`` "numba", the point contacts compiled and the rest on pymunk (on
+    ``executor``, :func:`sim.sweep.sweep`); on "pymunk", every one on pymunk."""
+    if engine not in ENGINES:
+        raise InputError(f"engine must be one of {', '.join(ENGINES)}, got {engine!r}")
+    fast = [c for c in configs if engine == "numba" and compiled(c)]
+    out = _run_compiled(context, fast, probes) if fast else {}
+    rest = [c for c in configs if c not in out]
+    jobs = [(context, c, probes.get(c.duration)) for c in rest]
     runs = sweep(simulate_config, jobs, executor=executor, progress=progress,
-                 desc="assumptions")
-    return dict(zip(configs, runs, strict=True))
+                 desc="assumptions") if jobs else []
+    out.update(zip(rest, runs, strict=True))
+    return {c: out[c] for c in configs}
 
 
 # -- the study -------------------------------------------------------------------------------
@@ -748,10 +841,10 @@ def _input_shift(out: _Outcomes) -> InputShift | None:
                       change(case, out.pim_at_c, moved))
 
 
-def _probes(context: Context, durations, executor, progress) -> tuple:
+def _probes(context: Context, durations, run) -> tuple:
     """({contact time: probe run} of the probes that ran, {contact time: why} of those
-    that failed)."""
-    runs = run_configs(context, [probe_config(d) for d in durations], {}, executor, progress)
+    that failed); ``run``: :func:`run_configs` with the study's engine and executor."""
+    runs = run(context, [probe_config(d) for d in durations], {})
     ran = {c.duration: r for c, r in runs.items() if r.failure is None}
     return ran, {c.duration: r.failure for c, r in runs.items() if r.failure is not None}
 
@@ -784,7 +877,7 @@ def has_outlines(case: pim.Case) -> bool:
 def run_assumptions(case: pim.Case, eps: float | None = None, beta: float | None = None, *,
                     executor=None, progress: bool | None = None, stiffness: float | None = None,
                     animation_after: float | None = 2.0, settings=None,
-                    sweeps: bool = True) -> AssumptionStudy:
+                    sweeps: bool = True, engine: str = "numba") -> AssumptionStudy:
     """PIM's assumptions relaxed one at a time on the ladder of crush scenes (module notes).
 
     Parameters
@@ -809,6 +902,9 @@ def run_assumptions(case: pim.Case, eps: float | None = None, beta: float | None
     sweeps : bool
         Every contact time and variant (:func:`assumption_configs.plan`); False: the
         verdicts only (the range's ends and middle), the summary of ``pim compare``.
+    engine : {"numba", "pymunk"}
+        The compiled crush scene for the point contacts (the outlines' contact on pymunk),
+        or pymunk for every scene (the cross-check, :func:`run_configs`).
     """
     start = time.perf_counter()
     eps, beta, _ = coefficients(case, eps, beta)
@@ -817,10 +913,13 @@ def run_assumptions(case: pim.Case, eps: float | None = None, beta: float | None
     beta_pim = 0.0 if beta < 0.5 else 1.0
     settings = replace(settings or sim.CompliantSettings(), record=False, duration=0.0)
     context, the_plan = Context(case, eps, beta_pim, settings), plan(eps, sweeps)
-    show = progress is not False
-    probes, failed = _probes(context, the_plan.durations, executor, show) \
-        if has_outlines(case) else ({}, {})
-    runs = run_configs(context, the_plan.configs(set(probes)), probes, executor, show)
+    def run(ctx, configs, probes):
+        return run_configs(ctx, configs, probes, engine=engine, executor=executor,
+                           progress=progress is not False)
+
+    probes, failed = _probes(context, the_plan.durations, run) if has_outlines(case) \
+        else ({}, {})
+    runs = run(context, the_plan.configs(set(probes)), probes)
     out = _Outcomes(context, runs, ConfigRun.of_pim(case, pim.solve(case, eps, beta_pim)),
                     _pim_moved(context, probes, beta_pim))
     k_nn = build_problem(case, eps, sim.DEFAULT_STIFFNESS).k_nn
@@ -830,7 +929,7 @@ def run_assumptions(case: pim.Case, eps: float | None = None, beta: float | None
     return AssumptionStudy(
         case, eps, beta, beta_pim, tuple(_ladder(out, d) for d in the_plan.durations),
         the_plan.range_durations, _tyre_curves(out, the_plan), _friction_points(out, the_plan),
-        _input_shift(out), k_typical, "pymunk", time.perf_counter() - start, anim,
+        _input_shift(out), k_typical, engine, time.perf_counter() - start, anim,
         outline_note(failed, has_outlines(case)))
 
 

@@ -68,12 +68,12 @@ def test_contact_time_and_recovery_are_ranges():
     assert rs[0] == 0.0 and rs[-1] == 1.0 and 0.09 == pytest.approx(rs[1])
     full, summary = C.plan(0.3, True), C.plan(0.3, False)
     assert set(full.range_durations) <= set(full.durations)
-    assert summary.range_durations == (0.05, 0.1, 0.15)
+    assert summary.range_durations == summary.durations == C.RANGE_DURATIONS
 
 
 def test_the_plan_simulates_the_friction_rung_over_r_in_the_range():
     p = C.plan(0.3, False)
-    configs = p.configs(True)
+    configs = p.configs(set(p.durations))
     friction = [c for c in configs if c.friction == "coulomb"]
     assert {c.duration for c in friction} == set(p.range_durations)
     assert {p.recovery(r) for r in p.recoveries} == {c.recovery for c in friction}

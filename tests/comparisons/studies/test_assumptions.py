@@ -11,6 +11,7 @@ import pim
 import sim
 from comparisons.studies import assumptions as A
 from comparisons.studies.assumption_configs import (
+    RANGE_DURATIONS,
     RUNGS,
     changed_assumptions,
     changed_inputs,
@@ -48,7 +49,7 @@ def test_the_study_ladder_changes_one_assumption_per_rung(summary):
         check_ladder(ladder)
     assert all(r.run.failure is None for r in summary.typical.rungs)
     assert summary.beta_pim == 1.0 and summary.eps == pytest.approx(0.3548, abs=1e-3)
-    assert [lad.duration for lad in summary.ladders] == [0.05, 0.1, 0.15]
+    assert [lad.duration for lad in summary.ladders] == list(RANGE_DURATIONS)
 
 
 def _pim_at(case, eps, beta, config, probe):
@@ -113,12 +114,12 @@ def test_cumulative_above_the_outline_holds_no_input_shift(summary):
 
 def test_ranges_over_contact_time_and_recovery(summary):
     er = summary.over_range("duration")
-    assert er.settings == ("50 ms", "100 ms", "150 ms")
+    assert er.settings == ("50 ms", "75 ms", "100 ms", "125 ms", "150 ms")
     lo, hi = er.extremes("marginal")
     assert lo < hi                         # the duration effect grows with the contact time
     assert er.setting_of("marginal") == "150 ms"
     fr = summary.friction_over()
-    assert len(fr.settings) == 3 * 4                     # 3 contact times x 4 recoveries
+    assert len(fr.settings) == 5 * 4                     # 5 contact times x 4 recoveries
     assert {s.split(", r ")[1] for s in fr.settings} == {"0", "0.126", "0.5", "1"}
 
 
