@@ -59,14 +59,12 @@ from .compliant_setup import (
     build_problem,
     contact_step_limit,
     parameter_rows,
-    placed_outlines,
     point_contact,
     problem_arrays,
     result_from_row,
 )
 from .contact_law import check_fraction, check_positive, stiffness_for_duration
 from .failures import SimulationError
-from .overlap import outline_overlap, overlap_area
 from .result import Trajectory
 from .secondary import find_secondary_impact
 
@@ -99,85 +97,47 @@ def step_size(problem: CompliantProblem) -> float:
     return dt
 
 
-def outline_start(problem: CompliantProblem) -> float:
-    """When the outlines first touch [s] along the free pre-impact paths (<= 0), or 0.
+def outline_start(problem: CompliantProblem, par: list | None = None) -> float:
+    """When the outlines first touch [s] along the free pre-impact paths (<= 0), or 0
+    (:func:`sim.compliant_formula.outline_start`).
 
     The case places the bodies at PIM's impact configuration (t = 0), where illustrative
     outlines often already overlap; the outline contact starts where they first touch,
-    found by stepping back along the free paths and bisecting.
+    found by stepping back along the free paths and bisecting. ``par``: the scene's
+    parameters, when made already.
+
+    Raises
+    ------
+    SimulationError
+        "tunnelled": the outlines overlap along the whole 10 s of pre-impact path.
     """
-    def overlapping(t: float) -> bool:
-        state = _free_state(problem.state0, t)
-        poly1, poly2 = placed_outlines(problem, state)
-        return overlap_area(poly1, _obstacle(problem, poly2)) > 0.0
-
-    if not overlapping(0.0):
-        return 0.0
-    step = 0.01
-    back = step
-    while overlapping(-back):
-        back += step
-        if back > 10.0:
-            raise SimulationError("tunnelled", "the outlines overlap along the whole 10 s of "
-                                  "pre-impact path: they never approach each other", 0)
-    low, high = -back, -back + step       # apart at low, overlapping at high
-    for _ in range(60):
-        mid = 0.5 * (low + high)
-        if overlapping(mid):
-            high = mid
-        else:
-            low = mid
-    return low
+    if par is None:
+        par = parameter_rows(problem_arrays(problem), problem_law(problem, 1.0, 0.0))[0]
+    start = f.outline_start(par, problem.state0.tolist(), [0.0] * f.N_WORK)
+    if math.isnan(start):
+        raise SimulationError("tunnelled", "the outlines overlap along the whole 10 s of "
+                              "pre-impact path: they never approach each other", 0)
+    return start
 
 
-def _free_state(state0: np.ndarray, t: float) -> np.ndarray:
-    s = state0.copy()
-    s[0:2] += state0[3:5] * t
-    s[2] += state0[5] * t
-    s[6:8] += state0[9:11] * t
-    s[8] += state0[11] * t
-    return s
+def outline_geometry(par: list, mem: list, st: list, trig: tuple, wk: list,
+                     when: float) -> tuple:
+    """The outline contact at the state ``st``: (px, py, nx, ny, delta, slip_n, slip_t,
+    overlap) as :func:`sim.compliant_formula.point_geometry` gives the point contact's
+    (:func:`sim.compliant_formula.outline_geometry`).
 
-
-def _obstacle(problem: CompliantProblem, poly2):
-    """Vehicle 2's outline, or a 200 m x 10 m block behind the plane for a bare barrier."""
-    if poly2 is not None:
-        return poly2
-    point = np.asarray(problem.case.impact.point, float).reshape(2)
-    gamma = float(problem.case.impact.normal_angle)
-    n = np.array([math.cos(gamma), math.sin(gamma)])
-    t = np.array([-n[1], n[0]])
-    # counter-clockwise: face along t through C, 10 m deep on the -n side
-    return np.array([point + 100 * t, point + 100 * t - 10 * n, point - 100 * t - 10 * n,
-                     point - 100 * t])
-
-
-def outline_geometry(problem: CompliantProblem, mem, st, obstacle, when: float) -> tuple:
-    """The outline contact at the state ``st`` (12): (px, py, nx, ny, delta, slip_n,
-    slip_t, overlap) as :func:`sim.compliant_formula.point_geometry` gives the point contact's.
-
-    Where the outlines do not overlap the crush is 0 and the normal that of the last overlap
-    (``mem``). Raises SimulationError "tunnelled" when the normal flipped (the outlines
-    passed through each other).
+    Raises
+    ------
+    SimulationError
+        "tunnelled": the normal flipped (the outlines passed through each other).
     """
-    poly1, poly2 = placed_outlines(problem, st)
-    ov = outline_overlap(poly1, poly2 if poly2 is not None else obstacle)
-    has_normal = mem[f.M_HAS_NORMAL] != 0.0
-    if ov.area <= 0.0:
-        nx, ny = (mem[f.M_NX], mem[f.M_NY]) if has_normal else (ov.normal[0], ov.normal[1])
-        return 0.0, 0.0, float(nx), float(ny), 0.0, 0.0, 0.0, False
-    nx, ny = float(ov.normal[0]), float(ov.normal[1])
-    if has_normal and nx * mem[f.M_NX] + ny * mem[f.M_NY] < 0.0:
+    *geo, flipped = f.outline_geometry(par, mem, st, trig, wk)
+    if flipped:
         raise SimulationError(
             "tunnelled", f"the contact normal of the outlines flipped at t = {when:.4g} s "
-            f"(crush {ov.depth:.3g} m): the outlines passed through each other; reduce dt or "
+            f"(crush {geo[4]:.3g} m): the outlines passed through each other; reduce dt or "
             f"raise the stiffness", 0)
-    cx, cy = float(ov.centroid[0]), float(ov.centroid[1])
-    d1x, d1y, d2x, d2y = cx - st[0], cy - st[1], cx - st[6], cy - st[7]
-    relx = st[3] + st[5] * -d1y - st[9] - st[11] * -d2y
-    rely = st[4] + st[5] * d1x - st[10] - st[11] * d2x
-    return (cx, cy, nx, ny, float(ov.depth), relx * nx + rely * ny, relx * -ny + rely * nx,
-            True)
+    return tuple(geo)
 
 
 class _Stepper:
@@ -201,8 +161,7 @@ class _Stepper:
         self.lo = [0.0] * 6
         self.rows = [] if problem.settings.record else None    # the contact history
         self.error: BaseException | None = None
-        self.obstacle = (_obstacle(problem, None) if problem.geometry == "outline"
-                         and problem.outline2 is None else None)
+        self.wk = [0.0] * f.N_WORK          # the outline contact's scratch
         body1.velocity_func = self.velocity1
         if body2.body_type == pymunk.Body.DYNAMIC:
             body2.velocity_func = self.velocity2
@@ -260,7 +219,7 @@ class _Stepper:
         trig = f.angles(st)
         if mem[f.M_ON] != 0.0:
             when = self.start + (self.step_count + 1) * dt
-            geo = (outline_geometry(self.p, mem, st, self.obstacle, when)
+            geo = (outline_geometry(par, mem, st, trig, self.wk, when)
                    if self.p.geometry == "outline" else
                    (*point_geometry(par, st, trig, dt), True))
             applied, fx, fy, m1, m2, fn, ft, sticking = contact_loads(par, mem, self.tal, st,
@@ -391,11 +350,15 @@ def simulate_pymunk(problem: CompliantProblem) -> CompliantResult:
     s = problem.settings
     dt = step_size(problem)
     free = free_steps(s, dt)
-    start = 0.0 if problem.geometry == "point" else outline_start(problem)
-    state = _free_state(problem.state0, start)
+    par = parameter_rows(problem_arrays(problem), problem_law(problem, dt, 0.0))[0].tolist()
+    if problem.geometry == "outline":
+        par[f.P_START] = outline_start(problem, par)
+    start = par[f.P_START]
+    state = [0.0] * 12
+    f.free_state(problem.state0.tolist(), start, state)
+    state = np.array(state)
     if problem.geometry == "point":
         _check_approach(problem, state)
-    par = parameter_rows(problem_arrays(problem), problem_law(problem, dt, start))[0].tolist()
     space, body1, body2 = _space(problem, state)
     stepper = _Stepper(problem, space, body1, body2, par)
     rows = [_row(start, body1, body2)] if s.record else None

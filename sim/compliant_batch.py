@@ -24,6 +24,7 @@ from pim.model.numbers import InputError
 from . import compliant_formula as f
 from .batch import case_element
 from .compliant_setup import (
+    GEOMETRIES,
     CompliantResult,
     CompliantSettings,
     build_problem,
@@ -69,6 +70,9 @@ class CompliantBatch:
         Yaw rates at separation [rad/s].
     contact_duration : ndarray
         Time from first contact to separation [s].
+    contact_start : ndarray
+        When the contact began [s] (0 for the point contact; the outline contact starts
+        where the outlines first touch, moved back along the free paths).
     impulse : ndarray (..., 2)
         Contact impulse on vehicle 1 [N s].
     impact_point, impact_point_body1 : ndarray (..., 2)
@@ -141,6 +145,7 @@ class CompliantBatch:
     yaw_rate1 = property(lambda self: self._column(f.O_W1))
     yaw_rate2 = property(lambda self: self._column(f.O_W2))
     contact_duration = property(lambda self: self._column(f.O_DURATION))
+    contact_start = property(lambda self: self._column(f.O_START))
     impulse = property(lambda self: self._column(f.O_IMPULSE, 2))
     impact_point = property(lambda self: self._column(f.O_POINT, 2))
     impact_point_body1 = property(lambda self: self._column(f.O_BODY_POINT, 2))
@@ -361,6 +366,18 @@ def _setup(case: pim.Case, shape: tuple, gravity: float) -> dict:
     return arrays
 
 
+def _check_geometry(case: pim.Case, geometry: str) -> None:
+    """A known contact geometry, and outlines for the outline contact (ValueError)."""
+    if geometry not in GEOMETRIES:
+        raise InputError(f"geometry must be one of {GEOMETRIES}, got {geometry!r}")
+    if geometry == "outline":
+        v1, v2 = case.vehicle1, case.vehicle2
+        if v1.length is None or v1.width is None:
+            raise InputError("geometry='outline' needs vehicle1.length and vehicle1.width")
+        if (v2.length is None or v2.width is None) and not np.all(v2.fixed):
+            raise InputError("geometry='outline' needs vehicle2.length and vehicle2.width")
+
+
 def simulate_batch(case: pim.Case, eps, stiffness=None, friction=0.0, geometry="point",
                    tyre_friction=0.0, settings: CompliantSettings | None = None, *,
                    tyre_mode=None, preload=None, tangential_recovery=None,
@@ -374,9 +391,7 @@ def simulate_batch(case: pim.Case, eps, stiffness=None, friction=0.0, geometry="
                          f"{type(settings).__name__}")
     if not isinstance(case, pim.Case):
         raise InputError(f"case must be a pim.Case, got {type(case).__name__}")
-    if geometry != "point":
-        raise InputError(f"geometry={geometry!r} runs on engine='pymunk' only (the compiled "
-                         f"engine steps the point contact; docs/contact-model.md)")
+    _check_geometry(case, geometry)
     inputs = contact_inputs(eps, stiffness, friction, tyre_friction, settings,
                             tyre_mode=tyre_mode, preload=preload,
                             tangential_recovery=tangential_recovery, contact_time=contact_time)
@@ -388,13 +403,14 @@ def simulate_batch(case: pim.Case, eps, stiffness=None, friction=0.0, geometry="
                          f"{shapes}") from None
     arrays = _setup(case, shape, settings.gravity)
     law, status = _law(inputs, arrays, shape, settings)
+    law["outline"] = 1.0 if geometry == "outline" else 0.0
     from .compliant_kernel import integrate      # numba: compiled (or loaded) on first use
     rows = integrate(parameter_rows(arrays, law, arrays["rows"]), arrays["state0"], status)
     scenes = dict(law)
     scenes.update({k: arrays[k] for k in ("mass1", "inertia1", "mass2", "inertia2", "k_nn",
                                           "energy_before")})
     return CompliantBatch(rows=rows, status=status.reshape(shape), scenes=scenes, case=case,
-                          geometry="point", settings=settings,
+                          geometry=geometry, settings=settings,
                           wall_time=time.perf_counter() - wall)
 
 

@@ -41,10 +41,12 @@ from pim.model.tyres import wheel_force
 
 __all__ = ["loading_force", "loading_work", "unloading_slope", "permanent_crush",
            "normal_force", "normal_stiffness", "tangential_step", "tangential_force",
-           "angles", "point_contact", "point_geometry", "vehicle_tyre_force", "tyre_loads", "ahead",
+           "angles", "point_contact", "point_geometry", "place_corners", "clip_polygon",
+           "area_centroid", "separating_axis", "outline_overlap", "place_outlines",
+           "outline_geometry", "outlines_touch", "outline_start", "free_state", "vehicle_tyre_force", "tyre_loads", "ahead",
            "contact_loads", "total_loads", "half_kick", "drift", "kick", "separation_time",
            "post_velocities", "slip_reversed", "write_outputs", "N_PAR", "N_MEM", "N_TAL",
-           "N_OUT"]
+           "N_OUT", "N_WORK"]
 
 # ---- status of a scene ------------------------------------------------------------------------
 #: Status by code: 0 "ok", then the :class:`sim.SimulationError` kinds a stepped scene ends in.
@@ -65,7 +67,15 @@ P_DT, P_START = 44, 45                               # step [s], when the contac
 P_MAX_STEPS = 46                                     # most steps of the contact
 P_OUTLINE = 47                                       # 1.0 for the outline contact
 P_SPEED = 48                                         # speed scale [m/s] (tolerances)
-N_PAR = 49
+P_OUTLINE1 = 49     # vehicle 1's outline corners in its body frame (8) [m]
+P_OUTLINE2 = 57     # vehicle 2's (8), or a fixed obstacle's world corners (P_OBSTACLE)
+P_OBSTACLE = 65     # 1.0: P_OUTLINE2 holds world corners (a bare barrier's block)
+N_PAR = 66
+
+# ---- wk: scratch of the outline contact --------------------------------------------------------
+W_POLY1, W_POLY2 = 0, 8     # both outlines' world corners (4 x, y pairs each)
+W_A, W_B = 16, 48           # clipping buffers (16 x, y pairs each)
+N_WORK = 80
 
 # ---- mem: the contact law's memory -------------------------------------------------------------
 M_ON, M_STARTED, M_SEPARATED = 0, 1, 2               # flags (1.0 / 0.0)
@@ -424,6 +434,197 @@ def half_kick(par, st, lo):
                                                st[11], angles(st))
     lo[0], lo[1], lo[2], lo[3], lo[4], lo[5] = t1x, t1y, n1, t2x, t2y, n2
     return ahead(par, st, lo, 0.5 * par[P_DT])
+
+
+# ---- the outline contact (sim.overlap's module notes) ------------------------------------------
+def place_corners(par, corners, x, y, c, s, wk, out):
+    """Body-frame corners ``par[corners:corners + 8]`` placed at (x, y), turned by the angle
+    of cos ``c`` and sin ``s``, into ``wk[out:out + 8]`` (world x, y pairs)."""
+    for k in range(4):
+        bx, by = par[corners + 2 * k], par[corners + 2 * k + 1]
+        wk[out + 2 * k] = x + c * bx - s * by
+        wk[out + 2 * k + 1] = y + s * bx + c * by
+
+
+def clip_polygon(wk, subject, m, clipper, k, buf_a, buf_b):
+    """Sutherland-Hodgman: the convex counter-clockwise polygon ``wk[subject:]`` (m x, y
+    pairs) clipped by the convex counter-clockwise ``wk[clipper:]`` (k pairs), ping-ponging
+    between the buffers ``wk[buf_a:]`` and ``wk[buf_b:]`` (m + k pairs each).
+
+    Returns (offset, count) of the intersection in ``wk`` (count 0: apart).
+    """
+    src, dst = buf_a, buf_b
+    for j in range(2 * m):
+        wk[src + j] = wk[subject + j]
+    count = m
+    for i in range(k):
+        if count == 0:
+            break
+        i2 = (i + 1) % k
+        ax, ay = wk[clipper + 2 * i], wk[clipper + 2 * i + 1]
+        ex, ey = wk[clipper + 2 * i2] - ax, wk[clipper + 2 * i2 + 1] - ay
+        out = 0
+        for j in range(count):
+            j2 = (j + 1) % count
+            xj, yj = wk[src + 2 * j], wk[src + 2 * j + 1]
+            xn, yn = wk[src + 2 * j2], wk[src + 2 * j2 + 1]
+            side = ex * (yj - ay) - ey * (xj - ax)       # inside >= 0 (left of the edge)
+            side_next = ex * (yn - ay) - ey * (xn - ax)
+            if side >= 0:
+                wk[dst + 2 * out], wk[dst + 2 * out + 1] = xj, yj
+                out += 1
+            if (side >= 0) != (side_next >= 0):
+                f = side / (side - side_next)
+                wk[dst + 2 * out] = xj + f * (xn - xj)
+                wk[dst + 2 * out + 1] = yj + f * (yn - yj)
+                out += 1
+        src, dst = dst, src
+        count = out
+    return src, count
+
+
+def area_centroid(wk, poly, m):
+    """Shoelace area [m^2] (>= 0) and centroid of ``wk[poly:]`` (m pairs, counter-clockwise);
+    (0, nan, nan) for fewer than 3 corners, the mean corner for a zero area."""
+    if m < 3:
+        return 0.0, math.nan, math.nan
+    total, sx, sy, mx, my = 0.0, 0.0, 0.0, 0.0, 0.0
+    for j in range(m):
+        j2 = (j + 1) % m
+        x, y = wk[poly + 2 * j], wk[poly + 2 * j + 1]
+        xn, yn = wk[poly + 2 * j2], wk[poly + 2 * j2 + 1]
+        cross = x * yn - xn * y
+        total += cross
+        sx += (x + xn) * cross
+        sy += (y + yn) * cross
+        mx += x
+        my += y
+    area = 0.5 * total
+    if area == 0.0:
+        return 0.0, mx / m, my / m
+    return abs(area), sx / (6.0 * area), sy / (6.0 * area)
+
+
+def _extent(wk, poly, m, ax, ay):
+    """Smallest and largest projection of the corners of ``wk[poly:]`` on (ax, ay)."""
+    low, high = math.inf, -math.inf
+    for j in range(m):
+        p = wk[poly + 2 * j] * ax + wk[poly + 2 * j + 1] * ay
+        low = min(low, p)
+        high = max(high, p)
+    return low, high
+
+
+def separating_axis(wk, p1, m1, p2, m2):
+    """The edge normal of either polygon along which they overlap least, from polygon 2
+    toward polygon 1, and that overlap [m] (negative: apart along it); the first such edge
+    (polygon 1's edges first, each polygon's in order)."""
+    best, bx, by = math.inf, math.nan, math.nan
+    for q in range(m1 + m2):
+        poly, m, e = (p1, m1, q) if q < m1 else (p2, m2, q - m1)
+        e2 = (e + 1) % m
+        ex = wk[poly + 2 * e2] - wk[poly + 2 * e]
+        ey = wk[poly + 2 * e2 + 1] - wk[poly + 2 * e + 1]
+        norm = math.sqrt(ey * ey + ex * ex)
+        ax, ay = ey / norm, -ex / norm                   # outward for counter-clockwise
+        low1, high1 = _extent(wk, p1, m1, ax, ay)
+        low2, high2 = _extent(wk, p2, m2, ax, ay)
+        forward, backward = high2 - low1, high1 - low2
+        depth = min(forward, backward)
+        if depth < best:
+            best = depth
+            bx, by = (ax, ay) if forward <= backward else (-ax, -ay)
+    return bx, by, best
+
+
+def outline_overlap(wk, p1, m1, p2, m2, buf_a, buf_b):
+    """The overlap of two convex counter-clockwise polygons (``wk[p1:]``, ``wk[p2:]``):
+    (area [m^2], centroid x, y [m], normal x, y (separating axis of least overlap, from 2
+    toward 1), width along the tangent [m], mean crush area / width [m], overlap along the
+    normal [m])."""
+    region, m = clip_polygon(wk, p1, m1, p2, m2, buf_a, buf_b)
+    area, cx, cy = area_centroid(wk, region, m)
+    nx, ny, axis_depth = separating_axis(wk, p1, m1, p2, m2)
+    if area <= 0.0:
+        return 0.0, cx, cy, nx, ny, 0.0, 0.0, axis_depth
+    low, high = _extent(wk, region, m, -ny, nx)
+    width = high - low
+    return area, cx, cy, nx, ny, width, area / width if width > 0 else 0.0, axis_depth
+
+
+def place_outlines(par, x1, y1, c1, s1, x2, y2, c2, s2, wk):
+    """Both outlines' world corners into ``wk[W_POLY1:]`` and ``wk[W_POLY2:]`` (a fixed
+    obstacle's block as it is)."""
+    place_corners(par, P_OUTLINE1, x1, y1, c1, s1, wk, W_POLY1)
+    if par[P_OBSTACLE] != 0.0:
+        for j in range(8):
+            wk[W_POLY2 + j] = par[P_OUTLINE2 + j]
+    else:
+        place_corners(par, P_OUTLINE2, x2, y2, c2, s2, wk, W_POLY2)
+
+
+def outline_geometry(par, mem, st, trig, wk):
+    """The outline contact at ``st``: (px, py, nx, ny, delta, slip_n, slip_t, overlap,
+    flipped) as :func:`point_geometry` gives the point contact's (docs/contact-model.md):
+    the force acts at the overlap's centroid along the separating axis, with the mean crush
+    area / width; apart, the crush is 0 and the normal that of the last overlap (``mem``).
+    ``flipped``: the normal turned against the last one (the outlines passed through each
+    other)."""
+    place_outlines(par, st[0], st[1], trig[0], trig[1], st[6], st[7], trig[2], trig[3], wk)
+    area, cx, cy, nx, ny, _, depth, _ = outline_overlap(wk, W_POLY1, 4, W_POLY2, 4, W_A, W_B)
+    has_normal = mem[M_HAS_NORMAL] != 0.0
+    if area <= 0.0:
+        if has_normal:
+            nx, ny = mem[M_NX], mem[M_NY]
+        return 0.0, 0.0, nx, ny, 0.0, 0.0, 0.0, False, False
+    flipped = has_normal and nx * mem[M_NX] + ny * mem[M_NY] < 0.0
+    d1x, d1y, d2x, d2y = cx - st[0], cy - st[1], cx - st[6], cy - st[7]
+    relx = st[3] + st[5] * -d1y - st[9] - st[11] * -d2y
+    rely = st[4] + st[5] * d1x - st[10] - st[11] * d2x
+    return (cx, cy, nx, ny, depth, relx * nx + rely * ny, relx * -ny + rely * nx, True,
+            flipped)
+
+
+def outlines_touch(par, s0, t, wk):
+    """Whether the outlines overlap at time ``t`` [s] along the free paths from ``s0``."""
+    th1, th2 = s0[2] + s0[5] * t, s0[8] + s0[11] * t
+    place_outlines(par, s0[0] + s0[3] * t, s0[1] + s0[4] * t, math.cos(th1), math.sin(th1),
+                   s0[6] + s0[9] * t, s0[7] + s0[10] * t, math.cos(th2), math.sin(th2), wk)
+    region, m = clip_polygon(wk, W_POLY1, 4, W_POLY2, 4, W_A, W_B)
+    return area_centroid(wk, region, m)[0] > 0.0
+
+
+def outline_start(par, s0, wk):
+    """When the outlines first touch [s] along the free pre-impact paths (<= 0; 0 when
+    apart at t = 0): stepping back 10 ms at a time, then 60 bisections. NaN when they
+    overlap along the whole 10 s back (they never approach: "tunnelled")."""
+    if not outlines_touch(par, s0, 0.0, wk):
+        return 0.0
+    step = 0.01
+    back = step
+    while outlines_touch(par, s0, -back, wk):
+        back += step
+        if back > 10.0:
+            return math.nan
+    low, high = -back, -back + step       # apart at low, overlapping at high
+    for _ in range(60):
+        mid = 0.5 * (low + high)
+        if outlines_touch(par, s0, mid, wk):
+            high = mid
+        else:
+            low = mid
+    return low
+
+
+def free_state(s0, t, st):
+    """``s0`` moved along the free paths to time ``t`` [s], into ``st``."""
+    for j in range(12):
+        st[j] = s0[j]
+    for k in range(2):
+        j = 6 * k
+        st[j] = s0[j] + s0[j + 3] * t
+        st[j + 1] = s0[j + 1] + s0[j + 4] * t
+        st[j + 2] = s0[j + 2] + s0[j + 5] * t
 
 
 # ---- Chipmunk's integration (what pymunk does in C) --------------------------------------------

@@ -30,11 +30,13 @@ __all__ = ["integrate", "compile_module", "SIGNATURE", "SERIAL_BELOW"]
 
 
 def compile_module(module) -> SimpleNamespace:
-    """numba versions (inlined) of every function defined in ``module``, calling each other.
+    """numba versions of every function defined in ``module``, calling each other.
 
     Each function is copied with a namespace in which the module's functions, and the plain
     functions it imports (the tyre law), are their compiled versions: the Python source is
-    the one the pymunk scene runs.
+    the one the pymunk scene runs. They are compiled as separate numba functions, not
+    inlined in numba's IR (LLVM inlines them): half the compile time of ``inline="always"``
+    (18 s against 36 s of CPU), the same speed.
     """
     namespace = dict(vars(module))
     compiled = {}
@@ -43,13 +45,14 @@ def compile_module(module) -> SimpleNamespace:
             continue
         if obj.__module__ == module.__name__:
             obj = FunctionType(obj.__code__, namespace, name, obj.__defaults__, obj.__closure__)
-        compiled[name] = njit(inline="always", error_model="numpy")(obj)
+        compiled[name] = njit(error_model="numpy")(obj)
     namespace.update(compiled)
     return SimpleNamespace(**compiled)
 
 
 _f = compile_module(compliant_formula)
 _drift, _kick, _half_kick, _angles = _f.drift, _f.kick, _f.half_kick, _f.angles
+_outline_start, _outline_geometry, _free_state = _f.outline_start, _f.outline_geometry, _f.free_state
 _point_geometry, _contact_loads, _total_loads = _f.point_geometry, _f.contact_loads, _f.total_loads
 _permanent_crush, _separation_time = _f.permanent_crush, _f.separation_time
 _post_velocities, _write_outputs = _f.post_velocities, _f.write_outputs
@@ -58,24 +61,47 @@ N_MEM, N_TAL, M_ON, M_STARTED, M_SEPARATED, M_DMAX = (
     _F.N_MEM, _F.N_TAL, _F.M_ON, _F.M_STARTED, _F.M_SEPARATED, _F.M_DMAX)
 P_DT, P_START, P_MAX_STEPS, P_FIXED2 = _F.P_DT, _F.P_START, _F.P_MAX_STEPS, _F.P_FIXED2
 P_EPS, P_PRELOAD, P_STIFFNESS, P_TYRE = _F.P_EPS, _F.P_PRELOAD, _F.P_STIFFNESS, _F.P_TYRE
-STATUS_OK, STATUS_NO_CONTACT, STATUS_NEVER_SEPARATED = (
-    _F.STATUS_OK, _F.STATUS_NO_CONTACT, _F.STATUS_NEVER_SEPARATED)
+STATUS_OK, STATUS_NO_CONTACT, STATUS_NEVER_SEPARATED, STATUS_TUNNELLED = (
+    _F.STATUS_OK, _F.STATUS_NO_CONTACT, _F.STATUS_NEVER_SEPARATED, _F.STATUS_TUNNELLED)
+P_OUTLINE, P_SPEED, T_LAST_SLIP_N, N_WORK = _F.P_OUTLINE, _F.P_SPEED, _F.T_LAST_SLIP_N, _F.N_WORK
 
 _cached = stamped_cache(compliant_formula, tyres)
 
 
 @njit(error_model="numpy")
+def _start(par, state0, st, wk):  # pragma: no cover - compiled
+    """The state where the contact starts into ``st``: ``state0`` (point contact, which must
+    approach at C) or moved back along the free paths to where the outlines first touch
+    (its time into ``par[P_START]``). Returns a status code."""
+    if par[P_OUTLINE] == 0.0:
+        for j in range(12):
+            st[j] = state0[j]
+        if not _point_geometry(par, st, _angles(st), 0.0)[5] < 0.0:
+            return STATUS_NO_CONTACT              # the vehicles do not approach at C
+        return STATUS_OK
+    start = _outline_start(par, state0, wk)
+    if np.isnan(start):
+        return STATUS_TUNNELLED                   # overlapping along all the free paths
+    par[P_START] = start
+    _free_state(state0, start, st)
+    return STATUS_OK
+
+
+@njit(error_model="numpy")
 def _scene(par, state0, out):  # pragma: no cover - compiled
-    """Step one point-contact scene from ``state0`` (12) to separation; its outputs into
-    ``out``. Returns the status code."""
-    st = state0.copy()
+    """Step one scene from ``state0`` (12) to separation; its outputs into ``out``.
+    Returns the status code."""
+    st = np.empty(12)
+    wk = np.zeros(N_WORK)
+    status = _start(par, state0, st, wk)
+    if status != STATUS_OK:
+        return status
     mem = np.zeros(N_MEM)
     mem[M_ON] = 1.0
     tal = np.zeros(N_TAL)
     lo = np.zeros(6)
     dt = par[P_DT]
-    if not _point_geometry(par, st, _angles(st), 0.0)[5] < 0.0:
-        return STATUS_NO_CONTACT                  # the vehicles do not approach at C
+    outline = par[P_OUTLINE] != 0.0
     if par[P_TYRE] > 0.0:
         v = _half_kick(par, st, lo)
         st[3], st[4], st[5] = v[0], v[1], v[2]
@@ -88,9 +114,16 @@ def _scene(par, state0, out):  # pragma: no cover - compiled
         fx = fy = m1 = m2 = 0.0
         trig = _angles(st)
         if mem[M_ON] != 0.0:
-            px, py, nx, ny, delta, slip_n, slip_t = _point_geometry(par, st, trig, dt)
+            if outline:
+                px, py, nx, ny, delta, slip_n, slip_t, overlap, flipped = _outline_geometry(
+                    par, mem, st, trig, wk)
+                if flipped:
+                    return STATUS_TUNNELLED           # the outlines passed through
+            else:
+                px, py, nx, ny, delta, slip_n, slip_t = _point_geometry(par, st, trig, dt)
+                overlap = True
             res = _contact_loads(par, mem, tal, st, trig, dt, px, py, nx, ny, delta, slip_n,
-                                 slip_t, True)
+                                 slip_t, overlap)
             fx, fy, m1, m2 = res[1], res[2], res[3], res[4]
         _total_loads(par, st, trig, lo, tal, dt, fx, fy, m1, m2)
         _kick(par, st, lo, dt)
@@ -99,6 +132,8 @@ def _scene(par, state0, out):  # pragma: no cover - compiled
             break
         if steps >= max_steps:
             return STATUS_NEVER_SEPARATED if mem[M_STARTED] != 0.0 else STATUS_NO_CONTACT
+    if outline and tal[T_LAST_SLIP_N] < -1e-3 * par[P_SPEED]:
+        return STATUS_TUNNELLED                       # the overlap ended while approaching
     start = par[P_START]
     delta_p = _permanent_crush(mem[M_DMAX], par[P_EPS], par[P_PRELOAD], par[P_STIFFNESS])
     t_end = _separation_time(mem, start, steps, dt, delta_p)
@@ -131,7 +166,7 @@ _C2 = types.Array(types.float64, 2, "C")
 SIGNATURE = (_C2, types.Array(types.float64, 2, "C", readonly=True), _C2,
              types.Array(types.int8, 1, "C"))
 #: Batches up to this size run on one thread.
-SERIAL_BELOW = 8
+SERIAL_BELOW = 32
 
 
 def _ready(dispatcher):

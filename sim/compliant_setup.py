@@ -364,6 +364,30 @@ def _wheels(vehicle: pim.Vehicle, mass, inertia, gravity, fixed):
             np.where(moving[:, None], loads, 0.0))
 
 
+def obstacle_corners(point, normal) -> np.ndarray:
+    """A bare barrier's outline (..., 4, 2) [m]: a 200 m x 10 m block behind the contact
+    plane through C with normal n (counter-clockwise: its face along t through C, 10 m deep
+    on the -n side)."""
+    point, n = np.asarray(point, dtype=float), np.asarray(normal, dtype=float)
+    t = np.stack([-n[..., 1], n[..., 0]], axis=-1)
+    return np.stack([point + 100 * t, point + 100 * t - 10 * n, point - 100 * t - 10 * n,
+                     point - 100 * t], axis=-2)
+
+
+def _outlines(v1: pim.Vehicle, v2: pim.Vehicle, fixed2, point, normal):
+    """Both outlines' corners (n, 8) in the body frames (zeros without an outline), with a
+    bare barrier's block in world coordinates instead (flag (n,) 1.0) where vehicle 2 is
+    fixed and has no outline."""
+    count = point.shape[0]
+    corners = [outline_corners(v) for v in (v1, v2)]
+    out1, out2 = (np.broadcast_to(np.zeros(8) if c is None else c.reshape(8), (count, 8))
+                  for c in corners)
+    bare = fixed2 & (corners[1] is None)
+    if bare.any():
+        out2 = np.where(bare[:, None], obstacle_corners(point, normal).reshape(count, 8), out2)
+    return out1, out2, bare.astype(float)
+
+
 def setup_arrays(case: pim.Case, shape: tuple, gravity: float) -> dict:
     """The scene quantities of every case in ``case`` broadcast to ``shape`` (flattened to
     n = prod(shape) scenes): what both integrators and the pymunk scene start from.
@@ -372,7 +396,8 @@ def setup_arrays(case: pim.Case, shape: tuple, gravity: float) -> dict:
     -------
     dict
         ``mass1, inertia1, mass2, inertia2, k_nn, speed_scale, energy_before`` (n,),
-        ``fixed2`` (n,) bool, ``state0`` (n, 12), ``arm1, arm2, normal2`` (n, 2) (P - CG1 in
+        ``fixed2`` (n,) bool, ``outline1, outline2`` (n, 8) and ``obstacle`` (n,) (the
+        outlines of :func:`_outlines`), ``state0`` (n, 12), ``arm1, arm2, normal2`` (n, 2) (P - CG1 in
         vehicle 1's frame, Q - CG2 and the normal in vehicle 2's), ``wheels1, wheels2``
         (n, 4, 2) and ``loads1, loads2`` (n, 4) (zeros for a fixed vehicle 2); SI, see
         :class:`CompliantProblem`.
@@ -399,7 +424,9 @@ def setup_arrays(case: pim.Case, shape: tuple, gravity: float) -> dict:
     wheels2, loads2 = _wheels(v2, m2, i2, gravity, fixed2)
     speed = np.maximum(np.hypot(vel1[:, 0], vel1[:, 1]),
                        np.where(fixed2, 0.0, np.hypot(vel2[:, 0], vel2[:, 1])))
+    out1, out2, obstacle = _outlines(v1, v2, fixed2, point, n)
     return dict(
+        outline1=out1, outline2=out2, obstacle=obstacle,
         mass1=m1, inertia1=i1, mass2=m2, inertia2=i2, fixed2=fixed2, k_nn=k_nn,
         state0=state0, arm1=rotate(r1, -h1), arm2=rotate(r2, -h2), normal2=rotate(n, -h2),
         wheels1=wheels1, loads1=loads1, wheels2=wheels2, loads2=loads2,
@@ -416,17 +443,9 @@ def contact_step_limit(settings: CompliantSettings, dt):
 
 
 def problem_arrays(problem: CompliantProblem) -> dict:
-    """The one scene of ``problem`` as the arrays of :func:`setup_arrays` (n = 1)."""
-    fixed2 = problem.fixed2
-    return dict(
-        mass1=np.array([problem.mass1]), inertia1=np.array([problem.inertia1]),
-        mass2=np.array([problem.mass2]), inertia2=np.array([problem.inertia2]),
-        fixed2=np.array([fixed2]), arm1=problem.arm1_body[None], arm2=problem.arm2_body[None],
-        normal2=problem.normal2_body[None], wheels1=problem.wheels1[None],
-        loads1=problem.load1[None],
-        wheels2=np.zeros((1, 4, 2)) if fixed2 else problem.wheels2[None],
-        loads2=np.zeros((1, 4)) if fixed2 else problem.load2[None],
-        speed_scale=np.array([problem.speed_scale]))
+    """The one scene of ``problem`` as the arrays of :func:`setup_arrays` (n = 1), the very
+    values ``problem`` was built from."""
+    return setup_arrays(problem.case, (), problem.settings.gravity)
 
 
 #: The contact law's inputs of :func:`parameter_rows`, one value or one per scene.
@@ -449,8 +468,10 @@ def case_rows(arrays: dict) -> np.ndarray:
     for column, name, width in ((f.P_ARM1, "arm1", 2), (f.P_ARM2, "arm2", 2),
                                 (f.P_NORMAL2, "normal2", 2), (f.P_WHEELS1, "wheels1", 8),
                                 (f.P_LOADS1, "loads1", 4), (f.P_WHEELS2, "wheels2", 8),
-                                (f.P_LOADS2, "loads2", 4)):
+                                (f.P_LOADS2, "loads2", 4), (f.P_OUTLINE1, "outline1", 8),
+                                (f.P_OUTLINE2, "outline2", 8)):
         par[:, column:column + width] = arrays[name].reshape(n, width)
+    par[:, f.P_OBSTACLE] = arrays["obstacle"]
     par[:, f.P_VR] = SLIP_REGULARISATION
     return par
 

@@ -10,6 +10,7 @@ nothing but still differs in the last bit (a libm of another version) does not f
 
 import math
 import time
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -83,6 +84,53 @@ def test_compiled_steps_as_pymunk_to_round_off_on_random_scenes(fixed):
         assert batch.steps[i] == r.steps and batch.slip_reversed[i] == r.slip_reversed
         assert batch.energy_after[i] == pytest.approx(r.energy_after, rel=1e-12)
     assert ran >= n // 3      # the sample holds enough contacts (the rest do not approach)
+
+
+def with_outlines(case: pim.Case, fixed_outline: bool = True) -> pim.Case:
+    """``case`` with a 4.5 m x 1.8 m outline on each moving vehicle (the CG 0.3 m ahead of
+    the middle on vehicle 1), and on a fixed vehicle 2 only when ``fixed_outline``."""
+    v1 = replace(case.vehicle1, length=4.5, width=1.8, cg_to_front=2.55)
+    v2 = case.vehicle2
+    if fixed_outline or not np.all(v2.fixed):
+        v2 = replace(v2, length=4.5, width=1.8)
+    return replace(case, vehicle1=v1, vehicle2=v2)
+
+
+@pytest.mark.parametrize("fixed, bare", [(False, False), (True, True), (True, False)])
+def test_outline_contact_compiled_as_pymunk(fixed, bare):
+    # the distributed contact (outline overlap, its centroid and separating axis, the start
+    # found back along the free paths; a bare barrier's block) steps alike on both engines
+    n = 40
+    case, inputs = sample(n, seed=21 + fixed + bare, fixed=fixed)
+    case = with_outlines(case, fixed_outline=not bare)
+    batch = sim.simulate_compliant(case, geometry="outline", settings=QUICK, **inputs)
+    ran = 0
+    for i in range(n):
+        one = {k: v[i] for k, v in inputs.items()}
+        try:
+            r = sim.simulate_compliant(case_element(case, i), one.pop("eps"),
+                                       one.pop("stiffness"), geometry="outline", settings=QUICK,
+                                       engine="pymunk", **one)
+        except sim.SimulationError as err:
+            assert batch.status_name[i] == err.kind, i
+            continue
+        ran += 1
+        assert batch.status[i] == 0, i
+        got, want = outputs(batch.result(i)), outputs(r)
+        scale = np.abs(want) + np.abs(want).max() * 1e-3
+        assert np.all(np.abs(got - want) <= 1e-12 * scale), (i, np.abs(got - want).max())
+        assert batch.contact_start[i] == r.contact_start and batch.steps[i] == r.steps
+    assert ran >= n // 4
+
+
+def test_outlines_passing_through_each_other_are_tunnelled():
+    case = pim.load_case("hard-high-speed")
+    batch = sim.simulate_compliant(case, 0.3, K, geometry="outline")
+    assert batch.status_name == "tunnelled"
+    with pytest.raises(ValueError, match="needs vehicle1.length"):
+        sim.simulate_compliant(random_cases(2, seed=1), 0.3, K, geometry="outline")
+    with pytest.raises(ValueError, match="geometry must be one of"):
+        sim.simulate_compliant(pim.load_case("ricsac9"), 0.3, K, geometry="polygon")
 
 
 def test_the_sample_covers_tyre_modes_friction_and_plastic_recovery():
