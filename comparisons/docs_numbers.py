@@ -81,7 +81,7 @@ def contact_model_block(study: AssumptionStudy) -> str:
              f"The \"law\" rung at its {lad.rung('law').run.contact_duration * 1e3:.1f} ms "
              f"contact stays {_pct(lad.rung('law').marginal)} from PIM. Where C is: the "
              f"illustrative outlines put the impulse {float(length):.2f} {unit} from the "
-             f"sheet's C, which moves PIM's own answer by {_pct(shift.pim_error)} (input "
+             f"sheet's C on vehicle 1, which moves PIM's own answer by {_pct(shift.pim_error)} (input "
              f"uncertainty, not a rung). The verdicts over 50-150 ms of contact and the "
              f"tangential recovery 0-1:", ""]
     lines += [f"- {v}" for v in verdicts(study)]
@@ -139,9 +139,10 @@ def regenerate(names=DOCUMENTS) -> list[Path]:
 def main(argv=None) -> None:
     """``python -m comparisons.docs_numbers [DOCUMENT ...]``."""
     parser = argparse.ArgumentParser(description="Regenerate the figures in docs/.")
-    parser.add_argument("documents", nargs="*", choices=DOCUMENTS, default=list(DOCUMENTS))
+    parser.add_argument("documents", nargs="*", metavar="DOCUMENT",
+                        help=f"any of {', '.join(DOCUMENTS)} (default: all)")
     args = parser.parse_args(argv)
-    for path in regenerate(args.documents or DOCUMENTS):
+    for path in regenerate(tuple(args.documents) or DOCUMENTS):
         print(f"wrote {path}")
 
 

@@ -330,8 +330,9 @@ def assumption_table(study: AssumptionStudy, name: str = "assumptions",
 
 
 def input_shift_table(study: AssumptionStudy, name: str = "where_c", units=None) -> Table:
-    """Where C is: PIM and the crush scene at each contact time moved from the sheet's C
-    to where the outlines' impulse acts (empty without outlines)."""
+    """Where C is: PIM and the crush scene at each contact time of the range moved from the
+    sheet's C to where the outlines' impulse acts (empty without outlines; every contact
+    time: :func:`sweep_table`)."""
     units = shown_units(study.case, units)
     v = _speed(0.0, units)[1]
     rows = []
@@ -339,11 +340,10 @@ def input_shift_table(study: AssumptionStudy, name: str = "where_c", units=None)
         s = study.input_shift
         rows.append(("PIM", math.nan, s.pim_error, _speed(s.pim_change.delta_v, units)[0],
                      _yaw(s.pim_change.yaw_rate, units)))
-    for lad in study.ladders:
-        if lad.shift is not None:
-            c = lad.shift.change
-            rows.append(("crush scene", 1e3 * lad.duration, lad.shift.error,
-                         _speed(c.delta_v, units)[0], _yaw(c.yaw_rate, units)))
+    for lad in study.in_range("outline"):
+        c = lad.shift.change
+        rows.append(("crush scene", 1e3 * lad.duration, lad.shift.error,
+                     _speed(c.delta_v, units)[0], _yaw(c.yaw_rate, units)))
     columns = ("model", "contact time [ms]", "effect [-]", f"delta-V change [{v}]",
                "yaw-rate change [deg/s]")
     return Table(name, "Where C is: the sheet's C against where the outlines' impulse acts "
@@ -501,9 +501,10 @@ def _about(study: AssumptionStudy) -> str:
             f"same contact time; the *cumulative* one is PIM's error against the scene (PIM "
             f"at the scene's impact configuration). Each is also said as the delta-V and the "
             f"yaw rate it moves (the larger of the two vehicles). Impact error: "
-            f"{ERROR_DEFINITION} (sim.error_measure.impact_error). Contact times "
-            f"{_contact_words(study)} (McHenry's range; docs/contact-model.md), every verdict "
-            f"over the range.")
+            f"{ERROR_DEFINITION} (sim.error_measure.impact_error). Every verdict spans the "
+            f"unmeasured parameters: {_contact_words(study)} (McHenry's range; "
+            f"docs/contact-model.md) and, for friction, the tangential recovery r from 0 to "
+            f"1.")
 
 
 def assumptions_html(study: AssumptionStudy, tables, out_dir, info=None, command: str = "",

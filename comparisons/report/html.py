@@ -3,7 +3,7 @@
 One self-contained file beside ``report.md`` (:mod:`pim.io.html` builds the blocks): the
 results first (within the first screen), then the coefficients, inputs, the design sheet's
 plots inlined as PNG, the animation playable in the page (base64 MP4), the appendices and PIM's
-assumptions, whose 22-column table is split into groups of columns that fit a screen (one
+assumptions, whose 20-column table is split into groups of columns that fit a screen (one
 row per assumption in each). Every number is in the report's units; the figures and the
 video are read from the report's folder, nothing else is touched.
 """

@@ -249,10 +249,10 @@ class Plan:
 
 def plan(eps: float, sweeps: bool) -> Plan:
     """The full study (``sweeps``), or the verdicts only: the range's contact times at the
-    typical tyre friction and mu_c (the summary of ``pim compare``; the same verdicts and
-    ladder table as the full study)."""
+    typical tyre friction (the summary of ``pim compare``; the same verdicts and tables as
+    the full study, which adds contact times and tyre frictions for the plots)."""
     rs, r0 = recoveries(eps), float(tangential_recovery_default(eps))
     if not sweeps:
         return Plan(RANGE_DURATIONS, RANGE_DURATIONS, (TYPICAL["tyre_friction"],),
-                    (TYPICAL["friction"],), rs, r0)
+                    FRICTIONS, rs, r0)
     return Plan(DURATIONS, RANGE_DURATIONS, TYRE_FRICTIONS, FRICTIONS, rs, r0)

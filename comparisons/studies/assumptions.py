@@ -61,8 +61,7 @@ __all__ = ["ConfigRun", "Change", "Rung", "Ladder", "InputShift", "EffectRange",
            "FrictionPoint", "AssumptionStudy", "ENGINES", "run_assumptions", "change",
            "contact_case", "simulate_config"]
 
-#: The integrators a study runs on: the compiled crush scene (its point contacts), or
-#: pymunk for every scene (the cross-check).
+#: The integrators a study runs on: the compiled crush scene, or pymunk (the cross-check).
 ENGINES = ("numba", "pymunk")
 
 
@@ -339,27 +338,21 @@ def probe_config(duration: float) -> RungConfig:
     return RungConfig(law="crush", duration=duration, distributed=True)
 
 
-def compiled(config: RungConfig) -> bool:
-    """Whether the compiled crush scene steps ``config`` (its point contact; the outlines'
-    distributed contact runs on pymunk)."""
-    return not config.distributed
-
-
 def _batch_group(context: Context, configs: list, probes: dict) -> dict:
-    """{(where, contact time, tangential stiffness): [(config, SceneInputs)]}: the
-    configurations one compiled call can take (one case, one set of numerics)."""
+    """{(geometry, where, contact time, tangential stiffness): [(config, SceneInputs)]}:
+    the configurations one compiled call can take (one case, one set of numerics)."""
     groups = {}
     for c in configs:
         s = scene_inputs(context, c, probes.get(c.duration))
-        key = (c.point, c.duration if c.point == "centroid" else None,
-               s.settings.tangential_stiffness)
+        moved = c.point == "centroid" and not c.distributed
+        key = (c.distributed, c.duration if moved else None, s.settings.tangential_stiffness)
         groups.setdefault(key, []).append((c, s))
     return groups
 
 
 def _run_batch(context: Context, members: list) -> dict:
     """One compiled call over ``members`` [(config, SceneInputs)] sharing a case."""
-    eps, first = context.eps, members[0][1]
+    eps, (config, first) = context.eps, members[0]
     recovery = [tangential_recovery_default(eps) if s.settings.tangential_recovery is None
                 else s.settings.tangential_recovery for _, s in members]
     b = sim.simulate_compliant(
@@ -367,16 +360,27 @@ def _run_batch(context: Context, members: list) -> dict:
         friction=np.array([s.friction for _, s in members]),
         tyre_friction=np.array([c.tyre_friction for c, _ in members]),
         settings=first.settings, engine="numba",
+        geometry="outline" if config.distributed else "point",
         tyre_mode=np.array([c.tyre_mode for c, _ in members]),
         tangential_recovery=np.array(recovery, float))
     names = b.status_name
     return {c: ConfigRun.of_result(c, b, i) if names[i] == "ok" else
-            ConfigRun.failed(c, f"{names[i]}: {STATUS_MESSAGES[names[i]]}")
+            ConfigRun.failed(c, _failure(names[i], first.settings))
             for i, (c, _) in enumerate(members)}
 
 
+def _failure(status: str, settings) -> str:
+    """Why a compiled scene failed, in words: with the step set from the contact time
+    (``settings.dt`` None) the step resolves every contact, so "tunnelled" is the outlines
+    passing through each other."""
+    if status == "tunnelled" and settings.dt is None:
+        return ("tunnelled: the outlines passed through each other (the crush is deeper than "
+                "the vehicles)")
+    return f"{status}: {STATUS_MESSAGES[status]}"
+
+
 def _run_compiled(context: Context, configs: list, probes: dict) -> dict:
-    """{config: ConfigRun} of point configurations on the compiled scene."""
+    """{config: ConfigRun} of every configuration on the compiled scene, in batches."""
     out = {}
     placed = []
     for c in configs:
@@ -393,18 +397,16 @@ def _run_compiled(context: Context, configs: list, probes: dict) -> dict:
 def run_configs(context: Context, configs: list, probes: dict, *, engine: str = "numba",
                 executor=None, progress=False) -> dict:
     """{config: ConfigRun} of every configuration (``probes``: {contact time: probe run}):
-    on ``engine`` "numba", the point contacts compiled and the rest on pymunk (on
-    ``executor``, :func:`sim.sweep.sweep`); on "pymunk", every one on pymunk."""
+    on ``engine`` "numba", compiled in batches; on "pymunk", one scene at a time on
+    ``executor`` (:func:`sim.sweep.sweep`), the cross-check."""
     if engine not in ENGINES:
         raise InputError(f"engine must be one of {', '.join(ENGINES)}, got {engine!r}")
-    fast = [c for c in configs if engine == "numba" and compiled(c)]
-    out = _run_compiled(context, fast, probes) if fast else {}
-    rest = [c for c in configs if c not in out]
-    jobs = [(context, c, probes.get(c.duration)) for c in rest]
+    if engine == "numba":
+        return _run_compiled(context, configs, probes) if configs else {}
+    jobs = [(context, c, probes.get(c.duration)) for c in configs]
     runs = sweep(simulate_config, jobs, executor=executor, progress=progress,
                  desc="assumptions") if jobs else []
-    out.update(zip(rest, runs, strict=True))
-    return {c: out[c] for c in configs}
+    return dict(zip(configs, runs, strict=True))
 
 
 # -- the study -------------------------------------------------------------------------------
@@ -903,8 +905,8 @@ def run_assumptions(case: pim.Case, eps: float | None = None, beta: float | None
         Every contact time and variant (:func:`assumption_configs.plan`); False: the
         verdicts only (the range's ends and middle), the summary of ``pim compare``.
     engine : {"numba", "pymunk"}
-        The compiled crush scene for the point contacts (the outlines' contact on pymunk),
-        or pymunk for every scene (the cross-check, :func:`run_configs`).
+        The compiled crush scene, or pymunk for every scene (the cross-check,
+        :func:`run_configs`).
     """
     start = time.perf_counter()
     eps, beta, _ = coefficients(case, eps, beta)

@@ -91,7 +91,7 @@ def test_where_c_is_input_uncertainty_beside_the_ladder(ricsac9):
     assert f"{float(length):.2f} {unit} from the sheet's C" in words
     assert not any("impact configuration" in v for v in R.verdicts(ricsac9))
     table = R.input_shift_table(ricsac9)
-    assert table.column("model") == ["PIM"] + ["crush scene"] * len(ricsac9.ladders)
+    assert table.column("model") == ["PIM"] + ["crush scene"] * len(ricsac9.range_durations)
 
 
 def test_verdicts_name_their_assumption(ricsac9):
