@@ -291,12 +291,13 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, engine, 
         results = [_speed_error_case(name, tmp, opts, pool) for name in names]
     for r in results:
         r["files"] = [str(p) for p in rebase(r["files"], tmp, folder)]
-        for line in r.pop("lines", []):
-            click.echo(line)
-        click.echo(f"wrote {r['files'][0]}")
     if as_json:
         echo_json(results)
         return
+    for r in results:
+        for line in r.pop("lines"):
+            click.echo(line)
+        click.echo(f"wrote {r['files'][0]}")
     click.echo(f"pim speed-error: {time.perf_counter() - wall:.1f} s wall, "
                f"{time.process_time() - cpu:.1f} s CPU in this process")
 
@@ -331,17 +332,24 @@ def _speed_error_case(name: str, folder, opts: _SpeedErrorOptions, pool) -> dict
     study = sweep(case, opts.eps, opts.beta, progress=opts.progress,
                   **{**grid, "repeats": opts.repeats})
     stem = case.name or Path(name).stem
-    files = write_study(study, folder, stem, command=opts.command(name))
+    cstudy = None if opts.engine is None else _compliant_sweep(case, opts, pool)
+    # every timed run is done: the rigid study's plot is drawn on a worker while this
+    # process draws the finite-duration one
+    written = pool.submit(write_study, study, folder, stem, command=opts.command(name)) \
+        if pool is not None else None
     rec = study.recommended()
-    result = {"case": stem, "files": [str(f) for f in files],
+    result = {"case": stem, "files": [],
               "recommended": None if rec is None else
               {"dt": rec.dt, "iterations": rec.iterations,
                "iterations_used": rec.iterations_used, "start": rec.start,
                "contact": rec.contact, "error": rec.error, "wall_time": rec.wall_time},
               "analytic_time": study.analytic_time,
               "analytic_batch_time": study.analytic_batch_time, "lines": []}
-    if opts.engine is not None:
-        _compliant_case(case, stem, folder, opts, pool, result)
+    if cstudy is not None:
+        _compliant_result(cstudy, stem, folder, opts, result)
+    files = write_study(study, folder, stem, command=opts.command(name)) \
+        if written is None else written.result()
+    result["files"] = [str(f) for f in files] + result["files"]
     text = ("no run reaches the target" if rec is None else
             f"recommended dt = {rec.dt:g} s, iterations = "
             f"{'auto' if rec.iterations is None else rec.iterations}, {rec.start} "
@@ -354,17 +362,22 @@ def _speed_error_case(name: str, folder, opts: _SpeedErrorOptions, pool) -> dict
     return result
 
 
-def _compliant_case(case, stem: str, folder, opts: _SpeedErrorOptions, pool,
-                    result: dict) -> None:
-    """The finite-duration study of one case into ``result`` (files, recommendations,
-    lines)."""
-    from comparisons.studies.speed_error_compliant import COARSE as CCOARSE
-    from comparisons.studies.speed_error_compliant import compliant_sweep, write_compliant_study
+def _compliant_sweep(case, opts: _SpeedErrorOptions, pool):
+    """The finite-duration study of one case, its two scenes on the pool's workers."""
+    from comparisons.studies import speed_error_compliant as S
 
-    cgrid = dict(CCOARSE) if opts.coarse else {"repeats": opts.repeats}
-    cstudy = compliant_sweep(case, opts.eps, progress=opts.progress, engine=opts.engine,
-                             executor=pool, **cgrid)
-    cfiles = write_compliant_study(cstudy, folder, stem, command=opts.command(stem))
+    grid = S.COARSE if opts.coarse else S.Grid(repeats=opts.repeats)
+    return S.compliant_sweep(case, opts.eps, grid=grid, progress=opts.progress,
+                             engine=opts.engine, executor=pool)
+
+
+def _compliant_result(cstudy, stem: str, folder, opts: _SpeedErrorOptions,
+                      result: dict) -> None:
+    """Write the finite-duration study and put its files, recommendations and lines into
+    ``result``."""
+    from comparisons.studies import speed_error_compliant as S
+
+    cfiles = S.write_compliant_study(cstudy, folder, stem, command=opts.command(stem))
     result["files"] += [str(f) for f in cfiles]
     recs = {scene: cstudy.recommended(scene)
             for scene in dict.fromkeys(p.scene for p in cstudy.points)}
@@ -422,8 +435,8 @@ def hard_cases(out, units, progress, as_json):
 @eps_option
 @beta_option
 @click.option("--executor", type=click.Choice(["process", "serial"]), default="process",
-              show_default=True, help="Run the pymunk scenes on a local process pool or "
-                                      "serially.")
+              show_default=True, help="Run the pymunk scenes (--engine pymunk) on a local "
+                                      "process pool or serially.")
 @click.option("--no-animation", is_flag=True, help="Skip the MP4 of the finite-duration scene.")
 @click.option("--engine", type=click.Choice(["numba", "pymunk"]), default="numba",
               show_default=True, help="The compiled crush scene for the point contacts, or "
@@ -454,7 +467,7 @@ def assumptions(case_name, out, eps, beta, executor, no_animation, engine, units
     command = f"pim assumptions {case_name}" + (f" --out {out}" if out else "")
     with output_folder(folder, command="pim assumptions") as tmp, \
             contextlib.ExitStack() as stack:
-        if executor == "process":
+        if executor == "process" and engine == "pymunk":     # the compiled scene batches
             executor = stack.enter_context(worker_pool())
         study = run_assumptions(case, eps, beta, executor=executor, progress=progress,
                                 animation_after=None if no_animation else 2.0, engine=engine)

@@ -54,7 +54,8 @@ from comparisons.report.tables import Table, fmt_error
 
 __all__ = ["CompliantPoint", "CompliantSpeedStudy", "compliant_sweep", "STEPS", "RTOLS",
            "TARGET", "SCENES", "COARSE", "REFERENCE_RTOLS", "REFERENCE_STEPS", "RUN_BUDGET",
-           "REPEAT_BELOW", "CONTACT_TIME", "ENGINES", "reference_within_budget", "Reference",
+           "REPEAT_BELOW", "CONTACT_TIME", "ENGINES", "Grid", "SceneJob", "scene_points",
+           "scene_stiffness", "reference_within_budget", "Reference",
            "plot_compliant_speed_error", "write_compliant_study", "fixed_step_label"]
 
 STEPS = (10, 20, 40, 80, 160, 320, 640, 1280, 2560)
@@ -70,8 +71,6 @@ REFERENCE_RTOLS = (1e-8, 1e-9, 1e-10)
 REFERENCE_STEPS = 2000
 #: Wall time of one swept run above which the next finer setting is not tried [s] (x 3).
 RUN_BUDGET = 1.5
-#: The coarse grid (``pim speed-error --coarse``): seconds, not a minute.
-COARSE = dict(steps=(10, 40, 160, 640), rtols=(1e-3, 1e-6, 1e-9), repeats=1)
 #: The repeats of a setting stop once its runs took this long together [s] (a long run's
 #: timing noise is a small share of it; repeats would only cost time).
 REPEAT_BELOW = 0.06
@@ -289,20 +288,19 @@ def _fixed_step(case, eps, k, mu, settings, engine):
                                   engine="pymunk")
 
 
-def _ladders(case, eps, k, mu, grid: dict, engine: str):
-    """(integrator, [(setting, run), ...]) from the cheapest setting to the dearest;
-    ``grid``: steps, rtols, methods."""
+def _ladders(case, eps, k, mu, grid: Grid, engine: str):
+    """(integrator, [(setting, run), ...]) from the cheapest setting to the dearest."""
     fixed = []
-    for n in grid["steps"]:
+    for n in grid.steps:
         settings = sim.CompliantSettings(record=False, steps_per_contact=int(n),
                                          min_steps=min(10, int(n)))
         dt = sim.compliant.step_size(sim.compliant_setup.build_problem(
             case, eps, k, mu, settings=settings))
         fixed.append((dt, lambda s=settings: _fixed_step(case, eps, k, mu, s, engine)))
     out = [(FIXED_STEP[engine], fixed)]
-    for method in grid["methods"]:
+    for method in grid.methods:
         ladder = []
-        for rtol in sorted(grid["rtols"], reverse=True):
+        for rtol in sorted(grid.rtols, reverse=True):
             settings = sim.CompliantSettings(record=False, rtol=rtol, method=method)
             ladder.append((rtol, lambda s=settings: sim.reference_compliant(
                 case, eps, k, friction=mu, settings=s)))
@@ -337,6 +335,41 @@ def scene_stiffness(case: pim.Case, eps: float, contact_time: float = CONTACT_TI
 
 
 @dataclass(frozen=True)
+class Grid:
+    """The settings a study sweeps and the budgets that bound it.
+
+    Attributes
+    ----------
+    steps : tuple of int
+        Steps per estimated contact time of the fixed-step scene (:data:`STEPS`).
+    rtols : tuple of float
+        Relative tolerances of the solve_ivp methods (:data:`RTOLS`).
+    methods : tuple of str
+        solve_ivp methods (:data:`METHODS`).
+    repeats : int
+        Runs per setting at most (the best wall time kept; :func:`_timed`).
+    run_budget : float
+        A run longer than a third of it ends its ladder [s] (:data:`RUN_BUDGET`).
+    reference_rtols : tuple of float
+        Tolerances tried for the reference, loosest first (:data:`REFERENCE_RTOLS`).
+    reference_budget : int
+        Steps one reference scene may cost (:data:`REFERENCE_STEPS`).
+    """
+
+    steps: tuple = STEPS
+    rtols: tuple = RTOLS
+    methods: tuple = METHODS
+    repeats: int = 3
+    run_budget: float = RUN_BUDGET
+    reference_rtols: tuple = REFERENCE_RTOLS
+    reference_budget: int = REFERENCE_STEPS
+
+
+#: The coarse grid (``pim speed-error --coarse``): seconds, not a minute.
+COARSE = Grid(steps=(10, 40, 160, 640), rtols=(1e-3, 1e-6, 1e-9), repeats=1)
+
+
+@dataclass(frozen=True)
 class SceneJob:
     """One scene of the study: its inputs and the grid it is swept over.
 
@@ -351,8 +384,8 @@ class SceneJob:
         Its name (a key of :data:`SCENES`).
     friction : float
         mu_c between the vehicles [-].
-    grid : dict
-        steps, rtols, methods, repeats, run_budget, reference_rtols, reference_budget.
+    grid : Grid
+        The settings swept and the budgets.
     engine : str
         The fixed-step integrator (:data:`ENGINES`).
     """
@@ -362,7 +395,7 @@ class SceneJob:
     stiffness: float
     scene: str
     friction: float
-    grid: dict
+    grid: Grid
     engine: str
 
 
@@ -374,29 +407,26 @@ def scene_points(job: SceneJob) -> tuple:
         _fixed_step(case, job.eps, job.stiffness, 0.0, sim.CompliantSettings(record=False),
                     job.engine)
     ref = reference_within_budget(case, job.eps, job.stiffness, job.friction,
-                                  g["reference_rtols"], g["reference_budget"])
-    usable = {**g, "rtols": [r for r in g["rtols"] if r >= 10.0 * ref.rtol]}
+                                  g.reference_rtols, g.reference_budget)
+    usable = replace(g, rtols=tuple(r for r in g.rtols if r >= 10.0 * ref.rtol))
     points = []
     for integrator, ladder in _ladders(case, job.eps, job.stiffness, job.friction, usable,
                                        job.engine):
-        points += _run_ladder(case, job.scene, ref.result, integrator, ladder, g["repeats"],
-                              g["run_budget"])
+        points += _run_ladder(case, job.scene, ref.result, integrator, ladder, g.repeats,
+                              g.run_budget)
     return points, ref
 
 
-def compliant_sweep(case: pim.Case, eps: float | None = None, *, steps=STEPS, rtols=RTOLS,
-                    methods=METHODS, scenes=None, repeats: int = 3,
-                    progress: bool | None = None, reference_rtols=REFERENCE_RTOLS,
-                    reference_budget: int = REFERENCE_STEPS,
-                    run_budget: float = RUN_BUDGET, engine: str = "numba",
+def compliant_sweep(case: pim.Case, eps: float | None = None, *, grid: Grid = Grid(),
+                    scenes=None, progress: bool | None = None, engine: str = "numba",
                     contact_time: float = CONTACT_TIME, executor="serial"
                     ) -> CompliantSpeedStudy:
     """Run the study (module notes) for ``case`` at restitution ``eps`` (default: the case's,
-    else 0.3). ``reference_rtols``, ``reference_budget`` [steps] and ``run_budget`` [s] bound
-    the cost (module notes); ``engine`` ("numba" or "pymunk", :data:`ENGINES`) steps the
-    fixed-step scene; ``contact_time`` [s] sets the stiffness (:func:`scene_stiffness`);
-    the scenes run one per worker of ``executor`` (:func:`sim.sweep.sweep`; default
-    "serial"), each timing its own runs."""
+    else 0.3) over ``grid`` (its settings and budgets; :data:`COARSE` for a quick look);
+    ``scenes``: name -> mu_c (default :data:`SCENES`); ``engine`` ("numba" or "pymunk",
+    :data:`ENGINES`) steps the fixed-step scene; ``contact_time`` [s] sets the stiffness
+    (:func:`scene_stiffness`); the scenes run one per worker of ``executor``
+    (:func:`sim.sweep.sweep`; default "serial"), each timing its own runs."""
     if engine not in ENGINES:
         raise InputError(f"engine must be one of {', '.join(ENGINES)}, got {engine!r}")
     wall0 = time.perf_counter()
@@ -404,9 +434,6 @@ def compliant_sweep(case: pim.Case, eps: float | None = None, *, steps=STEPS, rt
         eps = case.impact.restitution if case.impact.restitution is not None else 0.3
     eps = sim.contact_law.check_fraction(eps, "eps")
     k = scene_stiffness(case, eps, contact_time)
-    grid = {"steps": steps, "rtols": rtols, "methods": methods, "repeats": repeats,
-            "run_budget": run_budget, "reference_rtols": reference_rtols,
-            "reference_budget": reference_budget}
     jobs = [SceneJob(case, float(eps), k, scene, mu, grid, engine)
             for scene, mu in dict(SCENES if scenes is None else scenes).items()]
     done = sweep(scene_points, jobs, executor=executor, chunksize=1,

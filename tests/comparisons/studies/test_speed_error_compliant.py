@@ -13,9 +13,9 @@ from pim.io.casefile import load_case
 
 @pytest.fixture(scope="module")
 def study():
-    return S.compliant_sweep(pim.load_case("ricsac9"), 0.355, steps=(10, 40, 160),
-                             rtols=(1e-3, 1e-7), methods=("DOP853",),
-                             scenes={"frictionless": 0.0}, repeats=1, progress=False)
+    return S.compliant_sweep(pim.load_case("ricsac9"), 0.355, grid=S.Grid(
+        steps=(10, 40, 160), rtols=(1e-3, 1e-7), methods=("DOP853",), repeats=1),
+        scenes={"frictionless": 0.0}, progress=False)
 
 
 def test_errors_fall_as_the_step_shrinks_and_the_reference_is_consistent(study):
@@ -57,9 +57,9 @@ def test_reference_stops_at_the_budget_and_reports_the_tolerance_reached():
 
 
 def test_a_slow_run_skips_the_finer_settings_as_over_budget():
-    study = S.compliant_sweep(pim.load_case("ricsac9"), 0.355, steps=(10, 40, 160),
-                              rtols=(1e-3,), methods=("DOP853",), scenes={"f": 0.0},
-                              repeats=1, progress=False, run_budget=1e-9)
+    study = S.compliant_sweep(pim.load_case("ricsac9"), 0.355, grid=S.Grid(
+        steps=(10, 40, 160), rtols=(1e-3,), methods=("DOP853",), repeats=1, run_budget=1e-9),
+        scenes={"f": 0.0}, progress=False)
     fixed = [p for p in study.points if p.integrator == "compiled"]
     assert [p.failure for p in fixed] == [None, "over_budget", "over_budget"]
     assert study.wall_time > 0
@@ -69,9 +69,9 @@ def test_the_compiled_and_the_pymunk_scene_agree_on_every_step(study):
     """The pymunk path stays the cross-check: over the same dt both step the same functions
     and reach the same error against the same reference (to round-off), the compiled one
     in a fraction of the time."""
-    check = S.compliant_sweep(pim.load_case("ricsac9"), 0.355, steps=(10, 40, 160),
-                              rtols=(1e-3,), methods=(), scenes={"frictionless": 0.0},
-                              repeats=1, progress=False, engine="pymunk")
+    check = S.compliant_sweep(pim.load_case("ricsac9"), 0.355, grid=S.Grid(
+        steps=(10, 40, 160), rtols=(1e-3,), methods=(), repeats=1),
+        scenes={"frictionless": 0.0}, progress=False, engine="pymunk")
     compiled = sorted((p for p in study.points if p.integrator == "compiled"),
                       key=lambda p: p.setting)
     pymunk = sorted((p for p in check.points if p.integrator == "pymunk"),
@@ -99,10 +99,10 @@ def test_the_stiffness_is_that_of_the_typical_contact_time_not_a_frontal_default
 def test_two_scenes_on_a_process_pool_give_the_serial_errors(study):
     from pim.io.output import worker_pool
     with worker_pool(2) as pool:
-        both = S.compliant_sweep(pim.load_case("ricsac9"), 0.355, steps=(10, 40, 160),
-                                 rtols=(1e-3, 1e-7), methods=("DOP853",),
-                                 scenes={"frictionless": 0.0, "friction 0.5": 0.5},
-                                 repeats=1, progress=False, executor=pool)
+        both = S.compliant_sweep(pim.load_case("ricsac9"), 0.355, grid=S.Grid(
+            steps=(10, 40, 160), rtols=(1e-3, 1e-7), methods=("DOP853",), repeats=1),
+            scenes={"frictionless": 0.0, "friction 0.5": 0.5}, progress=False,
+            executor=pool)
     serial = {(p.integrator, p.setting): p.error for p in study.points}
     pooled = {(p.integrator, p.setting): p.error for p in both.points
               if p.scene == "frictionless"}
