@@ -324,7 +324,8 @@ def contact_inputs(eps, stiffness, friction, tyre_friction, settings: CompliantS
 def _law(inputs: dict, arrays: dict, shape: tuple, settings: CompliantSettings) -> dict:
     """The flat per-scene law of :func:`sim.compliant_setup.parameter_rows`, the step and
     the scenes refused before stepping (status)."""
-    flat = {k: np.broadcast_to(v, shape).reshape(-1) for k, v in inputs.items()}
+    flat = {k: v if np.ndim(v) == 0 else np.broadcast_to(v, shape).reshape(-1)
+            for k, v in inputs.items()}
     k_nn = arrays["k_nn"]
     if "contact_time" in flat:
         flat["stiffness"] = stiffness_for_duration(flat.pop("contact_time"), k_nn, flat["eps"])
@@ -378,6 +379,19 @@ def _check_geometry(case: pim.Case, geometry: str) -> None:
             raise InputError("geometry='outline' needs vehicle2.length and vehicle2.width")
 
 
+_KERNEL: list = []
+_DEFAULT_SETTINGS = CompliantSettings()
+
+
+def _integrate():
+    """:func:`sim.compliant_kernel.integrate`, imported on first use (numba: the kernel is
+    compiled, or loaded from numba's cache, then; never on ``import sim``)."""
+    if not _KERNEL:
+        from .compliant_kernel import integrate
+        _KERNEL.append(integrate)
+    return _KERNEL[0]
+
+
 def simulate_batch(case: pim.Case, eps, stiffness=None, friction=0.0, geometry="point",
                    tyre_friction=0.0, settings: CompliantSettings | None = None, *,
                    tyre_mode=None, preload=None, tangential_recovery=None,
@@ -385,7 +399,7 @@ def simulate_batch(case: pim.Case, eps, stiffness=None, friction=0.0, geometry="
     """:func:`sim.simulate_compliant` on the compiled engine (its parameters); a
     :class:`CompliantBatch` at the broadcast shape of every input."""
     wall = time.perf_counter()
-    settings = CompliantSettings() if settings is None else settings
+    settings = _DEFAULT_SETTINGS if settings is None else settings
     if not isinstance(settings, CompliantSettings):
         raise InputError(f"settings must be a sim.CompliantSettings, got "
                          f"{type(settings).__name__}")
@@ -404,8 +418,7 @@ def simulate_batch(case: pim.Case, eps, stiffness=None, friction=0.0, geometry="
     arrays = _setup(case, shape, settings.gravity)
     law, status = _law(inputs, arrays, shape, settings)
     law["outline"] = 1.0 if geometry == "outline" else 0.0
-    from .compliant_kernel import integrate      # numba: compiled (or loaded) on first use
-    rows = integrate(parameter_rows(arrays, law, arrays["rows"]), arrays["state0"], status)
+    rows = _integrate()(parameter_rows(arrays, law, arrays["rows"]), arrays["state0"], status)
     scenes = dict(law)
     scenes.update({k: arrays[k] for k in ("mass1", "inertia1", "mass2", "inertia2", "k_nn",
                                           "energy_before")})

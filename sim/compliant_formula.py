@@ -351,7 +351,7 @@ def contact_law(par, mem, delta, slip_t, tx, ty, dt):
 
 def _tally(par, tal, st, trig, px, py, nx, ny, fx, fy, sticking, z, dt):
     """Account for one step in contact (impulse, centroids, peak, stick time, directions)."""
-    size = math.hypot(fx, fy)
+    size = math.sqrt(fx * fx + fy * fy)     # not hypot: numba's and the C library's differ
     w = size * dt
     tal[T_IMPULSE] += fx * dt
     tal[T_IMPULSE + 1] += fy * dt
@@ -688,7 +688,7 @@ def _centroid(total_x, total_y, weight):
 
 
 def _unit(total_x, total_y, weight):
-    size = math.hypot(total_x, total_y)
+    size = math.sqrt(total_x * total_x + total_y * total_y)
     if weight > 0.0 and size > 0.0:
         return total_x / size, total_y / size
     return math.nan, math.nan

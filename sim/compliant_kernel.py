@@ -26,7 +26,7 @@ from pim.model.numba_cache import stamped_cache
 
 from . import compliant_formula
 
-__all__ = ["integrate", "compile_module", "SIGNATURE", "SERIAL_BELOW"]
+__all__ = ["integrate", "compile_module", "kernels", "SIGNATURE", "SERIAL_BELOW"]
 
 
 def compile_module(module) -> SimpleNamespace:
@@ -169,13 +169,24 @@ SIGNATURE = (_C2, types.Array(types.float64, 2, "C", readonly=True), _C2,
 SERIAL_BELOW = 32
 
 
+_READY: list = []
+
+
 def _ready(dispatcher):
     """``dispatcher`` compiled for :data:`SIGNATURE` only (from numba's cache when it holds
     it), on first use; later calls never compile again."""
-    if SIGNATURE not in dispatcher.overloads:
-        dispatcher.compile(SIGNATURE)
-        dispatcher.disable_compile()
+    if dispatcher not in _READY:
+        if SIGNATURE not in dispatcher.overloads:
+            dispatcher.compile(SIGNATURE)
+            dispatcher.disable_compile()
+        _READY.append(dispatcher)
     return dispatcher
+
+
+def kernels() -> dict:
+    """The two compiled kernels by name ("serial", "parallel"), e.g. to count what numba
+    compiled for them (one signature each)."""
+    return {"serial": _integrate_serial, "parallel": _integrate}
 
 
 def integrate(par: np.ndarray, state0: np.ndarray, status: np.ndarray) -> np.ndarray:

@@ -27,7 +27,7 @@ import numpy as np
 
 import pim
 from pim.model import geometry
-from pim.model.geometry import cross, radius_of_gyration
+from pim.model.geometry import cross, radius_of_gyration, rotate_by
 from pim.model.numbers import InputError
 from pim.model.tyres import STANDARD_GRAVITY
 
@@ -364,6 +364,18 @@ def _wheels(vehicle: pim.Vehicle, mass, inertia, gravity, fixed):
             np.where(moving[:, None], loads, 0.0))
 
 
+_COS, _SIN = np.frompyfunc(math.cos, 1, 1), np.frompyfunc(math.sin, 1, 1)
+
+
+def libm_cos_sin(angle) -> tuple[np.ndarray, np.ndarray]:
+    """cos and sin of ``angle`` [rad] from the C library (Python's ``math``), element by
+    element: what the stepping formulas use (numba calls the same library), and the same in
+    the last bit for a batch as for each of its scenes alone (numpy's vectorised cos and sin
+    can differ by an ulp between long arrays and one element)."""
+    angle = np.asarray(angle, dtype=float)
+    return _COS(angle).astype(float), _SIN(angle).astype(float)
+
+
 def obstacle_corners(point, normal) -> np.ndarray:
     """A bare barrier's outline (..., 4, 2) [m]: a 200 m x 10 m block behind the contact
     plane through C with normal n (counter-clockwise: its face along t through C, 10 m deep
@@ -412,7 +424,7 @@ def setup_arrays(case: pim.Case, shape: tuple, gravity: float) -> dict:
     point = _flat_field(imp.point, shape, True)
     gamma = _flat_field(imp.normal_angle, shape)
     fixed2 = np.isinf(m2)
-    n = np.stack([np.cos(gamma), np.sin(gamma)], axis=-1)
+    n = np.stack(libm_cos_sin(gamma), axis=-1)
     r1, r2 = point - cg1, point - cg2
     # K_nn = 1/m1 + 1/m2 + (r1 x n)^2 / I1 + (r2 x n)^2 / I2 (the frequency of the contact)
     k_nn = 1.0 / m1 + cross(r1, n) ** 2 / i1
@@ -428,7 +440,8 @@ def setup_arrays(case: pim.Case, shape: tuple, gravity: float) -> dict:
     return dict(
         outline1=out1, outline2=out2, obstacle=obstacle,
         mass1=m1, inertia1=i1, mass2=m2, inertia2=i2, fixed2=fixed2, k_nn=k_nn,
-        state0=state0, arm1=rotate(r1, -h1), arm2=rotate(r2, -h2), normal2=rotate(n, -h2),
+        state0=state0, arm1=rotate_by(r1, *libm_cos_sin(-h1)),
+        arm2=rotate_by(r2, *libm_cos_sin(-h2)), normal2=rotate_by(n, *libm_cos_sin(-h2)),
         wheels1=wheels1, loads1=loads1, wheels2=wheels2, loads2=loads2,
         speed_scale=np.maximum(speed, 1e-6),
         energy_before=(geometry.kinetic_energy(m1, i1, vel1, w1)

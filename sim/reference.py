@@ -342,8 +342,9 @@ def reference_compliant(case: pim.Case, eps, stiffness, friction=0.0, geometry="
                         ) -> CompliantResult:
     """The point contact integrated by ``solve_ivp`` (``settings.method``, ``settings.rtol``).
 
-    Same signature and result as :func:`sim.simulate_compliant`; only ``geometry="point"``
-    (the outline contact has no independent reference). ``history`` holds the dense output
+    The single-case signature and result of ``sim.simulate_compliant(...,
+    engine="pymunk")`` (:class:`sim.CompliantResult`); only ``geometry="point"`` (the outline
+    contact has no independent reference). ``history`` holds the dense output
     at 200 instants of the contact with ``settings.record``; ``trajectory`` the states at
     first contact and separation (and dense samples between them with ``record``).
 

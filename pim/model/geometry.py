@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["outline_distance", "cross", "dot", "perp", "vec", "rotate", "contact_velocity",
+__all__ = ["outline_distance", "cross", "dot", "perp", "vec", "rotate", "rotate_by", "contact_velocity",
            "kinetic_energy", "radius_of_gyration", "outline_corners", "outline_world"]
 
 
@@ -38,9 +38,15 @@ def vec(x, y) -> np.ndarray:
 
 def rotate(v, angle) -> np.ndarray:
     """The vectors ``v`` (..., 2) turned counter-clockwise by ``angle`` [rad]."""
+    return rotate_by(v, np.cos(angle), np.sin(angle))
+
+
+def rotate_by(v, cos, sin) -> np.ndarray:
+    """The vectors ``v`` (..., 2) turned counter-clockwise by the angle whose cosine and sine
+    are ``cos`` and ``sin`` [-]: (c x - s y, s x + c y)."""
     v = np.asarray(v, dtype=float)
-    c, s = np.cos(angle), np.sin(angle)
-    return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], axis=-1)
+    return np.stack([cos * v[..., 0] - sin * v[..., 1], sin * v[..., 0] + cos * v[..., 1]],
+                    axis=-1)
 
 
 def contact_velocity(velocity, yaw_rate, arm) -> np.ndarray:
