@@ -7,6 +7,7 @@ from __future__ import annotations
 import contextlib
 import sys
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 import click
@@ -286,21 +287,27 @@ def _check_suffix(path, option: str, suffix: str) -> None:
               help="Runs per setting (the best wall time is kept).")
 @click.option("--coarse", is_flag=True, help="The report's coarse grid instead of the full one.")
 @click.option("--compliant/--no-compliant", default=True, show_default=True,
-              help="Also the finite-duration contact: pymunk over dt, solve_ivp over rtol.")
+              help="Also the finite-duration contact: the fixed-step scene over dt, "
+                   "solve_ivp over rtol.")
+@click.option("--engine", type=click.Choice(["numba", "pymunk"]), default="numba",
+              show_default=True, help="The finite-duration scene's fixed-step integrator: "
+                                      "compiled, or pymunk (the cross-check).")
 @progress_option
 @json_option
-def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, progress, as_json):
+def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, engine, progress,
+                as_json):
     """Sweep the simulator's dt, iterations, contact start and geometry for each CASE.
 
     Writes, per case, speed-error-CASE.md (table of the Pareto front and every run),
     speed-error-CASE.csv and speed-error-CASE.png (log-log error against wall time per
     impact, with the Pareto front, PIM's own time and error and the recommended setting).
     With --compliant (default) also speed-error-compliant-CASE.md/.csv/.png: the
-    finite-duration contact stepped by pymunk over dt and integrated by solve_ivp over
-    rtol, against a tight solve_ivp reference. "hard" stands for every bundled hard case.
+    finite-duration contact stepped over dt (compiled, or by pymunk with --engine pymunk)
+    and integrated by solve_ivp over rtol, against a tight solve_ivp reference, its two
+    scenes on two worker processes. "hard" stands for every bundled hard case.
     """
     from pim.io.casefile import list_cases
-    from pim.io.output import output_folder, rebase
+    from pim.io.output import output_folder, rebase, worker_pool
 
     if repeats < 1:
         raise InputError(f"--repeats must be >= 1, got {repeats}")
@@ -308,77 +315,113 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, progress
     for n in case_names:
         names += [c for c, _ in list_cases() if c.startswith("hard-")] if n == "hard" else [n]
     folder = Path(out) if out else Path("out") / "speed-error"
-    with output_folder(folder, command="pim speed-error", merge=True) as tmp:
-        results = _speed_error_runs(names, tmp, out, eps, beta, repeats, coarse, compliant,
-                                    progress, as_json)
+    opts = _SpeedErrorOptions(out, eps, beta, repeats, coarse, engine if compliant else None,
+                              progress, as_json)
+    wall, cpu = time.perf_counter(), time.process_time()
+    with output_folder(folder, command="pim speed-error", merge=True) as tmp, \
+            contextlib.ExitStack() as stack:
+        pool = stack.enter_context(worker_pool(2)) if compliant else None
+        results = [_speed_error_case(name, tmp, opts, pool) for name in names]
     for r in results:
         r["files"] = [str(p) for p in rebase(r["files"], tmp, folder)]
-        line = r.pop("line", None)
-        if line is not None:
-            click.echo(f"{line}; wrote {r['files'][0]}")
     if as_json:
         echo_json(results)
+        return
+    for r in results:
+        for line in r.pop("lines"):
+            click.echo(line)
+        click.echo(f"wrote {r['files'][0]}")
+    click.echo(f"pim speed-error: {time.perf_counter() - wall:.1f} s wall, "
+               f"{time.process_time() - cpu:.1f} s CPU in this process")
 
 
-def _speed_error_runs(names, folder, out, eps, beta, repeats, coarse, compliant, progress,
-                      as_json) -> list[dict]:
-    """Sweep each case and write its files into ``folder``; one JSON-ready dict per case
-    (with the line to print under ``"line"``)."""
+@dataclass(frozen=True)
+class _SpeedErrorOptions:
+    """The options of ``pim speed-error`` (``engine`` None: no finite-duration study)."""
+
+    out: str | None
+    eps: float | None
+    beta: float | None
+    repeats: int
+    coarse: bool
+    engine: str | None
+    progress: bool | None
+    as_json: bool
+
+    def command(self, name: str) -> str:
+        return _command(name, self.coarse, self.repeats, self.out)
+
+
+def _speed_error_case(name: str, folder, opts: _SpeedErrorOptions, pool) -> dict:
+    """Sweep one case and write its files into ``folder``: a JSON-ready dict (with the
+    lines to print under ``"lines"``)."""
     from comparisons.studies.speed_error import COARSE, sweep, write_study
 
-    results = []
-    for name in names:
-        case = load_case_for("speed-error", name)
-        grid = dict(COARSE) if coarse else {}
-        grid["repeats"] = repeats
-        study = sweep(case, eps, beta, progress=progress, **grid)
-        stem = case.name or Path(name).stem
-        files = write_study(study, folder, stem, command=_command(name, coarse, repeats, out))
-        rec = study.recommended()
-        results.append({"case": stem, "files": [str(f) for f in files],
-                        "recommended": None if rec is None else
-                        {"dt": rec.dt, "iterations": rec.iterations,
-                         "iterations_used": rec.iterations_used, "start": rec.start,
-                         "contact": rec.contact, "error": rec.error,
-                         "wall_time": rec.wall_time},
-                        "analytic_time": study.analytic_time,
-                        "analytic_batch_time": study.analytic_batch_time})
-        if compliant:
-            from comparisons.studies.speed_error_compliant import COARSE as CCOARSE
-            from comparisons.studies.speed_error_compliant import (
-                compliant_sweep,
-                write_compliant_study,
-            )
+    case = load_case_for("speed-error", name)
+    grid = dict(COARSE) if opts.coarse else {}
+    study = sweep(case, opts.eps, opts.beta, progress=opts.progress,
+                  **{**grid, "repeats": opts.repeats})
+    stem = case.name or Path(name).stem
+    cstudy = None if opts.engine is None else _compliant_sweep(case, opts, pool)
+    # every timed run is done: the rigid study's plot is drawn on a worker while this
+    # process draws the finite-duration one
+    written = pool.submit(write_study, study, folder, stem, command=opts.command(name)) \
+        if pool is not None else None
+    rec = study.recommended()
+    result = {"case": stem, "files": [],
+              "recommended": None if rec is None else
+              {"dt": rec.dt, "iterations": rec.iterations,
+               "iterations_used": rec.iterations_used, "start": rec.start,
+               "contact": rec.contact, "error": rec.error, "wall_time": rec.wall_time},
+              "analytic_time": study.analytic_time,
+              "analytic_batch_time": study.analytic_batch_time, "lines": []}
+    if cstudy is not None:
+        _compliant_result(cstudy, stem, folder, opts, result)
+    files = write_study(study, folder, stem, command=opts.command(name)) \
+        if written is None else written.result()
+    result["files"] = [str(f) for f in files] + result["files"]
+    text = ("no run reaches the target" if rec is None else
+            f"recommended dt = {rec.dt:g} s, iterations = "
+            f"{'auto' if rec.iterations is None else rec.iterations}, {rec.start} "
+            f"start, {rec.contact} contact: error {rec.error:.2e}, "
+            f"{rec.wall_time * 1e3:.3g} ms/impact (PIM {study.analytic_time * 1e3:.3g} "
+            f"ms/call)")
+    result["lines"].append(f"{stem}: {text}")
+    if opts.as_json:
+        result.pop("lines")
+    return result
 
-            cgrid = dict(CCOARSE) if coarse else {"repeats": repeats}
-            cstudy = compliant_sweep(case, eps, progress=progress, **cgrid)
-            cfiles = write_compliant_study(cstudy, folder, stem,
-                                           command=_command(name, coarse, repeats, out))
-            results[-1]["files"] += [str(f) for f in cfiles]
-            results[-1]["compliant"] = {
-                scene: None if cstudy.recommended(scene) is None else
-                {"integrator": cstudy.recommended(scene).integrator,
-                 "setting": cstudy.recommended(scene).setting,
-                 "error": cstudy.recommended(scene).error,
-                 "wall_time": cstudy.recommended(scene).wall_time}
-                for scene in dict.fromkeys(p.scene for p in cstudy.points)}
-            if not as_json:
-                for scene, rec_c in results[-1]["compliant"].items():
-                    click.echo(f"{stem} finite-duration ({scene}): " + (
-                        "no run reaches 1e-3" if rec_c is None else
-                        f"recommended {rec_c['integrator']} "
-                        f"{'dt' if rec_c['integrator'] == 'pymunk' else 'rtol'} = "
-                        f"{rec_c['setting']:.3g}: error {rec_c['error']:.1e}, "
-                        f"{rec_c['wall_time'] * 1e3:.3g} ms/impact"))
-        if not as_json:
-            text = ("no run reaches the target" if rec is None else
-                    f"recommended dt = {rec.dt:g} s, iterations = "
-                    f"{'auto' if rec.iterations is None else rec.iterations}, {rec.start} "
-                    f"start, {rec.contact} contact: error {rec.error:.2e}, "
-                    f"{rec.wall_time * 1e3:.3g} ms/impact (PIM {study.analytic_time * 1e3:.3g} "
-                    f"ms/call)")
-            results[-1]["line"] = f"{stem}: {text}"
-    return results
+
+def _compliant_sweep(case, opts: _SpeedErrorOptions, pool):
+    """The finite-duration study of one case, its two scenes on the pool's workers."""
+    from comparisons.studies import speed_error_compliant as S
+
+    grid = S.COARSE if opts.coarse else S.Grid(repeats=opts.repeats)
+    return S.compliant_sweep(case, opts.eps, grid=grid, progress=opts.progress,
+                             engine=opts.engine, executor=pool)
+
+
+def _compliant_result(cstudy, stem: str, folder, opts: _SpeedErrorOptions,
+                      result: dict) -> None:
+    """Write the finite-duration study and put its files, recommendations and lines into
+    ``result``."""
+    from comparisons.studies import speed_error_compliant as S
+
+    cfiles = S.write_compliant_study(cstudy, folder, stem, command=opts.command(stem))
+    result["files"] += [str(f) for f in cfiles]
+    recs = {scene: cstudy.recommended(scene)
+            for scene in dict.fromkeys(p.scene for p in cstudy.points)}
+    result["compliant"] = {
+        scene: None if rec is None else
+        {"integrator": rec.integrator, "setting": rec.setting, "error": rec.error,
+         "wall_time": rec.wall_time} for scene, rec in recs.items()}
+    result["compliant_seconds"] = cstudy.wall_time
+    for scene, rec in recs.items():
+        result["lines"].append(
+            f"{stem} finite-duration ({scene}): " + (
+                "no run reaches 1e-3" if rec is None else
+                f"recommended {rec.label}: error {rec.error:.1e}, "
+                f"{rec.wall_time * 1e3:.3g} ms/impact"))
 
 
 def _command(name: str, coarse: bool, repeats: int, out) -> str:
@@ -422,59 +465,49 @@ def hard_cases(out, units, speed_unit, progress, as_json):
 @eps_option
 @beta_option
 @click.option("--executor", type=click.Choice(["process", "serial"]), default="process",
-              show_default=True, help="Run the scenes on a local process pool or serially.")
+              show_default=True, help="Run the pymunk scenes (--engine pymunk) on a local "
+                                      "process pool or serially.")
 @click.option("--no-animation", is_flag=True, help="Skip the MP4 of the finite-duration scene.")
+@click.option("--engine", type=click.Choice(["numba", "pymunk"]), default="numba",
+              show_default=True, help="The compiled crush scene for the point contacts, or "
+                                      "pymunk for every scene (the cross-check).")
+@units_option
 @progress_option
 @json_option
-def assumptions(case_name, out, eps, beta, executor, no_animation, progress, as_json):
+def assumptions(case_name, out, eps, beta, executor, no_animation, engine, units, speed_unit,
+                progress, as_json):
     """Test PIM's assumptions for CASE, one at a time, on a ladder of crush scenes.
 
-    Each scene differs from the one below in one assumption (Newton's restitution and
-    mu = beta mu0, instantaneous impulse, impulse at C, one contact point, no external
-    forces, PIM's tangential law); the marginal effect of each (against the scene below, at
-    the same contact time) and the cumulative one (PIM's error) are measured at several
-    contact times, with the tyre effect over the contact time and the friction effect over
-    mu_c and the tangential recovery. Writes assumptions.md, CSVs, a plot and an MP4 with
-    PIM's ghost. A secondary contact of the outlines after separation in the animated
-    scene is a note with its time and place.
+    Each scene differs from its baseline in one assumption (Newton's restitution and
+    mu = beta mu0, instantaneous impulse, one contact point, no external forces with the
+    wheels rolling or locked, PIM's tangential law); each effect is stated over 50-150 ms
+    of contact (and the tangential recovery 0-1 for friction), in % and as the delta-V and
+    yaw rate it moves, in the case's units. Where C is stands beside the ladder as input
+    uncertainty. Writes assumptions.md and .html, CSVs, a plot and an MP4 with PIM's ghost.
     """
-    import sim
-    from comparisons.studies.assumptions import run_assumptions, write_assumptions
     from pim.io.output import output_folder, rebase, worker_pool
 
+    from comparisons.report.assumptions import study_json, verdicts, write_assumptions
+    from comparisons.studies.assumptions import run_assumptions
+
     case = load_case_for("assumptions", case_name)
-    output_units(case)          # messages give speeds as the case file asks (no table has any)
+    units = output_units(case, units, speed_unit)
     folder = Path(out) if out is not None else Path("out") / f"{case.name or 'case'}-assumptions"
     command = f"pim assumptions {case_name}" + (f" --out {out}" if out else "")
     with output_folder(folder, command="pim assumptions") as tmp, \
             contextlib.ExitStack() as stack:
-        if executor == "process":
+        if executor == "process" and engine == "pymunk":     # the compiled scene batches
             executor = stack.enter_context(worker_pool())
         study = run_assumptions(case, eps, beta, executor=executor, progress=progress,
-                                animation_after=None if no_animation else 2.0)
+                                animation_after=None if no_animation else 2.0, engine=engine)
         files = rebase(write_assumptions(study, tmp, animation=not no_animation,
-                                         progress=progress, command=command), tmp, folder)
-    secondary = None
-    if study.animation_result is not None:       # the finite-duration scene played on
-        secondary = sim.find_secondary_impact(study.animation_result.trajectory)
-        if secondary is not None and not as_json:
-            click.echo(f"note: finite-duration scene: {secondary.message(case.units)}",
-                       err=True)
+                                         progress=progress, command=command, units=units),
+                       tmp, folder)
     if as_json:
-        echo_json({"case": case.name, "eps": study.eps, "beta": study.beta,
-                   "beta_pim": study.beta_pim, "verdicts": study.verdicts(),
-                   "secondary_impact": None if secondary is None
-                   else secondary.to_json(case.units),
-                   "seconds": study.seconds, "files": [str(f) for f in files],
-                   "ladders": [{"contact_time_ms": 1e3 * lad.duration,
-                                "rungs": [{"key": r.key, "against": r.baseline,
-                                           "marginal": r.marginal,
-                                           "cumulative": r.cumulative,
-                                           "failure": r.run.failure}
-                                          for r in lad.rungs[1:]]}
-                               for lad in study.ladders]})
+        echo_json({**study_json(study, units), "seconds": study.seconds,
+                   "files": [str(f) for f in files]})
         return
-    for verdict in study.verdicts():
+    for verdict in verdicts(study, units):
         click.echo(f"- {verdict}")
     click.echo(f"wrote {folder / 'assumptions.md'} ({len(files)} files) in "
-               f"{study.seconds:.1f} s of simulation")
+               f"{study.seconds:.1f} s of simulation ({study.engine})")

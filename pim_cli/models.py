@@ -12,11 +12,11 @@ import click
 from tqdm.auto import tqdm
 
 from pim_cli.main import echo_json, json_option, output_units, units_option
-from pim.io.files import save_figure, writable_folder, write_text
-from pim.io.units import convert
+from pim.io.files import writable_folder
 from pim.io.output import output_folder, rebase
 
-from comparisons.studies.pulses import compare_pulses, plot_pulses, pulse_table
+from comparisons.report.pulses import pulse_table, write_pulses
+from comparisons.studies.pulses import compare_pulses
 from comparisons.report.tuned import study_json, verdict_sentence, write_tuned_study
 from comparisons.studies.crash_records import CLASS_KEYS
 from comparisons.studies.tuned_scene import COARSE_STEPS, study_all
@@ -85,7 +85,8 @@ def validate_models(out, max_tests, classes, steps, units, speed_unit, progress,
 @click.command("pulses")
 @_out_option("pulses")
 @click.option("--stiffness", type=click.FloatRange(1e3, 1e9), default=None,
-              help="Linear crush stiffness [N/m] (default sim.DEFAULT_STIFFNESS, 7.5e5).")
+              help="Linear crush stiffness [N/m] (default: the full-width frontal barrier "
+                   "default, 7.5e5, fitted to this test).")
 @click.option("--eps", type=click.FloatRange(0.0, 1.0), default=None,
               help="Restitution of the crush in [0, 1] (default: the test's rebound speed "
                    "over its impact speed).")
@@ -95,29 +96,19 @@ def pulses(out, stiffness, eps, units, speed_unit, as_json):
     """The contact law's force-time and delta-V-time against NHTSA test 10146.
 
     Writes pulses.md (the table of duration, peak force, crush at peak, rebound, each with
-    its error), pulses-nhtsa10146.csv and pulses.png.
+    its error and named fitted, when it agrees by construction with parameters taken from
+    this test, or predicted), pulses-nhtsa10146.csv and pulses.png.
     """
     folder = writable_folder(Path(out) if out else Path("out") / "pulses")
     shown = output_units(None, units, speed_unit)
     c = compare_pulses(stiffness, eps)
-    table = pulse_table(c, shown)
-    png = save_figure(plot_pulses(c, shown), folder / "pulses.png")
     cmd = _command("pulses", out=out, stiffness=stiffness, eps=eps, units=units,
                    speed_unit=speed_unit)
-    (speed, dv_rms), su = convert([c.speed, c.delta_v_rms], "speed", shown)
-    text = "\n".join([
-        "# Crash pulse: NHTSA 10146 against the contact law", "", f"Regenerate with `{cmd}`.",
-        "", f"Source: {c.source}", "",
-        f"Contact law at the test's speed ({speed:.2f} {su}, {c.mass:.0f} kg): linear "
-        f"loading stiffness {c.stiffness / 1e3:.0f} kN/m, restitution {c.eps:.3f}. "
-        f"RMS difference over the record: force {c.force_rms / 1e3:.0f} kN, delta-V "
-        f"{dv_rms:.2f} {su}.", "", table.to_markdown(), "", "![pulses](pulses.png)",
-        ""])
-    md = write_text(folder / "pulses.md", text)
-    files = [md, table.write_csv(folder), png]
+    files = write_pulses(c, folder, shown, cmd)
+    table = pulse_table(c, shown)
     if as_json:
         echo_json({"units": shown.to_json(), "files": [str(f) for f in files],
                    "rows": [dict(zip(table.columns, r, strict=True)) for r in table.rows]})
         return
     click.echo(table.to_markdown())
-    click.echo(f"wrote {md}")
+    click.echo(f"wrote {files[0]}")

@@ -56,7 +56,8 @@ from pim.plotting.tables import summarize
 from sim.error_measure import KIND_OF_UNIT, compare_results, impact_error
 
 from comparisons.animation.render import build_renderer, write_animation
-from comparisons.studies.assumptions import assumption_table, run_assumptions
+from comparisons.report.assumptions import assumption_table
+from comparisons.studies.assumptions import run_assumptions
 from comparisons.studies.coefficients import coefficients
 from comparisons.report.data import ReportData
 from comparisons.report.html import HTML_NAME, render_html

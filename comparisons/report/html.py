@@ -3,7 +3,7 @@
 One self-contained file beside ``report.md`` (:mod:`pim.io.html` builds the blocks): the
 results first (within the first screen), then the coefficients, inputs, the design sheet's
 plots inlined as PNG, the animation playable in the page (base64 MP4), the appendices and PIM's
-assumptions, whose 22-column table is split into groups of columns that fit a screen (one
+assumptions, whose 20-column table is split into groups of columns that fit a screen (one
 row per assumption in each). Every number is in the report's units; the figures and the
 video are read from the report's folder, nothing else is touched.
 """
@@ -14,30 +14,17 @@ import shlex
 from pathlib import Path
 
 from pim.io import html as h
-from pim.io.html import split_columns
 from pim.io.inertia_data import estimate_notes
 from pim.io.units import convert, display_units
 
+from comparisons.report.assumptions import assumption_tables, ladder_intro, verdicts
 from comparisons.report.data import ReportData, monte_carlo_note
 from comparisons.report.tables import Table, fmt_value
 
-__all__ = ["render_html", "html_table", "assumption_tables", "ASSUMPTION_GROUPS", "HTML_NAME"]
+__all__ = ["render_html", "html_table", "HTML_NAME"]
 
 #: File name of the HTML report.
 HTML_NAME = h.HTML_REPORT_NAME
-
-#: The assumptions table's columns in groups that fit a screen: (caption, columns). A
-#: column matches by its header, or by its header without the unit (``"fit rms"`` matches
-#: ``"fit rms [ft/s]"``); columns no group names are shown in a last group.
-ASSUMPTION_GROUPS = (
-    ("Effect of each assumption (marginal: against the scene below it; cumulative: PIM "
-     "against the scene)", ("against", "marginal effect [-]", "cumulative (PIM's error) [-]")),
-    ("The scene of each rung", ("scene", "contact [ms]", "failure")),
-    ("What PIM would need to reproduce the scene (effective coefficients and impact point)",
-     ("eps_eff [-]", "beta_eff [-]", "C_eff x", "C_eff y")),
-    ("Contact and energy", ("energy loss [-]", "stick fraction [-]", "slip reversed")),
-)
-
 
 def html_table(table: Table, *, columns=None, title: str | None = None, note: str = "",
                cls: str = "", part: int | None = None) -> str:
@@ -49,14 +36,6 @@ def html_table(table: Table, *, columns=None, title: str | None = None, note: st
             for row in table.rows]
     return h.table(columns, rows, title=table.title if title is None else title, note=note,
                    id=f"table-{table.name}" + ("" if part is None else f"-{part}"), cls=cls)
-
-
-def assumption_tables(table: Table) -> list[str]:
-    """The assumptions table (:func:`comparisons.studies.assumptions.assumption_table`) as HTML tables
-    one screen wide (:data:`ASSUMPTION_GROUPS`), one row per assumption in each."""
-    return [html_table(table, columns=cols, title=caption, cls="split", part=i)
-            for i, (caption, cols) in enumerate(split_columns(
-                table.columns, ASSUMPTION_GROUPS, table.columns[0]), start=1)]
 
 
 def _command(data: ReportData, name: str) -> str:
@@ -199,8 +178,8 @@ def _assumptions(data: ReportData) -> str:
     table = data.tables["assumptions"]
     parts = assumption_tables(table)
     return h.section("PIM's assumptions (finite-duration crush scene)", [
-        h.paragraph(data.assumptions.intro(_command(data, "assumptions"))),
-        h.bullets(data.assumptions.verdicts()),
+        h.paragraph(ladder_intro(_command(data, "assumptions"))),
+        h.bullets(verdicts(data.assumptions, data.units)),
         h.paragraph(f"The table at typical values, in {len(parts)} parts (one row per "
                     f"assumption in each; all columns: `{table.name}.csv`)."),
         *parts], id="assumptions")

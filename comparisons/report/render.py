@@ -15,6 +15,7 @@ import numpy as np
 from pim.io.inertia_data import estimate_notes
 from pim.io.units import convert, display_units
 
+from comparisons.report.assumptions import ladder_intro, verdicts
 from comparisons.report.data import ReportData, monte_carlo_note
 from comparisons.report.tables import Table
 
@@ -199,8 +200,8 @@ def _assumptions(data: ReportData) -> list[str]:
     if data.assumptions is None:
         return []
     return (["## PIM's assumptions (finite-duration crush scene)", "",
-             data.assumptions.intro(_command(data, "assumptions")), ""]
-            + [f"- {v}" for v in data.assumptions.verdicts()] + [""]
+             ladder_intro(_command(data, "assumptions")), ""]
+            + [f"- {v}" for v in verdicts(data.assumptions, data.units)] + [""]
             + [md_table(data.tables["assumptions"])])
 
 

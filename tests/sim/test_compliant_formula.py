@@ -12,6 +12,8 @@ from sim import compliant_formula as f
 from sim import contact_law, contact_tyres
 from sim.compliant_kernel import compile_module
 
+pytestmark = pytest.mark.xdist_group("compliant_kernel")
+
 
 def test_drift_and_kick_are_chipmunks_own_updates():
     # a pymunk body pushed by a changing force and torque, against the formula's drift and

@@ -20,7 +20,8 @@ import pytest
 
 import pim
 from comparisons.report.compare import compare_case
-from comparisons.report.html import ASSUMPTION_GROUPS, render_html
+from comparisons.report.assumptions import ASSUMPTION_GROUPS
+from comparisons.report.html import render_html
 from pim.io.html import split_columns
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
