@@ -486,6 +486,8 @@ def case_rows(arrays: dict) -> np.ndarray:
                                 (f.P_OUTLINE2, "outline2", 8)):
         par[:, column:column + width] = arrays[name].reshape(n, width)
     par[:, f.P_OBSTACLE] = arrays["obstacle"]
+    for k, name in enumerate(("mass1", "inertia1", "mass2", "inertia2")):
+        par[:, f.P_INVERSE + k] = 1.0 / arrays[name]        # 0 for a fixed vehicle 2
     par[:, f.P_VR] = SLIP_REGULARISATION
     return par
 
