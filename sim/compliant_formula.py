@@ -70,7 +70,8 @@ P_SPEED = 48                                         # speed scale [m/s] (tolera
 P_OUTLINE1 = 49     # vehicle 1's outline corners in its body frame (8) [m]
 P_OUTLINE2 = 57     # vehicle 2's (8), or a fixed obstacle's world corners (P_OBSTACLE)
 P_OBSTACLE = 65     # 1.0: P_OUTLINE2 holds world corners (a bare barrier's block)
-N_PAR = 66
+P_INVERSE = 66      # 1 / m1, 1 / I1, 1 / m2, 1 / I2 (Chipmunk's m_inv, i_inv) [1/kg, 1/(kg m^2)]
+N_PAR = 70
 
 # ---- wk: scratch of the outline contact --------------------------------------------------------
 W_POLY1, W_POLY2 = 0, 8     # both outlines' world corners (4 x, y pairs each)
@@ -284,13 +285,13 @@ def ahead(par, st, lo, h):
     """The velocities of ``st`` moved on by ``h`` [s] of the last kick's accelerations
     (``lo``): from the middle of the step, where the leapfrog's velocities belong, to where
     the velocity-dependent tyre force is wanted. Returns (vx1, vy1, w1, vx2, vy2, w2)."""
-    vx1 = st[3] + lo[0] / par[P_M1] * h
-    vy1 = st[4] + lo[1] / par[P_M1] * h
-    w1 = st[5] + lo[2] / par[P_I1] * h
+    vx1 = st[3] + lo[0] * par[P_INVERSE] * h
+    vy1 = st[4] + lo[1] * par[P_INVERSE] * h
+    w1 = st[5] + lo[2] * par[P_INVERSE + 1] * h
     if par[P_FIXED2] != 0.0:
         return vx1, vy1, w1, st[9], st[10], st[11]
-    return (vx1, vy1, w1, st[9] + lo[3] / par[P_M2] * h, st[10] + lo[4] / par[P_M2] * h,
-            st[11] + lo[5] / par[P_I2] * h)
+    return (vx1, vy1, w1, st[9] + lo[3] * par[P_INVERSE + 2] * h,
+            st[10] + lo[4] * par[P_INVERSE + 2] * h, st[11] + lo[5] * par[P_INVERSE + 3] * h)
 
 
 # ---- one step of the contact -------------------------------------------------------------------
@@ -642,12 +643,13 @@ def drift(par, st, dt):
 
 def kick(par, st, lo, dt):
     """cpBodyUpdateVelocity of both bodies (gravity 0, damping 1): v = v + f m_inv dt,
-    w = w + t i_inv dt, with m_inv = 1 / m and i_inv = 1 / I as Chipmunk stores them."""
+    w = w + t i_inv dt, with m_inv = 1 / m and i_inv = 1 / I as Chipmunk stores them
+    (``par[P_INVERSE:]``, computed once as Chipmunk does)."""
     for k in range(2):
         if k == 1 and par[P_FIXED2] != 0.0:
             break
-        m_inv = 1.0 / par[P_M1 + 2 * k]
-        i_inv = 1.0 / par[P_I1 + 2 * k]
+        m_inv = par[P_INVERSE + 2 * k]
+        i_inv = par[P_INVERSE + 2 * k + 1]
         j = 6 * k
         st[j + 3] = st[j + 3] * 1.0 + (0.0 + lo[3 * k] * m_inv) * dt
         st[j + 4] = st[j + 4] * 1.0 + (0.0 + lo[3 * k + 1] * m_inv) * dt

@@ -427,9 +427,10 @@ def setup_arrays(case: pim.Case, shape: tuple, gravity: float) -> dict:
     n = np.stack(libm_cos_sin(gamma), axis=-1)
     r1, r2 = point - cg1, point - cg2
     # K_nn = 1/m1 + 1/m2 + (r1 x n)^2 / I1 + (r2 x n)^2 / I2 (the frequency of the contact)
-    k_nn = 1.0 / m1 + cross(r1, n) ** 2 / i1
+    c1, c2 = cross(r1, n), cross(r2, n)
+    k_nn = 1.0 / m1 + c1 * c1 / i1
     with np.errstate(invalid="ignore"):
-        k_nn = np.where(fixed2, k_nn, k_nn + (1.0 / m2 + cross(r2, n) ** 2 / i2))
+        k_nn = np.where(fixed2, k_nn, k_nn + (1.0 / m2 + c2 * c2 / i2))
     state0 = np.concatenate([cg1, h1[:, None], vel1, w1[:, None], cg2, h2[:, None], vel2,
                              w2[:, None]], axis=1)
     wheels1, loads1 = _wheels(v1, m1, i1, gravity, np.zeros(m1.shape, bool))
@@ -485,6 +486,8 @@ def case_rows(arrays: dict) -> np.ndarray:
                                 (f.P_OUTLINE2, "outline2", 8)):
         par[:, column:column + width] = arrays[name].reshape(n, width)
     par[:, f.P_OBSTACLE] = arrays["obstacle"]
+    for k, name in enumerate(("mass1", "inertia1", "mass2", "inertia2")):
+        par[:, f.P_INVERSE + k] = 1.0 / arrays[name]        # 0 for a fixed vehicle 2
     par[:, f.P_VR] = SLIP_REGULARISATION
     return par
 

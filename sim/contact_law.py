@@ -178,7 +178,8 @@ def tangential_recovery_default(eps):
     """The default tangential recovery r = eps^2 [-]: the contact gives back the same share
     of its stored tangential energy as the crush gives back of its loading work (Stronge's
     energetic restitution, docs/contact-model.md)."""
-    return np.asarray(eps, float) ** 2
+    eps = np.asarray(eps, float)
+    return eps * eps      # not ** 2: numpy's power of a 0-d array can differ by an ulp
 
 
 def contact_frequency(k, k_nn):
@@ -212,4 +213,5 @@ def stiffness_for_duration(duration, k_nn, eps):
     duration = np.asarray(duration, float)
     if np.any(~np.isfinite(duration)) or np.any(duration <= 0):
         raise InputError(f"duration must be a finite number > 0 [s], got {duration!r}")
-    return (0.5 * np.pi * (1.0 + np.asarray(eps, float)) / duration) ** 2 / np.asarray(k_nn, float)
+    rate = 0.5 * np.pi * (1.0 + np.asarray(eps, float)) / duration
+    return rate * rate / np.asarray(k_nn, float)    # not ** 2 (as tangential_recovery_default)

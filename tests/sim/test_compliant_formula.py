@@ -36,6 +36,7 @@ def test_drift_and_kick_are_chipmunks_own_updates():
     space.add(body)
     par = [0.0] * f.N_PAR
     par[f.P_M1], par[f.P_I1], par[f.P_FIXED2] = 1234.5, 2345.6, 1.0
+    par[f.P_INVERSE], par[f.P_INVERSE + 1] = 1.0 / 1234.5, 1.0 / 2345.6   # as Chipmunk
     st = [0.3, -1.7, 0.4, 12.3, -4.5, 0.7] + [0.0] * 6
     replay = iter(rng.__class__(np.random.PCG64(3)).normal(0.0, 1e5, (200, 3)))
     dt = 1.37e-4
