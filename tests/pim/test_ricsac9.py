@@ -11,7 +11,10 @@ import pytest
 
 import pim
 from pim.io.brach import brach_arms
-from pim.io.units import convert
+from pim.io.units import DisplayUnits, convert
+
+#: The design sheet's units: US customary, velocities in ft/s.
+SHEET = DisplayUnits("us", "ft/s")
 
 # (quantity, printed value, relative tolerance) -- ricsac9.md, validation table.
 EPS, BETA = 0.355, 1.0
@@ -23,7 +26,7 @@ def us(value, kind):
         from pim.io.units import registry
 
         return float(registry().Quantity(float(value), "m/s").to("mph").magnitude)
-    return float(convert(value, kind, "us")[0])
+    return float(convert(value, kind, SHEET)[0])
 
 
 @pytest.fixture(scope="module")
@@ -131,7 +134,7 @@ def test_brach_adapter_places_the_cgs_of_the_spec():
 
 def test_measured_values_are_loaded():
     m = CASE.measured
-    np.testing.assert_allclose(convert(m.velocity1, "velocity", "us")[0], [-5.1, 17.6])
-    np.testing.assert_allclose(convert(m.velocity2, "velocity", "us")[0], [-7.3, 20.2])
+    np.testing.assert_allclose(convert(m.velocity1, "velocity", SHEET)[0], [-5.1, 17.6])
+    np.testing.assert_allclose(convert(m.velocity2, "velocity", SHEET)[0], [-7.3, 20.2])
     assert us(m.yaw_rate1, "angular_velocity") == pytest.approx(-180)
     assert us(m.yaw_rate2, "angular_velocity") == pytest.approx(45)

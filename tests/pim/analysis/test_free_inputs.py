@@ -169,7 +169,7 @@ def test_law_keys_need_their_law(ricsac9, pccrash):
 def test_friction_floor_replaces_an_unreached_mu_c_by_the_sticking_ratio(pccrash):
     from pim.analysis.free_inputs import friction_floor
 
-    needed = float(pim.solve(pccrash, 0.0, 1.0).mu0)        # Brach's mu0 at eps = 0
+    needed = float(pim.solve(pccrash, 0.0, 1.0, law="brach").mu0)   # Brach's mu0 at eps = 0
     x, floored = friction_floor(case_state(pccrash), ("impact.k", "impact.mu_c"),
                                 [[0.3, 0.4], [0.3, 1.7], [0.3, needed]])
     np.testing.assert_array_equal(floored, [False, True, True])

@@ -371,7 +371,7 @@ def test_kudlich_slibar_reconstruct_of_a_sticking_contact_says_mu_c_is_a_lower_b
     rec = reconstruct(case, samples=40, seed=1)
     needed = float(pim.solve(replace(case, vehicle1=replace(
         case.vehicle1, velocity=(-9.0, 0.0)), vehicle2=replace(
-        case.vehicle2, velocity=(0.0, 11.0))), 0.0, 1.0).mu0)      # Brach's, at eps = 0
+        case.vehicle2, velocity=(0.0, 11.0))), 0.0, 1.0, law="brach").mu0)   # Brach's, eps = 0
     assert rec.determined, rec.messages
     assert rec.values["vehicle1.speed"] == pytest.approx(9.0, abs=1e-6)
     assert rec.values["vehicle2.speed"] == pytest.approx(11.0, abs=1e-6)
