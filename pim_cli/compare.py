@@ -120,8 +120,13 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
         click.echo(f"warning: {text}", err=True)
     if rep.animation is not None and rep.animation.secondary_impact is not None:
         click.echo(f"warning: {rep.animation.secondary_impact.message()}", err=True)
-    click.echo(f"wrote {rep.report} ({len(rep.files)} files) in "
-               f"{time.perf_counter() - started:.1f} s")
+    _wrote(rep, started)
+
+
+def _wrote(rep, started: float) -> None:
+    """The last line: the deliverable, report.html (and report.md beside it)."""
+    click.echo(f"wrote {rep.html} (and {rep.report.name}; {len(rep.files)} files in "
+               f"{rep.out_dir}) in {time.perf_counter() - started:.1f} s")
 
 
 def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, **kwargs):
@@ -147,8 +152,7 @@ def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, **kwa
     click.echo(f"{case.name}: {setup.describe()}; {error}")
     for text in warnings_of(case, setup.result):
         click.echo(f"warning: {text}", err=True)
-    click.echo(f"wrote {rep.report} ({len(rep.files)} files) in "
-               f"{time.perf_counter() - started:.1f} s")
+    _wrote(rep, started)
 
 
 
@@ -259,10 +263,10 @@ def _check_suffix(path, option: str, suffix: str) -> None:
 def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, progress, as_json):
     """Sweep the simulator's dt, iterations, contact start and geometry for each CASE.
 
-    Writes, per case, speed-error-CASE.md (table of the Pareto front and every run),
-    speed-error-CASE.csv and speed-error-CASE.png (log-log error against wall time per
+    Writes, per case, speed-error-CASE.md and .html (table of the Pareto front and every
+    run), speed-error-CASE.csv and speed-error-CASE.png (log-log error against wall time per
     impact, with the Pareto front, PIM's own time and error and the recommended setting).
-    With --compliant (default) also speed-error-compliant-CASE.md/.csv/.png: the
+    With --compliant (default) also speed-error-compliant-CASE.md/.html/.csv/.png: the
     finite-duration contact stepped by pymunk over dt and integrated by solve_ivp over
     rtol, against a tight solve_ivp reference. "hard" stands for every bundled hard case.
     """
@@ -293,7 +297,8 @@ def _speed_error_runs(names, folder, out, eps, beta, repeats, coarse, compliant,
     (with the line to print under ``"line"``)."""
     from pim.io.casefile import load_case
 
-    from comparisons.studies.speed_error import COARSE, sweep, write_study
+    from comparisons.report.speed_error import write_speed_error
+    from comparisons.studies.speed_error import COARSE, sweep
 
     results = []
     for name in names:
@@ -303,7 +308,8 @@ def _speed_error_runs(names, folder, out, eps, beta, repeats, coarse, compliant,
         grid["repeats"] = repeats
         study = sweep(case, eps, beta, progress=progress, **grid)
         stem = case.name or Path(name).stem
-        files = write_study(study, folder, stem, command=_command(name, coarse, repeats, out))
+        files = write_speed_error(study, folder, stem,
+                                  command=_command(name, coarse, repeats, out))
         rec = study.recommended()
         results.append({"case": stem, "files": [str(f) for f in files],
                         "recommended": None if rec is None else
@@ -314,13 +320,14 @@ def _speed_error_runs(names, folder, out, eps, beta, repeats, coarse, compliant,
                         "analytic_time": study.analytic_time,
                         "analytic_batch_time": study.analytic_batch_time})
         if compliant:
+            from comparisons.report.speed_error import write_compliant
             from comparisons.studies.speed_error_compliant import COARSE as CCOARSE
-            from comparisons.studies.speed_error_compliant import compliant_sweep, write_compliant_study
+            from comparisons.studies.speed_error_compliant import compliant_sweep
 
             cgrid = dict(CCOARSE) if coarse else {"repeats": repeats}
             cstudy = compliant_sweep(case, eps, progress=progress, **cgrid)
-            cfiles = write_compliant_study(cstudy, folder, stem,
-                                           command=_command(name, coarse, repeats, out))
+            cfiles = write_compliant(cstudy, folder, stem,
+                                     command=_command(name, coarse, repeats, out))
             results[-1]["files"] += [str(f) for f in cfiles]
             results[-1]["compliant"] = {
                 scene: None if cstudy.recommended(scene) is None else
@@ -366,7 +373,9 @@ def hard_cases(out, units, progress, as_json):
     and the dt / iterations the simulator needs to reach 1e-6 (or why it cannot)."""
     from pim.io.output import output_folder, rebase
 
-    from comparisons.studies.hard_cases import run_hard_cases, write_hard_cases
+    from comparisons.report.hard_cases import write_hard_cases
+    from comparisons.report.render import markdown_table
+    from comparisons.studies.hard_cases import run_hard_cases
 
     folder = Path(out) if out else Path("out") / "hard-cases"
     with output_folder(folder, command="pim hard-cases", merge=True) as tmp:
@@ -375,9 +384,9 @@ def hard_cases(out, units, progress, as_json):
     if as_json:
         echo_json({"files": [str(f) for f in files], "cases": study.to_json()})
         return
-    click.echo(study.results_table(units).to_markdown())
+    click.echo(markdown_table(study.results_table(units)))
     click.echo("")
-    click.echo(study.needs_table().to_markdown())
+    click.echo(markdown_table(study.needs_table()))
     click.echo(f"\nwrote {', '.join(str(f) for f in files)}")
 
 
@@ -407,7 +416,8 @@ def assumptions(case_name, out, eps, beta, executor, no_animation, progress, as_
     from pim.io.casefile import load_case
     from pim.io.output import output_folder, rebase, worker_pool
 
-    from comparisons.studies.assumptions import run_assumptions, write_assumptions
+    from comparisons.report.assumptions import write_assumptions
+    from comparisons.studies.assumptions import run_assumptions
 
     case = load_case(case_name)
     require_brach(case, "pim assumptions")

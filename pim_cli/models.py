@@ -11,9 +11,11 @@ import click
 from tqdm.auto import tqdm
 
 from pim_cli.main import echo_json, json_option
-from pim.io.files import save_figure, writable_folder, write_text
+from pim.io.files import writable_folder
 
-from comparisons.studies.pulses import compare_pulses, plot_pulses, pulse_table
+from comparisons.report.pulses import write_pulses
+from comparisons.report.render import markdown_table
+from comparisons.studies.pulses import compare_pulses, pulse_table
 from comparisons.report.tuned import verdict, write_tuned_study
 from comparisons.studies.tuned_scene import COARSE_STEPS, coarse_check, crash_classes, study_class
 
@@ -94,23 +96,13 @@ def pulses(out, stiffness, eps, units, as_json):
     folder = writable_folder(Path(out) if out else Path("out") / "pulses")
     c = compare_pulses(stiffness, eps)
     table = pulse_table(c, units)
-    png = save_figure(plot_pulses(c, units), folder / "pulses.png")
     cmd = _command("pulses", out=out, stiffness=stiffness, eps=eps,
                    units=units if units != "si" else None)
-    text = "\n".join([
-        "# Crash pulse: NHTSA 10146 against the contact law", "", f"Regenerate with `{cmd}`.",
-        "", f"Source: {c.source}", "",
-        f"Contact law at the test's speed ({c.speed:.2f} m/s, {c.mass:.0f} kg): linear "
-        f"loading stiffness {c.stiffness / 1e3:.0f} kN/m, restitution {c.eps:.3f}. "
-        f"RMS difference over the record: force {c.force_rms / 1e3:.0f} kN, delta-V "
-        f"{c.delta_v_rms:.2f} m/s.", "", table.to_markdown(), "", "![pulses](pulses.png)",
-        ""])
-    md = write_text(folder / "pulses.md", text)
-    files = [md, table.write_csv(folder), png]
+    files = write_pulses(c, folder, units, cmd)
     if as_json:
         echo_json({"files": [str(f) for f in files], "rows": [dict(zip(table.columns, r,
                                                                         strict=True))
                                                                for r in table.rows]})
         return
-    click.echo(table.to_markdown())
-    click.echo(f"wrote {md}")
+    click.echo(markdown_table(table))
+    click.echo(f"wrote {files[0]}")

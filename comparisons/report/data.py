@@ -1,9 +1,10 @@
-"""What ``pim compare`` found for one case, as one typed object that renderers consume.
+"""What ``pim compare`` found for one case, as one typed object.
 
 :func:`comparisons.report.compare.gather_report` fills a :class:`ReportData` (results, tables,
-figures, the animation, the studies, timings); :mod:`comparisons.report.render` turns it into
-Markdown and CSV files. A new format (HTML) is a new renderer of the same object: the
-gathering does not change.
+figures, the animation, the studies, timings);
+:func:`comparisons.report.compare_document.compare_document` turns it into the report's
+:class:`~comparisons.report.document.Document`, which the one pipeline renders (Markdown,
+HTML, CSV).
 """
 
 from __future__ import annotations
@@ -43,6 +44,10 @@ class ReportData:
         The least-squares fit, when one was made.
     warnings : list of str
         Plausibility warnings (:func:`pim.model.plausibility.warnings_of`).
+    spread : pim.analysis.montecarlo.UncertaintyResult or None
+        The Monte Carlo of the case's ``[uncertainty]`` table (the 5-95 % intervals).
+    misfit : pim.analysis.misfit.Misfit or None
+        Each measured quantity against the answer.
     simulated : sim.SimResult or None
         The pymunk cross-check (None when it failed: ``sim_error``).
     sim_error : sim.SimulationError or None
@@ -64,7 +69,8 @@ class ReportData:
     assumptions : comparisons.studies.assumptions.AssumptionStudy or None
         PIM's assumptions at typical values.
     files : list of str
-        Every file written besides the report itself, relative to the report folder.
+        The figures and videos written (the report's own files come from its document),
+        relative to the report folder.
     seconds : dict of str to float
         Wall and CPU time per step [s].
     """
@@ -79,6 +85,8 @@ class ReportData:
     tables: dict = field(default_factory=dict)
     fit: object = None
     warnings: list = field(default_factory=list)
+    spread: object = None
+    misfit: object = None
     simulated: object = None
     sim_error: object = None
     limits: list = field(default_factory=list)

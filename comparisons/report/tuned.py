@@ -1,4 +1,5 @@
-"""Tables, plot, verdicts and files of the tuned-scene study (:mod:`comparisons.studies.tuned_scene`).
+"""Tables, plot, verdicts and report of the tuned-scene study (``pim validate-models``,
+:mod:`comparisons.studies.tuned_scene`), written through the one report pipeline.
 
 Consumes :class:`comparisons.studies.tuned_scene.ClassStudy` objects; speaks the user's units
 (``units`` "si" or "us" through :func:`pim.io.units.convert`).
@@ -11,14 +12,16 @@ from pathlib import Path
 
 import numpy as np
 
-from pim.io.files import save_figure, write_text
+from pim.io.files import save_figure
 from pim.io.units import convert
 
-from comparisons.report.tables import Table
+from comparisons.report.document import Bullets, Document, Figure, Paragraph, Section
+from comparisons.report.tables import Table, fmt_value
+from comparisons.report.write import write_document
 from comparisons.studies.tuned_scene import UNRUNNABLE, ClassStudy
 
 __all__ = ["KINDS", "predictions_table", "summary_table", "verdict", "plot_tuned_study",
-           "write_tuned_study", "median_errors"]
+           "tuned_document", "write_tuned_study", "median_errors"]
 
 KINDS = ("per-test fit", "class fit", "leave-one-out")
 
@@ -60,7 +63,7 @@ def predictions_table(studies, units: str = "si") -> Table:
                   "time [ms]"), tuple(rows),
                  {f"delta-V error [{su}]": f2, f"velocity error [{su}]": f2,
                   "yaw error [deg/s]": lambda x: "" if x != x else f"{x:.1f}",
-                  "time [ms]": lambda x: f"{x:.3g}"})
+                  "time [ms]": fmt_value})
 
 
 def summary_table(studies, units: str = "si") -> Table:
@@ -85,7 +88,7 @@ def summary_table(studies, units: str = "si") -> Table:
                   "class parameters"), tuple(rows),
                  {f"median abs delta-V error [{su}]": f2, f"median velocity error [{su}]": f2,
                   "median yaw error [deg/s]": lambda x: "" if x != x else f"{x:.1f}",
-                  "time per prediction [ms]": lambda x: f"{x:.3g}"})
+                  "time per prediction [ms]": fmt_value})
 
 
 def verdict(study: ClassStudy, units: str = "si") -> str:
@@ -144,34 +147,43 @@ def plot_tuned_study(studies, units: str = "si"):
     return fig
 
 
-def write_tuned_study(studies, out_dir, units: str = "si", command: str = "",
-                      checks: dict | None = None) -> list[Path]:
-    """Write tuned-scene.md, the two CSV tables and tuned-scene.png into ``out_dir``.
+def tuned_document(studies, units: str = "si", command: str = "",
+                   checks: dict | None = None) -> Document:
+    """The study as a report: one verdict per class, what was not run, the coarse scene's
+    check against a finer one, the plot, the medians and every prediction.
 
     ``checks``: class -> (speed, yaw-rate) difference of the coarse scene against the fine
-    one at the class parameters [m/s, rad/s], stated in the report.
+    one at the class parameters [m/s, rad/s].
     """
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    full, summary = predictions_table(studies, units), summary_table(studies, units)
-    png = save_figure(plot_tuned_study(studies, units), out / "tuned-scene.png")
     su = convert(1.0, "speed", units)[1]
-    lines = ["# The finite-duration scene tuned to crash tests, against PIM", ""]
-    if command:
-        lines += [f"Regenerate with `{command}`.", ""]
-    lines += [verdict(st, units) for st in studies]
-    lines += [""] + [f"- {name}: not run ({why})." for name, why in UNRUNNABLE.items()]
+    notes = [f"{name}: not run ({why})." for name, why in UNRUNNABLE.items()]
     for name, (dv, dw) in (checks or {}).items():
-        lines.append(f"- {name}: the coarse scene differs from a 10x finer one by "
+        notes.append(f"{name}: the coarse scene differs from a 10x finer one by "
                      f"{_speed(dv, units):.3f} {su} and {math.degrees(dw):.2f} deg/s at the "
                      f"class parameters.")
-    total = sum(st.wall_time for st in studies)
-    lines += [f"- study time {total:.0f} s.", "",
-              "PIM parameters: epsilon, beta. Scene parameters: epsilon, mu_c (between the "
-              "vehicles), T [s] (contact duration), mu_tyre. Errors: |delta-V| predicted minus "
-              "measured, length of the post-impact velocity error, |yaw-rate error|, the "
-              "largest over the moving vehicles.", "", "![leave-one-out](tuned-scene.png)", "",
-              "## Medians", "", summary.to_markdown(), "", "## Every prediction", "",
-              full.to_markdown(), ""]
-    md = write_text(out / "tuned-scene.md", "\n".join(lines))
-    return [md, summary.write_csv(out), full.write_csv(out), png]
+    notes.append(f"study time {sum(st.wall_time for st in studies):.0f} s.")
+    blocks = ([Paragraph(f"Regenerate with `{command}`.")] if command else []) + [
+        *(Paragraph(verdict(st, units)) for st in studies), Bullets(tuple(notes)),
+        Paragraph("PIM parameters: epsilon, beta. Scene parameters: epsilon, mu_c (between "
+                  "the vehicles), T [s] (contact duration), mu_tyre. Errors: |delta-V| "
+                  "predicted minus measured, length of the post-impact velocity error, "
+                  "|yaw-rate error|, the largest over the moving vehicles."),
+        Figure("tuned-scene.png", alt="leave-one-out")]
+    return Document("The finite-duration scene tuned to crash tests, against PIM",
+                    "pim validate-models", (
+                        Section("verdicts", "Verdicts", tuple(blocks), keep=True),
+                        Section("medians", "Medians", (summary_table(studies, units),)),
+                        Section("predictions", "Every prediction",
+                                (predictions_table(studies, units),))),
+                    name="tuned-scene")
+
+
+def write_tuned_study(studies, out_dir, units: str = "si", command: str = "",
+                      checks: dict | None = None) -> list[Path]:
+    """Write tuned-scene.md (first in the list), tuned-scene.html, the two CSV tables and
+    tuned-scene.png into ``out_dir`` through the one report pipeline (:func:`tuned_document`)."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    png = save_figure(plot_tuned_study(studies, units), out / "tuned-scene.png")
+    written = write_document(tuned_document(studies, units, command, checks), out)
+    return [written[-1], *written[:-2], written[-2], png]

@@ -48,14 +48,11 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field, fields, replace
-from pathlib import Path
 
 import numpy as np
 
 import pim
 import sim
-from pim.io import html as h
-from pim.io.files import save_figure, write_text
 from pim.io.units import convert
 from pim.model.numbers import InputError
 from sim.compliant_setup import build_problem, rotate
@@ -63,16 +60,13 @@ from sim.contact_law import stiffness_for_duration, tangential_recovery_default
 from sim.error_measure import ERROR_DEFINITION, impact_error
 from sim.sweep import sweep
 
-from comparisons.animation.render import build_renderer, write_animation
 from comparisons.studies.coefficients import coefficients
-from comparisons.report.html import assumption_tables
 from comparisons.report.tables import Table, fmt_error
 
 __all__ = ["Scene", "SceneRun", "Rung", "Ladder", "AssumptionStudy", "RUNGS", "TYPICAL",
            "DURATIONS", "STIFF_LIMIT", "HOLDS", "ROUGHLY", "ASSUMPTION_FIELDS",
            "changed_assumptions", "ladder_scenes", "run_assumptions", "assumption_table",
-           "sweep_table", "plot_overview", "write_assumptions", "assumptions_markdown",
-           "outcome_errors", "LEGACY_KEYS", "legacy_sweeps", "ladder_intro"]
+           "sweep_table", "plot_overview", "outcome_errors", "LEGACY_KEYS", "legacy_sweeps", "ladder_intro"]
 
 #: Marginal effect below which an assumption is negligible, and below which it is moderate.
 HOLDS, ROUGHLY = 0.05, 0.15
@@ -920,94 +914,3 @@ def plot_overview(study: AssumptionStudy):
     fig.suptitle(f"{study.case.name or 'case'}: PIM's assumptions one at a time "
                  f"(epsilon = {study.eps:.3g}, PIM at beta = {study.beta_pim:g})", fontsize=11)
     return fig
-
-
-def write_assumptions(study: AssumptionStudy, out_dir, *, animation: bool = True,
-                      progress: bool | None = None, command: str = "") -> list[Path]:
-    """Write assumptions.md, the tables (CSV), the plot (PNG) and the MP4 to ``out_dir``."""
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    table, every = assumption_table(study), sweep_table(study)
-    files = [table.write_csv(out), every.write_csv(out),
-             save_figure(plot_overview(study), out / "assumptions.png")]
-    info = None
-    if animation and study.animation_result is not None:
-        r = study.animation_result
-        ghost = pim.solve(study.case, study.eps, study.beta_pim)
-        renderer = build_renderer(
-            study.case, study.eps, study.beta_pim, result=ghost, simulated=r,
-            after=max(0.1, float(r.trajectory.time[-1]) - 0.05),
-            title=f"{study.case.name or 'case'}: finite-duration crush ({r.geometry}, "
-                  f"{1e3 * r.contact_duration:.0f} ms), PIM ghost eps = {study.eps:.3g}, "
-                  f"beta = {study.beta_pim:g}")
-        info = write_animation(renderer, out / "assumptions.mp4", progress=progress)
-        files.append(info.path)
-    files.append(write_text(out / "assumptions.html",
-                            assumptions_html(study, table, out, info, command)))
-    files.append(write_text(out / "assumptions.md",
-                            assumptions_markdown(study, table, info, command)))
-    return files
-
-
-def assumptions_html(study: AssumptionStudy, table: Table, out_dir, info=None,
-                     command: str = "") -> str:
-    """The study as one self-contained HTML page: the verdicts, the table at typical values
-    split into parts one screen wide, the plots and the animation inline (read from
-    ``out_dir``, where :func:`write_assumptions` wrote them)."""
-    out = Path(out_dir)
-    parts = assumption_tables(table)
-    sections = [
-        h.section("Verdicts", [h.paragraph(
-            f"A ladder of finite-duration crush scenes (docs/contact-model.md), each differing "
-            f"from the one below in one assumption of PIM; epsilon = {study.eps:.4g}, PIM at "
-            f"beta = {study.beta_pim:g}. The marginal effect of an assumption is the impact "
-            f"error between its scene and the scene below at the same contact time; the "
-            f"cumulative one is PIM's error against the scene. Impact error: "
-            f"{ERROR_DEFINITION}."), h.bullets(study.verdicts())], id="verdicts", cls="keep"),
-        h.section(f"The ladder at {1e3 * study.typical.duration:g} ms", [*parts, h.paragraph(
-            "eps_eff, beta_eff: what `pim fit` needs to reproduce the simulated motion; C_eff: "
-            "the impulse centroid. Every scene: `assumption_sweeps.csv`.")], id="typical"),
-        h.section("Over contact times, tyre friction and the tangential recovery",
-                  h.figure(out / "assumptions.png", alt="the ladder's effects"), id="sweeps")]
-    if info is not None:
-        mp4 = out / "assumptions.mp4"
-        sections.append(h.section("Animation", h.video(
-            mp4, frames=info.frames, fps=info.fps, size=info.size,
-            still=h.still_frame(mp4, 0.5), caption="The finite-duration scene (filled) with "
-            "PIM's answer as a dashed ghost: `assumptions.mp4`.")
-            + ("" if info.secondary_impact is None else h.paragraph(
-                f"**Warning:** {info.secondary_impact.message()}.")), id="animation"))
-    return h.page(f"{study.case.name or 'case'}: which of PIM's assumptions hold", sections,
-                  subtitle=(f"Regenerate with `{command}`. " if command else "")
-                  + "The same as text: `assumptions.md`.",
-                  contents=[("verdicts", "Verdicts"), ("typical", "The ladder"),
-                            ("sweeps", "Plots"), ("animation", "Animation")][:len(sections)],
-                  generator="pim assumptions")
-
-
-def assumptions_markdown(study: AssumptionStudy, table: Table, info=None,
-                         command: str = "") -> str:
-    """The study as Markdown."""
-    name = study.case.name or "case"
-    lines = [f"# {name}: PIM's assumptions one at a time", ""]
-    if command:
-        lines += [f"Regenerate with `{command}`.", ""]
-    lines += [f"A ladder of finite-duration crush scenes (docs/contact-model.md), each "
-              f"differing from the one below in one assumption of PIM; epsilon = "
-              f"{study.eps:.4g}, PIM at beta = {study.beta_pim:g}. The *marginal* effect of "
-              f"an assumption is the impact error between its scene and the scene below at "
-              f"the same contact time; the *cumulative* one is PIM's error against the scene. "
-              f"Impact error: {ERROR_DEFINITION} (sim.error_measure.impact_error).", ""]
-    lines += ["## Verdicts", ""] + [f"- {v}" for v in study.verdicts()] + [""]
-    lines += [f"## The ladder at {1e3 * study.typical.duration:g} ms", "", table.to_markdown(),
-              "", "eps_eff, beta_eff: what `pim fit` (velocities and yaw rates) needs to "
-              "reproduce the simulated motion; C_eff: the impulse centroid.", ""]
-    lines += ["![assumptions](assumptions.png)", ""]
-    if info is not None:
-        lines += [f"[assumptions.mp4](assumptions.mp4): the finite-duration scene (filled) "
-                  f"with PIM's answer as a dashed ghost ({info.frames} frames).", ""]
-        if info.secondary_impact is not None:
-            lines += [f"**Warning:** {info.secondary_impact.message()}.", ""]
-    lines += [f"Every scene: [assumption_sweeps.csv](assumption_sweeps.csv). Run time "
-              f"{study.seconds:.1f} s.", ""]
-    return "\n".join(lines)

@@ -32,6 +32,7 @@ import sim
 from pim.io.units import convert
 from sim.crash_data import CrashTest, nhtsa10146
 
+from comparisons.report.number_format import format_number
 from comparisons.report.tables import Table
 
 __all__ = ["PulseMetrics", "PulseComparison", "pulse_metrics", "barrier_pulse_case",
@@ -224,10 +225,13 @@ def pulse_table(c: PulseComparison, units: str = "si") -> Table:
                      100.0 * (b - a) / a if a else math.nan))
     return Table("pulses-nhtsa10146", "NHTSA 10146 against the contact law",
                  ("quantity", "unit", "measured", "contact law", "error", "error [%]"),
-                 tuple(rows), {"measured": lambda x: f"{x:.3g}",
-                               "contact law": lambda x: f"{x:.3g}",
-                               "error": lambda x: f"{x:+.3g}",
-                               "error [%]": lambda x: "" if x != x else f"{x:+.1f}"})
+                 tuple(rows), {"measured": _three, "contact law": _three, "error": _three,
+                               "error [%]": _three})
+
+
+def _three(x) -> str:
+    """Three significant digits in the reports' one number format."""
+    return format_number(x, sig=3)
 
 
 def plot_pulses(c: PulseComparison, units: str = "si"):

@@ -31,13 +31,11 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, replace
-from pathlib import Path
 
 import numpy as np
 
 import pim
 import sim
-from pim.io.files import save_figure, write_text
 from sim.error_measure import impact_error
 
 from comparisons.studies.speed_error import ERROR_FLOOR, pareto_front
@@ -46,7 +44,7 @@ from comparisons.report.tables import Table, fmt_error
 __all__ = ["CompliantPoint", "CompliantSpeedStudy", "compliant_sweep", "STEPS", "RTOLS",
            "TARGET", "SCENES", "COARSE", "REFERENCE_RTOLS", "REFERENCE_STEPS", "RUN_BUDGET",
            "reference_within_budget", "Reference", "plot_compliant_speed_error",
-           "write_compliant_study"]
+           "compliant_table"]
 
 STEPS = (10, 20, 40, 80, 160, 320, 640, 1280, 2560)
 RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
@@ -358,38 +356,3 @@ def plot_compliant_speed_error(study: CompliantSpeedStudy):
         ax.legend(fontsize=7.5)
     axes[0].set_ylabel(f"error against solve_ivp at rtol {study.reference_rtol:g} [-]")
     return fig
-
-
-def write_compliant_study(study: CompliantSpeedStudy, out_dir, stem: str,
-                          command: str = "") -> list[Path]:
-    """Write ``speed-error-compliant-STEM.md``, ``.csv`` and ``.png``."""
-
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    table = compliant_table(study, f"speed-error-compliant-{stem}")
-    png = save_figure(plot_compliant_speed_error(study), out / f"speed-error-compliant-{stem}.png")
-    lines = [f"# Speed against error of the finite-duration contact: {study.case_name}", ""]
-    if command:
-        lines += [f"Regenerate with `{command}`.", ""]
-    lines += [f"Point contact, epsilon = {study.eps:.4g}, k = {study.stiffness:.3g} N/m; "
-              f"pymunk over dt (10 ... 2560 steps per estimated contact time), solve_ivp "
-              f"DOP853 and Radau over rtol, against DOP853 at rtol {study.reference_rtol:g} "
-              f"(the tightest within {REFERENCE_STEPS} steps per scene; it differs from the "
-              f"rung before by {study.reference_spread:.1e}). Whole study: "
-              f"{study.wall_time:.1f} s. Error: the largest error in "
-              f"the impact's velocity changes, relative to the largest change.", ""]
-    for scene in dict.fromkeys(p.scene for p in study.points):
-        rec = study.recommended(scene)
-        text = (f"**recommended {rec.label}**: error {rec.error:.1e} in "
-                f"{rec.wall_time * 1e3:.3g} ms" if rec else "no run reaches the target")
-        lines.append(f"- {scene}: {text}.")
-        for integrator in ("pymunk", "DOP853", "Radau"):
-            for target in (1e-3, 1e-6):
-                p = study.fastest(scene, integrator, target)
-                if p is not None:
-                    lines.append(f"  - {integrator} reaches {target:g} at {p.label}: "
-                                 f"{p.wall_time * 1e3:.3g} ms per impact")
-    lines += ["", f"![speed against error](speed-error-compliant-{stem}.png)", "",
-              table.to_markdown(), ""]
-    md = write_text(out / f"speed-error-compliant-{stem}.md", "\n".join(lines))
-    return [md, table.write_csv(out), png]

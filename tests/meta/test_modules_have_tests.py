@@ -31,6 +31,7 @@ EXCEPTIONS = {
     "sim/compliant_setup.py": "sim/test_compliant.py",
     "comparisons/animation/motion.py": "comparisons/animation/test_render.py",
     "pim/plotting/validation.py": "pim/analysis/test_validation.py",
+    "comparisons/report/assumptions.py": "comparisons/studies/test_assumptions.py",
 }
 COMMAND_GROUP = "pim_cli.main"
 

@@ -12,7 +12,7 @@ def test_pulses_command(tmp_path, capsys):
     assert code == 0
     data = json.loads(capsys.readouterr().out)
     assert {p.split("/")[-1] for p in data["files"]} == {"pulses.md", "pulses-nhtsa10146.csv",
-                                                         "pulses.png"}
+                                                         "pulses.html", "pulses.png"}
     assert "pim pulses" in (tmp_path / "pulses.md").read_text()
 
 

@@ -36,7 +36,8 @@ def test_files(tmp_path):
     files = R.write_tuned_study([st], tmp_path, "si", "pim validate-models",
                                 {"class A": (0.01, 0.002)})
     assert [f.name for f in files] == ["tuned-scene.md", "tuned-scene-summary.csv",
-                                       "tuned-scene-predictions.csv", "tuned-scene.png"]
+                                       "tuned-scene-predictions.csv", "tuned-scene.html",
+                                       "tuned-scene.png"]
     md = files[0].read_text()
     assert "pim validate-models" in md and "iihs-car-to-car: not run" in md
     summary = R.summary_table([st]).rows

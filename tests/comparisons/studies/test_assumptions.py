@@ -10,6 +10,7 @@ import pytest
 import pim
 import sim
 from comparisons.studies import assumptions as A
+from comparisons.report.assumptions import write_assumptions
 from pim_cli.main import main
 from sim.error_measure import impact_error
 
@@ -166,7 +167,7 @@ def test_tables_and_plots(summary, tmp_path):
     assert all(math.isfinite(v) for v in table.column("beta_eff [-]"))
     every = A.sweep_table(summary)
     assert len(every.rows) >= len(table.rows) + 3
-    files = A.write_assumptions(summary, tmp_path, animation=False)
+    files = write_assumptions(summary, tmp_path, animation=False)
     text = (tmp_path / "assumptions.md").read_text()
     assert "## Verdicts" in text and "marginal" in text and "cumulative" in text
     assert {f.name for f in files} >= {"assumptions.md", "assumptions.csv", "assumptions.png",

@@ -6,6 +6,7 @@ from pathlib import Path
 import pytest
 
 import pim
+from comparisons.report.speed_error import write_compliant
 from comparisons.studies import speed_error_compliant as S
 from pim.io.casefile import load_case
 
@@ -33,8 +34,12 @@ def test_pareto_front_and_recommendation(study, tmp_path):
                for a, b in zip(front, front[1:], strict=False))
     rec = study.recommended("frictionless")
     assert rec is not None and rec.error <= S.TARGET and rec in front
-    files = S.write_compliant_study(study, tmp_path, "ricsac9")
+    files = write_compliant(study, tmp_path, "ricsac9")
     assert all(f.exists() for f in files)
+    assert [f.name for f in files] == ["speed-error-compliant-ricsac9.md",
+                                       "speed-error-compliant-ricsac9.csv",
+                                       "speed-error-compliant-ricsac9.html",
+                                       "speed-error-compliant-ricsac9.png"]
     assert "recommended" in files[0].read_text()
 
 

@@ -1,0 +1,165 @@
+"""Issue 28, item 4: the report of `pim compare ricsac9` leads with the answer.
+
+Each defect the issue found on RICSAC 9 (the exact case) is checked on the written report:
+the top cards were epsilon, beta, mu and the simulator's error, not delta-V and PDOF;
+`|delta-V| 28.0467 ft/s` beside a 5-95 % range 24.81 to 31.27 (false precision); `31485.5 |
+2.745e+04 to 3.581e+04` (two formats); the fit's misfit never stated (vehicle 2's yaw rate
+87.3 deg/s in the model against 45 measured, rms residual 4.09 ft/s); `0.0000 ms`; the main
+job printed `wrote out/ricsac9/report.md` while report.html is the deliverable. And
+round-off shown as 0 (`tangential crush energy 4.96e-16 kJ`), on the elastic frictionless
+hard case whose energy loss is round-off. The expected digits follow from the rule (two
+significant digits of the interval's half-width), the misfit's sigmas from the published
+tolerances (1 mph, 10 deg/s; Brach, Welsh & Brach, SAE 2014-01-0469).
+"""
+
+import contextlib
+import io
+import re
+
+import pytest
+
+import pim
+from comparisons.report.compare_tables import (
+    answer_cards,
+    estimates,
+    misfit_sentence,
+    misfit_table,
+    results_table,
+    roundoff_scales,
+)
+from pim.analysis.misfit import misfit
+from pim_cli.main import main
+
+
+def run(args):
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        code = main(args)
+    assert code == 0
+    return out.getvalue()
+
+
+@pytest.fixture(scope="module")
+def ricsac9(tmp_path_factory):
+    """`pim compare ricsac9` with the speed-error sweep (its Pareto table held 0.0000 ms)."""
+    folder = tmp_path_factory.mktemp("leads") / "ricsac9"
+    said = run(["compare", "ricsac9", "--out", str(folder), "--no-progress",
+                "--no-animation", "--no-assumptions"])
+    return folder, said, (folder / "report.md").read_text(), \
+        (folder / "report.html").read_text()
+
+
+def section(md, title):
+    return md.split(f"## {title}\n")[1].split("\n## ")[0]
+
+
+def test_the_report_opens_with_delta_v_and_pdof_not_the_coefficients(ricsac9):
+    _, _, md, page = ricsac9
+    cards = re.findall(r"<dt>(.*?)</dt>", page.split('id="results"')[1])
+    assert cards[:2] == ["delta-V, vehicle 1", "delta-V, vehicle 2"]
+    assert cards[2:4] == ["PDOF, vehicle 1", "PDOF, vehicle 2"]
+    assert "kinetic energy lost" in cards
+    assert not {"epsilon", "beta", "pymunk against PIM", "units"} & set(cards)
+    first = section(md, "Results").strip().splitlines()[0]
+    assert first == "- **delta-V, vehicle 1: 28.0 ft/s** (5-95 %: 24.8 to 31.3)"
+
+
+def test_digits_match_the_interval(ricsac9):
+    _, _, md, _ = ricsac9
+    row = next(line for line in md.splitlines() if line.startswith("| \\|delta-V\\|"))
+    assert row.split(" | ")[1:3] == ["28.0", "12.9"]            # not 28.0467, 12.9195
+    assert "| 24.8 | 31.3 | 11.4 | 14.5 |" in row
+    pdof = next(line for line in md.splitlines() if line.startswith("| PDOF (clockwise"))
+    assert "| -27.1 | 62.9 | deg | -30.0 | -24.6 | 60.0 | 65.4 |" in pdof
+
+
+def test_one_number_format_for_a_value_and_its_interval(ricsac9):
+    _, _, md, _ = ricsac9
+    energy = next(line for line in md.splitlines() if line.startswith("| energy lost"))
+    assert "| 31500 |" in energy and "| 27500 | 35800 |" in energy
+    results = section(md, "Results")
+    assert not re.search(r"\d\.\d+e[+-]\d+", results), results       # no 2.745e+04 here
+
+
+def test_the_misfit_is_stated_in_sigmas_with_a_sentence(ricsac9):
+    _, _, md, page = ricsac9
+    fit = section(md, "How well the answer fits the measurements")
+    row = next(line for line in fit.splitlines() if line.startswith("| vehicle 2 yaw rate"))
+    assert row.split(" | ")[1:] == ["deg/s", "45.0", "87.3", "42.3", "10", "tolerance",
+                                    "4.2 |"]
+    for text in (fit, section(md, "Results"), page):
+        assert "The fit is poor" in text
+    sentence = next(line for line in section(md, "Results").splitlines()
+                    if "The fit is poor" in line)
+    assert "vehicle 2 yaw rate 87.3 deg/s in the model against 45.0 measured (+4.2 sigma)" \
+        in sentence and "rms residual of 4.09 ft/s" in sentence
+
+
+def test_no_run_of_zeros_anywhere(ricsac9):
+    _, _, md, page = ricsac9
+    for text in (md, page):
+        assert not re.search(r"(?<![\d.])-?0\.0000(?![\d]*[1-9])", text)
+
+
+def test_the_coefficients_and_the_simulator_come_after_the_answer(ricsac9):
+    _, _, md, _ = ricsac9
+    heads = re.findall(r"^## (.+)$", md, flags=re.M)
+    assert heads[:3] == ["Results", "How well the answer fits the measurements",
+                         "Coefficients"]
+    assert heads.index("Appendix A: PIM against a pymunk simulation") > heads.index(
+        "The design sheet's plots")
+
+
+def test_the_command_prints_report_html_last(ricsac9):
+    folder, said, _, _ = ricsac9
+    last = said.strip().splitlines()[-1]
+    assert last.startswith(f"wrote {folder / 'report.html'} (and report.md")
+
+
+def test_round_off_is_shown_as_zero(tmp_path):
+    """hard-eps1-frictionless: elastic and frictionless, so every energy of the impact is 0;
+    round-off leaves 3.6e-11 J of a kinetic energy of about 1e5 J."""
+    out = tmp_path / "r"
+    run(["compare", "hard-eps1-frictionless", "--out", str(out), "--no-progress",
+         "--no-animation", "--no-assumptions", "--no-speed-error"])
+    md = (out / "report.md").read_text()
+    for label in ("energy lost", "normal crush energy", "tangential crush energy"):
+        row = next(line for line in md.splitlines() if line.startswith(f"| {label} |"))
+        assert row.split(" | ")[1] == "0", row
+    assert "e-1" not in section(md, "Results")
+
+
+def test_the_estimates_share_their_digits_and_scales():
+    case = pim.load_case("ricsac9")
+    result = pim.solve(case, 0.355, 1.0)
+    spread = pim.uncertainty(case, n=400, seed=0, eps=0.355, beta=1.0)
+    est = estimates(result, "us", spread)
+    assert est[("delta_v_x", 1)].decimals == est[("delta_v", 1)].decimals
+    assert est[("crush_tangential", 1)].decimals == est[("energy_loss", 1)].decimals
+    assert est[("energy_loss", 1)].interval().count(" to ") == 1
+    scales = roundoff_scales(result, "us")
+    assert scales["speed"] == pytest.approx(31.09)                       # ft/s, the case's
+    assert scales["energy"] == pytest.approx(float(result.kinetic_energy_before) / 1.35582,
+                                             rel=1e-4)                     # ft lbf
+    table = results_table(result, "us", spread)
+    assert table.columns[4:] == ("vehicle 1, 5 %", "vehicle 1, 95 %", "vehicle 2, 5 %",
+                                 "vehicle 2, 95 %")
+    assert [c.label for c in answer_cards(result, "us").cards][0] == "delta-V, vehicle 1"
+
+
+def test_a_barrier_has_no_delta_v_or_pdof_card_for_the_obstacle():
+    result = pim.solve(pim.load_case("hard-barrier"))
+    labels = [c.label for c in answer_cards(result, "si").cards]
+    assert labels == ["delta-V, vehicle 1", "PDOF, vehicle 1", "post-impact speed, vehicle 1",
+                      "kinetic energy lost"]
+
+
+def test_a_good_fit_gets_no_poor_sentence():
+    case = pim.load_case("ricsac9")
+    exact = pim.solve(case, 0.355, 1.0)
+    from dataclasses import replace
+    measured = pim.Measured(velocity1=exact.velocity1, velocity2=exact.velocity2,
+                            yaw_rate1=float(exact.yaw_rate1), yaw_rate2=float(exact.yaw_rate2))
+    found = misfit(pim.solve(replace(case, measured=measured), 0.355, 1.0))
+    assert not found.poor and misfit_sentence(found, "us") == ""
+    assert [r[-2] for r in misfit_table(found, "si").rows] == ["tolerance"] * 6
