@@ -112,6 +112,7 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
         return
     error = ("simulation failed" if rep.error != rep.error
              else f"pymunk vs PIM error {rep.error:.2e}")
+    _answer(rep.data.result, rep.data.units, rep.data.spread)
     click.echo(f"{case.name}: epsilon = {rep.eps:.6g}, beta = {rep.beta:.6g}; {error}")
     if rep.animation is not None:
         a = rep.animation
@@ -120,7 +121,27 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
         click.echo(f"warning: {text}", err=True)
     if rep.animation is not None and rep.animation.secondary_impact is not None:
         click.echo(f"warning: {rep.animation.secondary_impact.message()}", err=True)
+    _poor_fit(rep.data.result, rep.data.units, rep.data.fit)
     _wrote(rep, started)
+
+
+def _answer(result, units: str, spread=None) -> None:
+    """The answer the report leads with, one line per card."""
+    from comparisons.report.compare_tables import answer_cards
+
+    for card in answer_cards(result, units, spread).cards:
+        click.echo(f"{card.label}: {card.value}" + (f" ({card.note})" if card.note else ""))
+
+
+def _poor_fit(result, units: str, fit) -> None:
+    """A warning when the answer misses a measured quantity by more than 3 sigma."""
+    from pim.analysis.misfit import misfit
+
+    from comparisons.report.compare_tables import misfit_sentence
+
+    sentence = misfit_sentence(misfit(result), units, fit)
+    if sentence:
+        click.echo(f"warning: {sentence}", err=True)
 
 
 def _wrote(rep, started: float) -> None:
@@ -149,9 +170,11 @@ def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, **kwa
         return
     error = ("simulation failed" if rep.error != rep.error
              else f"pymunk vs analytic error {rep.error:.2e}")
+    _answer(setup.result, units or case.units)
     click.echo(f"{case.name}: {setup.describe()}; {error}")
     for text in warnings_of(case, setup.result):
         click.echo(f"warning: {text}", err=True)
+    _poor_fit(setup.result, units or case.units, None)
     _wrote(rep, started)
 
 

@@ -8,9 +8,9 @@ Prints the table in the case's units (``--units`` to change; speeds in mph in US
 customary unit of impact speeds); ``--json`` prints each unknown
 by its dotted name with its value, percentiles and unit in the same units (``units`` names
 the system), and the momentum check beside them. Writes DIR/report.md, DIR/report.html
-(the same as one self-contained page, figure and video inline),
-DIR/reconstruction.csv and, with evidence, DIR/scene.png and DIR/reconstruction.mp4 (the
-reconstructed crash from the impact to rest).
+(the same as one self-contained page, figure and video inline; its path is printed last),
+DIR/reconstruction.csv (DIR/pre_impact.csv with pre-impact evidence) and, with evidence,
+DIR/scene.png and DIR/reconstruction.mp4 (the reconstructed crash from the impact to rest).
 
 When the data cannot decide the unknowns, one line says what is missing and the exit code
 is 2: never a number. The inverse PIM applies the case's impact law (``impact.law``: Brach's
@@ -26,17 +26,6 @@ from pathlib import Path
 
 import click
 
-from pim.analysis.pre_impact_speeds import reconstruction_pre_impact
-from pim.analysis.reconstruction import Reconstruction
-from pim.analysis.reconstruction import reconstruct as run_reconstruction
-from pim.io.casefile import load_case
-from pim.io.files import save_figure
-from pim.io.output import output_folder, worker_pool
-from pim.io.units import convert
-from pim.model.numbers import InputError
-from pim.plotting.reconstruction_animation import write_reconstruction_mp4
-from pim.plotting.reconstruction_scene import reconstruction_figure
-from pim_cli.main import case_argument, echo_json, json_option, units_option
 from comparisons.report.document import Figure, Video
 from comparisons.report.pre_impact import pre_impact_json, pre_impact_lines, pre_impact_rows
 from comparisons.report.reconstruct import (
@@ -50,6 +39,17 @@ from comparisons.report.reconstruct import (
     tyre_models_line,
 )
 from comparisons.report.write import write_document
+from pim.analysis.pre_impact_speeds import reconstruction_pre_impact
+from pim.analysis.reconstruction import Reconstruction
+from pim.analysis.reconstruction import reconstruct as run_reconstruction
+from pim.io.casefile import load_case
+from pim.io.files import save_figure
+from pim.io.output import output_folder, worker_pool
+from pim.io.units import convert
+from pim.model.numbers import InputError
+from pim.plotting.reconstruction_animation import write_reconstruction_mp4
+from pim.plotting.reconstruction_scene import reconstruction_figure
+from pim_cli.main import case_argument, echo_json, json_option, units_option
 
 __all__ = ["reconstruct", "spread_text"]
 
@@ -112,6 +112,8 @@ def reconstruct(case_name, out, samples, seed, workers, video, progress, units, 
             rec, rows, pre = _reconstruct(case, samples, seed, workers, units, as_json, say)
         if tmp is not None:
             _write_folder(tmp, rec, rows, units, video, pre)
+    if out and not as_json:
+        click.echo(f"wrote {Path(out) / 'report.html'} (and report.md)")
 
 
 @contextlib.contextmanager

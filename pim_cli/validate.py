@@ -3,12 +3,14 @@ work and the report are :mod:`comparisons.report.validate`'s."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import click
 
+from comparisons.report.validate import run_validation, write_validation
 from pim.io.datasets import DATASETS
 from pim.io.output import output_folder, rebase
 from pim_cli.main import echo_json, json_option, units_option
-from comparisons.report.validate import run_validation, write_validation
 
 __all__ = ["validate"]
 
@@ -38,4 +40,4 @@ def validate(dataset, out, units, as_json):
         return
     for line in found.summary:
         click.echo(line)
-    click.echo(f"report: {written[0]}")
+    click.echo(f"wrote {Path(out) / 'report.html'} (and report.md)")

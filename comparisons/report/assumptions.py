@@ -11,9 +11,6 @@ from dataclasses import replace
 from pathlib import Path
 
 import pim
-from pim.io.files import save_figure
-from sim.error_measure import ERROR_DEFINITION
-
 from comparisons.animation.render import build_renderer, write_animation
 from comparisons.report.compare_document import ASSUMPTION_GROUPS
 from comparisons.report.document import (
@@ -32,6 +29,8 @@ from comparisons.studies.assumptions import (
     plot_overview,
     sweep_table,
 )
+from pim.io.files import save_figure
+from sim.error_measure import ERROR_DEFINITION
 
 __all__ = ["assumptions_document", "write_assumptions"]
 

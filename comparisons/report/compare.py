@@ -1,4 +1,5 @@
-"""``pim compare``: the whole story of one case in a folder -- report.md, CSVs, PNGs, MP4.
+"""``pim compare``: the whole story of one case in a folder -- report.html, report.md, CSVs,
+PNGs, MP4.
 
 The report opens with what a reconstruction hands on (results.csv): each vehicle's delta-V
 (magnitude, components, PDOF and clock position), post-impact speeds and yaw rates, the
@@ -17,9 +18,10 @@ the same time fails at once. The plots render in a forked worker process while t
 animation and the sweep run in this one (``parallel=False`` for one process).
 
 The work is split into gathering (:func:`gather_report` fills a
-:class:`~comparisons.report.data.ReportData`) and rendering it
-(:mod:`comparisons.report.render`: Markdown and CSV; :mod:`comparisons.report.html`:
-report.html, the same report as one self-contained page).
+:class:`~comparisons.report.data.ReportData`), stating it as the report's document
+(:func:`comparisons.report.compare_document.compare_document`: the answer first) and writing
+that through the one pipeline (:func:`comparisons.report.write.write_document`: the CSVs,
+report.html, the self-contained page, and report.md).
 
 The appendix also summarises PIM's assumptions at typical values (the finite-duration crush
 scene, :mod:`comparisons.studies.assumptions`; assumptions.csv); the full study is
@@ -42,18 +44,9 @@ import numpy as np
 
 import pim
 import sim
-from pim.analysis.misfit import misfit
-from pim.analysis.residuals import has_measured_terms
-from pim.io.files import save_figure
-from pim.io.output import ignore_interrupts, output_folder, rebase, stop_workers
-from pim.model.plausibility import warnings_of
-from pim.plotting.sheet import write_plots
-from sim.error_measure import compare_results, impact_error
-
 from comparisons.animation.render import build_renderer, write_animation
 from comparisons.report.compare_document import REPORT_NAME, compare_document
 from comparisons.report.compare_tables import (
-    crosscheck_table,
     fit_table,
     inputs_table,
     misfit_table,
@@ -62,12 +55,28 @@ from comparisons.report.compare_tables import (
 )
 from comparisons.report.data import ReportData
 from comparisons.report.html import HTML_NAME
+from comparisons.report.tables import Num, Table, fmt_error
 from comparisons.report.write import write_document
 from comparisons.studies.assumptions import assumption_table, run_assumptions
 from comparisons.studies.coefficients import coefficients
-from comparisons.studies.speed_error import COARSE, pareto_table, plot_speed_error, study_table, sweep
+from comparisons.studies.speed_error import (
+    COARSE,
+    pareto_table,
+    plot_speed_error,
+    study_table,
+    sweep,
+)
+from pim.analysis.misfit import misfit
+from pim.analysis.residuals import has_measured_terms
+from pim.io.files import save_figure
+from pim.io.output import ignore_interrupts, output_folder, rebase, stop_workers
+from pim.io.units import convert
+from pim.model.plausibility import warnings_of
+from pim.plotting.sheet import write_plots
+from sim.error_measure import KIND_OF_UNIT, compare_results, impact_error
 
-__all__ = ["Report", "CompareOptions", "compare_case", "gather_report", "write_report"]
+__all__ = ["Report", "CompareOptions", "compare_case", "gather_report", "write_report",
+           "crosscheck_table"]
 
 
 @dataclass
@@ -119,6 +128,19 @@ class Report:
     @property
     def html(self) -> Path:
         return self.out_dir / HTML_NAME
+
+
+def crosscheck_table(errors, units: str = "si") -> Table:
+    """Analytic against simulated, every post-impact quantity, in the ``units`` system."""
+    rows = []
+    for q in errors:
+        (a, s_, e), unit = convert(np.array([q.analytic, q.simulated, q.absolute]),
+                                   KIND_OF_UNIT[q.unit], units)
+        rows.append((q.label, unit, Num(float(a), sig=6), Num(float(s_), sig=6), float(e),
+                     q.relative))
+    return Table("crosscheck", "PIM (analytic) against pymunk (simulated), post-impact",
+                 ("quantity", "unit", "PIM", "pymunk", "absolute error", "relative error"),
+                 tuple(rows), formats={"absolute error": fmt_error, "relative error": fmt_error})
 
 
 def _coefficient_sources(case, eps, beta) -> tuple[float, float, dict, object]:

@@ -17,22 +17,21 @@ from dataclasses import replace
 
 import numpy as np
 
-from pim.io.units import convert
-
 from comparisons.report.compare_tables import answer_cards, misfit_sentence
 from comparisons.report.data import ReportData
 from comparisons.report.document import (
     Bullets,
     Callout,
     Document,
-    FileList,
     Figure,
+    FileList,
     Paragraph,
     Section,
     Video,
 )
 from comparisons.report.number_format import format_number
 from comparisons.report.write import document_files
+from pim.io.units import convert
 
 __all__ = ["compare_document", "ASSUMPTION_GROUPS", "REPORT_NAME", "ANIMATION_CAPTION"]
 

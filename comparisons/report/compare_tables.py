@@ -9,9 +9,9 @@ the digits its interval allows (two significant digits of the half-width,
 magnitude's), round-off is 0 (:func:`comparisons.report.number_format.round_off`, against the
 scale of its quantity: the closing speed, the kinetic energy before the impact), and the CSV
 keeps full precision. Then the fit's misfit (:func:`misfit_table`, :func:`misfit_sentence`),
-the coefficients (:func:`fit_table`), the inputs (:func:`inputs_table`), the speeds before
-the impact (:func:`pre_impact_table`) and the simulator's agreement
-(:func:`crosscheck_table`).
+the coefficients (:func:`fit_table`), the inputs (:func:`inputs_table`) and the speeds
+before the impact (:func:`pre_impact_table`); the simulator's agreement is
+:func:`comparisons.report.compare.crosscheck_table`. Nothing here imports the simulator.
 """
 
 from __future__ import annotations
@@ -22,21 +22,19 @@ from dataclasses import dataclass
 import numpy as np
 
 import pim
+from comparisons.report.document import Card, Cards
+from comparisons.report.number_format import format_number, interval_decimals, round_off
+from comparisons.report.pre_impact import TITLE as PRE_IMPACT_TITLE
+from comparisons.report.pre_impact import pre_impact_rows
+from comparisons.report.tables import Num, Table
 from pim.analysis.misfit import NOMINAL_SIGMAS, POOR, Misfit
 from pim.analysis.pre_impact_speeds import case_pre_impact
 from pim.io.units import convert
 from pim.model.geometry import radius_of_gyration
 from pim.plotting.tables import summarize
-from sim.error_measure import KIND_OF_UNIT
-
-from comparisons.report.document import Card, Cards
-from comparisons.report.number_format import format_number, interval_decimals, round_off
-from comparisons.report.pre_impact import TITLE as PRE_IMPACT_TITLE
-from comparisons.report.pre_impact import pre_impact_rows
-from comparisons.report.tables import Num, Table, fmt_error
 
 __all__ = ["Estimate", "estimates", "answer_cards", "results_table", "inputs_table",
-           "fit_table", "crosscheck_table", "pre_impact_table", "misfit_table",
+           "fit_table", "pre_impact_table", "misfit_table",
            "misfit_sentence", "RESULT_ROWS", "roundoff_scales"]
 
 
@@ -377,16 +375,3 @@ def misfit_sentence(misfit: Misfit, units: str = "si", fit=None,
             f"more than {POOR:g} sigma from the model ({'; '.join(one(r) for r in poor)})"
             f"{rms}: the model does not reproduce these measurements with one set of "
             f"coefficients.{cover}")
-
-
-def crosscheck_table(errors, units: str = "si") -> Table:
-    """Analytic against simulated, every post-impact quantity, in the ``units`` system."""
-    rows = []
-    for q in errors:
-        (a, s_, e), unit = convert(np.array([q.analytic, q.simulated, q.absolute]),
-                                   KIND_OF_UNIT[q.unit], units)
-        rows.append((q.label, unit, Num(float(a), sig=6), Num(float(s_), sig=6), float(e),
-                     q.relative))
-    return Table("crosscheck", "PIM (analytic) against pymunk (simulated), post-impact",
-                 ("quantity", "unit", "PIM", "pymunk", "absolute error", "relative error"),
-                 tuple(rows), formats={"absolute error": fmt_error, "relative error": fmt_error})

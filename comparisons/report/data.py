@@ -12,7 +12,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import pim
-
 from comparisons.report.tables import Table
 
 __all__ = ["ReportData"]

@@ -13,21 +13,20 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from pim.io import html as h
-
 from comparisons.report.document import (
     Bullets,
     Callout,
     Cards,
     Code,
     Document,
-    FileList,
     Figure,
+    FileList,
     Paragraph,
     Section,
     Video,
 )
 from comparisons.report.tables import Table, cell_text
+from pim.io import html as h
 
 __all__ = ["render_html", "html_table", "HTML_NAME"]
 

@@ -28,17 +28,10 @@ from pathlib import Path
 
 import pim
 import sim
-from pim.analysis.misfit import misfit
-from pim.analysis.residuals import has_measured_terms
-from pim.io.output import output_folder, rebase
-from pim.model.plausibility import warnings_of
-from sim.error_measure import compare_results, impact_error
-
 from comparisons.animation.render import animation_settings, build_renderer, write_animation
-from comparisons.report.compare import Report
+from comparisons.report.compare import Report, crosscheck_table
 from comparisons.report.compare_tables import (
     answer_cards,
-    crosscheck_table,
     fit_table,
     inputs_table,
     misfit_sentence,
@@ -58,6 +51,11 @@ from comparisons.report.number_format import format_number
 from comparisons.report.tables import Table
 from comparisons.report.write import document_files, write_document
 from comparisons.studies.law_runs import LawSetup, simulate_law
+from pim.analysis.misfit import misfit
+from pim.analysis.residuals import has_measured_terms
+from pim.io.output import output_folder, rebase
+from pim.model.plausibility import warnings_of
+from sim.error_measure import compare_results, impact_error
 
 __all__ = ["compare_law_case", "law_table", "law_document", "LawReport", "NOT_RUN"]
 

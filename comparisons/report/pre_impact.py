@@ -10,12 +10,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from pim.analysis.pre_impact_speeds import PreImpactSpeed
-from pim.io.units import convert
-
 from comparisons.report.document import Paragraph, Section
 from comparisons.report.number_format import interval_decimals
 from comparisons.report.tables import Num, Table
+from pim.analysis.pre_impact_speeds import PreImpactSpeed
+from pim.io.units import convert
 
 __all__ = ["PreImpactRow", "pre_impact_rows", "pre_impact_lines", "pre_impact_json",
            "pre_impact_section", "pre_impact_spread_table", "TITLE", "NOTE"]

@@ -7,13 +7,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from pim.io.files import save_figure
-from pim.io.units import convert
-
 from comparisons.report.document import Document, Figure, Paragraph, Section
 from comparisons.report.number_format import format_number
 from comparisons.report.write import write_document
 from comparisons.studies.pulses import PulseComparison, plot_pulses, pulse_table
+from pim.io.files import save_figure
+from pim.io.units import convert
 
 __all__ = ["pulses_document", "write_pulses"]
 

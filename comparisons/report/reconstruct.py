@@ -14,10 +14,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from pim.analysis.reconstruction import Reconstruction
-from pim.io.units import convert
-from pim.model.evidence import UNKNOWN_KINDS
-
 from comparisons.report.compare_tables import answer_cards
 from comparisons.report.document import (
     Bullets,
@@ -31,6 +27,9 @@ from comparisons.report.document import (
 from comparisons.report.number_format import format_interval, format_number, interval_decimals
 from comparisons.report.pre_impact import pre_impact_section
 from comparisons.report.tables import Num, Table
+from pim.analysis.reconstruction import Reconstruction
+from pim.io.units import convert
+from pim.model.evidence import UNKNOWN_KINDS
 
 __all__ = ["UnknownRow", "MomentumRow", "ReconstructionRows", "reconstruction_rows",
            "law_line", "tyre_models_line", "crush_lines", "evidence_drivers", "driver_lines",

@@ -9,8 +9,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from pim.io.files import save_figure
-
 from comparisons.report.document import Bullets, Code, Document, Figure, Paragraph, Section
 from comparisons.report.number_format import format_number
 from comparisons.report.write import write_document
@@ -26,6 +24,7 @@ from comparisons.studies.speed_error_compliant import (
     compliant_table,
     plot_compliant_speed_error,
 )
+from pim.io.files import save_figure
 
 __all__ = ["speed_error_document", "write_speed_error", "compliant_document",
            "write_compliant"]

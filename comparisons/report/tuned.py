@@ -12,13 +12,12 @@ from pathlib import Path
 
 import numpy as np
 
-from pim.io.files import save_figure
-from pim.io.units import convert
-
 from comparisons.report.document import Bullets, Document, Figure, Paragraph, Section
 from comparisons.report.tables import Table, fmt_value
 from comparisons.report.write import write_document
 from comparisons.studies.tuned_scene import UNRUNNABLE, ClassStudy
+from pim.io.files import save_figure
+from pim.io.units import convert
 
 __all__ = ["KINDS", "predictions_table", "summary_table", "verdict", "plot_tuned_study",
            "tuned_document", "write_tuned_study", "median_errors"]

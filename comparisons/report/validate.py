@@ -14,6 +14,9 @@ from pathlib import Path
 
 import numpy as np
 
+from comparisons.report.document import Bullets, Document, Figure, Paragraph, Section
+from comparisons.report.tables import Num, Table
+from comparisons.report.write import write_document
 from pim.analysis.consistency import check_ricsac
 from pim.analysis.validation import (
     class_radius_of_gyration,
@@ -28,10 +31,6 @@ from pim.io.datasets import DATASETS, load_dataset
 from pim.io.files import save_figure
 from pim.io.units import convert
 from pim.plotting.validation import plot_coefficients, plot_predicted_vs_measured
-
-from comparisons.report.document import Bullets, Document, Figure, Paragraph, Section
-from comparisons.report.tables import Num, Table
-from comparisons.report.write import write_document
 
 __all__ = ["Validation", "run_validation", "validation_document", "write_validation",
            "barrier_table", "ricsac_refit_table", "consistency_table", "coefficient_table",

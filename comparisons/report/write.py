@@ -12,11 +12,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from pim.io.files import write_text
-
 from comparisons.report.document import Document
 from comparisons.report.html import render_html
 from comparisons.report.render import render_csv, render_markdown
+from pim.io.files import write_text
 
 __all__ = ["write_document", "document_files"]
 

@@ -110,10 +110,24 @@ def test_the_coefficients_and_the_simulator_come_after_the_answer(ricsac9):
         "The design sheet's plots")
 
 
-def test_the_command_prints_report_html_last(ricsac9):
+def test_the_command_prints_the_answer_and_report_html_last(ricsac9):
     folder, said, _, _ = ricsac9
-    last = said.strip().splitlines()[-1]
-    assert last.startswith(f"wrote {folder / 'report.html'} (and report.md")
+    lines = said.strip().splitlines()
+    assert lines[-1].startswith(f"wrote {folder / 'report.html'} (and report.md")
+    assert lines[0] == "delta-V, vehicle 1: 28.0 ft/s (5-95 %: 24.8 to 31.3)"
+
+
+def test_the_readme_shows_the_reports_first_lines(ricsac9):
+    """README.md quotes the opening of report.md: each quoted line is in a fresh run's."""
+    from pathlib import Path
+
+    readme = (Path(__file__).resolve().parents[3] / "README.md").read_text()
+    block = readme.split("```text\n## Results\n")[1].split("```")[0]
+    quoted = [line for line in block.splitlines() if line.strip()]
+    assert len(quoted) == 7
+    _, _, md, _ = ricsac9
+    for line in quoted:
+        assert line in md.splitlines(), line
 
 
 def test_round_off_is_shown_as_zero(tmp_path):

@@ -1,8 +1,8 @@
 """The one report pipeline's renderers on hand-built typed documents (no simulation): the
 Markdown and CSV renderers (comparisons.report.render), the HTML renderer
-(comparisons.report.html) and the writer (comparisons.report.write). Every block type is
+(comparisons.report.html). Every block type is
 rendered by each; tables keep full precision in the CSV and the digits each cell states in
-the page."""
+the page. The writer is tested in test_write.py."""
 
 import math
 import re
@@ -17,15 +17,14 @@ from comparisons.report.document import (
     Cards,
     Code,
     Document,
-    FileList,
     Figure,
+    FileList,
     Paragraph,
     Section,
 )
 from comparisons.report.html import render_html
 from comparisons.report.render import markdown_table, render_csv, render_markdown, table_csv
 from comparisons.report.tables import Num, Table
-from comparisons.report.write import document_files, write_document
 from pim.io.files import save_figure
 
 TABLE = Table("results", "Results", ("quantity", "value [m/s]", "ok", "note"),
@@ -100,19 +99,6 @@ def test_html_renders_every_block_escaped(doc, folder):
     assert "<pre><code>pim compare &#x27;my case.toml&#x27;</code></pre>" in page
     assert 'id="table-every_run"' not in page
     assert '<a href="#plots">P</a>' in page and '<section id="results" class="keep">' in page
-
-
-def test_write_document_writes_csvs_html_and_markdown_last(doc, folder):
-    written = write_document(doc, folder)
-    assert [p.name for p in written] == document_files(doc) == [
-        "results.csv", "every_run.csv", "wide.csv", "report.html", "report.md"]
-    assert (folder / "report.md").read_text() == render_markdown(doc)
-
-
-def test_a_figure_the_folder_lacks_is_an_error(doc, tmp_path):
-    with pytest.raises(FileNotFoundError, match="p.png"):
-        write_document(doc, tmp_path)
-    assert list(tmp_path.iterdir()) == []
 
 
 def test_an_unknown_block_is_refused(folder):
