@@ -73,11 +73,14 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
     """Write a reconstruction report of CASE to a folder (report.html, report.md, CSVs,
     PNGs, MP4; report.html is one self-contained page with the plots and the animation).
 
-    The report opens with the results a reconstruction hands on (delta-V, PDOF, post-impact
-    speeds and yaw rates, energy loss and its crush split, epsilon and beta with their source
-    and, with an [uncertainty] table, 5-95 % intervals), then the coefficients, inputs,
-    plots and animation; the appendix compares PIM with a pymunk simulation and sweeps the
-    simulator's speed against its error. (epsilon, beta) are fitted to the measured motion
+    The report opens with the answer a reconstruction hands on (each vehicle's delta-V, PDOF
+    and post-impact speed and the energy lost, with 5-95 % intervals from the case's
+    [uncertainty] table, digits as the intervals allow), the warnings (a fit that misses a
+    measured quantity by more than 3 sigma among them) and the results table, then each
+    measured quantity against the answer in sigmas, the coefficients with their source,
+    inputs, plots and animation; the appendix compares PIM with a pymunk simulation and
+    sweeps the simulator's speed against its error. Prints the answer, then the path of
+    report.html last. (epsilon, beta) are fitted to the measured motion
     when the case has some; --eps and --beta together skip the fit (one of them: the other
     is fitted). Exit code 1 with one line when the vehicles do not approach at C.
 
