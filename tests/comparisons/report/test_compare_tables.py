@@ -13,7 +13,9 @@ tolerances (1 mph, 10 deg/s; Brach, Welsh & Brach, SAE 2014-01-0469).
 """
 
 import contextlib
+import csv
 import io
+import math
 import re
 
 import pytest
@@ -28,6 +30,7 @@ from comparisons.report.compare_tables import (
     roundoff_scales,
 )
 from pim.analysis.misfit import misfit
+from pim.io.units import convert
 from pim_cli.main import main
 
 
@@ -53,6 +56,25 @@ def section(md, title):
     return md.split(f"## {title}\n")[1].split("\n## ")[0]
 
 
+def shown(x, low, high):
+    """``x`` with the decimals of two significant digits of (high - low) / 2, by hand."""
+    d = 1 - math.floor(math.log10((high - low) / 2))
+    return f"{round(x, d):.{d}f}" if d > 0 else str(int(round(x, d)))
+
+
+def results(folder):
+    """results.csv by quantity: (v1, v2, unit, v1 5 %, v1 95 %, v2 5 %, v2 95 %)."""
+    with open(folder / "results.csv", newline="") as f:
+        return {r[0]: [float(x) if x and i != 2 else x for i, x in enumerate(r[1:])]
+                for r in list(csv.reader(f))[1:]}
+
+
+def speed(ft_per_s):
+    """A speed of RICSAC 9 (written in ft/s) in the report's unit for speeds."""
+    value, unit = convert(ft_per_s * 0.3048, "speed", "us")
+    return float(value), unit
+
+
 def test_the_report_opens_with_delta_v_and_pdof_not_the_coefficients(ricsac9):
     _, _, md, page = ricsac9
     cards = re.findall(r"<dt>(.*?)</dt>", page.split('id="results"')[1])
@@ -60,25 +82,38 @@ def test_the_report_opens_with_delta_v_and_pdof_not_the_coefficients(ricsac9):
     assert cards[2:4] == ["PDOF, vehicle 1", "PDOF, vehicle 2"]
     assert "kinetic energy lost" in cards
     assert not {"epsilon", "beta", "pymunk against PIM", "units"} & set(cards)
+    v1, _, unit, low, high, *_ = results(ricsac9[0])["|delta-V|"]
+    assert v1 == pytest.approx(speed(28.0467)[0], rel=1e-5) and unit == speed(1)[1]
     first = section(md, "Results").strip().splitlines()[0]
-    assert first == "- **delta-V, vehicle 1: 28.0 ft/s** (5-95 %: 24.8 to 31.3)"
+    assert first == (f"- **delta-V, vehicle 1: {shown(v1, low, high)} {unit}** (5-95 %: "
+                     f"{shown(low, low, high)} to {shown(high, low, high)})")
 
 
 def test_digits_match_the_interval(ricsac9):
-    _, _, md, _ = ricsac9
-    row = next(line for line in md.splitlines() if line.startswith("| \\|delta-V\\|"))
-    assert row.split(" | ")[1:3] == ["28.0", "12.9"]            # not 28.0467, 12.9195
-    assert "| 24.8 | 31.3 | 11.4 | 14.5 |" in row
-    pdof = next(line for line in md.splitlines() if line.startswith("| PDOF (clockwise"))
-    assert "| -27.1 | 62.9 | deg | -30.0 | -24.6 | 60.0 | 65.4 |" in pdof
+    """Issue 28: `|delta-V| 28.0467 ft/s` beside a 5-95 % range 24.81 to 31.27."""
+    folder, _, md, _ = ricsac9
+    table = results(folder)
+    for label, quantity in (("\\|delta-V\\|", "|delta-V|"),
+                            ("PDOF (clockwise from heading)", "PDOF (clockwise from heading)")):
+        row = next(line for line in md.splitlines() if line.startswith(f"| {label} |"))
+        v1, v2, unit, lo1, hi1, lo2, hi2 = table[quantity]
+        expected = [shown(v1, lo1, hi1), shown(v2, lo2, hi2), unit,
+                    *(shown(x, lo1, hi1) for x in (lo1, hi1)),
+                    *(shown(x, lo2, hi2) for x in (lo2, hi2))]
+        assert row.split(" | ")[1:] == [*expected[:-1], expected[-1] + " |"], row
+    answer = section(md, "Results")
+    assert "28.0467" not in answer and "12.9195" not in answer
 
 
 def test_one_number_format_for_a_value_and_its_interval(ricsac9):
-    _, _, md, _ = ricsac9
+    """Issue 28: `31485.5 | 2.745e+04 to 3.581e+04`."""
+    folder, _, md, _ = ricsac9
     energy = next(line for line in md.splitlines() if line.startswith("| energy lost"))
-    assert "| 31500 |" in energy and "| 27500 | 35800 |" in energy
-    results = section(md, "Results")
-    assert not re.search(r"\d\.\d+e[+-]\d+", results), results       # no 2.745e+04 here
+    value, _, unit, low, high, *_ = results(folder)["energy lost"]
+    assert energy.split(" | ")[1:6] == [shown(value, low, high), "", unit,
+                                        shown(low, low, high), shown(high, low, high)]
+    results_text = section(md, "Results")
+    assert not re.search(r"\d\.\d+e[+-]\d+", results_text), results_text  # no 2.745e+04
 
 
 def test_the_misfit_is_stated_in_sigmas_with_a_sentence(ricsac9):
@@ -91,8 +126,9 @@ def test_the_misfit_is_stated_in_sigmas_with_a_sentence(ricsac9):
         assert "The fit is poor" in text
     sentence = next(line for line in section(md, "Results").splitlines()
                     if "The fit is poor" in line)
+    rms, unit = convert(4.087 * 0.3048, "velocity", "us")      # the fit's rms, 4.087 ft/s
     assert "vehicle 2 yaw rate 87.3 deg/s in the model against 45.0 measured (+4.2 sigma)" \
-        in sentence and "rms residual of 4.09 ft/s" in sentence
+        in sentence and f"rms residual of {float(rms):.3g} {unit}" in sentence
 
 
 def test_no_run_of_zeros_anywhere(ricsac9):
@@ -114,7 +150,9 @@ def test_the_command_prints_the_answer_and_report_html_last(ricsac9):
     folder, said, _, _ = ricsac9
     lines = said.strip().splitlines()
     assert lines[-1].startswith(f"wrote {folder / 'report.html'} (and report.md")
-    assert lines[0] == "delta-V, vehicle 1: 28.0 ft/s (5-95 %: 24.8 to 31.3)"
+    v1, _, unit, low, high, *_ = results(folder)["|delta-V|"]
+    assert lines[0] == (f"delta-V, vehicle 1: {shown(v1, low, high)} {unit} (5-95 %: "
+                        f"{shown(low, low, high)} to {shown(high, low, high)})")
 
 
 def test_the_readme_shows_the_reports_first_lines(ricsac9):
@@ -152,9 +190,9 @@ def test_the_estimates_share_their_digits_and_scales():
     assert est[("crush_tangential", 1)].decimals == est[("energy_loss", 1)].decimals
     assert est[("energy_loss", 1)].interval().count(" to ") == 1
     scales = roundoff_scales(result, "us")
-    assert scales["speed"] == pytest.approx(31.09)                       # ft/s, the case's
-    assert scales["energy"] == pytest.approx(float(result.kinetic_energy_before) / 1.35582,
-                                             rel=1e-4)                     # ft lbf
+    assert scales["speed"] == pytest.approx(speed(31.09)[0])             # the impact speed
+    assert scales["energy"] == pytest.approx(float(convert(
+        float(result.kinetic_energy_before), "energy", "us")[0]))
     table = results_table(result, "us", spread)
     assert table.columns[4:] == ("vehicle 1, 5 %", "vehicle 1, 95 %", "vehicle 2, 5 %",
                                  "vehicle 2, 95 %")

@@ -181,7 +181,7 @@ def test_every_image_loads(page):
     assert all(done and width > 0 for _, done, width in images), images
 
 
-def test_the_first_screen_shows_the_title_and_the_answer(page, tmp_path):
+def test_the_first_screen_shows_the_title_and_the_answer(page, report, tmp_path):
     """Issue 28: the top cards were epsilon, beta, mu, the simulator's error and the unit
     system; now the first card is vehicle 1's delta-V with its interval, the PDOFs follow,
     and every card of the answer is on the first screen."""
@@ -199,7 +199,10 @@ def test_the_first_screen_shows_the_title_and_the_answer(page, tmp_path):
     assert box["labels"][:4] == ["delta-V, vehicle 1", "delta-V, vehicle 2",
                                  "PDOF, vehicle 1", "PDOF, vehicle 2"], box
     assert "epsilon" not in box["labels"] and "pymunk against PIM" not in box["labels"]
-    assert box["first"].startswith("28.0 ft/s") and "5-95 %: 24.8 to 31.3" in box["first"]
+    card = report[1].data.tables["results"].rows[0]           # |delta-V|, digits as shown
+    value, unit, low, high = card[1], card[3], card[4], card[5]
+    assert box["first"].startswith(f"{value} {unit}") and f"5-95 %: {low} to {high}" in \
+        box["first"], box["first"]
     assert box["h1"] < box["cards_top"] < box["cards"] <= box["height"], box
     assert box["cards_right"] <= box["width"], box
     shot = tmp_path / "first-screen.png"
