@@ -29,8 +29,8 @@ from pim.files import save_figure
 
 import pim
 import sim
-from comparisons.studies.assumptions import outcome_errors
-from comparisons.studies.speed_error_compliant import compliant_sweep
+from comparisons.studies.assumption_legacy import outcome_errors
+from comparisons.studies.speed_error_compliant import Grid, compliant_sweep
 from comparisons.studies.stiff_limit import plot_stiff_limit, stiff_limit
 from sim.compliant_setup import build_problem
 from sim.contact_law import stiffness_for_duration
@@ -42,7 +42,7 @@ def at_100ms(name: str, eps: float, tyre: float) -> str:
     k = float(stiffness_for_duration(0.1, k_nn, eps))
     try:
         r = sim.simulate_compliant(case, eps, k, tyre_friction=tyre,
-                                   settings=sim.CompliantSettings(record=False))
+                                   settings=sim.CompliantSettings(record=False), engine="pymunk")
     except sim.SimulationError as exc:
         return f"{name:22s} tyre {tyre:3.1f}: failed ({exc.kind})"
     result = pim.solve(case, eps, 0.0)
@@ -90,7 +90,7 @@ def main() -> None:
         pim.solve(case, 0.355, 1.0)
     pim_time = (time.perf_counter() - start) / 200
     print(f"   baseline pim.solve: {pim_time * 1e3:.3f} ms per call")
-    study = compliant_sweep(case, 0.355, repeats=3, progress=False)
+    study = compliant_sweep(case, 0.355, grid=Grid(repeats=3), progress=False)
     for scene in ("frictionless", "friction 0.5"):
         for integrator in ("pymunk", "DOP853", "Radau"):
             for target in (1e-3, 1e-6):

@@ -43,7 +43,8 @@ def errors(case, steps, friction, tyre_friction=0.0, recovery=None):
     for n in steps:
         r = sim.simulate_compliant(case, 0.355, sim.DEFAULT_STIFFNESS, **kw,
                                    settings=CompliantSettings(steps_per_contact=n,
-                                                              record=False, **extra))
+                                                              record=False, **extra),
+                                   engine="pymunk")
         out[n] = float(np.abs(np.r_[r.velocity1 - ref.velocity1,
                                     r.velocity2 - ref.velocity2]).max())
     return out

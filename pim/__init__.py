@@ -22,13 +22,13 @@ from .io.casefile import list_cases, load_case
 from .io.datasets import load_dataset
 from .model.case import Case, Impact, Measured, Vehicle
 from .model.friction_cap import solve_capped
-from .model.impact_laws import solve_kudlich_slibar, solve_law
+from .model.impact_laws import solve_kudlich_slibar
+from .model.law import LAW_NAMES, resolve_law, solve
 from .model.numbers import InputError
 from .model.result import Result
-from .model.solver import solve
 
 __all__ = ["Case", "Impact", "Measured", "Vehicle", "Result", "solve", "load_case",
            "list_cases", "fit", "FitResult", "sensitivity", "uncertainty",
            "UncertaintyResult", "solve_capped", "post_impact_motion", "load_dataset",
-           "solve_law", "solve_kudlich_slibar", "InputError"]
+           "solve_kudlich_slibar", "resolve_law", "LAW_NAMES", "InputError"]
 __version__ = "0.1.0"

@@ -3,17 +3,22 @@
 Importing ``pim`` (numpy, scipy, numba, matplotlib) takes about a second; Ctrl-C or SIGTERM
 in that second would print Python's traceback of the import. This module imports nothing
 heavy: it handles SIGINT and SIGTERM (exit 130 and 143, one line) before importing
-:mod:`pim_cli.main`, whose :func:`~pim_cli.main.main` then handles them for the run, and
-ignores them once the run's exit code is known (the interpreter's shutdown, which joins
-worker processes, is not interrupted). A signal while loading ends the process at once
-(nothing has been written yet).
+:mod:`pim_cli.main`, whose :func:`~pim_cli.main.main` then handles them for the run. Once
+the run's exit code is known a signal no longer interrupts (the interpreter's shutdown,
+which joins worker processes, runs to its end) but still decides the exit code: 130/143
+and one line, after the shutdown (an interrupt at any moment is never an exit 0). A signal
+while loading ends the process at once (nothing has been written yet).
 """
 
+import atexit
 import os
 import signal
 import sys
 
 __all__ = ["run"]
+
+#: Signals received after the run's exit code was known (see :func:`_leave`).
+_LATE: list[int] = []
 
 
 def _during_import(signum, frame):
@@ -24,8 +29,20 @@ def _during_import(signum, frame):
     os._exit(143 if terminated else 130)
 
 
+def _leave() -> None:
+    """The last exit handler (registered first): a signal received during the shutdown
+    makes the exit code 130/143, with its one line."""
+    if _LATE:
+        terminated = signal.SIGTERM in _LATE
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os.write(2, b"terminated\n" if terminated else b"aborted\n")
+        os._exit(143 if terminated else 130)
+
+
 def run() -> None:
-    """Exit with ``pim_cli.main.main()``'s code; 130/143 when interrupted while loading."""
+    """Exit with ``pim_cli.main.main()``'s code; 130/143 when interrupted, at any moment."""
+    atexit.register(_leave)     # first registered, so it runs after every other one
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, _during_import)
     # An interrupted run leaves by os._exit: multiprocessing's resource tracker (a process of
@@ -35,8 +52,8 @@ def run() -> None:
     from pim_cli.main import main
 
     code = main()           # handles SIGINT/SIGTERM itself while it runs
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, signal.SIG_IGN)
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(signum, lambda received, frame: _LATE.append(received))
     if code in (130, 143):
         # Interrupted (its files already removed). A KeyboardInterrupt that went through
         # an extension's PyRun_* call (a lazy import) leaves the interpreter's flag that

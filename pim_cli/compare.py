@@ -7,26 +7,34 @@ from __future__ import annotations
 import contextlib
 import sys
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 import click
 
 import pim
+from pim.model.numbers import InputError
 from pim_cli.main import (
+    Beta,
     FiniteFloat,
+    allow_inadmissible_option,
     beta_option,
     case_argument,
+    check_answer,
     echo_json,
     eps_option,
+    findings_json,
+    finish_answer,
     friction_limit_option,
     json_option,
     law_options,
-    require_brach,
+    load_case_for,
+    output_units,
     solve_with_options,
     units_option,
-    warnings_of,
 )
-from pim.model.numbers import InputError
+
+from comparisons.animation.render import MAX_SHOWN
 
 __all__ = ["compare", "animate", "speed_error", "hard_cases", "assumptions"]
 
@@ -45,7 +53,7 @@ compare_eps_option = click.option(
     help="Coefficient of restitution epsilon in [0, 1] (default: fitted to the case's "
          "measured motion, else the case's impact.restitution). With --beta: no fit.")
 compare_beta_option = click.option(
-    "--beta", type=FiniteFloat(), default=None,
+    "--beta", type=Beta(), default=None,
     help="Fraction of the critical impulse ratio, mu = beta mu0 (default: fitted to the "
          "case's measured motion, else the case's impact.beta, else 1). With --eps: no fit.")
 
@@ -67,9 +75,11 @@ compare_beta_option = click.option(
                    "ghost decelerates alike); 0 = free motion.")
 @law_options
 @progress_option
+@allow_inadmissible_option
 @json_option
-def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
-            no_speed_error, no_assumptions, tyre, law, k, mu_c, progress, as_json):
+def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, no_animation,
+            no_speed_error, no_assumptions, tyre, law, k, mu_c, progress, allow_inadmissible,
+            as_json):
     """Write a reconstruction report of CASE to a folder (report.html, report.md, CSVs,
     PNGs, MP4; report.html is one self-contained page with the plots and the animation).
 
@@ -82,53 +92,60 @@ def compare(case_name, out, eps, beta, gif, units, friction_limit, no_animation,
     sweeps the simulator's speed against its error. Prints the answer, then the path of
     report.html last. (epsilon, beta) are fitted to the measured motion
     when the case has some; --eps and --beta together skip the fit (one of them: the other
-    is fitted). Exit code 1 with one line when the vehicles do not approach at C.
+    is fitted). Exit code 1 with one line when the vehicles do not approach at C, and
+    after the report is written when its answer is inadmissible (the reasons first, and at
+    the top of the report; --allow-inadmissible: exit 0). A secondary contact of the
+    outlines after the impact is a note with its time and place.
 
     Under another impact law (the case's impact.law or --law: kudlich-slibar with --k and
     --mu-c, brach-capped) the report is that law's answer, its pymunk run (two phases for
     kudlich-slibar) and animation; a fit to measured motion is done under that law ((k, mu_c)
     for kudlich-slibar; docs/impact-laws.md).
     """
-    from pim.io.casefile import load_case
-    from pim.model.impact_laws import law_of
-
     from comparisons.report.compare import compare_case
+    from pim.model.impact_laws import law_of
 
     if tyre < 0:
         raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
-    case = load_case(case_name)
+    case = load_case_for("compare", case_name, law)
+    units = output_units(case, units, speed_unit)
     folder = _out(out, case.name, "case")
     if law_of(case, law) != "brach" or k is not None or mu_c is not None:
         _compare_law(case, folder, eps, beta, law, k, mu_c, units, gif=gif, tyre=tyre,
-                     animation=not no_animation, progress=progress, as_json=as_json)
+                     animation=not no_animation, progress=progress, as_json=as_json,
+                     allow=allow_inadmissible)
         return
-    solve_with_options(case, 0.0, 1.0)      # exits 1 with one line when there is no impact
+    solve_with_options(case, 0.0, 1.0, units=units)     # exit 1, one line, when no impact
     started = time.perf_counter()
     rep = compare_case(case, folder, eps=eps, beta=beta, gif=gif, animation=not no_animation,
                        speed_error=not no_speed_error, tyre=tyre,
                        assumptions=not no_assumptions, progress=progress,
                        units=units, friction_limit=friction_limit, case_path=case_name)
+    units = units or case.units
+    found = check_answer(case, pim.solve(case, rep.eps, rep.beta), units, friction_limit,
+                         allow_inadmissible, as_json)
+    secondary = _secondary_note(rep.animation, units, as_json)
     if as_json:
-        echo_json({"case": case.name, "out": str(folder), "eps": rep.eps, "beta": rep.beta,
-                   "error": rep.error, "seconds": rep.seconds,
+        echo_json({"case": case.name, "units": units.to_json(), "out": str(folder),
+                   "eps": rep.eps, "beta": rep.beta,
+                   "error": rep.error, "seconds": rep.seconds, **findings_json(found),
+                   "secondary_impact": secondary,
                    "files": sorted(str(p) for p in rep.files)})
-        return
-    error = ("simulation failed" if rep.error != rep.error
-             else f"pymunk vs PIM error {rep.error:.2e}")
-    _answer(rep.data.result, rep.data.units, rep.data.spread)
-    click.echo(f"{case.name}: epsilon = {rep.eps:.6g}, beta = {rep.beta:.6g}; {error}")
-    if rep.animation is not None:
-        a = rep.animation
-        click.echo(f"animation: {a.frames} frames, rendered at {a.render_fps:.0f} frames/s")
-    for text in warnings_of(case, pim.solve(case, rep.eps, rep.beta), friction_limit):
-        click.echo(f"warning: {text}", err=True)
-    if rep.animation is not None and rep.animation.secondary_impact is not None:
-        click.echo(f"warning: {rep.animation.secondary_impact.message()}", err=True)
-    _poor_fit(rep.data.result, rep.data.units, rep.data.fit)
-    _wrote(rep, started)
+    else:
+        error = ("simulation failed" if rep.error != rep.error
+                 else f"pymunk vs PIM error {rep.error:.2e}")
+        _answer(rep.data.result, rep.data.units, rep.data.spread)
+        click.echo(f"{case.name}: epsilon = {rep.eps:.6g}, beta = {rep.beta:.6g}; {error}")
+        if rep.animation is not None:
+            a = rep.animation
+            click.echo(f"animation: {a.frames} frames, rendered at {a.render_fps:.0f} "
+                       f"frames/s")
+        _poor_fit(rep.data.result, rep.data.units, rep.data.fit)
+        _wrote(rep, started)
+    finish_answer(found, allow_inadmissible)
 
 
-def _answer(result, units: str, spread=None) -> None:
+def _answer(result, units, spread=None) -> None:
     """The answer the report leads with, one line per card."""
     from comparisons.report.compare_tables import answer_cards
 
@@ -136,7 +153,7 @@ def _answer(result, units: str, spread=None) -> None:
         click.echo(f"{card.label}: {card.value}" + (f" ({card.note})" if card.note else ""))
 
 
-def _poor_fit(result, units: str, fit) -> None:
+def _poor_fit(result, units, fit) -> None:
     """A warning when the answer misses a measured quantity by more than 3 sigma."""
     from pim.analysis.misfit import misfit
 
@@ -153,32 +170,45 @@ def _wrote(rep, started: float) -> None:
                f"{rep.out_dir}) in {time.perf_counter() - started:.1f} s")
 
 
-def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, **kwargs):
-    """``pim compare`` under an impact law other than Brach's (comparisons.report.law)."""
-    from pim.model.impact_laws import law_of
+def _secondary_note(info, units: str, as_json: bool) -> dict | None:
+    """The animation's secondary contact (``info``: an AnimationInfo or None) as a note on
+    stderr with its time and place (not with ``as_json``), and as its JSON (None: none)."""
+    found = getattr(info, "secondary_impact", None)
+    if found is None:
+        return None
+    if not as_json:
+        click.echo(f"note: {found.message(units)}", err=True)
+    return found.to_json(units)
 
+
+def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, allow, **kwargs):
+    """``pim compare`` under an impact law other than Brach's (comparisons.report.law)."""
     from comparisons.report.law import compare_law_case
     from comparisons.studies.law_runs import law_setup
+    from pim.model.impact_laws import law_of
 
     started = time.perf_counter()
     result = solve_with_options(case, eps, beta, None, False, law, k, mu_c, units)
     setup = law_setup(case, law, result.eps,
                       None if law_of(case, law) == "kudlich-slibar" else beta, mu_c)
     rep = compare_law_case(case, folder, setup, units=units, **kwargs)
+    found = check_answer(case, setup.result, units, allow=allow, as_json=as_json)
+    secondary = _secondary_note(getattr(rep, "animation", None), units or case.units, as_json)
     if as_json:
-        echo_json({"case": case.name, "out": str(folder), "law": setup.law,
+        echo_json({"case": case.name, "units": units.to_json(), "out": str(folder),
+                   "law": setup.law,
                    "restitution": setup.restitution, "beta": setup.beta,
                    "contact_friction": setup.contact_friction, "error": rep.error,
+                   **findings_json(found), "secondary_impact": secondary,
                    "files": sorted(str(p) for p in rep.files)})
-        return
-    error = ("simulation failed" if rep.error != rep.error
-             else f"pymunk vs analytic error {rep.error:.2e}")
-    _answer(setup.result, units or case.units)
-    click.echo(f"{case.name}: {setup.describe()}; {error}")
-    for text in warnings_of(case, setup.result):
-        click.echo(f"warning: {text}", err=True)
-    _poor_fit(setup.result, units or case.units, None)
-    _wrote(rep, started)
+    else:
+        error = ("simulation failed" if rep.error != rep.error
+                 else f"pymunk vs analytic error {rep.error:.2e}")
+        _answer(setup.result, units)
+        click.echo(f"{case.name}: {setup.describe()}; {error}")
+        _poor_fit(setup.result, units, None)
+        _wrote(rep, started)
+    finish_answer(found, allow)
 
 
 
@@ -192,10 +222,11 @@ def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, **kwa
 @click.option("--gif", "gif", type=click.Path(dir_okay=False), default=None,
               help="Also write an animated GIF (half size) here.")
 @click.option("--fps", type=int, default=30, show_default=True, help="Frames per second.")
-@click.option("--before", type=FiniteFloat(), default=None,
-              help="Seconds shown before the impact (default: about 1.2 vehicle lengths).")
-@click.option("--after", type=FiniteFloat(), default=2.0, show_default=True,
-              help="Seconds shown after the impact.")
+@click.option("--before", type=FiniteFloat(0.0, MAX_SHOWN, "s"), default=None,
+              help=f"Seconds shown before the impact, at most {MAX_SHOWN:g} (default: about "
+                   "1.2 vehicle lengths).")
+@click.option("--after", type=FiniteFloat(0.0, MAX_SHOWN, "s"), default=2.0, show_default=True,
+              help=f"Seconds shown after the impact, at most {MAX_SHOWN:g}.")
 @click.option("--size", type=(int, int), default=(960, 720), show_default=True,
               help="Frame width and height [px], even numbers.")
 @click.option("--tyre-friction", "tyre", type=FiniteFloat(), default=0.0, show_default=True,
@@ -204,31 +235,33 @@ def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, **kwa
 @law_options
 @units_option
 @progress_option
+@allow_inadmissible_option
 @json_option
 def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_ghost, law, k,
-            mu_c, units, progress, as_json):
+            mu_c, units, speed_unit, progress, allow_inadmissible, as_json):
     """Animate CASE: pymunk simulation solid, the analytic post-impact motion as a ghost (MP4).
 
     Under the case's impact law (or --law): Brach's PIM and friction-capped Brach play the
     rigid scene at (eps, effective beta); the Kudlich-Slibar law plays its two-phase run
     (compression by the engine at mu_c, then k times its impulse) and continues after
-    separation (docs/impact-laws.md).
+    separation (docs/impact-laws.md). A secondary contact of the outlines after the impact
+    is marked in the frames and a note (its time and place); exit code 1 after writing when
+    the analytic answer is inadmissible (the reasons first; --allow-inadmissible: exit 0).
     """
     import sim
-    from pim.io.casefile import load_case
-    from pim.model.impact_laws import law_of
-
     from comparisons.animation.render import animate_case, animation_settings
     from comparisons.studies.law_runs import law_setup, simulate_law
+    from pim.model.impact_laws import law_of
 
     _check_suffix(out, "--out", ".mp4")
     _check_suffix(gif, "--gif", ".gif")
-    case = load_case(case_name)
+    case = load_case_for("animate", case_name, law)
+    units = output_units(case, units, speed_unit)
     if tyre < 0:
         raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
     path = Path(out) if out else Path("out") / f"{case.name or 'case'}-animation.mp4"
     kwargs = dict(gif=gif, progress=progress, fps=fps, before=before, after=after, size=size,
-                  tyre=tyre, ghost=not no_ghost, units=units or case.units)
+                  tyre=tyre, ghost=not no_ghost, units=units)
     setup = None
     if law_of(case, law) == "brach" and k is None and mu_c is None:
         eps_, beta_ = sim.scene.resolve_coefficients(case, eps, beta)
@@ -237,6 +270,8 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
         setup = law_setup(case, law, result.eps, None if law_of(case, law) == "kudlich-slibar"
                           else beta, mu_c)
         eps_, beta_ = setup.restitution, setup.beta
+    found = check_answer(case, setup.result if setup else pim.solve(case, eps_, beta_),
+                         kwargs["units"], allow=allow_inadmissible, as_json=as_json)
     try:
         if setup is not None:
             kwargs.update(result=setup.result, title=f"{case.name or 'case'}: {setup.describe()}",
@@ -246,6 +281,7 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
     except sim.SimulationError as exc:
         click.echo(f"simulation failed ({exc.kind}): {exc}", err=True)
         sys.exit(1)
+    secondary = _secondary_note(info, kwargs["units"], as_json)
     if as_json:
         echo_json({"path": str(info.path), "gif": str(info.gif) if info.gif else None,
                    "frames": info.frames, "fps": info.fps, "size": list(info.size),
@@ -254,17 +290,15 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
                    "law": setup.law if setup else "brach",
                    "restitution": eps_, "beta": beta_,
                    "contact_friction": setup.contact_friction if setup else None,
-                   "secondary_impact": None if info.secondary_impact is None
-                   else info.secondary_impact.time})
-        return
-    if setup is not None:
-        click.echo(f"{case.name or 'case'}: {setup.describe()}")
-    click.echo(f"wrote {info.path}" + (f" and {info.gif}" if info.gif else "")
-               + f": {info.frames} frames at {info.fps} fps, rendered at "
-                 f"{info.render_fps:.0f} frames/s, encoded in {info.write_seconds:.2f} s; "
-                 f"ghost offset after impact {info.max_ghost_offset_px:.2g} px")
-    if info.secondary_impact is not None:
-        click.echo(f"warning: {info.secondary_impact.message()}")
+                   **findings_json(found), "secondary_impact": secondary})
+    else:
+        if setup is not None:
+            click.echo(f"{case.name or 'case'}: {setup.describe()}")
+        click.echo(f"wrote {info.path}" + (f" and {info.gif}" if info.gif else "")
+                   + f": {info.frames} frames at {info.fps} fps, rendered at "
+                     f"{info.render_fps:.0f} frames/s, encoded in {info.write_seconds:.2f} s; "
+                     f"ghost offset after impact {info.max_ghost_offset_px:.2g} px")
+    finish_answer(found, allow_inadmissible)
 
 
 def _check_suffix(path, option: str, suffix: str) -> None:
@@ -283,21 +317,27 @@ def _check_suffix(path, option: str, suffix: str) -> None:
               help="Runs per setting (the best wall time is kept).")
 @click.option("--coarse", is_flag=True, help="The report's coarse grid instead of the full one.")
 @click.option("--compliant/--no-compliant", default=True, show_default=True,
-              help="Also the finite-duration contact: pymunk over dt, solve_ivp over rtol.")
+              help="Also the finite-duration contact: the fixed-step scene over dt, "
+                   "solve_ivp over rtol.")
+@click.option("--engine", type=click.Choice(["numba", "pymunk"]), default="numba",
+              show_default=True, help="The finite-duration scene's fixed-step integrator: "
+                                      "compiled, or pymunk (the cross-check).")
 @progress_option
 @json_option
-def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, progress, as_json):
+def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, engine, progress,
+                as_json):
     """Sweep the simulator's dt, iterations, contact start and geometry for each CASE.
 
     Writes, per case, speed-error-CASE.md and .html (table of the Pareto front and every
     run), speed-error-CASE.csv and speed-error-CASE.png (log-log error against wall time per
     impact, with the Pareto front, PIM's own time and error and the recommended setting).
-    With --compliant (default) also speed-error-compliant-CASE.md/.html/.csv/.png: the
-    finite-duration contact stepped by pymunk over dt and integrated by solve_ivp over
-    rtol, against a tight solve_ivp reference. "hard" stands for every bundled hard case.
+    With --compliant (default) also speed-error-compliant-CASE.md/.csv/.png: the
+    finite-duration contact stepped over dt (compiled, or by pymunk with --engine pymunk)
+    and integrated by solve_ivp over rtol, against a tight solve_ivp reference, its two
+    scenes on two worker processes. "hard" stands for every bundled hard case.
     """
     from pim.io.casefile import list_cases
-    from pim.io.output import output_folder, rebase
+    from pim.io.output import output_folder, rebase, worker_pool
 
     if repeats < 1:
         raise InputError(f"--repeats must be >= 1, got {repeats}")
@@ -305,80 +345,114 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, progress
     for n in case_names:
         names += [c for c, _ in list_cases() if c.startswith("hard-")] if n == "hard" else [n]
     folder = Path(out) if out else Path("out") / "speed-error"
-    with output_folder(folder, command="pim speed-error", merge=True) as tmp:
-        results = _speed_error_runs(names, tmp, out, eps, beta, repeats, coarse, compliant,
-                                    progress, as_json)
+    opts = _SpeedErrorOptions(out, eps, beta, repeats, coarse, engine if compliant else None,
+                              progress, as_json)
+    wall, cpu = time.perf_counter(), time.process_time()
+    with output_folder(folder, command="pim speed-error", merge=True) as tmp, \
+            contextlib.ExitStack() as stack:
+        pool = stack.enter_context(worker_pool(2)) if compliant else None
+        results = [_speed_error_case(name, tmp, opts, pool) for name in names]
     for r in results:
         r["files"] = [str(p) for p in rebase(r["files"], tmp, folder)]
-        line = r.pop("line", None)
-        if line is not None:
-            click.echo(f"{line}; wrote {r['files'][0]}")
     if as_json:
         echo_json(results)
+        return
+    for r in results:
+        for line in r.pop("lines"):
+            click.echo(line)
+        click.echo(f"wrote {r['files'][0]}")
+    click.echo(f"pim speed-error: {time.perf_counter() - wall:.1f} s wall, "
+               f"{time.process_time() - cpu:.1f} s CPU in this process")
 
 
-def _speed_error_runs(names, folder, out, eps, beta, repeats, coarse, compliant, progress,
-                      as_json) -> list[dict]:
-    """Sweep each case and write its files into ``folder``; one JSON-ready dict per case
-    (with the line to print under ``"line"``)."""
-    from pim.io.casefile import load_case
+@dataclass(frozen=True)
+class _SpeedErrorOptions:
+    """The options of ``pim speed-error`` (``engine`` None: no finite-duration study)."""
 
-    from comparisons.report.speed_error import write_speed_error
+    out: str | None
+    eps: float | None
+    beta: float | None
+    repeats: int
+    coarse: bool
+    engine: str | None
+    progress: bool | None
+    as_json: bool
+
+    def command(self, name: str) -> str:
+        return _command(name, self.coarse, self.repeats, self.out)
+
+
+def _speed_error_case(name: str, folder, opts: _SpeedErrorOptions, pool) -> dict:
+    """Sweep one case and write its files into ``folder``: a JSON-ready dict (with the
+    lines to print under ``"lines"``)."""
+    from comparisons.report.speed_error import write_speed_error as write_study
     from comparisons.studies.speed_error import COARSE, sweep
 
-    results = []
-    for name in names:
-        case = load_case(name)
-        require_brach(case, "pim speed-error")
-        grid = dict(COARSE) if coarse else {}
-        grid["repeats"] = repeats
-        study = sweep(case, eps, beta, progress=progress, **grid)
-        stem = case.name or Path(name).stem
-        files = write_speed_error(study, folder, stem,
-                                  command=_command(name, coarse, repeats, out))
-        rec = study.recommended()
-        results.append({"case": stem, "files": [str(f) for f in files],
-                        "recommended": None if rec is None else
-                        {"dt": rec.dt, "iterations": rec.iterations,
-                         "iterations_used": rec.iterations_used, "start": rec.start,
-                         "contact": rec.contact, "error": rec.error,
-                         "wall_time": rec.wall_time},
-                        "analytic_time": study.analytic_time,
-                        "analytic_batch_time": study.analytic_batch_time})
-        if compliant:
-            from comparisons.report.speed_error import write_compliant
-            from comparisons.studies.speed_error_compliant import COARSE as CCOARSE
-            from comparisons.studies.speed_error_compliant import compliant_sweep
+    case = load_case_for("speed-error", name)
+    grid = dict(COARSE) if opts.coarse else {}
+    study = sweep(case, opts.eps, opts.beta, progress=opts.progress,
+                  **{**grid, "repeats": opts.repeats})
+    stem = case.name or Path(name).stem
+    cstudy = None if opts.engine is None else _compliant_sweep(case, opts, pool)
+    # every timed run is done: the rigid study's plot is drawn on a worker while this
+    # process draws the finite-duration one
+    written = pool.submit(write_study, study, folder, stem, command=opts.command(name)) \
+        if pool is not None else None
+    rec = study.recommended()
+    result = {"case": stem, "files": [],
+              "recommended": None if rec is None else
+              {"dt": rec.dt, "iterations": rec.iterations,
+               "iterations_used": rec.iterations_used, "start": rec.start,
+               "contact": rec.contact, "error": rec.error, "wall_time": rec.wall_time},
+              "analytic_time": study.analytic_time,
+              "analytic_batch_time": study.analytic_batch_time, "lines": []}
+    if cstudy is not None:
+        _compliant_result(cstudy, stem, folder, opts, result)
+    files = write_study(study, folder, stem, command=opts.command(name)) \
+        if written is None else written.result()
+    result["files"] = [str(f) for f in files] + result["files"]
+    text = ("no run reaches the target" if rec is None else
+            f"recommended dt = {rec.dt:g} s, iterations = "
+            f"{'auto' if rec.iterations is None else rec.iterations}, {rec.start} "
+            f"start, {rec.contact} contact: error {rec.error:.2e}, "
+            f"{rec.wall_time * 1e3:.3g} ms/impact (PIM {study.analytic_time * 1e3:.3g} "
+            f"ms/call)")
+    result["lines"].append(f"{stem}: {text}")
+    if opts.as_json:
+        result.pop("lines")
+    return result
 
-            cgrid = dict(CCOARSE) if coarse else {"repeats": repeats}
-            cstudy = compliant_sweep(case, eps, progress=progress, **cgrid)
-            cfiles = write_compliant(cstudy, folder, stem,
-                                     command=_command(name, coarse, repeats, out))
-            results[-1]["files"] += [str(f) for f in cfiles]
-            results[-1]["compliant"] = {
-                scene: None if cstudy.recommended(scene) is None else
-                {"integrator": cstudy.recommended(scene).integrator,
-                 "setting": cstudy.recommended(scene).setting,
-                 "error": cstudy.recommended(scene).error,
-                 "wall_time": cstudy.recommended(scene).wall_time}
-                for scene in dict.fromkeys(p.scene for p in cstudy.points)}
-            if not as_json:
-                for scene, rec_c in results[-1]["compliant"].items():
-                    click.echo(f"{stem} finite-duration ({scene}): " + (
-                        "no run reaches 1e-3" if rec_c is None else
-                        f"recommended {rec_c['integrator']} "
-                        f"{'dt' if rec_c['integrator'] == 'pymunk' else 'rtol'} = "
-                        f"{rec_c['setting']:.3g}: error {rec_c['error']:.1e}, "
-                        f"{rec_c['wall_time'] * 1e3:.3g} ms/impact"))
-        if not as_json:
-            text = ("no run reaches the target" if rec is None else
-                    f"recommended dt = {rec.dt:g} s, iterations = "
-                    f"{'auto' if rec.iterations is None else rec.iterations}, {rec.start} "
-                    f"start, {rec.contact} contact: error {rec.error:.2e}, "
-                    f"{rec.wall_time * 1e3:.3g} ms/impact (PIM {study.analytic_time * 1e3:.3g} "
-                    f"ms/call)")
-            results[-1]["line"] = f"{stem}: {text}"
-    return results
+
+def _compliant_sweep(case, opts: _SpeedErrorOptions, pool):
+    """The finite-duration study of one case, its two scenes on the pool's workers."""
+    from comparisons.studies import speed_error_compliant as S
+
+    grid = S.COARSE if opts.coarse else S.Grid(repeats=opts.repeats)
+    return S.compliant_sweep(case, opts.eps, grid=grid, progress=opts.progress,
+                             engine=opts.engine, executor=pool)
+
+
+def _compliant_result(cstudy, stem: str, folder, opts: _SpeedErrorOptions,
+                      result: dict) -> None:
+    """Write the finite-duration study and put its files, recommendations and lines into
+    ``result``."""
+    from comparisons.studies import speed_error_compliant as S
+
+    cfiles = S.write_compliant_study(cstudy, folder, stem, command=opts.command(stem))
+    result["files"] += [str(f) for f in cfiles]
+    recs = {scene: cstudy.recommended(scene)
+            for scene in dict.fromkeys(p.scene for p in cstudy.points)}
+    result["compliant"] = {
+        scene: None if rec is None else
+        {"integrator": rec.integrator, "setting": rec.setting, "error": rec.error,
+         "wall_time": rec.wall_time} for scene, rec in recs.items()}
+    result["compliant_seconds"] = cstudy.wall_time
+    for scene, rec in recs.items():
+        result["lines"].append(
+            f"{stem} finite-duration ({scene}): " + (
+                "no run reaches 1e-3" if rec is None else
+                f"recommended {rec.label}: error {rec.error:.1e}, "
+                f"{rec.wall_time * 1e3:.3g} ms/impact"))
 
 
 def _command(name: str, coarse: bool, repeats: int, out) -> str:
@@ -390,25 +464,25 @@ def _command(name: str, coarse: bool, repeats: int, out) -> str:
 @click.command("hard-cases")
 @click.option("--out", "out", type=click.Path(file_okay=False), default=None,
               help="Output folder (default: out/hard-cases).")
-@click.option("--units", type=click.Choice(["si", "us"]), default="si", show_default=True,
-              help="Units of the results table (the hard-case files are written in SI).")
+@units_option
 @progress_option
 @json_option
-def hard_cases(out, units, progress, as_json):
+def hard_cases(out, units, speed_unit, progress, as_json):
     """Run every bundled hard case through PIM and the simulator; table of results, errors,
     and the dt / iterations the simulator needs to reach 1e-6 (or why it cannot)."""
-    from pim.io.output import output_folder, rebase
-
     from comparisons.report.hard_cases import write_hard_cases
     from comparisons.report.render import markdown_table
     from comparisons.studies.hard_cases import run_hard_cases
+    from pim.io.output import output_folder, rebase
 
     folder = Path(out) if out else Path("out") / "hard-cases"
+    units = output_units(None, units, speed_unit)      # the hard cases are written in SI
     with output_folder(folder, command="pim hard-cases", merge=True) as tmp:
         study = run_hard_cases(progress=progress)
         files = rebase(write_hard_cases(study, tmp, units), tmp, folder)
     if as_json:
-        echo_json({"files": [str(f) for f in files], "cases": study.to_json()})
+        echo_json({"units": units.to_json(), "files": [str(f) for f in files],
+                   "cases": study.to_json()})
         return
     click.echo(markdown_table(study.results_table(units)))
     click.echo("")
@@ -424,52 +498,49 @@ def hard_cases(out, units, progress, as_json):
 @eps_option
 @beta_option
 @click.option("--executor", type=click.Choice(["process", "serial"]), default="process",
-              show_default=True, help="Run the scenes on a local process pool or serially.")
+              show_default=True, help="Run the pymunk scenes (--engine pymunk) on a local "
+                                      "process pool or serially.")
 @click.option("--no-animation", is_flag=True, help="Skip the MP4 of the finite-duration scene.")
+@click.option("--engine", type=click.Choice(["numba", "pymunk"]), default="numba",
+              show_default=True, help="The compiled crush scene for the point contacts, or "
+                                      "pymunk for every scene (the cross-check).")
+@units_option
 @progress_option
 @json_option
-def assumptions(case_name, out, eps, beta, executor, no_animation, progress, as_json):
+def assumptions(case_name, out, eps, beta, executor, no_animation, engine, units, speed_unit,
+                progress, as_json):
     """Test PIM's assumptions for CASE, one at a time, on a ladder of crush scenes.
 
-    Each scene differs from the one below in one assumption (Newton's restitution and
-    mu = beta mu0, instantaneous impulse, impulse at C, one contact point, no external
-    forces, PIM's tangential law); the marginal effect of each (against the scene below, at
-    the same contact time) and the cumulative one (PIM's error) are measured at several
-    contact times, with the tyre effect over the contact time and the friction effect over
-    mu_c and the tangential recovery. Writes assumptions.md, CSVs, a plot and an MP4 with
-    PIM's ghost.
+    Each scene differs from its baseline in one assumption (Newton's restitution and
+    mu = beta mu0, instantaneous impulse, one contact point, no external forces with the
+    wheels rolling or locked, PIM's tangential law); each effect is stated over 50-150 ms
+    of contact (and the tangential recovery 0-1 for friction), in % and as the delta-V and
+    yaw rate it moves, in the case's units. Where C is stands beside the ladder as input
+    uncertainty. Writes assumptions.md and .html, CSVs, a plot and an MP4 with PIM's ghost.
     """
-    from pim.io.casefile import load_case
     from pim.io.output import output_folder, rebase, worker_pool
 
-    from comparisons.report.assumptions import write_assumptions
+    from comparisons.report.assumptions import study_json, verdicts, write_assumptions
     from comparisons.studies.assumptions import run_assumptions
 
-    case = load_case(case_name)
-    require_brach(case, "pim assumptions")
+    case = load_case_for("assumptions", case_name)
+    units = output_units(case, units, speed_unit)
     folder = Path(out) if out is not None else Path("out") / f"{case.name or 'case'}-assumptions"
     command = f"pim assumptions {case_name}" + (f" --out {out}" if out else "")
     with output_folder(folder, command="pim assumptions") as tmp, \
             contextlib.ExitStack() as stack:
-        if executor == "process":
+        if executor == "process" and engine == "pymunk":     # the compiled scene batches
             executor = stack.enter_context(worker_pool())
         study = run_assumptions(case, eps, beta, executor=executor, progress=progress,
-                                animation_after=None if no_animation else 2.0)
+                                animation_after=None if no_animation else 2.0, engine=engine)
         files = rebase(write_assumptions(study, tmp, animation=not no_animation,
-                                         progress=progress, command=command), tmp, folder)
+                                         progress=progress, command=command, units=units),
+                       tmp, folder)
     if as_json:
-        echo_json({"case": case.name, "eps": study.eps, "beta": study.beta,
-                   "beta_pim": study.beta_pim, "verdicts": study.verdicts(),
-                   "seconds": study.seconds, "files": [str(f) for f in files],
-                   "ladders": [{"contact_time_ms": 1e3 * lad.duration,
-                                "rungs": [{"key": r.key, "against": r.baseline,
-                                           "marginal": r.marginal,
-                                           "cumulative": r.cumulative,
-                                           "failure": r.run.failure}
-                                          for r in lad.rungs[1:]]}
-                               for lad in study.ladders]})
+        echo_json({**study_json(study, units), "seconds": study.seconds,
+                   "files": [str(f) for f in files]})
         return
-    for verdict in study.verdicts():
+    for verdict in verdicts(study, units):
         click.echo(f"- {verdict}")
     click.echo(f"wrote {folder / 'assumptions.md'} ({len(files)} files) in "
-               f"{study.seconds:.1f} s of simulation")
+               f"{study.seconds:.1f} s of simulation ({study.engine})")

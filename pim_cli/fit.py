@@ -7,11 +7,17 @@ import click
 
 from pim.model.numbers import InputError
 from pim_cli.main import (
+    Beta,
     FiniteFloat,
+    allow_inadmissible_option,
     case_argument,
+    check_answer,
     echo_json,
+    findings_json,
+    finish_answer,
     json_option,
-    require_brach,
+    load_case_for,
+    output_units,
     units_option,
 )
 
@@ -22,7 +28,7 @@ include_yaw_option = click.option(
     help="Also fit the measured yaw rates, weighted by each vehicle's radius of gyration.")
 fixed_eps_option = click.option("--eps", type=FiniteFloat(), default=None,
                                 help="Hold epsilon fixed at this value and fit beta only.")
-fixed_beta_option = click.option("--beta", type=FiniteFloat(), default=None,
+fixed_beta_option = click.option("--beta", type=Beta(), default=None,
                                  help="Hold beta fixed at this value and fit epsilon only.")
 eps_range_option = click.option("--eps-range", type=FiniteFloat(), nargs=2, default=(0.0, 1.0),
                                 show_default=True, metavar="MIN MAX",
@@ -100,8 +106,9 @@ _SI_LABELS = {"m/s": ("velocity", 1), "m^2/s^2": ("velocity", 2), "(m/s)^2": ("v
 
 def fit_json(data: dict, units: str) -> dict:
     """FitResult.to_dict() (SI) with its velocities, yaw rates and velocity-squared costs in
-    ``units``, each with its unit, and ``units`` naming the system."""
-    from pim.io.units import convert
+    ``units`` (a :class:`pim.io.units.DisplayUnits`), each with its unit, and ``units``
+    naming the unit of each kind of quantity."""
+    from pim.io.units import convert, display_units
 
     out = dict(data)
     for key in [k for k in data if k.endswith("_unit")]:
@@ -124,7 +131,7 @@ def fit_json(data: dict, units: str) -> dict:
     out["residuals"] = {name: value * _factor(kinds[name], units)[0]
                         for name, value in data.get("residuals", {}).items()}
     out["residual_units"] = {name: _factor(kinds[name], units)[1] for name in kinds}
-    out["units"] = units
+    out["units"] = display_units(units).to_json()
     return out
 
 
@@ -177,9 +184,10 @@ def _cost_lines(result, fv: float, uv: str) -> list[str]:
 @beta_range_option
 @free_option
 @units_option
+@allow_inadmissible_option
 @json_option
 def fit(case_name, include_yaw, eps, beta, k, mu_c, eps_range, beta_range, free, units,
-        as_json):
+        speed_unit, allow_inadmissible, as_json):
     """Least-squares impact-law parameters matching CASE's measured post-impact motion:
     Brach's (epsilon, beta), or under the case's law "kudlich-slibar" its (k, mu_c).
 
@@ -187,12 +195,12 @@ def fit(case_name, include_yaw, eps, beta, k, mu_c, eps_range, beta_range, free,
     the global optimum. --eps or --beta (--k or --mu-c) fits the other parameter alone;
     --free adds any other input, and the output then says whether the data determine them
     all (rank, families of equally good fits, under-determined, a mu_c that only has a
-    lower bound).
+    lower bound). Exit code 1 after the output when the fitted answer is inadmissible (the
+    reasons first; --allow-inadmissible: exit 0), e.g. beta > 1 with a --beta-range beyond 1.
     """
-    from pim.io.casefile import load_case
 
-    case = load_case(case_name)
-    units = units or case.units
+    case = load_case_for("fit", case_name)
+    units = output_units(case, units, speed_unit)
     ks = (case.impact.law or "brach") == "kudlich-slibar"
     if k is not None and not ks:
         raise InputError("--k is the restitution of law kudlich-slibar (use --eps)")
@@ -201,16 +209,19 @@ def fit(case_name, include_yaw, eps, beta, k, mu_c, eps_range, beta_range, free,
     result = _fit(case, include_yaw, k if ks else eps, beta, eps_range, beta_range,
                   parse_free(free), mu_c)
     ident = result.identifiability
+    found = check_answer(result.case, result.result, units, allow=allow_inadmissible,
+                         as_json=as_json)
     if as_json:
-        data = fit_json(result.to_dict(), units)
+        data = fit_json(result.to_dict(), units) | findings_json(found)
         if free or ks:
             shown = {k: _shown(v, _kind_of(k), units) for k, v in result.values.items()}
             data["values"] = {k: s["value"] for k, s in shown.items()}
             data["value_units"] = {k: s["unit"] for k, s in shown.items()}
             data["identifiability"] = ident.to_dict() if ident is not None else None
         echo_json(data)
-        return
-    _print_fit(case, result, include_yaw, free, units)
+    else:
+        _print_fit(case, result, include_yaw, free, units)
+    finish_answer(found, allow_inadmissible)
 
 
 def _coefficient_lines(result) -> list[str]:
@@ -240,8 +251,6 @@ def _print_fit(case, result, include_yaw, free, units) -> None:
     from pim.io.units import convert
 
     ident = result.identifiability
-    for text in [*case.notes, *result.result.problems()]:     # before the table
-        click.echo(f"warning: {text}", err=True)
     fv, uv = convert(1.0, "velocity", units)
     fw, uw = convert(1.0, "angular_velocity", units)
     fixed = f" (fixed: {', '.join(result.fixed)})" if result.fixed else ""
@@ -297,6 +306,7 @@ def _factor(kind, units: str) -> tuple[float, str]:
 def sensitivity_json(sens, units: str) -> dict:
     """Sensitivity.to_dict() with every value, sigma and derivative in ``units``."""
     from pim.analysis.sensitivity import INPUTS, SENSITIVITY_OUTPUTS
+    from pim.io.units import display_units
 
     data = sens.to_dict()
     for name, entry in data["outputs"].items():
@@ -308,7 +318,7 @@ def sensitivity_json(sens, units: str) -> dict:
             row.update(sigma=row["sigma"] * fi, sigma_unit=ui,
                        per_unit=row["per_unit"] * fo / fi, per_unit_unit=_ratio_unit(uo, ui),
                        per_sigma=row["per_sigma"] * fo)
-    data["units"] = units
+    data["units"] = display_units(units).to_json()
     return data
 
 
@@ -343,7 +353,7 @@ def _parse_sigma(items) -> dict:
 @include_yaw_option
 @click.option("--eps", type=FiniteFloat(), default=None,
               help="Evaluate delta-V at this epsilon instead of fitting.")
-@click.option("--beta", type=FiniteFloat(), default=None,
+@click.option("--beta", type=Beta(), default=None,
               help="Evaluate delta-V at this beta instead of fitting.")
 @click.option("--sigma", "sigmas", multiple=True, metavar="KEY=VALUE",
               help="Override a typical uncertainty, e.g. --sigma point='0.2 m' "
@@ -353,25 +363,37 @@ def _parse_sigma(items) -> dict:
 @click.option("--top", type=click.IntRange(min=1), default=None,
               help="Show only the N largest effects.")
 @units_option
+@allow_inadmissible_option
 @json_option
-def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
+def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, speed_unit,
+                allow_inadmissible, as_json):
     """Which uncertain input moves the fitted (epsilon, beta) and delta-V most.
 
     For each answer, the inputs are ranked by the change that one typical uncertainty
-    (sigma) of the input causes; the derivative per unit is shown too.
+    (sigma) of the input causes; the derivative per unit is shown too. Exit code 1 after
+    the output when the answer at (epsilon, beta) is inadmissible (the reasons first;
+    --allow-inadmissible: exit 0).
     """
-    from pim.analysis.sensitivity import INPUTS, SENSITIVITY_OUTPUTS
     from pim.analysis.sensitivity import sensitivity as compute
-    from pim.io.casefile import load_case
+    from pim.model.solver import solve
 
-    case = load_case(case_name)
-    require_brach(case, "pim sensitivity")
-    units = units or case.units
+    case = load_case_for("sensitivity", case_name)
+    units = output_units(case, units, speed_unit)
     sens = compute(case, eps=eps, beta=beta, uncertainty=_parse_sigma(sigmas),
                    include_yaw=include_yaw)
+    found = check_answer(case, solve(case, sens.eps, sens.beta), units,
+                         allow=allow_inadmissible, as_json=as_json)
     if as_json:
-        echo_json(sensitivity_json(sens, units))
-        return
+        echo_json(sensitivity_json(sens, units) | findings_json(found))
+    else:
+        _print_sensitivity(case, sens, top, units)
+    finish_answer(found, allow_inadmissible)
+
+
+def _print_sensitivity(case, sens, top, units) -> None:
+    """``pim sensitivity``'s text output."""
+    from pim.analysis.sensitivity import INPUTS, SENSITIVITY_OUTPUTS
+
 
     how = ("fitted to the measured motion" if sens.fit is not None
            else "at fixed epsilon, beta (nothing measured)")
@@ -419,26 +441,31 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, as_json):
 @eps_range_option
 @beta_range_option
 @units_option
-def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units):
+@allow_inadmissible_option
+def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units, speed_unit,
+         allow_inadmissible):
     """Draw the design sheet's graphs for CASE into --out (PNG and SVG).
 
     Cost vs epsilon, impulse ratio, impulse on vehicle 2, PDOF, energy loss, post-impact
-    velocities with the measured values, and the cost map over (epsilon, beta).
+    velocities with the measured values, and the cost map over (epsilon, beta). Exit code 1
+    after writing when the fitted answer is inadmissible (the reasons first;
+    --allow-inadmissible: exit 0).
     """
     from pim.analysis.residuals import has_measured_terms
-    from pim.io.casefile import load_case
     from pim.io.output import output_folder, rebase
     from pim.plotting.sheet import write_plots
 
-    case = load_case(case_name)
-    require_brach(case, "pim plot")
-    units = units or case.units
+    case = load_case_for("plot", case_name)
+    units = output_units(case, units, speed_unit)
     if has_measured_terms(case, include_yaw):
         result = _fit(case, include_yaw, None, None, eps_range, beta_range)
     else:
         result = None
         click.echo("note: nothing measured; plotting without the fit", err=True)
+    found = check_answer(result.case if result else case, result.result if result else None,
+                         units, allow=allow_inadmissible)
     with output_folder(out_dir, command="pim plot") as tmp:
         files = write_plots(case, result, tmp, formats=formats, units=units)
     for path in rebase(files, tmp, out_dir):
         click.echo(str(path))
+    finish_answer(found, allow_inadmissible)

@@ -11,20 +11,24 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import sys
 from importlib.metadata import entry_points
 
 import click
 
 from pim.io.output import OutputError, note_signal, signal_received
+from pim.model.case import BETA_RANGE_TEXT
 from pim.model.numbers import InputError
-from pim.model.plausibility import warnings_of
+from pim.model.plausibility import Findings, findings, warnings_of
 
-__all__ = ["main", "cli", "FiniteFloat",
-           "case_argument", "eps_option", "beta_option", "units_option",
+__all__ = ["main", "cli", "FiniteFloat", "Beta", "SEED", "in_callback", "CALLBACK_PATHS",
+           "case_argument", "eps_option", "beta_option", "units_option", "output_units",
            "json_option", "echo_json", "friction_limit_option", "cap_friction_option",
            "solve_with_options", "warnings_of", "NO_IMPACT_EXIT_CODE", "law_options",
-           "require_brach"]
+           "load_case_for", "OPTION_NAMES", "resolve_options", "solve_choice",
+           "allow_inadmissible_option", "INADMISSIBLE_EXIT_CODE",
+           "check_answer", "say_findings", "finish_answer", "findings_json"]
 
 ENTRY_POINT_GROUP = "pim.commands"
 
@@ -55,17 +59,19 @@ def cli():
 
 
 class FiniteFloat(click.ParamType):
-    """A finite float (``nan`` and ``inf`` are usage errors), optionally in [low, high]."""
+    """A finite float (``nan`` and ``inf`` are usage errors), optionally in [low, high]
+    (``unit`` is named with the range in the message)."""
 
     name = "float"
 
-    def __init__(self, low: float | None = None, high: float | None = None):
-        self.low, self.high = low, high
+    def __init__(self, low: float | None = None, high: float | None = None, unit: str = ""):
+        self.low, self.high, self.unit = low, high, unit
 
     def _range(self) -> str:
+        unit = f" {self.unit}" if self.unit else ""
         if self.low is not None and self.high is not None:
-            return f" in [{self.low:g}, {self.high:g}]"
-        return f" >= {self.low:g}" if self.low is not None else ""
+            return f" in [{self.low:g}, {self.high:g}]{unit}"
+        return f" >= {self.low:g}{unit}" if self.low is not None else ""
 
     def convert(self, value, param, ctx):
         if isinstance(value, float):
@@ -81,18 +87,59 @@ class FiniteFloat(click.ParamType):
         return number
 
 
+#: Type of every --seed option: numpy's seeds are integers >= 0 (a negative one is a usage
+#: error naming the option, exit 2, not numpy's traceback).
+SEED = click.IntRange(min=0)
+
+
+class Beta(FiniteFloat):
+    """A beta option: a finite float >= 0 (:data:`pim.model.case.BETA_RANGE_TEXT`; the
+    library's formula takes any beta, e.g. the Kudlich-Slibar law's Brach equivalent)."""
+
+    def convert(self, value, param, ctx):
+        number = super().convert(value, param, ctx)
+        if number < 0:
+            self.fail(f"{value!r}: beta {BETA_RANGE_TEXT}", param, ctx)
+        return number
+
+
 case_argument = click.argument("case_name", metavar="CASE")
 eps_option = click.option("--eps", type=FiniteFloat(0.0, 1.0), default=None,
                           help="Coefficient of restitution epsilon in [0, 1] "
                                "(default: the case's impact.restitution).")
-beta_option = click.option("--beta", type=FiniteFloat(), default=None,
+beta_option = click.option("--beta", type=Beta(), default=None,
                            help="Fraction of the critical impulse ratio, mu = beta mu0 "
                                 "(default: the case's impact.beta, else 1).")
-units_option = click.option("--units", type=click.Choice(["si", "us"]), default=None,
-                            help="Units of the printed and written results: si (m, m/s, kg, "
-                                 "N, kJ) or us (ft, ft/s, slug, lbf, ft lbf); angles in deg, "
-                                 "yaw rates in deg/s (default: the units the case file is "
-                                 "written in).")
+def units_option(command):
+    """--units (the unit system) and --speed-unit (the unit of speeds and delta-V): the
+    command's parameters ``units`` and ``speed_unit``, resolved by :func:`output_units`."""
+    from pim.model.case import SPEED_UNITS
+
+    command = click.option(
+        "--speed-unit", "speed_unit", type=click.Choice(SPEED_UNITS), default=None,
+        help="Unit of every speed, velocity and delta-V in the results (default: the case "
+             "file's [units] speed, else km/h in SI units and mph in US units).")(command)
+    return click.option(
+        "--units", type=click.Choice(["si", "us"]), default=None,
+        help="Units of the printed and written results: si (m, kg, N, kJ; speeds in km/h) "
+             "or us (ft, slug, lbf, ft lbf; speeds in mph); angles in deg, yaw rates in "
+             "deg/s (default: the case file's [units] system, else the units it is written "
+             "in).")(command)
+
+
+def output_units(case=None, units=None, speed_unit=None, default: str = "si"):
+    """The :class:`pim.io.units.DisplayUnits` of a command's output from --units and
+    --speed-unit (each default: the case file's choice, else ``default`` and its field speed
+    unit); the model's messages print speeds in them until the command ends."""
+    from pim.io.units import display_units, messages_in
+
+    shown = display_units(units or (None if case is not None else default), speed_unit, case)
+    ctx = click.get_current_context(silent=True)
+    if ctx is not None:
+        ctx.with_resource(messages_in(shown))
+    return shown
+
+
 json_option = click.option("--json", "as_json", is_flag=True, help="Print JSON instead of a table.")
 
 
@@ -151,51 +198,36 @@ def law_options(command):
              "impact.law, else brach.")(command)
 
 
-def _law_parameters(case, eps, beta, friction_limit, cap_friction, law, k, mu_c):
-    """(law, restitution, beta, contact friction) from the options, checked."""
-    from pim.model.impact_laws import check_contact_friction, check_restitution, law_of
-
-    if cap_friction:
-        if law not in (None, "brach-capped"):
-            raise InputError(f"--cap-friction is law brach-capped; it contradicts --law {law}")
-        if friction_limit is None and mu_c is None:
-            raise InputError("--cap-friction needs --friction-limit")
-        law, mu_c = "brach-capped", friction_limit if mu_c is None else mu_c
-    law = law_of(case, law)
-    if k is not None:
-        if law != "kudlich-slibar":
-            raise InputError(f"--k is the restitution of law kudlich-slibar (law is {law}; "
-                             f"use --eps)")
-        if eps is not None:
-            raise InputError("give --k or --eps, not both")
-        eps = float(check_restitution(k, "--k (restitution)"))
-    if law == "kudlich-slibar" and beta is not None:
-        raise InputError("--beta does not apply to law kudlich-slibar (use --k and --mu-c)")
-    if mu_c is not None:
-        if law == "brach":
-            raise InputError("--mu-c needs --law kudlich-slibar or brach-capped")
-        mu_c = float(check_contact_friction(mu_c, "--mu-c (contact friction)"))
-    return law, eps, beta, mu_c
+#: The command line's names of the law options, for the model's messages.
+OPTION_NAMES = {"eps": "--eps", "beta": "--beta", "law": "--law", "k": "--k", "mu_c": "--mu-c",
+                "cap_friction": "--cap-friction", "friction_limit": "--friction-limit"}
 
 
-def solve_with_options(case, eps, beta, friction_limit=None, cap_friction=False, law=None,
-                       k=None, mu_c=None, units=None):
-    """Solve ``case`` as the commands do: under the case's impact law or ``law``
-    (:func:`pim.solve_law`); ``cap_friction`` is law "brach-capped" capped at
-    ``friction_limit``.
+def resolve_options(case, eps, beta, friction_limit=None, cap_friction=False, law=None, k=None,
+                    mu_c=None):
+    """The :class:`pim.model.law.LawChoice` the law options make of ``case``
+    (:func:`pim.resolve_law`; its messages name the options)."""
+    from pim.model.law import resolve_law
 
-    Raises InputError for a bad or contradictory option, and click's Exit(1) after one line
-    on stderr when the vehicles do not approach at C (no impact), with the approach
-    velocity in ``units`` (default: the case's).
+    return resolve_law(case, eps, beta, law=law, k=k, mu_c=mu_c, cap_friction=cap_friction,
+                       friction_limit=friction_limit, names=OPTION_NAMES)
+
+
+def solve_choice(case, choice, units=None):
+    """Solve ``case`` under the :class:`pim.model.law.LawChoice` ``choice``
+    (:func:`pim.solve`).
+
+    Raises click's Exit(1) after one line on stderr when the vehicles do not approach at C
+    (no impact), with the approach velocity in ``units`` (default: the case's;
+    :func:`pim.io.units.display_units`).
     """
-    from pim.io.units import convert
-    from pim.model.impact_laws import solve_law
+    from pim.io.units import convert, display_units
+    from pim.model.law import solve
     from pim.model.plausibility import no_impact_message
 
-    law, eps, beta, mu_c = _law_parameters(case, eps, beta, friction_limit, cap_friction, law,
-                                           k, mu_c)
-    result = solve_law(case, law, eps, beta, mu_c)
-    scale, label = convert(1.0, "velocity", units or case.units)
+    result = solve(case, choice.restitution, choice.beta, law=choice.law,
+                   mu_c=choice.contact_friction)
+    scale, label = convert(1.0, "velocity", display_units(units, case=case))
     message = no_impact_message(result, label, float(scale))
     if message:
         click.echo(message, err=True)
@@ -203,36 +235,78 @@ def solve_with_options(case, eps, beta, friction_limit=None, cap_friction=False,
     return result
 
 
-def require_brach(case, command: str) -> None:
-    """A ValueError (one line, exit 2) when ``case`` names an impact law other than Brach's,
-    which ``command`` cannot apply yet: never silently Brach's answer instead. The message
-    says what to do: the Brach (eps, beta) giving the same answer for this case
-    (docs/impact-laws.md), and which commands apply the law itself."""
-    law = case.impact.law or "brach"
-    if law == "brach":
-        return
-    raise InputError(f"{command} cannot use impact law {law!r} yet (only 'brach'); "
-                     f"{_brach_equivalent(case, law)}; `pim solve`, `pim sim`, `pim fit`, "
-                     "`pim compare`, `pim animate` and `pim reconstruct` apply the law itself")
+def solve_with_options(case, eps, beta, friction_limit=None, cap_friction=False, law=None,
+                       k=None, mu_c=None, units=None):
+    """Solve ``case`` as the commands do: :func:`solve_choice` of :func:`resolve_options`.
+
+    Raises InputError for a bad or contradictory option, click's Exit(1) when there is no
+    impact.
+    """
+    choice = resolve_options(case, eps, beta, friction_limit, cap_friction, law, k, mu_c)
+    return solve_choice(case, choice, units)
 
 
-def _brach_equivalent(case, law: str) -> str:
-    """Brach's (eps, beta) with the same answer as ``case`` under ``law``, in words."""
-    from pim.model.impact_laws import solve_law
+def load_case_for(command: str, case_name: str, law: str | None = None):
+    """The case ``case_name`` for ``pim command``, which refuses its impact law (or ``law``)
+    here, from the one table of :func:`pim.model.law.check_command_law`."""
+    from pim.io.casefile import load_case
+    from pim.model.law import check_command_law
 
-    try:
-        result = solve_law(case, law)
-        eps, beta = float(result.eps), float(result.beta)
-    except ValueError as exc:
-        return f"fix the case first ({exc})"
-    if not (math.isfinite(eps) and math.isfinite(beta)):
-        return "this case has no Brach equivalent (no impact at C)"
-    return (f"the same answer is Brach's at eps = {eps:.6g}, beta = {beta:.6g}: set "
-            f"impact.law = \"brach\", restitution = {eps:.6g}, beta = {beta:.6g} to run it")
+    case = load_case(case_name)
+    check_command_law(command, case, law)
+    return case
 
 
 #: Exit code of a command whose case has no impact (the vehicles separate at C).
 NO_IMPACT_EXIT_CODE = 1
+#: Exit code of a command whose answer is inadmissible (printed, reasons first), unless
+#: --allow-inadmissible.
+INADMISSIBLE_EXIT_CODE = 1
+
+allow_inadmissible_option = click.option(
+    "--allow-inadmissible", "allow_inadmissible", is_flag=True,
+    help="Exit 0 even when the answer is inadmissible (the contact would pull, kinetic energy "
+         "is gained, beta outside [0, 1] under Brach's law, C farther from a CG than the "
+         "vehicle is long); the reasons are still printed first. Default: exit 1 after the "
+         "answer.")
+
+
+def say_findings(found: Findings, allow: bool = False, as_json: bool = False) -> None:
+    """Print ``found`` on stderr before the answer, one line each: its errors ("error:",
+    or "warning:" when ``allow``), then its warnings (left to the JSON when ``as_json``)."""
+    for text in found.errors:
+        click.echo(f"{'warning' if allow else 'error'}: {text}", err=True)
+    for text in () if as_json else found.warnings:
+        click.echo(f"warning: {text}", err=True)
+
+
+def check_answer(case, result=None, units=None, friction_limit=None, allow=False,
+                 as_json=False) -> Findings:
+    """The errors and warnings about ``case`` and its answer ``result``
+    (:func:`pim.model.plausibility.findings`), numbers in ``units`` (default: the case's),
+    printed on stderr (:func:`say_findings`); end the command with :func:`finish_answer`."""
+    from pim.io.units import quantity_text
+
+    found = findings(case, result, friction_limit, quantity_text(units or case.units))
+    say_findings(found, allow, as_json)
+    return found
+
+
+def finish_answer(found: Findings, allow: bool = False) -> None:
+    """After the answer: exit :data:`INADMISSIBLE_EXIT_CODE` when ``found`` holds errors,
+    unless ``allow`` (--allow-inadmissible)."""
+    if found.errors and not allow:
+        click.echo(f"error: the answer is inadmissible ({len(found.errors)} reason"
+                   f"{'s' if len(found.errors) > 1 else ''} above); --allow-inadmissible "
+                   f"accepts it", err=True)
+        raise click.exceptions.Exit(INADMISSIBLE_EXIT_CODE)
+
+
+def findings_json(found: Findings) -> dict:
+    """The JSON fields of ``found``: admissible, inadmissible (the errors), warnings and
+    problems (both)."""
+    return {"admissible": not found.errors, "inadmissible": found.errors,
+            "warnings": found.warnings, "problems": found.all}
 
 
 @cli.command()
@@ -243,8 +317,10 @@ NO_IMPACT_EXIT_CODE = 1
 @cap_friction_option
 @law_options
 @units_option
+@allow_inadmissible_option
 @json_option
-def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, units, as_json):
+def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, units, speed_unit,
+          allow_inadmissible, as_json):
     """Solve CASE under its impact law (default Brach's PIM) and print the post-impact
     results.
 
@@ -252,37 +328,34 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, unit
     impulse, Brach's coefficients and the energy loss with its normal/tangential split, then
     warnings; with pre-impact evidence (tyre marks before the impact, a driver table from a
     negative time) each vehicle's speed at their start. Exit code 1 with one line when the
-    vehicles do not approach at C (no impact).
+    vehicles do not approach at C (no impact), and after the table when the answer is
+    inadmissible (the reasons first; --allow-inadmissible: exit 0).
     """
-    from pim.analysis.pre_impact_speeds import case_pre_impact
-    from pim.io.casefile import load_case
-    from pim.plotting.tables import format_table, rows_to_json, summarize
     from comparisons.report.pre_impact import pre_impact_json, pre_impact_lines, pre_impact_rows
+    from pim.analysis.pre_impact_speeds import case_pre_impact
+    from pim.plotting.tables import format_table, rows_to_json, summarize
 
-    case = load_case(case_name)
-    units = units or case.units
-    result = solve_with_options(case, eps, beta, friction_limit, cap_friction, law, k, mu_c,
-                                units)
+    case = load_case_for("solve", case_name, law)
+    units = output_units(case, units, speed_unit)
+    choice = resolve_options(case, eps, beta, friction_limit, cap_friction, law, k, mu_c)
+    result = solve_choice(case, choice, units)
     pre_impact = pre_impact_rows(case_pre_impact(case), units)     # marks, driver tables
     if result.q_singular.any():
         problems = result.problems()
         raise InputError(problems[0] if problems else "q is singular")
-    warnings = warnings_of(case, result, friction_limit)
+    found = check_answer(case, result, units, friction_limit, allow_inadmissible, as_json)
     rows = summarize(result, units)
-    law = getattr(result, "law", None) or ("brach-capped" if cap_friction
-                                           else case.impact.law or "brach")
+    law = choice.law
     if as_json:
-        echo_json({"case": case.name, "units": units, "law": law,
-                   "admissible": bool(result.admissible), "problems": warnings,
+        echo_json({"case": case.name, "units": units.to_json(), "law": law, **findings_json(found),
                    "results": rows_to_json(rows), "pre_impact": pre_impact_json(pre_impact)})
-        return
-    for text in warnings:       # before the table, where a reader sees them
-        click.echo(f"warning: {text}", err=True)
-    click.echo(format_table(rows, _title(case, result, law)))
-    if pre_impact:
-        click.echo("\nSpeeds before the impact (from the case's impact velocities):")
-        for line in pre_impact_lines(pre_impact):
-            click.echo(line)
+    else:
+        click.echo(format_table(rows, _title(case, result, law)))
+        if pre_impact:
+            click.echo("\nSpeeds before the impact (from the case's impact velocities):")
+            for line in pre_impact_lines(pre_impact):
+                click.echo(line)
+    finish_answer(found, allow_inadmissible)
 
 
 def _title(case, result, law: str) -> str:
@@ -304,34 +377,72 @@ def _title(case, result, law: str) -> str:
 @eps_option
 @beta_option
 @units_option
-def draw(case_name, out, eps, beta, units):
+@allow_inadmissible_option
+def draw(case_name, out, eps, beta, units, speed_unit, allow_inadmissible):
     """Draw CASE's geometry and sign conventions (outlines, C, n, t, Gamma, arms, velocities,
-    and the impulse when epsilon is known) to an image file; no label covers another."""
-    from pim.io.casefile import load_case
+    and the impulse when epsilon is known) to an image file; no label covers another. What
+    is implausible about the scene is said first; exit code 1 after drawing an impossible
+    scene or an inadmissible impulse (--allow-inadmissible: exit 0)."""
     from pim.io.files import save_figure
-    from pim.model.impact_laws import solve_law
+    from pim.model.law import solve
     from pim.plotting.drawing import draw_case
 
-    case = load_case(case_name)
+    case = load_case_for("draw", case_name)
     result = None
     if eps is not None or case.impact.restitution is not None:
-        result = solve_law(case, None, eps, beta)     # under the case's impact law
-    path = save_figure(draw_case(case, result, units=units or case.units), out)
+        result = solve(case, eps, beta)     # under the case's impact law
+    units = output_units(case, units, speed_unit)
+    found = check_answer(case, result, units, allow=allow_inadmissible)
+    path = save_figure(draw_case(case, result, units=units), out)
     click.echo(f"wrote {path}")
+    finish_answer(found, allow_inadmissible)
 
 
 class Terminated(KeyboardInterrupt):
     """SIGTERM, raised like Ctrl-C so that every atomic writer removes its temporary file."""
 
 
-def _on_sigterm(signum, frame):
+#: Code run from C with its exceptions printed and dropped ("Exception ignored from callback
+#: for ffi.gc"): pymunk's collision callbacks and object destructors, at-fork hooks,
+#: finalizers. A signal handled there is raised at the first moment outside it.
+CALLBACK_PATHS = (f"{os.sep}pymunk{os.sep}", f"{os.sep}cffi{os.sep}")
+CALLBACK_NAMES = frozenset({"__del__", "_releaseLock", "_acquireLock",
+                            "_after_at_fork_child_reinit_locks", "_after_fork"})
+
+
+def in_callback(frame) -> bool:
+    """Whether ``frame`` (the one a signal handler interrupted) runs inside code whose
+    exceptions are dropped (:data:`CALLBACK_PATHS`, :data:`CALLBACK_NAMES`)."""
+    while frame is not None:
+        code = frame.f_code
+        if code.co_name in CALLBACK_NAMES or any(p in code.co_filename
+                                                 for p in CALLBACK_PATHS):
+            return True
+        frame = frame.f_back
+    return False
+
+
+def _interrupt(signum, frame, error) -> None:
+    """Record the signal and raise ``error``: here, or, when ``frame`` is inside a callback
+    that would drop the exception (and let the run go on to its end), at the first event
+    of the main thread outside it (a profile hook, removed as it raises)."""
     note_signal(signum)
-    raise Terminated()
+    if not in_callback(frame):
+        raise error()
+
+    def outside(event_frame, event, arg):
+        if not in_callback(event_frame):
+            sys.setprofile(None)
+            raise error()
+    sys.setprofile(outside)
+
+
+def _on_sigterm(signum, frame):
+    _interrupt(signum, frame, Terminated)
 
 
 def _on_sigint(signum, frame):
-    note_signal(signum)
-    raise KeyboardInterrupt()
+    _interrupt(signum, frame, KeyboardInterrupt)
 
 
 def _interrupted_code() -> int | None:
@@ -366,7 +477,10 @@ def main(argv=None) -> int:
         previous = {signal.SIGTERM: signal.signal(signal.SIGTERM, _on_sigterm),
                     signal.SIGINT: signal.signal(signal.SIGINT, _on_sigint)}
     try:
-        return _main(argv)
+        try:
+            return _main(argv)
+        except KeyboardInterrupt:       # a signal after _main knew its code: still one line
+            return _interrupted_code() or 130
     finally:
         for signum, handler in previous.items():
             signal.signal(signum, handler)

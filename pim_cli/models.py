@@ -5,24 +5,25 @@ imports the simulator)."""
 
 from __future__ import annotations
 
+from comparisons.report.render import markdown_table
+import time
 from pathlib import Path
 
 import click
 from tqdm.auto import tqdm
 
-from pim_cli.main import echo_json, json_option
+from pim_cli.main import echo_json, json_option, output_units, units_option
 from pim.io.files import writable_folder
+from pim.io.output import output_folder, rebase
 
-from comparisons.report.pulses import write_pulses
-from comparisons.report.render import markdown_table
-from comparisons.studies.pulses import compare_pulses, pulse_table
-from comparisons.report.tuned import verdict, write_tuned_study
-from comparisons.studies.tuned_scene import COARSE_STEPS, coarse_check, crash_classes, study_class
+from comparisons.report.pulses import pulse_table, write_pulses
+from comparisons.studies.pulses import compare_pulses
+from comparisons.report.tuned import study_json, verdict_sentence, write_tuned_study
+from comparisons.studies.crash_records import CLASS_KEYS
+from comparisons.studies.tuned_scene import COARSE_STEPS, study_all
 
 __all__ = ["validate_models", "pulses"]
 
-_units = click.option("--units", type=click.Choice(["si", "us"]), default="si",
-                      show_default=True, help="Units of the tables, plots and messages.")
 _progress = click.option("--progress/--no-progress", default=None,
                          help="Progress bar on stderr (default: only on a terminal).")
 
@@ -41,68 +42,74 @@ def _command(name: str, **opts) -> str:
 @_out_option("validate-models")
 @click.option("--max-tests", type=click.IntRange(3, None), default=None,
               help="Only the first N tests of each class (a quick look), >= 3.")
+@click.option("--class", "classes", multiple=True, type=click.Choice(list(CLASS_KEYS)),
+              help="Only this crash class (repeat for several; default: every class).")
 @click.option("--steps", type=click.IntRange(10, 2000), default=None,
-              help="Scene steps per estimated contact time (default 20; checked against "
-                   "10x finer).")
-@_units
+              help=f"Scene steps per estimated contact time (default {COARSE_STEPS}; checked "
+                   "against 10x finer).")
+@units_option
 @_progress
 @json_option
-def validate_models(out, max_tests, steps, units, progress, as_json):
-    """PIM against the finite-duration scene tuned to the bundled crash tests.
+def validate_models(out, max_tests, classes, steps, units, speed_unit, progress, as_json):
+    """PIM against the finite-duration scene tuned to the bundled crash tests, with a verdict.
 
-    Fits both models per test, per crash class and leave-one-out within each class (IIHS
-    barrier non-sideswipe and sideswipe, momentum-consistent RICSAC tests) and writes
-    tuned-scene.md (one sentence per class on which model predicts the held-out tests
-    better), tuned-scene-summary.csv, tuned-scene-predictions.csv and tuned-scene.png.
+    Per crash class (IIHS barrier non-sideswipe and sideswipe, RICSAC, NHTSA car-to-car) and
+    input variant: multi-start class fits and converged leave-one-out refits of PIM and of
+    the compiled scene under two tangential laws, then a paired signed-rank test of the
+    held-out errors and one verdict. Writes tuned-scene.md and .html, the summary, verdict
+    and prediction tables (CSV) and tuned-scene.png; prints the verdicts and the wall time.
     """
-    folder = writable_folder(Path(out) if out else Path("out") / "validate-models")
+    wall = time.perf_counter()
+    shown = output_units(None, units, speed_unit)
     steps = COARSE_STEPS if steps is None else steps
-    classes = crash_classes(max_tests)
-    studies, checks = [], {}
-    with tqdm(desc="validate-models", unit="run", disable=None if progress is None
-              else not progress) as bar:
-        for name, tests in classes.items():
-            st = study_class(name, tests, steps=steps, bar=bar)
-            studies.append(st)
-            checks[name] = max((coarse_check(t, st.class_fits["scene"].x, steps, 10 * steps)
-                                for t in tests[:3]), key=lambda d: d[0])
-    files = write_tuned_study(studies, folder, units, _command(
-        "validate-models", out=out, max_tests=max_tests, steps=steps if steps != COARSE_STEPS
-        else None, units=units if units != "si" else None), checks)
+    folder = Path(out) if out else Path("out") / "validate-models"
+    command = " ".join([_command("validate-models", out=out, max_tests=max_tests,
+                                 steps=steps if steps != COARSE_STEPS else None,
+                                 units=units, speed_unit=speed_unit)]
+                       + [f"--class {c}" for c in classes])
+    with output_folder(folder, command="pim validate-models") as tmp:
+        with tqdm(desc="validate-models", unit=" scenes", unit_scale=True,
+                  disable=None if progress is None else not progress) as bar:
+            studies = study_all(max_tests, steps=steps, classes=classes or None, bar=bar)
+        files = rebase(write_tuned_study(studies, tmp, shown, command), tmp, folder)
+    wall = time.perf_counter() - wall
     if as_json:
-        echo_json({"files": [str(f) for f in files],
-                   "verdicts": [verdict(st, units) for st in studies]})
+        echo_json(study_json(studies, shown, wall) | {"files": [str(f) for f in files]})
         return
     for st in studies:
-        click.echo(verdict(st, units))
+        for v in st.variants:
+            click.echo(verdict_sentence(st, v, shown))
+    click.echo(f"wall time {wall:.1f} s")
     click.echo(f"wrote {files[0]}")
 
 
 @click.command("pulses")
 @_out_option("pulses")
 @click.option("--stiffness", type=click.FloatRange(1e3, 1e9), default=None,
-              help="Linear crush stiffness [N/m] (default sim.DEFAULT_STIFFNESS, 7.5e5).")
+              help="Linear crush stiffness [N/m] (default: the full-width frontal barrier "
+                   "default, 7.5e5, fitted to this test).")
 @click.option("--eps", type=click.FloatRange(0.0, 1.0), default=None,
               help="Restitution of the crush in [0, 1] (default: the test's rebound speed "
                    "over its impact speed).")
-@_units
+@units_option
 @json_option
-def pulses(out, stiffness, eps, units, as_json):
+def pulses(out, stiffness, eps, units, speed_unit, as_json):
     """The contact law's force-time and delta-V-time against NHTSA test 10146.
 
     Writes pulses.md (the table of duration, peak force, crush at peak, rebound, each with
-    its error), pulses-nhtsa10146.csv and pulses.png.
+    its error and named fitted, when it agrees by construction with parameters taken from
+    this test, or predicted), pulses-nhtsa10146.csv and pulses.png.
     """
     folder = writable_folder(Path(out) if out else Path("out") / "pulses")
+    shown = output_units(None, units, speed_unit)
     c = compare_pulses(stiffness, eps)
-    table = pulse_table(c, units)
-    cmd = _command("pulses", out=out, stiffness=stiffness, eps=eps,
-                   units=units if units != "si" else None)
-    files = write_pulses(c, folder, units, cmd)
+    cmd = _command("pulses", out=out, stiffness=stiffness, eps=eps, units=units,
+                   speed_unit=speed_unit)
+    files = write_pulses(c, folder, shown, cmd)
+    table = pulse_table(c, shown)
     if as_json:
-        echo_json({"files": [str(f) for f in files], "rows": [dict(zip(table.columns, r,
-                                                                        strict=True))
-                                                               for r in table.rows]})
+        echo_json({"units": shown.to_json(), "files": [str(f) for f in files],
+                   "rows": [dict(zip(table.columns, r, strict=True)) for r in table.rows]})
         return
     click.echo(markdown_table(table))
     click.echo(f"wrote {files[0]}")

@@ -4,12 +4,13 @@ The chain of :func:`pim.analysis.reconstruction.reconstruct`: the run-out invers
 vehicle with ``[evidence]`` (or the case's ``[measured]`` post-impact motion), the inverse PIM
 for the ``[unknown]`` table, the linear-momentum check beside it, and a Monte Carlo over the
 stated uncertainties (``--samples``) for each unknown's 5/50/95 % and its driving inputs.
-Prints the table in the case's units (``--units`` to change; speeds in mph in US units, the
-customary unit of impact speeds); ``--json`` prints each unknown
-by its dotted name with its value, percentiles and unit in the same units (``units`` names
-the system), and the momentum check beside them. Writes DIR/report.md, DIR/report.html
-(the same as one self-contained page, figure and video inline; its path is printed last),
-DIR/reconstruction.csv (DIR/pre_impact.csv with pre-impact evidence) and, with evidence,
+Prints the table in the case's units, speeds in km/h (SI) or mph (US) as the field reports
+them (``--units``, ``--speed-unit`` or the case file's ``[units]`` to change); ``--json``
+prints each unknown by its dotted name with its value, percentiles and unit in the same
+units (``units`` names the unit of each kind of quantity), and the momentum check beside
+them. Writes DIR/report.md, DIR/report.html
+(the same as one self-contained page, figure and video inline),
+DIR/reconstruction.csv and, with run-out evidence (``[evidence]`` rest positions),
 DIR/scene.png and DIR/reconstruction.mp4 (the reconstructed crash from the impact to rest).
 
 When the data cannot decide the unknowns, one line says what is missing and the exit code
@@ -42,16 +43,35 @@ from comparisons.report.write import write_document
 from pim.analysis.pre_impact_speeds import reconstruction_pre_impact
 from pim.analysis.reconstruction import Reconstruction
 from pim.analysis.reconstruction import reconstruct as run_reconstruction
-from pim.io.casefile import load_case
 from pim.io.files import save_figure
+from pim.io.inertia_data import estimate_records
 from pim.io.output import output_folder, worker_pool
-from pim.io.units import convert
+from pim.io.units import convert, display_units
 from pim.model.numbers import InputError
-from pim.plotting.reconstruction_animation import write_reconstruction_mp4
+from pim.model.plausibility import secondary_contact
+from pim.plotting.reconstruction_animation import frame_states, write_reconstruction_mp4
 from pim.plotting.reconstruction_scene import reconstruction_figure
-from pim_cli.main import case_argument, echo_json, json_option, units_option
+from pim_cli.main import (
+    SEED,
+    FiniteFloat,
+    allow_inadmissible_option,
+    case_argument,
+    check_answer,
+    echo_json,
+    findings_json,
+    finish_answer,
+    json_option,
+    load_case_for,
+    output_units,
+    units_option,
+)
 
-__all__ = ["reconstruct", "spread_text"]
+__all__ = ["reconstruct", "reconstruction_rows", "law_line", "evidence_drivers",
+           "driver_lines", "budget", "DEFAULT_MAX_MINUTES", "runout_contact", "spread_text"]
+
+#: Default of --max-minutes: the longest Monte Carlo with run-out evidence run without
+#: being asked [min].
+DEFAULT_MAX_MINUTES = 30.0
 
 
 def spread_text(row, samples: int, sep: str = ", ") -> str:
@@ -72,9 +92,10 @@ def _lines(rows: ReconstructionRows, samples: int) -> list[str]:
     return lines
 
 
-def _json(case, rows: ReconstructionRows, samples: int, messages, units: str) -> dict:
+def _json(case, rows: ReconstructionRows, samples: int, messages, units) -> dict:
     """``--json``'s data: every value in ``units`` with its unit (NaN becomes null)."""
-    return {"case": case.name, "units": units, "samples": samples, "messages": messages,
+    return {"case": case.name, "units": display_units(units).to_json(), "samples": samples,
+            "messages": messages, "estimates": estimate_records(case, units),
             "unknowns": {r.name: {"unit": r.unit, "value": r.value, "p5": r.p5,
                                   "p50": r.p50, "p95": r.p95, "lower_bound": r.lower_bound}
                          for r in rows.unknowns},
@@ -85,35 +106,55 @@ def _json(case, rows: ReconstructionRows, samples: int, messages, units: str) ->
 @click.command()
 @case_argument
 @click.option("--out", "out", type=click.Path(file_okay=False), default=None,
-              help="Directory for report.md, report.html, reconstruction.csv and scene.png.")
+              help="Directory for report.md, report.html and reconstruction.csv; with "
+                   "run-out evidence ([evidence] rest positions) also scene.png and "
+                   "reconstruction.mp4.")
 @click.option("--samples", type=click.IntRange(min=0), default=10_000, show_default=True,
               help="Monte Carlo samples over the stated uncertainties (0: none).")
-@click.option("--seed", type=int, default=0, show_default=True, help="Monte Carlo seed.")
+@click.option("--seed", type=SEED, default=0, show_default=True, help="Monte Carlo seed.")
 @click.option("--workers", type=click.IntRange(min=1), default=1, show_default=True,
               help="Spread the Monte Carlo over this many processes (1: this process, "
                    "which already uses every core for the run-outs).")
 @click.option("--video/--no-video", default=True, show_default=True,
-              help="With evidence, also write DIR/reconstruction.mp4 (impact to rest).")
+              help="With run-out evidence, also write DIR/reconstruction.mp4 (impact to "
+                   "rest).")
 @click.option("--progress/--no-progress", default=None,
               help="Progress of the stages on stderr (default: only on a terminal).")
+@click.option("--max-minutes", type=FiniteFloat(0.0, None, "min"), default=DEFAULT_MAX_MINUTES,
+              show_default=True,
+              help="With run-out evidence every Monte Carlo sample refits the run-outs: the "
+                   "Monte Carlo's time is measured on a pilot before it starts, said on "
+                   "stderr when over 10 s, and refused (exit 2, with the sample count that "
+                   "fits) when over this.")
 @units_option
+@allow_inadmissible_option
 @json_option
-def reconstruct(case_name, out, samples, seed, workers, video, progress, units, as_json):
+def reconstruct(case_name, out, samples, seed, workers, video, progress, max_minutes, units,
+                speed_unit, allow_inadmissible, as_json):
     """Reconstruct CASE's unknowns (e.g. the impact speeds) from its evidence.
+
+    With --out DIR: DIR/report.md, DIR/report.html and DIR/reconstruction.csv; a case
+    with run-out evidence ([evidence] rest positions) adds DIR/scene.png (the run-outs
+    drawn) and DIR/reconstruction.mp4 (unless --no-video).
 
     With --out the folder is written whole at the end (or not at all: an error or an
     interrupt leaves an earlier run there as it was); its lock is taken before the work.
+    Exit code 1 after the output when the reconstructed answer is inadmissible (the
+    reasons first; --allow-inadmissible: exit 0).
     """
-    case = load_case(case_name)
-    units = units or case.units
+    case = load_case_for("reconstruct", case_name)
+    units = output_units(case, units, speed_unit)
     with output_folder(out, command="pim reconstruct") if out else \
             contextlib.nullcontext() as tmp:
         with _stages(case, samples, workers, progress) as say:
-            rec, rows, pre = _reconstruct(case, samples, seed, workers, units, as_json, say)
+            rec, rows, pre, found = _reconstruct(case, samples, seed, workers, units, as_json,
+                                                 say, budget(samples, workers, max_minutes),
+                                                 allow_inadmissible)
         if tmp is not None:
             _write_folder(tmp, rec, rows, units, video, pre)
     if out and not as_json:
         click.echo(f"wrote {Path(out) / 'report.html'} (and report.md)")
+    finish_answer(found, allow_inadmissible)
 
 
 @contextlib.contextmanager
@@ -135,23 +176,54 @@ def _stages(case, samples: int, workers: int, progress):
         yield say
 
 
-def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
-    """Run the reconstruction and print its table (or JSON); return it, its rows and the
-    rows of the speeds before the impact (:mod:`comparisons.report.pre_impact`)."""
+def budget(samples: int, workers: int, max_minutes: float):
+    """The ``estimate`` callback of :func:`pim.analysis.reconstruction.reconstruct`: says the
+    Monte Carlo's estimated time on stderr when over 10 s, refuses it (InputError naming
+    --max-minutes and the --samples that fit) when over ``max_minutes``."""
+    def check(seconds: float) -> None:
+        seconds /= workers
+        if seconds > 60.0 * max_minutes:
+            fit = int(samples * 60.0 * max_minutes / seconds)
+            raise InputError(f"--max-minutes {max_minutes:g}: the Monte Carlo of {samples} "
+                             f"samples refits the run-outs of each sample, about "
+                             f"{_duration(seconds)} here; give --samples {fit} or fewer, or "
+                             f"raise --max-minutes")
+        if seconds > 10.0:
+            click.echo(f"note: Monte Carlo: {samples} samples, each refitting the run-outs: "
+                       f"about {_duration(seconds)}", err=True)
+    return check
+
+
+def _duration(seconds: float) -> str:
+    return f"{seconds:.0f} s" if seconds < 120 else (
+        f"{seconds / 60:.0f} min" if seconds < 7200 else f"{seconds / 3600:.1f} h")
+
+
+def _reconstruct(case, samples, seed, workers, units, as_json, say=None, estimate=None,
+                 allow=False):
+    """Run the reconstruction and print its table (or JSON) after what is wrong or doubtful
+    about its answer; return it, its rows, the rows of the speeds before the impact
+    (:mod:`comparisons.report.pre_impact`) and those findings."""
     if workers > 1:
         with worker_pool(workers) as pool:
             rec = run_reconstruction(case, samples=samples, seed=seed, executor=pool,
-                                     blocks=2 * workers, progress=say)
+                                     blocks=2 * workers, progress=say, estimate=estimate)
     else:
-        rec = run_reconstruction(case, samples=samples, seed=seed, progress=say)
+        rec = run_reconstruction(case, samples=samples, seed=seed, progress=say,
+                                 estimate=estimate)
     if not rec.determined:
         raise InputError(next((m for m in rec.messages if "under-determined" in m
                                or "family" in m or "equally well" in m),
                               "; ".join(rec.messages)))
     rows = reconstruction_rows(rec, units)
     pre = pre_impact_rows(reconstruction_pre_impact(rec, seed), units)
+    found = check_answer(rec.fit.case, rec.fit.result, units, allow=allow, as_json=as_json)
+    contact = runout_contact(rec, units)
+    if contact is not None and not as_json:
+        click.echo(f"note: {contact['message']}", err=True)
     if as_json:
-        data = _json(case, rows, samples, rec.messages, units)
+        data = _json(case, rows, samples, rec.messages, units) | findings_json(found)
+        data["secondary_impact"] = contact
         data["pre_impact"] = pre_impact_json(pre)
         data["tyre_models"] = ({f"vehicle{i}": fit.tyre_model for i, fit in
                                 rec.post.runouts.items()} if rec.post else {})
@@ -174,7 +246,32 @@ def _reconstruct(case, samples, seed, workers, units, as_json, say=None):
             click.echo(f"evidence: {line}")
         if rec.goodness is not None:
             click.echo(f"goodness of fit: {rec.goodness.summary()}")
-    return rec, rows, pre
+    if contact is not None:
+        rec.messages.append(contact["message"])         # into the report too
+    return rec, rows, pre, found
+
+
+def runout_contact(rec: Reconstruction, units: str) -> dict | None:
+    """Where the two fitted run-outs (those the animation plays) run into each other again
+    after the impact (:func:`pim.model.plausibility.secondary_contact`): time [s], place
+    (x, y) in ``units`` and the message; None without both run-outs and outlines, or when
+    they do not."""
+    post = rec.post
+    if post is None or set(post.runouts) != {1, 2}:
+        return None
+    frames = frame_states(post, fps=100, hold=0.0)
+    hit = secondary_contact(frames.times, frames.states[1], frames.states[2],
+                            rec.case.vehicle1, rec.case.vehicle2)
+    if hit is None:
+        return None
+    time, point = hit
+    (x, y), unit = convert(point, "length", units)
+    return {"time": time, "x": float(x), "y": float(y), "length_unit": unit,
+            "message": f"secondary impact at t = {time:.2f} s after the impact at (x, y) = "
+                       f"({x:.4g} {unit}, {y:.4g} {unit}): the two fitted run-outs run into "
+                       f"each other again, a second impact the run-out model leaves out (the "
+                       f"motion after it, and the speeds fitted to the rest positions through "
+                       f"it, are not reliable)"}
 
 
 def _crush_json(rec: Reconstruction, units: str) -> dict:

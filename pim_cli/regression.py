@@ -8,10 +8,21 @@ import time
 from pathlib import Path
 
 import click
+
+import pim
 from tqdm import tqdm
 
-from pim_cli.main import echo_json, json_option, units_option
+from pim_cli.main import SEED, echo_json, json_option, units_option
 from pim.io.files import write_text
+from pim.io.units import quantity_text
+from pim.model.numbers import InputError
+from pim.model.plausibility import Findings, findings
+from pim_cli.main import (
+    allow_inadmissible_option,
+    load_case_for,
+    finish_answer,
+    say_findings,
+)
 
 from comparisons.regression.sections import DEFAULT_SECTIONS, DEFAULT_SETTINGS, SECTIONS
 from comparisons.regression.baseline import (
@@ -53,11 +64,13 @@ def _progress(total: int, desc: str):
 @click.option("--reconstruct-samples", type=click.IntRange(min=0), default=None,
               help=f"Monte Carlo samples of reconstruct (default "
                    f"{DEFAULT_SETTINGS['reconstruct_samples']}; 0: the solution only).")
-@click.option("--seed", type=int, default=None, help="Seed of the Monte Carlo (default 0).")
+@click.option("--seed", type=SEED, default=None, help="Seed of the Monte Carlo (default 0).")
 @click.option("--references", type=click.Path(dir_okay=False), default=None,
               help="TOML file of independent reference values with their source and "
                    "tolerance, held in the baseline beside the recorded values.")
-def baseline(cases, out, extra, skip, samples, reconstruct_samples, seed, references):
+@allow_inadmissible_option
+def baseline(cases, out, extra, skip, samples, reconstruct_samples, seed, references,
+             allow_inadmissible):
     """Record every output CASE... supports, with tolerances, in a baseline file.
 
     Per case: solve, fit (with [measured] motion), the rigid pymunk cross-check, the Monte
@@ -65,7 +78,10 @@ def baseline(cases, out, extra, skip, samples, reconstruct_samples, seed, refere
     PIM's assumptions at typical values; the SHA-256 of the case file; the versions of the
     project, numpy, scipy, pymunk, numba and pint. Values are SI, each with its unit.
     `pim check OUT` reruns them. Takes about 0.1 s per case without a fit, 1-2 s with one.
+    A case whose answer is inadmissible is not recorded: the reasons, exit code 1 and no
+    file, unless --allow-inadmissible.
     """
+    finish_answer(_cases_findings(cases, allow_inadmissible), allow_inadmissible)
     sections = tuple(s for s in SECTIONS if (s in DEFAULT_SECTIONS or s in extra)
                      and s not in skip)
     settings = dict(DEFAULT_SETTINGS)
@@ -84,26 +100,44 @@ def baseline(cases, out, extra, skip, samples, reconstruct_samples, seed, refere
                f"{time.perf_counter() - start:.1f} s ({', '.join(sections)})")
 
 
+def _cases_findings(cases, allow: bool) -> Findings:
+    """The errors and warnings about each case and its answer under its own law, each
+    prefixed with the case and printed (:func:`pim_cli.main.say_findings`)."""
+    errors, warnings = [], []
+    for name in cases:
+        case = load_case_for("baseline", name)
+        try:
+            result = pim.solve(case)
+        except InputError:          # no coefficients (a reconstruction case): the case alone
+            result = None
+        found = findings(case, result, show=quantity_text(case.units))
+        errors += [f"{name}: {text}" for text in found.errors]
+        warnings += [f"{name}: {text}" for text in found.warnings]
+    found = Findings(errors, warnings)
+    say_findings(found, allow)
+    return found
+
+
 @click.command()
 @click.argument("baseline_file", metavar="BASELINE")
 @click.option("--case", "only", multiple=True,
               help="Check only this case of the baseline (repeatable).")
 @units_option
 @json_option
-def check(baseline_file, only, units, as_json):
+def check(baseline_file, only, units, speed_unit, as_json):
     """Rerun a baseline's cases; list every quantity that moved beyond its tolerance.
 
     Prints the quantity, its baseline and current values, the difference and the tolerance
-    (in each case's units unless --units says otherwise), whether a case file changed since
-    the baseline (its SHA-256) and which dependency versions differ (then the seeded Monte
-    Carlo is held to its statistical tolerance instead of bit for bit). Exit code 0: all
-    within tolerance; 1: drift; 2: bad input (missing or malformed baseline, one line).
+    (in each case's units unless --units or --speed-unit says otherwise), whether a case file
+    changed since the baseline (its SHA-256) and which dependency versions differ (then the
+    seeded Monte Carlo is held to its statistical tolerance instead of bit for bit). Exit code
+    0: all within tolerance; 1: drift; 2: bad input (missing or malformed baseline, one line).
     """
     bar, step = _progress(len(only) if only else None, "check")
     with bar:
         report = check_baseline(baseline_file, only or None, step)
     if as_json:
-        echo_json(report.to_json())
+        echo_json(report.to_json(units, speed_unit))
     else:
-        click.echo(format_report(report, units))
+        click.echo(format_report(report, units, speed_unit))
     return 0 if report.ok else DRIFT_EXIT_CODE

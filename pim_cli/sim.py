@@ -2,71 +2,122 @@
 
 from __future__ import annotations
 
-import sys
+import math
 
 import click
 
+from pim.model.law import solve as solve_under_law
+from pim.model.numbers import InputError
 from pim_cli.main import (
     FiniteFloat,
+    allow_inadmissible_option,
     beta_option,
     case_argument,
+    check_answer,
     echo_json,
     eps_option,
+    findings_json,
+    finish_answer,
     json_option,
+    load_case_for,
+    output_units,
     units_option,
 )
-from pim.model.impact_laws import solve_law
-from pim.model.numbers import InputError
-
 from sim.crosscheck import crosscheck
-from sim.kudlich_slibar import crosscheck_kudlich_slibar
+from sim.failures import SimulationError
+from sim.kudlich_slibar import crosscheck_kudlich_slibar, simulate_kudlich_slibar
+from sim.secondary import WATCH_AFTER, find_secondary_impact, watch_after_impact
+from sim.settings import Settings
 
-__all__ = ["sim"]
+__all__ = ["sim", "in_options", "SETTING_OPTIONS"]
 
 
 @click.command()
 @case_argument
 @eps_option
 @beta_option
-@click.option("--dt", type=FiniteFloat(), default=None, help="Time step [s] (default: Settings()).")
-@click.option("--iterations", type=int, default=None,
+@click.option("--dt", type=FiniteFloat(0.0, 1.0, "s"), default=None,
+              help="Time step [s] in (0, 1] (default: Settings()).")
+@click.option("--iterations", type=click.IntRange(1, 100_000), default=None,
               help="Solver iterations per step (default: automatic from the contact).")
 @click.option("--contact", type=click.Choice(["point", "outline"]), default="point",
               show_default=True, help="Collide a point at C, or the vehicle outlines.")
 @click.option("--start", type=click.Choice(["exact", "detected"]), default="exact",
               show_default=True, help="Place the contact at C, or let the engine find it.")
 @units_option
+@allow_inadmissible_option
 @json_option
-def sim(case_name, eps, beta, dt, iterations, contact, start, units, as_json):
+def sim(case_name, eps, beta, dt, iterations, contact, start, units, speed_unit,
+        allow_inadmissible, as_json):
     """Simulate CASE with pymunk and compare with the analytic answer (pim solve) under the
     case's impact law (Brach's PIM, friction-capped Brach or Kudlich-Slibar).
 
     Prints analytic and simulated post-impact velocities and yaw rates with absolute and
-    relative errors, and the wall time of the simulation. Exit code 1 if the simulation
-    fails (no contact, never separated, multiple contacts, energy gained, not converged).
+    relative errors, and the wall time of the simulation; before them, a note when the
+    outlines run into each other again within 2 s after the impact (a secondary contact,
+    with its time and place). Exit code 1 if the simulation fails (no contact, never
+    separated, multiple contacts, energy gained, not converged), and after the table when
+    the analytic answer is inadmissible (the reasons first; --allow-inadmissible: exit 0).
     """
-    from pim.io.casefile import load_case
-
-    from sim.failures import SimulationError
-    from sim.settings import Settings
 
     kwargs = {"iterations": iterations, "contact": contact, "start": start}
     if dt is not None:
         kwargs["dt"] = dt
-    settings = Settings(**kwargs)
-    case = load_case(case_name)
-    units = units or case.units
+    try:
+        settings = Settings(**kwargs)
+    except InputError as exc:
+        raise InputError(in_options(str(exc))) from None
+    case = load_case_for("sim", case_name)
+    units = output_units(case, units, speed_unit)
     try:
         check = _crosscheck_law(case, eps, beta, settings)
     except SimulationError as exc:
-        click.echo(f"simulation failed ({exc.kind}): {exc}", err=True)
-        sys.exit(1)
+        click.echo(f"simulation failed ({exc.kind}): {in_options(str(exc))}", err=True)
+        raise click.exceptions.Exit(1) from None
+    found = check_answer(case, check.analytic, units, allow=allow_inadmissible,
+                         as_json=as_json)
+    secondary, why = _secondary(case, check)
     if as_json:
-        echo_json(check.to_json(units))
-        return
-    for text in getattr(check, "limitations", ()):     # before the table, where a reader sees them
-        click.echo(f"note: {text}", err=True)
-    click.echo(check.format_table(units))
+        echo_json(check.to_json(units) | findings_json(found) | {
+            "secondary_impact": None if secondary is None else secondary.to_json(units)})
+    else:
+        # before the table, where a reader sees them; PIM's own flags are said above
+        for text in getattr(check, "limitations", ()):
+            if not text.startswith("PIM: "):
+                click.echo(f"note: {text}", err=True)
+        if secondary is not None or why:
+            click.echo(f"note: {why or secondary.message(units)}", err=True)
+        click.echo(check.format_table(units))
+    finish_answer(found, allow_inadmissible)
+
+
+def _secondary(case, check):
+    """(The secondary contact within :data:`sim.secondary.WATCH_AFTER` s after the impact
+    or None, why it could not be watched or ""): the rigid scene of the check played on,
+    or the Kudlich-Slibar two-phase run."""
+    try:
+        if (case.impact.law or "brach") != "kudlich-slibar":
+            return watch_after_impact(case, check.eps, check.beta), ""
+        settings = Settings(dt=1e-3, record=True, duration=WATCH_AFTER + 2e-3)
+        mu_c = check.mu_c if math.isfinite(check.mu_c) else 1e6    # always stick
+        run = simulate_kudlich_slibar(case, check.k, mu_c, settings)
+        return find_secondary_impact(run.trajectory), ""
+    except SimulationError as exc:
+        return None, (f"a secondary contact after the impact was not checked: the run on "
+                      f"after the impact failed ({exc.kind})")
+
+
+#: The simulator's settings that ``pim sim`` sets from an option: its messages name the option.
+SETTING_OPTIONS = {"settings.iterations": "--iterations", "settings.dt": "--dt",
+                   "settings.contact": "--contact", "settings.start": "--start"}
+
+
+def in_options(message: str) -> str:
+    """A message of the simulator as a command-line user reads it: each setting of
+    :data:`SETTING_OPTIONS` named by its option (``settings.iterations`` -> ``--iterations``)."""
+    for setting, option in SETTING_OPTIONS.items():
+        message = message.replace(setting, option)
+    return message
 
 
 def _crosscheck_law(case, eps, beta, settings):
@@ -79,7 +130,7 @@ def _crosscheck_law(case, eps, beta, settings):
                              "impact.restitution and impact.contact_friction in the case)")
         return crosscheck_kudlich_slibar(case, settings=settings)
     if law == "brach-capped":
-        capped = solve_law(case, law, eps, beta)
+        capped = solve_under_law(case, eps, beta)
         eps, beta = float(capped.eps), float(capped.beta)
     return crosscheck(case, eps, beta, settings)
 

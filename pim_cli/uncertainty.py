@@ -8,11 +8,19 @@ import click
 
 from pim.model.numbers import InputError
 from pim_cli.main import (
+    SEED,
+    Beta,
     FiniteFloat,
+    allow_inadmissible_option,
     case_argument,
+    check_answer,
     echo_json,
+    findings_json,
+    finish_answer,
     json_option,
-    require_brach,
+    load_case_for,
+    output_units,
+    say_findings,
     units_option,
 )
 
@@ -43,10 +51,10 @@ class SampleCount(click.ParamType):
 @click.option("--samples", "-n", type=SampleCount(), default=100_000, show_default=True,
               help="Number of Monte Carlo samples (e.g. 100000 or 1e8; over 524288 they are "
                    "solved chunk by chunk on bounded memory).")
-@click.option("--seed", type=int, default=0, show_default=True, help="Random seed.")
+@click.option("--seed", type=SEED, default=0, show_default=True, help="Random seed.")
 @click.option("--eps", type=FiniteFloat(), default=None,
               help="Nominal epsilon (default: the case's).")
-@click.option("--beta", type=FiniteFloat(), default=None,
+@click.option("--beta", type=Beta(), default=None,
               help="Nominal beta (default: the case's).")
 @click.option("--png", "png", type=click.Path(dir_okay=False), default=None,
               help="Write histograms of the outputs to this PNG (or .svg) file.")
@@ -55,24 +63,29 @@ class SampleCount(click.ParamType):
 @click.option("--progress/--no-progress", default=None,
               help="Progress bar on stderr (default: only on a terminal).")
 @units_option
+@allow_inadmissible_option
 @json_option
-def uncertainty(case_name, samples, seed, eps, beta, png, top, progress, units, as_json):
-    """Monte Carlo of CASE's [uncertainty] table: 5/50/95 % and ranked input contributions.
+def uncertainty(case_name, samples, seed, eps, beta, png, top, progress, units, speed_unit,
+                allow_inadmissible, as_json):
+    """Monte Carlo of CASE's [uncertainty] table (and of the scatter of inputs pim estimated,
+    e.g. a missing yaw inertia): 5/50/95 % and ranked input contributions.
 
     Contributions are first-order variance-based (Sobol) indices: the share of an output's
-    variance explained by one input alone.
+    variance explained by one input alone. Samples whose impact is inadmissible are left
+    out of both (their share and reasons are printed first). Exit code 1 after the output
+    when the nominal answer is inadmissible or no sample is admissible (--allow-inadmissible:
+    exit 0).
     """
     from tqdm import tqdm
 
     from pim.analysis.montecarlo import OUTPUTS, available_memory, memory_estimate
     from pim.analysis.montecarlo import uncertainty as run
-    from pim.io.casefile import load_case
+    from pim.io.inertia_data import estimate_records
     from pim.io.units import convert
     from pim.model.quantities import OUTPUTS as QUANTITIES
 
-    case = load_case(case_name)
-    require_brach(case, "pim uncertainty")
-    units = units or case.units
+    case = load_case_for("uncertainty", case_name)
+    units = output_units(case, units, speed_unit)
     need, free = memory_estimate(samples), available_memory()
     if free is not None and need > free:
         raise InputError(f"--samples {samples:,} needs about {need / 2**30:.1f} GiB of memory "
@@ -97,13 +110,40 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, progress, units, 
         from pim.plotting.histograms import write_histograms
 
         write_histograms(result, png, units)
+    found = _mc_findings(case, result, eps, beta, units, allow_inadmissible, as_json)
     if as_json:
-        echo_json({"case": case.name, "samples": result.n, "seed": seed,
-                   "admissible": result.n_admissible, "problems": result.problems,
-                   "units": units, "outputs": rows})
-        return
-    for text in result.problems:        # before the table, where a reader sees them
-        click.echo(f"warning: {text}; those samples are left out", err=True)
+        echo_json({"case": case.name, "samples": result.n, "seed": seed, "units": units.to_json(), "estimates": estimate_records(case, units),
+                   **findings_json(found), "samples_admissible": result.n_admissible,
+                   "samples_inadmissible": result.n - result.n_admissible,
+                   "inadmissible_samples": "left out of the percentiles and indices",
+                   "sample_problems": result.problems, "outputs": rows})
+    else:
+        _print_table(case, result, seed, rows, top, png)
+    finish_answer(found, allow_inadmissible)
+
+
+def _mc_findings(case, result, eps, beta, units, allow, as_json):
+    """The nominal answer's findings (printed), after one line on the share of inadmissible
+    samples and how they were treated, and one per reason with its count; no admissible
+    sample at all is an error."""
+    from pim.model.solver import solve
+
+    bad = result.n - result.n_admissible
+    if bad:
+        click.echo(f"note: {bad:,} of {result.n:,} samples ({100 * bad / result.n:.3g} %) are "
+                   f"inadmissible impacts, left out of the percentiles and the indices (those "
+                   f"describe the admissible impacts); why:", err=True)
+        for text in result.problems:
+            click.echo(f"warning: samples: {text}", err=True)
+    found = check_answer(case, solve(case, eps, beta), units, allow=allow, as_json=as_json)
+    if result.n_admissible == 0:
+        found.errors.append(f"no sample of {result.n:,} is an admissible impact: no statistics")
+        say_findings(type(found)(found.errors[-1:], []), allow)
+    return found
+
+
+def _print_table(case, result, seed, rows, top, png) -> None:
+    """``pim uncertainty``'s table."""
     click.echo(f"{case.name}: {result.n:,} samples (seed {seed}), "
                f"{result.n_admissible:,} admissible")
     width = max(len(r["label"]) for r in rows)

@@ -10,7 +10,7 @@ import click
 from comparisons.report.validate import run_validation, write_validation
 from pim.io.datasets import DATASETS
 from pim.io.output import output_folder, rebase
-from pim_cli.main import echo_json, json_option, units_option
+from pim_cli.main import echo_json, json_option, output_units, units_option
 
 __all__ = ["validate"]
 
@@ -22,7 +22,7 @@ __all__ = ["validate"]
               help="Directory for report.md, the CSV tables and the figures.")
 @units_option
 @json_option
-def validate(dataset, out, units, as_json):
+def validate(dataset, out, units, speed_unit, as_json):
     """Validate PIM on the bundled published crash tests (DATASET: all by default).
 
     Reproduces the published analyses with their coefficients, checks the momentum balance
@@ -30,12 +30,12 @@ def validate(dataset, out, units, as_json):
     CSV report with figures into OUT and prints one summary line per dataset. Units default
     to those the data are published in: us for the IIHS tests (and all), si for RICSAC.
     """
-    units = units or ("si" if dataset == "ricsac" else "us")
+    units = output_units(None, units, speed_unit, "si" if dataset == "ricsac" else "us")
     with output_folder(out, command="pim validate") as tmp:
         found = run_validation(dataset, units)
         written = rebase(write_validation(found, tmp), tmp, out)
     if as_json:
-        echo_json({"dataset": dataset, "units": units, "summary": found.summary,
+        echo_json({"dataset": dataset, "units": units.to_json(), "summary": found.summary,
                    "files": [str(p) for p in written]})
         return
     for line in found.summary:

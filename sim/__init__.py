@@ -15,6 +15,7 @@ them one at a time, and the measured accuracy and speed.
 
 from .batch import case_element, simulate_many
 from .compliant import simulate_compliant
+from .compliant_batch import CompliantBatch
 from .compliant_setup import DEFAULT_STIFFNESS, CompliantResult, CompliantSettings, ContactHistory
 from .crosscheck import CrossCheck, crosscheck
 from .failures import FAILURE_KINDS, SimulationError
@@ -23,11 +24,11 @@ from .reference import reference_compliant
 from .result import BatchResult, SimResult, Trajectory
 from .run import simulate
 from .scene import Scene, build_scene
-from .secondary import SecondaryImpact, find_secondary_impact
+from .secondary import SecondaryImpact, find_secondary_impact, watch_after_impact
 from .settings import Settings
 
 __all__ = ["Settings", "simulate", "simulate_many", "SimResult", "Trajectory", "BatchResult",
            "SimulationError", "FAILURE_KINDS", "limitations", "crosscheck", "CrossCheck",
            "Scene", "build_scene", "case_element", "simulate_compliant", "reference_compliant",
-           "CompliantSettings", "CompliantResult", "ContactHistory", "DEFAULT_STIFFNESS",
-           "find_secondary_impact", "SecondaryImpact"]
+           "CompliantSettings", "CompliantResult", "CompliantBatch", "ContactHistory",
+           "DEFAULT_STIFFNESS", "find_secondary_impact", "SecondaryImpact", "watch_after_impact"]

@@ -9,7 +9,8 @@ from dataclasses import replace
 import numpy as np
 
 import pim
-from pim.model.numbers import InputError, check_counts, real_array
+from pim.model.case import checked_case
+from pim.model.numbers import InputError, check_counts, check_type, real_array
 
 from .failures import SimulationError
 from .result import BatchResult
@@ -104,11 +105,14 @@ def simulate_many(cases: pim.Case | Sequence[pim.Case], eps=None, beta=None,
         :class:`sim.SimulationError`. Bad input (ValueError) raises.
     """
     check_counts(chunksize=chunksize, max_workers=max_workers)
-    settings = replace(settings or Settings(), record=record)
+    settings = replace(check_type(settings, "settings", Settings, "a sim.Settings",
+                                  none=True) or Settings(), record=record)
     if isinstance(cases, pim.Case):
         items = [case_element(cases, i) for i in range(case_count(cases))]
     else:
-        items = list(cases)
+        items = list(check_type(cases, "cases", Sequence, "a pim.Case or a sequence of them"))
+        for i, case in enumerate(items):
+            checked_case(case, f"cases[{i}]")
     count = len(items)
     jobs = [(c, e, b, settings) for c, e, b in zip(
         items, _coefficient(eps, "eps", count), _coefficient(beta, "beta", count), strict=True)]

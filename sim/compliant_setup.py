@@ -27,17 +27,18 @@ import numpy as np
 
 import pim
 from pim.model import geometry
-from pim.model.geometry import cross, radius_of_gyration
+from pim.model.geometry import cross, radius_of_gyration, rotate_by
 from pim.model.numbers import InputError
 from pim.model.tyres import STANDARD_GRAVITY
 
+from . import compliant_formula as formula
 from .contact_law import (
     check_fraction,
     check_positive,
     contact_duration_estimate,
     tangential_recovery_default,
 )
-from .contact_tyres import TYRE_MODES, wheel_loads, wheels_from_outline
+from .contact_tyres import SLIP_REGULARISATION, TYRE_MODES, wheel_loads, wheels_from_outline
 from .overlap import place
 from .result import Trajectory
 from .scene import outline_corners
@@ -94,6 +95,12 @@ class CompliantSettings:
         Most accepted ``solve_ivp`` steps of the reference over all phases, >= 1; more is
         "not_converged" (a stiff scene on an explicit method, or a tolerance near round-off).
         The bundled cases need at most 24 502 at the default rtol.
+    max_fixed_steps : int
+        Most fixed steps of the stepped scene (pymunk or compiled), >= 1, fixed before it
+        starts: the contact stops at min(max_contact_time / dt + 1, max_fixed_steps) steps
+        ("never_separated"), and a free motion of ``duration`` that would need more steps is
+        refused up front (ValueError naming ``settings.duration``). The default bounds a
+        pymunk run to about 10 s; the default step takes 400 per contact.
     duration : float
         Free motion simulated after separation [s], >= 0 (animation, secondary impacts);
         tyre forces keep acting in it when tyre friction is on.
@@ -115,6 +122,7 @@ class CompliantSettings:
     max_contact_time: float = 1.0
     max_phases: int = 1000
     max_steps: int = 1_000_000
+    max_fixed_steps: int = 200_000
     duration: float = 0.0
     record: bool = True
     gravity: float = STANDARD_GRAVITY
@@ -127,7 +135,7 @@ class CompliantSettings:
                 raise InputError(f"settings.dt must be in (0, 1] [s], got {dt!r}")
             set_(self, "dt", dt)
         for name, low in (("min_steps", 2), ("steps_per_contact", 2), ("max_phases", 1),
-                          ("max_steps", 1)):
+                          ("max_steps", 1), ("max_fixed_steps", 1)):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int) or value < low:
                 raise InputError(f"settings.{name} must be an integer >= {low}, got {value!r}")
@@ -314,30 +322,9 @@ def build_problem(case: pim.Case, eps, stiffness, friction=0.0, geometry="point"
             raise InputError("geometry='outline' needs vehicle1.length and vehicle1.width")
         if outline2 is None and not fixed2:
             raise InputError("geometry='outline' needs vehicle2.length and vehicle2.width")
-    m1, i1 = float(v1.mass), float(v1.yaw_inertia)
-    m2, i2 = float(v2.mass), float(v2.yaw_inertia)
-    cg1 = np.asarray(v1.cg, float).reshape(2)
-    cg2 = np.asarray(v2.cg, float).reshape(2)
-    h1, h2 = float(v1.heading), float(v2.heading)
-    vel1 = np.asarray(v1.velocity, float).reshape(2)
-    vel2 = np.asarray(v2.velocity, float).reshape(2)
-    w1, w2 = float(v1.yaw_rate), float(v2.yaw_rate)
-    point = np.asarray(imp.point, float).reshape(2)
-    gamma = float(imp.normal_angle)
-    n = np.array([math.cos(gamma), math.sin(gamma)])
-    r1, r2 = point - cg1, point - cg2
-    # K_nn = 1/m1 + 1/m2 + (r1 x n)^2 / I1 + (r2 x n)^2 / I2 (the frequency of the contact)
-    k_nn = 1.0 / m1 + float(cross(r1, n)) ** 2 / i1
-    if not fixed2:
-        k_nn += 1.0 / m2 + float(cross(r2, n)) ** 2 / i2
-    state0 = np.array([cg1[0], cg1[1], h1, vel1[0], vel1[1], w1,
-                       cg2[0], cg2[1], h2, vel2[0], vel2[1], w2])
-    g = settings.gravity
-    wheels1 = wheels_from_outline(v1.length, v1.width,
-                                  float(radius_of_gyration(m1, i1)), v1.cg_to_front)
-    wheels2 = None if fixed2 else wheels_from_outline(
-        v2.length, v2.width, float(radius_of_gyration(m2, i2)), v2.cg_to_front)
-    speeds = [np.hypot(*vel1), 0.0 if fixed2 else np.hypot(*vel2)]
+    arr = setup_arrays(case, (), settings.gravity)
+    m1, i1, m2, i2 = (float(arr[k][0]) for k in ("mass1", "inertia1", "mass2", "inertia2"))
+    k_nn = float(arr["k_nn"][0])
     kt = settings.tangential_stiffness or stiffness
     recovery = (float(tangential_recovery_default(eps)) if settings.tangential_recovery is None
                 else settings.tangential_recovery)
@@ -346,19 +333,199 @@ def build_problem(case: pim.Case, eps, stiffness, friction=0.0, geometry="point"
         tangential_stiffness=kt, tangential_recovery=recovery, geometry=geometry,
         tyre_friction=tyre_friction,
         tyre_mode=settings.tyre_mode, mass1=m1, inertia1=i1, mass2=m2, inertia2=i2,
-        fixed2=fixed2, state0=state0, arm1_body=rotate(r1, -h1), arm2_body=rotate(r2, -h2),
-        normal2_body=rotate(n, -h2), wheels1=wheels1, wheels2=wheels2,
-        load1=wheel_loads(m1, wheels1, g), load2=0.0 if fixed2 else wheel_loads(m2, wheels2, g),
-        outline1=outline1, outline2=outline2, k_nn=float(k_nn),
-        duration_estimate=float(contact_duration_estimate(stiffness, k_nn, eps)),
-        speed_scale=max(max(speeds), 1e-6),
-        energy_before=kinetic_energy(m1, i1, vel1, w1) + kinetic_energy(m2, i2, vel2, w2),
-        settings=settings)
+        fixed2=fixed2, state0=arr["state0"][0], arm1_body=arr["arm1"][0],
+        arm2_body=arr["arm2"][0], normal2_body=arr["normal2"][0], wheels1=arr["wheels1"][0],
+        wheels2=None if fixed2 else arr["wheels2"][0], load1=arr["loads1"][0],
+        load2=0.0 if fixed2 else arr["loads2"][0], outline1=outline1, outline2=outline2,
+        k_nn=k_nn, duration_estimate=float(contact_duration_estimate(stiffness, k_nn, eps)),
+        speed_scale=float(arr["speed_scale"][0]),
+        energy_before=float(arr["energy_before"][0]), settings=settings)
+
+
+def _flat_field(value, shape: tuple, vector: bool = False) -> np.ndarray:
+    """A case field broadcast to ``shape`` and flattened: (n,) or (n, 2) for vectors."""
+    full = shape + (2,) if vector else shape
+    arr = np.broadcast_to(np.asarray(value, dtype=float), full)
+    return arr.reshape((-1, 2) if vector else (-1,))
+
+
+def _wheels(vehicle: pim.Vehicle, mass, inertia, gravity, fixed):
+    """Wheel positions (n, 4, 2) and static loads (n, 4) of one vehicle (0 where fixed)."""
+    n = mass.shape[0]
+    if fixed.all():
+        return np.zeros((n, 4, 2)), np.zeros((n, 4))
+    moving = ~fixed
+    k = np.where(moving, radius_of_gyration(np.where(moving, mass, 1.0),
+                                            np.where(moving, inertia, 1.0)), 1.0)
+    wheels = np.broadcast_to(wheels_from_outline(vehicle.length, vehicle.width, k,
+                                                 vehicle.cg_to_front), (n, 4, 2))
+    loads = wheel_loads(np.where(moving, mass, 0.0), wheels, gravity)
+    return (np.where(moving[:, None, None], wheels, 0.0),
+            np.where(moving[:, None], loads, 0.0))
+
+
+_COS, _SIN = np.frompyfunc(math.cos, 1, 1), np.frompyfunc(math.sin, 1, 1)
+
+
+def libm_cos_sin(angle) -> tuple[np.ndarray, np.ndarray]:
+    """cos and sin of ``angle`` [rad] from the C library (Python's ``math``), element by
+    element: what the stepping formulas use (numba calls the same library), and the same in
+    the last bit for a batch as for each of its scenes alone (numpy's vectorised cos and sin
+    can differ by an ulp between long arrays and one element)."""
+    angle = np.asarray(angle, dtype=float)
+    return _COS(angle).astype(float), _SIN(angle).astype(float)
+
+
+def obstacle_corners(point, normal) -> np.ndarray:
+    """A bare barrier's outline (..., 4, 2) [m]: a 200 m x 10 m block behind the contact
+    plane through C with normal n (counter-clockwise: its face along t through C, 10 m deep
+    on the -n side)."""
+    point, n = np.asarray(point, dtype=float), np.asarray(normal, dtype=float)
+    t = np.stack([-n[..., 1], n[..., 0]], axis=-1)
+    return np.stack([point + 100 * t, point + 100 * t - 10 * n, point - 100 * t - 10 * n,
+                     point - 100 * t], axis=-2)
+
+
+def _outlines(v1: pim.Vehicle, v2: pim.Vehicle, fixed2, point, normal):
+    """Both outlines' corners (n, 8) in the body frames (zeros without an outline), with a
+    bare barrier's block in world coordinates instead (flag (n,) 1.0) where vehicle 2 is
+    fixed and has no outline."""
+    count = point.shape[0]
+    corners = [outline_corners(v) for v in (v1, v2)]
+    out1, out2 = (np.broadcast_to(np.zeros(8) if c is None else c.reshape(8), (count, 8))
+                  for c in corners)
+    bare = fixed2 & (corners[1] is None)
+    if bare.any():
+        out2 = np.where(bare[:, None], obstacle_corners(point, normal).reshape(count, 8), out2)
+    return out1, out2, bare.astype(float)
+
+
+def setup_arrays(case: pim.Case, shape: tuple, gravity: float) -> dict:
+    """The scene quantities of every case in ``case`` broadcast to ``shape`` (flattened to
+    n = prod(shape) scenes): what both integrators and the pymunk scene start from.
+
+    Returns
+    -------
+    dict
+        ``mass1, inertia1, mass2, inertia2, k_nn, speed_scale, energy_before`` (n,),
+        ``fixed2`` (n,) bool, ``outline1, outline2`` (n, 8) and ``obstacle`` (n,) (the
+        outlines of :func:`_outlines`), ``state0`` (n, 12), ``arm1, arm2, normal2`` (n, 2) (P - CG1 in
+        vehicle 1's frame, Q - CG2 and the normal in vehicle 2's), ``wheels1, wheels2``
+        (n, 4, 2) and ``loads1, loads2`` (n, 4) (zeros for a fixed vehicle 2); SI, see
+        :class:`CompliantProblem`.
+    """
+    v1, v2, imp = case.vehicle1, case.vehicle2, case.impact
+    m1, i1 = _flat_field(v1.mass, shape), _flat_field(v1.yaw_inertia, shape)
+    m2, i2 = _flat_field(v2.mass, shape), _flat_field(v2.yaw_inertia, shape)
+    cg1, cg2 = _flat_field(v1.cg, shape, True), _flat_field(v2.cg, shape, True)
+    h1, h2 = _flat_field(v1.heading, shape), _flat_field(v2.heading, shape)
+    vel1, vel2 = _flat_field(v1.velocity, shape, True), _flat_field(v2.velocity, shape, True)
+    w1, w2 = _flat_field(v1.yaw_rate, shape), _flat_field(v2.yaw_rate, shape)
+    point = _flat_field(imp.point, shape, True)
+    gamma = _flat_field(imp.normal_angle, shape)
+    fixed2 = np.isinf(m2)
+    n = np.stack(libm_cos_sin(gamma), axis=-1)
+    r1, r2 = point - cg1, point - cg2
+    # K_nn = 1/m1 + 1/m2 + (r1 x n)^2 / I1 + (r2 x n)^2 / I2 (the frequency of the contact)
+    c1, c2 = cross(r1, n), cross(r2, n)
+    k_nn = 1.0 / m1 + c1 * c1 / i1
+    with np.errstate(invalid="ignore"):
+        k_nn = np.where(fixed2, k_nn, k_nn + (1.0 / m2 + c2 * c2 / i2))
+    state0 = np.concatenate([cg1, h1[:, None], vel1, w1[:, None], cg2, h2[:, None], vel2,
+                             w2[:, None]], axis=1)
+    wheels1, loads1 = _wheels(v1, m1, i1, gravity, np.zeros(m1.shape, bool))
+    wheels2, loads2 = _wheels(v2, m2, i2, gravity, fixed2)
+    speed = np.maximum(np.hypot(vel1[:, 0], vel1[:, 1]),
+                       np.where(fixed2, 0.0, np.hypot(vel2[:, 0], vel2[:, 1])))
+    out1, out2, obstacle = _outlines(v1, v2, fixed2, point, n)
+    return dict(
+        outline1=out1, outline2=out2, obstacle=obstacle,
+        mass1=m1, inertia1=i1, mass2=m2, inertia2=i2, fixed2=fixed2, k_nn=k_nn,
+        state0=state0, arm1=rotate_by(r1, *libm_cos_sin(-h1)),
+        arm2=rotate_by(r2, *libm_cos_sin(-h2)), normal2=rotate_by(n, *libm_cos_sin(-h2)),
+        wheels1=wheels1, loads1=loads1, wheels2=wheels2, loads2=loads2,
+        speed_scale=np.maximum(speed, 1e-6),
+        energy_before=(geometry.kinetic_energy(m1, i1, vel1, w1)
+                       + geometry.kinetic_energy(m2, i2, vel2, w2)))
+
+
+def contact_step_limit(settings: CompliantSettings, dt):
+    """Most steps of the contact at step ``dt`` [s] (a number or an array), fixed before it
+    starts: min(ceil(max_contact_time / dt) + 1, max_fixed_steps)."""
+    return np.minimum(np.ceil(settings.max_contact_time / np.asarray(dt, dtype=float)) + 1,
+                      settings.max_fixed_steps)
+
+
+def problem_arrays(problem: CompliantProblem) -> dict:
+    """The one scene of ``problem`` as the arrays of :func:`setup_arrays` (n = 1), the very
+    values ``problem`` was built from."""
+    return setup_arrays(problem.case, (), problem.settings.gravity)
+
+
+#: The contact law's inputs of :func:`parameter_rows`, one value or one per scene.
+LAW_INPUTS = ("eps", "preload", "stiffness", "friction", "tangential_stiffness",
+              "tangential_recovery", "tyre_friction", "braking", "dt", "start", "max_steps",
+              "outline")
+
+
+def case_rows(arrays: dict) -> np.ndarray:
+    """The ``par`` rows (n, N_PAR) of :mod:`sim.compliant_formula` with the case's columns
+    filled (masses, inertias, arms, normal, wheels, loads, speed scale, v_r) from the scene
+    quantities of :func:`setup_arrays` (or :func:`problem_arrays`), the law's columns 0."""
+    f = formula
+    n = arrays["mass1"].shape[0]
+    par = np.zeros((n, f.N_PAR))
+    for column, name in ((f.P_M1, "mass1"), (f.P_I1, "inertia1"), (f.P_M2, "mass2"),
+                         (f.P_I2, "inertia2"), (f.P_FIXED2, "fixed2"),
+                         (f.P_SPEED, "speed_scale")):
+        par[:, column] = arrays[name]
+    for column, name, width in ((f.P_ARM1, "arm1", 2), (f.P_ARM2, "arm2", 2),
+                                (f.P_NORMAL2, "normal2", 2), (f.P_WHEELS1, "wheels1", 8),
+                                (f.P_LOADS1, "loads1", 4), (f.P_WHEELS2, "wheels2", 8),
+                                (f.P_LOADS2, "loads2", 4), (f.P_OUTLINE1, "outline1", 8),
+                                (f.P_OUTLINE2, "outline2", 8)):
+        par[:, column:column + width] = arrays[name].reshape(n, width)
+    par[:, f.P_OBSTACLE] = arrays["obstacle"]
+    for k, name in enumerate(("mass1", "inertia1", "mass2", "inertia2")):
+        par[:, f.P_INVERSE + k] = 1.0 / arrays[name]        # 0 for a fixed vehicle 2
+    par[:, f.P_VR] = SLIP_REGULARISATION
+    return par
+
+
+#: The ``par`` column of each of :data:`LAW_INPUTS`.
+LAW_COLUMNS = dict(eps=formula.P_EPS, preload=formula.P_PRELOAD,
+                   stiffness=formula.P_STIFFNESS, friction=formula.P_FRICTION,
+                   tangential_stiffness=formula.P_KT, tangential_recovery=formula.P_RECOVERY,
+                   tyre_friction=formula.P_TYRE, braking=formula.P_BRAKING, dt=formula.P_DT,
+                   start=formula.P_START, max_steps=formula.P_MAX_STEPS,
+                   outline=formula.P_OUTLINE)
+
+
+def parameter_rows(arrays: dict, law: dict, rows: np.ndarray | None = None) -> np.ndarray:
+    """The ``par`` rows (n, N_PAR) of :mod:`sim.compliant_formula`: every scene's parameters.
+
+    Parameters
+    ----------
+    arrays : dict
+        The scene quantities of :func:`setup_arrays` (or :func:`problem_arrays`).
+    law : dict
+        :data:`LAW_INPUTS`, each a number or an array (n,): eps [-], preload a [N],
+        stiffness b [N/m], friction mu_c [-], tangential_stiffness k_t [N/m],
+        tangential_recovery r [-], tyre_friction [-], braking (0 rolling, 1 locked), dt [s],
+        start [s], max_steps (of the contact), outline (1 for the outline contact).
+    rows : ndarray, optional
+        :func:`case_rows` of ``arrays`` made already (copied, not changed).
+    """
+    par = case_rows(arrays) if rows is None else rows.copy()
+    for name, column in LAW_COLUMNS.items():
+        par[:, column] = law[name]
+    return par
 
 
 def point_contact(problem: CompliantProblem, position1, angle1, velocity1, yaw_rate1,
                   position2, angle2, velocity2, yaw_rate2):
-    """Kinematics of the point contact (module notes) at one state.
+    """Kinematics of the point contact (module notes) at one state
+    (:func:`sim.compliant_formula.point_contact`).
 
     Returns
     -------
@@ -371,15 +538,16 @@ def point_contact(problem: CompliantProblem, position1, angle1, velocity1, yaw_r
     slip_n, slip_t : float
         v_rel . n (= -d delta / dt) and v_rel . t [m/s].
     """
-    p = position1 + rotate(problem.arm1_body, angle1)
-    q = position2 + rotate(problem.arm2_body, angle2)
-    n = rotate(problem.normal2_body, angle2)
-    t = np.array([-n[1], n[0]])
-    d1 = p - position1
-    d2 = p - position2
-    rel = (velocity1 + yaw_rate1 * np.array([-d1[1], d1[0]])
-           - velocity2 - yaw_rate2 * np.array([-d2[1], d2[0]]))
-    return p, n, t, float(-(p - q) @ n), float(rel @ n), float(rel @ t)
+    a1, a2, n2 = problem.arm1_body, problem.arm2_body, problem.normal2_body
+    angle1, angle2 = float(angle1), float(angle2)
+    px, py, nx, ny, delta, slip_n, slip_t = formula.point_contact(
+        float(a1[0]), float(a1[1]), float(a2[0]), float(a2[1]), float(n2[0]), float(n2[1]),
+        float(position1[0]), float(position1[1]), math.cos(angle1), math.sin(angle1),
+        float(velocity1[0]), float(velocity1[1]), float(yaw_rate1), float(position2[0]),
+        float(position2[1]), math.cos(angle2), math.sin(angle2), float(velocity2[0]),
+        float(velocity2[1]), float(yaw_rate2))
+    return (np.array([px, py]), np.array([nx, ny]), np.array([-ny, nx]), delta, slip_n,
+            slip_t)
 
 
 @dataclass(frozen=True, eq=False)
@@ -524,6 +692,55 @@ class CompliantResult:
         return pim.Measured(self.velocity1, self.velocity2, self.yaw_rate1, self.yaw_rate2)
 
 
+def result_from_row(row, problem: CompliantProblem, records: tuple = (None, None, None),
+                    wall: float = 0.0, integrator: str = "pymunk") -> CompliantResult:
+    """The typed result of one stepped scene from its output row
+    (:func:`sim.compliant_formula.write_outputs`) and the records (trajectory, history,
+    secondary impact time) of the pymunk scene."""
+    f = formula
+    v1, v2 = row[f.O_V1:f.O_V1 + 2].copy(), row[f.O_V2:f.O_V2 + 2].copy()
+    w1, w2 = float(row[f.O_W1]), float(row[f.O_W2])
+    trajectory, history, secondary = records
+    peak_crush = float(row[f.O_PEAK_CRUSH])
+    return CompliantResult(
+        velocity1=v1, velocity2=v2, yaw_rate1=w1, yaw_rate2=w2,
+        contact_duration=float(row[f.O_DURATION]), contact_start=float(problem_start(row)),
+        impulse=row[f.O_IMPULSE:f.O_IMPULSE + 2].copy(),
+        impact_point=row[f.O_POINT:f.O_POINT + 2].copy(), peak_force=float(row[f.O_PEAK_FORCE]),
+        peak_crush=peak_crush, permanent_crush=float(row[f.O_PERMANENT]),
+        energy_before=problem.energy_before,
+        energy_after=(kinetic_energy(problem.mass1, problem.inertia1, v1, w1)
+                      + kinetic_energy(problem.mass2, problem.inertia2, v2, w2)),
+        tyre_work=float(row[f.O_TYRE_WORK]), stick_fraction=float(row[f.O_STICK]),
+        slip_reversed=bool(row[f.O_REVERSED]), steps=int(row[f.O_STEPS]), wall_time=wall,
+        integrator=integrator, eps=problem.eps, stiffness=problem.stiffness,
+        friction=problem.friction, tyre_friction=problem.tyre_friction,
+        geometry=problem.geometry, settings=problem.settings, history=history,
+        trajectory=trajectory, secondary_impact=secondary,
+        problems=crush_problems(problem.case, peak_crush),
+        tangential_recovery=problem.tangential_recovery,
+        impulse_normal=row[f.O_NORMAL:f.O_NORMAL + 2].copy(),
+        impact_point_body1=row[f.O_BODY_POINT:f.O_BODY_POINT + 2].copy(),
+        impulse_normal_body2=row[f.O_BODY_NORMAL:f.O_BODY_NORMAL + 2].copy())
+
+
+def problem_start(row) -> float:
+    """When the contact began [s], from an output row (0 for the point contact)."""
+    return float(row[formula.O_START])
+
+
+def crush_problems(case: pim.Case, peak_crush: float) -> tuple:
+    """Flags of an inadmissible outcome (never hidden): a crush deeper than half the shorter
+    moving vehicle's length."""
+    out = []
+    lengths = [v.length for v in (case.vehicle1, case.vehicle2)
+               if v.length is not None and not bool(np.all(v.fixed))]
+    if lengths and peak_crush > 0.5 * min(lengths):
+        out.append(f"peak crush {peak_crush:.3g} m exceeds half the shorter vehicle's length "
+                   f"({0.5 * min(lengths):.3g} m): the vehicles would pass through each other")
+    return tuple(out)
+
+
 def reversal(initial_sign: float, final_slip: float, speed_scale: float,
              directions) -> bool:
     """Whether the tangential slip reversed during the contact.
@@ -532,8 +749,9 @@ def reversal(initial_sign: float, final_slip: float, speed_scale: float,
     the tangential relative velocity at separation, ``final_slip`` [m/s], opposes the one
     at first contact (sign ``initial_sign``) by more than 1e-6 of the speed scale.
     """
-    rebound = initial_sign != 0 and final_slip * initial_sign < -1e-6 * speed_scale
-    return bool(len(set(directions)) > 1 or rebound)
+    directions = set(directions)
+    return bool(formula.slip_reversed(initial_sign, final_slip, speed_scale, 1 in directions,
+                                      -1 in directions))
 
 
 def placed_outlines(problem: CompliantProblem, state) -> tuple[np.ndarray, np.ndarray | None]:

@@ -1,8 +1,11 @@
 """The finite-duration contact law: bilinear crush hysteresis and elastoplastic friction.
 
 Pure, vectorised functions (numpy broadcasting, no state, no I/O) shared by the pymunk
-stepping of :mod:`sim.compliant` and the independent ``solve_ivp`` integration of
-:mod:`sim.reference`: they *are* the model under test, the integrators are not.
+stepping of :mod:`sim.compliant`, the compiled batch integrator of
+:mod:`sim.compliant_kernel` and the independent ``solve_ivp`` integration of
+:mod:`sim.reference`: they *are* the model under test, the integrators are not. The law
+itself is written once, on floats, in :mod:`sim.compliant_formula`; the functions here
+evaluate it element by element over broadcasting arrays.
 
 Normal crush force (docs/contact-model.md)
 ------------------------------------------
@@ -65,6 +68,8 @@ import numpy as np
 
 from pim.model.numbers import InputError
 
+from . import compliant_formula as formula
+
 __all__ = ["check_positive", "check_fraction", "loading_force", "loading_work",
            "unloading_slope", "permanent_crush", "normal_force", "normal_stiffness",
            "tangential_step", "tangential_force", "tangential_recovery_default",
@@ -72,11 +77,20 @@ __all__ = ["check_positive", "check_fraction", "loading_force", "loading_work",
            "contact_duration_estimate", "stiffness_for_duration"]
 
 
+def _number(value):
+    """A 0-d numeric numpy array as its scalar (``np.array(7.5e5)`` is one number)."""
+    if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iuf":
+        return value[()]
+    return value
+
+
 def check_positive(value, name: str, unit: str, allow_zero: bool = False) -> float:
     """``value`` as a float, or a ValueError naming ``name`` and the allowed range.
 
-    Rejects NaN, infinities, booleans, strings and values <= 0 (< 0 with ``allow_zero``).
+    Accepts Python and numpy numbers and 0-d numeric arrays; rejects NaN, infinities,
+    booleans, strings, other arrays and values <= 0 (< 0 with ``allow_zero``).
     """
+    value = _number(value)
     if isinstance(value, bool) or not isinstance(value, int | float | np.floating | np.integer):
         raise InputError(f"{name} must be a number [{unit}], got {value!r}")
     value = float(value)
@@ -88,7 +102,9 @@ def check_positive(value, name: str, unit: str, allow_zero: bool = False) -> flo
 
 
 def check_fraction(value, name: str) -> float:
-    """``value`` as a float in [0, 1], or a ValueError naming ``name``."""
+    """``value`` as a float in [0, 1], or a ValueError naming ``name`` (numbers and 0-d
+    numeric arrays, as :func:`check_positive`)."""
+    value = _number(value)
     if isinstance(value, bool) or not isinstance(value, int | float | np.floating | np.integer):
         raise InputError(f"{name} must be a number in [0, 1], got {value!r}")
     value = float(value)
@@ -97,97 +113,40 @@ def check_fraction(value, name: str) -> float:
     return value
 
 
-def loading_force(delta, a, b):
-    """Crush force on the loading curve F_L = a + b delta [N] (0 for delta <= 0).
+def _on_arrays(scalar, name: str):
+    """:mod:`sim.compliant_formula`'s ``scalar`` law evaluated element by element over
+    broadcasting arrays (the one source, for the callers that hold arrays)."""
+    vectorised = np.vectorize(scalar, otypes=[float])
 
-    Parameters
-    ----------
-    delta : array_like
-        Crush (penetration depth) [m].
-    a : array_like
-        Force at zero crush [N] (Campbell's A times the contact width; 0 for a linear spring).
-    b : array_like
-        Crush stiffness [N/m] (Campbell's B times the width, or the linear k).
-    """
-    delta = np.asarray(delta, float)
-    return np.where(delta > 0.0, a + b * np.maximum(delta, 0.0), 0.0)
+    def law(*args):
+        return vectorised(*args)
+
+    law.__name__ = law.__qualname__ = name
+    law.__doc__ = scalar.__doc__
+    return law
 
 
-def loading_work(delta_max, a, b):
-    """Work done along the loading curve up to ``delta_max``: a d + b d^2 / 2 [J]."""
-    d = np.maximum(np.asarray(delta_max, float), 0.0)
-    return a * d + 0.5 * b * d * d
-
-
-def unloading_slope(delta_max, eps, a, b):
-    """Slope s [N/m] of the unloading line from the peak, s = F_max^2 / (2 eps^2 E_L).
-
-    Infinite for eps = 0 (no rebound) or before any crush (delta_max = 0).
-    """
-    f_max = a + b * np.asarray(delta_max, float)
-    work = loading_work(delta_max, a, b)
-    denom = 2.0 * np.asarray(eps, float) ** 2 * work
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(denom > 0.0, f_max * f_max / np.where(denom > 0, denom, 1.0), np.inf)
-
-
-def permanent_crush(delta_max, eps, a, b):
-    """Permanent (residual) crush delta_p = delta_max - F_max / s [m].
-
-    Linear spring: delta_max (1 - eps^2).
-    """
-    delta_max = np.asarray(delta_max, float)
-    f_max = a + b * delta_max
-    work = loading_work(delta_max, a, b)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        back = np.where(f_max > 0, 2.0 * np.asarray(eps, float) ** 2 * work
-                        / np.where(f_max > 0, f_max, 1.0), 0.0)
-    return np.where(delta_max > 0, delta_max - back, 0.0)
-
-
-def normal_force(delta, delta_max, eps, a, b):
-    """Normal crush force F_n [N] >= 0 of the bilinear hysteresis.
-
-    Parameters
-    ----------
-    delta : array_like
-        Current crush [m].
-    delta_max : array_like
-        Largest crush so far [m] (memory of the loading); loading when delta >= delta_max.
-    eps : array_like
-        Coefficient of restitution [-] in [0, 1].
-    a, b : array_like
-        Loading curve F_L = a + b delta ([N], [N/m]).
-
-    Returns
-    -------
-    ndarray
-        F_L(delta) on loading, F_max + s (delta - delta_max) clipped at 0 on unloading,
-        0 for delta <= 0.
-    """
-    delta = np.asarray(delta, float)
-    delta_max = np.asarray(delta_max, float)
-    loading = loading_force(delta, a, b)
-    f_max = a + b * delta_max
-    delta_p = permanent_crush(delta_max, eps, a, b)
-    # the unloading line through (delta_p, 0) and (delta_max, f_max), written without s so
-    # that eps = 0 (delta_p = delta_max) gives 0 below the peak instead of inf * 0
-    span = delta_max - delta_p
-    with np.errstate(divide="ignore", invalid="ignore"):
-        frac = np.where(span > 0, (delta - delta_p) / np.where(span > 0, span, 1.0), 0.0)
-    unloading = f_max * np.clip(frac, 0.0, 1.0)
-    return np.where(delta >= delta_max, loading, np.where(delta > 0, unloading, 0.0))
-
-
-def normal_stiffness(delta, delta_max, eps, a, b):
-    """dF_n/d delta [N/m] of :func:`normal_force` (b on loading, s unloading, 0 apart)."""
-    delta = np.asarray(delta, float)
-    delta_max = np.asarray(delta_max, float)
-    delta_p = permanent_crush(delta_max, eps, a, b)
-    s = unloading_slope(delta_max, eps, a, b)
-    load = (delta >= delta_max) & (delta > 0)
-    unload = (delta < delta_max) & (delta > delta_p)
-    return np.where(load, b, np.where(unload, s, 0.0))
+#: Crush force on the loading curve F_L = a + b delta [N] (0 for delta <= 0); arguments
+#: delta [m], a [N] (Campbell's A times the contact width; 0 for a linear spring), b [N/m].
+loading_force = _on_arrays(formula.loading_force, "loading_force")
+#: Work done along the loading curve up to ``delta_max``: a d + b d^2 / 2 [J].
+loading_work = _on_arrays(formula.loading_work, "loading_work")
+#: Slope s [N/m] of the unloading line from the peak, s = F_max^2 / (2 eps^2 E_L); infinite
+#: for eps = 0 (no rebound) or before any crush (delta_max = 0).
+unloading_slope = _on_arrays(formula.unloading_slope, "unloading_slope")
+#: Permanent (residual) crush delta_p = delta_max - F_max / s [m]; linear spring:
+#: delta_max (1 - eps^2).
+permanent_crush = _on_arrays(formula.permanent_crush, "permanent_crush")
+#: Normal crush force F_n [N] >= 0 of the bilinear hysteresis, arguments (delta [m],
+#: delta_max [m] (loading when delta >= delta_max), eps [-], a [N], b [N/m]): F_L(delta) on
+#: loading, F_max + s (delta - delta_max) clipped at 0 on unloading, 0 for delta <= 0.
+normal_force = _on_arrays(formula.normal_force, "normal_force")
+#: dF_n/d delta [N/m] of :func:`normal_force` (b on loading, s unloading, 0 apart).
+normal_stiffness = _on_arrays(formula.normal_stiffness, "normal_stiffness")
+_tangential_step = _on_arrays(formula.tangential_step, "tangential_step")
+#: Tangential force F_t = -k_t z [N], clipped to the Coulomb limit mu_c F_n (arguments z
+#: [m], k_t [N/m], limit [N]).
+tangential_force = _on_arrays(formula.tangential_force, "tangential_force")
 
 
 def tangential_step(z, slip, dt, z_max, recovery=1.0):
@@ -197,7 +156,7 @@ def tangential_step(z, slip, dt, z_max, recovery=1.0):
     sticking while inside the cone, sliding (and following a shrinking cone) on it. The
     slip v_t dt loads the spring (dz = v_t dt) while it pushes |z| outward and unloads it at
     1 / r the rate while it pulls |z| back to 0 (module notes, "Tangential recovery"); the
-    slip left over past z = 0 loads the other way.
+    slip left over past z = 0 loads the other way (:func:`sim.compliant_formula.tangential_step`).
 
     Parameters
     ----------
@@ -212,29 +171,15 @@ def tangential_step(z, slip, dt, z_max, recovery=1.0):
     recovery : array_like
         Tangential recovery r [-] in [0, 1] (1: elastic, today's spring; 0: plastic).
     """
-    z = np.asarray(z, float)
-    dz = np.asarray(slip, float) * dt
-    r = np.asarray(recovery, float)
-    back = z * dz < 0.0                                # unloading toward z = 0
-    reach = np.abs(z) * r                               # slip that unloads it fully [m]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        partial = z + dz / np.where(r > 0, r, 1.0)
-    past = np.sign(dz) * (np.abs(dz) - reach)
-    unloaded = np.where((np.abs(dz) < reach) & (r > 0), partial, past)
-    z_max = np.maximum(np.asarray(z_max, float), 0.0)
-    return np.clip(np.where(back, unloaded, z + dz), -z_max, z_max)
+    return _tangential_step(z, slip, dt, z_max, recovery)
 
 
 def tangential_recovery_default(eps):
     """The default tangential recovery r = eps^2 [-]: the contact gives back the same share
     of its stored tangential energy as the crush gives back of its loading work (Stronge's
     energetic restitution, docs/contact-model.md)."""
-    return np.asarray(eps, float) ** 2
-
-
-def tangential_force(z, k_t, limit):
-    """Tangential force F_t = -k_t z [N], clipped to the Coulomb limit mu_c F_n."""
-    return -np.clip(k_t * np.asarray(z, float), -limit, limit)
+    eps = np.asarray(eps, float)
+    return eps * eps      # not ** 2: numpy's power of a 0-d array can differ by an ulp
 
 
 def contact_frequency(k, k_nn):
@@ -268,4 +213,5 @@ def stiffness_for_duration(duration, k_nn, eps):
     duration = np.asarray(duration, float)
     if np.any(~np.isfinite(duration)) or np.any(duration <= 0):
         raise InputError(f"duration must be a finite number > 0 [s], got {duration!r}")
-    return (0.5 * np.pi * (1.0 + np.asarray(eps, float)) / duration) ** 2 / np.asarray(k_nn, float)
+    rate = 0.5 * np.pi * (1.0 + np.asarray(eps, float)) / duration
+    return rate * rate / np.asarray(k_nn, float)    # not ** 2 (as tangential_recovery_default)

@@ -25,10 +25,14 @@ car); without an outline the length is taken as k / 0.3 and the width as 0.4 tim
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from pim.model import tyres
 from pim.model.numbers import InputError
+
+from .compliant_formula import vehicle_tyre_force
 
 __all__ = ["TYRE_MODES", "WHEELBASE_FRACTION", "TRACK_FRACTION", "SLIP_REGULARISATION",
            "wheels_from_outline", "wheel_loads", "tyre_force"]
@@ -43,15 +47,15 @@ SLIP_REGULARISATION = 0.05
 
 def wheels_from_outline(length, width, radius_of_gyration=None,
                         cg_to_front=None) -> np.ndarray:
-    """Body-frame positions (4, 2) [m] of the wheels (front left, front right, rear left,
+    """Body-frame positions (..., 4, 2) [m] of the wheels (front left, front right, rear left,
     rear right; :func:`pim.model.tyres.wheel_positions`), the axles centred on the outline.
 
     Parameters
     ----------
     length, width : float or None
         Outline [m]; None: from ``radius_of_gyration`` (module notes).
-    radius_of_gyration : float, optional
-        sqrt(I / m) [m], used only without an outline.
+    radius_of_gyration : array_like, optional
+        sqrt(I / m) [m], used only without an outline (an array gives wheels per sample).
     cg_to_front : float, optional
         CG to the front of the OUTLINE [m] (:attr:`pim.Vehicle.cg_to_front`, the bumper;
         default length / 2); the CG to the front axle is then
@@ -61,30 +65,38 @@ def wheels_from_outline(length, width, radius_of_gyration=None,
         if radius_of_gyration is None:
             raise InputError("wheels_from_outline needs length and width or "
                              "radius_of_gyration")
-        length = float(radius_of_gyration) / 0.3
+        length = np.asarray(radius_of_gyration, dtype=float) / 0.3
         width = 0.4 * length
-    wheelbase = WHEELBASE_FRACTION * float(length)
-    front = 0.5 * float(length) if cg_to_front is None else float(cg_to_front)
-    axle = front - 0.5 * float(length) + 0.5 * wheelbase
-    if not 0 <= axle <= wheelbase:
+    length = np.asarray(length, dtype=float)
+    wheelbase = WHEELBASE_FRACTION * length
+    front = 0.5 * length if cg_to_front is None else np.asarray(cg_to_front, dtype=float)
+    axle = front - 0.5 * length + 0.5 * wheelbase
+    if not np.all((axle >= 0) & (axle <= wheelbase)):
+        bad = np.argmax(~((axle >= 0) & (axle <= wheelbase)))
+        front, axle, wheelbase = (np.broadcast_to(v, np.shape(axle)).flat[bad]
+                                  for v in (front, axle, wheelbase))
         raise InputError(f"cg_to_front = {front:g} m puts the CG outside the axles of the "
                          f"four-tyre model (wheelbase {WHEELBASE_FRACTION:g} x length, centred "
                          f"on the outline): it must lie in [{front - axle:g}, "
                          f"{front - axle + wheelbase:g}] m")
-    return tyres.wheel_positions(wheelbase, TRACK_FRACTION * float(width), axle)
+    return tyres.wheel_positions(wheelbase, TRACK_FRACTION * np.asarray(width, dtype=float),
+                                 axle)
 
 
 def wheel_loads(mass, wheels, gravity=tyres.STANDARD_GRAVITY) -> np.ndarray:
-    """Static loads (4,) [N] of the wheels at ``wheels`` (:func:`wheels_from_outline`):
-    :func:`pim.model.tyres.static_loads` with their wheelbase and CG-to-front-axle distance.
+    """Static loads (..., 4) [N] of the wheels at ``wheels`` (..., 4, 2)
+    (:func:`wheels_from_outline`): :func:`pim.model.tyres.static_loads` with their wheelbase
+    and CG-to-front-axle distance.
     """
     wheels = np.asarray(wheels, dtype=float)
-    return tyres.static_loads(mass, wheels[0, 0] - wheels[2, 0], wheels[0, 0], gravity)
+    return tyres.static_loads(mass, wheels[..., 0, 0] - wheels[..., 2, 0], wheels[..., 0, 0],
+                              gravity)
 
 
 def tyre_force(velocity, yaw_rate, angle, wheels, load, mu, mode="rolling",
                regularisation=SLIP_REGULARISATION):
-    """Resultant tyre force [N] and its moment about the CG [N m] on one vehicle.
+    """Resultant tyre force [N] and its moment about the CG [N m] on one vehicle
+    (:func:`sim.compliant_formula.vehicle_tyre_force`, the sum the scenes step with).
 
     Parameters
     ----------
@@ -115,9 +127,11 @@ def tyre_force(velocity, yaw_rate, angle, wheels, load, mu, mode="rolling",
     """
     if mode not in TYRE_MODES:
         raise InputError(f"tyre mode must be one of {TYRE_MODES}, got {mode!r}")
-    braking = np.full(4, 1.0 if mode == "locked" else 0.0)
     loads = np.broadcast_to(np.asarray(load, dtype=float), (4,))
-    forces = tyres.tyre_forces(velocity, yaw_rate, angle, wheels, loads, mu, braking,
-                               regularisation=regularisation)
-    force, moment = tyres.net_force_and_moment(forces, wheels, angle)
-    return force, float(moment)
+    velocity = np.asarray(velocity, dtype=float).reshape(2)
+    angle = float(angle)
+    data = np.asarray(wheels, dtype=float).reshape(8).tolist() + loads.tolist()
+    fx, fy, moment = vehicle_tyre_force(
+        data, 0, 8, float(velocity[0]), float(velocity[1]), float(yaw_rate), math.cos(angle),
+        math.sin(angle), float(mu), 1.0 if mode == "locked" else 0.0, float(regularisation))
+    return np.array([fx, fy], dtype=float), float(moment)

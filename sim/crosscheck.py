@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import pim
+from pim.io.units import display_units
 
 from .error_measure import ERROR_DEFINITION, TABLE_HEADER, compare_results, impact_error
 from .limits import limitations
@@ -50,7 +51,7 @@ class CrossCheck:
     analytic: pim.Result
     simulated: SimResult
 
-    def format_table(self, units: str = "si") -> str:
+    def format_table(self, units="si") -> str:
         """A plain-text table of the comparison and the run's diagnostics, in the ``units``
         system ("si" or "us"; relative errors are unit-free)."""
         s = self.simulated
@@ -64,13 +65,14 @@ class CrossCheck:
                      f"{s.contact_points} contact point(s)")
         return "\n".join(lines)
 
-    def to_json(self, units: str = "si") -> dict:
+    def to_json(self, units="si") -> dict:
         """Plain data for ``--json``, the quantities in the ``units`` system (named in
         ``units``; each row carries its unit; times in s)."""
         s = self.simulated
 
         return {
-            "case": self.case_name, "units": units, "eps": self.eps, "beta": self.beta,
+            "case": self.case_name, "units": display_units(units).to_json(), "eps": self.eps,
+            "beta": self.beta,
             "rows": [r.to_json(units) for r in self.rows],
             "error": self.error, "error_definition": ERROR_DEFINITION,
             "limitations": list(self.limitations),
@@ -87,7 +89,7 @@ def crosscheck(case: pim.Case, eps=None, beta=None,
     Raises :class:`sim.SimulationError` if the simulation fails, ValueError on bad input.
     """
     eps, beta = resolve_coefficients(case, eps, beta)
-    analytic = pim.solve(case, eps, beta)
+    analytic = pim.solve(case, eps, beta, law="brach")
     simulated = simulate(case, eps, beta, settings)
     rows = compare_results(case, analytic, simulated)
     error = float(impact_error(case, analytic, simulated.velocity1, simulated.velocity2,

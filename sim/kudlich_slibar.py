@@ -25,6 +25,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 import pim
+from pim.io.units import display_units
 from pim.model.geometry import kinetic_energy
 from pim.model.impact_laws import (
     check_contact_friction,
@@ -205,7 +206,7 @@ class KudlichSlibarCheck:
     analytic: pim.Result
     run: KudlichSlibarRun
 
-    def format_table(self, units: str = "si") -> str:
+    def format_table(self, units="si") -> str:
         """A plain-text table of the comparison, in the ``units`` system."""
         lines = [f"{self.case_name}: Kudlich-Slibar law, k = {self.k:g}, mu_c = {self.mu_c:g}  "
                  f"(pymunk: compression at restitution 0 and friction mu_c, "
@@ -215,10 +216,11 @@ class KudlichSlibarCheck:
         lines.append(f"wall time {1e3 * self.run.wall_time:.3f} ms")
         return "\n".join(lines)
 
-    def to_json(self, units: str = "si") -> dict:
+    def to_json(self, units="si") -> dict:
         """Plain data for ``--json``, the quantities in the ``units`` system (named in
         ``units``; each row carries its unit; times in s)."""
-        return {"case": self.case_name, "units": units, "law": "kudlich-slibar", "k": self.k,
+        return {"case": self.case_name, "units": display_units(units).to_json(),
+                "law": "kudlich-slibar", "k": self.k,
                 "mu_c": self.mu_c, "error": self.error, "error_definition": ERROR_DEFINITION,
                 "rows": [r.to_json(units) for r in self.rows],
                 "iterations": self.run.iterations, "wall_time": self.run.wall_time}

@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 import pim
+from pim.model.numbers import speed_text
 
 from .convergence import contraction_rate
 from .scene import STICK_MARGIN
@@ -51,7 +52,7 @@ def limitations(case: pim.Case, eps: float, beta: float) -> list[str]:
     if not 0.0 <= beta <= 1.0:
         out.append(f"beta = {beta:g} is outside [0, 1]: Coulomb friction cannot give it")
         return out
-    result = pim.solve(case, eps, beta)
+    result = pim.solve(case, eps, beta, law="brach")
     out += [f"PIM: {text}" for text in result.problems()]
     if out or beta >= 1.0:
         return out
@@ -59,7 +60,7 @@ def limitations(case: pim.Case, eps: float, beta: float) -> list[str]:
     scale = max(abs(_f(result.approach_n)), abs(_f(result.approach_t)), 1e-300)
     if p_t * u_t > 0 and abs(u_t) > 1e-9 * scale:
         out.append(f"PIM's tangential impulse (mu = beta mu0 = {_f(result.mu):.4g}) points "
-                   f"along the remaining sliding at C (U_t = {u_t:.4g} m/s): Coulomb "
+                   f"along the remaining sliding at C (U_t = {speed_text(u_t)}): Coulomb "
                    f"friction opposes sliding, so the engine cannot reproduce it")
     mu0 = abs(_f(result.mu0))
     friction = max(STICK_MARGIN * mu0, 1.0) if beta >= 1.0 else beta * mu0

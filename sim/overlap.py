@@ -1,5 +1,8 @@
-"""Overlap of two vehicle outlines (convex polygons) with numpy: clipping, area, centroid,
-and the contact normal of the outline crush model.
+"""Overlap of two vehicle outlines (convex polygons): clipping, area, centroid, and the
+contact normal of the outline crush model.
+
+The arithmetic is written once, on floats, in :mod:`sim.compliant_formula` (the pymunk scene
+and the compiled integrator run it there); the functions here take and give numpy arrays:
 
 * :func:`clip_convex`: Sutherland-Hodgman clipping of one convex polygon by another;
 * :func:`polygon_area_centroid`: shoelace area and centroid;
@@ -17,6 +20,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import compliant_formula as formula
+
 __all__ = ["place", "clip_convex", "polygon_area_centroid", "separating_axis", "Overlap",
            "outline_overlap", "overlap_area"]
 
@@ -28,52 +33,39 @@ def place(corners: np.ndarray, position, angle: float) -> np.ndarray:
     return np.stack([position[0] + c * x - s * y, position[1] + s * x + c * y], axis=-1)
 
 
+def _work(*polygons) -> tuple[list, list]:
+    """A work list holding ``polygons`` ((m, 2) each) and two clipping buffers; the offsets
+    of the polygons and of the buffers."""
+    wk, offsets = [], []
+    for poly in polygons:
+        offsets.append(len(wk))
+        wk += np.asarray(poly, dtype=float).reshape(-1).tolist()
+    room = 2 * sum(len(p) for p in polygons) + 4
+    offsets += [len(wk), len(wk) + room]
+    return wk + [0.0] * (2 * room), offsets
+
+
+def _polygon(wk, offset: int, count: int) -> np.ndarray:
+    return np.array(wk[offset:offset + 2 * count], dtype=float).reshape(count, 2)
+
+
 def clip_convex(subject: np.ndarray, clipper: np.ndarray) -> np.ndarray:
-    """Intersection (M, 2) of convex polygon ``subject`` with convex ``clipper`` [m].
+    """Intersection (M, 2) of convex polygon ``subject`` with convex ``clipper`` [m]
+    (:func:`sim.compliant_formula.clip_polygon`).
 
     Both counter-clockwise; an empty (0, 2) array when they do not overlap.
     """
-    poly = subject
-    n = len(clipper)
-    for i in range(n):
-        if len(poly) == 0:
-            break
-        a, b = clipper[i], clipper[(i + 1) % n]
-        edge = b - a
-        # signed distance (times |edge|) to the left of the edge: inside >= 0
-        side = edge[0] * (poly[:, 1] - a[1]) - edge[1] * (poly[:, 0] - a[0])
-        nxt = np.roll(poly, -1, axis=0)
-        side_next = np.roll(side, -1)
-        out = []
-        for j in range(len(poly)):
-            if side[j] >= 0:
-                out.append(poly[j])
-            if (side[j] >= 0) != (side_next[j] >= 0):
-                f = side[j] / (side[j] - side_next[j])
-                out.append(poly[j] + f * (nxt[j] - poly[j]))
-        poly = np.array(out) if out else np.empty((0, 2))
-    return poly
+    wk, (p1, p2, a, b) = _work(subject, clipper)
+    offset, count = formula.clip_polygon(wk, p1, len(subject), p2, len(clipper), a, b)
+    return _polygon(wk, offset, count)
 
 
 def polygon_area_centroid(poly: np.ndarray) -> tuple[float, np.ndarray]:
-    """Area [m^2] (>= 0 for counter-clockwise) and centroid (2,) [m] of a polygon."""
-    if len(poly) < 3:
-        return 0.0, np.full(2, np.nan)
-    x, y = poly[:, 0], poly[:, 1]
-    xn, yn = np.roll(x, -1), np.roll(y, -1)
-    cross = x * yn - xn * y
-    area = 0.5 * float(cross.sum())
-    if area == 0.0:
-        return 0.0, poly.mean(axis=0)
-    cx = float(((x + xn) * cross).sum()) / (6.0 * area)
-    cy = float(((y + yn) * cross).sum()) / (6.0 * area)
-    return abs(area), np.array([cx, cy])
-
-
-def _edge_normals(poly: np.ndarray) -> np.ndarray:
-    edges = np.roll(poly, -1, axis=0) - poly
-    normals = np.stack([edges[:, 1], -edges[:, 0]], axis=-1)     # outward for CCW
-    return normals / np.linalg.norm(normals, axis=-1, keepdims=True)
+    """Area [m^2] (>= 0 for counter-clockwise) and centroid (2,) [m] of a polygon
+    (:func:`sim.compliant_formula.area_centroid`)."""
+    wk, (p, _, _) = _work(poly)
+    area, cx, cy = formula.area_centroid(wk, p, len(poly))
+    return area, np.array([cx, cy])
 
 
 def separating_axis(poly1: np.ndarray, poly2: np.ndarray) -> tuple[np.ndarray, float]:
@@ -81,17 +73,11 @@ def separating_axis(poly1: np.ndarray, poly2: np.ndarray) -> tuple[np.ndarray, f
 
     The candidate axes are the edge normals of both polygons; along each the projections'
     overlap is min(max1 - min2, max2 - min1); the smallest wins. A negative overlap means
-    the polygons are apart along that axis.
+    the polygons are apart along that axis (:func:`sim.compliant_formula.separating_axis`).
     """
-    axes = np.concatenate([_edge_normals(poly1), _edge_normals(poly2)])
-    p1 = poly1 @ axes.T                                           # (N1, A)
-    p2 = poly2 @ axes.T
-    forward = p2.max(axis=0) - p1.min(axis=0)    # overlap if 1 lies on the +axis side of 2
-    backward = p1.max(axis=0) - p2.min(axis=0)   # overlap if 1 lies on the -axis side
-    depth = np.minimum(forward, backward)
-    k = int(np.argmin(depth))
-    n = axes[k] if forward[k] <= backward[k] else -axes[k]
-    return n, float(depth[k])
+    wk, (p1, p2, _, _) = _work(poly1, poly2)
+    nx, ny, depth = formula.separating_axis(wk, p1, len(poly1), p2, len(poly2))
+    return np.array([nx, ny]), depth
 
 
 @dataclass(frozen=True)
@@ -129,14 +115,9 @@ def overlap_area(poly1: np.ndarray, poly2: np.ndarray) -> float:
 
 
 def outline_overlap(poly1: np.ndarray, poly2: np.ndarray) -> Overlap:
-    """:class:`Overlap` of two convex counter-clockwise polygons in world coordinates."""
-    region = clip_convex(poly1, poly2)
-    area, centroid = polygon_area_centroid(region)
-    normal, axis_depth = separating_axis(poly1, poly2)
-    if area <= 0.0:
-        return Overlap(0.0, centroid, normal, 0.0, 0.0, axis_depth)
-    tangent = np.array([-normal[1], normal[0]])
-    along = region @ tangent
-    width = float(along.max() - along.min())
-    depth = area / width if width > 0 else 0.0
-    return Overlap(area, centroid, normal, width, depth, axis_depth)
+    """:class:`Overlap` of two convex counter-clockwise polygons in world coordinates
+    (:func:`sim.compliant_formula.outline_overlap`)."""
+    wk, (p1, p2, a, b) = _work(poly1, poly2)
+    area, cx, cy, nx, ny, width, depth, axis_depth = formula.outline_overlap(
+        wk, p1, len(poly1), p2, len(poly2), a, b)
+    return Overlap(area, np.array([cx, cy]), np.array([nx, ny]), width, depth, axis_depth)

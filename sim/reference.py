@@ -33,7 +33,7 @@ import time
 import numpy as np
 
 import pim
-from pim.model.numbers import InputError
+from pim.model.numbers import InputError, speed_text
 
 from .compliant_setup import (
     CompliantProblem,
@@ -342,8 +342,9 @@ def reference_compliant(case: pim.Case, eps, stiffness, friction=0.0, geometry="
                         ) -> CompliantResult:
     """The point contact integrated by ``solve_ivp`` (``settings.method``, ``settings.rtol``).
 
-    Same signature and result as :func:`sim.simulate_compliant`; only ``geometry="point"``
-    (the outline contact has no independent reference). ``history`` holds the dense output
+    The single-case signature and result of ``sim.simulate_compliant(...,
+    engine="pymunk")`` (:class:`sim.CompliantResult`); only ``geometry="point"`` (the outline
+    contact has no independent reference). ``history`` holds the dense output
     at 200 instants of the contact with ``settings.record``; ``trajectory`` the states at
     first contact and separation (and dense samples between them with ``record``).
 
@@ -366,7 +367,7 @@ def reference_compliant(case: pim.Case, eps, stiffness, friction=0.0, geometry="
     *_, slip_n, slip_t0 = model.contact(y)
     if not slip_n < 0:
         raise SimulationError("no_contact", f"no contact: the vehicles do not approach at C "
-                              f"(u_n = {slip_n:.6g} m/s >= 0)", 0)
+                              f"(u_n = {speed_text(slip_n, '.6g')} >= 0)", 0)
     y, t0, impulse, steps, pieces, stick_time, directions = _integrate(model, y)
     return _reference_result(model, y, t0, impulse, steps, pieces, stick_time,
                              reversal(np.sign(slip_t0), model.contact(y)[5],

@@ -33,6 +33,8 @@ import pymunk
 
 import pim
 from pim.model.geometry import kinetic_energy
+from pim.model.case import checked_case
+from pim.model.numbers import check_type, speed_text
 
 from .failures import SimulationError
 from .result import SimResult, Trajectory
@@ -333,14 +335,15 @@ def _not_converged_message(scene: Scene, mon: _Monitor) -> str:
                  "Chipmunk's sequential impulses diverge; PIM's sliding impulse cannot be "
                  "reproduced by this engine at any iteration count")
     else:
-        text += "; raise settings.iterations (or leave it None for automatic)"
+        text += "; raise the solver iterations per step (settings.iterations)"
     return text
 
 
 def _no_contact_message(scene: Scene, settings: Settings, now: float) -> str:
     if not scene.approach_n < 0:
-        return (f"no contact: the vehicles do not approach at C (u_n = {scene.approach_n:.6g} "
-                f"m/s >= 0), so there is no impact to simulate")
+        return (f"no contact: the vehicles do not approach at C (u_n = "
+                f"{speed_text(scene.approach_n, '.6g')} >= 0), so there is no impact to "
+                f"simulate")
     travel = abs(scene.approach_n) * settings.dt
     # A step that covers the whole diameter can carry the circle from just outside to just
     # outside the other side: equality tunnels too.
@@ -383,10 +386,12 @@ def simulate(case: pim.Case, eps=None, beta=None, settings: Settings | None = No
     SimulationError
         The run failed: no contact, never separated, multiple contacts, energy gained.
     """
-    settings = settings or Settings()
+    checked_case(case)
+    settings = check_type(settings, "settings", Settings, "a sim.Settings (e.g. "
+                          "sim.Settings(dt=1e-4))", none=True) or Settings()
     eps, beta = resolve_coefficients(case, eps, beta)
     if analytic is None:
-        analytic = pim.solve(case, eps, 1.0)
+        analytic = pim.solve(case, eps, 1.0, law="brach")
     start = time.perf_counter()
     scene = build_scene(case, eps, beta, settings, analytic=analytic)
     fields = run_scene(scene, settings)

@@ -266,7 +266,7 @@ def build_scene(case: pim.Case, eps=None, beta=None, settings: Settings | None =
     eps, beta = resolve_coefficients(case, eps, beta)
     v1, v2, imp = case.vehicle1, case.vehicle2, case.impact
     if analytic is None:
-        analytic = pim.solve(case, eps, 1.0)
+        analytic = pim.solve(case, eps, 1.0, law="brach")
     mu0 = float(np.asarray(analytic.mu0).reshape(()))
     if not np.isfinite(mu0):
         mu0 = 0.0

@@ -17,11 +17,20 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pim.io.units import convert, quantity_text
+from pim.model.geometry import outline_penetration
 from pim.model.numbers import InputError
 
-from .overlap import overlap_area, place
+from .overlap import clip_convex, overlap_area, place, polygon_area_centroid
+from .run import simulate
+from .settings import Settings
 
-__all__ = ["SecondaryImpact", "find_secondary_impact", "DEFAULT_TOLERANCE"]
+__all__ = ["SecondaryImpact", "find_secondary_impact", "DEFAULT_TOLERANCE", "part_of",
+           "watch_after_impact", "WATCH_AFTER"]
+
+#: Seconds of free motion after the impact that ``pim sim`` watches for a secondary contact
+#: (the animation's default span after the impact).
+WATCH_AFTER = 2.0
 
 #: Growth of the overlap area, as a fraction of the smaller outline's area, that counts.
 DEFAULT_TOLERANCE = 0.005
@@ -39,17 +48,58 @@ class SecondaryImpact:
         Its index in the trajectory.
     overlap : float
         Overlap area then [m^2].
+    point : ndarray (2,) or None
+        Where: the centroid of the overlap then [m], global frame.
+    parts : tuple of str
+        Which parts meet: vehicle 1's and vehicle 2's (:func:`part_of`), e.g.
+        ("front right", "left side").
     """
 
     time: float
     index: int
     overlap: float
+    point: np.ndarray | None = None
+    parts: tuple = ()
 
-    def message(self) -> str:
-        """One sentence for reports and animations."""
-        return (f"secondary impact at t = {self.time:.3f} s: the outlines run into each other "
-                f"again after separation (PIM models one impact; the motion after this is not "
-                f"PIM's)")
+    def message(self, units: str = "si") -> str:
+        """One sentence for reports, animations and the command line: when (t = 0 is the
+        impact), where (the centroid of the new overlap, in ``units``) and which parts of
+        the vehicles meet."""
+        where = ""
+        if self.point is not None:
+            show = quantity_text(units)
+            x, y = (show(float(c), "length") for c in self.point)
+            where = f" at (x, y) = ({x}, {y})"
+        if self.parts:
+            where += f", vehicle 1's {self.parts[0]} against vehicle 2's {self.parts[1]}"
+        return (f"secondary impact at t = {self.time:.3f} s after the impact{where}: the "
+                f"outlines run into each other again after separation (PIM models one "
+                f"impact; the motion after this is not PIM's)")
+
+    def to_json(self, units: str = "si") -> dict:
+        """Time [s], place (x, y) in ``units``' length unit, the parts and the message."""
+        xy, unit = convert(self.point if self.point is not None else [np.nan, np.nan],
+                           "length", units)
+        return {"time": self.time, "x": float(xy[0]), "y": float(xy[1]), "length_unit": unit,
+                "parts": list(self.parts), "message": self.message(units)}
+
+
+def part_of(corners: np.ndarray, position, angle: float, point) -> str:
+    """The part of a body's outline (body-frame ``corners``, placed at ``position`` and
+    ``angle`` [rad]) nearest the world ``point``: "front", "rear", "left side", "right side",
+    or a corner ("front left" ...) when the point lies near both of its sides."""
+    c, s = np.cos(angle), np.sin(angle)
+    d = np.asarray(point, float) - np.asarray(position, float)
+    x, y = c * d[0] + s * d[1], -s * d[0] + c * d[1]
+    front, rear = corners[:, 0].max(), corners[:, 0].min()
+    left, right = corners[:, 1].max(), corners[:, 1].min()
+    along = "front" if x - rear > front - x else "rear"
+    side = "left" if y - right > left - y else "right"
+    gap_x = min(abs(front - x), abs(x - rear)) / max(front - rear, 1e-12)
+    gap_y = min(abs(left - y), abs(y - right)) / max(left - right, 1e-12)
+    if gap_x < 0.15 and gap_y < 0.15:
+        return f"{along} {side}"
+    return along if gap_x <= gap_y else f"{side} side"
 
 
 def find_secondary_impact(trajectory, start_index: int | None = None,
@@ -73,12 +123,44 @@ def find_secondary_impact(trajectory, start_index: int | None = None,
     start = trajectory.impact_index if start_index is None else int(start_index)
     areas = [float(np.prod(np.ptp(o, axis=0))) for o in (o1, o2)]
     threshold = tolerance * min(areas)
+    apart = _apart(trajectory)
     lowest = np.inf
     for i in range(start, len(trajectory.time)):
+        if apart[i]:            # a separating axis: no overlap (the clipping is the cost)
+            lowest = 0.0
+            continue
         poly1 = place(o1, trajectory.position1[i], trajectory.angle1[i])
         poly2 = place(o2, trajectory.position2[i], trajectory.angle2[i])
         area = overlap_area(poly1, poly2)
         lowest = min(lowest, area)
         if area > lowest + threshold:
-            return SecondaryImpact(float(trajectory.time[i]), i, area)
+            point = polygon_area_centroid(clip_convex(poly1, poly2))[1]
+            parts = tuple(part_of(o, p[i], a[i], point) for o, p, a in (
+                (o1, trajectory.position1, trajectory.angle1),
+                (o2, trajectory.position2, trajectory.angle2)))
+            return SecondaryImpact(float(trajectory.time[i]), i, area, point, parts)
     return None
+
+
+def _apart(trajectory) -> np.ndarray:
+    """Per recorded state: the two rectangular outlines are apart (their separating-axis
+    depth, :func:`pim.model.geometry.outline_penetration`, is <= 0), all states at once."""
+    def box(corners, position, angle):
+        front, rear = corners[:, 0].max(), corners[:, 0].min()
+        return position, angle, front - rear, np.ptp(corners[:, 1]), front
+
+    return outline_penetration(box(trajectory.outline1, trajectory.position1, trajectory.angle1),
+                               box(trajectory.outline2, trajectory.position2,
+                                   trajectory.angle2)) <= 0
+
+
+def watch_after_impact(case, eps: float, beta: float, after: float = WATCH_AFTER,
+                       dt: float = 1e-3) -> SecondaryImpact | None:
+    """Play the rigid scene of ``case`` at (eps, beta) ``after`` seconds past the impact
+    (free motion, no tyre friction, as the animation does) and return its secondary impact
+    (:func:`find_secondary_impact`), or None (also when a vehicle has no outline).
+
+    Raises :class:`sim.SimulationError` when the run fails.
+    """
+    settings = Settings(dt=dt, record=True, duration=after + 2 * dt)
+    return find_secondary_impact(simulate(case, eps, beta, settings).trajectory)

@@ -30,18 +30,21 @@ import sim
 from pim.io.files import atomic_paths
 from pim.io.units import convert
 from pim.model.geometry import outline_corners
-from pim.model.numbers import InputError
+from pim.model.numbers import InputError, checked_number
 
 from comparisons.animation.motion import Motion, analytic_motion, simulated_motion
 
 __all__ = ["AnimationInfo", "Renderer", "build_renderer", "frame_times", "simulate_for_animation",
            "animation_settings",
-           "write_animation", "animate_case", "DEFAULT_SIZE", "DEFAULT_FPS"]
+           "write_animation", "animate_case", "DEFAULT_SIZE", "DEFAULT_FPS", "MAX_SHOWN"]
 
 DEFAULT_SIZE = (960, 720)
 DEFAULT_FPS = 30
 #: Seconds shown after the impact by default (the issue asks for at least 2 s of motion).
 DEFAULT_AFTER = 2.0
+#: Longest time shown before or after the impact [s]: 10 minutes of scene, 18000 frames at
+#: 30 fps (minutes of drawing); the bound is checked before any work.
+MAX_SHOWN = 600.0
 #: Default length and width [m] drawn for a vehicle without an outline.
 DEFAULT_OUTLINE = (4.5, 1.8)
 #: How long the impulse arrow stays on screen after the impact [s].
@@ -524,7 +527,7 @@ def build_renderer(case: pim.Case, eps: float, beta: float, *, before: float | N
         ``pim.solve(case, eps, beta)`` if at hand.
     simulated : sim.SimResult or sim.CompliantResult, optional
         A simulation with a recorded trajectory reaching ``after``.
-    units : {"si", "us"}
+    units : {"si", "us"} or pim.io.units.DisplayUnits
         Units of the grid and scale bar (m or ft).
     title : str, optional
         Caption's first line (default: case, epsilon, beta, tyre friction).
@@ -532,6 +535,9 @@ def build_renderer(case: pim.Case, eps: float, beta: float, *, before: float | N
     A secondary impact after separation (:func:`sim.find_secondary_impact`) is marked in
     the frames and reported in the returned renderer's ``secondary``.
     """
+    after = checked_number(after, "after", low=0.0, high=MAX_SHOWN, unit="s")
+    if before is not None:
+        before = checked_number(before, "before", low=0.0, high=MAX_SHOWN, unit="s")
     if result is None:
         result = pim.solve(case, eps, beta)
     if before is None:

@@ -17,6 +17,7 @@ from __future__ import annotations
 import hashlib
 import json
 import math
+import os
 import platform
 import time
 import tomllib
@@ -27,14 +28,15 @@ from pathlib import Path
 import numpy as np
 
 import pim
-from pim.io.units import SI_UNITS, convert, registry
+from pim.io.units import SI_UNITS, DisplayUnits, convert, registry
 from pim.model.numbers import InputError
 from sim.error_measure import ERROR_DEFINITION, impact_error
 
 from comparisons.regression.sections import DEFAULT_SECTIONS, DEFAULT_SETTINGS, SECTIONS, run_section
 
 __all__ = ["FORMAT", "make_baseline", "record_case", "load_baseline", "check_baseline",
-           "CheckReport", "Drift", "format_report", "dumps_baseline", "case_source", "versions",
+           "CheckReport", "Drift", "format_report", "dumps_baseline", "case_source", "stored_path",
+           "shown_case", "versions",
            "load_references", "assert_agrees", "agreement", "DEPENDENCIES", "SAME_VERSIONS_REL"]
 
 #: Format tag of a baseline file.
@@ -46,6 +48,8 @@ DEPENDENCIES = ("pim-harness", "numpy", "scipy", "pymunk", "numba", "pint")
 SAME_VERSIONS_REL = 1e-12
 UNITS_NOTE = ("SI: every value is in the SI unit of its 'unit' field (m/s, rad/s, N*s, J, "
               "rad, kg, dimensionless; percent shares in %)")
+#: Columns of a drift that are values in its unit (shown in the user's units).
+DRIFT_VALUES = ("baseline", "now", "difference", "tolerance")
 
 
 def versions() -> dict:
@@ -61,12 +65,15 @@ def versions() -> dict:
 
 def case_source(case: str, base: Path | None = None) -> tuple[str, bytes]:
     """Where a case comes from and its file's bytes: a bundled name as in
-    :func:`pim.load_case`, else a path (relative ones against ``base``).
+    :func:`pim.load_case`, else a path (relative ones against ``base``, the baseline's
+    folder, when given).
 
     Raises
     ------
     ValueError
-        Neither a file nor a bundled case.
+        Neither a file nor a bundled case; for an absolute path that is gone (a baseline
+        recorded before paths were stored relative to it, then moved) the message says so
+        and what to do.
     """
     path = Path(case)
     if base is not None and not path.is_absolute():
@@ -76,7 +83,28 @@ def case_source(case: str, base: Path | None = None) -> tuple[str, bytes]:
     bundled = resources.files("pim.io") / "cases" / f"{case}.toml"
     if "/" not in case and bundled.is_file():
         return f"bundled:{case}", bundled.read_bytes()
-    raise InputError(f"case {case!r}: neither a file nor a bundled case (pim cases lists them)")
+    if Path(case).is_absolute():
+        raise InputError(f"case {case!r}: no such file; the baseline stores this absolute path "
+                         f"(recorded before pim stored case paths relative to the baseline "
+                         f"file): restore the file there, or record the baseline again with "
+                         f"pim baseline (it then moves with its cases)")
+    where = f" (relative to the baseline's folder {base})" if base is not None else ""
+    raise InputError(f"case {case!r}{where}: neither a file nor a bundled case (pim cases "
+                     f"lists them)")
+
+
+def stored_path(label: str, base: Path | None) -> str:
+    """How a baseline stores a case file: its path relative to the baseline's folder
+    ``base`` (``../cases/my-case.toml``), so that a project moved or cloned elsewhere keeps
+    finding it; absolute only where no relative path exists (another drive) or without
+    ``base``."""
+    path = Path(label).resolve()
+    if base is None:
+        return str(path)
+    try:
+        return Path(os.path.relpath(path, Path(base).resolve())).as_posix()
+    except ValueError:          # another drive: no relative path
+        return str(path)
 
 
 def _load(label: str) -> pim.Case:
@@ -91,18 +119,14 @@ def record_case(case: str, sections=DEFAULT_SECTIONS, settings: dict | None = No
                 base: Path | None = None) -> dict:
     """One case's entry of a baseline: hash, sections run or skipped (why), quantities.
 
-    ``case`` is stored as given when bundled, else relative to ``base`` (the baseline's
-    folder) when it lies below it, so that a committed baseline moves with its cases.
+    ``case`` is stored as given when bundled, else as its path relative to ``base`` (the
+    baseline's folder; :func:`stored_path`), so that a committed baseline moves with its
+    cases.
     """
     settings = {**DEFAULT_SETTINGS, **(settings or {})}
     label, data = case_source(case)
     loaded = _load(label)
-    stored = case
-    if not label.startswith("bundled:") and base is not None:
-        try:
-            stored = Path(label).resolve().relative_to(base.resolve()).as_posix()
-        except ValueError:
-            stored = str(Path(label).resolve())
+    stored = case if label.startswith("bundled:") else stored_path(label, base)
     entry = {"case": stored, "name": loaded.name, "sha256": hashlib.sha256(data).hexdigest(),
              "units_of_case": loaded.units, "settings": settings, "sections": [],
              "skipped": {}, "seconds": {}, "quantities": {}, "references": {}}
@@ -140,7 +164,8 @@ def make_baseline(cases, sections=DEFAULT_SECTIONS, settings: dict | None = None
         Monte Carlo sample counts and seed (default
         :data:`comparisons.regression.sections.DEFAULT_SETTINGS`).
     base : Path, optional
-        The folder the baseline will be written to (case paths are stored relative to it).
+        The folder the baseline will be written to: case files are stored by their path
+        relative to it (:func:`stored_path`; without ``base``, absolute).
     references : dict, optional
         Case name -> {quantity -> reference} (:func:`load_references`).
     progress : callable, optional
@@ -243,6 +268,9 @@ def _check_entry(path, i: int, entry) -> None:
     if not isinstance(entry, dict) or not {"case", "sha256", "quantities"} <= set(entry):
         raise _fail(path, f"case {i + 1} lacks case, sha256 or quantities")
     for name, q in entry["quantities"].items():
+        if (isinstance(q, dict) and q.get("kind") == "dimensionless"
+                and any(part.endswith("_percent") for part in name.split("."))):
+            q.update(kind="percent", unit=SI_UNITS["percent"])   # recorded before kind percent
         ok = (isinstance(q, dict) and isinstance(q.get("tolerance"), dict)
               and q.get("kind") in SI_UNITS
               and (q.get("value") is None or isinstance(q.get("value"), int | float)))
@@ -280,7 +308,7 @@ class Drift:
     Attributes
     ----------
     case : str
-        Name of the case.
+        The case as shown (:func:`shown_case`: a bundled name, or the file's path).
     quantity : str
         ``section.quantity`` that drifted.
     baseline : float or None
@@ -329,7 +357,8 @@ class CheckReport:
     notes : list of str
         Sections that no longer run or now run, and quantities new since the baseline.
     units : dict
-        Case name -> unit system of its case file, for display.
+        Case name -> (unit system, speed unit or None) its case file presents results in
+        (``Case.units``, ``Case.speed_unit``), for display.
     """
 
     path: str
@@ -344,12 +373,35 @@ class CheckReport:
     def ok(self) -> bool:
         return not self.drifts
 
-    def to_json(self) -> dict:
-        """Plain data for ``--json`` (SI values, each row with its unit)."""
+    def units_of(self, case: str, units: str | None = None,
+                 speed: str | None = None) -> DisplayUnits:
+        """The display units of ``case``'s drifts: the unit system ``units`` and the speed
+        unit ``speed`` asked for (``--units``, ``--speed-unit``), each by default the case
+        file's (:func:`pim.io.units.display_units`)."""
+        system, own_speed = self.units.get(case, ("si", None))
+        return DisplayUnits(units or system, speed or own_speed)
+
+    def to_json(self, units: str | None = None, speed: str | None = None) -> dict:
+        """Plain data for ``--json``: each drift's values in its case's display units
+        (:meth:`units_of`; its ``unit`` and ``si_unit`` fields name them), and ``units``
+        naming each case's units (the baseline file itself stores SI)."""
         return {"baseline": self.path, "ok": self.ok, "checked": self.checked,
-                "drifts": [asdict(d) for d in self.drifts],
+                "drifts": [_drift_json(d, self.units_of(d.case, units, speed))
+                           for d in self.drifts],
                 "input_changes": self.input_changes, "version_changes": self.version_changes,
-                "notes": self.notes, "units": UNITS_NOTE}
+                "notes": self.notes,
+                "units": {case: self.units_of(case, units, speed).to_json()
+                          for case in self.units}}
+
+
+def _drift_json(d: Drift, units: DisplayUnits) -> dict:
+    """A drift for ``--json``: its values in ``units``, with the unit they are in."""
+    out = asdict(d)
+    for key in DRIFT_VALUES:
+        if out[key] is not None:
+            out[key] = float(convert(out[key], d.kind, units)[0])
+    out["si_unit"], out["unit"] = d.unit, convert(1.0, d.kind, units)[1]
+    return out
 
 
 def _allowed(tol: dict, reference: float) -> float:
@@ -385,48 +437,109 @@ def _compare_reference(case: str, name: str, ref: dict, now: float | None) -> Dr
                  ref["unit"], ref["kind"], f"{bound.replace('_', ' ')}: {ref['source']}")
 
 
-def _rerun(entry: dict, loaded: pim.Case, report: CheckReport) -> dict:
+def _rerun(entry: dict, loaded: pim.Case, report: CheckReport, shown: str) -> dict:
     now = {}
     for section in entry.get("sections", []):
         try:
             rows = run_section(section, loaded, entry.get("settings", DEFAULT_SETTINGS))
         except LookupError as exc:
-            report.notes.append(f"{entry['case']}: {section} no longer runs ({exc})")
+            report.notes.append(f"{shown}: {section} no longer runs ({exc})")
             continue
         now.update({r.name: r.value for r in rows})
     for section in entry.get("skipped", {}):
         try:
             run_section(section, loaded, entry.get("settings", DEFAULT_SETTINGS))
-            report.notes.append(f"{entry['case']}: {section} runs now (skipped in the baseline)")
+            report.notes.append(f"{shown}: {section} runs now (skipped in the baseline)")
         except LookupError:
             pass
     return now
 
 
+def _case_path(stored: str, base: Path) -> Path | None:
+    """The file a stored case names (relative paths from the baseline's folder ``base``),
+    resolved; None for a bundled name."""
+    path = Path(stored)
+    path = path if path.is_absolute() else base / path
+    if path.is_file() or "/" in stored or stored.endswith(".toml"):
+        return path.resolve()
+    return None
+
+
+def shown_case(stored: str, base: Path) -> str:
+    """A stored case as the report shows it: a bundled name as it is, a file by its path
+    from the current folder when it lies below it (``cases/my-case.toml``, as typed), else
+    its absolute path."""
+    path = _case_path(stored, base)
+    if path is None:
+        return stored
+    try:
+        return path.relative_to(Path.cwd().resolve()).as_posix()
+    except ValueError:
+        return str(path)
+
+
 def _check_case(entry: dict, base: Path, same_versions: bool, report: CheckReport) -> None:
     label, data = case_source(entry["case"], base)
+    shown = shown_case(entry["case"], base)
     if hashlib.sha256(data).hexdigest() != entry["sha256"]:
-        report.input_changes.append(f"{entry['case']}: the case file changed since the "
-                                    f"baseline (SHA-256 differs: {label})")
+        report.input_changes.append(f"{shown}: the case file changed since the baseline (its "
+                                    f"SHA-256 differs)")
     loaded = _load(label)
-    report.units[entry["case"]] = loaded.units
-    now = _rerun(entry, loaded, report)
+    report.units[shown] = (loaded.units, loaded.speed_unit)
+    now = _rerun(entry, loaded, report, shown)
     for name, q in entry["quantities"].items():
         report.checked += 1
         exact = same_versions and bool(q.get("exact_same_versions"))
-        d = _compare(entry["case"], name, q, now.get(name), exact)
+        d = _compare(shown, name, q, now.get(name), exact)
         if d is not None:
             report.drifts.append(d)
     new = sorted(set(now) - set(entry["quantities"]))
     if new:
-        report.notes.append(f"{entry['case']}: {len(new)} quantities are new since the "
+        report.notes.append(f"{shown}: {len(new)} quantities are new since the "
                             f"baseline and not checked ({', '.join(new[:5])}"
                             f"{', ...' if len(new) > 5 else ''})")
     for name, ref in entry.get("references", {}).items():
         report.checked += 1
-        d = _compare_reference(entry["case"], name, ref, now.get(name))
+        d = _compare_reference(shown, name, ref, now.get(name))
         if d is not None:
             report.drifts.append(d)
+
+
+def _matches(entry: dict, wanted: str, base: Path) -> str | None:
+    """How ``wanted`` names ``entry``: "exact" (as stored, by the case's name, or the same
+    file from the current folder), "suffix" (a relative path the file's path ends with, as
+    ``cases/my-case.toml`` from another folder), or None."""
+    if wanted in (entry["case"], entry.get("name")):
+        return "exact"
+    path = _case_path(entry["case"], base)
+    if path is None:
+        return None
+    given = Path(wanted)
+    if given.resolve() == path:
+        return "exact"
+    parts = given.parts
+    if not given.is_absolute() and ".." not in parts and path.parts[-len(parts):] == parts:
+        return "suffix"
+    return None
+
+
+def _select(path, entries: list, cases, base: Path) -> list:
+    """The entries ``cases`` name (each as stored, by name, or by its file's path: see
+    :func:`_matches`), in the baseline's order."""
+    chosen = set()
+    for wanted in cases:
+        how = {i: _matches(e, str(wanted), base) for i, e in enumerate(entries)}
+        exact = {i for i, h in how.items() if h == "exact"}
+        suffix = {i for i, h in how.items() if h == "suffix"}
+        if not exact and len(suffix) > 1:
+            raise InputError(f"{path}: case {wanted!r} names several of its cases "
+                             f"({', '.join(entries[i]['case'] for i in sorted(suffix))}); "
+                             f"give more of the path")
+        if not (exact or suffix):
+            raise InputError(f"{path}: holds no case {wanted} (it holds "
+                             f"{', '.join(shown_case(e['case'], base) for e in entries)})")
+        chosen |= exact or suffix
+    return [e for i, e in enumerate(entries) if i in chosen]
 
 
 def check_baseline(path, cases=None, progress=None) -> CheckReport:
@@ -437,7 +550,8 @@ def check_baseline(path, cases=None, progress=None) -> CheckReport:
     path : str or Path
         The baseline file.
     cases : iterable of str, optional
-        Only these of its cases (as stored, or by case name).
+        Only these of its cases: as stored, by case name, or by the case file's path (from
+        the current folder, or any trailing part of it such as ``cases/my-case.toml``).
     progress : callable, optional
         Called with each case before it runs.
 
@@ -452,20 +566,16 @@ def check_baseline(path, cases=None, progress=None) -> CheckReport:
     now_versions = versions()
     report.version_changes = {k: [v, now_versions.get(k)] for k, v in data.get(
         "versions", {}).items() if now_versions.get(k) != v}
-    entries = data["cases"]
-    if cases is not None:
-        wanted = set(cases)
-        entries = [e for e in entries if e["case"] in wanted or e.get("name") in wanted]
-        if not entries:
-            raise InputError(f"{path}: holds no case {', '.join(sorted(wanted))}")
+    base = Path(path).resolve().parent
+    entries = data["cases"] if cases is None else _select(path, data["cases"], cases, base)
     for entry in entries:
         if progress is not None:
-            progress(entry["case"])
-        _check_case(entry, Path(path).resolve().parent, not report.version_changes, report)
+            progress(shown_case(entry["case"], base))
+        _check_case(entry, base, not report.version_changes, report)
     return report
 
 
-def _show(value, kind: str, system: str) -> str:
+def _show(value, kind: str, system) -> str:
     if value is None:
         return "missing"
     if not math.isfinite(value):
@@ -474,11 +584,11 @@ def _show(value, kind: str, system: str) -> str:
     return f"{float(x):.10g}"
 
 
-def _short(value: float, kind: str, system: str) -> str:
+def _short(value: float, kind: str, system) -> str:
     return f"{float(convert(value, kind, system)[0]):.3g}"
 
 
-def _row(d: Drift, system: str) -> list[str]:
+def _row(d: Drift, system: DisplayUnits) -> list[str]:
     _, unit = convert(1.0, d.kind, system)
     diff = "-" if d.difference is None else _short(d.difference, d.kind, system)
     return [d.case, d.quantity, _show(d.baseline, d.kind, system),
@@ -494,10 +604,12 @@ def _by_section(report: CheckReport) -> str:
     return ", ".join(f"{k} {n}" for k, n in counts.items())
 
 
-def format_report(report: CheckReport, units: str | None = None) -> str:
+def format_report(report: CheckReport, units: str | None = None,
+                  speed: str | None = None) -> str:
     """The check as text: input and version changes, then one row per drifted quantity
-    (case, quantity, baseline, now, difference, tolerance, unit, against what) in ``units``
-    ("si" or "us"; default each case's own)."""
+    (case, quantity, baseline, now, difference, tolerance, unit, against what) in the unit
+    system ``units`` ("si" or "us") with speeds in ``speed`` (default each case's own:
+    :meth:`CheckReport.units_of`)."""
     lines = [f"input changed: {c}" for c in report.input_changes]
     lines += [f"version differs: {k} {old} -> {new} (Monte Carlo statistics are held to "
               f"their statistical tolerance, not bit for bit)"
@@ -510,7 +622,7 @@ def format_report(report: CheckReport, units: str | None = None) -> str:
                  f"beyond tolerance ({_by_section(report)})")
     rows = [["case", "quantity", "baseline", "now", "difference", "tolerance", "unit",
              "against"]]
-    rows += [_row(d, units or report.units.get(d.case, "si")) for d in report.drifts]
+    rows += [_row(d, report.units_of(d.case, units, speed)) for d in report.drifts]
     widths = [max(len(r[i]) for r in rows) for i in range(7)]
     for r in rows:
         cells = [c.ljust(w) if i in (0, 1, 6) else c.rjust(w)

@@ -31,8 +31,10 @@ __all__ = ["pim_check", "assert_agrees", "check_case"]
 def check_case(case: str, baseline) -> None:
     """Fail (AssertionError with the drift table) when ``case`` of ``baseline`` moved.
 
-    ``case`` is the case as the baseline stores it (a bundled name or a path relative to
-    the baseline's folder) or its name; ``baseline`` the baseline file.
+    ``case`` is a bundled name, the case's name, or the case file's path as the user types
+    it (from the current folder, e.g. ``cases/my-case.toml``; any trailing part of the path
+    is enough when the tests run from another folder) or as the baseline stores it
+    (relative to the baseline's folder); ``baseline`` is the baseline file.
     """
     report = check_baseline(Path(baseline), [str(case)])
     if not report.ok:

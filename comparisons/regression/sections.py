@@ -115,7 +115,7 @@ def _f(x) -> float:
 def _kind(kind: str | None) -> str:
     if kind in SI_UNITS:
         return kind
-    return "dimensionless"   # None (a ratio) and "percent" (a share, recorded in %)
+    return "dimensionless"   # None: a ratio
 
 
 def _scaled(values: dict, kinds: dict, rel: float, floor: float, section: str,
@@ -147,11 +147,11 @@ ROUND_OFF_MOVES = ((1e-14, (0.0, 0.0)), (-1e-14, (0.0, 0.0)), (0.0, (1e-13, -1e-
 def _solve(case: pim.Case, settings: dict) -> list[Recorded]:
     if case.impact.restitution is None:
         raise LookupError("the case gives no impact.restitution")
-    values = _outputs(pim.solve_law(case))          # the case's impact law
+    values = _outputs(pim.solve(case))          # the case's impact law
     kinds = {k: _kind(OUTPUTS[k].kind if k in OUTPUTS else "energy") for k in values}
     rows = _scaled(values, kinds, CLOSED_FORM_REL, CLOSED_FORM_REL, "solve",
                    "round-off of the closed form and the case's conditioning")
-    moved = [_outputs(pim.solve_law(case.transformed(a, b))) for a, b in ROUND_OFF_MOVES]
+    moved = [_outputs(pim.solve(case.transformed(a, b))) for a, b in ROUND_OFF_MOVES]
     for r in rows:
         key = r.name[len("solve."):]
         spread = [abs(m[key] - r.value) for m in moved if math.isfinite(m[key] - r.value)]

@@ -1,77 +1,490 @@
-"""The report of ``pim assumptions`` (:mod:`comparisons.studies.assumptions`): the verdicts,
-the ladder at the typical contact time (its 14-column table split into parts one screen
-wide on the page), the plots and the animation of the finite-duration scene with PIM's
-ghost, as a :class:`~comparisons.report.document.Document` (``assumptions.md``, ``.html``,
-the CSVs) written through the one pipeline.
+"""The ladder of ``pim assumptions`` in words, tables, a plot, Markdown and HTML.
+
+Every effect is said twice: as the project's one error (a share of the impact's largest
+velocity change) and in physical terms, how far the delta-V moves and the yaw rate, in the
+case's units (:func:`shown_units`: km/h or mph where the case speaks them). Effects that
+depend on an unmeasured parameter are stated over its range, never at one chosen value:
+the contact time over :data:`comparisons.studies.assumption_configs.CONTACT_RANGE`, the
+tangential recovery r over [0, 1]; the tyre rung with the wheels rolling and locked, each
+named. "Where C is" stands beside the ladder as the uncertainty of an input.
 """
 
 from __future__ import annotations
 
-from dataclasses import replace
+from comparisons.report.render import markdown_table
+from comparisons.report.write import write_table_csv
+import math
 from pathlib import Path
 
+import numpy as np
+
 import pim
-from comparisons.animation.render import build_renderer, write_animation
-from comparisons.report.compare_document import ASSUMPTION_GROUPS
-from comparisons.report.document import (
-    Bullets,
-    Callout,
-    Document,
-    Figure,
-    Paragraph,
-    Section,
-    Video,
-)
-from comparisons.report.write import write_document
-from comparisons.studies.assumptions import (
-    AssumptionStudy,
-    assumption_table,
-    plot_overview,
-    sweep_table,
-)
-from pim.io.files import save_figure
+from pim.io import html as h
+from pim.io import units as pim_units
+from pim.io.files import save_figure, write_text
+from sim.contact_law import tangential_recovery_default
 from sim.error_measure import ERROR_DEFINITION
 
-__all__ = ["assumptions_document", "write_assumptions"]
+from comparisons.animation.render import build_renderer, write_animation
+from comparisons.report.tables import Table, fmt_error, fmt_value
+from comparisons.studies.assumption_configs import (
+    HOLDS,
+    ROUGHLY,
+    RUNGS,
+    STIFF_LIMIT,
+    TYPICAL,
+    RungConfig,
+)
+from comparisons.studies.assumptions import AssumptionStudy, Change, EffectRange
+
+__all__ = ["ASSUMPTION_GROUPS", "assumption_tables", "shown_units", "verdicts", "input_shift_words", "ladder_intro", "assumption_table",
+           "input_shift_table", "sweep_table", "plot_overview", "write_assumptions",
+           "assumptions_markdown", "assumptions_html", "study_json"]
 
 
-def assumptions_document(study: AssumptionStudy, info=None, command: str = "") -> Document:
-    """The study as a report; ``info`` is the animation written beside it (or None)."""
-    name = study.case.name or "case"
-    intro = (f"A ladder of finite-duration crush scenes (docs/contact-model.md), each "
-             f"differing from the one below in one assumption of PIM; epsilon = "
-             f"{study.eps:.4g}, PIM at beta = {study.beta_pim:g}. The marginal effect of an "
-             f"assumption is the impact error between its scene and the scene below at the "
-             f"same contact time; the cumulative one is PIM's error against the scene. "
-             f"Impact error: {ERROR_DEFINITION} (sim.error_measure.impact_error).")
-    table = replace(assumption_table(study), groups=ASSUMPTION_GROUPS)
-    every = replace(sweep_table(study), show=False)
-    sections = [
-        Section("verdicts", "Verdicts", (
-            *([Paragraph(f"Regenerate with `{command}`.")] if command else []),
-            Paragraph(intro), Bullets(tuple(study.verdicts()))), keep=True),
-        Section("typical", f"The ladder at {1e3 * study.typical.duration:g} ms", (
-            table, every, Paragraph(
-                "eps_eff, beta_eff: what `pim fit` (velocities and yaw rates) needs to "
-                "reproduce the simulated motion; C_eff: the impulse centroid. Every scene: "
-                f"[{every.name}.csv]({every.name}.csv). Run time {study.seconds:.1f} s.")),
-            toc="The ladder"),
-        Section("sweeps", "Over contact times, tyre friction and the tangential recovery",
-                (Figure("assumptions.png", alt="the ladder's effects"),), toc="Plots")]
+def shown_units(case: pim.Case, units=None):
+    """The display units of the ladder's output: ``units`` if given, else the case's own
+    (with its speed unit, km/h or mph, where :mod:`pim.io.units` knows one)."""
+    chooser = getattr(pim_units, "display_units", None)
+    if chooser is not None:
+        return chooser(units, case=case)
+    return units or case.units
+
+
+def _speed(value: float, units) -> tuple[float, str]:
+    v, label = pim_units.convert(value, "velocity", units)
+    return float(v), label
+
+
+def _yaw(value: float, units) -> float:
+    return float(pim_units.convert(value, "angular_velocity", units)[0])
+
+
+# -- words --------------------------------------------------------------------------------
+
+def _pct(x: float) -> str:
+    return "n/a" if not math.isfinite(x) else f"{100 * x:.1f} %"
+
+
+def _size(x: float) -> str:
+    if not math.isfinite(x):
+        return "not assessed (a simulation failed)"
+    if x < HOLDS:
+        return "negligible"
+    return "moderate" if x < ROUGHLY else "large"
+
+
+def _sizes(lo: float, hi: float) -> str:
+    """The verdict over a range: "negligible", or "negligible to moderate"."""
+    a, b = _size(lo), _size(hi)
+    return a if a == b else f"{a} to {b}"
+
+
+def _span(lo: float, hi: float, fmt) -> str:
+    return fmt(lo) if fmt(lo) == fmt(hi) else f"{fmt(lo)}-{fmt(hi)}"
+
+
+def _pct_span(lo: float, hi: float) -> str:
+    """"5.4-14.9 %" (one value when both round alike)."""
+    a, b = (f"{100 * x:.1f}" for x in (lo, hi))
+    return f"{a} %" if a == b else f"{a}-{b} %"
+
+
+def _physical(c: Change, units) -> str:
+    """"delta-V 1.2 mph, yaw rate 8 deg/s" (the larger vehicle of each)."""
+    if not math.isfinite(c.delta_v):
+        return "no physical difference measured"
+    dv, label = _speed(c.delta_v, units)
+    return f"delta-V {dv:.2g} {label}, yaw rate {_yaw(c.yaw_rate, units):.2g} deg/s"
+
+
+def _range_words(er: EffectRange, units, over: str) -> str:
+    """"negligible to moderate over 50-150 ms: 2.8-15.2 % against ..., delta-V ..."."""
+    lo, hi = er.extremes("marginal")
+    if not math.isfinite(hi):
+        return "not assessed (a simulation failed)"
+    dv_lo, dv_hi = (_speed(x, units)[0] for x in er.extremes("delta_v"))
+    label = _speed(0.0, units)[1]
+    w_lo, w_hi = (_yaw(x, units) for x in er.extremes("yaw_rate"))
+    if er.missing:
+        over += f" (not at {', '.join(er.missing)}: no outline scene there)"
+    return (f"{_sizes(lo, hi)} over {over}: {_pct_span(lo, hi)} against its baseline "
+            f"(largest at {er.setting_of('marginal')}); delta-V moves by "
+            f"{_span(dv_lo, dv_hi, lambda x: f'{x:.2g}')} {label}, the yaw rate by "
+            f"{_span(w_lo, w_hi, lambda x: f'{x:.2g}')} deg/s")
+
+
+def _contact_words(study: AssumptionStudy) -> str:
+    lo, hi = study.contact_range
+    return f"{1e3 * lo:g}-{1e3 * hi:g} ms of contact"
+
+
+def _tangential(study: AssumptionStudy) -> str:
+    return ("no friction between the vehicles (PIM's beta = 0)" if study.beta_pim == 0 else
+            "a sticking, plastic friction spring (PIM's beta = 1)")
+
+
+def _rung_subjects(study: AssumptionStudy) -> dict:
+    """Rung key -> the sentence's subject: the assumption and what replaced it."""
+    tyre = TYPICAL["tyre_friction"]
+    r0 = float(tangential_recovery_default(study.eps))
+    return {
+        "law": f"Newton's restitution with mu = beta mu0, replaced by the crush hysteresis "
+               f"(epsilon = {study.eps:.3g}) with {_tangential(study)} at a nearly "
+               f"instantaneous {1e3 * STIFF_LIMIT:g} ms contact",
+        "duration": "The instantaneous impulse, replaced by a finite contact (same contact "
+                    "law at C)",
+        "outline": "One contact point, replaced by the outlines crushing into each other "
+                   "(a distributed contact on the same line of impulse)",
+        "tyres": f"No external forces, replaced by tyre friction {tyre:g} during the contact "
+                 f"with the wheels rolling (tyres resist sideways slip only)",
+        "tyres_locked": f"No external forces, replaced by tyre friction {tyre:g} during the "
+                        f"contact with the wheels locked (tyres resist the whole slip)",
+        "friction": f"PIM's tangential law, replaced by Coulomb friction "
+                    f"{TYPICAL['friction']:g} between the vehicles with the tangential "
+                    f"recovery r unmeasured (0 plastic to 1 elastic; default eps^2 = "
+                    f"{r0:.3g})",
+    }
+
+
+def _typical_words(study: AssumptionStudy, key: str, units) -> str:
+    rung = study.typical.rung(key)
+    ms = f"{1e3 * study.typical.duration:g} ms"
+    at = f"at {ms}" + (" and r = eps^2" if key == "friction" else "")
+    return (f"{at}: {_pct(rung.marginal)} ({_physical(rung.change, units)}); PIM is "
+            f"{_pct(rung.cumulative)} off this scene (cumulative, "
+            f"{_physical(rung.pim_change, units)})")
+
+
+def _friction_map_words(study: AssumptionStudy) -> str:
+    d = TYPICAL["duration"]
+    pts = [p for p in study.friction_points if p.duration == d]
+    mus = sorted({p.mu_c for p in pts})
+    if len(mus) < 2:
+        return ""
+    values = [p.marginal for p in pts]
+    return (f"; over mu_c {mus[0]:g}-{mus[-1]:g} and every r at {1e3 * d:g} ms: "
+            f"{_pct_span(float(np.nanmin(values)), float(np.nanmax(values)))}")
+
+
+def _rung_sentence(study: AssumptionStudy, key: str, subject: str, units) -> str:
+    rung = study.typical.rung(key)
+    if key == "law":
+        if rung.run.failure:
+            return f"{subject}: not assessed ({rung.run.failure})."
+        return (f"{subject}: {_size(rung.marginal)}, {_pct(rung.marginal)} against PIM "
+                f"({_physical(rung.change, units)}), whatever the contact time.")
+    if key == "friction":
+        er, over = study.friction_over(), f"every r and {_contact_words(study)}"
+    else:
+        er, over = study.over_range(key), _contact_words(study)
+    text = _range_words(er, units, over) if er is not None else "no range simulated"
+    if rung.run.failure:
+        typical = (f"at {1e3 * study.typical.duration:g} ms not assessed "
+                   f"({rung.run.failure.rstrip('.')})")
+    else:
+        typical = _typical_words(study, key, units)
+    extra = _friction_map_words(study) if key == "friction" else ""
+    return f"{subject}: {text}; {typical}{extra}."
+
+
+def verdicts(study: AssumptionStudy, units=None) -> list[str]:
+    """One sentence per rung above PIM: the assumption, what replaced it (the wheels'
+    state named), the effect over the unmeasured range in % and in the case's units."""
+    units = shown_units(study.case, units)
+    subjects = _rung_subjects(study)
+    out = [_rung_sentence(study, rung.key, subjects[rung.key], units)
+           for rung in study.typical.rungs[1:]]
+    if study.typical.rung("outline") is None:
+        out.insert(2, f"One contact point: not assessed ({study.outline_note}).")
+    elif study.outline_note:
+        out.append(f"The outline rung is missing at some contact times: "
+                   f"{study.outline_note}.")
+    return out
+
+
+def input_shift_words(study: AssumptionStudy, units=None) -> str:
+    """"Where C is": the input uncertainty beside the ladder, in one sentence ("" without
+    outlines)."""
+    shift, er = study.input_shift, study.shift_over_range()
+    if shift is None:
+        return ""
+    units = shown_units(study.case, units)
+    length, label = pim_units.convert(shift.distance, "length", units)
+    scene = ("" if er is None else
+             f"; the crush scene moves {_range_words(er, units, _contact_words(study))}"
+             .replace(" against its baseline", " against the scene at C"))
+    return (f"Where C is (input uncertainty, not an assumption of PIM): the case's outlines "
+            f"put the impulse {float(length):.2f} {label} from the sheet's C on vehicle 1 and "
+            f"{round(shift.turn) + 0:+d} deg from Gamma; moving C and Gamma there (the bodies where "
+            f"the outlines first touch) moves PIM's own answer by {_pct(shift.pim_error)} "
+            f"({_physical(shift.pim_change, units)}){scene}. The outlines are illustrative: "
+            f"settle C from the crush profile before reading the ladder's outline rung.")
+
+
+def ladder_intro(command: str) -> str:
+    """The sentence a report puts before the verdicts: what the ladder is, over which
+    ranges, and the command of the whole study."""
+    return (f"A ladder of crush scenes relaxes PIM's assumptions one at a time, each scene "
+            f"differing from its baseline in one assumption; the marginal effect is against "
+            f"the baseline at the same contact time, the cumulative one is PIM's error "
+            f"against the scene, both also as the delta-V and yaw rate they move. The "
+            f"unmeasured parameters are ranges: contact times 50-150 ms, the tangential "
+            f"recovery 0-1; tyre friction {TYPICAL['tyre_friction']:g} with the wheels "
+            f"rolling and locked, friction {TYPICAL['friction']:g} between the vehicles; "
+            f"docs/contact-model.md has the model. The study over contact times, its plots "
+            f"and an animation are `{command}`.")
+
+
+# -- tables and plots -----------------------------------------------------------------------
+
+#: The assumptions table's columns in groups that fit a screen: (caption, columns). A
+#: column matches by its header, or by its header without the unit (``"fit rms"`` matches
+#: ``"fit rms [ft/s]"``); columns no group names are shown in a last group.
+ASSUMPTION_GROUPS = (
+    ("Effect of each assumption (marginal: against its baseline; cumulative: PIM against "
+     "the scene; changes: the larger vehicle's)",
+     ("against", "marginal effect [-]", "cumulative (PIM's error) [-]", "delta-V change",
+      "yaw-rate change")),
+    ("Over the contact-time range (and the tangential recovery r for friction)",
+     ("least marginal over the range [-]", "most marginal over the range [-]",
+      "most delta-V change over the range", "most yaw-rate change over the range")),
+    ("The scene of each rung", ("scene", "contact [ms]", "failure")),
+    ("What PIM would need to reproduce the scene (effective coefficients and impact point)",
+     ("eps_eff [-]", "beta_eff [-]", "C_eff x", "C_eff y")),
+    ("Contact and energy", ("energy loss [-]", "stick fraction [-]", "slip reversed")),
+)
+
+
+
+def assumption_tables(table: Table) -> list[str]:
+    """The assumptions table (:func:`assumption_table`) as HTML tables one screen wide
+    (:data:`ASSUMPTION_GROUPS`), one row per rung in each; ids ``table-NAME-1``, ..."""
+    columns = list(table.columns)
+    rows = [[table.formats.get(c, fmt_value)(v) for c, v in zip(columns, row, strict=True)]
+            for row in table.rows]
+    parts = []
+    for i, (caption, cols) in enumerate(h.split_columns(columns, ASSUMPTION_GROUPS,
+                                                        columns[0]), start=1):
+        index = [columns.index(c) for c in cols]
+        parts.append(h.table(cols, [[row[j] for j in index] for row in rows], title=caption,
+                             id=f"table-{table.name}-{i}", cls="split"))
+    return parts
+
+
+def _config_words(config: RungConfig) -> str:
+    if config.law == "pim":
+        return "PIM"
+    parts = ["crush", "instant" if config.duration is None else f"{1e3 * config.duration:g} ms",
+             "outline" if config.distributed else f"point at {config.point}"]
+    if config.tyre_friction:
+        parts.append(f"tyres {config.tyre_friction:g} {config.tyre_mode}")
+    parts.append("PIM's tangential law" if config.friction == "pim" else
+                 f"mu_c {config.mu_c:g}, r "
+                 f"{'eps^2' if config.recovery is None else f'{config.recovery:.3g}'}")
+    return ", ".join(parts)
+
+
+def _f(x) -> float:
+    return float(x)
+
+
+def _range_cells(er: EffectRange | None, units) -> tuple:
+    if er is None:
+        return (math.nan,) * 4
+    lo, hi = er.extremes("marginal")
+    return (lo, hi, _speed(er.extremes("delta_v")[1], units)[0],
+            _yaw(er.extremes("yaw_rate")[1], units))
+
+
+def assumption_table(study: AssumptionStudy, name: str = "assumptions",
+                     units=None) -> Table:
+    """The ladder: each rung at the typical contact time, and its marginal effect over the
+    verdicts' range (the friction rung: over r too), in % and in the case's units."""
+    units = shown_units(study.case, units)
+    length, lab = pim_units.convert(1.0, "length", units)
+    v = _speed(0.0, units)[1]
+    lo, hi = (1e3 * t for t in study.contact_range)
+    rows = []
+    for rung in study.typical.rungs[1:]:
+        r, c = rung.run, rung.change
+        er = study.friction_over() if rung.key == "friction" else study.over_range(rung.key)
+        rows.append((RUNGS[rung.key].title, rung.baseline, _config_words(rung.config),
+                     rung.marginal, rung.cumulative, _speed(c.delta_v, units)[0],
+                     _yaw(c.yaw_rate, units), *_range_cells(er, units),
+                     1e3 * r.contact_duration, _f(length * r.impact_point[0]),
+                     _f(length * r.impact_point[1]), rung.eps_eff, rung.beta_eff,
+                     r.energy_loss, r.stick_fraction, r.slip_reversed, r.failure or ""))
+    span = f"{lo:g}-{hi:g} ms"
+    columns = ("assumption relaxed", "against", "scene", "marginal effect [-]",
+               "cumulative (PIM's error) [-]", f"delta-V change [{v}]",
+               "yaw-rate change [deg/s]", "least marginal over the range [-]",
+               "most marginal over the range [-]",
+               f"most delta-V change over the range [{v}]",
+               "most yaw-rate change over the range [deg/s]", "contact [ms]",
+               f"C_eff x [{lab}]", f"C_eff y [{lab}]", "eps_eff [-]", "beta_eff [-]",
+               "energy loss [-]", "stick fraction [-]", "slip reversed", "failure")
+    return Table(name, f"PIM's assumptions one at a time at {1e3 * study.typical.duration:g} "
+                 f"ms and over the range {span} (friction: and r in [0, 1]) "
+                 f"({ERROR_DEFINITION}; changes: the larger vehicle's)",
+                 columns, tuple(rows),
+                 {c: fmt_error for c in columns if "marginal" in c or "cumulative" in c})
+
+
+def input_shift_table(study: AssumptionStudy, name: str = "where_c", units=None) -> Table:
+    """Where C is: PIM and the crush scene at each contact time of the range moved from the
+    sheet's C to where the outlines' impulse acts (empty without outlines; every contact
+    time: :func:`sweep_table`)."""
+    units = shown_units(study.case, units)
+    v = _speed(0.0, units)[1]
+    rows = []
+    if study.input_shift is not None:
+        s = study.input_shift
+        rows.append(("PIM", math.nan, s.pim_error, _speed(s.pim_change.delta_v, units)[0],
+                     _yaw(s.pim_change.yaw_rate, units)))
+    for lad in study.in_range("outline"):
+        c = lad.shift.change
+        rows.append(("crush scene", 1e3 * lad.duration, lad.shift.error,
+                     _speed(c.delta_v, units)[0], _yaw(c.yaw_rate, units)))
+    columns = ("model", "contact time [ms]", "effect [-]", f"delta-V change [{v}]",
+               "yaw-rate change [deg/s]")
+    return Table(name, "Where C is: the sheet's C against where the outlines' impulse acts "
+                 "(input uncertainty, not a rung)", columns, tuple(rows),
+                 {"effect [-]": fmt_error})
+
+
+def _ladder_rows(study: AssumptionStudy, units) -> list:
+    rows = []
+    for lad in study.ladders:
+        for rung in lad.rungs[1:]:
+            rows.append(("ladder", rung.key, 1e3 * lad.duration, _config_words(rung.config),
+                         rung.marginal, rung.cumulative,
+                         _speed(rung.change.delta_v, units)[0],
+                         _yaw(rung.change.yaw_rate, units), rung.run.failure or ""))
+    return rows
+
+
+def sweep_table(study: AssumptionStudy, name: str = "assumption_sweeps", units=None) -> Table:
+    """Every rung at every contact time, the tyre curves (rolling and locked), the friction
+    rung over (contact time, mu_c, r) and where C is at each contact time."""
+    units = shown_units(study.case, units)
+    rows = _ladder_rows(study, units)
+    for (mode, mu), values in study.tyre_curves.items():
+        for d, x in zip(study.durations, values, strict=True):
+            rows.append(("tyre effect", f"tyre friction {mu:g}, wheels {mode}", _f(1e3 * d),
+                         "", _f(x), math.nan, math.nan, math.nan, ""))
+    for p in study.friction_points:
+        rows.append(("friction effect", f"mu_c {p.mu_c:g}, r {p.recovery:.3g}",
+                     1e3 * p.duration, "", p.marginal, p.cumulative,
+                     _speed(p.change.delta_v, units)[0], _yaw(p.change.yaw_rate, units), ""))
+    for lad in study.ladders:
+        if lad.shift is not None:
+            rows.append(("where C is", "centroid against C", 1e3 * lad.duration, "",
+                         lad.shift.error, math.nan, _speed(lad.shift.change.delta_v, units)[0],
+                         _yaw(lad.shift.change.yaw_rate, units), ""))
+    v = _speed(0.0, units)[1]
+    columns = ("part", "rung", "contact time [ms]", "scene", "marginal effect [-]",
+               "cumulative (PIM's error) [-]", f"delta-V change [{v}]",
+               "yaw-rate change [deg/s]", "failure")
+    return Table(name, "Every scene of the study", columns, tuple(rows),
+                 {c: fmt_error for c in columns[4:6]})
+
+
+def _plot_ladder(ax, study: AssumptionStudy) -> None:
+    rungs = study.typical.rungs[1:]
+    x = np.arange(len(rungs))
+    ax.bar(x - 0.2, [100 * r.marginal for r in rungs], 0.4,
+           label=f"marginal at {1e3 * study.typical.duration:g} ms")
+    ax.bar(x + 0.2, [100 * r.cumulative for r in rungs], 0.4, label="cumulative (PIM's error)")
+    for i, rung in enumerate(rungs):
+        er = study.friction_over() if rung.key == "friction" else study.over_range(rung.key)
+        if er is not None and rung.key != "law":
+            lo, hi = er.extremes("marginal")
+            ax.plot([i - 0.2] * 2, [100 * lo, 100 * hi], color="k", lw=1.5)
+    ax.plot([], [], color="k", lw=1.5, label="marginal over the range")
+    ax.set_xticks(x, [r.key.replace("_", "\n") for r in rungs], fontsize=8)
+    ax.set_title("the ladder (bars: typical; lines: over 50-150 ms and r)", fontsize=10)
+
+
+def _plot_durations(ax, study: AssumptionStudy) -> None:
+    ms = 1e3 * study.durations
+    for r in study.typical.rungs[1:]:
+        if r.key != "law":
+            ax.plot(ms, 100 * study.effect(r.key), "o-", ms=3, label=r.key)
+    lo, hi = study.contact_range
+    ax.axvspan(1e3 * lo, 1e3 * hi, color="0.9", zorder=0, label="contact-time range")
+    ax.set_xlabel("contact time [ms]")
+    ax.set_title("marginal effect of each assumption over the contact time", fontsize=10)
+
+
+def _plot_tyres(ax, study: AssumptionStudy) -> None:
+    mus = sorted({mu for _, mu in study.tyre_curves})
+    for (mode, mu), values in study.tyre_curves.items():
+        ax.plot(1e3 * study.durations, 100 * values, "o-" if mode == "rolling" else "s--",
+                ms=3, color=f"C{mus.index(mu)}", label=f"tyre friction {mu:g}, wheels {mode}")
+    ax.set_xlabel("contact time [ms]")
+    ax.set_title("tyre effect (tyres vs none, same contact time)", fontsize=10)
+
+
+def _plot_friction(ax, study: AssumptionStudy) -> None:
+    d = TYPICAL["duration"]
+    pts = [p for p in study.friction_points if p.duration == d]
+    for r in sorted({p.recovery for p in pts}):
+        sel = [p for p in pts if p.recovery == r]
+        ax.plot([p.mu_c for p in sel], [100 * p.marginal for p in sel], "o-", ms=3,
+                label=f"tangential recovery r = {r:.3g}")
+    ax.set_xlabel("friction between the vehicles mu_c [-]")
+    ax.set_title(f"friction effect at {1e3 * d:g} ms (Coulomb vs PIM's law)", fontsize=10)
+
+
+def plot_overview(study: AssumptionStudy):
+    """The ladder with its ranges, effects over the contact time, tyres rolling and locked,
+    friction over mu_c and r (a Figure)."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(12, 8), layout="constrained")
+    (a, b), (c, d) = fig.subplots(2, 2)
+    _plot_ladder(a, study)
+    _plot_durations(b, study)
+    _plot_tyres(c, study)
+    _plot_friction(d, study)
+    for ax in (a, b, c, d):
+        ax.axhline(100 * HOLDS, color="0.6", lw=0.8, ls=":")
+        ax.set_ylabel("impact error [%]")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle(f"{study.case.name or 'case'}: PIM's assumptions one at a time "
+                 f"(epsilon = {study.eps:.3g}, PIM at beta = {study.beta_pim:g})", fontsize=11)
+    return fig
+
+
+# -- documents ------------------------------------------------------------------------------
+
+def write_assumptions(study: AssumptionStudy, out_dir, *, animation: bool = True,
+                      progress: bool | None = None, command: str = "",
+                      units=None) -> list[Path]:
+    """Write assumptions.md and .html, the tables (CSV), the plot (PNG) and the MP4 to
+    ``out_dir``."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    tables = (assumption_table(study, units=units), input_shift_table(study, units=units),
+              sweep_table(study, units=units))
+    files = [write_table_csv(t, out) for t in tables]
+    files.append(save_figure(plot_overview(study), out / "assumptions.png"))
+    info = _write_animation(study, out, progress) if animation else None
     if info is not None:
-        blocks = [Video("assumptions.mp4", "The finite-duration scene (filled) with PIM's "
-                        "answer as a dashed ghost.", info.frames, info.fps, tuple(info.size))]
-        if info.secondary_impact is not None:
-            blocks.append(Callout("Warning", (f"{info.secondary_impact.message()}.",)))
-        sections.append(Section("animation", "Animation", tuple(blocks)))
-    return Document(f"{name}: PIM's assumptions one at a time", "pim assumptions",
-                    tuple(sections), name="assumptions",
-                    subtitle="Which of PIM's assumptions hold for this case.")
+        files.append(info.path)
+    files.append(write_text(out / "assumptions.html",
+                            assumptions_html(study, tables, out, info, command, units)))
+    files.append(write_text(out / "assumptions.md",
+                            assumptions_markdown(study, tables, info, command, units)))
+    return files
 
 
-def _animation(study: AssumptionStudy, out: Path, progress):
-    """The finite-duration scene's MP4 with PIM's ghost (AnimationInfo)."""
+def _write_animation(study: AssumptionStudy, out: Path, progress):
     r = study.animation_result
+    if r is None:
+        return None
     ghost = pim.solve(study.case, study.eps, study.beta_pim)
     renderer = build_renderer(
         study.case, study.eps, study.beta_pim, result=ghost, simulated=r,
@@ -82,15 +495,100 @@ def _animation(study: AssumptionStudy, out: Path, progress):
     return write_animation(renderer, out / "assumptions.mp4", progress=progress)
 
 
-def write_assumptions(study: AssumptionStudy, out_dir, *, animation: bool = True,
-                      progress: bool | None = None, command: str = "") -> list[Path]:
-    """Write assumptions.md, assumptions.html, the tables (CSV), the plot (PNG) and the MP4
-    to ``out_dir``; return the paths."""
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    files = [save_figure(plot_overview(study), out / "assumptions.png")]
-    info = None
-    if animation and study.animation_result is not None:
-        info = _animation(study, out, progress)
-        files.append(info.path)
-    return files + write_document(assumptions_document(study, info, command), out)
+def _about(study: AssumptionStudy) -> str:
+    return (f"A ladder of finite-duration crush scenes (docs/contact-model.md), each "
+            f"differing from its baseline in one assumption of PIM; epsilon = "
+            f"{study.eps:.4g}, PIM at beta = {study.beta_pim:g}. The *marginal* effect of "
+            f"an assumption is the impact error between its scene and its baseline at the "
+            f"same contact time; the *cumulative* one is PIM's error against the scene (PIM "
+            f"at the scene's impact configuration). Each is also said as the delta-V and the "
+            f"yaw rate it moves (the larger of the two vehicles). Impact error: "
+            f"{ERROR_DEFINITION} (sim.error_measure.impact_error). Every verdict spans the "
+            f"unmeasured parameters: {_contact_words(study)} (McHenry's range; "
+            f"docs/contact-model.md) and, for friction, the tangential recovery r from 0 to "
+            f"1.")
+
+
+def assumptions_html(study: AssumptionStudy, tables, out_dir, info=None, command: str = "",
+                     units=None) -> str:
+    """The study as one self-contained HTML page (the plots and the animation inline, read
+    from ``out_dir``, where :func:`write_assumptions` wrote them)."""
+    out, (table, shift, _) = Path(out_dir), tables
+    sections = [
+        h.section("Verdicts", [h.paragraph(_about(study)),
+                               h.bullets(verdicts(study, units))], id="verdicts", cls="keep"),
+        h.section("Where C is", [h.paragraph(input_shift_words(study, units) or
+                                             "The case gives no outlines.")], id="where-c"),
+        h.section(f"The ladder at {1e3 * study.typical.duration:g} ms and over the range",
+                  [*assumption_tables(table), h.paragraph(
+                      "eps_eff, beta_eff: what `pim fit` needs to reproduce the simulated "
+                      "motion; C_eff: the impulse centroid. Every scene: "
+                      "`assumption_sweeps.csv`; where C is: `where_c.csv`.")], id="typical"),
+        h.section("Over contact times, tyre friction and the tangential recovery",
+                  h.figure(out / "assumptions.png", alt="the ladder's effects"), id="sweeps")]
+    if info is not None:
+        mp4 = out / "assumptions.mp4"
+        sections.append(h.section("Animation", h.video(
+            mp4, frames=info.frames, fps=info.fps, size=info.size,
+            still=h.still_frame(mp4, 0.5), caption="The finite-duration scene (filled) with "
+            "PIM's answer as a dashed ghost: `assumptions.mp4`.")
+            + ("" if info.secondary_impact is None else h.paragraph(
+                f"**Warning:** {info.secondary_impact.message()}.")), id="animation"))
+    return h.page(f"{study.case.name or 'case'}: which of PIM's assumptions hold", sections,
+                  subtitle=(f"Regenerate with `{command}`. " if command else "")
+                  + "The same as text: `assumptions.md`.",
+                  contents=[("verdicts", "Verdicts"), ("where-c", "Where C is"),
+                            ("typical", "The ladder"), ("sweeps", "Plots"),
+                            ("animation", "Animation")][:len(sections)],
+                  generator="pim assumptions")
+
+
+def assumptions_markdown(study: AssumptionStudy, tables, info=None, command: str = "",
+                         units=None) -> str:
+    """The study as Markdown (no wall times: a document regenerated by
+    ``comparisons.docs_numbers`` holds only what the code gives)."""
+    table, shift, _ = tables
+    lines = [f"# {study.case.name or 'case'}: PIM's assumptions one at a time", ""]
+    if command:
+        lines += [f"Regenerate with `{command}`.", ""]
+    lines += [_about(study), "", "## Verdicts", ""]
+    lines += [f"- {v}" for v in verdicts(study, units)] + [""]
+    words = input_shift_words(study, units)
+    if words:
+        lines += ["## Where C is (input uncertainty, not a rung)", "", words, "",
+                  markdown_table(shift), ""]
+    lines += [f"## The ladder at {1e3 * study.typical.duration:g} ms and over the range", "",
+              markdown_table(table), "", "eps_eff, beta_eff: what `pim fit` (velocities and yaw "
+              "rates) needs to reproduce the simulated motion; C_eff: the impulse centroid.",
+              "", "![assumptions](assumptions.png)", ""]
+    if info is not None:
+        lines += [f"[assumptions.mp4](assumptions.mp4): the finite-duration scene (filled) "
+                  f"with PIM's answer as a dashed ghost ({info.frames} frames).", ""]
+        if info.secondary_impact is not None:
+            lines += [f"**Warning:** {info.secondary_impact.message()}.", ""]
+    lines += ["Every scene: [assumption_sweeps.csv](assumption_sweeps.csv).", ""]
+    return "\n".join(lines)
+
+
+def _change_json(c: Change, units) -> dict:
+    return {"delta_v": _speed(c.delta_v, units)[0], "yaw_rate": _yaw(c.yaw_rate, units)}
+
+
+def study_json(study: AssumptionStudy, units=None) -> dict:
+    """The study for ``--json``: verdicts, every ladder's rungs with their effects in % and
+    in the case's units (named under ``units``), where C is."""
+    units = shown_units(study.case, units)
+    shift = study.input_shift
+    return {
+        "case": study.case.name, "eps": study.eps, "beta": study.beta,
+        "beta_pim": study.beta_pim, "engine": study.engine,
+        "units": {"delta_v": _speed(0.0, units)[1], "yaw_rate": "deg/s"},
+        "contact_range_ms": [1e3 * t for t in study.contact_range],
+        "verdicts": verdicts(study, units), "where_c": input_shift_words(study, units),
+        "input_shift": None if shift is None else {
+            "distance_m": shift.distance, "turn_deg": shift.turn,
+            "pim_error": shift.pim_error, **_change_json(shift.pim_change, units)},
+        "ladders": [{"contact_time_ms": 1e3 * lad.duration, "rungs": [
+            {"key": r.key, "against": r.baseline, "marginal": r.marginal,
+             "cumulative": r.cumulative, **_change_json(r.change, units),
+             "failure": r.run.failure} for r in lad.rungs[1:]]} for lad in study.ladders]}

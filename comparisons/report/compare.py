@@ -57,7 +57,8 @@ from comparisons.report.data import ReportData
 from comparisons.report.html import HTML_NAME
 from comparisons.report.tables import Num, Table, fmt_error
 from comparisons.report.write import write_document
-from comparisons.studies.assumptions import assumption_table, run_assumptions
+from comparisons.report.assumptions import assumption_table
+from comparisons.studies.assumptions import run_assumptions
 from comparisons.studies.coefficients import coefficients
 from comparisons.studies.speed_error import (
     COARSE,
@@ -70,8 +71,8 @@ from pim.analysis.misfit import misfit
 from pim.analysis.residuals import has_measured_terms
 from pim.io.files import save_figure
 from pim.io.output import ignore_interrupts, output_folder, rebase, stop_workers
-from pim.io.units import convert
-from pim.model.plausibility import warnings_of
+from pim.io.units import convert, display_units, quantity_text
+from pim.model.plausibility import findings
 from pim.plotting.sheet import write_plots
 from sim.error_measure import KIND_OF_UNIT, compare_results, impact_error
 
@@ -176,8 +177,9 @@ class CompareOptions:
         Include PIM's assumptions at typical values.
     progress : bool or None
         tqdm bars on stderr (None: only on a terminal).
-    units : str or None
-        Unit system of the report, "si" or "us" (None: the case file's).
+    units : str, pim.io.units.DisplayUnits or None
+        Units of the report: "si", "us" (speeds in km/h, mph) or a DisplayUnits (None: the
+        case file's, :func:`pim.io.units.display_units`).
     parallel : bool
         Render the plots in a forked worker process.
     uncertainty_samples : int
@@ -289,9 +291,10 @@ def _gather_results(case, options: CompareOptions, units: str) -> ReportData:
     if case.uncertainty is not None:
         spread = pim.uncertainty(case, n=options.uncertainty_samples, seed=0, eps=eps,
                                  beta=beta)
+    found = findings(case, result, options.friction_limit, quantity_text(units))
     data = ReportData(case=case, case_path=options.case_path or case.name or "CASE",
                       units=units, eps=eps, beta=beta, sources=sources, result=result, fit=fit,
-                      warnings=warnings_of(case, result, options.friction_limit),
+                      warnings=found.warnings, errors=found.errors,
                       animation_requested=options.animation, spread=spread,
                       misfit=misfit(result))
     data.add_table(results_table(result, units, spread))
@@ -311,7 +314,7 @@ def _gather_crosscheck(data: ReportData) -> None:
     case, eps, beta = data.case, data.eps, data.beta
     data.limits = sim.limitations(case, eps, beta)
     try:
-        data.simulated = sim.simulate(case, eps, beta, analytic=pim.solve(case, eps, 1.0))
+        data.simulated = sim.simulate(case, eps, beta, analytic=pim.solve(case, eps, 1.0, law="brach"))
     except sim.SimulationError as exc:
         data.sim_error = exc
         return
@@ -352,7 +355,7 @@ def gather_report(case: pim.Case, folder, options: CompareOptions,
     """
     cpu0 = time.process_time()
     folder = Path(folder)
-    units = options.units or case.units
+    units = display_units(options.units, case=case)
     steps = steps or _Steps(case, options)
     seconds = steps.seconds
     with _PlotWorker(options.parallel) as worker:
@@ -431,8 +434,9 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
         Tyre friction coefficient after the impact in the animation (0: none).
     progress : bool or None
         tqdm bars on stderr (None: only on a terminal).
-    units : {"si", "us"}, optional
-        Units of every number in the report (default: the case file's, ``case.units``).
+    units : {"si", "us"} or pim.io.units.DisplayUnits, optional
+        Units of every number in the report (default: the case file's, ``case.units`` with
+        its ``case.speed_unit``).
     parallel : bool
         Render the plots in a forked worker process while the animation and the sweep run.
     uncertainty_samples : int

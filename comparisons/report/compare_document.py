@@ -17,8 +17,9 @@ from dataclasses import replace
 
 import numpy as np
 
+from comparisons.report.assumptions import ASSUMPTION_GROUPS, ladder_intro, verdicts
 from comparisons.report.compare_tables import answer_cards, misfit_sentence
-from comparisons.report.data import ReportData
+from comparisons.report.data import ReportData, monte_carlo_note
 from comparisons.report.document import (
     Bullets,
     Callout,
@@ -31,24 +32,13 @@ from comparisons.report.document import (
 )
 from comparisons.report.number_format import format_number
 from comparisons.report.write import document_files
-from pim.io.units import convert
+from pim.io.inertia_data import estimate_notes
+from pim.io.units import convert, display_units
 
 __all__ = ["compare_document", "ASSUMPTION_GROUPS", "REPORT_NAME", "ANIMATION_CAPTION"]
 
 #: File name of the Markdown report.
 REPORT_NAME = "report.md"
-
-#: The assumptions table's columns in groups that fit a screen: (caption, columns). A
-#: column matches by its header, or by its header without the unit (``"fit rms"`` matches
-#: ``"fit rms [ft/s]"``); columns no group names are shown in a last group.
-ASSUMPTION_GROUPS = (
-    ("Effect of each assumption (marginal: against the scene below it; cumulative: PIM "
-     "against the scene)", ("against", "marginal effect [-]", "cumulative (PIM's error) [-]")),
-    ("The scene of each rung", ("scene", "contact [ms]", "failure")),
-    ("What PIM would need to reproduce the scene (effective coefficients and impact point)",
-     ("eps_eff [-]", "beta_eff [-]", "C_eff x", "C_eff y")),
-    ("Contact and energy", ("energy loss [-]", "stick fraction [-]", "slip reversed")),
-)
 
 #: What the animation shows.
 ANIMATION_CAPTION = (
@@ -81,8 +71,8 @@ def _describe(dist, kind: str, units: str) -> str:
 def _subtitle(data: ReportData) -> str:
     description = getattr(data.case, "description", None) or ""
     return ((description.rstrip(".") + ". " if description else "")
-            + f"Written by `pim compare` in {data.units.upper()} units (`--units` changes "
-            "them). Brach's Planar Impact Mechanics (PIM) gives the post-impact motion in "
+            + f"Written by `pim compare` in {display_units(data.units)} (`--units` and "
+            "`--speed-unit` change them). Brach's Planar Impact Mechanics (PIM) gives the post-impact motion in "
             "closed form from the case's inputs and two coefficients, epsilon (restitution) "
             "and beta (the fraction of the impulse ratio that stops the sliding at C); the "
             "appendix checks PIM against a pymunk (Chipmunk2D) simulation of the same impact.")
@@ -98,7 +88,7 @@ def _warnings(data: ReportData) -> list[str]:
             out.append(sentence)
     info = data.animation
     if info is not None and info.secondary_impact is not None:
-        out.append(f"{info.secondary_impact.message()}; the animation marks it.")
+        out.append(f"{info.secondary_impact.message(data.units)}; the animation marks it.")
     return out
 
 
@@ -114,9 +104,8 @@ def _notes(data: ReportData) -> list[str]:
             if key in table.inputs:
                 notes.append(f"{label} in the `[uncertainty]` table: "
                              f"{_describe(table.inputs[key], 'dimensionless', data.units)}.")
-        notes.append("5-95 % intervals: Monte Carlo of the case's `[uncertainty]` table "
-                     "(`pim uncertainty`), at the coefficients above unless the table varies "
-                     "them; each value shows the digits its interval allows.")
+        notes.append(monte_carlo_note(data.case).rstrip(".")
+                     + "; each value shows the digits its interval allows.")
     else:
         notes.append("The case has no `[uncertainty]` table: no intervals (4 significant "
                      "digits).")
@@ -127,6 +116,9 @@ def _notes(data: ReportData) -> list[str]:
 
 def _results(data: ReportData) -> Section:
     blocks = [answer_cards(data.result, data.units, data.spread)]
+    if data.errors:
+        blocks.insert(0, Callout("Inadmissible answer (the numbers below are not physically "
+                                 "possible)", tuple(data.errors)))
     warnings = _warnings(data)
     if warnings:
         blocks.append(Callout("Warnings", tuple(warnings)))
@@ -160,6 +152,12 @@ def _coefficients(data: ReportData) -> Section:
         f"{format_number(float(rms), sig=3)} {unit})."), data.tables["fit"]), keep=True)
 
 
+def _inputs(data: ReportData) -> Section:
+    notes = estimate_notes(data.case, data.units)
+    blocks = (data.tables["inputs"],) + ((Bullets(tuple(notes)),) if notes else ())
+    return Section("inputs", "Case inputs", blocks, toc="Inputs")
+
+
 def _plots(data: ReportData) -> Section:
     figures = tuple(Figure(rel, alt=rel.rsplit("/", 1)[-1].rsplit(".", 1)[0].replace("_", " "))
                     for rel in data.plot_files)
@@ -179,8 +177,8 @@ def _animation(data: ReportData) -> Section:
     if info.gif:
         blocks.append(Paragraph("Also as a GIF: [animation.gif](animation.gif)."))
     if info.secondary_impact is not None:
-        blocks.append(Callout("Plausibility", (f"{info.secondary_impact.message()}; the "
-                                               "animation marks it.",)))
+        blocks.append(Callout("Plausibility", (
+            f"{info.secondary_impact.message(data.units)}; the animation marks it.",)))
     return Section("animation", "Animation", tuple(blocks))
 
 
@@ -236,8 +234,8 @@ def _assumptions(data: ReportData) -> Section | None:
         return None
     table = replace(data.tables["assumptions"], groups=ASSUMPTION_GROUPS)
     return Section("assumptions", "PIM's assumptions (finite-duration crush scene)", (
-        Paragraph(data.assumptions.intro(_command(data, "assumptions"))),
-        Bullets(tuple(data.assumptions.verdicts())), table), toc="Assumptions")
+        Paragraph(ladder_intro(_command(data, "assumptions"))),
+        Bullets(tuple(verdicts(data.assumptions, data.units))), table), toc="Assumptions")
 
 
 def _files(data: ReportData, files: list[str]) -> Section:
@@ -252,7 +250,7 @@ def _files(data: ReportData, files: list[str]) -> Section:
 def compare_document(data: ReportData) -> Document:
     """The report of ``data`` (module notes)."""
     sections = [_results(data), _misfit(data), _coefficients(data),
-                Section("inputs", "Case inputs", (data.tables["inputs"],), toc="Inputs"),
+                _inputs(data),
                 _plots(data), _animation(data), _crosscheck(data), _speed_error(data),
                 _assumptions(data)]
     doc = Document(f"{data.case.name or 'case'}: reconstruction report", "pim compare",

@@ -29,7 +29,7 @@ from comparisons.report.pre_impact import pre_impact_rows
 from comparisons.report.tables import Num, Table
 from pim.analysis.misfit import NOMINAL_SIGMAS, POOR, Misfit
 from pim.analysis.pre_impact_speeds import case_pre_impact
-from pim.io.units import convert
+from pim.io.units import convert, display_units
 from pim.model.geometry import radius_of_gyration
 from pim.plotting.tables import summarize
 
@@ -212,7 +212,7 @@ def _pair(x, kind, units) -> tuple[str, str]:
     return f"{format_number(float(a))}, {format_number(float(b))}", unit
 
 
-def _vehicle_inputs(i: int, v, units: str) -> list[tuple]:
+def _vehicle_inputs(i: int, v, units: str, estimate=None) -> list[tuple]:
     def val(x, kind):
         value, unit = convert(_f(x), kind, units)
         return float(value), unit
@@ -226,7 +226,8 @@ def _vehicle_inputs(i: int, v, units: str) -> list[tuple]:
     size = "" if v.length is None else (f"{format_number(val(v.length, 'length')[0])} x "
                                         f"{format_number(val(v.width, 'length')[0])}")
     return [(f"vehicle {i}", "mass", "fixed obstacle" if fixed else mass, mass_unit),
-            (f"vehicle {i}", "yaw inertia", "" if fixed else inertia, inertia_unit),
+            (f"vehicle {i}", "yaw inertia" + (f" ({estimate.short})" if estimate else ""),
+             "" if fixed else inertia, inertia_unit),
             (f"vehicle {i}", "CG x, y", cg, length_unit),
             (f"vehicle {i}", "heading", math.degrees(_f(v.heading)), "deg"),
             (f"vehicle {i}", "velocity x, y", vel, vel_unit),
@@ -236,7 +237,9 @@ def _vehicle_inputs(i: int, v, units: str) -> list[tuple]:
 
 def inputs_table(case: pim.Case, units: str = "si") -> Table:
     """The case's inputs in the ``units`` system ("si" or "us")."""
-    rows = _vehicle_inputs(1, case.vehicle1, units) + _vehicle_inputs(2, case.vehicle2, units)
+    estimated = {e.name: e for e in case.estimates}
+    rows = [row for i, v in ((1, case.vehicle1), (2, case.vehicle2))
+            for row in _vehicle_inputs(i, v, units, estimated.get(f"vehicle{i}.yaw_inertia"))]
     point, length_unit = _pair(case.impact.point, "length", units)
     rows += [("impact", "point C x, y", point, length_unit),
              ("impact", "normal angle Gamma", math.degrees(_f(case.impact.normal_angle)), "deg"),
@@ -251,7 +254,7 @@ def inputs_table(case: pim.Case, units: str = "si") -> Table:
             if w is not None:
                 value, unit = convert(w, "angular_velocity", units)
                 rows.append((f"measured {i}", "post-impact yaw rate", float(value), unit))
-    return Table("inputs", f"Case inputs ({units.upper()} units)",
+    return Table("inputs", f"Case inputs ({display_units(units)})",
                  ("item", "quantity", "value", "unit"), tuple(rows))
 
 

@@ -14,7 +14,19 @@ from dataclasses import dataclass, field
 import pim
 from comparisons.report.tables import Table
 
-__all__ = ["ReportData"]
+__all__ = ["ReportData", "monte_carlo_note"]
+
+
+def monte_carlo_note(case) -> str:
+    """How the report's 5-95 % intervals were drawn (one sentence, Markdown): the case's
+    ``[uncertainty]`` table, and the scatter of each input the program estimated."""
+    drawn = [e for e in case.estimates if e.name in case.uncertainty.inputs]
+    stated = set(case.uncertainty.inputs) - {e.name for e in drawn}
+    parts = (["the case's `[uncertainty]` table"] if stated else []) + [
+        f"the scatter of the estimated `{e.name}` (normal, ±{100 * e.relative_sd:.1f} % "
+        f"1 sd; the case file gives it no distribution)" for e in drawn]
+    return (f"5-95 % intervals: Monte Carlo (`pim uncertainty`) of {' and '.join(parts)}, "
+            f"at the coefficients above unless the table varies them.")
 
 
 @dataclass
@@ -28,7 +40,7 @@ class ReportData:
     case_path : str
         The case as the user gave it (a bundled name or a file path): the commands the
         report suggests use it, so that they run as printed.
-    units : {"si", "us"}
+    units : pim.io.units.DisplayUnits or {"si", "us"}
         Units of every number shown.
     eps, beta : float
         The coefficients used [-].
@@ -42,11 +54,14 @@ class ReportData:
     fit : pim.analysis.fitting.FitResult or None
         The least-squares fit, when one was made.
     warnings : list of str
-        Plausibility warnings (:func:`pim.model.plausibility.warnings_of`).
+        Plausibility warnings (:func:`pim.model.plausibility.findings`).
     spread : pim.analysis.montecarlo.UncertaintyResult or None
         The Monte Carlo of the case's ``[uncertainty]`` table (the 5-95 % intervals).
     misfit : pim.analysis.misfit.Misfit or None
         Each measured quantity against the answer.
+    errors : list of str
+        Why the answer is inadmissible or the scene impossible (the findings' errors), said
+        before the results.
     simulated : sim.SimResult or None
         The pymunk cross-check (None when it failed: ``sim_error``).
     sim_error : sim.SimulationError or None
@@ -76,7 +91,7 @@ class ReportData:
 
     case: pim.Case
     case_path: str
-    units: str
+    units: object       # pim.io.units.DisplayUnits (or "si"/"us")
     eps: float
     beta: float
     sources: dict
@@ -86,6 +101,7 @@ class ReportData:
     warnings: list = field(default_factory=list)
     spread: object = None
     misfit: object = None
+    errors: list = field(default_factory=list)
     simulated: object = None
     sim_error: object = None
     limits: list = field(default_factory=list)

@@ -4,7 +4,7 @@ Virtual CRASH) and "brach-capped" (docs/impact-laws.md).
 The report (report.html, report.md, their CSVs and the animation, written whole or not at
 all by :func:`pim.io.output.output_folder` as :mod:`comparisons.report.compare` is, through
 the one report pipeline) opens with the answer a reconstruction hands on
-(:func:`pim.solve_law`'s answer: the cards, the warnings, the results table) and the law
+(:func:`pim.model.law`'s answer: the cards, the warnings, the results table) and the law
 with its parameters, then how well the answer fits the measurements, the coefficients, the
 inputs and the animation (the law's pymunk run solid, the analytic post-impact motion as the
 ghost), and the appendix compares the analytic answer with that run
@@ -54,7 +54,8 @@ from comparisons.studies.law_runs import LawSetup, simulate_law
 from pim.analysis.misfit import misfit
 from pim.analysis.residuals import has_measured_terms
 from pim.io.output import output_folder, rebase
-from pim.model.plausibility import warnings_of
+from pim.io.units import display_units, quantity_text
+from pim.model.plausibility import findings
 from sim.error_measure import compare_results, impact_error
 
 __all__ = ["compare_law_case", "law_table", "law_document", "LawReport", "NOT_RUN"]
@@ -163,7 +164,7 @@ def compare_law_case(case: pim.Case, out_dir, setup: LawSetup, *, gif: bool = Fa
         Tyre friction coefficient after the impact in the animation (0: none).
     progress : bool or None
         tqdm bar of the animation (None: only on a terminal).
-    units : {"si", "us"}, optional
+    units : {"si", "us"} or pim.io.units.DisplayUnits, optional
         Units of every number (default: the case file's).
 
     Returns
@@ -171,7 +172,7 @@ def compare_law_case(case: pim.Case, out_dir, setup: LawSetup, *, gif: bool = Fa
     Report
         ``eps`` is the law's restitution, ``beta`` its (effective or equivalent) PIM beta.
     """
-    units = units or case.units
+    units = display_units(units, case=case)
     out = Path(out_dir)
     with output_folder(out, command="pim compare") as tmp:
         rep = _write(case, tmp, setup, (gif, animation, tyre, progress), units)
@@ -239,11 +240,15 @@ def _fit_lines(setup, fit) -> str:
 
 def _results(data: LawReport) -> Section:
     setup, r = data.setup, data.setup.result
-    warnings = list(warnings_of(data.case, r))
+    found = findings(data.case, r, show=quantity_text(data.units))
+    warnings = list(found.warnings)
     sentence = misfit_sentence(misfit(r), data.units, data.fit)
     if sentence:
         warnings.append(sentence)
     blocks = [answer_cards(r, data.units)]
+    if found.errors:
+        blocks.insert(0, Callout("Inadmissible answer (the numbers below are not physically "
+                                 "possible)", tuple(found.errors)))
     if warnings:
         blocks.append(Callout("Warnings", tuple(warnings)))
     blocks += [data.tables["results"], Bullets((
@@ -303,7 +308,7 @@ def law_document(data: LawReport) -> Document:
     doc = Document(f"{name}: reconstruction report", "pim compare", tuple(sections),
                    subtitle=((data.case.description or "").rstrip(".") + ". "
                              if getattr(data.case, "description", None) else "")
-                   + f"Written by `pim compare` in {data.units.upper()} units. Impact law: "
+                   + f"Written by `pim compare` in {display_units(data.units)}. Impact law: "
                    f"**{data.setup.describe()}** (docs/impact-laws.md).")
     info = data.animation
     media = [] if info is None or isinstance(info, sim.SimulationError) else \

@@ -28,19 +28,14 @@ from comparisons.report.number_format import format_interval, format_number, int
 from comparisons.report.pre_impact import pre_impact_section
 from comparisons.report.tables import Num, Table
 from pim.analysis.reconstruction import Reconstruction
-from pim.io.units import convert
+from pim.io.inertia_data import estimate_notes
+from pim.io.units import convert, display_units
 from pim.model.evidence import UNKNOWN_KINDS
+from pim.model.law import LAW_NAMES, LAW_PARAMETERS
 
 __all__ = ["UnknownRow", "MomentumRow", "ReconstructionRows", "reconstruction_rows",
            "law_line", "tyre_models_line", "crush_lines", "evidence_drivers", "driver_lines",
-           "spread_driver_lines", "reconstruction_table", "reconstruction_document",
-           "LAW_NAMES"]
-
-#: How each impact law is named in the output.
-LAW_NAMES = {"brach": "Brach's PIM (eps, beta)",
-             "brach-capped": "friction-capped Brach (eps, beta, cap mu_c)",
-             "kudlich-slibar": "Kudlich-Slibar, PC-Crash / Virtual CRASH (k, mu_c)"}
-
+           "spread_driver_lines", "reconstruction_table", "reconstruction_document"]
 
 @dataclass(frozen=True)
 class UnknownRow:
@@ -163,7 +158,7 @@ def reconstruction_rows(rec: Reconstruction, units: str) -> ReconstructionRows:
 def law_line(rec: Reconstruction) -> str:
     """The impact law the inverse PIM applied (one line for the report and the CLI)."""
     law = rec.fit.law if rec.fit is not None else (rec.case.impact.law or "brach")
-    return f"Impact law: {LAW_NAMES[law]} (docs/impact-laws.md)."
+    return f"Impact law: {LAW_NAMES[law]} ({LAW_PARAMETERS[law]}) (docs/impact-laws.md)."
 
 
 def tyre_models_line(rec: Reconstruction) -> str:
@@ -288,6 +283,11 @@ def _results(rec: Reconstruction, rows: ReconstructionRows, units: str) -> Secti
     if rec.post:
         blocks.append(Paragraph(tyre_models_line(rec)))
     blocks.append(reconstruction_table(rows))
+    estimates = estimate_notes(rec.case, units)
+    if estimates:
+        blocks += [Paragraph("Estimated inputs (drawn with their scatter in the Monte Carlo "
+                             "unless the `[uncertainty]` table says otherwise):"),
+                   Bullets(tuple(estimates))]
     if not rec.messages:
         blocks.append(Paragraph("No warnings."))
     return Section("results", "Results", tuple(blocks), keep=True)
@@ -330,6 +330,6 @@ def reconstruction_document(rec: Reconstruction, rows: ReconstructionRows, units
     if media:
         sections.append(Section("scene", "Scene and animation", tuple(media), toc="Scene"))
     return Document(f"Reconstruction of {rec.case.name}", "pim reconstruct", tuple(sections),
-                    subtitle=f"Written by `pim reconstruct` in {units.upper()} units (the "
+                    subtitle=f"Written by `pim reconstruct` in {display_units(units)} (the "
                              "same as text: `report.md`).")
 

@@ -1,188 +1,376 @@
-"""Tables, plot, verdicts and report of the tuned-scene study (``pim validate-models``,
-:mod:`comparisons.studies.tuned_scene`), written through the one report pipeline.
+"""Tables, verdicts, plot, JSON and files of the tuned-scene study
+(:mod:`comparisons.studies.tuned_scene`).
 
 Consumes :class:`comparisons.studies.tuned_scene.ClassStudy` objects; speaks the user's units
-(``units`` "si" or "us" through :func:`pim.io.units.convert`).
+(``units`` "si" or "us" through :func:`pim.io.units.convert`); writes through the report
+blocks (:class:`comparisons.report.tables.Table`, :mod:`pim.io.html`).
 """
 
 from __future__ import annotations
 
+from comparisons.report.render import markdown_table
+from comparisons.report.write import write_table_csv
 import math
 from pathlib import Path
 
 import numpy as np
 
-from comparisons.report.document import Bullets, Document, Figure, Paragraph, Section
-from comparisons.report.tables import Table, fmt_value
-from comparisons.report.write import write_document
-from comparisons.studies.tuned_scene import UNRUNNABLE, ClassStudy
-from pim.io.files import save_figure
-from pim.io.units import convert
+from pim.io import html
+from pim.io.datasets import ORIGIN_KINDS
+from pim.io.files import save_figure, write_text
+from pim.io.units import convert, display_units
 
-__all__ = ["KINDS", "predictions_table", "summary_table", "verdict", "plot_tuned_study",
-           "tuned_document", "write_tuned_study", "median_errors"]
+from comparisons.report.tables import Table
+from comparisons.studies.crash_records import CLASS_KEYS, UNRUNNABLE
+from comparisons.studies.paired_verdict import ALPHA, CONFIDENCE, RESAMPLES, minimum_tests
+from comparisons.studies.tuned_scene import (
+    AGREEMENT,
+    CLASS_STARTS,
+    LOO_STARTS,
+    MODELS,
+    PHYSICAL_RANGES,
+    SCENE_MODELS,
+    SCREEN,
+    ClassStudy,
+)
 
-KINDS = ("per-test fit", "class fit", "leave-one-out")
+__all__ = ["KINDS", "median_errors", "predictions_table", "summary_table", "verdict_table",
+           "origins_table", "verdict_sentence", "plot_tuned_study", "study_json",
+           "write_tuned_study", "markdown_report", "FILES"]
+
+KINDS = ("class fit", "leave-one-out")
+#: The files :func:`write_tuned_study` writes, in its order.
+FILES = ("tuned-scene.md", "tuned-scene.html", "tuned-scene-summary.csv",
+         "tuned-scene-verdicts.csv", "tuned-scene-predictions.csv", "tuned-scene.png")
+_KEY = {name: key for key, name in CLASS_KEYS.items()}
 
 
-def _speed(x, units):
+def _speed(x, units) -> float:
     return float(convert(x, "speed", units)[0])
 
 
+def _unit(units) -> str:
+    return convert(1.0, "speed", units)[1]
+
+
+def _f(digits: int):
+    return lambda x: "" if x is None or x != x else f"{x:.{digits}f}"
+
+
 def median_errors(rows) -> dict:
-    """Median |delta-V error|, velocity error [m/s], yaw error [rad/s], time [s] of rows
-    (NaN rows, failed scenes, are counted as failures)."""
+    """Median score [-], velocity error [m/s], yaw error [rad/s] of prediction rows, the
+    failed ones (NaN) counted apart."""
     ok = [r for r in rows if math.isfinite(r.velocity_error)]
-    if not ok:
-        return {"n": len(rows), "failed": len(rows), "dv": math.nan, "v": math.nan,
-                "yaw": math.nan, "time": math.nan}
-    return {"n": len(rows), "failed": len(rows) - len(ok),
-            "dv": float(np.median([abs(r.delta_v_error) for r in ok])),
-            "v": float(np.median([r.velocity_error for r in ok])),
-            "yaw": float(np.median([r.yaw_error for r in ok])),
-            "time": float(np.median([r.wall_time for r in rows]))}
+    med = (lambda a: float(np.median([getattr(r, a) for r in ok]))) if ok else \
+        (lambda a: math.nan)
+    return {"n": len(rows), "failed": len(rows) - len(ok), "score": med("score"),
+            "v": med("velocity_error"), "yaw": med("yaw_error"),
+            "flagged": sum(bool(r.flags) for r in rows)}
 
 
 def predictions_table(studies, units: str = "si") -> Table:
-    """Every prediction: class, test, model, kind, parameters and errors."""
-    su = convert(1.0, "speed", units)[1]
-    rows = []
-    for st in studies:
-        for p in st.predictions:
-            rows.append((st.crash_class, p.test, p.model, p.kind,
-                         " ".join(f"{v:.3g}" for v in p.x), _speed(p.delta_v_error, units),
-                         _speed(p.velocity_error, units), math.degrees(p.yaw_error),
-                         p.wall_time * 1e3))
-    f2 = lambda x: "" if x != x else f"{x:.2f}"  # noqa: E731
+    """Every prediction: class, variant, test, model, kind, parameters, errors, the scene's
+    contact time, crush and friction, and the physical-range flags."""
+    su = _unit(units)
+    rows = [(st.crash_class, p.variant, p.test, p.model, p.kind,
+             " ".join(f"{v:.4g}" for v in p.x), p.score, _speed(p.delta_v_error, units),
+             _speed(p.velocity_error, units), math.degrees(p.yaw_error),
+             p.contact_time * 1e3, p.peak_crush, p.friction, ", ".join(p.flags))
+            for st in studies for v in st.variants for p in v.predictions]
     return Table("tuned-scene-predictions",
-                 "Each test predicted by each model: own parameters, class parameters, and "
-                 "class parameters fitted without the test (leave-one-out)",
-                 ("class", "test", "model", "kind", "parameters",
+                 "Each test predicted by each model with the class parameters and with the "
+                 "class parameters refitted without it (leave-one-out)",
+                 ("class", "variant", "test", "model", "kind", "parameters", "score [-]",
                   f"delta-V error [{su}]", f"velocity error [{su}]", "yaw error [deg/s]",
-                  "time [ms]"), tuple(rows),
-                 {f"delta-V error [{su}]": f2, f"velocity error [{su}]": f2,
-                  "yaw error [deg/s]": lambda x: "" if x != x else f"{x:.1f}",
-                  "time [ms]": fmt_value})
+                  "contact time [ms]", "peak crush [m]", "friction [-]",
+                  "outside the physical ranges"), tuple(rows),
+                 {"score [-]": _f(2), f"delta-V error [{su}]": _f(2),
+                  f"velocity error [{su}]": _f(2), "yaw error [deg/s]": _f(1),
+                  "contact time [ms]": _f(0), "peak crush [m]": _f(2), "friction [-]": _f(2)})
+
+
+def _fit_text(fit) -> str:
+    return (f"{fit.agreeing}/{fit.starts}" if fit is not None else "")
+
+
+def _loo_agreement(fits) -> str:
+    if not fits:
+        return ""
+    a = [f.agreeing for f in fits]
+    return f"{min(a)}-{max(a)} of {fits[0].starts} (median {np.median(a):g})"
 
 
 def summary_table(studies, units: str = "si") -> Table:
-    """Medians per class, model and kind."""
-    su = convert(1.0, "speed", units)[1]
+    """Per class, variant and model: the class fit (rms, parameters, starts that reached
+    it) and the medians of the leave-one-out errors."""
+    su = _unit(units)
     rows = []
     for st in studies:
-        for kind in KINDS:
-            for model in ("PIM", "scene"):
-                m = median_errors(st.rows(model, kind))
-                if m["n"]:
-                    params = st.class_fits[model].x if kind == "class fit" else ()
-                    rows.append((st.crash_class, model, kind, m["n"], m["failed"],
-                                 _speed(m["dv"], units), _speed(m["v"], units),
-                                 math.degrees(m["yaw"]), m["time"] * 1e3,
-                                 " ".join(f"{v:.3g}" for v in params)))
-    f2 = lambda x: "" if x != x else f"{x:.2f}"  # noqa: E731
-    return Table("tuned-scene-summary", "Median errors per class, model and kind",
-                 ("class", "model", "kind", "tests", "failed",
-                  f"median abs delta-V error [{su}]", f"median velocity error [{su}]",
-                  "median yaw error [deg/s]", "time per prediction [ms]",
-                  "class parameters"), tuple(rows),
-                 {f"median abs delta-V error [{su}]": f2, f"median velocity error [{su}]": f2,
-                  "median yaw error [deg/s]": lambda x: "" if x != x else f"{x:.1f}",
-                  "time per prediction [ms]": fmt_value})
+        for v in st.variants:
+            for m in MODELS:
+                loo, fit = median_errors(v.rows(m.name, "leave-one-out")), v.class_fits[m.name]
+                rows.append((st.crash_class, v.variant.name, m.name, len(st.tests),
+                             fit.rms, " ".join(f"{x:.3g}" for x in fit.x), _fit_text(fit),
+                             ", ".join(fit.on_bound), _loo_agreement(v.loo_fits[m.name]),
+                             loo["score"], _speed(loo["v"], units), math.degrees(loo["yaw"]),
+                             loo["failed"], loo["flagged"]))
+    return Table("tuned-scene-summary", "Class fits and median leave-one-out errors per class, "
+                 "input variant and model",
+                 ("class", "variant", "model", "tests", "class-fit rms [-]",
+                  "class parameters", "starts at the best", "on a bound",
+                  "leave-one-out starts at the best", "median score [-]",
+                  f"median velocity error [{su}]", "median yaw error [deg/s]", "failed",
+                  "flagged"), tuple(rows),
+                 {"class-fit rms [-]": _f(3), "median score [-]": _f(2),
+                  f"median velocity error [{su}]": _f(2), "median yaw error [deg/s]": _f(1)})
 
 
-def verdict(study: ClassStudy, units: str = "si") -> str:
-    """One sentence: which model predicts the held-out tests better, by how much."""
-    a = median_errors(study.rows("PIM", "leave-one-out"))
-    b = median_errors(study.rows("scene", "leave-one-out"))
-    su = convert(1.0, "speed", units)[1]
+def _p(p) -> str:
+    return "" if p is None else f"{p:.2g}"
+
+
+def verdict_table(studies) -> Table:
+    """Per class, variant and scene model: the verdict, the p-values of the paired
+    signed-rank tests and the bootstrap interval of the median score difference."""
+    rows = []
+    for st in studies:
+        for v in st.variants:
+            for s in SCENE_MODELS:
+                c = v.comparisons[s.name]
+                lo, hi = c["score"].interval
+                rows.append((st.crash_class, v.variant.name, s.name, c["score"].n,
+                             c["score"].verdict, c["score"].p_value, c["velocity"].p_value,
+                             c["yaw"].p_value, c["score"].median_difference, lo, hi))
+    pct = f"{CONFIDENCE:.0%}"
+    return Table("tuned-scene-verdicts", "PIM against the scene on the held-out tests: paired "
+                 "Wilcoxon signed-rank tests and the bootstrap interval of the median "
+                 "difference of the score (scene minus PIM; negative: the scene errs less)",
+                 ("class", "variant", "scene", "tests", "verdict", "p (score)",
+                  "p (velocity)", "p (yaw rate)", "median score difference [-]",
+                  f"{pct} interval low [-]", f"{pct} interval high [-]"), tuple(rows),
+                 {"p (score)": _p, "p (velocity)": _p, "p (yaw rate)": _p,
+                  "median score difference [-]": _f(2), f"{pct} interval low [-]": _f(2),
+                  f"{pct} interval high [-]": _f(2)})
+
+
+def origins_table(studies) -> Table:
+    """Where each input of each class comes from; an input a variant takes otherwise names
+    the variant."""
+    rows = []
+    for st in studies:
+        first, *others = st.variants
+        for name, origin in first.variant.origins.items():
+            alt = [f"{v.variant.name}: {v.variant.origins[name]}" for v in others
+                   if v.variant.origins.get(name, origin) != origin]
+            text = f"{first.variant.name}: {origin}; " + "; ".join(alt) if alt else origin
+            rows.append((st.crash_class, name, text))
+        rows.append((st.crash_class, "outcome (fitted and judged)", st.outcome_origin))
+    return Table("tuned-scene-origins", "Where each input comes from",
+                 ("class", "input", "origin"), tuple(rows))
+
+
+def verdict_sentence(study: ClassStudy, variant, units: str = "si") -> str:
+    """One sentence: the verdict of a class under one variant, with its numbers."""
+    su = _unit(units)
+    c = variant.comparisons["scene"]
+    a = median_errors(variant.rows("pim", "leave-one-out"))
+    b = median_errors(variant.rows("scene", "leave-one-out"))
+    n = len(study.tests)
+    head = f"{study.crash_class} ({n} test{'s' if n != 1 else ''}, {variant.variant.name})"
     if not a["n"]:
-        a = median_errors(study.rows("PIM", "per-test fit"))
-        b = median_errors(study.rows("scene", "per-test fit"))
-        return (f"{study.crash_class} ({a['n']} test(s), too few for leave-one-out): fitted "
-                f"with its own parameters, PIM misses the post-impact velocity by "
-                f"{_speed(a['v'], units):.2f} {su} and the yaw rate by "
-                f"{math.degrees(a['yaw']):.1f} deg/s, the tuned scene by "
-                f"{_speed(b['v'], units):.2f} {su} and {math.degrees(b['yaw']):.1f} deg/s.")
-    better = "the tuned scene" if b["v"] < a["v"] else "PIM"
-    ratio = max(a["v"], b["v"]) / max(min(a["v"], b["v"]), 1e-12)
-    return (f"{study.crash_class} ({a['n']} tests, leave-one-out): {better} predicts the "
-            f"held-out post-impact velocity better, median error "
-            f"{_speed(min(a['v'], b['v']), units):.2f} against "
-            f"{_speed(max(a['v'], b['v']), units):.2f} {su} ({ratio:.2g}x); yaw rate "
-            f"PIM {math.degrees(a['yaw']):.1f}, scene {math.degrees(b['yaw']):.1f} deg/s; "
-            f"one prediction costs {a['time'] * 1e3:.2g} ms (PIM) and "
-            f"{b['time'] * 1e3:.2g} ms (scene)"
-            + (f"; the scene failed on {b['failed']} test(s)" if b["failed"] else "") + ".")
+        return (f"{head}: {c['score'].verdict} (a class of one: no leave-one-out; fewer than "
+                f"{minimum_tests(study.n_parameters)} tests).")
+    lo, hi = c["score"].interval
+    text = (f"{head}: {c['score'].verdict}. Leave-one-out medians: PIM "
+            f"{_speed(a['v'], units):.2f} {su} and {math.degrees(a['yaw']):.1f} deg/s, the "
+            f"scene (Coulomb mu_c) {_speed(b['v'], units):.2f} {su} and "
+            f"{math.degrees(b['yaw']):.1f} deg/s; score difference "
+            f"{c['score'].median_difference:+.2f} [{lo:+.2f}, {hi:+.2f}]")
+    if c["score"].p_value is None:
+        text += f" (fewer than {minimum_tests(study.n_parameters)} tests: no test run)"
+    else:
+        mu0 = variant.comparisons["scene-mu0"]["score"]
+        text += (f", p = {c['score'].p_value:.2g} (velocity {c['velocity'].p_value:.2g}, "
+                 f"yaw rate {c['yaw'].p_value:.2g}); with mu_c = b |mu0|: {mu0.verdict}")
+    return text + _flag_note(variant) + "."
+
+
+def _flag_note(variant) -> str:
+    """'; ... outside the physical ranges' for the scene's held-out predictions, or ''."""
+    rows = [r for m in SCENE_MODELS for r in variant.rows(m.name, "leave-one-out")]
+    flagged = [r for r in rows if r.flags]
+    if not flagged:
+        return ""
+    names = sorted({f for r in flagged for f in r.flags})
+    return (f"; {len(flagged)} of the scenes' {len(rows)} held-out predictions lie outside "
+            f"the physical ranges ({', '.join(names)})")
 
 
 def plot_tuned_study(studies, units: str = "si"):
-    """Leave-one-out errors, scene against PIM, per class: velocity (top) and yaw rate
-    (bottom); points below the diagonal are tests the scene predicts better. A Figure."""
+    """Leave-one-out errors, the Coulomb scene against PIM, per class (first variant):
+    velocity (top) and yaw rate (bottom); points below the diagonal are tests the scene
+    predicts better. A Figure."""
     from matplotlib.figure import Figure
 
-    su = convert(1.0, "speed", units)[1]
-    fig = Figure(figsize=(4.2 * len(studies), 7.6), layout="constrained")
-    axes = np.atleast_2d(fig.subplots(2, len(studies), squeeze=False))
-    for j, st in enumerate(studies):
-        kind = "leave-one-out" if st.rows("PIM", "leave-one-out") else "per-test fit"
-        pim_rows = {r.test: r for r in st.rows("PIM", kind)}
-        pairs = [(pim_rows[r.test], r) for r in st.rows("scene", kind) if r.test in pim_rows]
+    su = _unit(units)
+    shown = [st for st in studies if st.variants[0].rows("pim", "leave-one-out")]
+    fig = Figure(figsize=(3.6 * max(len(shown), 1), 7.0), layout="constrained")
+    axes = np.atleast_2d(fig.subplots(2, max(len(shown), 1), squeeze=False))
+    for j, st in enumerate(shown):
+        v = st.variants[0]
+        pairs = list(zip(v.rows("pim", "leave-one-out"), v.rows("scene", "leave-one-out"),
+                         strict=True))
         for i, (attr, scale, label) in enumerate(
                 (("velocity_error", lambda x: _speed(x, units), f"velocity error [{su}]"),
                  ("yaw_error", math.degrees, "yaw-rate error [deg/s]"))):
-            ax = axes[i, j]
-            xs = [scale(getattr(a, attr)) for a, _ in pairs]
-            ys = [scale(getattr(b, attr)) for _, b in pairs]
-            ax.scatter(xs, ys, s=26, color="C0", edgecolors="k", linewidths=0.3)
-            top = max([v for v in xs + ys if v == v] + [1e-3]) * 1.1
-            ax.plot([0, top], [0, top], color="0.5", ls="--", lw=1)
-            ax.set_xlim(0, top)
-            ax.set_ylim(0, top)
-            ax.set_xlabel(f"PIM, {label}")
-            ax.set_ylabel(f"tuned scene, {label}")
-            ax.grid(alpha=0.3)
+            _scatter(axes[i, j], [scale(getattr(a, attr)) for a, _ in pairs],
+                     [scale(getattr(b, attr)) for _, b in pairs], label)
             if i == 0:
-                ax.set_title(f"{st.crash_class}\n{kind}, {len(pairs)} test(s)", fontsize=9)
+                axes[i, j].set_title(f"{st.crash_class}\n{v.variant.name}, {len(pairs)} tests",
+                                     fontsize=8)
     return fig
 
 
-def tuned_document(studies, units: str = "si", command: str = "",
-                   checks: dict | None = None) -> Document:
-    """The study as a report: one verdict per class, what was not run, the coarse scene's
-    check against a finer one, the plot, the medians and every prediction.
-
-    ``checks``: class -> (speed, yaw-rate) difference of the coarse scene against the fine
-    one at the class parameters [m/s, rad/s].
-    """
-    su = convert(1.0, "speed", units)[1]
-    notes = [f"{name}: not run ({why})." for name, why in UNRUNNABLE.items()]
-    for name, (dv, dw) in (checks or {}).items():
-        notes.append(f"{name}: the coarse scene differs from a 10x finer one by "
-                     f"{_speed(dv, units):.3f} {su} and {math.degrees(dw):.2f} deg/s at the "
-                     f"class parameters.")
-    notes.append(f"study time {sum(st.wall_time for st in studies):.0f} s.")
-    blocks = ([Paragraph(f"Regenerate with `{command}`.")] if command else []) + [
-        *(Paragraph(verdict(st, units)) for st in studies), Bullets(tuple(notes)),
-        Paragraph("PIM parameters: epsilon, beta. Scene parameters: epsilon, mu_c (between "
-                  "the vehicles), T [s] (contact duration), mu_tyre. Errors: |delta-V| "
-                  "predicted minus measured, length of the post-impact velocity error, "
-                  "|yaw-rate error|, the largest over the moving vehicles."),
-        Figure("tuned-scene.png", alt="leave-one-out")]
-    return Document("The finite-duration scene tuned to crash tests, against PIM",
-                    "pim validate-models", (
-                        Section("verdicts", "Verdicts", tuple(blocks), keep=True),
-                        Section("medians", "Medians", (summary_table(studies, units),)),
-                        Section("predictions", "Every prediction",
-                                (predictions_table(studies, units),))),
-                    name="tuned-scene")
+def _scatter(ax, xs, ys, label) -> None:
+    ax.scatter(xs, ys, s=24, color="C0", edgecolors="k", linewidths=0.3)
+    top = max([v for v in xs + ys if v == v] + [1e-3]) * 1.1
+    ax.plot([0, top], [0, top], color="0.5", ls="--", lw=1)
+    ax.set_xlim(0, top)
+    ax.set_ylim(0, top)
+    ax.set_xlabel(f"PIM, {label}", fontsize=8)
+    ax.set_ylabel(f"scene, {label}", fontsize=8)
+    ax.grid(alpha=0.3)
 
 
-def write_tuned_study(studies, out_dir, units: str = "si", command: str = "",
-                      checks: dict | None = None) -> list[Path]:
-    """Write tuned-scene.md (first in the list), tuned-scene.html, the two CSV tables and
-    tuned-scene.png into ``out_dir`` through the one report pipeline (:func:`tuned_document`)."""
+def _model_json(variant, model, units) -> dict:
+    loo = median_errors(variant.rows(model.name, "leave-one-out"))
+    fit, folds = variant.class_fits[model.name], variant.loo_fits[model.name]
+    return {"label": model.label, "law": model.law, "parameters": list(model.parameters),
+            "loo_velocity_median": _nan_none(loo["v"]),
+            "loo_yaw_median": _nan_none(math.degrees(loo["yaw"])),
+            "loo_velocity_median_user_units": _nan_none(_speed(loo["v"], units)),
+            "loo_score_median": _nan_none(loo["score"]), "loo_failed": loo["failed"],
+            "loo_flagged": loo["flagged"],
+            "class_fit": {"x": dict(zip(model.parameters, fit.x, strict=True)),
+                          "rms": fit.rms, "starts": fit.starts, "agreeing": fit.agreeing,
+                          "converged": fit.converged, "on_bound": list(fit.on_bound)},
+            "loo_starts": {"starts": folds[0].starts if folds else 0,
+                           "agreeing": [f.agreeing for f in folds],
+                           "converged": [f.converged for f in folds]}}
+
+
+def _nan_none(x):
+    return None if x is None or (isinstance(x, float) and math.isnan(x)) else x
+
+
+def _comparison_json(c: dict) -> dict:
+    s = c["score"]
+    return {"verdict": s.verdict, "p_value": s.p_value, "p_value_velocity": c["velocity"].p_value,
+            "p_value_yaw": c["yaw"].p_value, "tests": s.n,
+            "median_score_difference": s.median_difference,
+            "interval": list(s.interval), "scene_better": s.scene_better}
+
+
+def _variant_json(variant, units) -> dict:
+    primary = _comparison_json(variant.comparisons["scene"])
+    return {"description": variant.variant.description, "origins": dict(variant.variant.origins),
+            "verdict": primary["verdict"], "p_value": primary["p_value"],
+            "compared": "pim against scene (Coulomb mu_c), on the score",
+            "comparisons": {k: _comparison_json(c) for k, c in variant.comparisons.items()},
+            "models": {m.name: _model_json(variant, m, units) for m in MODELS}}
+
+
+def study_json(studies, units: str = "si", wall_time: float | None = None) -> dict:
+    """The study as JSON-ready data: per class (keyed by :data:`CLASS_KEYS`) and input
+    variant the verdict and p-value,
+    per model the leave-one-out medians (velocity [m/s], yaw rate [deg/s]) and the
+    multi-start agreement counts."""
+    return {"units": display_units(units).to_json(), "speed_unit": _unit(units), "wall_time": wall_time,
+            "alpha": ALPHA, "agreement": AGREEMENT, "screen": SCREEN,
+            "class_starts": CLASS_STARTS, "loo_starts": LOO_STARTS,
+            "physical_ranges": {k: list(v[:3]) for k, v in PHYSICAL_RANGES.items()},
+            "unrunnable": dict(UNRUNNABLE),
+            "classes": {_KEY.get(st.crash_class, st.crash_class): {
+                "name": st.crash_class, "tests": list(st.tests), "observable": st.observable,
+                "outcome_origin": st.outcome_origin, "n_parameters": st.n_parameters,
+                "coarse_check": {"speed": st.coarse_check[0],
+                                 "yaw_rate_deg": math.degrees(st.coarse_check[1])},
+                "variants": {v.variant.name: _variant_json(v, units) for v in st.variants}}
+                for st in studies}}
+
+
+def _method_lines() -> list[str]:
+    ranges = "; ".join(f"{k} {lo:g}-{hi:g} {u}: {why}"
+                       for k, (lo, hi, u, why) in PHYSICAL_RANGES.items())
+    return [
+        "Models: PIM (epsilon, beta; mu = beta mu0); the scene with Coulomb friction (epsilon, "
+        "mu_c, T, mu_tyre); the scene with mu_c = b |mu0| (epsilon, b, T, mu_tyre), mu0 "
+        "PIM's critical impulse ratio of the test's own inputs. Score: root-mean-square of a "
+        "test's residuals scaled by 1 mph and 10 deg/s (the fits' objective).",
+        f"Fits: a {SCREEN}-point Sobol screen, the best {CLASS_STARTS['scene']} (scene) or "
+        f"{CLASS_STARTS['pim']} (PIM) points refined by the batched Levenberg-Marquardt "
+        f"engine for the class fit, the best {LOO_STARTS['scene']} for each leave-one-out "
+        f"refit; a start 'reached the best' when its rms is within {AGREEMENT:.0%} of the "
+        "best's.",
+        f"Verdicts: paired Wilcoxon signed-rank test of the leave-one-out scores, level "
+        f"{ALPHA:g}; the median difference with a {CONFIDENCE:.0%} percentile-bootstrap "
+        f"interval ({RESAMPLES} resamples); no verdict below the larger model's parameters "
+        "+ 2 tests.",
+        f"Physical ranges of the fitted scene, flagged outside them: {ranges}."]
+
+
+def markdown_report(studies, units: str = "si", command: str = "") -> str:
+    """tuned-scene.md: verdicts, method, origins and the tables."""
+    lines = ["# The finite-duration scene tuned to crash tests, against PIM", ""]
+    if command:
+        lines += [f"Written by `{command}`; every number below comes from that run.", ""]
+    lines += ["## Verdicts", ""]
+    lines += [f"- {verdict_sentence(st, v, units)}" for st in studies for v in st.variants]
+    lines += [f"- {name}: not run ({why})." for name, why in UNRUNNABLE.items()]
+    lines += ["", "## Method", ""] + [f"- {x}" for x in _method_lines()]
+    lines += ["", "![leave-one-out](tuned-scene.png)", "", "## Verdict statistics", "",
+              markdown_table(verdict_table(studies)), "", "## Class fits and medians", "",
+              markdown_table(summary_table(studies, units)), "", "## Where each input comes "
+              "from", "", markdown_table(origins_table(studies)), "",
+              "Origins: " + "; ".join(f"{k}: {v}" for k, v in ORIGIN_KINDS.items()) + ".", "",
+              "## Coarse scene against a 10x finer one (class parameters)", ""]
+    su = _unit(units)
+    lines += [f"- {st.crash_class}: {_speed(st.coarse_check[0], units):.3f} {su}, "
+              f"{math.degrees(st.coarse_check[1]):.2f} deg/s" for st in studies]
+    lines += ["", "## Every prediction", "", markdown_table(predictions_table(studies, units)),
+              ""]
+    return "\n".join(lines)
+
+
+def _html_report(studies, units, png: Path) -> str:
+    tables = (verdict_table(studies), summary_table(studies, units), origins_table(studies),
+              predictions_table(studies, units))
+    body = [html.section("Verdicts", html.bullets(
+        [verdict_sentence(st, v, units) for st in studies for v in st.variants]), id="verdicts"),
+            html.section("Method", html.bullets(_method_lines()), id="method"),
+            html.figure(png, alt="leave-one-out errors, scene against PIM")]
+    for t in tables:
+        cells = [[t.formats.get(c, _plain)(x) for c, x in zip(t.columns, row, strict=True)]
+                 for row in t.rows]
+        body.append(html.section(t.title, html.table(t.columns, cells), id=t.name))
+    return html.page("The tuned scene against PIM", body,
+                     contents=[("verdicts", "Verdicts"), ("method", "Method")]
+                     + [(t.name, t.title) for t in tables])
+
+
+def _plain(x) -> str:
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return ""
+    return f"{x:.4g}" if isinstance(x, float) else str(x)
+
+
+def write_tuned_study(studies, out_dir, units: str = "si", command: str = "") -> list[Path]:
+    """Write :data:`FILES` into ``out_dir``: tuned-scene.md and .html, the summary, verdict
+    and prediction tables as CSV, the plot."""
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
     png = save_figure(plot_tuned_study(studies, units), out / "tuned-scene.png")
-    written = write_document(tuned_document(studies, units, command, checks), out)
-    return [written[-1], *written[:-2], written[-2], png]
+    md = write_text(out / "tuned-scene.md", markdown_report(studies, units, command))
+    page = write_text(out / "tuned-scene.html", _html_report(studies, units, png))
+    return [md, page, write_table_csv(summary_table(studies, units), out),
+            write_table_csv(verdict_table(studies), out),
+            write_table_csv(predictions_table(studies, units), out), png]

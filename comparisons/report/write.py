@@ -14,10 +14,10 @@ from pathlib import Path
 
 from comparisons.report.document import Document
 from comparisons.report.html import render_html
-from comparisons.report.render import render_csv, render_markdown
+from comparisons.report.render import render_csv, render_markdown, table_csv
 from pim.io.files import write_text
 
-__all__ = ["write_document", "document_files"]
+__all__ = ["write_document", "document_files", "write_table_csv"]
 
 
 def document_files(doc: Document, html: bool = True) -> list[str]:
@@ -46,3 +46,8 @@ def write_document(doc: Document, folder, html: bool = True) -> list[Path]:
         written.append(write_text(folder / f"{doc.name}.html", render_html(doc, folder)))
     written.append(write_text(folder / f"{doc.name}.md", render_markdown(doc)))
     return written
+
+
+def write_table_csv(table, folder) -> Path:
+    """Write ``folder/NAME.csv``, the table's CSV (:func:`render.table_csv`), atomically."""
+    return write_text(Path(folder) / f"{table.name}.csv", table_csv(table))

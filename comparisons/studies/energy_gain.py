@@ -60,7 +60,8 @@ def energy_gain_study(count: int = 10, seed: int = 0, max_draws: int = 20000) ->
         e0 = float(result.kinetic_energy_before)
         try:
             r = sim.simulate_compliant(case, eps, sim.DEFAULT_STIFFNESS, friction=FRICTION,
-                                       settings=sim.CompliantSettings(record=False))
+                                       settings=sim.CompliantSettings(record=False),
+                                       engine="pymunk")
         except sim.SimulationError as exc:
             rows.append((len(rows) + 1, eps, -float(result.energy_loss) / e0, math.nan,
                          math.nan, False, math.nan, math.nan, exc.kind))

@@ -2,7 +2,7 @@
 simulation that cross-checks it, and how the report and the animation name them.
 
 ``law = "kudlich-slibar"`` (docs/impact-laws.md): the analytic answer is
-:func:`pim.solve_law`'s; the simulation is the two-phase pymunk run
+:func:`pim.solve`'s; the simulation is the two-phase pymunk run
 (:func:`sim.kudlich_slibar.simulate_kudlich_slibar`: compression by the engine at restitution
 0 and Coulomb coefficient mu_c, then k times the engine's impulse), which takes only the case,
 k and mu_c and, with ``record`` and ``duration``, continues after separation like the Brach
@@ -19,13 +19,11 @@ from dataclasses import dataclass
 import pim
 import sim
 from pim.model.impact_laws import law_of
+from pim.model.law import LAW_NAMES
 from sim.kudlich_slibar import simulate_kudlich_slibar
 
-__all__ = ["LawSetup", "law_setup", "simulate_law", "LAW_NAMES"]
+__all__ = ["LawSetup", "law_setup", "simulate_law"]
 
-#: How the report and the animation name each law.
-LAW_NAMES = {"brach": "Brach's PIM", "brach-capped": "friction-capped Brach (PIM)",
-             "kudlich-slibar": "Kudlich-Slibar law (PC-Crash, Virtual CRASH)"}
 
 
 @dataclass(frozen=True, eq=False)
@@ -36,7 +34,7 @@ class LawSetup:
     ----------
     law : {"brach", "brach-capped", "kudlich-slibar"}
     result : pim.Result
-        :func:`pim.solve_law`'s answer.
+        :func:`pim.solve`'s answer.
     restitution : float
         eps (Brach's laws) or k (Kudlich-Slibar) [-].
     beta : float
@@ -76,11 +74,11 @@ def law_setup(case: pim.Case, law: str | None = None, restitution=None, beta=Non
               contact_friction=None) -> LawSetup:
     """Solve ``case`` under its law (or ``law``) and keep the law's parameters.
 
-    The parameters default to the case's ``impact`` table as in :func:`pim.solve_law`;
+    The parameters default to the case's ``impact`` table as in :func:`pim.solve`;
     raises ValueError (an InputError naming the field) on a bad or missing one.
     """
     law = law_of(case, law)
-    result = pim.solve_law(case, law, restitution, beta, contact_friction)
+    result = pim.solve(case, restitution, beta, law=law, mu_c=contact_friction)
     mu_c = None
     if law == "kudlich-slibar":
         mu_c = float(result.contact_friction)

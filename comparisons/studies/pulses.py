@@ -6,10 +6,16 @@ with its source line) measured the barrier force, the crush and the car's veloci
 2.5 ms. The finite-duration scene of the same test: the car (the test's mass, its CG on the
 normal through C, so no rotation) driven at the test's impact speed into a fixed barrier,
 the contact law of :mod:`sim.contact_law` with the linear stiffness and the restitution
-given as parameters (default: :data:`sim.DEFAULT_STIFFNESS`, which was itself derived from
-this test, and the test's rebound over impact speed, so this is a check of the law's *shape*
-at parameters from the same test, not an independent prediction), integrated by
-:func:`sim.reference_compliant` (``solve_ivp``) with its contact history recorded.
+given as parameters, integrated by :func:`sim.reference_compliant` (``solve_ivp``) with its
+contact history recorded. The defaults come from the same test: the stiffness is the
+default of the scene's contact type (:func:`sim.crash_data.default_stiffness`, fitted to
+this test's loading force-crush), the restitution the test's rebound over impact speed.
+
+What is fitted and what is predicted (:func:`roles`): with a stiffness fitted to this test,
+the maximum crush and its time follow from it (a linear spring: v0 sqrt(m/k) at
+(pi/2) sqrt(m/k)); with the test's restitution, the rebound and the delta-V follow from
+it. Those agree by construction and check nothing; the other figures (peak force, its time,
+the crush at the peak, the contact duration) are the law's predictions.
 
 :func:`pulse_metrics` reduces a history to the numbers compared: contact duration (force
 above 5 % of its peak, first to last), peak force and its time, crush at the peak force,
@@ -29,17 +35,19 @@ from scipy.integrate import cumulative_trapezoid
 
 import pim
 import sim
-from pim.io.units import convert
-from sim.crash_data import CrashTest, nhtsa10146
-
-from comparisons.report.number_format import format_number
-from comparisons.report.tables import Table
+from sim.crash_data import CrashTest, contact_type, default_stiffness, nhtsa10146
 
 __all__ = ["PulseMetrics", "PulseComparison", "pulse_metrics", "barrier_pulse_case",
-           "simulate_pulse", "compare_pulses", "pulse_table", "plot_pulses", "THRESHOLD"]
+           "simulate_pulse", "compare_pulses", "roles", "THRESHOLD", "FROM_STIFFNESS",
+           "FROM_RESTITUTION", "PREDICTED"]
 
 #: Fraction of the peak force that bounds the contact duration [-].
 THRESHOLD = 0.05
+#: Metrics (attributes of :class:`PulseMetrics`) that follow from a stiffness fitted to the
+#: test, from a restitution fitted to it, and those the law predicts.
+FROM_STIFFNESS = ("max_crush", "max_crush_time")
+FROM_RESTITUTION = ("rebound_speed", "delta_v")
+PREDICTED = ("duration", "peak_force", "peak_force_time", "crush_at_peak_force")
 
 
 @dataclass(frozen=True)
@@ -161,6 +169,13 @@ class PulseComparison:
         RMS difference of the velocity curves on the measured times [m/s].
     source : str
         Where the test's data come from.
+    stiffness_source : str
+        Where ``stiffness`` comes from ("given", or the contact type's default and its
+        source).
+    stiffness_fitted : bool
+        ``stiffness`` was fitted to this test (its contact type's default, measured on it).
+    eps_fitted : bool
+        ``eps`` is this test's rebound over its impact speed.
     """
 
     measured: Pulse
@@ -174,22 +189,34 @@ class PulseComparison:
     force_rms: float      # [N]
     delta_v_rms: float    # [m/s]
     source: str
+    stiffness_source: str = "given"
+    stiffness_fitted: bool = False
+    eps_fitted: bool = False
 
 
 def _on(t_meas, model: Pulse, values, after: float):
     return np.interp(t_meas, model.time, values, right=after)
 
 
+def _stiffness(stiffness, test: CrashTest, case: pim.Case) -> tuple:
+    """(k [N/m], where it comes from, fitted to ``test``)."""
+    if stiffness is not None:
+        return float(stiffness), "given", False
+    d = default_stiffness(contact_type(case))
+    return d.stiffness, f"the default of a {d.contact} contact: {d.source}", d.test == test.name
+
+
 def compare_pulses(stiffness: float | None = None, eps: float | None = None,
                    test: CrashTest | None = None) -> PulseComparison:
     """The contact law against a barrier test (default NHTSA 10146), at ``stiffness``
-    [N/m] (default :data:`sim.DEFAULT_STIFFNESS`) and ``eps`` (default the test's rebound
-    speed over its impact speed)."""
+    [N/m] (default: the default of the test's contact type,
+    :func:`sim.crash_data.default_stiffness`) and ``eps`` (default the test's rebound speed
+    over its impact speed)."""
     test = nhtsa10146() if test is None else test
     speed = float(test.velocity[0])
     measured = Pulse(test.time, test.force, test.crush, test.velocity)
     mm = pulse_metrics(test.time, test.force, test.crush, test.velocity)
-    k = sim.DEFAULT_STIFFNESS if stiffness is None else float(stiffness)
+    k, k_source, k_fitted = _stiffness(stiffness, test, barrier_pulse_case(test.mass, speed))
     e = mm.rebound_speed / speed if eps is None else float(eps)
     model = simulate_pulse(test.mass, speed, k, e)
     f_on = _on(test.time, model, model.force, 0.0)
@@ -198,66 +225,16 @@ def compare_pulses(stiffness: float | None = None, eps: float | None = None,
         measured, model, mm, pulse_metrics(model.time, model.force, model.crush,
                                            model.velocity), k, e, speed, test.mass,
         float(np.sqrt(np.mean((f_on - test.force) ** 2))),
-        float(np.sqrt(np.mean((v_on - test.velocity) ** 2))), test.source)
+        float(np.sqrt(np.mean((v_on - test.velocity) ** 2))), test.source, k_source,
+        k_fitted, eps is None)
 
 
-_ROWS = (("contact duration (force > 5 % of peak)", "duration", 1e3, "ms"),
-         ("peak force", "peak_force", 1e-3, "kN"),
-         ("time of peak force", "peak_force_time", 1e3, "ms"),
-         ("crush at peak force", "crush_at_peak_force", 1.0, "m"),
-         ("maximum crush", "max_crush", 1.0, "m"),
-         ("time of maximum crush", "max_crush_time", 1e3, "ms"),
-         ("rebound speed", "rebound_speed", 1.0, "m/s"),
-         ("delta-V", "delta_v", 1.0, "m/s"))
-
-
-def pulse_table(c: PulseComparison, units: str = "si") -> Table:
-    """Measured against modelled metrics, with the error and the relative error."""
-    rows = []
-    for label, attr, factor, unit in _ROWS:
-        a, b = getattr(c.measured_metrics, attr), getattr(c.model_metrics, attr)
-        if unit in ("m", "m/s"):
-            kind = "length" if unit == "m" else "speed"
-            (a, b), unit = convert([a, b], kind, units)
-        else:
-            a, b = a * factor, b * factor
-        rows.append((label, unit, float(a), float(b), float(b - a),
-                     100.0 * (b - a) / a if a else math.nan))
-    return Table("pulses-nhtsa10146", "NHTSA 10146 against the contact law",
-                 ("quantity", "unit", "measured", "contact law", "error", "error [%]"),
-                 tuple(rows), {"measured": _three, "contact law": _three, "error": _three,
-                               "error [%]": _three})
-
-
-def _three(x) -> str:
-    """Three significant digits in the reports' one number format."""
-    return format_number(x, sig=3)
-
-
-def plot_pulses(c: PulseComparison, units: str = "si"):
-    """Force-time, delta-V-time and force-crush, measured against the law (a Figure)."""
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(13.5, 4.2), layout="constrained")
-    axes = fig.subplots(1, 3)
-    su = convert(1.0, "speed", units)[1]
-    lu = convert(1.0, "length", units)[1]
-    for p, label, style in ((c.measured, "NHTSA 10146 (measured)", dict(color="k", lw=1.4)),
-                            (c.model, f"contact law, k = {c.stiffness / 1e3:.0f} kN/m, "
-                                      f"eps = {c.eps:.3f}", dict(color="C3", lw=1.6,
-                                                                  ls="--"))):
-        axes[0].plot(p.time * 1e3, p.force / 1e3, label=label, **style)
-        axes[1].plot(p.time * 1e3, convert(c.speed - p.velocity, "speed", units)[0],
-                     label=label, **style)
-        axes[2].plot(convert(p.crush, "length", units)[0], p.force / 1e3, label=label,
-                     **style)
-    axes[0].set(xlabel="time [ms]", ylabel="barrier force [kN]",
-                title=f"force: RMS difference {c.force_rms / 1e3:.0f} kN")
-    axes[1].set(xlabel="time [ms]", ylabel=f"delta-V [{su}]",
-                title=f"delta-V: RMS difference "
-                      f"{float(convert(c.delta_v_rms, 'speed', units)[0]):.2f} {su}")
-    axes[2].set(xlabel=f"crush [{lu}]", ylabel="barrier force [kN]", title="force-crush")
-    for ax in axes:
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
-    return fig
+def roles(c: PulseComparison) -> dict:
+    """Metric (attribute of :class:`PulseMetrics`) -> "fitted: WHY" when it agrees by
+    construction (module notes), else "predicted"."""
+    out = dict.fromkeys(PREDICTED + FROM_STIFFNESS + FROM_RESTITUTION, "predicted")
+    if c.stiffness_fitted:
+        out.update(dict.fromkeys(FROM_STIFFNESS, "fitted: k from this test's loading"))
+    if c.eps_fitted:
+        out.update(dict.fromkeys(FROM_RESTITUTION, "fitted: eps from this test's rebound"))
+    return out

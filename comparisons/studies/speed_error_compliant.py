@@ -1,11 +1,16 @@
-"""Speed against error of the finite-duration contact: pymunk over dt, solve_ivp over rtol.
+"""Speed against error of the finite-duration contact: the fixed-step scene over dt, solve_ivp
+over rtol.
 
-For one case, two point-contact scenes at the default car stiffness
-(:data:`sim.DEFAULT_STIFFNESS`): frictionless, and with friction mu_c = 0.5 between the
-vehicles (stick-slip). Each is integrated
+For one case, two point-contact scenes at the stiffness that gives the typical contact time
+(:data:`CONTACT_TIME`, 100 ms: :func:`sim.contact_law.stiffness_for_duration`, defined for
+any contact type, where a measured stiffness exists for a full-width frontal barrier
+only, :func:`sim.crash_data.default_stiffness`): frictionless, and with friction
+mu_c = 0.5 between the vehicles (stick-slip). Each is integrated
 
-* by pymunk (:func:`sim.simulate_compliant`) with dt = (estimated contact time) / n for n in
-  :data:`STEPS` (10 ... 2560 steps per contact), and
+* by the fixed-step crush scene (:func:`sim.simulate_compliant`) with dt = (estimated
+  contact time) / n for n in :data:`STEPS` (10 ... 2560 steps per contact): compiled
+  (``engine="numba"``, the default) or stepped by pymunk (``engine="pymunk"``, the
+  cross-check; both step the same functions and agree to round-off), and
 * by ``solve_ivp`` (:func:`sim.reference_compliant`) with DOP853 (explicit) and Radau
   (implicit) at rtol in :data:`RTOLS`,
 
@@ -17,34 +22,43 @@ count, so the choice does not depend on the machine's load; tighter tolerances a
 round-off and can cost 10^4-10^5 steps: the pickup-into-sedan case took 262 s and 63 359
 steps at rtol 1e-12). The tolerance reached and the reference's spread (its difference from
 the rung before) are reported. Swept rtols tighter than 10x the reference's are dropped
-(they would measure the reference), and a method's tighter rtols (or pymunk's finer steps)
+(they would measure the reference), and a method's tighter rtols (or the fixed step's finer steps)
 are skipped as "over_budget" once the last run took more than a third of :data:`RUN_BUDGET`.
 The error is :func:`sim.error_measure.impact_error` (largest error in the impact's velocity
 changes, relative to the largest change); the wall time per impact is the best of
-``repeats`` runs. The Pareto front is :func:`comparisons.studies.speed_error.pareto_front`; the
+``repeats`` runs (the repeats stop once the runs took :data:`REPEAT_BELOW` together: a long
+run's timing noise is a small share of it). The Pareto front is :func:`comparisons.studies.speed_error.pareto_front`; the
 recommended setting is the fastest run on the front that reaches :data:`TARGET` (1e-3, the
 issue's goal), and the fastest reaching 1e-6 is reported per integrator.
 """
 
 from __future__ import annotations
 
+from comparisons.report.render import markdown_table
+from comparisons.report.write import write_table_csv
 import math
+import sys
 import time
 from dataclasses import dataclass, replace
+from pathlib import Path
 
 import numpy as np
 
 import pim
 import sim
+from pim.io.files import save_figure, write_text
+from pim.model.numbers import InputError
 from sim.error_measure import impact_error
+from sim.sweep import sweep
 
 from comparisons.studies.speed_error import ERROR_FLOOR, pareto_front
 from comparisons.report.tables import Table, fmt_error
 
 __all__ = ["CompliantPoint", "CompliantSpeedStudy", "compliant_sweep", "STEPS", "RTOLS",
            "TARGET", "SCENES", "COARSE", "REFERENCE_RTOLS", "REFERENCE_STEPS", "RUN_BUDGET",
-           "reference_within_budget", "Reference", "plot_compliant_speed_error",
-           "compliant_table"]
+           "REPEAT_BELOW", "CONTACT_TIME", "ENGINES", "Grid", "SceneJob", "scene_points",
+           "scene_stiffness", "reference_within_budget", "Reference",
+           "plot_compliant_speed_error", "write_compliant_study", "fixed_step_label"]
 
 STEPS = (10, 20, 40, 80, 160, 320, 640, 1280, 2560)
 RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
@@ -58,9 +72,15 @@ REFERENCE_RTOLS = (1e-8, 1e-9, 1e-10)
 #: under a quarter of them; 46-172 steps at rtol 1e-10 on the bundled cases).
 REFERENCE_STEPS = 2000
 #: Wall time of one swept run above which the next finer setting is not tried [s] (x 3).
-RUN_BUDGET = 6.0
-#: The coarse grid (``pim speed-error --coarse``): seconds, not a minute.
-COARSE = dict(steps=(10, 40, 160, 640), rtols=(1e-3, 1e-6, 1e-9), repeats=1)
+RUN_BUDGET = 1.5
+#: The repeats of a setting stop once its runs took this long together [s] (a long run's
+#: timing noise is a small share of it; repeats would only cost time).
+REPEAT_BELOW = 0.06
+#: Contact time [s] the scenes' stiffness is chosen for (the typical one of
+#: ``comparisons.studies.assumption_configs.TYPICAL``).
+CONTACT_TIME = 0.1
+#: The fixed-step integrators: the compiled crush scene, or pymunk (the cross-check).
+ENGINES = ("numba", "pymunk")
 
 
 @dataclass(frozen=True)
@@ -72,9 +92,9 @@ class CompliantPoint:
     scene : str
         Scene name, a key of :data:`SCENES` ("frictionless", "friction 0.5").
     integrator : str
-        "pymunk", "DOP853" or "Radau".
+        "compiled" or "pymunk" (the fixed-step scene), "DOP853" or "Radau".
     setting : float
-        Time step dt [s] for pymunk, relative tolerance rtol [-] for solve_ivp.
+        Time step dt [s] of the fixed-step scene, relative tolerance rtol [-] for solve_ivp.
     steps : int
         Integration steps the run took [-] (0 when it failed or was skipped).
     error : float
@@ -91,8 +111,8 @@ class CompliantPoint:
     """
 
     scene: str
-    integrator: str          # "pymunk", "DOP853", "Radau"
-    setting: float           # dt [s] for pymunk, rtol for solve_ivp
+    integrator: str          # "compiled", "pymunk", "DOP853", "Radau"
+    setting: float           # dt [s] of the fixed-step scene, rtol for solve_ivp
     steps: int
     error: float
     wall_time: float
@@ -104,7 +124,7 @@ class CompliantPoint:
 
     @property
     def label(self) -> str:
-        name = "dt" if self.integrator == "pymunk" else "rtol"
+        name = "dt" if self.integrator in FIXED_STEP.values() else "rtol"
         return f"{self.integrator} {name}={self.setting:.3g}"
 
 
@@ -119,7 +139,7 @@ class CompliantSpeedStudy:
     eps : float
         Restitution used [-].
     stiffness : float
-        Linear contact stiffness of the scenes [N/m] (:data:`sim.DEFAULT_STIFFNESS`).
+        Linear contact stiffness of the scenes [N/m] (the one giving ``contact_time``).
     points : tuple of CompliantPoint
         Every run, all scenes and integrators.
     reference_spread : float
@@ -133,6 +153,10 @@ class CompliantSpeedStudy:
         reached).
     wall_time : float
         Wall time of the whole study [s].
+    contact_time : float
+        The contact time the stiffness was chosen for [s].
+    engine : str
+        The fixed-step integrator (:data:`ENGINES`).
     """
 
     case_name: str
@@ -143,6 +167,8 @@ class CompliantSpeedStudy:
     target: float = TARGET
     reference_rtol: float = math.nan   # tightest rtol the reference reached (all scenes)
     wall_time: float = math.nan        # wall time of the whole study [s]
+    contact_time: float = CONTACT_TIME
+    engine: str = "numba"
 
     def scene_points(self, scene: str) -> list:
         return [p for p in self.points if p.scene == scene and p.ok]
@@ -162,12 +188,14 @@ class CompliantSpeedStudy:
 
 
 def _timed(func, repeats: int):
-    """Best wall time of ``repeats`` runs; a run slower than a second is not repeated."""
-    best, out = math.inf, None
+    """Best wall time of up to ``repeats`` runs, the repeats stopping once the runs took
+    :data:`REPEAT_BELOW` together (a long run is timed once, a short one that a busy
+    machine delayed is timed again)."""
+    best, out, spent = math.inf, None, 0.0
     for _ in range(max(1, repeats)):
         out = func()
-        best = min(best, out.wall_time)
-        if out.wall_time > 1.0:
+        best, spent = min(best, out.wall_time), spent + out.wall_time
+        if spent > REPEAT_BELOW:
             break
     return out, best
 
@@ -232,20 +260,49 @@ def reference_within_budget(case: pim.Case, eps: float, stiffness: float, fricti
     return Reference(ref, rtol, spread, spent)
 
 
-def _ladders(case, eps, k, mu, steps, rtols, methods):
+#: The fixed-step integrator's name in the study, per engine.
+FIXED_STEP = {"numba": "compiled", "pymunk": "pymunk"}
+
+
+def fixed_step_label(integrator: str) -> str:
+    """How a plot or a table names an integrator."""
+    return {"compiled": "compiled scene over dt", "pymunk": "pymunk over dt"}.get(
+        integrator, f"solve_ivp {integrator}")
+
+
+class _Batch:
+    """A compiled run of one scene seen as a :class:`sim.CompliantResult` (its failure
+    raised as the :class:`sim.SimulationError` it stands for)."""
+
+    def __init__(self, batch):
+        if not bool(batch.ok):
+            batch.result()                       # raises the scene's SimulationError
+        self.velocity1, self.velocity2 = batch.velocity1, batch.velocity2
+        self.yaw_rate1, self.yaw_rate2 = float(batch.yaw_rate1), float(batch.yaw_rate2)
+        self.steps, self.wall_time = int(batch.steps), batch.wall_time
+
+
+def _fixed_step(case, eps, k, mu, settings, engine):
+    if engine == "numba":
+        return _Batch(sim.simulate_compliant(case, eps, k, friction=mu, settings=settings,
+                                             engine="numba"))
+    return sim.simulate_compliant(case, eps, k, friction=mu, settings=settings,
+                                  engine="pymunk")
+
+
+def _ladders(case, eps, k, mu, grid: Grid, engine: str):
     """(integrator, [(setting, run), ...]) from the cheapest setting to the dearest."""
-    pymunk = []
-    for n in steps:
+    fixed = []
+    for n in grid.steps:
         settings = sim.CompliantSettings(record=False, steps_per_contact=int(n),
                                          min_steps=min(10, int(n)))
         dt = sim.compliant.step_size(sim.compliant_setup.build_problem(
             case, eps, k, mu, settings=settings))
-        pymunk.append((dt, lambda s=settings: sim.simulate_compliant(
-            case, eps, k, friction=mu, settings=s)))
-    out = [("pymunk", pymunk)]
-    for method in methods:
+        fixed.append((dt, lambda s=settings: _fixed_step(case, eps, k, mu, s, engine)))
+    out = [(FIXED_STEP[engine], fixed)]
+    for method in grid.methods:
         ladder = []
-        for rtol in sorted(rtols, reverse=True):
+        for rtol in sorted(grid.rtols, reverse=True):
             settings = sim.CompliantSettings(record=False, rtol=rtol, method=method)
             ladder.append((rtol, lambda s=settings: sim.reference_compliant(
                 case, eps, k, friction=mu, settings=s)))
@@ -253,61 +310,143 @@ def _ladders(case, eps, k, mu, steps, rtols, methods):
     return out
 
 
-def _run_ladder(case, scene, ref, integrator, ladder, repeats, bar, run_budget):
+def _run_ladder(case, scene, ref, integrator, ladder, repeats, run_budget):
     points, last = [], 0.0
     for setting, run in ladder:
         if last > run_budget / 3.0:
             points.append(CompliantPoint(scene, integrator, setting, 0, math.nan, math.nan,
                                          "over_budget"))
-        else:
-            try:
-                out, wall = _timed(run, repeats)
-                last = out.wall_time
-                err = float(impact_error(case, ref, out.velocity1, out.velocity2,
-                                         out.yaw_rate1, out.yaw_rate2))
-                points.append(CompliantPoint(scene, integrator, setting, out.steps, err, wall))
-            except sim.SimulationError as exc:
-                points.append(CompliantPoint(scene, integrator, setting, 0, math.nan,
-                                             math.nan, exc.kind))
-        bar.update(1)
+            continue
+        try:
+            out, wall = _timed(run, repeats)
+            last = out.wall_time
+            err = float(impact_error(case, ref, out.velocity1, out.velocity2,
+                                     out.yaw_rate1, out.yaw_rate2))
+            points.append(CompliantPoint(scene, integrator, setting, out.steps, err, wall))
+        except sim.SimulationError as exc:
+            points.append(CompliantPoint(scene, integrator, setting, 0, math.nan,
+                                         math.nan, exc.kind))
     return points
 
 
-def compliant_sweep(case: pim.Case, eps: float | None = None, *, steps=STEPS, rtols=RTOLS,
-                    methods=METHODS, scenes=None, repeats: int = 3,
-                    progress: bool | None = None, reference_rtols=REFERENCE_RTOLS,
-                    reference_budget: int = REFERENCE_STEPS,
-                    run_budget: float = RUN_BUDGET) -> CompliantSpeedStudy:
-    """Run the study (module notes) for ``case`` at restitution ``eps`` (default: the case's,
-    else 0.3). ``reference_rtols``, ``reference_budget`` [steps] and ``run_budget`` [s] bound
-    the cost (module notes)."""
-    from tqdm.auto import tqdm
+def scene_stiffness(case: pim.Case, eps: float, contact_time: float = CONTACT_TIME) -> float:
+    """The stiffness [N/m] that gives the point contact at C the contact time
+    ``contact_time`` [s] (:func:`sim.contact_law.stiffness_for_duration`)."""
+    k_nn = sim.compliant_setup.build_problem(case, eps, sim.DEFAULT_STIFFNESS).k_nn
+    return float(sim.contact_law.stiffness_for_duration(contact_time, k_nn, eps))
 
+
+@dataclass(frozen=True)
+class Grid:
+    """The settings a study sweeps and the budgets that bound it.
+
+    Attributes
+    ----------
+    steps : tuple of int
+        Steps per estimated contact time of the fixed-step scene (:data:`STEPS`).
+    rtols : tuple of float
+        Relative tolerances of the solve_ivp methods (:data:`RTOLS`).
+    methods : tuple of str
+        solve_ivp methods (:data:`METHODS`).
+    repeats : int
+        Runs per setting at most (the best wall time kept; :func:`_timed`).
+    run_budget : float
+        A run longer than a third of it ends its ladder [s] (:data:`RUN_BUDGET`).
+    reference_rtols : tuple of float
+        Tolerances tried for the reference, loosest first (:data:`REFERENCE_RTOLS`).
+    reference_budget : int
+        Steps one reference scene may cost (:data:`REFERENCE_STEPS`).
+    """
+
+    steps: tuple = STEPS
+    rtols: tuple = RTOLS
+    methods: tuple = METHODS
+    repeats: int = 3
+    run_budget: float = RUN_BUDGET
+    reference_rtols: tuple = REFERENCE_RTOLS
+    reference_budget: int = REFERENCE_STEPS
+
+
+#: The coarse grid (``pim speed-error --coarse``): seconds, not a minute.
+COARSE = Grid(steps=(10, 40, 160, 640), rtols=(1e-3, 1e-6, 1e-9), repeats=1)
+
+
+@dataclass(frozen=True)
+class SceneJob:
+    """One scene of the study: its inputs and the grid it is swept over.
+
+    Attributes
+    ----------
+    case : pim.Case
+    eps : float
+        Restitution [-].
+    stiffness : float
+        Contact stiffness [N/m].
+    scene : str
+        Its name (a key of :data:`SCENES`).
+    friction : float
+        mu_c between the vehicles [-].
+    grid : Grid
+        The settings swept and the budgets.
+    engine : str
+        The fixed-step integrator (:data:`ENGINES`).
+    """
+
+    case: pim.Case
+    eps: float
+    stiffness: float
+    scene: str
+    friction: float
+    grid: Grid
+    engine: str
+
+
+def scene_points(job: SceneJob) -> tuple:
+    """(points, reference) of one scene: its reference, then every integrator's ladder
+    (module level, so that the scenes run on a process pool)."""
+    g, case = job.grid, job.case
+    if job.engine == "numba":      # load (or compile) the kernel outside the timed runs
+        _fixed_step(case, job.eps, job.stiffness, 0.0, sim.CompliantSettings(record=False),
+                    job.engine)
+    ref = reference_within_budget(case, job.eps, job.stiffness, job.friction,
+                                  g.reference_rtols, g.reference_budget)
+    usable = replace(g, rtols=tuple(r for r in g.rtols if r >= 10.0 * ref.rtol))
+    points = []
+    for integrator, ladder in _ladders(case, job.eps, job.stiffness, job.friction, usable,
+                                       job.engine):
+        points += _run_ladder(case, job.scene, ref.result, integrator, ladder, g.repeats,
+                              g.run_budget)
+    return points, ref
+
+
+def compliant_sweep(case: pim.Case, eps: float | None = None, *, grid: Grid = Grid(),
+                    scenes=None, progress: bool | None = None, engine: str = "numba",
+                    contact_time: float = CONTACT_TIME, executor="serial"
+                    ) -> CompliantSpeedStudy:
+    """Run the study (module notes) for ``case`` at restitution ``eps`` (default: the case's,
+    else 0.3) over ``grid`` (its settings and budgets; :data:`COARSE` for a quick look);
+    ``scenes``: name -> mu_c (default :data:`SCENES`); ``engine`` ("numba" or "pymunk",
+    :data:`ENGINES`) steps the fixed-step scene; ``contact_time`` [s] sets the stiffness
+    (:func:`scene_stiffness`); the scenes run one per worker of ``executor``
+    (:func:`sim.sweep.sweep`; default "serial"), each timing its own runs."""
+    if engine not in ENGINES:
+        raise InputError(f"engine must be one of {', '.join(ENGINES)}, got {engine!r}")
     wall0 = time.perf_counter()
     if eps is None:
         eps = case.impact.restitution if case.impact.restitution is not None else 0.3
     eps = sim.contact_law.check_fraction(eps, "eps")
-    k = sim.DEFAULT_STIFFNESS
-    scenes = dict(SCENES if scenes is None else scenes)
-    bar = tqdm(total=len(scenes) * (len(steps) + len(rtols) * len(methods)),
-               desc=f"compliant {case.name}", unit="run", leave=False,
-               disable=None if progress is None else not progress)
-    points, spread, reached = [], 0.0, 0.0
-    try:
-        for scene, mu in scenes.items():
-            ref = reference_within_budget(case, eps, k, mu, reference_rtols, reference_budget)
-            spread = max(spread, 0.0 if math.isnan(ref.spread) else ref.spread)
-            reached = max(reached, ref.rtol)
-            usable = [r for r in rtols if r >= 10.0 * ref.rtol]
-            bar.update(len(methods) * (len(rtols) - len(usable)))
-            for integrator, ladder in _ladders(case, eps, k, mu, steps, usable, methods):
-                points += _run_ladder(case, scene, ref.result, integrator, ladder, repeats,
-                                      bar, run_budget)
-    finally:
-        bar.close()
-    return CompliantSpeedStudy(case.name, float(eps), k, tuple(points), spread,
-                               reference_rtol=reached,
-                               wall_time=time.perf_counter() - wall0)
+    k = scene_stiffness(case, eps, contact_time)
+    jobs = [SceneJob(case, float(eps), k, scene, mu, grid, engine)
+            for scene, mu in dict(SCENES if scenes is None else scenes).items()]
+    done = sweep(scene_points, jobs, executor=executor, chunksize=1,
+                 progress=sys.stderr.isatty() if progress is None else bool(progress),
+                 desc=f"compliant {case.name}")
+    points = tuple(p for pts, _ in done for p in pts)
+    spread = max((0.0 if math.isnan(ref.spread) else ref.spread) for _, ref in done)
+    return CompliantSpeedStudy(case.name, float(eps), k, points, spread,
+                               reference_rtol=max(ref.rtol for _, ref in done),
+                               wall_time=time.perf_counter() - wall0,
+                               contact_time=float(contact_time), engine=engine)
 
 
 def compliant_table(study: CompliantSpeedStudy, name: str) -> Table:
@@ -330,14 +469,15 @@ def plot_compliant_speed_error(study: CompliantSpeedStudy):
     scenes = list(dict.fromkeys(p.scene for p in study.points))
     fig = Figure(figsize=(6.0 * len(scenes), 4.8), layout="constrained")
     axes = np.atleast_1d(fig.subplots(1, len(scenes), sharey=True))
-    style = {"pymunk": ("o", "C0"), "DOP853": ("s", "C1"), "Radau": ("^", "C2")}
+    style = {"compiled": ("D", "C4"), "pymunk": ("o", "C0"), "DOP853": ("s", "C1"),
+             "Radau": ("^", "C2")}
     for ax, scene in zip(axes, scenes, strict=True):
         for name, (marker, color) in style.items():
             pts = [p for p in study.scene_points(scene) if p.integrator == name]
             if pts:
                 ax.plot([p.wall_time for p in pts], [max(p.error, ERROR_FLOOR) for p in pts],
                         marker=marker, color=color, ls=":", lw=0.8,
-                        label="pymunk over dt" if name == "pymunk" else f"solve_ivp {name}")
+                        label=fixed_step_label(name))
         front = study.pareto(scene)
         if front:
             ax.step([p.wall_time for p in front], [max(p.error, ERROR_FLOOR) for p in front],
@@ -356,3 +496,40 @@ def plot_compliant_speed_error(study: CompliantSpeedStudy):
         ax.legend(fontsize=7.5)
     axes[0].set_ylabel(f"error against solve_ivp at rtol {study.reference_rtol:g} [-]")
     return fig
+
+
+def write_compliant_study(study: CompliantSpeedStudy, out_dir, stem: str,
+                          command: str = "") -> list[Path]:
+    """Write ``speed-error-compliant-STEM.md``, ``.csv`` and ``.png``."""
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    table = compliant_table(study, f"speed-error-compliant-{stem}")
+    png = save_figure(plot_compliant_speed_error(study), out / f"speed-error-compliant-{stem}.png")
+    lines = [f"# Speed against error of the finite-duration contact: {study.case_name}", ""]
+    if command:
+        lines += [f"Regenerate with `{command}`.", ""]
+    lines += [f"Point contact, epsilon = {study.eps:.4g}, k = {study.stiffness:.3g} N/m (the "
+              f"stiffness of a {1e3 * study.contact_time:g} ms contact); the "
+              f"{fixed_step_label(FIXED_STEP[study.engine])} (10 ... 2560 steps per estimated "
+              f"contact time), solve_ivp "
+              f"DOP853 and Radau over rtol, against DOP853 at rtol {study.reference_rtol:g} "
+              f"(the tightest within {REFERENCE_STEPS} steps per scene; it differs from the "
+              f"rung before by {study.reference_spread:.1e}). Whole study: "
+              f"{study.wall_time:.1f} s. Error: the largest error in "
+              f"the impact's velocity changes, relative to the largest change.", ""]
+    for scene in dict.fromkeys(p.scene for p in study.points):
+        rec = study.recommended(scene)
+        text = (f"**recommended {rec.label}**: error {rec.error:.1e} in "
+                f"{rec.wall_time * 1e3:.3g} ms" if rec else "no run reaches the target")
+        lines.append(f"- {scene}: {text}.")
+        for integrator in (FIXED_STEP[study.engine], "DOP853", "Radau"):
+            for target in (1e-3, 1e-6):
+                p = study.fastest(scene, integrator, target)
+                if p is not None:
+                    lines.append(f"  - {integrator} reaches {target:g} at {p.label}: "
+                                 f"{p.wall_time * 1e3:.3g} ms per impact")
+    lines += ["", f"![speed against error](speed-error-compliant-{stem}.png)", "",
+              markdown_table(table), ""]
+    md = write_text(out / f"speed-error-compliant-{stem}.md", "\n".join(lines))
+    return [md, write_table_csv(table, out), png]

@@ -1,135 +1,154 @@
 """The finite-duration scene tuned to crash tests, and leave-one-out prediction against PIM.
 
-Two models of the same test (the same :class:`pim.Case`: masses, inertias, pre-impact motion,
-impact point C and contact plane from the dataset):
+Models of the same test (:mod:`comparisons.studies.crash_records`: masses, inertias,
+pre-impact motion, impact point C and contact plane; the geometry is the record's, not
+fitted):
 
-* **PIM** (:func:`pim.solve`) with parameters (epsilon, beta), both in [0, 1];
-* **the scene**: the finite-duration point contact stepped by pymunk
-  (:func:`sim.simulate_compliant`), with restitution of the crush epsilon in [0, 1], friction
-  between the vehicles mu_c in [0, :data:`MU_MAX`], contact duration T in
-  [:data:`T_BOUNDS`] s (the linear stiffness whose frictionless contact lasts T,
-  :func:`sim.contact_law.stiffness_for_duration`, so one T suits cars of any mass) and tyre
-  friction mu_tyre in [0, 1.2] acting during the contact. The geometry (C, Gamma) is the
-  dataset's and is not fitted.
+* **PIM** (:func:`pim.solve`): epsilon and beta in [0, 1], mu = beta mu0 (:data:`PIM_MODEL`);
+* **the scene**, the finite-duration point contact on the compiled integrator
+  (:func:`sim.simulate_compliant`, ``engine="numba"``) with the crush's restitution epsilon,
+  the contact time T in [:data:`T_BOUNDS`] s (the linear stiffness whose frictionless contact
+  lasts T, so one T suits cars of any mass), tyre friction mu_tyre in [0, 1.2] during the
+  contact, and one of two tangential laws with one parameter each, a stated choice:
 
-Both are fitted by ``scipy.optimize.least_squares`` (trust region, bounds) to the measured
-post-impact velocity vectors and yaw rates of every moving vehicle, residuals scaled by 1 mph
-and 10 deg/s (:data:`pim.analysis.validation.SPEED_TOLERANCE`, ``YAW_TOLERANCE``):
+  - Coulomb friction mu_c in [0, :data:`MU_MAX`] between the vehicles (:data:`SCENE_MODEL`);
+  - mu_c = b |mu0|, b in [0, :data:`B_MAX`], with mu0 PIM's critical impulse ratio of the
+    test (:func:`pim.solve` on the test's own inputs at the scene's epsilon; never its
+    outcome) (:data:`SCENE_MU0_MODEL`): PIM's mu = beta mu0 follows mu0 from test to test,
+    which one Coulomb mu_c cannot.
 
-* per test (descriptive): PIM's (epsilon, beta); the scene's (epsilon, mu_c, T) at the
-  default tyre friction :data:`TYRE_DEFAULT` (a barrier test measures three numbers);
-* per class: one parameter set for every test of the class;
-* leave-one-out (predictive): for each test of a class, the class parameters refitted on
-  the *other* tests, started from the median of the other tests' per-test parameters (the
-  held-out test's data enter neither the fit nor its start: the per-test fits start from the
-  model's default and hold no class value), then the held-out test
-  predicted. Its delta-V, post-impact velocity and yaw-rate errors are the honest measure.
+**Fits.** Least squares of the residuals of every observed value scaled by 1 mph and
+10 deg/s, on the project's one engine (:func:`pim.analysis.least_squares_batch.least_squares_batch`,
+batched Levenberg-Marquardt in a box, the Jacobian by forward differences,
+:func:`~pim.analysis.least_squares_batch.with_forward_differences`), every start and every
+fold of a class in one batch:
 
-Classes (:func:`crash_classes`): the IIHS small-overlap barrier tests, non-sideswipe and
-sideswipe (Brach, Welsh & Brach, SAE 2014-01-0469; each car at its vehicle type's class
-radius of gyration, the same case for both models), and the RICSAC tests whose measured
-motion balances linear momentum (:func:`pim.analysis.consistency.check_ricsac`),
-on the crush-edge geometry of :func:`pim.analysis.validation.ricsac_case` (3, 6 and 11: the
-vector measure flags RICSAC 9), and RICSAC 9 as the design sheet gives it (the bundled case
-``ricsac9``, its measured post-impact motion; a class of one: per-test fits only). The
-IIHS car-to-car table gives no masses, inertias or impact geometry, so neither model can be
-run on it (:data:`UNRUNNABLE`).
+* the class fit: :data:`CLASS_STARTS` starts, a scrambled Sobol sample of the box (seed
+  :data:`SOBOL_SEED`), each refined to convergence; the best is reported with how many
+  starts reached it (rms within :data:`AGREEMENT` of the best's);
+* leave-one-out: for each test, the class parameters refitted on the *other* tests from
+  :data:`LOO_STARTS` Sobol starts (the same for every fold: independent of the held-out
+  test), on the fold's own inputs (:class:`~comparisons.studies.crash_records.InputVariant`:
+  no input fitted on the held-out test's outcome), then the held-out test predicted.
 
-The scene runs coarse (:data:`COARSE_STEPS` steps per estimated contact time);
-:func:`coarse_check` measures the coarse prediction against a fine one at the fitted
-parameters.
+Every fit runs to the engine's convergence tests (no evaluation cap short of
+:data:`MAX_ITERATIONS`, which the report counts if reached). The fitted scene is checked
+against physical ranges (:data:`PHYSICAL_RANGES`: contact time, peak crush, friction between
+the vehicles, tyre friction) and flagged outside them.
+
+The scene steps :data:`COARSE_STEPS` per estimated contact time; :func:`coarse_check`
+measures it against a 10x finer run at the class parameters.
 """
 
 from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
-from functools import cached_property
+from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy.optimize import least_squares
+from scipy.stats import qmc
 
 import pim
 import sim
-from pim.analysis.consistency import check_ricsac
-from pim.analysis.validation import (
-    SPEED_TOLERANCE,
-    YAW_TOLERANCE,
-    barrier_case,
-    class_radius_of_gyration,
-    reproduce_barrier,
-    ricsac_case,
-)
-from pim.io.datasets import load_barrier, load_ricsac
-from sim.contact_law import stiffness_for_duration
+from pim.analysis.least_squares_batch import least_squares_batch, with_forward_differences
 
-__all__ = ["TestCase", "Model", "PIM_MODEL", "SCENE_MODEL", "crash_classes", "FitResult",
-           "fit_parameters", "Prediction", "ClassStudy", "study_class", "leave_one_out",
-           "predict", "coarse_check", "COARSE_STEPS", "FINE_STEPS", "MU_MAX", "T_BOUNDS",
-           "UNRUNNABLE", "FAILED_RESIDUAL", "scene_settings", "TYRE_DEFAULT", "LOO_NFEV"]
+from .crash_records import (
+    CLASS_KEYS,
+    MAGNITUDES,
+    CrashRecord,
+    InputVariant,
+    crash_classes,
+    fitted_radii,
+    input_variants,
+)
+from .paired_verdict import PairedComparison, compare_paired
+
+__all__ = ["Model", "PIM_MODEL", "SCENE_MODEL", "SCENE_MU0_MODEL", "MODELS", "SCENE_MODELS",
+           "Motion", "run_model", "MultiStartFit", "Prediction", "predict", "VariantStudy",
+           "ClassStudy", "fit_class", "study_class", "study_all", "loo_comparisons",
+           "coarse_check", "scene_settings", "sobol_starts", "COARSE_STEPS", "FINE_STEPS", "MU_MAX", "B_MAX", "T_BOUNDS",
+           "TYRE_MAX", "FAILED_RESIDUAL", "SCREEN", "CLASS_STARTS", "LOO_STARTS", "AGREEMENT",
+           "SOBOL_SEED", "MAX_ITERATIONS", "PHYSICAL_RANGES", "MEASURES"]
 
 #: Steps per estimated contact time of the fitted scene, and of the check against it.
 COARSE_STEPS = 20
 FINE_STEPS = 200
 MU_MAX = 3.0
-#: Tyre friction of the per-test scene fits [-] (dry asphalt, about 0.7-0.8).
-TYRE_DEFAULT = 0.7
+B_MAX = 1.5
+TYRE_MAX = 1.2
 T_BOUNDS = (0.02, 0.3)
-#: Residual evaluations of each leave-one-out refit (Gauss-Newton steps from a start near
-#: its optimum; each also costs a Jacobian, one evaluation per parameter).
-LOO_NFEV = 4
-#: Scaled residual of a scene that fails (no contact, never separates).
+#: Scaled residual of each observed value of a scene that fails (no contact, no separation).
 FAILED_RESIDUAL = 50.0
-#: Datasets with measured motion that neither model can run, and why.
-UNRUNNABLE = {"iihs-car-to-car": "the table gives no masses, yaw inertias or impact geometry "
-                                 "(coefficient statistics only)"}
+#: Points of the Sobol sample every fit screens (the residuals at each, no derivative).
+SCREEN = 128
+#: Starts refined of a class fit and of each leave-one-out refit, per model: the best
+#: points of the screen.
+CLASS_STARTS = {"pim": 8, "scene": 16, "scene-mu0": 16}
+LOO_STARTS = {"pim": 4, "scene": 8, "scene-mu0": 8}
+#: A start reached the best when its rms is within this fraction of the best rms.
+AGREEMENT = 0.01
+SOBOL_SEED = 26
+#: Iteration limit of the engine (each iteration one batch); reached: counted, reported.
+MAX_ITERATIONS = 200
+#: Convergence tests of the engine: relative cost decrease of an accepted step, its length
+#: in box-scaled parameters.
+FTOL, XTOL = 1e-6, 1e-4
+#: Starts closer than this (box-scaled) to a converged start of their fold stop as its copy.
+MERGE = 1e-3
+#: Physical ranges of the fitted scene (quantity -> (low, high, unit, why)); outside: flagged.
+PHYSICAL_RANGES = {
+    "contact time": (0.05, 0.25, "s", "full-scale crash pulses last about 70-150 ms, NHTSA "
+                                      "10146's 90 ms (docs/pulses.md)"),
+    "peak crush": (0.05, 1.2, "m", "the deepest crush of full-scale tests is about 0.75 m "
+                                   "frontal (NHTSA 10146) to 1 m in small overlap"),
+    "friction": (0.0, 1.0, "-", "sliding friction of sheet metal on sheet metal or a rigid "
+                                "barrier is below 1; more is snagging, not friction"),
+    "tyre friction": (0.1, 1.0, "-", "dry asphalt peaks at about 0.8-1.0"),
+}
+#: Per-test error measures of the statistics: name -> Prediction attribute.
+MEASURES = {"score": "score", "velocity": "velocity_error", "yaw": "yaw_error"}
 
 
-@dataclass(frozen=True, eq=False)
-class TestCase:
-    """One crash test as both models see it.
+@dataclass(frozen=True)
+class Model:
+    """A model's parameters, their box and its tangential law.
 
     Attributes
     ----------
-    crash_class : str
-        The crash class it belongs to.
     name : str
-        The test's name.
-    case : pim.Case
-        The test as a case, with ``measured`` post-impact motion [SI].
+        Key in reports and JSON ("pim", "scene", "scene-mu0").
+    label : str
+        Name in prose.
+    parameters : tuple of str
+        Names of its parameters.
+    lower, upper : tuple of float
+        Bounds of the parameters [their units].
+    law : str
+        Its tangential law.
+    step : float
+        Forward-difference step in box-scaled parameters.
     """
 
-    crash_class: str
     name: str
-    case: pim.Case
-
-    __test__ = False      # not a pytest class
-
-    @property
-    def moving(self) -> tuple[int, ...]:
-        """The vehicles that move (1, or 1 and 2)."""
-        return (1,) if bool(self.case.vehicle2.fixed) else (1, 2)
-
-    def observed(self) -> np.ndarray:
-        """Measured (vx, vy, omega) of each moving vehicle [m/s, m/s, rad/s], flat."""
-        m = self.case.measured
-        return _flat(self.moving, m.velocity1, m.yaw_rate1, m.velocity2, m.yaw_rate2)
-
-    @cached_property
-    def k_nn(self) -> float:
-        """K_nn of the contact [1/kg] (geometry only), for the stiffness of a duration."""
-        return float(pim.solve(self.case, 0.5, 1.0).k_nn)
-
-    def scale(self) -> np.ndarray:
-        return np.tile([SPEED_TOLERANCE, SPEED_TOLERANCE, YAW_TOLERANCE], len(self.moving))
+    label: str
+    parameters: tuple[str, ...]
+    lower: tuple[float, ...]
+    upper: tuple[float, ...]
+    law: str
+    step: float
 
 
-def _flat(moving, v1, w1, v2, w2) -> np.ndarray:
-    parts = [np.r_[np.asarray(v1, float), float(w1)]]
-    if 2 in moving:
-        parts.append(np.r_[np.asarray(v2, float), float(w2)])
-    return np.concatenate(parts)
+PIM_MODEL = Model("pim", "PIM", ("epsilon", "beta"), (0.0, 0.0), (1.0, 1.0),
+                  "mu = beta mu0", 1e-6)
+SCENE_MODEL = Model("scene", "the scene (Coulomb mu_c)", ("epsilon", "mu_c", "T [s]", "mu_tyre"),
+                    (0.0, 0.0, T_BOUNDS[0], 0.0), (1.0, MU_MAX, T_BOUNDS[1], TYRE_MAX),
+                    "Coulomb mu_c", 1e-3)
+SCENE_MU0_MODEL = Model("scene-mu0", "the scene (mu_c = b |mu0|)",
+                        ("epsilon", "b", "T [s]", "mu_tyre"), (0.0, 0.0, T_BOUNDS[0], 0.0),
+                        (1.0, B_MAX, T_BOUNDS[1], TYRE_MAX), "mu_c = b |mu0|", 1e-3)
+MODELS = (PIM_MODEL, SCENE_MODEL, SCENE_MU0_MODEL)
+SCENE_MODELS = (SCENE_MODEL, SCENE_MU0_MODEL)
 
 
 def scene_settings(steps: int = COARSE_STEPS) -> sim.CompliantSettings:
@@ -139,137 +158,208 @@ def scene_settings(steps: int = COARSE_STEPS) -> sim.CompliantSettings:
 
 
 @dataclass(frozen=True)
-class Model:
-    """A model's parameters and its prediction function.
+class Motion:
+    """A model's post-impact motion of a batch of cases [SI].
 
     Attributes
     ----------
-    name : str
-        The model's name.
-    parameters : tuple of str
-        Names of its parameters.
-    lower, upper : tuple of float
-        Bounds of the parameters [their units].
-    start : tuple of float
-        Default start of a fit [their units].
-    run : callable
-        ``run(test, x, steps) -> (v1, w1, v2, w2)``: the predicted post-impact velocities
-        [m/s] and yaw rates [rad/s].
+    velocity1, velocity2 : ndarray (..., 2)
+        Post-impact CG velocities [m/s].
+    yaw_rate1, yaw_rate2 : ndarray
+        Post-impact yaw rates [rad/s].
+    ok : ndarray of bool
+        The model ran (the scene separated).
+    contact_time : ndarray
+        Duration of the contact [s] (NaN for PIM).
+    peak_crush : ndarray
+        Deepest crush [m] (NaN for PIM).
+    friction : ndarray
+        Friction between the vehicles [-]: mu_c of the scene, mu = beta mu0 of PIM.
     """
 
-    name: str
-    parameters: tuple[str, ...]
-    lower: tuple[float, ...]
-    upper: tuple[float, ...]
-    start: tuple[float, ...]
-    run: object = field(repr=False)
+    velocity1: np.ndarray
+    yaw_rate1: np.ndarray
+    velocity2: np.ndarray
+    yaw_rate2: np.ndarray
+    ok: np.ndarray
+    contact_time: np.ndarray
+    peak_crush: np.ndarray
+    friction: np.ndarray
 
 
-def _run_pim(test: TestCase, x, steps=None):
-    r = pim.solve(test.case, float(x[0]), float(x[1]))
-    return r.velocity1, float(r.yaw_rate1), r.velocity2, float(r.yaw_rate2)
+def _mu0(case: pim.Case, eps) -> np.ndarray:
+    """PIM's critical impulse ratio of ``case`` at restitution ``eps`` (inputs only)."""
+    return np.asarray(pim.solve(case, eps, 1.0, backend="numpy").mu0, dtype=float)
 
 
-def _run_scene(test: TestCase, x, steps=COARSE_STEPS):
-    eps, mu, duration, tyre = (float(v) for v in x)
-    k = float(stiffness_for_duration(duration, test.k_nn, eps))
-    r = sim.simulate_compliant(test.case, eps, k, friction=mu, tyre_friction=tyre,
-                               settings=scene_settings(steps))
-    return r.velocity1, float(r.yaw_rate1), r.velocity2, float(r.yaw_rate2)
+def run_model(model: Model, case: pim.Case, x, steps: int = COARSE_STEPS) -> Motion:
+    """``model`` on ``case`` at parameters ``x`` (..., n), broadcast with the case's shape."""
+    x = np.asarray(x, dtype=float)
+    if model is PIM_MODEL or model.name == "pim":
+        r = pim.solve(case, x[..., 0], x[..., 1], backend="numpy")
+        nan = np.full(np.shape(r.yaw_rate1), np.nan)
+        return Motion(r.velocity1, r.yaw_rate1, r.velocity2, r.yaw_rate2,
+                      np.isfinite(r.yaw_rate1), nan, nan, x[..., 1] * np.abs(r.mu0))
+    eps = x[..., 0]
+    mu = x[..., 1] if model.name == "scene" else x[..., 1] * np.abs(_mu0(case, eps))
+    b = sim.simulate_compliant(case, eps, friction=mu, tyre_friction=x[..., 3],
+                               contact_time=x[..., 2], settings=scene_settings(steps),
+                               engine="numba")
+    return Motion(b.velocity1, b.yaw_rate1, b.velocity2, b.yaw_rate2, b.ok,
+                  b.contact_duration, b.peak_crush, np.broadcast_to(mu, b.status.shape))
 
 
-PIM_MODEL = Model("PIM", ("epsilon", "beta"), (0.0, 0.0), (1.0, 1.0), (0.3, 0.8), _run_pim)
-SCENE_MODEL = Model("scene", ("epsilon", "mu_c", "T [s]", "mu_tyre"), (0.0, 0.0, T_BOUNDS[0], 0.0),
-                    (1.0, MU_MAX, T_BOUNDS[1], 1.2), (0.2, 0.8, 0.1, TYRE_DEFAULT),
-                    _run_scene)
+def _failed(r: np.ndarray, ok) -> np.ndarray:
+    """``r`` with :data:`FAILED_RESIDUAL` where the model failed or gave no finite value."""
+    bad = ~np.asarray(ok, dtype=bool)[..., None] | ~np.isfinite(r)
+    return np.where(bad, FAILED_RESIDUAL, r)
 
 
-def predict(model: Model, test: TestCase, x, steps=COARSE_STEPS) -> np.ndarray | None:
-    """Predicted (vx, vy, omega) of each moving vehicle, flat; None if the scene fails."""
-    try:
-        v1, w1, v2, w2 = model.run(test, x, steps)
-    except sim.SimulationError:
-        return None
-    return _flat(test.moving, v1, w1, v2, w2)
+def _residuals(record: CrashRecord, case: pim.Case, motion: Motion) -> np.ndarray:
+    """Scaled residuals (..., k) of a record; :data:`FAILED_RESIDUAL` where the model failed."""
+    obs = record.observe(case, motion.velocity1, motion.yaw_rate1, motion.velocity2,
+                         motion.yaw_rate2)
+    return _failed((obs - record.observed) / record.scale, motion.ok)
 
 
-def _residuals(model, tests, x, steps):
-    out = []
-    for t in tests:
-        p = predict(model, t, x, steps)
-        out.append(np.full(3 * len(t.moving), FAILED_RESIDUAL) if p is None
-                   else (p - t.observed()) / t.scale())
-    return np.concatenate(out)
+def sobol_starts(model: Model, count: int, seed: int = SOBOL_SEED) -> np.ndarray:
+    """``count`` starts (count, n) in the model's box: a scrambled Sobol sample."""
+    lo, hi = np.array(model.lower), np.array(model.upper)
+    u = qmc.Sobol(len(lo), scramble=True, seed=seed).random(int(count))
+    return lo + u * (hi - lo)
 
 
 @dataclass(frozen=True)
-class FitResult:
-    """A least-squares fit of a model's parameters.
+class MultiStartFit:
+    """The best of a multi-start least-squares fit (one class fit or one fold's refit).
 
     Attributes
     ----------
     x : tuple of float
-        Fitted parameters, all of the model's (the fixed ones included) [their units].
+        The best parameters [their units].
     rms : float
-        Root-mean-square scaled residual [-].
-    evaluations : int
-        Function evaluations.
-    wall_time : float
-        Wall time of the fit [s].
+        Its root-mean-square scaled residual [-].
+    starts : int
+        Starts run.
+    agreeing : int
+        Starts whose rms came within :data:`AGREEMENT` of the best's.
+    converged : int
+        Starts that met the engine's convergence tests (the rest hit :data:`MAX_ITERATIONS`).
+    on_bound : tuple of str
+        Parameters of the best that sit on a bound.
     """
 
     x: tuple
     rms: float
-    evaluations: int
-    wall_time: float
+    starts: int
+    agreeing: int
+    converged: int
+    on_bound: tuple
 
 
-def fit_parameters(model: Model, tests, start=None, fixed: dict | None = None,
-                   steps: int = COARSE_STEPS, max_nfev: int | None = None,
-                   bar=None) -> FitResult:
-    """Least-squares fit of ``model``'s parameters to the measured motion of ``tests``.
+def _summaries(model, fit, folds, residual_counts) -> dict:
+    """fold -> :class:`MultiStartFit` of the rows of ``fit`` in that fold."""
+    out = {}
+    for f in np.unique(folds):
+        rows = np.flatnonzero(folds == f)
+        rms = np.sqrt(fit.cost[rows] / residual_counts[f])
+        best = rows[int(np.argmin(rms))]
+        out[int(f)] = MultiStartFit(
+            tuple(float(v) for v in fit.x[best]), float(rms.min()), int(rows.size),
+            int(np.sum(rms <= rms.min() * (1.0 + AGREEMENT) + 1e-12)),
+            int(fit.converged[rows].sum()),
+            tuple(p for p, b in zip(model.parameters, fit.on_bound[best], strict=True) if b))
+    return out
 
-    Parameters
-    ----------
-    model : Model
-    tests : sequence of TestCase
-    start : sequence of float, optional
-        Start (default ``model.start``), clipped into the bounds.
-    fixed : dict, optional
-        Parameter index -> value held fixed.
-    steps : int
-        Scene steps per contact time.
-    max_nfev : int, optional
-        Residual evaluations allowed (``least_squares``; its default if None).
-    bar : tqdm, optional
-        Advanced by one per model run (a scene or a PIM solve).
-    """
-    fixed = dict(fixed or {})
-    x0 = np.array(model.start if start is None else start, float)
-    lo, hi = np.array(model.lower), np.array(model.upper)
-    free = [i for i in range(len(x0)) if i not in fixed]
-    for i, v in fixed.items():
-        x0[i] = v
-    x0 = np.clip(x0, lo + 1e-9 * (hi - lo), hi - 1e-9 * (hi - lo))
-    count = [0]
 
-    def full(z):
-        x = x0.copy()
-        x[free] = z
-        return x
+_VEHICLE_ARRAYS = ("mass", "yaw_inertia", "cg", "velocity", "yaw_rate", "heading")
 
-    def fun(z):
-        count[0] += 1
+
+def _stacked(cases: list, shape: tuple) -> pim.Case | None:
+    """The cases, each broadcast to ``shape``, stacked along a new first axis, or None when
+    their outlines differ (``length``, ``width``, ``cg_to_front`` are one number per case):
+    one batch for the simulator instead of one call per case."""
+
+    def stack(get, vector=False):
+        tail = (2,) if vector else ()
+        return np.stack([np.broadcast_to(np.asarray(get(c), float), shape + tail)
+                         for c in cases])
+
+    vehicles = []
+    for which in ("vehicle1", "vehicle2"):
+        first = getattr(cases[0], which)
+        outline = (first.length, first.width, first.cg_to_front)
+        if any((getattr(c, which).length, getattr(c, which).width,
+                getattr(c, which).cg_to_front) != outline for c in cases):
+            return None
+        vehicles.append(replace(first, **{f: stack(lambda c, f=f: getattr(getattr(c, which), f),
+                                                    f in ("cg", "velocity"))
+                                           for f in _VEHICLE_ARRAYS}))
+    impact = replace(cases[0].impact, point=stack(lambda c: c.impact.point, True),
+                     normal_angle=stack(lambda c: c.impact.normal_angle))
+    return replace(cases[0], vehicle1=vehicles[0], vehicle2=vehicles[1], impact=impact,
+                   measured=None)
+
+
+def _fold_residuals(model, records, variant, steps, bar):
+    """``residuals(x, folds)``: the scaled residuals (p, q, n k) of ``model`` at the points
+    ``x`` (p, q, n), row i in fold ``folds[i]`` (the held-out test's residuals zeroed); the
+    tests of a class run as one batch where their cases stack (:func:`_stacked`)."""
+    n = len(records)
+    observed = np.array([r.observed for r in records])[:, None, None, :]
+    scale = np.array([r.scale for r in records])[:, None, None, :]
+
+    def residuals(x, folds):
+        cases = [variant.case(t, rec, folds[:, None]) for t, rec in enumerate(records)]
+        stacked = _stacked(cases, (len(folds), 1))
+        if stacked is None:
+            r = np.stack([_residuals(rec, case, run_model(model, case, x, steps))
+                          for rec, case in zip(records, cases, strict=True)])
+        else:
+            m = run_model(model, stacked, x[None], steps)
+            obs = records[0].observe(stacked, m.velocity1, m.yaw_rate1, m.velocity2,
+                                     m.yaw_rate2)
+            r = _failed((obs - observed) / scale, m.ok)
+        r = r * (folds[None, :] != np.arange(n)[:, None])[:, :, None, None]
         if bar is not None:
-            bar.update(len(tests))
-        return _residuals(model, tests, full(z), steps)
+            bar.update(x.shape[0] * x.shape[1] * n)
+        return np.moveaxis(r, 0, 2).reshape(x.shape[0], x.shape[1], -1)
 
-    wall = time.perf_counter()
-    sol = least_squares(fun, x0[free], bounds=(lo[free], hi[free]), x_scale=hi[free] - lo[free],
-                        diff_step=1e-3, max_nfev=max_nfev, xtol=1e-4, ftol=1e-4)
-    x = full(sol.x)
-    return FitResult(tuple(float(v) for v in x), float(np.sqrt(np.mean(sol.fun**2))),
-                     count[0], time.perf_counter() - wall)
+    return residuals
+
+
+def _screened_starts(residuals, model, folds_run, counts) -> tuple[np.ndarray, np.ndarray]:
+    """The starts of each fold: its ``counts[fold]`` best points of a :data:`SCREEN`-point
+    Sobol sample (the same sample for every fold). Returns (folds (m,), starts (m, n))."""
+    sample = sobol_starts(model, SCREEN)
+    x = np.broadcast_to(sample, (len(folds_run),) + sample.shape)
+    cost = np.sum(residuals(x, np.asarray(folds_run)) ** 2, axis=-1)      # (F, SCREEN)
+    folds, starts = [], []
+    for i, f in enumerate(folds_run):
+        best = np.argsort(cost[i], kind="stable")[:counts[f]]
+        folds += [f] * len(best)
+        starts.append(sample[best])
+    return np.array(folds, dtype=int), np.concatenate(starts)
+
+
+def fit_class(model: Model, records: list, variant: InputVariant, *, loo: bool = True,
+              steps: int = COARSE_STEPS, bar=None) -> dict:
+    """The class fit and (``loo``) every leave-one-out refit of ``model``, in one batch.
+
+    Returns fold -> :class:`MultiStartFit`: fold f < n the refit without test f, fold n
+    (``len(records)``) the class fit on every test (module notes).
+    """
+    n = len(records)
+    residuals = _fold_residuals(model, records, variant, steps, bar)
+    folds_run = [n] + (list(range(n)) if loo else [])
+    counts = {f: LOO_STARTS[model.name] for f in range(n)} | {n: CLASS_STARTS[model.name]}
+    folds, starts = _screened_starts(residuals, model, folds_run, counts)
+    lo, hi = np.array(model.lower), np.array(model.upper)
+    fun = with_forward_differences(lambda x, idx: residuals(x, folds[idx]), lo, hi, model.step)
+    fit = least_squares_batch(fun, starts, lo, hi, max_iter=MAX_ITERATIONS, ftol=FTOL,
+                              xtol=XTOL, merge=MERGE, groups=folds)
+    k = len(records[0].observed)
+    return _summaries(model, fit, folds, {f: k * (n - 1) for f in range(n)} | {n: k * n})
 
 
 @dataclass(frozen=True)
@@ -285,71 +375,136 @@ class Prediction:
     test : str
         The test's name.
     model : str
-        The model's name.
+        The model's name (:class:`Model`).
     kind : str
-        "per-test fit", "class fit" or "leave-one-out".
+        "class fit" or "leave-one-out".
+    variant : str
+        The input variant (:class:`~comparisons.studies.crash_records.InputVariant`).
     x : tuple of float
         The parameters used [their units].
+    score : float
+        Root-mean-square of the test's residuals scaled by 1 mph and 10 deg/s [-]: the
+        fits' objective, and the statistics' main measure.
     delta_v_error : float
         |dV predicted| - |dV measured|, signed, of the vehicle where it is largest [m/s].
     velocity_error : float
-        Length of the post-impact velocity error vector [m/s].
+        Length of the post-impact velocity error vector [m/s] (the |dV| error where the
+        test gives magnitudes only).
     yaw_error : float
         |omega predicted - omega measured| [rad/s].
-    wall_time : float
-        One prediction's cost [s].
+    contact_time, peak_crush, friction, tyre_friction : float
+        The scene's contact time [s], deepest crush [m], friction between the vehicles and
+        tyre friction [-] (NaN, or PIM's mu = beta mu0, for PIM).
+    flags : tuple of str
+        The quantities outside :data:`PHYSICAL_RANGES`.
     """
 
     crash_class: str
     test: str
     model: str
     kind: str
+    variant: str
     x: tuple
+    score: float
     delta_v_error: float
     velocity_error: float
     yaw_error: float
-    wall_time: float
+    contact_time: float
+    peak_crush: float
+    friction: float
+    tyre_friction: float
+    flags: tuple
 
 
-def _prediction(model, test, x, kind, steps=COARSE_STEPS) -> Prediction:
-    wall = time.perf_counter()
-    p = predict(model, test, x, steps)
-    wall = time.perf_counter() - wall
-    if p is None:
-        return Prediction(test.crash_class, test.name, model.name, kind, tuple(x), math.nan,
-                          math.nan, math.nan, wall)
-    obs = test.observed().reshape(-1, 3)
-    p = p.reshape(-1, 3)
-    pre = [test.case.vehicle1.velocity, test.case.vehicle2.velocity]
+def _errors(record: CrashRecord, case: pim.Case, motion: Motion) -> dict:
+    """score, delta_v_error, velocity_error, yaw_error of one scalar prediction."""
+    if not bool(motion.ok):
+        return dict.fromkeys(("score", "delta_v_error", "velocity_error", "yaw_error"),
+                             math.nan)
+    pred = record.observe(case, motion.velocity1, motion.yaw_rate1, motion.velocity2,
+                          motion.yaw_rate2)
+    score = float(np.sqrt(np.mean(((pred - record.observed) / record.scale) ** 2)))
+    if record.observable == MAGNITUDES:          # (|dV|, |dw|) per vehicle
+        d = (pred - record.observed).reshape(-1, 2)
+        dv = d[:, 0]
+        return {"score": score, "delta_v_error": float(dv[np.argmax(np.abs(dv))]),
+                "velocity_error": float(np.max(np.abs(dv))),
+                "yaw_error": float(np.max(np.abs(d[:, 1])))}
+    obs, p = record.observed.reshape(-1, 3), pred.reshape(-1, 3)
+    pre = [np.asarray(case.vehicle1.velocity, float), np.asarray(case.vehicle2.velocity, float)]
     dv = [float(np.hypot(*(p[i, :2] - pre[i])) - np.hypot(*(obs[i, :2] - pre[i])))
           for i in range(len(obs))]
-    return Prediction(test.crash_class, test.name, model.name, kind, tuple(x),
-                      max(dv, key=abs), float(np.max(np.hypot(*(p[:, :2] - obs[:, :2]).T))),
-                      float(np.max(np.abs(p[:, 2] - obs[:, 2]))), wall)
+    return {"score": score, "delta_v_error": max(dv, key=abs),
+            "velocity_error": float(np.max(np.hypot(*(p[:, :2] - obs[:, :2]).T))),
+            "yaw_error": float(np.max(np.abs(p[:, 2] - obs[:, 2])))}
 
 
-def leave_one_out(model: Model, tests, per_test: dict, fixed: dict | None = None,
-                  steps: int = COARSE_STEPS, max_nfev: int | None = None,
-                  bar=None) -> list[Prediction]:
-    """For each test, the class parameters refitted on the others and the test predicted.
-
-    ``per_test`` maps a test name to its own fitted parameters; the start of each refit is
-    the median of the *other* tests' (module notes), so the held-out test enters neither the
-    fit nor its start. ``fixed``: parameter index -> value held fixed (default none).
-    """
+def _flags(values: dict) -> tuple:
     out = []
-    for i, held in enumerate(tests):
-        train = [t for j, t in enumerate(tests) if j != i]
-        start = np.median([per_test[t.name] for t in train], axis=0)
-        fit = fit_parameters(model, train, start, fixed, steps, max_nfev, bar)
-        out.append(_prediction(model, held, fit.x, "leave-one-out", steps))
-    return out
+    for name, (low, high, _, _) in PHYSICAL_RANGES.items():
+        v = values.get(name, math.nan)
+        if math.isfinite(v) and not low <= v <= high:
+            out.append(name)
+    return tuple(out)
+
+
+def predict(model: Model, record: CrashRecord, case: pim.Case, x, labels: tuple,
+            steps: int = COARSE_STEPS) -> Prediction:
+    """``model``'s :class:`Prediction` of ``record`` (its inputs ``case``) at parameters
+    ``x``, its errors and physical-range flags; ``labels`` = (kind, variant name)."""
+    m = run_model(model, case, x, steps)
+    scalar = {k: float(np.asarray(getattr(m, k)).reshape(-1)[0])
+              for k in ("contact_time", "peak_crush", "friction")}
+    tyre = float(x[3]) if model is not PIM_MODEL else math.nan
+    checks = {"contact time": scalar["contact_time"], "peak crush": scalar["peak_crush"],
+              "friction": scalar["friction"] if model is not PIM_MODEL else math.nan,
+              "tyre friction": tyre}
+    return Prediction(record.crash_class, record.name, model.name, *labels,
+                      tuple(float(v) for v in x), **_errors(record, case, m), **scalar,
+                      tyre_friction=tyre, flags=_flags(checks) if model is not PIM_MODEL
+                      else ())
+
+
+@dataclass(frozen=True, eq=False)
+class VariantStudy:
+    """One class under one input variant: every model's fits, predictions and the
+    statistics of the leave-one-out errors.
+
+    Attributes
+    ----------
+    variant : InputVariant
+        The inputs of every fold.
+    predictions : tuple of Prediction
+        "class fit" and "leave-one-out" rows of every model.
+    class_fits : dict
+        Model name -> :class:`MultiStartFit` of the class fit.
+    loo_fits : dict
+        Model name -> tuple of :class:`MultiStartFit`, one per held-out test (empty below
+        three tests).
+    comparisons : dict
+        Scene model name -> measure (:data:`MEASURES`) -> :class:`PairedComparison` of PIM
+        against it on the leave-one-out errors.
+    """
+
+    variant: InputVariant
+    predictions: tuple
+    class_fits: dict
+    loo_fits: dict
+    comparisons: dict
+
+    def rows(self, model: str, kind: str) -> list[Prediction]:
+        """The predictions of one model and kind, in the class's test order."""
+        return [p for p in self.predictions if p.model == model and p.kind == kind]
+
+    @property
+    def verdict(self) -> PairedComparison:
+        """PIM against the scene with Coulomb friction, on the score: the class's verdict."""
+        return self.comparisons[SCENE_MODEL.name]["score"]
 
 
 @dataclass(frozen=True, eq=False)
 class ClassStudy:
-    """One crash class: both models' per-test fits, class fits and leave-one-out
-    predictions, and the fits' parameters.
+    """One crash class studied under each of its input variants.
 
     Attributes
     ----------
@@ -357,78 +512,99 @@ class ClassStudy:
         The class's name.
     tests : tuple of str
         Names of its tests.
-    predictions : tuple of Prediction
-        Per-test fit, class fit and leave-one-out rows of both models.
-    class_fits : dict
-        Model name -> :class:`FitResult` of the class fit.
+    observable : str
+        What the models are fitted to and judged on.
+    outcome_origin : str
+        Where the observed outcome comes from (measured, or a published PIM analysis).
+    n_parameters : int
+        Parameters of the larger model (the class-size rule of the verdict).
+    variants : tuple of VariantStudy
+        One per input variant.
+    coarse_check : tuple of float
+        Largest difference of the coarse scene from a 10x finer one at the class parameters
+        (first variant, Coulomb scene, first three tests): (speed [m/s], yaw rate [rad/s]).
     wall_time : float
         Wall time of the study [s].
     """
 
     crash_class: str
     tests: tuple
-    predictions: tuple
-    class_fits: dict         # model name -> FitResult
+    observable: str
+    outcome_origin: str
+    n_parameters: int
+    variants: tuple
+    coarse_check: tuple
     wall_time: float
 
-    def rows(self, model: str, kind: str) -> list[Prediction]:
-        return [p for p in self.predictions if p.model == model and p.kind == kind]
+
+def loo_comparisons(predictions, n_parameters: int) -> dict:
+    """Scene model -> measure -> PIM against it on the leave-one-out rows."""
+    def errors(model, attr):
+        return [getattr(p, attr) for p in predictions
+                if p.model == model and p.kind == "leave-one-out"]
+
+    return {s.name: {m: compare_paired(errors("pim", a), errors(s.name, a), n_parameters)
+                     for m, a in MEASURES.items()} for s in SCENE_MODELS}
 
 
-def study_class(name: str, tests, *, steps: int = COARSE_STEPS, loo_nfev: int | None = LOO_NFEV,
-                bar=None) -> ClassStudy:
-    """Per-test fits, class fits and leave-one-out prediction of both models on ``tests``.
-
-    The scene's tyre friction (index 3) is fitted per class and in leave-one-out, and held
-    at :data:`TYRE_DEFAULT` in the per-test fits. ``loo_nfev`` bounds each leave-one-out
-    refit's evaluations (it starts near its optimum).
-    """
-    wall = time.perf_counter()
-    preds, class_fits = [], {}
-    for model in (PIM_MODEL, SCENE_MODEL):
-        cfit = fit_parameters(model, tests, steps=steps, bar=bar)
-        class_fits[model.name] = cfit
-        fixed = {3: TYRE_DEFAULT} if model is SCENE_MODEL else None
-        per_test = {}
-        for t in tests:
-            f = fit_parameters(model, [t], None, fixed, steps, bar=bar)
-            per_test[t.name] = f.x
-            preds.append(_prediction(model, t, f.x, "per-test fit", steps))
-            preds.append(_prediction(model, t, cfit.x, "class fit", steps))
-        if len(tests) > 2:
-            preds += leave_one_out(model, tests, per_test, None, steps, loo_nfev, bar)
-    return ClassStudy(name, tuple(t.name for t in tests), tuple(preds), class_fits,
-                      time.perf_counter() - wall)
+def _study_variant(records, variant, steps, bar) -> VariantStudy:
+    n, preds, class_fits, loo_fits = len(records), [], {}, {}
+    for model in MODELS:
+        fits = fit_class(model, records, variant, loo=n >= 3, steps=steps, bar=bar)
+        class_fits[model.name] = fits[n]
+        loo_fits[model.name] = tuple(fits[f] for f in range(n) if f in fits)
+        for t, rec in enumerate(records):
+            case = variant.case(t, rec, n)
+            preds.append(predict(model, rec, case, fits[n].x, ("class fit", variant.name),
+                                  steps))
+            if t in fits:
+                preds.append(predict(model, rec, variant.case(t, rec, t), fits[t].x,
+                                      ("leave-one-out", variant.name), steps))
+    n_parameters = max(len(m.parameters) for m in MODELS)
+    return VariantStudy(variant, tuple(preds), class_fits, loo_fits,
+                        loo_comparisons(preds, n_parameters))
 
 
-def coarse_check(test: TestCase, x, coarse: int = COARSE_STEPS, fine: int = FINE_STEPS):
-    """Largest |coarse - fine| scene prediction over the test's (vx, vy) [m/s] and omega
-    [rad/s], at parameters ``x``: (speed difference, yaw-rate difference)."""
-    a, b = predict(SCENE_MODEL, test, x, coarse), predict(SCENE_MODEL, test, x, fine)
-    if a is None or b is None:
+def coarse_check(record: CrashRecord, case: pim.Case, x, steps: int = COARSE_STEPS):
+    """Largest |coarse - fine| scene prediction of ``record`` at parameters ``x`` of the
+    Coulomb scene: (speed difference [m/s], yaw-rate difference [rad/s]); the fine run takes
+    10x the steps."""
+    a, b = (run_model(SCENE_MODEL, case, x, s) for s in (steps, 10 * steps))
+    if not (bool(a.ok) and bool(b.ok)):
         return math.nan, math.nan
-    d = np.abs(a - b).reshape(-1, 3)
-    return float(d[:, :2].max()), float(d[:, 2].max())
+    dv = max(float(np.max(np.abs(a.velocity1 - b.velocity1))),
+             float(np.max(np.abs(a.velocity2 - b.velocity2))))
+    dw = max(abs(float(a.yaw_rate1 - b.yaw_rate1)), abs(float(a.yaw_rate2 - b.yaw_rate2)))
+    return dv, dw
 
 
-def crash_classes(max_tests: int | None = None) -> dict[str, list[TestCase]]:
-    """The bundled tests with measured motion that both models can run, by crash class
-    (module notes); ``max_tests`` keeps the first few of each class (fast checks)."""
-    barrier = load_barrier()
-    class_k = class_radius_of_gyration(reproduce_barrier([t for t in barrier
-                                                          if t.group != "OUTLIER"]))
-    out = {}
-    for group, label in (("NS", "IIHS barrier, non-sideswipe"),
-                         ("SS", "IIHS barrier, sideswipe")):
-        out[label] = [TestCase(label, t.test_id, barrier_case(t, class_k[t.vehicle_type]))
-                      for t in barrier if t.group == group]
-    ricsac = [t for t in load_ricsac() if t.has_motion and t.normal_angle is not None]
-    flagged = {c.test.split()[1] for c in check_ricsac(ricsac) if c.flagged}
-    label = "RICSAC, momentum-consistent"
-    out[label] = [TestCase(label, f"ricsac{t.number}", ricsac_case(t)) for t in ricsac
-                  if str(t.number) not in flagged]
-    label = "RICSAC 9, design sheet"
-    out[label] = [TestCase(label, "ricsac9", pim.load_case("ricsac9"))]
-    if max_tests is not None:
-        out = {k: v[:max_tests] for k, v in out.items()}
+def study_class(name: str, records: list, *, steps: int = COARSE_STEPS, radii=None,
+                bar=None) -> ClassStudy:
+    """Class fits, leave-one-out refits and predictions of every model on ``records`` under
+    each input variant, with the statistics (module notes)."""
+    wall = time.perf_counter()
+    variants = input_variants(records, radii)
+    studies = tuple(_study_variant(records, v, steps, bar) for v in variants)
+    first = studies[0]
+    x = first.class_fits[SCENE_MODEL.name].x
+    checks = [coarse_check(r, first.variant.case(t, r, len(records)), x, steps)
+              for t, r in enumerate(records[:3])]
+    check = max(checks, key=lambda c: c[0] if math.isfinite(c[0]) else -1.0)
+    return ClassStudy(name, tuple(r.name for r in records), records[0].observable,
+                      records[0].outcome_origin, max(len(m.parameters) for m in MODELS),
+                      studies, check, time.perf_counter() - wall)
+
+
+def study_all(max_tests: int | None = None, *, steps: int = COARSE_STEPS,
+              classes=None, bar=None) -> list[ClassStudy]:
+    """:func:`study_class` on every class of :func:`crash_classes` (or those named in
+    ``classes``, by name or :data:`~comparisons.studies.crash_records.CLASS_KEYS` key), in
+    the report's order."""
+    if classes is not None:
+        classes = {CLASS_KEYS.get(c, c) for c in classes}
+    radii = fitted_radii()
+    out = []
+    for name, records in crash_classes(max_tests, radii).items():
+        if classes is None or name in classes:
+            out.append(study_class(name, records, steps=steps, radii=radii, bar=bar))
     return out

@@ -34,11 +34,12 @@ from functools import cached_property
 
 import numpy as np
 
-from ..model.case import Case
+from ..model.case import BETA_RANGE_TEXT, Case, checked_case
 from ..model.evidence_terms import as_residual_terms, split_terms
-from ..model.impact_laws import check_contact_friction, law_of, solve_law
+from ..model.impact_laws import check_contact_friction, law_of
+from ..model.law import solve as solve_under_law
 from ..model.motion import Term
-from ..model.numbers import InputError, check_counts, check_numbers
+from ..model.numbers import InputError, check_counts, check_numbers, checked_count
 from ..model.result import Result
 from ..model.solver import solve
 from .free_fit import (
@@ -207,9 +208,9 @@ class FitResult:
         """The solve at the optimum, under the law fitted."""
         if self.law == "brach":
             return solve(self.case, self.eps, self.beta)
-        return solve_law(self.case, self.law, self.eps,
-                         None if self.law == "kudlich-slibar" else self.beta,
-                         self.contact_friction)
+        return solve_under_law(self.case, self.eps,
+                               None if self.law == "kudlich-slibar" else self.beta,
+                               law=self.law, mu_c=self.contact_friction)
 
     def to_dict(self) -> dict:
         """JSON-ready summary (SI units)."""
@@ -244,9 +245,10 @@ def _check_bounds(bounds) -> tuple:
     if not (0.0 <= e_lo < e_hi <= 1.0):
         raise InputError(f"bounds on eps must satisfy 0 <= eps_min < eps_max <= 1, "
                          f"got ({e_lo}, {e_hi})")
-    if not (np.isfinite(b_lo) and np.isfinite(b_hi) and b_lo < b_hi):
-        raise InputError(f"bounds on beta must be finite with beta_min < beta_max, "
-                         f"got ({b_lo}, {b_hi})")
+    if not (np.isfinite(b_lo) and np.isfinite(b_hi) and 0.0 <= b_lo < b_hi):
+        raise InputError(f"bounds on beta must be finite with 0 <= beta_min < beta_max (beta "
+                         f"< 0 would drive the sliding at C; beta_max may exceed 1 to "
+                         f"explore, and the answer is then flagged), got ({b_lo}, {b_hi})")
     return (e_lo, e_hi), (b_lo, b_hi)
 
 
@@ -261,17 +263,23 @@ def _check_fixed(eps, beta, free: dict) -> tuple[float | None, float | None]:
             raise InputError(f"eps (fixed) must be in [0, 1], got {eps}")
     if beta is not None:
         beta = float(beta)
-        if not np.isfinite(beta):
-            raise InputError(f"beta (fixed) must be a finite number, got {beta}")
+        if not (np.isfinite(beta) and beta >= 0):
+            raise InputError(f"beta (fixed) {BETA_RANGE_TEXT}, got {beta}")
     return eps, beta
 
 
 def _check_grid(grid) -> None:
     """``grid`` is no longer used (the coarse search is a Sobol sample): validate, warn."""
-    if tuple(int(g) for g in grid) == DEFAULT_GRID:
+    try:
+        counts = [checked_count(g, "grid", low=3) for g in grid]
+    except (InputError, TypeError):
+        raise InputError(f"grid must be two integers >= 3 (points per axis: eps, beta), "
+                         f"got {grid!r}") from None
+    if len(counts) != 2:
+        raise InputError(f"grid must be two integers >= 3 (points per axis: eps, beta), "
+                         f"got {grid!r}")
+    if tuple(counts) == DEFAULT_GRID:
         return
-    if min(int(g) for g in grid) < 3:
-        raise InputError(f"grid must have at least 3 points per axis, got {grid}")
     warnings.warn("pim.fit(grid=...) is ignored: the coarse search is a Sobol sample of "
                   "`samples` points", DeprecationWarning, stacklevel=3)
 
@@ -297,7 +305,7 @@ def _fit_result(case, raw: FreeFit, terms, include_yaw, bounds, fixed, eps, beta
     b_opt = values.get("impact.beta", beta)
     mu_c = values.get("impact.mu_c", mu_c)
     if law == "kudlich-slibar":          # the PIM beta with the same answer
-        b_opt = float(solve_law(raw.case, law, e_opt, None, mu_c).beta)
+        b_opt = float(solve_under_law(raw.case, e_opt, law=law, mu_c=mu_c).beta)
     grad = dict(zip(raw.keys, raw.gradient, strict=True))
     on_bound = {SHORT_NAMES.get(k, k): ("lower" if s < 0 else "upper")
                 for k, s in zip(raw.keys, raw.side, strict=True) if s}
@@ -420,6 +428,7 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
         Nothing measured, a batched case, bad bounds, both parameters fixed, a parameter
         the law does not take, or no approach.
     """
+    checked_case(case)
     check_counts(max_starts=max_starts, samples=samples)
     check_numbers(eps=eps, beta=beta)     # mu_c may be inf (always stick): _law_case checks
     if np.size(case.vehicle1.mass) != 1 or np.shape(case.impact.point) != (2,):

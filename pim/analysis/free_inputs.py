@@ -110,7 +110,7 @@ def check_free(free: dict) -> dict:
             raise InputError(f"free parameter {key}: bounds must lie in [0, 1], got ({lo}, {hi})")
         if attr == "speed" and lo < 0:
             raise InputError(f"free parameter {key}: bounds must be >= 0 [m/s], got ({lo}, {hi})")
-        if key == "impact.mu_c" and lo < 0:
+        if key in ("impact.mu_c", "impact.beta") and lo < 0:
             raise InputError(f"free parameter {key}: bounds must be >= 0, got ({lo}, {hi})")
         out[key] = (lo, hi)
     for a, b in _CLASHES:

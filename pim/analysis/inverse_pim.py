@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..model.case import Case, Measured
-from ..model.numbers import InputError
+from ..model.numbers import InputError, speed_text
 from ..model.solver import defaults
 from .fitting import FitResult, fit
 from .free_fit import (
@@ -73,9 +73,9 @@ def check_evidence(case: Case, unknown: dict) -> None:
         dv = getattr(m, f"delta_v{i}")
         if dv is not None and float(np.hypot(*dv)) > max(bounds):
             raise InputError(f"measured.vehicle{i}.delta_v: |delta-V| = "
-                             f"{float(np.hypot(*dv)):.4g} m/s is larger than every speed "
-                             f"bound of [unknown] (at most {max(bounds):.4g} m/s); check its "
-                             f"unit and the bounds")
+                             f"{speed_text(np.hypot(*dv))} is larger than every speed "
+                             f"bound of [unknown] (at most {speed_text(max(bounds))}); check "
+                             f"its unit and the bounds")
 
 
 def under_determined(case: Case, unknown: dict, include_yaw: bool = True) -> str:

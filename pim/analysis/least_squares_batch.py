@@ -23,6 +23,11 @@ in Mathematics 630, 1978, with Marquardt's diagonal scaling):
 
 Rank-deficient problems (families of exact fits) are handled by the damping: the iteration
 converges to one member of the family, and the caller reports the family.
+
+Where no derivative is available (a simulation's outputs), :func:`with_forward_differences`
+turns a residual function into the ``fun`` this engine takes: one call evaluates every
+point and its n forward neighbours in box-scaled variables, so a batched simulator runs the
+whole Jacobian of every problem in one batch.
 """
 
 from __future__ import annotations
@@ -33,7 +38,7 @@ import numpy as np
 
 from ..model.numbers import InputError
 
-__all__ = ["BatchFit", "least_squares_batch"]
+__all__ = ["BatchFit", "least_squares_batch", "with_forward_differences"]
 
 
 @dataclass(frozen=True)
@@ -70,7 +75,7 @@ class BatchFit:
 
 def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: float = 0.0,
                         xtol: float = 1e-13, gtol: float = 1e-14,
-                        lam0: float = 1e-3, merge: float | None = None) -> BatchFit:
+                        lam0: float = 1e-3, merge: float | None = None, groups=None) -> BatchFit:
     """Minimise ``sum r(x)^2`` for m problems at once, each x in the box [lower, upper].
 
     Parameters
@@ -93,6 +98,9 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
         For multi-start use (the m problems are one problem from m starts): a running start
         that comes within ``merge`` (box-scaled, max norm) of a converged one with no lower
         cost is stopped as a duplicate of it (``x`` and ``cost`` become the converged one's).
+    groups : array_like (m,) of int, optional
+        With ``merge``, for several problems each from several starts (the folds of a
+        leave-one-out): the problem of each row; a start merges only within its group.
 
     Returns
     -------
@@ -107,9 +115,8 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
     r = np.array(r, dtype=float)
     j = np.array(j, dtype=float) * width[:, None, :]      # d r / d u
     cost = _cost(r)
-    lam = np.full(m, float(lam0))
-    running = np.ones(m, dtype=bool)
-    converged = np.zeros(m, dtype=bool)
+    lam, group = np.full(m, float(lam0)), _groups(groups, m)
+    running, converged = np.ones(m, dtype=bool), np.zeros(m, dtype=bool)
     iterations = np.zeros(m, dtype=int)
     for _ in range(int(max_iter)):
         idx = np.flatnonzero(running)
@@ -121,8 +128,7 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
         small_grad = np.max(np.abs(gfree), axis=1) <= gtol * np.maximum(cost[idx], 1e-300) ** 0.5
         trial = np.clip(ua + step, 0.0, 1.0)
         rt, jt = fun(lo[idx] + trial * width[idx], idx)
-        nfev += 1
-        rt = np.asarray(rt, dtype=float)
+        nfev, rt = nfev + 1, np.asarray(rt, dtype=float)
         ct = _cost(rt)
         better = ct < cost[idx]
         acc = idx[better]
@@ -142,11 +148,20 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
         converged[idx[done]] = True
         running[idx[done]] = False
         if merge is not None and converged.any() and running.any():
-            _merge_duplicates(u, r, j, cost, running, converged, merge)
+            _merge_duplicates(u, r, j, cost, (running, converged, group), merge)
     x = lo + u * width
     on_bound = np.where(u <= 0.0, -1, np.where(u >= 1.0, 1, 0)).astype(np.int8)
     return BatchFit(x=x, cost=cost, residuals=r, jacobian=j / width[:, None, :],
                     on_bound=on_bound, converged=converged, iterations=iterations, nfev=nfev)
+
+
+def _groups(groups, m: int) -> np.ndarray:
+    """The group of each of the m problems (one group when ``groups`` is None)."""
+    group = np.zeros(m, dtype=int) if groups is None else np.asarray(groups, dtype=int)
+    if group.shape != (m,):
+        raise InputError(f"groups must hold one integer per problem ({m}), got shape "
+                         f"{group.shape}")
+    return group
 
 
 def _box(lower, upper, shape) -> tuple[np.ndarray, np.ndarray]:
@@ -187,11 +202,14 @@ def _step(ua: np.ndarray, ra: np.ndarray, ja: np.ndarray, lam: np.ndarray) -> tu
     return gfree, jf, np.where(np.isfinite(step), step, 0.0)
 
 
-def _merge_duplicates(u, r, j, cost, running, converged, merge: float) -> None:
+def _merge_duplicates(u, r, j, cost, state, merge: float) -> None:
     """Stop (in place) each running start within ``merge`` (box-scaled, max norm) of a
-    converged one with no lower cost: it becomes a copy of that one."""
+    converged one of its own group with no lower cost: it becomes a copy of that one.
+    ``state``: the (running, converged, group) arrays."""
+    running, converged, group = state
     live, fixed = np.flatnonzero(running), np.flatnonzero(converged)
     dist = np.max(np.abs(u[live][:, None, :] - u[fixed][None, :, :]), axis=-1)
+    dist = np.where(group[live][:, None] == group[fixed][None, :], dist, np.inf)
     near = np.argmin(dist, axis=1)
     dup = (dist[np.arange(live.size), near] <= merge) & (
         cost[live] >= cost[fixed[near]] * (1.0 - 1e-9))
@@ -204,3 +222,39 @@ def _merge_duplicates(u, r, j, cost, running, converged, merge: float) -> None:
 def _cost(r: np.ndarray) -> np.ndarray:
     c = np.sum(r * r, axis=-1)
     return np.where(np.isfinite(c), c, np.inf)
+
+
+def with_forward_differences(residuals, lower, upper, step: float = 1e-3):
+    """The ``fun`` of :func:`least_squares_batch` from residuals alone, by forward differences.
+
+    Parameters
+    ----------
+    residuals : callable
+        ``residuals(x, index) -> r``: residuals (p, q, k) at the points ``x`` (p, q, n), q
+        points of each problem ``index`` (p,) (its base point and its n neighbours).
+    lower, upper : array_like (n,)
+        The box (finite, lower < upper).
+    step : float
+        Step in box-scaled variables u = (x - lower) / (upper - lower); backward where the
+        forward step would leave the box.
+
+    Returns
+    -------
+    callable
+        ``fun(x, index) -> (r, J)`` with r (p, k) at ``x`` (p, n) and J (p, k, n), the
+        difference quotients, from one call of ``residuals`` on (p, n + 1) points.
+    """
+    n = np.size(lower)
+    lo, width = _box(np.ravel(lower), np.ravel(upper), (n,))
+    eye = np.eye(n)
+
+    def fun(x, index):
+        u = (np.asarray(x, dtype=float) - lo) / width
+        h = np.where(u + step <= 1.0, step, -step)                   # (p, n)
+        points = np.repeat(u[:, None, :], n + 1, axis=1)
+        points[:, 1:, :] += h[:, None, :] * eye
+        r = np.asarray(residuals(lo + points * width, index), dtype=float)
+        jac = (r[:, 1:, :] - r[:, :1, :]) / (h * width)[:, :, None]  # (p, n, k)
+        return r[:, 0, :], np.swapaxes(jac, 1, 2)
+
+    return fun

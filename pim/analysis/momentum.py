@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model.geometry import cross
-from ..model.numbers import InputError
+from ..model.numbers import InputError, speed_text
 
 __all__ = ["MomentumSpeeds", "momentum_speeds", "ILL_CONDITIONED_SINE"]
 
@@ -94,7 +94,7 @@ def momentum_speeds(mass1, mass2, direction1, direction2, velocity1_after, veloc
     cov_s = inv @ cov_p @ inv.T
     ill = sine < ILL_CONDITIONED_SINE
     message = (f"near-collinear approach (|sin| = {sine:.3g}): the momentum speeds are "
-               f"ill-conditioned, +-{np.sqrt(cov_s[0, 0]):.3g} and "
-               f"+-{np.sqrt(cov_s[1, 1]):.3g} m/s" if ill else "")
+               f"ill-conditioned, +-{speed_text(np.sqrt(cov_s[0, 0]), '.3g')} and "
+               f"+-{speed_text(np.sqrt(cov_s[1, 1]), '.3g')}" if ill else "")
     return MomentumSpeeds(float(speeds[0]), float(speeds[1]), float(np.sqrt(cov_s[0, 0])),
                           float(np.sqrt(cov_s[1, 1])), sine, ill, message)

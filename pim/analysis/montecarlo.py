@@ -36,7 +36,7 @@ from ..model.solver import solve
 from .streaming import StreamingIndices, StreamingPercentiles
 
 __all__ = ["uncertainty", "UncertaintyResult", "OutputStats", "OUTPUTS", "first_order_indices",
-           "memory_estimate", "available_memory", "CHUNK_SIZE"]
+           "memory_estimate", "available_memory", "CHUNK_SIZE", "sampled_case"]
 
 #: Outputs summarised, by their names in :data:`pim.model.quantities.OUTPUTS` (which gives
 #: each one's label and unit kind).
@@ -161,7 +161,9 @@ def _pair(x, y) -> np.ndarray:
     return np.stack(np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float)), axis=-1)
 
 
-def _sampled_case(case: Case, v: dict) -> Case:
+def sampled_case(case: Case, v: dict) -> Case:
+    """``case`` with its inputs set to the sampled values ``v`` (dotted names of
+    :data:`pim.model.distributions.INPUTS` -> arrays [SI]; outlines kept)."""
     def vehicle(i: int, base: Vehicle) -> Vehicle:
         p = f"vehicle{i}."
         if base.fixed.any():
@@ -236,7 +238,7 @@ class _Setup:
         for start in range(0, self.n, self.chunk_size):
             m = min(self.chunk_size, self.n - start)
             values, uniforms = sample_inputs(self.dists, self.nominal_in, m, rng)
-            result = solve(_sampled_case(self.case, values), values["impact.restitution"],
+            result = solve(sampled_case(self.case, values), values["impact.restitution"],
                            values["impact.beta"])
             ok = np.broadcast_to(result.admissible, (m,))
             outputs = {k: np.broadcast_to(v, (m,)) for k, v in
@@ -254,6 +256,7 @@ def _setup(case, n, seed, distributions, eps, beta, chunk_size) -> _Setup:
         raise InputError("distributions must be a pim.model.distributions.UncertaintyTable")
     n = checked_count(n, "n (samples)", low=10)
     chunk_size = checked_count(chunk_size, "chunk_size", low=10)
+    seed = checked_count(seed, "seed", low=0, none=True)
     nominal_in = nominal_values(case, eps, beta)
     # evidence inputs (run-out friction) do not act on the impact: pim reconstruct samples them
     dists = UncertaintyTable({k: d for k, d in dists.inputs.items() if k in nominal_in})

@@ -21,15 +21,16 @@ that drive its spread.
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
-from ..model.case import Case, Measured
+from ..model.case import Case, Measured, checked_case
 from ..model.crush import crush_delta_v, effective_mass, equivalent_energy_speed, moment_arm
 from ..model.evidence_terms import result_quantities
 from ..model.motion import Term
-from ..model.numbers import InputError, check_counts, checked_count
+from ..model.numbers import ArgumentTypeError, InputError, check_counts, checked_count, speed_text
 from ..model.tyres import STANDARD_GRAVITY
 from .fitting import FitResult
 from .free_inputs import approach_direction, check_free
@@ -47,7 +48,8 @@ from .runout_fit import RunoutFit, fit_runout
 
 __all__ = ["PostImpact", "post_impact_motion", "check_reachable", "approach_direction",
            "Reconstruction", "CrushOutput", "crush_outputs",
-           "reconstruct", "evidence_sampler", "evidence_nominal", "sample_block"]
+           "reconstruct", "evidence_sampler", "evidence_nominal", "sample_block",
+           "monte_carlo_seconds", "PILOT_SAMPLES", "TIMED_SAMPLES"]
 
 
 @dataclass(frozen=True)
@@ -119,8 +121,9 @@ def check_reachable(ev, vehicle, speed_bounds, yaw_rate_bounds, where: str) -> N
     distance = float(np.hypot(*(np.asarray(ev.rest_position) - np.asarray(vehicle.cg))))
     if distance > reach + REACH_SLACK + 3 * ev.position_sigma:
         raise InputError(f"{where}.rest_position is {distance:.4g} m from the CG at impact, "
-                         f"beyond any run-out within the speed bound {speed_bounds[1]:g} m/s "
-                         f"and yaw-rate bound {w_max:g} rad/s (at most {reach:.4g} m with "
+                         f"beyond any run-out within the speed bound "
+                         f"{speed_text(speed_bounds[1], 'g')} and yaw-rate bound "
+                         f"{w_max:g} rad/s (at most {reach:.4g} m with "
                          f"friction {ev.friction:g} and braking {f:g} on every wheel)")
 
 
@@ -317,7 +320,7 @@ class Reconstruction:
 
 def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, seed: int = 0,
                 include_yaw: bool = True, post_impact_samples=None, executor=None,
-                blocks: int | None = None, progress=None) -> Reconstruction:
+                blocks: int | None = None, progress=None, estimate=None) -> Reconstruction:
     """Evidence (or measured post-impact motion) -> impact speeds, eps, beta, with intervals.
 
     Parameters
@@ -346,6 +349,9 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         Called with the name of each stage as it starts ("run-out fits", "inverse PIM",
         "Monte Carlo") and once per finished Monte Carlo block ("Monte Carlo block i/k"),
         e.g. to move a progress bar; the results do not depend on it.
+    estimate : callable, optional
+        Called with the Monte Carlo's estimated time [s] before it starts (run-out evidence,
+        :func:`monte_carlo_seconds`); it may raise to refuse the work.
 
     Returns
     -------
@@ -353,7 +359,9 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         With ``determined = False`` and a message naming what is missing when the data cannot
         decide the unknowns; never a number then.
     """
+    _check_arguments(case, executor)
     samples = checked_count(samples, "samples", low=0)
+    seed = checked_count(seed, "seed", low=0)
     check_counts(blocks=blocks)
     unknown = check_free(case.unknown if unknown is None else unknown)
     if not unknown:
@@ -381,6 +389,8 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
             momentum = _momentum_of(solved, s_hat)
     mc = None
     if determined and samples:
+        _time_monte_carlo(estimate, case, post, fitted, unknown, samples, include_yaw,
+                          post_impact_samples)
         say("Monte Carlo")
         mc = _monte_carlo(case, post, solved, fitted, unknown, samples, seed, include_yaw,
                           post_impact_samples, executor, blocks, say)
@@ -388,6 +398,56 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
     crush = crush_outputs(solved, fitted) if determined else ()
     return Reconstruction(solved, unknown, post, fitted, values, momentum, mc, determined,
                           messages, crush)
+
+
+#: Samples of the pilot that times a Monte Carlo with run-out evidence, after a warm-up of
+#: 10 (which compiles the run-out kernels); its random stream is its own (PILOT_SEED), so
+#: the run's samples are those of a run without it.
+PILOT_SAMPLES = 50
+PILOT_SEED = 20_260_228
+#: Fewest Monte Carlo samples whose time is estimated (below, the pilot would cost a
+#: sizeable share of the run).
+TIMED_SAMPLES = 1000
+
+
+def monte_carlo_seconds(case: Case, post: PostImpact, solved: Case, fitted: FitResult,
+                        unknown: dict, samples: int, include_yaw: bool = True) -> float:
+    """Estimated wall time [s] of :func:`reconstruct`'s Monte Carlo of ``samples`` samples
+    in this process with run-out evidence (every sample refits the run-outs): a pilot of
+    :data:`PILOT_SAMPLES` samples timed and scaled (its fixed costs included: an upper
+    estimate)."""
+    sampler, extra = evidence_sampler(case, post, include_yaw), evidence_nominal(case, post)
+    rng = np.random.default_rng(PILOT_SEED)
+
+    def run(n: int) -> float:
+        start = time.perf_counter()
+        solve_samples(solved, fitted, unknown, n, rng, include_yaw=include_yaw,
+                      post_impact=sampler, extra_nominal=extra)
+        return time.perf_counter() - start
+
+    run(10)
+    return run(PILOT_SAMPLES) * samples / PILOT_SAMPLES
+
+
+def _time_monte_carlo(estimate, case, post, fitted, unknown, samples, include_yaw,
+                      post_impact_samples) -> None:
+    """``estimate(seconds)`` of a Monte Carlo of ``samples`` that refits the run-outs (from
+    :data:`TIMED_SAMPLES` samples up; nothing to time otherwise)."""
+    if estimate is not None and post is not None and post_impact_samples is None \
+            and samples >= TIMED_SAMPLES:
+        estimate(monte_carlo_seconds(case, post, post.case, fitted, unknown, samples,
+                                     include_yaw))
+
+
+def _check_arguments(case, executor) -> None:
+    """``case`` is a Case (:func:`checked_case`); ``executor`` None, an Executor (anything
+    with ``map``) or a Dask client (``get_executor``)."""
+    checked_case(case)
+    if executor is None or hasattr(executor, "map") or hasattr(executor, "get_executor"):
+        return
+    got = repr(executor) if isinstance(executor, str) else f"a {type(executor).__name__}"
+    raise ArgumentTypeError(f"executor must be None (this process), a "
+                            f"concurrent.futures.Executor or a dask.distributed.Client, got {got}")
 
 
 def _post_impact(case: Case, say) -> tuple[PostImpact | None, Case]:

@@ -17,17 +17,20 @@ numbers, as :mod:`pim.analysis.montecarlo`):
 Then every sample's inverse PIM is solved at once
 (:func:`pim.analysis.inverse_pim.inverse_pim_many`)
 from the nominal solution. The percentiles are over the samples whose fit converged (and whose
-run-outs reached their evidence); the first-order indices (correlation ratio,
+run-outs reached their evidence) to an admissible impact under the case's law
+(:func:`admissible_samples`; the others are counted, with their reasons, in the messages);
+the first-order indices (correlation ratio,
 :func:`pim.analysis.montecarlo.first_order_indices`) over the same samples rank the inputs.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ..model.crush import crush_energy
+from ..model.law import solve as solve_under_law
 from ..model.distributions import Distribution, UncertaintyTable, nominal_values, sample_inputs
 from ..model.evidence_terms import (
     DELTA_V_SCALE,
@@ -36,15 +39,16 @@ from ..model.evidence_terms import (
     as_residual_terms,
     split_terms,
 )
-from ..model.numbers import InputError, checked_count
+from ..model.numbers import InputError, checked_count, speed_text
 from .fitting import FitResult
-from .free_inputs import STATE, fields_set_by, friction_floor, law_values
+from .free_inputs import STATE, fields_set_by, free_inputs, friction_floor, law_values
 from .inverse_pim import inverse_pim_many
-from .montecarlo import PERCENTILES, first_order_indices
+from .montecarlo import PERCENTILES, first_order_indices, sampled_case
 from .residuals import measured_terms, residual_terms
 
 __all__ = ["UnknownStats", "ReconstructionSamples", "reconstruction_samples",
-           "residual_standard_error", "SampleBlock", "solve_samples", "summarise"]
+           "residual_standard_error", "SampleBlock", "solve_samples", "summarise",
+           "admissible_samples"]
 
 
 @dataclass(frozen=True)
@@ -177,8 +181,8 @@ class SampleBlock:
         each unknown's own unit, m/s, m, rad or -]; an unreached ``impact.mu_c`` is
         replaced by its lower bound.
     ok : ndarray of bool (n,)
-        The samples used (fit converged, finite, and with a post-impact model, its run-out
-        reaching the evidence).
+        The samples used (fit converged, finite, an admissible impact under the case's law,
+        and with a post-impact model, its run-out reaching the evidence).
     uniforms : dict of str to ndarray (n,)
         Varying quantity -> the uniform variate in (0, 1) it was drawn from [-].
     source : str
@@ -188,6 +192,11 @@ class SampleBlock:
         Notes on the sampling, in words.
     floored : ndarray of bool (n,) or None
         The samples whose ``impact.mu_c`` is only a lower bound (None: none).
+    inadmissible : dict of str to int
+        Why solved samples were left out as inadmissible impacts: reason
+        (:meth:`pim.Result.problem_counts`) -> how many (a sample may fail several).
+    n_inadmissible : int
+        How many solved samples were left out as inadmissible impacts.
     """
 
     x: np.ndarray
@@ -196,6 +205,8 @@ class SampleBlock:
     source: str
     messages: list
     floored: np.ndarray | None = None
+    inadmissible: dict = field(default_factory=dict)
+    n_inadmissible: int = 0
 
 
 def solve_samples(case, fit_result: FitResult, unknown: dict, n: int, rng, *,
@@ -242,7 +253,44 @@ def solve_samples(case, fit_result: FitResult, unknown: dict, n: int, rng, *,
     out = inverse_pim_many(base, keys, bounds, x0, rows, targets, factor, evidence=evidence)
     ok = out.converged & ok_post & np.all(np.isfinite(out.x), axis=1)
     x, floored = friction_floor(base, keys, out.x)     # an unreached mu_c: its lower bound
-    return SampleBlock(x, ok, uniforms, source, messages, floored)
+    solved = np.flatnonzero(ok)
+    admissible, counts = admissible_samples(case, free_inputs(base[solved], keys, x[solved])[0],
+                                            fit_result.law)
+    ok[solved[~admissible]] = False
+    return SampleBlock(x, ok, uniforms, source, messages, floored,
+                       {text: bad for text, bad, _ in counts}, int(np.size(admissible)
+                                                                   - np.count_nonzero(admissible)))
+
+
+def admissible_samples(case, state, law: str) -> tuple[np.ndarray, list]:
+    """Whether each solved sample is an admissible impact under ``law``, and why not.
+
+    Parameters
+    ----------
+    case : Case
+        The case sampled (its outlines, and which vehicle is a fixed obstacle).
+    state : ndarray (m, 23)
+        The samples' full states (:data:`pim.analysis.free_inputs.STATE`) with the solved
+        unknowns put in [SI].
+    law : str
+        The impact law the inverse PIM applied.
+
+    Returns
+    -------
+    admissible : ndarray of bool (m,)
+        :attr:`pim.Result.admissible` of each sample's answer.
+    counts : list of (str, int, int)
+        :meth:`pim.Result.problem_counts` of the samples.
+    """
+    state = np.asarray(state, dtype=float)
+    if not len(state):
+        return np.ones(0, bool), []
+    v = {name: state[:, k] for k, name in enumerate(STATE)}
+    beta = None if law == "kudlich-slibar" else v["impact.beta"]
+    friction = None if law == "brach" else v["impact.contact_friction"]
+    result = solve_under_law(sampled_case(case, v), v["impact.restitution"], beta, law=law,
+                             mu_c=friction)
+    return np.broadcast_to(result.admissible, (len(state),)), result.problem_counts()
 
 
 def _draw_measured(case, names, fit_result, target, rng, uniforms, n, messages):
@@ -263,8 +311,9 @@ def _draw_measured(case, names, fit_result, target, rng, uniforms, n, messages):
         targets[:, j] = target[j] + sigma[j] * ndtri(u)
     if source != "stated":
         messages.append(f"measured: no standard deviations stated; the residual standard "
-                        f"error of the nominal fit ({residual_standard_error(fit_result):.3g}"
-                        f" m/s) stands for them")
+                        f"error of the nominal fit "
+                        f"({speed_text(residual_standard_error(fit_result), '.3g')}) stands "
+                        f"for them")
     return targets, source
 
 
@@ -339,9 +388,18 @@ def summarise(fit_result: FitResult, blocks) -> ReconstructionSamples:
     messages = list(dict.fromkeys(m for b in blocks for m in b.messages))
     n = len(ok)
     n_used = int(ok.sum())
-    if n_used < n:
-        messages.append(f"{n - n_used} of {n} samples left out (fit not converged or no "
+    bad = sum(b.n_inadmissible for b in blocks)
+    if n_used + bad < n:
+        messages.append(f"{n - n_used - bad} of {n} samples left out (fit not converged or no "
                         f"post-impact motion reaching the evidence)")
+    if bad:
+        reasons = {}
+        for b in blocks:
+            for text, count in b.inadmissible.items():
+                reasons[text] = reasons.get(text, 0) + count
+        messages.append(f"{bad} of {n} samples ({100 * bad / n:.3g} %) are inadmissible "
+                        f"impacts, left out of the percentiles and the drivers: " + "; ".join(
+                            f"{text} ({count})" for text, count in reasons.items()))
     floored = np.concatenate([np.zeros(len(b.ok), bool) if b.floored is None else b.floored
                               for b in blocks])[ok]
     if floored.any():

@@ -25,7 +25,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..model.numbers import InputError, real_array
+from ..model.numbers import InputError, real_array, speed_text
 from ..model.pdof import wrap_angle
 from ..model.runout import MAX_TIME, Runout, RunoutVehicle, runout
 
@@ -287,9 +287,9 @@ def _messages(problem: _Problem, run: Runout, reachable: bool, miss: float,
         messages.append(
             f"the rest state ({rest[0]:.3f} m, {rest[1]:.3f} m, heading "
             f"{np.degrees(rest_heading):.2f} deg) is not reached by any post-impact motion "
-            f"with speed in [{lo_v:g}, {hi_v:g}] m/s and yaw rate in [{lo_w:g}, {hi_w:g}] "
-            f"rad/s; the closest reachable rest is ({run.rest_position[0]:.3f} m, "
-            f"{run.rest_position[1]:.3f} m, heading "
+            f"with speed from {speed_text(lo_v, 'g')} to {speed_text(hi_v, 'g')} and yaw rate "
+            f"in [{lo_w:g}, {hi_w:g}] rad/s; the closest reachable rest is "
+            f"({run.rest_position[0]:.3f} m, {run.rest_position[1]:.3f} m, heading "
             f"{np.degrees(wrap_angle(run.rest_heading)):.2f} deg), "
             f"missing by {miss:.3f} m and {np.degrees(heading_miss):.2f} deg")
     if not run.stopped:

@@ -14,12 +14,12 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..model.case import Case
+from ..model.case import Case, checked_case
 from ..model.dual import MOTION_OUTPUTS, motion_jacobian
 from ..model.evidence_terms import as_residual_terms, split_terms
 from ..model.geometry import radius_of_gyration
 from ..model.motion import Term
-from ..model.numbers import InputError, check_numbers
+from ..model.numbers import InputError, check_numbers, check_type
 from ..model.quantities import INPUTS as QUANTITY_INPUTS
 from ..model.quantities import MEASURED, OUTPUTS, Quantity
 from ..model.solver import defaults, solve
@@ -296,7 +296,10 @@ def sensitivity(case: Case, fit_result=None, *, eps=None, beta=None, uncertainty
     on an active bound stays there (derivative 0); a fixed parameter does not move. For the
     measured values dr_i/dy_i = -1 (or -k_i for yaw), so dg/dy_i = -2 J_i exactly.
     """
+    checked_case(case)
     check_numbers(eps=eps, beta=beta)
+    check_type(uncertainty, "uncertainty", TypicalUncertainty,
+               "a pim.analysis.sensitivity.TypicalUncertainty", none=True)
     if np.size(case.vehicle1.mass) != 1 or np.shape(case.impact.point) != (2,):
         raise InputError("sensitivity needs a single case, not a batch of cases")
     unc = TypicalUncertainty() if uncertainty is None else uncertainty

@@ -37,7 +37,7 @@ __all__ = ["PLACEHOLDER_MASS", "SPEED_TOLERANCE", "YAW_TOLERANCE", "K_BOUNDS", "
            "reproduce_barrier", "BarrierRefit", "refit_barrier", "PHI_RANGE",
            "class_radius_of_gyration", "summary_errors", "CoefficientStats", "CRASH_CLASSES",
            "ricsac_case", "RicsacRefit", "refit_ricsac", "coefficient_stats",
-           "ricsac_published_errors"]
+           "ricsac_published_errors", "nhtsa_case", "nhtsa_motion"]
 
 PLACEHOLDER_MASS = 1500.0             # kg; a barrier impact depends on k, not m
 SPEED_TOLERANCE = 0.44704             # m/s = 1 mph: reproduction tolerance of a delta-V
@@ -288,6 +288,44 @@ def ricsac_case(test) -> Case:
     return Case(*vehicles, Impact(point=(0.0, 0.0), normal_angle=test.normal_angle),
                 measured=measured, name=f"ricsac{test.number}",
                 description=f"RICSAC {test.number} (crush-edge geometry, see ricsac_case)")
+
+
+def nhtsa_case(test) -> Case:
+    """A :class:`pim.Case` of one NHTSA car-to-car test of Rose et al. [SI].
+
+    C at the origin, each CG at ``d`` back along the ray at ``heading + phi``
+    (:class:`pim.io.datasets.NhtsaCarToCarTest`), velocities along the headings, no pre-impact
+    yaw, the normal at the tabulated angle. The tabulated outcome (delta-V and yaw-rate change
+    magnitudes, the authors' PIM output) is not a post-impact velocity, so ``measured`` is
+    None: :func:`nhtsa_motion` gives the same quantities from a result.
+    """
+    vehicles = []
+    for i in (1, 2):
+        h, phi, d = (getattr(test, f"{k}{i}") for k in ("heading", "phi", "d"))
+        arm = np.array([np.cos(h + phi), np.sin(h + phi)])
+        vehicles.append(Vehicle(mass=getattr(test, f"mass{i}"),
+                                yaw_inertia=getattr(test, f"yaw_inertia{i}"), cg=-d * arm,
+                                velocity=getattr(test, f"speed{i}") * np.array([np.cos(h),
+                                                                               np.sin(h)]),
+                                heading=h))
+    return Case(*vehicles, Impact(point=(0.0, 0.0), normal_angle=test.normal_angle,
+                                  restitution=test.restitution, beta=test.beta),
+                name=f"nhtsa{test.test}",
+                description=f"NHTSA {test.test}, {test.vehicle1} and {test.vehicle2} "
+                            f"(Rose et al. 2006)")
+
+
+def nhtsa_motion(case, velocity1, yaw_rate1, velocity2, yaw_rate2) -> np.ndarray:
+    """(|dV1|, |dw1|, |dV2|, |dw2|) [m/s, rad/s, m/s, rad/s], the quantities the NHTSA
+    car-to-car table gives, from post-impact velocities [m/s] and yaw rates [rad/s]
+    (arrays broadcast; the last axis of the output holds the four)."""
+    out = []
+    for v, w, veh in ((velocity1, yaw_rate1, case.vehicle1), (velocity2, yaw_rate2,
+                                                              case.vehicle2)):
+        dv = np.asarray(v, float) - np.asarray(veh.velocity, float)
+        out += [np.hypot(dv[..., 0], dv[..., 1]),
+                np.abs(np.asarray(w, float) - np.asarray(veh.yaw_rate, float))]
+    return np.stack(np.broadcast_arrays(*out), axis=-1)
 
 
 @dataclass(frozen=True)

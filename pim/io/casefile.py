@@ -10,13 +10,16 @@ Unknown keys are errors, so a typo is never silently ignored; every error is a
     description = "..."
     [vehicle1]                      # and [vehicle2]
     mass = "..."                    # or weight = "... lbf" (divided by standard gravity)
-    yaw_inertia = "..."             # or radius_of_gyration = "... ft"
+    yaw_inertia = "..."             # or radius_of_gyration = "... ft"; or neither, with
+    wheelbase = "2.7 m"             #   wheelbase (and optionally cg_to_front_axle = "1.2 m",
+    body = "car"                    #   body = "car" / "suv" / "pickup" / "van"): estimated
     cg = ["4.774 ft", "0.502 ft"]
     heading = "180 deg"
     velocity = ["-31.09 ft/s", 0]
     yaw_rate = "0 deg/s"
     length = "4.1 m"                # optional, with width: outline for drawing
     cg_to_front = "1.9 m"           # optional: CG to front bumper (default length / 2)
+    reversing = true                # optional: it moves backwards (silences that warning)
     [impact]
     point = [0, 0]
     normal_angle = "0 deg"          # Gamma: n points from vehicle 2 toward vehicle 1
@@ -29,6 +32,18 @@ Unknown keys are errors, so a typo is never silently ignored; every error is a
     [measured]                      # optional
     vehicle1.velocity = ["-5.1 ft/s", "17.6 ft/s"]
     vehicle1.yaw_rate = "-180 deg/s"
+    [units]                         # optional: the units results are presented in
+    system = "us"                   # "si" or "us" (default: the units the file is written in)
+    speed = "mph"                   # "km/h", "mph", "m/s" or "ft/s" (default: km/h for si,
+                                    # mph for us)
+
+A vehicle without ``yaw_inertia`` and ``radius_of_gyration`` gets its yaw inertia estimated
+from its mass and wheelbase by the yaw dynamic index of its body class (NHTSA's measured
+vehicles, :mod:`pim.model.inertia`; docs/inertia-estimate.md): the case records the estimate
+(``Case.estimates``), the Monte Carlo draws it with its scatter unless ``[uncertainty]`` gives
+``vehicleN.yaw_inertia`` a distribution, and loading the file writes one line on stderr
+naming the vehicle, the value and the method. The wheelbase and CG-to-front-axle distance
+may come from ``[evidence.vehicleN]`` instead (they must agree where both give them).
 
 ``fixed = true`` in ``[vehicle2]`` makes it a barrier or pole (no mass, inertia, velocity;
 ``cg`` defaults to the impact point and ``heading`` to 0, as neither changes the answer).
@@ -36,13 +51,15 @@ Unknown keys are errors, so a typo is never silently ignored; every error is a
 Every quantity must lie within :data:`pim.io.units.LIMITS` (e.g. lengths within 1e5 m,
 speeds within 1e4 m/s, masses between 1 g and 1e9 kg). The case records the unit system its
 file is written in (``Case.units``: "us" when any quantity uses ft, lbf, mph, slug ...), which
-the commands print in unless ``--units`` says otherwise.
+the commands print in unless ``[units] system`` or ``--units`` says otherwise, and the speed
+unit of ``[units] speed`` (``Case.speed_unit``; ``--speed-unit`` overrides it).
 ``convention = "brach"`` replaces each vehicle's ``cg`` and ``heading`` by Brach's ``theta``,
 ``phi`` and ``d`` (see :mod:`pim.io.brach`), with C at ``impact.point`` (default the origin).
 """
 
 from __future__ import annotations
 
+import logging
 import tomllib
 from importlib import resources
 from pathlib import Path
@@ -50,22 +67,29 @@ from pathlib import Path
 import numpy as np
 
 from ..model.case import Case, Impact, Vehicle
+from ..model.distributions import Distribution, UncertaintyTable
 from ..model.numbers import InputError
 from ..model.plausibility import bare_angle_warning
 from .brach import cg_from_brach, heading_from_theta
-from .evidence_table import parse_evidence, parse_unknown
+from .evidence_table import AXLE_KEY, OLD_AXLE_KEY, parse_evidence, parse_unknown
+from .inertia_data import estimate_notes, estimate_yaw_inertia
 from .measured_table import parse_measured
 from .toml_tables import check_keys
 from .tyre_table import attach_tyres
 from .uncertainty_table import parse_uncertainty
-from .units import LIMITS, parse, registry, unit_system_of
+from .units import LIMITS, SPEED_UNITS, UNIT_SYSTEMS, parse, registry, unit_system_of
 
 __all__ = ["load_case", "list_cases", "parse_case"]
 
 _TOP = {"name", "description", "source", "convention", "vehicle1", "vehicle2", "impact",
-        "measured", "uncertainty", "evidence", "unknown", "tyres", "driver"}
+        "measured", "uncertainty", "evidence", "unknown", "tyres", "driver", "units"}
 _VEHICLE = {"mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
-            "length", "width", "cg_to_front", "fixed", "cg", "heading", "theta", "phi", "d"}
+            "length", "width", "cg_to_front", "fixed", "cg", "heading", "theta", "phi", "d",
+            "wheelbase", "cg_to_front_axle", "body", "reversing"}
+#: Keys of a moving vehicle that a fixed obstacle must not have.
+_MOVING = ("mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
+           "wheelbase", "cg_to_front_axle", "body", "reversing")
+_LOG = logging.getLogger(__name__)
 
 #: Deepest nesting of tables and lists a case file may have: the deepest legitimate value,
 #: ``[measured] vehicle1.velocity = [..]``, sits at depth 4.
@@ -76,9 +100,13 @@ _IMPACT = {"point", "normal_angle", "contact_plane_angle", "restitution", "beta"
            "contact_friction"}
 
 
-def _require(table: dict, key: str, where: str):
+def _require(table: dict, key: str, where: str, *, file: bool = False):
+    """``table[key]``, or an InputError naming what is missing: ``vehicle1.cg is missing``
+    inside a table; ``FILE: [impact] is missing`` for a table of the file (``file=True``:
+    ``where`` is then the file's name, never glued to the key)."""
     if key not in table:
-        raise InputError(f"{where}.{key} is missing")
+        raise InputError(f"{where}: table [{key}] is missing" if file
+                         else f"{where}.{key} is missing")
     return table[key]
 
 
@@ -99,16 +127,46 @@ def _optional(table: dict, key: str, kind: str, where: str):
     return parse(table[key], kind, f"{where}.{key}") if key in table else None
 
 
-def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int) -> Vehicle:
+def _length(table: dict, key: str, where: str, what: str, strict: bool = True):
+    """A length of a vehicle table [m] (None when absent), checked to be > 0 (``strict``) or
+    >= 0 here, where the value as written (its unit the case's) can be quoted."""
+    if key not in table:
+        return None
+    value = parse(table[key], "length", f"{where}.{key}")
+    if value < 0 or (strict and value == 0):
+        raise InputError(f"{where}.{key} = {table[key]!r} must be {'>' if strict else '>='} 0 "
+                         f"({what})")
+    return value
+
+
+def _cg_to_front(table: dict, length, where: str):
+    """``cg_to_front`` [m] (None when absent), inside the outline: in [0, length]."""
+    if "cg_to_front" not in table:
+        return None
+    value = parse(table["cg_to_front"], "length", f"{where}.cg_to_front")
+    if length is None:
+        raise InputError(f"{where}.cg_to_front needs {where}.length (the outline it places "
+                         f"the CG in)")
+    if not 0 <= value <= length:
+        raise InputError(f"{where}.cg_to_front = {table['cg_to_front']!r} must lie in the "
+                         f"outline: between 0 and {where}.length = {table['length']!r}")
+    return value
+
+
+def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int,
+             evidence=None) -> tuple[Vehicle, object]:
+    """The vehicle of ``[vehicleN]`` and the estimate of its yaw inertia (None when given);
+    ``evidence`` is its raw ``[evidence.vehicleN]`` table, if any (wheelbase, axle)."""
     table = check_keys(table, _VEHICLE, where)
     placement = {"global": ("cg", "heading"), "brach": ("theta", "phi", "d")}[convention]
     stray = sorted(set(table) & ({"cg", "heading", "theta", "phi", "d"} - set(placement)))
     if stray:
         raise InputError(f"{where}: key {stray[0]!r} does not belong to the {convention!r} "
                          f"convention (use {', '.join(placement)})")
-    fixed = table.get("fixed", False)
-    if not isinstance(fixed, bool):
-        raise InputError(f"{where}.fixed must be true or false")
+    fixed, reversing = table.get("fixed", False), table.get("reversing", False)
+    for key, value in (("fixed", fixed), ("reversing", reversing)):
+        if not isinstance(value, bool):
+            raise InputError(f"{where}.{key} must be true or false, got {value!r}")
     if convention == "global" and fixed:
         cg = _pair(table["cg"], "length", f"{where}.cg") if "cg" in table else point
         heading = parse(table.get("heading", 0.0), "angle", f"{where}.heading")
@@ -118,48 +176,94 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int)
     else:
         theta = parse(_require(table, "theta", where), "angle", f"{where}.theta")
         phi = parse(_require(table, "phi", where), "angle", f"{where}.phi")
-        d = parse(_require(table, "d", where), "length", f"{where}.d")
+        _require(table, "d", where)
+        d = _length(table, "d", where, "the distance from the CG to C", strict=False)
         cg = cg_from_brach(theta, phi, d, number, point)
         heading = float(heading_from_theta(theta, number))
-    length = _optional(table, "length", "length", where)
-    width = _optional(table, "width", "length", where)
-    cg_to_front = _optional(table, "cg_to_front", "length", where)
+    length = _length(table, "length", where, "the outline's length")
+    width = _length(table, "width", where, "the outline's width")
+    cg_to_front = _cg_to_front(table, length, where)
 
+    outline = {"length": length, "width": width, "cg_to_front": cg_to_front}
     if fixed:
         if number == 1:
             raise InputError(f"{where}.fixed: only vehicle2 may be a fixed obstacle")
-        extra = sorted(set(table) & {"mass", "weight", "yaw_inertia", "radius_of_gyration",
-                                     "velocity", "yaw_rate"})
+        extra = sorted(set(table) & set(_MOVING))
         if extra:
             raise InputError(f"{where}.{extra[0]}: a fixed obstacle has no {extra[0]}")
-        return _wrap(where, Vehicle.obstacle, cg=cg, heading=heading, length=length, width=width,
-                     cg_to_front=cg_to_front)
-
-    if _one_of(table, "mass", "weight", where) == "mass":
-        mass = parse(table["mass"], "mass", f"{where}.mass")
-    else:
-        weight = parse(table["weight"], "force", f"{where}.weight")
-        if weight <= 0:
-            raise InputError(f"{where}.weight must be > 0, got {table['weight']!r}")
-        mass = weight / registry().Quantity(1, "standard_gravity").to("m/s**2").magnitude
-    if _one_of(table, "yaw_inertia", "radius_of_gyration", where) == "yaw_inertia":
-        inertia = parse(table["yaw_inertia"], "inertia", f"{where}.yaw_inertia")
-    else:
-        k = parse(table["radius_of_gyration"], "length", f"{where}.radius_of_gyration")
-        if k <= 0:
-            raise InputError(f"{where}.radius_of_gyration must be > 0, "
-                             f"got {table['radius_of_gyration']!r}")
-        inertia = mass * k * k
-        low, high = LIMITS["inertia"]
-        if mass > 0 and not low <= inertia <= high:
-            raise InputError(f"{where}.radius_of_gyration = {table['radius_of_gyration']!r} "
-                             f"gives a yaw inertia m k^2 = {inertia:.3g} kg m^2 outside "
-                             f"[{low:g}, {high:g}] kg m^2")
+        return _wrap(where, Vehicle.obstacle, cg=cg, heading=heading, **outline), None
+    mass = _mass(table, where)
+    inertia, estimate = _inertia(table, mass, where, evidence)
     velocity = _pair(_require(table, "velocity", where), "velocity", f"{where}.velocity")
     yaw_rate = parse(table.get("yaw_rate", 0.0), "angular_velocity", f"{where}.yaw_rate")
     return _wrap(where, Vehicle, mass=mass, yaw_inertia=inertia, cg=cg, velocity=velocity,
-                 yaw_rate=yaw_rate, heading=heading, length=length, width=width,
-                 cg_to_front=cg_to_front)
+                 yaw_rate=yaw_rate, heading=heading, reversing=reversing, **outline), estimate
+
+
+def _mass(table, where: str) -> float:
+    """``mass``, or ``weight`` divided by standard gravity [kg]."""
+    if _one_of(table, "mass", "weight", where) == "mass":
+        return parse(table["mass"], "mass", f"{where}.mass")
+    weight = parse(table["weight"], "force", f"{where}.weight")
+    if weight <= 0:
+        raise InputError(f"{where}.weight must be > 0, got {table['weight']!r}")
+    return weight / registry().Quantity(1, "standard_gravity").to("m/s**2").magnitude
+
+
+def _inertia(table, mass: float, where: str, evidence) -> tuple[float, object]:
+    """The yaw inertia [kg m^2] (given, from the radius of gyration, or estimated from the
+    mass and wheelbase) and its :class:`pim.model.inertia.InputEstimate` (None unless
+    estimated)."""
+    given = [k for k in ("yaw_inertia", "radius_of_gyration") if k in table]
+    if len(given) > 1:
+        raise InputError(f"{where}: give exactly one of 'yaw_inertia' or 'radius_of_gyration'")
+    if not given:
+        return _estimated_inertia(table, mass, where, evidence)
+    if given[0] == "yaw_inertia":
+        return parse(table["yaw_inertia"], "inertia", f"{where}.yaw_inertia"), None
+    k = parse(table["radius_of_gyration"], "length", f"{where}.radius_of_gyration")
+    if k <= 0:
+        raise InputError(f"{where}.radius_of_gyration must be > 0, "
+                         f"got {table['radius_of_gyration']!r}")
+    inertia = mass * k * k
+    low, high = LIMITS["inertia"]
+    if mass > 0 and not low <= inertia <= high:
+        raise InputError(f"{where}.radius_of_gyration = {table['radius_of_gyration']!r} "
+                         f"gives a yaw inertia m k^2 = {inertia:.3g} kg m^2 outside "
+                         f"[{low:g}, {high:g}] kg m^2")
+    return inertia, None
+
+
+def _estimated_inertia(table, mass: float, where: str, evidence) -> tuple[float, object]:
+    """The yaw dynamic index's estimate (:func:`pim.io.inertia_data.estimate_yaw_inertia`)
+    from the wheelbase and CG-to-front-axle distance of ``[vehicleN]`` or
+    ``[evidence.vehicleN]``; an error naming what is missing when there is no wheelbase."""
+    wheelbase = _dimension(table, evidence, ("wheelbase",), where)
+    if wheelbase is None:
+        raise InputError(f"{where}: no yaw_inertia (or radius_of_gyration) given, and no "
+                         f"wheelbase to estimate it from: give {where}.yaw_inertia, or "
+                         f"{where}.wheelbase (with cg_to_front_axle and body, optional) for "
+                         f"an estimate by the yaw dynamic index of NHTSA's measured vehicles")
+    axle = _dimension(table, evidence, (AXLE_KEY, OLD_AXLE_KEY), where)
+    body = table.get("body", "car")
+    estimate = estimate_yaw_inertia(mass, wheelbase, axle, body, where)
+    return estimate.value, estimate
+
+
+def _dimension(table, evidence, keys: tuple, where: str) -> float | None:
+    """A length [m] given in ``[vehicleN]`` (``keys[0]``) and/or ``[evidence.vehicleN]``
+    (any of ``keys``, the axle's old name included); an error when the two disagree."""
+    mine = _optional(table, keys[0], "length", where)
+    theirs, key = None, keys[0]
+    if isinstance(evidence, dict):
+        for key in (k for k in keys if k in evidence):
+            theirs = parse(evidence[key], "length", f"evidence.{where}.{key}")
+            break
+    if mine is not None and theirs is not None and not np.isclose(mine, theirs, rtol=1e-9):
+        raise InputError(f"{where}.{keys[0]} = {table[keys[0]]!r} differs from "
+                         f"evidence.{where}.{key} = {evidence[key]!r}: give it once, or the "
+                         f"same length in both")
+    return mine if mine is not None else theirs
 
 
 def _wrap(where: str, factory, **kwargs):
@@ -189,7 +293,7 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
     convention = data.get("convention", "global")
     if convention not in ("global", "brach"):
         raise InputError(f"convention must be 'global' or 'brach', got {convention!r}")
-    impact_table = check_keys(_require(data, "impact", source), _IMPACT, "impact")
+    impact_table = check_keys(_require(data, "impact", source, file=True), _IMPACT, "impact")
     if convention == "global" or "point" in impact_table:
         point = _pair(_require(impact_table, "point", "impact"), "length", "impact.point")
     else:
@@ -205,10 +309,11 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
     # the impact law and its contact friction (docs/impact-laws.md)
     law = impact_table.get("law")
     contact_friction = _optional(impact_table, "contact_friction", "dimensionless", "impact")
-    vehicles = [
-        _vehicle(_require(data, f"vehicle{i}", source), f"vehicle{i}", convention, point, i)
-        for i in (1, 2)
-    ]
+    evidence = data.get("evidence") if isinstance(data.get("evidence"), dict) else {}
+    vehicles, estimates = zip(*(
+        _vehicle(_require(data, f"vehicle{i}", source, file=True), f"vehicle{i}", convention, point, i,
+                 evidence.get(f"vehicle{i}")) for i in (1, 2)))
+    estimates = tuple(e for e in estimates if e is not None)
     if normal_angle is None:
         normal_angle = _plane_normal(impact_table["contact_plane_angle"], point,
                                      vehicles[0].cg)
@@ -222,14 +327,28 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
             raise InputError(f"{key} must be a string, got {value!r}")
         if len(value) > MAX_TEXT[key]:
             raise InputError(f"{key} has {len(value)} characters; at most {MAX_TEXT[key]}")
-    return Case(vehicle1=vehicles[0], vehicle2=vehicles[1], impact=impact,
+    case = Case(vehicle1=vehicles[0], vehicle2=vehicles[1], impact=impact,
                 measured=parse_measured(data.get("measured")), name=name, description=description,
-                uncertainty=_uncertainty(data.get("uncertainty")), units=_unit_system(data),
-                notes=_angle_notes(data),
+                uncertainty=_with_estimates(_uncertainty(data.get("uncertainty")), estimates),
+                notes=_angle_notes(data), **_presentation(data),
                 evidence=attach_tyres(parse_evidence(data.get("evidence"), {
                     i + 1: (v.length, v.width) for i, v in enumerate(vehicles)}),
                     data.get("tyres"), data.get("driver")),
-                unknown=parse_unknown(data.get("unknown")))
+                unknown=parse_unknown(data.get("unknown")), estimates=estimates)
+    for line in estimate_notes(case, case.units):
+        _LOG.warning(f"note: {source}: {line}")
+    return case
+
+
+def _with_estimates(table, estimates) -> UncertaintyTable | None:
+    """The ``[uncertainty]`` table with a normal distribution (sd: the estimate's) for each
+    estimated input it does not give one, so that the Monte Carlo draws the estimate's
+    scatter (None when there is neither)."""
+    extra = {e.name: Distribution("normal", None, e.sd) for e in estimates
+             if table is None or e.name not in table.inputs}
+    if not extra:
+        return table
+    return UncertaintyTable({**({} if table is None else table.inputs), **extra})
 
 
 def _plane_normal(value, point, cg1) -> float:
@@ -273,8 +392,25 @@ def _angle_notes(data) -> tuple[str, ...]:
     return tuple(notes)
 
 
+#: Keys of the ``[units]`` table: the units results are presented in.
+_UNITS = {"system": UNIT_SYSTEMS, "speed": SPEED_UNITS}
+
+
+def _presentation(data) -> dict:
+    """``units`` and ``speed_unit`` of the Case: the ``[units]`` table's choices, else the
+    system the file is written in and the system's field speed unit (None)."""
+    table = check_keys(data.get("units", {}), _UNITS, "units")
+    for key, allowed in _UNITS.items():
+        if key in table and table[key] not in allowed:
+            raise InputError(f"units.{key} must be one of "
+                             f"{', '.join(repr(a) for a in allowed)}, got {table[key]!r}")
+    return {"units": table.get("system") or _unit_system(data),
+            "speed_unit": table.get("speed")}
+
+
 def _unit_system(data) -> str:
     """"us" when any quantity string of the file uses a US customary unit, else "si"."""
+    data = {k: v for k, v in data.items() if k != "units"}
     stack, systems = [data], set()
     while stack:
         x = stack.pop()

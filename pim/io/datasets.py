@@ -13,6 +13,17 @@ papers are cited in docs/validation.md):
 * ``ricsac``: RICSAC staged collisions 1, 3-12 (test 2 has no pre/post data): masses, yaw
   inertias (estimated by class in the source), measured pre/post velocities and post yaw
   rates, Gamma, theta, phi, published delta-V analyses.
+* ``nhtsa-car-to-car``: four NHTSA vehicle-to-vehicle oblique frontal tests analysed by Rose,
+  Fenton & Beauchamp (SAE 2006-01-0908): weights, yaw inertias, speeds, headings, impact
+  centre and contact plane, their PIM inputs (cor, mu0, mu/mu0) and their PIM analysis's
+  delta-V and yaw-rate change of each vehicle (not the tests' measured motion).
+
+Every record carries ``origins``: each input or outcome field -> where its value comes from
+(:data:`MEASURED`, :data:`PUBLISHED_GEOMETRY`, :data:`FITTED_BY_PIM`, :data:`VEHICLE_DATA`,
+:data:`ESTIMATED`,
+:data:`ANALYSIS_INPUT`, :data:`PIM_OUTPUT`), so that a study can tell a measured input from
+one fitted with PIM to the same test's outcome (docs/validation.md, "Where each input comes
+from").
 
 A malformed or edited file raises ValueError naming the file, the row (line number) and
 the column.
@@ -22,14 +33,18 @@ from __future__ import annotations
 
 import csv
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 
 from ..model.numbers import InputError
 
-__all__ = ["BarrierTest", "CarToCarVehicle", "RicsacTest", "DATASETS", "load_barrier",
-           "load_car_to_car", "load_ricsac", "load_dataset", "data_path", "source_lines"]
+__all__ = ["BarrierTest", "CarToCarVehicle", "RicsacTest", "NhtsaCarToCarTest", "DATASETS",
+           "load_barrier", "load_car_to_car", "load_ricsac", "load_nhtsa_car_to_car",
+           "load_dataset", "data_path", "source_lines", "MEASURED", "PUBLISHED_GEOMETRY",
+           "FITTED_BY_PIM", "VEHICLE_DATA", "ESTIMATED", "ANALYSIS_INPUT", "PIM_OUTPUT",
+           "ORIGIN_KINDS",
+           "BARRIER_ORIGINS", "CAR_TO_CAR_ORIGINS", "RICSAC_ORIGINS", "NHTSA_ORIGINS"]
 
 FT = 0.3048                 # m per ft (exact)
 DEG = math.pi / 180.0       # rad per deg
@@ -37,6 +52,78 @@ DEG = math.pi / 180.0       # rad per deg
 BARRIER_FILE = "brach2014_iihs_small_overlap_vehicle_to_barrier.csv"
 CAR_TO_CAR_FILE = "brach2014_iihs_small_overlap_vehicle_to_vehicle.csv"
 RICSAC_FILE = "ricsac_1-12_compiled.csv"
+NHTSA_FILE = "rose2006_nhtsa_vehicle_to_vehicle.csv"
+LB = 0.45359237             # kg per lb (exact)
+SLUG_FT2 = 1.3558179483314004  # kg m^2 per lb ft s^2
+MPH = 0.44704               # m/s per mph (exact)
+
+#: Origin of a value: measured in the test.
+MEASURED = "measured"
+#: Geometry the source publishes (vehicle dimensions, impact point, contact plane), not
+#: fitted to the test's motion.
+PUBLISHED_GEOMETRY = "published geometry"
+#: Fitted with PIM by the source's authors to this same test's measured motion: an input
+#: taken from here carries the test's outcome.
+FITTED_BY_PIM = "fitted by PIM on this test"
+#: Vehicle data from a published table (weights, inertias), not weighed in the test.
+VEHICLE_DATA = "published vehicle data"
+#: Estimated by the source (e.g. mass x a class radius of gyration squared), not measured.
+ESTIMATED = "published estimate"
+#: An input of the source's own analysis (chosen by its authors, not measured).
+ANALYSIS_INPUT = "analysis input"
+#: The output of the source's PIM analysis, not a measurement.
+PIM_OUTPUT = "PIM analysis output"
+#: Every origin, with what it means.
+ORIGIN_KINDS = {
+    MEASURED: "measured in the test",
+    PUBLISHED_GEOMETRY: "published geometry, not fitted to the test's motion",
+    VEHICLE_DATA: "published vehicle data (weights, inertias), not weighed in the test",
+    FITTED_BY_PIM: "fitted with PIM by the source's authors to this test's measured motion",
+    ESTIMATED: "estimated by the source, not measured",
+    ANALYSIS_INPUT: "an input chosen for the source's own analysis",
+    PIM_OUTPUT: "the output of the source's PIM analysis, not a measurement",
+}
+#: Field -> origin of :class:`BarrierTest` (Brach et al. fitted e, mu and phi to the IIHS
+#: video-derived motion at the published d1 and Gamma).
+BARRIER_ORIGINS = {
+    "restitution": FITTED_BY_PIM, "beta": FITTED_BY_PIM, "d": PUBLISHED_GEOMETRY,
+    "phi": FITTED_BY_PIM, "normal_angle": PUBLISHED_GEOMETRY, "speed": MEASURED,
+    "delta_v_x": MEASURED, "delta_v": MEASURED, "delta_v_y": MEASURED, "yaw_rate": MEASURED,
+    "overlap_pct": MEASURED,
+}
+#: Field -> origin of :class:`CarToCarVehicle` (e, mu, Phi and Gamma fitted by the authors).
+CAR_TO_CAR_ORIGINS = {
+    "restitution": FITTED_BY_PIM, "beta": FITTED_BY_PIM, "phi": FITTED_BY_PIM,
+    "normal_angle": FITTED_BY_PIM, "speed": MEASURED, "delta_v": MEASURED,
+    "yaw_rate": MEASURED,
+}
+#: Field -> origin of :class:`RicsacTest` (the angles from Vossou & Koulocheris's Table 2,
+#: whose paper does not say how they were chosen; the inertias mass x a class k^2).
+RICSAC_ORIGINS = {
+    "mass1": MEASURED, "mass2": MEASURED, "yaw_inertia1": ESTIMATED,
+    "yaw_inertia2": ESTIMATED, "speed1_measured": MEASURED, "speed2_measured": MEASURED,
+    "normal_angle": PUBLISHED_GEOMETRY, "theta1": PUBLISHED_GEOMETRY,
+    "theta2": PUBLISHED_GEOMETRY, "phi1": PUBLISHED_GEOMETRY, "phi2": PUBLISHED_GEOMETRY,
+    "velocity1_pre": MEASURED, "velocity2_pre": MEASURED, "velocity1_post": MEASURED,
+    "velocity2_post": MEASURED, "yaw_rate1_post": MEASURED, "yaw_rate2_post": MEASURED,
+    "published_delta_v": PIM_OUTPUT,
+}
+#: Field -> origin of :class:`NhtsaCarToCarTest` (the CSV's second source line).
+NHTSA_ORIGINS = {
+    "mass1": VEHICLE_DATA, "mass2": VEHICLE_DATA,
+    "yaw_inertia1": VEHICLE_DATA, "yaw_inertia2": VEHICLE_DATA,
+    "speed1": MEASURED, "speed2": MEASURED, "heading1": PUBLISHED_GEOMETRY,
+    "heading2": PUBLISHED_GEOMETRY, "d1": PUBLISHED_GEOMETRY, "phi1": PUBLISHED_GEOMETRY,
+    "d2": PUBLISHED_GEOMETRY, "phi2": PUBLISHED_GEOMETRY, "normal_angle": PUBLISHED_GEOMETRY,
+    "restitution": ANALYSIS_INPUT, "mu0": ANALYSIS_INPUT, "beta": ANALYSIS_INPUT,
+    "delta_v1": PIM_OUTPUT, "delta_v2": PIM_OUTPUT, "yaw_change1": PIM_OUTPUT,
+    "yaw_change2": PIM_OUTPUT,
+}
+
+
+def _origins(table: dict):
+    """A dataclass field holding a copy of ``table`` (field -> origin)."""
+    return field(default_factory=lambda: dict(table), repr=False, compare=False)
 
 #: Crash classes of the IIHS groups.
 GROUPS = {"NS": "non-sideswipe", "SS": "sideswipe", "OUTLIER": "outlier (excluded by the authors)"}
@@ -91,6 +178,8 @@ class BarrierTest:
         Measured yaw-rate magnitude [rad/s].
     line : int
         Line of the row in the CSV (for error messages).
+    origins : dict of str to str
+        Field -> origin of its value (:data:`BARRIER_ORIGINS`).
     """
 
     test_id: str
@@ -111,6 +200,7 @@ class BarrierTest:
     delta_v_y: float
     yaw_rate: float
     line: int
+    origins: dict = _origins(BARRIER_ORIGINS)
 
 
 @dataclass(frozen=True)
@@ -143,6 +233,8 @@ class CarToCarVehicle:
         Measured yaw-rate magnitude [rad/s].
     line : int
         Line of the row in the CSV (for error messages).
+    origins : dict of str to str
+        Field -> origin of its value (:data:`CAR_TO_CAR_ORIGINS`).
     """
 
     test_id: str
@@ -157,6 +249,7 @@ class CarToCarVehicle:
     delta_v: float
     yaw_rate: float
     line: int
+    origins: dict = _origins(CAR_TO_CAR_ORIGINS)
 
 
 @dataclass(frozen=True)
@@ -196,6 +289,8 @@ class RicsacTest:
         Analysis name -> (dV1, dV2) [m/s] (an entry None where the source gives none).
     line : int
         Line of the row in the CSV (for error messages).
+    origins : dict of str to str
+        Field -> origin of its value (:data:`RICSAC_ORIGINS`).
     has_motion : bool
         True when measured pre- and post-impact motion is available (property).
     """
@@ -222,11 +317,85 @@ class RicsacTest:
     yaw_rate2_post: float | None
     published_delta_v: dict
     line: int
+    origins: dict = _origins(RICSAC_ORIGINS)
 
     @property
     def has_motion(self) -> bool:
         """True when measured pre- and post-impact motion is available."""
         return self.velocity1_post is not None
+
+
+@dataclass(frozen=True)
+class NhtsaCarToCarTest:
+    """One NHTSA vehicle-to-vehicle test as Rose, Fenton & Beauchamp analysed it (SAE
+    2006-01-0908) [SI].
+
+    Angles are counter-clockwise from +x as tabulated (vehicle 1 heads at 180 deg); the impact
+    centre lies at distance ``d`` from each CG, at ``phi`` from the vehicle's heading. The
+    delta-V and yaw-rate change are the authors' PIM analysis output, not the measured motion
+    (:data:`NHTSA_ORIGINS`).
+
+    Attributes
+    ----------
+    test : str
+        NHTSA test number (e.g. "4363").
+    vehicle1, vehicle2 : str
+        Model year, make and model.
+    mass1, mass2 : float
+        Masses [kg] (vehicle data).
+    yaw_inertia1, yaw_inertia2 : float
+        Yaw inertias [kg m^2] (vehicle data).
+    speed1, speed2 : float
+        Impact speeds [m/s].
+    heading1, heading2 : float
+        Headings [rad].
+    d1, d2 : float
+        Distance from each CG to the impact centre [m].
+    phi1, phi2 : float
+        Polar angle of the impact centre from each vehicle's heading [rad].
+    normal_angle : float
+        Angle of the contact plane's normal [rad].
+    restitution : float
+        The authors' coefficient of restitution [-] (from their restitution model).
+    mu0 : float
+        The critical impulse ratio they tabulate [-].
+    beta : float
+        Their impulse ratio as a fraction of mu0 [-].
+    delta_v1, delta_v2 : float
+        Delta-V magnitude of each vehicle [m/s] (their PIM output).
+    yaw_change1, yaw_change2 : float
+        Magnitude of each vehicle's yaw-rate change [rad/s] (their PIM output).
+    line : int
+        Line of the row in the CSV (for error messages).
+    origins : dict of str to str
+        Field -> origin of its value (:data:`NHTSA_ORIGINS`).
+    """
+
+    test: str
+    vehicle1: str
+    vehicle2: str
+    mass1: float
+    yaw_inertia1: float
+    mass2: float
+    yaw_inertia2: float
+    speed1: float
+    speed2: float
+    heading1: float
+    heading2: float
+    d1: float
+    phi1: float
+    d2: float
+    phi2: float
+    normal_angle: float
+    restitution: float
+    mu0: float
+    beta: float
+    delta_v1: float
+    delta_v2: float
+    yaw_change1: float
+    yaw_change2: float
+    line: int
+    origins: dict = _origins(NHTSA_ORIGINS)
 
 
 def data_path(name: str) -> Path:
@@ -448,9 +617,41 @@ def load_ricsac(path=None) -> list[RicsacTest]:
     return rows.unique(out, "number")
 
 
+_NHTSA_COLUMNS = ["nhtsa_test", "vehicle1", "vehicle2", "weight1_lb", "izz1_lbfts2",
+                  "weight2_lb", "izz2_lbfts2", "speed1_mph", "speed2_mph", "heading1_deg",
+                  "heading2_deg", "d1_ft", "phi1_deg", "d2_ft", "phi2_deg", "normal_deg", "cor",
+                  "critical_ir", "impulse_ratio", "dv1_mph", "dv2_mph", "domega1_dps",
+                  "domega2_dps"]
+
+
+def load_nhtsa_car_to_car(path=None) -> list[NhtsaCarToCarTest]:
+    """The NHTSA car-to-car tests of Rose, Fenton & Beauchamp (SAE 2006-01-0908), in SI."""
+    rows = _Rows(path or data_path(NHTSA_FILE), _NHTSA_COLUMNS)
+    out = []
+    for line, r in rows.rows:
+        n = rows.reader(line, r)
+        vehicles = {}
+        for i in (1, 2):
+            vehicles.update({
+                f"mass{i}": n(f"weight{i}_lb", 0, 1e5, True) * LB,
+                f"yaw_inertia{i}": n(f"izz{i}_lbfts2", 0, 1e6, True) * SLUG_FT2,
+                f"speed{i}": n(f"speed{i}_mph", 0, 200) * MPH,
+                f"heading{i}": n(f"heading{i}_deg", -360, 360) * DEG,
+                f"d{i}": n(f"d{i}_ft", 0, 30) * FT, f"phi{i}": n(f"phi{i}_deg", -360, 360) * DEG,
+                f"delta_v{i}": n(f"dv{i}_mph", 0, 200) * MPH,
+                f"yaw_change{i}": n(f"domega{i}_dps", 0, 3600) * DEG})
+        out.append(NhtsaCarToCarTest(
+            test=rows.text(line, r, "nhtsa_test"), vehicle1=rows.text(line, r, "vehicle1"),
+            vehicle2=rows.text(line, r, "vehicle2"),
+            normal_angle=n("normal_deg", -360, 360) * DEG, restitution=n("cor", 0, 1),
+            mu0=n("critical_ir", -10, 10), beta=n("impulse_ratio", 0, 1), line=line,
+            **vehicles))
+    return rows.unique(out, "test")
+
+
 #: Dataset name -> loader.
 DATASETS = {"iihs-barrier": load_barrier, "iihs-car-to-car": load_car_to_car,
-            "ricsac": load_ricsac}
+            "ricsac": load_ricsac, "nhtsa-car-to-car": load_nhtsa_car_to_car}
 
 
 def load_dataset(name: str, path=None):

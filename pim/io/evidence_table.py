@@ -41,7 +41,7 @@ import logging
 import numpy as np
 
 from ..model.evidence import UNKNOWN_KINDS, Evidence, VehicleEvidence
-from ..model.numbers import InputError
+from ..model.numbers import InputError, did_you_mean
 from .crush_table import parse_crush
 from .pre_impact_table import parse_pre_impact
 from .toml_tables import check_keys
@@ -204,8 +204,9 @@ def parse_unknown(table) -> dict[str, tuple[float, float]] | None:
         for key, spec in entries.items():
             name = f"{group}.{key}"
             if name not in UNKNOWN_KINDS:
-                raise InputError(f"unknown: {name!r} cannot be solved for "
-                                 f"(allowed: {', '.join(UNKNOWN_KINDS)})")
+                raise InputError(f"unknown: {name!r} cannot be solved for"
+                                 f"{did_you_mean(name, UNKNOWN_KINDS)} (allowed: "
+                                 f"{', '.join(UNKNOWN_KINDS)})")
             if not isinstance(spec, dict) or set(spec) != {"bounds"} or not isinstance(
                     spec["bounds"], list) or len(spec["bounds"]) != 2:
                 raise InputError(f"unknown.{name} must be {{bounds = [low, high]}}")

@@ -16,8 +16,18 @@ Every command that writes a folder (``pim compare``, ``assumptions``, ``validate
 Any error or interrupt before the swap (Ctrl-C, SIGTERM, a full disk, an encoder that fails)
 deletes the temporary folder and leaves the old run as it was. Nothing outside the folder and
 its own ``.NAME.pim-*`` siblings is ever deleted. Each run leaves a marker file
-(:data:`MARKER`) in its folder; an existing non-empty folder without one (the user's own files)
-is never replaced: that is an :class:`OutputError` too.
+(:data:`MARKER`) in its folder listing the files it wrote with their SHA-256; an existing
+non-empty folder without one (the user's own files) is never replaced: that is an
+:class:`OutputError` too.
+
+Nothing a user put into a folder pim wrote is deleted: a file the marker does not list
+(``notes.txt`` added after the run) is kept, linked into the new run before the swap, and
+named on stderr ("kept notes.txt (pim did not write it)"); a file pim wrote that was changed
+since (an edited ``report.md``) makes the rerun an :class:`OutputError` before any work,
+naming it; so does a kept file of the same name as one the new run writes (at the end, the
+old run left as it was). A folder written before the marker listed files (its marker without
+a list, or :data:`LEGACY_MARKERS`) cannot tell the user's files from its own: the files the
+new run does not write are kept and named, never deleted.
 
 A folder shared by design (``pim speed-error --out docs``, ``pim hard-cases --out docs``)
 is written with ``merge=True``: the same lock, temporary folder and cleanup, but at the end
@@ -35,9 +45,11 @@ import ctypes
 import ctypes.util
 import errno
 import fcntl
+import hashlib
 import os
 import shutil
 import signal
+import sys
 import tempfile
 import threading
 from collections.abc import Iterable, Iterator
@@ -159,8 +171,62 @@ def _sweep(path: Path) -> None:
                 shutil.rmtree(stale, ignore_errors=True)
 
 
+def _manifest(folder: Path) -> dict | None:
+    """The files the run in ``folder`` wrote, path -> SHA-256 (its :data:`MARKER`'s lines
+    ``<sha256>  <path>``); None for a folder whose marker lists none (written before it did)."""
+    try:
+        lines = (folder / MARKER).read_text(encoding="utf-8").splitlines()
+    except (OSError, UnicodeDecodeError):
+        return None
+    listed = {}
+    for line in lines:
+        digest, sep, name = line.partition("  ")
+        if sep and not line.startswith("#"):
+            listed[name] = digest
+    return listed or None
+
+
+def _sha256(path: Path) -> str:
+    digest = hashlib.sha256()
+    with open(path, "rb") as f:
+        for chunk in iter(lambda: f.read(1 << 20), b""):
+            digest.update(chunk)
+    return digest.hexdigest()
+
+
+def _entries(folder: Path) -> list[str]:
+    """Every file, symbolic link and empty folder below ``folder`` (relative POSIX paths; an
+    empty folder ends in "/"), the marker left out; symbolic links are not followed."""
+    out = []
+    for root, dirs, files in os.walk(folder):
+        here = Path(root)
+        out += [(here / name).relative_to(folder).as_posix()
+                for name in files + [d for d in dirs if (here / d).is_symlink()]]
+        if not dirs and not files and here != folder:
+            out.append(here.relative_to(folder).as_posix() + "/")
+    return sorted(e for e in out if e != MARKER)
+
+
+def _names(names: list[str], most: int = 5) -> str:
+    shown = ", ".join(names[:most])
+    return shown + (f" and {len(names) - most} more" if len(names) > most else "")
+
+
+def _check_unchanged(path: Path, option: str) -> None:
+    """An OutputError naming the files pim wrote into ``path`` that were changed since."""
+    changed = [name for name, digest in (_manifest(path) or {}).items()
+               if (path / name).is_file() and not (path / name).is_symlink()
+               and _sha256(path / name) != digest]
+    if changed:
+        them = "it" if len(changed) == 1 else "them"
+        raise OutputError(f"{option} {path}: {_names(changed)} changed since pim wrote {them}; "
+                          f"a rerun replaces what pim wrote: move or rename {them}, then run "
+                          f"again")
+
+
 def _check_replaceable(path: Path, option: str) -> None:
-    """An existing folder may be replaced only when it is empty or a pim run."""
+    """An existing folder may be replaced only when it is empty or a pim run, none of whose
+    files was changed since."""
     if not path.exists():
         return
     cwd = Path(os.path.realpath(os.getcwd()))
@@ -174,6 +240,58 @@ def _check_replaceable(path: Path, option: str) -> None:
         raise OutputError(f"{option} {path}: the folder holds files that pim did not write "
                           f"(no {MARKER} file); pim replaces its output folder whole, so "
                           "choose a new or empty folder")
+    _check_unchanged(path, option)
+
+
+def _keep(path: Path, tmp: Path, option: str) -> list[str]:
+    """Link what the user put into the old run ``path`` (what its manifest does not list)
+    into the finished run ``tmp``: hard links, else copies, so the old run stays whole until
+    the swap. Returns their names. One of the same name as a file the run wrote is an
+    OutputError (nothing lost: the old run is left as it was). Of a run whose marker lists
+    no files, what the new run writes replaces its namesake and the rest is kept."""
+    if not path.is_dir():
+        return []
+    listed = _manifest(path)
+    theirs = [e for e in _entries(path) if e not in (listed or {}) and e not in LEGACY_MARKERS]
+
+    def taken(entry: str) -> bool:
+        there = tmp / entry.rstrip("/")
+        return there.exists() and not (entry.endswith("/") and there.is_dir())
+
+    if listed is None:
+        theirs = [e for e in theirs if not taken(e)]
+    clash = [e for e in theirs if taken(e)]
+    if clash:
+        raise OutputError(f"{option} {path}: this run writes {_names(clash)}, which pim did "
+                          f"not write there before (a file of yours?); move or rename it, "
+                          f"then run again (the folder is left as it was)")
+    for entry in theirs:
+        _link(path / entry.rstrip("/"), tmp / entry.rstrip("/"), entry.endswith("/"))
+    return theirs
+
+
+def _link(src: Path, dst: Path, folder: bool) -> None:
+    """``src`` at ``dst``: a folder made, a symbolic link copied as one, a file hard-linked
+    (copied where links are not allowed)."""
+    dst.parent.mkdir(parents=True, exist_ok=True)
+    if folder:
+        dst.mkdir(exist_ok=True)
+    elif src.is_symlink():
+        os.symlink(os.readlink(src), dst)
+    else:
+        try:
+            os.link(src, dst)
+        except OSError:
+            shutil.copy2(src, dst)
+
+
+def _write_marker(tmp: Path, command: str) -> None:
+    """The marker: who wrote the folder, then ``<sha256>  <path>`` of each file it wrote."""
+    lines = [f"# written by {command}; the next pim run into this folder replaces the files "
+             f"listed below and keeps any other"]
+    lines += [f"{_sha256(tmp / e)}  {e}" for e in _entries(tmp)
+              if not e.endswith("/") and not (tmp / e).is_symlink()]
+    (tmp / MARKER).write_text("\n".join(lines) + "\n", encoding="utf-8")
 
 
 _RENAME_EXCHANGE = 2
@@ -225,7 +343,7 @@ def _swap_in(tmp: Path, path: Path) -> None:
 
 @contextlib.contextmanager
 def output_folder(path, option: str = "--out", *, command: str = "pim",
-                  merge: bool = False) -> Iterator[Path]:
+                  merge: bool = False, say=None) -> Iterator[Path]:
     """Write a run into a temporary folder and swap it in for ``path`` when the block ends.
 
     Parameters
@@ -242,6 +360,9 @@ def output_folder(path, option: str = "--out", *, command: str = "pim",
         files are moved into ``path`` all together (signals held back), replacing files of
         the same name and keeping every other file; no marker. The lock, the temporary
         folder and the cleanup on an error or interrupt are the same.
+    say : callable, optional
+        Called with one line naming the user's files a rerun kept (module notes; default: a
+        "note:" line on stderr).
 
     Yields
     ------
@@ -252,8 +373,9 @@ def output_folder(path, option: str = "--out", *, command: str = "pim",
     Raises
     ------
     OutputError
-        ``path`` is below a file, not writable, holds files pim did not write, or another run
-        holds its lock.
+        ``path`` is below a file, not writable, holds files pim did not write (and no
+        marker), holds a file pim wrote that was changed since, or another run holds its
+        lock; at the end, a file of the user's has the name of one the run wrote.
     """
     path = _target(path, option)
     fd = _lock(path, option)
@@ -270,17 +392,26 @@ def output_folder(path, option: str = "--out", *, command: str = "pim",
             if signal_received() is not None:       # an interrupt that was swallowed
                 raise KeyboardInterrupt
             os.chmod(tmp, 0o777 & ~_umask())
+            kept = []
             if not merge:
-                (tmp / MARKER).write_text(f"written by {command}; the next pim run into this "
-                                          "folder replaces it whole\n", encoding="utf-8")
+                _write_marker(tmp, command)
+                kept = _keep(path, tmp, option)
             with held_signals():
                 (_merge_in if merge else _swap_in)(tmp, path)
+            if kept:
+                (say or _note)(f"{option} {path}: kept {_names(kept)} (pim did not write "
+                               f"{'it' if len(kept) == 1 else 'them'})")
         except BaseException:
             with held_signals():
                 shutil.rmtree(tmp, ignore_errors=True)
             raise
     finally:
         _unlock(path, fd)
+
+
+def _note(line: str) -> None:
+    sys.stderr.write(f"note: {line}\n")
+    sys.stderr.flush()
 
 
 def _umask() -> int:

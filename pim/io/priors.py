@@ -19,7 +19,7 @@ Priors (the authors' outlier CF11006 is left out of all of them):
 from __future__ import annotations
 
 from ..model.distributions import Distribution
-from ..model.numbers import InputError
+from ..model.numbers import InputError, did_you_mean
 from .datasets import load_barrier, load_car_to_car
 
 __all__ = ["PRIORS", "PRIOR_INPUTS", "prior_values", "prior_distribution"]
@@ -43,14 +43,30 @@ def _records(name: str):
         return [t for t in load_barrier() if t.group == "SS"]
     if name == "iihs-small-overlap-car-to-car":
         return [v for v in load_car_to_car() if v.test_id.endswith("a")]
-    raise InputError(f"unknown prior {name!r} (allowed: {', '.join(PRIORS)})")
+    raise _unknown_prior(name, "prior")
+
+
+def _unknown_prior(name, where: str) -> InputError:
+    """The error of a prior name that is not one of :data:`PRIORS`: it names the field and
+    the name given, the closest known prior when one is close, and the known ones."""
+    return InputError(f"{where} = {name!r} is not a known prior{did_you_mean(name, PRIORS)} "
+                      f"(known: {', '.join(PRIORS)})")
 
 
 def prior_values(name: str, input_name: str) -> tuple:
-    """The observed values of ``input_name`` (``impact.restitution`` or ``impact.beta``) [-]."""
+    """The observed values of ``input_name`` (``impact.restitution`` or ``impact.beta``) [-].
+
+    Raises
+    ------
+    InputError
+        An input no prior describes, or a prior name not in :data:`PRIORS` (the message
+        names the field, the name given and the known priors).
+    """
     if input_name not in PRIOR_INPUTS:
         raise InputError(f"uncertainty.{input_name}: a prior exists only for "
                          f"{', '.join(PRIOR_INPUTS)}")
+    if name not in PRIORS:
+        raise _unknown_prior(name, f"uncertainty.{input_name}.prior")
     return tuple(getattr(r, PRIOR_INPUTS[input_name]) for r in _records(name))
 
 
@@ -58,5 +74,5 @@ def prior_distribution(name: str, input_name: str) -> Distribution:
     """The named prior of ``input_name`` as a :class:`Distribution` of kind ``prior``."""
     if not isinstance(name, str):
         raise InputError(f"uncertainty.{input_name}.prior must be a prior's name "
-                         f"(allowed: {', '.join(PRIORS)})")
+                         f"(known: {', '.join(PRIORS)})")
     return Distribution("prior", values=prior_values(name, input_name), label=name)

@@ -6,9 +6,10 @@ See :mod:`pim.model.distributions` for the inputs, the distribution kinds and sa
 from __future__ import annotations
 
 from ..model.distributions import KINDS, Distribution, UncertaintyTable
-from ..model.numbers import InputError
+from ..model.numbers import InputError, did_you_mean
 from ..model.quantities import UNCERTAIN
 from .priors import prior_distribution
+from .toml_tables import unknown_key
 from .units import parse
 
 __all__ = ["parse_uncertainty"]
@@ -24,8 +25,7 @@ def _parse_one(name: str, spec) -> Distribution:
     kinds = [k for k in spec if k in KINDS]
     unknown = sorted(set(spec) - set(KINDS) - {"mean"})
     if unknown:
-        raise InputError(f"{where}: unknown key {unknown[0]!r} "
-                         f"(allowed: {', '.join(KINDS)}, and mean with normal)")
+        raise unknown_key(unknown[0], (*KINDS, "mean"), where)
     if len(kinds) != 1:
         raise InputError(f"{where}: give exactly one of {', '.join(KINDS)}")
     kind = kinds[0]
@@ -98,7 +98,8 @@ def parse_uncertainty(table) -> UncertaintyTable | None:
         for key, spec in entries.items():
             name = f"{group}.{key}"
             if name not in UNCERTAIN:
-                raise InputError(f"uncertainty: unknown input {name!r} "
-                                 f"(allowed: {', '.join(UNCERTAIN)})")
+                raise InputError(f"uncertainty: unknown input {name!r}"
+                                 f"{did_you_mean(name, UNCERTAIN)} (allowed: "
+                                 f"{', '.join(UNCERTAIN)})")
             flat[name] = _parse_one(name, spec)
     return UncertaintyTable(flat)

@@ -3,20 +3,30 @@
 Nothing inside the model knows about units; it works in SI. This module is the only place
 that converts, and it delegates every conversion factor to pint's registry. pint is imported
 on first use so that ``import pim`` stays fast.
+
+Results are presented in a :class:`DisplayUnits`: a unit system ("si" or "us": lengths,
+masses, forces, energies) and a speed unit for every speed, velocity component and delta-V.
+The speed unit is what the field reports, km/h in a metric case and mph in a US one, unless
+the case file (``[units] speed``) or the command line (``--speed-unit``) asks for another of
+:data:`SPEED_UNITS`.
 """
 
 from __future__ import annotations
 
 import difflib
 import re
+from contextlib import contextmanager
+from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
 
-from ..model.numbers import InputError
+from ..model.case import SPEED_UNITS
+from ..model.numbers import InputError, speeds_in
 
 __all__ = ["registry", "parse", "convert", "DISPLAY_UNITS", "UNIT_SYSTEMS", "LIMITS",
-           "unit_system_of"]
+           "unit_system_of", "DisplayUnits", "display_units", "SPEED_UNITS", "SPEED_KINDS",
+           "messages_in", "quantity_text"]
 
 #: SI unit of each kind of input quantity (its dimension is the expected one).
 DIMENSIONS = {
@@ -56,25 +66,31 @@ LIMITS = {
 US_UNIT_NAMES = frozenset({"foot", "inch", "yard", "mile", "mile_per_hour", "force_pound",
                            "pound", "slug", "foot_per_second"})
 
-#: Display units of each output kind, per unit system: one speed unit per system.
+#: Display units of each output kind, per unit system, by default: speeds, velocity
+#: components and delta-V (:data:`SPEED_KINDS`) as the field reports them, km/h and mph
+#: (a :class:`DisplayUnits` may choose another speed unit).
 DISPLAY_UNITS = {
-    "si": {"velocity": "m/s", "speed": "m/s", "angular_velocity": "deg/s", "impulse": "N*s",
+    "si": {"velocity": "km/h", "speed": "km/h", "angular_velocity": "deg/s", "impulse": "N*s",
            "energy": "kJ", "length": "m", "mass": "kg", "inertia": "kg*m**2", "angle": "deg",
-           "force": "N", "impact_speed": "m/s", "force_per_length": "kN/m",
-           "force_per_area": "kN/m**2", "dimensionless": "dimensionless"},
-    "us": {"velocity": "ft/s", "speed": "ft/s", "angular_velocity": "deg/s", "impulse": "lbf*s",
+           "force": "N", "impact_speed": "km/h", "force_per_length": "kN/m",
+           "force_per_area": "kN/m**2", "dimensionless": "dimensionless",
+           "percent": "percent"},
+    "us": {"velocity": "mph", "speed": "mph", "angular_velocity": "deg/s", "impulse": "lbf*s",
            "energy": "ft*lbf", "length": "ft", "mass": "slug", "inertia": "slug*ft**2",
            "angle": "deg", "force": "lbf", "impact_speed": "mph",
            "force_per_length": "lbf/inch", "force_per_area": "lbf/inch**2",
-           "dimensionless": "dimensionless"},
+           "dimensionless": "dimensionless", "percent": "percent"},
 }
 UNIT_SYSTEMS = tuple(DISPLAY_UNITS)
+
+#: Output kinds shown in the speed unit of a :class:`DisplayUnits`.
+SPEED_KINDS = frozenset({"velocity", "speed", "impact_speed"})
 
 #: SI unit of each output kind.
 SI_UNITS = {"velocity": "m/s", "speed": "m/s", "angular_velocity": "rad/s", "impulse": "N*s",
             "energy": "J", "length": "m", "mass": "kg", "inertia": "kg*m**2", "angle": "rad",
             "force": "N", "impact_speed": "m/s", "force_per_length": "N/m",
-            "force_per_area": "N/m**2", "dimensionless": "dimensionless"}
+            "force_per_area": "N/m**2", "dimensionless": "dimensionless", "percent": "percent"}
 
 
 @lru_cache(maxsize=1)
@@ -127,6 +143,21 @@ def _unit(text: str):
     return unit, ureg.get_root_units(unit)[1]
 
 
+#: Unit symbols outside pint's grammar, and the unit each is: ``"10°"`` (also ``"30°/s"``)
+#: and ``"35.5 %"`` (0.355).
+SYMBOLS = {"\N{DEGREE SIGN}": "deg", "%": "percent"}
+
+
+def _symbols(unit: str) -> str:
+    """The unit text after the number with a leading symbol of :data:`SYMBOLS` spelled as
+    pint's unit (one symbol, first: ``"°/s"`` is ``"deg/s"``); any other text as it is."""
+    for symbol, name in SYMBOLS.items():
+        rest = unit[len(symbol):]
+        if unit.startswith(symbol) and symbol not in rest and rest[:1] in ("", "/", "*", " "):
+            return name + rest
+    return unit
+
+
 def _split(value: str, field: str) -> tuple[float, str]:
     """A quantity string as (number, unit text): exactly one number, then a unit or nothing.
 
@@ -145,6 +176,8 @@ def _split(value: str, field: str) -> tuple[float, str]:
         raise InputError(f"{field}: {value!r} must be one number followed by a unit, "
                          f"e.g. '1200 kg' or '90 deg'")
     number, unit = match.group(0), text[match.end():].strip()
+    if unit[:1] in SYMBOLS:
+        text, unit = f"{number} {_symbols(unit)}", _symbols(unit)
     if unit and (text[match.end()] not in " \t*/" and not unit[0].isalpha()):
         raise InputError(f"{field}: {value!r} must be one number followed by a unit, "
                          f"e.g. '1200 kg' or '90 deg'")
@@ -201,6 +234,19 @@ def _parse_number(value, kind: str, field: str) -> float:
     return number
 
 
+def _dimension(parsed, root) -> str:
+    """The dimension of a parsed unit in words: pint's (``[length] / [time]``), with the
+    angles (whose radian pint counts as dimensionless) called what they are."""
+    if parsed is None:
+        return ""
+    text = str(parsed.dimensionality)
+    radians = dict(registry().Quantity(1.0, root).unit_items()).get("radian")
+    if radians:
+        text = "angle" + ("" if text == "dimensionless" else f" times {text}")
+        text += "" if radians == 1 else f" to the power {radians:g}"
+    return text
+
+
 def _parse_string(value: str, kind: str, field: str, unit: str) -> float:
     """A quantity string for :func:`parse`: its magnitude in ``unit``, the kind's SI unit."""
     magnitude, text = _split(value, field)
@@ -217,9 +263,9 @@ def _parse_string(value: str, kind: str, field: str, unit: str) -> float:
     _, wanted = _unit(unit) if unit else (None, None)
     none = registry().Unit("")
     if (none if root is None else root) != (none if wanted is None else wanted):
-        what = kind.replace("_", " ")
-        dim = parsed.dimensionality if parsed is not None else ""
-        expected = wanted.dimensionality if wanted is not None else ""
+        what = "dimensionless number" if kind == "dimensionless" else kind.replace("_", " ")
+        dim, expected = _dimension(parsed, root), _dimension(*(_unit(unit) if unit else
+                                                              (None, None)))
         raise InputError(f"{field}: {value!r} is not a{'n' if what[0] in 'aeiou' else ''} "
                          f"{what} (its unit has dimension {dim or 'dimensionless'}, "
                          f"expected {expected or 'dimensionless'}: a unit like "
@@ -280,14 +326,123 @@ def parse(value, kind: str, field: str) -> float:
     return number
 
 
-def convert(value, kind: str, system: str):
-    """Convert SI values of an output ``kind`` to the display unit of ``system``.
+@dataclass(frozen=True)
+class DisplayUnits:
+    """The units results are presented in: a unit system and a speed unit.
 
-    Returns the converted values (same shape) and the unit label.
+    Parameters
+    ----------
+    system : {"si", "us"}
+        Units of lengths, masses, forces, impulses, energies (:data:`DISPLAY_UNITS`);
+        angles are in deg and yaw rates in deg/s in both.
+    speed : {"km/h", "mph", "m/s", "ft/s"}, optional
+        Unit of every speed, velocity component, delta-V and impact speed
+        (:data:`SPEED_KINDS`); default the system's field unit, km/h for "si" and mph for
+        "us".
     """
-    if system not in DISPLAY_UNITS:
-        raise InputError(f"units must be one of {', '.join(UNIT_SYSTEMS)}, got {system!r}")
-    target = DISPLAY_UNITS[system][kind]
-    factor = registry().Quantity(1.0, SI_UNITS[kind]).to(target).magnitude
-    label = "-" if target == "dimensionless" else target.replace("**", "^").replace("*", " ")
-    return np.asarray(value) * factor, label
+
+    system: str = "si"
+    speed: str | None = None
+
+    def __post_init__(self) -> None:
+        if self.system not in DISPLAY_UNITS:
+            raise InputError(f"units must be one of {', '.join(UNIT_SYSTEMS)}, "
+                             f"got {self.system!r}")
+        if self.speed is None:
+            object.__setattr__(self, "speed", DISPLAY_UNITS[self.system]["speed"])
+        elif self.speed not in SPEED_UNITS:
+            raise InputError(f"speed unit must be one of {', '.join(SPEED_UNITS)}, "
+                             f"got {self.speed!r}")
+
+    def unit(self, kind: str) -> str:
+        """The pint unit of an output ``kind`` (a key of :data:`SI_UNITS`)."""
+        return self.speed if kind in SPEED_KINDS else DISPLAY_UNITS[self.system][kind]
+
+    def label(self, kind: str) -> str:
+        """The unit symbol printed beside a value of ``kind`` ("-" when dimensionless)."""
+        return _label(self.unit(kind))
+
+    def to_json(self) -> dict:
+        """The ``units`` entry of ``--json``: the system, the speed unit and the unit of
+        each output kind (the units every number of the output is in)."""
+        return {"system": self.system, "speed": self.speed,
+                **{kind: self.label(kind) for kind in SI_UNITS}}
+
+    def __str__(self) -> str:
+        return f"{self.system.upper()} units, speeds in {self.speed}"
+
+
+def display_units(units=None, speed: str | None = None, case=None) -> DisplayUnits:
+    """The :class:`DisplayUnits` of an output.
+
+    Parameters
+    ----------
+    units : {"si", "us"} or DisplayUnits, optional
+        The unit system asked for (``--units``), or the display units themselves; default
+        the case's own system (``case.units``), else "si".
+    speed : {"km/h", "mph", "m/s", "ft/s"}, optional
+        The speed unit asked for (``--speed-unit``). Default: that of ``units`` when it is
+        a DisplayUnits, else the case file's choice (``case.speed_unit``, its
+        ``[units] speed``), else the system's field unit (km/h for "si", mph for "us").
+    case : pim.Case, optional
+        The case presented.
+    """
+    if isinstance(units, DisplayUnits):
+        return units if speed is None else DisplayUnits(units.system, speed)
+    system = units or getattr(case, "units", None) or "si"
+    return DisplayUnits(system, speed or getattr(case, "speed_unit", None))
+
+
+def _label(unit: str) -> str:
+    return {"dimensionless": "-", "percent": "%"}.get(
+        unit, unit.replace("**", "^").replace("*", " "))
+
+
+@lru_cache(maxsize=64)
+def _factor(kind: str, unit: str) -> float:
+    """SI value of ``kind`` -> ``unit``: pint's factor."""
+    return float(registry().Quantity(1.0, SI_UNITS[kind]).to(unit).magnitude)
+
+
+def convert(value, kind: str, units):
+    """Convert SI values of an output ``kind`` to their display unit.
+
+    Parameters
+    ----------
+    value : float or array_like
+        Values in the SI unit of ``kind`` (:data:`SI_UNITS`).
+    kind : str
+        A key of :data:`SI_UNITS`.
+    units : {"si", "us"} or DisplayUnits
+        The display units; a bare system presents speeds in its field unit (km/h, mph).
+
+    Returns
+    -------
+    tuple
+        The converted values (same shape, an array) and the unit label.
+    """
+    shown = units if isinstance(units, DisplayUnits) else DisplayUnits(units)
+    target = shown.unit(kind)
+    return np.asarray(value) * _factor(kind, target), _label(target)
+
+
+@contextmanager
+def messages_in(units):
+    """Within the block, speeds in the model's messages (:func:`pim.model.numbers.speed_text`)
+    are printed in the speed unit of ``units`` (a :class:`DisplayUnits` or a system)."""
+    shown = units if isinstance(units, DisplayUnits) else display_units(units)
+    factor, label = _factor("speed", shown.speed), _label(shown.speed)
+    with speeds_in(factor, label):
+        yield shown
+
+
+def quantity_text(units):
+    """A ``show(value [SI], kind) -> "149.7 ft"`` for messages in the display units ``units``
+    (a system or a :class:`DisplayUnits`; angles in deg): what :mod:`pim.model.plausibility`
+    takes to print its numbers in the case's units."""
+    shown_units = units if isinstance(units, DisplayUnits) else DisplayUnits(units)
+
+    def show(value: float, kind: str) -> str:
+        shown, label = convert(value, kind, shown_units)
+        return f"{float(shown):.4g} {label}"
+    return show

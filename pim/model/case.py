@@ -16,10 +16,11 @@ from functools import cached_property
 import numpy as np
 
 from .geometry import rotate
-from .numbers import InputError, real_array
+from .inertia import InputEstimate
+from .numbers import InputError, check_type, real_array
 
 __all__ = ["Vehicle", "Impact", "Case", "Measured", "LAWS", "MASS_RANGE", "INERTIA_RANGE",
-           "MAX_ARM_RATIO"]
+           "MAX_ARM_RATIO", "SPEED_UNITS", "checked_case", "BETA_RANGE_TEXT"]
 
 #: The impact laws a case may name (``impact.law``); see :mod:`pim.model.impact_laws`.
 #: "brach": Brach's PIM (eps, beta); "brach-capped": PIM with |mu| capped at a friction
@@ -27,6 +28,9 @@ __all__ = ["Vehicle", "Impact", "Case", "Measured", "LAWS", "MASS_RANGE", "INERT
 LAWS = ("brach", "brach-capped", "kudlich-slibar")
 #: The laws that take a contact friction coefficient (``impact.contact_friction``).
 FRICTION_LAWS = ("brach-capped", "kudlich-slibar")
+#: The units results may give speeds in (``Case.speed_unit``; pint's names of km/h, mph,
+#: m/s and ft/s; :mod:`pim.io.units` converts).
+SPEED_UNITS = ("km/h", "mph", "m/s", "ft/s")
 
 #: Allowed mass [kg] and yaw inertia [kg m^2] of a moving body (inf: a fixed obstacle): where
 #: the arithmetic holds, not where vehicles lie (a case file is held to the tighter
@@ -47,6 +51,17 @@ INERTIA_RANGE = (1e-60, 1e60)
 #: vehicle has a ratio near 1-10 (k of 1-1.5 m, arms of 1-3 m), a thin pole struck at
 #: 1 m with k = 1 mm a ratio of 1e6.
 MAX_ARM_RATIO = 1e8
+
+
+#: What beta may be, in words (every message refusing a beta says it). Brach's law defines
+#: mu = beta mu0 with beta in [0, 1] (the design sheet: "the fraction of mu0 used"; its fit
+#: is constrained to beta <= 1). beta < 0 would make the tangential impulse drive the sliding
+#: at C instead of resisting it, which no contact does: refused. beta > 1 (the slip at C
+#: reverses: tangential restitution, the Kudlich-Slibar law's standard) is accepted and its
+#: answer flagged inadmissible under Brach's law (:mod:`pim.model.admissibility`).
+BETA_RANGE_TEXT = ("(fraction of mu0) must be a finite number >= 0: Brach's law takes beta in "
+                   "[0, 1] (above 1 the answer is flagged inadmissible: the slip at C "
+                   "reverses)")
 
 
 #: The types of a plain Python number (bool excluded: ``type(True) is bool``).
@@ -187,6 +202,10 @@ class Vehicle:
         [0, length]; default ``length / 2`` (the outline centred on the CG). Needs
         ``length``. Not the CG to the front axle (the run-out's
         :attr:`pim.model.evidence.VehicleEvidence.cg_to_front_axle`).
+    reversing : bool
+        The vehicle is known to move backwards (velocity more than 90 deg from the heading):
+        silences the plausibility warning that asks whether it is (default False). Never
+        used by the impact equations.
     """
 
     mass: np.ndarray
@@ -198,11 +217,14 @@ class Vehicle:
     length: float | None = None
     width: float | None = None
     cg_to_front: float | None = None
+    reversing: bool = False
 
     def __post_init__(self) -> None:
         if not self._set_plain():
             self._set_checked()
         self._check_outline()
+        if type(self.reversing) is not bool:
+            raise InputError(f"reversing must be true or false, got {self.reversing!r}")
 
     def _set_plain(self) -> bool:
         """The single moving body given as plain Python floats (or ints): every check of
@@ -316,7 +338,7 @@ class Impact:
     beta : float, optional
         Default fraction beta [-] of the critical impulse ratio mu0 (Brach's laws only).
     law : {"brach", "brach-capped", "kudlich-slibar"}, optional
-        The impact law :func:`pim.model.impact_laws.solve_law` applies (None: "brach").
+        The impact law :func:`pim.solve` applies (None: "brach").
         For "kudlich-slibar" ``restitution`` is PC-Crash's k.
     contact_friction : float, optional
         Friction coefficient mu_c [-] >= 0 between the vehicles (inf: always stick), for
@@ -346,8 +368,8 @@ class Impact:
             object.__setattr__(self, "restitution", eps)
         if self.beta is not None:
             beta = _one_number(self.beta, "beta")
-            if not np.isfinite(beta):
-                raise InputError(f"beta must be a finite number (usually in [0, 1]), got {beta}")
+            if not beta >= 0 or not np.isfinite(beta):
+                raise InputError(f"beta {BETA_RANGE_TEXT}, got {beta:g}")
             object.__setattr__(self, "beta", beta)
         if self.law is not None or self.contact_friction is not None:
             self._check_law()        # nothing to check for Brach's law without mu_c
@@ -513,11 +535,16 @@ class Case:
     name, description : str
         Labels for reports.
     uncertainty : pim.model.distributions.UncertaintyTable, optional
-        Distributions of uncertain inputs (the case file's ``[uncertainty]`` table), used by
-        :func:`pim.uncertainty`.
+        Distributions of uncertain inputs (the case file's ``[uncertainty]`` table, and for
+        each estimated input the table leaves out a normal distribution with the estimate's
+        sd), used by :func:`pim.uncertainty` and the reconstruction's Monte Carlo.
     units : {"si", "us"}
-        The unit system the case was written in (its file's units); results are presented
-        in it unless asked otherwise.
+        The unit system the case was written in (its file's units, or its ``[units] system``);
+        results are presented in it unless asked otherwise.
+    speed_unit : {"km/h", "mph", "m/s", "ft/s"}, optional
+        The unit results give speeds and delta-V in (the case file's ``[units] speed``);
+        default the system's field unit, km/h for "si" and mph for "us"
+        (:class:`pim.io.units.DisplayUnits`).
     notes : tuple of str
         Plausibility warnings about the inputs found while reading the case file (e.g. a
         bare number above 2 pi given for an angle).
@@ -526,6 +553,9 @@ class Case:
         :mod:`pim.analysis.reconstruction`.
     unknown : dict, optional
         Dotted key -> (low, high) bounds [SI] of what a reconstruction solves for.
+    estimates : tuple of pim.model.inertia.InputEstimate
+        Inputs the case file left out and the program estimated (e.g. a yaw inertia from
+        mass and wheelbase), with their scatter and source, for notes and reports.
     """
 
     vehicle1: Vehicle
@@ -539,13 +569,24 @@ class Case:
     notes: tuple = ()
     evidence: object | None = None  # pim.model.evidence.Evidence (post-impact evidence)
     unknown: dict | None = None  # dotted key -> (low, high) SI bounds, the [unknown] table
+    estimates: tuple = ()  # pim.model.inertia.InputEstimate: inputs the program estimated
+    speed_unit: str | None = None   # one of SPEED_UNITS; None: the system's field unit
 
     def __post_init__(self) -> None:
         if not (type(self.vehicle1) is Vehicle and type(self.vehicle2) is Vehicle
                 and type(self.impact) is Impact):   # else subclasses, or an error
             self._check_types()
+        if not (self.measured is None and self.uncertainty is None and self.evidence is None
+                and self.unknown is None):
+            self._check_tables()
         if self.units not in ("si", "us"):
             raise InputError(f"units must be 'si' or 'us', got {self.units!r}")
+        if self.estimates and not (isinstance(self.estimates, tuple) and all(
+                isinstance(e, InputEstimate) for e in self.estimates)):
+            raise InputError("estimates must be a tuple of pim.model.inertia.InputEstimate")
+        if self.speed_unit is not None and self.speed_unit not in SPEED_UNITS:
+            raise InputError(f"speed_unit must be one of {', '.join(SPEED_UNITS)}, got "
+                             f"{self.speed_unit!r}")
         single = _single(self.vehicle1, self.vehicle2, self.impact)
         if self.vehicle1.mass == math.inf if single else self.vehicle1.fixed.any():
             raise InputError("vehicle1.mass must be finite: only vehicle2 may be a fixed obstacle")
@@ -556,9 +597,22 @@ class Case:
     def _check_types(self) -> None:
         """vehicle1 and vehicle2 are Vehicles, impact an Impact."""
         for name, kind in (("vehicle1", Vehicle), ("vehicle2", Vehicle), ("impact", Impact)):
-            if not isinstance(getattr(self, name), kind):
-                raise InputError(f"{name} must be a pim.{kind.__name__}, got "
-                                 f"{type(getattr(self, name)).__name__}")
+            check_type(getattr(self, name), name, kind, f"a pim.{kind.__name__}")
+
+    def _check_tables(self) -> None:
+        """measured, uncertainty, evidence and unknown: None or their types (a string
+        there would fail deep inside a fit or a Monte Carlo). The uncertainty table and the
+        evidence are recognised by what they hold (their modules import this one)."""
+        for name, kind, what in (("measured", Measured, "a pim.Measured"),
+                                 ("unknown", dict, "a dict of dotted key -> (low, high) bounds")):
+            check_type(getattr(self, name), name, kind, what, none=True)
+        for name, holds, what in (
+                ("uncertainty", isinstance(getattr(self.uncertainty, "inputs", None), dict),
+                 "a pim.model.distributions.UncertaintyTable"),
+                ("evidence", hasattr(self.evidence, "has_runout"),
+                 "a pim.model.evidence.Evidence")):
+            if getattr(self, name) is not None and not holds:
+                check_type(getattr(self, name), name, (), what, none=True)
 
     @cached_property
     def shape(self) -> tuple:
@@ -606,5 +660,17 @@ class Case:
             measured = Measured(measured.velocity2, measured.velocity1,
                                 measured.yaw_rate2, measured.yaw_rate1)
         impact = replace(self.impact, normal_angle=self.impact.normal_angle + np.pi)
+        other = {"vehicle1": "vehicle2", "vehicle2": "vehicle1"}
+        estimates = tuple(replace(e, name=".".join(other.get(p, p) if i == 0 else p
+                                                   for i, p in enumerate(e.name.split("."))))
+                          for e in self.estimates)
         return replace(self, vehicle1=self.vehicle2, vehicle2=self.vehicle1, impact=impact,
-                       measured=measured)
+                       measured=measured, estimates=estimates)
+
+
+def checked_case(case, name: str = "case") -> Case:
+    """``case`` if it is a :class:`Case`; else an
+    :class:`~pim.model.numbers.ArgumentTypeError` naming ``name`` and how to get one
+    (a case name or path is loaded by :func:`pim.load_case`)."""
+    return check_type(case, name, Case, "a pim.Case (a case name or file is read by "
+                                        "pim.load_case(...))")

@@ -18,9 +18,10 @@ Inputs (and their unit kind): ``vehicle1.`` / ``vehicle2.`` + ``mass``, ``yaw_in
 strings or bare SI numbers, parsed by :mod:`pim.io.uncertainty_table`; unknown inputs, unknown
 distribution keys and bad bounds are errors. Inputs not listed keep their nominal value.
 
-Admissible ranges: eps in [0, 1], mass and yaw inertia > 0. A normal distribution on such an
-input is *truncated* to the range (sampled by inverse CDF between the CDF values of the bounds,
-so no sample piles up at a bound and the shape inside the range is the normal's); uniform
+Admissible ranges: eps in [0, 1], beta >= 0 (:data:`pim.model.case.BETA_RANGE_TEXT`), mass
+and yaw inertia > 0. A normal distribution on such an input is *truncated* to the range
+(sampled by inverse CDF between the CDF values of the bounds, so no sample piles up at a
+bound and the shape inside the range is the normal's); uniform
 bounds and fixed values must lie inside it (else ValueError). A fixed obstacle's mass, inertia,
 velocity and yaw rate cannot be uncertain.
 
@@ -40,14 +41,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .numbers import InputError
+from .numbers import InputError, did_you_mean
 from .quantities import UNCERTAIN
 from .solver import defaults
 
 __all__ = ["Distribution", "UncertaintyTable", "nominal_values", "sample_inputs"]
 
 #: Admissible (low, high) of inputs that have one; low is exclusive for mass and inertia.
-_RANGE = {"impact.restitution": (0.0, 1.0),
+_RANGE = {"impact.restitution": (0.0, 1.0), "impact.beta": (0.0, np.inf),
           **{f"vehicle{i}.{k}": (0.0, np.inf) for i in (1, 2) for k in ("mass", "yaw_inertia")},
           **{f"evidence.vehicle{i}.{k}": (0.0, np.inf) for i in (1, 2)
              for k in ("friction", "pre_impact.friction", "pre_impact.skid_length")}}
@@ -168,8 +169,9 @@ class UncertaintyTable:
     def __post_init__(self) -> None:
         for name, dist in self.inputs.items():
             if name not in UNCERTAIN:
-                raise InputError(f"uncertainty: unknown input {name!r} "
-                                 f"(allowed: {', '.join(UNCERTAIN)})")
+                raise InputError(f"uncertainty: unknown input {name!r}"
+                                 f"{did_you_mean(name, UNCERTAIN)} (allowed: "
+                                 f"{', '.join(UNCERTAIN)})")
             if not isinstance(dist, Distribution):
                 raise InputError(f"uncertainty.{name} must be a Distribution")
 

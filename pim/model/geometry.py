@@ -8,8 +8,10 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["outline_distance", "cross", "dot", "perp", "vec", "rotate", "contact_velocity",
-           "kinetic_energy", "radius_of_gyration", "outline_corners", "outline_world"]
+__all__ = ["outline_distance", "cross", "dot", "perp", "vec", "rotate", "rotate_by",
+           "contact_velocity", "kinetic_energy", "radius_of_gyration", "outline_corners",
+           "outline_world", "point_outline_distance", "outline_penetration",
+           "heading_velocity_angle"]
 
 
 def cross(a, b) -> np.ndarray:
@@ -38,9 +40,15 @@ def vec(x, y) -> np.ndarray:
 
 def rotate(v, angle) -> np.ndarray:
     """The vectors ``v`` (..., 2) turned counter-clockwise by ``angle`` [rad]."""
+    return rotate_by(v, np.cos(angle), np.sin(angle))
+
+
+def rotate_by(v, cos, sin) -> np.ndarray:
+    """The vectors ``v`` (..., 2) turned counter-clockwise by the angle whose cosine and sine
+    are ``cos`` and ``sin`` [-]: (c x - s y, s x + c y)."""
     v = np.asarray(v, dtype=float)
-    c, s = np.cos(angle), np.sin(angle)
-    return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], axis=-1)
+    return np.stack([cos * v[..., 0] - sin * v[..., 1], sin * v[..., 0] + cos * v[..., 1]],
+                    axis=-1)
 
 
 def contact_velocity(velocity, yaw_rate, arm) -> np.ndarray:
@@ -132,3 +140,80 @@ def outline_distance(angle, length, width, cg_to_front=None) -> np.ndarray:
         tx = np.where(c > 0, a / c, np.where(c < 0, (a - length) / c, np.inf))
         ty = np.where(s != 0, (width / 2) / np.abs(s), np.inf)
     return np.minimum(tx, ty)
+
+
+def _box(cg, heading, length, width, cg_to_front=None):
+    """Centre [m], unit axes (along the heading, to the left) and half-extents [m] of the
+    rectangle of :func:`outline_corners` placed at ``cg``, turned to ``heading``."""
+    length = np.asarray(length, dtype=float)
+    front = length / 2 if cg_to_front is None else np.asarray(cg_to_front, dtype=float)
+    along = vec(np.cos(heading), np.sin(heading))
+    centre = np.asarray(cg, dtype=float) + (front - length / 2)[..., None] * along
+    return centre, along, perp(along), length / 2, np.asarray(width, dtype=float) / 2
+
+
+def point_outline_distance(point, cg, heading, length, width, cg_to_front=None) -> np.ndarray:
+    """Signed distance [m] from ``point`` to a vehicle's rectangular outline: > 0 outside
+    (the Euclidean distance to the outline), < 0 inside (minus the depth below its nearest
+    side), 0 on it.
+
+    Parameters
+    ----------
+    point, cg : array_like, shape (..., 2)
+        The point and the vehicle's CG [m].
+    heading : array_like
+        Direction of the vehicle's nose [rad].
+    length, width : array_like
+        Outline [m], > 0.
+    cg_to_front : array_like, optional
+        CG to the front of the outline [m] (default ``length / 2``), as in
+        :func:`outline_corners`.
+
+    Notes
+    -----
+    In the box's frame, with q = |p - centre| - half-extents per axis, the distance is
+    |max(q, 0)| + min(max(q_x, q_y), 0) (the signed distance of an axis-aligned box).
+    """
+    centre, along, left, hx, hy = _box(cg, heading, length, width, cg_to_front)
+    rel = np.asarray(point, dtype=float) - centre
+    qx, qy = np.abs(dot(rel, along)) - hx, np.abs(dot(rel, left)) - hy
+    outside = np.hypot(np.maximum(qx, 0.0), np.maximum(qy, 0.0))
+    return outside + np.minimum(np.maximum(qx, qy), 0.0)
+
+
+def outline_penetration(outline1, outline2) -> np.ndarray:
+    """Depth [m] by which two placed rectangular outlines overlap: the least overlap of
+    their projections over the four axes of the two rectangles (the separating-axis test);
+    <= 0 when they are apart (then minus a lower bound of the gap).
+
+    Parameters
+    ----------
+    outline1, outline2 : tuple
+        ``(cg, heading, length, width, cg_to_front)`` of each vehicle [m, rad, m, m, m or
+        None], each entry broadcasting over leading axes.
+
+    Notes
+    -----
+    A rectangle of centre c, unit axes e_x, e_y and half-extents h_x, h_y projects on a unit
+    axis u to c.u +- (h_x |e_x.u| + h_y |e_y.u|); two projections overlap by
+    r_1 + r_2 - |(c_1 - c_2).u|.
+    """
+    c1, a1, l1, hx1, hy1 = _box(*outline1)
+    c2, a2, l2, hx2, hy2 = _box(*outline2)
+    gap = c1 - c2
+    depths = []
+    for axis in (a1, l1, a2, l2):
+        r1 = hx1 * np.abs(dot(a1, axis)) + hy1 * np.abs(dot(l1, axis))
+        r2 = hx2 * np.abs(dot(a2, axis)) + hy2 * np.abs(dot(l2, axis))
+        depths.append(r1 + r2 - np.abs(dot(gap, axis)))
+    return np.minimum.reduce(np.broadcast_arrays(*depths))
+
+
+def heading_velocity_angle(heading, velocity) -> np.ndarray:
+    """Angle [rad] in [0, pi] between a vehicle's heading and its CG velocity; NaN where
+    the vehicle does not move. Above pi / 2 the vehicle moves backwards (reversing)."""
+    velocity = np.asarray(velocity, dtype=float)
+    along = vec(np.cos(heading), np.sin(heading))
+    angle = np.abs(np.arctan2(cross(along, velocity), dot(along, velocity)))
+    moving = np.hypot(velocity[..., 0], velocity[..., 1]) > 0
+    return np.where(moving, angle, np.nan)

@@ -1,6 +1,7 @@
 """Impact laws: Brach's PIM, friction-capped Brach, and the Kudlich-Slibar law of PC-Crash.
 
-A case names its law in ``impact.law`` (docs/impact-laws.md); :func:`solve_law` applies it.
+A case names its law in ``impact.law`` (docs/impact-laws.md); :func:`pim.solve`
+(:mod:`pim.model.law`) applies it, with this module's solvers as its parts.
 Every law is rigid-body impulse-momentum at one common point C with the contact plane of
 normal n (from vehicle 2 toward vehicle 1) and tangent t; they differ only in the two
 conditions that fix the impulse P on vehicle 1:
@@ -54,16 +55,16 @@ from __future__ import annotations
 import numpy as np
 
 from . import formula
-from .case import FRICTION_LAWS, LAWS, Case
+from .case import FRICTION_LAWS, LAWS, Case, checked_case
 from .dual import MOTION_INPUTS, motion_of_inputs, seed_inputs, value_of, where
-from .friction_cap import capped_beta, solve_capped
+from .friction_cap import capped_beta
 from .geometry import contact_velocity, cross, dot, perp, vec
 from .numbers import InputError, real_array
 from .result import Result
 from .solver import APPROACH_TOLERANCE, SINGULAR_TOLERANCE, solve, unknown_hint
 
 __all__ = ["LAWS", "FRICTION_LAWS", "LawResult", "kudlich_slibar_impulse",
-           "solve_kudlich_slibar", "solve_law", "law_of", "kudlich_slibar_as_brach",
+           "solve_kudlich_slibar", "law_of", "kudlich_slibar_as_brach",
            "brach_as_kudlich_slibar", "check_restitution", "check_contact_friction",
            "kudlich_slibar_ratio", "LAW_CODES", "LAW_INPUTS", "motion_of_law",
            "needed_friction"]
@@ -264,8 +265,7 @@ def solve_kudlich_slibar(case: Case, k=None, mu_c=None, approach_tol: float = AP
     at C the impulse is 0; where the sliding normal impulse is unbounded (n . K (n + sigma
     mu_c t) = 0) the outputs are NaN and ``q_singular`` is True.
     """
-    if not isinstance(case, Case):
-        raise InputError(f"case must be a pim.Case, got {type(case).__name__}")
+    checked_case(case)
     k = case.impact.restitution if k is None else k
     mu_c = case.impact.contact_friction if mu_c is None else mu_c
     if k is None:
@@ -285,53 +285,6 @@ def law_of(case: Case, law: str | None = None) -> str:
     if law not in LAWS:
         raise InputError(f"law must be one of {', '.join(map(repr, LAWS))}, got {law!r}")
     return law
-
-
-def solve_law(case: Case, law: str | None = None, restitution=None, beta=None,
-              contact_friction=None) -> Result:
-    """Solve ``case`` under its impact law (or ``law``), each law's parameters defaulting
-    to the case's ``impact`` table.
-
-    Parameters
-    ----------
-    case : Case
-        The impact.
-    law : {"brach", "brach-capped", "kudlich-slibar"}, optional
-        Default: ``case.impact.law``, else "brach".
-    restitution : array_like, optional
-        eps (Brach's laws) or k (Kudlich-Slibar) [-] in [0, 1].
-    beta : array_like, optional
-        Fraction of mu0 [-] (Brach's laws only).
-    contact_friction : array_like, optional
-        mu_c [-] >= 0: the cap of "brach-capped", the contact friction of "kudlich-slibar".
-
-    Returns
-    -------
-    Result
-        :func:`pim.solve`'s, :func:`pim.solve_capped`'s or :func:`solve_kudlich_slibar`'s.
-
-    Raises
-    ------
-    ValueError
-        Unknown law, a parameter the law does not take, or a missing or bad value.
-    """
-    law = law_of(case, law)
-    if law == "kudlich-slibar":
-        if beta is not None:
-            raise InputError("beta does not apply to law 'kudlich-slibar' (its parameters are "
-                             "restitution k and contact friction mu_c)")
-        return solve_kudlich_slibar(case, restitution, contact_friction)
-    if law == "brach":
-        if contact_friction is not None:
-            raise InputError("contact friction mu_c does not apply to law 'brach' (use law "
-                             "'kudlich-slibar' or 'brach-capped')")
-        return solve(case, restitution, beta)
-    if contact_friction is None:
-        contact_friction = case.impact.contact_friction
-    if contact_friction is None:
-        raise InputError("contact_friction mu_c (the cap) is required for law 'brach-capped'")
-    return solve_capped(case, restitution, beta,
-                        check_contact_friction(contact_friction, "contact_friction mu_c"))
 
 
 def _mu0(case: Case, eps) -> np.ndarray:

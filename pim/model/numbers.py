@@ -1,14 +1,19 @@
 """Input checks shared by the model's types and functions: real numbers, never strings,
-booleans, complex numbers or None read as numbers."""
+booleans, complex numbers or None read as numbers; and the one way a message prints a
+speed (:func:`speed_text`)."""
 
 from __future__ import annotations
 
+import difflib
 import math
+from contextlib import contextmanager
+from contextvars import ContextVar
 
 import numpy as np
 
-__all__ = ["InputError", "real_array", "checked_number", "checked_count", "check_counts",
-           "check_numbers"]
+__all__ = ["InputError", "ArgumentTypeError", "check_type", "did_you_mean", "real_array",
+           "checked_number", "checked_count", "check_counts", "check_numbers", "speed_text",
+           "speeds_in"]
 
 
 class InputError(ValueError):
@@ -19,6 +24,29 @@ class InputError(ValueError):
     and exit code 2; any other exception is a bug and surfaces with its traceback. It is a
     ``ValueError``, so code that catches ``ValueError`` keeps working.
     """
+
+
+class ArgumentTypeError(InputError, TypeError):
+    """An argument of the wrong type (a string where a :class:`pim.Case` is expected): a
+    ``TypeError``, as Python's own, and an :class:`InputError` (one line on the command
+    line). The message names the argument and what it takes."""
+
+
+def did_you_mean(word, choices) -> str:
+    """``"; did you mean 'yaw_rate'?"`` for the choice closest to a mistyped ``word``
+    (:func:`difflib.get_close_matches`, the units' suggestion), "" when none is close."""
+    close = difflib.get_close_matches(str(word), list(choices), n=1, cutoff=0.6)
+    return f"; did you mean {close[0]!r}?" if close else ""
+
+
+def check_type(value, name: str, types, what: str, *, none: bool = False):
+    """``value`` if it is an instance of ``types`` (or None with ``none``), else an
+    :class:`ArgumentTypeError` naming ``name``, ``what`` it takes (e.g. "a pim.Case, e.g.
+    pim.load_case('ricsac9')") and the type given (a string is quoted)."""
+    if (value is None and none) or isinstance(value, types):
+        return value
+    got = repr(value) if isinstance(value, str) else f"a {type(value).__name__}"
+    raise ArgumentTypeError(f"{name} must be {what}{' or None' if none else ''}, got {got}")
 
 
 def real_array(value, name: str, unit: str = "-") -> np.ndarray:
@@ -114,3 +142,28 @@ def check_numbers(**values) -> None:
     for name, value in values.items():
         if value is not None and not np.isfinite(real_array(value, name)).all():
             raise InputError(f"{name} must be finite, got {value!r}")
+
+
+#: (factor per m/s, unit label) of the speeds in messages; the edge sets it (speeds_in).
+_SPEED_UNIT: ContextVar[tuple[float, str]] = ContextVar("speed_unit", default=(1.0, "m/s"))
+
+
+def speed_text(value, spec: str = ".4g") -> str:
+    """A speed [m/s] as a message prints it: in the user's speed unit with its symbol.
+
+    The model works in SI and does not convert; the command line chooses the unit for the
+    run with :func:`pim.io.units.messages_in` (the factor comes from pint there). Outside
+    such a block speeds are printed in m/s.
+    """
+    factor, unit = _SPEED_UNIT.get()
+    return f"{float(value) * factor:{spec}} {unit}"
+
+
+@contextmanager
+def speeds_in(factor: float, unit: str):
+    """Within the block, :func:`speed_text` prints ``value * factor`` followed by ``unit``."""
+    token = _SPEED_UNIT.set((float(factor), unit))
+    try:
+        yield
+    finally:
+        _SPEED_UNIT.reset(token)

@@ -38,7 +38,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .numbers import InputError, real_array
+from .numbers import InputError, real_array, speed_text
 from .runout import RunoutVehicle, StoppedBeforeImpact, pre_impact_motion
 from .tyres import STANDARD_GRAVITY
 
@@ -242,9 +242,10 @@ def driver_start_speed(vehicle: RunoutVehicle, impact_speed: float, start_time=N
                          f"for pre-impact motion, got {start_time:g} s")
     v_imp = float(impact_speed)
     if not (np.isfinite(v_imp) and v_imp > vehicle.regularisation):
-        raise InputError(f"{where}: the impact speed {v_imp:g} m/s is (nearly) zero: the "
-                         f"vehicle is at rest at the impact, no start speed ends there "
-                         f"(pre-impact motion needs > {vehicle.regularisation:g} m/s)")
+        raise InputError(f"{where}: the impact speed {speed_text(v_imp, 'g')} is (nearly) "
+                         f"zero: the vehicle is at rest at the impact, no start speed ends "
+                         f"there (pre-impact motion needs > "
+                         f"{speed_text(vehicle.regularisation, 'g')})")
 
     def gap(v0):
         return driver_speed_at_impact(vehicle, v0, start_time, rtol=rtol) - v_imp
@@ -256,7 +257,7 @@ def driver_start_speed(vehicle: RunoutVehicle, impact_speed: float, start_time=N
     mu = float(np.max(vehicle.friction))
     high = v_imp + (mu + rolling) * vehicle.gravity * abs(start_time) + 1.0
     if gap(high) < 0:
-        raise InputError(f"{where}: no start speed up to {high:.4g} m/s at t = "
+        raise InputError(f"{where}: no start speed up to {speed_text(high)} at t = "
                          f"{start_time:g} s brings the vehicle to the impact at "
-                         f"{v_imp:.4g} m/s")
+                         f"{speed_text(v_imp)}")
     return float(brentq(gap, v_imp, high, xtol=xtol, rtol=4 * np.finfo(float).eps))

@@ -28,7 +28,7 @@ import math
 import numpy as np
 
 from . import formula
-from .case import Case
+from .case import Case, checked_case
 from .geometry import vec
 from .numbers import InputError, checked_number, real_array
 from .result import Result
@@ -200,9 +200,7 @@ def solve(case: Case, eps=None, beta=None, backend: str = "auto", fast_trig: boo
     0.512
     """
     _check_tolerances(approach_tol, singular_tol)
-    if not isinstance(case, Case):
-        raise InputError(f"case must be a pim.Case (e.g. pim.load_case(...)), got "
-                         f"{type(case).__name__}")
+    checked_case(case)
     eps, beta = defaults(case, eps, beta)
     if (backend == "auto" and case.is_scalar and _is_float(eps) and _is_float(beta)):
         return _solve_scalar(case, float(eps), float(beta), approach_tol, singular_tol)

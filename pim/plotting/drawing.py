@@ -219,7 +219,7 @@ def draw_case(case: Case, result=None, ax=None, velocity_scale: float | None = N
         Where to draw; a new Figure is made if None.
     velocity_scale : float, optional
         Arrow length per speed [m per m/s]; default: the fastest vehicle's arrow is 1.4 m.
-    units : {"si", "us"}
+    units : {"si", "us"} or pim.io.units.DisplayUnits
         Units of the axes and the speed labels.
 
     Returns

@@ -415,7 +415,7 @@ def write_plots(case: Case, fit_result: FitResult | None, out_dir, formats=("png
         Directory to write to (created if missing).
     formats : sequence of str
         File formats, e.g. ("png", "svg").
-    units : {"si", "us"}
+    units : {"si", "us"} or pim.io.units.DisplayUnits
         Display units of the axes.
 
     Returns

@@ -80,9 +80,9 @@ def summarize(result: Result, units: str = "si") -> list[Row]:
          movable_only=True)
     rows.append(Row("clock", "PDOF clock position", float(_f(result.clock1)),
                     None if barrier else float(_f(result.clock2)), "o'clock"))
-    pair("impulse_x", "impulse on vehicle x", result.impulse[..., 0], -result.impulse[..., 0],
+    pair("impulse_x", "impulse on the vehicle, x", result.impulse[..., 0], -result.impulse[..., 0],
          "impulse")
-    pair("impulse_y", "impulse on vehicle y", result.impulse[..., 1], -result.impulse[..., 1],
+    pair("impulse_y", "impulse on the vehicle, y", result.impulse[..., 1], -result.impulse[..., 1],
          "impulse")
     one("impulse_n", "normal impulse Pn", result.impulse_n, "impulse")
     one("impulse_t", "tangential impulse Pt", result.impulse_t, "impulse")

@@ -24,7 +24,8 @@ RANK = {"pim.model": 0, "pim.io": 1, "pim.analysis": 2, "pim.plotting": 3, "pim"
 #: Function-level imports allowed: (module, imported module) -- lazy loads, not cycle dodges.
 LAZY = {("pim.model.solver", "pim.model.kernel"),
         ("pim.analysis.reconstruction", "pim.analysis.runout_fit_batch"),
-        ("pim.analysis.runout_fit", "pim.model.runout_kernel")}
+        ("pim.analysis.runout_fit", "pim.model.runout_kernel"),
+        ("sim.compliant_batch", "sim.compliant_kernel")}
 
 
 def _modules():

@@ -31,7 +31,7 @@ EXCEPTIONS = {
     "sim/compliant_setup.py": "sim/test_compliant.py",
     "comparisons/animation/motion.py": "comparisons/animation/test_render.py",
     "pim/plotting/validation.py": "pim/analysis/test_validation.py",
-    "comparisons/report/assumptions.py": "comparisons/studies/test_assumptions.py",
+    "sim/compliant_kernel.py": "sim/test_compliant_batch.py",   # the engine behind it
 }
 COMMAND_GROUP = "pim_cli.main"
 

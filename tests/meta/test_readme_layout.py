@@ -6,7 +6,8 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 PACKAGES = ("pim/model", "pim/io", "pim/analysis", "pim/plotting", "sim", "comparisons/report",
-            "comparisons/studies", "comparisons/regression", "comparisons/animation", "pim_cli")
+            "comparisons/studies", "comparisons/regression", "comparisons/animation", "comparisons/docs",
+            "pim_cli")
 
 
 def layout_section(readme: str) -> str:

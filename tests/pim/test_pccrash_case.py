@@ -31,7 +31,7 @@ def test_answer_is_the_sheets_printed_values():
     """Brach design sheet, RICSAC 9 at eps = 0.355, beta = 1 (Brach & Brach 2011, Fig.
     7.14; spec ricsac9.md): mu_c = the printed mu0(0.355), so the contact slides at it and
     the answer is the sheet's to its printed digits (relative 2e-3)."""
-    r = pim.solve_law(pim.load_case(NAME))
+    r = pim.solve(pim.load_case(NAME))
     assert np.degrees(float(r.yaw_rate1)) == pytest.approx(-199.702, rel=2e-3)
     assert np.degrees(float(r.yaw_rate2)) == pytest.approx(87.322, rel=2e-3)
     assert float(np.hypot(*r.velocity1)) == pytest.approx(9.669 * MPH, rel=2e-3)
@@ -55,7 +55,7 @@ def test_compare_runs_the_case_law(tmp_path, capsys):
     # contact, so mu_c has only a lower bound: the compression's sticking ratio mu0(0)
     assert "The fit is done under the **Kudlich-Slibar law**" in report
     assert "Brach's law" not in report
-    mu0_0 = float(pim.solve(pim.load_case(NAME), 0.0, 1.0).mu0)      # Brach's solver
+    mu0_0 = float(pim.solve(pim.load_case(NAME), 0.0, 1.0, law="brach").mu0)   # Brach's solver
     assert f"mu_c >= {mu0_0:.6g} (only a lower bound" in report
     r = solve_kudlich_slibar(pim.load_case(NAME))
     yaw = next(line for line in (out / "results.csv").read_text().splitlines()

@@ -42,7 +42,9 @@ def check(name, code, out, err, *, allow_failure=True):
     if code == 1:
         assert err.strip(), "exit 1 needs a reason on stderr"
     case = pim.load_case(name)
-    other = {"us": ["m/s", "km/h", "rad/s"], "si": ["ft/s", "mph", "lbf"]}[case.units]
+    # speeds as the field reports them: mph in US units, km/h in SI (never ft/s or m/s)
+    other = {"us": ["m/s", "km/h", "rad/s", "ft/s"], "si": ["ft/s", "mph", "lbf", "m/s"]}[
+        case.units]
     for unit in other:
         assert not re.search(rf"(?<![\w/]){re.escape(unit)}\b", out), (name, unit)
 

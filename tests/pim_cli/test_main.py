@@ -14,16 +14,16 @@ def test_solve_prints_the_ricsac9_table_in_us_units(capsys):
     out = capsys.readouterr().out
     # the design sheet prints final yaw rates -199.702 and 87.322 deg/s, speeds 9.669 and
     # 18.885 mph (shared spec ricsac9.md; relative 2e-3 for its printed digits); US output
-    # gives every speed in ft/s (one speed unit per system): 1 mph = 22/15 ft/s exactly
+    # gives every speed in mph, as the sheet (and the field) does
     rows = {line[:40].strip(): line[40:].split() for line in out.splitlines()}
     w1, w2, unit = rows["post-impact yaw rate"]
     assert unit == "deg/s"
     assert float(w1) == pytest.approx(-199.702, rel=2e-3)
     assert float(w2) == pytest.approx(87.322, rel=2e-3)
     s1, s2, unit = rows["post-impact speed"]
-    assert unit == "ft/s" and float(s1) == pytest.approx(9.669 * 22 / 15, rel=2e-3)
-    assert float(s2) == pytest.approx(18.885 * 22 / 15, rel=2e-3)
-    assert "ft lbf" in out and "mph" not in out
+    assert unit == "mph" and float(s1) == pytest.approx(9.669, rel=2e-3)
+    assert float(s2) == pytest.approx(18.885, rel=2e-3)
+    assert "ft lbf" in out and "ft/s" not in out and "m/s" not in out
 
 
 def test_solve_json_matches_the_library(capsys):
@@ -32,8 +32,8 @@ def test_solve_json_matches_the_library(capsys):
     r = pim.solve(pim.load_case("ricsac9"), 0.5, 0.5)
     assert data["admissible"] is True and data["problems"] == []
     assert data["results"]["velocity_x"]["vehicle1"] == pytest.approx(
-        float(r.velocity1[0]) / 0.3048)
-    assert data["results"]["velocity_x"]["unit"] == "ft/s"    # ricsac9 is written in ft
+        float(r.velocity1[0]) / 0.44704)                      # 1 mph = 0.44704 m/s exactly
+    assert data["results"]["velocity_x"]["unit"] == "mph"     # ricsac9 is written in ft
     assert data["results"]["energy_loss"]["value"] == pytest.approx(
         float(r.energy_loss) / 1.3558179483314004)
 
@@ -126,12 +126,12 @@ def test_input_error_is_one_line_and_exit_2(capsys):
 
 def test_an_internal_bug_is_not_disguised_as_bad_input(monkeypatch):
     """Before: any ValueError, internal bugs included, became "error: ..." and exit 2."""
-    import pim.model.impact_laws
+    import pim.model.law
 
     def broken(*args, **kwargs):
         raise ValueError("an internal bug")
 
-    monkeypatch.setattr(pim.model.impact_laws, "solve", broken)    # what pim solve calls
+    monkeypatch.setattr(pim.model.law, "solve_brach", broken)    # what pim solve calls
     with pytest.raises(ValueError, match="an internal bug"):
         main(["solve", "ricsac9"])
 
@@ -161,17 +161,63 @@ def test_every_json_names_its_units_and_speaks_them(capsys, command):
         code = exc.code
     assert code == 0
     us = json.loads(capsys.readouterr().out)
-    assert us["units"] == "us"
+    assert us["units"]["system"] == "us" and us["units"]["speed"] == "mph"
     try:
         main([*args, "--units", "si"])
     except SystemExit:
         pass
     si = json.loads(capsys.readouterr().out)
-    assert si["units"] == "si"
+    assert si["units"]["system"] == "si" and si["units"]["speed"] == "km/h"
     assert json.dumps(us) != json.dumps(si)
+    mph_per_kmh = 1 / (3.6 * 0.44704)         # 1 km/h = 1/3.6 m/s, 1 mph = 0.44704 m/s
     if command[0] == "fit":
-        assert us["rms_unit"] == "ft/s" and si["rms_unit"] == "m/s"
-        assert us["rms"] == pytest.approx(si["rms"] / 0.3048)
+        assert us["rms_unit"] == "mph" and si["rms_unit"] == "km/h"
+        assert us["rms"] == pytest.approx(si["rms"] * mph_per_kmh)
     if command[0] == "sensitivity":
         v_us, v_si = us["outputs"]["delta_v1_magnitude"], si["outputs"]["delta_v1_magnitude"]
-        assert v_us["value"] == pytest.approx(v_si["value"] / 0.3048)
+        assert v_us["value"] == pytest.approx(v_si["value"] * mph_per_kmh)
+
+
+@pytest.mark.parametrize("args", [
+    ["uncertainty", "ricsac9", "--seed", "-1"],
+    ["reconstruct", "ricsac9-reconstruct", "--seed", "-5"],
+    ["baseline", "hard-pole", "--seed", "-5", "--out", "never-written.json"],
+])
+def test_a_negative_seed_is_one_line_naming_the_option(capsys, tmp_path, monkeypatch, args):
+    """Issue 28: numpy's ValueError and its traceback before."""
+    monkeypatch.chdir(tmp_path)
+    assert main(args) == 2
+    assert not (tmp_path / "never-written.json").exists()
+    err = capsys.readouterr().err
+    seed = args[args.index("--seed") + 1]
+    assert err.count("\n") == 1 and "'--seed'" in err, err
+    assert f"{seed} is not in the range x>=0" in err, err
+
+
+def test_a_negative_seed_names_the_argument_in_the_library():
+    from pim.analysis.reconstruction import reconstruct
+
+    with pytest.raises(pim.InputError, match="seed must be an integer >= 0 or None, got -1"):
+        pim.uncertainty(pim.load_case("ricsac9"), seed=-1)
+    with pytest.raises(pim.InputError, match="seed must be an integer >= 0, got -5"):
+        reconstruct(pim.load_case("ricsac9-reconstruct"), seed=-5)
+
+
+def test_pim_sim_names_its_options_not_the_library_settings(capsys):
+    """Issue 28: `pim sim` told a command-line user to "raise settings.iterations"."""
+    assert main(["sim", "hard-grazing", "--iterations", "2"]) == 1
+    err = capsys.readouterr().err
+    assert "raise the solver iterations per step (--iterations)" in err, err
+    assert "settings." not in err, err
+    assert main(["sim", "ricsac9", "--dt", "0"]) == 2
+    err = capsys.readouterr().err
+    assert err == "error: --dt must be in (0, 1], got 0.0\n", err
+
+
+def test_animate_after_beyond_its_bound_names_the_option_and_its_unit(capsys, tmp_path):
+    """Issue 28: "settings.duration must be in [0, 1e+06]" for --after 1e7, in no unit."""
+    assert main(["animate", "ricsac9", "--after", "1e7", "--out", str(tmp_path / "a.mp4")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: Invalid value for '--after': '1e7' is not a finite number "
+                          "in [0, 600] s"), err
+    assert err.count("\n") == 1 and not (tmp_path / "a.mp4").exists()

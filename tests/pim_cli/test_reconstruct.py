@@ -37,7 +37,7 @@ def test_ricsac9_turned_around_covers_the_staged_speeds(tmp_path, capsys):
                  "--samples", "4000"]) == 0
     data = json.loads(capsys.readouterr().out)
     staged = 21.2                               # mph: --json speaks the case's units
-    assert data["units"] == "us"
+    assert data["units"]["system"] == "us" and data["units"]["speed"] == "mph"
     for key in ("vehicle1.speed", "vehicle2.speed"):
         row = data["unknowns"][key]
         assert row["unit"] == "mph"
@@ -82,7 +82,7 @@ def test_synthetic_case_report_and_json(tmp_path, capsys):
     data = json.loads(capsys.readouterr().out)
     for key in ("vehicle1.speed", "vehicle2.speed"):
         row = data["unknowns"][key]
-        assert row["unit"] == "mph" and data["units"] == "us"
+        assert row["unit"] == "mph" and data["units"]["system"] == "us"
         row = {k: v * 0.44704 for k, v in row.items() if k != "unit"}     # mph -> m/s
         assert row["value"] == pytest.approx(KNOWN, abs=1e-5)
         assert row["p5"] < KNOWN < row["p95"]
@@ -103,7 +103,7 @@ def test_no_monte_carlo_prints_no_nan_and_json_speaks_the_case_units(capsys):
     assert "nan" not in out.lower()
     assert main(["reconstruct", "ricsac9-reconstruct", "--samples", "0", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["units"] == "us" and data["unknowns"]["vehicle1.speed"]["unit"] == "mph"
+    assert data["units"]["system"] == "us" and data["unknowns"]["vehicle1.speed"]["unit"] == "mph"
     assert 10 < data["unknowns"]["vehicle1.speed"]["value"] < 30          # mph, not m/s
     check = data["momentum_check"]["vehicle1.speed"]
     assert check["unit"] == "mph" and check["sd"] > 0
@@ -157,7 +157,7 @@ def test_recorder_evidence_says_which_evidence_drove_each_speed(capsys):
     the text names the driving evidence per speed in the case's units, the JSON too."""
     assert main(["reconstruct", "synthetic-edr", "--samples", "0", "--units", "si"]) == 0
     out = capsys.readouterr().out
-    assert "evidence: vehicle1.speed (1 sd = " in out and "m/s): vehicle1 recorded delta-V" in out
+    assert "evidence: vehicle1.speed (1 sd = " in out and "km/h): vehicle1 recorded delta-V" in out
     assert main(["reconstruct", "synthetic-edr", "--samples", "0", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["unknowns"]["vehicle1.speed"]["value"] == pytest.approx(9.5 / 0.44704, abs=0.01)
@@ -193,7 +193,7 @@ def test_a_kudlich_slibar_case_is_reconstructed_under_its_law(tmp_path, capsys):
     assert main(["reconstruct", "ricsac9-pccrash-reconstruct", "--out", str(tmp_path),
                  "--json", "--samples", "400"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["law"] == "kudlich-slibar" and data["units"] == "us"
+    assert data["law"] == "kudlich-slibar" and data["units"]["system"] == "us"
     for key in ("vehicle1.speed", "vehicle2.speed"):
         row = data["unknowns"][key]
         assert row["unit"] == "mph" and row["p5"] < 21.2 < row["p95"], (key, row)
@@ -207,5 +207,66 @@ def test_a_kudlich_slibar_case_is_reconstructed_under_its_law(tmp_path, capsys):
     assert main(["reconstruct", "ricsac9-pccrash-reconstruct", "--samples", "0",
                  "--units", "si"]) == 0
     out = capsys.readouterr().out
-    assert out.startswith("Impact law: Kudlich-Slibar") and "m/s" in out and "mph" not in out
+    assert out.startswith("Impact law: Kudlich-Slibar") and "km/h" in out and "mph" not in out
     assert ">= " in next(line for line in out.splitlines() if line.startswith("impact.mu_c"))
+
+
+def test_help_of_out_promises_what_a_case_without_evidence_writes(tmp_path, capsys):
+    """Issue 28: --help promised scene.png, which a case without [evidence] never writes."""
+    import re
+
+    assert main(["reconstruct", "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    out_help = text[text.index("--out DIRECTORY"):text.index("--samples")]
+    always = out_help.split("with run-out evidence")[0]
+    promised = set(re.findall(r"[\w-]+\.(?:md|html|csv|png|mp4)", always))
+    assert main(["reconstruct", "ricsac9-reconstruct", "--out", str(tmp_path / "o"),
+                 "--samples", "0"]) == 0
+    written = {p.name for p in (tmp_path / "o").iterdir()} - {MARKER}
+    assert promised == written == {"report.md", "report.html", "reconstruction.csv"}
+
+
+def test_a_rerun_keeps_the_users_notes_in_the_output_folder(tmp_path, capsys):
+    """Issue 28 (fault harness): a rerun deleted the notes.txt a user had added."""
+    out = tmp_path / "out"
+    args = ["reconstruct", "ricsac9-reconstruct", "--out", str(out), "--samples", "0"]
+    assert main(args) == 0
+    (out / "notes.txt").write_text("called the witness")
+    capsys.readouterr()
+    assert main(args) == 0
+    assert (out / "notes.txt").read_text() == "called the witness"
+    assert f"note: --out {out}: kept notes.txt (pim did not write it)" in capsys.readouterr().err
+
+
+def test_the_monte_carlo_budget_says_and_refuses_before_the_work(capsys):
+    """Issue 28: a reconstruction from run-outs ran minutes (every sample refits them) with
+    nothing said; the pilot's estimate now is said over 10 s and refused over --max-minutes."""
+    from pim_cli.reconstruct import budget
+
+    check = budget(10_000, 1, 1.0)
+    check(5.0)
+    assert capsys.readouterr().err == ""
+    check(30.0)
+    assert capsys.readouterr().err == ("note: Monte Carlo: 10000 samples, each refitting the "
+                                       "run-outs: about 30 s\n")
+    with pytest.raises(pim.InputError) as err:
+        check(600.0)
+    assert str(err.value) == ("--max-minutes 1: the Monte Carlo of 10000 samples refits the "
+                              "run-outs of each sample, about 10 min here; give --samples 1000 "
+                              "or fewer, or raise --max-minutes")
+    budget(10_000, 4, 3.0)(600.0)           # four workers: 150 s, within 3 min
+
+
+@pytest.mark.slow
+def test_a_quoted_wheel_fraction_reconstructs_within_the_stated_budget(tmp_path, capsys):
+    """The fault harness's case: synthetic-runout with `wheels = '0.3'`: exit 2 and one line
+    before the Monte Carlo when its estimate exceeds --max-minutes."""
+    text = (resources.files("pim.io") / "cases" / "synthetic-runout.toml").read_text()
+    path = tmp_path / "w.toml"
+    path.write_text(text.replace('wheels = ["locked", "locked", 0.3, 0.3]', "wheels = '0.3'"))
+    assert main(["solve", str(path)]) == 0
+    capsys.readouterr()
+    assert main(["reconstruct", str(path), "--max-minutes", "0.01"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("error: --max-minutes 0.01: the Monte Carlo of 10000 samples refits "
+                          "the run-outs of each sample, about ") and "\n" not in err, err

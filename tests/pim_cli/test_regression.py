@@ -43,7 +43,9 @@ def test_the_commands_run_from_their_module(folder, tmp_path, capsys):
         == regression_cli.DRIFT_EXIT_CODE == 1
 
 
-def test_a_changed_mass_is_exit_1_with_a_readable_table(folder, tmp_path, capsys):
+def test_a_changed_mass_is_exit_1_with_a_readable_table(folder, tmp_path, capsys,
+                                                         monkeypatch):
+    monkeypatch.chdir(tmp_path)      # the case is shown by its path from the current folder
     shutil.copy(folder / "b.json", tmp_path / "b.json")
     text = (folder / "mine.toml").read_text().replace("4896.2 lbf", "5200 lbf")
     (tmp_path / "mine.toml").write_text(text)
@@ -54,12 +56,13 @@ def test_a_changed_mass_is_exit_1_with_a_readable_table(folder, tmp_path, capsys
     assert header.split()[:6] == ["case", "quantity", "baseline", "now", "difference",
                                   "tolerance"]
     row = next(line for line in out.splitlines() if "solve.velocity2_y" in line)
-    assert row.split()[-2:] == ["ft/s", "baseline"]       # the case's units
+    assert row.split()[-2:] == ["mph", "baseline"]        # the case's units (US: mph)
     assert main(["check", str(tmp_path / "b.json"), "--units", "si", "--json"]) == 1
     data = json.loads(capsys.readouterr().out)
     assert data["ok"] is False and data["input_changes"]
     assert {"solve.velocity2_y", "fit.eps"} <= {d["quantity"] for d in data["drifts"]}
-    assert data["drifts"][0]["unit"] == "m/s"
+    drift = next(d for d in data["drifts"] if d["quantity"] == "solve.velocity2_y")
+    assert drift["unit"] == "km/h" and drift["si_unit"] == "m/s"          # --units si
 
 
 @pytest.mark.parametrize("text", ["{", '{"format": "pim-baseline/1", "cases": "x"}', ""])

@@ -30,7 +30,7 @@ def test_the_html_report_holds_the_same_tables_and_figures_inline(report):
     assert max(headers) <= 10 and sum(h - 1 for h in headers) == 22   # all but 'test' once
     assert "Other columns" not in page
     assert page.count("data:image/png;base64,") == 2            # both figures, inline
-    assert "dVx meas [ft/s]" in page and "[m/s]" not in page
+    assert "dVx meas [mph]" in page and "[m/s]" not in page and "[ft/s]" not in page
     assert '<section id="summary"' in page and "SAE 2014-01-0469" in page
     assert "https://" not in page and "<script" not in page
 
@@ -81,4 +81,5 @@ def test_named_prior_in_a_case_file_runs_uncertainty(tmp_path, capsys):
     bad = write_text(tmp_path / "bad.toml", text.replace("car-to-car\"}\nimpact.beta",
                                                           "car-to-carx\"}\nimpact.beta"))
     assert main(["uncertainty", str(bad), "--samples", "100"]) == 2
-    assert "unknown prior 'iihs-small-overlap-car-to-carx'" in capsys.readouterr().err
+    assert ("uncertainty.impact.restitution.prior = 'iihs-small-overlap-car-to-carx' is not a "
+            "known prior; did you mean 'iihs-small-overlap-car-to-car'?") in capsys.readouterr().err

@@ -70,10 +70,11 @@ def test_defect9_nan_coefficients_are_rejected(call):
 def test_sim_speaks_the_case_files_units(capsys):
     assert main(["sim", "ricsac9"]) == 0
     out = capsys.readouterr().out
-    assert "ft/s" in out and "deg/s" in out and "rad/s" not in out and "| m/s" not in out
+    assert "mph" in out and "deg/s" in out and "rad/s" not in out and "m/s" not in out
+    assert "ft/s" not in out                       # speeds as the field reports them
     assert main(["sim", "ricsac9", "--units", "si"]) == 0
     out = capsys.readouterr().out
-    assert " m/s" in out and "ft/s" not in out
+    assert " km/h" in out and "ft/s" not in out and "m/s" not in out
 
 
 def test_defect11_detected_start_spread_is_documented_and_holds():

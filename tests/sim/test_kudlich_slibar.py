@@ -104,7 +104,7 @@ def test_sim_command_runs_the_capped_law_at_its_effective_beta(tmp_path, capsys)
     path.write_text(CASE.format(law="brach-capped"))
     assert main(["sim", str(path), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    capped = pim.solve_law(pim.load_case(path))
+    capped = pim.solve(pim.load_case(path))
     assert out["beta"] == pytest.approx(float(capped.beta)) and out["error"] < 1e-9
 
 

@@ -119,7 +119,7 @@ def test_history_is_recorded(ricsac9):
     h = r.history
     assert len(h.time) >= 100
     assert (h.normal_force >= 0).all()
-    stepped = sim.simulate_compliant(ricsac9, 0.355, K, friction=0.5)
+    stepped = sim.simulate_compliant(ricsac9, 0.355, K, friction=0.5, engine="pymunk")
     assert r.peak_force == pytest.approx(stepped.peak_force, rel=0.01)
     assert r.peak_crush == pytest.approx(stepped.peak_crush, rel=1e-3)
 
@@ -134,7 +134,8 @@ def test_tangential_recovery_modes_agree_with_the_stepper(ricsac9, recovery):
     ref = sim.reference_compliant(ricsac9, 0.355, K, friction=3.0,
                                   settings=CompliantSettings(tangential_recovery=recovery,
                                                              record=False, rtol=1e-8))
-    got = sim.simulate_compliant(ricsac9, 0.355, K, friction=3.0, settings=settings)
+    got = sim.simulate_compliant(ricsac9, 0.355, K, friction=3.0, settings=settings,
+                                 engine="pymunk")
     assert np.abs(post(ref) - post(got)).max() < 2e-4
     assert ref.stick_fraction > 0.9 and got.stick_fraction > 0.9
     assert ref.tangential_recovery == recovery

@@ -317,9 +317,20 @@ def test_cli_table_json_and_exit_codes(capsys):
     data = json.loads(capsys.readouterr().out)
     assert data["beta"] == 0.5 and data["error"] < TOL
     assert {r["key"] for r in data["rows"]} >= {"velocity1_x", "yaw_rate2", "impulse_x"}
-    with pytest.raises(SystemExit) as exc:
-        pim_main(["sim", "ricsac9", "--start", "detected", "--dt", "0.05"])
-    assert exc.value.code == 1
+    assert pim_main(["sim", "ricsac9", "--start", "detected", "--dt", "0.05"]) == 1
     assert "no_contact" in capsys.readouterr().err
     assert pim_main(["sim", "ricsac9", "--eps", "1.5"]) == 2
     assert pim_main(["sim", "ricsac9", "--iterations", "0"]) == 2
+
+
+def test_simulate_names_the_argument_given_a_string():
+    """Issue 28: sim.simulate(case, settings='fast') and sim.simulate_many([case, 'x'])
+    failed deep inside with an AttributeError."""
+    case = pim.load_case("ricsac9")
+    with pytest.raises(TypeError, match=r"^settings must be a sim.Settings \(e.g. "
+                                        r"sim.Settings\(dt=1e-4\)\) or None, got 'fast'$"):
+        sim.simulate(case, settings="fast")
+    with pytest.raises(TypeError, match=r"^cases\[1\] must be a pim.Case .*got 'x'$"):
+        sim.simulate_many([case, "x"])
+    with pytest.raises(TypeError, match=r"^settings must be a sim.Settings or None"):
+        sim.simulate_many([case], settings="fast")

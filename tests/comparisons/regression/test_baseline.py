@@ -61,7 +61,9 @@ def test_a_fresh_baseline_checks_clean(recorded, tmp_path):
     assert "all" in format_report(report)
 
 
-def test_changing_a_mass_in_the_case_file_is_drift_and_an_input_change(recorded, tmp_path):
+def test_changing_a_mass_in_the_case_file_is_drift_and_an_input_change(recorded, tmp_path,
+                                                                        monkeypatch):
+    monkeypatch.chdir(tmp_path)      # the case is shown by its path from the current folder
     text = (recorded[0] / "mine.toml").read_text().replace("2255.4 lbf", "2300 lbf")
     report = check_baseline(_copy(recorded, tmp_path, case_text=text))
     assert not report.ok
@@ -70,7 +72,7 @@ def test_changing_a_mass_in_the_case_file_is_drift_and_an_input_change(recorded,
     assert {"solve.velocity1_x", "fit.eps", "crosscheck.velocity1_x"} <= names
     table = format_report(report)
     assert "input changed: mine.toml" in table and "solve.velocity1_x" in table
-    assert "ft/s" in table                   # the case's own units (ricsac9 is in ft)
+    assert "mph" in table and "ft/s" not in table     # the case's own units (ricsac9: US)
     assert all(d.case == "mine.toml" for d in report.drifts)   # hard-pole did not move
 
 
@@ -230,3 +232,83 @@ def test_the_file_has_one_line_per_quantity_and_reads_back(recorded):
     assert json.loads(text) == json.loads(json.dumps(doc))
     line = next(x for x in text.splitlines() if '"solve.velocity1_x"' in x)
     assert json.loads(line.strip().rstrip(",").split(": ", 1)[1])["unit"] == "m/s"
+
+
+def test_energy_loss_percent_is_shown_in_percent(tmp_path):
+    """Issue 28: `check` gave energy_loss_percent the unit "-" (a percent share)."""
+    doc = make_baseline(["hard-pole"], sections=["solve"])
+    q = doc["cases"][0]["quantities"]["solve.energy_loss_percent"]
+    assert (q["kind"], q["unit"]) == ("percent", "percent")
+    # a baseline recorded before kind "percent" existed reads the same
+    old = json.loads(json.dumps(doc))
+    old["cases"][0]["quantities"]["solve.energy_loss_percent"].update(
+        kind="dimensionless", unit="dimensionless")
+    for name, data in (("new.json", doc), ("old.json", old)):
+        data["cases"][0]["quantities"]["solve.energy_loss_percent"]["value"] += 1.0
+        (tmp_path / name).write_text(json.dumps(data))
+        text = format_report(check_baseline(tmp_path / name))
+        row = next(line for line in text.splitlines() if line.startswith("hard-pole"))
+        assert row.split()[-2:] == ["%", "baseline"], row
+
+
+# Issue 28: `pim baseline cases/my-case.toml --out baselines/mine.json` stored the case's
+# absolute path; the documented pim_check("cases/my-case.toml", ...) failed ("holds no
+# case") and a moved copy failed ("neither a file nor a bundled case").
+@pytest.fixture(scope="module")
+def project(tmp_path_factory):
+    """A project: cases/my-case.toml (a copy of hard-pole), baselines/mine.json."""
+    root = tmp_path_factory.mktemp("project")
+    (root / "cases").mkdir()
+    (root / "baselines").mkdir()
+    shutil.copy(resources.files("pim.io") / "cases" / "hard-pole.toml",
+                root / "cases" / "my-case.toml")
+    doc = make_baseline([str(root / "cases" / "my-case.toml"), "hard-barrier"],
+                        sections=["solve"], base=root / "baselines")
+    (root / "baselines" / "mine.json").write_text(json.dumps(doc))
+    return root, doc
+
+
+def test_case_paths_are_stored_relative_to_the_baseline(project):
+    _, doc = project
+    assert [e["case"] for e in doc["cases"]] == ["../cases/my-case.toml", "hard-barrier"]
+
+
+def test_a_moved_project_checks_clean(project, tmp_path, monkeypatch):
+    moved = tmp_path / "clone"
+    shutil.copytree(project[0], moved)
+    monkeypatch.chdir(moved)
+    shutil.rmtree(project[0] / "cases")         # the original is gone: nothing reads it
+    try:
+        report = check_baseline("baselines/mine.json")
+        assert report.ok and not report.input_changes
+        for name in ("cases/my-case.toml", "my-case.toml", str(moved / "cases" / "my-case.toml"),
+                     "../cases/my-case.toml", "hard-pole"):      # as typed, as stored, by name
+            report = check_baseline("baselines/mine.json", [name])
+            assert report.ok and report.checked == len(doc_quantities(project, 0)), name
+        monkeypatch.chdir(tmp_path)             # another folder: the path's tail still names it
+        assert check_baseline(moved / "baselines" / "mine.json", ["cases/my-case.toml"]).ok
+        with pytest.raises(ValueError, match=r"holds no case cases/other.toml \(it holds "):
+            check_baseline(moved / "baselines" / "mine.json", ["cases/other.toml"])
+    finally:
+        shutil.copytree(moved / "cases", project[0] / "cases")
+
+
+def doc_quantities(project, i):
+    return project[1]["cases"][i]["quantities"]
+
+
+def test_an_old_baseline_with_an_absolute_path_works_while_the_file_is_there(project, tmp_path):
+    root, doc = project
+    old = json.loads(json.dumps(doc))
+    old["cases"][0]["case"] = str(root / "cases" / "my-case.toml")   # as recorded before
+    (tmp_path / "old.json").write_text(json.dumps(old))
+    assert check_baseline(tmp_path / "old.json").ok
+    old["cases"][0]["case"] = str(tmp_path / "gone" / "my-case.toml")
+    (tmp_path / "old.json").write_text(json.dumps(old))
+    with pytest.raises(ValueError) as err:
+        check_baseline(tmp_path / "old.json")
+    assert str(err.value) == (
+        f"case {str(tmp_path / 'gone' / 'my-case.toml')!r}: no such file; the baseline stores "
+        "this absolute path (recorded before pim stored case paths relative to the baseline "
+        "file): restore the file there, or record the baseline again with pim baseline (it "
+        "then moves with its cases)")

@@ -60,7 +60,8 @@ def test_every_table_is_present_and_the_results_come_first(report):
 def test_numbers_speak_the_case_files_units(report):
     _, _, text = report
     results = text.split('id="table-results"')[1].split("</table>")[0]
-    assert "ft/s" in results and "ft lbf" in results and "deg/s" in results
+    assert "mph" in results and "ft lbf" in results and "deg/s" in results
+    assert "ft/s" not in results and "m/s" not in results
     assumptions = "".join(re.findall(r'id="table-assumptions-\d".*?</table>', text, re.S))
     assert "C_eff x [ft]" in assumptions and "C_eff y [ft]" in assumptions
     assert "[m]" not in assumptions and "[m/s]" not in assumptions

@@ -35,7 +35,7 @@ def test_report_gives_the_laws_answer_its_run_and_the_fit_under_the_law(tmp_path
     assert fitted["impact law"] == "kudlich-slibar" and float(fitted["k"]) == pytest.approx(
         fit.eps)
     assert NOT_RUN in text
-    # results.csv holds solve_law's numbers (SI)
+    # results.csv holds pim.solve's numbers (SI)
     table = {r[0]: r for r in rows(tmp_path / "results.csv")}
     yaw = table["post-impact yaw rate"]
     assert float(yaw[1]) == pytest.approx(np.degrees(float(setup.result.yaw_rate1)), rel=1e-6)
@@ -51,7 +51,7 @@ def test_compare_command_under_the_law_prints_and_writes_it(tmp_path, capsys):
     assert main(["compare", "ricsac9", "--law", "kudlich-slibar", "--k", "0.3", "--mu-c",
                  "0.2", "--out", str(out), "--no-animation", "--no-progress", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    r = pim.solve_law(pim.load_case("ricsac9"), "kudlich-slibar", 0.3, None, 0.2)
+    r = pim.solve(pim.load_case("ricsac9"), law="kudlich-slibar", k=0.3, mu_c=0.2)
     assert data["law"] == "kudlich-slibar"
     assert (data["restitution"], data["contact_friction"]) == (0.3, 0.2)
     assert data["beta"] == pytest.approx(float(r.beta), rel=1e-12)
@@ -75,7 +75,7 @@ def test_animate_command_plays_the_two_phase_run_with_the_analytic_ghost(tmp_pat
                  "--no-progress", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["law"] == "kudlich-slibar" and data["contact_friction"] == 0.6
-    r = pim.solve_law(pim.load_case("ricsac9"), "kudlich-slibar", 0.1, None, 0.6)
+    r = pim.solve(pim.load_case("ricsac9"), law="kudlich-slibar", k=0.1, mu_c=0.6)
     assert (data["restitution"], data["beta"]) == (0.1, float(r.beta))
     assert data["max_ghost_offset_px"] < 1e-6       # the run and the law agree
     frames = list(iio.imiter(out))

@@ -25,10 +25,10 @@ def test_pim_solve_prints_the_speed_at_the_start_of_the_marks(capsys):
     assert main(["solve", "pre-impact-skids", "--json", "--units", "si"]) == 0
     data = json.loads(capsys.readouterr().out)["pre_impact"]
     row = data["vehicle2.speed_at_marks_start"]
-    assert row["unit"] == "m/s" and row["p5"] is None
-    assert row["value"] == pytest.approx(by_hand_mph(31.09, 20, 1.6 / 3, -0.02) * MPH,
+    assert row["unit"] == "km/h" and row["p5"] is None        # 1 km/h = 1/3.6 m/s
+    assert row["value"] == pytest.approx(by_hand_mph(31.09, 20, 1.6 / 3, -0.02) * MPH * 3.6,
                                          rel=1e-6)
-    assert row["impact"] == pytest.approx(V_CASE)
+    assert row["impact"] == pytest.approx(V_CASE * 3.6)
 
 
 def test_pim_solve_with_a_driver_table_from_before_the_impact(tmp_path, capsys):
@@ -113,7 +113,8 @@ def test_rows_speak_the_users_units():
         12.192, 0.7, grade=0.02))
     (si,) = pre_impact_rows([s], "si")
     (us,) = pre_impact_rows([s], "us")
-    assert si.unit == "m/s" and si.value == 20.0 and "12.19 m of marks" in si.what
+    assert si.unit == "km/h" and si.value == pytest.approx(20.0 * 3.6)
+    assert "12.19 m of marks" in si.what
     assert us.unit == "mph" and us.value == pytest.approx(20.0 / MPH)
     assert "40 ft of marks" in us.what and "grade +2 %" in us.what
     assert "nan" not in pre_impact_lines([us])[0]

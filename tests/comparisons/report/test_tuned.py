@@ -1,44 +1,85 @@
-"""Tables, verdicts and files of the tuned-scene study (comparisons.report.tuned)."""
+"""Tables, verdict sentences, JSON and files of the tuned-scene study
+(comparisons.report.tuned), on constructed studies."""
 
+import json
 import math
 
+import numpy as np
+
 from comparisons.report import tuned as R
-from comparisons.studies.tuned_scene import ClassStudy, FitResult, Prediction
+from comparisons.studies.crash_records import InputVariant
+from comparisons.studies.tuned_scene import (
+    MODELS,
+    ClassStudy,
+    MultiStartFit,
+    Prediction,
+    VariantStudy,
+    loo_comparisons,
+)
 
 
-def _study(pim_v, scene_v, kind="leave-one-out"):
-    preds = []
-    for i, (a, b) in enumerate(zip(pim_v, scene_v, strict=True)):
-        preds.append(Prediction("c", f"t{i}", "PIM", kind, (0.2, 0.9), 0.1, a, 0.05, 1e-4))
-        preds.append(Prediction("c", f"t{i}", "scene", kind, (0.2, 1.0, 0.1, 0.7), -0.1, b,
-                                0.1, 2e-2))
-    fits = {"PIM": FitResult((0.2, 0.9), 1.0, 10, 0.1),
-            "scene": FitResult((0.2, 1.0, 0.1, 0.7), 1.0, 10, 1.0)}
-    return ClassStudy("class A", tuple(f"t{i}" for i in range(len(pim_v))), tuple(preds),
-                      fits, 3.0)
+def _rows(errors: dict, kind: str) -> list:
+    out = []
+    for model, values in errors.items():
+        n_par = len(next(m for m in MODELS if m.name == model).parameters)
+        for i, v in enumerate(values):
+            flags = ("contact time",) if model != "pim" and i == 0 else ()
+            out.append(Prediction("class A", f"t{i}", model, kind, "leak-free",
+                                  tuple([0.5] * n_par), v / 0.44704, 0.1, v, 0.1 * v,
+                                  math.nan if model == "pim" else 0.03,
+                                  math.nan if model == "pim" else 0.4, 0.6,
+                                  math.nan if model == "pim" else 0.7, flags))
+    return out
 
 
-def test_verdict_names_the_better_model_and_the_ratio():
-    text = R.verdict(_study([1.0, 2.0, 3.0], [0.5, 1.0, 1.5]))
-    assert "the tuned scene predicts" in text and "(2x)" in text
-    assert "1.00 against 2.00 m/s" in text
-    text = R.verdict(_study([1.0, 1.0, 1.0], [3.0, 3.0, math.nan]), "us")
-    assert "PIM predicts" in text and "ft/s" in text and "failed on 1" in text
+def _study(pim_v, scene_v) -> ClassStudy:
+    errors = {"pim": pim_v, "scene": scene_v, "scene-mu0": scene_v}
+    preds = tuple(_rows(errors, "class fit") + _rows(errors, "leave-one-out"))
+    fits = {m.name: MultiStartFit(tuple([0.5] * len(m.parameters)), 1.2, 16, 7, 16, ())
+            for m in MODELS}
+    loo = {m.name: tuple(MultiStartFit(tuple([0.5] * len(m.parameters)), 1.3, 4, 2, 4, ())
+                         for _ in pim_v) for m in MODELS}
+    v = VariantStudy(InputVariant("leak-free", "the test's inputs", {"speed": "measured"}),
+                     preds, fits, loo, loo_comparisons(preds, 4))
+    return ClassStudy("class A", tuple(f"t{i}" for i in range(len(pim_v))),
+                      "post-impact velocity and yaw rate", "measured", 4, (v,),
+                      (0.01, 0.002), 3.0)
 
 
-def test_a_class_of_one_reports_its_fits():
-    text = R.verdict(_study([0.4], [0.2], kind="per-test fit"))
-    assert "too few for leave-one-out" in text and "0.40 m/s" in text
+def test_verdict_sentence_states_the_verdict_and_the_medians():
+    st = _study([1.0, 2.0, 3.0, 1.5, 2.5, 1.2, 0.9], [0.5, 1.0, 1.5, 0.7, 1.2, 0.6, 0.4])
+    text = R.verdict_sentence(st, st.variants[0])
+    assert text.startswith("class A (7 tests, leak-free): the scene predicts better.")
+    assert "PIM 5.40 km/h" in text and "p = 0.016" in text      # 1.5 m/s x 3.6
+    assert "2 of the scenes' 14 held-out predictions lie outside the physical ranges" in text
+    small = _study([1.0, 2.0, 3.0], [0.5, 1.0, 1.5])
+    text = R.verdict_sentence(small, small.variants[0], "us")
+    assert "too few tests to decide" in text and "mph" in text and "no test run" in text
 
 
-def test_files(tmp_path):
-    st = _study([1.0, 2.0, 3.0], [0.5, 1.0, 1.5])
-    files = R.write_tuned_study([st], tmp_path, "si", "pim validate-models",
-                                {"class A": (0.01, 0.002)})
-    assert [f.name for f in files] == ["tuned-scene.md", "tuned-scene-summary.csv",
-                                       "tuned-scene-predictions.csv", "tuned-scene.html",
-                                       "tuned-scene.png"]
+def test_json_holds_verdicts_p_values_medians_and_agreement():
+    st = _study([1.0, 2.0, 3.0, 1.5, 2.5, 1.2, 0.9], [1.1, 1.9, 3.2, 1.4, 2.6, 1.1, 1.0])
+    data = json.loads(json.dumps(R.study_json([st], "si", 12.5)))
+    v = data["classes"]["class A"]["variants"]["leak-free"]
+    assert v["verdict"].startswith("no significant difference (p = ") and 0 < v["p_value"] <= 1
+    assert set(v["models"]) == {"pim", "scene", "scene-mu0"}
+    pim = v["models"]["pim"]
+    assert pim["loo_velocity_median"] == 1.5
+    assert np.isclose(pim["loo_yaw_median"], math.degrees(0.15))
+    assert pim["class_fit"]["agreeing"] == 7 and pim["loo_starts"]["agreeing"] == [2] * 7
+    assert v["comparisons"]["scene-mu0"]["p_value_yaw"] is not None
+    assert data["wall_time"] == 12.5 and data["speed_unit"] == "km/h"   # "si": km/h
+
+
+def test_tables_and_files(tmp_path):
+    st = _study([1.0, 2.0, 3.0, 1.5, 2.5, 1.2, 0.9], [0.5, 1.0, 1.5, 0.7, 1.2, 0.6, 0.4])
+    summary = R.summary_table([st], "us")
+    assert len(summary.rows) == 3 and "mph" in summary.columns[10]
+    assert summary.rows[1][13] == 1                  # one scene row flagged
+    verdicts = R.verdict_table([st])
+    assert [r[4] for r in verdicts.rows] == ["the scene predicts better"] * 2
+    files = R.write_tuned_study([st], tmp_path, "si", "pim validate-models")
+    assert [f.name for f in files] == list(R.FILES)
     md = files[0].read_text()
     assert "pim validate-models" in md and "iihs-car-to-car: not run" in md
-    summary = R.summary_table([st]).rows
-    assert len(summary) == 2 and summary[0][3] == 3
+    assert "Wilcoxon" in md and "<table" in files[1].read_text()

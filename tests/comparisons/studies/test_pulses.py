@@ -7,7 +7,7 @@ import pytest
 
 import sim
 from comparisons.studies import pulses as P
-from sim.crash_data import nhtsa10146
+from sim.crash_data import default_stiffness, nhtsa10146
 
 
 @pytest.fixture(scope="module")
@@ -39,21 +39,27 @@ def test_the_law_matches_the_linear_spring_in_closed_form(comparison):
     assert law.peak_force == pytest.approx(v0 * math.sqrt(k * m), rel=1e-4)
     assert law.max_crush_time == pytest.approx(0.5 * math.pi * math.sqrt(m / k), rel=0.01)
     assert law.rebound_speed == pytest.approx(eps * v0, rel=1e-3)
-    assert k == sim.DEFAULT_STIFFNESS
+    assert k == sim.DEFAULT_STIFFNESS == default_stiffness("full-width frontal barrier").stiffness
 
 
-def test_errors_are_stated_against_the_csv_numbers(comparison):
-    table = P.pulse_table(comparison)
-    rows = {r[0]: r for r in table.rows}
-    peak = rows["peak force"]
-    assert peak[2] == pytest.approx(719.0, abs=1.0)          # kN, the file's largest sample
-    assert peak[4] == pytest.approx(peak[3] - peak[2])
-    crush = rows["maximum crush"]
-    assert abs(crush[5]) < 5.0                                # % : the law gets the crush
-    assert rows["peak force"][5] < -10.0                      # and misses the force spikes
-    assert comparison.delta_v_rms < 1.0
-    us = P.pulse_table(comparison, "us")
-    assert {r[0]: r for r in us.rows}["maximum crush"][1] == "ft"
+def test_what_is_fitted_to_the_same_test_and_what_is_predicted(comparison):
+    # k (the full-width frontal default) and eps both come from NHTSA 10146 itself: the
+    # maximum crush, its time, the rebound and the delta-V agree by construction
+    assert comparison.stiffness_fitted and comparison.eps_fitted
+    assert "NHTSA test 10146" in comparison.stiffness_source
+    role = P.roles(comparison)
+    assert {a for a, r in role.items() if r.startswith("fitted")} == set(
+        P.FROM_STIFFNESS + P.FROM_RESTITUTION)
+    assert {a for a, r in role.items() if r == "predicted"} == set(P.PREDICTED)
+    law, test = comparison.model_metrics, comparison.measured_metrics
+    assert law.rebound_speed == pytest.approx(test.rebound_speed, rel=1e-3)   # by construction
+    assert abs(law.peak_force / test.peak_force - 1) > 0.1                    # a prediction
+
+
+def test_given_parameters_are_not_fitted():
+    c = P.compare_pulses(stiffness=6e5, eps=0.2)
+    assert not c.stiffness_fitted and not c.eps_fitted and c.stiffness_source == "given"
+    assert set(P.roles(c).values()) == {"predicted"}
 
 
 def test_pulse_metrics_of_a_half_sine():

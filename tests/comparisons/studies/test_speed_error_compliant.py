@@ -6,21 +6,21 @@ from pathlib import Path
 import pytest
 
 import pim
-from comparisons.report.speed_error import write_compliant
+import sim
 from comparisons.studies import speed_error_compliant as S
 from pim.io.casefile import load_case
 
 
 @pytest.fixture(scope="module")
 def study():
-    return S.compliant_sweep(pim.load_case("ricsac9"), 0.355, steps=(10, 40, 160),
-                             rtols=(1e-3, 1e-7), methods=("DOP853",),
-                             scenes={"frictionless": 0.0}, repeats=1, progress=False)
+    return S.compliant_sweep(pim.load_case("ricsac9"), 0.355, grid=S.Grid(
+        steps=(10, 40, 160), rtols=(1e-3, 1e-7), methods=("DOP853",), repeats=1),
+        scenes={"frictionless": 0.0}, progress=False)
 
 
 def test_errors_fall_as_the_step_shrinks_and_the_reference_is_consistent(study):
-    pymunk = [p for p in study.points if p.integrator == "pymunk"]
-    errors = [p.error for p in sorted(pymunk, key=lambda p: -p.setting)]
+    fixed = [p for p in study.points if p.integrator == "compiled"]
+    errors = [p.error for p in sorted(fixed, key=lambda p: -p.setting)]
     assert errors[0] > errors[1] > errors[2]
     assert study.reference_spread < 1e-7          # the reference against the rung before
     assert study.reference_rtol <= 1e-9
@@ -34,12 +34,8 @@ def test_pareto_front_and_recommendation(study, tmp_path):
                for a, b in zip(front, front[1:], strict=False))
     rec = study.recommended("frictionless")
     assert rec is not None and rec.error <= S.TARGET and rec in front
-    files = write_compliant(study, tmp_path, "ricsac9")
+    files = S.write_compliant_study(study, tmp_path, "ricsac9")
     assert all(f.exists() for f in files)
-    assert [f.name for f in files] == ["speed-error-compliant-ricsac9.md",
-                                       "speed-error-compliant-ricsac9.csv",
-                                       "speed-error-compliant-ricsac9.html",
-                                       "speed-error-compliant-ricsac9.png"]
     assert "recommended" in files[0].read_text()
 
 
@@ -61,12 +57,57 @@ def test_reference_stops_at_the_budget_and_reports_the_tolerance_reached():
 
 
 def test_a_slow_run_skips_the_finer_settings_as_over_budget():
-    study = S.compliant_sweep(pim.load_case("ricsac9"), 0.355, steps=(10, 40, 160),
-                              rtols=(1e-3,), methods=("DOP853",), scenes={"f": 0.0},
-                              repeats=1, progress=False, run_budget=1e-9)
-    pymunk = [p for p in study.points if p.integrator == "pymunk"]
-    assert [p.failure for p in pymunk] == [None, "over_budget", "over_budget"]
+    study = S.compliant_sweep(pim.load_case("ricsac9"), 0.355, grid=S.Grid(
+        steps=(10, 40, 160), rtols=(1e-3,), methods=("DOP853",), repeats=1, run_budget=1e-9),
+        scenes={"f": 0.0}, progress=False)
+    fixed = [p for p in study.points if p.integrator == "compiled"]
+    assert [p.failure for p in fixed] == [None, "over_budget", "over_budget"]
     assert study.wall_time > 0
+
+
+def test_the_compiled_and_the_pymunk_scene_agree_on_every_step(study):
+    """The pymunk path stays the cross-check: over the same dt both step the same functions
+    and reach the same error against the same reference (to round-off), the compiled one
+    in a fraction of the time."""
+    check = S.compliant_sweep(pim.load_case("ricsac9"), 0.355, grid=S.Grid(
+        steps=(10, 40, 160), rtols=(1e-3,), methods=(), repeats=1),
+        scenes={"frictionless": 0.0}, progress=False, engine="pymunk")
+    compiled = sorted((p for p in study.points if p.integrator == "compiled"),
+                      key=lambda p: p.setting)
+    pymunk = sorted((p for p in check.points if p.integrator == "pymunk"),
+                    key=lambda p: p.setting)
+    assert [p.setting for p in compiled] == [p.setting for p in pymunk]
+    for a, b in zip(compiled, pymunk, strict=True):
+        assert a.steps == b.steps
+        assert a.error == pytest.approx(b.error, rel=1e-9, abs=1e-13)
+    assert sum(p.wall_time for p in compiled) < sum(p.wall_time for p in pymunk)
+    assert check.engine == "pymunk" and study.engine == "numba"
+
+
+def test_the_stiffness_is_that_of_the_typical_contact_time_not_a_frontal_default(study):
+    # RICSAC 9 is a vehicle-to-vehicle contact: no measured stiffness applies to it; the
+    # scenes take the stiffness of a 100 ms contact at C instead of the 7.5e5 N/m measured
+    # on a full-width frontal barrier test
+    case = pim.load_case("ricsac9")
+    assert study.stiffness == pytest.approx(S.scene_stiffness(case, 0.355, 0.1))
+    assert study.stiffness != pytest.approx(7.5e5, rel=0.05) and study.contact_time == 0.1
+    k_nn = sim.compliant_setup.build_problem(case, 0.355, study.stiffness).k_nn
+    assert float(sim.contact_law.contact_duration_estimate(study.stiffness, k_nn, 0.355)) == \
+        pytest.approx(0.1, rel=1e-9)
+
+
+def test_two_scenes_on_a_process_pool_give_the_serial_errors(study):
+    from pim.io.output import worker_pool
+    with worker_pool(2) as pool:
+        both = S.compliant_sweep(pim.load_case("ricsac9"), 0.355, grid=S.Grid(
+            steps=(10, 40, 160), rtols=(1e-3, 1e-7), methods=("DOP853",), repeats=1),
+            scenes={"frictionless": 0.0, "friction 0.5": 0.5}, progress=False,
+            executor=pool)
+    serial = {(p.integrator, p.setting): p.error for p in study.points}
+    pooled = {(p.integrator, p.setting): p.error for p in both.points
+              if p.scene == "frictionless"}
+    assert pooled == serial
+    assert {p.scene for p in both.points} == {"frictionless", "friction 0.5"}
 
 
 def test_a_reference_rung_over_the_budget_is_abandoned_at_it():

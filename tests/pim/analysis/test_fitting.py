@@ -242,7 +242,7 @@ def test_cli_fit(ricsac9, capsys):
     assert data["eps"] == pytest.approx(0.355, abs=0.002) and data["beta"] == 1.0
     assert main(["fit", "ricsac9", "--include-yaw", "--units", "us"]) == 0
     out = capsys.readouterr().out
-    assert "beta sits on its upper bound" in out and "ft/s" in out and "yaw_rate2" in out
+    assert "beta sits on its upper bound" in out and "mph" in out and "yaw_rate2" in out
     assert main(["fit", "ricsac9", "--beta", "1"]) == 0
     assert "fixed: beta" in capsys.readouterr().out
 
@@ -330,7 +330,8 @@ def test_cli_free_parameters_say_whether_the_data_decide_them(capsys):
     assert data["identifiability"]["rank"] == 2 and not data["identifiability"]["families"]
     # --json speaks the case's units (issue 22): the angle in degrees, its unit named
     assert -10 - 1e-6 <= data["values"]["impact.normal_angle"] <= 10 + 1e-6
-    assert data["value_units"]["impact.normal_angle"] == "deg" and data["units"] == "us"
+    assert data["value_units"]["impact.normal_angle"] == "deg"
+    assert data["units"]["system"] == "us" and data["units"]["angle"] == "deg"
 
 
 @pytest.mark.parametrize("arg, words", [("bogus=1,2", "KEY"),
@@ -375,7 +376,7 @@ def test_kudlich_slibar_fit_recovers_a_sliding_contacts_k_and_mu_c(ricsac9, k, m
 def test_kudlich_slibar_fit_of_a_sticking_contact_gives_mu_c_as_a_lower_bound(ricsac9):
     case = _ks_measured(ricsac9, 0.2, 1.5)
     result = fit(case, include_yaw=True)
-    needed = float(pim.solve(case, 0.0, 1.0).mu0)       # Brach's sticking ratio at eps = 0
+    needed = float(pim.solve(case, 0.0, 1.0, law="brach").mu0)  # Brach's sticking ratio at eps = 0
     assert result.values["impact.k"] == pytest.approx(0.2, abs=1e-7)
     assert result.lower_bounds == {"impact.mu_c": pytest.approx(needed, rel=1e-9)}
     assert result.values["impact.mu_c"] == pytest.approx(needed, rel=1e-9)
@@ -422,10 +423,10 @@ def test_fit_command_under_the_kudlich_slibar_law(capsys):
     assert "under the Kudlich-Slibar law (k, mu_c)" in out and "mu_c    = " in out
     assert main(["fit", "ricsac9-pccrash", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["law"] == "kudlich-slibar" and data["units"] == "us"
+    assert data["law"] == "kudlich-slibar" and data["units"]["system"] == "us"
     assert data["lower_bounds"]["impact.mu_c"] == pytest.approx(
-        float(pim.solve(pim.load_case("ricsac9-pccrash"), 0.0, 1.0).mu0), rel=1e-9)
-    assert data["rms_unit"] == "ft/s"
+        float(pim.solve(pim.load_case("ricsac9-pccrash"), 0.0, 1.0, law="brach").mu0), rel=1e-9)
+    assert data["rms_unit"] == "mph"
     assert main(["fit", "ricsac9-pccrash", "--eps", "0.3"]) == 2
     assert "hold k with --k" in capsys.readouterr().err
     assert main(["fit", "ricsac9", "--k", "0.3"]) == 2
@@ -447,3 +448,16 @@ def test_kudlich_slibar_families_with_the_contact_plane_free(ricsac9):
                for w in sticking.identifiability.warnings)
     # with the plane given, both are decided (sliding) or k is and mu_c has its lower bound
     assert fit(_ks_measured(ricsac9, 0.3, 0.4), include_yaw=True).identifiability.identifiable
+
+
+def test_fit_names_the_argument_given_a_string():
+    """Issue 28: an AttributeError deep inside (measured='x'), int()'s message (grid)."""
+    case = pim.load_case("ricsac9")
+    with pytest.raises(TypeError, match=r"^measured must be a pim.Measured or None"):
+        fit(replace(case, measured="x"))
+    with pytest.raises(TypeError, match=r"^case must be a pim.Case \(a case name or file is "
+                                        r"read by pim.load_case\(...\)\), got 'ricsac9'$"):
+        fit("ricsac9")
+    with pytest.raises(pim.InputError, match=r"^grid must be two integers >= 3 \(points per "
+                                             r"axis: eps, beta\), got \('a', 5\)$"):
+        fit(case, grid=("a", 5))

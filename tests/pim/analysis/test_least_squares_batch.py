@@ -62,3 +62,44 @@ def test_non_finite_residuals_are_refused_steps():
 def test_bad_bounds_are_an_error():
     with pytest.raises(ValueError, match="lower < upper"):
         least_squares_batch(rosenbrock, [[0.0, 0.0]], [1, 1], [1, 2])
+
+
+def _rosenbrock_residuals(x, idx):
+    """Residuals alone, at points x (p, q, 2)."""
+    return np.stack([10 * (x[..., 1] - x[..., 0] ** 2), 1 - x[..., 0]], -1)
+
+
+def test_forward_differences_match_the_exact_jacobian_and_reach_the_minimum():
+    from pim.analysis.least_squares_batch import with_forward_differences
+
+    fun = with_forward_differences(_rosenbrock_residuals, [-3, -3], [3, 3], step=1e-7)
+    x = np.random.default_rng(3).uniform(-2, 2, (50, 2))
+    x[0] = (3.0, 3.0)                                   # on the upper bound: backward steps
+    r, jac = fun(x, np.arange(50))
+    r_exact, jac_exact = rosenbrock(x, None)
+    np.testing.assert_allclose(r, r_exact, rtol=1e-12, atol=1e-12)   # x through the box
+    np.testing.assert_allclose(jac, jac_exact, rtol=1e-5, atol=1e-4)
+    out = least_squares_batch(fun, np.random.default_rng(4).uniform(-2, 2, (100, 2)),
+                              [-3, -3], [3, 3], max_iter=500)
+    np.testing.assert_allclose(out.x, 1.0, atol=1e-5)
+
+
+def test_merging_stays_within_a_group():
+    """Two problems from several starts each, told apart by ``groups``: the minimum of one is
+    never copied into the other, though their starts lie close together."""
+    from pim.analysis.least_squares_batch import with_forward_differences
+
+    targets = np.array([0.3, 0.34])                    # group g: r = (x - targets[g])^3
+
+    def residuals(x, idx):
+        return (x - targets[groups[idx]][:, None, None]) ** 3
+
+    groups = np.repeat([0, 1], 3)
+    starts = np.array([0.3 + 1e-9, 0.9, 0.1, 0.31, 0.9, 0.1])[:, None]
+    fun = with_forward_differences(residuals, [0.0], [1.0], step=1e-6)
+    out = least_squares_batch(fun, starts, [0.0], [1.0], merge=0.05, groups=groups)
+    np.testing.assert_allclose(out.x[:, 0], targets[groups], atol=0.01)
+    merged = least_squares_batch(fun, starts, [0.0], [1.0], merge=0.05)
+    assert merged.x[3, 0] == out.x[0, 0]        # one group: group 1's start copied group 0
+    with pytest.raises(ValueError, match="groups"):
+        least_squares_batch(fun, starts, [0.0], [1.0], merge=0.05, groups=[0, 1])

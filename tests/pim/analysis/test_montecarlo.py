@@ -123,7 +123,7 @@ def test_ricsac9_ships_an_uncertainty_table(capsys):
 
     assert main(["uncertainty", "ricsac9", "--samples", "2000"]) == 0
     out = capsys.readouterr().out
-    assert "ft/s" in out and "deg/s" in out and "2,000 samples" in out
+    assert "mph" in out and "deg/s" in out and "2,000 samples" in out and "ft/s" not in out
 
 
 def test_barrier_has_no_pdof_in_the_uncertainty_table(tmp_path, capsys):

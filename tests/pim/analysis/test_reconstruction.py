@@ -381,3 +381,15 @@ def test_kudlich_slibar_reconstruct_of_a_sticking_contact_says_mu_c_is_a_lower_b
     assert rec.samples.n_used > 30
     assert rec.samples.stats["vehicle1.speed"].p5 < 9.0 < rec.samples.stats["vehicle1.speed"].p95
     assert any("lower bound in" in m for m in rec.samples.messages)
+
+
+def test_reconstruct_names_the_argument_given_a_string():
+    """Issue 28: reconstruct('ricsac9-reconstruct') and executor='serial' failed deep inside
+    with an AttributeError (the latter after the inverse PIM)."""
+    with pytest.raises(TypeError, match=r"^case must be a pim.Case .*got "
+                                        r"'ricsac9-reconstruct'$"):
+        reconstruct("ricsac9-reconstruct")
+    with pytest.raises(TypeError, match=r"^executor must be None \(this process\), a "
+                                        r"concurrent.futures.Executor or a "
+                                        r"dask.distributed.Client, got 'serial'$"):
+        reconstruct(pim.load_case("ricsac9-reconstruct"), samples=20, executor="serial")

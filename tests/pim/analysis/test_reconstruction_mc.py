@@ -176,3 +176,28 @@ def test_blocks_on_an_executor_pool_into_the_same_distribution():
         width = a.p95 - a.p5
         assert abs(a.p50 - b.p50) < 0.05 * width and abs(a.p95 - b.p95) < 0.08 * width
         assert again.samples.stats[key] == b
+
+
+def test_inadmissible_samples_are_left_out_and_counted():
+    """Issue 28: a Monte Carlo says what share of its samples were inadmissible and how they
+    were treated. admissible_samples re-solves each sample's state under the law: RICSAC 9
+    at beta 0.8 is admissible, at beta 1.2 the slip reverses (pim.solve's own flags)."""
+    from pim.analysis.free_inputs import case_state
+    from pim.analysis.reconstruction_mc import SampleBlock, admissible_samples, summarise
+
+    case = pim.load_case("ricsac9")
+    state = np.stack([case_state(case, 0.355, b) for b in (0.8, 1.2, 0.8)])
+    ok, counts = admissible_samples(case, state, "brach")
+    assert ok.tolist() == [True, False, True]
+    reverses = [(text, bad) for text, bad, _ in counts if "beta > 1" in text]
+    assert reverses and reverses[0][1] == 1
+    # summarise words it: the share, the treatment, the reasons with their counts
+    fit = inverse_pim(synthetic(), UNKNOWN)
+    keys = tuple(fit.values)
+    x = np.tile([fit.values[k] for k in keys], (10, 1))
+    block = SampleBlock(x, np.r_[[True] * 8, [False] * 2], {}, "stated", [],
+                        inadmissible={"kinetic energy is gained": 2}, n_inadmissible=2)
+    messages = summarise(fit, [block]).messages
+    assert ("2 of 10 samples (20 %) are inadmissible impacts, left out of the percentiles and "
+            "the drivers: kinetic energy is gained (2)") in messages
+    assert not any("fit not converged" in m for m in messages)

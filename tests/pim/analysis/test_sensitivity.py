@@ -183,3 +183,11 @@ def test_sensitivity_of_a_fit_to_recorded_evidence():
     i = s.inputs.index("measured.delta_v1_long")
     assert s.sigma[i] == pytest.approx(1 / 3.6)
     assert np.all(np.isfinite(s.derivative[:, i])) and np.any(s.derivative[:, i] != 0)
+
+
+def test_sensitivity_names_the_argument_given_a_string():
+    """Issue 28: pim.sensitivity(case, uncertainty='x') failed with an AttributeError."""
+    with pytest.raises(TypeError, match=r"^uncertainty must be a "
+                                        r"pim.analysis.sensitivity.TypicalUncertainty or None, "
+                                        r"got 'x'$"):
+        sensitivity(pim.load_case("ricsac9"), uncertainty="x")

@@ -216,3 +216,21 @@ def test_ricsac_crush_edge_geometry_and_refit():
         assert 0 <= f.restitution <= 1 and 0 <= f.beta <= 1 and abs(f.along) <= 1.0
         assert set(f.residuals) == {"velocity1_x", "velocity1_y", "velocity2_x",
                                     "velocity2_y", "yaw_rate1", "yaw_rate2"}
+
+
+def test_the_nhtsa_outcome_is_the_authors_pim_output():
+    """Rose et al.'s tabulated delta-V and yaw-rate change of each vehicle come back from
+    pim.solve with their inputs (cor, mu = mu0) within the table's rounding: the outcome is
+    their PIM analysis's output, not the tests' measured motion, and the tabulated critical
+    impulse ratio is PIM's mu0 of the geometry."""
+    from pim.analysis.validation import nhtsa_case, nhtsa_motion
+    from pim.io.datasets import load_nhtsa_car_to_car
+
+    for t in load_nhtsa_car_to_car():
+        case = nhtsa_case(t)
+        r = solve(case, t.restitution, t.beta)
+        got = nhtsa_motion(case, r.velocity1, r.yaw_rate1, r.velocity2, r.yaw_rate2)
+        want = [t.delta_v1, t.yaw_change1, t.delta_v2, t.yaw_change2]
+        np.testing.assert_allclose(got[[0, 2]], np.take(want, [0, 2]), atol=0.2 * 0.44704)
+        np.testing.assert_allclose(got[[1, 3]], np.take(want, [1, 3]), atol=np.radians(1.3))
+        assert float(r.mu0) == pytest.approx(t.mu0, abs=0.006)

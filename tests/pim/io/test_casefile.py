@@ -43,7 +43,7 @@ BAD = [
      ["impact", "unknown key 'restitusion'"]),
     ("restitution = 0.355", "restitution = 1.5", ["impact.restitution", "[0, 1]"]),
     ("restitution = 0.355", "restitution = -0.1", ["impact.restitution", "[0, 1]"]),
-    ('normal_angle = "0 deg"', 'normal_angle = "0 m"', ["impact.normal_angle", "dimensionless"]),
+    ('normal_angle = "0 deg"', 'normal_angle = "0 m"', ["impact.normal_angle", "expected angle"]),
     ('name = "ricsac9"', 'name = "ricsac9', ["malformed TOML"]),
     ('[impact]', '[impactt]', ["unknown key 'impactt'"]),
     ('vehicle1.yaw_rate = "-180 deg/s"', 'vehicle1.yaw_rat = "-180 deg/s"',
@@ -244,8 +244,9 @@ def test_cg_to_front_places_the_outline(tmp_path):
 
 
 @pytest.mark.parametrize("new, words", [
-    ('length = "13.0 ft"\ncg_to_front = "14 ft"', ["cg_to_front", "[0, length"]),
-    ('cg_to_front = "5 ft"', ["cg_to_front", "needs length"]),
+    ('length = "13.0 ft"\ncg_to_front = "14 ft"',
+     ["vehicle1.cg_to_front = '14 ft'", "between 0 and vehicle1.length = '13.0 ft'"]),
+    ('cg_to_front = "5 ft"', ["cg_to_front", "needs vehicle1.length"]),
 ])
 def test_cg_to_front_outside_the_outline_is_refused(tmp_path, capsys, new, words):
     assert main(["solve", str(variant(tmp_path, 'length = "13.0 ft"', new))]) == 2
@@ -258,7 +259,8 @@ def test_flipped_normal_hints_at_its_direction_in_the_case_units(tmp_path, capsy
     path = variant(tmp_path, 'normal_angle = "0 deg"', 'normal_angle = "180 deg"')
     assert main(["solve", str(path)]) == 1
     err = capsys.readouterr().err
-    assert "ft/s" in err and "m/s" not in err
+    # u_n = 31.09 ft/s = 21.2 mph (the staged speed), in the field's unit
+    assert "u_n = 21.2 mph" in err and "m/s" not in err and "ft/s" not in err
     assert "from vehicle 2 toward vehicle 1" in err and "try 0 deg" in err
 
 
@@ -282,3 +284,104 @@ def test_contact_plane_angle_errors_name_the_field(tmp_path, new, words):
     path.write_text(text)
     with pytest.raises(ValueError, match=words):
         pim.load_case(str(path))
+
+
+# --- Issue 28: the [units] table chooses the units results are presented in -------------
+
+@pytest.mark.parametrize("table, system, speed", [
+    ("", "us", None),                                   # written in ft: us, mph by default
+    ('[units]\nspeed = "m/s"\n', "us", "m/s"),
+    ('[units]\nsystem = "si"\n', "si", None),
+    ('[units]\nsystem = "si"\nspeed = "ft/s"\n', "si", "ft/s"),
+])
+def test_the_units_table_sets_the_presentation(tmp_path, table, system, speed):
+    path = tmp_path / "case.toml"
+    path.write_text(RICSAC + "\n" + table)
+    case = pim.load_case(path)
+    assert (case.units, case.speed_unit) == (system, speed)
+    assert case.vehicle1.velocity[0] == pytest.approx(-31.09 * 0.3048)   # read as before
+
+
+def test_a_units_table_in_mph_does_not_make_an_si_file_us(tmp_path):
+    text = RICSAC.replace("lbf", "N").replace(" ft", " m").replace("slug", "kg")
+    path = tmp_path / "case.toml"
+    path.write_text(text.replace("ft/s", "km/h") + '\n[units]\nspeed = "mph"\n')
+    case = pim.load_case(path)
+    assert (case.units, case.speed_unit) == ("si", "mph")
+
+
+@pytest.mark.parametrize("table, words", [
+    ('[units]\nspeed = "kph"\n', ["units.speed", "'km/h', 'mph', 'm/s', 'ft/s'", "'kph'"]),
+    ('[units]\nsystem = "metric"\n', ["units.system", "'si', 'us'"]),
+    ('[units]\nsped = "mph"\n', ["units", "unknown key 'sped'"]),
+    ('units = "mph"\n', ["units must be a table"]),
+])
+def test_a_bad_units_table_names_the_key(tmp_path, capsys, table, words):
+    path = tmp_path / "case.toml"
+    path.write_text(table + RICSAC if not table.startswith("[") else RICSAC + "\n" + table)
+    with pytest.raises(ValueError) as info:
+        pim.load_case(path)
+    assert all(w in str(info.value) for w in words), str(info.value)
+    assert main(["solve", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: ") and err.count("\n") == 1 and words[0] in err
+# Issue 28: what a new user wrote, and what the message says.
+def test_a_missing_table_is_named_apart_from_the_file_name(tmp_path):
+    """Before: "bad2/noimpact.toml.impact is missing" (the file name glued to the key)."""
+    folder = tmp_path / "bad2"
+    folder.mkdir()
+    path = folder / "noimpact.toml"
+    path.write_text(RICSAC[:RICSAC.index("[impact]")] + RICSAC[RICSAC.index("[measured]"):])
+    with pytest.raises(ValueError) as info:
+        pim.load_case(path)
+    assert str(info.value) == f"{path}: table [impact] is missing"
+
+
+def test_an_unknown_key_gets_the_closest_known_one(tmp_path):
+    """Before: no "did you mean" for a key (the units had one)."""
+    path = variant(tmp_path, 'yaw_rate = "0 deg/s"\nlength = "13.0 ft"',
+                   'yawrate = "0 deg/s"\nlength = "13.0 ft"')
+    with pytest.raises(ValueError, match=r"vehicle1: unknown key 'yawrate'; did you mean "
+                                         r"'yaw_rate'\? \(allowed: body, cg, "):
+        pim.load_case(path)
+
+
+def test_a_negative_brach_distance_is_quoted_as_written(tmp_path):
+    """Before: "vehicle1.d (distance CG to C) must be >= 0 [m]" for a case written in ft."""
+    text = (resources.files("pim.io") / "cases" / "ricsac9-brach.toml").read_text()
+    assert 'd = "4.800 ft"' in text
+    path = tmp_path / "case.toml"
+    path.write_text(text.replace('d = "4.800 ft"', "d = '-4.8 ft'", 1))
+    with pytest.raises(ValueError) as info:
+        pim.load_case(path)
+    assert str(info.value) == ("vehicle1.d = '-4.8 ft' must be >= 0 (the distance from the CG "
+                               "to C)")
+
+
+def test_degree_and_percent_signs_in_a_case_file(tmp_path):
+    """"10°", "35.5 %" and "100 %" read as 10 deg, 0.355 and 1 (refused before)."""
+    path = variant(tmp_path, 'normal_angle = "0 deg"\nrestitution = 0.355\nbeta = 1',
+                   'normal_angle = "10°"\nrestitution = "35.5 %"\nbeta = "100 %"')
+    case = pim.load_case(path)
+    assert float(case.impact.normal_angle) == pytest.approx(math.pi / 18, rel=1e-15)
+    assert float(case.impact.restitution) == pytest.approx(0.355, rel=1e-15)
+    assert float(case.impact.beta) == 1.0
+
+
+@pytest.mark.parametrize("table, old, new, words", [
+    ("ricsac9", 'vehicle1.mass = {normal = "1.4 slug"}', 'vehicle1.mas = {normal = "1.4 slug"}',
+     "uncertainty: unknown input 'vehicle1.mas'; did you mean 'vehicle1.mass'? (allowed: "),
+    ("ricsac9-reconstruct", 'vehicle1.speed = {bounds', 'vehicle1.sped = {bounds',
+     "unknown: 'vehicle1.sped' cannot be solved for; did you mean 'vehicle1.speed'? "
+     "(allowed: "),
+])
+def test_every_unknown_name_of_a_case_file_gets_the_closest_known_one(tmp_path, table, old,
+                                                                      new, words):
+    """Issue 28: "did you mean" for keys (the units had one) in every table."""
+    text = (resources.files("pim.io") / "cases" / f"{table}.toml").read_text()
+    assert old in text
+    path = tmp_path / "case.toml"
+    path.write_text(text.replace(old, new, 1))
+    with pytest.raises(ValueError) as info:
+        pim.load_case(path)
+    assert str(info.value).startswith(words), str(info.value)

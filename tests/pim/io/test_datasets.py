@@ -108,3 +108,55 @@ def test_missing_file_and_unknown_dataset(tmp_path):
         load_barrier(tmp_path / "none.csv")
     with pytest.raises(ValueError, match="unknown dataset 'x'"):
         load_dataset("x")
+
+
+def test_nhtsa_car_to_car_as_transcribed():
+    """SAE 2006-01-0908 via pycrash's transcription: test 4364 (Accord and Trailblazer)."""
+    from pim.io.datasets import LB, MPH, NHTSA_FILE, SLUG_FT2, load_nhtsa_car_to_car
+
+    tests = {t.test: t for t in load_nhtsa_car_to_car()}
+    assert list(tests) == ["4363", "4364", "4438", "4474"]
+    t = tests["4364"]
+    assert "Trailblazer" in t.vehicle2 and t.mass2 == pytest.approx(5192.5 * LB)
+    assert t.yaw_inertia2 == pytest.approx(3563 * SLUG_FT2)
+    assert t.speed2 == pytest.approx(34.9 * MPH) and t.d2 == pytest.approx(7.1 * 0.3048)
+    assert t.normal_angle == pytest.approx(math.radians(51.9)) and t.restitution == 0.089
+    assert t.delta_v1 == pytest.approx(40.1 * MPH)
+    assert t.yaw_change2 == pytest.approx(math.radians(148))
+    assert "2006-01-0908" in source_lines(data_path(NHTSA_FILE))[0]
+    assert load_dataset("nhtsa-car-to-car")[0].test == "4363"
+
+
+def test_every_input_names_its_origin():
+    """The origins on the records: the barrier tests' phi, e and mu were fitted with PIM to
+    their own motion; the NHTSA table's outcome is a PIM analysis's output."""
+    from pim.io.datasets import (
+        FITTED_BY_PIM,
+        MEASURED,
+        ORIGIN_KINDS,
+        PIM_OUTPUT,
+        PUBLISHED_GEOMETRY,
+        load_nhtsa_car_to_car,
+    )
+
+    b = load_barrier()[0]
+    assert b.origins["phi"] == FITTED_BY_PIM and b.origins["d"] == PUBLISHED_GEOMETRY
+    assert b.origins["yaw_rate"] == MEASURED
+    n = load_nhtsa_car_to_car()[0]
+    assert n.origins["delta_v1"] == PIM_OUTPUT and n.origins["speed1"] == MEASURED
+    for records in (load_barrier(), load_car_to_car(), load_ricsac(), load_nhtsa_car_to_car()):
+        r = records[0]
+        assert set(r.origins.values()) <= set(ORIGIN_KINDS)
+        fields = set(r.__dataclass_fields__)
+        assert set(r.origins) <= fields          # every origin names a field
+
+
+def test_malformed_nhtsa_file_rejected(tmp_path):
+    from pim.io.datasets import NHTSA_FILE, load_nhtsa_car_to_car
+
+    path = _copy(tmp_path, NHTSA_FILE, lambda s: s.replace(",0.126,", ",1.126,"))
+    with pytest.raises(ValueError, match=r"column 'cor': 1.126 outside"):
+        load_nhtsa_car_to_car(path)
+    path = _copy(tmp_path, NHTSA_FILE, lambda s: s.replace("4364,", "4363,"))
+    with pytest.raises(ValueError, match="duplicate test '4363'"):
+        load_nhtsa_car_to_car(path)

@@ -226,3 +226,69 @@ def test_pool_workers_print_nothing_and_end_with_the_parent(tmp_path, signum):
     _, err = proc.communicate(timeout=60)
     assert proc.returncode == 130 and err == "", err
     assert time.time() - start < 10                  # ended, not waited for (30 s)
+
+
+# Issue 28: a rerun into a folder pim wrote earlier, to which the user had added notes.txt,
+# deleted notes.txt with the folder.
+def test_a_rerun_keeps_what_the_user_put_into_the_folder_and_says_so(tmp_path):
+    out = write_run(tmp_path / "out", {"a.csv": "1", "animation.mp4": "old video"})
+    (out / "notes.txt").write_text("my notes")
+    (out / "photos").mkdir()
+    (out / "photos" / "scene.jpg").write_text("jpeg")
+    (out / "empty").mkdir()
+    (out / "link").symlink_to("notes.txt")
+    said = []
+    with output_folder(out, say=said.append) as tmp:
+        (tmp / "a.csv").write_text("2")
+    files = tree(out)
+    assert files.pop(MARKER) and files.pop("link") == b"my notes"      # the link, followed
+    assert files == {"a.csv": b"2", "notes.txt": b"my notes", "photos/scene.jpg": b"jpeg"}
+    assert (out / "empty").is_dir() and os.readlink(out / "link") == "notes.txt"
+    assert said == [f"--out {out}: kept empty/, link, notes.txt, photos/scene.jpg (pim did "
+                    f"not write them)"]
+    write_run(out, {"a.csv": "3"})                       # and the next run keeps them too
+    assert (out / "notes.txt").read_text() == "my notes" and litter(tmp_path) == []
+
+
+def test_the_kept_note_goes_to_stderr_by_default(tmp_path, capfd):
+    out = write_run(tmp_path / "out", {"a.csv": "1"})
+    (out / "notes.txt").write_text("my notes")
+    write_run(out, {"a.csv": "2"})
+    assert capfd.readouterr().err == f"note: --out {out}: kept notes.txt (pim did not write it)\n"
+
+
+def test_a_file_pim_wrote_and_the_user_changed_refuses_the_rerun_before_the_work(tmp_path):
+    out = write_run(tmp_path / "out", {"report.md": "pim's", "a.csv": "1"})
+    (out / "report.md").write_text("pim's, with my comments")
+    before = tree(out)
+    with pytest.raises(OutputError) as err, output_folder(out):
+        pytest.fail("the work ran")
+    assert str(err.value) == (f"--out {out}: report.md changed since pim wrote it; a rerun "
+                              "replaces what pim wrote: move or rename it, then run again")
+    assert tree(out) == before and litter(tmp_path) == []
+
+
+def test_a_file_of_the_users_named_as_a_new_output_leaves_the_folder_as_it_was(tmp_path):
+    out = write_run(tmp_path / "out", {"a.csv": "1"})
+    (out / "animation.mp4").write_text("made by hand")
+    before = tree(out)
+    with pytest.raises(OutputError, match="this run writes animation.mp4, which pim did not "
+                                          "write there before"), output_folder(out) as tmp:
+        (tmp / "animation.mp4").write_text("pim's")
+    assert tree(out) == before and litter(tmp_path) == []
+
+
+def test_a_folder_whose_marker_lists_no_files_keeps_all_the_new_run_does_not_write(tmp_path):
+    """Written before the marker listed the run's files: pim cannot tell the user's files
+    from its own, so it deletes none of them (a namesake of a new file is replaced)."""
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / MARKER).write_text("written by pim compare; the next pim run into this folder "
+                              "replaces it whole\n")
+    (out / "a.csv").write_text("old")
+    (out / "notes.txt").write_text("my notes")
+    said = []
+    with output_folder(out, say=said.append) as tmp:
+        (tmp / "a.csv").write_text("new")
+    assert (out / "a.csv").read_text() == "new" and (out / "notes.txt").read_text() == "my notes"
+    assert said == [f"--out {out}: kept notes.txt (pim did not write it)"]

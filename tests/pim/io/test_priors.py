@@ -41,7 +41,12 @@ def test_prior_in_uncertainty_table():
 
 
 @pytest.mark.parametrize("spec, match", [
-    ({"impact": {"restitution": {"prior": "nope"}}}, "unknown prior 'nope'"),
+    ({"impact": {"restitution": {"prior": "nope"}}},
+     r"uncertainty.impact.restitution.prior = 'nope' is not a known prior \(known: "
+     "iihs-small-overlap-barrier, iihs-small-overlap-sideswipe, iihs-small-overlap-car-to-car"),
+    ({"impact": {"beta": {"prior": "iihs-barrier"}}},
+     r"uncertainty.impact.beta.prior = 'iihs-barrier' is not a known prior; did you mean "
+     "'iihs-small-overlap-barrier'"),
     ({"vehicle1": {"mass": {"prior": "iihs-small-overlap-barrier"}}}, "a prior exists only for"),
     ({"impact": {"beta": {"prior": "iihs-small-overlap-barrier", "mean": 1}}},
      "unknown key|no other"),

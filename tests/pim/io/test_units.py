@@ -5,12 +5,14 @@ standard gravity 9.80665 m/s^2, 1 mph = 0.44704 m/s), not pint's output.
 """
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+import pim
 from pim.io.units import MAX_QUANTITY_LENGTH, convert, parse
 from pim.model.numbers import InputError
 
@@ -34,7 +36,7 @@ def test_wrong_dimension_names_the_field():
 
 def test_convert_to_us_and_si():
     value, unit = convert(np.array([1.0]), "speed", "us")
-    assert unit == "ft/s" and value[0] == pytest.approx(1 / 0.3048)   # one speed unit
+    assert unit == "mph" and value[0] == pytest.approx(1 / 0.44704)   # as the field reports
     value, unit = convert(1.0, "angular_velocity", "us")
     assert unit == "deg/s" and float(value) == pytest.approx(180 / math.pi)
     value, unit = convert(1000.0, "energy", "us")
@@ -105,3 +107,112 @@ def test_bare_angles_beyond_two_pi_are_refused_and_others_read_as_radians():
         parse(-90, "angle", "impact.normal_angle")
     assert parse(-1.5, "angle", "impact.normal_angle") == -1.5
     assert parse(6.0, "angle", "h") == 6.0
+
+
+# --- Issue 28: speeds in the units the field reports ------------------------------------
+# Expected factors are exact definitions: 1 km/h = 1/3.6 m/s, 1 mph = 0.44704 m/s,
+# 1 ft = 0.3048 m.
+
+SPEED_FACTORS = {"km/h": 3.6, "mph": 1 / 0.44704, "ft/s": 1 / 0.3048, "m/s": 1.0}
+
+
+@pytest.mark.parametrize("system, speed", [("si", "km/h"), ("us", "mph")])
+@pytest.mark.parametrize("kind", ["speed", "velocity", "impact_speed"])
+def test_speeds_default_to_the_field_unit_of_the_system(system, speed, kind):
+    """Before: m/s and ft/s (only impact speeds in mph)."""
+    value, unit = convert(np.array([10.0, -2.0]), kind, system)
+    assert unit == speed
+    assert value == pytest.approx(np.array([10.0, -2.0]) * SPEED_FACTORS[speed], rel=1e-14)
+
+
+@pytest.mark.parametrize("speed", ["km/h", "mph", "m/s", "ft/s"])
+@pytest.mark.parametrize("system", ["si", "us"])
+def test_display_units_choose_any_speed_unit_in_either_system(system, speed):
+    from pim.io.units import DisplayUnits
+
+    units = DisplayUnits(system, speed)
+    value, unit = convert(25.0, "velocity", units)
+    assert unit == speed and float(value) == pytest.approx(25.0 * SPEED_FACTORS[speed])
+    length, length_unit = convert(1.0, "length", units)     # lengths as the system says
+    assert length_unit == {"si": "m", "us": "ft"}[system]
+    assert float(length) == pytest.approx({"si": 1.0, "us": 1 / 0.3048}[system])
+    assert convert(1000.0, "energy", units)[1] == {"si": "kJ", "us": "ft lbf"}[system]
+
+
+def test_a_speed_unit_outside_the_four_is_refused():
+    from pim.io.units import DisplayUnits
+
+    with pytest.raises(InputError, match="speed unit must be one of km/h, mph, m/s, ft/s"):
+        DisplayUnits("si", "knot")
+    with pytest.raises(InputError, match="units must be one of si, us"):
+        DisplayUnits("metric")
+
+
+def test_the_json_units_name_every_kind_of_quantity():
+    from pim.io.units import SI_UNITS, DisplayUnits
+
+    data = DisplayUnits("us", "ft/s").to_json()
+    assert data["system"] == "us" and data["speed"] == "ft/s"
+    assert set(SI_UNITS) <= set(data)
+    assert data["velocity"] == data["impact_speed"] == "ft/s" and data["length"] == "ft"
+    assert DisplayUnits("si").to_json()["speed"] == "km/h"
+
+
+def test_display_units_take_the_option_then_the_case_file_then_the_system():
+    from pim.io.units import DisplayUnits, display_units
+
+    case = pim.load_case("ricsac9")               # written in ft: us, no [units] table
+    assert display_units(case=case) == DisplayUnits("us", "mph")
+    assert display_units("si", case=case) == DisplayUnits("si", "km/h")
+    assert display_units(None, "ft/s", case) == DisplayUnits("us", "ft/s")
+    chosen = replace(case, speed_unit="m/s")       # the case file's [units] speed
+    assert display_units(case=chosen) == DisplayUnits("us", "m/s")
+    assert display_units("si", case=chosen) == DisplayUnits("si", "m/s")
+    assert display_units(None, "km/h", chosen) == DisplayUnits("us", "km/h")
+    assert display_units(DisplayUnits("si", "mph"), case=chosen) == DisplayUnits("si", "mph")
+    assert display_units() == DisplayUnits("si", "km/h")
+
+
+def test_a_case_refuses_an_unknown_speed_unit():
+    with pytest.raises(InputError, match="speed_unit must be one of"):
+        replace(pim.load_case("ricsac9"), speed_unit="kph")
+
+
+def test_messages_print_speeds_in_the_unit_the_edge_chose():
+    """The model's messages (pim.model.numbers.speed_text) say m/s until the command line
+    chooses the user's unit for the run, and again after it."""
+    from pim.io.units import DisplayUnits, messages_in
+    from pim.model.numbers import speed_text
+
+    assert speed_text(10.0) == "10 m/s"
+    with messages_in(DisplayUnits("us")):
+        assert speed_text(10.0) == f"{10.0 / 0.44704:.4g} mph"
+        with messages_in("si"):
+            assert speed_text(10.0, ".3g") == "36 km/h"
+        assert speed_text(10.0).endswith(" mph")
+    assert speed_text(10.0) == "10 m/s"
+# Issue 28: "10°" for an angle, "35.5 %" for a restitution and "100 %" for beta were refused
+# ("must be one number followed by a unit"); expected values by hand: 10 deg = pi/18 rad.
+@pytest.mark.parametrize("text, kind, si", [
+    ("10°", "angle", math.pi / 18),
+    ("10 °", "angle", math.pi / 18),
+    ("-5.5°", "angle", -5.5 * math.pi / 180),
+    ("30°/s", "angular_velocity", math.pi / 6),
+    ("35.5 %", "dimensionless", 0.355),
+    ("35.5%", "dimensionless", 0.355),
+    ("100 %", "dimensionless", 1.0),
+])
+def test_degree_and_percent_signs_are_read(text, kind, si):
+    assert parse(text, kind, "f") == pytest.approx(si, rel=1e-15)
+
+
+@pytest.mark.parametrize("text, kind, words", [
+    ("10 %", "angle", "is not an angle"),                       # a percent is no angle
+    ("10°", "dimensionless", "is not a dimensionless number (its unit has dimension angle"),
+    ("5 %%", "dimensionless", "text after its unit"),
+    ("10%s", "dimensionless", "text after its unit"),
+    ("10 °°", "angle", "text after its unit"),
+])
+def test_signs_are_read_only_as_one_unit(text, kind, words):
+    with pytest.raises(InputError, match=words.replace("(", r"\(")):
+        parse(text, kind, "f")

@@ -1,9 +1,13 @@
 """pim/io/wheels.py: the wheel states shared by the run-out evidence and the pre-impact marks."""
 
+import tomllib
+from importlib import resources
+
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+import pim.io.casefile
 from pim.io.evidence_table import parse_evidence
 from pim.io.wheels import WHEEL_WORDS, braking_fraction, wheel_fractions
 
@@ -44,3 +48,19 @@ def test_both_tables_read_the_same_states():
     ev = parse_evidence(table).vehicle1
     assert ev.braking == (0.0, 1.0, 0.5, 0.5)
     assert set(WHEEL_WORDS) == {"locked", "free", "free-rolling"}
+
+
+def test_a_quoted_fraction_is_the_fraction_for_every_command():
+    """Issue 28 (fault harness): `wheels = '0.3'` was accepted by `pim solve` while `pim
+    reconstruct` ran past 60 s. One parser reads it for every command: 0.3 on all four
+    wheels, the same as the number 0.3 (the time was the run-outs' Monte Carlo, not the
+    string: pim reconstruct now measures it first, tests/pim_cli/test_reconstruct.py)."""
+    import pim
+
+    text = (resources.files("pim.io") / "cases" / "synthetic-runout.toml").read_text()
+    old = 'wheels = ["locked", "locked", 0.3, 0.3]'
+    assert text.count(old) == 2
+    quoted = pim.io.casefile.parse_case(tomllib.loads(text.replace(old, "wheels = '0.3'")))
+    number = pim.io.casefile.parse_case(tomllib.loads(text.replace(old, "wheels = 0.3")))
+    for case in (quoted, number):
+        assert case.evidence.vehicle1.braking == case.evidence.vehicle2.braking == (0.3,) * 4

@@ -44,3 +44,18 @@ def test_rotating_the_scene_rotates_the_answer():
     assert float(b.yaw_rate2) == pytest.approx(float(a.yaw_rate2), abs=1e-12)
     swapped = pim.solve(case.swapped(), 0.355, 1.0)
     np.testing.assert_allclose(swapped.velocity1, a.velocity2, atol=1e-12)
+
+
+def test_a_string_for_a_table_of_the_case_is_refused_naming_it():
+    """Issue 28: pim.fit(Case(..., measured='x')) failed deep inside with an AttributeError."""
+    from dataclasses import replace
+
+    case = pim.load_case("ricsac9")
+    with pytest.raises(TypeError, match=r"^measured must be a pim.Measured or None, got 'x'$"):
+        pim.Case(case.vehicle1, case.vehicle2, case.impact, measured="x")
+    for name, what in (("uncertainty", "a pim.model.distributions.UncertaintyTable"),
+                       ("evidence", "a pim.model.evidence.Evidence"),
+                       ("unknown", "a dict of dotted key -> (low, high) bounds")):
+        with pytest.raises(pim.InputError) as info:
+            replace(case, **{name: "x"})
+        assert str(info.value) == f"{name} must be {what} or None, got 'x'"

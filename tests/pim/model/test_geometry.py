@@ -70,3 +70,63 @@ def test_outline_with_cg_to_front_agrees_with_outline_distance(length, width, sh
     x, y = r * math.cos(angle), r * math.sin(angle)       # on the rectangle's boundary
     assert a - length - 1e-9 <= x <= a + 1e-9 and abs(y) <= width / 2 + 1e-9
     assert min(abs(x - a), abs(x - (a - length)), abs(abs(y) - width / 2)) < 1e-9 * length
+
+
+# Issue 28: the geometry of the plausibility checks (pim.model.plausibility), against an
+# independent construction: the general polygon clipping and separating-axis test of
+# sim/overlap.py (Sutherland-Hodgman, written for the crush scene) and brute-force sampling.
+
+sizes = st.floats(0.5, 6.0)
+coordinates = st.floats(-8.0, 8.0, allow_nan=False)
+angles = st.floats(-7.0, 7.0, allow_nan=False)
+
+
+@given(coordinates, coordinates, angles, sizes, sizes, st.floats(0.0, 1.0), coordinates,
+       coordinates)
+def test_point_outline_distance_against_the_polygon(cx, cy, heading, length, width, front,
+                                                    px, py):
+    """Outside: the distance to the nearest edge of the placed rectangle; inside: minus the
+    distance to the nearest edge; the sign says which (point-in-polygon by edge normals)."""
+    a = front * length
+    corners = g.outline_world(length, width, (cx, cy), heading, a)
+    p = np.array([px, py])
+    edges = [(corners[k], corners[(k + 1) % 4]) for k in range(4)]
+
+    def to_segment(u, v):
+        t = np.clip((p - u) @ (v - u) / ((v - u) @ (v - u)), 0.0, 1.0)
+        return np.hypot(*(p - u - t * (v - u)))
+
+    nearest = min(to_segment(u, v) for u, v in edges)
+    inside = all(g.cross(v - u, p - u) >= 0 for u, v in edges)       # counter-clockwise
+    expected = -nearest if inside else nearest
+    got = g.point_outline_distance(p, (cx, cy), heading, length, width, a)
+    assert got == pytest.approx(expected, abs=1e-9)
+
+
+@given(coordinates, coordinates, angles, sizes, sizes, coordinates, coordinates, angles,
+       sizes, sizes)
+def test_outline_penetration_against_sim_overlap(x1, y1, h1, l1, w1, x2, y2, h2, l2, w2):
+    """The rectangles' closed-form separating-axis depth equals sim.overlap's general one,
+    is symmetric, and is positive exactly when the clipped overlap has an area."""
+    from sim.overlap import overlap_area, separating_axis
+
+    p1 = g.outline_world(l1, w1, (x1, y1), h1)
+    p2 = g.outline_world(l2, w2, (x2, y2), h2)
+    depth = g.outline_penetration(((x1, y1), h1, l1, w1, None), ((x2, y2), h2, l2, w2, None))
+    assert depth == pytest.approx(separating_axis(p1, p2)[1], abs=1e-9)
+    assert depth == pytest.approx(g.outline_penetration(((x2, y2), h2, l2, w2, None),
+                                                        ((x1, y1), h1, l1, w1, None)), abs=1e-9)
+    area = overlap_area(p1, p2)
+    if depth > 1e-6:
+        assert area > 0
+    if depth < -1e-6:
+        assert area == 0
+
+
+def test_geometry_broadcasts_over_a_batch():
+    heading = np.linspace(0, 2 * np.pi, 5)
+    d = g.point_outline_distance(np.zeros((5, 2)), np.zeros(2), heading, 4.0, 2.0)
+    np.testing.assert_allclose(d, -1.0)
+    angle = g.heading_velocity_angle(heading, [[0.0, 1.0]] * 5)
+    np.testing.assert_allclose(np.degrees(angle), [90, 0, 90, 180, 90], atol=1e-9)
+    assert np.isnan(g.heading_velocity_angle(0.0, [0.0, 0.0]))

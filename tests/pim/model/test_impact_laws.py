@@ -25,7 +25,6 @@ from pim.model.impact_laws import (
     motion_of_law,
     needed_friction,
     solve_kudlich_slibar,
-    solve_law,
 )
 from tests.scenes import TWO_CARS_TOML, random_cases, scenes
 
@@ -247,20 +246,20 @@ def test_bad_parameters_name_the_field(k, mu_c, field):
         solve_kudlich_slibar(pim.load_case("ricsac9"), k, mu_c)
 
 
-def test_solve_law_dispatches_and_refuses_what_a_law_does_not_take():
+def test_solve_follows_the_law_and_refuses_what_a_law_does_not_take():
     case = pim.load_case("ricsac9")
-    close(solve_law(case), pim.solve(case), 1.0)
-    close(solve_law(case, "brach-capped", 0.355, 1.0, 0.3), solve_capped(case, 0.355, 1.0, 0.3),
-          1.0)
-    close(solve_law(case, KS, 0.1, None, 0.6), solve_kudlich_slibar(case, 0.1, 0.6), 1.0)
+    close(pim.solve(case, law="brach-capped", eps=0.355, beta=1.0, mu_c=0.3),
+          solve_capped(case, 0.355, 1.0, 0.3), 1.0)
+    close(pim.solve(case, law=KS, k=0.1, mu_c=0.6), solve_kudlich_slibar(case, 0.1, 0.6), 1.0)
+    close(pim.solve(case, 0.1, law=KS, mu_c=0.6), solve_kudlich_slibar(case, 0.1, 0.6), 1.0)
     with pytest.raises(ValueError, match="beta does not apply"):
-        solve_law(case, KS, 0.1, 1.0, 0.6)
+        pim.solve(case, 0.1, 1.0, law=KS, mu_c=0.6)
     with pytest.raises(ValueError, match="does not apply to law 'brach'"):
-        solve_law(case, "brach", 0.1, 1.0, 0.6)
-    with pytest.raises(ValueError, match="contact_friction mu_c is required"):
-        solve_law(case, KS, 0.1)
+        pim.solve(case, 0.1, 1.0, law="brach", mu_c=0.6)
+    with pytest.raises(ValueError, match=r"mu_c \(the contact friction\) is required for law"):
+        pim.solve(case, 0.1, law=KS)
     with pytest.raises(ValueError, match="law must be one of"):
-        solve_law(case, "pc-crash")
+        pim.solve(case, law="pc-crash")
 
 
 KS_IMPACT = """
@@ -282,7 +281,7 @@ def test_case_file_names_the_law_and_its_parameters(tmp_path):
                                 'contact_friction = 0.6')
     case = pim.load_case(path)
     assert case.impact.law == KS and case.impact.contact_friction == 0.6
-    close(solve_law(case), solve_kudlich_slibar(case, 0.1, 0.6), 1.0)
+    close(pim.solve(case), solve_kudlich_slibar(case, 0.1, 0.6), 1.0)
 
 
 @pytest.mark.parametrize("impact,message", [
@@ -380,7 +379,8 @@ def test_law_motion_and_its_jacobian_on_both_sides_of_the_cap(law, restitution, 
     assert (needed_friction(x, law) > mu_c) == (side == "sliding")
     values, jac = motion_of_law(x, law)
     # values: the vector-form solver (solve_kudlich_slibar; solve_capped), an independent path
-    ref = as_outputs(solve_law(case, law, restitution, None if law == KS else beta, mu_c))
+    ref = as_outputs(pim.solve(case, restitution, None if law == KS else beta, law=law,
+                               mu_c=mu_c))
     np.testing.assert_allclose(values, ref, rtol=1e-12, atol=1e-12 * np.abs(ref).max())
     finite = np.isfinite(x)
     fd = central_differences(np.where(finite, x, 1e6), law)     # mu_c = inf: a huge one

@@ -71,3 +71,22 @@ def test_public_entry_points_check_their_numeric_arguments(ricsac9, call):
     with pytest.raises(InputError, match=r"approach_tol|eps|beta|max_starts|samples|n \(|"
                                          r"blocks|max_workers|chunksize"):
         call(ricsac9)
+
+
+def test_a_wrong_type_is_a_type_error_and_an_input_error_naming_the_argument():
+    from pim.model.numbers import ArgumentTypeError, check_type
+
+    with pytest.raises(ArgumentTypeError) as info:
+        check_type("x", "settings", int, "an int")
+    assert isinstance(info.value, TypeError) and isinstance(info.value, InputError)
+    assert str(info.value) == "settings must be an int, got 'x'"
+    with pytest.raises(TypeError, match=r"^n must be an int or None, got a float$"):
+        check_type(1.5, "n", int, "an int", none=True)
+    assert check_type(None, "n", int, "an int", none=True) is None
+
+
+def test_did_you_mean_names_the_closest_choice_only_when_close():
+    from pim.model.numbers import did_you_mean
+
+    assert did_you_mean("yawrate", ["mass", "yaw_rate", "cg"]) == "; did you mean 'yaw_rate'?"
+    assert did_you_mean("colour", ["mass", "yaw_rate", "cg"]) == ""

@@ -50,7 +50,7 @@ def test_us_case_is_drawn_in_feet(tmp_path):
     fig = draw_case(pim.load_case("ricsac9"), units="us")
     ax = fig.axes[0]
     assert ax.get_xlabel() == "x [ft]"
-    assert any("ft/s" in t.get_text() for t in ax.texts)
+    assert any("mph" in t.get_text() for t in ax.texts)          # speeds as the field says
 
 
 def test_barrier_without_outline_draws_the_contact_plane(tmp_path):

@@ -12,7 +12,7 @@ def test_histograms_are_figures_written_atomically(tmp_path):
     result = pim.uncertainty(case, n=2000)
     fig = plot_histograms(result, "us")
     visible = [ax for ax in fig.axes if ax.get_visible()]
-    assert len(visible) == 9 and "[ft/s]" in visible[0].get_xlabel()
+    assert len(visible) == 9 and "[mph]" in visible[0].get_xlabel()
     path = write_histograms(result, tmp_path / "h.png")
     assert path.stat().st_size > 5000 and [p.name for p in tmp_path.iterdir()] == ["h.png"]
     assert "matplotlib.pyplot" not in sys.modules or not __import__(

@@ -1,0 +1,91 @@
+"""Figures of ``pim validate-models`` (issue 26), printed, not asserted.
+
+Run:  python benchmarks/bench_validate_models.py [--skip-command]
+
+Prints
+1. the scene's throughput inside a class fit (the leave-one-out batch of the barrier
+   non-sideswipe class, Coulomb scene): scenes per CPU second, against the pymunk scene
+   stepping the same scenes one at a time in the same run (the baseline: the machine is
+   shared, compare the ratio);
+2. ``pim validate-models`` end to end in a subprocess with an empty numba cache (as from a
+   clean checkout: the compiled scene is compiled first): wall time, CPU time and the wall
+   time against the goal of 120 s on 2 cores.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+import sim
+from comparisons.studies import crash_records as R
+from comparisons.studies import tuned_scene as T
+
+GOAL = 120.0
+
+
+class _Count:
+    n = 0
+
+    def update(self, k):
+        self.n += k
+
+
+def throughput() -> None:
+    radii = R.fitted_radii()
+    records = R.crash_classes(radii=radii)[R.NON_SIDESWIPE]
+    variant = R.input_variants(records, radii)[0]
+    T.run_model(T.SCENE_MODEL, records[0].case, [0.2, 0.5, 0.1, 0.7])    # compiled
+    count, cpu = _Count(), time.process_time()
+    T.fit_class(T.SCENE_MODEL, records, variant, bar=count)
+    cpu = time.process_time() - cpu
+    x = T.sobol_starts(T.SCENE_MODEL, 16)
+    base = time.process_time()
+    for row in x:
+        sim.simulate_compliant(records[0].case, row[0], friction=row[1], tyre_friction=row[3],
+                               contact_time=row[2], settings=T.scene_settings(),
+                               engine="pymunk")
+    base = (time.process_time() - base) / len(x)
+    rate = count.n / cpu
+    print(f"1. class fit + 16 leave-one-out refits, {len(records)} tests: {count.n} scenes "
+          f"in {cpu:.1f} s CPU = {rate:,.0f} scenes/s; pymunk {1 / base:,.0f} scenes/s "
+          f"({base * 1e3:.1f} ms each): {rate * base:,.0f}x")
+
+
+def command() -> None:
+    root = Path(__file__).resolve().parents[1]
+    with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
+        env = dict(os.environ, NUMBA_CACHE_DIR=cache, PYTHONPATH=str(root))
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        wall = time.perf_counter()
+        subprocess.run([sys.executable, "-m", "pim_cli", "validate-models", "--out",
+                        str(Path(out) / "vm"), "--no-progress"], env=env, check=True,
+                       stdout=subprocess.DEVNULL)
+        wall = time.perf_counter() - wall
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    print(f"2. pim validate-models, empty numba cache: {wall:.1f} s wall, {cpu:.1f} s CPU "
+          f"({os.getloadavg()[0]:.1f} load); goal {GOAL:.0f} s on 2 cores: "
+          f"{wall / GOAL:.2f} of it")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--skip-command", action="store_true")
+    args = parser.parse_args()
+    np.seterr(all="ignore")
+    throughput()
+    if not args.skip_command:
+        command()
+
+
+if __name__ == "__main__":
+    main()

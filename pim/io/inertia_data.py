@@ -1,0 +1,193 @@
+"""NHTSA's measured yaw inertias, and the yaw dynamic index per body class they give.
+
+``pim/io/data/nhtsa_lvipd_yaw_dynamic_index.csv`` (its ``#`` lines give the source) holds
+204 vehicles of NHTSA's Light Vehicle Inertial Parameter Database (Heydinger et al., SAE
+1999-01-1336, as tabulated by K. Tse 2020): mass, measured yaw inertia and yaw dynamic index
+D = I_z / (m a b). :func:`dynamic_indices` groups them by :data:`pim.model.inertia.BODIES`;
+:func:`estimate_yaw_inertia` applies :func:`pim.model.inertia.yaw_inertia_estimate` to one
+vehicle of a case file. ``python -m pim.io.inertia_data`` prints the table of
+docs/inertia-estimate.md (a test keeps the two equal).
+"""
+
+from __future__ import annotations
+
+import csv
+from dataclasses import dataclass
+from functools import cache
+from importlib import resources
+
+import numpy as np
+
+from ..model.inertia import BODIES, DynamicIndex, InputEstimate, dynamic_index, \
+    yaw_inertia_estimate
+from ..model.numbers import InputError
+from ..model.quantities import UNCERTAIN
+from .units import convert
+
+__all__ = ["InertiaRecord", "DATA_FILE", "SOURCE", "load_inertia_records", "dynamic_indices",
+           "estimate_yaw_inertia", "estimate_notes", "estimate_records", "held_out", "docs_table"]
+
+DATA_FILE = "nhtsa_lvipd_yaw_dynamic_index.csv"
+#: Short citation of the data, for notes and reports.
+SOURCE = "NHTSA's measured vehicles, Heydinger et al. 1999"
+_COLUMNS = ("year", "make", "model", "body", "mass_kg", "yaw_inertia_kg_m2",
+            "yaw_dynamic_index")
+
+
+@dataclass(frozen=True)
+class InertiaRecord:
+    """One measured vehicle of the NHTSA database [SI].
+
+    Attributes
+    ----------
+    year : int
+        Model year.
+    make, model : str
+        As tabulated.
+    body : str
+        The database's type code (4S, 2S, 2C, 3H, 5H, SW, MP, PU, VN; see the CSV's notes).
+    mass : float
+        Mass [kg].
+    yaw_inertia : float
+        Measured yaw moment of inertia about the CG [kg m^2].
+    dynamic_index : float
+        Yaw dynamic index D = I_z / (m a b) [-].
+    """
+
+    year: int
+    make: str
+    model: str
+    body: str
+    mass: float
+    yaw_inertia: float
+    dynamic_index: float
+
+    @property
+    def axle_product(self) -> float:
+        """a b = I_z / (m D) [m^2]: the product of the CG's distances to the two axles."""
+        return self.yaw_inertia / (self.mass * self.dynamic_index)
+
+
+def _record(row: dict, line: int) -> InertiaRecord:
+    where = f"{DATA_FILE} line {line}"
+    try:
+        year, mass = int(row["year"]), float(row["mass_kg"])
+        inertia, index = float(row["yaw_inertia_kg_m2"]), float(row["yaw_dynamic_index"])
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"{where}: not a number ({exc})") from None
+    if not (mass > 0 and inertia > 0 and index > 0):
+        raise InputError(f"{where}: mass, yaw inertia and dynamic index must be > 0")
+    if not any(row["body"] in codes for codes in BODIES.values()):
+        raise InputError(f"{where}: unknown body code {row['body']!r}")
+    return InertiaRecord(year, row["make"], row["model"], row["body"], mass, inertia, index)
+
+
+@cache
+def load_inertia_records() -> tuple[InertiaRecord, ...]:
+    """Every vehicle of the bundled file, in its order.
+
+    Raises
+    ------
+    InputError
+        A malformed row (naming the line) or missing columns.
+    """
+    text = (resources.files("pim.io") / "data" / DATA_FILE).read_text(encoding="utf-8")
+    lines = text.splitlines()
+    first = next(i for i, line in enumerate(lines) if not line.startswith("#"))
+    reader = csv.DictReader(lines[first:])
+    if tuple(reader.fieldnames or ()) != _COLUMNS:
+        raise InputError(f"{DATA_FILE}: columns must be {', '.join(_COLUMNS)}")
+    return tuple(_record(row, first + 2 + i) for i, row in enumerate(reader))
+
+
+@cache
+def dynamic_indices() -> dict[str, DynamicIndex]:
+    """Body class (a key of :data:`pim.model.inertia.BODIES`) -> its yaw dynamic index."""
+    records = load_inertia_records()
+    return {body: dynamic_index([r.dynamic_index for r in records if r.body in codes], body,
+                                SOURCE) for body, codes in BODIES.items()}
+
+
+def estimate_yaw_inertia(mass: float, wheelbase: float, cg_to_front_axle: float | None,
+                         body: str, where: str) -> InputEstimate:
+    """The yaw inertia of ``where`` (e.g. "vehicle1") estimated from its mass [kg], wheelbase
+    [m] and CG-to-front-axle distance [m] (None: half the wheelbase) by its body class's
+    yaw dynamic index, with its provenance."""
+    if body not in BODIES:
+        raise InputError(f"{where}.body must be one of {', '.join(map(repr, BODIES))} (the "
+                         f"class whose yaw dynamic index estimates the yaw inertia), got "
+                         f"{body!r}")
+    index = dynamic_indices()[body]
+    inertia, sd = yaw_inertia_estimate(mass, wheelbase, index, cg_to_front_axle)
+    inputs = (("mass m", float(mass), "mass"), ("wheelbase L", float(wheelbase), "length"))
+    if cg_to_front_axle is not None:
+        inputs += (("CG to front axle a", float(cg_to_front_axle), "length"),)
+    method = f"D m a (L - a), D = {index.mean:.3f} the yaw dynamic index of a {body}"
+    return InputEstimate(f"{where}.yaw_inertia", float(inertia), float(sd), method, SOURCE,
+                         inputs, () if cg_to_front_axle is not None else ("a = L/2",))
+
+
+def _figure(value: float, kind: str, units: str) -> str:
+    number, unit = convert(value, kind, units)
+    return f"{float(number):.4g} {unit}"
+
+
+def estimate_notes(case, units: str) -> list[str]:
+    """One line per estimated input of ``case`` (:attr:`pim.Case.estimates`), its figures in
+    ``units`` ("si" or "us"), for the note on stderr and the reports: "vehicle1.yaw_inertia
+    not given: estimated 2981 kg m^2 ±7.0 % (1 sd) = D m a (L - a), ... (mass m 1500 kg,
+    wheelbase L 2.7 m; a = L/2 assumed; Heydinger et al. 1999)"."""
+    lines = []
+    for e in getattr(case, "estimates", ()):
+        figures = ", ".join(f"{label} {_figure(v, kind, units)}" for label, v, kind in e.inputs)
+        assumed = "".join(f"; {a} assumed" for a in e.assumptions)
+        value = _figure(e.value, UNCERTAIN[e.name].kind, units)
+        lines.append(f"{e.name} not given: estimated {value} ±{100 * e.relative_sd:.1f} % "
+                     f"(1 sd) = {e.method} ({figures}{assumed}; {e.source}, "
+                     f"docs/inertia-estimate.md)")
+    return lines
+
+
+def estimate_records(case, units: str) -> list[dict]:
+    """The estimated inputs of ``case`` for ``--json``: name, value and sd in ``units``
+    ("si" or "us") with the unit, the method, the source and what was assumed."""
+    out = []
+    for e in getattr(case, "estimates", ()):
+        (value, sd), unit = convert([e.value, e.sd], UNCERTAIN[e.name].kind, units)
+        out.append({"input": e.name, "value": float(value), "sd": float(sd), "unit": unit,
+                    "method": e.method, "source": e.source,
+                    "assumed": list(e.assumptions)})
+    return out
+
+
+def held_out(body: str) -> tuple[int, int, float]:
+    """How the estimate does on the class's measured vehicles it did not see: each left out
+    in turn, the others' index estimates its yaw inertia from its mass and a b. Returns
+    (vehicles within 1.96 predictive sd of their measured value, vehicles, sd of the
+    standardised errors (measured - estimate) / sd [-])."""
+    rows = [r for r in load_inertia_records() if r.body in BODIES[body]]
+    z = []
+    for i, r in enumerate(rows):
+        index = dynamic_index([o.dynamic_index for o in rows[:i] + rows[i + 1:]], body, SOURCE)
+        scale = r.mass * r.axle_product
+        z.append((r.yaw_inertia - index.mean * scale) / (index.predictive_sd * scale))
+    z = np.array(z)
+    return int(np.sum(np.abs(z) <= 1.96)), len(rows), float(z.std(ddof=1))
+
+
+def docs_table() -> str:
+    """The Markdown table of docs/inertia-estimate.md: each class's index, its scatter and
+    the held-out check (:func:`held_out`)."""
+    lines = ["| body | vehicles | mean D | sd of D | predictive sd | relative (1 sd) | "
+             "held out: within 1.96 sd | sd of held-out z |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|"]
+    for body, d in dynamic_indices().items():
+        inside, n, z_sd = held_out(body)
+        lines.append(f"| {body} | {d.count} | {d.mean:.4f} | {d.sd:.4f} | "
+                     f"{d.predictive_sd:.4f} | {100 * d.relative_sd:.1f} % | "
+                     f"{inside} of {n} ({100 * inside / n:.0f} %) | {z_sd:.2f} |")
+    return "\n".join(lines)
+
+
+if __name__ == "__main__":  # pragma: no cover - prints the table of docs/inertia-estimate.md
+    print(docs_table())

@@ -1,0 +1,193 @@
+"""A vehicle's yaw moment of inertia estimated from its mass and wheelbase (yaw dynamic index).
+
+When a case gives no yaw inertia (nor radius of gyration) for a vehicle, the yaw dynamic
+index estimates it::
+
+    I_z = D m a b        (D = k_z^2 / (a b), k_z = sqrt(I_z / m) the radius of gyration)
+
+with ``m`` the mass, ``a`` and ``b = L - a`` the CG's distances to the front and rear axle
+(``L`` the wheelbase) and ``D`` the yaw dynamic index of the vehicle's body class. The index
+is Olley's k^2 / (a b), as Gillespie (1992, "Fundamentals of Vehicle Dynamics", SAE) uses
+it for pitch; its yaw values come from NHTSA's measured vehicles (Heydinger et al., SAE
+1999-01-1336: 204 vehicles, 73 of them cars, as tabulated by K. Tse 2020; the rows ship in
+``pim/io/data/nhtsa_lvipd_yaw_dynamic_index.csv`` and :mod:`pim.io.inertia_data` reads
+them). The index varies from vehicle to vehicle by about 7 % (1 sd) within a class: that
+scatter, not the mean's, is what an estimate for one vehicle carries, so its standard
+deviation is the predictive one, ``s sqrt(1 + 1/n)`` (``s`` the class's sample standard
+deviation of D, ``n`` its count). docs/inertia-estimate.md has the figures, written by
+``python -m pim.io.inertia_data``.
+
+Without the CG's axle position, ``a = b = L / 2`` (the run-out's default for
+``cg_to_front_axle``): the largest ``a b`` for the wheelbase; a CG at 40 % or 60 % of the
+wheelbase gives ``a b = 4 f (1 - f) L^2 / 4`` = 4 % less (f the CG's fraction of the
+wheelbase from the front axle), so the estimate is then at most 4 % high for such cars and
+the note on the case says so. A published weight distribution with its scatter, which would
+estimate ``a``, was not found (docs/inertia-estimate.md).
+
+Everything here is pure and vectorised: masses, wheelbases and axle positions broadcast.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .numbers import InputError, real_array
+
+__all__ = ["DynamicIndex", "InputEstimate", "BODIES", "dynamic_index", "yaw_inertia_estimate"]
+
+#: Body classes with their own yaw dynamic index, and the NHTSA database's type codes in each
+#: (:mod:`pim.io.inertia_data`): cars (sedans, coupes, hatchbacks, wagons), SUVs
+#: ("multi-purpose"), pickups, vans.
+BODIES = {"car": ("4S", "2S", "2C", "3H", "5H", "SW"), "suv": ("MP",), "pickup": ("PU",),
+          "van": ("VN",)}
+
+
+@dataclass(frozen=True)
+class DynamicIndex:
+    """The yaw dynamic index D = I_z / (m a b) of one body class: its mean and scatter.
+
+    Attributes
+    ----------
+    body : str
+        The class, a key of :data:`BODIES`.
+    mean : float
+        Sample mean of D over the class's measured vehicles [-].
+    sd : float
+        Their sample standard deviation (n - 1 in the denominator) [-].
+    count : int
+        Number of measured vehicles, >= 2.
+    source : str
+        Short citation of the measurements, for notes and reports.
+    """
+
+    body: str
+    mean: float
+    sd: float
+    count: int
+    source: str
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.mean) and self.mean > 0 and math.isfinite(self.sd)
+                and self.sd >= 0 and self.count >= 2):
+            raise InputError(f"dynamic index of {self.body!r}: needs a mean > 0, a finite "
+                             f"sd >= 0 and at least 2 vehicles, got {self.mean!r}, "
+                             f"{self.sd!r}, {self.count!r}")
+
+    @property
+    def predictive_sd(self) -> float:
+        """Standard deviation of D for one more vehicle of the class, s sqrt(1 + 1/n) [-]."""
+        return self.sd * math.sqrt(1.0 + 1.0 / self.count)
+
+    @property
+    def relative_sd(self) -> float:
+        """:attr:`predictive_sd` over :attr:`mean` [-]: the estimate's relative scatter."""
+        return self.predictive_sd / self.mean
+
+
+def dynamic_index(values, body: str, source: str) -> DynamicIndex:
+    """The :class:`DynamicIndex` of a class from its vehicles' measured indices.
+
+    Parameters
+    ----------
+    values : array_like
+        Yaw dynamic indices D = I_z / (m a b) of the class's measured vehicles [-].
+    body : str
+        The class, a key of :data:`BODIES`.
+    source : str
+        Short citation of the measurements.
+    """
+    d = real_array(values, f"dynamic index of {body!r}").ravel()
+    if d.size < 2 or not np.isfinite(d).all():
+        raise InputError(f"dynamic index of {body!r} needs at least 2 finite values")
+    return DynamicIndex(body, float(d.mean()), float(d.std(ddof=1)), int(d.size), source)
+
+
+def yaw_inertia_estimate(mass, wheelbase, index: DynamicIndex, cg_to_front_axle=None):
+    """Yaw moment of inertia about the CG from mass and wheelbase: I_z = D m a (L - a).
+
+    Parameters
+    ----------
+    mass : array_like
+        Vehicle mass m [kg], > 0.
+    wheelbase : array_like
+        Wheelbase L [m], > 0.
+    index : DynamicIndex
+        The body class's yaw dynamic index D (:func:`dynamic_index`).
+    cg_to_front_axle : array_like, optional
+        CG forward to the front axle, a [m], in (0, L); default L / 2 (module notes: the
+        largest a b, so the estimate is then an upper one by up to 4 % for a CG at 40-60 %).
+
+    Returns
+    -------
+    inertia : ndarray
+        The estimate D m a (L - a) [kg m^2].
+    sd : ndarray
+        Its standard deviation from the index's scatter, D's predictive sd times m a (L - a)
+        [kg m^2] (mass and wheelbase taken as exact).
+
+    Raises
+    ------
+    InputError
+        A mass or wheelbase not > 0, an axle position outside (0, L), or a non-number.
+    """
+    m = real_array(mass, "mass", "kg")
+    length = real_array(wheelbase, "wheelbase", "m")
+    a = length / 2 if cg_to_front_axle is None else real_array(cg_to_front_axle,
+                                                                 "cg_to_front_axle", "m")
+    if not (np.isfinite(m).all() and (m > 0).all()):
+        raise InputError("mass must be finite and > 0 [kg] to estimate the yaw inertia")
+    if not (np.isfinite(length).all() and (length > 0).all()):
+        raise InputError("wheelbase must be finite and > 0 [m] to estimate the yaw inertia")
+    if not (np.isfinite(a).all() and ((a > 0) & (a < length)).all()):
+        raise InputError("cg_to_front_axle must lie strictly between 0 and the wheelbase [m] "
+                         "to estimate the yaw inertia (the CG between the axles)")
+    scale = m * a * (length - a)
+    return index.mean * scale, index.predictive_sd * scale
+
+
+@dataclass(frozen=True)
+class InputEstimate:
+    """Provenance of an input the case file left out and the program estimated.
+
+    Attributes
+    ----------
+    name : str
+        The input's dotted name (a key of :data:`pim.model.quantities.UNCERTAIN`, e.g.
+        "vehicle1.yaw_inertia").
+    value : float
+        The estimate [SI unit of the input].
+    sd : float
+        Its standard deviation [SI unit of the input], >= 0: the Monte Carlo draws the input
+        with it unless the ``[uncertainty]`` table gives the input a distribution.
+    method : str
+        The equation and its constants in words, without the case's own figures (e.g.
+        "D m a b, D = 1.091 the yaw dynamic index of cars (n = 73)").
+    source : str
+        Short citation of the data behind it (e.g. "Heydinger et al. 1999").
+    inputs : tuple of (str, float, str)
+        The case's figures it used: (label, value [SI], unit kind of
+        :data:`pim.io.units.DIMENSIONS`), shown in the reader's units.
+    assumptions : tuple of str
+        What it assumed for figures the case does not give (e.g. "a = L/2").
+    """
+
+    name: str
+    value: float
+    sd: float
+    method: str
+    source: str
+    inputs: tuple = ()
+    assumptions: tuple = ()
+
+    @property
+    def relative_sd(self) -> float:
+        """sd over value [-] (0 for a zero value)."""
+        return self.sd / abs(self.value) if self.value else 0.0
+
+    @property
+    def short(self) -> str:
+        """``"estimated, ±7.0 % (1 sd), <source>"``: the tag tables put beside the value."""
+        return f"estimated, ±{100 * self.relative_sd:.1f} % (1 sd), {self.source}"
