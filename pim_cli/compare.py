@@ -83,11 +83,14 @@ def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, n
     """Write a reconstruction report of CASE to a folder (report.html, report.md, CSVs,
     PNGs, MP4; report.html is one self-contained page with the plots and the animation).
 
-    The report opens with the results a reconstruction hands on (delta-V, PDOF, post-impact
-    speeds and yaw rates, energy loss and its crush split, epsilon and beta with their source
-    and, with an [uncertainty] table, 5-95 % intervals), then the coefficients, inputs,
-    plots and animation; the appendix compares PIM with a pymunk simulation and sweeps the
-    simulator's speed against its error. (epsilon, beta) are fitted to the measured motion
+    The report opens with the answer a reconstruction hands on (each vehicle's delta-V, PDOF
+    and post-impact speed and the energy lost, with 5-95 % intervals from the case's
+    [uncertainty] table, digits as the intervals allow), the warnings (a fit that misses a
+    measured quantity by more than 3 sigma among them) and the results table, then each
+    measured quantity against the answer in sigmas, the coefficients with their source,
+    inputs, plots and animation; the appendix compares PIM with a pymunk simulation and
+    sweeps the simulator's speed against its error. Prints the answer, then the path of
+    report.html last. (epsilon, beta) are fitted to the measured motion
     when the case has some; --eps and --beta together skip the fit (one of them: the other
     is fitted). Exit code 1 with one line when the vehicles do not approach at C, and
     after the report is written when its answer is inadmissible (the reasons first, and at
@@ -131,14 +134,40 @@ def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, n
     else:
         error = ("simulation failed" if rep.error != rep.error
                  else f"pymunk vs PIM error {rep.error:.2e}")
+        _answer(rep.data.result, rep.data.units, rep.data.spread)
         click.echo(f"{case.name}: epsilon = {rep.eps:.6g}, beta = {rep.beta:.6g}; {error}")
         if rep.animation is not None:
             a = rep.animation
             click.echo(f"animation: {a.frames} frames, rendered at {a.render_fps:.0f} "
                        f"frames/s")
-        click.echo(f"wrote {rep.report} ({len(rep.files)} files) in "
-                   f"{time.perf_counter() - started:.1f} s")
+        _poor_fit(rep.data.result, rep.data.units, rep.data.fit)
+        _wrote(rep, started)
     finish_answer(found, allow_inadmissible)
+
+
+def _answer(result, units, spread=None) -> None:
+    """The answer the report leads with, one line per card."""
+    from comparisons.report.compare_tables import answer_cards
+
+    for card in answer_cards(result, units, spread).cards:
+        click.echo(f"{card.label}: {card.value}" + (f" ({card.note})" if card.note else ""))
+
+
+def _poor_fit(result, units, fit) -> None:
+    """A warning when the answer misses a measured quantity by more than 3 sigma."""
+    from pim.analysis.misfit import misfit
+
+    from comparisons.report.compare_tables import misfit_sentence
+
+    sentence = misfit_sentence(misfit(result), units, fit)
+    if sentence:
+        click.echo(f"warning: {sentence}", err=True)
+
+
+def _wrote(rep, started: float) -> None:
+    """The last line: the deliverable, report.html (and report.md beside it)."""
+    click.echo(f"wrote {rep.html} (and {rep.report.name}; {len(rep.files)} files in "
+               f"{rep.out_dir}) in {time.perf_counter() - started:.1f} s")
 
 
 def _secondary_note(info, units: str, as_json: bool) -> dict | None:
@@ -175,9 +204,10 @@ def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, allow
     else:
         error = ("simulation failed" if rep.error != rep.error
                  else f"pymunk vs analytic error {rep.error:.2e}")
+        _answer(setup.result, units)
         click.echo(f"{case.name}: {setup.describe()}; {error}")
-        click.echo(f"wrote {rep.report} ({len(rep.files)} files) in "
-                   f"{time.perf_counter() - started:.1f} s")
+        _poor_fit(setup.result, units, None)
+        _wrote(rep, started)
     finish_answer(found, allow)
 
 
@@ -298,8 +328,8 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, engine, 
                 as_json):
     """Sweep the simulator's dt, iterations, contact start and geometry for each CASE.
 
-    Writes, per case, speed-error-CASE.md (table of the Pareto front and every run),
-    speed-error-CASE.csv and speed-error-CASE.png (log-log error against wall time per
+    Writes, per case, speed-error-CASE.md and .html (table of the Pareto front and every
+    run), speed-error-CASE.csv and speed-error-CASE.png (log-log error against wall time per
     impact, with the Pareto front, PIM's own time and error and the recommended setting).
     With --compliant (default) also speed-error-compliant-CASE.md/.csv/.png: the
     finite-duration contact stepped over dt (compiled, or by pymunk with --engine pymunk)
@@ -355,7 +385,8 @@ class _SpeedErrorOptions:
 def _speed_error_case(name: str, folder, opts: _SpeedErrorOptions, pool) -> dict:
     """Sweep one case and write its files into ``folder``: a JSON-ready dict (with the
     lines to print under ``"lines"``)."""
-    from comparisons.studies.speed_error import COARSE, sweep, write_study
+    from comparisons.report.speed_error import write_speed_error as write_study
+    from comparisons.studies.speed_error import COARSE, sweep
 
     case = load_case_for("speed-error", name)
     grid = dict(COARSE) if opts.coarse else {}
@@ -439,7 +470,9 @@ def _command(name: str, coarse: bool, repeats: int, out) -> str:
 def hard_cases(out, units, speed_unit, progress, as_json):
     """Run every bundled hard case through PIM and the simulator; table of results, errors,
     and the dt / iterations the simulator needs to reach 1e-6 (or why it cannot)."""
-    from comparisons.studies.hard_cases import run_hard_cases, write_hard_cases
+    from comparisons.report.hard_cases import write_hard_cases
+    from comparisons.report.render import markdown_table
+    from comparisons.studies.hard_cases import run_hard_cases
     from pim.io.output import output_folder, rebase
 
     folder = Path(out) if out else Path("out") / "hard-cases"
@@ -451,9 +484,9 @@ def hard_cases(out, units, speed_unit, progress, as_json):
         echo_json({"units": units.to_json(), "files": [str(f) for f in files],
                    "cases": study.to_json()})
         return
-    click.echo(study.results_table(units).to_markdown())
+    click.echo(markdown_table(study.results_table(units)))
     click.echo("")
-    click.echo(study.needs_table().to_markdown())
+    click.echo(markdown_table(study.needs_table()))
     click.echo(f"\nwrote {', '.join(str(f) for f in files)}")
 
 

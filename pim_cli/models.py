@@ -5,6 +5,7 @@ imports the simulator)."""
 
 from __future__ import annotations
 
+from comparisons.report.render import markdown_table
 import time
 from pathlib import Path
 
@@ -110,5 +111,5 @@ def pulses(out, stiffness, eps, units, speed_unit, as_json):
         echo_json({"units": shown.to_json(), "files": [str(f) for f in files],
                    "rows": [dict(zip(table.columns, r, strict=True)) for r in table.rows]})
         return
-    click.echo(table.to_markdown())
+    click.echo(markdown_table(table))
     click.echo(f"wrote {files[0]}")

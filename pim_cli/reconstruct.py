@@ -27,25 +27,28 @@ from pathlib import Path
 
 import click
 
-from pim.model.plausibility import secondary_contact
-from comparisons.report.pre_impact import (
-    pre_impact_html,
-    pre_impact_json,
-    pre_impact_lines,
-    pre_impact_markdown,
-    pre_impact_rows,
+from comparisons.report.document import Figure, Video
+from comparisons.report.pre_impact import pre_impact_json, pre_impact_lines, pre_impact_rows
+from comparisons.report.reconstruct import (
+    ReconstructionRows,
+    crush_lines,
+    driver_lines,
+    evidence_drivers,
+    law_line,
+    reconstruction_document,
+    reconstruction_rows,
+    tyre_models_line,
 )
+from comparisons.report.write import write_document
 from pim.analysis.pre_impact_speeds import reconstruction_pre_impact
 from pim.analysis.reconstruction import Reconstruction
 from pim.analysis.reconstruction import reconstruct as run_reconstruction
-from pim.io import html
-from pim.io.files import save_figure, write_text
-from pim.io.inertia_data import estimate_notes, estimate_records
+from pim.io.files import save_figure
+from pim.io.inertia_data import estimate_records
 from pim.io.output import output_folder, worker_pool
 from pim.io.units import convert, display_units
-from pim.model.evidence import UNKNOWN_KINDS
-from pim.model.law import LAW_NAMES, LAW_PARAMETERS
 from pim.model.numbers import InputError
+from pim.model.plausibility import secondary_contact
 from pim.plotting.reconstruction_animation import frame_states, write_reconstruction_mp4
 from pim.plotting.reconstruction_scene import reconstruction_figure
 from pim_cli.main import (
@@ -64,196 +67,40 @@ from pim_cli.main import (
 )
 
 __all__ = ["reconstruct", "reconstruction_rows", "law_line", "evidence_drivers",
-           "driver_lines", "budget", "DEFAULT_MAX_MINUTES", "runout_contact"]
+           "driver_lines", "budget", "DEFAULT_MAX_MINUTES", "runout_contact", "spread_text"]
 
 #: Default of --max-minutes: the longest Monte Carlo with run-out evidence run without
 #: being asked [min].
 DEFAULT_MAX_MINUTES = 30.0
 
 
-def law_line(rec: Reconstruction) -> str:
-    """The impact law the inverse PIM applied (one line for the report and the CLI)."""
-    law = rec.fit.law if rec.fit is not None else (rec.case.impact.law or "brach")
-    return f"Impact law: {LAW_NAMES[law]} ({LAW_PARAMETERS[law]}) (docs/impact-laws.md)."
-
-
-def reconstruction_rows(rec: Reconstruction, units: str) -> list[dict]:
-    """Table rows in ``units``: name, unit, value, p5, p50, p95, main driver."""
-    rows = []
-    lower = rec.fit.lower_bounds if rec.fit is not None else {}
-    for r in rec.table():
-        values, unit = convert([r["value"], r["p5"], r["p50"], r["p95"]], _kind(r["name"]),
-                               units)
-        driver = r["drivers"][0] if r["drivers"] else ("", float("nan"))
-        rows.append({"name": r["name"], "unit": unit, "value": float(values[0]),
-                     "p5": float(values[1]), "p50": float(values[2]), "p95": float(values[3]),
-                     "driver": driver[0], "driver_index": float(driver[1]),
-                     "lower_bound": r["name"] in lower})
-    if rec.momentum is not None:
-        m = rec.momentum
-        for i, (s, sd) in enumerate(((m.speed1, m.sigma1), (m.speed2, m.sigma2)), start=1):
-            values, unit = convert([s, sd], "impact_speed", units)
-            rows.append({"name": f"momentum check: vehicle{i}.speed", "unit": unit,
-                         "value": float(values[0]), "p5": float("nan"), "p50": float("nan"),
-                         "p95": float("nan"), "driver": f"1 sd = {float(values[1]):.3g} {unit}",
-                         "driver_index": float("nan"), "sd": float(values[1])})
-    return rows
-
-
-def _kind(name: str) -> str:
-    """Unit kind of an unknown (impact speeds in the system's impact-speed unit)."""
-    return ("impact_speed" if name.endswith(".speed")
-            else UNKNOWN_KINDS.get(name, "dimensionless"))
-
-
-def evidence_drivers(rec: Reconstruction, units: str) -> dict:
-    """Which evidence drove each unknown: name -> {"sd", "unit", "shares": {evidence: share}}
-    in ``units`` (the standard error from the weighted Jacobian and each evidence group's
-    share of the variance, :func:`pim.analysis.free_fit.variance_shares`); empty without
-    standard deviations or a fit. A vehicle's post-impact motion from its run-out is called
-    its rest position."""
-    fit = rec.fit
-    if fit is None or not fit.evidence_shares:
-        return {}
-    runouts = rec.post.runouts if rec.post else {}
-
-    def label(group: str) -> str:
-        for i in runouts:
-            if group == f"vehicle{i} post-impact motion":
-                return f"vehicle{i} rest position (run-out)"
-        return group
-
-    out = {}
-    for key, shares in fit.evidence_shares.items():
-        sd, unit = convert(fit.standard_errors[key], _kind(key), units)
-        out[key] = {"sd": float(sd), "unit": unit,
-                    "shares": {label(g): v for g, v in sorted(shares.items(),
-                                                              key=lambda kv: -kv[1])}}
-    return out
-
-
-def driver_lines(drivers: dict) -> list[str]:
-    """One line per unknown: its standard error and the evidence shares, largest first."""
-    return [f"{key} (1 sd = {d['sd']:.3g} {d['unit']}): " + ", ".join(
-        f"{g} {100 * v:.0f} %" for g, v in d["shares"].items() if v >= 0.005)
-        for key, d in drivers.items()]
-
-
-def crush_lines(rec: Reconstruction, units: str) -> list[str]:
-    """Per vehicle with a crush profile: crush energy (times its force-balance factor), EES,
-    and the crush-energy delta-V beside the solution's, in ``units``."""
-    lines = []
-    for c in rec.crush:
-        (e, sd, ef), e_unit = convert([c.energy, c.energy_sigma, c.energy * c.factor],
-                                      "energy", units)
-        (ees, dv, dvm), v_unit = convert([c.ees, c.delta_v_crush, c.delta_v_model],
-                                         "impact_speed", units)
-        lines.append(f"vehicle{c.vehicle}: crush energy {e:.4g} +- {sd:.2g} {e_unit} x "
-                     f"force-balance {c.factor:.3f} = {ef:.4g} {e_unit}; EES {ees:.4g} "
-                     f"{v_unit}; delta-V from crush {dv:.4g} {v_unit} (PIM solution "
-                     f"{dvm:.4g} {v_unit})")
-    return lines
-
-
-def spread_text(row: dict, samples: int, sep: str = ", ") -> str:
-    """"[p5, p50, p95]" of a table row, or why there is none (never "[nan, nan, nan]")."""
-    if row["name"].startswith("momentum check"):
-        return f"({row['driver']})"
+def spread_text(row, samples: int, sep: str = ", ") -> str:
+    """"[p5, p50, p95]" of an unknown's row, or why there is none (never "[nan, nan, nan]")."""
     if not samples:
         return "(5/50/95 %: not computed, --samples 0)"
-    if row["p5"] != row["p5"]:
+    if not row.has_spread:
         return "(5/50/95 %: no usable Monte Carlo sample)"
-    return f"[{row['p5']:.4g}{sep}{row['p50']:.4g}{sep}{row['p95']:.4g}]"
+    return f"[{row.p5:.4g}{sep}{row.p50:.4g}{sep}{row.p95:.4g}]"
 
 
-def tyre_models_line(rec: Reconstruction) -> str:
-    """Which tyre law each vehicle's run-out used (one line for the report and the CLI)."""
-    return "Run-out tyre model: " + ", ".join(
-        f"vehicle {i} {fit.tyre_model}" for i, fit in sorted(rec.post.runouts.items())) + "."
-
-
-def _driver(row: dict) -> str:
-    """The main driver of a row's spread, with its index when it has one."""
-    index = row["driver_index"]
-    return f"{row['driver']} ({index:.2f})" if index == index else row["driver"]
-
-
-def _spread_drivers(rec: Reconstruction) -> list[str]:
-    """One line per unknown: the inputs that drive its spread, with their indices."""
-    lines = []
-    for r in rec.table():
-        top = ", ".join(f"{k} {v:.2f}" for k, v in r["drivers"][:4] if v > 0.005)
-        lines.append(f"{r['name']}: {top or 'no single input dominates'}")
+def _lines(rows: ReconstructionRows, samples: int) -> list[str]:
+    """The table as text lines: each unknown, then the momentum check."""
+    lines = [f"{r.name:32s} {(('>= ' if r.lower_bound else '') + f'{r.value:.4g}'):>10s} "
+             f"{r.unit}  {spread_text(r, samples)}" for r in rows.unknowns]
+    lines += [f"{'momentum check: ' + m.name:32s} {m.value:>10.4g} {m.unit}  "
+              f"(1 sd = {m.sd:.3g} {m.unit})" for m in rows.momentum]
     return lines
 
 
-def _report(rec: Reconstruction, rows: list[dict], units: str, with_scene: bool,
-            with_video: bool = False, pre_impact=()) -> str:
-    n = rec.samples.n if rec.samples else 0
-    source = ("the run-out inverse of each vehicle's rest evidence" if rec.post else
-              "the case's [measured] post-impact motion")
-    lines = [f"# Reconstruction of {rec.case.name}", "", law_line(rec), "",
-             f"Post-impact motion from {source}; unknowns by the inverse PIM (least squares "
-             f"over the measured velocities and yaw rates, exact derivatives); "
-             + (f"5/50/95 % from a Monte Carlo of {n} samples over the stated uncertainties "
-                f"({rec.samples.n_used} used)." if n else "no Monte Carlo (--samples 0)."),
-             ""] + ([tyre_models_line(rec), ""] if rec.post else []) + [
-             "| unknown | value | 5 % | 50 % | 95 % | unit | main driver of the spread |",
-             "|---|---|---|---|---|---|---|"]
-    for r in rows:
-        driver = (f"{r['driver']} ({r['driver_index']:.2f})" if r["driver_index"] == r[
-            "driver_index"] else r["driver"])
-        spread = (f"{r['p5']:.4g} | {r['p50']:.4g} | {r['p95']:.4g}" if r["p5"] == r["p5"]
-                  else " | ".join(["-"] * 3))
-        lines.append(f"| {r['name']} | {_value(r)} | {spread} | {r['unit']} | {driver} |")
-    lines.append("")
-    estimates = estimate_notes(rec.case, units)
-    if estimates:
-        lines += ["Estimated inputs (drawn with their scatter in the Monte Carlo unless the "
-                  "`[uncertainty]` table says otherwise):", ""]
-        lines += [f"- {line}" for line in estimates] + [""]
-    lines += pre_impact_markdown(pre_impact)
-    if rec.samples:
-        lines += ["## What drives each unknown's spread", "",
-                  "First-order variance indices (correlation ratio) of the sampled inputs.", ""]
-        lines += [f"- {line}" for line in _spread_drivers(rec)]
-        lines.append("")
-    if rec.crush:
-        lines += ["## Crush energy", ""] + [f"- {c}" for c in crush_lines(rec, units)] + [""]
-    drivers = driver_lines(evidence_drivers(rec, units))
-    if drivers:
-        lines += ["## Which evidence drove each unknown", "",
-                  "Share of each unknown's variance from each piece of evidence (weighted "
-                  "Jacobian at the solution: (J^T J)^-1 split by evidence).", ""]
-        lines += [f"- {line}" for line in drivers] + [""]
-    if rec.goodness is not None:
-        lines += [f"Goodness of fit: {rec.goodness.summary()}.", ""]
-    lines += [f"- {m}" for m in rec.messages] or ["No warnings."]
-    if with_scene:
-        lines += ["", "![scene](scene.png)"]
-    if with_scene and with_video:
-        lines += ["", "Animation from the impact to rest: [reconstruction.mp4](reconstruction.mp4)"]
-    return "\n".join(lines) + "\n"
-
-
-def _value(row: dict) -> str:
-    """A row's value; ">= X" where it only has a lower bound."""
-    return (">= " if row.get("lower_bound") else "") + f"{row['value']:.4g}"
-
-
-def _json(case, rows: list[dict], samples: int, messages, units: str) -> dict:
+def _json(case, rows: ReconstructionRows, samples: int, messages, units) -> dict:
     """``--json``'s data: every value in ``units`` with its unit (NaN becomes null)."""
-    def pick(r, keys):
-        return {"unit": r["unit"], **{k: r[k] for k in keys}}
-
-    unknowns = [r for r in rows if not r["name"].startswith("momentum check")]
-    momentum = [r for r in rows if r["name"].startswith("momentum check")]
     return {"case": case.name, "units": display_units(units).to_json(), "samples": samples,
             "messages": messages, "estimates": estimate_records(case, units),
-            "unknowns": {r["name"]: pick(r, ("value", "p5", "p50", "p95", "lower_bound"))
-                         for r in unknowns},
-            "momentum_check": {r["name"].removeprefix("momentum check: "): pick(r, ("value",))
-                               | {"sd": r["sd"]} for r in momentum}}
+            "unknowns": {r.name: {"unit": r.unit, "value": r.value, "p5": r.p5,
+                                  "p50": r.p50, "p95": r.p95, "lower_bound": r.lower_bound}
+                         for r in rows.unknowns},
+            "momentum_check": {m.name: {"unit": m.unit, "value": m.value, "sd": m.sd}
+                               for m in rows.momentum}}
 
 
 @click.command()
@@ -305,6 +152,8 @@ def reconstruct(case_name, out, samples, seed, workers, video, progress, max_min
                                                  allow_inadmissible)
         if tmp is not None:
             _write_folder(tmp, rec, rows, units, video, pre)
+    if out and not as_json:
+        click.echo(f"wrote {Path(out) / 'report.html'} (and report.md)")
     finish_answer(found, allow_inadmissible)
 
 
@@ -389,10 +238,7 @@ def _reconstruct(case, samples, seed, workers, units, as_json, say=None, estimat
             click.echo(tyre_models_line(rec))
         for message in rec.messages:        # before the table, where a reader sees them
             click.echo(f"warning: {message}")
-        for r in rows:
-            click.echo(f"{r['name']:32s} {_value(r):>10s} {r['unit']}  "
-                       f"{spread_text(r, samples)}")
-        for line in pre_impact_lines(pre):
+        for line in _lines(rows, samples) + pre_impact_lines(pre):
             click.echo(line)
         for line in crush_lines(rec, units):
             click.echo(f"crush: {line}")
@@ -445,73 +291,13 @@ def _crush_json(rec: Reconstruction, units: str) -> dict:
 
 
 def _write_folder(directory: Path, rec, rows, units: str, video: bool, pre=()) -> None:
-    """reconstruction.csv, scene.png, reconstruction.mp4, report.html and report.md into
-    ``directory``."""
-    csv = ["name,unit,value,p5,p50,p95,main_driver"] + [
-        f"{r['name']},{r['unit']},{r['value']:.6g},{r['p5']:.6g},{r['p50']:.6g},"
-        f"{r['p95']:.6g},{r['driver']}" for r in rows] + [
-        f"{r['name']},{r['unit']},{r['value']:.6g},{r['p5']:.6g},{r['p50']:.6g},"
-        f"{r['p95']:.6g},\"{r['what']}\"" for r in pre]
-    write_text(directory / "reconstruction.csv", "\n".join(csv) + "\n")
+    """scene.png, reconstruction.mp4 (with evidence), the CSVs, report.html and report.md
+    (through the one report pipeline) into ``directory``."""
+    media = []
     if rec.post is not None:
         save_figure(reconstruction_figure(rec.post, units), directory / "scene.png")
+        media.append(Figure("scene.png", alt="scene", caption="The reconstructed scene."))
         if video:
             write_reconstruction_mp4(rec.post, directory / "reconstruction.mp4", units=units)
-    write_text(directory / "report.html", _html_report(rec, rows, directory, video, pre,
-                                                       units))
-    write_text(directory / "report.md", _report(rec, rows, units, rec.post is not None, video,
-                                                pre))
-
-
-def _html_report(rec: Reconstruction, rows: list[dict], directory: Path, video: bool,
-                 pre=(), units: str = "si") -> str:
-    """report.html: the table, what drives each spread, the warnings, the scene and the
-    animation inline (read from ``directory``), by the blocks of :mod:`pim.io.html`."""
-    def g(x):
-        return "" if x != x else f"{x:.4g}"          # no percentiles: an empty cell
-
-    cells = [(r["name"], _value(r) if r["value"] == r["value"] else "", g(r["p5"]),
-              g(r["p50"]), g(r["p95"]), r["unit"],
-              _driver(r)) for r in rows]
-    n = rec.samples.n if rec.samples else 0
-    body = [html.paragraph(
-        "Post-impact motion from " + ("the run-out inverse of each vehicle's rest evidence"
-                                      if rec.post else "the case's [measured] post-impact "
-                                      "motion") + "; unknowns by the inverse PIM; "
-        + (f"5/50/95 % from a Monte Carlo of {n} samples ({rec.samples.n_used} used)."
-           if n else "no Monte Carlo (--samples 0).") + " " + law_line(rec)),
-        *([html.paragraph(tyre_models_line(rec))] if rec.post else []),
-        html.table(("unknown", "value", "5 %", "50 %", "95 %", "unit",
-                    "main driver of the spread"), cells, title="Reconstructed unknowns",
-                   note="CSV: `reconstruction.csv`", id="table-reconstruction"),
-        html.bullets(rec.messages or ["No warnings."], cls="messages")]
-    estimates = estimate_notes(rec.case, units)
-    if estimates:
-        body += [html.paragraph("Estimated inputs (drawn with their scatter in the Monte "
-                                "Carlo unless the `[uncertainty]` table says otherwise):"),
-                 html.bullets(estimates)]
-    if rec.crush:
-        body += [html.paragraph("Crush energy:"), html.bullets(crush_lines(rec, units))]
-    drivers = driver_lines(evidence_drivers(rec, units))
-    if drivers:
-        body += [html.paragraph("Which evidence drove each unknown (share of its variance):"),
-                 html.bullets(drivers)]
-    sections = [html.section("Results", body, id="results", cls="keep")]
-    sections += pre_impact_html(pre)
-    if rec.samples:
-        sections.append(html.section("What drives each unknown's spread", [html.paragraph(
-            "First-order variance indices (correlation ratio) of the sampled inputs."),
-            html.bullets(_spread_drivers(rec))], id="drivers"))
-    if (directory / "scene.png").exists():
-        media = [html.figure(directory / "scene.png", alt="scene", caption="`scene.png`")]
-        mp4 = directory / "reconstruction.mp4"
-        if video and mp4.exists():
-            media.append(html.video(mp4, caption="From the impact to rest: "
-                                    "`reconstruction.mp4`.", still=html.still_frame(mp4, 0.5)))
-        sections.append(html.section("Scene and animation", media, id="scene"))
-    return html.page(f"Reconstruction of {rec.case.name}", sections,
-                     subtitle="Written by `pim reconstruct` (the same as text: `report.md`).",
-                     contents=[("results", "Results"),
-                               *([("pre-impact", "Before the impact")] if pre else []),
-                               ("drivers", "Drivers"), ("scene", "Scene")][:len(sections)],
-                     generator="pim reconstruct")
+            media.append(Video("reconstruction.mp4", "From the impact to rest."))
+    write_document(reconstruction_document(rec, rows, units, pre, tuple(media)), directory)

@@ -12,6 +12,7 @@ and recompute the statistics, which the default test suite compares with what th
 
 from __future__ import annotations
 
+from comparisons.report.render import markdown_table
 import csv
 import math
 from pathlib import Path
@@ -143,13 +144,13 @@ def section(studies) -> str:
     lines = [BEGIN, "## The finite-duration scene tuned to the crash tests, against PIM "
              "(`pim validate-models`)", "", *_method(), "",
              f"Full output: [tuned-scene.md](tuned-scene.md) (`{COMMAND}`).", "",
-             results_table(studies).to_markdown(), "", *[
+             markdown_table(results_table(studies)), "", *[
                  f"- {verdict_sentence(st, v)}" for st in studies for v in st.variants],
-             "", fits_table(studies).to_markdown(), "",
+             "", markdown_table(fits_table(studies)), "",
              "![leave-one-out: scene against PIM](tuned-scene.png)", "",
              "Where each input of the study comes from (`pim.io.datasets` origins; the "
              "variants' replacements of the outcome-derived inputs):", "",
-             origins_table(studies).to_markdown(), "", END]
+             markdown_table(origins_table(studies)), "", END]
     return "\n".join(lines)
 
 

@@ -11,6 +11,8 @@ named. "Where C is" stands beside the ladder as the uncertainty of an input.
 
 from __future__ import annotations
 
+from comparisons.report.render import markdown_table
+from comparisons.report.write import write_table_csv
 import math
 from pathlib import Path
 
@@ -467,7 +469,7 @@ def write_assumptions(study: AssumptionStudy, out_dir, *, animation: bool = True
     out.mkdir(parents=True, exist_ok=True)
     tables = (assumption_table(study, units=units), input_shift_table(study, units=units),
               sweep_table(study, units=units))
-    files = [t.write_csv(out) for t in tables]
+    files = [write_table_csv(t, out) for t in tables]
     files.append(save_figure(plot_overview(study), out / "assumptions.png"))
     info = _write_animation(study, out, progress) if animation else None
     if info is not None:
@@ -554,9 +556,9 @@ def assumptions_markdown(study: AssumptionStudy, tables, info=None, command: str
     words = input_shift_words(study, units)
     if words:
         lines += ["## Where C is (input uncertainty, not a rung)", "", words, "",
-                  shift.to_markdown(), ""]
+                  markdown_table(shift), ""]
     lines += [f"## The ladder at {1e3 * study.typical.duration:g} ms and over the range", "",
-              table.to_markdown(), "", "eps_eff, beta_eff: what `pim fit` (velocities and yaw "
+              markdown_table(table), "", "eps_eff, beta_eff: what `pim fit` (velocities and yaw "
               "rates) needs to reproduce the simulated motion; C_eff: the impulse centroid.",
               "", "![assumptions](assumptions.png)", ""]
     if info is not None:

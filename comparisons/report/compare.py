@@ -1,4 +1,5 @@
-"""``pim compare``: the whole story of one case in a folder -- report.md, CSVs, PNGs, MP4.
+"""``pim compare``: the whole story of one case in a folder -- report.html, report.md, CSVs,
+PNGs, MP4.
 
 The report opens with what a reconstruction hands on (results.csv): each vehicle's delta-V
 (magnitude, components, PDOF and clock position), post-impact speeds and yaw rates, the
@@ -17,9 +18,10 @@ the same time fails at once. The plots render in a forked worker process while t
 animation and the sweep run in this one (``parallel=False`` for one process).
 
 The work is split into gathering (:func:`gather_report` fills a
-:class:`~comparisons.report.data.ReportData`) and rendering it
-(:mod:`comparisons.report.render`: Markdown and CSV; :mod:`comparisons.report.html`:
-report.html, the same report as one self-contained page).
+:class:`~comparisons.report.data.ReportData`), stating it as the report's document
+(:func:`comparisons.report.compare_document.compare_document`: the answer first) and writing
+that through the one pipeline (:func:`comparisons.report.write.write_document`: the CSVs,
+report.html, the self-contained page, and report.md).
 
 The appendix also summarises PIM's assumptions at typical values (the finite-duration crush
 scene, :mod:`comparisons.studies.assumptions`; assumptions.csv); the full study is
@@ -42,36 +44,40 @@ import numpy as np
 
 import pim
 import sim
-from pim.analysis.pre_impact_speeds import case_pre_impact
-from pim.analysis.residuals import has_measured_terms
-from comparisons.report.pre_impact import TITLE as PRE_IMPACT_TITLE
-from comparisons.report.pre_impact import pre_impact_rows
-from pim.io.files import save_figure, write_text
-from pim.io.output import ignore_interrupts, output_folder, rebase, stop_workers
-from pim.io.units import convert, display_units, quantity_text
-from pim.model.plausibility import findings
-from pim.model.quantities import OUTPUTS as QUANTITIES
-from pim.plotting.sheet import write_plots
-from pim.plotting.tables import summarize
-from sim.error_measure import KIND_OF_UNIT, compare_results, impact_error
-
 from comparisons.animation.render import build_renderer, write_animation
+from comparisons.report.compare_document import REPORT_NAME, compare_document
+from comparisons.report.compare_tables import (
+    fit_table,
+    inputs_table,
+    misfit_table,
+    pre_impact_table,
+    results_table,
+)
+from comparisons.report.data import ReportData
+from comparisons.report.html import HTML_NAME
+from comparisons.report.tables import Num, Table, fmt_error
+from comparisons.report.write import write_document
 from comparisons.report.assumptions import assumption_table
 from comparisons.studies.assumptions import run_assumptions
 from comparisons.studies.coefficients import coefficients
-from comparisons.report.data import ReportData
-from comparisons.report.html import HTML_NAME, render_html
-from comparisons.report.render import REPORT_NAME, render_csv, render_markdown
-from comparisons.studies.speed_error import COARSE, pareto_table, plot_speed_error, study_table, sweep
-from comparisons.report.tables import Table, fmt_error
+from comparisons.studies.speed_error import (
+    COARSE,
+    pareto_table,
+    plot_speed_error,
+    study_table,
+    sweep,
+)
+from pim.analysis.misfit import misfit
+from pim.analysis.residuals import has_measured_terms
+from pim.io.files import save_figure
+from pim.io.output import ignore_interrupts, output_folder, rebase, stop_workers
+from pim.io.units import convert, display_units, quantity_text
+from pim.model.plausibility import findings
+from pim.plotting.sheet import write_plots
+from sim.error_measure import KIND_OF_UNIT, compare_results, impact_error
 
 __all__ = ["Report", "CompareOptions", "compare_case", "gather_report", "write_report",
-           "inputs_table", "fit_table", "crosscheck_table", "results_table",
-           "pre_impact_table"]
-
-
-def _f(x) -> float:
-    return float(np.asarray(x, float).reshape(()))
+           "crosscheck_table"]
 
 
 @dataclass
@@ -100,7 +106,9 @@ class Report:
     data : ReportData or None
         Everything the report shows (paths relative to the report folder).
     report : Path
-        The report itself, ``out_dir / "report.md"`` (property).
+        The Markdown report, ``out_dir / "report.md"`` (property).
+    html : Path
+        The deliverable, the self-contained ``out_dir / "report.html"`` (property).
     """
 
     out_dir: Path
@@ -118,148 +126,9 @@ class Report:
     def report(self) -> Path:
         return self.out_dir / REPORT_NAME
 
-
-def inputs_table(case: pim.Case, units: str = "si") -> Table:
-    """The case's inputs in the ``units`` system ("si" or "us")."""
-    def val(x, kind):
-        value, unit = convert(np.asarray(x, float), kind, units)
-        return value, unit
-
-    def pair(x, kind):
-        (a, b), unit = val(np.asarray(x, float).reshape(2), kind)
-        return f"{a:.6g}, {b:.6g}", unit
-
-    rows = []
-    estimated = {e.name: e for e in case.estimates}
-    for i, v in ((1, case.vehicle1), (2, case.vehicle2)):
-        fixed = bool(v.fixed)
-        estimate = estimated.get(f"vehicle{i}.yaw_inertia")
-        mass, mass_unit = val(_f(v.mass), "mass")
-        inertia, inertia_unit = val(_f(v.yaw_inertia), "inertia")
-        cg, length_unit = pair(v.cg, "length")
-        vel, vel_unit = pair(v.velocity, "velocity")
-        yaw, yaw_unit = val(_f(v.yaw_rate), "angular_velocity")
-        size = "" if v.length is None else \
-            f"{float(val(v.length, 'length')[0]):.4g} x {float(val(v.width, 'length')[0]):.4g}"
-        rows += [
-            (f"vehicle {i}", "mass", "fixed obstacle" if fixed else float(mass), mass_unit),
-            (f"vehicle {i}", "yaw inertia" + (f" ({estimate.short})" if estimate else ""),
-             "" if fixed else float(inertia), inertia_unit),
-            (f"vehicle {i}", "CG x, y", cg, length_unit),
-            (f"vehicle {i}", "heading", math.degrees(_f(v.heading)), "deg"),
-            (f"vehicle {i}", "velocity x, y", vel, vel_unit),
-            (f"vehicle {i}", "yaw rate", float(yaw), yaw_unit),
-            (f"vehicle {i}", "length x width", size, length_unit),
-        ]
-    point, length_unit = pair(case.impact.point, "length")
-    rows += [("impact", "point C x, y", point, length_unit),
-             ("impact", "normal angle Gamma", math.degrees(_f(case.impact.normal_angle)), "deg"),
-             ("impact", "restitution in the case", case.impact.restitution, "-"),
-             ("impact", "beta in the case", case.impact.beta, "-")]
-    m = case.measured
-    if m is not None:
-        for i, vel, w in ((1, m.velocity1, m.yaw_rate1), (2, m.velocity2, m.yaw_rate2)):
-            if vel is not None:
-                text, unit = pair(vel, "velocity")
-                rows.append((f"measured {i}", "post-impact velocity x, y", text, unit))
-            if w is not None:
-                value, unit = val(w, "angular_velocity")
-                rows.append((f"measured {i}", "post-impact yaw rate", float(value), unit))
-    return Table("inputs", f"Case inputs ({display_units(units)})",
-                 ("item", "quantity", "value", "unit"), tuple(rows))
-
-
-#: Rows of the results table: (key of pim.plotting.tables.summarize, key of the Monte
-#: Carlo output per vehicle or None).
-RESULT_ROWS = (("delta_v", ("delta_v1_magnitude", "delta_v2_magnitude")), ("delta_v_x", None),
-               ("delta_v_y", None),
-               ("pdof", ("pdof1", "pdof2")), ("clock", None), ("speed", ("speed1", "speed2")),
-               ("velocity_x", None), ("velocity_y", None),
-               ("yaw_rate", ("yaw_rate1", "yaw_rate2")), ("energy_loss", ("energy_loss",)),
-               ("crush_normal", None), ("crush_tangential", None), ("tangential_share", None))
-
-
-def results_table(result: pim.Result, units: str = "si", spread=None) -> Table:
-    """What a reconstruction hands on, per vehicle, in the ``units`` system.
-
-    ``spread`` (a :class:`pim.analysis.montecarlo.UncertaintyResult`) adds 5-95 % intervals.
-    """
-
-    rows_by_key = {r.key: r for r in summarize(result, units)}
-
-    def interval(name):
-        if spread is None or name is None:
-            return ""
-        stats = spread.stats[name]
-        (low, high), _ = convert(np.array([stats.p5, stats.p95]), QUANTITIES[name].kind,
-                                 units)
-        return f"{low:.4g} to {high:.4g}"
-
-    rows = []
-    for key, mc in RESULT_ROWS:
-        r = rows_by_key[key]
-        mc = mc or (None, None)
-        row = (r.label, r.vehicle1, "" if r.single else (r.vehicle2 if r.vehicle2 is not None
-                                                          else "-"), r.unit)
-        if spread is not None:
-            row += (interval(mc[0]), "" if r.single else interval(mc[1] if len(mc) > 1 else None))
-        rows.append(row)
-    columns = ("quantity", "vehicle 1", "vehicle 2", "unit")
-    if spread is not None:
-        columns += ("vehicle 1, 5-95 %", "vehicle 2, 5-95 %")
-    return Table("results", "Reconstruction results", columns, tuple(rows))
-
-
-def pre_impact_table(case: pim.Case, units: str = "si") -> Table | None:
-    """The speed at the start of each vehicle's pre-impact marks (or driver table) from the
-    case's impact velocities (:mod:`pim.analysis.pre_impact_speeds`); None without such
-    evidence."""
-    rows = pre_impact_rows(case_pre_impact(case), units)
-    if not rows:
-        return None
-    unit = rows[0]["unit"]
-    return Table("pre_impact", PRE_IMPACT_TITLE, ("speed", f"value [{unit}]",
-                                                  f"impact speed [{unit}]", "where, from what"),
-                 tuple((r["name"], r["value"], r["impact"], r["what"]) for r in rows))
-
-
-def _cost_rows(fit, f: float, unit: str) -> list[tuple]:
-    """The fit's cost: with measured sigmas the chi-square [-] (unit-free), its degrees of
-    freedom, p-value and verdict; else the sum of squares in the user's unit squared."""
-    g = fit.goodness
-    if g is None:
-        return [("cost (sum of squared velocity errors)", fit.cost * f * f, f"({unit})^2")]
-    return [("chi-square", g.chi_square, "-"), ("degrees of freedom", g.dof, "-"),
-            ("p-value", g.p_value, "-"), ("verdict", g.verdict(), "")]
-
-
-def fit_table(fit, units: str = "si") -> Table:
-    """The fitted law parameters ((epsilon, beta), or (k, mu_c) under the Kudlich-Slibar
-    law) and the quality of the fit, in the ``units`` system."""
-    f, unit = convert(1.0, "velocity", units)
-    f = float(f)
-    law = getattr(fit, "law", "brach")
-    coefficients = [("epsilon", fit.eps, "-"), ("beta", fit.beta, "-")]
-    title = "(epsilon, beta)"
-    if law == "kudlich-slibar":
-        lower = "impact.mu_c" in fit.lower_bounds
-        coefficients = [("impact law", law, ""), ("k", fit.eps, "-"),
-                        ("mu_c (lower bound: the contact sticks)" if lower else "mu_c",
-                         fit.contact_friction, "-"), ("equivalent PIM beta", fit.beta, "-")]
-        title = "(k, mu_c) under the Kudlich-Slibar law"
-    elif law == "brach-capped":
-        coefficients = [("impact law", law, ""), *coefficients,
-                        ("cap mu_c", fit.contact_friction, "-")]
-        title = "(epsilon, beta) under the friction cap"
-    rows = [*coefficients,
-            *_cost_rows(fit, f, unit),
-            ("rms residual", fit.rms * f, unit),
-            ("on a bound", ", ".join(f"{k} {v}" for k, v in fit.on_bound.items()) or "no", ""),
-            ("local minima found", len(fit.minima), "")]
-    rows += [(f"residual {name}", float(r) * f, unit)
-             for name, r in zip(fit.residual_names, fit.residuals, strict=True)]
-    return Table("fit", f"Least-squares fit of {title} to the measured motion",
-                 ("quantity", "value", "unit"), tuple(rows))
+    @property
+    def html(self) -> Path:
+        return self.out_dir / HTML_NAME
 
 
 def crosscheck_table(errors, units: str = "si") -> Table:
@@ -268,11 +137,11 @@ def crosscheck_table(errors, units: str = "si") -> Table:
     for q in errors:
         (a, s_, e), unit = convert(np.array([q.analytic, q.simulated, q.absolute]),
                                    KIND_OF_UNIT[q.unit], units)
-        rows.append((q.label, unit, float(a), float(s_), float(e), q.relative))
-    rows = tuple(rows)
+        rows.append((q.label, unit, Num(float(a), sig=6), Num(float(s_), sig=6), float(e),
+                     q.relative))
     return Table("crosscheck", "PIM (analytic) against pymunk (simulated), post-impact",
                  ("quantity", "unit", "PIM", "pymunk", "absolute error", "relative error"),
-                 rows, formats={"absolute error": fmt_error, "relative error": fmt_error})
+                 tuple(rows), formats={"absolute error": fmt_error, "relative error": fmt_error})
 
 
 def _coefficient_sources(case, eps, beta) -> tuple[float, float, dict, object]:
@@ -426,11 +295,14 @@ def _gather_results(case, options: CompareOptions, units: str) -> ReportData:
     data = ReportData(case=case, case_path=options.case_path or case.name or "CASE",
                       units=units, eps=eps, beta=beta, sources=sources, result=result, fit=fit,
                       warnings=found.warnings, errors=found.errors,
-                      animation_requested=options.animation)
+                      animation_requested=options.animation, spread=spread,
+                      misfit=misfit(result))
     data.add_table(results_table(result, units, spread))
     pre_impact = pre_impact_table(case, units)
     if pre_impact is not None:
         data.add_table(pre_impact)
+    if data.misfit.rows:
+        data.add_table(misfit_table(data.misfit, units))
     data.add_table(inputs_table(case, units))
     if fit is not None:
         data.add_table(fit_table(fit, units))
@@ -525,16 +397,13 @@ def gather_report(case: pim.Case, folder, options: CompareOptions,
 
 
 def write_report(data: ReportData, folder) -> list[Path]:
-    """Write the report's CSVs, report.html and report.md (last) into ``folder``; return
-    every file of the run (figures and animation included)."""
+    """Write the report's CSVs, report.html and report.md (last) into ``folder`` through the
+    one report pipeline (:func:`comparisons.report.write.write_document`); return every file
+    of the run (figures and animation included), report.html and report.md last."""
     folder = Path(folder)
-    csvs = render_csv(data)
-    data.files += list(csvs) + [HTML_NAME]
-    for name, text in csvs.items():
-        write_text(folder / name, text)
-    write_text(folder / HTML_NAME, render_html(data, folder))
-    write_text(folder / REPORT_NAME, render_markdown(data))
-    return [folder / rel for rel in data.files] + [folder / REPORT_NAME]
+    written = write_document(compare_document(data), folder)
+    media = [folder / rel for rel in data.files]
+    return media + written
 
 
 def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,

@@ -1,9 +1,10 @@
-"""What ``pim compare`` found for one case, as one typed object that renderers consume.
+"""What ``pim compare`` found for one case, as one typed object.
 
 :func:`comparisons.report.compare.gather_report` fills a :class:`ReportData` (results, tables,
-figures, the animation, the studies, timings); :mod:`comparisons.report.render` turns it into
-Markdown and CSV files. A new format (HTML) is a new renderer of the same object: the
-gathering does not change.
+figures, the animation, the studies, timings);
+:func:`comparisons.report.compare_document.compare_document` turns it into the report's
+:class:`~comparisons.report.document.Document`, which the one pipeline renders (Markdown,
+HTML, CSV).
 """
 
 from __future__ import annotations
@@ -11,7 +12,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import pim
-
 from comparisons.report.tables import Table
 
 __all__ = ["ReportData", "monte_carlo_note"]
@@ -55,6 +55,10 @@ class ReportData:
         The least-squares fit, when one was made.
     warnings : list of str
         Plausibility warnings (:func:`pim.model.plausibility.findings`).
+    spread : pim.analysis.montecarlo.UncertaintyResult or None
+        The Monte Carlo of the case's ``[uncertainty]`` table (the 5-95 % intervals).
+    misfit : pim.analysis.misfit.Misfit or None
+        Each measured quantity against the answer.
     errors : list of str
         Why the answer is inadmissible or the scene impossible (the findings' errors), said
         before the results.
@@ -79,7 +83,8 @@ class ReportData:
     assumptions : comparisons.studies.assumptions.AssumptionStudy or None
         PIM's assumptions at typical values.
     files : list of str
-        Every file written besides the report itself, relative to the report folder.
+        The figures and videos written (the report's own files come from its document),
+        relative to the report folder.
     seconds : dict of str to float
         Wall and CPU time per step [s].
     """
@@ -94,6 +99,8 @@ class ReportData:
     tables: dict = field(default_factory=dict)
     fit: object = None
     warnings: list = field(default_factory=list)
+    spread: object = None
+    misfit: object = None
     errors: list = field(default_factory=list)
     simulated: object = None
     sim_error: object = None

@@ -1,12 +1,14 @@
 """``pim compare`` for the impact laws other than Brach's: "kudlich-slibar" (PC-Crash,
 Virtual CRASH) and "brach-capped" (docs/impact-laws.md).
 
-The report (report.md with its CSVs and the animation, written whole or not at all by
-:func:`pim.io.output.output_folder` as :mod:`comparisons.report.compare` is; no report.html yet)
-opens with the law, its parameters and the results a reconstruction hands on
-(:func:`pim.solve`'s answer), then the coefficients, the inputs and the animation (the
-law's pymunk run solid, the analytic post-impact motion as the ghost), and the appendix
-compares the analytic answer with that run (:func:`comparisons.studies.law_runs.simulate_law`).
+The report (report.html, report.md, their CSVs and the animation, written whole or not at
+all by :func:`pim.io.output.output_folder` as :mod:`comparisons.report.compare` is, through
+the one report pipeline) opens with the answer a reconstruction hands on
+(:func:`pim.model.law`'s answer: the cards, the warnings, the results table) and the law
+with its parameters, then how well the answer fits the measurements, the coefficients, the
+inputs and the animation (the law's pymunk run solid, the analytic post-impact motion as the
+ghost), and the appendix compares the analytic answer with that run
+(:func:`comparisons.studies.law_runs.simulate_law`).
 
 *What is fitted.* The one fitting engine (:func:`pim.fit`) fits the law's own parameters:
 (k, mu_c) under "kudlich-slibar" (mu_c stated as a lower bound where the contact sticks),
@@ -21,25 +23,42 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import pim
 import sim
+from comparisons.animation.render import animation_settings, build_renderer, write_animation
+from comparisons.report.compare import Report, crosscheck_table
+from comparisons.report.compare_tables import (
+    answer_cards,
+    fit_table,
+    inputs_table,
+    misfit_sentence,
+    misfit_table,
+    results_table,
+)
+from comparisons.report.document import (
+    Bullets,
+    Callout,
+    Document,
+    FileList,
+    Paragraph,
+    Section,
+    Video,
+)
+from comparisons.report.number_format import format_number
+from comparisons.report.tables import Table
+from comparisons.report.write import document_files, write_document
+from comparisons.studies.law_runs import LawSetup, simulate_law
+from pim.analysis.misfit import misfit
 from pim.analysis.residuals import has_measured_terms
-from pim.io.files import write_text
 from pim.io.output import output_folder, rebase
 from pim.io.units import display_units, quantity_text
 from pim.model.plausibility import findings
 from sim.error_measure import compare_results, impact_error
 
-from comparisons.animation.render import animation_settings, build_renderer, write_animation
-from comparisons.studies.law_runs import LawSetup, simulate_law
-from comparisons.report.compare import Report, crosscheck_table, fit_table, inputs_table, results_table
-from comparisons.report.render import md_table
-from comparisons.report.tables import Table
-
-__all__ = ["compare_law_case", "law_table", "NOT_RUN"]
+__all__ = ["compare_law_case", "law_table", "law_document", "LawReport", "NOT_RUN"]
 
 #: The parts of Brach's report not run under another law, and why.
 NOT_RUN = ("the design sheet's plots, the coarse speed-error sweep, the 5-95 % uncertainty "
@@ -56,6 +75,41 @@ def law_table(setup: LawSetup) -> Table:
     rows.append((label, setup.beta, "-"))
     return Table("law", "Impact law and its parameters", ("quantity", "value", "unit"),
                  tuple(rows))
+
+
+@dataclass
+class LawReport:
+    """What the law's report shows.
+
+    Attributes
+    ----------
+    case : pim.Case
+        The case.
+    setup : LawSetup
+        The law, its parameters and its answer.
+    units : str
+        Unit system of every number shown.
+    fit : pim.analysis.fitting.FitResult or None
+        The fit of the law's parameters to the measured motion.
+    run : sim.SimResult or sim.SimulationError
+        The law's pymunk run, or why it failed.
+    error : float
+        Largest relative error of the impact's velocity changes, the run against the
+        analytic answer (NaN when the run failed).
+    animation : comparisons.animation.render.AnimationInfo, sim.SimulationError or None
+        The animation written, why it could not be simulated, or None (not asked for).
+    tables : dict of str to Table
+        The tables by name.
+    """
+
+    case: pim.Case
+    setup: LawSetup
+    units: str
+    fit: object = None
+    run: object = None
+    error: float = math.nan
+    animation: object = None
+    tables: dict = field(default_factory=dict)
 
 
 def _fit(case: pim.Case, setup: LawSetup):
@@ -78,7 +132,7 @@ def _crosscheck(case, setup, units):
     return run, crosscheck_table(compare_results(case, setup.result, run), units), error
 
 
-def _animation(case, setup, out, gif, tyre, units, progress):
+def _write_animation(case, setup, out, gif, tyre, units, progress):
     """The animation (AnimationInfo) or the simulation error that prevented it."""
     try:
         simulated = simulate_law(case, setup, animation_settings(2.0, tyre))
@@ -121,7 +175,7 @@ def compare_law_case(case: pim.Case, out_dir, setup: LawSetup, *, gif: bool = Fa
     units = display_units(units, case=case)
     out = Path(out_dir)
     with output_folder(out, command="pim compare") as tmp:
-        rep = _write(case, tmp, setup, gif, animation, tyre, progress, units)
+        rep = _write(case, tmp, setup, (gif, animation, tyre, progress), units)
     info = rep.animation
     if info is not None:
         info = replace(info, path=out / "animation.mp4",
@@ -129,99 +183,136 @@ def compare_law_case(case: pim.Case, out_dir, setup: LawSetup, *, gif: bool = Fa
     return replace(rep, out_dir=out, files=rebase(rep.files, tmp, out), animation=info)
 
 
-def _write(case, folder: Path, setup, gif, animation, tyre, progress, units) -> Report:
+def _gather(case, folder: Path, setup, media, units) -> LawReport:
+    """Fit, cross-check and animation of the law's report (media: gif, animation, tyre,
+    progress)."""
+    gif, animation, tyre, progress = media
+    data = LawReport(case, setup, units, fit=_fit(case, setup))
+    for table in (results_table(setup.result, units), law_table(setup)):
+        data.tables[table.name] = table
+    found = misfit(setup.result)
+    if found.rows:
+        data.tables["misfit"] = misfit_table(found, units)
+    data.tables["inputs"] = inputs_table(case, units)
+    if data.fit is not None:
+        data.tables["fit"] = fit_table(data.fit, units)
+    data.run, table, data.error = _crosscheck(case, setup, units)
+    if table is not None:
+        data.tables["crosscheck"] = table
+    if animation:
+        data.animation = _write_animation(case, setup, folder, gif, tyre, units, progress)
+    return data
+
+
+def _write(case, folder: Path, setup, media, units) -> Report:
     """Gather and write the report into ``folder`` (the temporary output folder)."""
     started = time.perf_counter()
-    rep = Report(out_dir=folder, eps=setup.restitution, beta=setup.beta)
-    fit = _fit(case, setup)
-    tables = [results_table(setup.result, units), law_table(setup), inputs_table(case, units)]
-    if fit is not None:
-        tables.append(fit_table(fit, units))
-    run, table, rep.error = _crosscheck(case, setup, units)
-    if table is not None:
-        tables.append(table)
-    info = None
-    if animation:
-        info = _animation(case, setup, folder, gif, tyre, units, progress)
-        if not isinstance(info, sim.SimulationError):
-            rep.files += [p for p in (info.path, info.gif) if p is not None]
-            rep.animation = info
-    for t in tables:
-        rep.files.append(t.write_csv(folder))
+    data = _gather(case, folder, setup, media, units)
+    rep = Report(out_dir=folder, eps=setup.restitution, beta=setup.beta, error=data.error)
+    info = data.animation
+    if info is not None and not isinstance(info, sim.SimulationError):
+        rep.files += [p for p in (info.path, info.gif) if p is not None]
+        rep.animation = info
+    rep.files += write_document(law_document(data), folder)
     rep.seconds["report"] = time.perf_counter() - started
-    text = _markdown(case, setup, fit, run, info, tables, rep, units)
-    rep.files.append(write_text(folder / "report.md", text))
     return rep
 
 
-def _fit_lines(setup, fit) -> list[str]:
+def _fit_lines(setup, fit) -> str:
     if fit is None:
-        return [f"No measured motion in the case: {setup.parameters()} from the case file or "
-                "the command line (no fit).", ""]
+        return (f"No measured motion in the case: {setup.parameters()} from the case file or "
+                "the command line (no fit).")
     if fit.law == "kudlich-slibar":
         lower = fit.lower_bounds.get("impact.mu_c")
         mu_c = (f"mu_c >= {lower:.6g} (only a lower bound: the fitted contact sticks, and any "
                 f"mu_c above it gives the same answer)" if lower is not None
                 else f"mu_c = {fit.contact_friction:.6g}")
-        lines = [f"The fit is done under the **Kudlich-Slibar law** (the one fitting engine, "
-                 f"`pim fit`, exact derivatives): k = {fit.eps:.6g}, {mu_c}; `pim compare "
-                 f"CASE --k {fit.eps:.4g} --mu-c {fit.contact_friction:.4g}` reports the law "
-                 "there."]
+        text = (f"The fit is done under the **Kudlich-Slibar law** (the one fitting engine, "
+                f"`pim fit`, exact derivatives): k = {fit.eps:.6g}, {mu_c}; `pim compare "
+                f"CASE --k {fit.eps:.4g} --mu-c {fit.contact_friction:.4g}` reports the law "
+                "there.")
     else:
-        lines = [f"The fit is done under the **friction-capped Brach law** (cap mu_c = "
-                 f"{fit.contact_friction:.6g}; the one fitting engine, `pim fit`): epsilon = "
-                 f"{fit.eps:.6g}, beta = {fit.beta:.6g}."]
-    lines.append(f"The results above stay at the law's parameters ({setup.parameters()}).")
-    return [" ".join(lines), ""]
+        text = (f"The fit is done under the **friction-capped Brach law** (cap mu_c = "
+                f"{fit.contact_friction:.6g}; the one fitting engine, `pim fit`): epsilon = "
+                f"{fit.eps:.6g}, beta = {fit.beta:.6g}.")
+    return f"{text} The results above stay at the law's parameters ({setup.parameters()})."
 
 
-def _markdown(case, setup, fit, run, info, tables, rep, units) -> str:
-    by_name = {t.name: t for t in tables}
-    name = case.name or "case"
-    lines = [f"# {name}: reconstruction report", ""]
-    if getattr(case, "description", None):
-        lines += [case.description, ""]
-    lines += [f"Written by `pim compare` in {units}. Impact law: "
-              f"**{setup.describe()}** (docs/impact-laws.md).", "", "## Results", ""]
-    r = setup.result
-    found = findings(case, r, show=quantity_text(units))
+def _results(data: LawReport) -> Section:
+    setup, r = data.setup, data.setup.result
+    found = findings(data.case, r, show=quantity_text(data.units))
+    warnings = list(found.warnings)
+    sentence = misfit_sentence(misfit(r), data.units, data.fit)
+    if sentence:
+        warnings.append(sentence)
+    blocks = [answer_cards(r, data.units)]
     if found.errors:
-        lines += ["**Inadmissible answer** (the numbers below are not physically possible):",
-                  ""] + [f"- {p}" for p in found.errors] + [""]
-    lines += [f"- **{setup.parameters()}**; impulse ratio Pt / Pn = {float(r.mu):.4g}.", "",
-              md_table(by_name["results"]), md_table(by_name["law"])]
-    if found.warnings:
-        lines += ["Warnings:", ""] + [f"- {p}" for p in found.warnings] + [""]
-    lines += ["## Coefficients", ""] + _fit_lines(setup, fit)
-    if "fit" in by_name:
-        lines += [md_table(by_name["fit"])]
-    lines += ["## Case inputs", "", md_table(by_name["inputs"]), "## Animation", ""]
+        blocks.insert(0, Callout("Inadmissible answer (the numbers below are not physically "
+                                 "possible)", tuple(found.errors)))
+    if warnings:
+        blocks.append(Callout("Warnings", tuple(warnings)))
+    blocks += [data.tables["results"], Bullets((
+        f"**{setup.parameters()}**; impulse ratio Pt / Pn = {format_number(float(r.mu))}.",
+        "No intervals under this law (4 significant digits).")), data.tables["law"]]
+    return Section("results", "Results", tuple(blocks), keep=True)
+
+
+def _animation_section(data: LawReport) -> Section:
+    info = data.animation
     if isinstance(info, sim.SimulationError):
-        lines += [f"No animation: the simulation failed ({info.kind}): {info}", ""]
-    elif info is not None:
-        lines += [f"[animation.mp4](animation.mp4) ({info.frames} frames at {info.fps} fps). "
-                  f"Filled outlines: the law's pymunk run; dashed magenta outlines: the "
-                  f"analytic post-impact motion. Largest offset between them after the "
-                  f"impact: {info.max_ghost_offset_px:.2g} px.", ""]
-        if info.secondary_impact is not None:
-            lines += [f"**Plausibility:** {info.secondary_impact.message(units)}; the "
-                      f"animation marks it.", ""]
+        text = f"No animation: the simulation failed ({info.kind}): {info}"
+    elif info is None:
+        text = "(not written: --no-animation)"
     else:
-        lines += ["(not written: --no-animation)", ""]
-    lines += ["## Appendix A: the analytic answer against the law's pymunk run", ""]
+        caption = ("Filled outlines: the law's pymunk run; dashed magenta outlines: the "
+                   "analytic post-impact motion. Largest offset between them after the "
+                   f"impact: {format_number(info.max_ghost_offset_px, sig=2)} px.")
+        return Section("animation", "Animation", (
+            Video("animation.mp4", caption, info.frames, info.fps, tuple(info.size), 0.6),))
+    return Section("animation", "Animation", (Paragraph(text),))
+
+
+def _appendix(data: LawReport) -> Section:
+    run = data.run
     if isinstance(run, sim.SimulationError):
-        lines += [f"The simulation failed ({run.kind}): {run}", ""]
+        blocks = (Paragraph(f"The simulation failed ({run.kind}): {run}"),)
     else:
         how = ("two phases: compression by the engine at restitution 0 and Coulomb "
-               "coefficient mu_c, then k times its impulse" if setup.law == "kudlich-slibar"
+               "coefficient mu_c, then k times its impulse"
+               if data.setup.law == "kudlich-slibar"
                else "the rigid Brach scene at the effective beta")
-        lines += [f"pymunk run ({how}). Largest error in the impact's velocity changes: "
-                  f"**{rep.error:.2e}** (relative to the largest change).", "",
-                  md_table(by_name["crosscheck"])]
-    lines += ["## Not run for this law", "", f"- {NOT_RUN}.", "", "## Files", ""]
-    for path in sorted({p.relative_to(rep.out_dir).as_posix() for p in rep.files}
-                       | {"report.md"}):
-        lines.append(f"- [{path}]({path})")
-    lines.append("")
-    return "\n".join(lines)
+        blocks = (Paragraph(f"pymunk run ({how}). Largest error in the impact's velocity "
+                            f"changes: **{format_number(data.error, sig=2)}** (relative to "
+                            f"the largest change)."), data.tables["crosscheck"])
+    return Section("crosscheck", "Appendix A: the analytic answer against the law's pymunk run",
+                   blocks, toc="A: pymunk cross-check")
 
+
+def law_document(data: LawReport) -> Document:
+    """The report of ``pim compare`` under the law of ``data.setup`` (module notes)."""
+    coefficients = [Paragraph(_fit_lines(data.setup, data.fit))]
+    if "fit" in data.tables:
+        coefficients.append(data.tables["fit"])
+    sections = [_results(data)]
+    if "misfit" in data.tables:
+        sections.append(Section("misfit", "How well the answer fits the measurements", (
+            Paragraph(misfit_sentence(misfit(data.setup.result), data.units, data.fit)
+                      or "Every measured quantity lies within 3 sigma of the model at the "
+                         "answer."), data.tables["misfit"]), toc="Fit", keep=True))
+    sections += [Section("coefficients", "Coefficients", tuple(coefficients), keep=True),
+                 Section("inputs", "Case inputs", (data.tables["inputs"],), toc="Inputs"),
+                 _animation_section(data), _appendix(data),
+                 Section("not-run", "Not run for this law", (Bullets((f"{NOT_RUN}.",)),),
+                         toc="Not run")]
+    name = data.case.name or "case"
+    doc = Document(f"{name}: reconstruction report", "pim compare", tuple(sections),
+                   subtitle=((data.case.description or "").rstrip(".") + ". "
+                             if getattr(data.case, "description", None) else "")
+                   + f"Written by `pim compare` in {display_units(data.units)}. Impact law: "
+                   f"**{data.setup.describe()}** (docs/impact-laws.md).")
+    info = data.animation
+    media = [] if info is None or isinstance(info, sim.SimulationError) else \
+        ["animation.mp4"] + (["animation.gif"] if info.gif else [])
+    files = sorted(set(media) | set(document_files(doc)))
+    return replace(doc, sections=doc.sections + (
+        Section("files", "Files", (FileList(tuple(files)),)),))

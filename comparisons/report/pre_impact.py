@@ -1,20 +1,69 @@
 """The speeds before the impact (:mod:`pim.analysis.pre_impact_speeds`) as the commands show
-them: rows in the user's units, text lines, JSON, a Markdown section and an HTML section.
+them: typed rows in the user's units, text lines, JSON and a report section.
 
-Used by ``pim solve`` (from the case's impact velocities) and ``pim reconstruct`` (from the
-reconstructed impact speeds, with the Monte Carlo's 5/50/95 %).
+Used by ``pim solve`` (from the case's impact velocities), ``pim compare`` and ``pim
+reconstruct`` (from the reconstructed impact speeds, with the Monte Carlo's 5/50/95 %).
 """
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
+
+from comparisons.report.document import Paragraph, Section
+from comparisons.report.number_format import interval_decimals
+from comparisons.report.tables import Num, Table
 from pim.analysis.pre_impact_speeds import PreImpactSpeed
-from pim.io import html
 from pim.io.units import convert
 
-__all__ = ["pre_impact_rows", "pre_impact_lines", "pre_impact_json", "pre_impact_markdown",
-           "pre_impact_html", "TITLE"]
+__all__ = ["PreImpactRow", "pre_impact_rows", "pre_impact_lines", "pre_impact_json",
+           "pre_impact_section", "pre_impact_spread_table", "TITLE", "NOTE"]
 
 TITLE = "Speeds before the impact"
+
+
+@dataclass(frozen=True)
+class PreImpactRow:
+    """One speed before the impact in the user's units.
+
+    Attributes
+    ----------
+    name : str
+        Its dotted name (``vehicle1.speed_at_marks_start``).
+    unit : str
+        Display unit of the speeds.
+    value : float
+        The speed where the evidence starts.
+    p5, p50, p95 : float
+        Its Monte Carlo percentiles (NaN when not computed).
+    impact : float
+        The impact speed it was carried back from.
+    what : str
+        Where the speed holds and from what evidence.
+    source : str
+        "marks" or "driver".
+    varied : list of str
+        The inputs the Monte Carlo varied for it.
+    drivers : list of [str, float]
+        Inputs driving its spread with their first-order indices, largest first.
+    """
+
+    name: str
+    unit: str
+    value: float
+    p5: float
+    p50: float
+    p95: float
+    impact: float
+    what: str
+    source: str
+    varied: list
+    drivers: list
+
+    @property
+    def has_spread(self) -> bool:
+        """Whether the percentiles were computed."""
+        return not math.isnan(self.p5)
 
 
 def _what(s: PreImpactSpeed, units: str) -> str:
@@ -29,80 +78,77 @@ def _what(s: PreImpactSpeed, units: str) -> str:
             f"the vehicle's run-out tyre)")
 
 
-def pre_impact_rows(speeds, units: str) -> list[dict]:
-    """One row per :class:`PreImpactSpeed`: name, unit, value, p5, p50, p95, impact speed
-    (``impact``) in ``units`` (speeds in its speed unit), and ``what`` (where the
-    speed holds, from what evidence)."""
+def pre_impact_rows(speeds, units: str) -> list[PreImpactRow]:
+    """One :class:`PreImpactRow` per :class:`PreImpactSpeed`, in ``units`` (impact speeds:
+    the system's impact-speed unit)."""
     rows = []
     for s in speeds:
         values, unit = convert([s.start_speed, s.p5, s.p50, s.p95, s.impact_speed],
                                "impact_speed", units)
         v = [float(x) for x in values]
-        rows.append({"name": s.name, "unit": unit, "value": v[0], "p5": v[1], "p50": v[2],
-                     "p95": v[3], "impact": v[4], "what": _what(s, units),
-                     "source": s.source, "varied": list(s.varied),
-                     "drivers": [[k, x] for k, x in s.drivers]})
+        rows.append(PreImpactRow(name=s.name, unit=unit, value=v[0], p5=v[1], p50=v[2],
+                                 p95=v[3], impact=v[4], what=_what(s, units),
+                                 source=s.source, varied=list(s.varied),
+                                 drivers=[[k, x] for k, x in s.drivers]))
     return rows
 
 
-def _spread(row) -> str:
-    if row["p5"] != row["p5"]:
+def _spread(row: PreImpactRow) -> str:
+    if not row.has_spread:
         return ""
-    return f"  [{row['p5']:.4g}, {row['p50']:.4g}, {row['p95']:.4g}]"
+    return f"  [{row.p5:.4g}, {row.p50:.4g}, {row.p95:.4g}]"
 
 
-def _main_driver(row) -> str:
-    top = [(k, x) for k, x in row["drivers"][:1] if x > 0.005]
+def _main_driver(row: PreImpactRow) -> str:
+    top = [(k, x) for k, x in row.drivers[:1] if x > 0.005]
     return "".join(f"; main driver of the spread {k} ({x:.2f})" for k, x in top)
 
 
 def pre_impact_lines(rows) -> list[str]:
     """Text lines: each speed with its 5/50/95 % (when computed), where it holds and the
     main driver of its spread."""
-    return [f"{r['name']:32s} {r['value']:10.4g} {r['unit']}{_spread(r)}  ({r['what']}; "
-            f"impact speed {r['impact']:.4g} {r['unit']}{_main_driver(r)})" for r in rows]
+    return [f"{r.name:32s} {r.value:10.4g} {r.unit}{_spread(r)}  ({r.what}; "
+            f"impact speed {r.impact:.4g} {r.unit}{_main_driver(r)})" for r in rows]
 
 
 def pre_impact_json(rows) -> dict:
     """``--json``'s ``pre_impact`` entry: name -> value, percentiles, unit, impact speed and
     where it holds (NaN percentiles become null in :func:`pim_cli.main.echo_json`)."""
-    return {r["name"]: {k: r[k] for k in ("unit", "value", "p5", "p50", "p95", "impact",
-                                           "source", "what", "varied", "drivers")}
+    return {r.name: {k: getattr(r, k) for k in ("unit", "value", "p5", "p50", "p95", "impact",
+                                                 "source", "what", "varied", "drivers")}
             for r in rows}
 
 
-def _cells(r) -> tuple:
-    def g(x):
-        return "" if x != x else f"{x:.4g}"
-
-    drivers = ", ".join(f"{k} {x:.2f}" for k, x in r["drivers"][:3] if x > 0.005)
-    return (r["name"], g(r["value"]), g(r["p5"]), g(r["p50"]), g(r["p95"]), r["unit"],
-            g(r["impact"]), r["what"], drivers)
+NOTE = ("Marks: v_start = sqrt(v_impact^2 + 2 g L (f mu cos(theta) + sin(theta))) "
+        "(Fricke 1990; Brach & Brach 2011); the 5/50/95 % carry each Monte Carlo sample's "
+        "impact speed with the marks' friction and length drawn from [uncertainty]; their "
+        "drivers are first-order variance indices (correlation ratio). Driver table: the "
+        "start speed whose motion under the table reaches the impact speed.")
 
 
-_COLUMNS = ("speed", "value", "5 %", "50 %", "95 %", "unit", "impact speed", "where, from what",
-            "drivers of the spread")
-_NOTE = ("Marks: v_start = sqrt(v_impact^2 + 2 g L (f mu cos(theta) + sin(theta))) "
-         "(Fricke 1990; Brach & Brach 2011); the 5/50/95 % carry each Monte Carlo sample's "
-         "impact speed with the marks' friction and length drawn from [uncertainty]; their "
-         "drivers are first-order variance indices (correlation ratio). Driver table: the "
-         "start speed whose motion under the table reaches the impact speed.")
+def _cells(r: PreImpactRow) -> tuple:
+    digits = interval_decimals(r.p5, r.p95)
+    drivers = ", ".join(f"{k} {x:.2f}" for k, x in r.drivers[:3] if x > 0.005)
+
+    def cell(x):
+        return None if math.isnan(x) else Num(x, digits)
+
+    return (r.name, cell(r.value), cell(r.p5), cell(r.p50), cell(r.p95), r.unit,
+            Num(r.impact), r.what, drivers)
 
 
-def pre_impact_markdown(rows) -> list[str]:
-    """report.md's section (no lines without rows)."""
+def pre_impact_spread_table(rows) -> Table:
+    """The speeds with their 5/50/95 % (``reconstruction_pre_impact.csv``)."""
+    return Table("pre_impact", TITLE, ("speed", "value", "5 %", "50 %", "95 %", "unit",
+                                       "impact speed", "where, from what",
+                                       "drivers of the spread"),
+                 tuple(_cells(r) for r in rows))
+
+
+def pre_impact_section(rows) -> Section | None:
+    """The report section of the speeds before the impact (None without rows)."""
     if not rows:
-        return []
-    lines = [f"## {TITLE}", "", _NOTE, "", "| " + " | ".join(_COLUMNS) + " |",
-             "|" + "---|" * len(_COLUMNS)]
-    lines += ["| " + " | ".join(c or "-" for c in _cells(r)) + " |" for r in rows]
-    return lines + [""]
+        return None
+    return Section("pre-impact", TITLE, (Paragraph(NOTE), pre_impact_spread_table(rows)),
+                   toc="Before the impact")
 
-
-def pre_impact_html(rows) -> list[str]:
-    """report.html's section (an empty list without rows)."""
-    if not rows:
-        return []
-    return [html.section(TITLE, [html.paragraph(_NOTE), html.table(
-        _COLUMNS, [_cells(r) for r in rows], title=TITLE, id="table-pre-impact")],
-        id="pre-impact")]

@@ -8,6 +8,8 @@ predicted figures' errors written from the table.
 
 from __future__ import annotations
 
+from comparisons.report.render import markdown_table
+from comparisons.report.write import write_table_csv
 import math
 from pathlib import Path
 
@@ -116,7 +118,7 @@ def pulses_markdown(c: PulseComparison, table: Table, command: str = "",
               f"linear loading stiffness {c.stiffness / 1e3:.0f} kN/m, restitution "
               f"{c.eps:.3f}. RMS difference over the record: force {c.force_rms / 1e3:.0f} "
               f"kN, delta-V {float(rms):.2f} {su}.", "", _roles_words(c, table), "",
-              table.to_markdown(), "", "![pulses](pulses.png)", ""]
+              markdown_table(table), "", "![pulses](pulses.png)", ""]
     return "\n".join(lines)
 
 
@@ -126,4 +128,4 @@ def write_pulses(c: PulseComparison, folder, units="si", command: str = "") -> l
     table = pulse_table(c, units)
     png = save_figure(plot_pulses(c, units), folder / "pulses.png")
     md = write_text(folder / "pulses.md", pulses_markdown(c, table, command, units))
-    return [md, table.write_csv(folder), png]
+    return [md, write_table_csv(table, folder), png]

@@ -1,65 +1,101 @@
-"""Tables of the comparisons as data, written as CSV and rendered as Markdown.
+"""Tables of the reports as data: raw values, written at full precision in the CSV and
+formatted for reading by the renderers (:mod:`comparisons.report.render`,
+:mod:`comparisons.report.html`) in the one number format
+(:mod:`comparisons.report.number_format`).
 
-A :class:`Table` holds raw values (floats stay floats in the CSV, at full precision); the
-Markdown rendering formats them for reading (6 significant digits, errors as 1.2e-07).
+A cell is a float, an int, a bool, a string, None (empty) or a :class:`Num` (a number that
+states how many digits it shows, e.g. those its interval allows).
 """
 
 from __future__ import annotations
 
-import csv
-import io
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from pathlib import Path
 
-from pim.io.files import write_text
+from comparisons.report.number_format import SIGNIFICANT, format_number
 
-__all__ = ["Table", "fmt_value", "fmt_error"]
+__all__ = ["Table", "Num", "fmt_value", "fmt_error", "cell_text", "raw_value", "is_numeric"]
+
+
+@dataclass(frozen=True)
+class Num:
+    """A table cell holding a number and how many digits it shows.
+
+    Attributes
+    ----------
+    value : float
+        The value, at full precision (what the CSV holds).
+    decimals : int or None
+        Decimal places shown (:func:`comparisons.report.number_format.interval_decimals`),
+        or None for ``sig`` significant digits.
+    sig : int
+        Significant digits when ``decimals`` is None.
+    """
+
+    value: float
+    decimals: int | None = None
+    sig: int = SIGNIFICANT
+
+    def __str__(self) -> str:
+        return format_number(self.value, sig=self.sig, decimals=self.decimals)
 
 
 def fmt_value(x) -> str:
-    """A number to 6 significant digits; None/NaN as an empty cell; text unchanged."""
-    if x is None:
-        return ""
-    if isinstance(x, bool):
-        return "yes" if x else "no"
-    if isinstance(x, int):
+    """A cell as text: a number in the one format (4 significant digits); None/NaN as an
+    empty cell; yes/no; text unchanged."""
+    if isinstance(x, Num):
         return str(x)
-    if isinstance(x, float):
-        if math.isnan(x):
-            return ""
-        return f"{x:.6g}"
-    return str(x)
+    return format_number(x)
 
 
 def fmt_error(x) -> str:
-    """An error as 1.23e-07 (0 as 0; None/NaN as an em dash: not defined)."""
+    """An error with two significant digits (0 as 0; None/NaN as an em dash: not
+    defined)."""
     if x is None or (isinstance(x, float) and math.isnan(x)):
         return "—"
     if isinstance(x, str):
         return x
-    if x == 0:
-        return "0"
-    return f"{x:.2e}"
+    return format_number(x, sig=2)
+
+
+def raw_value(x):
+    """A cell's value at full precision (a :class:`Num`'s value)."""
+    return x.value if isinstance(x, Num) else x
+
+
+def is_numeric(x) -> bool:
+    """Whether a cell holds a number (right-aligned)."""
+    x = raw_value(x)
+    return isinstance(x, int | float) and not isinstance(x, bool)
 
 
 @dataclass(frozen=True)
 class Table:
-    """A titled table: column names, rows of values, and per-column Markdown formatters.
+    """A titled table: column names, rows of values, and per-column formatters.
 
     Attributes
     ----------
     name : str
-        File stem of the CSV (``name.csv``).
+        File stem of the CSV (``name.csv``) and the table's id.
     title : str
         Caption in the report.
     columns : tuple of str
         Column headers (units in brackets).
     rows : tuple of tuple
-        Raw values (float, int, str or None).
+        Cells (float, int, bool, str, None or :class:`Num`).
     formats : dict
-        Column name -> function formatting a value for Markdown (default :func:`fmt_value`).
+        Column name -> function formatting a cell (default :func:`fmt_value`).
+    note : str
+        A line under the caption (inline marks allowed).
+    groups : tuple
+        (caption, column names) pairs: on a screen the table is shown as one table per
+        group, each led by the first column (:func:`pim.io.html.split_columns`); empty: one
+        table.
+    csv : bool
+        Written as ``name.csv`` too.
+    show : bool
+        Shown in the page (False: only written as ``name.csv``, which the page links).
     """
 
     name: str
@@ -67,6 +103,10 @@ class Table:
     columns: tuple[str, ...]
     rows: tuple[tuple, ...]
     formats: dict[str, Callable] = field(default_factory=dict)
+    note: str = ""
+    groups: tuple = ()
+    csv: bool = True
+    show: bool = True
 
     def __post_init__(self) -> None:
         for row in self.rows:
@@ -77,32 +117,21 @@ class Table:
     def column(self, name: str) -> list:
         """The raw values of one column."""
         i = self.columns.index(name)
-        return [row[i] for row in self.rows]
+        return [raw_value(row[i]) for row in self.rows]
 
-    def to_csv(self) -> str:
-        """CSV text (full precision; None and NaN as empty cells)."""
-        buf = io.StringIO()
-        writer = csv.writer(buf, lineterminator="\n")
-        writer.writerow(self.columns)
-        for row in self.rows:
-            writer.writerow(["" if v is None or (isinstance(v, float) and math.isnan(v))
-                             else repr(v) if isinstance(v, float) else v for v in row])
-        return buf.getvalue()
+    def cells(self) -> list[list[str]]:
+        """Every cell as text, formatted by its column's formatter."""
+        return [[cell_text(self, c, v) for c, v in zip(self.columns, row, strict=True)]
+                for row in self.rows]
 
-    def write_csv(self, out_dir) -> Path:
-        """Write ``out_dir/name.csv`` atomically."""
-        return write_text(Path(out_dir) / f"{self.name}.csv", self.to_csv())
+    def numeric(self) -> list[bool]:
+        """Per column: whether it holds numbers (right-aligned)."""
+        return [any(is_numeric(r[i]) for r in self.rows) for i in range(len(self.columns))]
 
-    def to_markdown(self, align: Sequence[str] | None = None) -> str:
-        """A GitHub-flavoured Markdown table (numbers right-aligned)."""
-        cells = [[self.formats.get(c, fmt_value)(v) for c, v in zip(self.columns, row,
-                                                                     strict=True)]
-                 for row in self.rows]
-        if align is None:
-            align = ["---:" if any(isinstance(r[i], int | float) and not isinstance(r[i], bool)
-                                   for r in self.rows) else ":---"
-                     for i in range(len(self.columns))]
-        header = (c.replace("|", "\\|") for c in self.columns)
-        lines = ["| " + " | ".join(header) + " |", "|" + "|".join(align) + "|"]
-        lines += ["| " + " | ".join(c.replace("|", "\\|") for c in row) + " |" for row in cells]
-        return "\n".join(lines)
+
+def cell_text(table: Table, column: str, value) -> str:
+    """One cell of ``table`` as text."""
+    if isinstance(value, Num) and column not in table.formats:
+        return str(value)
+    return table.formats.get(column, fmt_value)(raw_value(value)
+                                                if column in table.formats else value)

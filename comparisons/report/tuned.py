@@ -8,6 +8,8 @@ blocks (:class:`comparisons.report.tables.Table`, :mod:`pim.io.html`).
 
 from __future__ import annotations
 
+from comparisons.report.render import markdown_table
+from comparisons.report.write import write_table_csv
 import math
 from pathlib import Path
 
@@ -327,15 +329,15 @@ def markdown_report(studies, units: str = "si", command: str = "") -> str:
     lines += [f"- {name}: not run ({why})." for name, why in UNRUNNABLE.items()]
     lines += ["", "## Method", ""] + [f"- {x}" for x in _method_lines()]
     lines += ["", "![leave-one-out](tuned-scene.png)", "", "## Verdict statistics", "",
-              verdict_table(studies).to_markdown(), "", "## Class fits and medians", "",
-              summary_table(studies, units).to_markdown(), "", "## Where each input comes "
-              "from", "", origins_table(studies).to_markdown(), "",
+              markdown_table(verdict_table(studies)), "", "## Class fits and medians", "",
+              markdown_table(summary_table(studies, units)), "", "## Where each input comes "
+              "from", "", markdown_table(origins_table(studies)), "",
               "Origins: " + "; ".join(f"{k}: {v}" for k, v in ORIGIN_KINDS.items()) + ".", "",
               "## Coarse scene against a 10x finer one (class parameters)", ""]
     su = _unit(units)
     lines += [f"- {st.crash_class}: {_speed(st.coarse_check[0], units):.3f} {su}, "
               f"{math.degrees(st.coarse_check[1]):.2f} deg/s" for st in studies]
-    lines += ["", "## Every prediction", "", predictions_table(studies, units).to_markdown(),
+    lines += ["", "## Every prediction", "", markdown_table(predictions_table(studies, units)),
               ""]
     return "\n".join(lines)
 
@@ -369,6 +371,6 @@ def write_tuned_study(studies, out_dir, units: str = "si", command: str = "") ->
     png = save_figure(plot_tuned_study(studies, units), out / "tuned-scene.png")
     md = write_text(out / "tuned-scene.md", markdown_report(studies, units, command))
     page = write_text(out / "tuned-scene.html", _html_report(studies, units, png))
-    return [md, page, summary_table(studies, units).write_csv(out),
-            verdict_table(studies).write_csv(out),
-            predictions_table(studies, units).write_csv(out), png]
+    return [md, page, write_table_csv(summary_table(studies, units), out),
+            write_table_csv(verdict_table(studies), out),
+            write_table_csv(predictions_table(studies, units), out), png]

@@ -19,21 +19,19 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
 import pim
 import sim
-from pim.io.files import write_text
 from pim.io.units import convert
 from sim.error_measure import impact_error
 
 from comparisons.studies.speed_error import TARGET, SpeedErrorStudy, sweep
 from comparisons.report.tables import Table, fmt_error
 
-__all__ = ["HardCase", "HardCaseStudy", "run_hard_case", "run_hard_cases", "write_hard_cases",
-           "hard_case_names"]
+__all__ = ["HardCase", "HardCaseStudy", "run_hard_case", "run_hard_cases", "hard_case_names",
+           "TARGET"]
 
 
 def _f(x) -> float:
@@ -192,9 +190,7 @@ class HardCaseStudy:
                      ("case", "eps", "beta", f"|dV1| [{uv}]", f"|dV2| [{uv}]", f"W1 [{uw}]",
                       f"W2 [{uw}]", f"Pn [{up}]", f"Pt [{up}]", "energy lost [%]", "PIM flags",
                       "sim error [-]", "sweeps", "sim time [ms]", "sim failure"),
-                     tuple(rows), formats={"sim error [-]": fmt_error,
-                                           "sim time [ms]": lambda x: "" if x != x
-                                           else f"{x:.2f}"})
+                     tuple(rows), formats={"sim error [-]": fmt_error})
 
     def needs_table(self) -> Table:
         """What the simulator needs to reach 1e-6, per case."""
@@ -259,41 +255,3 @@ def run_hard_cases(names=None, repeats: int = 1, progress: bool | None = None) -
         names, desc="hard cases", unit="case", disable=None if progress is None
         else not progress)]
     return HardCaseStudy(tuple(cases))
-
-
-COMMAND = "pim hard-cases --out docs"
-
-
-def hard_cases_markdown(study: HardCaseStudy, units: str = "si") -> str:
-    """The study as a Markdown page (results in ``units``)."""
-    lines = ["# Hard cases: PIM against the pymunk simulation", "",
-             "Regenerate with:", "", "```", COMMAND, "```", "",
-             "Each bundled hard case (`pim cases`, `pim/io/cases/hard-*.toml`) at its own "
-             "(epsilon, beta), solved by PIM and simulated by pymunk at the default settings "
-             "(point contact at C, exact start, dt = 1e-3 s, automatic iterations). "
-             "`sim error` is the largest error in the impact's velocity changes relative to "
-             "the largest change (docs/comparisons.md). Times are wall times on the machine "
-             "that ran the command.", "",
-             "## Results", "", study.results_table(units).to_markdown(), "",
-             f"## What the simulator needs to reach {TARGET:g}", "",
-             "From the full speed-error sweep of each case (dt 1e-2 ... 1e-5 s, iterations "
-             "1 ... 100 and automatic, exact or detected start, point or outline contact). "
-             "`exact start: iterations` is the fewest fixed iteration count that reaches the "
-             "target at every dt of the sweep; `detected start: largest dt` is empty where no "
-             "dt of the sweep reaches it.", "",
-             study.needs_table().to_markdown(), ""]
-    for c in study.cases:
-        lines += [f"- **{c.name}** ({c.description}): {c.needs_text()}; outline contact "
-                  f"{c.outline_text()}."]
-    lines.append("")
-    return "\n".join(lines)
-
-
-def write_hard_cases(study: HardCaseStudy, out_dir, units: str = "si") -> list[Path]:
-    """Write hard-cases.md and the two CSVs to ``out_dir`` (atomically), in ``units``."""
-
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    files = [study.results_table(units).write_csv(out), study.needs_table().write_csv(out)]
-    files.insert(0, write_text(out / "hard-cases.md", hard_cases_markdown(study, units)))
-    return files

@@ -34,7 +34,6 @@ import numpy as np
 
 import pim
 import sim
-from pim.io.files import save_figure, write_text
 from sim.error_measure import analytic_residual, impact_error
 from sim.scene import resolve_coefficients
 
@@ -274,8 +273,7 @@ def study_table(study: SpeedErrorStudy, name: str = "speed_error") -> Table:
     return Table(name, f"{study.case_name}: simulator error against PIM and wall time per impact",
                  ("contact", "start", "dt [s]", "iterations", "sweeps used", "error [-]",
                   "wall time [ms]", "Pareto", "recommended", "failure"),
-                 tuple(rows), formats={"error [-]": fmt_error,
-                                       "wall time [ms]": lambda x: "" if x != x else f"{x:.3f}"})
+                 tuple(rows), formats={"error [-]": fmt_error})
 
 
 def pareto_table(study: SpeedErrorStudy, name: str = "speed_error_pareto") -> Table:
@@ -291,8 +289,7 @@ def pareto_table(study: SpeedErrorStudy, name: str = "speed_error_pareto") -> Ta
     return Table(name, f"{study.case_name}: Pareto front (no faster run is more accurate)",
                  ("solver", "dt [s]", "iterations", "sweeps used", "error [-]",
                   "wall time per impact [ms]", "recommended"), tuple(rows),
-                 formats={"error [-]": fmt_error,
-                          "wall time per impact [ms]": lambda x: f"{x:.4f}"})
+                 formats={"error [-]": fmt_error})
 
 
 #: Errors below this are drawn at it (a log axis has no zero).
@@ -362,66 +359,3 @@ def plot_speed_error(study: SpeedErrorStudy):
     ax.text(0.01, 0.01, f"errors below {ERROR_FLOOR:g} drawn at {ERROR_FLOOR:g}",
             transform=ax.transAxes, fontsize=7, color="0.4")
     return fig
-
-
-
-def write_study(study: SpeedErrorStudy, out_dir, stem: str, command: str = "") -> list:
-    """Write ``speed-error-STEM.md``, ``.csv`` (every run), ``-pareto.csv`` and ``.png``."""
-    from pathlib import Path
-
-
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    every = study_table(study, f"speed-error-{stem}")
-    front = pareto_table(study, f"speed-error-{stem}-pareto")
-    png = save_figure(plot_speed_error(study), out / f"speed-error-{stem}.png")
-    files = [every.write_csv(out), front.write_csv(out), png]
-    md = write_text(out / f"speed-error-{stem}.md", study_markdown(study, stem, command))
-    return [md, *files]
-
-
-def study_markdown(study: SpeedErrorStudy, stem: str, command: str = "") -> str:
-    """The study as a Markdown page: method, recommendation, plot, Pareto front, all runs."""
-    rec = study.recommended()
-    ok = study.succeeded
-    lines = [f"# Speed against error: {study.case_name}", ""]
-    if command:
-        lines += ["Regenerate with:", "", "```", command, "```", ""]
-    lines += [f"epsilon = {study.eps:.6g}, beta = {study.beta:.6g}. {len(study.points)} runs of "
-              f"the pymunk scene over dt {sorted({p.dt for p in study.points})}, iterations "
-              f"(1 ... 100 and automatic), exact or detected contact start, point or outline "
-              f"contact. Error: the largest error in the impact's velocity changes (V1, V2, "
-              f"and k1 W1, k2 W2 with k the radius of gyration), relative to the largest "
-              f"change. Wall time: building the pymunk Space and stepping it through the "
-              f"impact, best of the repeats, on the machine that ran the command. "
-              f"{len(ok)} runs succeeded.", ""]
-    if rec is not None:
-        its = "automatic" if rec.iterations is None else str(rec.iterations)
-        lines += [f"**Recommended: dt = {rec.dt:g} s, {its} iterations "
-                  f"({rec.iterations_used} sweeps), {rec.start} start, {rec.contact} contact** "
-                  f"-- error {rec.error:.2e} in {rec.wall_time * 1e3:.3g} ms per impact "
-                  f"(the fastest run reaching {study.target:g}: on the Pareto front).", ""]
-    else:
-        lines += [f"**No run reaches {study.target:g}.**", ""]
-    lines += [f"PIM itself: {study.analytic_time * 1e3:.3g} ms per single call, "
-              f"{study.analytic_batch_time * 1e6:.3g} us per case in a batch of 10 000, "
-              f"error (residual of its own equations) {study.analytic_error:.2e}.", ""]
-    for where, text in ((dict(start="exact", contact="point"), "point contact, exact start"),
-                        (dict(start="detected", contact="point"),
-                         "point contact, detected start"),
-                        (dict(contact="outline"), "outline contact")):
-        best = study.best(**where)
-        if best is not None:
-            lines.append(f"- best {text}: error {best.error:.2e} ({best.label})")
-    fails = {}
-    for p in study.points:
-        if not p.ok:
-            fails[p.failure] = fails.get(p.failure, 0) + 1
-    if fails:
-        lines.append("- failed runs: " + ", ".join(f"{k} x {v}" for k, v in fails.items()))
-    lines += ["", f"![speed against error](speed-error-{stem}.png)", "",
-              f"Tables as CSV: [every run](speed-error-{stem}.csv), "
-              f"[Pareto front](speed-error-{stem}-pareto.csv).", "",
-              "## Pareto front", "", pareto_table(study).to_markdown(), "",
-              "## Every run", "", study_table(study).to_markdown(), ""]
-    return "\n".join(lines)

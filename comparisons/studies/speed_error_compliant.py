@@ -34,6 +34,8 @@ issue's goal), and the fastest reaching 1e-6 is reported per integrator.
 
 from __future__ import annotations
 
+from comparisons.report.render import markdown_table
+from comparisons.report.write import write_table_csv
 import math
 import sys
 import time
@@ -528,6 +530,6 @@ def write_compliant_study(study: CompliantSpeedStudy, out_dir, stem: str,
                     lines.append(f"  - {integrator} reaches {target:g} at {p.label}: "
                                  f"{p.wall_time * 1e3:.3g} ms per impact")
     lines += ["", f"![speed against error](speed-error-compliant-{stem}.png)", "",
-              table.to_markdown(), ""]
+              markdown_table(table), ""]
     md = write_text(out / f"speed-error-compliant-{stem}.md", "\n".join(lines))
-    return [md, table.write_csv(out), png]
+    return [md, write_table_csv(table, out), png]

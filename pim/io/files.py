@@ -21,7 +21,11 @@ from pathlib import Path
 from ..model.numbers import InputError
 
 __all__ = ["atomic_path", "atomic_paths", "write_text", "save_figure", "writable_folder",
-           "check_complete"]
+           "check_complete", "smallest_text_points", "TEXT_PX_KEY"]
+
+#: PNG text key of :func:`save_figure`: the height of the figure's smallest text [image px]
+#: (what a report checks its figures' readability with, :mod:`pim.io.html`).
+TEXT_PX_KEY = "pim:smallest-text-px"
 
 
 @contextlib.contextmanager
@@ -120,11 +124,22 @@ def write_text(path, text: str) -> Path:
     return path
 
 
+def smallest_text_points(fig) -> float | None:
+    """The font size of the smallest visible, non-empty text of a matplotlib figure
+    [points], or None when it has no text."""
+    from matplotlib.text import Text
+
+    sizes = [t.get_fontsize() for t in fig.findobj(Text)
+             if t.get_visible() and t.get_text().strip()]
+    return min(sizes) if sizes else None
+
+
 def save_figure(fig, path, **savefig_kwargs) -> Path:
     """Write a matplotlib figure to ``path`` atomically; the suffix names the format.
 
-    PNGs default to 120 dpi; figures without a layout engine get a tight bounding box; other
-    keyword arguments go to ``Figure.savefig``.
+    PNGs default to 120 dpi and state the height of their smallest text in image pixels
+    under :data:`TEXT_PX_KEY` (font size [pt] x dpi / 72); figures without a layout engine
+    get a tight bounding box; other keyword arguments go to ``Figure.savefig``.
     """
     path = Path(path)
     fmt = path.suffix.lstrip(".").lower()
@@ -138,6 +153,12 @@ def save_figure(fig, path, **savefig_kwargs) -> Path:
     # bounding box would only draw it a second time.
     tight = {} if fig.get_layout_engine() is not None else {"bbox_inches": "tight"}
     options = {**tight, **({"dpi": 120} if fmt == "png" else {}), **savefig_kwargs}
+    points = smallest_text_points(fig) if fmt == "png" else None
+    if points is not None:
+        dpi = options.get("dpi", fig.dpi)
+        metadata = dict(options.get("metadata") or {})
+        metadata[TEXT_PX_KEY] = f"{points * float(dpi) / 72:.4g}"
+        options["metadata"] = metadata
     with atomic_path(path) as tmp:
         fig.savefig(tmp, format=fmt, **options)
     return path

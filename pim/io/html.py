@@ -5,9 +5,17 @@ PNG (``data:`` URIs), videos as base64 MP4 in a ``<video controls>`` element (H.
 which every browser plays), the style sheet is inline and nothing is fetched from anywhere.
 Every piece of text goes through :func:`esc` (``html.escape``), so a case name or a message
 can never inject markup. The blocks return HTML strings: :func:`table`, :func:`figure`,
-:func:`video`, :func:`section`, :func:`paragraph`, :func:`bullets`, and :func:`page`
-assembles them into a document with a header, a table of contents and a print style sheet
-(white background, each section on a new page, a still frame in place of each video).
+:func:`grid`, :func:`video`, :func:`section`, :func:`paragraph`, :func:`bullets`,
+:func:`callout`, :func:`facts`, :func:`code`, :func:`links`, and :func:`page` assembles them
+into a document with a header, a table of contents and a print style sheet (white
+background, each section on a new page, a still frame in place of each video).
+
+A figure is shown at its own pixel width, never wider, and narrower only where the page is
+narrower than it; figures side by side wrap to the next line rather than shrink, so the
+text in a figure keeps the size it was drawn at. A PNG written by
+:func:`pim.io.files.save_figure` states the height of its smallest text [px]
+(``TEXT_PX_KEY``), which :func:`figure` carries as ``data-text-px``: the browser test checks
+the size that text is shown at.
 """
 
 from __future__ import annotations
@@ -21,9 +29,12 @@ from pathlib import Path
 
 import imageio.v2 as imageio
 
+from .files import TEXT_PX_KEY
+
 __all__ = ["esc", "inline", "data_uri", "table", "split_columns", "split_table", "figure",
-           "video", "still_frame", "video_info", "section", "paragraph", "bullets", "facts",
-           "page", "HTML_REPORT_NAME"]
+           "grid", "video", "still_frame", "video_info", "section", "paragraph", "bullets",
+           "callout", "facts", "code", "links", "page", "png_text_px", "HTML_REPORT_NAME",
+           "TEXT_PX_KEY"]
 
 #: File name of the HTML report beside report.md.
 HTML_REPORT_NAME = "report.html"
@@ -37,9 +48,11 @@ def esc(text) -> str:
 
 
 def inline(text) -> str:
-    """Escaped ``text`` with Markdown's inline marks rendered: `code` and **bold**."""
+    """Escaped ``text`` with Markdown's inline marks rendered: `code`, **bold** and links to
+    files beside the page, ``[text](path)`` (a relative path: no scheme, so no script)."""
     out = esc(text)
     out = re.sub(r"`([^`]+)`", r"<code>\1</code>", out)
+    out = re.sub(r"\[([^\]\[]+)\]\(([\w.-][\w./-]*)\)", r'<a href="\2">\1</a>', out)
     return re.sub(r"\*\*([^*]+)\*\*", r"<strong>\1</strong>", out)
 
 
@@ -127,11 +140,35 @@ def split_table(columns: Sequence[str], rows: Sequence[Sequence[str]], groups, k
     return "\n".join(parts)
 
 
+def png_text_px(content: bytes) -> tuple[int, int, float | None]:
+    """Width and height [px] of a PNG and the height of its smallest text [px] when it
+    states it (:data:`TEXT_PX_KEY`, written by :func:`pim.io.files.save_figure`)."""
+    from PIL import Image
+
+    with Image.open(io.BytesIO(content)) as im:
+        text = im.info.get(TEXT_PX_KEY)
+        return im.width, im.height, float(text) if text else None
+
+
 def figure(image, *, alt: str, caption: str = "", mime: str = "image/png") -> str:
-    """An inline image (``image``: bytes or a file path) with its caption."""
+    """An inline image (``image``: bytes or a file path) with its caption, shown at most at
+    its own pixel width (``max-width`` in CSS pixels), with ``data-text-px`` the height of
+    its smallest text [image px] when the PNG states it."""
+    content = _bytes(image)
     cap = f"<figcaption>{inline(caption)}</figcaption>" if caption else ""
-    return (f'<figure class="plot"><img src="{data_uri(_bytes(image), mime)}" '
-            f'alt="{esc(alt)}" loading="eager">{cap}</figure>')
+    size = text = ""
+    if mime == "image/png":
+        width, height, px = png_text_px(content)
+        size = f' width="{width}" height="{height}"'
+        text = f' data-text-px="{px:.4g}"' if px else ""
+    return (f'<figure class="plot"><img src="{data_uri(content, mime)}" '
+            f'alt="{esc(alt)}"{size}{text} loading="eager">{cap}</figure>')
+
+
+def grid(figures: Sequence[str]) -> str:
+    """Figures side by side where the page is wide enough for them at their own width
+    (they wrap to the next line rather than shrink)."""
+    return '<div class="grid">' + "".join(figures) + "</div>"
 
 
 def still_frame(mp4, at: float = 0.5) -> bytes:
@@ -187,6 +224,22 @@ def bullets(items: Iterable[str], cls: str = "") -> str:
     """A bulleted list (each item escaped; `code` and **bold** rendered)."""
     c = f' class="{esc(cls)}"' if cls else ""
     return f"<ul{c}>" + "".join(f"<li>{inline(i)}</li>" for i in items) + "</ul>"
+
+
+def callout(title: str, items: Iterable[str]) -> str:
+    """A highlighted box (a warning): its title and a bulleted list."""
+    return f'<div class="warn"><strong>{esc(title)}</strong>{bullets(items)}</div>'
+
+
+def code(text: str) -> str:
+    """Literal text (a command) as a block."""
+    return f"<pre><code>{esc(text)}</code></pre>"
+
+
+def links(paths: Iterable[str]) -> str:
+    """A list of links to files beside the page."""
+    return '<ul class="files">' + "".join(
+        f'<li><a href="{esc(p)}">{esc(p)}</a></li>' for p in paths) + "</ul>"
 
 
 def facts(items: Iterable[tuple]) -> str:
@@ -260,9 +313,12 @@ table.data td.num,table.data th.num{text-align:right;white-space:nowrap}
 table.data tbody tr:nth-child(even){background:var(--zebra)}
 table.split caption{font-size:.92rem}
 .grid{display:flex;flex-wrap:wrap;gap:14px;align-items:flex-start}
-.grid > *{flex:1 1 420px;min-width:0}
+.grid > *{flex:0 1 auto;min-width:0;max-width:100%}
 figure{margin:8px 0 14px}
-figure.plot img{max-width:min(100%,960px);height:auto;border:1px solid var(--line);background:#fff}
+figure.plot img{display:block;max-width:100%;height:auto;border:1px solid var(--line);
+background:#fff}
+pre{background:#f1f3f6;padding:6px 10px;border-radius:3px;overflow-x:auto;max-width:62rem}
+pre code{background:none;padding:0}
 figure.video video{max-width:100%;height:auto;background:#000;border:1px solid var(--line)}
 figcaption{font-size:.84rem;color:var(--muted);max-width:62rem}
 dl.facts{display:flex;flex-wrap:wrap;gap:8px;margin:6px 0 10px}

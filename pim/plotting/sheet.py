@@ -308,13 +308,18 @@ def plot_energy_loss(sweep: EpsilonSweep, fit_result: FitResult | None = None):
 
 def plot_velocities(sweep: EpsilonSweep, fit_result: FitResult | None = None,
                     units: str = "si"):
-    """Post-impact Vx, Vy and yaw rate of both vehicles vs epsilon, with measured values."""
+    """Post-impact Vx, Vy and yaw rate of both vehicles vs epsilon, with measured values.
+
+    Three rows (velocity x, velocity y, yaw rate) of two panels (vehicle 1, vehicle 2), 9.6
+    inches wide: shown at page width (about 1150 px at 120 dpi), its text keeps the size it
+    was drawn at.
+    """
     fv, uv = _factor("velocity", units)
     fw, uw = _factor("angular_velocity", units)
-    fig, axes = _figure(size=(12.0, 7.0), nrows=2, ncols=3, sharex=True)
+    fig, axes = _figure(size=(9.6, 8.8), nrows=3, ncols=2, sharex=True)
     m = sweep.case.measured
     r = sweep.result
-    for row, i in enumerate((1, 2)):
+    for col, i in enumerate((1, 2)):
         vel = getattr(r, f"velocity{i}")
         meas_v = None if m is None else getattr(m, f"velocity{i}")
         meas_w = None if m is None else getattr(m, f"yaw_rate{i}")
@@ -322,16 +327,16 @@ def plot_velocities(sweep: EpsilonSweep, fit_result: FitResult | None = None,
                   (vel[..., 1] * fv, f"V{i}y [{uv}]", None if meas_v is None else meas_v[1] * fv),
                   (getattr(r, f"yaw_rate{i}") * fw, f"Ω{i} [{uw}]",
                    None if meas_w is None else meas_w * fw)]
-        for col, (values, label, measured) in enumerate(panels):
+        for row, (values, label, measured) in enumerate(panels):
             ax = axes[row, col]
-            _curves(ax, sweep, values, fit_result, color=f"C{row}")
+            _curves(ax, sweep, values, fit_result, color=f"C{col}")
             if measured is not None:
                 ax.axhline(measured, color="C3", lw=1.6, ls="--", label="measured")
             _eps_axis(ax, fit_result)
-            if row == 0:
+            if row < 2:
                 ax.set_xlabel("")
             ax.set_ylabel(label)
-            ax.set_title(f"vehicle {i}: " + ["velocity x", "velocity y", "yaw rate"][col],
+            ax.set_title(f"vehicle {i}: " + ["velocity x", "velocity y", "yaw rate"][row],
                          fontsize=10)
     axes[0, 0].legend(fontsize=8)
     _title(fig, sweep, "post-impact motion (model curves, measured lines)")

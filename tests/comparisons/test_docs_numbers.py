@@ -3,6 +3,7 @@ generated ones (comparisons.docs_numbers). The fast tests regenerate the pulses 
 ladder's verdicts (the verdicts-only study: the same contact times, tables and sentences
 as the full one); the whole regeneration, sweeps and plots included, is slow."""
 
+from comparisons.report.render import table_csv
 import csv
 import io
 
@@ -41,15 +42,15 @@ def test_pulses_md_and_csv_hold_what_the_code_gives():
     table = pulse_table(c)
     md = pulses_markdown(c, table, command="python -m comparisons.docs_numbers pulses")
     assert D.drift((D.DOCS / "pulses.md").read_text(), md) == []
-    assert _csv_drift((D.DOCS / "pulses-nhtsa10146.csv").read_text(), table.to_csv()) == []
+    assert _csv_drift((D.DOCS / "pulses-nhtsa10146.csv").read_text(), table_csv(table)) == []
 
 
 def test_the_ladder_table_and_verdicts_in_docs_hold_what_the_code_gives(verdict_study):
     folder = D.DOCS / "assumptions-ricsac9"
     assert _csv_drift((folder / "assumptions.csv").read_text(),
-                      assumption_table(verdict_study).to_csv()) == []
+                      table_csv(assumption_table(verdict_study))) == []
     assert _csv_drift((folder / "where_c.csv").read_text(),
-                      input_shift_table(verdict_study).to_csv()) == []
+                      table_csv(input_shift_table(verdict_study))) == []
     md = (folder / "assumptions.md").read_text()
     committed = md.split("## Verdicts\n\n", 1)[1].split("\n\n", 1)[0]
     assert D.drift(committed, "\n".join(f"- {v}" for v in verdicts(verdict_study))) == []

@@ -12,6 +12,7 @@ def test_pulses_command(tmp_path, capsys):
     code = main(["pulses", "--out", str(tmp_path), "--json"])
     assert code == 0
     data = json.loads(capsys.readouterr().out)
+    # main's pulses report (pending for the pipeline: no pulses.html yet)
     assert {p.split("/")[-1] for p in data["files"]} == {"pulses.md", "pulses-nhtsa10146.csv",
                                                          "pulses.png"}
     assert "pim pulses" in (tmp_path / "pulses.md").read_text()

@@ -11,7 +11,13 @@ import pytest
 import pim
 from pim.analysis.reconstruction import reconstruct
 from pim_cli.main import main
-from pim_cli.reconstruct import _html_report, _report, tyre_models_line
+from comparisons.report.html import render_html
+from comparisons.report.reconstruct import (
+    ReconstructionRows,
+    reconstruction_document,
+    tyre_models_line,
+)
+from comparisons.report.render import render_markdown
 from pim.io.casefile import load_case
 from pim.io.output import MARKER
 
@@ -117,8 +123,9 @@ def test_report_md_and_html_name_the_tyre_model(tmp_path):
                           case=SimpleNamespace(name="field",
                                                impact=SimpleNamespace(law=None)))
     line = "Run-out tyre model: vehicle 1 brush, vehicle 2 coulomb."
-    assert line in _html_report(rec, [], tmp_path, video=False)
-    assert line in _report(rec, [], "si", with_scene=False)
+    doc = reconstruction_document(rec, ReconstructionRows((), ()), "si")
+    assert line in render_html(doc, tmp_path)
+    assert line in render_markdown(doc)
 
 
 @pytest.mark.slow   # two field-tyre run-out fits (compiled right-hand side: seconds)
@@ -196,7 +203,7 @@ def test_a_kudlich_slibar_case_is_reconstructed_under_its_law(tmp_path, capsys):
     assert data["unknowns"]["impact.mu_c"]["lower_bound"] is True
     assert any("mu_c only has a lower bound" in m for m in data["messages"])
     report = (tmp_path / "report.md").read_text()
-    assert "Impact law: Kudlich-Slibar" in report and "| impact.mu_c | >= " in report
+    assert "Impact law: Kudlich-Slibar" in report and "| impact.mu_c | - | >= " in report
     assert main(["reconstruct", "ricsac9-pccrash-reconstruct", "--samples", "0",
                  "--units", "si"]) == 0
     out = capsys.readouterr().out

@@ -16,6 +16,7 @@ import pytest
 
 import pim
 from comparisons.report.compare import compare_case
+from comparisons.report.compare_document import compare_document
 from comparisons.report.data import ReportData
 from comparisons.report.render import render_csv, render_markdown
 from pim_cli.main import main
@@ -274,15 +275,17 @@ def test_report_data_is_gathered_once_and_rendered(quick):
     data = rep.data
     assert isinstance(data, ReportData)
     shown = {k: v for k, v in data.seconds.items() if k != "report"}    # timed after it
-    assert (out / "report.md").read_text() == render_markdown(replace(data, seconds=shown))
-    for name, text in render_csv(data).items():
+    doc = compare_document(replace(data, seconds=shown))
+    assert (out / "report.md").read_text() == render_markdown(doc)
+    for name, text in render_csv(doc).items():
         assert (out / name).read_text() == text
-    assert {"results", "inputs", "fit", "crosscheck", "assumptions"} <= set(data.tables)
+    assert {"results", "misfit", "inputs", "fit", "crosscheck", "assumptions"} <= \
+        set(data.tables)
 
 
 def test_suggested_commands_name_the_case_as_given_and_run_in_a_shell(quick):
     _, rep = quick
-    text = render_markdown(replace(rep.data, case_path="cases/my case.toml"))
+    text = render_markdown(compare_document(replace(rep.data, case_path="cases/my case.toml")))
     assert "`pim assumptions 'cases/my case.toml'`" in text
     assert "pim assumptions ricsac9" not in text
 
@@ -306,7 +309,7 @@ def test_fit_table_with_sigmas_is_a_unit_free_chi_square():
     """issue 22: fit.csv named the chi-square a (ft/s)^2 sum and changed with the units."""
     from dataclasses import replace
 
-    from comparisons.report.compare import fit_table
+    from comparisons.report.compare_tables import fit_table
 
     case = pim.load_case("ricsac9")
     m = replace(case.measured, velocity1_sigma=[0.3, 0.3], velocity2_sigma=[0.3, 0.3])
@@ -323,7 +326,7 @@ def test_fit_table_with_sigmas_is_a_unit_free_chi_square():
 def test_pre_impact_table_from_the_case_velocities():
     """pre-impact-skids: vehicle 1 slid 30 ft locked (friction 0.7) into the impact at
     31.09 ft/s: sqrt(31.09^2 + 2 x 32.174 x 0.7 x 30) = 48.14 ft/s = 32.83 mph."""
-    from comparisons.report.compare import pre_impact_table
+    from comparisons.report.compare_tables import pre_impact_table
 
     table = pre_impact_table(pim.load_case("pre-impact-skids"), "us")
     assert table.name == "pre_impact" and table.columns[1] == "value [mph]"

@@ -20,7 +20,7 @@ import pytest
 
 import pim
 from comparisons.report.compare import compare_case
-from comparisons.report.assumptions import ASSUMPTION_GROUPS
+from comparisons.report.compare_document import ASSUMPTION_GROUPS, compare_document
 from comparisons.report.html import render_html
 from pim.io.html import split_columns
 
@@ -53,8 +53,8 @@ def test_every_table_is_present_and_the_results_come_first(report):
     assert ids[0] == "results"
     for name in rep.data.tables:
         assert name in ids or f"{name}-1" in ids, name
-    assert re.findall(r'<section id="([\w-]+)"', text)[:3] == \
-        ["results", "coefficients", "inputs"]
+    assert re.findall(r'<section id="([\w-]+)"', text)[:4] == \
+        ["results", "misfit", "coefficients", "inputs"]
 
 
 def test_numbers_speak_the_case_files_units(report):
@@ -84,7 +84,7 @@ def test_text_is_escaped(report):
     out, rep, _ = report
     data = replace(rep.data, case=replace(rep.data.case, name="<script>alert(1)</script>"),
                    warnings=['mu > 1 & "odd" <b>'], case_path="a b<c>")
-    text = render_html(data, out)
+    text = render_html(compare_document(data), out)
     assert "<script" not in text and "<b>" not in text
     assert "&lt;script&gt;alert(1)&lt;/script&gt;" in text
     assert "mu &gt; 1 &amp; &quot;odd&quot; &lt;b&gt;" in text
@@ -182,18 +182,30 @@ def test_every_image_loads(page):
     assert all(done and width > 0 for _, done, width in images), images
 
 
-def test_the_first_screen_shows_the_title_and_the_results(page, tmp_path):
+def test_the_first_screen_shows_the_title_and_the_answer(page, report, tmp_path):
+    """Issue 28: the top cards were epsilon, beta, mu, the simulator's error and the unit
+    system; now the first card is vehicle 1's delta-V with its interval, the PDOFs follow,
+    and every card of the answer is on the first screen."""
     driver, _ = page
     driver.execute_script("window.scrollTo(0, 0)")
     box = driver.execute_script("""
         const r = e => e.getBoundingClientRect();
-        const h1 = document.querySelector('h1'), t = document.getElementById('table-results');
+        const h1 = document.querySelector('h1'), cards = document.querySelector('dl.facts');
         return {height: innerHeight, width: innerWidth, title: h1.textContent,
-                h1: r(h1).bottom, table_top: r(t).top, table: r(t).bottom,
-                table_right: r(t).right}""")
+                h1: r(h1).bottom, cards_top: r(cards).top, cards: r(cards).bottom,
+                cards_right: r(cards).right,
+                labels: [...cards.querySelectorAll('dt')].map(e => e.textContent),
+                first: cards.querySelector('dd').textContent}""")
     assert box["title"] == "ricsac9: reconstruction report"
-    assert box["h1"] < box["table_top"] < box["table"] <= box["height"], box
-    assert box["table_right"] <= box["width"], box
+    assert box["labels"][:4] == ["delta-V, vehicle 1", "delta-V, vehicle 2",
+                                 "PDOF, vehicle 1", "PDOF, vehicle 2"], box
+    assert "epsilon" not in box["labels"] and "pymunk against PIM" not in box["labels"]
+    card = report[1].data.tables["results"].rows[0]           # |delta-V|, digits as shown
+    value, unit, low, high = card[1], card[3], card[4], card[5]
+    assert box["first"].startswith(f"{value} {unit}") and f"5-95 %: {low} to {high}" in \
+        box["first"], box["first"]
+    assert box["h1"] < box["cards_top"] < box["cards"] <= box["height"], box
+    assert box["cards_right"] <= box["width"], box
     shot = tmp_path / "first-screen.png"
     assert driver.save_screenshot(str(shot))
     from PIL import Image
@@ -201,6 +213,25 @@ def test_the_first_screen_shows_the_title_and_the_results(page, tmp_path):
     image = np.asarray(Image.open(shot).convert("L"))
     assert image.shape[1] >= 1000 and image.shape[0] >= 600
     assert image.std() > 20 and len(np.unique(image)) > 50        # not a blank page
+
+
+#: The smallest text a figure may show at page width [CSS px].
+READABLE_PX = 9.0
+
+
+def test_every_figure_is_shown_at_a_readable_size(page):
+    """Issue 28: the six-panel velocities figure, two to a row in a 1280 px window, showed
+    its legend at about 5 px. Each PNG states its smallest text in image pixels
+    (data-text-px); shown at its displayed width that text must be at least READABLE_PX."""
+    driver, _ = page
+    shown = driver.execute_script("""
+        return [...document.querySelectorAll('figure.plot img')].map(i => ({
+            alt: i.alt, width: i.getBoundingClientRect().width, natural: i.naturalWidth,
+            text: parseFloat(i.dataset.textPx)}))""")
+    assert len(shown) >= 7 and any(f["alt"] == "velocities" for f in shown)
+    for f in shown:
+        assert f["text"] > 0, f
+        assert f["text"] * f["width"] / f["natural"] >= READABLE_PX, f
 
 
 def test_print_shows_a_still_frame_instead_of_the_video(page):

@@ -106,3 +106,19 @@ def test_a_rerun_replaces_the_folder_whole(tmp_path):
     second = compare_law_case(case, tmp_path / "r", setup, animation=False)
     assert not (tmp_path / "r" / "animation.mp4").exists()
     assert all(p.parent == tmp_path / "r" and p.is_file() for p in second.files)
+
+
+def test_the_law_report_is_a_page_too_and_leads_with_the_answer(tmp_path, capsys):
+    """Issue 27: `pim compare` under another law wrote report.md only ("no report.html yet")
+    although the README promises report.html; now the same pipeline writes both, the answer
+    first, the animation playing in the page."""
+    out = tmp_path / "r"
+    assert main(["compare", "ricsac9-pccrash", "--out", str(out), "--no-progress"]) == 0
+    said = capsys.readouterr().out.strip().splitlines()
+    assert said[-1].startswith(f"wrote {out / 'report.html'} (and report.md")
+    page = (out / "report.html").read_text()
+    assert page.startswith("<!DOCTYPE html>") and "data:video/mp4;base64," in page
+    cards = page.split('<dl class="facts">')[1].split("</dl>")[0]
+    assert cards.index("delta-V, vehicle 1") < cards.index("PDOF, vehicle 1")
+    assert 'id="table-results"' in page and 'id="table-law"' in page
+    assert "[report.html](report.html)" in (out / "report.md").read_text()

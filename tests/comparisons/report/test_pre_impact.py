@@ -90,14 +90,15 @@ def test_pim_reconstruct_shows_the_speeds_before_the_impact(fast_reconstruction,
     text = capsys.readouterr().out
     assert "vehicle1.speed_at_marks_start" in text and "nan" not in text.lower()
     assert {p.name for p in out.iterdir()} == {"report.md", "report.html",
-                                               "reconstruction.csv", MARKER}
+                                               "reconstruction.csv", "pre_impact.csv", MARKER}
     md = (out / "report.md").read_text()
     assert "## Speeds before the impact" in md and "vehicle1.speed_at_marks_start" in md
     page = (out / "report.html").read_text()
-    table = page.split('id="table-pre-impact"')[1].split("</table>")[0]
+    table = page.split('id="table-pre_impact"')[1].split("</table>")[0]
     assert "<td>vehicle1.speed_at_marks_start</td>" in table and "<td>mph</td>" in table
     assert 'href="#pre-impact"' in page
-    assert "vehicle1.speed_at_marks_start,mph," in (out / "reconstruction.csv").read_text()
+    assert (out / "pre_impact.csv").read_text().splitlines()[1].startswith(
+        "vehicle1.speed_at_marks_start,")
 
 
 def test_without_samples_no_interval_is_printed(fast_reconstruction, capsys):
@@ -112,10 +113,10 @@ def test_rows_speak_the_users_units():
         12.192, 0.7, grade=0.02))
     (si,) = pre_impact_rows([s], "si")
     (us,) = pre_impact_rows([s], "us")
-    assert si["unit"] == "km/h" and si["value"] == pytest.approx(20.0 * 3.6)
-    assert "12.19 m of marks" in si["what"]
-    assert us["unit"] == "mph" and us["value"] == pytest.approx(20.0 / MPH)
-    assert "40 ft of marks" in us["what"] and "grade +2 %" in us["what"]
+    assert si.unit == "km/h" and si.value == pytest.approx(20.0 * 3.6)
+    assert "12.19 m of marks" in si.what
+    assert us.unit == "mph" and us.value == pytest.approx(20.0 / MPH)
+    assert "40 ft of marks" in us.what and "grade +2 %" in us.what
     assert "nan" not in pre_impact_lines([us])[0]
 
 

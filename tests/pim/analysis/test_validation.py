@@ -28,13 +28,8 @@ from pim.analysis.validation import (
 from pim.io.datasets import DEG, FT, load_barrier
 from pim.io.units import convert
 from pim.model.solver import solve
-from pim.plotting.validation import (
-    barrier_table,
-    coefficient_table,
-    plot_coefficients,
-    plot_predicted_vs_measured,
-    summary_line,
-)
+from pim.plotting.validation import plot_coefficients, plot_predicted_vs_measured
+from comparisons.report.validate import barrier_table, coefficient_table, summary_line
 
 TESTS = load_barrier()
 INTERIOR = [t for t in TESTS if t.restitution > 0 and t.beta < 0.97 and t.group != "OUTLIER"]
@@ -130,14 +125,17 @@ def test_refit_recovers_the_published_coefficients():
 
 def test_report_tables_and_figures():
     rows = reproduce_barrier(TESTS[:3], 1.4)
-    header, table = barrier_table(rows, rows, units="us")
+    table = barrier_table(rows, rows, units="us")
     factor, unit = convert(1.0, "speed", "us")
-    assert header[5] == f"dVx meas [{unit}]" and len(table) == 3
-    assert float(table[0][5]) == pytest.approx(52.79 * FT * factor, abs=0.006)   # CEN1212
+    assert table.columns[5] == f"dVx meas [{unit}]" and len(table.rows) == 3
+    dvx = table.column(f"dVx meas [{unit}]")[0]
+    assert dvx == pytest.approx(52.79 * FT * factor, abs=0.006)   # CEN1212
+    assert table.cells()[0][5] == f"{dvx:.2f}"                    # two decimals shown
     stats = coefficient_stats({"iihs-barrier": TESTS})
-    header, table = coefficient_table(stats)
-    ns_beta = next(r for r in table if r[0] == "barrier non-sideswipe" and r[1] == "beta")
-    assert ns_beta[2] == 16 and ns_beta[3] == "1.000"
+    table = coefficient_table(stats)
+    ns_beta = next(r for r in table.cells() if r[0] == "barrier non-sideswipe"
+                   and r[1] == "beta")
+    assert ns_beta[2] == "16" and ns_beta[3] == "1.000"
     fig = plot_predicted_vs_measured({"x": rows}, "si")
     assert len(fig.axes) == 2 and convert(1.0, "speed", "si")[1] in fig.axes[0].get_xlabel()
     assert len(plot_coefficients(stats).axes) == 2

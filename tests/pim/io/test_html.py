@@ -16,11 +16,35 @@ PNG = base64.b64decode("iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4
                        "hKmMIQAAAABJRU5ErkJggg==")
 
 
-@given(st.text())
+@given(st.text() | st.builds(lambda a, b: f"[{a}]({b})", st.text(), st.text()))
 def test_text_never_becomes_markup(text):
     out = h.inline(text)
-    assert "<" not in re.sub(r"</?(code|strong)>", "", out)
+    assert "<" not in re.sub(r'</?(code|strong)>|<a href="[\w.-][\w./-]*">|</a>', "", out)
     assert '"' not in h.esc(text) and "'" not in h.esc(text)
+
+
+def test_links_go_to_files_beside_the_page_only():
+    assert h.inline("see [t.csv](t.csv)") == 'see <a href="t.csv">t.csv</a>'
+    for url in ("javascript:alert(1)", "//evil.example/x", "/etc/passwd", "a b"):
+        assert "<a" not in h.inline(f"[x]({url})"), url
+
+
+def test_a_png_states_its_smallest_text(tmp_path):
+    from matplotlib.figure import Figure
+
+    from pim.io.files import save_figure
+
+    fig = Figure(figsize=(3, 2), layout="constrained")
+    ax = fig.subplots()
+    ax.set_title("title", fontsize=12)
+    ax.plot([0, 1], label="x")
+    ax.legend(fontsize=7)
+    path = save_figure(fig, tmp_path / "f.png", dpi=100)
+    width, height, text = h.png_text_px(path.read_bytes())
+    assert (width, height) == (300, 200) and text == pytest.approx(7 * 100 / 72, rel=1e-3)
+    out = h.figure(path, alt="f")
+    assert 'width="300" height="200"' in out and 'data-text-px="9.722"' in out
+    assert h.png_text_px(PNG)[2] is None and "data-text-px" not in h.figure(PNG, alt="x")
 
 
 def test_inline_marks_render_after_escaping():

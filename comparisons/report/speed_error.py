@@ -1,0 +1,139 @@
+"""The reports of ``pim speed-error``: the rigid scene's sweep
+(:mod:`comparisons.studies.speed_error`, ``speed-error-STEM.md``) and the finite-duration
+contact's (:mod:`comparisons.studies.speed_error_compliant`,
+``speed-error-compliant-STEM.md``), each a :class:`~comparisons.report.document.Document`
+written with its figure and CSVs through the one pipeline.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from comparisons.report.document import Bullets, Code, Document, Figure, Paragraph, Section
+from comparisons.report.number_format import format_number
+from comparisons.report.write import write_document
+from comparisons.studies.speed_error import (
+    SpeedErrorStudy,
+    pareto_table,
+    plot_speed_error,
+    study_table,
+)
+from comparisons.studies.speed_error_compliant import (
+    REFERENCE_STEPS,
+    CompliantSpeedStudy,
+    compliant_table,
+    plot_compliant_speed_error,
+)
+from pim.io.files import save_figure
+
+__all__ = ["speed_error_document", "write_speed_error", "compliant_document",
+           "write_compliant"]
+
+
+def _method(study: SpeedErrorStudy) -> str:
+    return (f"epsilon = {study.eps:.6g}, beta = {study.beta:.6g}. {len(study.points)} runs of "
+            f"the pymunk scene over dt {sorted({p.dt for p in study.points})}, iterations "
+            f"(1 ... 100 and automatic), exact or detected contact start, point or outline "
+            f"contact. Error: the largest error in the impact's velocity changes (V1, V2, "
+            f"and k1 W1, k2 W2 with k the radius of gyration), relative to the largest "
+            f"change. Wall time: building the pymunk Space and stepping it through the "
+            f"impact, best of the repeats, on the machine that ran the command. "
+            f"{len(study.succeeded)} runs succeeded.")
+
+
+def _findings(study: SpeedErrorStudy) -> list[str]:
+    lines = []
+    for where, text in ((dict(start="exact", contact="point"), "point contact, exact start"),
+                        (dict(start="detected", contact="point"),
+                         "point contact, detected start"),
+                        (dict(contact="outline"), "outline contact")):
+        best = study.best(**where)
+        if best is not None:
+            lines.append(f"best {text}: error {best.error:.2e} ({best.label})")
+    fails = {}
+    for p in study.points:
+        if not p.ok:
+            fails[p.failure] = fails.get(p.failure, 0) + 1
+    if fails:
+        lines.append("failed runs: " + ", ".join(f"{k} x {v}" for k, v in fails.items()))
+    return lines
+
+
+def speed_error_document(study: SpeedErrorStudy, stem: str, command: str = "") -> Document:
+    """The sweep as a report: method, recommendation, plot, Pareto front, every run."""
+    rec = study.recommended()
+    if rec is not None:
+        its = "automatic" if rec.iterations is None else str(rec.iterations)
+        verdict = (f"**Recommended: dt = {rec.dt:g} s, {its} iterations "
+                   f"({rec.iterations_used} sweeps), {rec.start} start, {rec.contact} "
+                   f"contact** -- error {rec.error:.2e} in "
+                   f"{format_number(rec.wall_time * 1e3, sig=3)} ms per impact (the fastest "
+                   f"run reaching {study.target:g}: on the Pareto front).")
+    else:
+        verdict = f"**No run reaches {study.target:g}.**"
+    blocks = ([Paragraph("Regenerate with:"), Code(command)] if command else []) + [
+        Paragraph(_method(study)), Paragraph(verdict),
+        Paragraph(f"PIM itself: {format_number(study.analytic_time * 1e3, sig=3)} ms per "
+                  f"single call, {format_number(study.analytic_batch_time * 1e6, sig=3)} us "
+                  f"per case in a batch of 10 000, error (residual of its own equations) "
+                  f"{study.analytic_error:.2e}."),
+        Bullets(tuple(_findings(study))),
+        Figure(f"speed-error-{stem}.png", alt="speed against error")]
+    front = pareto_table(study, f"speed-error-{stem}-pareto")
+    every = study_table(study, f"speed-error-{stem}")
+    return Document(f"Speed against error: {study.case_name}", "pim speed-error", (
+        Section("study", "The study", tuple(blocks), keep=True),
+        Section("pareto", "Pareto front", (front,)),
+        Section("every-run", "Every run", (every,))), name=f"speed-error-{stem}")
+
+
+def write_speed_error(study: SpeedErrorStudy, out_dir, stem: str,
+                      command: str = "") -> list[Path]:
+    """Write ``speed-error-STEM.md`` (first in the list), ``.html``, ``.csv`` (every run),
+    ``-pareto.csv`` and ``.png`` into ``out_dir``."""
+    out = Path(out_dir)
+    png = save_figure(plot_speed_error(study), out / f"speed-error-{stem}.png")
+    written = write_document(speed_error_document(study, stem, command), out)
+    return [written[-1], *written[:-1], png]
+
+
+def compliant_document(study: CompliantSpeedStudy, stem: str, command: str = "") -> Document:
+    """The finite-duration contact's sweep as a report."""
+    lines = []
+    for scene in dict.fromkeys(p.scene for p in study.points):
+        rec = study.recommended(scene)
+        text = (f"**recommended {rec.label}**: error {rec.error:.1e} in "
+                f"{format_number(rec.wall_time * 1e3, sig=3)} ms" if rec
+                else "no run reaches the target")
+        lines.append(f"{scene}: {text}.")
+        for integrator in ("pymunk", "DOP853", "Radau"):
+            for target in (1e-3, 1e-6):
+                p = study.fastest(scene, integrator, target)
+                if p is not None:
+                    lines.append(f"{scene}, {integrator} reaches {target:g} at {p.label}: "
+                                 f"{format_number(p.wall_time * 1e3, sig=3)} ms per impact")
+    intro = (f"Point contact, epsilon = {study.eps:.4g}, k = {study.stiffness:.3g} N/m; "
+             f"pymunk over dt (10 ... 2560 steps per estimated contact time), solve_ivp "
+             f"DOP853 and Radau over rtol, against DOP853 at rtol {study.reference_rtol:g} "
+             f"(the tightest within {REFERENCE_STEPS} steps per scene; it differs from the "
+             f"rung before by {study.reference_spread:.1e}). Whole study: "
+             f"{study.wall_time:.1f} s. Error: the largest error in the impact's velocity "
+             f"changes, relative to the largest change.")
+    blocks = ([Paragraph(f"Regenerate with `{command}`.")] if command else []) + [
+        Paragraph(intro), Bullets(tuple(lines)),
+        Figure(f"speed-error-compliant-{stem}.png", alt="speed against error"),
+        compliant_table(study, f"speed-error-compliant-{stem}")]
+    return Document(f"Speed against error of the finite-duration contact: "
+                    f"{study.case_name}", "pim speed-error",
+                    (Section("study", "The study", tuple(blocks), keep=True),),
+                    name=f"speed-error-compliant-{stem}")
+
+
+def write_compliant(study: CompliantSpeedStudy, out_dir, stem: str,
+                    command: str = "") -> list[Path]:
+    """Write ``speed-error-compliant-STEM.md`` (first), ``.html``, ``.csv`` and ``.png``."""
+    out = Path(out_dir)
+    png = save_figure(plot_compliant_speed_error(study),
+                      out / f"speed-error-compliant-{stem}.png")
+    written = write_document(compliant_document(study, stem, command), out)
+    return [written[-1], *written[:-1], png]
