@@ -12,20 +12,13 @@ and recompute the statistics, which the default test suite compares with what th
 
 from __future__ import annotations
 
-from comparisons.report.render import markdown_table
 import csv
 import math
 from pathlib import Path
 
 import numpy as np
 
-from pim.io.files import write_text
-from pim.io.output import output_folder, rebase
-from pim.io.units import DisplayUnits, convert
-
-#: The docs' units: SI with speeds in m/s (the units of the study's JSON medians).
-DOC_UNITS = DisplayUnits("si", "m/s")
-
+from comparisons.report.render import markdown_table
 from comparisons.report.tables import Table
 from comparisons.report.tuned import (
     FILES,
@@ -47,6 +40,12 @@ from comparisons.studies.tuned_scene import (
     SCREEN,
     study_all,
 )
+from pim.io.files import write_text
+from pim.io.output import output_folder, rebase
+from pim.io.units import DisplayUnits, convert
+
+#: The docs' units: SI with speeds in m/s (the units of the study's JSON medians).
+DOC_UNITS = DisplayUnits("si", "m/s")
 
 __all__ = ["BEGIN", "END", "COMMAND", "DOCS_FILES", "regenerate", "section",
            "replace_section", "results_table", "fits_table", "stored_rows",
@@ -145,7 +144,7 @@ def section(studies) -> str:
              "(`pim validate-models`)", "", *_method(), "",
              f"Full output: [tuned-scene.md](tuned-scene.md) (`{COMMAND}`).", "",
              markdown_table(results_table(studies)), "", *[
-                 f"- {verdict_sentence(st, v)}" for st in studies for v in st.variants],
+                 f"- {verdict_sentence(st, v, DOC_UNITS)}" for st in studies for v in st.variants],
              "", markdown_table(fits_table(studies)), "",
              "![leave-one-out: scene against PIM](tuned-scene.png)", "",
              "Where each input of the study comes from (`pim.io.datasets` origins; the "
