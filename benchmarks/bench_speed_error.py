@@ -19,8 +19,8 @@ from pathlib import Path
 
 from click.testing import CliRunner
 
-from pim_cli.compare import speed_error
 from pim.io.casefile import list_cases
+from pim_cli.compare import speed_error
 
 USER_CASE = str(Path(__file__).resolve().parent.parent / "tests" / "data"
                 / "pickup-into-sedan-side.toml")

@@ -23,13 +23,12 @@ import re
 from pathlib import Path
 
 import pim
-from pim.io.files import write_text
-from pim.io.units import convert
-
 from comparisons.report.assumptions import verdicts, write_assumptions
 from comparisons.report.pulses import write_pulses
 from comparisons.studies.assumptions import AssumptionStudy, run_assumptions
 from comparisons.studies.pulses import compare_pulses
+from pim.io.files import write_text
+from pim.io.units import convert
 
 __all__ = ["DOCS", "BEGIN", "END", "DOCUMENTS", "assumptions_ricsac9", "pulses",
            "contact_model", "contact_model_block", "ricsac9_study", "drift", "regenerate"]
@@ -81,7 +80,8 @@ def contact_model_block(study: AssumptionStudy) -> str:
              f"The \"law\" rung at its {lad.rung('law').run.contact_duration * 1e3:.1f} ms "
              f"contact stays {_pct(lad.rung('law').marginal)} from PIM. Where C is: the "
              f"illustrative outlines put the impulse {float(length):.2f} {unit} from the "
-             f"sheet's C on vehicle 1, which moves PIM's own answer by {_pct(shift.pim_error)} (input "
+             f"sheet's C on vehicle 1, which moves PIM's own answer by "
+             f"{_pct(shift.pim_error)} (input "
              f"uncertainty, not a rung). The verdicts over 50-150 ms of contact and the "
              f"tangential recovery 0-1:", ""]
     lines += [f"- {v}" for v in verdicts(study)]
@@ -108,7 +108,7 @@ def drift(committed: str, generated: str, rtol: float = 1e-3, atol: float = 1e-9
     number beyond ``rtol`` (relative) and ``atol``; [] when they agree."""
     a_words, b_words = _NUMBER.split(committed), _NUMBER.split(generated)
     if a_words != b_words:
-        for x, y in zip(a_words, b_words):
+        for x, y in zip(a_words, b_words, strict=False):
             if x != y:
                 return [f"the text differs: {x.strip()[:60]!r} is now {y.strip()[:60]!r}"]
         return [f"the text differs in length: {len(a_words)} against {len(b_words)} parts"]

@@ -2,7 +2,8 @@
 
 The model works in SI units in a global x-y frame (angles counter-clockwise from +x);
 see the README for the sign conventions and the glossary, and docs/architecture.md for the
-layers (pim.model, pim.io, pim.analysis, pim.plotting; the command line is pim_cli). The public functions are
+layers (pim.model, pim.io, pim.analysis, pim.plotting; the command line is pim_cli). The public
+functions are
 named after what they do; the modules that hold them after what they compute
 (``pim.fit`` is :func:`pim.analysis.fitting.fit`), so no public name hides a module.
 

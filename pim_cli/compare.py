@@ -13,6 +13,7 @@ from pathlib import Path
 import click
 
 import pim
+from comparisons.animation.render import MAX_SHOWN
 from pim.model.numbers import InputError
 from pim_cli.main import (
     Beta,
@@ -33,8 +34,6 @@ from pim_cli.main import (
     solve_with_options,
     units_option,
 )
-
-from comparisons.animation.render import MAX_SHOWN
 
 __all__ = ["compare", "animate", "speed_error", "hard_cases", "assumptions"]
 
@@ -155,9 +154,8 @@ def _answer(result, units, spread=None) -> None:
 
 def _poor_fit(result, units, fit) -> None:
     """A warning when the answer misses a measured quantity by more than 3 sigma."""
-    from pim.analysis.misfit import misfit
-
     from comparisons.report.compare_tables import misfit_sentence
+    from pim.analysis.misfit import misfit
 
     sentence = misfit_sentence(misfit(result), units, fit)
     if sentence:
@@ -518,10 +516,9 @@ def assumptions(case_name, out, eps, beta, executor, no_animation, engine, units
     yaw rate it moves, in the case's units. Where C is stands beside the ladder as input
     uncertainty. Writes assumptions.md and .html, CSVs, a plot and an MP4 with PIM's ghost.
     """
-    from pim.io.output import output_folder, rebase, worker_pool
-
     from comparisons.report.assumptions import study_json, verdicts, write_assumptions
     from comparisons.studies.assumptions import run_assumptions
+    from pim.io.output import output_folder, rebase, worker_pool
 
     case = load_case_for("assumptions", case_name)
     units = output_units(case, units, speed_unit)

@@ -5,22 +5,21 @@ imports the simulator)."""
 
 from __future__ import annotations
 
-from comparisons.report.render import markdown_table
 import time
 from pathlib import Path
 
 import click
 from tqdm.auto import tqdm
 
-from pim_cli.main import echo_json, json_option, output_units, units_option
-from pim.io.files import writable_folder
-from pim.io.output import output_folder, rebase
-
 from comparisons.report.pulses import pulse_table, write_pulses
-from comparisons.studies.pulses import compare_pulses
+from comparisons.report.render import markdown_table
 from comparisons.report.tuned import study_json, verdict_sentence, write_tuned_study
 from comparisons.studies.crash_records import CLASS_KEYS
+from comparisons.studies.pulses import compare_pulses
 from comparisons.studies.tuned_scene import COARSE_STEPS, study_all
+from pim.io.files import writable_folder
+from pim.io.output import output_folder, rebase
+from pim_cli.main import echo_json, json_option, output_units, units_option
 
 __all__ = ["validate_models", "pulses"]
 

@@ -8,29 +8,30 @@ import time
 from pathlib import Path
 
 import click
-
-import pim
 from tqdm import tqdm
 
-from pim_cli.main import SEED, echo_json, json_option, units_option
-from pim.io.files import write_text
-from pim.io.units import quantity_text
-from pim.model.numbers import InputError
-from pim.model.plausibility import Findings, findings
-from pim_cli.main import (
-    allow_inadmissible_option,
-    load_case_for,
-    finish_answer,
-    say_findings,
-)
-
-from comparisons.regression.sections import DEFAULT_SECTIONS, DEFAULT_SETTINGS, SECTIONS
+import pim
 from comparisons.regression.baseline import (
     check_baseline,
     dumps_baseline,
     format_report,
     load_references,
     make_baseline,
+)
+from comparisons.regression.sections import DEFAULT_SECTIONS, DEFAULT_SETTINGS, SECTIONS
+from pim.io.files import write_text
+from pim.io.units import quantity_text
+from pim.model.numbers import InputError
+from pim.model.plausibility import Findings, findings
+from pim_cli.main import (
+    SEED,
+    allow_inadmissible_option,
+    echo_json,
+    finish_answer,
+    json_option,
+    load_case_for,
+    say_findings,
+    units_option,
 )
 
 __all__ = ["baseline", "check", "DRIFT_EXIT_CODE"]

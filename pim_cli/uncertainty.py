@@ -112,7 +112,8 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, progress, units, 
         write_histograms(result, png, units)
     found = _mc_findings(case, result, eps, beta, units, allow_inadmissible, as_json)
     if as_json:
-        echo_json({"case": case.name, "samples": result.n, "seed": seed, "units": units.to_json(), "estimates": estimate_records(case, units),
+        echo_json({"case": case.name, "samples": result.n, "seed": seed,
+                   "units": units.to_json(), "estimates": estimate_records(case, units),
                    **findings_json(found), "samples_admissible": result.n_admissible,
                    "samples_inadmissible": result.n - result.n_admissible,
                    "inadmissible_samples": "left out of the percentiles and indices",

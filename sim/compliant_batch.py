@@ -332,7 +332,8 @@ def _law(inputs: dict, arrays: dict, shape: tuple, settings: CompliantSettings) 
     estimate = contact_duration_estimate(flat["stiffness"], k_nn, flat["eps"])
     dt = (np.full(k_nn.shape, settings.dt) if settings.dt is not None
           else estimate / settings.steps_per_contact)
-    status = np.where(estimate / dt < settings.min_steps, f.STATUS_TUNNELLED, f.STATUS_OK).astype(np.int8)
+    status = np.where(estimate / dt < settings.min_steps, f.STATUS_TUNNELLED,
+                      f.STATUS_OK).astype(np.int8)
     kt = (np.full(k_nn.shape, settings.tangential_stiffness)
           if settings.tangential_stiffness is not None else flat["stiffness"])
     flat.update(tangential_stiffness=kt, dt=dt, start=0.0,

@@ -43,7 +43,8 @@ __all__ = ["loading_force", "loading_work", "unloading_slope", "permanent_crush"
            "normal_force", "normal_stiffness", "tangential_step", "tangential_force",
            "angles", "point_contact", "point_geometry", "place_corners", "clip_polygon",
            "area_centroid", "separating_axis", "outline_overlap", "place_outlines",
-           "outline_geometry", "outlines_touch", "outline_start", "free_state", "vehicle_tyre_force", "tyre_loads", "ahead",
+           "outline_geometry", "outlines_touch", "outline_start", "free_state",
+           "vehicle_tyre_force", "tyre_loads", "ahead",
            "contact_loads", "total_loads", "half_kick", "drift", "kick", "separation_time",
            "post_velocities", "slip_reversed", "write_outputs", "N_PAR", "N_MEM", "N_TAL",
            "N_OUT", "N_WORK"]

@@ -60,7 +60,8 @@ SEPARATE = ("outline_geometry", "outline_start")
 
 _f = compile_module(compliant_formula, SEPARATE)
 _drift, _kick, _half_kick, _angles = _f.drift, _f.kick, _f.half_kick, _f.angles
-_outline_start, _outline_geometry, _free_state = _f.outline_start, _f.outline_geometry, _f.free_state
+_outline_start, _outline_geometry = _f.outline_start, _f.outline_geometry
+_free_state = _f.free_state
 _point_geometry, _contact_loads, _total_loads = _f.point_geometry, _f.contact_loads, _f.total_loads
 _permanent_crush, _separation_time = _f.permanent_crush, _f.separation_time
 _post_velocities, _write_outputs = _f.post_velocities, _f.write_outputs
@@ -207,7 +208,8 @@ def integrate(par: np.ndarray, state0: np.ndarray, status: np.ndarray) -> np.nda
     state0 : ndarray (n, 12)
         The state at the start of the contact [SI].
     status : ndarray (n,) int8
-        0 for the scenes to run; the kernel writes each one's status code (:data:`sim.compliant_formula.STATUS_NAMES`).
+        0 for the scenes to run; the kernel writes each one's status code
+        (:data:`sim.compliant_formula.STATUS_NAMES`).
 
     Returns
     -------

@@ -314,7 +314,7 @@ def build_problem(case: pim.Case, eps, stiffness, friction=0.0, geometry="point"
     tyre_friction = check_positive(tyre_friction, "tyre_friction", "-", allow_zero=True)
     if geometry not in GEOMETRIES:
         raise InputError(f"geometry must be one of {GEOMETRIES}, got {geometry!r}")
-    v1, v2, imp = case.vehicle1, case.vehicle2, case.impact
+    v1, v2 = case.vehicle1, case.vehicle2
     outline1, outline2 = outline_corners(v1), outline_corners(v2)
     fixed2 = bool(v2.fixed)
     if geometry == "outline":
@@ -409,7 +409,8 @@ def setup_arrays(case: pim.Case, shape: tuple, gravity: float) -> dict:
     dict
         ``mass1, inertia1, mass2, inertia2, k_nn, speed_scale, energy_before`` (n,),
         ``fixed2`` (n,) bool, ``outline1, outline2`` (n, 8) and ``obstacle`` (n,) (the
-        outlines of :func:`_outlines`), ``state0`` (n, 12), ``arm1, arm2, normal2`` (n, 2) (P - CG1 in
+        outlines of :func:`_outlines`), ``state0`` (n, 12), ``arm1, arm2, normal2`` (n, 2) (P -
+        CG1 in
         vehicle 1's frame, Q - CG2 and the normal in vehicle 2's), ``wheels1, wheels2``
         (n, 4, 2) and ``loads1, loads2`` (n, 4) (zeros for a fixed vehicle 2); SI, see
         :class:`CompliantProblem`.

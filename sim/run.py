@@ -32,8 +32,8 @@ import numpy as np
 import pymunk
 
 import pim
-from pim.model.geometry import kinetic_energy
 from pim.model.case import checked_case
+from pim.model.geometry import kinetic_energy
 from pim.model.numbers import check_type, speed_text
 
 from .failures import SimulationError

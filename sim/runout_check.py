@@ -3,7 +3,8 @@ of :mod:`pim.model.tyres` is applied at the CG (force and yaw moment) every step
 
 This checks :func:`pim.model.runout.runout`'s equations of motion and integration with an
 independent integrator (Chipmunk's semi-implicit Euler); the force law itself is the one
-under test in tests/pim/model/test_tyres.py against closed forms. A vehicle on the field tyre or with
+under test in tests/pim/model/test_tyres.py against closed forms. A vehicle on the field tyre
+or with
 driver tables (``vehicle.timed``) gets the same forces as the run-out
 (:class:`pim.model.runout.TimedRhs`: brush law, load transfer, inputs at pymunk's time).
 """

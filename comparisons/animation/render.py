@@ -27,12 +27,11 @@ from PIL import Image, ImageDraw, ImageFont
 
 import pim
 import sim
+from comparisons.animation.motion import Motion, analytic_motion, simulated_motion
 from pim.io.files import atomic_paths
 from pim.io.units import convert
 from pim.model.geometry import outline_corners
 from pim.model.numbers import InputError, checked_number
-
-from comparisons.animation.motion import Motion, analytic_motion, simulated_motion
 
 __all__ = ["AnimationInfo", "Renderer", "build_renderer", "frame_times", "simulate_for_animation",
            "animation_settings",

@@ -28,11 +28,15 @@ from pathlib import Path
 import numpy as np
 
 import pim
+from comparisons.regression.sections import (
+    DEFAULT_SECTIONS,
+    DEFAULT_SETTINGS,
+    SECTIONS,
+    run_section,
+)
 from pim.io.units import SI_UNITS, DisplayUnits, convert, registry
 from pim.model.numbers import InputError
 from sim.error_measure import ERROR_DEFINITION, impact_error
-
-from comparisons.regression.sections import DEFAULT_SECTIONS, DEFAULT_SETTINGS, SECTIONS, run_section
 
 __all__ = ["FORMAT", "make_baseline", "record_case", "load_baseline", "check_baseline",
            "CheckReport", "Drift", "format_report", "dumps_baseline", "case_source", "stored_path",

@@ -38,14 +38,13 @@ import numpy as np
 
 import pim
 import sim
+from comparisons.studies.assumptions import run_assumptions
 from pim.analysis.reconstruction import reconstruct
 from pim.analysis.residuals import has_measured_terms
 from pim.io.units import SI_UNITS
 from pim.model.numbers import InputError
 from pim.model.quantities import OUTPUTS
 from pim.model.result import output_values
-
-from comparisons.studies.assumptions import run_assumptions
 
 __all__ = ["Recorded", "SECTIONS", "DEFAULT_SECTIONS", "DEFAULT_SETTINGS", "run_section",
            "standard_error", "ROUND_OFF_MOVES", "STATISTICAL_K", "CLOSED_FORM_REL", "FIT_REL",

@@ -11,22 +11,16 @@ named. "Where C is" stands beside the ladder as the uncertainty of an input.
 
 from __future__ import annotations
 
-from comparisons.report.render import markdown_table
-from comparisons.report.write import write_table_csv
 import math
 from pathlib import Path
 
 import numpy as np
 
 import pim
-from pim.io import html as h
-from pim.io import units as pim_units
-from pim.io.files import save_figure, write_text
-from sim.contact_law import tangential_recovery_default
-from sim.error_measure import ERROR_DEFINITION
-
 from comparisons.animation.render import build_renderer, write_animation
+from comparisons.report.render import markdown_table
 from comparisons.report.tables import Table, fmt_error, fmt_value
+from comparisons.report.write import write_table_csv
 from comparisons.studies.assumption_configs import (
     HOLDS,
     ROUGHLY,
@@ -36,8 +30,14 @@ from comparisons.studies.assumption_configs import (
     RungConfig,
 )
 from comparisons.studies.assumptions import AssumptionStudy, Change, EffectRange
+from pim.io import html as h
+from pim.io import units as pim_units
+from pim.io.files import save_figure, write_text
+from sim.contact_law import tangential_recovery_default
+from sim.error_measure import ERROR_DEFINITION
 
-__all__ = ["ASSUMPTION_GROUPS", "assumption_tables", "shown_units", "verdicts", "input_shift_words", "ladder_intro", "assumption_table",
+__all__ = ["ASSUMPTION_GROUPS", "assumption_tables", "shown_units", "verdicts",
+           "input_shift_words", "ladder_intro", "assumption_table",
            "input_shift_table", "sweep_table", "plot_overview", "write_assumptions",
            "assumptions_markdown", "assumptions_html", "study_json"]
 
@@ -216,7 +216,8 @@ def input_shift_words(study: AssumptionStudy, units=None) -> str:
              .replace(" against its baseline", " against the scene at C"))
     return (f"Where C is (input uncertainty, not an assumption of PIM): the case's outlines "
             f"put the impulse {float(length):.2f} {label} from the sheet's C on vehicle 1 and "
-            f"{round(shift.turn) + 0:+d} deg from Gamma; moving C and Gamma there (the bodies where "
+            f"{round(shift.turn) + 0:+d} deg from Gamma; moving C and Gamma there (the bodies "
+            f"where "
             f"the outlines first touch) moves PIM's own answer by {_pct(shift.pim_error)} "
             f"({_physical(shift.pim_change, units)}){scene}. The outlines are illustrative: "
             f"settle C from the crush profile before reading the ladder's outline rung.")
@@ -513,7 +514,7 @@ def assumptions_html(study: AssumptionStudy, tables, out_dir, info=None, command
                      units=None) -> str:
     """The study as one self-contained HTML page (the plots and the animation inline, read
     from ``out_dir``, where :func:`write_assumptions` wrote them)."""
-    out, (table, shift, _) = Path(out_dir), tables
+    out, (table, _, _) = Path(out_dir), tables
     sections = [
         h.section("Verdicts", [h.paragraph(_about(study)),
                                h.bullets(verdicts(study, units))], id="verdicts", cls="keep"),

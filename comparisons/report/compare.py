@@ -45,6 +45,7 @@ import numpy as np
 import pim
 import sim
 from comparisons.animation.render import build_renderer, write_animation
+from comparisons.report.assumptions import assumption_table
 from comparisons.report.compare_document import REPORT_NAME, compare_document
 from comparisons.report.compare_tables import (
     fit_table,
@@ -57,7 +58,6 @@ from comparisons.report.data import ReportData
 from comparisons.report.html import HTML_NAME
 from comparisons.report.tables import Num, Table, fmt_error
 from comparisons.report.write import write_document
-from comparisons.report.assumptions import assumption_table
 from comparisons.studies.assumptions import run_assumptions
 from comparisons.studies.coefficients import coefficients
 from comparisons.studies.speed_error import (
@@ -314,7 +314,8 @@ def _gather_crosscheck(data: ReportData) -> None:
     case, eps, beta = data.case, data.eps, data.beta
     data.limits = sim.limitations(case, eps, beta)
     try:
-        data.simulated = sim.simulate(case, eps, beta, analytic=pim.solve(case, eps, 1.0, law="brach"))
+        data.simulated = sim.simulate(case, eps, beta,
+                                      analytic=pim.solve(case, eps, 1.0, law="brach"))
     except sim.SimulationError as exc:
         data.sim_error = exc
         return

@@ -72,7 +72,8 @@ def _subtitle(data: ReportData) -> str:
     description = getattr(data.case, "description", None) or ""
     return ((description.rstrip(".") + ". " if description else "")
             + f"Written by `pim compare` in {display_units(data.units)} (`--units` and "
-            "`--speed-unit` change them). Brach's Planar Impact Mechanics (PIM) gives the post-impact motion in "
+            "`--speed-unit` change them). Brach's Planar Impact Mechanics (PIM) gives the "
+            "post-impact motion in "
             "closed form from the case's inputs and two coefficients, epsilon (restitution) "
             "and beta (the fraction of the impulse ratio that stops the sliding at C); the "
             "appendix checks PIM against a pymunk (Chipmunk2D) simulation of the same impact.")

@@ -8,16 +8,15 @@ predicted figures' errors written from the table.
 
 from __future__ import annotations
 
-from comparisons.report.render import markdown_table
-from comparisons.report.write import write_table_csv
 import math
 from pathlib import Path
 
+from comparisons.report.render import markdown_table
+from comparisons.report.tables import Table
+from comparisons.report.write import write_table_csv
+from comparisons.studies.pulses import PulseComparison, roles
 from pim.io.files import save_figure, write_text
 from pim.io.units import convert
-
-from comparisons.report.tables import Table
-from comparisons.studies.pulses import PulseComparison, roles
 
 __all__ = ["pulse_table", "plot_pulses", "pulses_markdown", "write_pulses"]
 

@@ -8,19 +8,14 @@ blocks (:class:`comparisons.report.tables.Table`, :mod:`pim.io.html`).
 
 from __future__ import annotations
 
-from comparisons.report.render import markdown_table
-from comparisons.report.write import write_table_csv
 import math
 from pathlib import Path
 
 import numpy as np
 
-from pim.io import html
-from pim.io.datasets import ORIGIN_KINDS
-from pim.io.files import save_figure, write_text
-from pim.io.units import convert, display_units
-
+from comparisons.report.render import markdown_table
 from comparisons.report.tables import Table
+from comparisons.report.write import write_table_csv
 from comparisons.studies.crash_records import CLASS_KEYS, UNRUNNABLE
 from comparisons.studies.paired_verdict import ALPHA, CONFIDENCE, RESAMPLES, minimum_tests
 from comparisons.studies.tuned_scene import (
@@ -33,6 +28,10 @@ from comparisons.studies.tuned_scene import (
     SCREEN,
     ClassStudy,
 )
+from pim.io import html
+from pim.io.datasets import ORIGIN_KINDS
+from pim.io.files import save_figure, write_text
+from pim.io.units import convert, display_units
 
 __all__ = ["KINDS", "median_errors", "predictions_table", "summary_table", "verdict_table",
            "origins_table", "verdict_sentence", "plot_tuned_study", "study_json",
@@ -285,7 +284,8 @@ def study_json(studies, units: str = "si", wall_time: float | None = None) -> di
     variant the verdict and p-value,
     per model the leave-one-out medians (velocity [m/s], yaw rate [deg/s]) and the
     multi-start agreement counts."""
-    return {"units": display_units(units).to_json(), "speed_unit": _unit(units), "wall_time": wall_time,
+    return {"units": display_units(units).to_json(), "speed_unit": _unit(units),
+            "wall_time": wall_time,
             "alpha": ALPHA, "agreement": AGREEMENT, "screen": SCREEN,
             "class_starts": CLASS_STARTS, "loo_starts": LOO_STARTS,
             "physical_ranges": {k: list(v[:3]) for k, v in PHYSICAL_RANGES.items()},

@@ -38,13 +38,6 @@ import numpy as np
 
 import pim
 import sim
-from pim.model.numbers import InputError
-from sim.compliant_batch import STATUS_MESSAGES
-from sim.compliant_setup import build_problem, rotate
-from sim.contact_law import stiffness_for_duration, tangential_recovery_default
-from sim.error_measure import impact_error
-from sim.sweep import sweep
-
 from comparisons.studies.assumption_configs import (
     STICKING,
     STIFF_LIMIT,
@@ -56,6 +49,12 @@ from comparisons.studies.assumption_configs import (
 )
 from comparisons.studies.assumption_legacy import legacy_sweeps
 from comparisons.studies.coefficients import coefficients
+from pim.model.numbers import InputError
+from sim.compliant_batch import STATUS_MESSAGES
+from sim.compliant_setup import build_problem, rotate
+from sim.contact_law import stiffness_for_duration, tangential_recovery_default
+from sim.error_measure import impact_error
+from sim.sweep import sweep
 
 __all__ = ["ConfigRun", "Change", "Rung", "Ladder", "InputShift", "EffectRange",
            "FrictionPoint", "AssumptionStudy", "ENGINES", "run_assumptions", "change",

@@ -21,10 +21,9 @@ import numpy as np
 
 import pim
 import sim
+from comparisons.report.tables import Table
 from pim.model.numbers import InputError
 from sim.sampling import random_scene
-
-from comparisons.report.tables import Table
 
 __all__ = ["energy_gain_study", "FRICTION"]
 

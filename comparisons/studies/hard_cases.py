@@ -24,11 +24,10 @@ import numpy as np
 
 import pim
 import sim
+from comparisons.report.tables import Table, fmt_error
+from comparisons.studies.speed_error import TARGET, SpeedErrorStudy, sweep
 from pim.io.units import convert
 from sim.error_measure import impact_error
-
-from comparisons.studies.speed_error import TARGET, SpeedErrorStudy, sweep
-from comparisons.report.tables import Table, fmt_error
 
 __all__ = ["HardCase", "HardCaseStudy", "run_hard_case", "run_hard_cases", "hard_case_names",
            "TARGET"]

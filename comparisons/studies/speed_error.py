@@ -34,10 +34,9 @@ import numpy as np
 
 import pim
 import sim
+from comparisons.report.tables import Table, fmt_error
 from sim.error_measure import analytic_residual, impact_error
 from sim.scene import resolve_coefficients
-
-from comparisons.report.tables import Table, fmt_error
 
 __all__ = ["SweepPoint", "SpeedErrorStudy", "sweep", "DTS", "ITERATIONS", "STARTS",
            "CONTACTS", "TARGET", "COARSE", "plot_speed_error", "study_table",

@@ -27,15 +27,14 @@ are skipped as "over_budget" once the last run took more than a third of :data:`
 The error is :func:`sim.error_measure.impact_error` (largest error in the impact's velocity
 changes, relative to the largest change); the wall time per impact is the best of
 ``repeats`` runs (the repeats stop once the runs took :data:`REPEAT_BELOW` together: a long
-run's timing noise is a small share of it). The Pareto front is :func:`comparisons.studies.speed_error.pareto_front`; the
+run's timing noise is a small share of it). The Pareto front is
+:func:`comparisons.studies.speed_error.pareto_front`; the
 recommended setting is the fastest run on the front that reaches :data:`TARGET` (1e-3, the
 issue's goal), and the fastest reaching 1e-6 is reported per integrator.
 """
 
 from __future__ import annotations
 
-from comparisons.report.render import markdown_table
-from comparisons.report.write import write_table_csv
 import math
 import sys
 import time
@@ -46,13 +45,14 @@ import numpy as np
 
 import pim
 import sim
+from comparisons.report.render import markdown_table
+from comparisons.report.tables import Table, fmt_error
+from comparisons.report.write import write_table_csv
+from comparisons.studies.speed_error import ERROR_FLOOR, pareto_front
 from pim.io.files import save_figure, write_text
 from pim.model.numbers import InputError
 from sim.error_measure import impact_error
 from sim.sweep import sweep
-
-from comparisons.studies.speed_error import ERROR_FLOOR, pareto_front
-from comparisons.report.tables import Table, fmt_error
 
 __all__ = ["CompliantPoint", "CompliantSpeedStudy", "compliant_sweep", "STEPS", "RTOLS",
            "TARGET", "SCENES", "COARSE", "REFERENCE_RTOLS", "REFERENCE_STEPS", "RUN_BUDGET",

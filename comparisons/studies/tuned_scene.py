@@ -67,7 +67,8 @@ from .paired_verdict import PairedComparison, compare_paired
 __all__ = ["Model", "PIM_MODEL", "SCENE_MODEL", "SCENE_MU0_MODEL", "MODELS", "SCENE_MODELS",
            "Motion", "run_model", "MultiStartFit", "Prediction", "predict", "VariantStudy",
            "ClassStudy", "fit_class", "study_class", "study_all", "loo_comparisons",
-           "coarse_check", "scene_settings", "sobol_starts", "COARSE_STEPS", "FINE_STEPS", "MU_MAX", "B_MAX", "T_BOUNDS",
+           "coarse_check", "scene_settings", "sobol_starts", "COARSE_STEPS", "FINE_STEPS",
+           "MU_MAX", "B_MAX", "T_BOUNDS",
            "TYRE_MAX", "FAILED_RESIDUAL", "SCREEN", "CLASS_STARTS", "LOO_STARTS", "AGREEMENT",
            "SOBOL_SEED", "MAX_ITERATIONS", "PHYSICAL_RANGES", "MEASURES"]
 
@@ -292,7 +293,8 @@ def _stacked(cases: list, shape: tuple) -> pim.Case | None:
         if any((getattr(c, which).length, getattr(c, which).width,
                 getattr(c, which).cg_to_front) != outline for c in cases):
             return None
-        vehicles.append(replace(first, **{f: stack(lambda c, f=f: getattr(getattr(c, which), f),
+        vehicles.append(replace(first, **{f: stack(lambda c, f=f, w=which:
+                                                   getattr(getattr(c, w), f),
                                                     f in ("cg", "velocity"))
                                            for f in _VEHICLE_ARRAYS}))
     impact = replace(cases[0].impact, point=stack(lambda c: c.impact.point, True),

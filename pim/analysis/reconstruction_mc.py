@@ -30,7 +30,6 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..model.crush import crush_energy
-from ..model.law import solve as solve_under_law
 from ..model.distributions import Distribution, UncertaintyTable, nominal_values, sample_inputs
 from ..model.evidence_terms import (
     DELTA_V_SCALE,
@@ -39,6 +38,7 @@ from ..model.evidence_terms import (
     as_residual_terms,
     split_terms,
 )
+from ..model.law import solve as solve_under_law
 from ..model.numbers import InputError, checked_count, speed_text
 from .fitting import FitResult
 from .free_inputs import STATE, fields_set_by, free_inputs, friction_floor, law_values

@@ -311,8 +311,8 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
     contact_friction = _optional(impact_table, "contact_friction", "dimensionless", "impact")
     evidence = data.get("evidence") if isinstance(data.get("evidence"), dict) else {}
     vehicles, estimates = zip(*(
-        _vehicle(_require(data, f"vehicle{i}", source, file=True), f"vehicle{i}", convention, point, i,
-                 evidence.get(f"vehicle{i}")) for i in (1, 2)))
+        _vehicle(_require(data, f"vehicle{i}", source, file=True), f"vehicle{i}", convention,
+                 point, i, evidence.get(f"vehicle{i}")) for i in (1, 2)), strict=True)
     estimates = tuple(e for e in estimates if e is not None)
     if normal_angle is None:
         normal_angle = _plane_normal(impact_table["contact_plane_angle"], point,

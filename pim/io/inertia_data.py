@@ -18,8 +18,7 @@ from importlib import resources
 
 import numpy as np
 
-from ..model.inertia import BODIES, DynamicIndex, InputEstimate, dynamic_index, \
-    yaw_inertia_estimate
+from ..model.inertia import BODIES, DynamicIndex, InputEstimate, dynamic_index, yaw_inertia_estimate
 from ..model.numbers import InputError
 from ..model.quantities import UNCERTAIN
 from .units import convert

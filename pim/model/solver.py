@@ -10,7 +10,8 @@ checks the inputs, chooses the path that evaluates it and wraps the answer in a
   (:mod:`pim.model.kernel`), which compiles the same formula.
 
 The Python and numpy paths agree bitwise (same operations in the same order, the C library's
-sine and cosine; ``tests/pim/model/test_solver.py``). The kernel takes its own sine and cosine (within
+sine and cosine; ``tests/pim/model/test_solver.py``). The kernel takes its own sine and cosine
+(within
 1 ulp) by default, which lets it run near the memory-copy bound, and agrees with numpy within
 :data:`pim.model.kernel.ULP_BOUND` ulp of each output's scale times the condition number of q;
 ``fast_trig=False`` makes it bitwise equal to numpy at about 0.35 of the copy bound

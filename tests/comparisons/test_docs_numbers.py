@@ -3,7 +3,6 @@ generated ones (comparisons.docs_numbers). The fast tests regenerate the pulses 
 ladder's verdicts (the verdicts-only study: the same contact times, tables and sentences
 as the full one); the whole regeneration, sweeps and plots included, is slow."""
 
-from comparisons.report.render import table_csv
 import csv
 import io
 
@@ -12,6 +11,7 @@ import pytest
 from comparisons import docs_numbers as D
 from comparisons.report.assumptions import assumption_table, input_shift_table, verdicts
 from comparisons.report.pulses import pulse_table, pulses_markdown
+from comparisons.report.render import table_csv
 from comparisons.studies.pulses import compare_pulses
 
 

@@ -6,7 +6,8 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 PACKAGES = ("pim/model", "pim/io", "pim/analysis", "pim/plotting", "sim", "comparisons/report",
-            "comparisons/studies", "comparisons/regression", "comparisons/animation", "comparisons/docs",
+            "comparisons/studies", "comparisons/regression", "comparisons/animation",
+            "comparisons/docs",
             "pim_cli")
 
 
@@ -35,7 +36,8 @@ def layout_drift(readme: str, root: Path = ROOT) -> list[str]:
             problems.append(f"no bullet for {package}/")
             continue
         named = set(re.findall(r"`(\w+)\.py`", text))
-        modules = {p.stem for p in (root / package).glob("*.py") if p.name not in ("__init__.py", "__main__.py")}
+        modules = {p.stem for p in (root / package).glob("*.py")
+                   if p.name not in ("__init__.py", "__main__.py")}
         problems += [f"{package}/{m}.py not in the layout" for m in sorted(modules - named)]
         problems += [f"{package}/{m}.py named but absent" for m in sorted(named - modules)]
     return problems

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 import pim
-from pim_cli.main import main
 from pim.model.impact_laws import solve_kudlich_slibar
+from pim_cli.main import main
 
 NAME = "ricsac9-pccrash"
 MPH, FT = 0.44704, 0.3048

@@ -11,8 +11,8 @@ import re
 import pytest
 
 import pim
-from pim_cli.main import main
 from pim.io.casefile import list_cases
+from pim_cli.main import main
 
 ALL_CASES = [name for name, _ in list_cases()]
 #: Cases a forward command can run: those with a restitution (a reconstruction case such as

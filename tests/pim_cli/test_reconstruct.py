@@ -9,8 +9,6 @@ from types import SimpleNamespace
 import pytest
 
 import pim
-from pim.analysis.reconstruction import reconstruct
-from pim_cli.main import main
 from comparisons.report.html import render_html
 from comparisons.report.reconstruct import (
     ReconstructionRows,
@@ -18,8 +16,10 @@ from comparisons.report.reconstruct import (
     tyre_models_line,
 )
 from comparisons.report.render import render_markdown
+from pim.analysis.reconstruction import reconstruct
 from pim.io.casefile import load_case
 from pim.io.output import MARKER
+from pim_cli.main import main
 
 KNOWN = 31.09 * 0.3048
 

@@ -7,10 +7,10 @@ from importlib import resources
 
 import pytest
 
-from pim_cli.main import main
 from pim.io.casefile import load_case
 from pim.io.files import write_text
 from pim.io.units import convert
+from pim_cli.main import main
 
 
 @pytest.fixture(scope="module")

@@ -11,7 +11,6 @@ import sim
 from sim import CompliantSettings
 from sim.compliant_setup import build_problem
 from sim.contact_law import stiffness_for_duration
-
 from tests.scenes import random_cases
 
 K = sim.DEFAULT_STIFFNESS

@@ -23,7 +23,6 @@ import sim
 from sim.batch import case_element
 from sim.compliant_batch import STATUS_NAMES, CompliantBatch, contact_inputs
 from sim.contact_law import stiffness_for_duration
-
 from tests.scenes import random_cases
 
 pytestmark = pytest.mark.xdist_group("compliant_kernel")

@@ -12,8 +12,8 @@ import pytest
 
 import pim
 import sim
-from pim_cli.main import main
 from pim.model.impact_laws import solve_kudlich_slibar
+from pim_cli.main import main
 from sim.kudlich_slibar import crosscheck_kudlich_slibar, simulate_kudlich_slibar
 from tests.scenes import TWO_CARS_TOML, random_cases
 

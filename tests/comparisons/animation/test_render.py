@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 import pim
-from comparisons.animation.render import COLORS, build_renderer, write_animation
 from comparisons.animation.motion import analytic_motion
+from comparisons.animation.render import COLORS, build_renderer, write_animation
 from pim_cli.main import main
 
 CASE = pim.load_case("ricsac9")

@@ -7,8 +7,8 @@ from pathlib import Path
 import pytest
 
 import pim
-from comparisons.regression.plugin import check_case
 from comparisons.regression.baseline import make_baseline
+from comparisons.regression.plugin import check_case
 
 
 def test_the_plugin_is_loaded_by_its_entry_point(pytestconfig):

@@ -31,7 +31,8 @@ def test_bundled_case_matches_its_baseline(pim_check, case):
 @pytest.mark.parametrize("case", ["synthetic-runout", "synthetic-runout-field"])
 def test_synthetic_runout_matches_its_baseline(pim_check, case):
     # its reconstruction (minutes) is in slow.json (synthetic-runout's); the field-tyre
-    # case's reconstruction is checked against its known speeds (tests/pim/analysis/test_reconstruction.py)
+    # case's reconstruction is checked against its known speeds
+    # (tests/pim/analysis/test_reconstruction.py)
     pim_check(case, BASELINES / f"{case}.json")
 
 

@@ -19,8 +19,8 @@ from comparisons.report.compare import compare_case
 from comparisons.report.compare_document import compare_document
 from comparisons.report.data import ReportData
 from comparisons.report.render import render_csv, render_markdown
-from pim_cli.main import main
 from pim.io.output import MARKER
+from pim_cli.main import main
 
 
 def sections(text):

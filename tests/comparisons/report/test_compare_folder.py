@@ -13,8 +13,8 @@ import pytest
 from PIL import Image
 
 import pim
-from comparisons.report import compare as report_module
 from comparisons.animation.render import _auto_before, frame_times
+from comparisons.report import compare as report_module
 from pim_cli.main import main
 
 

@@ -6,15 +6,23 @@ from dataclasses import replace
 
 import pytest
 
-from pim.analysis.pre_impact_speeds import PreImpactSpeed
-from pim_cli import reconstruct as reconstruct_command
-from pim_cli.main import main
 from comparisons.report.pre_impact import pre_impact_lines, pre_impact_rows
+from pim.analysis.pre_impact_speeds import PreImpactSpeed
 from pim.io.output import MARKER
 from pim.model.distributions import Distribution, UncertaintyTable
 from pim.model.evidence import Evidence
 from pim.model.pre_impact import PreImpactMarks, speed_at_mark_start
-from tests.pim.analysis.test_pre_impact_speeds import FT, MPH, V_CASE, G, bundled, by_hand_mph, vehicle_evidence
+from pim_cli import reconstruct as reconstruct_command
+from pim_cli.main import main
+from tests.pim.analysis.test_pre_impact_speeds import (
+    FT,
+    MPH,
+    V_CASE,
+    G,
+    bundled,
+    by_hand_mph,
+    vehicle_evidence,
+)
 
 
 def test_pim_solve_prints_the_speed_at_the_start_of_the_marks(capsys):

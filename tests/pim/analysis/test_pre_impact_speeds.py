@@ -1,6 +1,7 @@
 """Speeds before the impact (pim.analysis.pre_impact_speeds): the case's and the
 reconstruction's impact speeds through the marks' closed form and the driver table's root
-find, and the Monte Carlo's intervals (the commands: tests/comparisons/report/test_pre_impact.py)."""
+find, and the Monte Carlo's intervals (the commands:
+tests/comparisons/report/test_pre_impact.py)."""
 
 import math
 from dataclasses import replace

@@ -14,6 +14,7 @@ import itertools
 import numpy as np
 import pytest
 
+from comparisons.report.validate import barrier_table, coefficient_table, summary_line
 from pim.analysis.validation import (
     SPEED_TOLERANCE,
     barrier_case,
@@ -29,7 +30,6 @@ from pim.io.datasets import DEG, FT, load_barrier
 from pim.io.units import convert
 from pim.model.solver import solve
 from pim.plotting.validation import plot_coefficients, plot_predicted_vs_measured
-from comparisons.report.validate import barrier_table, coefficient_table, summary_line
 
 TESTS = load_barrier()
 INTERIOR = [t for t in TESTS if t.restitution > 0 and t.beta < 0.97 and t.group != "OUTLIER"]

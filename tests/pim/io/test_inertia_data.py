@@ -8,8 +8,13 @@ import numpy as np
 import pytest
 from scipy.stats import binom
 
-from pim.io.inertia_data import docs_table, dynamic_indices, estimate_yaw_inertia, held_out, \
-    load_inertia_records
+from pim.io.inertia_data import (
+    docs_table,
+    dynamic_indices,
+    estimate_yaw_inertia,
+    held_out,
+    load_inertia_records,
+)
 from pim.model.inertia import BODIES, dynamic_index, yaw_inertia_estimate
 from pim.model.numbers import InputError
 

@@ -7,7 +7,6 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-import pim.io.casefile
 from pim.io.evidence_table import parse_evidence
 from pim.io.wheels import WHEEL_WORDS, braking_fraction, wheel_fractions
 

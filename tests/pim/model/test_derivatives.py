@@ -11,7 +11,6 @@ import pytest
 import pim
 from pim.model.quantities import OUTPUTS
 from pim.model.result import output_values
-
 from tests.closed_form import derivatives
 
 

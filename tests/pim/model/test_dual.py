@@ -9,9 +9,8 @@ from hypothesis import given, settings
 
 import pim
 from pim.model.dual import MOTION_INPUTS, MOTION_OUTPUTS, Dual, motion_jacobian
-from tests.scenes import random_cases, scenes
-
 from tests.closed_form import motion_derivatives
+from tests.scenes import random_cases, scenes
 
 
 def test_dual_arithmetic_matches_calculus():

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 import pim
-from pim_cli.main import main
 from pim.model.friction_cap import capped_beta, solve_capped
+from pim_cli.main import main
 
 
 def test_friction_cap_formula():

@@ -15,7 +15,6 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import pim
-from pim_cli.main import main
 from pim.model.dual import MOTION_OUTPUTS, motion_inputs
 from pim.model.friction_cap import solve_capped
 from pim.model.impact_laws import (
@@ -26,6 +25,7 @@ from pim.model.impact_laws import (
     needed_friction,
     solve_kudlich_slibar,
 )
+from pim_cli.main import main
 from tests.scenes import TWO_CARS_TOML, random_cases, scenes
 
 KS = "kudlich-slibar"

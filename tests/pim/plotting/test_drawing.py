@@ -7,9 +7,9 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Polygon
 
 import pim
-from pim_cli.main import main
 from pim.io.casefile import list_cases
 from pim.plotting.drawing import draw_case, outline
+from pim_cli.main import main
 
 CASES = [name for name, _ in list_cases()]
 

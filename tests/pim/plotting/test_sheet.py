@@ -11,8 +11,8 @@ import pytest
 
 import pim
 from pim import fit
-from pim_cli.main import main
 from pim.plotting.sheet import PLOTS, cost_map, save_figure, sweep_epsilon, write_plots
+from pim_cli.main import main
 
 
 @pytest.fixture(scope="module")
