@@ -79,7 +79,7 @@ def test_defect11_detected_start_spread_is_documented_and_holds():
     # The docs state the spread of error / dt over random scenes (0.8-11 per second of dt,
     # 5-95 %, median 3), not RICSAC 9's 1.2 alone; check the claim on 40 fresh scenes.
     root = Path(__file__).resolve().parents[2]
-    for doc in ("README.md", "docs/comparisons.md"):
+    for doc in ("docs/guide.md", "docs/comparisons.md"):
         text = " ".join((root / doc).read_text().split())
         assert "random" in text and "0.8-11" in text, doc
     rng = np.random.default_rng(12)

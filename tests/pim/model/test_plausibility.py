@@ -250,11 +250,11 @@ def test_findings_do_not_depend_on_the_frame(dx, dy, turn, px, py):
 
 
 def test_readme_states_the_thresholds_the_code_uses():
-    """The README's grades of the geometry checks quote pim.model.plausibility's constants;
+    """docs/guide.md's grades of the geometry checks quote pim.model.plausibility's constants;
     a change of either fails here."""
     from pim.model import plausibility as p
 
-    readme = " ".join((Path(__file__).parents[3] / "README.md").read_text().split())
+    readme = " ".join((Path(__file__).parents[3] / "docs" / "guide.md").read_text().split())
     for text in (f"C more than {p.C_OUTSIDE_TOLERANCE:g} m outside a vehicle's outline",
                  f"deepest crush + {p.CRUSH_MARGIN:g} m, else {p.PLAUSIBLE_CRUSH:g} m)",
                  f"C farther than {p.FAR_FROM_CG:g} x the vehicle's length",
