@@ -6,9 +6,9 @@ the CG's distance behind the front axle. :func:`axle_fractions` gives each body 
 :data:`pim.model.inertia.BODIES` its :class:`pim.model.inertia.AxleFraction` (a / L, its
 mean and scatter), which :func:`pim.io.inertia_data.estimate_yaw_inertia` uses when a case
 gives no ``cg_to_front_axle``. A class with fewer than :data:`MIN_COUNT` measured vehicles
-(the vans: 3) takes the pooled fraction of all 52. :func:`docs_table` writes the CG table of
-docs/inertia-estimate.md (``python -m pim.io.inertia_data`` prints it; a test keeps the two
-equal).
+(the vans: 3) takes the pooled fraction of all 52. :func:`pim.io.inertia_data.axle_table`
+writes the CG table of docs/inertia-estimate.md from them (``python -m pim.io.inertia_data``
+prints it; a test keeps the two equal).
 
 The data give no overall length or front overhang, so the CG's distance from the front of
 the outline (``[vehicleN] cg_to_front``) is not estimated from them (docs/inertia-estimate.md).
@@ -27,7 +27,7 @@ from ..model.inertia import BODIES, AxleFraction, axle_fraction
 from ..model.numbers import InputError
 
 __all__ = ["CgRecord", "DATA_FILE", "SOURCE", "MIN_COUNT", "TYPES", "load_cg_records",
-           "axle_fractions", "held_out", "docs_table"]
+           "axle_fractions", "held_out"]
 
 DATA_FILE = "nhtsa_ncap2004_cg_position.csv"
 #: Short citation of the data, for notes and reports.
@@ -149,18 +149,3 @@ def held_out(body: str) -> tuple[int, int, float]:
         z.append((r.fraction - others.mean) / others.predictive_sd)
     z = np.array(z)
     return int(np.sum(np.abs(z) <= 1.96)), len(rows), float(z.std(ddof=1))
-
-
-def docs_table() -> str:
-    """The Markdown table of the CG position in docs/inertia-estimate.md: each class's a / L,
-    its scatter and the held-out check (:func:`held_out`)."""
-    lines = ["| body | vehicles | a / L used | its vehicles | mean a / L | sd | predictive sd "
-             "| held out: within 1.96 sd | sd of held-out z |",
-             "|---|---:|---|---:|---:|---:|---:|---:|---:|"]
-    for body, f in axle_fractions().items():
-        inside, n, z_sd = held_out(body)
-        used = "its own" if f.body == body else "all pooled"
-        lines.append(f"| {body} | {n} | {used} | {f.count} | {f.mean:.4f} | {f.sd:.4f} | "
-                     f"{f.predictive_sd:.4f} | {inside} of {n} ({100 * inside / n:.0f} %) | "
-                     f"{z_sd:.2f} |")
-    return "\n".join(lines)

@@ -23,11 +23,12 @@ from ..model.numbers import InputError
 from ..model.quantities import UNCERTAIN
 from .axle_data import SOURCE as AXLE_SOURCE
 from .axle_data import axle_fractions
-from .axle_data import docs_table as axle_table
+from .axle_data import held_out as axle_held_out
 from .units import convert
 
 __all__ = ["InertiaRecord", "DATA_FILE", "SOURCE", "load_inertia_records", "dynamic_indices",
-           "estimate_yaw_inertia", "estimate_notes", "estimate_records", "held_out", "docs_table"]
+           "estimate_yaw_inertia", "estimate_notes", "estimate_records", "held_out", "docs_table",
+           "axle_table"]
 
 DATA_FILE = "nhtsa_lvipd_yaw_dynamic_index.csv"
 #: Short citation of the data, for notes and reports.
@@ -198,6 +199,22 @@ def docs_table() -> str:
         lines.append(f"| {body} | {d.count} | {d.mean:.4f} | {d.sd:.4f} | "
                      f"{d.predictive_sd:.4f} | {100 * d.relative_sd:.1f} % | "
                      f"{inside} of {n} ({100 * inside / n:.0f} %) | {z_sd:.2f} |")
+    return "\n".join(lines)
+
+
+def axle_table() -> str:
+    """The Markdown table of the CG position in docs/inertia-estimate.md: each class's a / L
+    (:func:`pim.io.axle_data.axle_fractions`), its scatter and the held-out check
+    (:func:`pim.io.axle_data.held_out`)."""
+    lines = ["| body | vehicles | a / L used | its vehicles | mean a / L | sd | predictive sd "
+             "| held out: within 1.96 sd | sd of held-out z |",
+             "|---|---:|---|---:|---:|---:|---:|---:|---:|"]
+    for body, f in axle_fractions().items():
+        inside, n, z_sd = axle_held_out(body)
+        used = "its own" if f.body == body else "all pooled"
+        lines.append(f"| {body} | {n} | {used} | {f.count} | {f.mean:.4f} | {f.sd:.4f} | "
+                     f"{f.predictive_sd:.4f} | {inside} of {n} ({100 * inside / n:.0f} %) | "
+                     f"{z_sd:.2f} |")
     return "\n".join(lines)
 
 

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 from scipy.stats import binom
 
-from pim.io.axle_data import docs_table as axle_table
 from pim.io.inertia_data import (
+    axle_table,
     docs_table,
     dynamic_indices,
     estimate_yaw_inertia,
