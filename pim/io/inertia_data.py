@@ -21,10 +21,14 @@ import numpy as np
 from ..model.inertia import BODIES, DynamicIndex, InputEstimate, dynamic_index, yaw_inertia_estimate
 from ..model.numbers import InputError
 from ..model.quantities import UNCERTAIN
+from .axle_data import SOURCE as AXLE_SOURCE
+from .axle_data import axle_fractions
+from .axle_data import held_out as axle_held_out
 from .units import convert
 
 __all__ = ["InertiaRecord", "DATA_FILE", "SOURCE", "load_inertia_records", "dynamic_indices",
-           "estimate_yaw_inertia", "estimate_notes", "estimate_records", "held_out", "docs_table"]
+           "estimate_yaw_inertia", "estimate_notes", "estimate_records", "held_out", "docs_table",
+           "axle_table"]
 
 DATA_FILE = "nhtsa_lvipd_yaw_dynamic_index.csv"
 #: Short citation of the data, for notes and reports.
@@ -110,20 +114,30 @@ def dynamic_indices() -> dict[str, DynamicIndex]:
 def estimate_yaw_inertia(mass: float, wheelbase: float, cg_to_front_axle: float | None,
                          body: str, where: str) -> InputEstimate:
     """The yaw inertia of ``where`` (e.g. "vehicle1") estimated from its mass [kg], wheelbase
-    [m] and CG-to-front-axle distance [m] (None: half the wheelbase) by its body class's
-    yaw dynamic index, with its provenance."""
+    [m] and CG-to-front-axle distance [m] by its body class's yaw dynamic index, with its
+    provenance. Without the axle distance (None), the class's CG position a / L measured by
+    NHTSA (:func:`pim.io.axle_data.axle_fractions`) stands in, its scatter in the sd."""
     if body not in BODIES:
         raise InputError(f"{where}.body must be one of {', '.join(map(repr, BODIES))} (the "
                          f"class whose yaw dynamic index estimates the yaw inertia), got "
                          f"{body!r}")
     index = dynamic_indices()[body]
-    inertia, sd = yaw_inertia_estimate(mass, wheelbase, index, cg_to_front_axle)
     inputs = (("mass m", float(mass), "mass"), ("wheelbase L", float(wheelbase), "length"))
-    if cg_to_front_axle is not None:
-        inputs += (("CG to front axle a", float(cg_to_front_axle), "length"),)
     method = f"D m a (L - a), D = {index.mean:.3f} the yaw dynamic index of a {body}"
-    return InputEstimate(f"{where}.yaw_inertia", float(inertia), float(sd), method, SOURCE,
-                         inputs, () if cg_to_front_axle is not None else ("a = L/2",))
+    if cg_to_front_axle is not None:
+        inertia, sd = yaw_inertia_estimate(mass, wheelbase, index, cg_to_front_axle)
+        inputs += (("CG to front axle a", float(cg_to_front_axle), "length"),)
+        return InputEstimate(f"{where}.yaw_inertia", float(inertia), float(sd), method,
+                             SOURCE, inputs)
+    f = axle_fractions()[body]
+    inertia, sd = yaw_inertia_estimate(mass, wheelbase, index, fraction=f)
+    vehicles = f"{f.count} {body}s" if f.body == body else f"all {f.count} vehicles"
+    assumed = (f"a = {f.mean:.3f} L ± {f.predictive_sd:.3f} L (1 sd, the CG position of "
+               f"{vehicles} in {AXLE_SOURCE})")
+    method = (f"D m L^2 E[f (1 - f)], f = a / L, D = {index.mean:.3f} the yaw dynamic index "
+              f"of a {body}")
+    return InputEstimate(f"{where}.yaw_inertia", float(inertia), float(sd), method,
+                         f"{SOURCE}; {AXLE_SOURCE}", inputs, (assumed,))
 
 
 def _figure(value: float, kind: str, units: str) -> str:
@@ -188,5 +202,23 @@ def docs_table() -> str:
     return "\n".join(lines)
 
 
-if __name__ == "__main__":  # pragma: no cover - prints the table of docs/inertia-estimate.md
+def axle_table() -> str:
+    """The Markdown table of the CG position in docs/inertia-estimate.md: each class's a / L
+    (:func:`pim.io.axle_data.axle_fractions`), its scatter and the held-out check
+    (:func:`pim.io.axle_data.held_out`)."""
+    lines = ["| body | vehicles | a / L used | its vehicles | mean a / L | sd | predictive sd "
+             "| held out: within 1.96 sd | sd of held-out z |",
+             "|---|---:|---|---:|---:|---:|---:|---:|---:|"]
+    for body, f in axle_fractions().items():
+        inside, n, z_sd = axle_held_out(body)
+        used = "its own" if f.body == body else "all pooled"
+        lines.append(f"| {body} | {n} | {used} | {f.count} | {f.mean:.4f} | {f.sd:.4f} | "
+                     f"{f.predictive_sd:.4f} | {inside} of {n} ({100 * inside / n:.0f} %) | "
+                     f"{z_sd:.2f} |")
+    return "\n".join(lines)
+
+
+if __name__ == "__main__":  # pragma: no cover - prints the tables of docs/inertia-estimate.md
     print(docs_table())
+    print()
+    print(axle_table())

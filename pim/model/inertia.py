@@ -17,12 +17,14 @@ deviation is the predictive one, ``s sqrt(1 + 1/n)`` (``s`` the class's sample s
 deviation of D, ``n`` its count). docs/inertia-estimate.md has the figures, written by
 ``python -m pim.io.inertia_data``.
 
-Without the CG's axle position, ``a = b = L / 2`` (the run-out's default for
-``cg_to_front_axle``): the largest ``a b`` for the wheelbase; a CG at 40 % or 60 % of the
-wheelbase gives ``a b = 4 f (1 - f) L^2 / 4`` = 4 % less (f the CG's fraction of the
-wheelbase from the front axle), so the estimate is then at most 4 % high for such cars and
-the note on the case says so. A published weight distribution with its scatter, which would
-estimate ``a``, was not found (docs/inertia-estimate.md).
+Without the CG's axle position, the CG's fraction of the wheelbase behind the front axle,
+``f = a / L``, of the vehicle's body class (:class:`AxleFraction`, measured on NHTSA's NCAP
+2004 vehicles, :mod:`pim.io.axle_data`) estimates it: with ``f`` of mean ``mu`` and
+predictive sd ``s``, ``E[f (1 - f)] = mu (1 - mu) - s^2`` exactly, and its sd is taken to
+first order, ``|1 - 2 mu| s``; the two scatters (D's and f's) are independent, so the
+estimate's variance is that of a product of independent factors. Only without either
+(``fraction=None``) does ``a = b = L / 2`` remain: the largest ``a b`` for the wheelbase, an
+upper estimate.
 
 Everything here is pure and vectorised: masses, wheelbases and axle positions broadcast.
 """
@@ -36,7 +38,8 @@ import numpy as np
 
 from .numbers import InputError, real_array
 
-__all__ = ["DynamicIndex", "InputEstimate", "BODIES", "dynamic_index", "yaw_inertia_estimate"]
+__all__ = ["DynamicIndex", "AxleFraction", "InputEstimate", "BODIES", "dynamic_index",
+           "axle_fraction", "yaw_inertia_estimate"]
 
 #: Body classes with their own yaw dynamic index, and the NHTSA database's type codes in each
 #: (:mod:`pim.io.inertia_data`): cars (sedans, coupes, hatchbacks, wagons), SUVs
@@ -105,7 +108,70 @@ def dynamic_index(values, body: str, source: str) -> DynamicIndex:
     return DynamicIndex(body, float(d.mean()), float(d.std(ddof=1)), int(d.size), source)
 
 
-def yaw_inertia_estimate(mass, wheelbase, index: DynamicIndex, cg_to_front_axle=None):
+@dataclass(frozen=True)
+class AxleFraction:
+    """The CG's position between the axles, f = a / L, of one body class: mean and scatter.
+
+    Attributes
+    ----------
+    body : str
+        The class, a key of :data:`BODIES`, or "all" for every class pooled.
+    mean : float
+        Sample mean of f over the class's measured vehicles [-], in (0, 1).
+    sd : float
+        Their sample standard deviation (n - 1 in the denominator) [-].
+    count : int
+        Number of measured vehicles, >= 2.
+    source : str
+        Short citation of the measurements, for notes and reports.
+    """
+
+    body: str
+    mean: float
+    sd: float
+    count: int
+    source: str
+
+    def __post_init__(self) -> None:
+        if not (0 < self.mean < 1 and math.isfinite(self.sd) and self.sd >= 0
+                and self.count >= 2):
+            raise InputError(f"CG position of {self.body!r}: needs a mean fraction of the "
+                             f"wheelbase in (0, 1), a finite sd >= 0 and at least 2 vehicles, "
+                             f"got {self.mean!r}, {self.sd!r}, {self.count!r}")
+
+    @property
+    def predictive_sd(self) -> float:
+        """Standard deviation of f for one more vehicle of the class, s sqrt(1 + 1/n) [-]."""
+        return self.sd * math.sqrt(1.0 + 1.0 / self.count)
+
+    def axle_product(self):
+        """Mean and sd of f (1 - f) for one more vehicle [-]: ``mu (1 - mu) - s^2`` (exact
+        for any distribution of f with that mean and variance) and ``|1 - 2 mu| s`` (first
+        order), s the predictive sd."""
+        s = self.predictive_sd
+        return self.mean * (1.0 - self.mean) - s * s, abs(1.0 - 2.0 * self.mean) * s
+
+
+def axle_fraction(values, body: str, source: str) -> AxleFraction:
+    """The :class:`AxleFraction` of a class from its vehicles' measured a / L.
+
+    Parameters
+    ----------
+    values : array_like
+        CG-to-front-axle distance over wheelbase, a / L, of the class's vehicles [-].
+    body : str
+        The class, a key of :data:`BODIES` (or "all").
+    source : str
+        Short citation of the measurements.
+    """
+    f = real_array(values, f"CG position of {body!r}").ravel()
+    if f.size < 2 or not np.isfinite(f).all():
+        raise InputError(f"CG position of {body!r} needs at least 2 finite values")
+    return AxleFraction(body, float(f.mean()), float(f.std(ddof=1)), int(f.size), source)
+
+
+def yaw_inertia_estimate(mass, wheelbase, index: DynamicIndex, cg_to_front_axle=None,
+                         fraction: AxleFraction | None = None):
     """Yaw moment of inertia about the CG from mass and wheelbase: I_z = D m a (L - a).
 
     Parameters
@@ -117,16 +183,21 @@ def yaw_inertia_estimate(mass, wheelbase, index: DynamicIndex, cg_to_front_axle=
     index : DynamicIndex
         The body class's yaw dynamic index D (:func:`dynamic_index`).
     cg_to_front_axle : array_like, optional
-        CG forward to the front axle, a [m], in (0, L); default L / 2 (module notes: the
-        largest a b, so the estimate is then an upper one by up to 4 % for a CG at 40-60 %).
+        CG forward to the front axle, a [m], in (0, L).
+    fraction : AxleFraction, optional
+        Without ``cg_to_front_axle``: the class's CG position f = a / L, whose scatter the
+        estimate then carries, ``I_z = D m L^2 E[f (1 - f)]`` (module notes). Without
+        either, a = L / 2 (the largest a b: an upper estimate).
 
     Returns
     -------
     inertia : ndarray
-        The estimate D m a (L - a) [kg m^2].
+        The estimate [kg m^2].
     sd : ndarray
-        Its standard deviation from the index's scatter, D's predictive sd times m a (L - a)
-        [kg m^2] (mass and wheelbase taken as exact).
+        Its standard deviation [kg m^2]: D's predictive sd times m a (L - a) for a given
+        (or L/2) axle position; with ``fraction``, that of the product of the independent
+        D and f (1 - f), ``m L^2 sqrt(sD^2 sg^2 + sD^2 g^2 + sg^2 D^2)`` (mass and wheelbase
+        taken as exact).
 
     Raises
     ------
@@ -144,6 +215,12 @@ def yaw_inertia_estimate(mass, wheelbase, index: DynamicIndex, cg_to_front_axle=
     if not (np.isfinite(a).all() and ((a > 0) & (a < length)).all()):
         raise InputError("cg_to_front_axle must lie strictly between 0 and the wheelbase [m] "
                          "to estimate the yaw inertia (the CG between the axles)")
+    if cg_to_front_axle is None and fraction is not None:
+        g, g_sd = fraction.axle_product()
+        d, d_sd = index.mean, index.predictive_sd
+        scale = m * length * length
+        return d * g * scale, np.sqrt((d_sd * g_sd) ** 2 + (d_sd * g) ** 2
+                                      + (g_sd * d) ** 2) * scale
     scale = m * a * (length - a)
     return index.mean * scale, index.predictive_sd * scale
 

@@ -11,12 +11,10 @@ from pathlib import Path
 import pytest
 
 from pim_cli.main import main
+from tests.published_cg import car_estimate
 
 ROOT = Path(__file__).resolve().parents[2]
 CASE = ROOT / "tests" / "data" / "no-yaw-inertia.toml"
-# The cars' yaw dynamic index as K. Tse (2020) published it from NHTSA's database
-# (Heydinger et al., SAE 1999-01-1336): mean 1.091, printed to 3 decimals.
-PUBLISHED_CAR_INDEX = 1.091
 
 
 def _case(tmp_path, units: str) -> Path:
@@ -36,7 +34,7 @@ def _pim(*args):
                           capture_output=True, text=True, env=env, timeout=300, cwd=ROOT)
 
 
-@pytest.mark.parametrize("units, value, unit", [("si", "2981 kg m^2", "2.7 m"),
+@pytest.mark.parametrize("units, value, unit", [("si", "2848 kg m^2", "2.7 m"),
                                                ("us", "slug ft^2", "8.858 ft")])
 def test_command_line_notes_the_estimate_once_in_the_case_units(tmp_path, units, value, unit):
     run = _pim("solve", _case(tmp_path, units))
@@ -45,17 +43,17 @@ def test_command_line_notes_the_estimate_once_in_the_case_units(tmp_path, units,
     assert len(notes) == 1, run.stderr
     (note,) = notes
     assert "vehicle1.yaw_inertia not given: estimated" in note and value in note
-    assert f"wheelbase L {unit}" in note and "±7.0 % (1 sd)" in note
-    assert "Heydinger et al. 1999" in note and "a = L/2 assumed" in note
+    assert f"wheelbase L {unit}" in note and "±7.4 % (1 sd)" in note
+    assert "Heydinger et al. 1999" in note and "a = 0.397 L ± 0.026 L (1 sd" in note
+    assert "NHTSA's NCAP 2004 measurements) assumed" in note
 
 
 def test_uncertainty_json_carries_the_estimate(capsys):
     assert main(["uncertainty", str(CASE), "--samples", "2000", "--json"]) == 0
     (estimate,) = json.loads(capsys.readouterr().out)["estimates"]
     assert estimate["input"] == "vehicle1.yaw_inertia" and estimate["unit"] == "kg m^2"
-    assert estimate["value"] == pytest.approx(PUBLISHED_CAR_INDEX * 1500 * 2.7**2 / 4,
-                                              rel=5e-4)
-    assert estimate["sd"] / estimate["value"] == pytest.approx(0.07, abs=0.005)
+    assert estimate["value"] == pytest.approx(car_estimate(), rel=5e-4)
+    assert estimate["sd"] / estimate["value"] == pytest.approx(0.074, abs=0.003)
 
 
 def test_reconstruct_json_and_report_list_the_estimate(tmp_path, capsys):
@@ -72,9 +70,10 @@ vehicle1.speed = {bounds = ["0 m/s", "40 m/s"]}
 """)
     assert main(["reconstruct", str(path), "--samples", "20", "--json"]) == 0
     (estimate,) = json.loads(capsys.readouterr().out)["estimates"]
-    assert estimate["input"] == "vehicle1.yaw_inertia" and estimate["assumed"] == ["a = L/2"]
+    assert estimate["input"] == "vehicle1.yaw_inertia"
+    assert [a[:12] for a in estimate["assumed"]] == ["a = 0.397 L "]
     out = tmp_path / "out"
     assert main(["reconstruct", str(path), "--samples", "20", "--out", str(out),
                  "--no-video"]) == 0
     for name in ("report.md", "report.html"):
-        assert "vehicle1.yaw_inertia not given: estimated 2981 kg m^2" in (out / name).read_text()
+        assert "vehicle1.yaw_inertia not given: estimated 2848 kg m^2" in (out / name).read_text()

@@ -17,11 +17,9 @@ from pim.analysis.reconstruction_mc import solve_samples
 from pim.io.casefile import parse_case
 from pim.model.distributions import nominal_values, sample_inputs
 from pim.model.numbers import InputError
+from tests.published_cg import car_estimate, car_fraction
 
 CASE = Path(__file__).resolve().parents[2] / "data" / "no-yaw-inertia.toml"
-# The cars' yaw dynamic index as K. Tse (2020) published it from NHTSA's database
-# (Heydinger et al., SAE 1999-01-1336): mean 1.091, printed to 3 decimals.
-PUBLISHED_CAR_INDEX = 1.091
 
 
 def _data(**vehicle1):
@@ -36,11 +34,13 @@ def test_case_without_inertia_loads_with_the_estimate_and_solves():
     case = pim.load_case(CASE)
     (estimate,) = case.estimates
     assert estimate.name == "vehicle1.yaw_inertia"
-    # D m a b with a = b = L/2: the published index, to its printed digits
-    assert float(case.vehicle1.yaw_inertia) == pytest.approx(
-        PUBLISHED_CAR_INDEX * 1500 * 2.7**2 / 4, rel=5e-4)
+    # D m L^2 E[f (1 - f)]: the published index (to its printed digits) and the cars' CG
+    # position from the NCAP table's own front-weight column (tests/published_cg.py)
+    assert float(case.vehicle1.yaw_inertia) == pytest.approx(car_estimate(), rel=5e-4)
     assert float(case.vehicle1.yaw_inertia) == estimate.value
-    assert 0.06 < estimate.relative_sd < 0.08 and estimate.assumptions == ("a = L/2",)
+    assert 0.07 < estimate.relative_sd < 0.08
+    (assumed,) = estimate.assumptions
+    assert assumed.startswith("a = 0.397 L") and "NCAP 2004" in assumed
     result = pim.solve(case)
     assert result.problems() == []
     # momentum is exchanged whatever the inertia: the two delta-Vs balance
@@ -50,8 +50,12 @@ def test_case_without_inertia_loads_with_the_estimate_and_solves():
 
 def test_axle_position_and_body_class_change_the_estimate():
     base = parse_case(_data()).vehicle1.yaw_inertia
+    middle = parse_case(_data(cg_to_front_axle="1.35 m")).vehicle1.yaw_inertia
     forward = parse_case(_data(cg_to_front_axle="1.08 m")).vehicle1.yaw_inertia
-    assert forward / base == pytest.approx(4 * 0.4 * 0.6)         # a b = 0.24 L^2
+    assert forward / middle == pytest.approx(4 * 0.4 * 0.6)       # a b = 0.24 L^2
+    # without the axle: E[f (1 - f)] of the cars' measured CG position, below the half's 1/4
+    mu, s = car_fraction()
+    assert base / middle == pytest.approx(4 * (mu * (1 - mu) - s * s), rel=1e-9)
     pickup = parse_case(_data(body="pickup"))
     assert pickup.vehicle1.yaw_inertia < base
     assert "pickup" in pickup.estimates[0].method

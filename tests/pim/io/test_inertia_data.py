@@ -9,6 +9,7 @@ import pytest
 from scipy.stats import binom
 
 from pim.io.inertia_data import (
+    axle_table,
     docs_table,
     dynamic_indices,
     estimate_yaw_inertia,
@@ -112,16 +113,20 @@ def test_classes_and_their_scatter():
 
 
 def test_estimate_yaw_inertia_records_its_provenance():
-    e = estimate_yaw_inertia(1500.0, 2.7, None, "car", "vehicle2")
+    e = estimate_yaw_inertia(1500.0, 2.7, 1.1, "car", "vehicle2")
     car = dynamic_indices()["car"]
     assert e.name == "vehicle2.yaw_inertia"
-    assert e.value == pytest.approx(car.mean * 1500 * 2.7**2 / 4)
-    assert e.sd == pytest.approx(car.predictive_sd * 1500 * 2.7**2 / 4)
-    assert e.assumptions == ("a = L/2",) and "Heydinger" in e.source
-    assert estimate_yaw_inertia(1500.0, 2.7, 1.1, "van", "vehicle1").assumptions == ()
+    assert e.value == pytest.approx(car.mean * 1500 * 1.1 * 1.6)
+    assert e.sd == pytest.approx(car.predictive_sd * 1500 * 1.1 * 1.6)
+    assert e.assumptions == () and "Heydinger" in e.source
+    # without the axle distance: the class's measured CG position, named with its source
+    e = estimate_yaw_inertia(1500.0, 2.7, None, "van", "vehicle1")
+    (assumed,) = e.assumptions
+    assert "all 52 vehicles" in assumed and "NCAP 2004" in e.source
     with pytest.raises(InputError, match=r"vehicle1\.body must be one of"):
         estimate_yaw_inertia(1500.0, 2.7, None, "truck", "vehicle1")
 
 
 def test_committed_doc_has_the_table_the_code_gives():
     assert docs_table() in (DOCS / "inertia-estimate.md").read_text()
+    assert axle_table() in (DOCS / "inertia-estimate.md").read_text()

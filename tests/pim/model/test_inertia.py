@@ -5,10 +5,17 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pim.model.inertia import DynamicIndex, InputEstimate, dynamic_index, yaw_inertia_estimate
+from pim.model.inertia import (
+    AxleFraction,
+    DynamicIndex,
+    InputEstimate,
+    axle_fraction,
+    dynamic_index,
+    yaw_inertia_estimate,
+)
 from pim.model.numbers import InputError
 
 CAR = DynamicIndex("car", 1.1, 0.08, 50, "test data")
@@ -70,3 +77,52 @@ def test_input_estimate_tags_itself():
     e = InputEstimate("vehicle1.yaw_inertia", 2000.0, 140.0, "D m a b", "Heydinger et al. 1999")
     assert e.relative_sd == pytest.approx(0.07)
     assert e.short == "estimated, ±7.0 % (1 sd), Heydinger et al. 1999"
+
+
+# The CG's axle position f = a / L when the case gives none (AxleFraction).
+FRACTION = AxleFraction("car", 0.4, 0.025, 21, "test")
+
+
+@settings(max_examples=200, deadline=None)
+@given(mass=st.floats(100, 50_000), wheelbase=st.floats(1.0, 8.0),
+       mean=st.floats(0.2, 0.8), sd=st.floats(0.0, 0.1))
+def test_estimated_axle_position_lies_between_the_axles_and_below_the_half(
+        mass, wheelbase, mean, sd):
+    f = AxleFraction("car", mean, sd, 10, "test")
+    g, g_sd = f.axle_product()
+    assert 0 < mean * wheelbase < wheelbase                  # the CG between the axles
+    inertia, spread = yaw_inertia_estimate(mass, wheelbase, CAR, fraction=f)
+    half, half_sd = yaw_inertia_estimate(mass, wheelbase, CAR)
+    assert inertia <= half * (1 + 1e-12)                     # f (1 - f) <= 1/4
+    if g > 0:
+        assert inertia > 0 and spread >= half_sd * g / 0.25 * (1 - 1e-12)
+
+
+def test_axle_fraction_product_moments_against_sampling():
+    # E[f (1 - f)] = mu (1 - mu) - s^2 exactly; its sd |1 - 2 mu| s to first order
+    rng = np.random.default_rng(3)
+    f = rng.normal(FRACTION.mean, FRACTION.predictive_sd, 400_000)
+    g, g_sd = FRACTION.axle_product()
+    assert (f * (1 - f)).mean() == pytest.approx(g, abs=3e-5)
+    assert (f * (1 - f)).std() == pytest.approx(g_sd, rel=0.02)
+
+
+def test_estimate_with_fraction_is_the_product_of_independent_scatters():
+    inertia, sd = yaw_inertia_estimate(1500.0, 2.7, CAR, fraction=FRACTION)
+    rng = np.random.default_rng(4)
+    d = rng.normal(CAR.mean, CAR.predictive_sd, 400_000)
+    f = rng.normal(FRACTION.mean, FRACTION.predictive_sd, 400_000)
+    drawn = d * 1500 * 2.7**2 * f * (1 - f)
+    assert drawn.mean() == pytest.approx(inertia, rel=1e-3)
+    assert drawn.std() == pytest.approx(sd, rel=0.02)
+    # a given axle position ignores the fraction (bitwise as without it)
+    assert yaw_inertia_estimate(1500.0, 2.7, CAR, 1.1, fraction=FRACTION) == \
+        yaw_inertia_estimate(1500.0, 2.7, CAR, 1.1)
+
+
+def test_axle_fraction_refuses_impossible_positions():
+    with pytest.raises(InputError, match="in \\(0, 1\\)"):
+        AxleFraction("car", 1.2, 0.02, 10, "x")
+    with pytest.raises(InputError, match="at least 2 finite"):
+        axle_fraction([0.4], "car", "x")
+    assert axle_fraction([0.38, 0.42], "car", "x").mean == pytest.approx(0.4)
