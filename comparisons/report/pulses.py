@@ -110,12 +110,12 @@ def _answer(c: PulseComparison, table: Table, units) -> Cards:
     """The key figures: the predicted rows' errors, then the curves' RMS differences."""
     su = convert(1.0, "speed", units)[1]
     rms = float(convert(c.delta_v_rms, "speed", units)[0])
-    cards = [Card(f"{r[0]}: error", f"{r[6]:+.0f} %",
+    cards = [Card(f"error in {r[0]}", f"{r[6]:+.0f} %",
                   f"contact law {r[4]:.3g} {r[2]} against measured {r[3]:.3g} {r[2]}")
              for r in table.rows if r[1] == "predicted"]
-    return Cards((*cards, Card("force: RMS difference", f"{c.force_rms / 1e3:.0f} kN",
+    return Cards((*cards, Card("RMS difference in force", f"{c.force_rms / 1e3:.0f} kN",
                                "over the record"),
-                  Card("delta-V: RMS difference", f"{rms:.2f} {su}", "over the record")))
+                  Card("RMS difference in delta-V", f"{rms:.2f} {su}", "over the record")))
 
 
 def pulses_document(c: PulseComparison, units="si", command: str = "") -> Document:
@@ -131,14 +131,14 @@ def pulses_document(c: PulseComparison, units="si", command: str = "") -> Docume
         Figure("pulses.png", alt="force-time, delta-V-time and force-crush, measured "
                                  "against the contact law"),))
     about = Section("source", "Source and parameters", (
-        *([Paragraph(f"Regenerate with `{command}`.")] if command else []),
         Paragraph(f"Source: {c.source}"),
         Paragraph(f"Contact law at the test's speed ({float(speed):.2f} {su}, "
                   f"{c.mass:.0f} kg): linear loading stiffness {c.stiffness / 1e3:.0f} kN/m, "
                   f"restitution {c.eps:.3f}. RMS difference over the record: force "
                   f"{c.force_rms / 1e3:.0f} kN, delta-V {float(rms):.2f} {su}.")))
     return Document("Crash pulse: NHTSA 10146 against the contact law", "pim pulses",
-                    (answer, plot, about), name="pulses")
+                    (answer, plot, about), name="pulses",
+                    subtitle=f"Regenerate with `{command}`." if command else "")
 
 
 def write_pulses(c: PulseComparison, folder, units="si", command: str = "",

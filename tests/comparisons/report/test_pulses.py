@@ -57,12 +57,12 @@ def test_the_page_leads_with_the_predictions_errors(comparison, tmp_path):
     assert '<meta name="generator" content="pim pulses">' in page
     cards = page.split('<dl class="facts">')[1].split("</dl>")[0]
     rows = {r[0]: r for r in R.pulse_table(comparison).rows}
-    assert cards.index("peak force: error") < cards.index("force: RMS difference")
+    assert cards.index("error in peak force") < cards.index("RMS difference in force")
     assert f"{rows['peak force'][6]:+.0f} %" in cards
     assert "maximum crush" not in cards                     # fitted: checks nothing
     assert page.index('<dl class="facts">') < page.index('id="table-pulses-nhtsa10146"') \
         < page.index("data:image/png;base64,") < page.index("Source: ")
     md = (tmp_path / "pulses.md").read_text()
-    assert md.index("peak force: error") < md.index("| quantity |") < md.index("Source: ")
+    assert md.index("error in peak force") < md.index("| quantity |") < md.index("Source: ")
     us = R.pulses_document(comparison, "us")
     assert "mph" in next(iter(us.blocks())).cards[-1].value
