@@ -4,7 +4,7 @@ committed documents hold what the code gives.
 One function per document:
 
 * :func:`assumptions_ricsac9`: ``docs/assumptions-ricsac9/`` (``pim assumptions ricsac9``);
-* :func:`pulses`: ``docs/pulses.md``, its CSV and plot (``pim pulses``);
+* :func:`pulses`: ``docs/pulses.md``, its CSV and plot (``pim pulses``; no HTML in docs/);
 * :func:`contact_model`: the ladder's figures quoted in ``docs/contact-model.md``, the block
   between :data:`BEGIN` and :data:`END` (the rest of that page is prose).
 
@@ -25,13 +25,16 @@ from pathlib import Path
 import pim
 from comparisons.report.assumptions import verdicts, write_assumptions
 from comparisons.report.pulses import write_pulses
+from comparisons.report.render import markdown_table
+from comparisons.report.tables import Table
+from comparisons.report.write import write_block
 from comparisons.studies.assumptions import AssumptionStudy, run_assumptions
 from comparisons.studies.pulses import compare_pulses
-from pim.io.files import write_text
 from pim.io.units import convert
 
 __all__ = ["DOCS", "BEGIN", "END", "DOCUMENTS", "assumptions_ricsac9", "pulses",
-           "contact_model", "contact_model_block", "ricsac9_study", "drift", "regenerate"]
+           "contact_model", "contact_model_block", "rung_table", "ricsac9_study", "drift",
+           "regenerate"]
 
 #: The repository's docs folder.
 DOCS = Path(__file__).resolve().parents[1] / "docs"
@@ -58,11 +61,24 @@ def assumptions_ricsac9(out=DOCS / "assumptions-ricsac9", study=None) -> list[Pa
 
 def pulses(out=DOCS) -> list[Path]:
     """Write ``docs/pulses.md``, ``pulses-nhtsa10146.csv`` and ``pulses.png``."""
-    return write_pulses(compare_pulses(), out, "si", command=f"{_COMMAND} pulses")
+    return write_pulses(compare_pulses(), out, "si", command=f"{_COMMAND} pulses", html=False)
 
 
 def _pct(x: float) -> str:
     return "n/a" if not math.isfinite(x) else f"{100 * x:.1f} %"
+
+
+def _pct_cell(x: float) -> str:
+    return "n/a" if not math.isfinite(x) else f"{x:.1f}"
+
+
+def rung_table(study: AssumptionStudy) -> Table:
+    """The typical ladder's rungs: each against its baseline, marginal and cumulative [%]."""
+    rows = tuple((r.key, r.baseline, 100 * r.marginal, 100 * r.cumulative)
+                 for r in study.typical.rungs[1:])
+    return Table("contact-model-rungs", "The ladder's rungs",
+                 ("rung", "against", "marginal [%]", "cumulative [%]"), rows,
+                 {"marginal [%]": _pct_cell, "cumulative [%]": _pct_cell}, csv=False)
 
 
 def contact_model_block(study: AssumptionStudy) -> str:
@@ -70,13 +86,11 @@ def contact_model_block(study: AssumptionStudy) -> str:
     :data:`END`: the typical ladder's rungs and the verdicts over the ranges."""
     lad = study.typical
     ms = f"{1e3 * lad.duration:g} ms"
-    rows = ["| rung | against | marginal | cumulative |", "|---|---|---:|---:|"]
-    rows += [f"| {r.key} | {r.baseline} | {_pct(r.marginal)} | {_pct(r.cumulative)} |"
-             for r in lad.rungs[1:]]
     shift = study.input_shift
     length, unit = convert(shift.distance, "length", study.case.units)
     lines = [BEGIN, "", f"RICSAC 9 at {ms} (epsilon = {study.eps:.4g}, PIM at beta = "
-             f"{study.beta_pim:g}; `{_COMMAND} contact-model`):", "", *rows, "",
+             f"{study.beta_pim:g}; `{_COMMAND} contact-model`):", "",
+             markdown_table(rung_table(study)), "",
              f"The \"law\" rung at its {lad.rung('law').run.contact_duration * 1e3:.1f} ms "
              f"contact stays {_pct(lad.rung('law').marginal)} from PIM. Where C is: the "
              f"illustrative outlines put the impulse {float(length):.2f} {unit} from the "
@@ -90,14 +104,8 @@ def contact_model_block(study: AssumptionStudy) -> str:
 
 def contact_model(path=DOCS / "contact-model.md", study=None) -> Path:
     """Rewrite the generated block of ``docs/contact-model.md`` (:data:`BEGIN` ... :data:`END`)."""
-    path = Path(path)
-    text = path.read_text(encoding="utf-8")
-    if BEGIN not in text or END not in text:
-        raise ValueError(f"{path}: the generated block's markers are missing ({BEGIN!r})")
-    head, rest = text.split(BEGIN, 1)
-    _, tail = rest.split(END, 1)
     block = contact_model_block(ricsac9_study() if study is None else study)
-    return write_text(path, head + block + tail)
+    return write_block(Path(path), BEGIN, END, block)
 
 
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")

@@ -329,7 +329,7 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, engine, 
     Writes, per case, speed-error-CASE.md and .html (table of the Pareto front and every
     run), speed-error-CASE.csv and speed-error-CASE.png (log-log error against wall time per
     impact, with the Pareto front, PIM's own time and error and the recommended setting).
-    With --compliant (default) also speed-error-compliant-CASE.md/.csv/.png: the
+    With --compliant (default) also speed-error-compliant-CASE.md/.html/.csv/.png: the
     finite-duration contact stepped over dt (compiled, or by pymunk with --engine pymunk)
     and integrated by solve_ivp over rtol, against a tight solve_ivp reference, its two
     scenes on two worker processes. "hard" stands for every bundled hard case.
@@ -434,9 +434,9 @@ def _compliant_result(cstudy, stem: str, folder, opts: _SpeedErrorOptions,
                       result: dict) -> None:
     """Write the finite-duration study and put its files, recommendations and lines into
     ``result``."""
-    from comparisons.studies import speed_error_compliant as S
+    from comparisons.report.speed_error import write_compliant
 
-    cfiles = S.write_compliant_study(cstudy, folder, stem, command=opts.command(stem))
+    cfiles = write_compliant(cstudy, folder, stem, command=opts.command(stem))
     result["files"] += [str(f) for f in cfiles]
     recs = {scene: cstudy.recommended(scene)
             for scene in dict.fromkeys(p.scene for p in cstudy.points)}

@@ -95,9 +95,10 @@ def validate_models(out, max_tests, classes, steps, units, speed_unit, progress,
 def pulses(out, stiffness, eps, units, speed_unit, as_json):
     """The contact law's force-time and delta-V-time against NHTSA test 10146.
 
-    Writes pulses.md (the table of duration, peak force, crush at peak, rebound, each with
-    its error and named fitted, when it agrees by construction with parameters taken from
-    this test, or predicted), pulses-nhtsa10146.csv and pulses.png.
+    Writes pulses.md and .html (the predicted figures' errors first, then the table of
+    duration, peak force, crush at peak, rebound, each with its error and named fitted, when
+    it agrees by construction with parameters taken from this test, or predicted),
+    pulses-nhtsa10146.csv and pulses.png.
     """
     folder = writable_folder(Path(out) if out else Path("out") / "pulses")
     shown = output_units(None, units, speed_unit)

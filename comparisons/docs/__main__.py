@@ -10,6 +10,7 @@ from pathlib import Path
 #: Part -> module whose ``regenerate(docs_dir)`` writes it.
 PARTS = {
     "validate-models": "comparisons.docs.validate_models",
+    "inertia-estimate": "comparisons.docs.inertia_estimate",
 }
 
 

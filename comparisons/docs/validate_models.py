@@ -27,6 +27,7 @@ from comparisons.report.tuned import (
     verdict_sentence,
     write_tuned_study,
 )
+from comparisons.report.write import replace_block, write_block
 from comparisons.studies.paired_verdict import ALPHA, CONFIDENCE, compare_paired, minimum_tests
 from comparisons.studies.tuned_scene import (
     AGREEMENT,
@@ -40,7 +41,6 @@ from comparisons.studies.tuned_scene import (
     SCREEN,
     study_all,
 )
-from pim.io.files import write_text
 from pim.io.output import output_folder, rebase
 from pim.io.units import DisplayUnits, convert
 
@@ -155,10 +155,7 @@ def section(studies) -> str:
 
 def replace_section(text: str, new: str) -> str:
     """``text`` with its :data:`BEGIN` ... :data:`END` block replaced by ``new``."""
-    if text.count(BEGIN) != 1 or text.count(END) != 1:
-        raise ValueError("docs/validation.md must hold the validate-models markers once each")
-    head, rest = text.split(BEGIN)
-    return head + new + rest.split(END, 1)[1]
+    return replace_block(text, BEGIN, END, new, "docs/validation.md")
 
 
 def regenerate(docs_dir, studies=None, bar=None) -> list[Path]:
@@ -171,8 +168,8 @@ def regenerate(docs_dir, studies=None, bar=None) -> list[Path]:
         for path in written:
             if path.name not in DOCS_FILES:
                 path.unlink()
-        text = (docs / "validation.md").read_text(encoding="utf-8")
-        md = write_text(tmp / "validation.md", replace_section(text, section(studies)))
+        md = write_block(tmp / "validation.md", BEGIN, END, section(studies),
+                         source=docs / "validation.md")
         kept = [p for p in written if p.name in DOCS_FILES] + [md]
     return rebase(kept, tmp, docs)
 

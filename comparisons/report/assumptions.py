@@ -1,4 +1,6 @@
-"""The ladder of ``pim assumptions`` in words, tables, a plot, Markdown and HTML.
+"""The ladder of ``pim assumptions`` in words, tables and a plot, as a
+:class:`~comparisons.report.document.Document` (``assumptions.md``, ``.html`` and the CSVs)
+written with its plot and animation through the one pipeline.
 
 Every effect is said twice: as the project's one error (a share of the impact's largest
 velocity change) and in physical terms, how far the delta-V moves and the yaw rate, in the
@@ -12,15 +14,25 @@ named. "Where C is" stands beside the ladder as the uncertainty of an input.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 
 import pim
 from comparisons.animation.render import build_renderer, write_animation
-from comparisons.report.render import markdown_table
-from comparisons.report.tables import Table, fmt_error, fmt_value
-from comparisons.report.write import write_table_csv
+from comparisons.report.document import (
+    Bullets,
+    Callout,
+    Document,
+    Figure,
+    FileList,
+    Paragraph,
+    Section,
+    Video,
+)
+from comparisons.report.tables import Table, fmt_error
+from comparisons.report.write import write_document
 from comparisons.studies.assumption_configs import (
     HOLDS,
     ROUGHLY,
@@ -30,16 +42,14 @@ from comparisons.studies.assumption_configs import (
     RungConfig,
 )
 from comparisons.studies.assumptions import AssumptionStudy, Change, EffectRange
-from pim.io import html as h
 from pim.io import units as pim_units
-from pim.io.files import save_figure, write_text
+from pim.io.files import save_figure
 from sim.contact_law import tangential_recovery_default
 from sim.error_measure import ERROR_DEFINITION
 
-__all__ = ["ASSUMPTION_GROUPS", "assumption_tables", "shown_units", "verdicts",
-           "input_shift_words", "ladder_intro", "assumption_table",
-           "input_shift_table", "sweep_table", "plot_overview", "write_assumptions",
-           "assumptions_markdown", "assumptions_html", "study_json"]
+__all__ = ["ASSUMPTION_GROUPS", "shown_units", "verdicts", "input_shift_words",
+           "ladder_intro", "assumption_table", "input_shift_table", "sweep_table",
+           "plot_overview", "write_assumptions", "assumptions_document", "study_json"]
 
 
 def shown_units(case: pim.Case, units=None):
@@ -258,21 +268,6 @@ ASSUMPTION_GROUPS = (
 
 
 
-def assumption_tables(table: Table) -> list[str]:
-    """The assumptions table (:func:`assumption_table`) as HTML tables one screen wide
-    (:data:`ASSUMPTION_GROUPS`), one row per rung in each; ids ``table-NAME-1``, ..."""
-    columns = list(table.columns)
-    rows = [[table.formats.get(c, fmt_value)(v) for c, v in zip(columns, row, strict=True)]
-            for row in table.rows]
-    parts = []
-    for i, (caption, cols) in enumerate(h.split_columns(columns, ASSUMPTION_GROUPS,
-                                                        columns[0]), start=1):
-        index = [columns.index(c) for c in cols]
-        parts.append(h.table(cols, [[row[j] for j in index] for row in rows], title=caption,
-                             id=f"table-{table.name}-{i}", cls="split"))
-    return parts
-
-
 def _config_words(config: RungConfig) -> str:
     if config.law == "pim":
         return "PIM"
@@ -464,22 +459,17 @@ def plot_overview(study: AssumptionStudy):
 def write_assumptions(study: AssumptionStudy, out_dir, *, animation: bool = True,
                       progress: bool | None = None, command: str = "",
                       units=None) -> list[Path]:
-    """Write assumptions.md and .html, the tables (CSV), the plot (PNG) and the MP4 to
+    """Write the plot (PNG), the MP4 (with ``animation``) and the report
+    (:func:`assumptions_document`: the tables as CSV, assumptions.html, assumptions.md) to
     ``out_dir``."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    tables = (assumption_table(study, units=units), input_shift_table(study, units=units),
-              sweep_table(study, units=units))
-    files = [write_table_csv(t, out) for t in tables]
-    files.append(save_figure(plot_overview(study), out / "assumptions.png"))
+    files = [save_figure(plot_overview(study), out / "assumptions.png")]
     info = _write_animation(study, out, progress) if animation else None
     if info is not None:
         files.append(info.path)
-    files.append(write_text(out / "assumptions.html",
-                            assumptions_html(study, tables, out, info, command, units)))
-    files.append(write_text(out / "assumptions.md",
-                            assumptions_markdown(study, tables, info, command, units)))
-    return files
+    doc = assumptions_document(study, info, command, units)
+    return [*write_document(doc, out), *files]
 
 
 def _write_animation(study: AssumptionStudy, out: Path, progress):
@@ -510,65 +500,52 @@ def _about(study: AssumptionStudy) -> str:
             f"1.")
 
 
-def assumptions_html(study: AssumptionStudy, tables, out_dir, info=None, command: str = "",
-                     units=None) -> str:
-    """The study as one self-contained HTML page (the plots and the animation inline, read
-    from ``out_dir``, where :func:`write_assumptions` wrote them)."""
-    out, (table, _, _) = Path(out_dir), tables
-    sections = [
-        h.section("Verdicts", [h.paragraph(_about(study)),
-                               h.bullets(verdicts(study, units))], id="verdicts", cls="keep"),
-        h.section("Where C is", [h.paragraph(input_shift_words(study, units) or
-                                             "The case gives no outlines.")], id="where-c"),
-        h.section(f"The ladder at {1e3 * study.typical.duration:g} ms and over the range",
-                  [*assumption_tables(table), h.paragraph(
-                      "eps_eff, beta_eff: what `pim fit` needs to reproduce the simulated "
-                      "motion; C_eff: the impulse centroid. Every scene: "
-                      "`assumption_sweeps.csv`; where C is: `where_c.csv`.")], id="typical"),
-        h.section("Over contact times, tyre friction and the tangential recovery",
-                  h.figure(out / "assumptions.png", alt="the ladder's effects"), id="sweeps")]
-    if info is not None:
-        mp4 = out / "assumptions.mp4"
-        sections.append(h.section("Animation", h.video(
-            mp4, frames=info.frames, fps=info.fps, size=info.size,
-            still=h.still_frame(mp4, 0.5), caption="The finite-duration scene (filled) with "
-            "PIM's answer as a dashed ghost: `assumptions.mp4`.")
-            + ("" if info.secondary_impact is None else h.paragraph(
-                f"**Warning:** {info.secondary_impact.message()}.")), id="animation"))
-    return h.page(f"{study.case.name or 'case'}: which of PIM's assumptions hold", sections,
-                  subtitle=(f"Regenerate with `{command}`. " if command else "")
-                  + "The same as text: `assumptions.md`.",
-                  contents=[("verdicts", "Verdicts"), ("where-c", "Where C is"),
-                            ("typical", "The ladder"), ("sweeps", "Plots"),
-                            ("animation", "Animation")][:len(sections)],
-                  generator="pim assumptions")
-
-
-def assumptions_markdown(study: AssumptionStudy, tables, info=None, command: str = "",
-                         units=None) -> str:
-    """The study as Markdown (no wall times: a document regenerated by
-    ``comparisons.docs_numbers`` holds only what the code gives)."""
-    table, shift, _ = tables
-    lines = [f"# {study.case.name or 'case'}: PIM's assumptions one at a time", ""]
-    if command:
-        lines += [f"Regenerate with `{command}`.", ""]
-    lines += [_about(study), "", "## Verdicts", ""]
-    lines += [f"- {v}" for v in verdicts(study, units)] + [""]
+def _where_c(study: AssumptionStudy, units) -> Section:
+    """Where C is: the sentence and its table (the table only as CSV without outlines)."""
     words = input_shift_words(study, units)
-    if words:
-        lines += ["## Where C is (input uncertainty, not a rung)", "", words, "",
-                  markdown_table(shift), ""]
-    lines += [f"## The ladder at {1e3 * study.typical.duration:g} ms and over the range", "",
-              markdown_table(table), "", "eps_eff, beta_eff: what `pim fit` (velocities and yaw "
-              "rates) needs to reproduce the simulated motion; C_eff: the impulse centroid.",
-              "", "![assumptions](assumptions.png)", ""]
+    table = input_shift_table(study, units=units)
+    if not words:
+        return Section("where-c", "Where C is (input uncertainty, not a rung)", (
+            Paragraph("The case gives no outlines."), replace(table, show=False)))
+    return Section("where-c", "Where C is (input uncertainty, not a rung)",
+                   (Paragraph(words), table), toc="Where C is")
+
+
+def _animation(info) -> Section:
+    """The finite-duration scene with PIM's ghost, and a warning of a second impact."""
+    video = Video("assumptions.mp4", "The finite-duration scene (filled) with PIM's answer "
+                  "as a dashed ghost.", frames=info.frames, fps=info.fps, size=info.size)
+    warning = () if info.secondary_impact is None else (
+        Callout("Warning", (f"{info.secondary_impact.message()}.",)),)
+    return Section("animation", "Animation", (video, *warning))
+
+
+def assumptions_document(study: AssumptionStudy, info=None, command: str = "",
+                         units=None) -> Document:
+    """The study as a report: the verdicts first, where C is, the ladder's table (in
+    column groups one screen wide, :data:`ASSUMPTION_GROUPS`), the plots, every scene (CSV),
+    the animation (``info``: what :func:`comparisons.animation.render.write_animation`
+    returned, or None) and the method. No wall times: a document regenerated by
+    ``comparisons.docs_numbers`` holds only what the code gives."""
+    ms = f"{1e3 * study.typical.duration:g} ms"
+    ladder = replace(assumption_table(study, units=units), groups=ASSUMPTION_GROUPS)
+    sections = [
+        Section("verdicts", "Verdicts", (Bullets(tuple(verdicts(study, units))),), keep=True),
+        _where_c(study, units),
+        Section("typical", f"The ladder at {ms} and over the range", (ladder, Paragraph(
+            "eps_eff, beta_eff: what `pim fit` (velocities and yaw rates) needs to reproduce "
+            "the simulated motion; C_eff: the impulse centroid.")), toc="The ladder"),
+        Section("sweeps", "Over contact times, tyre friction and the tangential recovery", (
+            Figure("assumptions.png", alt="the ladder's effects"),
+            Paragraph("Every scene of the study:"), FileList(("assumption_sweeps.csv",)),
+            replace(sweep_table(study, units=units), show=False)), toc="Plots")]
     if info is not None:
-        lines += [f"[assumptions.mp4](assumptions.mp4): the finite-duration scene (filled) "
-                  f"with PIM's answer as a dashed ghost ({info.frames} frames).", ""]
-        if info.secondary_impact is not None:
-            lines += [f"**Warning:** {info.secondary_impact.message()}.", ""]
-    lines += ["Every scene: [assumption_sweeps.csv](assumption_sweeps.csv).", ""]
-    return "\n".join(lines)
+        sections.append(_animation(info))
+    sections.append(Section("method", "Method", (Paragraph(_about(study)),)))
+    return Document(f"{study.case.name or 'case'}: PIM's assumptions one at a time",
+                    "pim assumptions", tuple(sections),
+                    subtitle=f"Regenerate with `{command}`." if command else "",
+                    name="assumptions")
 
 
 def _change_json(c: Change, units) -> dict:

@@ -1,9 +1,11 @@
-"""``pim pulses`` in a table, a plot and Markdown: each figure named fitted or predicted.
+"""The report of ``pim pulses``: each figure named fitted or predicted, as a
+:class:`~comparisons.report.document.Document` (``pulses.md``, ``.html`` and the CSV)
+written with its plot through the one pipeline.
 
 The table (:func:`pulse_table`) says per row whether the contact law's figure agrees by
 construction (fitted to the same test: :func:`comparisons.studies.pulses.roles`) or is a
-prediction; the Markdown (:func:`pulses_markdown`) says the same in words, with the
-predicted figures' errors written from the table.
+prediction; the report (:func:`pulses_document`) leads with the predicted figures' errors
+and says the same in words, written from the table.
 """
 
 from __future__ import annotations
@@ -11,14 +13,14 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from comparisons.report.render import markdown_table
+from comparisons.report.document import Card, Cards, Document, Figure, Paragraph, Section
 from comparisons.report.tables import Table
-from comparisons.report.write import write_table_csv
+from comparisons.report.write import write_document
 from comparisons.studies.pulses import PulseComparison, roles
-from pim.io.files import save_figure, write_text
+from pim.io.files import save_figure
 from pim.io.units import convert
 
-__all__ = ["pulse_table", "plot_pulses", "pulses_markdown", "write_pulses"]
+__all__ = ["pulse_table", "plot_pulses", "pulses_document", "write_pulses"]
 
 _ROWS = (("contact duration (force > 5 % of peak)", "duration", 1e3, "ms"),
          ("peak force", "peak_force", 1e-3, "kN"),
@@ -104,27 +106,46 @@ def _roles_words(c: PulseComparison, table: Table) -> str:
             f"and softens.")
 
 
-def pulses_markdown(c: PulseComparison, table: Table, command: str = "",
-                    units="si") -> str:
-    """The comparison as Markdown (``docs/pulses.md``)."""
+def _answer(c: PulseComparison, table: Table, units) -> Cards:
+    """The key figures: the predicted rows' errors, then the curves' RMS differences."""
+    su = convert(1.0, "speed", units)[1]
+    rms = float(convert(c.delta_v_rms, "speed", units)[0])
+    cards = [Card(f"error in {r[0]}", f"{r[6]:+.0f} %",
+                  f"contact law {r[4]:.3g} {r[2]} against measured {r[3]:.3g} {r[2]}")
+             for r in table.rows if r[1] == "predicted"]
+    return Cards((*cards, Card("RMS difference in force", f"{c.force_rms / 1e3:.0f} kN",
+                               "over the record"),
+                  Card("RMS difference in delta-V", f"{rms:.2f} {su}", "over the record")))
+
+
+def pulses_document(c: PulseComparison, units="si", command: str = "") -> Document:
+    """The comparison as a report (``pulses.md``, ``.html`` and the CSV): the predicted
+    figures' errors first, the table naming each row fitted or predicted, the plot, the
+    source and the law's parameters."""
+    table = pulse_table(c, units)
     speed, su = convert(c.speed, "speed", units)
     rms, _ = convert(c.delta_v_rms, "speed", units)
-    lines = ["# Crash pulse: NHTSA 10146 against the contact law", ""]
-    if command:
-        lines += [f"Regenerate with `{command}`.", ""]
-    lines += [f"Source: {c.source}", "",
-              f"Contact law at the test's speed ({float(speed):.2f} {su}, {c.mass:.0f} kg): "
-              f"linear loading stiffness {c.stiffness / 1e3:.0f} kN/m, restitution "
-              f"{c.eps:.3f}. RMS difference over the record: force {c.force_rms / 1e3:.0f} "
-              f"kN, delta-V {float(rms):.2f} {su}.", "", _roles_words(c, table), "",
-              markdown_table(table), "", "![pulses](pulses.png)", ""]
-    return "\n".join(lines)
+    answer = Section("answer", "The contact law against the test", (
+        _answer(c, table, units), Paragraph(_roles_words(c, table)), table), keep=True)
+    plot = Section("plots", "Force, delta-V and crush", (
+        Figure("pulses.png", alt="force-time, delta-V-time and force-crush, measured "
+                                 "against the contact law"),))
+    about = Section("source", "Source and parameters", (
+        Paragraph(f"Source: {c.source}"),
+        Paragraph(f"Contact law at the test's speed ({float(speed):.2f} {su}, "
+                  f"{c.mass:.0f} kg): linear loading stiffness {c.stiffness / 1e3:.0f} kN/m, "
+                  f"restitution {c.eps:.3f}. RMS difference over the record: force "
+                  f"{c.force_rms / 1e3:.0f} kN, delta-V {float(rms):.2f} {su}.")))
+    return Document("Crash pulse: NHTSA 10146 against the contact law", "pim pulses",
+                    (answer, plot, about), name="pulses",
+                    subtitle=f"Regenerate with `{command}`." if command else "")
 
 
-def write_pulses(c: PulseComparison, folder, units="si", command: str = "") -> list[Path]:
-    """Write pulses.md, pulses-nhtsa10146.csv and pulses.png to ``folder``."""
+def write_pulses(c: PulseComparison, folder, units="si", command: str = "",
+                 html: bool = True) -> list[Path]:
+    """Write pulses.md (first in the list), pulses.html (with ``html``),
+    pulses-nhtsa10146.csv and pulses.png to ``folder``."""
     folder = Path(folder)
-    table = pulse_table(c, units)
     png = save_figure(plot_pulses(c, units), folder / "pulses.png")
-    md = write_text(folder / "pulses.md", pulses_markdown(c, table, command, units))
-    return [md, write_table_csv(table, folder), png]
+    written = write_document(pulses_document(c, units, command), folder, html=html)
+    return [written[-1], *written[:-1], png]

@@ -19,9 +19,11 @@ from comparisons.studies.speed_error import (
     study_table,
 )
 from comparisons.studies.speed_error_compliant import (
+    FIXED_STEP,
     REFERENCE_STEPS,
     CompliantSpeedStudy,
     compliant_table,
+    fixed_step_label,
     plot_compliant_speed_error,
 )
 from pim.io.files import save_figure
@@ -97,32 +99,44 @@ def write_speed_error(study: SpeedErrorStudy, out_dir, stem: str,
     return [written[-1], *written[:-1], png]
 
 
-def compliant_document(study: CompliantSpeedStudy, stem: str, command: str = "") -> Document:
-    """The finite-duration contact's sweep as a report."""
-    lines = []
-    for scene in dict.fromkeys(p.scene for p in study.points):
-        rec = study.recommended(scene)
-        text = (f"**recommended {rec.label}**: error {rec.error:.1e} in "
-                f"{format_number(rec.wall_time * 1e3, sig=3)} ms" if rec
-                else "no run reaches the target")
-        lines.append(f"{scene}: {text}.")
-        for integrator in ("pymunk", "DOP853", "Radau"):
+def _compliant_lines(study: CompliantSpeedStudy) -> tuple[list[str], list[str]]:
+    """(per configuration: the recommended setting; per configuration, integrator and
+    target: the fastest run reaching it)."""
+    recommended, fastest = [], []
+    for name in dict.fromkeys(p.scene for p in study.points):
+        rec = study.recommended(name)
+        recommended.append(f"{name}: " + (
+            f"**recommended {rec.label}**: error {rec.error:.1e} in "
+            f"{format_number(rec.wall_time * 1e3, sig=3)} ms per impact." if rec
+            else "no run reaches the target."))
+        for integrator in (FIXED_STEP[study.engine], "DOP853", "Radau"):
             for target in (1e-3, 1e-6):
-                p = study.fastest(scene, integrator, target)
+                p = study.fastest(name, integrator, target)
                 if p is not None:
-                    lines.append(f"{scene}, {integrator} reaches {target:g} at {p.label}: "
-                                 f"{format_number(p.wall_time * 1e3, sig=3)} ms per impact")
-    intro = (f"Point contact, epsilon = {study.eps:.4g}, k = {study.stiffness:.3g} N/m; "
-             f"pymunk over dt (10 ... 2560 steps per estimated contact time), solve_ivp "
-             f"DOP853 and Radau over rtol, against DOP853 at rtol {study.reference_rtol:g} "
-             f"(the tightest within {REFERENCE_STEPS} steps per scene; it differs from the "
-             f"rung before by {study.reference_spread:.1e}). Whole study: "
-             f"{study.wall_time:.1f} s. Error: the largest error in the impact's velocity "
-             f"changes, relative to the largest change.")
-    blocks = ([Paragraph(f"Regenerate with `{command}`.")] if command else []) + [
-        Paragraph(intro), Bullets(tuple(lines)),
-        Figure(f"speed-error-compliant-{stem}.png", alt="speed against error"),
-        compliant_table(study, f"speed-error-compliant-{stem}")]
+                    fastest.append(f"{name}, {integrator} reaches {target:g} at {p.label}: "
+                                   f"{format_number(p.wall_time * 1e3, sig=3)} ms per impact")
+    return recommended, fastest
+
+
+def compliant_document(study: CompliantSpeedStudy, stem: str, command: str = "") -> Document:
+    """The finite-duration contact's sweep as a report: the recommended setting of each
+    friction configuration first, then the fastest run per integrator, the method, the
+    plot and every run."""
+    recommended, fastest = _compliant_lines(study)
+    intro = (f"Point contact, epsilon = {study.eps:.4g}, k = {study.stiffness:.3g} N/m (the "
+             f"stiffness of a {1e3 * study.contact_time:g} ms contact); the "
+             f"{fixed_step_label(FIXED_STEP[study.engine])} (10 ... 2560 steps per "
+             f"estimated contact time), solve_ivp DOP853 and Radau over rtol, against DOP853 "
+             f"at rtol {study.reference_rtol:g} (the tightest within {REFERENCE_STEPS} steps "
+             f"per configuration; it differs from the rung before by "
+             f"{study.reference_spread:.1e}). Whole study: {study.wall_time:.1f} s. Error: "
+             f"the largest error in the impact's velocity changes, relative to the largest "
+             f"change.")
+    blocks = [Bullets(tuple(recommended)), Bullets(tuple(fastest)),
+              *([Paragraph(f"Regenerate with `{command}`.")] if command else []),
+              Paragraph(intro),
+              Figure(f"speed-error-compliant-{stem}.png", alt="speed against error"),
+              compliant_table(study, f"speed-error-compliant-{stem}")]
     return Document(f"Speed against error of the finite-duration contact: "
                     f"{study.case_name}", "pim speed-error",
                     (Section("study", "The study", tuple(blocks), keep=True),),

@@ -2,8 +2,9 @@
 (:mod:`comparisons.studies.tuned_scene`).
 
 Consumes :class:`comparisons.studies.tuned_scene.ClassStudy` objects; speaks the user's units
-(``units`` "si" or "us" through :func:`pim.io.units.convert`); writes through the report
-blocks (:class:`comparisons.report.tables.Table`, :mod:`pim.io.html`).
+(``units`` "si" or "us" through :func:`pim.io.units.convert`); the report is a
+:class:`~comparisons.report.document.Document` (:func:`tuned_document`) written through the
+one pipeline (:func:`comparisons.report.write.write_document`).
 """
 
 from __future__ import annotations
@@ -13,9 +14,9 @@ from pathlib import Path
 
 import numpy as np
 
-from comparisons.report.render import markdown_table
+from comparisons.report.document import Bullets, Document, Figure, Paragraph, Section
 from comparisons.report.tables import Table
-from comparisons.report.write import write_table_csv
+from comparisons.report.write import write_document
 from comparisons.studies.crash_records import CLASS_KEYS, UNRUNNABLE
 from comparisons.studies.paired_verdict import ALPHA, CONFIDENCE, RESAMPLES, minimum_tests
 from comparisons.studies.tuned_scene import (
@@ -28,19 +29,18 @@ from comparisons.studies.tuned_scene import (
     SCREEN,
     ClassStudy,
 )
-from pim.io import html
 from pim.io.datasets import ORIGIN_KINDS
-from pim.io.files import save_figure, write_text
+from pim.io.files import save_figure
 from pim.io.units import convert, display_units
 
 __all__ = ["KINDS", "median_errors", "predictions_table", "summary_table", "verdict_table",
            "origins_table", "verdict_sentence", "plot_tuned_study", "study_json",
-           "write_tuned_study", "markdown_report", "FILES"]
+           "write_tuned_study", "tuned_document", "FILES"]
 
 KINDS = ("class fit", "leave-one-out")
 #: The files :func:`write_tuned_study` writes, in its order.
-FILES = ("tuned-scene.md", "tuned-scene.html", "tuned-scene-summary.csv",
-         "tuned-scene-verdicts.csv", "tuned-scene-predictions.csv", "tuned-scene.png")
+FILES = ("tuned-scene.md", "tuned-scene.html", "tuned-scene-verdicts.csv",
+         "tuned-scene-summary.csv", "tuned-scene-predictions.csv", "tuned-scene.png")
 _KEY = {name: key for key, name in CLASS_KEYS.items()}
 
 
@@ -165,7 +165,7 @@ def origins_table(studies) -> Table:
             rows.append((st.crash_class, name, text))
         rows.append((st.crash_class, "outcome (fitted and judged)", st.outcome_origin))
     return Table("tuned-scene-origins", "Where each input comes from",
-                 ("class", "input", "origin"), tuple(rows))
+                 ("class", "input", "origin"), tuple(rows), csv=False)
 
 
 def verdict_sentence(study: ClassStudy, variant, units: str = "si") -> str:
@@ -319,49 +319,35 @@ def _method_lines() -> list[str]:
         f"Physical ranges of the fitted scene, flagged outside them: {ranges}."]
 
 
-def markdown_report(studies, units: str = "si", command: str = "") -> str:
-    """tuned-scene.md: verdicts, method, origins and the tables."""
-    lines = ["# The finite-duration scene tuned to crash tests, against PIM", ""]
-    if command:
-        lines += [f"Written by `{command}`; every number below comes from that run.", ""]
-    lines += ["## Verdicts", ""]
-    lines += [f"- {verdict_sentence(st, v, units)}" for st in studies for v in st.variants]
-    lines += [f"- {name}: not run ({why})." for name, why in UNRUNNABLE.items()]
-    lines += ["", "## Method", ""] + [f"- {x}" for x in _method_lines()]
-    lines += ["", "![leave-one-out](tuned-scene.png)", "", "## Verdict statistics", "",
-              markdown_table(verdict_table(studies)), "", "## Class fits and medians", "",
-              markdown_table(summary_table(studies, units)), "", "## Where each input comes "
-              "from", "", markdown_table(origins_table(studies)), "",
-              "Origins: " + "; ".join(f"{k}: {v}" for k, v in ORIGIN_KINDS.items()) + ".", "",
-              "## Coarse scene against a 10x finer one (class parameters)", ""]
+def _verdict_lines(studies, units) -> tuple[str, ...]:
+    return tuple([verdict_sentence(st, v, units) for st in studies for v in st.variants]
+                 + [f"{name}: not run ({why})." for name, why in UNRUNNABLE.items()])
+
+
+def tuned_document(studies, units: str = "si", command: str = "") -> Document:
+    """tuned-scene.md and .html: the verdicts first, then the method, the plot, the verdict
+    statistics, the class fits, the inputs' origins, the coarse scene's check and every
+    prediction."""
     su = _unit(units)
-    lines += [f"- {st.crash_class}: {_speed(st.coarse_check[0], units):.3f} {su}, "
-              f"{math.degrees(st.coarse_check[1]):.2f} deg/s" for st in studies]
-    lines += ["", "## Every prediction", "", markdown_table(predictions_table(studies, units)),
-              ""]
-    return "\n".join(lines)
-
-
-def _html_report(studies, units, png: Path) -> str:
-    tables = (verdict_table(studies), summary_table(studies, units), origins_table(studies),
-              predictions_table(studies, units))
-    body = [html.section("Verdicts", html.bullets(
-        [verdict_sentence(st, v, units) for st in studies for v in st.variants]), id="verdicts"),
-            html.section("Method", html.bullets(_method_lines()), id="method"),
-            html.figure(png, alt="leave-one-out errors, scene against PIM")]
-    for t in tables:
-        cells = [[t.formats.get(c, _plain)(x) for c, x in zip(t.columns, row, strict=True)]
-                 for row in t.rows]
-        body.append(html.section(t.title, html.table(t.columns, cells), id=t.name))
-    return html.page("The tuned scene against PIM", body,
-                     contents=[("verdicts", "Verdicts"), ("method", "Method")]
-                     + [(t.name, t.title) for t in tables])
-
-
-def _plain(x) -> str:
-    if x is None or (isinstance(x, float) and math.isnan(x)):
-        return ""
-    return f"{x:.4g}" if isinstance(x, float) else str(x)
+    head = (Paragraph(f"Written by `{command}`; every number below comes from that run."),) \
+        if command else ()
+    coarse = tuple(f"{st.crash_class}: {_speed(st.coarse_check[0], units):.3f} {su}, "
+                   f"{math.degrees(st.coarse_check[1]):.2f} deg/s" for st in studies)
+    origins = "Origins: " + "; ".join(f"{k}: {v}" for k, v in ORIGIN_KINDS.items()) + "."
+    sections = (
+        Section("verdicts", "Verdicts", (*head, Bullets(_verdict_lines(studies, units))),
+                keep=True),
+        Section("method", "Method", (Bullets(tuple(_method_lines())), Figure(
+            "tuned-scene.png", alt="leave-one-out errors, scene against PIM"))),
+        Section("statistics", "Verdict statistics", (verdict_table(studies),)),
+        Section("fits", "Class fits and medians", (summary_table(studies, units),)),
+        Section("origins", "Where each input comes from",
+                (origins_table(studies), Paragraph(origins))),
+        Section("coarse", "Coarse scene against a 10x finer one (class parameters)",
+                (Bullets(coarse),)),
+        Section("predictions", "Every prediction", (predictions_table(studies, units),)))
+    return Document("The finite-duration scene tuned to crash tests, against PIM",
+                    "pim validate-models", sections, name="tuned-scene")
 
 
 def write_tuned_study(studies, out_dir, units: str = "si", command: str = "") -> list[Path]:
@@ -369,8 +355,5 @@ def write_tuned_study(studies, out_dir, units: str = "si", command: str = "") ->
     and prediction tables as CSV, the plot."""
     out = Path(out_dir)
     png = save_figure(plot_tuned_study(studies, units), out / "tuned-scene.png")
-    md = write_text(out / "tuned-scene.md", markdown_report(studies, units, command))
-    page = write_text(out / "tuned-scene.html", _html_report(studies, units, png))
-    return [md, page, write_table_csv(summary_table(studies, units), out),
-            write_table_csv(verdict_table(studies), out),
-            write_table_csv(predictions_table(studies, units), out), png]
+    written = write_document(tuned_document(studies, units, command), out)
+    return [written[-1], written[-2], *written[:-2], png]

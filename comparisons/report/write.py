@@ -6,6 +6,10 @@ reaches the disk.
 atomically, into a folder the caller owns (usually the temporary folder of
 :func:`pim.io.output.output_folder`, swapped in whole at the end). The figures and videos the
 document shows must already be in that folder.
+
+The generated parts of hand-written pages of docs/ (a block between two markers, its tables
+rendered by :func:`comparisons.report.render.markdown_table`) reach the disk through
+:func:`write_block`.
 """
 
 from __future__ import annotations
@@ -17,7 +21,8 @@ from comparisons.report.html import render_html
 from comparisons.report.render import render_csv, render_markdown, table_csv
 from pim.io.files import write_text
 
-__all__ = ["write_document", "document_files", "write_table_csv"]
+__all__ = ["write_document", "document_files", "write_table_csv", "replace_block",
+           "write_block"]
 
 
 def document_files(doc: Document, html: bool = True) -> list[str]:
@@ -51,3 +56,28 @@ def write_document(doc: Document, folder, html: bool = True) -> list[Path]:
 def write_table_csv(table, folder) -> Path:
     """Write ``folder/NAME.csv``, the table's CSV (:func:`render.table_csv`), atomically."""
     return write_text(Path(folder) / f"{table.name}.csv", table_csv(table))
+
+
+def replace_block(text: str, begin: str, end: str, block: str, where: str = "the text") -> str:
+    """``text`` with its part from the marker ``begin`` to the marker ``end`` (both
+    included) replaced by ``block`` (which holds the markers again).
+
+    Raises
+    ------
+    ValueError
+        ``text`` does not hold each marker exactly once, ``end`` after ``begin``.
+    """
+    if text.count(begin) != 1 or text.count(end) != 1 or text.index(end) < text.index(begin):
+        raise ValueError(f"{where} must hold the generated block's markers once each, "
+                         f"{begin!r} before {end!r}")
+    head, rest = text.split(begin)
+    return head + block + rest.split(end, 1)[1]
+
+
+def write_block(path, begin: str, end: str, block: str, source=None) -> Path:
+    """Write ``path``: the page ``source`` (default ``path`` itself) with its generated
+    block replaced (:func:`replace_block`), atomically. The rest of the page is kept as
+    written."""
+    source = Path(path if source is None else source)
+    text = source.read_text(encoding="utf-8")
+    return write_text(Path(path), replace_block(text, begin, end, block, str(source)))

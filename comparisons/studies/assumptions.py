@@ -268,7 +268,7 @@ def _probe_usable(probe: ConfigRun | None) -> str | None:
 
 
 @dataclass(frozen=True)
-class SceneInputs:
+class SimulationInputs:
     """What one configuration's simulation takes.
 
     Attributes
@@ -289,7 +289,8 @@ class SceneInputs:
     settings: object
 
 
-def scene_inputs(context: Context, config: RungConfig, probe: ConfigRun | None) -> SceneInputs:
+def simulation_inputs(context: Context, config: RungConfig,
+                      probe: ConfigRun | None) -> SimulationInputs:
     """The simulation inputs of ``config`` (``probe`` places a centroid configuration)."""
     case, eps = context.case, context.eps
     where = case if config.point == "C" else contact_case(case, probe)
@@ -303,7 +304,7 @@ def scene_inputs(context: Context, config: RungConfig, probe: ConfigRun | None) 
         mu = STICKING["friction"]
         settings = replace(settings, tangential_recovery=STICKING["recovery"],
                            tangential_stiffness=STICKING["stiffness_ratio"] * k)
-    return SceneInputs(case if config.distributed else where, k, mu, settings)
+    return SimulationInputs(case if config.distributed else where, k, mu, settings)
 
 
 def _unplaced(config: RungConfig, probe: ConfigRun | None) -> ConfigRun | None:
@@ -321,7 +322,7 @@ def simulate_config(job: tuple) -> ConfigRun:
     if unplaced is not None:
         return unplaced
     try:
-        s = scene_inputs(context, config, probe)
+        s = simulation_inputs(context, config, probe)
         r = sim.simulate_compliant(s.case, context.eps, s.stiffness, friction=s.friction,
                                    geometry="outline" if config.distributed else "point",
                                    tyre_friction=config.tyre_friction, settings=s.settings,
@@ -338,11 +339,11 @@ def probe_config(duration: float) -> RungConfig:
 
 
 def _batch_group(context: Context, configs: list, probes: dict) -> dict:
-    """{(geometry, where, contact time, tangential stiffness): [(config, SceneInputs)]}:
+    """{(geometry, where, contact time, tangential stiffness): [(config, SimulationInputs)]}:
     the configurations one compiled call can take (one case, one set of numerics)."""
     groups = {}
     for c in configs:
-        s = scene_inputs(context, c, probes.get(c.duration))
+        s = simulation_inputs(context, c, probes.get(c.duration))
         moved = c.point == "centroid" and not c.distributed
         key = (c.distributed, c.duration if moved else None, s.settings.tangential_stiffness)
         groups.setdefault(key, []).append((c, s))
@@ -350,7 +351,7 @@ def _batch_group(context: Context, configs: list, probes: dict) -> dict:
 
 
 def _run_batch(context: Context, members: list) -> dict:
-    """One compiled call over ``members`` [(config, SceneInputs)] sharing a case."""
+    """One compiled call over ``members`` [(config, SimulationInputs)] sharing a case."""
     eps, (config, first) = context.eps, members[0]
     recovery = [tangential_recovery_default(eps) if s.settings.tangential_recovery is None
                 else s.settings.tangential_recovery for _, s in members]

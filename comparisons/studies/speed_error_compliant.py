@@ -39,26 +39,22 @@ import math
 import sys
 import time
 from dataclasses import dataclass, replace
-from pathlib import Path
 
 import numpy as np
 
 import pim
 import sim
-from comparisons.report.render import markdown_table
 from comparisons.report.tables import Table, fmt_error
-from comparisons.report.write import write_table_csv
 from comparisons.studies.speed_error import ERROR_FLOOR, pareto_front
-from pim.io.files import save_figure, write_text
 from pim.model.numbers import InputError
 from sim.error_measure import impact_error
 from sim.sweep import sweep
 
 __all__ = ["CompliantPoint", "CompliantSpeedStudy", "compliant_sweep", "STEPS", "RTOLS",
            "TARGET", "SCENES", "COARSE", "REFERENCE_RTOLS", "REFERENCE_STEPS", "RUN_BUDGET",
-           "REPEAT_BELOW", "CONTACT_TIME", "ENGINES", "Grid", "SceneJob", "scene_points",
+           "REPEAT_BELOW", "CONTACT_TIME", "ENGINES", "Grid", "SweepJob", "sweep_points",
            "scene_stiffness", "reference_within_budget", "Reference",
-           "plot_compliant_speed_error", "write_compliant_study", "fixed_step_label"]
+           "plot_compliant_speed_error", "fixed_step_label", "FIXED_STEP"]
 
 STEPS = (10, 20, 40, 80, 160, 320, 640, 1280, 2560)
 RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
@@ -372,8 +368,9 @@ COARSE = Grid(steps=(10, 40, 160, 640), rtols=(1e-3, 1e-6, 1e-9), repeats=1)
 
 
 @dataclass(frozen=True)
-class SceneJob:
-    """One scene of the study: its inputs and the grid it is swept over.
+class SweepJob:
+    """One friction configuration of the crush scene swept over the grid: its inputs and
+    the grid (a job for one worker).
 
     Attributes
     ----------
@@ -401,7 +398,7 @@ class SceneJob:
     engine: str
 
 
-def scene_points(job: SceneJob) -> tuple:
+def sweep_points(job: SweepJob) -> tuple:
     """(points, reference) of one scene: its reference, then every integrator's ladder
     (module level, so that the scenes run on a process pool)."""
     g, case = job.grid, job.case
@@ -436,9 +433,9 @@ def compliant_sweep(case: pim.Case, eps: float | None = None, *, grid: Grid = Gr
         eps = case.impact.restitution if case.impact.restitution is not None else 0.3
     eps = sim.contact_law.check_fraction(eps, "eps")
     k = scene_stiffness(case, eps, contact_time)
-    jobs = [SceneJob(case, float(eps), k, scene, mu, grid, engine)
+    jobs = [SweepJob(case, float(eps), k, scene, mu, grid, engine)
             for scene, mu in dict(SCENES if scenes is None else scenes).items()]
-    done = sweep(scene_points, jobs, executor=executor, chunksize=1,
+    done = sweep(sweep_points, jobs, executor=executor, chunksize=1,
                  progress=sys.stderr.isatty() if progress is None else bool(progress),
                  desc=f"compliant {case.name}")
     points = tuple(p for pts, _ in done for p in pts)
@@ -497,39 +494,3 @@ def plot_compliant_speed_error(study: CompliantSpeedStudy):
     axes[0].set_ylabel(f"error against solve_ivp at rtol {study.reference_rtol:g} [-]")
     return fig
 
-
-def write_compliant_study(study: CompliantSpeedStudy, out_dir, stem: str,
-                          command: str = "") -> list[Path]:
-    """Write ``speed-error-compliant-STEM.md``, ``.csv`` and ``.png``."""
-
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    table = compliant_table(study, f"speed-error-compliant-{stem}")
-    png = save_figure(plot_compliant_speed_error(study), out / f"speed-error-compliant-{stem}.png")
-    lines = [f"# Speed against error of the finite-duration contact: {study.case_name}", ""]
-    if command:
-        lines += [f"Regenerate with `{command}`.", ""]
-    lines += [f"Point contact, epsilon = {study.eps:.4g}, k = {study.stiffness:.3g} N/m (the "
-              f"stiffness of a {1e3 * study.contact_time:g} ms contact); the "
-              f"{fixed_step_label(FIXED_STEP[study.engine])} (10 ... 2560 steps per estimated "
-              f"contact time), solve_ivp "
-              f"DOP853 and Radau over rtol, against DOP853 at rtol {study.reference_rtol:g} "
-              f"(the tightest within {REFERENCE_STEPS} steps per scene; it differs from the "
-              f"rung before by {study.reference_spread:.1e}). Whole study: "
-              f"{study.wall_time:.1f} s. Error: the largest error in "
-              f"the impact's velocity changes, relative to the largest change.", ""]
-    for scene in dict.fromkeys(p.scene for p in study.points):
-        rec = study.recommended(scene)
-        text = (f"**recommended {rec.label}**: error {rec.error:.1e} in "
-                f"{rec.wall_time * 1e3:.3g} ms" if rec else "no run reaches the target")
-        lines.append(f"- {scene}: {text}.")
-        for integrator in (FIXED_STEP[study.engine], "DOP853", "Radau"):
-            for target in (1e-3, 1e-6):
-                p = study.fastest(scene, integrator, target)
-                if p is not None:
-                    lines.append(f"  - {integrator} reaches {target:g} at {p.label}: "
-                                 f"{p.wall_time * 1e3:.3g} ms per impact")
-    lines += ["", f"![speed against error](speed-error-compliant-{stem}.png)", "",
-              markdown_table(table), ""]
-    md = write_text(out / f"speed-error-compliant-{stem}.md", "\n".join(lines))
-    return [md, write_table_csv(table, out), png]

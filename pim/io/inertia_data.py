@@ -5,8 +5,8 @@
 1999-01-1336, as tabulated by K. Tse 2020): mass, measured yaw inertia and yaw dynamic index
 D = I_z / (m a b). :func:`dynamic_indices` groups them by :data:`pim.model.inertia.BODIES`;
 :func:`estimate_yaw_inertia` applies :func:`pim.model.inertia.yaw_inertia_estimate` to one
-vehicle of a case file. ``python -m pim.io.inertia_data`` prints the table of
-docs/inertia-estimate.md (a test keeps the two equal).
+vehicle of a case file. ``python -m comparisons.docs inertia-estimate`` writes the table of
+docs/inertia-estimate.md from them (a test keeps the two equal).
 """
 
 from __future__ import annotations
@@ -23,12 +23,10 @@ from ..model.numbers import InputError
 from ..model.quantities import UNCERTAIN
 from .axle_data import SOURCE as AXLE_SOURCE
 from .axle_data import axle_fractions
-from .axle_data import held_out as axle_held_out
 from .units import convert
 
 __all__ = ["InertiaRecord", "DATA_FILE", "SOURCE", "load_inertia_records", "dynamic_indices",
-           "estimate_yaw_inertia", "estimate_notes", "estimate_records", "held_out", "docs_table",
-           "axle_table"]
+           "estimate_yaw_inertia", "estimate_notes", "estimate_records", "held_out"]
 
 DATA_FILE = "nhtsa_lvipd_yaw_dynamic_index.csv"
 #: Short citation of the data, for notes and reports.
@@ -186,39 +184,3 @@ def held_out(body: str) -> tuple[int, int, float]:
         z.append((r.yaw_inertia - index.mean * scale) / (index.predictive_sd * scale))
     z = np.array(z)
     return int(np.sum(np.abs(z) <= 1.96)), len(rows), float(z.std(ddof=1))
-
-
-def docs_table() -> str:
-    """The Markdown table of docs/inertia-estimate.md: each class's index, its scatter and
-    the held-out check (:func:`held_out`)."""
-    lines = ["| body | vehicles | mean D | sd of D | predictive sd | relative (1 sd) | "
-             "held out: within 1.96 sd | sd of held-out z |",
-             "|---|---:|---:|---:|---:|---:|---:|---:|"]
-    for body, d in dynamic_indices().items():
-        inside, n, z_sd = held_out(body)
-        lines.append(f"| {body} | {d.count} | {d.mean:.4f} | {d.sd:.4f} | "
-                     f"{d.predictive_sd:.4f} | {100 * d.relative_sd:.1f} % | "
-                     f"{inside} of {n} ({100 * inside / n:.0f} %) | {z_sd:.2f} |")
-    return "\n".join(lines)
-
-
-def axle_table() -> str:
-    """The Markdown table of the CG position in docs/inertia-estimate.md: each class's a / L
-    (:func:`pim.io.axle_data.axle_fractions`), its scatter and the held-out check
-    (:func:`pim.io.axle_data.held_out`)."""
-    lines = ["| body | vehicles | a / L used | its vehicles | mean a / L | sd | predictive sd "
-             "| held out: within 1.96 sd | sd of held-out z |",
-             "|---|---:|---|---:|---:|---:|---:|---:|---:|"]
-    for body, f in axle_fractions().items():
-        inside, n, z_sd = axle_held_out(body)
-        used = "its own" if f.body == body else "all pooled"
-        lines.append(f"| {body} | {n} | {used} | {f.count} | {f.mean:.4f} | {f.sd:.4f} | "
-                     f"{f.predictive_sd:.4f} | {inside} of {n} ({100 * inside / n:.0f} %) | "
-                     f"{z_sd:.2f} |")
-    return "\n".join(lines)
-
-
-if __name__ == "__main__":  # pragma: no cover - prints the tables of docs/inertia-estimate.md
-    print(docs_table())
-    print()
-    print(axle_table())

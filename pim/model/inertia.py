@@ -15,7 +15,7 @@ them). The index varies from vehicle to vehicle by about 7 % (1 sd) within a cla
 scatter, not the mean's, is what an estimate for one vehicle carries, so its standard
 deviation is the predictive one, ``s sqrt(1 + 1/n)`` (``s`` the class's sample standard
 deviation of D, ``n`` its count). docs/inertia-estimate.md has the figures, written by
-``python -m pim.io.inertia_data``.
+``python -m comparisons.docs inertia-estimate``.
 
 Without the CG's axle position, the CG's fraction of the wheelbase behind the front axle,
 ``f = a / L``, of the vehicle's body class (:class:`AxleFraction`, measured on NHTSA's NCAP

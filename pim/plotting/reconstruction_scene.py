@@ -1,4 +1,4 @@
-"""Scene plot of a reconstruction: impact positions, fitted run-out paths, measured and
+"""Plan view of a reconstruction: impact positions, fitted run-out paths, measured and
 fitted rest positions (with outlines at impact and at rest)."""
 
 from __future__ import annotations
@@ -15,7 +15,8 @@ COLOURS = {1: "tab:blue", 2: "tab:red"}
 
 
 def reconstruction_figure(post: PostImpact, units: str = "si"):
-    """A matplotlib Figure of the reconstructed scene, lengths in ``units``' length unit.
+    """A matplotlib Figure of the reconstruction in plan view, lengths in ``units``' length
+    unit.
 
     Parameters
     ----------

@@ -10,8 +10,8 @@ import pytest
 
 from comparisons import docs_numbers as D
 from comparisons.report.assumptions import assumption_table, input_shift_table, verdicts
-from comparisons.report.pulses import pulse_table, pulses_markdown
-from comparisons.report.render import table_csv
+from comparisons.report.pulses import pulse_table, pulses_document
+from comparisons.report.render import markdown_table, render_markdown, table_csv
 from comparisons.studies.pulses import compare_pulses
 
 
@@ -40,7 +40,7 @@ def test_drift_finds_a_changed_number_or_text_and_passes_the_same():
 def test_pulses_md_and_csv_hold_what_the_code_gives():
     c = compare_pulses()
     table = pulse_table(c)
-    md = pulses_markdown(c, table, command="python -m comparisons.docs_numbers pulses")
+    md = render_markdown(pulses_document(c, command="python -m comparisons.docs_numbers pulses"))
     assert D.drift((D.DOCS / "pulses.md").read_text(), md) == []
     assert _csv_drift((D.DOCS / "pulses-nhtsa10146.csv").read_text(), table_csv(table)) == []
 
@@ -60,6 +60,16 @@ def test_the_contact_model_block_holds_what_the_code_gives(verdict_study):
     text = (D.DOCS / "contact-model.md").read_text()
     committed = D.BEGIN + text.split(D.BEGIN, 1)[1].split(D.END, 1)[0] + D.END
     assert D.drift(committed, D.contact_model_block(verdict_study)) == []
+
+
+def test_the_contact_model_rungs_are_a_typed_table_rendered_by_the_renderer(verdict_study):
+    """The block's table was built by hand (issue 27): now its rows hold the numbers [%]
+    and the one Markdown renderer writes it."""
+    table = D.rung_table(verdict_study)
+    law = dict(zip(table.columns, table.rows[0], strict=True))
+    assert law["rung"] == "law" and isinstance(law["marginal [%]"], float)
+    assert law["marginal [%]"] == 100 * verdict_study.typical.rung("law").marginal
+    assert markdown_table(table) in D.contact_model_block(verdict_study)
 
 
 @pytest.mark.slow

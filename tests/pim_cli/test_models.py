@@ -12,10 +12,24 @@ def test_pulses_command(tmp_path, capsys):
     code = main(["pulses", "--out", str(tmp_path), "--json"])
     assert code == 0
     data = json.loads(capsys.readouterr().out)
-    # main's pulses report (pending for the pipeline: no pulses.html yet)
-    assert {p.split("/")[-1] for p in data["files"]} == {"pulses.md", "pulses-nhtsa10146.csv",
-                                                         "pulses.png"}
+    # issue 27: the one pipeline writes pulses.html too, leading with the answer
+    assert {p.split("/")[-1] for p in data["files"]} == {"pulses.md", "pulses.html",
+                                                         "pulses-nhtsa10146.csv", "pulses.png"}
     assert "pim pulses" in (tmp_path / "pulses.md").read_text()
+    page = (tmp_path / "pulses.html").read_text()
+    peak = next(r for r in data["rows"] if r["quantity"] == "peak force")
+    cards = page.split('<dl class="facts">')[1].split("</dl>")[0]
+    assert "error in peak force" in cards and f"{peak['error [%]']:+.0f} %" in cards
+    assert page.index('<dl class="facts">') < page.index('id="table-pulses-nhtsa10146"')
+
+
+def test_pulses_speaks_the_chosen_speed_unit(tmp_path, capsys):
+    assert main(["pulses", "--out", str(tmp_path), "--units", "us"]) == 0
+    page = (tmp_path / "pulses.html").read_text()
+    assert "mph" in page.split('<dl class="facts">')[1].split("</dl>")[0]
+    md = (tmp_path / "pulses.md").read_text()
+    assert "| rebound speed | fitted: eps from this test's rebound | mph |" in md
+    assert "| km/h |" not in md
 
 
 def test_pulses_rejects_a_bad_restitution(tmp_path):
@@ -55,6 +69,9 @@ def test_validate_models_json_reports_verdicts_p_values_and_medians(tmp_path, ca
     assert data["classes"]["car-to-car"]["outcome_origin"] == "PIM analysis output"
     assert {p.split("/")[-1] for p in data["files"]} >= {"tuned-scene.md", "tuned-scene.html"}
     assert "--class ricsac" in (out / "tuned-scene.md").read_text()
+    page = (out / "tuned-scene.html").read_text()                 # issue 27: the pipeline's
+    assert page.index('<section id="verdicts"') < page.index("too few tests to decide") \
+        < page.index('<section id="method"')
 
 
 def test_validate_models_prints_the_wall_time(tmp_path):

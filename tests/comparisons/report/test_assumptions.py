@@ -126,6 +126,16 @@ def test_tables_plots_and_files(ricsac9, tmp_path):
     page = (tmp_path / "assumptions.html").read_text()
     assert len(re.findall(r'<table id="table-assumptions-\d"', page)) == 5   # split
     assert page.count("data:image/png;base64,") == 1 and "<video" not in page
+    # issue 27: the page comes from the one pipeline and leads with the verdicts
+    assert '<meta name="generator" content="pim assumptions">' in page
+    first = R.verdicts(ricsac9)[0]
+    assert "replaced by the crush hysteresis" in first
+    assert page.index('<section id="verdicts"') < page.index("replaced by the crush hyst") \
+        < page.index('<section id="where-c"') < page.index('id="table-assumptions-1"') \
+        < page.index('<section id="method"')
+    assert 'id="table-where_c"' in page and "assumption_sweeps.csv" in page
+    assert "id=\"table-assumption_sweeps" not in page          # every scene: CSV only
+    assert text.index("## Verdicts") < text.index("## Where C is") < text.index("## Method")
 
 
 def test_json_has_every_rung_in_physical_terms(ricsac9):

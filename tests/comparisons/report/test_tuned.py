@@ -83,3 +83,24 @@ def test_tables_and_files(tmp_path):
     md = files[0].read_text()
     assert "pim validate-models" in md and "iihs-car-to-car: not run" in md
     assert "Wilcoxon" in md and "<table" in files[1].read_text()
+
+
+def test_the_page_leads_with_the_verdicts(tmp_path):
+    """Issue 27: tuned-scene.html was built by its own HTML code (no generator, no notes,
+    tables without ids); now the pipeline writes it, the verdicts first, each table with its
+    id and CSV, the plot inline."""
+    st = _study([1.0, 2.0, 3.0, 1.5, 2.5, 1.2, 0.9], [0.5, 1.0, 1.5, 0.7, 1.2, 0.6, 0.4])
+    R.write_tuned_study([st], tmp_path, "us", "pim validate-models")
+    page = (tmp_path / "tuned-scene.html").read_text()
+    assert page.startswith("<!DOCTYPE html>")
+    assert '<meta name="generator" content="pim validate-models">' in page
+    first = page.index('<section id="verdicts"')
+    assert first < page.index('<section id="method"') < page.index('id="table-tuned-scene-')
+    verdict = R.verdict_sentence(st, st.variants[0], "us")
+    assert page.index("the scene predicts better", first) < page.index('id="method"')
+    assert "mph" in verdict and verdict.split(":")[0] in page
+    for name in ("verdicts", "summary", "predictions"):
+        assert f'id="table-tuned-scene-{name}"' in page and f"tuned-scene-{name}.csv" in page
+    assert page.count("data:image/png;base64,") == 1
+    md = (tmp_path / "tuned-scene.md").read_text()
+    assert md.index("## Verdicts") < md.index("## Method") < md.index("## Every prediction")

@@ -7,6 +7,7 @@ import pytest
 
 import pim
 import sim
+from comparisons.report.speed_error import write_compliant
 from comparisons.studies import speed_error_compliant as S
 from pim.io.casefile import load_case
 
@@ -34,9 +35,14 @@ def test_pareto_front_and_recommendation(study, tmp_path):
                for a, b in zip(front, front[1:], strict=False))
     rec = study.recommended("frictionless")
     assert rec is not None and rec.error <= S.TARGET and rec in front
-    files = S.write_compliant_study(study, tmp_path, "ricsac9")
+    files = write_compliant(study, tmp_path, "ricsac9")
     assert all(f.exists() for f in files)
     assert "recommended" in files[0].read_text()
+    page = (tmp_path / "speed-error-compliant-ricsac9.html").read_text()
+    assert '<meta name="generator" content="pim speed-error">' in page
+    # the page leads with the recommendation, before the method and the table
+    assert page.index(f"recommended {rec.label}") < page.index("Point contact, epsilon") \
+        < page.index('id="table-speed-error-compliant-ricsac9"')
 
 
 PICKUP = Path(__file__).resolve().parents[2] / "data" / "pickup-into-sedan-side.toml"

@@ -2,15 +2,11 @@
 their transcriber published, and the yaw dynamic index's estimate against the measured
 vehicles it did not see (leave one out)."""
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 from scipy.stats import binom
 
 from pim.io.inertia_data import (
-    axle_table,
-    docs_table,
     dynamic_indices,
     estimate_yaw_inertia,
     held_out,
@@ -19,7 +15,6 @@ from pim.io.inertia_data import (
 from pim.model.inertia import BODIES, dynamic_index, yaw_inertia_estimate
 from pim.model.numbers import InputError
 
-DOCS = Path(__file__).resolve().parents[3] / "docs"
 CARS, TRUCKS = BODIES["car"], BODIES["suv"] + BODIES["pickup"] + BODIES["van"]
 
 
@@ -126,7 +121,3 @@ def test_estimate_yaw_inertia_records_its_provenance():
     with pytest.raises(InputError, match=r"vehicle1\.body must be one of"):
         estimate_yaw_inertia(1500.0, 2.7, None, "truck", "vehicle1")
 
-
-def test_committed_doc_has_the_table_the_code_gives():
-    assert docs_table() in (DOCS / "inertia-estimate.md").read_text()
-    assert axle_table() in (DOCS / "inertia-estimate.md").read_text()

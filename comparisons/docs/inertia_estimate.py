@@ -1,0 +1,85 @@
+"""The tables of docs/inertia-estimate.md, written by ``python -m comparisons.docs
+inertia-estimate``: each body class's yaw dynamic index, its scatter and the held-out check
+(NHTSA's measured yaw inertias, :mod:`pim.io.inertia_data`), and each class's CG position
+a / L with the same checks (NHTSA's NCAP 2004 measurements, :mod:`pim.io.axle_data`).
+
+Each table sits between its markers in docs/inertia-estimate.md (:data:`BEGIN` / :data:`END`
+and :data:`AXLE_BEGIN` / :data:`AXLE_END`; the rest of the page is prose); each is a
+:class:`~comparisons.report.tables.Table` rendered by the one Markdown renderer and written
+by :func:`comparisons.report.write.write_block`. A test fails when the page differs from
+what the code gives.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from comparisons.report.render import markdown_table
+from comparisons.report.tables import Num, Table
+from comparisons.report.write import write_block
+from pim.io.axle_data import axle_fractions
+from pim.io.axle_data import held_out as axle_held_out
+from pim.io.inertia_data import dynamic_indices, held_out
+
+__all__ = ["COMMAND", "BEGIN", "END", "AXLE_BEGIN", "AXLE_END", "PAGE", "index_table",
+           "axle_table", "block", "axle_block", "regenerate"]
+
+COMMAND = "python -m comparisons.docs inertia-estimate"
+BEGIN = (f"<!-- inertia-estimate: begin (written by `{COMMAND}`; edit "
+         "comparisons/docs/inertia_estimate.py, not this table) -->")
+END = "<!-- inertia-estimate: end -->"
+AXLE_BEGIN = (f"<!-- cg-position: begin (written by `{COMMAND}`; edit "
+              "comparisons/docs/inertia_estimate.py, not this table) -->")
+AXLE_END = "<!-- cg-position: end -->"
+#: The page of docs/ that holds the table.
+PAGE = "inertia-estimate.md"
+
+
+def index_table() -> Table:
+    """Per body class: vehicles, the mean yaw dynamic index D, its sd, the predictive sd,
+    the relative sd, and how many held-out vehicles lie within 1.96 predictive sd
+    (:func:`pim.io.inertia_data.held_out`) with the sd of their standardised errors."""
+    rows = []
+    for body, d in dynamic_indices().items():
+        inside, n, z_sd = held_out(body)
+        rows.append((body, d.count, Num(d.mean, 4), Num(d.sd, 4), Num(d.predictive_sd, 4),
+                     Num(100 * d.relative_sd, 1), inside, Num(100 * inside / n, 0),
+                     Num(z_sd, 2)))
+    return Table("inertia-estimate", "The yaw dynamic index per body class",
+                 ("body", "vehicles", "mean D [-]", "sd of D [-]", "predictive sd [-]",
+                  "relative (1 sd) [%]", "held out: within 1.96 sd", "held out: within [%]",
+                  "sd of held-out z [-]"), tuple(rows), csv=False)
+
+
+def axle_table() -> Table:
+    """Per body class: vehicles, which a / L it uses (its own, or all pooled below
+    :data:`pim.io.axle_data.MIN_COUNT`), the mean a / L, its sd and predictive sd, and how
+    many held-out vehicles lie within 1.96 predictive sd (:func:`pim.io.axle_data.held_out`)
+    with the sd of their standardised errors."""
+    rows = []
+    for body, f in axle_fractions().items():
+        inside, n, z_sd = axle_held_out(body)
+        rows.append((body, n, "its own" if f.body == body else "all pooled", f.count,
+                     Num(f.mean, 4), Num(f.sd, 4), Num(f.predictive_sd, 4), inside,
+                     Num(100 * inside / n, 0), Num(z_sd, 2)))
+    return Table("cg-position", "The CG's axle position a / L per body class",
+                 ("body", "vehicles", "a / L used", "its vehicles", "mean a / L [-]",
+                  "sd [-]", "predictive sd [-]", "held out: within 1.96 sd",
+                  "held out: within [%]", "sd of held-out z [-]"), tuple(rows), csv=False)
+
+
+def axle_block() -> str:
+    """The generated CG-position block of docs/inertia-estimate.md, markers included."""
+    return "\n".join([AXLE_BEGIN, "", markdown_table(axle_table()), "", AXLE_END])
+
+
+def block() -> str:
+    """The generated block of docs/inertia-estimate.md, markers included."""
+    return "\n".join([BEGIN, "", markdown_table(index_table()), "", END])
+
+
+def regenerate(docs_dir) -> list[Path]:
+    """Rewrite the tables of ``docs_dir/inertia-estimate.md`` (each between its markers)."""
+    page = Path(docs_dir) / PAGE
+    write_block(page, BEGIN, END, block())
+    return [write_block(page, AXLE_BEGIN, AXLE_END, axle_block())]
