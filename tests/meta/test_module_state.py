@@ -6,8 +6,8 @@ statement, and no function that mutates a module-level list, dict, set (or
 ``collections`` container) bound at module level, by a mutating method (``append``,
 ``update``, ``clear`` ...), an item assignment or deletion, or an augmented assignment to
 an item, or an assignment to an attribute of a module-level object (``_STATE.x = 1``,
-``setattr(_STATE, "x", 1)``). What a run must remember lives in an object its caller holds (e.g. the run's
-:class:`pim.io.process.Interrupts`), and what is computed once per process in
+``setattr(_STATE, "x", 1)``). What a run must remember lives in an object its caller holds,
+and what is computed once per process in
 ``functools.cache`` (or ``functools.lru_cache``: the compiled scene keeps its last four
 case set-ups so, keyed by the case's identity).
 
