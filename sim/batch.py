@@ -72,7 +72,7 @@ def _coefficient(value, name: str, count: int) -> list:
     return [float(x) for x in arr]
 
 
-def simulate_many(cases: pim.Case | Sequence[pim.Case], eps=None, beta=None,
+def simulate_many(cases: pim.Case | Sequence[pim.Case], eps=None, beta=None, *,
                   settings: Settings | None = None, executor="serial",
                   chunksize: int | None = None, max_workers: int | None = None,
                   progress: bool = False, record: bool = False) -> BatchResult:

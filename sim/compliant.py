@@ -238,8 +238,8 @@ def _row(t: float, b1, b2) -> tuple:
 
 def _check_approach(problem: CompliantProblem, state: np.ndarray) -> None:
     """The point contact must start with the vehicles approaching at C."""
-    *_, slip_n, _ = point_contact(problem, state[0:2], state[2], state[3:5], state[5],
-                                  state[6:8], state[8], state[9:11], state[11])
+    *_, slip_n, _ = point_contact(problem, (state[0:2], state[2], state[3:5], state[5],
+                                            state[6:8], state[8], state[9:11], state[11]))
     if not slip_n < 0.0:
         raise SimulationError("no_contact", f"no contact: the vehicles do not approach at "
                               f"C (u_n = {speed_text(slip_n, '.6g')} >= 0)", 0)
@@ -454,10 +454,11 @@ def simulate_compliant(case: pim.Case, eps, stiffness=None, friction=0.0, geomet
         raise InputError(f"engine must be one of {ENGINES}, got {engine!r}")
     extra = dict(tyre_mode=tyre_mode, preload=preload, tangential_recovery=tangential_recovery)
     return simulate_pymunk(_one_problem(case, eps, stiffness, friction, geometry,
-                                        tyre_friction, settings, extra, contact_time))
+                                        tyre_friction, settings, extra=extra,
+                                        contact_time=contact_time))
 
 
-def _one_problem(case, eps, stiffness, friction, geometry, tyre_friction, settings, extra,
+def _one_problem(case, eps, stiffness, friction, geometry, tyre_friction, settings, *, extra,
                  contact_time) -> CompliantProblem:
     """The single scene of ``engine="pymunk"``: the settings with the given contact inputs
     (``extra``), the stiffness from ``contact_time`` when that is given."""

@@ -11,8 +11,9 @@ raise ValueError naming the field.
 
 from __future__ import annotations
 
+import functools
+import math
 import time
-from collections import OrderedDict
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -343,28 +344,47 @@ def _law(inputs: dict, arrays: dict, shape: tuple, settings: CompliantSettings) 
 
 #: Scenes up to this many keep their case's setup for the next call (:func:`_setup`).
 CACHE_SCENES = 65536
-_SETUP_CACHE: OrderedDict = OrderedDict()
+
+
+class _SameCase:
+    """A case as a cache key, equal only to itself (a Case holds arrays: it has no value
+    hash); the key holds the case, so its identity is not reused while it is kept."""
+
+    __slots__ = ("case",)
+
+    def __init__(self, case: pim.Case):
+        self.case = case
+
+    def __hash__(self) -> int:
+        return id(self.case)
+
+    def __eq__(self, other) -> bool:
+        return isinstance(other, _SameCase) and other.case is self.case
 
 
 def _setup(case: pim.Case, shape: tuple, gravity: float) -> dict:
     """:func:`sim.compliant_setup.setup_arrays` with its :func:`sim.compliant_setup.case_rows`
-    (``"rows"``), kept for the last 4 (case, shape, gravity)
-    of at most :data:`CACHE_SCENES` scenes: a fit that calls again and again with one case
-    and new contact inputs sets the case up once. A Case is immutable (frozen), so the
-    arrays stay valid; the cache holds the case itself, so its identity is not reused."""
-    key = (id(case), shape, gravity)
-    hit = _SETUP_CACHE.get(key)
-    if hit is not None and hit[0] is case:
-        _SETUP_CACHE.move_to_end(key)
-        return hit[1]
+    (``"rows"``), kept for the last 4 (case, shape, gravity) of at most :data:`CACHE_SCENES`
+    scenes (:func:`_kept_setup`): a fit that calls again and again with one case and new
+    contact inputs sets the case up once."""
+    if math.prod(shape) <= CACHE_SCENES:
+        return _kept_setup(_SameCase(case), shape, gravity)
+    return _fresh_setup(case, shape, gravity)
+
+
+def _fresh_setup(case: pim.Case, shape: tuple, gravity: float) -> dict:
     arrays = setup_arrays(case, shape, gravity)
     arrays["rows"] = case_rows(arrays)
-    if arrays["mass1"].shape[0] <= CACHE_SCENES:
-        for value in arrays.values():
-            value.flags.writeable = False
-        _SETUP_CACHE[key] = (case, arrays)
-        while len(_SETUP_CACHE) > 4:
-            _SETUP_CACHE.popitem(last=False)
+    return arrays
+
+
+@functools.lru_cache(maxsize=4)
+def _kept_setup(key: _SameCase, shape: tuple, gravity: float) -> dict:
+    """:func:`_fresh_setup` of ``key.case``, read-only, for the last 4 keys (a Case is
+    immutable (frozen), so the arrays stay valid)."""
+    arrays = _fresh_setup(key.case, shape, gravity)
+    for value in arrays.values():
+        value.flags.writeable = False
     return arrays
 
 
@@ -380,17 +400,14 @@ def _check_geometry(case: pim.Case, geometry: str) -> None:
             raise InputError("geometry='outline' needs vehicle2.length and vehicle2.width")
 
 
-_KERNEL: list = []
 _DEFAULT_SETTINGS = CompliantSettings()
 
 
 def _integrate():
     """:func:`sim.compliant_kernel.integrate`, imported on first use (numba: the kernel is
     compiled, or loaded from numba's cache, then; never on ``import sim``)."""
-    if not _KERNEL:
-        from .compliant_kernel import integrate
-        _KERNEL.append(integrate)
-    return _KERNEL[0]
+    from .compliant_kernel import integrate
+    return integrate
 
 
 def simulate_batch(case: pim.Case, eps, stiffness=None, friction=0.0, geometry="point",

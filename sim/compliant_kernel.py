@@ -178,17 +178,13 @@ SIGNATURE = (_C2, types.Array(types.float64, 2, "C", readonly=True), _C2,
 SERIAL_BELOW = 32
 
 
-_READY: list = []
-
-
 def _ready(dispatcher):
     """``dispatcher`` compiled for :data:`SIGNATURE` only (from numba's cache when it holds
-    it), on first use; later calls never compile again."""
-    if dispatcher not in _READY:
-        if SIGNATURE not in dispatcher.overloads:
-            dispatcher.compile(SIGNATURE)
-            dispatcher.disable_compile()
-        _READY.append(dispatcher)
+    it), on first use; later calls never compile again (the signature is then among its
+    overloads)."""
+    if SIGNATURE not in dispatcher.overloads:
+        dispatcher.compile(SIGNATURE)
+        dispatcher.disable_compile()
     return dispatcher
 
 

@@ -523,10 +523,17 @@ def parameter_rows(arrays: dict, law: dict, rows: np.ndarray | None = None) -> n
     return par
 
 
-def point_contact(problem: CompliantProblem, position1, angle1, velocity1, yaw_rate1,
-                  position2, angle2, velocity2, yaw_rate2):
+def point_contact(problem: CompliantProblem, kin: tuple):
     """Kinematics of the point contact (module notes) at one state
     (:func:`sim.compliant_formula.point_contact`).
+
+    Parameters
+    ----------
+    problem : CompliantProblem
+        The scene.
+    kin : tuple
+        Both vehicles' state, ``(position1, angle1, velocity1, yaw_rate1, position2, angle2,
+        velocity2, yaw_rate2)`` [m, rad, m/s, rad/s].
 
     Returns
     -------
@@ -539,6 +546,7 @@ def point_contact(problem: CompliantProblem, position1, angle1, velocity1, yaw_r
     slip_n, slip_t : float
         v_rel . n (= -d delta / dt) and v_rel . t [m/s].
     """
+    position1, angle1, velocity1, yaw_rate1, position2, angle2, velocity2, yaw_rate2 = kin
     a1, a2, n2 = problem.arm1_body, problem.arm2_body, problem.normal2_body
     angle1, angle2 = float(angle1), float(angle2)
     px, py, nx, ny, delta, slip_n, slip_t = formula.point_contact(

@@ -72,8 +72,7 @@ class _Model:
         self.cone = (0.0, 0.0)   # (k_t |z| - mu F_n, mode v_t - dz_max/dt) at the last call
 
     def contact(self, y):
-        x1, a1, v1, w1, x2, a2, v2, w2 = _unpack(y)
-        return point_contact(self.p, x1, a1, v1, w1, x2, a2, v2, w2)
+        return point_contact(self.p, _unpack(y))
 
     def forces(self, y):
         p = self.p
@@ -370,12 +369,12 @@ def reference_compliant(case: pim.Case, eps, stiffness, friction=0.0, geometry="
                               f"(u_n = {speed_text(slip_n, '.6g')} >= 0)", 0)
     y, t0, impulse, steps, pieces, stick_time, directions = _integrate(model, y)
     return _reference_result(model, y, t0, impulse, steps, pieces, stick_time,
-                             reversal(np.sign(slip_t0), model.contact(y)[5],
-                                      problem.speed_scale, directions),
-                             time.perf_counter() - wall)
+                             slip_reversed=reversal(np.sign(slip_t0), model.contact(y)[5],
+                                                    problem.speed_scale, directions),
+                             wall=time.perf_counter() - wall)
 
 
-def _reference_result(model: _Model, y, t0, impulse, steps, pieces, stick_time,
+def _reference_result(model: _Model, y, t0, impulse, steps, pieces, stick_time, *,
                       slip_reversed, wall) -> CompliantResult:
     problem, s = model.p, model.p.settings
     v1, w1 = y[3:5].copy(), float(y[5])

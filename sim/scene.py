@@ -201,10 +201,12 @@ def _local(vehicle: pim.Vehicle, world) -> tuple[float, float]:
     return float(p[0]), float(p[1])
 
 
-def _contact_shapes(case: pim.Case, body1: pymunk.Body, body2: pymunk.Body, point, n, t, u,
-                    lead: float, settings: Settings, eps: float, friction: float) -> list:
+def _contact_shapes(case: pim.Case, body1: pymunk.Body, body2: pymunk.Body, *, point, n, t,
+                    u, lead: float, settings: Settings, eps: float, friction: float) -> list:
     """The contact shapes (a point: a circle on 1 and a segment on 2; an outline: the two
-    boxes or a barrier face), with their collision types, restitution and friction."""
+    boxes or a barrier face), with their collision types, restitution and friction: C at
+    ``point`` with the normal ``n`` and tangent ``t``, the approach velocity ``u``, the
+    bodies ``lead`` [s] before the impact."""
     v1, v2 = case.vehicle1, case.vehicle2
     fixed2 = bool(v2.fixed)
     shapes = []
@@ -297,7 +299,8 @@ def build_scene(case: pim.Case, eps=None, beta=None, settings: Settings | None =
     speed_scale = max(float(np.hypot(*u)), float(np.hypot(*np.asarray(v1.velocity).reshape(2))),
                       0.0 if fixed2 else float(np.hypot(*np.asarray(v2.velocity).reshape(2))),
                       1e-6)
-    shapes = _contact_shapes(case, body1, body2, point, n, t, u, lead, settings, eps, friction)
+    shapes = _contact_shapes(case, body1, body2, point=point, n=n, t=t, u=u, lead=lead,
+                             settings=settings, eps=eps, friction=friction)
     space.add(body1, body2, *shapes)
 
     return Scene(space=space, body1=body1, body2=body2, contact_shapes=shapes, fixed2=fixed2,

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 import time as _time
-from dataclasses import dataclass
+from dataclasses import dataclass, fields, replace
 from pathlib import Path
 
 import numpy as np
@@ -33,8 +33,8 @@ from pim.io.units import convert
 from pim.model.geometry import outline_corners
 from pim.model.numbers import InputError, checked_number
 
-__all__ = ["AnimationInfo", "Renderer", "build_renderer", "frame_times", "simulate_for_animation",
-           "animation_settings",
+__all__ = ["AnimationInfo", "Renderer", "Framing", "build_renderer", "frame_times",
+           "simulate_for_animation", "animation_settings",
            "write_animation", "animate_case", "DEFAULT_SIZE", "DEFAULT_FPS", "MAX_SHOWN"]
 
 DEFAULT_SIZE = (960, 720)
@@ -120,6 +120,28 @@ def _place(corners: np.ndarray, position: np.ndarray, angle: np.ndarray) -> np.n
 
 
 @dataclass(frozen=True)
+class Framing:
+    """Which stretch of a collision an animation shows, and its frames.
+
+    Attributes
+    ----------
+    before : float or None
+        Seconds shown before the impact (None: about 1.2 vehicle lengths of travel).
+    after : float
+        Seconds shown after the impact.
+    fps : int
+        Frames per second.
+    size : (int, int)
+        Frame width and height [px], both even.
+    """
+
+    before: float | None = None
+    after: float = DEFAULT_AFTER
+    fps: int = DEFAULT_FPS
+    size: tuple = DEFAULT_SIZE
+
+
+@dataclass(frozen=True)
 class AnimationInfo:
     """What :func:`write_animation` wrote and how fast.
 
@@ -189,7 +211,7 @@ class Renderer:
     TOP, BOTTOM, MARGIN = 54, 46, 24
 
     def __init__(self, case: pim.Case, result: pim.Result, simulated: Motion,
-                 ghost: Motion | None, impulse, size=DEFAULT_SIZE, title: str = "",
+                 ghost: Motion | None, impulse, *, size=DEFAULT_SIZE, title: str = "",
                  units: str = "si", secondary=None) -> None:
         width, height = (int(s) for s in size)
         if width % 2 or height % 2 or width < 160 or height < 160:
@@ -497,10 +519,10 @@ def write_animation(renderer: Renderer, path, fps: int = DEFAULT_FPS, gif=None,
                          secondary_impact=renderer.secondary)
 
 
-def build_renderer(case: pim.Case, eps: float, beta: float, *, before: float | None = None,
-                   after: float = DEFAULT_AFTER, fps: int = DEFAULT_FPS, tyre: float = 0.0,
-                   ghost: bool = True, size=DEFAULT_SIZE, result: pim.Result | None = None,
-                   simulated=None, units: str = "si", title: str | None = None) -> Renderer:
+def build_renderer(case: pim.Case, eps: float, beta: float, *,
+                   framing: Framing | None = None, tyre: float = 0.0, ghost: bool = True,
+                   result: pim.Result | None = None, simulated=None, units: str = "si",
+                   title: str | None = None, **options) -> Renderer:
     """Simulate (unless ``simulated`` is given) and prepare the frames of one collision.
 
     Parameters
@@ -509,19 +531,15 @@ def build_renderer(case: pim.Case, eps: float, beta: float, *, before: float | N
         The single case.
     eps, beta : float
         Restitution and fraction of mu0 [-].
-    before, after : float
-        Seconds shown before and after the impact (before: automatic, about 1.2 vehicle
-        lengths of travel).
-    fps : int
-        Frames per second.
+    framing : Framing, optional
+        The seconds shown before and after the impact, the frames per second and the frame
+        size (default ``Framing()``).
     tyre : float
         Tyre/ground friction coefficient after the impact [-] (0: none, the default, so that
         simulation and ghost follow the same free motion); the ghost then decelerates with
         the same model.
     ghost : bool
         Draw PIM's answer as a ghost.
-    size : (int, int)
-        Frame size [px].
     result : pim.Result, optional
         ``pim.solve(case, eps, beta)`` if at hand.
     simulated : sim.SimResult or sim.CompliantResult, optional
@@ -530,10 +548,15 @@ def build_renderer(case: pim.Case, eps: float, beta: float, *, before: float | N
         Units of the grid and scale bar (m or ft).
     title : str, optional
         Caption's first line (default: case, epsilon, beta, tyre friction).
+    **options
+        Any field of :class:`Framing` by name (``before``, ``after`` [s], ``fps``,
+        ``size``), overriding ``framing``'s.
 
     A secondary impact after separation (:func:`sim.find_secondary_impact`) is marked in
     the frames and reported in the returned renderer's ``secondary``.
     """
+    framing = _framing(framing, options)
+    before, after, fps = framing.before, framing.after, framing.fps
     after = checked_number(after, "after", low=0.0, high=MAX_SHOWN, unit="s")
     if before is not None:
         before = checked_number(before, "before", low=0.0, high=MAX_SHOWN, unit="s")
@@ -551,8 +574,19 @@ def build_renderer(case: pim.Case, eps: float, beta: float, *, before: float | N
         title = (f"{case.name or 'case'}:  epsilon = {eps:.4g},  beta = {beta:.4g}"
                  + (f",  tyre friction {tyre:g}" if tyre else ",  no tyre friction after impact"))
     secondary = sim.find_secondary_impact(simulated.trajectory)
-    return Renderer(case, result, sim_motion, ghost_motion, simulated.impulse, size, title,
-                    units, secondary)
+    return Renderer(case, result, sim_motion, ghost_motion, simulated.impulse,
+                    size=framing.size, title=title, units=units, secondary=secondary)
+
+
+def _framing(framing: Framing | None, options: dict) -> Framing:
+    """``framing`` (default ``Framing()``) with the fields named in ``options`` replaced."""
+    names = [f.name for f in fields(Framing)]
+    unknown = sorted(set(options) - set(names))
+    if unknown:
+        raise InputError(f"build_renderer got unknown option(s) {', '.join(unknown)}; "
+                         f"allowed: framing, tyre, ghost, result, simulated, units, title, "
+                         f"{', '.join(names)}")
+    return replace(framing or Framing(), **options)
 
 
 def animate_case(case: pim.Case, eps: float, beta: float, out, *, gif=None,

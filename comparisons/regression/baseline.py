@@ -425,8 +425,9 @@ def _compare(case: str, name: str, q: dict, now: float | None, exact: bool,
         diff = now - old
         if abs(diff) <= tol:
             return None
-    return Drift(case, name, old, now, diff, tol, q.get("unit", SI_UNITS[q["kind"]]),
-                 q["kind"], against)
+    return Drift(case=case, quantity=name, baseline=old, now=now, difference=diff,
+                 tolerance=tol, unit=q.get("unit", SI_UNITS[q["kind"]]), kind=q["kind"],
+                 against=against)
 
 
 def _compare_reference(case: str, name: str, ref: dict, now: float | None) -> Drift | None:
@@ -437,8 +438,10 @@ def _compare_reference(case: str, name: str, ref: dict, now: float | None) -> Dr
     ok = now is not None and (now >= limit if bound == "at_least" else now <= limit)
     if ok:
         return None
-    return Drift(case, name, limit, now, None if now is None else now - limit, 0.0,
-                 ref["unit"], ref["kind"], f"{bound.replace('_', ' ')}: {ref['source']}")
+    return Drift(case=case, quantity=name, baseline=limit, now=now,
+                 difference=None if now is None else now - limit, tolerance=0.0,
+                 unit=ref["unit"], kind=ref["kind"],
+                 against=f"{bound.replace('_', ' ')}: {ref['source']}")
 
 
 def _rerun(entry: dict, loaded: pim.Case, report: CheckReport, shown: str) -> dict:

@@ -38,6 +38,7 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field, replace
+from dataclasses import fields as dataclass_fields
 from pathlib import Path
 
 import numpy as np
@@ -72,6 +73,7 @@ from pim.analysis.residuals import has_measured_terms
 from pim.io.files import save_figure
 from pim.io.output import ignore_interrupts, output_folder, rebase, stop_workers
 from pim.io.units import convert, display_units, quantity_text
+from pim.model.numbers import InputError
 from pim.model.plausibility import findings
 from pim.plotting.sheet import write_plots
 from sim.error_measure import KIND_OF_UNIT, compare_results, impact_error
@@ -161,12 +163,14 @@ def _coefficient_sources(case, eps, beta) -> tuple[float, float, dict, object]:
 
 @dataclass(frozen=True)
 class CompareOptions:
-    """What :func:`compare_case` includes and how (its keyword arguments, detailed there).
+    """What :func:`compare_case` includes and how (each field also a keyword of it).
 
     Attributes
     ----------
     eps, beta : float or None
-        Restitution and friction coefficients [-] to use instead of fitting (None: fit).
+        Restitution and friction coefficients [-] to use instead of fitting (None: fit);
+        both given: no fit even when the case has measurements (one given: the other is
+        fitted when the case has measurements).
     gif : bool
         Also write animation.gif.
     animation, speed_error : bool
@@ -174,20 +178,23 @@ class CompareOptions:
     tyre : float
         Tyre friction coefficient [-] after the impact in the animation (0: none).
     assumptions : bool
-        Include PIM's assumptions at typical values.
+        Include PIM's assumptions at typical values (the full study: ``pim assumptions``).
     progress : bool or None
         tqdm bars on stderr (None: only on a terminal).
     units : str, pim.io.units.DisplayUnits or None
-        Units of the report: "si", "us" (speeds in km/h, mph) or a DisplayUnits (None: the
-        case file's, :func:`pim.io.units.display_units`).
+        Units of every number in the report: "si", "us" (speeds in km/h, mph) or a
+        DisplayUnits (None: the case file's, ``case.units`` with its ``case.speed_unit``,
+        :func:`pim.io.units.display_units`).
     parallel : bool
-        Render the plots in a forked worker process.
+        Render the plots in a forked worker process while the animation and the sweep run.
     uncertainty_samples : int
-        Monte Carlo samples for the 5-95 % intervals.
+        Monte Carlo samples for the 5-95 % intervals when the case has an
+        ``[uncertainty]`` table.
     friction_limit : float or None
-        Warn when |mu| [-] exceeds it (None: no warning).
+        Warn in the report when |mu| [-] exceeds it (None: no warning).
     case_path : str or None
-        The case as the user named it, for the commands the report suggests.
+        The case as the user named it (bundled name or file path), used in the commands the
+        report suggests (None: ``case.name``).
     """
 
     eps: float | None = None
@@ -397,6 +404,16 @@ def gather_report(case: pim.Case, folder, options: CompareOptions,
     return data
 
 
+def _with_fields(options: CompareOptions | None, fields: dict) -> CompareOptions:
+    """``options`` (default ``CompareOptions()``) with the fields named in ``fields``."""
+    names = [f.name for f in dataclass_fields(CompareOptions)]
+    unknown = sorted(set(fields) - set(names))
+    if unknown:
+        raise InputError(f"compare_case got unknown option(s) {', '.join(unknown)}; "
+                         f"allowed: options, {', '.join(names)}")
+    return replace(options or CompareOptions(), **fields)
+
+
 def write_report(data: ReportData, folder) -> list[Path]:
     """Write the report's CSVs, report.html and report.md (last) into ``folder`` through the
     one report pipeline (:func:`comparisons.report.write.write_document`); return every file
@@ -407,12 +424,8 @@ def write_report(data: ReportData, folder) -> list[Path]:
     return media + written
 
 
-def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
-                 beta: float | None = None, gif: bool = False, animation: bool = True,
-                 speed_error: bool = True, tyre: float = 0.0, assumptions: bool = True,
-                 progress: bool | None = None, units: str | None = None,
-                 parallel: bool = True, uncertainty_samples: int = 2000,
-                 friction_limit: float | None = None, case_path: str | None = None) -> Report:
+def compare_case(case: pim.Case, out_dir, options: CompareOptions | None = None,
+                 **fields) -> Report:
     """Write the report of ``case`` into folder ``out_dir`` (report.md, CSVs, PNGs, MP4).
 
     Parameters
@@ -422,38 +435,13 @@ def compare_case(case: pim.Case, out_dir, *, eps: float | None = None,
     out_dir : path
         Folder to write: replaced whole by this run when it is complete
         (:func:`pim.io.output.output_folder`; an error or interrupt leaves it as it was).
-    eps, beta : float, optional
-        Use these instead of fitting; both given: no fit even when the case has
-        measurements (one given: the other is fitted when the case has measurements).
-    gif : bool
-        Also write animation.gif.
-    animation, speed_error : bool
-        Include the animation and the coarse speed-error sweep.
-    assumptions : bool
-        Include PIM's assumptions at typical values (the full study: ``pim assumptions``).
-    tyre : float
-        Tyre friction coefficient after the impact in the animation (0: none).
-    progress : bool or None
-        tqdm bars on stderr (None: only on a terminal).
-    units : {"si", "us"} or pim.io.units.DisplayUnits, optional
-        Units of every number in the report (default: the case file's, ``case.units`` with
-        its ``case.speed_unit``).
-    parallel : bool
-        Render the plots in a forked worker process while the animation and the sweep run.
-    uncertainty_samples : int
-        Monte Carlo samples for the 5-95 % intervals when the case has an
-        ``[uncertainty]`` table.
-    friction_limit : float, optional
-        Warn in the report when |mu| exceeds it.
-    case_path : str, optional
-        The case as the user named it (bundled name or file path), used in the commands the
-        report suggests (default: ``case.name``).
+    options : CompareOptions, optional
+        What the report includes and how (default ``CompareOptions()``).
+    **fields
+        Any field of :class:`CompareOptions` by name (``eps=0.4``, ``animation=False``,
+        ``units="us"`` ...), overriding ``options``'s.
     """
-    options = CompareOptions(eps=eps, beta=beta, gif=gif, animation=animation,
-                             speed_error=speed_error, tyre=tyre, assumptions=assumptions,
-                             progress=progress, units=units, parallel=parallel,
-                             uncertainty_samples=uncertainty_samples,
-                             friction_limit=friction_limit, case_path=case_path)
+    options = _with_fields(options, fields)
     out = Path(out_dir)
     steps = _Steps(case, options)
     try:

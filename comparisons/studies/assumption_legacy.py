@@ -94,9 +94,11 @@ def legacy_sweeps(study) -> tuple:
         errors, _ = outcome_errors(case, result, run.velocity1, run.velocity2, run.yaw_rate1,
                                    run.yaw_rate2)
         out.append(LegacySweep(LEGACY_KEYS[rung.key], LegacyOutcome(
-            study.typical.duration, errors, rung.eps_eff, rung.beta_eff, rung.fit_rms,
-            run.energy_loss, pim_loss, run.stick_fraction,
-            float(np.hypot(*(run.impact_point - point))), run.failure)))
+            value=study.typical.duration, errors=errors, eps_eff=rung.eps_eff,
+            beta_eff=rung.beta_eff, fit_rms=rung.fit_rms, energy_loss=run.energy_loss,
+            pim_energy_loss=pim_loss, stick_fraction=run.stick_fraction,
+            point_distance=float(np.hypot(*(run.impact_point - point))),
+            failure=run.failure)))
     return tuple(out)
 
 

@@ -929,10 +929,12 @@ def run_assumptions(case: pim.Case, eps: float | None = None, beta: float | None
     anim = _animation(case, eps, stiffness or k_typical, bool(probes), settings,
                       animation_after)
     return AssumptionStudy(
-        case, eps, beta, beta_pim, tuple(_ladder(out, d) for d in the_plan.durations),
-        the_plan.range_durations, _tyre_curves(out, the_plan), _friction_points(out, the_plan),
-        _input_shift(out), k_typical, engine, time.perf_counter() - start, anim,
-        outline_note(failed, has_outlines(case)))
+        case=case, eps=eps, beta=beta, beta_pim=beta_pim,
+        ladders=tuple(_ladder(out, d) for d in the_plan.durations),
+        range_durations=the_plan.range_durations, tyre_curves=_tyre_curves(out, the_plan),
+        friction_points=_friction_points(out, the_plan), input_shift=_input_shift(out),
+        stiffness_typical=k_typical, engine=engine, seconds=time.perf_counter() - start,
+        animation_result=anim, outline_note=outline_note(failed, has_outlines(case)))
 
 
 def _animation(case, eps, k, has_outline, settings, after):

@@ -177,14 +177,14 @@ def _velocity_record(crash_class, name, case, origins, source=None) -> CrashReco
         observed += [np.asarray(m.velocity2, float), [float(m.yaw_rate2)]]
         scale = scale * 2
     return CrashRecord(crash_class, name, case, np.concatenate(observed), np.array(scale),
-                       VELOCITY, MEASURED, dict(origins), source)
+                       VELOCITY, MEASURED, origins=dict(origins), source=source)
 
 
 def _nhtsa_record(test) -> CrashRecord:
     observed = np.array([test.delta_v1, test.yaw_change1, test.delta_v2, test.yaw_change2])
     scale = np.array([SPEED_TOLERANCE, YAW_TOLERANCE] * 2)
     return CrashRecord(CAR_TO_CAR, f"nhtsa{test.test}", nhtsa_case(test), observed, scale,
-                       MAGNITUDES, PIM_OUTPUT, _used(test), test)
+                       MAGNITUDES, PIM_OUTPUT, origins=_used(test), source=test)
 
 
 def fitted_radii() -> tuple[list, dict]:

@@ -222,11 +222,12 @@ def compare_pulses(stiffness: float | None = None, eps: float | None = None,
     f_on = _on(test.time, model, model.force, 0.0)
     v_on = _on(test.time, model, model.velocity, float(model.velocity[-1]))
     return PulseComparison(
-        measured, model, mm, pulse_metrics(model.time, model.force, model.crush,
-                                           model.velocity), k, e, speed, test.mass,
-        float(np.sqrt(np.mean((f_on - test.force) ** 2))),
-        float(np.sqrt(np.mean((v_on - test.velocity) ** 2))), test.source, k_source,
-        k_fitted, eps is None)
+        measured=measured, model=model, measured_metrics=mm,
+        model_metrics=pulse_metrics(model.time, model.force, model.crush, model.velocity),
+        stiffness=k, eps=e, speed=speed, mass=test.mass,
+        force_rms=float(np.sqrt(np.mean((f_on - test.force) ** 2))),
+        delta_v_rms=float(np.sqrt(np.mean((v_on - test.velocity) ** 2))), source=test.source,
+        stiffness_source=k_source, stiffness_fitted=k_fitted, eps_fitted=eps is None)
 
 
 def roles(c: PulseComparison) -> dict:

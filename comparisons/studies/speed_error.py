@@ -239,11 +239,11 @@ def sweep(case: pim.Case, eps: float | None = None, beta: float | None = None, *
             out, err, wall = _run(case, eps, beta, settings, analytic, result, repeats)
         except sim.SimulationError as exc:
             points.append(SweepPoint(dt, its, 0, start, contact, math.nan, math.nan,
-                                     exc.kind, str(exc)))
+                                     failure=exc.kind, message=str(exc)))
             continue
         except ValueError as exc:       # e.g. outlines without vehicle dimensions
             points.append(SweepPoint(dt, its, 0, start, contact, math.nan, math.nan,
-                                     "unavailable", str(exc)))
+                                     failure="unavailable", message=str(exc)))
             continue
         points.append(SweepPoint(dt, its, out.iterations, start, contact, err, wall))
     t_one, t_batch = analytic_timing(case, eps, beta)

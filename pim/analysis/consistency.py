@@ -31,11 +31,53 @@ import numpy as np
 
 from ..model.numbers import InputError
 
-__all__ = ["MomentumCheck", "momentum_check", "check_ricsac", "DEFAULT_TOLERANCE",
-           "DEFAULT_MAX_ARM"]
+__all__ = ["MomentumCheck", "CrashTestVehicle", "momentum_check", "check_ricsac",
+           "DEFAULT_TOLERANCE", "DEFAULT_MAX_ARM"]
 
 DEFAULT_TOLERANCE = 0.15   # relative imbalance [-]
 DEFAULT_MAX_ARM = 3.0      # m: about half the diagonal of a large car
+
+
+@dataclass(frozen=True)
+class CrashTestVehicle:
+    """One vehicle's measured data in a crash test, as :func:`momentum_check` reads them
+    (SI; what a test does not publish is None).
+
+    Attributes
+    ----------
+    mass : float
+        [kg].
+    delta_v : float or None
+        Published delta-V magnitude [m/s] (for ``impulse_ratio``).
+    velocity_pre, velocity_post : array_like (2,) or None
+        Measured velocities before and after the impact [m/s] (for ``linear_imbalance``
+        and the arm).
+    yaw_inertia : float or None
+        [kg m^2].
+    yaw_rate_change : float or None
+        [rad/s].
+    """
+
+    mass: float
+    delta_v: float | None = None
+    velocity_pre: object = None
+    velocity_post: object = None
+    yaw_inertia: float | None = None
+    yaw_rate_change: float | None = None
+
+    def momentum_change(self) -> np.ndarray | None:
+        """m (v_post - v_pre) [kg m/s], or None without both velocities."""
+        if self.velocity_pre is None or self.velocity_post is None:
+            return None
+        return self.mass * (np.asarray(self.velocity_post, float)
+                            - np.asarray(self.velocity_pre, float))
+
+    def arm(self, impulse: float) -> float | None:
+        """I |dw| / P [m] for an impulse of magnitude ``impulse`` [N s] (None without the
+        yaw inertia or the yaw-rate change)."""
+        if self.yaw_inertia is None or self.yaw_rate_change is None:
+            return None
+        return float(self.yaw_inertia * abs(self.yaw_rate_change) / impulse)
 
 
 @dataclass(frozen=True)
@@ -95,45 +137,35 @@ class MomentumCheck:
         return bool(self.reasons)
 
 
-def momentum_check(test, mass1, mass2, *, delta_v1=None, delta_v2=None, velocity1_pre=None,
-                   velocity1_post=None, velocity2_pre=None, velocity2_post=None,
-                   yaw_inertia1=None, yaw_inertia2=None, yaw_rate1_change=None,
-                   yaw_rate2_change=None, tolerance=DEFAULT_TOLERANCE,
-                   max_arm=DEFAULT_MAX_ARM) -> MomentumCheck:
+def momentum_check(test, vehicle1: CrashTestVehicle, vehicle2: CrashTestVehicle, *,
+                   tolerance=DEFAULT_TOLERANCE, max_arm=DEFAULT_MAX_ARM) -> MomentumCheck:
     """Momentum balance of one test's measured data.
 
     Parameters
     ----------
     test : str
         Test name for the report.
-    mass1, mass2 : float
-        Masses [kg].
-    delta_v1, delta_v2 : float, optional
-        Published delta-V magnitudes [m/s] (for ``impulse_ratio``).
-    velocity1_pre, velocity1_post, velocity2_pre, velocity2_post : array_like (2,), optional
-        Measured velocities [m/s] (for ``linear_imbalance`` and the arms).
-    yaw_inertia1, yaw_inertia2 : float, optional
-        Yaw inertias [kg m^2].
-    yaw_rate1_change, yaw_rate2_change : float, optional
-        Yaw-rate changes [rad/s].
+    vehicle1, vehicle2 : CrashTestVehicle
+        Each vehicle's mass and what the test measured of it.
+    tolerance : float
+        Largest allowed ``|impulse_ratio|`` and ``linear_imbalance`` [-].
+    max_arm : float
+        Largest allowed arm [m].
     """
-    if not (mass1 > 0 and mass2 > 0):
+    v1, v2 = vehicle1, vehicle2
+    if not (v1.mass > 0 and v2.mass > 0):
         raise InputError(f"{test}: masses must be > 0 [kg]")
     ratio = None
-    if delta_v1 is not None and delta_v2 is not None and delta_v2 > 0:
-        ratio = mass1 * delta_v1 / (mass2 * delta_v2) - 1.0
+    if v1.delta_v is not None and v2.delta_v is not None and v2.delta_v > 0:
+        ratio = v1.mass * v1.delta_v / (v2.mass * v2.delta_v) - 1.0
     imbalance = arm1 = arm2 = None
-    if None not in (velocity1_pre, velocity1_post, velocity2_pre, velocity2_post):
-        p1 = mass1 * (np.asarray(velocity1_post, float) - np.asarray(velocity1_pre, float))
-        p2 = mass2 * (np.asarray(velocity2_post, float) - np.asarray(velocity2_pre, float))
+    p1, p2 = v1.momentum_change(), v2.momentum_change()
+    if p1 is not None and p2 is not None:
         scale = max(np.hypot(*p1), np.hypot(*p2))
         if scale > 0:
             imbalance = float(np.hypot(*(p1 + p2)) / scale)
             impulse = 0.5 * (np.hypot(*p1) + np.hypot(*p2))
-            if yaw_inertia1 is not None and yaw_rate1_change is not None:
-                arm1 = float(yaw_inertia1 * abs(yaw_rate1_change) / impulse)
-            if yaw_inertia2 is not None and yaw_rate2_change is not None:
-                arm2 = float(yaw_inertia2 * abs(yaw_rate2_change) / impulse)
+            arm1, arm2 = v1.arm(impulse), v2.arm(impulse)
     return MomentumCheck(str(test), ratio, imbalance, arm1, arm2, tolerance, max_arm)
 
 
@@ -148,11 +180,12 @@ def check_ricsac(tests, tolerance=DEFAULT_TOLERANCE, max_arm=DEFAULT_MAX_ARM,
         dv1, dv2 = t.published_delta_v.get(analysis, (None, None))
         if dv1 is None and not t.has_motion:
             continue
-        out.append(momentum_check(
-            f"RICSAC {t.number}", t.mass1, t.mass2, delta_v1=dv1, delta_v2=dv2,
-            velocity1_pre=t.velocity1_pre, velocity1_post=t.velocity1_post,
-            velocity2_pre=t.velocity2_pre, velocity2_post=t.velocity2_post,
-            yaw_inertia1=t.yaw_inertia1, yaw_inertia2=t.yaw_inertia2,
-            yaw_rate1_change=t.yaw_rate1_post, yaw_rate2_change=t.yaw_rate2_post,
-            tolerance=tolerance, max_arm=max_arm))
+        vehicles = [CrashTestVehicle(
+            mass=getattr(t, f"mass{i}"), delta_v=dv, velocity_pre=getattr(t, f"velocity{i}_pre"),
+            velocity_post=getattr(t, f"velocity{i}_post"),
+            yaw_inertia=getattr(t, f"yaw_inertia{i}"),
+            yaw_rate_change=getattr(t, f"yaw_rate{i}_post"))     # staged: no yaw before
+            for i, dv in ((1, dv1), (2, dv2))]
+        out.append(momentum_check(f"RICSAC {t.number}", *vehicles, tolerance=tolerance,
+                                  max_arm=max_arm))
     return out

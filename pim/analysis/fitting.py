@@ -297,9 +297,10 @@ def _box(bounds, eps, beta, free: dict) -> dict:
     return {**box, **free}
 
 
-def _fit_result(case, raw: FreeFit, terms, include_yaw, bounds, fixed, eps, beta,
-                weights, law: str = "brach", mu_c=None, lower: dict | None = None) -> FitResult:
-    """Wrap the engine's outcome into a :class:`FitResult` (one bound detection: ``side``)."""
+def _fit_result(raw: FreeFit, terms, *, include_yaw, bounds, fixed, eps, beta, weights,
+                law: str = "brach", mu_c=None, lower: dict | None = None) -> FitResult:
+    """Wrap the engine's outcome into a :class:`FitResult` (one bound detection: ``side``);
+    the keywords are what :func:`fit` was asked (``eps``, ``beta``: the fixed values)."""
     values = raw.values
     e_opt = values.get("impact.restitution", values.get("impact.k", eps))
     b_opt = values.get("impact.beta", beta)
@@ -448,8 +449,9 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
                    seed=seed)
     raw, lower = _floor(case, raw, terms, case_state(case, eps0, beta0))
     fixed, box_eb = _fixed_and_searched(law, box, box_eb, eps_fixed, beta_fixed, mu_c)
-    return _fit_result(case, raw, terms, include_yaw, box_eb, fixed, eps_fixed, beta_fixed,
-                       weights, law, case.impact.contact_friction, lower)
+    return _fit_result(raw, terms, include_yaw=include_yaw, bounds=box_eb, fixed=fixed,
+                       eps=eps_fixed, beta=beta_fixed, weights=weights, law=law,
+                       mu_c=case.impact.contact_friction, lower=lower)
 
 
 def _law_case(case: Case, law: str, mu_c) -> Case:

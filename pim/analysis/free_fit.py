@@ -462,7 +462,7 @@ def sobol_sample(d: int, samples: int, seed: int) -> np.ndarray:
     return u
 
 
-def fit_free(case: Case, box: dict, terms, eps: float = 0.5, beta: float = 0.5,
+def fit_free(case: Case, box: dict, terms, eps: float = 0.5, beta: float = 0.5, *,
              samples: int = 256, max_starts: int = 5, seed: int = 0,
              mu_c: float | None = None) -> FreeFit:
     """Bounded least squares of the residual ``terms`` over the parameters of ``box``.

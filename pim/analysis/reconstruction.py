@@ -260,9 +260,9 @@ def crush_outputs(case: Case, fitted: FitResult) -> tuple[CrushOutput, ...]:
     return tuple(out)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Reconstruction:
-    """Outcome of :func:`reconstruct` (SI).
+    """Outcome of :func:`reconstruct` (SI); built by keyword.
 
     Attributes
     ----------
@@ -295,7 +295,7 @@ class Reconstruction:
     fit: FitResult | None
     values: dict
     momentum: MomentumSpeeds | None
-    samples: ReconstructionSamples | None
+    samples: ReconstructionSamples | None = None
     determined: bool
     messages: list
     crush: tuple = ()
@@ -376,8 +376,8 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         messages.append(f"linear momentum: {momentum.message}")
     why = under_determined(solved, unknown, include_yaw)
     if why:
-        return Reconstruction(solved, unknown, post, None, {}, momentum, None, False,
-                              messages + [why])
+        return Reconstruction(case=solved, unknown=unknown, post=post, fit=None, values={},
+                              momentum=momentum, determined=False, messages=messages + [why])
     say("inverse PIM")
     fitted = inverse_pim(solved, unknown, include_yaw=include_yaw)
     determined, said = _judge(fitted)
@@ -387,17 +387,17 @@ def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, se
         s_hat = residual_standard_error(fitted)          # no sigma stated: the fit's
         if np.isfinite(s_hat):
             momentum = _momentum_of(solved, s_hat)
-    mc = None
+    rec = Reconstruction(case=solved, unknown=unknown, post=post, fit=fitted, values=values,
+                         momentum=momentum, determined=determined, messages=messages,
+                         crush=crush_outputs(solved, fitted) if determined else ())
     if determined and samples:
         _time_monte_carlo(estimate, case, post, fitted, unknown, samples, include_yaw,
                           post_impact_samples)
         say("Monte Carlo")
-        mc = _monte_carlo(case, post, solved, fitted, unknown, samples, seed, include_yaw,
-                          post_impact_samples, executor, blocks, say)
-        messages += mc.messages
-    crush = crush_outputs(solved, fitted) if determined else ()
-    return Reconstruction(solved, unknown, post, fitted, values, momentum, mc, determined,
-                          messages, crush)
+        mc = _monte_carlo(case, rec, samples=samples, seed=seed, include_yaw=include_yaw,
+                          sampler=post_impact_samples, executor=executor, blocks=blocks, say=say)
+        rec = replace(rec, samples=mc, messages=messages + mc.messages)
+    return rec
 
 
 #: Samples of the pilot that times a Monte Carlo with run-out evidence, after a warm-up of
@@ -485,12 +485,14 @@ def _judge(fitted: FitResult) -> tuple[bool, list[str]]:
     return determined, messages
 
 
-def _monte_carlo(case, post, solved, fitted, unknown, samples, seed, include_yaw,
-                 post_impact_samples, executor, blocks, say) -> ReconstructionSamples:
-    """The Monte Carlo of :func:`reconstruct`: in this process, or in seeded blocks on the
-    executor."""
-    if executor is None or post_impact_samples is not None:
-        extra_nominal, sampler = {}, post_impact_samples
+def _monte_carlo(case: Case, rec: Reconstruction, *, samples, seed, include_yaw, sampler,
+                 executor, blocks, say) -> ReconstructionSamples:
+    """The Monte Carlo of :func:`reconstruct` around the solution ``rec`` of ``case`` (its
+    arguments as :func:`reconstruct`'s, ``sampler`` its ``post_impact_samples``): in this
+    process, or in seeded blocks on the executor."""
+    post, solved, fitted, unknown = rec.post, rec.case, rec.fit, rec.unknown
+    if executor is None or sampler is not None:
+        extra_nominal = {}
         if post is not None and sampler is None:
             extra_nominal = evidence_nominal(case, post)
             sampler = evidence_sampler(case, post, include_yaw)

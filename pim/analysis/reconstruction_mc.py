@@ -132,7 +132,7 @@ def _measured_sigmas(case, names, fit_result) -> tuple[np.ndarray, str]:
 
 
 def reconstruction_samples(case, fit_result: FitResult, unknown: dict, n: int = 10_000,
-                           seed: int = 0,
+                           seed: int = 0, *,
                            distributions: UncertaintyTable | None = None,
                            include_yaw: bool = True, post_impact=None,
                            extra_nominal: dict | None = None) -> ReconstructionSamples:

@@ -36,6 +36,7 @@ impact.restitution = {bounds = [0, 1]}
 
 from __future__ import annotations
 
+import functools
 import logging
 
 import numpy as np
@@ -57,7 +58,6 @@ AXLE_KEY, OLD_AXLE_KEY = "cg_to_front_axle", "cg_to_front"
 _EVIDENCE = {"rest_position", "rest_heading", "wheelbase", "track", AXLE_KEY, OLD_AXLE_KEY,
              "friction", "wheels", "steer", "position_sigma", "heading_sigma", "path_points"}
 _LOG = logging.getLogger(__name__)
-_deprecation_shown = []     # the old key's message is shown once per process
 #: Sub-tables of ``[evidence.vehicleN]`` beside the run-out keys (each optional; a vehicle
 #: may have only these): the crush profile, the marks before the impact.
 SUBTABLES = {"crush": "crush-profile evidence", "pre_impact": "pre-impact (skid-mark) evidence"}
@@ -82,15 +82,20 @@ def _cg_to_front_axle(table, wheelbase, where) -> float:
         if AXLE_KEY in table:
             raise InputError(f"{where}: give {AXLE_KEY} (CG to the front axle) only, not "
                              f"also its old name {OLD_AXLE_KEY}")
-        if not _deprecation_shown:
-            _deprecation_shown.append(True)
-            _LOG.warning(f"{where}.{OLD_AXLE_KEY} is deprecated: it is read as the CG to the "
-                         f"FRONT AXLE; rename it {AXLE_KEY} ([vehicleN] {OLD_AXLE_KEY} is the "
-                         f"CG to the outline's front)")
+        _say_old_axle_key()
         return parse(table[OLD_AXLE_KEY], "length", f"{where}.{OLD_AXLE_KEY}")
     if AXLE_KEY in table:
         return parse(table[AXLE_KEY], "length", f"{where}.{AXLE_KEY}")
     return wheelbase / 2
+
+
+@functools.cache
+def _say_old_axle_key() -> None:
+    """The deprecation message of ``cg_to_front`` in ``[evidence.vehicleN]``, logged once
+    per process (functools.cache: later calls return at once)."""
+    _LOG.warning(f"evidence.vehicleN.{OLD_AXLE_KEY} is deprecated: it is read as the CG to "
+                 f"the FRONT AXLE; rename it {AXLE_KEY} ([vehicleN] {OLD_AXLE_KEY} is the CG "
+                 f"to the outline's front)")
 
 
 def _vehicle(table, where) -> VehicleEvidence | None:

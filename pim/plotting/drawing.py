@@ -108,9 +108,11 @@ class _Labels:
         return out
 
 
-def _draw_vehicle(ax, labels, i: int, v: Vehicle, color: str, c, t, speed: float,
+def _draw_vehicle(ax, labels, i: int, v: Vehicle, *, color: str, c, t, speed: float,
                   velocity_scale: float, units: str) -> None:
-    """Draw vehicle ``i`` (outline, nose, CG, arm to C, velocity, yaw rate) for draw_case."""
+    """Draw vehicle ``i`` (outline, nose, CG, arm to C, velocity, yaw rate) for draw_case:
+    in ``color``, C at ``c`` with the tangent ``t``, its velocity arrow ``velocity_scale``
+    [m per m/s] long per speed, labels in ``units``."""
     from matplotlib.patches import Polygon
 
     fixed = bool(v.fixed)
@@ -252,7 +254,8 @@ def draw_case(case: Case, result=None, ax=None, velocity_scale: float | None = N
         velocity_scale = 1.4 / max(max(speeds), 1e-9)
     colors = {1: "tab:blue", 2: "tab:red"}
     for i, v in ((1, case.vehicle1), (2, case.vehicle2)):
-        _draw_vehicle(ax, labels, i, v, colors[i], c, t, speeds[i - 1], velocity_scale, units)
+        _draw_vehicle(ax, labels, i, v, color=colors[i], c=c, t=t, speed=speeds[i - 1],
+                      velocity_scale=velocity_scale, units=units)
     _draw_contact(ax, labels, case, c, n, t, result)
     _format_axes(ax, case, units)
     fig.canvas.draw()          # fixes the transforms and text sizes the placement measures

@@ -353,3 +353,20 @@ def test_a_batch_is_set_up_as_each_of_its_scenes_alone():
     batch = stiffness_for_duration(np.array([time_, 0.1]), np.array([1e-3, 1e-3]),
                                    np.array([eps, 0.3]))
     assert float(stiffness_for_duration(time_, 1e-3, eps)) == batch[0]
+
+
+def test_a_case_is_set_up_once_for_repeated_calls():
+    """The last four set-ups are kept by the case's identity (a functools.lru_cache, no
+    module-level dict: issue 27 point 7); a kept set-up gives the same numbers as a fresh
+    one, and an equal but other Case object is set up anew."""
+    from sim import compliant_batch
+
+    case = pim.load_case("ricsac9")
+    compliant_batch._kept_setup.cache_clear()
+    first = sim.simulate_compliant(case, 0.3, 2e6)
+    again = sim.simulate_compliant(case, 0.3, 2e6)
+    info = compliant_batch._kept_setup.cache_info()
+    assert (info.hits, info.misses) == (1, 1)
+    assert np.array_equal(first.rows, again.rows, equal_nan=True)
+    sim.simulate_compliant(replace(case), 0.3, 2e6)
+    assert compliant_batch._kept_setup.cache_info().misses == 2

@@ -168,3 +168,17 @@ def test_a_failed_trailer_is_an_error_with_nothing_written(tmp_path, capsys, mon
     err = capsys.readouterr().err.strip()
     assert "incomplete" in err and len(err.splitlines()) == 1, err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_the_framing_is_one_object_or_its_fields_by_name():
+    """Issue 27 point 7: build_renderer takes a Framing, or its fields by name (overriding
+    it); an unknown option is refused naming the allowed ones."""
+    from comparisons.animation.render import Framing
+
+    with pytest.raises(ValueError, match=r"unknown option\(s\) seconds; allowed: .*before, "
+                                         r"after, fps, size"):
+        build_renderer(CASE, 0.355, 1.0, seconds=2.0)
+    r = build_renderer(CASE, 0.355, 1.0, framing=Framing(before=0.1, after=0.2, fps=10),
+                       after=0.3, size=(320, 240))
+    assert r.times[-1] == pytest.approx(0.3) and r.times[0] == pytest.approx(-0.1)
+    assert len(r.times) == 5 and r.size == (320, 240)        # 10 frames per second

@@ -343,3 +343,19 @@ def test_compare_report_shows_the_speeds_before_the_impact(tmp_path):
     assert "**Speeds before the impact** ([pre_impact.csv]" in (out / "report.md").read_text()
     assert 'id="table-pre_impact"' in (out / "report.html").read_text()
     assert (out / "pre_impact.csv").read_text().startswith("speed,value [mph],")
+
+
+def test_compare_case_takes_its_options_as_one_object_or_by_name(tmp_path):
+    """Issue 27 point 7: compare_case takes a CompareOptions (or its fields by name, as
+    before); a misspelt option is refused naming the allowed ones, before anything is
+    written."""
+    from comparisons.report.compare import CompareOptions
+
+    with pytest.raises(ValueError, match=r"unknown option\(s\) animations; allowed: "
+                                         r"options, eps, beta, gif, animation"):
+        compare_case(pim.load_case("ricsac9"), tmp_path / "r", animations=False)
+    assert not (tmp_path / "r").exists()
+    options = CompareOptions(eps=0.4, beta=0.8, animation=False, speed_error=False,
+                             assumptions=False, progress=False, parallel=False)
+    rep = compare_case(pim.load_case("ricsac9"), tmp_path / "r", options, eps=0.5)
+    assert rep.eps == pytest.approx(0.5) and rep.beta == pytest.approx(0.8)

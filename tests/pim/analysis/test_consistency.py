@@ -2,7 +2,7 @@
 
 import pytest
 
-from pim.analysis.consistency import check_ricsac, momentum_check
+from pim.analysis.consistency import CrashTestVehicle, check_ricsac, momentum_check
 from pim.io.datasets import load_ricsac
 
 
@@ -24,25 +24,26 @@ def test_ricsac_inconsistent_tests_flagged():
 
 def test_balanced_data_pass_and_imbalance_is_measured():
     # equal and opposite impulses: balanced
-    c = momentum_check("x", 1000.0, 2000.0, velocity1_pre=(10, 0), velocity1_post=(2, 1),
-                       velocity2_pre=(0, 0), velocity2_post=(4, -0.5), delta_v1=8.06,
-                       delta_v2=4.03, yaw_inertia1=2000.0, yaw_rate1_change=1.0)
+    c = momentum_check(
+        "x", CrashTestVehicle(1000.0, delta_v=8.06, velocity_pre=(10, 0), velocity_post=(2, 1),
+                              yaw_inertia=2000.0, yaw_rate_change=1.0),
+        CrashTestVehicle(2000.0, delta_v=4.03, velocity_pre=(0, 0), velocity_post=(4, -0.5)))
     assert c.linear_imbalance == pytest.approx(0.0, abs=1e-12)
     assert c.impulse_ratio == pytest.approx(0.0, abs=1e-3)
     assert c.arm1 == pytest.approx(2000.0 / (1000 * 8.0622577), rel=1e-6)
     assert not c.flagged
     # 20 % more impulse on vehicle 2
-    c = momentum_check("y", 1000.0, 2000.0, velocity1_pre=(10, 0), velocity1_post=(0, 0),
-                       velocity2_pre=(0, 0), velocity2_post=(6, 0))
+    c = momentum_check("y", CrashTestVehicle(1000.0, velocity_pre=(10, 0), velocity_post=(0, 0)),
+                       CrashTestVehicle(2000.0, velocity_pre=(0, 0), velocity_post=(6, 0)))
     assert c.linear_imbalance == pytest.approx(2000.0 / 12000.0)
     assert c.flagged and "linear momentum" in c.reasons[0]
     # an arm longer than a car
-    c = momentum_check("z", 1000.0, 1000.0, velocity1_pre=(1, 0), velocity1_post=(0, 0),
-                       velocity2_pre=(0, 0), velocity2_post=(1, 0), yaw_inertia2=2500.0,
-                       yaw_rate2_change=2.0)
+    c = momentum_check("z", CrashTestVehicle(1000.0, velocity_pre=(1, 0), velocity_post=(0, 0)),
+                       CrashTestVehicle(1000.0, velocity_pre=(0, 0), velocity_post=(1, 0),
+                                        yaw_inertia=2500.0, yaw_rate_change=2.0))
     assert c.arm2 == pytest.approx(5.0) and c.flagged
 
 
 def test_bad_mass():
     with pytest.raises(ValueError, match="masses must be > 0"):
-        momentum_check("x", 0.0, 1.0)
+        momentum_check("x", CrashTestVehicle(0.0), CrashTestVehicle(1.0))

@@ -107,8 +107,8 @@ def test_cg_to_front_axle_is_read():
                                [45 * 0.0254, 58 * 0.0254 / 2])
 
 
-def test_old_key_is_read_as_the_axle_with_one_message(monkeypatch, caplog):
-    monkeypatch.setattr(evidence_table, "_deprecation_shown", [])
+def test_old_key_is_read_as_the_axle_with_one_message(caplog):
+    evidence_table._say_old_axle_key.cache_clear()          # as in a fresh process
     table = {"vehicle1": dict(GOOD["vehicle1"], cg_to_front="45 in"),
              "vehicle2": dict(GOOD["vehicle1"], cg_to_front="40 in")}
     with caplog.at_level(logging.WARNING, logger="pim.io.evidence_table"):
