@@ -1,6 +1,5 @@
 """Command line of the comparisons: ``pim compare``, ``pim animate``, ``pim speed-error``,
-``pim hard-cases``, ``pim assumptions`` (registered as ``pim.commands`` entry points in
-pyproject.toml)."""
+``pim hard-cases``, ``pim assumptions`` (listed in :mod:`pim_cli.commands`)."""
 
 from __future__ import annotations
 
@@ -79,8 +78,11 @@ compare_beta_option = click.option(
 def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, no_animation,
             no_speed_error, no_assumptions, tyre, law, k, mu_c, progress, allow_inadmissible,
             as_json):
-    """Write a reconstruction report of CASE to a folder (report.html, report.md, CSVs,
-    PNGs, MP4; report.html is one self-contained page with the plots and the animation).
+    """Write CASE's reconstruction report to a folder: PIM's answer, its plots and
+    animation, and a pymunk cross-check.
+
+    The folder holds report.html, report.md, CSVs, PNGs and an MP4; report.html is one
+    self-contained page with the plots and the animation.
 
     The report opens with the answer a reconstruction hands on (each vehicle's delta-V, PDOF
     and post-impact speed and the energy lost, with 5-95 % intervals from the case's
@@ -237,7 +239,8 @@ def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, allow
 @json_option
 def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_ghost, law, k,
             mu_c, units, speed_unit, progress, allow_inadmissible, as_json):
-    """Animate CASE: pymunk simulation solid, the analytic post-impact motion as a ghost (MP4).
+    """Animate CASE: the pymunk simulation solid, the analytic post-impact motion as a ghost
+    (MP4).
 
     Under the case's impact law (or --law): Brach's PIM and friction-capped Brach play the
     rigid scene at (eps, effective beta); the Kudlich-Slibar law plays its two-phase run
@@ -335,7 +338,8 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, engine, 
     scenes on two worker processes. "hard" stands for every bundled hard case.
     """
     from pim.io.casefile import list_cases
-    from pim.io.output import output_folder, rebase, worker_pool
+    from pim.io.output import output_folder, rebase
+    from pim.io.process import worker_pool
 
     if repeats < 1:
         raise InputError(f"--repeats must be >= 1, got {repeats}")
@@ -466,8 +470,11 @@ def _command(name: str, coarse: bool, repeats: int, out) -> str:
 @progress_option
 @json_option
 def hard_cases(out, units, speed_unit, progress, as_json):
-    """Run every bundled hard case through PIM and the simulator; table of results, errors,
-    and the dt / iterations the simulator needs to reach 1e-6 (or why it cannot)."""
+    """Run every bundled hard case through PIM and the simulator.
+
+    Prints and writes (into --out) the table of results, errors, and the dt / iterations
+    the simulator needs to reach 1e-6 (or why it cannot).
+    """
     from comparisons.report.hard_cases import write_hard_cases
     from comparisons.report.render import markdown_table
     from comparisons.studies.hard_cases import run_hard_cases
@@ -518,7 +525,8 @@ def assumptions(case_name, out, eps, beta, executor, no_animation, engine, units
     """
     from comparisons.report.assumptions import study_json, verdicts, write_assumptions
     from comparisons.studies.assumptions import run_assumptions
-    from pim.io.output import output_folder, rebase, worker_pool
+    from pim.io.output import output_folder, rebase
+    from pim.io.process import worker_pool
 
     case = load_case_for("assumptions", case_name)
     units = output_units(case, units, speed_unit)

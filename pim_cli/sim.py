@@ -49,8 +49,11 @@ __all__ = ["sim", "in_options", "SETTING_OPTIONS"]
 @json_option
 def sim(case_name, eps, beta, dt, iterations, contact, start, units, speed_unit,
         allow_inadmissible, as_json):
-    """Simulate CASE with pymunk and compare with the analytic answer (pim solve) under the
-    case's impact law (Brach's PIM, friction-capped Brach or Kudlich-Slibar).
+    """Simulate CASE with pymunk and compare the result with the analytic answer (pim
+    solve).
+
+    Both run under the case's impact law (Brach's PIM, friction-capped Brach or
+    Kudlich-Slibar).
 
     Prints analytic and simulated post-impact velocities and yaw rates with absolute and
     relative errors, and the wall time of the simulation; before them, a note when the
