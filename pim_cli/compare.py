@@ -30,6 +30,8 @@ from pim_cli.main import (
     law_options,
     load_case_for,
     output_units,
+    resolve_options,
+    solve_choice,
     solve_with_options,
     units_option,
 )
@@ -104,15 +106,15 @@ def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, n
     for kudlich-slibar; docs/impact-laws.md).
     """
     from comparisons.report.compare import compare_case
-    from pim.model.impact_laws import law_of
 
     if tyre < 0:
         raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
     case = load_case_for("compare", case_name, law)
     units = output_units(case, units, speed_unit)
     folder = _out(out, case.name, "case")
-    if law_of(case, law) != "brach" or k is not None or mu_c is not None:
-        _compare_law(case, folder, eps, beta, law, k, mu_c, units, gif=gif, tyre=tyre,
+    choice = resolve_options(case, eps, beta, law=law, k=k, mu_c=mu_c)
+    if choice.law != "brach":
+        _compare_law(case, folder, choice, units, gif=gif, tyre=tyre,
                      animation=not no_animation, progress=progress, as_json=as_json,
                      allow=allow_inadmissible)
         return
@@ -181,16 +183,16 @@ def _secondary_note(info, units: str, as_json: bool) -> dict | None:
     return found.to_json(units)
 
 
-def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, allow, **kwargs):
-    """``pim compare`` under an impact law other than Brach's (comparisons.report.law)."""
+def _compare_law(case, folder, choice, units, *, as_json, allow, **kwargs):
+    """``pim compare`` under an impact law other than Brach's (comparisons.report.law), the
+    law and its parameters resolved from the options (``choice``: a
+    :class:`pim.model.law.LawChoice`)."""
     from comparisons.report.law import compare_law_case
     from comparisons.studies.law_runs import law_setup
-    from pim.model.impact_laws import law_of
 
     started = time.perf_counter()
-    result = solve_with_options(case, eps, beta, None, False, law, k, mu_c, units)
-    setup = law_setup(case, law, result.eps,
-                      None if law_of(case, law) == "kudlich-slibar" else beta, mu_c)
+    result = solve_choice(case, choice, units)      # exit 1, one line, when no impact
+    setup = law_setup(case, choice.law, result.eps, choice.beta, choice.contact_friction)
     rep = compare_law_case(case, folder, setup, units=units, **kwargs)
     found = check_answer(case, setup.result, units, allow=allow, as_json=as_json)
     secondary = _secondary_note(getattr(rep, "animation", None), units or case.units, as_json)
@@ -252,7 +254,6 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
     import sim
     from comparisons.animation.render import animate_case, animation_settings
     from comparisons.studies.law_runs import law_setup, simulate_law
-    from pim.model.impact_laws import law_of
 
     _check_suffix(out, "--out", ".mp4")
     _check_suffix(gif, "--gif", ".gif")
@@ -264,12 +265,12 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
     kwargs = dict(gif=gif, progress=progress, fps=fps, before=before, after=after, size=size,
                   tyre=tyre, ghost=not no_ghost, units=units)
     setup = None
-    if law_of(case, law) == "brach" and k is None and mu_c is None:
+    choice = resolve_options(case, eps, beta, law=law, k=k, mu_c=mu_c)
+    if choice.law == "brach":
         eps_, beta_ = sim.scene.resolve_coefficients(case, eps, beta)
     else:
-        result = solve_with_options(case, eps, beta, None, False, law, k, mu_c, units)
-        setup = law_setup(case, law, result.eps, None if law_of(case, law) == "kudlich-slibar"
-                          else beta, mu_c)
+        result = solve_choice(case, choice, units)      # exit 1, one line, when no impact
+        setup = law_setup(case, choice.law, result.eps, choice.beta, choice.contact_friction)
         eps_, beta_ = setup.restitution, setup.beta
     found = check_answer(case, setup.result if setup else pim.solve(case, eps_, beta_),
                          kwargs["units"], allow=allow_inadmissible, as_json=as_json)
