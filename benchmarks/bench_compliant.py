@@ -104,7 +104,7 @@ def main() -> None:
         print("\n3. pim assumptions ricsac9 end to end")
         with tempfile.TemporaryDirectory() as tmp:
             start = time.perf_counter()
-            subprocess.run([sys.executable, "-c", "from pim_cli.main import run; run()",
+            subprocess.run([sys.executable, "-c", "from pim_cli import run; run()",
                             "assumptions", "ricsac9", "--out", tmp, "--no-progress"],
                            check=True, capture_output=True)
             print(f"   {time.perf_counter() - start:.1f} s (goal < 60 s)")

@@ -1,6 +1,5 @@
 """Command line of the comparisons: ``pim compare``, ``pim animate``, ``pim speed-error``,
-``pim hard-cases``, ``pim assumptions`` (registered as ``pim.commands`` entry points in
-pyproject.toml)."""
+``pim hard-cases``, ``pim assumptions`` (listed in :mod:`pim_cli.commands`)."""
 
 from __future__ import annotations
 
@@ -31,6 +30,8 @@ from pim_cli.main import (
     law_options,
     load_case_for,
     output_units,
+    resolve_options,
+    solve_choice,
     solve_with_options,
     units_option,
 )
@@ -79,8 +80,11 @@ compare_beta_option = click.option(
 def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, no_animation,
             no_speed_error, no_assumptions, tyre, law, k, mu_c, progress, allow_inadmissible,
             as_json):
-    """Write a reconstruction report of CASE to a folder (report.html, report.md, CSVs,
-    PNGs, MP4; report.html is one self-contained page with the plots and the animation).
+    """Write CASE's reconstruction report to a folder: PIM's answer, its plots and
+    animation, and a pymunk cross-check.
+
+    The folder holds report.html, report.md, CSVs, PNGs and an MP4; report.html is one
+    self-contained page with the plots and the animation.
 
     The report opens with the answer a reconstruction hands on (each vehicle's delta-V, PDOF
     and post-impact speed and the energy lost, with 5-95 % intervals from the case's
@@ -102,15 +106,15 @@ def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, n
     for kudlich-slibar; docs/impact-laws.md).
     """
     from comparisons.report.compare import compare_case
-    from pim.model.impact_laws import law_of
 
     if tyre < 0:
         raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
     case = load_case_for("compare", case_name, law)
     units = output_units(case, units, speed_unit)
     folder = _out(out, case.name, "case")
-    if law_of(case, law) != "brach" or k is not None or mu_c is not None:
-        _compare_law(case, folder, eps, beta, law, k, mu_c, units, gif=gif, tyre=tyre,
+    choice = resolve_options(case, eps, beta, law=law, k=k, mu_c=mu_c)
+    if choice.law != "brach":
+        _compare_law(case, folder, choice, units, gif=gif, tyre=tyre,
                      animation=not no_animation, progress=progress, as_json=as_json,
                      allow=allow_inadmissible)
         return
@@ -179,16 +183,16 @@ def _secondary_note(info, units: str, as_json: bool) -> dict | None:
     return found.to_json(units)
 
 
-def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, allow, **kwargs):
-    """``pim compare`` under an impact law other than Brach's (comparisons.report.law)."""
+def _compare_law(case, folder, choice, units, *, as_json, allow, **kwargs):
+    """``pim compare`` under an impact law other than Brach's (comparisons.report.law), the
+    law and its parameters resolved from the options (``choice``: a
+    :class:`pim.model.law.LawChoice`)."""
     from comparisons.report.law import compare_law_case
     from comparisons.studies.law_runs import law_setup
-    from pim.model.impact_laws import law_of
 
     started = time.perf_counter()
-    result = solve_with_options(case, eps, beta, None, False, law, k, mu_c, units)
-    setup = law_setup(case, law, result.eps,
-                      None if law_of(case, law) == "kudlich-slibar" else beta, mu_c)
+    result = solve_choice(case, choice, units)      # exit 1, one line, when no impact
+    setup = law_setup(case, choice.law, result.eps, choice.beta, choice.contact_friction)
     rep = compare_law_case(case, folder, setup, units=units, **kwargs)
     found = check_answer(case, setup.result, units, allow=allow, as_json=as_json)
     secondary = _secondary_note(getattr(rep, "animation", None), units or case.units, as_json)
@@ -237,7 +241,8 @@ def _compare_law(case, folder, eps, beta, law, k, mu_c, units, *, as_json, allow
 @json_option
 def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_ghost, law, k,
             mu_c, units, speed_unit, progress, allow_inadmissible, as_json):
-    """Animate CASE: pymunk simulation solid, the analytic post-impact motion as a ghost (MP4).
+    """Animate CASE: the pymunk simulation solid, the analytic post-impact motion as a ghost
+    (MP4).
 
     Under the case's impact law (or --law): Brach's PIM and friction-capped Brach play the
     rigid scene at (eps, effective beta); the Kudlich-Slibar law plays its two-phase run
@@ -249,7 +254,6 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
     import sim
     from comparisons.animation.render import animate_case, animation_settings
     from comparisons.studies.law_runs import law_setup, simulate_law
-    from pim.model.impact_laws import law_of
 
     _check_suffix(out, "--out", ".mp4")
     _check_suffix(gif, "--gif", ".gif")
@@ -261,12 +265,12 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
     kwargs = dict(gif=gif, progress=progress, fps=fps, before=before, after=after, size=size,
                   tyre=tyre, ghost=not no_ghost, units=units)
     setup = None
-    if law_of(case, law) == "brach" and k is None and mu_c is None:
+    choice = resolve_options(case, eps, beta, law=law, k=k, mu_c=mu_c)
+    if choice.law == "brach":
         eps_, beta_ = sim.scene.resolve_coefficients(case, eps, beta)
     else:
-        result = solve_with_options(case, eps, beta, None, False, law, k, mu_c, units)
-        setup = law_setup(case, law, result.eps, None if law_of(case, law) == "kudlich-slibar"
-                          else beta, mu_c)
+        result = solve_choice(case, choice, units)      # exit 1, one line, when no impact
+        setup = law_setup(case, choice.law, result.eps, choice.beta, choice.contact_friction)
         eps_, beta_ = setup.restitution, setup.beta
     found = check_answer(case, setup.result if setup else pim.solve(case, eps_, beta_),
                          kwargs["units"], allow=allow_inadmissible, as_json=as_json)
@@ -335,7 +339,8 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, engine, 
     scenes on two worker processes. "hard" stands for every bundled hard case.
     """
     from pim.io.casefile import list_cases
-    from pim.io.output import output_folder, rebase, worker_pool
+    from pim.io.output import output_folder, rebase
+    from pim.io.process import worker_pool
 
     if repeats < 1:
         raise InputError(f"--repeats must be >= 1, got {repeats}")
@@ -466,8 +471,11 @@ def _command(name: str, coarse: bool, repeats: int, out) -> str:
 @progress_option
 @json_option
 def hard_cases(out, units, speed_unit, progress, as_json):
-    """Run every bundled hard case through PIM and the simulator; table of results, errors,
-    and the dt / iterations the simulator needs to reach 1e-6 (or why it cannot)."""
+    """Run every bundled hard case through PIM and the simulator.
+
+    Prints and writes (into --out) the table of results, errors, and the dt / iterations
+    the simulator needs to reach 1e-6 (or why it cannot).
+    """
     from comparisons.report.hard_cases import write_hard_cases
     from comparisons.report.render import markdown_table
     from comparisons.studies.hard_cases import run_hard_cases
@@ -518,7 +526,8 @@ def assumptions(case_name, out, eps, beta, executor, no_animation, engine, units
     """
     from comparisons.report.assumptions import study_json, verdicts, write_assumptions
     from comparisons.studies.assumptions import run_assumptions
-    from pim.io.output import output_folder, rebase, worker_pool
+    from pim.io.output import output_folder, rebase
+    from pim.io.process import worker_pool
 
     case = load_case_for("assumptions", case_name)
     units = output_units(case, units, speed_unit)

@@ -188,8 +188,11 @@ def _cost_lines(result, fv: float, uv: str) -> list[str]:
 @json_option
 def fit(case_name, include_yaw, eps, beta, k, mu_c, eps_range, beta_range, free, units,
         speed_unit, allow_inadmissible, as_json):
-    """Least-squares impact-law parameters matching CASE's measured post-impact motion:
-    Brach's (epsilon, beta), or under the case's law "kudlich-slibar" its (k, mu_c).
+    """Fit the impact law's parameters (Brach's epsilon and beta, or k and mu_c) to CASE's
+    measured post-impact motion.
+
+    Least squares: Brach's (epsilon, beta), or under the case's law "kudlich-slibar" its
+    (k, mu_c).
 
     Searches the whole box with a Sobol sample, then refines the best minima, so it finds
     the global optimum. --eps or --beta (--k or --mu-c) fits the other parameter alone;
@@ -367,7 +370,8 @@ def _parse_sigma(items) -> dict:
 @json_option
 def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, speed_unit,
                 allow_inadmissible, as_json):
-    """Which uncertain input moves the fitted (epsilon, beta) and delta-V most.
+    """Rank CASE's uncertain inputs by how much they move the fitted (epsilon, beta) and
+    delta-V.
 
     For each answer, the inputs are ranked by the change that one typical uncertainty
     (sigma) of the input causes; the derivative per unit is shown too. Exit code 1 after

@@ -1,52 +1,102 @@
-"""The ``pim`` command line.
+"""The ``pim`` command line: its group, the options its commands share, its exit codes.
 
-pim's own commands are defined here; commands of the layers above it (``pim sim``,
-``pim compare`` ...) are registered by their packages under the ``pim.commands`` entry-point
-group and loaded only when used, so that ``pim/`` never imports ``sim/`` or
-``comparisons/``. A :class:`pim.InputError` (bad input) or a click usage error becomes a
-one-line message and exit code 2; any other exception is a bug and keeps its traceback.
+The commands are listed in :mod:`pim_cli.commands` (name, "module:function", group, one-line
+summary): ``pim --help`` prints that table without importing a command module, numpy or
+pim, and a command's module is imported when the command runs. No package imports the
+command line; it imports them all.
+
+A command runs with SIGINT and SIGTERM handled by :class:`pim.io.process.Interrupts`:
+temporary files are removed and the exit code is 130 (Ctrl-C) or 143 (SIGTERM), with one
+line. A :class:`pim.InputError` (bad input), an output folder or file that cannot be
+written, or a click usage error becomes a one-line message and exit code 2; any other
+exception is a bug and keeps its traceback.
 """
 
 from __future__ import annotations
 
+import importlib
 import json
 import math
-import os
+import signal
 import sys
-from importlib.metadata import entry_points
+from typing import TYPE_CHECKING
 
 import click
 
-from pim.io.output import OutputError, note_signal, signal_received
-from pim.model.case import BETA_RANGE_TEXT
-from pim.model.numbers import InputError
-from pim.model.plausibility import Findings, findings, warnings_of
+from pim_cli.commands import COMMANDS, GROUPS, LOOK_ALIKES, by_name
 
-__all__ = ["main", "cli", "FiniteFloat", "Beta", "SEED", "in_callback", "CALLBACK_PATHS",
+if TYPE_CHECKING:
+    from pim.model.plausibility import Findings
+
+__all__ = ["main", "cli", "FiniteFloat", "Beta", "SEED",
            "case_argument", "eps_option", "beta_option", "units_option", "output_units",
            "json_option", "echo_json", "friction_limit_option", "cap_friction_option",
-           "solve_with_options", "warnings_of", "NO_IMPACT_EXIT_CODE", "law_options",
+           "solve_with_options", "NO_IMPACT_EXIT_CODE", "law_options",
            "load_case_for", "OPTION_NAMES", "resolve_options", "solve_choice",
            "allow_inadmissible_option", "INADMISSIBLE_EXIT_CODE",
            "check_answer", "say_findings", "finish_answer", "findings_json"]
 
-ENTRY_POINT_GROUP = "pim.commands"
-
 
 class _Commands(click.Group):
-    """A click group that also offers the commands registered as entry points."""
-
-    def _plugins(self) -> dict:
-        return {ep.name: ep for ep in entry_points(group=ENTRY_POINT_GROUP)}
+    """pim's group: its commands from the table of :mod:`pim_cli.commands`, listed by their
+    group without importing them, each imported when it runs, and run with SIGINT and
+    SIGTERM as exceptions."""
 
     def list_commands(self, ctx):
-        return sorted(set(super().list_commands(ctx)) | set(self._plugins()))
+        return [command.name for command in COMMANDS]
 
     def get_command(self, ctx, name):
-        command = super().get_command(ctx, name)
-        if command is None and name in self._plugins():
-            command = self._plugins()[name].load()
-        return command
+        row = by_name(name)
+        if row is None:
+            return None
+        module, _, function = row.target.partition(":")
+        return getattr(importlib.import_module(module), function)
+
+    def format_commands(self, ctx, formatter):
+        """One section per group of :data:`pim_cli.commands.GROUPS`, each summary whole."""
+        for group in GROUPS:
+            with formatter.section(group):
+                formatter.write_dl([(c.name, c.summary) for c in COMMANDS if c.group == group])
+
+    def format_epilog(self, ctx, formatter):
+        """Which of the commands that sound alike to use: each set of names on a line, how
+        to choose below it."""
+        with formatter.section("Which command to use"):
+            for names, choice in LOOK_ALIKES:
+                formatter.write_text(names)
+                with formatter.indentation():
+                    formatter.write_text(choice)
+
+    def invoke(self, ctx):
+        """Run the command with SIGINT and SIGTERM as exceptions
+        (:class:`pim.io.process.Interrupts`). An interrupt ends the run with one line and
+        exit code 130 or 143; so does an error that follows one (ffmpeg or a worker in the
+        same process group may fail first, with a broken pipe) and a run that ends after one
+        was swallowed on its way (its output folder was not swapped in)."""
+        from pim.io.process import Interrupts  # a command runs: pim loads with it
+
+        interrupts = Interrupts()
+        with interrupts.installed():
+            try:
+                outcome = super().invoke(ctx)
+            except (click.exceptions.Exit, click.ClickException):
+                if interrupts.last() is None:
+                    raise
+            except BaseException:
+                if interrupts.last() is None:
+                    raise
+            else:
+                if interrupts.last() is None:
+                    return outcome
+        _interrupted(interrupts.last())
+
+
+def _interrupted(signum: int):
+    """End the run interrupted by ``signum``: one line, exit code 130 (SIGINT) or 143."""
+    from pim.io.process import INTERRUPT_EXIT_CODES
+
+    click.echo("terminated" if signum == signal.SIGTERM else "aborted", err=True)
+    raise click.exceptions.Exit(INTERRUPT_EXIT_CODES[signum])
 
 
 @click.group(cls=_Commands, context_settings={"help_option_names": ["-h", "--help"]})
@@ -54,7 +104,8 @@ class _Commands(click.Group):
 def cli():
     """Brach's Planar Impact Mechanics for vehicle collisions, with a pymunk cross-check.
 
-    CASE is a bundled case name (see `pim cases`) or a path to a TOML case file.
+    CASE is a bundled case name (see `pim cases`) or a path to a TOML case file; `pim
+    COMMAND --help` gives a command's options.
     """
 
 
@@ -97,6 +148,8 @@ class Beta(FiniteFloat):
     library's formula takes any beta, e.g. the Kudlich-Slibar law's Brach equivalent)."""
 
     def convert(self, value, param, ctx):
+        from pim.model.case import BETA_RANGE_TEXT
+
         number = super().convert(value, param, ctx)
         if number < 0:
             self.fail(f"{value!r}: beta {BETA_RANGE_TEXT}", param, ctx)
@@ -155,17 +208,6 @@ def echo_json(data) -> None:
         return x
 
     click.echo(json.dumps(clean(data), indent=2))
-
-
-@cli.command()
-def cases():
-    """List the bundled cases."""
-    from pim.io.casefile import list_cases
-
-    items = list_cases()
-    width = max(len(name) for name, _ in items)
-    for name, description in items:
-        click.echo(f"{name:<{width}}  {description}")
 
 
 friction_limit_option = click.option(
@@ -286,6 +328,7 @@ def check_answer(case, result=None, units=None, friction_limit=None, allow=False
     (:func:`pim.model.plausibility.findings`), numbers in ``units`` (default: the case's),
     printed on stderr (:func:`say_findings`); end the command with :func:`finish_answer`."""
     from pim.io.units import quantity_text
+    from pim.model.plausibility import findings
 
     found = findings(case, result, friction_limit, quantity_text(units or case.units))
     say_findings(found, allow, as_json)
@@ -309,157 +352,9 @@ def findings_json(found: Findings) -> dict:
             "warnings": found.warnings, "problems": found.all}
 
 
-@cli.command()
-@case_argument
-@eps_option
-@beta_option
-@friction_limit_option
-@cap_friction_option
-@law_options
-@units_option
-@allow_inadmissible_option
-@json_option
-def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, units, speed_unit,
-          allow_inadmissible, as_json):
-    """Solve CASE under its impact law (default Brach's PIM) and print the post-impact
-    results.
-
-    Prints each vehicle's post-impact velocity, speed and yaw rate, delta-V, PDOF, the
-    impulse, Brach's coefficients and the energy loss with its normal/tangential split, then
-    warnings; with pre-impact evidence (tyre marks before the impact, a driver table from a
-    negative time) each vehicle's speed at their start. Exit code 1 with one line when the
-    vehicles do not approach at C (no impact), and after the table when the answer is
-    inadmissible (the reasons first; --allow-inadmissible: exit 0).
-    """
-    from comparisons.report.pre_impact import pre_impact_json, pre_impact_lines, pre_impact_rows
-    from pim.analysis.pre_impact_speeds import case_pre_impact
-    from pim.plotting.tables import format_table, rows_to_json, summarize
-
-    case = load_case_for("solve", case_name, law)
-    units = output_units(case, units, speed_unit)
-    choice = resolve_options(case, eps, beta, friction_limit, cap_friction, law, k, mu_c)
-    result = solve_choice(case, choice, units)
-    pre_impact = pre_impact_rows(case_pre_impact(case), units)     # marks, driver tables
-    if result.q_singular.any():
-        problems = result.problems()
-        raise InputError(problems[0] if problems else "q is singular")
-    found = check_answer(case, result, units, friction_limit, allow_inadmissible, as_json)
-    rows = summarize(result, units)
-    law = choice.law
-    if as_json:
-        echo_json({"case": case.name, "units": units.to_json(), "law": law, **findings_json(found),
-                   "results": rows_to_json(rows), "pre_impact": pre_impact_json(pre_impact)})
-    else:
-        click.echo(format_table(rows, _title(case, result, law)))
-        if pre_impact:
-            click.echo("\nSpeeds before the impact (from the case's impact velocities):")
-            for line in pre_impact_lines(pre_impact):
-                click.echo(line)
-    finish_answer(found, allow_inadmissible)
-
-
-def _title(case, result, law: str) -> str:
-    """The table's title: the law and the parameters it used."""
-    if law == "kudlich-slibar":
-        return (f"{case.name}: Kudlich-Slibar law, k = {float(result.eps):g}, mu_c = "
-                f"{float(result.contact_friction):g} (equivalent PIM beta = "
-                f"{float(result.beta):g})")
-    title = f"{case.name}: epsilon = {float(result.eps):g}, beta = {float(result.beta):g}"
-    if law == "brach-capped":
-        title += " (friction-capped Brach, effective beta)"
-    return title
-
-
-@cli.command()
-@case_argument
-@click.option("--out", "out", type=click.Path(dir_okay=False), required=True,
-              help="Image file to write (.png or .svg).")
-@eps_option
-@beta_option
-@units_option
-@allow_inadmissible_option
-def draw(case_name, out, eps, beta, units, speed_unit, allow_inadmissible):
-    """Draw CASE's geometry and sign conventions (outlines, C, n, t, Gamma, arms, velocities,
-    and the impulse when epsilon is known) to an image file; no label covers another. What
-    is implausible about the scene is said first; exit code 1 after drawing an impossible
-    scene or an inadmissible impulse (--allow-inadmissible: exit 0)."""
-    from pim.io.files import save_figure
-    from pim.model.law import solve
-    from pim.plotting.drawing import draw_case
-
-    case = load_case_for("draw", case_name)
-    result = None
-    if eps is not None or case.impact.restitution is not None:
-        result = solve(case, eps, beta)     # under the case's impact law
-    units = output_units(case, units, speed_unit)
-    found = check_answer(case, result, units, allow=allow_inadmissible)
-    path = save_figure(draw_case(case, result, units=units), out)
-    click.echo(f"wrote {path}")
-    finish_answer(found, allow_inadmissible)
-
-
-class Terminated(KeyboardInterrupt):
-    """SIGTERM, raised like Ctrl-C so that every atomic writer removes its temporary file."""
-
-
-#: Code run from C with its exceptions printed and dropped ("Exception ignored from callback
-#: for ffi.gc"): pymunk's collision callbacks and object destructors, at-fork hooks,
-#: finalizers. A signal handled there is raised at the first moment outside it.
-CALLBACK_PATHS = (f"{os.sep}pymunk{os.sep}", f"{os.sep}cffi{os.sep}")
-CALLBACK_NAMES = frozenset({"__del__", "_releaseLock", "_acquireLock",
-                            "_after_at_fork_child_reinit_locks", "_after_fork"})
-
-
-def in_callback(frame) -> bool:
-    """Whether ``frame`` (the one a signal handler interrupted) runs inside code whose
-    exceptions are dropped (:data:`CALLBACK_PATHS`, :data:`CALLBACK_NAMES`)."""
-    while frame is not None:
-        code = frame.f_code
-        if code.co_name in CALLBACK_NAMES or any(p in code.co_filename
-                                                 for p in CALLBACK_PATHS):
-            return True
-        frame = frame.f_back
-    return False
-
-
-def _interrupt(signum, frame, error) -> None:
-    """Record the signal and raise ``error``: here, or, when ``frame`` is inside a callback
-    that would drop the exception (and let the run go on to its end), at the first event
-    of the main thread outside it (a profile hook, removed as it raises)."""
-    note_signal(signum)
-    if not in_callback(frame):
-        raise error()
-
-    def outside(event_frame, event, arg):
-        if not in_callback(event_frame):
-            sys.setprofile(None)
-            raise error()
-    sys.setprofile(outside)
-
-
-def _on_sigterm(signum, frame):
-    _interrupt(signum, frame, Terminated)
-
-
-def _on_sigint(signum, frame):
-    _interrupt(signum, frame, KeyboardInterrupt)
-
-
-def _interrupted_code() -> int | None:
-    """130/143 (with one line on stderr) when SIGINT/SIGTERM arrived during the run.
-
-    An error that follows a signal is reported as the interrupt (ffmpeg or a worker in the
-    same process group may fail first, with a broken pipe); so is a run whose interrupt was
-    swallowed on its way (its output folder was not swapped in).
-    """
-    import signal
-
-    signum = signal_received()
-    if signum is None:
-        return None
-    terminated = signum == signal.SIGTERM
-    click.echo("terminated" if terminated else "aborted", err=True)
-    return 143 if terminated else 130
+#: What click (8.2 and later) raises for `pim` without a command, after which it prints the
+#: help as an error (8.1 printed it as --help does).
+_NO_ARGS = getattr(click.exceptions, "NoArgsIsHelpError", ())
 
 
 def main(argv=None) -> int:
@@ -468,29 +363,13 @@ def main(argv=None) -> int:
     SIGTERM is handled as SIGINT is: temporary files are removed and the exit code is 143
     (130 for Ctrl-C). A file or folder that cannot be written is one line and exit code 2.
     """
-    import signal
-    import threading
-
-    previous = {}
-    note_signal(None)
-    if threading.current_thread() is threading.main_thread():
-        previous = {signal.SIGTERM: signal.signal(signal.SIGTERM, _on_sigterm),
-                    signal.SIGINT: signal.signal(signal.SIGINT, _on_sigint)}
-    try:
-        try:
-            return _main(argv)
-        except KeyboardInterrupt:       # a signal after _main knew its code: still one line
-            return _interrupted_code() or 130
-    finally:
-        for signum, handler in previous.items():
-            signal.signal(signum, handler)
-
-
-def _main(argv) -> int:
     try:
         code = cli.main(args=argv, prog_name="pim", standalone_mode=False)
     except click.exceptions.Exit as exc:
         return exc.exit_code
+    except _NO_ARGS as exc:             # `pim` alone: the help, as `pim --help` prints it
+        click.echo(exc.format_message())
+        return 0
     except click.UsageError as exc:     # one line, like every other input error
         hint = f" (see '{exc.ctx.command_path} --help')" if exc.ctx is not None else ""
         click.echo(f"error: {exc.format_message()}{hint}", err=True)
@@ -498,35 +377,28 @@ def _main(argv) -> int:
     except click.ClickException as exc:
         exc.show()
         return exc.exit_code
-    except (click.exceptions.Abort, KeyboardInterrupt) as exc:
-        code = _interrupted_code()
-        if code is not None:
-            return code
-        terminated = isinstance(exc, Terminated) or isinstance(exc.__context__, Terminated)
-        click.echo("terminated" if terminated else "aborted", err=True)
-        return 143 if terminated else 130
-    except (InputError, OutputError, OSError) as exc:
-        code = _interrupted_code()
-        if code is not None:
-            return code
+    except (click.exceptions.Abort, KeyboardInterrupt):
+        click.echo("aborted", err=True)     # before a command ran (a run's: _interrupted)
+        return 130
+    except _one_line_errors() as exc:
         if not isinstance(exc, OSError):
             click.echo(f"error: {exc}", err=True)
             return 2
         where = f"{exc.filename}: " if exc.filename else ""
         click.echo(f"error: cannot write {where}{exc.strerror or exc}", err=True)
         return 2
-    except Exception:
-        code = _interrupted_code()      # e.g. ffmpeg's broken pipe after Ctrl-C
-        if code is not None:
-            return code
-        raise                           # anything else is a bug in pim: its traceback
-    return _interrupted_code() or (code if isinstance(code, int) else 0)
+    return code if isinstance(code, int) else 0     # any other exception: a bug, traceback
+
+
+def _one_line_errors() -> tuple[type[BaseException], ...]:
+    """The errors that are one line and exit code 2: bad input, an output folder that cannot
+    be written, any other OSError (imported when one is raised: only a command that ran,
+    and so loaded pim, can raise the first two)."""
+    from pim.io.output import OutputError
+    from pim.model.numbers import InputError
+
+    return InputError, OutputError, OSError
 
 
 if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
-
-
-def run() -> None:
-    """Console-script wrapper: exit with :func:`main`'s code."""
     sys.exit(main())

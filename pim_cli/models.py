@@ -1,7 +1,6 @@
 """``pim validate-models`` (PIM against the tuned finite-duration scene on the bundled crash
-tests) and ``pim pulses`` (the contact law's crash pulse against NHTSA 10146), registered as
-``pim.commands`` entry points in pyproject.toml (``pim validate`` lives in pim/, which never
-imports the simulator)."""
+tests) and ``pim pulses`` (the contact law's crash pulse against NHTSA 10146), listed in
+:mod:`pim_cli.commands`."""
 
 from __future__ import annotations
 
@@ -50,7 +49,8 @@ def _command(name: str, **opts) -> str:
 @_progress
 @json_option
 def validate_models(out, max_tests, classes, steps, units, speed_unit, progress, as_json):
-    """PIM against the finite-duration scene tuned to the bundled crash tests, with a verdict.
+    """Compare PIM with the finite-duration scene tuned to the bundled crash tests, on tests
+    held out of each fit, with a verdict.
 
     Per crash class (IIHS barrier non-sideswipe and sideswipe, RICSAC, NHTSA car-to-car) and
     input variant: multi-start class fits and converged leave-one-out refits of PIM and of
@@ -93,7 +93,7 @@ def validate_models(out, max_tests, classes, steps, units, speed_unit, progress,
 @units_option
 @json_option
 def pulses(out, stiffness, eps, units, speed_unit, as_json):
-    """The contact law's force-time and delta-V-time against NHTSA test 10146.
+    """Compare the contact law's force and delta-V pulses with NHTSA test 10146.
 
     Writes pulses.md and .html (the predicted figures' errors first, then the table of
     duration, peak force, crush at peak, rebound, each with its error and named fitted, when

@@ -45,7 +45,8 @@ from pim.analysis.reconstruction import Reconstruction
 from pim.analysis.reconstruction import reconstruct as run_reconstruction
 from pim.io.files import save_figure
 from pim.io.inertia_data import estimate_records
-from pim.io.output import output_folder, worker_pool
+from pim.io.output import output_folder
+from pim.io.process import worker_pool
 from pim.io.units import convert, display_units
 from pim.model.numbers import InputError
 from pim.model.plausibility import secondary_contact
@@ -131,7 +132,7 @@ def _json(case, rows: ReconstructionRows, samples: int, messages, units) -> dict
 @json_option
 def reconstruct(case_name, out, samples, seed, workers, video, progress, max_minutes, units,
                 speed_unit, allow_inadmissible, as_json):
-    """Reconstruct CASE's unknowns (e.g. the impact speeds) from its evidence.
+    """Reconstruct CASE's unknowns, such as the impact speeds, from its evidence.
 
     With --out DIR: DIR/report.md, DIR/report.html and DIR/reconstruction.csv; a case
     with run-out evidence ([evidence] rest positions) adds DIR/scene.png (the run-outs

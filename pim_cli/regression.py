@@ -1,5 +1,5 @@
-"""Command line of the regression baselines: ``pim baseline`` and ``pim check`` (registered
-as ``pim.commands`` entry points in pyproject.toml)."""
+"""Command line of the regression baselines: ``pim baseline`` and ``pim check`` (listed in
+:mod:`pim_cli.commands`)."""
 
 from __future__ import annotations
 
@@ -72,7 +72,7 @@ def _progress(total: int, desc: str):
 @allow_inadmissible_option
 def baseline(cases, out, extra, skip, samples, reconstruct_samples, seed, references,
              allow_inadmissible):
-    """Record every output CASE... supports, with tolerances, in a baseline file.
+    """Record every output each CASE supports, with its tolerance, in a baseline file.
 
     Per case: solve, fit (with [measured] motion), the rigid pymunk cross-check, the Monte
     Carlo (with [uncertainty]), reconstruct (with [unknown]) and, with --with assumptions,
@@ -126,7 +126,7 @@ def _cases_findings(cases, allow: bool) -> Findings:
 @units_option
 @json_option
 def check(baseline_file, only, units, speed_unit, as_json):
-    """Rerun a baseline's cases; list every quantity that moved beyond its tolerance.
+    """Rerun a baseline's cases and list every quantity that moved beyond its tolerance.
 
     Prints the quantity, its baseline and current values, the difference and the tolerance
     (in each case's units unless --units or --speed-unit says otherwise), whether a case file

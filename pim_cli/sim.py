@@ -2,13 +2,11 @@
 
 from __future__ import annotations
 
-import math
-
 import click
 
-from pim.model.law import solve as solve_under_law
 from pim.model.numbers import InputError
 from pim_cli.main import (
+    OPTION_NAMES,
     FiniteFloat,
     allow_inadmissible_option,
     beta_option,
@@ -23,10 +21,9 @@ from pim_cli.main import (
     output_units,
     units_option,
 )
-from sim.crosscheck import crosscheck
+from sim.crosscheck import crosscheck_law
 from sim.failures import SimulationError
-from sim.kudlich_slibar import crosscheck_kudlich_slibar, simulate_kudlich_slibar
-from sim.secondary import WATCH_AFTER, find_secondary_impact, watch_after_impact
+from sim.secondary import watch_after_check
 from sim.settings import Settings
 
 __all__ = ["sim", "in_options", "SETTING_OPTIONS"]
@@ -49,8 +46,11 @@ __all__ = ["sim", "in_options", "SETTING_OPTIONS"]
 @json_option
 def sim(case_name, eps, beta, dt, iterations, contact, start, units, speed_unit,
         allow_inadmissible, as_json):
-    """Simulate CASE with pymunk and compare with the analytic answer (pim solve) under the
-    case's impact law (Brach's PIM, friction-capped Brach or Kudlich-Slibar).
+    """Simulate CASE with pymunk and compare the result with the analytic answer (pim
+    solve).
+
+    Both run under the case's impact law (Brach's PIM, friction-capped Brach or
+    Kudlich-Slibar).
 
     Prints analytic and simulated post-impact velocities and yaw rates with absolute and
     relative errors, and the wall time of the simulation; before them, a note when the
@@ -70,13 +70,13 @@ def sim(case_name, eps, beta, dt, iterations, contact, start, units, speed_unit,
     case = load_case_for("sim", case_name)
     units = output_units(case, units, speed_unit)
     try:
-        check = _crosscheck_law(case, eps, beta, settings)
+        check = crosscheck_law(case, eps, beta, settings, names=OPTION_NAMES)
     except SimulationError as exc:
         click.echo(f"simulation failed ({exc.kind}): {in_options(str(exc))}", err=True)
         raise click.exceptions.Exit(1) from None
     found = check_answer(case, check.analytic, units, allow=allow_inadmissible,
                          as_json=as_json)
-    secondary, why = _secondary(case, check)
+    secondary, why = watch_after_check(case, check)
     if as_json:
         echo_json(check.to_json(units) | findings_json(found) | {
             "secondary_impact": None if secondary is None else secondary.to_json(units)})
@@ -91,22 +91,6 @@ def sim(case_name, eps, beta, dt, iterations, contact, start, units, speed_unit,
     finish_answer(found, allow_inadmissible)
 
 
-def _secondary(case, check):
-    """(The secondary contact within :data:`sim.secondary.WATCH_AFTER` s after the impact
-    or None, why it could not be watched or ""): the rigid scene of the check played on,
-    or the Kudlich-Slibar two-phase run."""
-    try:
-        if (case.impact.law or "brach") != "kudlich-slibar":
-            return watch_after_impact(case, check.eps, check.beta), ""
-        settings = Settings(dt=1e-3, record=True, duration=WATCH_AFTER + 2e-3)
-        mu_c = check.mu_c if math.isfinite(check.mu_c) else 1e6    # always stick
-        run = simulate_kudlich_slibar(case, check.k, mu_c, settings)
-        return find_secondary_impact(run.trajectory), ""
-    except SimulationError as exc:
-        return None, (f"a secondary contact after the impact was not checked: the run on "
-                      f"after the impact failed ({exc.kind})")
-
-
 #: The simulator's settings that ``pim sim`` sets from an option: its messages name the option.
 SETTING_OPTIONS = {"settings.iterations": "--iterations", "settings.dt": "--dt",
                    "settings.contact": "--contact", "settings.start": "--start"}
@@ -118,19 +102,3 @@ def in_options(message: str) -> str:
     for setting, option in SETTING_OPTIONS.items():
         message = message.replace(setting, option)
     return message
-
-
-def _crosscheck_law(case, eps, beta, settings):
-    """The cross-check of the case's impact law: Brach's (at the effective beta for the
-    friction-capped law) or the two-phase Kudlich-Slibar run (docs/impact-laws.md)."""
-    law = case.impact.law or "brach"
-    if law == "kudlich-slibar":
-        if eps is not None or beta is not None:
-            raise InputError("--eps and --beta do not apply to law kudlich-slibar (set "
-                             "impact.restitution and impact.contact_friction in the case)")
-        return crosscheck_kudlich_slibar(case, settings=settings)
-    if law == "brach-capped":
-        capped = solve_under_law(case, eps, beta)
-        eps, beta = float(capped.eps), float(capped.beta)
-    return crosscheck(case, eps, beta, settings)
-

@@ -67,9 +67,10 @@ class SampleCount(click.ParamType):
 @json_option
 def uncertainty(case_name, samples, seed, eps, beta, png, top, progress, units, speed_unit,
                 allow_inadmissible, as_json):
-    """Monte Carlo of CASE's [uncertainty] table (and of the scatter of inputs pim estimated,
-    e.g. a missing yaw inertia): 5/50/95 % and ranked input contributions.
+    """Propagate CASE's [uncertainty] table by Monte Carlo: the 5/50/95 % of each result and
+    the inputs that drive its spread.
 
+    The scatter of the inputs pim estimated (e.g. a missing yaw inertia) is drawn too.
     Contributions are first-order variance-based (Sobol) indices: the share of an output's
     variance explained by one input alone. Samples whose impact is inadmissible are left
     out of both (their share and reasons are printed first). Exit code 1 after the output

@@ -8,13 +8,14 @@ import pim
 from pim.io.units import display_units
 
 from .error_measure import ERROR_DEFINITION, TABLE_HEADER, compare_results, impact_error
+from .kudlich_slibar import KudlichSlibarCheck, crosscheck_kudlich_slibar
 from .limits import limitations
 from .result import SimResult
 from .run import simulate
 from .scene import resolve_coefficients
 from .settings import Settings
 
-__all__ = ["CrossCheck", "crosscheck"]
+__all__ = ["CrossCheck", "crosscheck", "crosscheck_law"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -98,3 +99,30 @@ def crosscheck(case: pim.Case, eps=None, beta=None,
                       error=error,
                       limitations=limitations(case, eps, beta), analytic=analytic,
                       simulated=simulated)
+
+
+def crosscheck_law(case: pim.Case, eps=None, beta=None, settings: Settings | None = None, *,
+                   names: dict | None = None) -> CrossCheck | KudlichSlibarCheck:
+    """The cross-check of ``case`` under its own impact law (``case.impact.law``).
+
+    Brach's law: :func:`crosscheck` at (eps, beta). Friction-capped Brach: the same at its
+    effective beta (:func:`pim.solve` under the law gives it). Kudlich-Slibar: the two-phase
+    run of :func:`sim.kudlich_slibar.crosscheck_kudlich_slibar` at the case's k and mu_c
+    (docs/impact-laws.md), which takes no eps or beta.
+
+    Raises :class:`pim.InputError` for eps or beta under Kudlich-Slibar (named as ``names``
+    says, e.g. the command line's {"eps": "--eps", "beta": "--beta"}),
+    :class:`sim.SimulationError` when the run fails.
+    """
+    law = case.impact.law or "brach"
+    if law == "kudlich-slibar":
+        if eps is not None or beta is not None:
+            names = {"eps": "eps", "beta": "beta", **(names or {})}
+            raise pim.InputError(f"{names['eps']} and {names['beta']} do not apply to law "
+                                 "kudlich-slibar (set impact.restitution and "
+                                 "impact.contact_friction in the case)")
+        return crosscheck_kudlich_slibar(case, settings=settings)
+    if law == "brach-capped":
+        capped = pim.solve(case, eps, beta)
+        eps, beta = float(capped.eps), float(capped.beta)
+    return crosscheck(case, eps, beta, settings)

@@ -42,7 +42,16 @@ from .scene import build_scene
 from .settings import Settings
 
 __all__ = ["KudlichSlibarRun", "KudlichSlibarCheck", "simulate_kudlich_slibar",
-           "crosscheck_kudlich_slibar"]
+           "crosscheck_kudlich_slibar", "engine_friction", "ALWAYS_STICK"]
+
+#: The Coulomb coefficient the engine gets for an infinite mu_c (a contact that always
+#: sticks): larger than any sticking impulse ratio needs.
+ALWAYS_STICK = 1e6
+
+
+def engine_friction(mu_c: float) -> float:
+    """``mu_c`` as the engine takes it: finite, :data:`ALWAYS_STICK` for an infinite one."""
+    return mu_c if np.isfinite(mu_c) else ALWAYS_STICK
 
 
 @dataclass(frozen=True)

@@ -21,12 +21,14 @@ from pim.io.units import convert, quantity_text
 from pim.model.geometry import outline_penetration
 from pim.model.numbers import InputError
 
+from .failures import SimulationError
+from .kudlich_slibar import engine_friction, simulate_kudlich_slibar
 from .overlap import clip_convex, overlap_area, place, polygon_area_centroid
 from .run import simulate
 from .settings import Settings
 
 __all__ = ["SecondaryImpact", "find_secondary_impact", "DEFAULT_TOLERANCE", "part_of",
-           "watch_after_impact", "WATCH_AFTER"]
+           "watch_after_impact", "WATCH_AFTER", "watch_after_check"]
 
 #: Seconds of free motion after the impact that ``pim sim`` watches for a secondary contact
 #: (the animation's default span after the impact).
@@ -164,3 +166,28 @@ def watch_after_impact(case, eps: float, beta: float, after: float = WATCH_AFTER
     """
     settings = Settings(dt=dt, record=True, duration=after + 2 * dt)
     return find_secondary_impact(simulate(case, eps, beta, settings).trajectory)
+
+
+def watch_after_check(case, check, after: float = WATCH_AFTER,
+                      dt: float = 1e-3) -> tuple[SecondaryImpact | None, str]:
+    """The secondary contact after the impact that ``check`` cross-checked, under the
+    case's law: the rigid scene at the check's (eps, beta) played on
+    (:func:`watch_after_impact`), or the Kudlich-Slibar two-phase run at its (k, mu_c)
+    recorded ``after`` seconds past the impact.
+
+    Returns
+    -------
+    (SecondaryImpact or None, str)
+        The secondary impact (None: none within ``after`` s), and why it was not watched
+        ("" when it was): a run that fails after the impact is said, not raised, since the
+        cross-check itself succeeded.
+    """
+    try:
+        if (case.impact.law or "brach") != "kudlich-slibar":
+            return watch_after_impact(case, check.eps, check.beta, after, dt), ""
+        settings = Settings(dt=dt, record=True, duration=after + 2 * dt)
+        run = simulate_kudlich_slibar(case, check.k, engine_friction(check.mu_c), settings)
+        return find_secondary_impact(run.trajectory), ""
+    except SimulationError as exc:
+        return None, (f"a secondary contact after the impact was not checked: the run on "
+                      f"after the impact failed ({exc.kind})")

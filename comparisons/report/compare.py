@@ -71,7 +71,8 @@ from comparisons.studies.speed_error import (
 from pim.analysis.misfit import misfit
 from pim.analysis.residuals import has_measured_terms
 from pim.io.files import save_figure
-from pim.io.output import ignore_interrupts, output_folder, rebase, stop_workers
+from pim.io.output import output_folder, rebase
+from pim.io.process import ignore_interrupts, stop_workers
 from pim.io.units import convert, display_units, quantity_text
 from pim.model.numbers import InputError
 from pim.model.plausibility import findings

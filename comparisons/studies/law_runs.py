@@ -13,14 +13,13 @@ Brach scene at (eps, beta).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import pim
 import sim
 from pim.model.impact_laws import law_of
 from pim.model.law import LAW_NAMES
-from sim.kudlich_slibar import simulate_kudlich_slibar
+from sim.kudlich_slibar import engine_friction, simulate_kudlich_slibar
 
 __all__ = ["LawSetup", "law_setup", "simulate_law"]
 
@@ -98,8 +97,6 @@ def simulate_law(case: pim.Case, setup: LawSetup, settings: sim.Settings | None 
     """
     settings = settings or sim.Settings()
     if setup.law == "kudlich-slibar":
-        mu_c = setup.contact_friction
-        if not math.isfinite(mu_c):
-            mu_c = 1e6          # always stick: a Coulomb coefficient no sticking impulse needs
-        return simulate_kudlich_slibar(case, setup.restitution, mu_c, settings)
+        return simulate_kudlich_slibar(case, setup.restitution,
+                                       engine_friction(setup.contact_friction), settings)
     return sim.simulate(case, setup.restitution, setup.beta, settings)

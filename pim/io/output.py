@@ -36,6 +36,9 @@ keeping the others.
 
 Single files (``pim animate --out x.mp4``, ``pim draw``) are written by
 :func:`pim.io.files.atomic_path`, which checks the written file before renaming it.
+
+The signals (held back during the swap, a swallowed interrupt noticed before it) are
+:mod:`pim.io.process`'s, the process side of a run.
 """
 
 from __future__ import annotations
@@ -48,15 +51,14 @@ import fcntl
 import hashlib
 import os
 import shutil
-import signal
 import sys
 import tempfile
-import threading
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 
-__all__ = ["output_folder", "OutputError", "MARKER", "rebase", "held_signals", "ignore_interrupts",
-           "worker_pool", "stop_workers", "note_signal", "signal_received"]
+from .process import held_signals, signal_received
+
+__all__ = ["output_folder", "OutputError", "MARKER", "rebase"]
 
 #: File in every output folder marking it as a pim run (replaceable by the next run).
 MARKER = ".pim-run"
@@ -64,52 +66,8 @@ MARKER = ".pim-run"
 LEGACY_MARKERS = (".pim-compare-files",)
 
 
-#: SIGINT/SIGTERM received during the run (:func:`note_signal`, called by the command line's
-#: handlers): a run that received one is never swapped in, even when the interrupt was
-#: swallowed on its way (an extension's callback that ignores exceptions).
-_SIGNALS: list[int] = []
-
-
-def note_signal(signum: int | None) -> None:
-    """Record a received SIGINT/SIGTERM (None: forget the earlier ones, a new run starts)."""
-    if signum is None:
-        _SIGNALS.clear()
-    else:
-        _SIGNALS.append(signum)
-
-
-def signal_received() -> int | None:
-    """The last SIGINT/SIGTERM recorded by :func:`note_signal`, or None."""
-    return _SIGNALS[-1] if _SIGNALS else None
-
-
 class OutputError(ValueError):
     """An output folder that cannot be written (busy, a file, not pim's, not writable)."""
-
-
-@contextlib.contextmanager
-def held_signals() -> Iterator[None]:
-    """Hold SIGINT and SIGTERM back for the block (delivered when it ends).
-
-    Used for the few steps that must not be cut in two: swapping a folder in, deleting a
-    temporary one. The signals' handlers are replaced by one that only records them (a
-    signal mask would not do: the signal may go to any thread of the process); on leaving
-    the block the handlers are restored and a recorded signal is raised again. Outside the
-    main thread (where handlers cannot be set) a no-op.
-    """
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    pending: list[int] = []
-    previous = {s: signal.signal(s, lambda signum, frame: pending.append(signum))
-                for s in (signal.SIGINT, signal.SIGTERM)}
-    try:
-        yield
-    finally:
-        for signum, handler in previous.items():
-            signal.signal(signum, handler)
-        for signum in dict.fromkeys(pending):
-            signal.raise_signal(signum)
 
 
 def _target(path, option: str) -> Path:
@@ -424,46 +382,3 @@ def rebase(paths: Iterable, tmp, folder) -> list[Path]:
     """Paths written inside ``tmp`` as they are after the swap: inside ``folder``."""
     tmp, folder = Path(tmp), Path(folder)
     return [folder / Path(p).relative_to(tmp) for p in paths]
-
-
-def ignore_interrupts() -> None:
-    """Initializer of worker processes: ignore Ctrl-C (the parent handles it and ends them)
-    and let SIGTERM end the worker silently.
-
-    A Ctrl-C reaches every process of the terminal's process group; a worker that raised
-    KeyboardInterrupt would print its own traceback. A forked worker inherits the parent's
-    SIGTERM handler (which raises an exception, printed from inside a simulation's
-    callback); the default action ends it without a word.
-    """
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
-
-
-def stop_workers(pool) -> None:
-    """End the worker processes of ``pool`` (a ProcessPoolExecutor) at once.
-
-    ``ProcessPoolExecutor.shutdown`` waits for running tasks; after an interrupt they must
-    not run on (nor write into a folder that is being removed).
-    """
-    for process in list((getattr(pool, "_processes", None) or {}).values()):
-        process.terminate()
-
-
-@contextlib.contextmanager
-def worker_pool(max_workers: int | None = None, mp_context=None):
-    """A ProcessPoolExecutor whose workers ignore Ctrl-C and end with an error or interrupt.
-
-    On leaving the block normally the pool shuts down as usual; on an exception (Ctrl-C,
-    SIGTERM, an error) its workers are ended first and pending tasks are cancelled.
-    """
-    from concurrent.futures import ProcessPoolExecutor
-
-    pool = ProcessPoolExecutor(max_workers, mp_context=mp_context,
-                               initializer=ignore_interrupts)
-    try:
-        yield pool
-    except BaseException:
-        stop_workers(pool)
-        raise
-    finally:
-        pool.shutdown(wait=True, cancel_futures=True)

@@ -23,6 +23,7 @@ EXCEPTIONS = {
     "pim_cli/fit.py": "pim/analysis/test_fitting.py",        # pim fit / sensitivity / plot
     "pim_cli/uncertainty.py": "pim/analysis/test_montecarlo.py",  # pim uncertainty
     "pim_cli/sim.py": "pim_cli/test_main.py",
+    "pim_cli/solve.py": "pim_cli/test_main.py",                # pim solve / draw / cases
     "pim_cli/compare.py": "pim_cli/test_main.py",
     "sim/run.py": "sim/test_sim.py",
     "sim/batch.py": "sim/test_sim.py",

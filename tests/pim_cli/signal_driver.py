@@ -65,13 +65,13 @@ def shutdown() -> None:
 
     import pim_cli.main
 
-    real = pim_cli.main._main
+    real = pim_cli.main.main
 
-    def run(argv):
+    def run(argv=None):
         code = real(argv)
         atexit.register(lambda: (mark(), time.sleep(PAUSE)))
         return code
-    pim_cli.main._main = run
+    pim_cli.main.main = run
 
 
 def nth(k: int, function):

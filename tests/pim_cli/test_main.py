@@ -221,3 +221,52 @@ def test_animate_after_beyond_its_bound_names_the_option_and_its_unit(capsys, tm
     assert err.startswith("error: Invalid value for '--after': '1e7' is not a finite number "
                           "in [0, 600] s"), err
     assert err.count("\n") == 1 and not (tmp_path / "a.mp4").exists()
+
+
+# --- Issue 27 point 3: a run's signals through pim.io.process.Interrupts --------------
+
+
+def _swallowing_load(monkeypatch, signum, then=None):
+    """Make `pim solve`'s load_case receive ``signum``, swallow it (as an extension's
+    callback may), then raise ``then`` or load the case."""
+    import os
+
+    import pim.io.casefile
+
+    real = pim.io.casefile.load_case
+
+    def load(name):
+        try:
+            os.kill(os.getpid(), signum)
+        except KeyboardInterrupt:
+            pass
+        if then is not None:
+            raise then
+        return real(name)
+
+    monkeypatch.setattr(pim.io.casefile, "load_case", load)
+
+
+def test_a_run_that_swallowed_its_interrupt_still_ends_interrupted(monkeypatch, capsys):
+    import signal
+
+    _swallowing_load(monkeypatch, signal.SIGINT)
+    assert main(["solve", "ricsac9"]) == 130
+    assert capsys.readouterr().err.strip() == "aborted"
+
+
+def test_an_error_after_sigterm_is_reported_as_the_interrupt(monkeypatch, capsys):
+    """ffmpeg or a worker may fail first, with a broken pipe: the run was terminated."""
+    import signal
+
+    _swallowing_load(monkeypatch, signal.SIGTERM, then=BrokenPipeError(32, "Broken pipe"))
+    assert main(["solve", "ricsac9"]) == 143
+    assert capsys.readouterr().err.strip() == "terminated"
+
+
+def test_the_runs_handlers_are_gone_after_it():
+    import signal
+
+    before = signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)
+    assert main(["cases"]) == 0
+    assert (signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)) == before

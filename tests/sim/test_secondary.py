@@ -99,3 +99,36 @@ def test_run_out_contact_agrees_with_the_overlap_area_detector(ricsac9):
              np.c_[np.linspace(0, 5, 50), np.zeros(50), np.zeros(50)]]
     v1, v2 = ricsac9.vehicle1, ricsac9.vehicle2
     assert secondary_contact(np.linspace(0, 1, 50), *apart, v1, v2) is None
+
+
+def test_watch_after_check_follows_the_case_law(ricsac9):
+    """Brach's law: the rigid scene at the check's (eps, beta), as watch_after_impact;
+    Kudlich-Slibar: its own two-phase run played on (found, not raised)."""
+    import dataclasses
+
+    from sim.crosscheck import crosscheck_law
+    from sim.secondary import watch_after_check, watch_after_impact
+
+    found, why = watch_after_check(ricsac9, crosscheck_law(ricsac9, 0.355, 1.0))
+    expected = watch_after_impact(ricsac9, 0.355, 1.0)
+    assert why == "" and found is not None and found.time == expected.time
+    ks = dataclasses.replace(ricsac9, impact=dataclasses.replace(
+        ricsac9.impact, law="kudlich-slibar", restitution=0.355, beta=None,
+        contact_friction=0.4))
+    found, why = watch_after_check(ks, crosscheck_law(ks))
+    assert why == "" and (found is None or 0 < found.time < sim.secondary.WATCH_AFTER)
+
+
+def test_watch_after_check_says_why_when_the_run_on_fails(ricsac9, monkeypatch):
+    from sim.crosscheck import crosscheck_law
+    from sim.secondary import watch_after_check
+
+    check = crosscheck_law(ricsac9, 0.355, 1.0)
+
+    def fails(*args, **kwargs):
+        raise sim.SimulationError("never_separated", "the contact still pushed")
+
+    monkeypatch.setattr(sim.secondary, "watch_after_impact", fails)
+    assert watch_after_check(ricsac9, check) == (
+        None, "a secondary contact after the impact was not checked: the run on after the "
+              "impact failed (never_separated)")

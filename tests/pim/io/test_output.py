@@ -6,12 +6,11 @@ import signal
 import subprocess
 import sys
 import textwrap
-import time
 from pathlib import Path
 
 import pytest
 
-from pim.io.output import MARKER, OutputError, held_signals, output_folder, rebase
+from pim.io.output import MARKER, OutputError, output_folder, rebase
 
 
 def tree(folder):
@@ -130,13 +129,22 @@ def test_rebase_maps_temporary_paths_to_the_final_folder(tmp_path):
         Path("out/plots/a.png")]
 
 
-def test_held_signals_delivers_the_interrupt_after_the_block():
-    done = []
-    with pytest.raises(KeyboardInterrupt):
-        with held_signals():
-            os.kill(os.getpid(), signal.SIGINT)
-            done.append(1)             # still runs: the signal waits
-    assert done == [1]
+def test_a_run_whose_interrupt_was_swallowed_is_not_swapped_in(tmp_path):
+    """The run's Interrupts handler remembers the signal (pim.io.process.signal_received):
+    the block ended normally, yet the old run stays and the interrupt is raised."""
+    from pim.io.process import Interrupts
+
+    out = write_run(tmp_path / "out", {"a.csv": "old"})
+    before = tree(out)
+    with Interrupts().installed(), pytest.raises(KeyboardInterrupt):
+        with output_folder(out) as tmp:
+            (tmp / "a.csv").write_text("new")
+            try:
+                os.kill(os.getpid(), signal.SIGINT)
+            except KeyboardInterrupt:
+                pass                                # swallowed on its way
+    assert tree(out) == before
+    assert litter(tmp_path) == []
 
 
 def test_a_shared_folder_gets_the_runs_files_and_keeps_the_others(tmp_path):
@@ -190,42 +198,6 @@ def test_a_command_that_fails_midway_keeps_the_earlier_run(tmp_path, monkeypatch
     assert len(errors) == 1 and "No space left" in errors[0]
     assert tree(out) == before
     assert litter(tmp_path) == []
-
-
-@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
-def test_pool_workers_print_nothing_and_end_with_the_parent(tmp_path, signum):
-    """Issue 22: a Ctrl-C to the process group printed each worker's KeyboardInterrupt
-    traceback; a parent's SIGTERM handler inherited by forked workers did the same."""
-    script = tmp_path / "run.py"
-    script.write_text(textwrap.dedent("""
-        import signal, sys, time
-        from pim.io.output import worker_pool
-
-        def task():
-            time.sleep(30)
-
-        def on_term(signum, frame):
-            raise KeyboardInterrupt
-
-        if __name__ == "__main__":
-            signal.signal(signal.SIGTERM, on_term)      # as the pim command line does
-            try:
-                with worker_pool(2) as pool:
-                    futures = [pool.submit(task) for _ in range(2)]
-                    print("started", flush=True)
-                    futures[0].result()
-            except KeyboardInterrupt:
-                sys.exit(130)
-    """))
-    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, start_new_session=True)
-    assert proc.stdout.readline().strip() == "started"
-    time.sleep(0.5)                                  # the workers are in their task
-    start = time.time()
-    os.killpg(proc.pid, signum)
-    _, err = proc.communicate(timeout=60)
-    assert proc.returncode == 130 and err == "", err
-    assert time.time() - start < 10                  # ended, not waited for (30 s)
 
 
 # Issue 28: a rerun into a folder pim wrote earlier, to which the user had added notes.txt,

@@ -1,0 +1,187 @@
+"""The process around a run: SIGINT and SIGTERM, and worker pools that end with it.
+
+A run (one ``pim`` command) installs an :class:`Interrupts` handler for its length: SIGINT
+raises KeyboardInterrupt and SIGTERM :class:`Terminated` (a KeyboardInterrupt too), so that
+every atomic writer and every output folder (:mod:`pim.io.output`) removes its temporary
+files on the way out, and the handler remembers which signal arrived. The command line holds
+the handler and turns what it remembers into the exit code (130 for SIGINT, 143 for
+SIGTERM); an output folder asks :func:`signal_received` before it swaps a run in, so a run
+whose interrupt was swallowed on its way (an extension's callback that ignores exceptions)
+is never swapped in. The record lives in the handler the run installed, not in this module:
+a new run starts with a new handler and nothing to forget.
+
+:func:`held_signals` holds the two signals back for the few steps that must not be cut in
+two (swapping a folder in); :func:`worker_pool` is a process pool whose workers ignore
+Ctrl-C (the parent handles it) and are ended with an error or an interrupt.
+
+Output folders stay in :mod:`pim.io.output` (file-system transactions); this module is the
+process's side, which they use. Nothing here imports numpy.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import signal
+import sys
+import threading
+from collections.abc import Iterator
+
+__all__ = ["Interrupts", "Terminated", "signal_received", "held_signals", "ignore_interrupts",
+           "worker_pool", "stop_workers", "INTERRUPT_EXIT_CODES", "in_callback",
+           "CALLBACK_PATHS", "CALLBACK_NAMES"]
+
+#: Exit code of a run ended by each signal (128 + its number, as a shell reports it).
+INTERRUPT_EXIT_CODES = {signal.SIGINT: 130, signal.SIGTERM: 143}
+_HANDLED = (signal.SIGINT, signal.SIGTERM)
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised like Ctrl-C so that every atomic writer removes its temporary file."""
+
+
+#: Code run from C with its exceptions printed and dropped ("Exception ignored from callback
+#: for ffi.gc"): pymunk's collision callbacks and object destructors, at-fork hooks,
+#: finalizers. A signal handled there is raised at the first moment outside it.
+CALLBACK_PATHS = (f"{os.sep}pymunk{os.sep}", f"{os.sep}cffi{os.sep}")
+CALLBACK_NAMES = frozenset({"__del__", "_releaseLock", "_acquireLock",
+                            "_after_at_fork_child_reinit_locks", "_after_fork"})
+
+
+def in_callback(frame) -> bool:
+    """Whether ``frame`` (the one a signal handler interrupted) runs inside code whose
+    exceptions are dropped (:data:`CALLBACK_PATHS`, :data:`CALLBACK_NAMES`)."""
+    while frame is not None:
+        code = frame.f_code
+        if code.co_name in CALLBACK_NAMES or any(p in code.co_filename
+                                                 for p in CALLBACK_PATHS):
+            return True
+        frame = frame.f_back
+    return False
+
+
+class Interrupts:
+    """SIGINT and SIGTERM as exceptions for the length of one run, and which of them arrived.
+
+    An instance is the signal handler (callable as one): it records the signal and raises
+    KeyboardInterrupt (SIGINT) or :class:`Terminated` (SIGTERM). Install it with
+    :meth:`installed`; the caller keeps the instance and asks :meth:`last` afterwards.
+
+    Attributes
+    ----------
+    received : list of int
+        The signals received while installed, in order.
+    """
+
+    def __init__(self):
+        self.received: list[int] = []
+
+    def __call__(self, signum, frame):
+        """Record ``signum`` and raise its exception: here, or, when ``frame`` is inside a
+        callback that would drop it (:func:`in_callback`) and let the run go on to its end,
+        at the first event of the main thread outside it (a profile hook, removed as it
+        raises)."""
+        self.received.append(signum)
+        error = Terminated if signum == signal.SIGTERM else KeyboardInterrupt
+        if not in_callback(frame):
+            raise error()
+
+        def outside(event_frame, event, arg):
+            if not in_callback(event_frame):
+                sys.setprofile(None)
+                raise error()
+        sys.setprofile(outside)
+
+    def last(self) -> int | None:
+        """The last signal received, or None."""
+        return self.received[-1] if self.received else None
+
+    @contextlib.contextmanager
+    def installed(self) -> Iterator[Interrupts]:
+        """Handle SIGINT and SIGTERM by this instance for the block (the previous handlers
+        are restored after it); outside the main thread, where handlers cannot be set, the
+        block runs with the process's handlers."""
+        if threading.current_thread() is not threading.main_thread():
+            yield self
+            return
+        previous = {s: signal.signal(s, self) for s in _HANDLED}
+        try:
+            yield self
+        finally:
+            for signum, handler in previous.items():
+                signal.signal(signum, handler)
+
+
+def signal_received() -> int | None:
+    """The last SIGINT/SIGTERM the run's :class:`Interrupts` handler (the one installed now)
+    received, or None (none received, or no run's handler installed)."""
+    handler = signal.getsignal(signal.SIGINT)
+    return handler.last() if isinstance(handler, Interrupts) else None
+
+
+@contextlib.contextmanager
+def held_signals() -> Iterator[None]:
+    """Hold SIGINT and SIGTERM back for the block (delivered when it ends).
+
+    Used for the few steps that must not be cut in two: swapping a folder in, deleting a
+    temporary one. The signals' handlers are replaced by one that only records them (a
+    signal mask would not do: the signal may go to any thread of the process); on leaving
+    the block the handlers are restored and a recorded signal is raised again. Outside the
+    main thread (where handlers cannot be set) a no-op.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    pending: list[int] = []
+    previous = {s: signal.signal(s, lambda signum, frame: pending.append(signum))
+                for s in _HANDLED}
+    try:
+        yield
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+        for signum in dict.fromkeys(pending):
+            signal.raise_signal(signum)
+
+
+def ignore_interrupts() -> None:
+    """Initializer of worker processes: ignore Ctrl-C (the parent handles it and ends them)
+    and let SIGTERM end the worker silently.
+
+    A Ctrl-C reaches every process of the terminal's process group; a worker that raised
+    KeyboardInterrupt would print its own traceback. A forked worker inherits the parent's
+    SIGTERM handler (which raises an exception, printed from inside a simulation's
+    callback); the default action ends it without a word.
+    """
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+def stop_workers(pool) -> None:
+    """End the worker processes of ``pool`` (a ProcessPoolExecutor) at once.
+
+    ``ProcessPoolExecutor.shutdown`` waits for running tasks; after an interrupt they must
+    not run on (nor write into a folder that is being removed).
+    """
+    for process in list((getattr(pool, "_processes", None) or {}).values()):
+        process.terminate()
+
+
+@contextlib.contextmanager
+def worker_pool(max_workers: int | None = None, mp_context=None):
+    """A ProcessPoolExecutor whose workers ignore Ctrl-C and end with an error or interrupt.
+
+    On leaving the block normally the pool shuts down as usual; on an exception (Ctrl-C,
+    SIGTERM, an error) its workers are ended first and pending tasks are cancelled.
+    """
+    from concurrent.futures import ProcessPoolExecutor
+
+    pool = ProcessPoolExecutor(max_workers, mp_context=mp_context,
+                               initializer=ignore_interrupts)
+    try:
+        yield pool
+    except BaseException:
+        stop_workers(pool)
+        raise
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)

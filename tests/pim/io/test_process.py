@@ -1,0 +1,136 @@
+"""pim/io/process.py: SIGINT and SIGTERM as exceptions for a run, remembered by the run's own
+handler (no module state), held back for the steps that must not be cut in two; worker pools
+that end with their parent (issue 22)."""
+
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import pytest
+
+from pim.io.process import (
+    INTERRUPT_EXIT_CODES,
+    Interrupts,
+    Terminated,
+    held_signals,
+    in_callback,
+    signal_received,
+)
+
+
+@pytest.mark.parametrize("signum, kind", [(signal.SIGINT, KeyboardInterrupt),
+                                          (signal.SIGTERM, Terminated)])
+def test_a_signal_is_raised_and_remembered_by_the_runs_handler(signum, kind):
+    interrupts = Interrupts()
+    with interrupts.installed():
+        with pytest.raises(kind):
+            os.kill(os.getpid(), signum)
+        assert signal_received() == signum          # what an output folder asks
+    assert interrupts.last() == signum and interrupts.received == [signum]
+    assert INTERRUPT_EXIT_CODES[signum] == 128 + signum
+
+
+def test_the_previous_handlers_come_back_and_a_new_run_starts_with_nothing():
+    before = signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)
+    first = Interrupts()
+    with first.installed(), pytest.raises(KeyboardInterrupt):
+        os.kill(os.getpid(), signal.SIGINT)
+    assert (signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)) == before
+    assert signal_received() is None                # no run's handler installed
+    second = Interrupts()
+    with second.installed():
+        assert signal_received() is None            # nothing to forget: a new record
+    assert first.last() == signal.SIGINT and second.last() is None
+
+
+def test_a_swallowed_interrupt_is_still_remembered():
+    interrupts = Interrupts()
+    with interrupts.installed():
+        try:
+            os.kill(os.getpid(), signal.SIGTERM)
+        except KeyboardInterrupt:
+            pass                                     # e.g. an extension's callback
+        assert signal_received() == signal.SIGTERM
+
+
+def test_outside_the_main_thread_the_block_runs_with_the_process_handlers():
+    import threading
+
+    seen = []
+
+    def run():
+        with Interrupts().installed():
+            seen.append(signal.getsignal(signal.SIGINT))
+
+    thread = threading.Thread(target=run)
+    thread.start()
+    thread.join()
+    assert seen == [signal.getsignal(signal.SIGINT)]
+
+
+def test_held_signals_delivers_the_interrupt_after_the_block():
+    done = []
+    with pytest.raises(KeyboardInterrupt):
+        with held_signals():
+            os.kill(os.getpid(), signal.SIGINT)
+            done.append(1)             # still runs: the signal waits
+    assert done == [1]
+
+
+def test_a_signal_inside_a_callback_is_raised_at_the_first_moment_outside_it():
+    """pymunk's callbacks and destructors print and drop an exception raised inside them
+    (the run would go on to its end): the handler raises it once the callback returned."""
+    interrupts = Interrupts()
+    seen = []
+
+    class Finalised:
+        def __del__(self):                  # a callback by its name (CALLBACK_NAMES)
+            assert in_callback(sys._getframe())
+            interrupts(signal.SIGTERM, sys._getframe())     # not raised in here
+            seen.append("callback ran to its end")
+
+    with pytest.raises(Terminated):
+        Finalised()                         # no name keeps it: __del__ runs at once
+        seen.append("the caller went on")   # pragma: no cover - raised before this
+    assert seen == ["callback ran to its end"] and interrupts.last() == signal.SIGTERM
+    assert sys.getprofile() is None         # the hook removed as it raised
+    assert not in_callback(sys._getframe())
+
+
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
+def test_pool_workers_print_nothing_and_end_with_the_parent(tmp_path, signum):
+    """Issue 22: a Ctrl-C to the process group printed each worker's KeyboardInterrupt
+    traceback; a parent's SIGTERM handler inherited by forked workers did the same."""
+    script = tmp_path / "run.py"
+    script.write_text(textwrap.dedent("""
+        import signal, sys, time
+        from pim.io.process import worker_pool
+
+        def task():
+            time.sleep(30)
+
+        def on_term(signum, frame):
+            raise KeyboardInterrupt
+
+        if __name__ == "__main__":
+            signal.signal(signal.SIGTERM, on_term)      # as the pim command line does
+            try:
+                with worker_pool(2) as pool:
+                    futures = [pool.submit(task) for _ in range(2)]
+                    print("started", flush=True)
+                    futures[0].result()
+            except KeyboardInterrupt:
+                sys.exit(130)
+    """))
+    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+    assert proc.stdout.readline().strip() == "started"
+    time.sleep(0.5)                                  # the workers are in their task
+    start = time.time()
+    os.killpg(proc.pid, signum)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and err == "", err
+    assert time.time() - start < 10                  # ended, not waited for (30 s)
