@@ -17,10 +17,6 @@ import sys
 
 __all__ = ["run"]
 
-#: Signals received after the run's exit code was known (see :func:`_leave`).
-_LATE: list[int] = []
-
-
 def _during_import(signum, frame):
     """Nothing is written yet: leave at once (an exception raised inside an extension
     module's import may be swallowed or turned into an ImportError)."""
@@ -29,11 +25,12 @@ def _during_import(signum, frame):
     os._exit(143 if terminated else 130)
 
 
-def _leave() -> None:
+def _leave(late: list) -> None:
     """The last exit handler (registered first): a signal received during the shutdown
-    makes the exit code 130/143, with its one line."""
-    if _LATE:
-        terminated = signal.SIGTERM in _LATE
+    (``late``: the signals received after the run's exit code was known) makes the exit code
+    130/143, with its one line."""
+    if late:
+        terminated = signal.SIGTERM in late
         sys.stdout.flush()
         sys.stderr.flush()
         os.write(2, b"terminated\n" if terminated else b"aborted\n")
@@ -42,7 +39,8 @@ def _leave() -> None:
 
 def run() -> None:
     """Exit with ``pim_cli.main.main()``'s code; 130/143 when interrupted, at any moment."""
-    atexit.register(_leave)     # first registered, so it runs after every other one
+    late: list[int] = []        # signals received after the run's exit code was known
+    atexit.register(_leave, late)   # first registered, so it runs after every other one
     for signum in (signal.SIGINT, signal.SIGTERM):
         signal.signal(signum, _during_import)
     # An interrupted run leaves by os._exit: multiprocessing's resource tracker (a process of
@@ -53,7 +51,7 @@ def run() -> None:
 
     code = main()           # handles SIGINT/SIGTERM itself while it runs
     for signum in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(signum, lambda received, frame: _LATE.append(received))
+        signal.signal(signum, lambda received, frame: late.append(received))
     if code in (130, 143):
         # Interrupted (its files already removed). A KeyboardInterrupt that went through
         # an extension's PyRun_* call (a lazy import) leaves the interpreter's flag that

@@ -277,8 +277,8 @@ def solve_choice(case, choice, units=None):
     return result
 
 
-def solve_with_options(case, eps, beta, friction_limit=None, cap_friction=False, law=None,
-                       k=None, mu_c=None, units=None):
+def solve_with_options(case, eps, beta, *, friction_limit=None, cap_friction=False,
+                       law=None, k=None, mu_c=None, units=None):
     """Solve ``case`` as the commands do: :func:`solve_choice` of :func:`resolve_options`.
 
     Raises InputError for a bad or contradictory option, click's Exit(1) when there is no

@@ -148,9 +148,9 @@ def reconstruct(case_name, out, samples, seed, workers, video, progress, max_min
     with output_folder(out, command="pim reconstruct") if out else \
             contextlib.nullcontext() as tmp:
         with _stages(case, samples, workers, progress) as say:
-            rec, rows, pre, found = _reconstruct(case, samples, seed, workers, units, as_json,
-                                                 say, budget(samples, workers, max_minutes),
-                                                 allow_inadmissible)
+            rec, rows, pre, found = _reconstruct(
+                case, samples, seed, workers, units, as_json, say=say,
+                estimate=budget(samples, workers, max_minutes), allow=allow_inadmissible)
         if tmp is not None:
             _write_folder(tmp, rec, rows, units, video, pre)
     if out and not as_json:
@@ -200,7 +200,7 @@ def _duration(seconds: float) -> str:
         f"{seconds / 60:.0f} min" if seconds < 7200 else f"{seconds / 3600:.1f} h")
 
 
-def _reconstruct(case, samples, seed, workers, units, as_json, say=None, estimate=None,
+def _reconstruct(case, samples, seed, workers, units, as_json, *, say=None, estimate=None,
                  allow=False):
     """Run the reconstruction and print its table (or JSON) after what is wrong or doubtful
     about its answer; return it, its rows, the rows of the speeds before the impact

@@ -96,8 +96,9 @@ def _record(row: dict, line: int) -> CgRecord:
         raise InputError(f"{where}: not a number ({exc})") from None
     if not (wheelbase > 0 and weight > 0 and 0 < a < wheelbase and 0 < share < 1):
         raise InputError(f"{where}: wheelbase and weight must be > 0, the CG between the axles")
-    return CgRecord(year, row["make"], row["model"], row["drive"], _body(row["type"], where),
-                    wheelbase * _INCH, weight * _POUND, a * _INCH, share)
+    return CgRecord(model_year=year, make=row["make"], model=row["model"], drive=row["drive"],
+                    body=_body(row["type"], where), wheelbase=wheelbase * _INCH,
+                    mass=weight * _POUND, cg_to_front_axle=a * _INCH, front_share=share)
 
 
 @cache

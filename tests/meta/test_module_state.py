@@ -30,8 +30,7 @@ MUTATORS = {"append", "extend", "insert", "remove", "pop", "popitem", "clear", "
             "symmetric_difference_update", "__setitem__", "__delitem__"}
 #: (file, module-level name) left to the helper who owns the file (cli2: the command line and
 #: the process module pim/io/output.py).
-PENDING = {("pim/io/output.py", "_SIGNALS"),       # cli2 helper
-           ("pim_cli/__init__.py", "_LATE")}       # cli2 helper
+PENDING: set[tuple[str, str]] = set()
 CONTAINERS = {"list", "dict", "set", "defaultdict", "OrderedDict", "Counter", "deque",
               "bytearray"}
 

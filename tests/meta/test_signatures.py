@@ -46,9 +46,6 @@ PENDING = {
     ("pim/model/tyres.py", "tyre_forces"),
     ("pim/analysis/runout_fit_batch.py", "checked"),
     ("pim/analysis/runout_fit_batch.py", "fit_runout_many"),
-    # cli2 helper (pim_cli/*.py)
-    ("pim_cli/reconstruct.py", "_reconstruct"),
-    ("pim_cli/main.py", "solve_with_options"),
 }
 #: Calls (file, callee) left to the helpers who own the calling file, for the same reason.
 PENDING_CALLS = {
@@ -56,8 +53,6 @@ PENDING_CALLS = {
     ("sim/runout_check.py", "tyre_forces"),               # with tyre_forces (runout helper)
     ("pim/analysis/runout_fit.py", "RunoutFit"),          # runout helper
     ("pim/analysis/runout_fit_batch.py", "checked"),      # runout helper
-    ("pim_cli/reconstruct.py", "_reconstruct"),           # cli2 helper
-    ("pim_cli/compare.py", "solve_with_options"),         # cli2 helper
 }
 
 
