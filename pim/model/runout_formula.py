@@ -66,14 +66,14 @@ TYRE_COLUMNS = ("longitudinal_stiffness",) * 4 + ("cornering_stiffness",) * 4 + 
     "cg_to_front_axle")
 
 
-def wheel_inputs(t, w, frame, vehicle, ramp):
+def wheel_inputs(t, w, c, s, times, steer, brake, ramp):
     """Wheel ``w``'s heading and braking at time ``t`` [s].
 
     Parameters
     ----------
     t : float [s]; w : int, the wheel (0 front-left, 1 front-right, 2 rear-left, 3 rear-right)
-    frame : (cos psi, sin psi) of the vehicle's heading
-    vehicle : the vehicle tuple (module notes)
+    c, s : cos psi and sin psi of the vehicle's heading
+    times, steer, brake : the input tables of the vehicle tuple (module notes)
     ramp : [-] the brake build-up's fraction at ``t`` (1 for the Coulomb law)
 
     Returns
@@ -82,8 +82,6 @@ def wheel_inputs(t, w, frame, vehicle, ramp):
         cos and sin of the wheel's heading ``psi + delta`` (by the angle-addition formulas),
         and its braking fraction [-] times ``ramp``.
     """
-    c, s = frame
-    times, steer, brake = vehicle[7], vehicle[8], vehicle[9]
     if times.shape[0] == 1:            # constant inputs: the steer's cos and sin given
         cd, sd, braking = steer[0, w], steer[1, w], brake[0, w]
     else:
@@ -92,14 +90,12 @@ def wheel_inputs(t, w, frame, vehicle, ramp):
     return c * cd - s * sd, s * cd + c * sd, braking * ramp
 
 
-def wheel_load(w, vehicle, along, across):
-    """Normal load of wheel ``w`` [N] under the CG acceleration ``along`` (forward) and
-    ``across`` (to the left) [m/s^2], body frame: the static load for the Coulomb law,
-    :func:`pim.model.tyres.transferred_load` for the field tyre (the static load exactly at
-    zero acceleration)."""
-    mass, static, tyre = vehicle[0], vehicle[4][w], vehicle[10]
-    if tyre.shape[0] == 0:
-        return static
+def wheel_load(w, static, mass, tyre, along, across):
+    """Normal load of wheel ``w`` [N] of static load ``static`` [N] and a vehicle of ``mass``
+    [kg] under the CG acceleration ``along`` (forward) and ``across`` (to the left) [m/s^2],
+    body frame, with the field tyre's data row ``tyre`` (module notes):
+    :func:`pim.model.tyres.transferred_load` (the static load exactly at zero
+    acceleration)."""
     return transferred_load(static, mass, along, across, tyre[11], tyre[12], tyre[13],
                             tyre[14], 1.0 - w // 2, 1.0 - w % 2)
 
@@ -122,17 +118,17 @@ def tyre_sum(t, kinematics, vehicle, acceleration, ramp):
         ``sum_i F_i`` and ``sum_i (R(psi) p_i) x F_i`` of the four tyres.
     """
     c, s, vx, vy, omega = kinematics
-    wheel_x, wheel_y, mu, vr, tyre = vehicle[2], vehicle[3], vehicle[5], vehicle[6], vehicle[10]
+    mass, _, wheel_x, wheel_y, load, mu, vr, times, steer, brake, tyre = vehicle
     fx = fy = moment = 0.0
     for w in range(4):
-        cw, sw, braking = wheel_inputs(t, w, (c, s), vehicle, ramp)
-        load = wheel_load(w, vehicle, acceleration[0], acceleration[1])
-        if tyre.shape[0] == 0:
-            a, b, m = wheel_force(c, s, vx, vy, omega, wheel_x[w], wheel_y[w], cw, sw, load,
-                                  mu, braking, vr)
-        else:
+        cw, sw, braking = wheel_inputs(t, w, c, s, times, steer, brake, ramp)
+        if tyre.shape[0] == 0:         # Coulomb, at the static load
+            a, b, m = wheel_force(c, s, vx, vy, omega, wheel_x[w], wheel_y[w], cw, sw,
+                                  load[w], mu, braking, vr)
+        else:                          # the field tyre, at the transferred load
+            ld = wheel_load(w, load[w], mass, tyre, acceleration[0], acceleration[1])
             a, b, m = field_wheel_force(c, s, vx, vy, omega, wheel_x[w], wheel_y[w], cw, sw,
-                                        load, mu, braking, vr, tyre[w], tyre[4 + w], tyre[10])
+                                        ld, mu, braking, vr, tyre[w], tyre[4 + w], tyre[10])
         fx = fx + a
         fy = fy + b
         moment = moment + m

@@ -82,7 +82,7 @@ def test_coulomb_rhs_is_newton_with_the_vectorised_tyre_law(car, state, scale):
     y = scaled(state, scale)
     forces = tyre_forces(y[3:5], y[5], y[2], car.positions, car.loads, car.friction,
                          np.asarray(car.braking), np.asarray(car.steer),
-                         car.regularisation)
+                         regularisation=car.regularisation)
     force, moment = net_force_and_moment(forces, car.positions, y[2])
     expected = np.concatenate([y[3:6], force / car.mass, [moment / car.yaw_inertia]])
     np.testing.assert_allclose(TimedRhs(car)(0.0, y), expected, rtol=1e-9,
@@ -101,7 +101,7 @@ def test_field_tyre_loads_follow_the_acceleration():
     transferred = runout_formula.tyre_sum(0.0, (1.0, 0.0, 20.0, 0.0, 0.0), data,
                                           (along, 0.0), 1.0)
     assert d[3] == transferred[0] / car.mass
-    front = runout_formula.wheel_load(0, data, along, 0.0)
+    front = runout_formula.wheel_load(0, car.loads[0], car.mass, data[10], along, 0.0)
     assert front == pytest.approx(car.loads[0] - car.mass * along * 0.55 / (2 * 2.7))
     assert front > car.loads[0]
 
