@@ -5,8 +5,8 @@ This checks :func:`pim.model.runout.runout`'s equations of motion and integratio
 independent integrator (Chipmunk's semi-implicit Euler); the force law itself is the one
 under test in tests/pim/model/test_tyres.py against closed forms. A vehicle on the field tyre
 or with
-driver tables (``vehicle.timed``) gets the same forces as the run-out
-(:class:`pim.model.runout.TimedRhs`: brush law, load transfer, inputs at pymunk's time).
+driver tables gets the same forces as the run-out: its one right-hand side
+(:class:`pim.model.runout.TimedRhs`: either tyre law, load transfer, inputs at pymunk's time).
 """
 
 from __future__ import annotations
@@ -15,7 +15,6 @@ import numpy as np
 import pymunk
 
 from pim.model.runout import MAX_TIME, Runout, RunoutVehicle, TimedRhs
-from pim.model.tyres import net_force_and_moment, tyre_forces
 
 __all__ = ["pymunk_runout"]
 
@@ -28,10 +27,8 @@ def pymunk_runout(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate,
     (its first-order integrator needs a small one: positions err by about v dt).
     """
     stop_speed = vehicle.regularisation / 5 if stop_speed is None else stop_speed
-    positions, loads = vehicle.positions, vehicle.loads
+    positions = vehicle.positions
     reach = float(np.max(np.hypot(positions[:, 0], positions[:, 1])))
-    braking = np.asarray(vehicle.braking, dtype=float)
-    steer = np.asarray(vehicle.steer, dtype=float)
     space = pymunk.Space()
     space.gravity = (0.0, 0.0)
     body = pymunk.Body(float(vehicle.mass), float(vehicle.yaw_inertia))
@@ -41,15 +38,11 @@ def pymunk_runout(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate,
     body.angular_velocity = float(yaw_rate)
     space.add(body)
     times, states = [], []
-    timed = TimedRhs(vehicle) if vehicle.timed else None
+    rhs = TimedRhs(vehicle)
 
     def forces_at(t, v):
-        if timed is not None:
-            rate = timed(t, [0.0, 0.0, body.angle, v[0], v[1], body.angular_velocity])
-            return vehicle.mass * rate[3:5], vehicle.yaw_inertia * rate[5]
-        forces = tyre_forces(v, body.angular_velocity, body.angle, positions, loads,
-                             vehicle.friction, braking, steer, vehicle.regularisation)
-        return net_force_and_moment(forces, positions, body.angle)
+        rate = rhs(t, [0.0, 0.0, body.angle, v[0], v[1], body.angular_velocity])
+        return vehicle.mass * rate[3:5], vehicle.yaw_inertia * rate[5]
 
     def record(t):
         times.append(t)

@@ -224,7 +224,7 @@ def _cost(r: np.ndarray) -> np.ndarray:
     return np.where(np.isfinite(c), c, np.inf)
 
 
-def with_forward_differences(residuals, lower, upper, step: float = 1e-3):
+def with_forward_differences(residuals, lower, upper, step=1e-3):
     """The ``fun`` of :func:`least_squares_batch` from residuals alone, by forward differences.
 
     Parameters
@@ -232,11 +232,12 @@ def with_forward_differences(residuals, lower, upper, step: float = 1e-3):
     residuals : callable
         ``residuals(x, index) -> r``: residuals (p, q, k) at the points ``x`` (p, q, n), q
         points of each problem ``index`` (p,) (its base point and its n neighbours).
-    lower, upper : array_like (n,)
-        The box (finite, lower < upper).
-    step : float
-        Step in box-scaled variables u = (x - lower) / (upper - lower); backward where the
-        forward step would leave the box.
+    lower, upper : array_like (n,) or (m, n)
+        The box (finite, lower < upper), shared or one per problem (as
+        :func:`least_squares_batch` takes it).
+    step : float or array_like (n,)
+        Step in box-scaled variables u = (x - lower) / (upper - lower), one for all unknowns
+        or one each; backward where the forward step would leave the box.
 
     Returns
     -------
@@ -244,17 +245,21 @@ def with_forward_differences(residuals, lower, upper, step: float = 1e-3):
         ``fun(x, index) -> (r, J)`` with r (p, k) at ``x`` (p, n) and J (p, k, n), the
         difference quotients, from one call of ``residuals`` on (p, n + 1) points.
     """
-    n = np.size(lower)
-    lo, width = _box(np.ravel(lower), np.ravel(upper), (n,))
+    lower, upper = np.asarray(lower, dtype=float), np.asarray(upper, dtype=float)
+    n = lower.shape[-1] if lower.ndim else 1
+    lo, width = _box(lower, upper, np.broadcast_shapes(lower.shape, upper.shape, (n,)))
+    step = np.broadcast_to(np.asarray(step, dtype=float), (n,))
     eye = np.eye(n)
 
     def fun(x, index):
-        u = (np.asarray(x, dtype=float) - lo) / width
+        rows = (lo, width) if lo.ndim == 1 else (lo[index], width[index])
+        u = (np.asarray(x, dtype=float) - rows[0]) / rows[1]
         h = np.where(u + step <= 1.0, step, -step)                   # (p, n)
         points = np.repeat(u[:, None, :], n + 1, axis=1)
         points[:, 1:, :] += h[:, None, :] * eye
-        r = np.asarray(residuals(lo + points * width, index), dtype=float)
-        jac = (r[:, 1:, :] - r[:, :1, :]) / (h * width)[:, :, None]  # (p, n, k)
+        r = np.asarray(residuals(rows[0][..., None, :] + points * rows[1][..., None, :],
+                                 index), dtype=float)
+        jac = (r[:, 1:, :] - r[:, :1, :]) / (h * rows[1])[:, :, None]  # (p, n, k)
         return r[:, 0, :], np.swapaxes(jac, 1, 2)
 
     return fun

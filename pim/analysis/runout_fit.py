@@ -9,12 +9,14 @@ reduced to the CG). Residuals, each divided by its standard deviation:
 - rest heading: ``wrap(psi_rest(p) - psi_meas) / sigma_psi`` (wrapped to (-pi, pi]);
 - each path point: distance from the point to the fitted CG path / ``sigma_pos``.
 
-Solved with scipy ``least_squares`` (trust-region reflective, bounded) over the solve_ivp
-forward model :func:`pim.model.runout.runout` on the compiled right-hand side of the
-Monte Carlo's kernel (:class:`pim.model.runout_kernel.CompiledRhs`: the same tyre law and
-equations as the numpy one, 5 us a call instead of 0.1-0.3 ms), from several starts (the
-rest heading fixes the rotation only modulo a full turn, so starts with -1, 0 and +1 extra
-turns are tried and distinct minima reported). A rest state that no motion within the
+Solved by the project's one least-squares engine, the bounded Levenberg-Marquardt iteration
+:func:`pim.analysis.least_squares_batch.least_squares_batch` with forward-difference
+Jacobians (:func:`~pim.analysis.least_squares_batch.with_forward_differences`), over the
+solve_ivp forward model :func:`pim.model.runout.runout` on the compiled right-hand side
+(:class:`pim.model.runout_kernel.CompiledRhs`: :mod:`pim.model.runout_formula` compiled, a
+few microseconds a call instead of 0.1-1 ms), from several starts refined together (the rest
+heading fixes the rotation only modulo a full turn, so starts with -1, 0 and +1 extra turns
+are tried and distinct minima reported). A rest state that no motion within the
 bounds reaches is said plainly (``reachable = False``) with the closest reachable rest
 state; a motion that does not stop within ``max_time`` is flagged (``stopped = False``).
 """
@@ -28,6 +30,7 @@ import numpy as np
 from ..model.numbers import InputError, real_array, speed_text
 from ..model.pdof import wrap_angle
 from ..model.runout import MAX_TIME, Runout, RunoutVehicle, runout
+from .least_squares_batch import least_squares_batch, with_forward_differences
 
 __all__ = ["RunoutFit", "RunoutFitSettings", "fit_runout", "path_distance"]
 
@@ -141,7 +144,8 @@ class RunoutFitSettings:
     Attributes
     ----------
     position_sigma, heading_sigma : float
-        Standard deviations of the measured positions [m] and heading [rad] (weights).
+        Standard deviations of the measured positions [m] and heading [rad] (weights); one
+        per sample, (n,), in :func:`pim.analysis.runout_fit_batch.fit_runout_many`.
     speed_bounds : (float, float)
         [m/s] bounds of the post-impact speed (0 <= low <= high).
     yaw_rate_bounds : (float, float)
@@ -170,8 +174,8 @@ class RunoutFitSettings:
 
     def __post_init__(self) -> None:
         for name, unit in (("position_sigma", "m"), ("heading_sigma", "rad")):
-            value = getattr(self, name)
-            if not (np.isfinite(value) and value > 0):
+            value = np.asarray(getattr(self, name), dtype=float)   # (n,) in the batch fit
+            if not (np.all(np.isfinite(value)) and np.all(value > 0)):
                 raise InputError(f"evidence.{name} must be finite and > 0 [{unit}], "
                                  f"got {value!r}")
         lo_v, hi_v = (float(v) for v in _finite(self.speed_bounds, "unknown.speed bounds",
@@ -228,11 +232,29 @@ class _Problem:
         return self.residuals_of(self.forward(p))
 
 
+#: Forward-difference step of the single fit, in box-scaled unknowns (1e-6 of each bound's
+#: width: 6e-5 m/s of speed in the default box, well above solve_ivp's noise at rtol 1e-9).
+FD_STEP = 1e-6
+#: The single fit's stopping tolerances (:func:`least_squares_batch`): relative decrease of
+#: the cost, step in box-scaled unknowns.
+FTOL, XTOL = 1e-12, 1e-10
+
+
+def _box(problem: _Problem, direction0: float) -> tuple[np.ndarray, np.ndarray]:
+    """The search box of (speed, direction, yaw rate): the settings' bounds (a fixed speed
+    or yaw rate widened by round-off, the engine needs lower < upper) and 1.5 turns either
+    side of the starting direction (a direction is a direction modulo a turn)."""
+    (lo_v, hi_v), (lo_w, hi_w) = problem.settings.speed_bounds, problem.settings.yaw_rate_bounds
+    lower = np.array([lo_v, direction0 - 3 * np.pi, lo_w])
+    upper = np.array([hi_v, direction0 + 3 * np.pi, hi_w])
+    upper = np.where(upper > lower, upper, lower + 1e-12 * np.maximum(np.abs(lower), 1.0))
+    return lower, upper
+
+
 def _local_minima(problem: _Problem) -> list:
     """Local fits from the energy estimate along the displacement, with the rotation taken
-    with -1, 0 and +1 extra turns: (cost, speed, direction, yaw rate, solution), best first."""
-    from scipy.optimize import least_squares
-
+    with -1, 0 and +1 extra turns, refined together by the one engine: (cost, speed,
+    direction, yaw rate, jacobian), cost half the sum of squared residuals, best first."""
     (lo_v, hi_v), (lo_w, hi_w) = problem.settings.speed_bounds, problem.settings.yaw_rate_bounds
     displacement = problem.rest_position - problem.position
     braking = float(np.mean(np.asarray(problem.vehicle.braking, dtype=float)))
@@ -242,22 +264,18 @@ def _local_minima(problem: _Problem) -> list:
     direction0 = float(np.arctan2(displacement[1], displacement[0]))
     t_stop = max(speed0 / decel, 0.3)
     turn = float(wrap_angle(problem.rest_heading - problem.heading))
-    lower = np.array([lo_v, -np.inf, lo_w])
-    upper = np.array([hi_v, np.inf, hi_w])
-    minima = []
-    for k in (0, -1, 1):
-        omega0 = float(np.clip(2 * (turn + 2 * np.pi * k) / t_stop, lo_w, hi_w))
-        x0 = np.array([speed0, direction0, omega0])
-        x0 = np.clip(x0, lower + 1e-9 * (hi_v - lo_v + 1), upper - 1e-9 * (hi_v - lo_v + 1))
-        if hi_v == lo_v:
-            x0[0] = lo_v
-        sol = least_squares(problem, x0, bounds=(lower, upper + (hi_v == lo_v) * 1e-12 *
-                                                 np.array([1, 0, 0])),
-                            x_scale=np.array([max(speed0, 1.0), 0.1, 0.5]),
-                            diff_step=1e-5, xtol=1e-12, ftol=1e-12, gtol=1e-12,
-                            max_nfev=problem.settings.max_evaluations)
-        minima.append((float(sol.cost), float(sol.x[0]), float(wrap_angle(sol.x[1])),
-                       float(sol.x[2]), sol))
+    starts = np.array([[speed0, direction0, np.clip(2 * (turn + 2 * np.pi * k) / t_stop,
+                                                    lo_w, hi_w)] for k in (0, -1, 1)])
+    lower, upper = _box(problem, direction0)
+
+    def residuals(x, index):               # (p, q, 3) points -> (p, q, k) residuals
+        return np.array([[problem(point) for point in points] for points in x])
+
+    out = least_squares_batch(with_forward_differences(residuals, lower, upper, FD_STEP),
+                              starts, lower, upper, max_iter=problem.settings.max_evaluations,
+                              ftol=FTOL, xtol=XTOL)
+    minima = [(0.5 * float(cost), float(x[0]), float(wrap_angle(x[1])), float(x[2]), jac)
+              for cost, x, jac in zip(out.cost, out.x, out.jacobian, strict=True)]
     minima.sort(key=lambda m: m[0])
     return minima
 
@@ -346,12 +364,11 @@ def fit_runout(vehicle: RunoutVehicle, position, heading, rest_position, rest_he
         float(_finite(rest_heading, "evidence.rest_heading", "rad", ())), points, settings,
         CompiledRhs(vehicle))
     distinct, equally_good = _distinct_minima(_local_minima(problem))
-    best = distinct[0][4]
-    speed, direction, omega = float(best.x[0]), float(wrap_angle(best.x[1])), float(best.x[2])
-    run = problem.forward(best.x)
+    _, speed, direction, omega, jac = distinct[0]
+    run = problem.forward((speed, direction, omega))
     res = problem.residuals_of(run)
     try:
-        covariance = np.linalg.pinv(best.jac.T @ best.jac)
+        covariance = np.linalg.pinv(jac.T @ jac)
     except np.linalg.LinAlgError:
         covariance = np.full((3, 3), np.inf)
     (lo_v, hi_v), (lo_w, hi_w) = settings.speed_bounds, settings.yaw_rate_bounds
@@ -363,12 +380,15 @@ def fit_runout(vehicle: RunoutVehicle, position, heading, rest_position, rest_he
     reachable = (miss <= settings.position_tolerance
                  and heading_miss <= settings.heading_tolerance)
     velocity = speed * np.array([np.cos(direction), np.sin(direction)])
-    return RunoutFit(velocity, omega, speed, direction, run, run.rest_position,
-                     run.rest_heading, problem.names, res, float(0.5 * res @ res),
-                     covariance, bool(reachable), bool(run.stopped), on_bound,
-                     [m[:4] for m in distinct],
-                     _messages(problem, run, reachable, miss, heading_miss, distinct,
-                               equally_good), vehicle.tyre_model)
+    return RunoutFit(velocity=velocity, yaw_rate=omega, speed=speed, direction=direction,
+                     runout=run, rest_position=run.rest_position,
+                     rest_heading=run.rest_heading, residual_names=problem.names,
+                     residuals=res, cost=float(0.5 * res @ res), covariance=covariance,
+                     reachable=bool(reachable), stopped=bool(run.stopped), on_bound=on_bound,
+                     minima=[m[:4] for m in distinct],
+                     message=_messages(problem, run, reachable, miss, heading_miss, distinct,
+                                       equally_good),
+                     tyre_model=vehicle.tyre_model)
 
 
 def _finite(value, name, unit, shape):

@@ -4,12 +4,14 @@ The least-squares problem of :func:`pim.analysis.runout_fit.fit_runout` (unknown
 post-impact speed, its direction and the yaw rate; residuals: the rest position and wrapped
 rest heading, and the distance of each path point to the CG path, each over its standard
 deviation), solved for n samples together: a bounded Levenberg-Marquardt vectorised over the
-samples (:func:`pim.analysis.least_squares_batch.least_squares_batch`) on the compiled,
-parallel fixed-step run-out (:func:`pim.model.runout_kernel.integrate_many`), with forward
-finite-difference Jacobians (three extra integrations per iteration, steps of 1e-3 of the
-unknowns' scales: well above the fixed step's stopping jitter of ~4e-5 m in the rest
-position). Each sample starts from ``start`` (the nominal single fit: the Monte Carlo's
-samples are perturbations of it, and it fixes the number of turns of the rest heading).
+samples (:func:`pim.analysis.least_squares_batch.least_squares_batch`, the project's one
+least-squares engine, as for the single fit) on the compiled, parallel fixed-step run-out
+(:func:`pim.model.runout_kernel.integrate_many`), with forward finite-difference Jacobians
+(:func:`~pim.analysis.least_squares_batch.with_forward_differences`: the base points and
+their three shifted copies in one batched integration, steps of 1e-3 of the unknowns'
+scales: well above the fixed step's stopping jitter of ~4e-5 m in the rest position).
+Each sample starts from ``start`` (the nominal single fit: the Monte Carlo's samples are
+perturbations of it, and it fixes the number of turns of the rest heading).
 
 Path points are measured to the polyline of the integrator's steps (4 ms apart), not to
 solve_ivp's dense output as in the single fit; the difference is below a millimetre on the
@@ -18,16 +20,16 @@ bundled cases (tested).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ..model.numbers import InputError
 from ..model.pdof import wrap_angle
-from ..model.runout import MAX_TIME, RunoutVehicle
+from ..model.runout import RunoutVehicle
 from ..model.runout_kernel import RUNOUT_STEP, integrate_many
-from .least_squares_batch import least_squares_batch
-from .runout_fit import HEADING_SIGMA, HEADING_TOLERANCE
+from .least_squares_batch import least_squares_batch, with_forward_differences
+from .runout_fit import RunoutFitSettings
 
 __all__ = ["RunoutFitBatch", "fit_runout_many"]
 
@@ -81,8 +83,8 @@ def _per_sample(value, shape, name, unit):
 @dataclass(frozen=True, eq=False)
 class _Samples:
     """The n run-out inverses of :func:`fit_runout_many`: per-sample inputs (checked), the
-    batched forward run and the weighted residuals; called as ``fun(x, idx) -> (r, J)``
-    (forward-difference Jacobian, one batched integration of the 4 shifted copies)."""
+    batched forward run and the weighted residuals (:meth:`residuals`, the engine's
+    residual function for :func:`with_forward_differences`)."""
 
     vehicle: RunoutVehicle
     fields: dict
@@ -93,16 +95,18 @@ class _Samples:
     sig_p: np.ndarray
     sig_h: np.ndarray
     points: np.ndarray
-    upper: np.ndarray
     dt: float
     max_time: float
 
     @classmethod
-    def checked(cls, vehicle, position, heading, rest_position, rest_heading, path_points,
-                position_sigma, heading_sigma, upper, dt, max_time) -> _Samples:
+    def checked(cls, vehicle, separation, rest, *, path_points, settings: RunoutFitSettings,
+                dt) -> _Samples:
+        """``separation``: (position (n, 2), heading (n,)); ``rest``: (rest position (n, 2),
+        rest heading (n,)); each checked and broadcast to the n samples."""
+        rest_position = np.atleast_2d(np.asarray(rest[0], dtype=float))
         n = rest_position.shape[0]
-        sig_p = _per_sample(position_sigma, (n,), "evidence.position_sigma", "m")
-        sig_h = _per_sample(heading_sigma, (n,), "evidence.heading_sigma", "rad")
+        sig_p = _per_sample(settings.position_sigma, (n,), "evidence.position_sigma", "m")
+        sig_h = _per_sample(settings.heading_sigma, (n,), "evidence.heading_sigma", "rad")
         if np.any(sig_p <= 0) or np.any(sig_h <= 0):
             raise InputError("evidence.position_sigma and heading_sigma must be > 0")
         if path_points is None or np.size(path_points) == 0:
@@ -117,17 +121,17 @@ class _Samples:
                       ("wheelbase", (n,), "m"), ("track", (n,), "m"),
                       ("cg_to_front_axle", (n,), "m"), ("friction", (n,), "-"),
                       ("braking", (n, 4), "-"), ("steer", (n, 4), "rad"))}
-        return cls(vehicle, fields, _per_sample(position, (n, 2), "evidence.position", "m"),
-                   _per_sample(heading, (n,), "evidence.heading", "rad"),
-                   _per_sample(rest_position, (n, 2), "evidence.rest_position", "m"),
-                   _per_sample(rest_heading, (n,), "evidence.rest_heading", "rad"),
-                   sig_p, sig_h, points, upper, dt, max_time)
+        return cls(vehicle=vehicle, fields=fields,
+                   position=_per_sample(separation[0], (n, 2), "evidence.position", "m"),
+                   heading=_per_sample(separation[1], (n,), "evidence.heading", "rad"),
+                   rest_position=_per_sample(rest_position, (n, 2), "evidence.rest_position",
+                                             "m"),
+                   rest_heading=_per_sample(rest[1], (n,), "evidence.rest_heading", "rad"),
+                   sig_p=sig_p, sig_h=sig_h, points=points, dt=dt,
+                   max_time=settings.max_time)
 
     def run(self, x, idx):
-        sub = RunoutVehicle(**{k: v[idx] for k, v in self.fields.items()},
-                            gravity=self.vehicle.gravity,
-                            regularisation=self.vehicle.regularisation,
-                            tyre=self.vehicle.tyre, driver=self.vehicle.driver)
+        sub = replace(self.vehicle, **{k: v[idx] for k, v in self.fields.items()})
         velocity = x[:, :1] * np.stack([np.cos(x[:, 1]), np.sin(x[:, 1])], axis=-1)
         return integrate_many(sub, self.position[idx], self.heading[idx], velocity, x[:, 2],
                               path_points=self.points[idx], dt=self.dt,
@@ -139,24 +143,19 @@ class _Samples:
                                 / self.sig_h[idx])[:, None],
                                distance / self.sig_p[idx, None]], axis=-1)
 
-    def __call__(self, x, idx):
-        m = len(idx)
-        step = np.where(x + FD_STEP <= self.upper[idx], FD_STEP, -FD_STEP)
-        shifted = np.concatenate([x] + [x + np.eye(3)[j] * step[:, j:j + 1]
-                                        for j in range(3)])
-        final, _, _, distance = self.run(shifted, np.tile(idx, 4))
-        r_all = self.residuals_of(final, distance, np.tile(idx, 4)).reshape(4, m, -1)
-        r = r_all[0]
-        jac = np.stack([(r_all[j + 1] - r) / step[:, j:j + 1] for j in range(3)], axis=-1)
-        return r, jac
+    def residuals(self, x, idx):
+        """Residuals (p, q, k) at the points ``x`` (p, q, 3) of the samples ``idx`` (p,):
+        one batched integration of all p q points."""
+        p, q = x.shape[:2]
+        every = np.repeat(idx, q)
+        final, _, _, distance = self.run(x.reshape(p * q, 3), every)
+        return self.residuals_of(final, distance, every).reshape(p, q, -1)
 
 
 def fit_runout_many(vehicle: RunoutVehicle, position, heading, rest_position, rest_heading,
-                    *, start, path_points=None, position_sigma=0.1,
-                    heading_sigma=HEADING_SIGMA, speed_bounds=(0.0, 60.0),
-                    yaw_rate_bounds=(-15.0, 15.0), max_time=MAX_TIME, dt=RUNOUT_STEP,
-                    position_tolerance=0.05, heading_tolerance=HEADING_TOLERANCE,
-                    max_iter: int = 40, chord_steps: int = 2) -> RunoutFitBatch:
+                    *, start, path_points=None, settings: RunoutFitSettings | None = None,
+                    dt=RUNOUT_STEP, max_iter: int = 40, chord_steps: int = 2,
+                    **options) -> RunoutFitBatch:
     """Fit n samples' post-impact motions to their rest evidence at once (module notes).
 
     Parameters
@@ -170,59 +169,61 @@ def fit_runout_many(vehicle: RunoutVehicle, position, heading, rest_position, re
     start : (speed, direction, yaw_rate)
         Starting point [m/s, rad, rad/s], scalars or (n,).
     path_points : (k, 2) or (n, k, 2) [m], optional
-    position_sigma, heading_sigma : float or (n,)
-        [m], [rad] standard deviations (weights).
-    speed_bounds, yaw_rate_bounds : (float, float)
-        [m/s], [rad/s].
-    max_time, dt : float
-        [s] integration limit and fixed step.
-    position_tolerance, heading_tolerance : float
-        [m], [rad] largest rest miss still counted as reaching the evidence.
+    settings : RunoutFitSettings, optional
+        The single fit's settings (:func:`pim.analysis.runout_fit.fit_runout`): the sigmas
+        (weights; a float or one per sample (n,)), the speed and yaw-rate bounds (here
+        low < high), ``max_time`` and the rest tolerances (``rtol``, ``atol`` and
+        ``max_evaluations`` are the single fit's own). Default :class:`RunoutFitSettings()`.
+    dt : float
+        [s] fixed step of the integration.
     max_iter : int
         Levenberg-Marquardt iterations per sample.
     chord_steps : int
         Gauss-Newton steps with the first sample's Jacobian before the iteration.
+    **options
+        Any field of :class:`RunoutFitSettings` by name (``position_sigma=0.2``,
+        ``speed_bounds=(0, 30)`` ...), overriding ``settings``.
 
     Returns
     -------
     RunoutFitBatch
     """
-    rest_position = np.atleast_2d(np.asarray(rest_position, dtype=float))
-    n = rest_position.shape[0]
-    lo_v, hi_v = (float(v) for v in speed_bounds)
-    lo_w, hi_w = (float(v) for v in yaw_rate_bounds)
-    if not (0 <= lo_v < hi_v and lo_w < hi_w):
+    settings = replace(settings or RunoutFitSettings(), **options)
+    (lo_v, hi_v), (lo_w, hi_w) = settings.speed_bounds, settings.yaw_rate_bounds
+    if not (lo_v < hi_v and lo_w < hi_w):
         raise InputError(f"speed bounds must satisfy 0 <= low < high and yaw-rate bounds "
-                         f"low < high, got {speed_bounds!r}, {yaw_rate_bounds!r}")
+                         f"low < high, got {settings.speed_bounds!r}, "
+                         f"{settings.yaw_rate_bounds!r}")
+    fun = _Samples.checked(vehicle, (position, heading), (rest_position, rest_heading),
+                           path_points=path_points, settings=settings, dt=dt)
+    n = fun.rest_position.shape[0]
     x0 = np.stack([_per_sample(v, (n,), "start", "SI") for v in start], axis=-1)
     lower = np.stack([np.full(n, lo_v), x0[:, 1] - np.pi, np.full(n, lo_w)], axis=-1)
     upper = np.stack([np.full(n, hi_v), x0[:, 1] + np.pi, np.full(n, hi_w)], axis=-1)
-    x0 = np.clip(x0, lower, upper)
-    fun = _Samples.checked(vehicle, position, heading, rest_position, rest_heading,
-                           path_points, position_sigma, heading_sigma, upper, dt, max_time)
-    rest_position, rest_heading = fun.rest_position, fun.rest_heading
-    run, residuals_of = fun.run, fun.residuals_of
+    x = np.clip(x0, lower, upper)
+    jacobian = with_forward_differences(fun.residuals, lower, upper,
+                                        FD_STEP / (upper[0] - lower[0]))
 
     # chord steps: Gauss-Newton with one Jacobian (the first sample's at the start) for all
     # samples, one batched integration each; the samples are perturbations of one problem,
     # so this brings them near their minima before the full iteration
-    _, jac0 = fun(x0[:1], np.arange(1))
+    _, jac0 = jacobian(x[:1], np.arange(1))
     pinv0 = np.linalg.pinv(jac0[0])
     all_idx = np.arange(n)
-    x = x0
     for _ in range(chord_steps):
-        final, _, _, distance = run(x, all_idx)
-        r = residuals_of(final, distance, all_idx)
+        r = fun.residuals(x[:, None, :], all_idx)[:, 0]
         x = np.clip(x - r @ pinv0.T, lower, upper)
-    out = least_squares_batch(fun, x, lower, upper, max_iter=max_iter, xtol=1e-7, ftol=1e-10)
-    final, _, stopped, _ = run(out.x, np.arange(n))
-    miss = np.hypot(*(final[:, :2] - rest_position).T)
-    heading_miss = np.abs(wrap_angle(final[:, 2] - rest_heading))
+    out = least_squares_batch(jacobian, x, lower, upper, max_iter=max_iter, xtol=1e-7,
+                              ftol=1e-10)
+    final, _, stopped, _ = fun.run(out.x, all_idx)
+    miss = np.hypot(*(final[:, :2] - fun.rest_position).T)
+    heading_miss = np.abs(wrap_angle(final[:, 2] - fun.rest_heading))
     speed, direction, omega = out.x[:, 0], wrap_angle(out.x[:, 1]), out.x[:, 2]
     return RunoutFitBatch(
         velocity=speed[:, None] * np.stack([np.cos(direction), np.sin(direction)], axis=-1),
         yaw_rate=omega, speed=speed, direction=direction, rest_position=final[:, :2],
         rest_heading=final[:, 2], cost=out.cost,
-        reachable=(miss <= position_tolerance) & (heading_miss <= heading_tolerance),
+        reachable=((miss <= settings.position_tolerance)
+                   & (heading_miss <= settings.heading_tolerance)),
         stopped=stopped, converged=out.converged, iterations=out.iterations,
         tyre_model=vehicle.tyre_model)

@@ -11,10 +11,12 @@ from __future__ import annotations
 
 import hashlib
 from pathlib import Path
+from types import FunctionType, SimpleNamespace
 
+from numba import njit
 from numba.core import caching
 
-__all__ = ["stamped_cache", "cache_stamp", "files_stamp"]
+__all__ = ["stamped_cache", "cache_stamp", "files_stamp", "compile_module"]
 
 
 def files_stamp(*files) -> str:
@@ -56,3 +58,35 @@ def stamped_cache(*files):
 def cache_stamp(dispatcher) -> object:
     """The source stamp numba stores with a dispatcher's cache (for tests and diagnostics)."""
     return dispatcher._cache._impl.locator.get_source_stamp()
+
+
+def compile_module(module, compiled=None, *, separate=()) -> SimpleNamespace:
+    """numba versions of the functions defined in ``module``, calling each other.
+
+    Each function of ``module`` is copied with a namespace in which the module's functions
+    are their compiled versions and the names in ``compiled`` (name -> numba dispatcher: the
+    plain functions the module imports, compiled by the caller) are those: the Python source
+    is the one Python and numpy evaluate. They are inlined where they are called (numba's
+    ``inline="always"``), except those named in ``separate``, compiled as functions of their
+    own.
+
+    Parameters
+    ----------
+    module : module
+        Its functions hold plain arithmetic on numbers and arrays (a "formula" module).
+    compiled : dict, optional
+        Name -> dispatcher for the functions it imports from elsewhere.
+    separate : iterable of str
+        The module's functions not to inline.
+    """
+    namespace = dict(vars(module))
+    namespace.update(compiled or {})
+    out = {}
+    for name, obj in vars(module).items():
+        if isinstance(obj, FunctionType) and obj.__module__ == module.__name__:
+            copy = FunctionType(obj.__code__, namespace, name, obj.__defaults__,
+                                obj.__closure__)
+            inline = "never" if name in separate else "always"
+            out[name] = njit(inline=inline, error_model="numpy")(copy)
+    namespace.update(out)
+    return SimpleNamespace(**out)

@@ -7,13 +7,20 @@ slip, regularised near zero slip). Equations of motion, global frame, state
 ``m dv/dt = sum_i F_i``, ``I domega/dt = sum_i (R(psi) p_i) x F_i``,
 ``dx/dt = v``, ``dpsi/dt = omega``.
 
-Two integrators of the same right-hand side (:func:`runout_rhs`):
+The right-hand side is written once, in :mod:`pim.model.runout_formula` (the tyre law of
+:mod:`pim.model.tyres`, the field tyre's load transfer, the wheels' steer and braking from the
+driver's tables, the equations of motion), and evaluated here on Python floats
+(:class:`TimedRhs`) and on numpy arrays (:func:`runout_rhs`); numba compiles the same
+functions (:mod:`pim.model.runout_kernel`). Integrators:
 
 - :func:`runout`: one vehicle, scipy ``solve_ivp`` with a terminal stop event (the
-  reference, adaptive, tolerance given by the caller);
+  reference, adaptive, tolerance given by the caller; on :class:`TimedRhs`, or on the
+  compiled :class:`pim.model.runout_kernel.CompiledRhs` when given);
 - :func:`runout_many`: many samples at once, a fixed-step classical Runge-Kutta in numpy
-  over all samples still moving (the Monte Carlo path), checked against :func:`runout` in
-  the tests.
+  over all samples still moving (Coulomb tyre, constant inputs), checked against
+  :func:`runout` in the tests;
+- :func:`pim.model.runout_kernel.integrate_many`: the same fixed-step scheme compiled and
+  parallel (the Monte Carlo's path), either tyre law.
 
 A vehicle "stops" when ``|v| + |omega| r_max < stop_speed`` (``r_max`` the largest tyre
 arm); one that has not stopped after ``max_time`` (60 s by default) is flagged
@@ -22,32 +29,24 @@ arm); one that has not stopped after ``max_time`` (60 s by default) is flagged
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from .driver import DriverInputs, wheel_tables
 from .numbers import InputError, real_array
+from .runout_formula import derivative
 from .tyres import (
     DEFAULT_REGULARISATION,
     STANDARD_GRAVITY,
     TyreData,
-    brake_ramp,
-    field_wheel_force,
-    net_force_and_moment,
     static_loads,
-    transferred_load,
-    tyre_forces,
-    wheel_force,
     wheel_positions,
 )
 
 __all__ = ["StoppedBeforeImpact", "RunoutVehicle", "Runout", "RunoutBatch", "runout_rhs",
-           "runout", "runout_many", "MAX_TIME", "timed_rhs", "TimedRhs", "pre_impact_motion",
-           "FRONT", "LEFT"]
-
-FRONT = np.array([1.0, 1.0, 0.0, 0.0])  # per wheel (FL, FR, RL, RR): front axle
-LEFT = np.array([1.0, 0.0, 1.0, 0.0])   # per wheel: left side
+           "runout", "runout_many", "MAX_TIME", "timed_rhs", "TimedRhs", "RhsData",
+           "pre_impact_motion"]
 
 MAX_TIME = 60.0  # [s] simulated time after which a vehicle that still moves is flagged
 
@@ -145,100 +144,200 @@ class RunoutVehicle:
         return static_loads(self.mass, self.wheelbase, self.cg_to_front_axle, self.gravity)
 
 
-def runout_rhs(state, mass, yaw_inertia, positions, loads, friction, braking, steer,
-               regularisation=DEFAULT_REGULARISATION) -> np.ndarray:
-    """Time derivative of the run-out state (vectorised over leading axes).
+@dataclass(frozen=True)
+class RhsData:
+    """A vehicle's data as the run-out's right-hand side reads them, samples on axis 0.
+
+    Built by :meth:`of` from a :class:`RunoutVehicle` (its fields broadcast over n samples);
+    :meth:`sample` gives one sample's ``vehicle`` tuple of :mod:`pim.model.runout_formula`
+    (Python, numba), :meth:`columns` all samples' with the samples on the last axis (numpy).
+
+    Attributes
+    ----------
+    mass : ndarray (n,) [kg]
+    yaw_inertia : ndarray (n,) [kg m^2]
+    wheel_x, wheel_y : ndarray (n, 4) [m] tyre positions in the body frame
+    load : ndarray (n, 4) [N] static tyre loads
+    friction : ndarray (n,) [-]
+    regularisation : float [m/s]
+    times : ndarray (k,) [s] the driver's table times, or ``[0]`` for constant inputs
+    steer : ndarray (n, k, 4) [rad] steer angles at ``times``, or (n, 2, 4) the cosine and
+        sine of constant angles
+    brake : ndarray (n, k, 4) [-] braking fractions at ``times``
+    tyre : ndarray (n, 15), the field tyre's data row
+        (:data:`pim.model.runout_formula.TYRE_COLUMNS`), or (n, 0) for the Coulomb law
+    """
+
+    mass: np.ndarray
+    yaw_inertia: np.ndarray
+    wheel_x: np.ndarray
+    wheel_y: np.ndarray
+    load: np.ndarray
+    friction: np.ndarray
+    regularisation: float
+    times: np.ndarray
+    steer: np.ndarray
+    brake: np.ndarray
+    tyre: np.ndarray
+
+    @classmethod
+    def of(cls, vehicle: RunoutVehicle, n: int) -> RhsData:
+        """The data of ``vehicle`` for n samples (C-contiguous arrays)."""
+        def per_sample(value, shape):
+            return np.ascontiguousarray(np.broadcast_to(np.asarray(value, dtype=float),
+                                                        shape))
+
+        positions = np.broadcast_to(vehicle.positions, (n, 4, 2))
+        times, steer, brake = _input_tables(vehicle, n)
+        return cls(mass=per_sample(vehicle.mass, (n,)),
+                   yaw_inertia=per_sample(vehicle.yaw_inertia, (n,)),
+                   wheel_x=per_sample(positions[..., 0], (n, 4)),
+                   wheel_y=per_sample(positions[..., 1], (n, 4)),
+                   load=per_sample(vehicle.loads, (n, 4)),
+                   friction=per_sample(vehicle.friction, (n,)),
+                   regularisation=float(vehicle.regularisation), times=times, steer=steer,
+                   brake=brake, tyre=_tyre_rows(vehicle, n))
+
+    @property
+    def reach(self) -> np.ndarray:
+        """The largest tyre arm of each sample [m] (n,)."""
+        return np.max(np.hypot(self.wheel_x, self.wheel_y), axis=-1)
+
+    def take(self, index) -> RhsData:
+        """The samples ``index`` (an index array)."""
+        return replace(self, **{name: getattr(self, name)[index] for name in (
+            "mass", "yaw_inertia", "wheel_x", "wheel_y", "load", "friction", "steer",
+            "brake", "tyre")})
+
+    def sample(self, i: int) -> tuple:
+        """Sample i's ``vehicle`` tuple (:mod:`pim.model.runout_formula`): numbers and small
+        arrays."""
+        return (float(self.mass[i]), float(self.yaw_inertia[i]), self.wheel_x[i],
+                self.wheel_y[i], self.load[i], float(self.friction[i]), self.regularisation,
+                self.times, self.steer[i], self.brake[i], self.tyre[i])
+
+    def columns(self) -> tuple:
+        """All samples' ``vehicle`` tuple with the samples on the last axis (numpy's
+        evaluation of :mod:`pim.model.runout_formula`); a driver's tables, shared by all
+        samples, stay (k, 4)."""
+        def last(a):
+            return np.moveaxis(a, 0, -1)
+
+        shared = self.times.shape[0] > 1
+        return (self.mass, self.yaw_inertia, last(self.wheel_x), last(self.wheel_y),
+                last(self.load), self.friction, self.regularisation, self.times,
+                self.steer[0] if shared else last(self.steer),
+                self.brake[0] if shared else last(self.brake), last(self.tyre))
+
+
+def _tyre_rows(vehicle: RunoutVehicle, n: int) -> np.ndarray:
+    """Per-sample field-tyre data (n, 15) (:data:`pim.model.runout_formula.TYRE_COLUMNS`), or
+    (n, 0) for the Coulomb law."""
+    tyre = vehicle.tyre
+    if tyre is None:
+        return np.zeros((n, 0))
+    brake_start = 0.0 if vehicle.driver is None else vehicle.driver.brake_start
+    rows = np.empty((n, 15))
+    rows[:, 0:4] = tyre.per_wheel("longitudinal_stiffness")
+    rows[:, 4:8] = tyre.per_wheel("cornering_stiffness")
+    for col, value in enumerate((brake_start, tyre.buildup_time, tyre.rolling_resistance,
+                                 tyre.cg_height, vehicle.wheelbase, vehicle.track,
+                                 vehicle.cg_to_front_axle), start=8):
+        rows[:, col] = np.broadcast_to(np.asarray(value, dtype=float), (n,))
+    return rows
+
+
+def _input_tables(vehicle: RunoutVehicle, n: int) -> tuple:
+    """``(time (k,), steer (n, k, 4), brake (n, k, 4))``: the driver's tables, or the
+    per-sample constant ``braking`` and ``steer`` as one-row tables (then ``steer`` is
+    (n, 2, 4): the cos and sin of the constant angles)."""
+    if vehicle.driver is not None:
+        time, steer, brake, _ = wheel_tables(vehicle.driver, None, None)
+        return (np.ascontiguousarray(time, dtype=float),
+                np.ascontiguousarray(np.broadcast_to(steer, (n,) + steer.shape)),
+                np.ascontiguousarray(np.broadcast_to(brake, (n,) + brake.shape)))
+    steer = np.broadcast_to(np.asarray(vehicle.steer, dtype=float), (n, 4))
+    brake = np.broadcast_to(np.asarray(vehicle.braking, dtype=float), (n, 4))
+    return (np.zeros(1), np.ascontiguousarray(np.stack([np.cos(steer), np.sin(steer)], axis=1)),
+            np.ascontiguousarray(brake[:, None, :]))
+
+
+def runout_rhs(t, state, vehicle: RunoutVehicle) -> np.ndarray:
+    """Time derivative of run-out states (numpy, vectorised over leading axes).
+
+    :func:`pim.model.runout_formula.derivative` evaluated on arrays: the same equations that
+    :class:`TimedRhs` evaluates on floats and the compiled kernel compiles.
 
     Parameters
     ----------
+    t : float
+        [s] time since the impact (reads driver tables and the brake build-up).
     state : array_like, shape (..., 6)
         ``(x [m], y [m], psi [rad], v_x [m/s], v_y [m/s], omega [rad/s])``.
-    mass, yaw_inertia : array_like
-        [kg], [kg m^2].
-    positions, loads, friction, braking, steer, regularisation
-        As :func:`pim.model.tyres.tyre_forces`.
+    vehicle : RunoutVehicle
+        Fields scalar or broadcasting over the states' leading axes (``braking``, ``steer``
+        (..., 4)).
 
     Returns
     -------
     ndarray, shape (..., 6)
     """
     state = np.asarray(state, dtype=float)
-    velocity, heading, yaw_rate = state[..., 3:5], state[..., 2], state[..., 5]
-    forces = tyre_forces(velocity, yaw_rate, heading, positions, loads, friction, braking,
-                         steer, regularisation)
-    force, moment = net_force_and_moment(forces, positions, heading)
-    return np.concatenate([velocity, yaw_rate[..., None],
-                           force / np.asarray(mass, dtype=float)[..., None],
-                           (moment / np.asarray(yaw_inertia, dtype=float))[..., None]],
-                          axis=-1)
+    lead = state.shape[:-1]
+    flat = state.reshape(-1, 6)
+    data = RhsData.of(_flat_vehicle(vehicle, lead), flat.shape[0])
+    rate = derivative(t, (flat[:, 2], flat[:, 3], flat[:, 4], flat[:, 5]), data.columns())
+    return np.stack(np.broadcast_arrays(*rate), axis=-1).reshape(lead + (6,))
 
 
-def _inputs_at(t, tables, buildup):
-    """Steer [rad] and braking [-] of the four wheels at time ``t`` (braking times the
-    build-up ramp)."""
-    time, steer, brake, start = tables
-    ramp = 1.0 if buildup is None else brake_ramp(t, start, buildup)
-    return (np.array([np.interp(t, time, steer[:, w]) for w in range(4)]),
-            np.array([np.interp(t, time, brake[:, w]) for w in range(4)]) * ramp)
+def _flat_vehicle(vehicle: RunoutVehicle, lead: tuple) -> RunoutVehicle:
+    """``vehicle`` with its per-sample fields broadcast to ``lead`` and flattened."""
+    n = int(np.prod(lead))
+
+    def flat(value, tail=()):
+        return np.broadcast_to(np.asarray(value, dtype=float), lead + tail).reshape(
+            (n,) + tail)
+
+    return replace(vehicle, **{name: flat(getattr(vehicle, name)) for name in (
+        "mass", "yaw_inertia", "wheelbase", "track", "cg_to_front_axle", "friction")},
+        braking=flat(vehicle.braking, (4,)), steer=flat(vehicle.steer, (4,)))
 
 
-def timed_rhs(t, state, vehicle: RunoutVehicle, tables=None) -> np.ndarray:
-    """Time derivative of one vehicle's run-out state with driver inputs and either tyre law.
+def timed_rhs(t, state, vehicle: RunoutVehicle) -> np.ndarray:
+    """Time derivative of one vehicle's run-out state (either tyre law, driver inputs).
 
-    The inputs at ``t`` come from ``tables`` (:func:`pim.model.driver.wheel_tables`, default:
-    the vehicle's own). With the field tyre the loads are transferred quasi-statically
-    (:func:`pim.model.tyres.transferred_load`) from the acceleration the static loads give,
-    and the forces evaluated again at those loads (one fixed-point pass: the algebraic loop
-    load -> force -> acceleration -> load closed once). The compiled kernel
-    (:mod:`pim.model.runout_kernel`) computes the same.
+    :class:`TimedRhs` for one call (see there).
 
     Parameters
     ----------
     t : float [s] time since the impact.
     state : array_like (6,) ``(x, y, psi, v_x, v_y, omega)``.
     vehicle : RunoutVehicle with scalar fields.
-    tables : tuple, optional
-        ``wheel_tables(vehicle.driver, vehicle.braking, vehicle.steer)``, precomputed.
     """
-    return TimedRhs(vehicle, tables)(t, state)
+    return TimedRhs(vehicle)(t, state)
 
 
 class TimedRhs:
-    """:func:`timed_rhs` with the vehicle's constant parts computed once (for solve_ivp)."""
+    """One vehicle's run-out right-hand side on Python floats: ``rhs(t, y) -> dy/dt``.
 
-    def __init__(self, vehicle: RunoutVehicle, tables=None):
+    :func:`pim.model.runout_formula.derivative` on the vehicle's data (computed once): the
+    reference that scipy's ``solve_ivp`` integrates in :func:`runout`, for either tyre law,
+    with or without driver tables. The compiled kernel
+    (:class:`pim.model.runout_kernel.CompiledRhs`) compiles the same function.
+
+    Parameters
+    ----------
+    vehicle : RunoutVehicle
+        Scalar fields.
+    """
+
+    def __init__(self, vehicle: RunoutVehicle):
         self.vehicle = vehicle
-        self.tables = (wheel_tables(vehicle.driver, vehicle.braking, vehicle.steer)
-                       if tables is None else tables)
-        self.positions, self.static = vehicle.positions, vehicle.loads
-        tyre = vehicle.tyre
-        self.buildup = None if tyre is None else tyre.buildup_time
-        if tyre is not None:
-            self.c_long = tyre.per_wheel("longitudinal_stiffness")
-            self.c_lat = tyre.per_wheel("cornering_stiffness")
+        self.data = RhsData.of(vehicle, 1).sample(0)
 
     def __call__(self, t, state) -> np.ndarray:
-        vehicle, tyre = self.vehicle, self.vehicle.tyre
-        steer, brake = _inputs_at(t, self.tables, self.buildup)
-        _, _, psi, vx, vy, om = np.asarray(state, dtype=float)
-        c, s = np.cos(psi), np.sin(psi)
-        cw, sw = np.cos(psi + steer), np.sin(psi + steer)
-        px, py, static = self.positions[:, 0], self.positions[:, 1], self.static
-        mu, vr, mass = vehicle.friction, vehicle.regularisation, vehicle.mass
-        if tyre is None:
-            fx, fy, mz = wheel_force(c, s, vx, vy, om, px, py, cw, sw, static, mu, brake, vr)
-        else:
-            loads = static
-            for _ in range(2):
-                fx, fy, mz = field_wheel_force(c, s, vx, vy, om, px, py, cw, sw, loads, mu,
-                                               brake, vr, self.c_long, self.c_lat,
-                                               tyre.rolling_resistance)
-                ax, ay = fx.sum() / mass, fy.sum() / mass
-                loads = transferred_load(static, mass, c * ax + s * ay, -s * ax + c * ay,
-                                         tyre.cg_height, vehicle.wheelbase, vehicle.track,
-                                         vehicle.cg_to_front_axle, FRONT, LEFT)
-        return np.array([vx, vy, om, fx.sum() / mass, fy.sum() / mass,
-                         mz.sum() / vehicle.yaw_inertia])
+        _, _, psi, vx, vy, omega = (float(v) for v in state)
+        return np.array(derivative(float(t), (psi, vx, vy, omega), self.data), dtype=float)
 
 
 def pre_impact_motion(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate,
@@ -365,8 +464,8 @@ def runout(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *,
         Coulomb tyre, "LSODA" for the field tyre or driver tables (stiff at low rolling
         speed: the lateral force's slope ``C_y / V_r``).
     rhs : callable, optional
-        ``rhs(t, y) -> dy/dt`` of this vehicle to integrate instead of the numpy one
-        (:func:`runout_rhs`, :class:`TimedRhs`): the compiled
+        ``rhs(t, y) -> dy/dt`` of this vehicle to integrate instead of the reference one
+        (:class:`TimedRhs`, Python floats): the compiled
         :class:`pim.model.runout_kernel.CompiledRhs`, the same equations, for repeated runs
         (the run-out inverse).
     """
@@ -374,11 +473,8 @@ def runout(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *,
 
     y0 = _initial_state(position, heading, velocity, yaw_rate)
     stop_speed = vehicle.regularisation / 5 if stop_speed is None else stop_speed
-    positions, loads = vehicle.positions, vehicle.loads
+    positions = vehicle.positions
     reach = float(np.max(np.hypot(positions[..., 0], positions[..., 1])))
-    args = (vehicle.mass, vehicle.yaw_inertia, positions, loads, vehicle.friction,
-            np.asarray(vehicle.braking, dtype=float), np.asarray(vehicle.steer, dtype=float),
-            vehicle.regularisation)
     if _stop_measure(y0, reach) < stop_speed:
         return Runout(np.zeros(1), y0[None, :], y0[:2].copy(), float(y0[2]), 0.0, True)
 
@@ -387,14 +483,9 @@ def runout(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *,
 
     event.terminal = True
     event.direction = -1
+    fun = TimedRhs(vehicle) if rhs is None else rhs
     if vehicle.timed:
-        fun = TimedRhs(vehicle) if rhs is None else rhs
         method = method or "LSODA"     # the brush tyre is stiff at low rolling speed
-    elif rhs is not None:
-        fun = rhs
-    else:
-        def fun(t, y):
-            return runout_rhs(y, *args)
     sol = solve_ivp(fun, (0.0, max_time), y0, method=method or "DOP853",
                     rtol=rtol, atol=atol, events=event, dense_output=dense_output)
     stopped = sol.status == 1
@@ -431,14 +522,8 @@ def runout_many(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *
     y = np.atleast_2d(_initial_state(position, heading, velocity, yaw_rate)).copy()
     n = y.shape[0]
     stop_speed = vehicle.regularisation / 5 if stop_speed is None else stop_speed
-    positions = np.broadcast_to(vehicle.positions, (n, 4, 2))
-    loads = np.broadcast_to(vehicle.loads, (n, 4))
-    mass = np.broadcast_to(np.asarray(vehicle.mass, dtype=float), (n,))
-    inertia = np.broadcast_to(np.asarray(vehicle.yaw_inertia, dtype=float), (n,))
-    friction = np.broadcast_to(np.asarray(vehicle.friction, dtype=float), (n,))
-    braking = np.broadcast_to(np.asarray(vehicle.braking, dtype=float), (n, 4))
-    steer = np.broadcast_to(np.asarray(vehicle.steer, dtype=float), (n, 4))
-    reach = np.max(np.hypot(positions[..., 0], positions[..., 1]), axis=-1)
+    data = RhsData.of(vehicle, n)
+    reach = data.reach
     stop_time = np.full(n, float(max_time))
     stopped = _stop_measure(y, reach) < stop_speed
     stop_time[stopped] = 0.0
@@ -449,14 +534,7 @@ def runout_many(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *
         active = np.flatnonzero(~stopped)
         if active.size == 0:
             break
-        args = (mass[active], inertia[active], positions[active], loads[active],
-                friction[active], braking[active], steer[active], vehicle.regularisation)
-        ya = y[active]
-        k1 = runout_rhs(ya, *args)
-        k2 = runout_rhs(ya + 0.5 * dt * k1, *args)
-        k3 = runout_rhs(ya + 0.5 * dt * k2, *args)
-        k4 = runout_rhs(ya + dt * k3, *args)
-        ya = ya + (dt / 6.0) * (k1 + 2 * k2 + 2 * k3 + k4)
+        ya = _rk4_step(t, y[active], data.take(active).columns(), dt)
         y[active] = ya
         t += dt
         now = _stop_measure(ya, reach[active]) < stop_speed
@@ -469,3 +547,17 @@ def runout_many(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *
         trajectory = np.stack(frames)
         time = dt * np.arange(trajectory.shape[0])
     return RunoutBatch(y[:, :2].copy(), y[:, 2].copy(), stop_time, stopped, time, trajectory)
+
+
+def _rk4_step(t, y, vehicle, dt) -> np.ndarray:
+    """One classical Runge-Kutta step of the states ``y`` (n, 6) (numpy, samples on the last
+    axis of ``vehicle``, :meth:`RhsData.columns`)."""
+    def rate(time, state):
+        d = derivative(time, (state[:, 2], state[:, 3], state[:, 4], state[:, 5]), vehicle)
+        return np.stack(np.broadcast_arrays(*d), axis=-1)
+
+    k1 = rate(t, y)
+    k2 = rate(t + 0.5 * dt, y + 0.5 * dt * k1)
+    k3 = rate(t + 0.5 * dt, y + 0.5 * dt * k2)
+    k4 = rate(t + dt, y + dt * k3)
+    return y + (dt / 6.0) * (k1 + 2 * k2 + 2 * k3 + k4)

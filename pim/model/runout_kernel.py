@@ -1,9 +1,10 @@
 """Compiled, parallel fixed-step integration of many run-outs (the Monte Carlo's forward model).
 
-The same equations as :mod:`pim.model.runout` and the same tyre laws: numba compiles
-:func:`pim.model.tyres.wheel_force` (Coulomb) and :func:`pim.model.tyres.field_wheel_force`
-with :func:`pim.model.tyres.transferred_load` (the field tyre, as
-:func:`pim.model.runout.timed_rhs`) themselves (one law, two evaluators, as
+numba compiles the run-out's right-hand side from its one source,
+:mod:`pim.model.runout_formula` (the functions Python and numpy evaluate in
+:mod:`pim.model.runout`), with the tyre law :func:`pim.model.tyres.wheel_force` (Coulomb) or
+:func:`pim.model.tyres.field_wheel_force` with :func:`pim.model.tyres.transferred_load` (the
+field tyre) compiled from :mod:`pim.model.tyres` itself (one law, every evaluator, as
 :mod:`pim.model.kernel` compiles the PIM formula). Each sample is integrated by the
 classical Runge-Kutta method with a fixed step (for the field tyre, shrunk with the speed
 near rest, where its lateral slope ``C_y / V_r`` is stiff: ``h <= 2.7 sqrt(S^2 + v_r^2) /
@@ -14,8 +15,9 @@ from each given path point to the CG's polyline is tracked (closest point on eac
 segment, signed: negative to the right of the direction of travel), so a fit to tyre-mark
 points needs no stored trajectory.
 
-numba is imported only when this module is (the reconstruction Monte Carlo imports it); the
-kernel is cached on disk under a key that covers this file and pim/model/tyres.py.
+numba is imported only when this module is (the run-out fits and the reconstruction Monte
+Carlo import it); the kernels are cached on disk under a key that covers this file,
+pim/model/runout_formula.py and pim/model/tyres.py.
 """
 
 from __future__ import annotations
@@ -23,82 +25,26 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from . import tyres
-from .driver import wheel_tables
-from .numba_cache import stamped_cache
+from . import runout_formula, tyres
+from .numba_cache import compile_module, stamped_cache
 from .numbers import InputError
-from .runout import MAX_TIME, RunoutVehicle
+from .runout import MAX_TIME, RhsData, RunoutVehicle
 
 __all__ = ["integrate_many", "one_signature", "RUNOUT_STEP", "CompiledRhs"]
 
 #: Default fixed step [s] (as :func:`pim.model.runout.runout_many`).
 RUNOUT_STEP = 0.004
 
-_wheel_force = njit(inline="always", error_model="numpy")(tyres.wheel_force)
-_field_force = njit(inline="always", error_model="numpy")(tyres.field_wheel_force)
-_transferred = njit(inline="always", error_model="numpy")(tyres.transferred_load)
-_ramp = njit(inline="always", error_model="numpy")(tyres.brake_ramp)
-_FRONT = np.array([1.0, 1.0, 0.0, 0.0])
-_LEFT = np.array([1.0, 0.0, 1.0, 0.0])
-
-
-@njit(inline="always", error_model="numpy")
-def _table(times, table, w, t):  # pragma: no cover - compiled
-    """Wheel ``w``'s input at time ``t`` from a (k, 4) table (held when k = 1)."""
-    if times.shape[0] == 1:
-        return table[0, w]
-    return np.interp(t, times, table[:, w])
-
-
-@njit(inline="always", error_model="numpy")
-def _wheel(t, w, c, s, psi, vx, vy, om, px, py, ld, mu, vr, times, steer_tab, brake_tab,
-           ramp, tyre):  # pragma: no cover - compiled
-    """One wheel's force and moment at load ``ld`` with its inputs at time ``t``."""
-    if times.shape[0] == 1:            # constant steer: its cos and sin precomputed
-        cd, sd = steer_tab[0, w], steer_tab[1, w]
-    else:
-        d = np.interp(t, times, steer_tab[:, w])
-        cd, sd = np.cos(d), np.sin(d)
-    cw, sw = c * cd - s * sd, s * cd + c * sd          # psi + steer angle
-    br = _table(times, brake_tab, w, t) * ramp
-    if tyre.shape[0] == 0:
-        return _wheel_force(c, s, vx, vy, om, px[w], py[w], cw, sw, ld, mu, br, vr)
-    return _field_force(c, s, vx, vy, om, px[w], py[w], cw, sw, ld, mu, br, vr, tyre[w],
-                        tyre[4 + w], tyre[10])
-
-
-@njit(inline="always", error_model="numpy")
-def _rhs(t, x, y, psi, vx, vy, om, mass, inertia, px, py, load, mu, vr, times, steer_tab,
-         brake_tab, tyre):  # pragma: no cover - compiled
-    """State derivative; ``tyre`` is empty for Coulomb, else (c_long (4), c_lat (4),
-    brake_start, buildup, rolling, height, wheelbase, track, cg_to_front)."""
-    c, s = np.cos(psi), np.sin(psi)
-    brush = tyre.shape[0] > 0
-    ramp = _ramp(t, tyre[8], tyre[9]) if brush else 1.0
-    fx = 0.0
-    fy = 0.0
-    mz = 0.0
-    for w in range(4):                 # static loads
-        a, b, m = _wheel(t, w, c, s, psi, vx, vy, om, px, py, load[w], mu, vr, times,
-                         steer_tab, brake_tab, ramp, tyre)
-        fx += a
-        fy += b
-        mz += m
-    if not brush:
-        return vx, vy, om, fx / mass, fy / mass, mz / inertia
-    along, across = (c * fx + s * fy) / mass, (-s * fx + c * fy) / mass
-    fx = 0.0
-    fy = 0.0
-    mz = 0.0
-    for w in range(4):                 # the loads that acceleration transfers
-        ld = _transferred(load[w], mass, along, across, tyre[11], tyre[12], tyre[13],
-                          tyre[14], _FRONT[w], _LEFT[w])
-        a, b, m = _wheel(t, w, c, s, psi, vx, vy, om, px, py, ld, mu, vr, times, steer_tab,
-                         brake_tab, ramp, tyre)
-        fx += a
-        fy += b
-        mz += m
-    return vx, vy, om, fx / mass, fy / mass, mz / inertia
+#: The tyre law, compiled from pim/model/tyres.py (the names the formula calls).
+_TYRE_LAW = {
+    "wheel_force": njit(inline="always", error_model="numpy")(tyres.wheel_force),
+    "field_wheel_force": njit(inline="always", error_model="numpy")(tyres.field_wheel_force),
+    "transferred_load": njit(inline="always", error_model="numpy")(tyres.transferred_load),
+    "brake_ramp": njit(inline="always", error_model="numpy")(tyres.brake_ramp),
+}
+_derivative = compile_module(runout_formula, _TYRE_LAW).derivative
+#: Decorator caching a kernel under a key that covers this file, the formula and the tyres.
+_cached = stamped_cache(runout_formula, tyres)
 
 
 @njit(inline="always", error_model="numpy")
@@ -131,7 +77,7 @@ def _lateral_stiffness(m, ii, px, py, tyre):  # pragma: no cover - compiled
 STABLE_STEP = 2.7
 
 
-@stamped_cache(tyres)
+@_cached
 @njit(parallel=True, cache=True, error_model="numpy")
 def _integrate(y0, mass, inertia, px, py, load, mu, times, steer_tab, brake_tab, tyre, vr,
                reach, dt, max_time, stop_speed, points, out, stop_time, stopped,
@@ -146,9 +92,9 @@ def _integrate(y0, mass, inertia, px, py, load, mu, times, steer_tab, brake_tab,
             distance[i, j] = np.sqrt(qx * qx + qy * qy)
         speed = np.sqrt(vx * vx + vy * vy) + abs(om) * reach[i]
         done = speed < stop_speed
-        m, ii, p1, p2, ld, f = mass[i], inertia[i], px[i], py[i], load[i], mu[i]
-        st, bt, ty = steer_tab[i], brake_tab[i], tyre[i]
-        stiff = _lateral_stiffness(m, ii, p1, p2, ty)
+        vehicle = (mass[i], inertia[i], px[i], py[i], load[i], mu[i], vr, times,
+                   steer_tab[i], brake_tab[i], tyre[i])
+        stiff = _lateral_stiffness(mass[i], inertia[i], px[i], py[i], tyre[i])
         t = 0.0
         while not done and t < max_time:
             # the field tyre's lateral adhesion is stiff at low rolling speed (slope
@@ -157,16 +103,13 @@ def _integrate(y0, mass, inertia, px, py, load, mu, times, steer_tab, brake_tab,
             dt_i = min(dt, STABLE_STEP * np.sqrt(speed * speed + vr * vr) / stiff) \
                 if stiff > 0.0 else dt
             h = 0.5 * dt_i
-            k1 = _rhs(t, x, y, psi, vx, vy, om, m, ii, p1, p2, ld, f, vr, times, st, bt, ty)
-            k2 = _rhs(t + h, x + h * k1[0], y + h * k1[1], psi + h * k1[2], vx + h * k1[3],
-                      vy + h * k1[4], om + h * k1[5], m, ii, p1, p2, ld, f, vr, times, st, bt,
-                      ty)
-            k3 = _rhs(t + h, x + h * k2[0], y + h * k2[1], psi + h * k2[2], vx + h * k2[3],
-                      vy + h * k2[4], om + h * k2[5], m, ii, p1, p2, ld, f, vr, times, st, bt,
-                      ty)
-            k4 = _rhs(t + dt_i, x + dt_i * k3[0], y + dt_i * k3[1], psi + dt_i * k3[2],
-                      vx + dt_i * k3[3], vy + dt_i * k3[4], om + dt_i * k3[5], m, ii, p1, p2,
-                      ld, f, vr, times, st, bt, ty)
+            k1 = _derivative(t, (psi, vx, vy, om), vehicle)
+            k2 = _derivative(t + h, (psi + h * k1[2], vx + h * k1[3], vy + h * k1[4],
+                                     om + h * k1[5]), vehicle)
+            k3 = _derivative(t + h, (psi + h * k2[2], vx + h * k2[3], vy + h * k2[4],
+                                     om + h * k2[5]), vehicle)
+            k4 = _derivative(t + dt_i, (psi + dt_i * k3[2], vx + dt_i * k3[3],
+                                        vy + dt_i * k3[4], om + dt_i * k3[5]), vehicle)
             w = dt_i / 6.0
             nx = x + w * (k1[0] + 2.0 * k2[0] + 2.0 * k3[0] + k4[0])
             ny = y + w * (k1[1] + 2.0 * k2[1] + 2.0 * k3[1] + k4[1])
@@ -188,13 +131,12 @@ def _integrate(y0, mass, inertia, px, py, load, mu, times, steer_tab, brake_tab,
         stopped[i] = done
 
 
-@stamped_cache(tyres)
+@_cached
 @njit(cache=True, error_model="numpy")
-def _rhs_one(t, y, mass, inertia, px, py, load, mu, vr, times, steer_tab, brake_tab,
-             tyre):  # pragma: no cover - compiled
-    """``_rhs`` of one vehicle on a state array (6,), returning dy/dt (6,): for solve_ivp."""
-    d = _rhs(t, y[0], y[1], y[2], y[3], y[4], y[5], mass, inertia, px, py, load, mu, vr, times,
-             steer_tab, brake_tab, tyre)
+def _rhs_one(t, y, vehicle):  # pragma: no cover - compiled
+    """The formula's derivative of one vehicle on a state array (6,), returning dy/dt (6,):
+    for solve_ivp."""
+    d = _derivative(t, (y[2], y[3], y[4], y[5]), vehicle)
     out = np.empty(6)
     for j in range(6):
         out[j] = d[j]
@@ -204,14 +146,12 @@ def _rhs_one(t, y, mass, inertia, px, py, load, mu, vr, times, steer_tab, brake_
 class CompiledRhs:
     """The run-out's right-hand side of one vehicle, compiled: ``rhs(t, y) -> dy/dt``.
 
-    The kernel's own right-hand side (the same compiled tyre laws
-    :func:`pim.model.tyres.wheel_force` / :func:`pim.model.tyres.field_wheel_force` with
-    :func:`pim.model.tyres.transferred_load`, driver tables and brake build-up), for an adaptive
-    integrator: :func:`pim.model.runout.runout` takes it as ``rhs`` (the single run-out inverse
+    :func:`pim.model.runout_formula.derivative` compiled (the kernel's own right-hand side:
+    either tyre law, driver tables, brake build-up), for an adaptive integrator:
+    :func:`pim.model.runout.runout` takes it as ``rhs`` (the single run-out inverse
     :func:`pim.analysis.runout_fit.fit_runout` does). It computes what
-    :func:`pim.model.runout.timed_rhs` (and, for the Coulomb law without driver tables,
-    :func:`pim.model.runout.runout_rhs`) computes in numpy, to rounding (tested), at a few
-    microseconds a call instead of 0.1-0.3 ms.
+    :class:`pim.model.runout.TimedRhs` computes on Python floats from the same source, to
+    round-off (tested), at a few microseconds a call instead of 0.1-1 ms.
 
     Parameters
     ----------
@@ -220,17 +160,10 @@ class CompiledRhs:
     """
 
     def __init__(self, vehicle: RunoutVehicle):
-        times, steer_tab, brake_tab, brake_start = _input_tables(vehicle, 1)
-        positions = vehicle.positions
-        self.args = one_signature(
-            float(np.asarray(vehicle.mass, dtype=float)),
-            float(np.asarray(vehicle.yaw_inertia, dtype=float)), positions[:, 0],
-            positions[:, 1], np.asarray(vehicle.loads, dtype=float),
-            float(np.asarray(vehicle.friction, dtype=float)), float(vehicle.regularisation),
-            times, steer_tab[0], brake_tab[0], _tyre_rows(vehicle, 1, brake_start)[0])
+        self.vehicle = one_signature(*RhsData.of(vehicle, 1).sample(0))
 
     def __call__(self, t, y) -> np.ndarray:
-        return _rhs_one(float(t), np.asarray(y, dtype=float), *self.args)
+        return _rhs_one(float(t), np.asarray(y, dtype=float), self.vehicle)
 
 
 def one_signature(*args) -> tuple:
@@ -245,37 +178,6 @@ def one_signature(*args) -> tuple:
     """
     return tuple(np.require(a, requirements="CW") if isinstance(a, np.ndarray)
                  else int(a) if isinstance(a, (int, np.integer)) else float(a) for a in args)
-
-
-def _tyre_rows(vehicle: RunoutVehicle, n: int, brake_start: float) -> np.ndarray:
-    """Per-sample field-tyre data for the kernel, (n, 15), or (n, 0) for Coulomb: c_long (4),
-    c_lat (4), brake_start, buildup, rolling, cg_height, wheelbase, track, cg_to_front."""
-    tyre = vehicle.tyre
-    if tyre is None:
-        return np.zeros((n, 0))
-    rows = np.empty((n, 15))
-    rows[:, 0:4] = tyre.per_wheel("longitudinal_stiffness")
-    rows[:, 4:8] = tyre.per_wheel("cornering_stiffness")
-    for col, value in enumerate((brake_start, tyre.buildup_time, tyre.rolling_resistance,
-                                 tyre.cg_height, vehicle.wheelbase, vehicle.track,
-                                 vehicle.cg_to_front_axle), start=8):
-        rows[:, col] = np.broadcast_to(np.asarray(value, dtype=float), (n,))
-    return rows
-
-
-def _input_tables(vehicle: RunoutVehicle, n: int):
-    """``(time (k,), steer (n, k, 4), brake (n, k, 4), brake_start)``: the driver's tables,
-    or the per-sample constant ``braking`` and ``steer`` as one-row tables (then ``steer``
-    is (n, 2, 4): the cos and sin of the constant angles, precomputed)."""
-    if vehicle.driver is not None:
-        time, steer, brake, start = wheel_tables(vehicle.driver, None, None)
-        return (np.ascontiguousarray(time), np.ascontiguousarray(np.broadcast_to(
-            steer, (n,) + steer.shape)), np.ascontiguousarray(np.broadcast_to(
-                brake, (n,) + brake.shape)), start)
-    steer = np.broadcast_to(np.asarray(vehicle.steer, dtype=float), (n, 4))
-    brake = np.broadcast_to(np.asarray(vehicle.braking, dtype=float), (n, 4))
-    return (np.zeros(1), np.ascontiguousarray(np.stack([np.cos(steer), np.sin(steer)], axis=1)),
-            np.ascontiguousarray(brake[:, None, :]), 0.0)
 
 
 def integrate_many(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *,
@@ -312,38 +214,27 @@ def integrate_many(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate
     """
     position = np.atleast_2d(np.asarray(position, dtype=float))
     n = position.shape[0]
-    velocity = np.broadcast_to(np.asarray(velocity, dtype=float), (n, 2))
     y0 = np.empty((n, 6))
     y0[:, :2] = position
     y0[:, 2] = np.broadcast_to(np.asarray(heading, dtype=float), (n,))
-    y0[:, 3:5] = velocity
+    y0[:, 3:5] = np.broadcast_to(np.asarray(velocity, dtype=float), (n, 2))
     y0[:, 5] = np.broadcast_to(np.asarray(yaw_rate, dtype=float), (n,))
     if not np.all(np.isfinite(y0)):
         raise InputError("runout: the post-impact states must be finite")
-    positions = np.broadcast_to(vehicle.positions, (n, 4, 2))
-    px = np.ascontiguousarray(positions[..., 0])
-    py = np.ascontiguousarray(positions[..., 1])
-    load = np.ascontiguousarray(np.broadcast_to(vehicle.loads, (n, 4)))
-
-    def per_sample(value, shape):
-        return np.ascontiguousarray(np.broadcast_to(np.asarray(value, dtype=float), shape))
-
-    reach = np.max(np.hypot(px, py), axis=-1)
-    times, steer_tab, brake_tab, brake_start = _input_tables(vehicle, n)
+    data = RhsData.of(vehicle, n)
     if path_points is None:
         points = np.zeros((n, 0, 2))
     else:
         pts = np.asarray(path_points, dtype=float)
-        points = per_sample(pts if pts.ndim == 3 else pts.reshape(-1, 2),
-                            (n, pts.shape[-2] if pts.ndim >= 2 else 0, 2))
+        points = np.broadcast_to(pts if pts.ndim == 3 else pts.reshape(-1, 2),
+                                 (n, pts.shape[-2] if pts.ndim >= 2 else 0, 2))
     stop_speed = vehicle.regularisation / 5 if stop_speed is None else float(stop_speed)
     out = np.empty((n, 6))
     stop_time = np.empty(n)
     stopped = np.empty(n, dtype=np.bool_)
     distance = np.empty((n, points.shape[1]))
     _integrate(*one_signature(
-        y0, per_sample(vehicle.mass, (n,)), per_sample(vehicle.yaw_inertia, (n,)), px, py,
-        load, per_sample(vehicle.friction, (n,)), times, steer_tab, brake_tab,
-        _tyre_rows(vehicle, n, brake_start), float(vehicle.regularisation), reach, float(dt),
-        float(max_time), stop_speed, points, out, stop_time, stopped, distance))
+        y0, data.mass, data.yaw_inertia, data.wheel_x, data.wheel_y, data.load, data.friction,
+        data.times, data.steer, data.brake, data.tyre, data.regularisation, data.reach,
+        float(dt), float(max_time), stop_speed, points, out, stop_time, stopped, distance))
     return out, stop_time, stopped, distance

@@ -99,7 +99,7 @@ def static_loads(mass, wheelbase, cg_to_front, gravity=STANDARD_GRAVITY) -> np.n
 
 
 def tyre_forces(velocity, yaw_rate, heading, positions, loads, friction, braking,
-                steer=0.0, regularisation=DEFAULT_REGULARISATION) -> np.ndarray:
+                steer=0.0, *, regularisation=DEFAULT_REGULARISATION) -> np.ndarray:
     """Friction force of each tyre on the road plane, in the global frame.
 
     For tyre ``i`` at body-frame position ``p_i`` the contact point moves at

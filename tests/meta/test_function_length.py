@@ -21,8 +21,7 @@ ALLOWED = {
         "_sincos", "_impact", "_case", "_solve_kernel_fast", "_solve_block",
         "_solve_kernel_simd", "_solve_kernel_libm", "_copy_kernel")
 } | {
-    ("pim/model/runout_kernel.py", name) for name in ("_rhs", "_segment_distance",
-                                                       "_integrate")
+    ("pim/model/runout_kernel.py", name) for name in ("_segment_distance", "_integrate")
 }
 
 

@@ -111,11 +111,7 @@ def test_compiled_rhs_is_the_numpy_rhs(car):
             y = np.concatenate([rng.uniform(-5, 5, 2), rng.uniform(-4, 4, 1),
                                 rng.uniform(-scale, scale, 2), rng.uniform(-scale, scale, 1)])
             ref = numpy_rhs(t, y)
-            if not car.timed:
-                np.testing.assert_allclose(ref, runout_rhs(y, car.mass, car.yaw_inertia,
-                                                           car.positions, car.loads,
-                                                           car.friction, car.braking,
-                                                           car.steer), rtol=1e-12, atol=1e-12)
+            np.testing.assert_allclose(ref, runout_rhs(t, y, car), rtol=1e-12, atol=1e-12)
             np.testing.assert_allclose(rhs(t, y), ref, rtol=1e-11, atol=1e-9)
 
 
