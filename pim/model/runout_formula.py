@@ -109,7 +109,9 @@ def tyre_sum(t, kinematics, vehicle, acceleration, ramp):
     kinematics : (cos psi, sin psi, v_x [m/s], v_y [m/s], omega [rad/s])
     vehicle : the vehicle tuple (module notes)
     acceleration : (along, across) [m/s^2] the body-frame CG acceleration that sets the field
-        tyre's loads (:func:`wheel_load`)
+        tyre's loads (:func:`wheel_load`), or None for the static loads (the first pass, which
+        then skips the load transfer's arithmetic: the same numbers, as ``wheel_load`` gives
+        the static load exactly at zero acceleration)
     ramp : [-] the brake build-up's fraction at ``t``
 
     Returns
@@ -126,7 +128,9 @@ def tyre_sum(t, kinematics, vehicle, acceleration, ramp):
             a, b, m = wheel_force(c, s, vx, vy, omega, wheel_x[w], wheel_y[w], cw, sw,
                                   load[w], mu, braking, vr)
         else:                          # the field tyre, at the transferred load
-            ld = wheel_load(w, load[w], mass, tyre, acceleration[0], acceleration[1])
+            ld = load[w] if acceleration is None else wheel_load(w, load[w], mass, tyre,
+                                                                 acceleration[0],
+                                                                 acceleration[1])
             a, b, m = field_wheel_force(c, s, vx, vy, omega, wheel_x[w], wheel_y[w], cw, sw,
                                         ld, mu, braking, vr, tyre[w], tyre[4 + w], tyre[10])
         fx = fx + a
@@ -156,7 +160,7 @@ def derivative(t, motion, vehicle):
     kinematics = (c, s, vx, vy, omega)
     brush = tyre.shape[0] > 0
     ramp = brake_ramp(t, tyre[8], tyre[9]) if brush else 1.0
-    fx, fy, moment = tyre_sum(t, kinematics, vehicle, (0.0, 0.0), ramp)
+    fx, fy, moment = tyre_sum(t, kinematics, vehicle, None, ramp)
     if brush:                          # the loads that this acceleration transfers
         along, across = (c * fx + s * fy) / mass, (-s * fx + c * fy) / mass
         fx, fy, moment = tyre_sum(t, kinematics, vehicle, (along, across), ramp)
