@@ -60,6 +60,7 @@ SEPARATE = ("outline_geometry", "outline_start")
 
 _f = compile_module(compliant_formula, SEPARATE)
 _drift, _kick, _half_kick, _angles = _f.drift, _f.kick, _f.half_kick, _f.angles
+_advance_angles = _f.advance_angles
 _outline_start, _outline_geometry = _f.outline_start, _f.outline_geometry
 _free_state = _f.free_state
 _point_geometry, _contact_loads, _total_loads = _f.point_geometry, _f.contact_loads, _f.total_loads
@@ -118,10 +119,11 @@ def _scene(par, state0, out):  # pragma: no cover - compiled
             st[9], st[10], st[11] = v[3], v[4], v[5]
     max_steps = int(par[P_MAX_STEPS])
     steps = 0
+    trig = _angles(st)
     while True:
         _drift(par, st, dt)
         fx = fy = m1 = m2 = 0.0
-        trig = _angles(st)
+        trig = _advance_angles(par, trig, st, dt)
         if mem[M_ON] != 0.0:
             if outline:
                 px, py, nx, ny, delta, slip_n, slip_t, overlap, flipped = _outline_geometry(
