@@ -41,7 +41,7 @@ from pim.model.tyres import wheel_force
 
 __all__ = ["loading_force", "loading_work", "unloading_slope", "permanent_crush",
            "normal_force", "normal_stiffness", "tangential_step", "tangential_force",
-           "angles", "turn_cos_sin", "turned", "advance_angles", "SMALL_TURN",
+           "angles", "turn_cos_sin", "turned", "advance_angles", "SMALL_TURN", "TINY_TURN",
            "point_contact", "point_geometry", "place_corners", "clip_polygon",
            "area_centroid", "separating_axis", "outline_overlap", "place_outlines",
            "outline_geometry", "outlines_touch", "outline_start", "free_state",
@@ -194,6 +194,8 @@ def angles(st):
 
 #: Largest |turn| [rad] whose cos and sin :func:`turn_cos_sin` takes from its polynomials.
 SMALL_TURN = 0.25
+#: Largest |turn| [rad] for its short polynomials (a step's w dt is usually below 0.01).
+TINY_TURN = 1.0 / 32.0
 # 1 / k! for the Taylor polynomials of cos and sin (Python and LLVM round them alike)
 _F2, _F3, _F4, _F5, _F6, _F7 = 1.0 / 2.0, 1.0 / 6.0, 1.0 / 24.0, 1.0 / 120.0, 1.0 / 720.0, \
     1.0 / 5040.0
@@ -202,13 +204,16 @@ _F12, _F13 = 1.0 / 479001600.0, 1.0 / 6227020800.0
 
 
 def turn_cos_sin(d):
-    """cos d and sin d of a turn d [rad] (one step's w dt): for |d| <= :data:`SMALL_TURN`
-    their Taylor polynomials to d^12 and d^13 in Horner form (truncation below 5e-20 of
-    the value, so the result is within a few ulp of the C library's, in a tenth of its
-    time), beyond it the C library's."""
+    """cos d and sin d of a turn d [rad] (one step's w dt) without the C library's range
+    reduction: their Taylor polynomials in Horner form, to d^6 and d^7 for |d| <=
+    :data:`TINY_TURN`, to d^12 and d^13 for |d| <= :data:`SMALL_TURN` (the first term left
+    out is below 2.5e-17 of the value in either range, so the result is within a few ulp of
+    the C library's), beyond it the C library's."""
+    x = d * d
+    if abs(d) <= TINY_TURN:
+        return 1.0 - x * (_F2 - x * (_F4 - x * _F6)), d - d * x * (_F3 - x * (_F5 - x * _F7))
     if not abs(d) <= SMALL_TURN:
         return math.cos(d), math.sin(d)
-    x = d * d
     cos = 1.0 - x * (_F2 - x * (_F4 - x * (_F6 - x * (_F8 - x * (_F10 - x * _F12)))))
     sin = d - d * x * (_F3 - x * (_F5 - x * (_F7 - x * (_F9 - x * (_F11 - x * _F13)))))
     return cos, sin
