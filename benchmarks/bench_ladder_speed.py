@@ -50,7 +50,8 @@ def run(command: str, case: str, engine: str) -> tuple[float, float, float]:
     """(wall [s], CPU [s] of the process and its workers, idle 2-core estimate [s]) of one
     command."""
     args = [a.format(case=case) for a in COMMANDS[command]] + ["--engine", engine]
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(
+        [str(ROOT), *filter(None, [os.environ.get("PYTHONPATH")])])}
     with tempfile.TemporaryDirectory() as tmp:
         cpu0, wall0 = _children_cpu(), time.perf_counter()
         done = subprocess.run([sys.executable, "-c", _WRAPPER, *args, "--out",

@@ -63,7 +63,8 @@ def throughput() -> None:
 def command() -> None:
     root = Path(__file__).resolve().parents[1]
     with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
-        env = dict(os.environ, NUMBA_CACHE_DIR=cache, PYTHONPATH=str(root))
+        env = dict(os.environ, NUMBA_CACHE_DIR=cache, PYTHONPATH=os.pathsep.join(
+            [str(root), *filter(None, [os.environ.get("PYTHONPATH")])]))
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         wall = time.perf_counter()
         subprocess.run([sys.executable, "-m", "pim_cli", "validate-models", "--out",
