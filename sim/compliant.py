@@ -162,6 +162,7 @@ class _Stepper:
         self.rows = [] if problem.settings.record else None    # the contact history
         self.error: BaseException | None = None
         self.wk = [0.0] * f.N_WORK          # the outline contact's scratch
+        self.trig = f.angles(self.state())  # cos, sin of the headings, turned on each step
         body1.velocity_func = self.velocity1
         if body2.body_type == pymunk.Body.DYNAMIC:
             body2.velocity_func = self.velocity2
@@ -216,7 +217,7 @@ class _Stepper:
         """This step's loads into ``lo``: the contact (while on) and the tyres."""
         fx = fy = m1 = m2 = 0.0
         par, mem, dt = self.par, self.mem, self.dt
-        trig = f.angles(st)
+        trig = self.trig = f.advance_angles(par, self.trig, st, dt)
         if mem[f.M_ON] != 0.0:
             when = self.start + (self.step_count + 1) * dt
             geo = (outline_geometry(par, mem, st, trig, self.wk, when)

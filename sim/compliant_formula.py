@@ -41,7 +41,8 @@ from pim.model.tyres import wheel_force
 
 __all__ = ["loading_force", "loading_work", "unloading_slope", "permanent_crush",
            "normal_force", "normal_stiffness", "tangential_step", "tangential_force",
-           "angles", "point_contact", "point_geometry", "place_corners", "clip_polygon",
+           "angles", "turn_cos_sin", "turned", "advance_angles", "SMALL_TURN", "TINY_TURN",
+           "point_contact", "point_geometry", "place_corners", "clip_polygon",
            "area_centroid", "separating_axis", "outline_overlap", "place_outlines",
            "outline_geometry", "outlines_touch", "outline_start", "free_state",
            "vehicle_tyre_force", "tyre_loads", "ahead",
@@ -186,8 +187,63 @@ def tangential_force(z, k_t, limit):
 
 # ---- kinematics of the point contact (sim.compliant_setup's module notes) ----------------------
 def angles(st):
-    """cos and sin of both headings of the state ``st``: (c1, s1, c2, s2)."""
+    """cos and sin of both headings of the state ``st``: (c1, s1, c2, s2) (the C library's;
+    at the start of a contact: each step turns them on by :func:`advance_angles`)."""
     return math.cos(st[2]), math.sin(st[2]), math.cos(st[8]), math.sin(st[8])
+
+
+#: Largest |turn| [rad] whose cos and sin :func:`turn_cos_sin` takes from its polynomials.
+SMALL_TURN = 0.25
+#: Largest |turn| [rad] for its short polynomials (a step's w dt is usually below 0.01).
+TINY_TURN = 1.0 / 32.0
+# 1 / k! for the Taylor polynomials of cos and sin (Python and LLVM round them alike)
+_F2, _F3, _F4, _F5, _F6, _F7 = 1.0 / 2.0, 1.0 / 6.0, 1.0 / 24.0, 1.0 / 120.0, 1.0 / 720.0, \
+    1.0 / 5040.0
+_F8, _F9, _F10, _F11 = 1.0 / 40320.0, 1.0 / 362880.0, 1.0 / 3628800.0, 1.0 / 39916800.0
+_F12, _F13 = 1.0 / 479001600.0, 1.0 / 6227020800.0
+
+
+def turn_cos_sin(d):
+    """cos d and sin d of a turn d [rad] (one step's w dt) without the C library's range
+    reduction: their Taylor polynomials in Horner form, to d^6 and d^7 for |d| <=
+    :data:`TINY_TURN`, to d^12 and d^13 for |d| <= :data:`SMALL_TURN` (the first term left
+    out is below 2.5e-17 of the value in either range, so the result is within a few ulp of
+    the C library's), beyond it the C library's."""
+    x = d * d
+    if abs(d) <= TINY_TURN:
+        return 1.0 - x * (_F2 - x * (_F4 - x * _F6)), d - d * x * (_F3 - x * (_F5 - x * _F7))
+    if not abs(d) <= SMALL_TURN:
+        return math.cos(d), math.sin(d)
+    cos = 1.0 - x * (_F2 - x * (_F4 - x * (_F6 - x * (_F8 - x * (_F10 - x * _F12)))))
+    sin = d - d * x * (_F3 - x * (_F5 - x * (_F7 - x * (_F9 - x * (_F11 - x * _F13)))))
+    return cos, sin
+
+
+def turned(c, s, d):
+    """(cos, sin) of theta + d [-] from c = cos theta, s = sin theta: the rotation by d."""
+    cd, sd = turn_cos_sin(d)
+    return c * cd - s * sd, s * cd + c * sd
+
+
+def _unit_pair(c, s):
+    """(c, s) scaled back onto the unit circle by one Newton step of 1 / |(c, s)| (the error
+    of a norm within a few ulp of 1 squared away: no drift over the steps)."""
+    g = 1.5 - 0.5 * (c * c + s * s)
+    return c * g, s * g
+
+
+def advance_angles(par, trig, st, dt):
+    """cos and sin of both headings (:func:`angles`) turned on by the step :func:`drift`
+    has just made, w dt each (a fixed vehicle 2 stays), renormalised: no sine or cosine per
+    step. They follow the headings ``st[2]``, ``st[8]`` to round-off (a few ulp per step,
+    a random walk; the headings themselves add an ulp of theta per step)."""
+    c1, s1 = turned(trig[0], trig[1], st[5] * dt)
+    c1, s1 = _unit_pair(c1, s1)
+    if par[P_FIXED2] != 0.0:
+        return c1, s1, trig[2], trig[3]
+    c2, s2 = turned(trig[2], trig[3], st[11] * dt)
+    c2, s2 = _unit_pair(c2, s2)
+    return c1, s1, c2, s2
 
 
 def point_contact(a1x, a1y, a2x, a2y, n2x, n2y, x1, y1, c1, s1, vx1, vy1, w1, x2, y2, c2, s2,
@@ -234,10 +290,10 @@ def point_geometry(par, st, trig, dt):
         trig[3], st[9], st[10], st[11])
     if dt > 0.0:
         h = 0.5 * dt
-        th1, th2 = st[2] - st[5] * h, st[8] - st[11] * h
-        slip_t = _point(par, st[0] - st[3] * h, st[1] - st[4] * h, math.cos(th1),
-                        math.sin(th1), st[3], st[4], st[5], st[6] - st[9] * h,
-                        st[7] - st[10] * h, math.cos(th2), math.sin(th2), st[9], st[10],
+        c1, s1 = turned(trig[0], trig[1], -(st[5] * h))
+        c2, s2 = turned(trig[2], trig[3], -(st[11] * h))
+        slip_t = _point(par, st[0] - st[3] * h, st[1] - st[4] * h, c1, s1, st[3], st[4],
+                        st[5], st[6] - st[9] * h, st[7] - st[10] * h, c2, s2, st[9], st[10],
                         st[11])[6]
     return px, py, nx, ny, delta, slip_n, slip_t
 

@@ -36,9 +36,8 @@ def compile_module(module, separate=()) -> SimpleNamespace:
     functions it imports (the tyre law), are their compiled versions: the Python source is
     the one the pymunk scene runs. They are inlined where they are called (numba's
     ``inline="always"``: 1.3-1.4 times faster steps than separate functions, measured on
-    RICSAC 9), except those named in ``separate``, compiled as functions of their own (the
-    outline contact's geometry: a step of it costs microseconds, and inlining it doubled the
-    compile time).
+    RICSAC 9), except those named in ``separate``, compiled as functions of their own
+    (:data:`SEPARATE`: inlining everything doubled the compile time for no speed).
     """
     namespace = dict(vars(module))
     compiled = {}
@@ -54,12 +53,20 @@ def compile_module(module, separate=()) -> SimpleNamespace:
 
 
 #: The formula's functions compiled as functions of their own (not inlined): the outline
-#: contact's geometry.
-SEPARATE = ("outline_geometry", "outline_start")
+#: contact's geometry and its parts, what runs once per scene, and the four tyres of one
+#: vehicle (called twice per step). Inlining only the rest of the step halves the compile
+#: time of a clean checkout (46 -> 22 s CPU) at the same speed per step of the point
+#: contact (129 and 133 ns, measured on the benchmark's scenes, one thread).
+SEPARATE = ("outline_geometry", "outline_start", "place_corners", "clip_polygon",
+            "area_centroid", "_extent", "separating_axis", "outline_overlap", "place_outlines",
+            "outlines_touch", "free_state", "write_outputs", "post_velocities",
+            "separation_time", "slip_reversed", "_centroid", "_unit", "half_kick",
+            "normal_stiffness", "vehicle_tyre_force")
 
 
 _f = compile_module(compliant_formula, SEPARATE)
 _drift, _kick, _half_kick, _angles = _f.drift, _f.kick, _f.half_kick, _f.angles
+_advance_angles = _f.advance_angles
 _outline_start, _outline_geometry = _f.outline_start, _f.outline_geometry
 _free_state = _f.free_state
 _point_geometry, _contact_loads, _total_loads = _f.point_geometry, _f.contact_loads, _f.total_loads
@@ -118,10 +125,11 @@ def _scene(par, state0, out):  # pragma: no cover - compiled
             st[9], st[10], st[11] = v[3], v[4], v[5]
     max_steps = int(par[P_MAX_STEPS])
     steps = 0
+    trig = _angles(st)
     while True:
         _drift(par, st, dt)
         fx = fy = m1 = m2 = 0.0
-        trig = _angles(st)
+        trig = _advance_angles(par, trig, st, dt)
         if mem[M_ON] != 0.0:
             if outline:
                 px, py, nx, ny, delta, slip_n, slip_t, overlap, flipped = _outline_geometry(

@@ -349,6 +349,14 @@ def _flat_field(value, shape: tuple, vector: bool = False) -> np.ndarray:
     return arr.reshape((-1, 2) if vector else (-1,))
 
 
+def _flat_cos_sin(angle, shape: tuple, sign: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`libm_cos_sin` of ``sign`` times a case's angle field, taken on the field's own
+    elements and then broadcast to ``shape`` and flattened like :func:`_flat_field` (the
+    same bits: one C-library call per element of the case, not per scene of the batch)."""
+    cos, sin = libm_cos_sin(sign * np.asarray(angle, dtype=float))
+    return _flat_field(cos, shape), _flat_field(sin, shape)
+
+
 def _wheels(vehicle: pim.Vehicle, mass, inertia, gravity, fixed):
     """Wheel positions (n, 4, 2) and static loads (n, 4) of one vehicle (0 where fixed)."""
     n = mass.shape[0]
@@ -373,7 +381,7 @@ def libm_cos_sin(angle) -> tuple[np.ndarray, np.ndarray]:
     the last bit for a batch as for each of its scenes alone (numpy's vectorised cos and sin
     can differ by an ulp between long arrays and one element)."""
     angle = np.asarray(angle, dtype=float)
-    return _COS(angle).astype(float), _SIN(angle).astype(float)
+    return np.asarray(_COS(angle), dtype=float), np.asarray(_SIN(angle), dtype=float)
 
 
 def obstacle_corners(point, normal) -> np.ndarray:
@@ -423,9 +431,8 @@ def setup_arrays(case: pim.Case, shape: tuple, gravity: float) -> dict:
     vel1, vel2 = _flat_field(v1.velocity, shape, True), _flat_field(v2.velocity, shape, True)
     w1, w2 = _flat_field(v1.yaw_rate, shape), _flat_field(v2.yaw_rate, shape)
     point = _flat_field(imp.point, shape, True)
-    gamma = _flat_field(imp.normal_angle, shape)
     fixed2 = np.isinf(m2)
-    n = np.stack(libm_cos_sin(gamma), axis=-1)
+    n = np.stack(_flat_cos_sin(imp.normal_angle, shape), axis=-1)
     r1, r2 = point - cg1, point - cg2
     # K_nn = 1/m1 + 1/m2 + (r1 x n)^2 / I1 + (r2 x n)^2 / I2 (the frequency of the contact)
     c1, c2 = cross(r1, n), cross(r2, n)
@@ -439,11 +446,12 @@ def setup_arrays(case: pim.Case, shape: tuple, gravity: float) -> dict:
     speed = np.maximum(np.hypot(vel1[:, 0], vel1[:, 1]),
                        np.where(fixed2, 0.0, np.hypot(vel2[:, 0], vel2[:, 1])))
     out1, out2, obstacle = _outlines(v1, v2, fixed2, point, n)
+    back2 = _flat_cos_sin(v2.heading, shape, -1.0)
     return dict(
         outline1=out1, outline2=out2, obstacle=obstacle,
         mass1=m1, inertia1=i1, mass2=m2, inertia2=i2, fixed2=fixed2, k_nn=k_nn,
-        state0=state0, arm1=rotate_by(r1, *libm_cos_sin(-h1)),
-        arm2=rotate_by(r2, *libm_cos_sin(-h2)), normal2=rotate_by(n, *libm_cos_sin(-h2)),
+        state0=state0, arm1=rotate_by(r1, *_flat_cos_sin(v1.heading, shape, -1.0)),
+        arm2=rotate_by(r2, *back2), normal2=rotate_by(n, *back2),
         wheels1=wheels1, loads1=loads1, wheels2=wheels2, loads2=loads2,
         speed_scale=np.maximum(speed, 1e-6),
         energy_before=(geometry.kinetic_energy(m1, i1, vel1, w1)

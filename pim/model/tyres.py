@@ -183,8 +183,16 @@ def wheel_force(c, s, vx, vy, omega, px, py, cw, sw, load, mu, braking, vr):
     lat = sx * ex + sy * ey
     lx, ly = lat * ex, lat * ey
     vr2 = vr * vr
-    full = braking / np.sqrt(sx * sx + sy * sy + vr2)
-    side = (1.0 - braking) / np.sqrt(lx * lx + ly * ly + vr2)
+    # a number f of 0 (free-rolling) or 1 (locked) skips the square root and division of the
+    # term it weights by 0 (the same +0.0 they would give: compiled, half the cost per wheel)
+    if isinstance(braking, float) and braking == 0.0:
+        full = 0.0
+    else:
+        full = braking / np.sqrt(sx * sx + sy * sy + vr2)
+    if isinstance(braking, float) and braking == 1.0:
+        side = 0.0
+    else:
+        side = (1.0 - braking) / np.sqrt(lx * lx + ly * ly + vr2)
     scale = -mu * load
     fx = scale * (full * sx + side * lx)
     fy = scale * (full * sy + side * ly)

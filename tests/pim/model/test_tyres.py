@@ -206,3 +206,15 @@ def test_tyre_data_checks_its_fields():
         TyreData(cornering_stiffness=-1.0)
     with pytest.raises(ValueError, match="tyres.cg_height"):
         TyreData(cg_height=float("nan"))
+
+
+@given(st.floats(-30, 30), st.floats(-30, 30), st.floats(-3, 3), st.floats(-4, 4),
+       st.sampled_from([0.0, 1.0]))
+@settings(max_examples=200, deadline=None)
+def test_a_rolling_or_locked_number_skips_only_zero_terms(vx, vy, w, psi, f):
+    # braking 0.0 or 1.0 as a number skips the term it weights by 0: the same bits (signed
+    # zeros included) as the general path an array of the same braking takes
+    c, s = np.cos(psi), np.sin(psi)
+    number = wheel_force(c, s, vx, vy, w, 1.4, -0.8, c, s, 4000.0, 0.8, f, 0.05)
+    array = wheel_force(c, s, vx, vy, w, 1.4, -0.8, c, s, 4000.0, 0.8, np.array(f), 0.05)
+    assert [float(v).hex() for v in number] == [float(v).hex() for v in array]
