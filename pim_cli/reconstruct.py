@@ -129,7 +129,8 @@ def _stages(case, samples: int, workers: int, progress):
     and its blocks); yields the callback that moves it."""
     from tqdm import tqdm
 
-    with tqdm(total=progress_stages(case, samples, workers), desc="pim reconstruct", unit="stage", leave=False,
+    with tqdm(total=progress_stages(case, samples, workers), desc="pim reconstruct", unit="stage",
+              leave=False,
               disable=None if progress is None else not progress) as bar:
         def say(stage: str) -> None:
             if bar.n < bar.total:

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from pim.analysis.fitting import FitResult
 from pim.analysis.free_inputs import free_kind
-from pim.io.units import convert, display_units
+from pim.io.units import convert, display_units, unit_scale
 
 __all__ = ["quantity_factor", "shown_value", "fit_json", "fit_values_json", "bound_notes",
            "cost_lines", "coefficient_lines", "residual_lines", "fit_lines"]
@@ -44,10 +44,7 @@ def quantity_factor(kind: str | None, units: str) -> tuple[float, str]:
         The factor that takes an SI value into ``units`` and the unit's label ("-" when
         dimensionless).
     """
-    if kind is None:
-        return 1.0, "-"
-    value, unit = convert(1.0, kind, units)
-    return float(value), unit
+    return (1.0, "-") if kind is None else unit_scale(kind, units)
 
 
 def shown_value(value: float, kind: str, units: str) -> dict:

@@ -43,7 +43,8 @@ from ..model.numbers import InputError
 from ..model.pdof import wrap_angle
 from ..model.quantities import INPUTS
 
-__all__ = ["FREE_KEYS", "EXTRA_KEYS", "free_kind", "STATE", "check_free", "check_free_for_case", "fields_set_by",
+__all__ = ["FREE_KEYS", "EXTRA_KEYS", "free_kind", "STATE", "check_free", "check_free_for_case",
+           "fields_set_by",
            "case_state", "free_inputs", "set_inputs", "current_value",
            "approach_direction", "unit_or_heading", "law_values", "state_law", "state_motion",
            "friction_floor", "MU_C_BOUNDS"]
