@@ -388,6 +388,7 @@ class _SpeedErrorOptions:
 def _speed_error_case(name: str, folder, opts: _SpeedErrorOptions, pool) -> dict:
     """Sweep one case and write its files into ``folder``: a JSON-ready dict (with the
     lines to print under ``"lines"``)."""
+    from comparisons.report.speed_error import speed_error_json, speed_error_line
     from comparisons.report.speed_error import write_speed_error as write_study
     from comparisons.studies.speed_error import COARSE, sweep
 
@@ -401,26 +402,13 @@ def _speed_error_case(name: str, folder, opts: _SpeedErrorOptions, pool) -> dict
     # process draws the finite-duration one
     written = pool.submit(write_study, study, folder, stem, command=opts.command(name)) \
         if pool is not None else None
-    rec = study.recommended()
-    result = {"case": stem, "files": [],
-              "recommended": None if rec is None else
-              {"dt": rec.dt, "iterations": rec.iterations,
-               "iterations_used": rec.iterations_used, "start": rec.start,
-               "contact": rec.contact, "error": rec.error, "wall_time": rec.wall_time},
-              "analytic_time": study.analytic_time,
-              "analytic_batch_time": study.analytic_batch_time, "lines": []}
+    result = speed_error_json(study, stem) | {"lines": []}
     if cstudy is not None:
         _compliant_result(cstudy, stem, folder, opts, result)
     files = write_study(study, folder, stem, command=opts.command(name)) \
         if written is None else written.result()
     result["files"] = [str(f) for f in files] + result["files"]
-    text = ("no run reaches the target" if rec is None else
-            f"recommended dt = {rec.dt:g} s, iterations = "
-            f"{'auto' if rec.iterations is None else rec.iterations}, {rec.start} "
-            f"start, {rec.contact} contact: error {rec.error:.2e}, "
-            f"{rec.wall_time * 1e3:.3g} ms/impact (PIM {study.analytic_time * 1e3:.3g} "
-            f"ms/call)")
-    result["lines"].append(f"{stem}: {text}")
+    result["lines"].append(speed_error_line(study, stem))
     if opts.as_json:
         result.pop("lines")
     return result
@@ -439,23 +427,12 @@ def _compliant_result(cstudy, stem: str, folder, opts: _SpeedErrorOptions,
                       result: dict) -> None:
     """Write the finite-duration study and put its files, recommendations and lines into
     ``result``."""
-    from comparisons.report.speed_error import write_compliant
+    from comparisons.report.speed_error import compliant_json, compliant_summary, write_compliant
 
     cfiles = write_compliant(cstudy, folder, stem, command=opts.command(stem))
     result["files"] += [str(f) for f in cfiles]
-    recs = {scene: cstudy.recommended(scene)
-            for scene in dict.fromkeys(p.scene for p in cstudy.points)}
-    result["compliant"] = {
-        scene: None if rec is None else
-        {"integrator": rec.integrator, "setting": rec.setting, "error": rec.error,
-         "wall_time": rec.wall_time} for scene, rec in recs.items()}
-    result["compliant_seconds"] = cstudy.wall_time
-    for scene, rec in recs.items():
-        result["lines"].append(
-            f"{stem} finite-duration ({scene}): " + (
-                "no run reaches 1e-3" if rec is None else
-                f"recommended {rec.label}: error {rec.error:.1e}, "
-                f"{rec.wall_time * 1e3:.3g} ms/impact"))
+    result.update(compliant_json(cstudy))
+    result["lines"] += compliant_summary(cstudy, stem)
 
 
 def _command(name: str, coarse: bool, repeats: int, out) -> str:

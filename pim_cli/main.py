@@ -263,14 +263,14 @@ def solve_choice(case, choice, units=None):
     (no impact), with the approach velocity in ``units`` (default: the case's;
     :func:`pim.io.units.display_units`).
     """
-    from pim.io.units import convert, display_units
+    from pim.io.units import display_units, unit_scale
     from pim.model.law import solve
     from pim.model.plausibility import no_impact_message
 
     result = solve(case, choice.restitution, choice.beta, law=choice.law,
                    mu_c=choice.contact_friction)
-    scale, label = convert(1.0, "velocity", display_units(units, case=case))
-    message = no_impact_message(result, label, float(scale))
+    scale, label = unit_scale("velocity", display_units(units, case=case))
+    message = no_impact_message(result, label, scale)
     if message:
         click.echo(message, err=True)
         raise click.exceptions.Exit(NO_IMPACT_EXIT_CODE)

@@ -109,7 +109,7 @@ def pulses(out, stiffness, eps, units, speed_unit, as_json):
     table = pulse_table(c, shown)
     if as_json:
         echo_json({"units": shown.to_json(), "files": [str(f) for f in files],
-                   "rows": [dict(zip(table.columns, r, strict=True)) for r in table.rows]})
+                   "rows": table.records()})
         return
     click.echo(markdown_table(table))
     click.echo(f"wrote {files[0]}")

@@ -28,29 +28,24 @@ from pathlib import Path
 import click
 
 from comparisons.report.document import Figure, Video
-from comparisons.report.pre_impact import pre_impact_json, pre_impact_lines, pre_impact_rows
+from comparisons.report.number_format import duration_text
+from comparisons.report.pre_impact import pre_impact_rows
 from comparisons.report.reconstruct import (
-    ReconstructionRows,
-    crush_lines,
-    driver_lines,
-    evidence_drivers,
-    law_line,
     reconstruction_document,
+    reconstruction_json,
+    reconstruction_lines,
     reconstruction_rows,
-    tyre_models_line,
+    runout_contact,
 )
 from comparisons.report.write import write_document
 from pim.analysis.pre_impact_speeds import reconstruction_pre_impact
-from pim.analysis.reconstruction import Reconstruction
+from pim.analysis.reconstruction import MonteCarloBudget, progress_stages, worker_blocks
 from pim.analysis.reconstruction import reconstruct as run_reconstruction
 from pim.io.files import save_figure
-from pim.io.inertia_data import estimate_records
 from pim.io.output import output_folder
 from pim.io.process import worker_pool
-from pim.io.units import convert, display_units
 from pim.model.numbers import InputError
-from pim.model.plausibility import secondary_contact
-from pim.plotting.reconstruction_animation import frame_states, write_reconstruction_mp4
+from pim.plotting.reconstruction_animation import write_reconstruction_mp4
 from pim.plotting.reconstruction_scene import reconstruction_figure
 from pim_cli.main import (
     SEED,
@@ -67,41 +62,11 @@ from pim_cli.main import (
     units_option,
 )
 
-__all__ = ["reconstruct", "reconstruction_rows", "law_line", "evidence_drivers",
-           "driver_lines", "budget", "DEFAULT_MAX_MINUTES", "runout_contact", "spread_text"]
+__all__ = ["reconstruct", "budget", "DEFAULT_MAX_MINUTES"]
 
 #: Default of --max-minutes: the longest Monte Carlo with run-out evidence run without
 #: being asked [min].
 DEFAULT_MAX_MINUTES = 30.0
-
-
-def spread_text(row, samples: int, sep: str = ", ") -> str:
-    """"[p5, p50, p95]" of an unknown's row, or why there is none (never "[nan, nan, nan]")."""
-    if not samples:
-        return "(5/50/95 %: not computed, --samples 0)"
-    if not row.has_spread:
-        return "(5/50/95 %: no usable Monte Carlo sample)"
-    return f"[{row.p5:.4g}{sep}{row.p50:.4g}{sep}{row.p95:.4g}]"
-
-
-def _lines(rows: ReconstructionRows, samples: int) -> list[str]:
-    """The table as text lines: each unknown, then the momentum check."""
-    lines = [f"{r.name:32s} {(('>= ' if r.lower_bound else '') + f'{r.value:.4g}'):>10s} "
-             f"{r.unit}  {spread_text(r, samples)}" for r in rows.unknowns]
-    lines += [f"{'momentum check: ' + m.name:32s} {m.value:>10.4g} {m.unit}  "
-              f"(1 sd = {m.sd:.3g} {m.unit})" for m in rows.momentum]
-    return lines
-
-
-def _json(case, rows: ReconstructionRows, samples: int, messages, units) -> dict:
-    """``--json``'s data: every value in ``units`` with its unit (NaN becomes null)."""
-    return {"case": case.name, "units": display_units(units).to_json(), "samples": samples,
-            "messages": messages, "estimates": estimate_records(case, units),
-            "unknowns": {r.name: {"unit": r.unit, "value": r.value, "p5": r.p5,
-                                  "p50": r.p50, "p95": r.p95, "lower_bound": r.lower_bound}
-                         for r in rows.unknowns},
-            "momentum_check": {m.name: {"unit": m.unit, "value": m.value, "sd": m.sd}
-                               for m in rows.momentum}}
 
 
 @click.command()
@@ -164,11 +129,8 @@ def _stages(case, samples: int, workers: int, progress):
     and its blocks); yields the callback that moves it."""
     from tqdm import tqdm
 
-    has_evidence = case.evidence is not None and (case.evidence.vehicle1 is not None
-                                                   or case.evidence.vehicle2 is not None)
-    total = int(has_evidence) + 1 + (0 if not samples else 1 if workers == 1 else
-                                     1 + 2 * workers)
-    with tqdm(total=total, desc="pim reconstruct", unit="stage", leave=False,
+    with tqdm(total=progress_stages(case, samples, workers), desc="pim reconstruct", unit="stage",
+              leave=False,
               disable=None if progress is None else not progress) as bar:
         def say(stage: str) -> None:
             if bar.n < bar.total:
@@ -180,24 +142,21 @@ def _stages(case, samples: int, workers: int, progress):
 def budget(samples: int, workers: int, max_minutes: float):
     """The ``estimate`` callback of :func:`pim.analysis.reconstruction.reconstruct`: says the
     Monte Carlo's estimated time on stderr when over 10 s, refuses it (InputError naming
-    --max-minutes and the --samples that fit) when over ``max_minutes``."""
+    --max-minutes and the --samples that fit) when over ``max_minutes``
+    (:class:`pim.analysis.reconstruction.MonteCarloBudget`)."""
+    limit = MonteCarloBudget(samples, workers, max_minutes)
+
     def check(seconds: float) -> None:
-        seconds /= workers
-        if seconds > 60.0 * max_minutes:
-            fit = int(samples * 60.0 * max_minutes / seconds)
+        seconds = limit.wall_seconds(seconds)
+        if limit.over(seconds):
             raise InputError(f"--max-minutes {max_minutes:g}: the Monte Carlo of {samples} "
                              f"samples refits the run-outs of each sample, about "
-                             f"{_duration(seconds)} here; give --samples {fit} or fewer, or "
-                             f"raise --max-minutes")
-        if seconds > 10.0:
+                             f"{duration_text(seconds)} here; give --samples "
+                             f"{limit.affordable(seconds)} or fewer, or raise --max-minutes")
+        if limit.noted(seconds):
             click.echo(f"note: Monte Carlo: {samples} samples, each refitting the run-outs: "
-                       f"about {_duration(seconds)}", err=True)
+                       f"about {duration_text(seconds)}", err=True)
     return check
-
-
-def _duration(seconds: float) -> str:
-    return f"{seconds:.0f} s" if seconds < 120 else (
-        f"{seconds / 60:.0f} min" if seconds < 7200 else f"{seconds / 3600:.1f} h")
 
 
 def _reconstruct(case, samples, seed, workers, units, as_json, *, say=None, estimate=None,
@@ -208,14 +167,13 @@ def _reconstruct(case, samples, seed, workers, units, as_json, *, say=None, esti
     if workers > 1:
         with worker_pool(workers) as pool:
             rec = run_reconstruction(case, samples=samples, seed=seed, executor=pool,
-                                     blocks=2 * workers, progress=say, estimate=estimate)
+                                     blocks=worker_blocks(workers), progress=say,
+                                     estimate=estimate)
     else:
         rec = run_reconstruction(case, samples=samples, seed=seed, progress=say,
                                  estimate=estimate)
     if not rec.determined:
-        raise InputError(next((m for m in rec.messages if "under-determined" in m
-                               or "family" in m or "equally well" in m),
-                              "; ".join(rec.messages)))
+        raise InputError(rec.undetermined_reason)
     rows = reconstruction_rows(rec, units)
     pre = pre_impact_rows(reconstruction_pre_impact(rec, seed), units)
     found = check_answer(rec.fit.case, rec.fit.result, units, allow=allow, as_json=as_json)
@@ -223,72 +181,14 @@ def _reconstruct(case, samples, seed, workers, units, as_json, *, say=None, esti
     if contact is not None and not as_json:
         click.echo(f"note: {contact['message']}", err=True)
     if as_json:
-        data = _json(case, rows, samples, rec.messages, units) | findings_json(found)
-        data["secondary_impact"] = contact
-        data["pre_impact"] = pre_impact_json(pre)
-        data["tyre_models"] = ({f"vehicle{i}": fit.tyre_model for i, fit in
-                                rec.post.runouts.items()} if rec.post else {})
-        data["goodness_of_fit"] = rec.goodness.to_dict() if rec.goodness else None
-        data["evidence_drivers"] = evidence_drivers(rec, units)
-        data["crush"] = _crush_json(rec, units)
-        data["law"] = rec.fit.law
-        echo_json(data)
+        echo_json(reconstruction_json(rec, rows, units, samples=samples, pre=pre,
+                                      contact=contact, findings=findings_json(found)))
     else:
-        click.echo(law_line(rec))
-        if rec.post is not None:
-            click.echo(tyre_models_line(rec))
-        for message in rec.messages:        # before the table, where a reader sees them
-            click.echo(f"warning: {message}")
-        for line in _lines(rows, samples) + pre_impact_lines(pre):
+        for line in reconstruction_lines(rec, rows, units, samples=samples, pre=pre):
             click.echo(line)
-        for line in crush_lines(rec, units):
-            click.echo(f"crush: {line}")
-        for line in driver_lines(evidence_drivers(rec, units)):
-            click.echo(f"evidence: {line}")
-        if rec.goodness is not None:
-            click.echo(f"goodness of fit: {rec.goodness.summary()}")
     if contact is not None:
         rec.messages.append(contact["message"])         # into the report too
     return rec, rows, pre, found
-
-
-def runout_contact(rec: Reconstruction, units: str) -> dict | None:
-    """Where the two fitted run-outs (those the animation plays) run into each other again
-    after the impact (:func:`pim.model.plausibility.secondary_contact`): time [s], place
-    (x, y) in ``units`` and the message; None without both run-outs and outlines, or when
-    they do not."""
-    post = rec.post
-    if post is None or set(post.runouts) != {1, 2}:
-        return None
-    frames = frame_states(post, fps=100, hold=0.0)
-    hit = secondary_contact(frames.times, frames.states[1], frames.states[2],
-                            rec.case.vehicle1, rec.case.vehicle2)
-    if hit is None:
-        return None
-    time, point = hit
-    (x, y), unit = convert(point, "length", units)
-    return {"time": time, "x": float(x), "y": float(y), "length_unit": unit,
-            "message": f"secondary impact at t = {time:.2f} s after the impact at (x, y) = "
-                       f"({x:.4g} {unit}, {y:.4g} {unit}): the two fitted run-outs run into "
-                       f"each other again, a second impact the run-out model leaves out (the "
-                       f"motion after it, and the speeds fitted to the rest positions through "
-                       f"it, are not reliable)"}
-
-
-def _crush_json(rec: Reconstruction, units: str) -> dict:
-    """``--json``'s crush outputs per vehicle, each value with its unit in ``units``."""
-    out = {}
-    for c in rec.crush:
-        (e, sd), e_unit = convert([c.energy, c.energy_sigma], "energy", units)
-        (ees, dv, dvm), v_unit = convert([c.ees, c.delta_v_crush, c.delta_v_model],
-                                         "impact_speed", units)
-        out[f"vehicle{c.vehicle}"] = {
-            "energy": {"value": float(e), "sd": float(sd), "unit": e_unit},
-            "force_balance_factor": c.factor,
-            "ees": {"value": float(ees), "unit": v_unit},
-            "delta_v_crush": {"value": float(dv), "unit": v_unit},
-            "delta_v_model": {"value": float(dvm), "unit": v_unit}}
-    return out
 
 
 def _write_folder(directory: Path, rec, rows, units: str, video: bool, pre=()) -> None:

@@ -10,8 +10,8 @@ from pathlib import Path
 import click
 from tqdm import tqdm
 
-import pim
 from comparisons.regression.baseline import (
+    cases_findings,
     check_baseline,
     dumps_baseline,
     format_report,
@@ -20,9 +20,7 @@ from comparisons.regression.baseline import (
 )
 from comparisons.regression.sections import DEFAULT_SECTIONS, DEFAULT_SETTINGS, SECTIONS
 from pim.io.files import write_text
-from pim.io.units import quantity_text
-from pim.model.numbers import InputError
-from pim.model.plausibility import Findings, findings
+from pim.model.plausibility import Findings
 from pim_cli.main import (
     SEED,
     allow_inadmissible_option,
@@ -102,19 +100,10 @@ def baseline(cases, out, extra, skip, samples, reconstruct_samples, seed, refere
 
 
 def _cases_findings(cases, allow: bool) -> Findings:
-    """The errors and warnings about each case and its answer under its own law, each
-    prefixed with the case and printed (:func:`pim_cli.main.say_findings`)."""
-    errors, warnings = [], []
-    for name in cases:
-        case = load_case_for("baseline", name)
-        try:
-            result = pim.solve(case)
-        except InputError:          # no coefficients (a reconstruction case): the case alone
-            result = None
-        found = findings(case, result, show=quantity_text(case.units))
-        errors += [f"{name}: {text}" for text in found.errors]
-        warnings += [f"{name}: {text}" for text in found.warnings]
-    found = Findings(errors, warnings)
+    """The errors and warnings about each case and its answer under its own law
+    (:func:`comparisons.regression.baseline.cases_findings`), printed
+    (:func:`pim_cli.main.say_findings`)."""
+    found = cases_findings({name: load_case_for("baseline", name) for name in cases})
     say_findings(found, allow)
     return found
 

@@ -64,16 +64,15 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, unit
     """
     from comparisons.report.pre_impact import pre_impact_json, pre_impact_lines, pre_impact_rows
     from pim.analysis.pre_impact_speeds import case_pre_impact
-    from pim.plotting.tables import format_table, rows_to_json, summarize
+    from pim.plotting.tables import format_table, rows_to_json, summarize, table_title
 
     case = load_case_for("solve", case_name, law)
     units = output_units(case, units, speed_unit)
     choice = resolve_options(case, eps, beta, friction_limit, cap_friction, law, k, mu_c)
     result = solve_choice(case, choice, units)
     pre_impact = pre_impact_rows(case_pre_impact(case), units)     # marks, driver tables
-    if result.q_singular.any():
-        problems = result.problems()
-        raise InputError(problems[0] if problems else "q is singular")
+    if result.unsolvable() is not None:
+        raise InputError(result.unsolvable())
     found = check_answer(case, result, units, friction_limit, allow_inadmissible, as_json)
     rows = summarize(result, units)
     law = choice.law
@@ -81,24 +80,12 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, unit
         echo_json({"case": case.name, "units": units.to_json(), "law": law, **findings_json(found),
                    "results": rows_to_json(rows), "pre_impact": pre_impact_json(pre_impact)})
     else:
-        click.echo(format_table(rows, _title(case, result, law)))
+        click.echo(format_table(rows, table_title(case.name, result, law)))
         if pre_impact:
             click.echo("\nSpeeds before the impact (from the case's impact velocities):")
             for line in pre_impact_lines(pre_impact):
                 click.echo(line)
     finish_answer(found, allow_inadmissible)
-
-
-def _title(case, result, law: str) -> str:
-    """The table's title: the law and the parameters it used."""
-    if law == "kudlich-slibar":
-        return (f"{case.name}: Kudlich-Slibar law, k = {float(result.eps):g}, mu_c = "
-                f"{float(result.contact_friction):g} (equivalent PIM beta = "
-                f"{float(result.beta):g})")
-    title = f"{case.name}: epsilon = {float(result.eps):g}, beta = {float(result.beta):g}"
-    if law == "brach-capped":
-        title += " (friction-capped Brach, effective beta)"
-    return title
 
 
 @click.command()

@@ -79,48 +79,36 @@ def uncertainty(case_name, samples, seed, eps, beta, png, top, progress, units, 
     """
     from tqdm import tqdm
 
-    from pim.analysis.montecarlo import OUTPUTS, available_memory, memory_estimate
+    from comparisons.report.uncertainty import (
+        uncertainty_json,
+        uncertainty_lines,
+        uncertainty_rows,
+    )
+    from pim.analysis.montecarlo import memory_shortfall
     from pim.analysis.montecarlo import uncertainty as run
-    from pim.io.inertia_data import estimate_records
-    from pim.io.units import convert
-    from pim.model.quantities import OUTPUTS as QUANTITIES
 
     case = load_case_for("uncertainty", case_name)
     units = output_units(case, units, speed_unit)
-    need, free = memory_estimate(samples), available_memory()
-    if free is not None and need > free:
-        raise InputError(f"--samples {samples:,} needs about {need / 2**30:.1f} GiB of memory "
-                         f"and {free / 2**30:.1f} GiB are available")
+    shortfall = memory_shortfall(samples)
+    if shortfall is not None:
+        raise InputError(f"--samples {samples:,} {shortfall}")
     with tqdm(total=samples, unit="sample", unit_scale=True, desc="Monte Carlo", leave=False,
               disable=None if progress is None else not progress) as bar:
         result = run(case, n=samples, seed=seed, eps=eps, beta=beta, progress=bar.update)
-    rows = []
-    barrier = bool(case.vehicle2.fixed)
-    for name in OUTPUTS:
-        if barrier and name in ("pdof2", "delta_v2_magnitude", "speed2", "yaw_rate2"):
-            continue        # a fixed obstacle does not move and has no PDOF
-        label, kind = QUANTITIES[name].label, QUANTITIES[name].kind
-        s = result.stats[name]
-        values, unit = convert([s.nominal, s.p5, s.p50, s.p95], kind, units)
-        rows.append({"output": name, "label": label, "unit": unit,
-                     "nominal": float(values[0]), "p5": float(values[1]),
-                     "p50": float(values[2]), "p95": float(values[3]),
-                     "sensitivity": [{"input": k, "first_order": round(v, 4)}
-                                     for k, v in result.sensitivity[name]]})
+    rows = uncertainty_rows(case, result, units)
     if png:
         from pim.plotting.histograms import write_histograms
 
         write_histograms(result, png, units)
     found = _mc_findings(case, result, eps, beta, units, allow_inadmissible, as_json)
     if as_json:
-        echo_json({"case": case.name, "samples": result.n, "seed": seed,
-                   "units": units.to_json(), "estimates": estimate_records(case, units),
-                   **findings_json(found), "samples_admissible": result.n_admissible,
-                   "samples_inadmissible": result.n - result.n_admissible,
-                   "inadmissible_samples": "left out of the percentiles and indices",
-                   "sample_problems": result.problems, "outputs": rows})
+        echo_json(uncertainty_json(case, result, rows, units, seed=seed,
+                                   findings=findings_json(found)))
     else:
-        _print_table(case, result, seed, rows, top, png)
+        for line in uncertainty_lines(case.name, result, rows, seed=seed, top=top):
+            click.echo(line)
+        if png:
+            click.echo(f"histograms: {png}")
     finish_answer(found, allow_inadmissible)
 
 
@@ -128,33 +116,14 @@ def _mc_findings(case, result, eps, beta, units, allow, as_json):
     """The nominal answer's findings (printed), after one line on the share of inadmissible
     samples and how they were treated, and one per reason with its count; no admissible
     sample at all is an error."""
+    from comparisons.report.uncertainty import inadmissible_note, no_admissible_error
     from pim.model.solver import solve
 
-    bad = result.n - result.n_admissible
-    if bad:
-        click.echo(f"note: {bad:,} of {result.n:,} samples ({100 * bad / result.n:.3g} %) are "
-                   f"inadmissible impacts, left out of the percentiles and the indices (those "
-                   f"describe the admissible impacts); why:", err=True)
-        for text in result.problems:
-            click.echo(f"warning: samples: {text}", err=True)
+    for line in inadmissible_note(result):
+        click.echo(line, err=True)
     found = check_answer(case, solve(case, eps, beta), units, allow=allow, as_json=as_json)
-    if result.n_admissible == 0:
-        found.errors.append(f"no sample of {result.n:,} is an admissible impact: no statistics")
+    error = no_admissible_error(result)
+    if error is not None:
+        found.errors.append(error)
         say_findings(type(found)(found.errors[-1:], []), allow)
     return found
-
-
-def _print_table(case, result, seed, rows, top, png) -> None:
-    """``pim uncertainty``'s table."""
-    click.echo(f"{case.name}: {result.n:,} samples (seed {seed}), "
-               f"{result.n_admissible:,} admissible")
-    width = max(len(r["label"]) for r in rows)
-    click.echo(f"{'output':<{width}}  {'unit':>6}  {'nominal':>10}  {'5 %':>10}  {'50 %':>10}  "
-               f"{'95 %':>10}  main contributions (first-order index)")
-    for r in rows:
-        contrib = ", ".join(f"{c['input']} {c['first_order']:.2f}"
-                            for c in r["sensitivity"][:top])
-        click.echo(f"{r['label']:<{width}}  {r['unit']:>6}  {r['nominal']:>10.4g}  "
-                   f"{r['p5']:>10.4g}  {r['p50']:>10.4g}  {r['p95']:>10.4g}  {contrib}")
-    if png:
-        click.echo(f"histograms: {png}")

@@ -34,11 +34,13 @@ from comparisons.regression.sections import (
     SECTIONS,
     run_section,
 )
-from pim.io.units import SI_UNITS, DisplayUnits, convert, registry
+from pim.io.units import SI_UNITS, DisplayUnits, convert, quantity_text, registry
 from pim.model.numbers import InputError
+from pim.model.plausibility import Findings, findings
 from sim.error_measure import ERROR_DEFINITION, impact_error
 
-__all__ = ["FORMAT", "make_baseline", "record_case", "load_baseline", "check_baseline",
+__all__ = ["FORMAT", "cases_findings", "make_baseline", "record_case", "load_baseline",
+           "check_baseline",
            "CheckReport", "Drift", "format_report", "dumps_baseline", "case_source", "stored_path",
            "shown_case", "versions",
            "load_references", "assert_agrees", "agreement", "DEPENDENCIES", "SAME_VERSIONS_REL"]
@@ -676,3 +678,30 @@ def assert_agrees(result_a, result_b, tol: float) -> float:
         raise AssertionError(f"results differ by {error:.3g} > tolerance {tol:.3g} "
                              f"({ERROR_DEFINITION})")
     return error
+
+
+def cases_findings(cases: dict) -> Findings:
+    """What is wrong or doubtful about each case a baseline would record and its answer
+    under its own law (:func:`pim.solve`; the case alone where it has no coefficients, a
+    reconstruction case), numbers in the case's units, each prefixed with the case's name.
+
+    Parameters
+    ----------
+    cases : dict
+        Name (as given) -> :class:`pim.Case`.
+
+    Returns
+    -------
+    Findings
+        Every case's errors and warnings, in the order of ``cases``.
+    """
+    errors, warnings = [], []
+    for name, case in cases.items():
+        try:
+            result = pim.solve(case)
+        except InputError:          # no coefficients (a reconstruction case): the case alone
+            result = None
+        found = findings(case, result, show=quantity_text(case.units))
+        errors += [f"{name}: {text}" for text in found.errors]
+        warnings += [f"{name}: {text}" for text in found.warnings]
+    return Findings(errors, warnings)

@@ -16,7 +16,7 @@ import math
 from decimal import ROUND_HALF_EVEN, Decimal
 
 __all__ = ["format_number", "interval_decimals", "format_interval", "round_off",
-           "SIGNIFICANT", "ROUND_OFF"]
+           "duration_text", "SIGNIFICANT", "ROUND_OFF"]
 
 #: Significant digits of a number that carries no interval.
 SIGNIFICANT = 4
@@ -155,3 +155,16 @@ def round_off(x: float, scale: float, rtol: float = ROUND_OFF) -> float:
     if _blank(x) or _blank(scale) or not math.isfinite(scale):
         return x
     return 0.0 if abs(x) < rtol * abs(scale) else x
+
+
+def duration_text(seconds: float) -> str:
+    """A duration in the unit a reader takes in at once: seconds below 2 min, minutes below
+    2 h, else hours.
+
+    Examples
+    --------
+    >>> duration_text(95), duration_text(600), duration_text(9000)
+    ('95 s', '10 min', '2.5 h')
+    """
+    return f"{seconds:.0f} s" if seconds < 120 else (
+        f"{seconds / 60:.0f} min" if seconds < 7200 else f"{seconds / 3600:.1f} h")

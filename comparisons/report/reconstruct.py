@@ -25,17 +25,22 @@ from comparisons.report.document import (
     Section,
 )
 from comparisons.report.number_format import format_interval, format_number, interval_decimals
-from comparisons.report.pre_impact import pre_impact_section
+from comparisons.report.pre_impact import pre_impact_json, pre_impact_lines, pre_impact_section
 from comparisons.report.tables import Num, Table
 from pim.analysis.reconstruction import Reconstruction
-from pim.io.inertia_data import estimate_notes
+from pim.io.inertia_data import estimate_notes, estimate_records
 from pim.io.units import convert, display_units
 from pim.model.evidence import UNKNOWN_KINDS
 from pim.model.law import LAW_NAMES, LAW_PARAMETERS
+from pim.model.plausibility import secondary_contact
+from pim.plotting.reconstruction_animation import frame_states
 
 __all__ = ["UnknownRow", "MomentumRow", "ReconstructionRows", "reconstruction_rows",
            "law_line", "tyre_models_line", "crush_lines", "evidence_drivers", "driver_lines",
-           "spread_driver_lines", "reconstruction_table", "reconstruction_document"]
+           "spread_driver_lines", "reconstruction_table", "reconstruction_document",
+           "spread_text", "table_lines", "reconstruction_lines", "runout_contact",
+           "crush_json", "reconstruction_json"]
+
 
 @dataclass(frozen=True)
 class UnknownRow:
@@ -333,3 +338,148 @@ def reconstruction_document(rec: Reconstruction, rows: ReconstructionRows, units
                     subtitle=f"Written by `pim reconstruct` in {display_units(units)} (the "
                              "same as text: `report.md`).")
 
+
+
+def spread_text(row: UnknownRow, samples: int, sep: str = ", ") -> str:
+    """An unknown's "[p5, p50, p95]", or why there is none (never "[nan, nan, nan]")."""
+    if not samples:
+        return "(5/50/95 %: not computed, --samples 0)"
+    if not row.has_spread:
+        return "(5/50/95 %: no usable Monte Carlo sample)"
+    return f"[{row.p5:.4g}{sep}{row.p50:.4g}{sep}{row.p95:.4g}]"
+
+
+def table_lines(rows: ReconstructionRows, samples: int) -> list[str]:
+    """The table as text lines: each unknown with its 5/50/95 % (``samples``: how many the
+    Monte Carlo drew), then the momentum check with its standard deviation."""
+    lines = [f"{r.name:32s} {(('>= ' if r.lower_bound else '') + f'{r.value:.4g}'):>10s} "
+             f"{r.unit}  {spread_text(r, samples)}" for r in rows.unknowns]
+    lines += [f"{'momentum check: ' + m.name:32s} {m.value:>10.4g} {m.unit}  "
+              f"(1 sd = {m.sd:.3g} {m.unit})" for m in rows.momentum]
+    return lines
+
+
+def reconstruction_lines(rec: Reconstruction, rows: ReconstructionRows, units: str, *,
+                         samples: int, pre=()) -> list[str]:
+    """``pim reconstruct``'s text, one line each.
+
+    Parameters
+    ----------
+    rec : Reconstruction
+        The reconstruction.
+    rows : ReconstructionRows
+        Its table in ``units`` (:func:`reconstruction_rows`).
+    units : DisplayUnits or str
+        The output's units.
+    samples : int
+        The Monte Carlo samples asked for (0: none).
+    pre : sequence
+        The speeds before the impact (:func:`comparisons.report.pre_impact.pre_impact_rows`).
+
+    Returns
+    -------
+    list of str
+        The law, the run-outs' tyre model, the warnings (before the table, where a reader
+        sees them), the table, the speeds before the impact, the crush energies, the
+        evidence behind each unknown and the goodness of fit.
+    """
+    lines = [law_line(rec)] + ([tyre_models_line(rec)] if rec.post is not None else [])
+    lines += [f"warning: {message}" for message in rec.messages]
+    lines += table_lines(rows, samples) + pre_impact_lines(pre)
+    lines += [f"crush: {line}" for line in crush_lines(rec, units)]
+    lines += [f"evidence: {line}" for line in driver_lines(evidence_drivers(rec, units))]
+    if rec.goodness is not None:
+        lines.append(f"goodness of fit: {rec.goodness.summary()}")
+    return lines
+
+
+def runout_contact(rec: Reconstruction, units: str) -> dict | None:
+    """Where the two fitted run-outs (those the animation plays) run into each other again
+    after the impact (:func:`pim.model.plausibility.secondary_contact`).
+
+    Parameters
+    ----------
+    rec : Reconstruction
+        The reconstruction, with both vehicles' run-outs.
+    units : DisplayUnits or str
+        The units of the place.
+
+    Returns
+    -------
+    dict or None
+        Time [s], place (x, y) in ``units`` with its ``length_unit``, and the message; None
+        without both run-outs and outlines, or when they do not meet.
+    """
+    post = rec.post
+    if post is None or set(post.runouts) != {1, 2}:
+        return None
+    frames = frame_states(post, fps=100, hold=0.0)
+    hit = secondary_contact(frames.times, frames.states[1], frames.states[2],
+                            rec.case.vehicle1, rec.case.vehicle2)
+    if hit is None:
+        return None
+    time, point = hit
+    (x, y), unit = convert(point, "length", units)
+    return {"time": time, "x": float(x), "y": float(y), "length_unit": unit,
+            "message": f"secondary impact at t = {time:.2f} s after the impact at (x, y) = "
+                       f"({x:.4g} {unit}, {y:.4g} {unit}): the two fitted run-outs run into "
+                       f"each other again, a second impact the run-out model leaves out (the "
+                       f"motion after it, and the speeds fitted to the rest positions through "
+                       f"it, are not reliable)"}
+
+
+def crush_json(rec: Reconstruction, units: str) -> dict:
+    """The crush outputs per vehicle (``vehicleN``): crush energy with its sd, the
+    force-balance factor, EES and the delta-V from crush beside the solution's, each value
+    with its unit in ``units``."""
+    out = {}
+    for c in rec.crush:
+        (e, sd), e_unit = convert([c.energy, c.energy_sigma], "energy", units)
+        (ees, dv, dvm), v_unit = convert([c.ees, c.delta_v_crush, c.delta_v_model],
+                                         "impact_speed", units)
+        out[f"vehicle{c.vehicle}"] = {
+            "energy": {"value": float(e), "sd": float(sd), "unit": e_unit},
+            "force_balance_factor": c.factor,
+            "ees": {"value": float(ees), "unit": v_unit},
+            "delta_v_crush": {"value": float(dv), "unit": v_unit},
+            "delta_v_model": {"value": float(dvm), "unit": v_unit}}
+    return out
+
+
+def reconstruction_json(rec: Reconstruction, rows: ReconstructionRows, units: str, *,
+                        samples: int, pre=(), contact: dict | None = None,
+                        findings: dict | None = None) -> dict:
+    """``pim reconstruct --json``: every value in ``units`` with its unit.
+
+    Parameters
+    ----------
+    rec, rows, units, samples, pre
+        As :func:`reconstruction_lines`.
+    contact : dict, optional
+        The run-outs' secondary contact (:func:`runout_contact`).
+    findings : dict, optional
+        The JSON of what is wrong or doubtful about the answer (placed after the unknowns
+        and the momentum check).
+
+    Returns
+    -------
+    dict
+        The case, units, samples, messages, estimated inputs, each unknown by its dotted name
+        (value, percentiles, unit, lower bound), the momentum check, the findings, the
+        secondary impact, the speeds before the impact, the run-outs' tyre models, the
+        goodness of fit, the evidence behind each unknown, the crush outputs and the law.
+    """
+    return {"case": rec.case.name, "units": display_units(units).to_json(),
+            "samples": samples, "messages": rec.messages,
+            "estimates": estimate_records(rec.case, units),
+            "unknowns": {r.name: {"unit": r.unit, "value": r.value, "p5": r.p5,
+                                  "p50": r.p50, "p95": r.p95, "lower_bound": r.lower_bound}
+                         for r in rows.unknowns},
+            "momentum_check": {m.name: {"unit": m.unit, "value": m.value, "sd": m.sd}
+                               for m in rows.momentum},
+            **(findings or {}), "secondary_impact": contact, "pre_impact": pre_impact_json(pre),
+            "tyre_models": ({f"vehicle{i}": fit.tyre_model for i, fit in
+                             rec.post.runouts.items()} if rec.post else {}),
+            "goodness_of_fit": rec.goodness.to_dict() if rec.goodness else None,
+            "evidence_drivers": evidence_drivers(rec, units), "crush": crush_json(rec, units),
+            "law": rec.fit.law}

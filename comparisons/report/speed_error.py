@@ -29,7 +29,8 @@ from comparisons.studies.speed_error_compliant import (
 from pim.io.files import save_figure
 
 __all__ = ["speed_error_document", "write_speed_error", "compliant_document",
-           "write_compliant"]
+           "write_compliant", "speed_error_json", "speed_error_line", "compliant_json",
+           "compliant_summary"]
 
 
 def _method(study: SpeedErrorStudy) -> str:
@@ -151,3 +152,55 @@ def write_compliant(study: CompliantSpeedStudy, out_dir, stem: str,
                       out / f"speed-error-compliant-{stem}.png")
     written = write_document(compliant_document(study, stem, command), out)
     return [written[-1], *written[:-1], png]
+
+
+def speed_error_json(study: SpeedErrorStudy, stem: str) -> dict:
+    """The rigid sweep of one case as ``pim speed-error --json`` gives it: the case, its
+    files (filled in by the writer), the recommended setting (None when no run reaches the
+    target) and PIM's own time per call and per batched case [s]."""
+    rec = study.recommended()
+    return {"case": stem, "files": [],
+            "recommended": None if rec is None else
+            {"dt": rec.dt, "iterations": rec.iterations,
+             "iterations_used": rec.iterations_used, "start": rec.start,
+             "contact": rec.contact, "error": rec.error, "wall_time": rec.wall_time},
+            "analytic_time": study.analytic_time,
+            "analytic_batch_time": study.analytic_batch_time}
+
+
+def speed_error_line(study: SpeedErrorStudy, stem: str) -> str:
+    """One line: the recommended setting with its error and time per impact beside PIM's
+    time per call, or that no run reaches the target."""
+    rec = study.recommended()
+    text = ("no run reaches the target" if rec is None else
+            f"recommended dt = {rec.dt:g} s, iterations = "
+            f"{'auto' if rec.iterations is None else rec.iterations}, {rec.start} "
+            f"start, {rec.contact} contact: error {rec.error:.2e}, "
+            f"{rec.wall_time * 1e3:.3g} ms/impact (PIM {study.analytic_time * 1e3:.3g} "
+            f"ms/call)")
+    return f"{stem}: {text}"
+
+
+def _recommended(study: CompliantSpeedStudy) -> dict:
+    """Friction configuration -> its recommended run (None: none reaches the target)."""
+    return {scene: study.recommended(scene)
+            for scene in dict.fromkeys(p.scene for p in study.points)}
+
+
+def compliant_json(study: CompliantSpeedStudy) -> dict:
+    """The finite-duration sweep's recommendation per friction configuration (integrator,
+    setting, error, wall time per impact [s]) and the study's wall time [s]."""
+    return {"compliant": {
+        scene: None if rec is None else
+        {"integrator": rec.integrator, "setting": rec.setting, "error": rec.error,
+         "wall_time": rec.wall_time} for scene, rec in _recommended(study).items()},
+        "compliant_seconds": study.wall_time}
+
+
+def compliant_summary(study: CompliantSpeedStudy, stem: str) -> list[str]:
+    """One line per friction configuration: its recommended run with its error and time per
+    impact, or that no run reaches 1e-3."""
+    return [f"{stem} finite-duration ({scene}): " + (
+        "no run reaches 1e-3" if rec is None else
+        f"recommended {rec.label}: error {rec.error:.1e}, {rec.wall_time * 1e3:.3g} ms/impact")
+        for scene, rec in _recommended(study).items()]

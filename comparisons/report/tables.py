@@ -128,6 +128,11 @@ class Table:
         """Per column: whether it holds numbers (right-aligned)."""
         return [any(is_numeric(r[i]) for r in self.rows) for i in range(len(self.columns))]
 
+    def records(self) -> list[dict]:
+        """Every row as a dict of column -> raw value (for JSON)."""
+        return [{c: raw_value(v) for c, v in zip(self.columns, row, strict=True)}
+                for row in self.rows]
+
 
 def cell_text(table: Table, column: str, value) -> str:
     """One cell of ``table`` as text."""

@@ -36,13 +36,15 @@ import numpy as np
 
 from ..model.case import Case
 from ..model.dual import MOTION_INPUTS, Dual, cos_sin, motion_inputs
+from ..model.evidence import UNKNOWN_KINDS
 from ..model.geometry import radius_of_gyration
 from ..model.impact_laws import LAW_CODES, LAW_INPUTS, law_of, motion_of_law, needed_friction
 from ..model.numbers import InputError
 from ..model.pdof import wrap_angle
 from ..model.quantities import INPUTS
 
-__all__ = ["FREE_KEYS", "EXTRA_KEYS", "STATE", "check_free", "check_free_for_case", "fields_set_by",
+__all__ = ["FREE_KEYS", "EXTRA_KEYS", "free_kind", "STATE", "check_free", "check_free_for_case",
+           "fields_set_by",
            "case_state", "free_inputs", "set_inputs", "current_value",
            "approach_direction", "unit_or_heading", "law_values", "state_law", "state_motion",
            "friction_floor", "MU_C_BOUNDS"]
@@ -83,6 +85,19 @@ _CLASHES = tuple((f"vehicle{i}.{a}", f"vehicle{i}.{b}") for i in (1, 2) for a, b
     ("radius_of_gyration", "yaw_inertia"),
     ("phi", "cg_x"), ("phi", "cg_y"), ("d", "cg_x"), ("d", "cg_y"))) + (
     ("impact.k", "impact.restitution"),)
+
+
+def free_kind(key: str) -> str:
+    """The unit kind of a free key (:data:`FREE_KEYS`), for parsing its bounds and showing
+    its value: the input's kind (:data:`pim.model.quantities.INPUTS`), else the ``[unknown]``
+    table's (:data:`pim.model.evidence.UNKNOWN_KINDS`).
+
+    Raises
+    ------
+    KeyError
+        ``key`` is not a free key.
+    """
+    return INPUTS[key].kind if key in INPUTS else UNKNOWN_KINDS[key]
 
 
 def check_free(free: dict) -> dict:

@@ -36,7 +36,8 @@ from ..model.solver import solve
 from .streaming import StreamingIndices, StreamingPercentiles
 
 __all__ = ["uncertainty", "UncertaintyResult", "OutputStats", "OUTPUTS", "first_order_indices",
-           "memory_estimate", "available_memory", "CHUNK_SIZE", "sampled_case"]
+           "memory_estimate", "available_memory", "memory_shortfall", "CHUNK_SIZE",
+           "sampled_case"]
 
 #: Outputs summarised, by their names in :data:`pim.model.quantities.OUTPUTS` (which gives
 #: each one's label and unit kind).
@@ -218,6 +219,31 @@ def available_memory() -> int | None:
     except OSError:
         pass
     return None
+
+
+def memory_shortfall(n: int, available: int | None = None) -> str | None:
+    """Why a Monte Carlo of ``n`` samples does not fit in memory, or None when it does.
+
+    Parameters
+    ----------
+    n : int
+        Samples.
+    available : int, optional
+        Memory the system can give [bytes] (default :func:`available_memory`; None when
+        unknown: no shortfall).
+
+    Returns
+    -------
+    str or None
+        "needs about X GiB of memory and Y GiB are available" when :func:`memory_estimate`
+        exceeds ``available``.
+    """
+    need = memory_estimate(n)
+    free = available_memory() if available is None else available
+    if free is None or need <= free:
+        return None
+    return (f"needs about {need / 2**30:.1f} GiB of memory and {free / 2**30:.1f} GiB are "
+            f"available")
 
 
 @dataclass

@@ -49,7 +49,8 @@ from .runout_fit import RunoutFit, fit_runout
 __all__ = ["PostImpact", "post_impact_motion", "check_reachable", "approach_direction",
            "Reconstruction", "CrushOutput", "crush_outputs",
            "reconstruct", "evidence_sampler", "evidence_nominal", "sample_block",
-           "monte_carlo_seconds", "PILOT_SAMPLES", "TIMED_SAMPLES"]
+           "monte_carlo_seconds", "PILOT_SAMPLES", "TIMED_SAMPLES", "BLOCKS_PER_WORKER",
+           "worker_blocks", "progress_stages", "MonteCarloBudget"]
 
 
 @dataclass(frozen=True)
@@ -316,6 +317,13 @@ class Reconstruction:
                          "p95": st.p95 if st else float("nan"),
                          "drivers": st.drivers if st else []})
         return rows
+
+    @property
+    def undetermined_reason(self) -> str:
+        """Why the data cannot decide the unknowns: the message that says so (an
+        under-determined fit, a family of equally good fits), else all messages."""
+        return next((m for m in self.messages if "under-determined" in m or "family" in m
+                     or "equally well" in m), "; ".join(self.messages))
 
 
 def reconstruct(case: Case, *, unknown: dict | None = None, samples: int = 0, seed: int = 0,
@@ -612,3 +620,61 @@ def sample_block(job):
         sampler, extra = evidence_sampler(case, post, include_yaw), evidence_nominal(case, post)
     return solve_samples(solved, fitted, unknown, size, np.random.default_rng(seed_sequence),
                          include_yaw=include_yaw, post_impact=sampler, extra_nominal=extra)
+
+
+#: Blocks of Monte Carlo samples per worker process (:func:`reconstruct`'s ``blocks``).
+BLOCKS_PER_WORKER = 2
+
+
+def worker_blocks(workers: int) -> int:
+    """The number of Monte Carlo blocks :func:`reconstruct` spreads over ``workers``
+    processes (:data:`BLOCKS_PER_WORKER` each)."""
+    return BLOCKS_PER_WORKER * workers
+
+
+def progress_stages(case: Case, samples: int, workers: int = 1) -> int:
+    """How many times :func:`reconstruct` calls ``progress``: the run-out fits (with
+    ``[evidence]``), the inverse PIM, and the Monte Carlo (one stage in this process; with
+    ``workers`` > 1 its start and two per worker's block, :func:`worker_blocks`)."""
+    ev = case.evidence
+    has_evidence = ev is not None and (ev.vehicle1 is not None or ev.vehicle2 is not None)
+    monte_carlo = 0 if not samples else 1 if workers == 1 else 1 + worker_blocks(workers)
+    return int(has_evidence) + 1 + monte_carlo
+
+
+@dataclass(frozen=True)
+class MonteCarloBudget:
+    """The time a reconstruction's Monte Carlo may take, against its estimate.
+
+    Attributes
+    ----------
+    samples : int
+        Monte Carlo samples asked for.
+    workers : int
+        Processes they are spread over (the estimate is for one).
+    max_minutes : float
+        The longest run allowed [min].
+    note_seconds : float
+        Runs longer than this [s] are worth a note (default 10 s).
+    """
+
+    samples: int
+    workers: int
+    max_minutes: float
+    note_seconds: float = 10.0
+
+    def wall_seconds(self, estimate: float) -> float:
+        """The wall time [s] of a run estimated at ``estimate`` [s] in one process."""
+        return estimate / self.workers
+
+    def over(self, seconds: float) -> bool:
+        """Whether a run of ``seconds`` [s] wall time exceeds the budget."""
+        return seconds > 60.0 * self.max_minutes
+
+    def noted(self, seconds: float) -> bool:
+        """Whether a run of ``seconds`` [s] wall time is long enough to say so."""
+        return seconds > self.note_seconds
+
+    def affordable(self, seconds: float) -> int:
+        """The samples that fit in the budget when all of them take ``seconds`` [s]."""
+        return int(self.samples * 60.0 * self.max_minutes / seconds)

@@ -29,7 +29,14 @@ from .free_fit import free_residuals
 from .free_inputs import STATE, case_state
 from .residuals import has_measured_terms, measured_value, residual_terms
 
-__all__ = ["sensitivity", "Sensitivity", "TypicalUncertainty", "INPUTS", "SENSITIVITY_OUTPUTS"]
+__all__ = ["sensitivity", "Sensitivity", "TypicalUncertainty", "TYPICAL_KINDS", "INPUTS",
+           "SENSITIVITY_OUTPUTS"]
+
+#: The unit kind of each field of :class:`TypicalUncertainty` (for parsing an override).
+TYPICAL_KINDS = {"point": "length", "normal_angle": "angle", "mass_fraction": "dimensionless",
+                 "inertia_fraction": "dimensionless", "velocity": "velocity",
+                 "yaw_rate": "angular_velocity", "measured_velocity": "velocity",
+                 "measured_yaw_rate": "angular_velocity"}
 
 
 @dataclass(frozen=True)

@@ -26,7 +26,7 @@ from ..model.numbers import InputError, speeds_in
 
 __all__ = ["registry", "parse", "convert", "DISPLAY_UNITS", "UNIT_SYSTEMS", "LIMITS",
            "unit_system_of", "DisplayUnits", "display_units", "SPEED_UNITS", "SPEED_KINDS",
-           "messages_in", "quantity_text"]
+           "messages_in", "quantity_text", "unit_scale"]
 
 #: SI unit of each kind of input quantity (its dimension is the expected one).
 DIMENSIONS = {
@@ -424,6 +424,19 @@ def convert(value, kind: str, units):
     shown = units if isinstance(units, DisplayUnits) else DisplayUnits(units)
     target = shown.unit(kind)
     return np.asarray(value) * _factor(kind, target), _label(target)
+
+
+def unit_scale(kind: str, units) -> tuple[float, str]:
+    """The factor that takes SI values of ``kind`` into ``units`` and the unit's label
+    (:func:`convert` of 1), for a number a message or a table scales itself.
+
+    Examples
+    --------
+    >>> unit_scale("velocity", "si")
+    (3.6, 'km/h')
+    """
+    factor, label = convert(1.0, kind, units)
+    return float(factor), label
 
 
 @contextmanager

@@ -87,6 +87,14 @@ class Admissibility:
         return [text if size == 1 else f"{text} ({bad} of {size} cases)"
                 for text, bad, size in self.problem_counts()]
 
+    def unsolvable(self) -> str | None:
+        """Why there is no answer to give: where q is singular anywhere, the first reason of
+        :meth:`problems` (a generic one if none); else None."""
+        if not np.any(self.q_singular):
+            return None
+        problems = self.problems()
+        return problems[0] if problems else "q is singular"
+
     def problem_counts(self) -> list[tuple[str, int, int]]:
         """(reason, elements failing it, elements) of each failed check of :meth:`problems`
         (counts that add up over the chunks of a Monte Carlo)."""

@@ -27,7 +27,7 @@ from .solver import solve as solve_brach
 
 __all__ = ["LAWS", "LAW_NAMES", "LAW_PARAMETERS", "API_NAMES", "LawChoice", "resolve_law",
            "solve", "COMMAND_LAWS", "REFUSAL_REASONS", "command_law_refusal",
-           "check_command_law", "brach_equivalent"]
+           "check_command_law", "brach_equivalent", "fit_restitution"]
 
 KS = "kudlich-slibar"
 
@@ -152,6 +152,43 @@ def resolve_law(case: Case, eps=None, beta=None, *, law: str | None = None, k=No
         raise InputError(f"{names['beta']} does not apply to law 'kudlich-slibar' (use "
                          f"{names['k']} and {names['mu_c']})")
     return LawChoice(law, eps, beta, _friction(case, law, mu_c, names))
+
+
+def fit_restitution(case: Case, eps=None, k=None, *, names: dict = API_NAMES):
+    """The restitution a fit of ``case`` holds fixed, given as the parameter of its law.
+
+    A fit applies the case's own law (:func:`pim.model.impact_laws.law_of`): Brach's laws
+    hold eps, the Kudlich-Slibar law holds k (``pim.fit`` takes either as ``eps``).
+
+    Parameters
+    ----------
+    case : Case
+        Supplies ``impact.law``.
+    eps : float, optional
+        Brach's restitution epsilon [-] to hold.
+    k : float, optional
+        Kudlich-Slibar's restitution k [-] to hold.
+    names : dict
+        How the caller names these inputs in the messages (:data:`API_NAMES`).
+
+    Returns
+    -------
+    float or None
+        The restitution to hold (None: fitted).
+
+    Raises
+    ------
+    InputError
+        ``k`` under a law other than Kudlich-Slibar's, or ``eps`` under it.
+    """
+    ks = law_of(case) == KS
+    if k is not None and not ks:
+        raise InputError(f"{names['k']} is the restitution of law kudlich-slibar (use "
+                         f"{names['eps']})")
+    if ks and eps is not None:
+        raise InputError(f"{names['eps']}: the case's law is kudlich-slibar; hold k with "
+                         f"{names['k']}")
+    return k if ks else eps
 
 
 def solve(case: Case, eps=None, beta=None, backend: str = "auto", fast_trig: bool = True,

@@ -10,7 +10,7 @@ from ..io.units import convert
 from ..model.numbers import InputError
 from ..model.result import Result
 
-__all__ = ["Row", "summarize", "format_table", "rows_to_json"]
+__all__ = ["Row", "summarize", "format_table", "rows_to_json", "table_title"]
 
 
 @dataclass(frozen=True)
@@ -132,3 +132,30 @@ def rows_to_json(rows: list[Row]) -> dict:
         else:
             out[r.key] = {"vehicle1": r.vehicle1, "vehicle2": r.vehicle2, "unit": r.unit}
     return out
+
+
+def table_title(name: str, result: Result, law: str = "brach") -> str:
+    """The title of one impact's table: the case, the law and the parameters it used.
+
+    Parameters
+    ----------
+    name : str
+        The case's name.
+    result : Result
+        One impact under ``law``.
+    law : {"brach", "brach-capped", "kudlich-slibar"}
+        The law it was solved under: Kudlich-Slibar's k and mu_c with Brach's equivalent
+        beta; Brach's epsilon and beta (the effective beta under the friction cap).
+
+    Returns
+    -------
+    str
+    """
+    if law == "kudlich-slibar":
+        return (f"{name}: Kudlich-Slibar law, k = {float(result.eps):g}, mu_c = "
+                f"{float(result.contact_friction):g} (equivalent PIM beta = "
+                f"{float(result.beta):g})")
+    title = f"{name}: epsilon = {float(result.eps):g}, beta = {float(result.beta):g}"
+    if law == "brach-capped":
+        title += " (friction-capped Brach, effective beta)"
+    return title

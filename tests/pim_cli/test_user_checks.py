@@ -221,8 +221,8 @@ def test_reconstruction_notes_run_outs_that_run_into_each_other():
 
     import numpy as np
 
+    from comparisons.report.reconstruct import runout_contact
     from pim.io.casefile import parse_case
-    from pim_cli.reconstruct import runout_contact
 
     case = parse_case(__import__("tomllib").loads(SUV))
     t = np.linspace(0.0, 2.0, 41)

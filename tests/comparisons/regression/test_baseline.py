@@ -312,3 +312,20 @@ def test_an_old_baseline_with_an_absolute_path_works_while_the_file_is_there(pro
         "this absolute path (recorded before pim stored case paths relative to the baseline "
         "file): restore the file there, or record the baseline again with pim baseline (it "
         "then moves with its cases)")
+
+
+def test_cases_findings_prefix_each_case_and_take_a_case_without_coefficients(tmp_path):
+    from comparisons.regression.baseline import cases_findings
+    from pim.model.plausibility import findings
+
+    good, rec = pim.load_case("ricsac9"), pim.load_case("ricsac9-reconstruct")
+    text = resources.files("pim.io.cases").joinpath("ricsac9.toml").read_text()
+    path = tmp_path / "gains.toml"
+    path.write_text(text.replace("restitution = 0.355\nbeta = 1\n",
+                                 "restitution = 1\nbeta = 3\n"))
+    bad = pim.load_case(str(path))
+    found = cases_findings({"a": good, "b": rec, "c": bad})
+    assert all(t.startswith(("a: ", "b: ", "c: ")) for t in found.all)
+    own = findings(good, pim.solve(good))
+    assert [t for t in found.warnings if t.startswith("a: ")] == [f"a: {t}" for t in own.warnings]
+    assert found.errors and all(t.startswith("c: ") for t in found.errors)

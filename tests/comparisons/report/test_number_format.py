@@ -92,3 +92,12 @@ def test_every_finite_float_reads_back(x):
     text = format_number(x)
     assert text == "0" if x == 0 else float(text) == pytest.approx(x, rel=1e-3)
     assert ROUND_OFF < 1e-6
+
+
+def test_duration_text_picks_seconds_minutes_or_hours():
+    from comparisons.report.number_format import duration_text
+
+    assert duration_text(119) == "119 s"
+    assert duration_text(120) == "2 min"
+    assert duration_text(7199) == "120 min"
+    assert duration_text(7200) == "2.0 h"

@@ -67,3 +67,62 @@ def test_a_lower_bound_is_said():
     row = UnknownRow("impact.mu_c", "-", 0.31, math.nan, math.nan, math.nan, "", math.nan,
                      lower_bound=True)
     assert row.value_text() == ">= 0.31" and not row.has_spread
+
+
+def test_spread_text_never_prints_nan(rec):
+    from comparisons.report.reconstruct import spread_text
+
+    row = reconstruction_rows(rec, "us").unknowns[0]
+    assert spread_text(row, 0) == "(5/50/95 %: not computed, --samples 0)"
+    assert spread_text(row, 200) == f"[{row.p5:.4g}, {row.p50:.4g}, {row.p95:.4g}]"
+    empty = UnknownRow("vehicle1.speed", "mph", 20.0, *[math.nan] * 3, driver="",
+                       driver_index=math.nan)
+    assert spread_text(empty, 200) == "(5/50/95 %: no usable Monte Carlo sample)"
+
+
+def test_text_lines_say_the_law_then_the_warnings_then_the_table(rec):
+    from comparisons.report.reconstruct import law_line, reconstruction_lines, table_lines
+
+    rows = reconstruction_rows(rec, "us")
+    lines = reconstruction_lines(rec, rows, "us", samples=200)
+    assert lines[0] == law_line(rec)
+    table = table_lines(rows, 200)
+    assert len(table) == len(rows.unknowns) + len(rows.momentum)
+    assert lines.index(table[0]) > max(i for i, x in enumerate(lines)
+                                       if x.startswith("warning: "))
+    speed = next(x for x in table if x.startswith("vehicle1.speed "))
+    assert " mph  [" in speed
+    assert table[-1].startswith("momentum check: vehicle2.speed") and "(1 sd = " in table[-1]
+
+
+def test_json_holds_each_unknown_in_the_users_units_and_the_findings_in_place(rec):
+    from comparisons.report.reconstruct import reconstruction_json
+
+    rows = reconstruction_rows(rec, "us")
+    data = reconstruction_json(rec, rows, "us", samples=200, findings={"admissible": True})
+    keys = list(data)
+    assert keys.index("momentum_check") < keys.index("admissible") < keys.index("pre_impact")
+    speed = data["unknowns"]["vehicle1.speed"]
+    assert speed["unit"] == "mph"
+    assert speed["value"] == pytest.approx(rec.values["vehicle1.speed"] / 0.44704)
+    assert data["law"] == "brach" and data["crush"] == {} and data["tyre_models"] == {}
+    assert data["secondary_impact"] is None and data["samples"] == 200
+
+
+def test_crush_json_in_the_users_units():
+    from comparisons.report.reconstruct import crush_json, crush_lines
+
+    crushed = reconstruct(pim.load_case("synthetic-crush"), samples=0)
+    data = crush_json(crushed, "si")
+    c = crushed.crush[0]
+    entry = data[f"vehicle{c.vehicle}"]
+    assert entry["energy"]["unit"] == "kJ"
+    assert entry["energy"]["value"] == pytest.approx(c.energy / 1000)
+    assert entry["ees"] == {"value": pytest.approx(c.ees * 3.6), "unit": "km/h"}
+    assert len(crush_lines(crushed, "si")) == len(data)
+
+
+def test_runout_contact_needs_both_run_outs(rec):
+    from comparisons.report.reconstruct import runout_contact
+
+    assert rec.post is None and runout_contact(rec, "us") is None

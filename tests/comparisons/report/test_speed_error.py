@@ -42,3 +42,33 @@ def test_the_files_are_written_through_the_pipeline(study, tmp_path):
     page = (tmp_path / "speed-error-hard-pole.html").read_text()
     assert page.count("data:image/png;base64,") == 1 and 'id="table-speed-error-hard-pole"' \
         in page
+
+
+def test_the_json_and_the_line_of_the_rigid_sweep(study):
+    from comparisons.report.speed_error import speed_error_json, speed_error_line
+
+    rec = study.recommended()
+    data = speed_error_json(study, "hard-pole")
+    assert list(data) == ["case", "files", "recommended", "analytic_time",
+                          "analytic_batch_time"]
+    assert data["recommended"]["dt"] == rec.dt and data["recommended"]["iterations"] is None
+    line = speed_error_line(study, "hard-pole")
+    assert line.startswith(f"hard-pole: recommended dt = {rec.dt:g} s, iterations = auto, ")
+    assert f"{rec.wall_time * 1e3:.3g} ms/impact (PIM " in line
+
+
+def test_the_json_and_lines_of_the_finite_duration_sweep():
+    from comparisons.report.speed_error import compliant_json, compliant_summary
+    from comparisons.studies import speed_error_compliant as S
+
+    cstudy = S.compliant_sweep(pim.load_case("ricsac9"), 0.355, grid=S.Grid(
+        steps=(10, 40), rtols=(1e-3,), methods=("DOP853",), repeats=1),
+        scenes={"frictionless": 0.0}, progress=False)
+    data = compliant_json(cstudy)
+    assert set(data) == {"compliant", "compliant_seconds"}
+    assert list(data["compliant"]) == ["frictionless"]
+    (line,) = compliant_summary(cstudy, "ricsac9")
+    rec = cstudy.recommended("frictionless")
+    assert line == ("ricsac9 finite-duration (frictionless): no run reaches 1e-3" if rec is None
+                    else f"ricsac9 finite-duration (frictionless): recommended {rec.label}: "
+                         f"error {rec.error:.1e}, {rec.wall_time * 1e3:.3g} ms/impact")

@@ -32,3 +32,11 @@ def test_a_row_of_the_wrong_length_is_refused():
         assert "1 cells for 2 columns" in str(exc)
     else:
         raise AssertionError("accepted")
+
+
+def test_records_are_the_rows_by_column_with_raw_values():
+    from comparisons.report.tables import Num, Table
+
+    table = Table("t", "T", ("name", "value [m]"), (("a", Num(1.25, 1)), ("b", None)))
+    assert table.records() == [{"name": "a", "value [m]": 1.25},
+                               {"name": "b", "value [m]": None}]

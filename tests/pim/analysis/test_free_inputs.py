@@ -176,3 +176,17 @@ def test_friction_floor_replaces_an_unreached_mu_c_by_the_sticking_ratio(pccrash
     np.testing.assert_allclose(x[:, 1], [0.4, needed, needed], rtol=1e-12)
     same, none = friction_floor(case_state(pccrash), ("impact.k",), [[0.3]])
     assert same[0, 0] == 0.3 and not none.any()
+
+
+def test_free_kind_names_each_free_keys_unit_kind():
+    from pim.analysis.free_inputs import FREE_KEYS, free_kind
+
+    assert free_kind("impact.normal_angle") == "angle"
+    assert free_kind("vehicle1.speed") == "velocity"            # beyond the model's inputs
+    assert free_kind("vehicle2.radius_of_gyration") == "length"
+    assert free_kind("impact.mu_c") == "dimensionless"
+    assert {free_kind(k) for k in FREE_KEYS} <= {
+        "angle", "velocity", "length", "dimensionless", "angular_velocity", "mass",
+        "inertia"}
+    with pytest.raises(KeyError):
+        free_kind("vehicle3.mass")

@@ -196,3 +196,12 @@ def test_memory_estimate_is_bounded_in_the_sample_count():
     assert memory_estimate(1e5) < memory_estimate(CHUNK_SIZE)
     # above a chunk only the kept percentile windows grow: 1e8 samples stay under 4 GB
     assert memory_estimate(1e8) < 2 * 2**30
+
+
+def test_memory_shortfall_says_what_is_needed_and_available():
+    from pim.analysis.montecarlo import memory_estimate, memory_shortfall
+
+    need = memory_estimate(10**8)
+    assert memory_shortfall(10**8, available=need) is None
+    text = memory_shortfall(10**8, available=2**28)
+    assert text == f"needs about {need / 2**30:.1f} GiB of memory and 0.2 GiB are available"

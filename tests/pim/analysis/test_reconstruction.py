@@ -393,3 +393,39 @@ def test_reconstruct_names_the_argument_given_a_string():
                                         r"concurrent.futures.Executor or a "
                                         r"dask.distributed.Client, got 'serial'$"):
         reconstruct(pim.load_case("ricsac9-reconstruct"), samples=20, executor="serial")
+
+
+def test_progress_stages_count_each_call_of_progress():
+    from pim.analysis.reconstruction import progress_stages, worker_blocks
+
+    measured = pim.load_case("ricsac9-reconstruct")       # no [evidence]: no run-out stage
+    calls = []
+    reconstruct(measured, samples=20, progress=calls.append)
+    assert progress_stages(measured, 20) == len(calls) == 2
+    assert progress_stages(measured, 0) == 1
+    assert progress_stages(pim.load_case("synthetic-runout"), 20, workers=3) == 1 + 1 + 1 + 6
+    assert worker_blocks(3) == 6
+
+
+def test_monte_carlo_budget():
+    from pim.analysis.reconstruction import MonteCarloBudget
+
+    limit = MonteCarloBudget(samples=1000, workers=4, max_minutes=1.0)
+    seconds = limit.wall_seconds(480.0)                     # 8 min in one process
+    assert seconds == 120.0 and limit.over(seconds) and limit.noted(seconds)
+    assert limit.affordable(seconds) == 500                 # half the time: half the samples
+    assert not limit.over(60.0) and not limit.noted(10.0)
+
+
+def test_undetermined_reason_names_what_is_missing():
+    import dataclasses
+
+    from pim.analysis.reconstruction import Reconstruction
+
+    rec = Reconstruction(case=pim.load_case("ricsac9"), unknown={}, post=None, fit=None,
+                         values={}, momentum=None, determined=False,
+                         messages=["beta sits on its upper bound",
+                                   "under-determined: 3 unknowns, 2 measured quantities"])
+    assert rec.undetermined_reason == "under-determined: 3 unknowns, 2 measured quantities"
+    other = dataclasses.replace(rec, messages=["a", "b"])
+    assert other.undetermined_reason == "a; b"

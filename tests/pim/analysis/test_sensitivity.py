@@ -191,3 +191,12 @@ def test_sensitivity_names_the_argument_given_a_string():
                                         r"pim.analysis.sensitivity.TypicalUncertainty or None, "
                                         r"got 'x'$"):
         sensitivity(pim.load_case("ricsac9"), uncertainty="x")
+
+
+def test_typical_kinds_cover_every_typical_uncertainty():
+    import dataclasses
+
+    from pim.analysis.sensitivity import TYPICAL_KINDS, TypicalUncertainty
+
+    assert set(TYPICAL_KINDS) == {f.name for f in dataclasses.fields(TypicalUncertainty)}
+    assert TYPICAL_KINDS["point"] == "length" and TYPICAL_KINDS["yaw_rate"] == "angular_velocity"

@@ -216,3 +216,12 @@ def test_degree_and_percent_signs_are_read(text, kind, si):
 def test_signs_are_read_only_as_one_unit(text, kind, words):
     with pytest.raises(InputError, match=words.replace("(", r"\(")):
         parse(text, kind, "f")
+
+
+def test_unit_scale_is_the_factor_into_the_display_unit():
+    from pim.io.units import unit_scale
+
+    factor, label = unit_scale("velocity", "us")
+    assert label == "mph" and factor == pytest.approx(1 / 0.44704)     # exact mph
+    assert unit_scale("length", "us") == (pytest.approx(1 / 0.3048), "ft")
+    assert isinstance(factor, float)

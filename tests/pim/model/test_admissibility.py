@@ -38,3 +38,13 @@ def test_problem_counts_add_up_over_chunks():
     assert [(bad, n) for _, bad, n in reverses] == [(2, 4)]      # beta 1.2 and 1.3 of 4
     assert "tangential slip at C reverses" in reverses[0][0]
     assert r.problems() == [f"{text} ({bad} of {n} cases)" for text, bad, n in counts]
+
+
+def test_unsolvable_says_why_only_where_q_is_singular():
+    from tests.pim.test_hard_cases import singular_beta
+
+    case = pim.load_case("hard-eps0")
+    assert pim.solve(case, 0.0, 1.0).unsolvable() is None
+    singular = pim.solve(case, 0.0, singular_beta(case, 0.0))
+    assert bool(np.any(singular.q_singular))
+    assert "q is singular" in singular.unsolvable()

@@ -132,3 +132,19 @@ def test_law_names_are_defined_once():
 
 def test_solve_law_is_gone():
     assert not hasattr(pim, "solve_law")
+
+
+def test_fit_restitution_holds_the_laws_own_parameter():
+    from pim.model.law import fit_restitution
+
+    brach, ks = pim.load_case("ricsac9"), pim.load_case("ricsac9-pccrash")
+    assert fit_restitution(brach) is None
+    assert fit_restitution(brach, eps=0.3) == 0.3
+    assert fit_restitution(ks, k=0.2) == 0.2
+    names = {**API_NAMES, "eps": "--eps", "k": "--k"}
+    with pytest.raises(pim.InputError, match=r"^--k is the restitution of law kudlich-slibar "
+                                             r"\(use --eps\)$"):
+        fit_restitution(brach, k=0.2, names=names)
+    with pytest.raises(pim.InputError, match="^--eps: the case's law is kudlich-slibar; hold "
+                                             "k with --k$"):
+        fit_restitution(ks, eps=0.2, names=names)

@@ -35,3 +35,17 @@ def test_the_impulse_rows_say_whose_impulse_they_are():
     assert rows["impulse_x"].label == "impulse on the vehicle, x"
     assert rows["impulse_y"].label == "impulse on the vehicle, y"
     assert rows["impulse_x"].vehicle2 == -rows["impulse_x"].vehicle1
+
+
+def test_table_title_names_the_law_and_its_parameters():
+    from pim.plotting.tables import table_title
+
+    case = pim.load_case("ricsac9")
+    brach = pim.solve(case, 0.5, 0.25)
+    assert table_title("ricsac9", brach) == "ricsac9: epsilon = 0.5, beta = 0.25"
+    assert table_title("x", brach, "brach-capped").endswith(
+        "(friction-capped Brach, effective beta)")
+    ks = pim.solve(pim.load_case("ricsac9-pccrash"))
+    title = table_title("pc", ks, "kudlich-slibar")
+    assert title.startswith(f"pc: Kudlich-Slibar law, k = {float(ks.eps):g}, mu_c = ")
+    assert f"(equivalent PIM beta = {float(ks.beta):g})" in title

@@ -1,0 +1,119 @@
+"""What ``pim sensitivity`` shows of a :class:`pim.analysis.sensitivity.Sensitivity`: its JSON
+and its text tables in the user's units.
+
+Every answer's value, every input's typical uncertainty (sigma), the derivative per unit and
+the effect of one sigma are converted through :func:`pim.io.units.convert` into a
+:class:`pim.io.units.DisplayUnits`; the unit of a derivative is the ratio of the two
+(:func:`ratio_unit`).
+"""
+
+from __future__ import annotations
+
+from comparisons.report.fit import quantity_factor
+from pim.analysis.sensitivity import INPUTS, SENSITIVITY_OUTPUTS, Sensitivity
+from pim.io.units import display_units
+
+__all__ = ["ratio_unit", "sensitivity_json", "sensitivity_lines"]
+
+
+def ratio_unit(out_unit: str, in_unit: str) -> str:
+    """Unit of d out / d in.
+
+    Parameters
+    ----------
+    out_unit, in_unit : str
+        The output's and the input's unit labels ("-" when dimensionless).
+
+    Returns
+    -------
+    str
+        E.g. ``1/m``, ``(m/s)/deg``; ``-`` when both are the same.
+    """
+    if out_unit == in_unit:
+        return "-"
+
+    def wrap(u):
+        return f"({u})" if ("/" in u or " " in u) else u
+
+    return f"{'1' if out_unit == '-' else wrap(out_unit)}/{wrap(in_unit)}"
+
+
+def sensitivity_json(sens: Sensitivity, units: str) -> dict:
+    """:meth:`Sensitivity.to_dict` with every value, sigma and derivative in ``units``, each
+    with its unit, and ``units`` naming the unit of each kind of quantity."""
+    data = sens.to_dict()
+    for name, entry in data["outputs"].items():
+        fo, uo = quantity_factor(SENSITIVITY_OUTPUTS[name].kind, units)
+        entry["value"] *= fo
+        entry["unit"] = uo
+        for row in entry["inputs"]:
+            fi, ui = quantity_factor(INPUTS[row["input"]].kind, units)
+            row.update(sigma=row["sigma"] * fi, sigma_unit=ui,
+                       per_unit=row["per_unit"] * fo / fi, per_unit_unit=ratio_unit(uo, ui),
+                       per_sigma=row["per_sigma"] * fo)
+    data["units"] = display_units(units).to_json()
+    return data
+
+
+def _heading(name: str, sens: Sensitivity) -> str:
+    """The first line: where the sensitivities are taken and how."""
+    how = ("fitted to the measured motion" if sens.fit is not None
+           else "at fixed epsilon, beta (nothing measured)")
+    if sens.fit is not None and sens.fit.chi_square:
+        how += ", weighted by the [measured] standard deviations"
+    return (f"{name}: sensitivity at epsilon = {sens.eps:.4f}, beta = {sens.beta:.4f} "
+            f"({how})")
+
+
+def _table(sens: Sensitivity, k: int, top: int | None, units: str) -> list[str]:
+    """The ranked inputs of output ``k``: sigma, derivative per unit and per sigma."""
+    fo, uo = quantity_factor(SENSITIVITY_OUTPUTS[sens.outputs[k]].kind, units)
+    rows = []
+    for i in sens.ranked(sens.outputs[k])[:top]:
+        fi, ui = quantity_factor(INPUTS[sens.inputs[i]].kind, units)
+        rows.append((INPUTS[sens.inputs[i]].label, f"{sens.sigma[i] * fi:.4g} {ui}",
+                     f"{sens.derivative[k, i] * fo / fi:+.4g}", ratio_unit(uo, ui),
+                     f"{sens.effect[k, i] * fo:.4g}"))
+    head = ("input", "sigma", "per unit", "unit", f"per sigma [{uo}]")
+    widths = [max(len(r[c]) for r in [head, *rows]) for c in range(5)]
+    fmt = "  " + "  ".join(f"{{:{a}{w}}}" for a, w in zip("<>><>", widths, strict=True))
+    return [fmt.format(*head), "  " + "  ".join("-" * w for w in widths),
+            *(fmt.format(*r) for r in rows)]
+
+
+def sensitivity_lines(name: str, sens: Sensitivity, units: str,
+                      top: int | None = None) -> list[str]:
+    """``pim sensitivity``'s text, one line each.
+
+    Parameters
+    ----------
+    name : str
+        The case's name.
+    sens : Sensitivity
+        The sensitivities.
+    units : DisplayUnits or str
+        The output's units.
+    top : int, optional
+        Show only the ``top`` largest effects of each answer (default: all).
+
+    Returns
+    -------
+    list of str
+        The heading, the inputs held on an active bound, then per answer a blank line, its
+        value and the table of its inputs ranked by the effect of one sigma.
+    """
+    lines = [_heading(name, sens)]
+    if sens.active_bounds:
+        lines.append(f"  {', '.join(sens.active_bounds)} on an active bound: held there "
+                     "(derivative 0)")
+    for k, out in enumerate(sens.outputs):
+        fo, uo = quantity_factor(SENSITIVITY_OUTPUTS[out].kind, units)
+        lines += ["", f"{SENSITIVITY_OUTPUTS[out].label} = {sens.values[k] * fo:.5g} "
+                      f"{uo if uo != '-' else ''}".rstrip()
+                  + ("  (includes the refit of epsilon, beta)"
+                     if out.startswith("delta") and sens.fit is not None else "")]
+        if out in sens.active_bounds:
+            lines.append("  held on an active bound: small input changes do not move it")
+            continue
+        lines += _table(sens, k, top, units)
+    return lines
