@@ -103,7 +103,7 @@ def test_the_stiffness_is_that_of_the_typical_contact_time_not_a_frontal_default
 
 
 def test_two_scenes_on_a_process_pool_give_the_serial_errors(study):
-    from pim.io.output import worker_pool
+    from pim.io.process import worker_pool
     with worker_pool(2) as pool:
         both = S.compliant_sweep(pim.load_case("ricsac9"), 0.355, grid=S.Grid(
             steps=(10, 40, 160), rtols=(1e-3, 1e-7), methods=("DOP853",), repeats=1),

@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 import pim
 from tests.scenes import random_cases, scenes
 
-MANY = settings(max_examples=1500, deadline=None)
+MANY = settings(max_examples=400, deadline=None)   # derandomized under the "ci" profile
 unit = st.floats(0.0, 1.0, allow_nan=False)
 
 
