@@ -14,6 +14,10 @@ Installed with the project, it gives every test suite two fixtures::
 with the table of what moved beyond tolerance (``pim check``'s); ``assert_agrees(a, b, tol)``
 fails when two answers to a case differ by more than ``tol`` in the project's one error
 measure (:func:`comparisons.regression.baseline.agreement`). See docs/regression.md.
+
+Loading the plugin imports only pytest: the baseline machinery (numpy, pim, sim, pymunk) is
+imported when a fixture is first called, so installing the project adds nothing heavy to an
+unrelated test suite's start (tests/comparisons/regression/test_plugin.py checks it).
 """
 
 from __future__ import annotations
@@ -21,9 +25,6 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-
-from comparisons.regression import baseline as regression
-from comparisons.regression.baseline import check_baseline, format_report
 
 __all__ = ["pim_check", "assert_agrees", "check_case"]
 
@@ -36,6 +37,8 @@ def check_case(case: str, baseline) -> None:
     is enough when the tests run from another folder) or as the baseline stores it
     (relative to the baseline's folder); ``baseline`` is the baseline file.
     """
+    from comparisons.regression.baseline import check_baseline, format_report
+
     report = check_baseline(Path(baseline), [str(case)])
     if not report.ok:
         raise AssertionError("\n" + format_report(report))
@@ -51,4 +54,6 @@ def pim_check():
 def assert_agrees():
     """``assert_agrees(result_a, result_b, tol)``: assert that two answers to a case agree
     within ``tol`` by the project's one error measure; returns the error."""
-    return regression.assert_agrees
+    from comparisons.regression.baseline import assert_agrees as agrees
+
+    return agrees

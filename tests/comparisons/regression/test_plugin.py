@@ -59,3 +59,19 @@ def test_the_example_test_file_exists_and_uses_both_fixtures():
     text = (Path(__file__).resolve().parent / "test_plugin_example.py").read_text()
     assert "pim_check" in text and "assert_agrees" in text
     assert pim.list_cases()
+
+
+def test_loading_the_plugin_imports_nothing_heavy():
+    """Issue 27: the plugin loads in every pytest run where the project is installed; it
+    imported pim, sim, pymunk and numpy (0.6-0.8 s) through the baseline module and
+    comparisons/__init__. Loaded in a fresh interpreter, it now imports none of them."""
+    import subprocess
+    import sys
+
+    heavy = ("numpy", "scipy", "pymunk", "matplotlib", "numba", "pint", "imageio", "pim", "sim",
+             "comparisons.regression.baseline")
+    code = ("import sys, comparisons.regression.plugin; "
+            f"print(','.join(m for m in {heavy!r} if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.strip()
+    assert out == ""
