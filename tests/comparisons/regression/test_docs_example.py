@@ -48,6 +48,8 @@ def columns(line: str) -> list[str]:
     return line.split()
 
 
+@pytest.mark.slow   # 20-25 s of subprocesses; the default suite keeps test_baseline's
+# relative-path and moved-project tests (the CI budget: pytest -m slow runs this)
 def test_the_documented_workflow_survives_a_move(tmp_path, shell):
     project = tmp_path / "project"
     (project / "cases").mkdir(parents=True)

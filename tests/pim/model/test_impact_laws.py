@@ -102,7 +102,10 @@ def test_sliding_transmits_exactly_mu_c_times_the_normal_impulse(case, k, share)
     r = solve_kudlich_slibar(case, k, mu_c)
     assume(not bool(r.q_singular))
     pn, pt = float(r.impulse_n), float(r.impulse_t)
-    assert pt == pytest.approx(np.sign(float(sticking.mu0)) * mu_c * pn,
+    # round-off relative to Pt itself: near grazing mu_c (a share of |mu0|) runs to
+    # thousands, and Pt = mu_c Pn carries Pt's own last digits (3.9e-13 of Pt was a failure
+    # against 1e-9 Pn alone)
+    assert pt == pytest.approx(np.sign(float(sticking.mu0)) * mu_c * pn, rel=1e-9,
                                abs=1e-9 * abs(pn) + 1e-300)
     assert float(r.restitution_check) == pytest.approx(k, abs=check_tolerance(r))
 
