@@ -16,15 +16,14 @@ the outline (``[vehicleN] cg_to_front``) is not estimated from them (docs/inerti
 
 from __future__ import annotations
 
-import csv
 from dataclasses import dataclass
 from functools import cache
-from importlib import resources
 
 import numpy as np
 
 from ..model.inertia import BODIES, AxleFraction, axle_fraction
 from ..model.numbers import InputError
+from .datasets import bundled_rows
 
 __all__ = ["CgRecord", "DATA_FILE", "SOURCE", "MIN_COUNT", "TYPES", "load_cg_records",
            "axle_fractions", "held_out"]
@@ -110,13 +109,7 @@ def load_cg_records() -> tuple[CgRecord, ...]:
     InputError
         A malformed row (naming the line) or missing columns.
     """
-    text = (resources.files("pim.io") / "data" / DATA_FILE).read_text(encoding="utf-8")
-    lines = text.splitlines()
-    first = next(i for i, line in enumerate(lines) if not line.startswith("#"))
-    reader = csv.DictReader(lines[first:])
-    if tuple(reader.fieldnames or ()) != _COLUMNS:
-        raise InputError(f"{DATA_FILE}: columns must be {', '.join(_COLUMNS)}")
-    return tuple(_record(row, first + 2 + i) for i, row in enumerate(reader))
+    return tuple(_record(row, line) for line, row in bundled_rows(DATA_FILE, _COLUMNS))
 
 
 def _own(body: str) -> list[CgRecord]:

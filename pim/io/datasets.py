@@ -41,7 +41,8 @@ from ..model.numbers import InputError
 
 __all__ = ["BarrierTest", "CarToCarVehicle", "RicsacTest", "NhtsaCarToCarTest", "DATASETS",
            "load_barrier", "load_car_to_car", "load_ricsac", "load_nhtsa_car_to_car",
-           "load_dataset", "data_path", "source_lines", "MEASURED", "PUBLISHED_GEOMETRY",
+           "load_dataset", "data_path", "bundled_rows", "source_lines", "MEASURED",
+           "PUBLISHED_GEOMETRY",
            "FITTED_BY_PIM", "VEHICLE_DATA", "ESTIMATED", "ANALYSIS_INPUT", "PIM_OUTPUT",
            "ORIGIN_KINDS",
            "BARRIER_ORIGINS", "CAR_TO_CAR_ORIGINS", "RICSAC_ORIGINS", "NHTSA_ORIGINS"]
@@ -401,6 +402,24 @@ class NhtsaCarToCarTest:
 def data_path(name: str) -> Path:
     """Path of a bundled data file."""
     return Path(str(resources.files("pim.io") / "data" / name))
+
+
+def bundled_rows(name: str, columns: tuple[str, ...]) -> list[tuple[int, dict]]:
+    """The rows of the bundled CSV ``name`` (``pim/io/data``) after its ``#`` source lines,
+    each with its line number in the file (for errors).
+
+    Raises
+    ------
+    InputError
+        The header is not ``columns``.
+    """
+    text = (resources.files("pim.io") / "data" / name).read_text(encoding="utf-8")
+    lines = text.splitlines()
+    first = next(i for i, line in enumerate(lines) if not line.startswith("#"))
+    reader = csv.DictReader(lines[first:])
+    if tuple(reader.fieldnames or ()) != tuple(columns):
+        raise InputError(f"{name}: columns must be {', '.join(columns)}")
+    return [(first + 2 + i, row) for i, row in enumerate(reader)]
 
 
 def source_lines(path) -> list[str]:

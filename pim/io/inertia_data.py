@@ -11,10 +11,8 @@ docs/inertia-estimate.md from them (a test keeps the two equal).
 
 from __future__ import annotations
 
-import csv
 from dataclasses import dataclass
 from functools import cache
-from importlib import resources
 
 import numpy as np
 
@@ -23,6 +21,7 @@ from ..model.numbers import InputError
 from ..model.quantities import UNCERTAIN
 from .axle_data import SOURCE as AXLE_SOURCE
 from .axle_data import axle_fractions
+from .datasets import bundled_rows
 from .units import convert
 
 __all__ = ["InertiaRecord", "DATA_FILE", "SOURCE", "load_inertia_records", "dynamic_indices",
@@ -92,13 +91,7 @@ def load_inertia_records() -> tuple[InertiaRecord, ...]:
     InputError
         A malformed row (naming the line) or missing columns.
     """
-    text = (resources.files("pim.io") / "data" / DATA_FILE).read_text(encoding="utf-8")
-    lines = text.splitlines()
-    first = next(i for i, line in enumerate(lines) if not line.startswith("#"))
-    reader = csv.DictReader(lines[first:])
-    if tuple(reader.fieldnames or ()) != _COLUMNS:
-        raise InputError(f"{DATA_FILE}: columns must be {', '.join(_COLUMNS)}")
-    return tuple(_record(row, first + 2 + i) for i, row in enumerate(reader))
+    return tuple(_record(row, line) for line, row in bundled_rows(DATA_FILE, _COLUMNS))
 
 
 @cache

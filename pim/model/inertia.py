@@ -38,7 +38,8 @@ import numpy as np
 
 from .numbers import InputError, real_array
 
-__all__ = ["DynamicIndex", "AxleFraction", "InputEstimate", "BODIES", "dynamic_index",
+__all__ = ["ClassSample", "DynamicIndex", "AxleFraction", "InputEstimate", "BODIES",
+           "dynamic_index",
            "axle_fraction", "yaw_inertia_estimate"]
 
 #: Body classes with their own yaw dynamic index, and the NHTSA database's type codes in each
@@ -49,7 +50,49 @@ BODIES = {"car": ("4S", "2S", "2C", "3H", "5H", "SW"), "suv": ("MP",), "pickup":
 
 
 @dataclass(frozen=True)
-class DynamicIndex:
+class ClassSample:
+    """A quantity measured on the vehicles of one body class: its mean and scatter.
+
+    The base of :class:`DynamicIndex` and :class:`AxleFraction`, which add their own checks.
+
+    Attributes
+    ----------
+    body : str
+        The class, a key of :data:`BODIES` (or "all" for every class pooled).
+    mean : float
+        Sample mean over the class's measured vehicles.
+    sd : float
+        Their sample standard deviation (n - 1 in the denominator).
+    count : int
+        Number of measured vehicles, >= 2.
+    source : str
+        Short citation of the measurements, for notes and reports.
+    """
+
+    body: str
+    mean: float
+    sd: float
+    count: int
+    source: str
+
+    @property
+    def predictive_sd(self) -> float:
+        """Standard deviation for one more vehicle of the class, s sqrt(1 + 1/n): the scatter
+        an estimate for one vehicle carries, not the mean's."""
+        return self.sd * math.sqrt(1.0 + 1.0 / self.count)
+
+    @classmethod
+    def of(cls, values, body: str, source: str, what: str):
+        """The class's sample from its vehicles' measured ``values`` (``what`` names the
+        quantity in errors): at least 2 finite values."""
+        v = real_array(values, f"{what} of {body!r}").ravel()
+        if v.size < 2 or not np.isfinite(v).all():
+            raise InputError(f"{what} of {body!r} needs at least 2 finite values")
+        return cls(body, float(v.mean()), float(v.std(ddof=1)), int(v.size), source)
+
+
+@dataclass(frozen=True)
+class DynamicIndex(ClassSample):
     """The yaw dynamic index D = I_z / (m a b) of one body class: its mean and scatter.
 
     Attributes
@@ -66,23 +109,12 @@ class DynamicIndex:
         Short citation of the measurements, for notes and reports.
     """
 
-    body: str
-    mean: float
-    sd: float
-    count: int
-    source: str
-
     def __post_init__(self) -> None:
         if not (math.isfinite(self.mean) and self.mean > 0 and math.isfinite(self.sd)
                 and self.sd >= 0 and self.count >= 2):
             raise InputError(f"dynamic index of {self.body!r}: needs a mean > 0, a finite "
                              f"sd >= 0 and at least 2 vehicles, got {self.mean!r}, "
                              f"{self.sd!r}, {self.count!r}")
-
-    @property
-    def predictive_sd(self) -> float:
-        """Standard deviation of D for one more vehicle of the class, s sqrt(1 + 1/n) [-]."""
-        return self.sd * math.sqrt(1.0 + 1.0 / self.count)
 
     @property
     def relative_sd(self) -> float:
@@ -102,14 +134,11 @@ def dynamic_index(values, body: str, source: str) -> DynamicIndex:
     source : str
         Short citation of the measurements.
     """
-    d = real_array(values, f"dynamic index of {body!r}").ravel()
-    if d.size < 2 or not np.isfinite(d).all():
-        raise InputError(f"dynamic index of {body!r} needs at least 2 finite values")
-    return DynamicIndex(body, float(d.mean()), float(d.std(ddof=1)), int(d.size), source)
+    return DynamicIndex.of(values, body, source, "dynamic index")
 
 
 @dataclass(frozen=True)
-class AxleFraction:
+class AxleFraction(ClassSample):
     """The CG's position between the axles, f = a / L, of one body class: mean and scatter.
 
     Attributes
@@ -126,23 +155,12 @@ class AxleFraction:
         Short citation of the measurements, for notes and reports.
     """
 
-    body: str
-    mean: float
-    sd: float
-    count: int
-    source: str
-
     def __post_init__(self) -> None:
         if not (0 < self.mean < 1 and math.isfinite(self.sd) and self.sd >= 0
                 and self.count >= 2):
             raise InputError(f"CG position of {self.body!r}: needs a mean fraction of the "
                              f"wheelbase in (0, 1), a finite sd >= 0 and at least 2 vehicles, "
                              f"got {self.mean!r}, {self.sd!r}, {self.count!r}")
-
-    @property
-    def predictive_sd(self) -> float:
-        """Standard deviation of f for one more vehicle of the class, s sqrt(1 + 1/n) [-]."""
-        return self.sd * math.sqrt(1.0 + 1.0 / self.count)
 
     def axle_product(self):
         """Mean and sd of f (1 - f) for one more vehicle [-]: ``mu (1 - mu) - s^2`` (exact
@@ -164,10 +182,7 @@ def axle_fraction(values, body: str, source: str) -> AxleFraction:
     source : str
         Short citation of the measurements.
     """
-    f = real_array(values, f"CG position of {body!r}").ravel()
-    if f.size < 2 or not np.isfinite(f).all():
-        raise InputError(f"CG position of {body!r} needs at least 2 finite values")
-    return AxleFraction(body, float(f.mean()), float(f.std(ddof=1)), int(f.size), source)
+    return AxleFraction.of(values, body, source, "CG position")
 
 
 def yaw_inertia_estimate(mass, wheelbase, index: DynamicIndex, cg_to_front_axle=None,

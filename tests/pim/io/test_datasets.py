@@ -1,6 +1,7 @@
 """Bundled crash-test data: values as published, malformed copies rejected with a clear error."""
 
 import math
+from pathlib import Path
 
 import pytest
 
@@ -160,3 +161,20 @@ def test_malformed_nhtsa_file_rejected(tmp_path):
     path = _copy(tmp_path, NHTSA_FILE, lambda s: s.replace("4364,", "4363,"))
     with pytest.raises(ValueError, match="duplicate test '4363'"):
         load_nhtsa_car_to_car(path)
+
+
+def test_bundled_rows_skip_the_source_lines_and_check_the_header():
+    from pim.io.datasets import bundled_rows
+    from pim.io.inertia_data import DATA_FILE
+    from pim.model.numbers import InputError
+
+    text = (Path(__file__).resolve().parents[3] / "pim" / "io" / "data" / DATA_FILE).read_text()
+    lines = text.splitlines()
+    header = next(i for i, line in enumerate(lines) if not line.startswith("#"))
+    columns = tuple(lines[header].split(","))
+    rows = bundled_rows(DATA_FILE, columns)
+    first_line, first_row = rows[0]
+    assert first_line == header + 2                      # 1-based, after the header
+    assert lines[first_line - 1].startswith(first_row["year"])
+    with pytest.raises(InputError, match="columns must be"):
+        bundled_rows(DATA_FILE, columns[:-1])
