@@ -36,7 +36,17 @@ import numpy as np
 from .numbers import InputError
 
 __all__ = ["Track", "ImpactRecord", "Event", "EventDifference", "PHASES", "impact_phase",
-           "phase_labels"]
+           "phase_labels", "DEFAULT_TYRE_FRICTION", "DEFAULT_APPROACH", "REST_SPEED"]
+
+#: Tyre-road friction of an event's run-out where the case gives none [-]: a dry asphalt
+#: road's sliding friction, the middle of the 0.6-0.8 range of the reconstruction literature
+#: (docs/references.md: Fricke, Traffic Accident Reconstruction, 1990).
+DEFAULT_TYRE_FRICTION = 0.7
+#: How long before the first impact an event starts by default [s].
+DEFAULT_APPROACH = 1.0
+#: Below this CG speed plus yaw rate x largest tyre arm a vehicle counts as at rest [m/s]
+#: (the run-out's stop test, :mod:`pim.model.runout`).
+REST_SPEED = 0.05
 
 #: The phases a sample may be in (``"impact k"`` is written with its number).
 PHASES = ("approach", "impact", "free", "rest")
