@@ -51,8 +51,8 @@ __all__ = ["KINDS", "median_errors", "predictions_table", "summary_table", "verd
 
 KINDS = ("class fit", "leave-one-out")
 #: The files :func:`write_tuned_study` writes, in its order.
-FILES = ("tuned-scene.md", "tuned-scene.html", "tuned-scene-verdicts.csv",
-         "tuned-scene-summary.csv", "tuned-scene-profile.csv", "tuned-scene-mechanisms.csv",
+FILES = ("tuned-scene.md", "tuned-scene.html", "tuned-scene-profile.csv",
+         "tuned-scene-mechanisms.csv", "tuned-scene-verdicts.csv", "tuned-scene-summary.csv",
          "tuned-scene-predictions.csv", "tuned-scene.png", "tuned-scene-profile.png")
 _KEY = {name: key for key, name in CLASS_KEYS.items()}
 

@@ -133,7 +133,7 @@ class Profile:
         """Every held time in :data:`PHYSICAL_TIMES` lies above the threshold."""
         lo, hi = PHYSICAL_TIMES
         inside = [r for t, r in zip(self.times, self.rms, strict=True) if lo <= t <= hi]
-        return bool(inside) and min(inside) > self.threshold
+        return bool(inside and min(inside) > self.threshold)
 
     def at(self, time: float) -> float:
         """The rms at the held time nearest ``time`` [-]."""
