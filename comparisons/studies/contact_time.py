@@ -52,8 +52,8 @@ from .tuned_scene import (
     SCENE_MODEL,
     SCREEN,
     ClassStudy,
-    HeldFit,
     Model,
+    MultiStartFit,
     fit_held,
     study_class,
 )
@@ -97,9 +97,9 @@ class Profile:
     ----------
     times : tuple of float
         The held contact times [s].
-    fits : tuple of HeldFit
+    fits : tuple of MultiStartFit
         The class fit at each (every parameter, T included).
-    free : HeldFit
+    free : MultiStartFit
         The class fit with T free.
     n_residuals : int
         Scaled residuals of the class (n_r).
@@ -109,7 +109,7 @@ class Profile:
 
     times: tuple
     fits: tuple
-    free: HeldFit
+    free: MultiStartFit
     n_residuals: int
     threshold: float
 

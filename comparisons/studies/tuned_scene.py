@@ -73,7 +73,7 @@ from .paired_verdict import PairedComparison, compare_paired
 
 __all__ = ["Model", "PIM_MODEL", "SCENE_MODEL", "SCENE_MU0_MODEL", "SCENE_PHYSICAL_MODEL",
            "MODELS", "SCENE_MODELS", "UNCONSTRAINED_MODELS", "OUTPUT_RANGES", "PENALTY_STEP",
-           "fit_held", "HeldFit",
+           "fit_held",
            "Motion", "run_model", "MultiStartFit", "Prediction", "predict", "VariantStudy",
            "ClassStudy", "fit_class", "study_class", "study_all", "loo_comparisons",
            "coarse_check", "scene_settings", "output_penalty", "sobol_starts", "COARSE_STEPS",
@@ -315,8 +315,9 @@ class MultiStartFit:
     on_bound: tuple
 
 
-def _summaries(model, fit, folds, residual_counts) -> dict:
-    """fold -> :class:`MultiStartFit` of the rows of ``fit`` in that fold."""
+def _summaries(names, fit, folds, residual_counts) -> dict:
+    """fold -> :class:`MultiStartFit` of the rows of ``fit`` in that fold (``names``: the
+    parameters' names)."""
     out = {}
     for f in np.unique(folds):
         rows = np.flatnonzero(folds == f)
@@ -326,7 +327,7 @@ def _summaries(model, fit, folds, residual_counts) -> dict:
             tuple(float(v) for v in fit.x[best]), float(rms.min()), int(rows.size),
             int(np.sum(rms <= rms.min() * (1.0 + AGREEMENT) + 1e-12)),
             int(fit.converged[rows].sum()),
-            tuple(p for p, b in zip(model.parameters, fit.on_bound[best], strict=True) if b))
+            tuple(p for p, b in zip(names, fit.on_bound[best], strict=True) if b))
     return out
 
 
@@ -419,31 +420,8 @@ def fit_class(model: Model, records: list, variant: InputVariant, *, loo: bool =
     fit = least_squares_batch(fun, starts, lo, hi, max_iter=MAX_ITERATIONS, ftol=FTOL,
                               xtol=XTOL, merge=MERGE, groups=folds)
     k = len(records[0].observed)
-    return _summaries(model, fit, folds, {f: k * (n - 1) for f in range(n)} | {n: k * n})
-
-
-@dataclass(frozen=True)
-class HeldFit:
-    """The class fit of a model with some parameters held at given values.
-
-    Attributes
-    ----------
-    x : tuple of float
-        The best parameters, the held ones included [their units].
-    rms : float
-        Root-mean-square scaled residual of the class at ``x`` [-] (the fits' objective).
-    starts, agreeing, converged : int
-        Starts refined, starts within :data:`AGREEMENT` of the best, starts converged.
-    on_bound : tuple of str
-        Free parameters of the best that sit on a bound.
-    """
-
-    x: tuple
-    rms: float
-    starts: int
-    agreeing: int
-    converged: int
-    on_bound: tuple
+    return _summaries(model.parameters, fit, folds,
+                      {f: k * (n - 1) for f in range(n)} | {n: k * n})
 
 
 def _with_held(x, held: dict, groups, n: int) -> np.ndarray:
@@ -459,7 +437,7 @@ def _with_held(x, held: dict, groups, n: int) -> np.ndarray:
 
 def fit_held(model: Model, records: list, variant: InputVariant, held: dict, *,
              starts: int = 4, screen: int = 64, steps: int = COARSE_STEPS,
-             bar=None) -> list[HeldFit]:
+             bar=None) -> list[MultiStartFit]:
     """Class fits of ``model`` with parameters held: ``held`` maps a parameter's index to its
     values, one per fit (every entry of one length g; empty: one fit, nothing held);
     returns the g fits in that order.
@@ -487,18 +465,11 @@ def fit_held(model: Model, records: list, variant: InputVariant, held: dict, *,
         sample[best.reshape(-1)], lo, hi, max_iter=MAX_ITERATIONS, ftol=FTOL, xtol=XTOL,
         merge=MERGE, groups=groups)
     full = _with_held(fit.x[:, None, :], held, groups, n_par)[:, 0, :]
-    k = len(records[0].observed) * n
-    out = []
-    for j in range(g):
-        rows = np.flatnonzero(groups == j)
-        rms = np.sqrt(fit.cost[rows] / k)
-        b = rows[int(np.argmin(rms))]
-        out.append(HeldFit(tuple(float(v) for v in full[b]), float(rms.min()), int(rows.size),
-                           int(np.sum(rms <= rms.min() * (1.0 + AGREEMENT) + 1e-12)),
-                           int(fit.converged[rows].sum()),
-                           tuple(model.parameters[free[i]]
-                                 for i, on in enumerate(fit.on_bound[b]) if on)))
-    return out
+    bound = np.zeros(full.shape, dtype=fit.on_bound.dtype)
+    bound[:, free] = fit.on_bound
+    fits = _summaries(model.parameters, replace(fit, x=full, on_bound=bound), groups,
+                      dict.fromkeys(range(g), len(records[0].observed) * n))
+    return [fits[j] for j in range(g)]
 
 
 @dataclass(frozen=True)

@@ -18,7 +18,6 @@ from comparisons.studies.crash_records import InputVariant
 from comparisons.studies.tuned_scene import (
     MODELS,
     ClassStudy,
-    HeldFit,
     MultiStartFit,
     Prediction,
     VariantStudy,
@@ -41,9 +40,9 @@ def _rows(errors: dict, kind: str) -> list:
 
 
 def _profile(rms, times=(0.02, 0.05, 0.1, 0.15, 0.25)) -> Profile:
-    fits = tuple(HeldFit((0.1, 2.0, t, 0.5), r, 8, 4, 8, ()) for t, r in
+    fits = tuple(MultiStartFit((0.1, 2.0, t, 0.5), r, 8, 4, 8, ()) for t, r in
                  zip(times, rms, strict=True))
-    free = HeldFit((0.1, 2.0, times[int(np.argmin(rms))], 0.5), min(rms), 16, 5, 16, ())
+    free = MultiStartFit((0.1, 2.0, times[int(np.argmin(rms))], 0.5), min(rms), 16, 5, 16, ())
     return Profile(times, fits, free, 48, lr_threshold(min(rms), 48))
 
 

@@ -3,28 +3,15 @@ to the physical ranges (comparisons.studies.tuned_scene): the profile finds a sy
 crash's contact time, its threshold is the chi-square rule, the physical scene keeps its
 outputs in their ranges, the mechanisms switch off one thing each."""
 
-import dataclasses
 import math
 
 import numpy as np
 import pytest
 
 import pim
-import sim
 from comparisons.studies import contact_time as C
 from comparisons.studies import crash_records as R
 from comparisons.studies import tuned_scene as T
-from sim.contact_law import stiffness_for_duration
-
-
-@pytest.fixture(scope="module")
-def radii():
-    return R.fitted_radii()
-
-
-@pytest.fixture(scope="module")
-def classes(radii):
-    return R.crash_classes(radii=radii)
 
 
 def test_the_threshold_is_the_likelihood_ratio_rule():
@@ -35,18 +22,12 @@ def test_the_threshold_is_the_likelihood_ratio_rule():
     assert 18 * math.log((t / 1.3) ** 2) == pytest.approx(3.8415, abs=1e-3)
 
 
-def test_the_profile_finds_a_synthetic_crashs_contact_time(classes):
+def test_the_profile_finds_a_synthetic_crashs_contact_time(synthetic):
     """Truth: RICSAC 9 integrated by sim.reference_compliant (solve_ivp, independent of the
     compiled stepper) at T = 0.1 s; the profile refits the rest at each held T: its least
     rms sits at 0.1 s, near zero, and rises away from it."""
-    record = classes[R.RICSAC9][0]
-    case = record.case
-    eps, mu, duration, tyre = 0.3, 0.6, 0.1, 0.7
-    k = float(stiffness_for_duration(duration, float(pim.solve(case, eps).k_nn), eps))
-    r = sim.reference_compliant(case, eps, k, friction=mu, tyre_friction=tyre,
-                                settings=sim.CompliantSettings(record=False, rtol=1e-9))
-    truth = dataclasses.replace(record, observed=np.r_[r.velocity1, r.yaw_rate1,
-                                                       r.velocity2, r.yaw_rate2])
+    mu = 0.6
+    truth = synthetic(0.3, mu, 0.1, 0.7)
     variant = R.input_variants([truth])[0]
     p = C.profile_contact_time([truth], variant, times=(0.03, 0.1, 0.25), steps=100)
     assert p.times[int(np.argmin(p.rms))] == 0.1 and p.rms[1] < 0.05
