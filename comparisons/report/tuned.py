@@ -25,7 +25,14 @@ from comparisons.studies.contact_time import (
     PROFILE_STARTS,
     THRESHOLD_RULE,
 )
-from comparisons.studies.paired_verdict import ALPHA, CONFIDENCE, RESAMPLES, minimum_tests
+from comparisons.studies.paired_verdict import (
+    ALPHA,
+    CONFIDENCE,
+    PIM_BETTER,
+    RESAMPLES,
+    SCENE_BETTER,
+    minimum_tests,
+)
 from comparisons.studies.tuned_scene import (
     AGREEMENT,
     CLASS_STARTS,
@@ -458,23 +465,35 @@ def profile_sentence(st) -> str:
     kept = p.kept
     span = (f"keeps {kept[0] * 1e3:.0f}-{kept[-1] * 1e3:.0f} ms" if kept else
             "keeps none of the grid")
-    phys = f"{PHYSICAL_TIMES[0] * 1e3:.0f}-{PHYSICAL_TIMES[1] * 1e3:.0f} ms"
-    if p.physical_excluded():
-        verdict = (f"the tests exclude the full-scale contact time {phys}: at the times a "
-                   "real crash pulse lasts the scene fits them worse than the threshold "
-                   "allows, so they favour the near-instant contact PIM assumes")
-    elif len(kept) == len(p.times):
-        verdict = ("the tests do not constrain the contact time: an instant and a "
-                   f"{phys} contact fit them alike, so they neither contradict nor support "
-                   "PIM's instantaneous impact")
-    else:
-        verdict = (f"the tests constrain the contact time but keep part of the full-scale "
-                   f"{phys}")
+    verdict = _profile_verdict(p)
     return (f"The profile over T (epsilon, mu_c, mu_tyre refitted at each of "
             f"{len(p.times)} times, {p.times[0] * 1e3:.0f}-{p.times[-1] * 1e3:.0f} ms): "
             f"class-fit rms {p.best_rms:.3f} at best (T free: {p.free.x[2] * 1e3:.0f} ms), "
             f"{p.at(0.1):.3f} at 100 ms; the {LEVEL:.0%} likelihood-ratio threshold "
             f"{p.threshold:.3f} ({p.n_residuals} residuals) {span}: {verdict}.")
+
+
+def _profile_verdict(p) -> str:
+    """What the times the threshold keeps say about instantaneous against finite contact."""
+    phys = f"{PHYSICAL_TIMES[0] * 1e3:.0f}-{PHYSICAL_TIMES[1] * 1e3:.0f} ms"
+    kept = p.kept
+    if not kept:
+        return (f"no held time comes within the threshold of the free fit's "
+                f"(T {p.free.x[2] * 1e3:.0f} ms): the grid is too coarse to say more")
+    if p.physical_excluded():
+        return (f"the tests exclude the full-scale contact time {phys}: at the times a real "
+                "crash pulse lasts this scene fits them worse than the threshold allows, so "
+                "in it they favour a near-instant contact, as PIM assumes")
+    if len(kept) == len(p.times):
+        return ("the tests do not constrain the contact time: an instant and a "
+                f"{phys} contact fit them alike, so they neither contradict nor support "
+                "PIM's instantaneous impact")
+    if p.times[0] not in kept:
+        return (f"the tests exclude a near-instant contact (T up to "
+                f"{max(t for t in p.times if t < kept[0]) * 1e3:.0f} ms) and keep the "
+                f"full-scale {phys}: in this scene they favour a finite contact over PIM's "
+                "instant")
+    return f"the tests constrain the contact time to a span that overlaps the full-scale {phys}"
 
 
 def mechanism_sentence(st) -> str:
@@ -501,6 +520,18 @@ def mechanism_sentence(st) -> str:
             f" rising {full.rise:+.3f} from its least to 100 ms; {parts}): {why}.")
 
 
+def _physical_reading(variant) -> str:
+    """What the physical scene's verdict means, where it has one."""
+    c = variant.comparisons[SCENE_PHYSICAL_MODEL.name]["score"]
+    if c.verdict == PIM_BETTER:
+        return (": with physical contact time and friction the finite contact does not "
+                "reproduce these tests as well as PIM does; the freely fitted scene matches "
+                "PIM only outside the physical ranges")
+    if c.verdict == SCENE_BETTER:
+        return ": a finite contact with physical values predicts these tests better than PIM"
+    return ""
+
+
 def conclusion(studies, units: str = "si") -> tuple[str, ...]:
     """One paragraph per class: what the tests support (instantaneous or finite contact:
     the profile's numbers), the physical scene's verdict and, where studied, the mechanism
@@ -513,8 +544,9 @@ def conclusion(studies, units: str = "si") -> tuple[str, ...]:
         n = len(st.tests)
         head = f"**{st.crash_class}** ({n} test{'s' if n != 1 else ''}, {v.variant.name})."
         verdict = (f" PIM against the scene fitted freely: {v.verdict.verdict}; "
-                   f"{physical_sentence(v, units)}." if v.rows("pim", "leave-one-out")
-                   else " A class of one: no held-out verdict.")
+                   f"{physical_sentence(v, units)}{_physical_reading(v)}."
+                   if v.rows("pim", "leave-one-out") else " A class of one: no held-out "
+                   "verdict.")
         out.append(" ".join(filter(None, [head + verdict, profile_sentence(st),
                                           mechanism_sentence(st)])))
     return tuple(out)

@@ -170,6 +170,10 @@ def test_the_conclusion_leads_the_page_and_names_the_mechanism(tmp_path):
     assert ("with the geometry change during contact (rotation and the moving contact "
             "point) switched off the profile stays within its threshold") in first
     assert "do not constrain the contact time" in second
+    finite = _study(_NS, _NS, _profile([3.5, 3.1, 2.7, 2.69, 2.66]))
+    (third,) = R.conclusion([finite])
+    assert "exclude a near-instant contact (T up to 50 ms) and keep the full-scale" in third
+    assert "does not reproduce these tests as well as PIM" in first
     R.write_tuned_study([st], tmp_path, "si", "pim validate-models")
     md = (tmp_path / "tuned-scene.md").read_text()
     assert md.index("## Conclusion") < md.index("## Verdicts")
