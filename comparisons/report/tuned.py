@@ -46,7 +46,7 @@ from comparisons.studies.tuned_scene import (
     UNCONSTRAINED_MODELS,
     ClassStudy,
 )
-from pim.io.datasets import ORIGIN_KINDS
+from pim.io.datasets import ORIGIN_KINDS, PIM_OUTPUT
 from pim.io.files import save_figure
 from pim.io.units import convert, display_units
 
@@ -547,8 +547,11 @@ def conclusion(studies, units: str = "si") -> tuple[str, ...]:
                    f"{physical_sentence(v, units)}{_physical_reading(v)}."
                    if v.rows("pim", "leave-one-out") else " A class of one: no held-out "
                    "verdict.")
+        caveat = (f"Caveat: this class's outcome is {st.outcome_origin}, not a measurement, "
+                  "so PIM fits it by construction and its preference says nothing about "
+                  "real contact." if st.outcome_origin == PIM_OUTPUT else "")
         out.append(" ".join(filter(None, [head + verdict, profile_sentence(st),
-                                          mechanism_sentence(st)])))
+                                          mechanism_sentence(st), caveat])))
     return tuple(out)
 
 

@@ -1,6 +1,7 @@
 """Tables, verdict sentences, JSON and files of the tuned-scene study
 (comparisons.report.tuned), on constructed studies."""
 
+import dataclasses
 import json
 import math
 
@@ -23,6 +24,7 @@ from comparisons.studies.tuned_scene import (
     VariantStudy,
     loo_comparisons,
 )
+from pim.io.datasets import PIM_OUTPUT
 
 
 def _rows(errors: dict, kind: str) -> list:
@@ -174,6 +176,9 @@ def test_the_conclusion_leads_the_page_and_names_the_mechanism(tmp_path):
     (third,) = R.conclusion([finite])
     assert "exclude a near-instant contact (T up to 50 ms) and keep the full-scale" in third
     assert "does not reproduce these tests as well as PIM" in first
+    assert "Caveat" not in first
+    output = dataclasses.replace(finite, outcome_origin=PIM_OUTPUT)
+    assert "PIM fits it by construction" in R.conclusion([output])[0]
     R.write_tuned_study([st], tmp_path, "si", "pim validate-models")
     md = (tmp_path / "tuned-scene.md").read_text()
     assert md.index("## Conclusion") < md.index("## Verdicts")
