@@ -61,6 +61,7 @@ from .compliant_setup import (
     parameter_rows,
     point_contact,
     problem_arrays,
+    refuse_frozen,
     result_from_row,
 )
 from .contact_law import check_fraction, check_positive, stiffness_for_duration
@@ -341,7 +342,7 @@ def problem_law(problem: CompliantProblem, dt: float, start: float) -> dict:
                 tyre_friction=problem.tyre_friction,
                 braking=1.0 if problem.tyre_mode == "locked" else 0.0, dt=dt, start=start,
                 max_steps=contact_step_limit(problem.settings, dt),
-                outline=1.0 if problem.geometry == "outline" else 0.0)
+                outline=1.0 if problem.geometry == "outline" else 0.0, frozen=0.0)
 
 
 def simulate_pymunk(problem: CompliantProblem) -> CompliantResult:
@@ -464,6 +465,7 @@ def _one_problem(case, eps, stiffness, friction, geometry, tyre_friction, settin
     """The single scene of ``engine="pymunk"``: the settings with the given contact inputs
     (``extra``), the stiffness from ``contact_time`` when that is given."""
     settings = settings or CompliantSettings()
+    refuse_frozen(settings, "the pymunk engine")
     overrides = {k: v for k, v in extra.items() if v is not None}
     if overrides:
         settings = replace(settings, **overrides)

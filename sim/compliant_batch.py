@@ -32,6 +32,7 @@ from .compliant_setup import (
     case_rows,
     contact_step_limit,
     parameter_rows,
+    refuse_frozen,
     result_from_row,
     setup_arrays,
 )
@@ -338,7 +339,8 @@ def _law(inputs: dict, arrays: dict, shape: tuple, settings: CompliantSettings) 
     kt = (np.full(k_nn.shape, settings.tangential_stiffness)
           if settings.tangential_stiffness is not None else flat["stiffness"])
     flat.update(tangential_stiffness=kt, dt=dt, start=0.0,
-                max_steps=contact_step_limit(settings, dt), outline=0.0)
+                max_steps=contact_step_limit(settings, dt), outline=0.0,
+                frozen=0.0 if settings.geometry_change else 1.0)
     return flat, status
 
 
@@ -424,6 +426,8 @@ def simulate_batch(case: pim.Case, eps, stiffness=None, friction=0.0, geometry="
     if not isinstance(case, pim.Case):
         raise InputError(f"case must be a pim.Case, got {type(case).__name__}")
     _check_geometry(case, geometry)
+    if geometry != "point":
+        refuse_frozen(settings, "the outline contact")
     inputs = contact_inputs(eps, stiffness, friction, tyre_friction, settings,
                             tyre_mode=tyre_mode, preload=preload,
                             tangential_recovery=tangential_recovery, contact_time=contact_time)

@@ -45,7 +45,7 @@ from .scene import outline_corners
 
 __all__ = ["CompliantSettings", "CompliantProblem", "CompliantResult", "ContactHistory",
            "build_problem", "point_contact", "rotate", "GEOMETRIES", "DEFAULT_STIFFNESS",
-           "kinetic_energy", "placed_outlines", "reversal"]
+           "kinetic_energy", "placed_outlines", "reversal", "refuse_frozen"]
 
 GEOMETRIES = ("point", "outline")
 #: Default linear crush stiffness of a car [N/m] (NHTSA test 10146: 750-780 kN/m).
@@ -108,6 +108,12 @@ class CompliantSettings:
         Keep the contact history (force, crush, slip per step) and the trajectory.
     gravity : float
         g [m/s^2] for the tyres' static load, > 0.
+    geometry_change : bool
+        True (the physics): the point contact's arms and normal turn and move with the
+        bodies during the contact. False, a study switch of the compiled engine only (the
+        point contact; issue 34): they stay as at the start
+        (:func:`sim.compliant_formula.frozen_point`), the rigid impact's geometry held
+        through a finite contact.
     """
 
     dt: float | None = None
@@ -126,6 +132,7 @@ class CompliantSettings:
     duration: float = 0.0
     record: bool = True
     gravity: float = STANDARD_GRAVITY
+    geometry_change: bool = True
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
@@ -164,8 +171,10 @@ class CompliantSettings:
                                                       "settings.max_contact_time", "s"))
         set_(self, "duration", check_positive(self.duration, "settings.duration", "s",
                                               allow_zero=True))
-        if not isinstance(self.record, bool):
-            raise InputError(f"settings.record must be True or False, got {self.record!r}")
+        for name in ("record", "geometry_change"):
+            if not isinstance(getattr(self, name), bool):
+                raise InputError(f"settings.{name} must be True or False, got "
+                                 f"{getattr(self, name)!r}")
         set_(self, "gravity", check_positive(self.gravity, "settings.gravity", "m/s^2"))
 
     def as_dict(self) -> dict:
@@ -290,6 +299,14 @@ def _scalar(case: pim.Case) -> None:
             or np.shape(case.vehicle2.cg) != (2,) or np.size(case.impact.normal_angle) != 1:
         raise InputError("the finite-duration contact needs a single case (scalar fields), "
                          "not a batch of cases")
+
+
+def refuse_frozen(settings: CompliantSettings | None, engine: str) -> None:
+    """ValueError unless ``settings`` keep the geometry change (``geometry_change``: the
+    frozen geometry is a study switch of the compiled engine's point contact only)."""
+    if settings is not None and not settings.geometry_change:
+        raise InputError(f"settings.geometry_change=False (the frozen contact geometry) runs "
+                         f"on the compiled engine's point contact only, not on {engine}")
 
 
 def build_problem(case: pim.Case, eps, stiffness, friction=0.0, geometry="point",
@@ -474,7 +491,7 @@ def problem_arrays(problem: CompliantProblem) -> dict:
 #: The contact law's inputs of :func:`parameter_rows`, one value or one per scene.
 LAW_INPUTS = ("eps", "preload", "stiffness", "friction", "tangential_stiffness",
               "tangential_recovery", "tyre_friction", "braking", "dt", "start", "max_steps",
-              "outline")
+              "outline", "frozen")
 
 
 def case_rows(arrays: dict) -> np.ndarray:
@@ -507,7 +524,7 @@ LAW_COLUMNS = dict(eps=formula.P_EPS, preload=formula.P_PRELOAD,
                    tangential_stiffness=formula.P_KT, tangential_recovery=formula.P_RECOVERY,
                    tyre_friction=formula.P_TYRE, braking=formula.P_BRAKING, dt=formula.P_DT,
                    start=formula.P_START, max_steps=formula.P_MAX_STEPS,
-                   outline=formula.P_OUTLINE)
+                   outline=formula.P_OUTLINE, frozen=formula.P_FROZEN)
 
 
 def parameter_rows(arrays: dict, law: dict, rows: np.ndarray | None = None) -> np.ndarray:
@@ -521,7 +538,8 @@ def parameter_rows(arrays: dict, law: dict, rows: np.ndarray | None = None) -> n
         :data:`LAW_INPUTS`, each a number or an array (n,): eps [-], preload a [N],
         stiffness b [N/m], friction mu_c [-], tangential_stiffness k_t [N/m],
         tangential_recovery r [-], tyre_friction [-], braking (0 rolling, 1 locked), dt [s],
-        start [s], max_steps (of the contact), outline (1 for the outline contact).
+        start [s], max_steps (of the contact), outline (1 for the outline contact), frozen
+        (1: the point contact's geometry frozen at its start).
     rows : ndarray, optional
         :func:`case_rows` of ``arrays`` made already (copied, not changed).
     """
