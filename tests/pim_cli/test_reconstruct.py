@@ -270,3 +270,52 @@ def test_a_quoted_wheel_fraction_reconstructs_within_the_stated_budget(tmp_path,
     err = capsys.readouterr().err.strip()
     assert err.startswith("error: --max-minutes 0.01: the Monte Carlo of 10000 samples refits "
                           "the run-outs of each sample, about ") and "\n" not in err, err
+
+
+def _edr_conflict(tmp_path, pre_crash_speed: str):
+    """synthetic-edr with vehicle 2's recorded pre-crash speed replaced (the truth: 28.8
+    km/h at 1 km/h): 45 km/h is the conflict of docs/reconstruction.md (p = 2.4e-4)."""
+    text = (resources.files("pim.io") / "cases" / "synthetic-edr.toml").read_text()
+    path = tmp_path / "conflict.toml"
+    path.write_text(text.replace('pre_crash_speed = "28.8 km/h"',
+                                 f'pre_crash_speed = "{pre_crash_speed}"'))
+    return str(path)
+
+
+def test_contradictory_evidence_exits_1_after_the_output_with_the_reason_first(
+        tmp_path, capsys):
+    """Evidence whose chi-square p lies below P_CONTRADICTED (0.001) is refused: the reason
+    on stderr before the table, the table, then exit 1 (issue 33 point 3); the report is
+    still written; --allow-inconsistent and --allow-inadmissible accept it (exit 0)."""
+    from pim.analysis.residuals import P_CONTRADICTED
+
+    case = _edr_conflict(tmp_path, "45 km/h")
+    out_dir = tmp_path / "out"
+    assert main(["reconstruct", case, "--samples", "0", "--out", str(out_dir)]) == 1
+    captured = capsys.readouterr()
+    err = captured.err.strip().splitlines()
+    assert err[0].startswith("error: the evidence contradicts itself: chi-square = 13.5")
+    assert f"< {P_CONTRADICTED:g} (the refusal threshold)" in err[0]
+    assert "pre_crash_speed2" in err[0] or "delta_v1" in err[0]
+    assert "--allow-inconsistent" in err[-1]
+    assert "vehicle1.speed" in captured.out                 # the answer is still printed
+    assert (out_dir / "report.md").is_file()
+    for flag in ("--allow-inconsistent", "--allow-inadmissible"):
+        assert main(["reconstruct", case, "--samples", "0", flag]) == 0
+        assert "error:" not in capsys.readouterr().err
+    assert main(["reconstruct", case, "--samples", "0", "--json",
+                 "--allow-inconsistent"]) == 0
+    good = json.loads(capsys.readouterr().out)["goodness_of_fit"]
+    assert good["contradicted"] is True and good["refusal_p"] == P_CONTRADICTED
+    assert good["p_value"] < P_CONTRADICTED
+
+
+def test_doubtful_evidence_warns_and_exits_0(tmp_path, capsys):
+    """Between the warning (p < 0.01) and the refusal (p < 0.001): a warning, exit 0; the
+    consistent case: neither."""
+    assert main(["reconstruct", _edr_conflict(tmp_path, "40.5 km/h"), "--samples", "0",
+                 "--json"]) == 0
+    good = json.loads(capsys.readouterr().out)["goodness_of_fit"]
+    assert 1e-3 < good["p_value"] < 1e-2 and good["contradicted"] is False
+    assert main(["reconstruct", "synthetic-edr", "--samples", "0"]) == 0
+    assert "error" not in capsys.readouterr().err
