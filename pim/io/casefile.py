@@ -332,12 +332,27 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
                 uncertainty=_with_estimates(_uncertainty(data.get("uncertainty")), estimates),
                 notes=_angle_notes(data), **_presentation(data),
                 evidence=attach_tyres(parse_evidence(data.get("evidence"), {
-                    i + 1: (v.length, v.width) for i, v in enumerate(vehicles)}),
-                    data.get("tyres"), data.get("driver")),
+                    i + 1: (v.length, v.width) for i, v in enumerate(vehicles)},
+                    _front_shares(data)), data.get("tyres"), data.get("driver")),
                 unknown=parse_unknown(data.get("unknown")), estimates=estimates)
     for line in estimate_notes(case, case.units):
         _LOG.warning(f"note: {source}: {line}")
     return case
+
+
+def _front_shares(data: dict) -> dict:
+    """Vehicle number -> the front axle's static weight share 1 - a / L [-] from
+    ``[vehicleN]`` wheelbase and cg_to_front_axle (where both are given), for the per-wheel
+    braking of marks before the impact without run-out evidence."""
+    shares = {}
+    for i in (1, 2):
+        table = data.get(f"vehicle{i}")
+        if isinstance(table, dict) and "wheelbase" in table and AXLE_KEY in table:
+            length = parse(table["wheelbase"], "length", f"vehicle{i}.wheelbase")
+            a = parse(table[AXLE_KEY], "length", f"vehicle{i}.{AXLE_KEY}")
+            if 0 <= a <= length and length > 0:
+                shares[i] = 1.0 - a / length
+    return shares
 
 
 def _with_estimates(table, estimates) -> UncertaintyTable | None:

@@ -319,3 +319,37 @@ def test_doubtful_evidence_warns_and_exits_0(tmp_path, capsys):
     assert 1e-3 < good["p_value"] < 1e-2 and good["contradicted"] is False
     assert main(["reconstruct", "synthetic-edr", "--samples", "0"]) == 0
     assert "error" not in capsys.readouterr().err
+
+
+SKIDS = '''
+[evidence.vehicle1.pre_impact]
+skid_length = "30 ft"
+friction = 0.7
+braking = 1.0
+
+[evidence.vehicle2.pre_impact]
+skid_length = "20 ft"
+friction = 0.7
+braking = ["locked", "locked", "free", "free"]
+'''
+
+
+def test_a_pre_impact_skid_combines_with_measured_post_impact_motion(tmp_path, capsys):
+    """Marks before the impact with measured post-impact motion and no run-out were refused
+    ("needs the vehicle's run-out evidence", issue 33 point 4): the skid formula needs none
+    of it. The speed at the start of the marks against the formula by hand, from the
+    reconstructed impact speed: v0 = sqrt(v^2 + 2 g L f mu), f = 1 (all four locked) and
+    0.5 (the fronts locked, the default even axle loads)."""
+    text = (resources.files("pim.io") / "cases" / "ricsac9-reconstruct.toml").read_text()
+    path = tmp_path / "skids.toml"
+    path.write_text(text.replace("\n[uncertainty]\n", SKIDS + "\n[uncertainty]\n", 1))
+    assert main(["reconstruct", str(path), "--samples", "0", "--json", "--units", "si",
+                 "--speed-unit", "m/s"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    g, ft = 9.80665, 0.3048
+    for i, length, drag in ((1, 30 * ft, 1.0), (2, 20 * ft, 0.5)):
+        v = data["unknowns"][f"vehicle{i}.speed"]["value"]
+        row = data["pre_impact"][f"vehicle{i}.speed_at_marks_start"]
+        assert row["unit"] == "m/s" and row["impact"] == pytest.approx(v, rel=1e-9)
+        assert row["value"] == pytest.approx((v * v + 2 * g * length * drag * 0.7) ** 0.5,
+                                             rel=1e-9)
