@@ -13,6 +13,7 @@ Unknown keys are errors, so a typo is never silently ignored; every error is a
     yaw_inertia = "..."             # or radius_of_gyration = "... ft"; or neither, with
     wheelbase = "2.7 m"             #   wheelbase (and optionally cg_to_front_axle = "1.2 m",
     body = "car"                    #   body = "car" / "suv" / "pickup" / "van"): estimated
+                                    #   (without a wheelbase: from the mass alone)
     cg = ["4.774 ft", "0.502 ft"]
     heading = "180 deg"
     velocity = ["-31.09 ft/s", 0]
@@ -72,7 +73,7 @@ from ..model.numbers import InputError
 from ..model.plausibility import bare_angle_warning
 from .brach import cg_from_brach, heading_from_theta
 from .evidence_table import AXLE_KEY, OLD_AXLE_KEY, parse_evidence, parse_unknown
-from .inertia_data import estimate_notes, estimate_yaw_inertia
+from .inertia_data import estimate_notes, estimate_yaw_inertia, estimate_yaw_inertia_from_mass
 from .measured_table import parse_measured
 from .toml_tables import check_keys
 from .tyre_table import attach_tyres
@@ -237,15 +238,15 @@ def _inertia(table, mass: float, where: str, evidence) -> tuple[float, object]:
 def _estimated_inertia(table, mass: float, where: str, evidence) -> tuple[float, object]:
     """The yaw dynamic index's estimate (:func:`pim.io.inertia_data.estimate_yaw_inertia`)
     from the wheelbase and CG-to-front-axle distance of ``[vehicleN]`` or
-    ``[evidence.vehicleN]``; an error naming what is missing when there is no wheelbase."""
+    ``[evidence.vehicleN]``; without a wheelbase, the mass-only line of NHTSA's measured
+    vehicles (:func:`pim.io.inertia_data.estimate_yaw_inertia_from_mass`; an error naming
+    what to give when the mass lies outside its vehicles')."""
     wheelbase = _dimension(table, evidence, ("wheelbase",), where)
-    if wheelbase is None:
-        raise InputError(f"{where}: no yaw_inertia (or radius_of_gyration) given, and no "
-                         f"wheelbase to estimate it from: give {where}.yaw_inertia, or "
-                         f"{where}.wheelbase (with cg_to_front_axle and body, optional) for "
-                         f"an estimate by the yaw dynamic index of NHTSA's measured vehicles")
-    axle = _dimension(table, evidence, (AXLE_KEY, OLD_AXLE_KEY), where)
     body = table.get("body", "car")
+    if wheelbase is None:
+        estimate = estimate_yaw_inertia_from_mass(mass, body, where)
+        return estimate.value, estimate
+    axle = _dimension(table, evidence, (AXLE_KEY, OLD_AXLE_KEY), where)
     estimate = estimate_yaw_inertia(mass, wheelbase, axle, body, where)
     return estimate.value, estimate
 
