@@ -453,6 +453,22 @@ def list_cases() -> list[tuple[str, str]]:
     return out
 
 
+def _is_file(key: str) -> bool:
+    """Whether ``key`` names a readable regular file; False for a name the file system
+    refuses to look up (too long, a NUL byte, a denied folder on the way)."""
+    try:
+        return Path(key).is_file()
+    except (OSError, ValueError):
+        return False
+
+
+def _shown(key: str, limit: int = 80) -> str:
+    """``key`` quoted for a message, cut to ``limit`` characters (with its length)."""
+    if len(key) <= limit:
+        return repr(key)
+    return f"{key[:limit]!r}... ({len(key)} characters)"
+
+
 def load_case(name_or_path) -> Case:
     """Load a case by bundled name (``"ricsac9"``) or from a TOML file path.
 
@@ -463,13 +479,14 @@ def load_case(name_or_path) -> Case:
     """
     bundled = _bundled()
     key = str(name_or_path)
-    if key in bundled and not Path(key).is_file():
+    if key in bundled and not _is_file(key):
         text, source = bundled[key].read_text(encoding="utf-8"), f"{key}.toml"
     else:
         path = Path(key)
-        if not path.is_file():
+        if not _is_file(key):
             names = ", ".join(sorted(bundled))
-            raise InputError(f"case {key!r} is neither a file nor a bundled case ({names})")
+            raise InputError(f"case {_shown(key)} is neither a file nor a bundled case "
+                             f"({names})")
         try:
             text, source = path.read_text(encoding="utf-8"), str(path)
         except (OSError, UnicodeDecodeError) as exc:
