@@ -53,8 +53,11 @@ __all__ = ["loading_force", "loading_work", "unloading_slope", "permanent_crush"
 
 # ---- status of a scene ------------------------------------------------------------------------
 #: Status by code: 0 "ok", then the :class:`sim.SimulationError` kinds a stepped scene ends in.
-STATUS_NAMES = ("ok", "no_contact", "never_separated", "tunnelled")
+#: "energy_gained" is set after the stepping (:func:`sim.compliant_setup.physics_status`),
+#: never by the stepped scene itself.
+STATUS_NAMES = ("ok", "no_contact", "never_separated", "tunnelled", "energy_gained")
 STATUS_OK, STATUS_NO_CONTACT, STATUS_NEVER_SEPARATED, STATUS_TUNNELLED = 0, 1, 2, 3
+STATUS_ENERGY_GAINED = 4
 
 # ---- par: the scene's parameters ---------------------------------------------------------------
 P_M1, P_I1, P_M2, P_I2, P_FIXED2 = 0, 1, 2, 3, 4     # [kg], [kg m^2]; fixed2 1.0 or 0.0

@@ -425,3 +425,57 @@ def test_the_frozen_geometry_is_refused_where_it_is_not_built():
         sim.reference_compliant(case, 0.2, 7.5e5, settings=_frozen())
     with pytest.raises(ValueError, match="geometry_change must be True or False"):
         sim.CompliantSettings(geometry_change=0)
+# ---- physics kept: no ok result gains energy or lasts without end (issue 33 point 11) ----
+
+def test_an_absurdly_soft_contact_is_refused_before_any_step():
+    """stiffness 1e-300 N/m returned ok with 2e294 J gained and a 1.2e149 s contact, 1e-6
+    N/m ok with 123 s of contact (the fault harness): both are refused up front, by the
+    estimated duration, on both engines, with the reason."""
+    from sim.compliant_setup import ESTIMATE_MARGIN
+    from sim.failures import SimulationError
+
+    case = pim.load_case("ricsac9")
+    for k in (1e-300, 1e-6):
+        batch = sim.simulate_compliant(case, 0.3, stiffness=k)
+        assert not batch.ok and batch.status_name == "never_separated"
+        assert np.isnan(batch.contact_duration) and np.isnan(batch.velocity1).all()
+        with pytest.raises(SimulationError, match="never_separated|still pushed|estimated"):
+            batch.result()
+        with pytest.raises(SimulationError) as info:
+            sim.simulate_compliant(case, 0.3, stiffness=k, engine="pymunk")
+        assert info.value.kind == "never_separated"
+        assert f"beyond {ESTIMATE_MARGIN:g} x settings.max_contact_time" in str(info.value)
+    # a soft contact whose estimate lies within the margin still runs, and ends in time
+    soft = sim.simulate_compliant(case, 0.3, stiffness=1e3)
+    assert soft.ok and soft.contact_duration < soft.settings.max_contact_time
+
+
+def test_a_contact_that_gains_energy_is_refused_never_ok():
+    """An elastic contact stepped at 10 steps per contact gains energy on the step's error
+    (old code: ok): refused as "energy_gained", NaN outputs, on both engines; the default
+    step keeps it (within ENERGY_TOLERANCE)."""
+    from sim.compliant_setup import ENERGY_TOLERANCE, CompliantSettings
+    from sim.failures import SimulationError
+
+    case = pim.load_case("ricsac9-brach")
+    coarse = CompliantSettings(steps_per_contact=10)
+    batch = sim.simulate_compliant(case, 1.0, stiffness=7.5e5, settings=coarse)
+    assert batch.status_name == "energy_gained" and np.isnan(batch.velocity1).all()
+    assert batch.failures() == {"energy_gained": 1}
+    with pytest.raises(SimulationError) as info:
+        sim.simulate_compliant(case, 1.0, stiffness=7.5e5, settings=coarse, engine="pymunk")
+    assert info.value.kind == "energy_gained" and "kinetic energy rose" in str(info.value)
+    fine = sim.simulate_compliant(case, 1.0, stiffness=7.5e5)
+    assert fine.ok
+    assert fine.energy_after <= fine.energy_before * (1 + ENERGY_TOLERANCE)
+
+
+def test_physics_status_refuses_gain_and_overlong_contacts():
+    from sim.compliant_setup import CompliantSettings, physics_status
+
+    s = CompliantSettings()
+    got = physics_status([100.0, 100.0, 100.0, 100.0], [99.0, 100.05, 101.0, np.nan],
+                         [0.1, 0.1, 0.1, 0.1], s)
+    assert [STATUS_NAMES[c] for c in got] == ["ok", "ok", "energy_gained", "energy_gained"]
+    got = physics_status(100.0, 90.0, [0.5, 1.5, np.inf], s)
+    assert [STATUS_NAMES[c] for c in got] == ["ok", "never_separated", "never_separated"]
