@@ -15,8 +15,9 @@ Each uncertain input of a case is named by its dotted path and given one distrib
 Inputs (and their unit kind): ``vehicle1.`` / ``vehicle2.`` + ``mass``, ``yaw_inertia``,
 ``cg_x``, ``cg_y``, ``velocity_x``, ``velocity_y``, ``yaw_rate``, ``heading``; ``impact.`` +
 ``point_x``, ``point_y``, ``normal_angle``, ``restitution`` (eps), ``beta``. Values are unit
-strings or bare SI numbers, parsed by :mod:`pim.io.uncertainty_table`; unknown inputs, unknown
-distribution keys and bad bounds are errors. Inputs not listed keep their nominal value.
+strings (bare numbers only for the dimensionless inputs and 0), parsed by
+:mod:`pim.io.uncertainty_table`; unknown inputs, unknown distribution keys and bad bounds are
+errors. Inputs not listed keep their nominal value.
 
 Admissible ranges: eps in [0, 1], beta >= 0 (:data:`pim.model.case.BETA_RANGE_TEXT`), mass
 and yaw inertia > 0. A normal distribution on such an input is *truncated* to the range
