@@ -95,6 +95,20 @@ class Distribution:
             return nominal - self.b, nominal + self.b
         return self.a, self.b
 
+    def sd(self, nominal: float) -> float:
+        """The standard deviation [SI unit of the input] of this distribution about
+        ``nominal``: a normal's sd (before any truncation to the admissible range), a
+        uniform's width / sqrt(12) (+- b: b / sqrt(3)), 0 for a fixed value, a prior's
+        sample standard deviation (ddof 1)."""
+        if self.kind == "fixed":
+            return 0.0
+        if self.kind == "prior":
+            return float(np.std(self.values, ddof=1))
+        if self.kind == "normal":
+            return float(self.b)
+        low, high = self.bounds(nominal)
+        return float((high - low) / np.sqrt(12.0))
+
     def sample(self, nominal: float, u: np.ndarray, name: str) -> np.ndarray:
         """Values [SI] from uniform variates ``u`` in (0, 1) by inverse CDF.
 
