@@ -152,7 +152,11 @@ class FitResult:
     standard_errors : dict
         Fitted key -> its standard error [SI] (:func:`parameter_errors`: (J^T W J)^-1 with
         the stated sigmas, else s^2 (J^T J)^-1 from the residual scatter); empty when the data
-        do not decide the parameters or leave no scatter (as many values as parameters).
+        do not decide the parameters or leave no scatter (as many values as parameters). A
+        parameter with only a lower bound (``lower_bounds``) has none.
+    correlation : dict
+        (key a, key b) -> the correlation of the two fitted parameters [-], from the same
+        covariance as ``standard_errors`` (empty where those are).
     error_basis : str
         How the standard errors were found, or why there are none, in words.
     left_out : tuple of str
@@ -188,16 +192,7 @@ class FitResult:
     evidence_shares: dict = field(default_factory=dict, repr=False)
     error_basis: str = ""
     left_out: tuple = ()
-
-    @property
-    def correlation(self) -> dict:
-        """{(key a, key b): r} of every pair of fitted parameters, from the same
-        covariance as the standard errors (empty where those are)."""
-        ident, keys = self.identifiability, tuple(self.values)
-        if not self.standard_errors or ident is None or tuple(ident.names) != keys:
-            return {}
-        return {(a, b): float(ident.correlation[i, j]) for i, a in enumerate(keys)
-                for j, b in enumerate(keys) if i < j}
+    correlation: dict = field(default_factory=dict, repr=False)
 
     @property
     def residual_table(self) -> list[dict]:
@@ -347,8 +342,8 @@ def _fit_result(raw: FreeFit, terms, *, left_out, bounds, fixed, eps, beta, weig
     minima_values = tuple((dict(zip(raw.keys, map(float, x), strict=True)), c)
                           for x, c in raw.minima)
     r = raw.residuals / (1.0 if weights is None else weights)
-    sd, basis = parameter_errors(raw, weights is not None)
-    shares = {} if weights is None or not sd else _shares(raw, terms)
+    sd, corr, basis = parameter_errors(raw, weights is not None, skip=tuple(lower or ()))
+    shares = {} if weights is None or not sd or lower else _shares(raw, terms)
     goodness = None if weights is None else goodness_of_fit(
         raw.cost, len(terms), len(raw.keys), raw.residuals, [t.name for t in terms])
     return FitResult(
@@ -362,7 +357,7 @@ def _fit_result(raw: FreeFit, terms, *, left_out, bounds, fixed, eps, beta, weig
         minima_values=minima_values, weights=weights, terms=tuple(terms), goodness=goodness,
         law=law, contact_friction=None if mu_c is None else float(mu_c),
         lower_bounds=dict(lower or {}), standard_errors=sd, evidence_shares=shares,
-        error_basis=basis, left_out=left_out)
+        error_basis=basis, left_out=left_out, correlation=corr)
 
 
 def _shares(raw: FreeFit, terms) -> dict:
@@ -371,33 +366,39 @@ def _shares(raw: FreeFit, terms) -> dict:
     return {k: {g: float(v[j]) for g, v in shares.items()} for j, k in enumerate(raw.keys)}
 
 
-def parameter_errors(raw: FreeFit, weighted: bool) -> tuple[dict, str]:
-    """Standard errors [SI] of the fitted keys and the basis they rest on, in words.
+def parameter_errors(raw: FreeFit, weighted: bool, skip=()) -> tuple[dict, dict, str]:
+    """Standard errors [SI] and correlations [-] of the fitted keys (those in ``skip``, which
+    only have a lower bound, left out), and the basis they rest on, in words.
 
     With the ``[measured]`` sigmas (``weighted``: J is the Jacobian of the standardised
     residuals) C = (J^T J)^-1 = (J^T W J)^-1 of the raw residuals, the sigmas as stated;
     without, C = s^2 (J^T J)^-1 with s^2 = S / (m - n), the residual variance of m values
     and n parameters. Empty, with the reason, when J is rank deficient or m <= n unweighted.
     """
-    jac = raw.jacobian
-    if jac is None:
-        return {}, "no standard errors: no Jacobian at the optimum"
+    if raw.jacobian is None:
+        return {}, {}, "no standard errors: no Jacobian at the optimum"
+    keep = [i for i, k in enumerate(raw.keys) if k not in skip]
+    keys, jac = [raw.keys[i] for i in keep], raw.jacobian[:, keep]
     m, n = jac.shape
-    sd, _ = variance_shares(jac, ["all"] * m)
-    if not np.all(np.isfinite(sd)):
-        return {}, ("no standard errors: the measured values do not decide every fitted "
-                    "parameter (rank-deficient Jacobian; see the identifiability)")
-    if weighted:
-        basis = ("standard errors from (J^T W J)^-1 at the optimum, W = 1/sigma^2 of the "
-                 "stated sigmas (not rescaled by chi-square/dof)")
-        return dict(zip(raw.keys, map(float, sd), strict=True)), basis
-    if m <= n:
-        return {}, (f"no standard errors: {m} measured values for {n} fitted parameters leave "
-                    f"no residual scatter to estimate them from; give the [measured] sigmas")
-    s2 = raw.cost / (m - n)
-    basis = (f"standard errors from s^2 (J^T J)^-1 at the optimum, s^2 = S/(m - n) = "
-             f"residual variance of {m} measured values and {n} parameters (no sigmas given)")
-    return dict(zip(raw.keys, map(float, sd * np.sqrt(s2)), strict=True)), basis
+    if n == 0 or m < n or np.linalg.matrix_rank(jac) < n:
+        return {}, {}, ("no standard errors: the measured values do not decide every fitted "
+                        "parameter (rank-deficient Jacobian; see the identifiability)")
+    if not weighted and m == n:
+        return {}, {}, (f"no standard errors: {m} measured values for {n} fitted parameters "
+                        f"leave no residual scatter to estimate them from; give the "
+                        f"[measured] sigmas")
+    scale = 1.0 if weighted else raw.cost / (m - n)
+    cov = np.linalg.inv(jac.T @ jac)            # the correlations do not depend on the scale
+    unit = np.sqrt(np.diag(cov))
+    corr = {(a, b): float(cov[i, j] / (unit[i] * unit[j])) for i, a in enumerate(keys)
+            for j, b in enumerate(keys) if i < j}
+    sd = unit * np.sqrt(scale)
+    basis = ("standard errors from (J^T W J)^-1 at the optimum, W = 1/sigma^2 of the stated "
+             "sigmas (not rescaled by chi-square/dof)" if weighted else
+             f"standard errors from s^2 (J^T J)^-1 at the optimum, s^2 = S/(m - n) = residual "
+             f"variance of {m} measured values and {n} parameter{'s' if n > 1 else ''} (no "
+             f"sigmas given)")
+    return dict(zip(keys, map(float, sd), strict=True)), corr, basis
 
 
 def _law_box(law: str, box_eb, eps, beta, mu_c, free_box: dict) -> tuple:

@@ -595,3 +595,13 @@ def test_no_standard_errors_without_scatter_say_why(ricsac9):
     result = fit(one)
     assert result.standard_errors == {} and result.correlation == {}
     assert "2 measured values for 2 fitted parameters" in result.error_basis
+
+
+def test_a_contact_friction_with_only_a_lower_bound_gets_no_standard_error():
+    """ricsac9-pccrash sticks: mu_c only has a lower bound (no standard error, no
+    correlation); k gets its own from the residual scatter of 4 values and 1 parameter."""
+    result = fit(pim.load_case("ricsac9-pccrash"))
+    assert "impact.mu_c" in result.lower_bounds
+    assert set(result.standard_errors) == {"impact.k"} and result.correlation == {}
+    assert result.standard_errors["impact.k"] > 0
+    assert "4 measured values and 1 parameter (no sigmas given)" in result.error_basis
