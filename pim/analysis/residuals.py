@@ -33,8 +33,8 @@ from ..model.motion import Term
 from ..model.numbers import InputError
 from ..model.result import Result
 
-__all__ = ["measured_terms", "has_measured_terms", "residuals", "residual_terms",
-           "model_value", "measured_value", "crush_terms",
+__all__ = ["measured_terms", "has_measured_terms", "fitted_yaw_rates", "residuals",
+           "residual_terms", "model_value", "measured_value", "crush_terms",
            "measured_weights", "GoodnessOfFit", "goodness_of_fit", "P_INCONSISTENT",
            "P_CONTRADICTED", "cost_label"]
 
@@ -53,11 +53,23 @@ P_INCONSISTENT = 0.01
 P_CONTRADICTED = 1e-3
 
 
-def measured_terms(case: Case,
-                   include_yaw: bool) -> tuple[Term | EvidenceTerm | CrushEnergyTerm, ...]:
-    """The terms ``case.measured`` holds: velocities (yaw rates with ``include_yaw``), then
-    the evidence terms (recorded delta-V and pre-crash speed, energy loss), then the crush
-    energy of the case's crush profiles.
+def fitted_yaw_rates(measured, include_yaw: bool | None) -> tuple[int, ...]:
+    """The vehicles whose measured yaw rate is fitted: every measured one with
+    ``include_yaw`` True, none with False, and with None (the default of :func:`pim.fit`)
+    those given a standard deviation (``yaw_rate_sigma``): every measured quantity that has
+    a sigma enters the fit."""
+    if measured is None or include_yaw is False:
+        return ()
+    return tuple(i for i in (1, 2) if getattr(measured, f"yaw_rate{i}") is not None and (
+        include_yaw or getattr(measured, f"yaw_rate{i}_sigma") is not None))
+
+
+def measured_terms(case: Case, include_yaw: bool | None
+                   ) -> tuple[Term | EvidenceTerm | CrushEnergyTerm, ...]:
+    """The terms ``case.measured`` holds: velocities, the yaw rates of
+    :func:`fitted_yaw_rates` (``include_yaw``: True every measured one, False none, None
+    those with a sigma), then the evidence terms (recorded delta-V and pre-crash speed,
+    energy loss), then the crush energy of the case's crush profiles.
 
     Raises
     ------
@@ -70,15 +82,13 @@ def measured_terms(case: Case,
         for i in (1, 2):
             if getattr(m, f"velocity{i}") is not None:
                 terms += [Term(i, "vx"), Term(i, "vy")]
-        for i in (1, 2) if include_yaw else ():
-            if getattr(m, f"yaw_rate{i}") is not None:
-                terms.append(Term(i, "omega"))
+        terms += [Term(i, "omega") for i in fitted_yaw_rates(m, include_yaw)]
         terms += evidence_terms_of(m)
     terms += crush_terms(case)
     if not terms:
         has_yaw = m is not None and (m.yaw_rate1 is not None or m.yaw_rate2 is not None)
-        hint = (" (only yaw rates are measured: use include_yaw=True / --include-yaw)"
-                if has_yaw and not include_yaw else "")
+        hint = (" (only yaw rates are measured, without a sigma: give yaw_rate_sigma, or "
+                "include_yaw=True / --include-yaw)" if has_yaw and not include_yaw else "")
         raise InputError(
             f"case {case.name or '(unnamed)'}: nothing to fit; case.measured needs a "
             f"post-impact velocity1 or velocity2 [m/s], a recorded delta_v or "
@@ -187,9 +197,9 @@ def residuals(result: Result, terms, *, weighted: bool = False) -> np.ndarray:
     return (values - target) * scale
 
 
-def has_measured_terms(case: Case, include_yaw: bool = False) -> bool:
-    """Whether the case has anything to fit: a measured post-impact velocity (or, with
-    ``include_yaw``, a measured yaw rate)."""
+def has_measured_terms(case: Case, include_yaw: bool | None = None) -> bool:
+    """Whether the case has anything to fit: a measured post-impact velocity, evidence, or
+    a fitted yaw rate (:func:`fitted_yaw_rates`)."""
     m = case.measured
     if crush_terms(case):
         return True
@@ -197,7 +207,7 @@ def has_measured_terms(case: Case, include_yaw: bool = False) -> bool:
         return False
     if m.velocity1 is not None or m.velocity2 is not None or evidence_terms_of(m):
         return True
-    return include_yaw and (m.yaw_rate1 is not None or m.yaw_rate2 is not None)
+    return bool(fitted_yaw_rates(m, include_yaw))
 
 
 @dataclass(frozen=True)
