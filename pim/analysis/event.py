@@ -110,12 +110,21 @@ def event_vehicle(vehicle: Vehicle, evidence, tyre_friction, where: str) -> Runo
 
 def impact_spec(case: Case, k: int) -> ImpactSpec:
     """The law and coefficients of the event's impact number ``k`` (2, 3, ...): the case's
-    ``[[impacts]]`` entry k - 1, else the last entry, else the stated defaults."""
+    ``[[impacts]]`` entry k - 2, else its last entry, else the stated defaults (law
+    :data:`~pim.model.event_formula.SECONDARY_LAW`); an entry's missing coefficients take
+    the defaults too (restitution :data:`~pim.model.event_formula.SECONDARY_RESTITUTION`,
+    beta :data:`~pim.model.event_formula.SECONDARY_BETA`, contact friction
+    :data:`~pim.model.event_formula.SECONDARY_CONTACT_FRICTION` for the laws that take
+    one)."""
     specs = tuple(getattr(case, "impacts", ()) or ())
-    if specs:
-        return specs[min(k - 2, len(specs) - 1)]
-    return ImpactSpec(law=SECONDARY_LAW, restitution=SECONDARY_RESTITUTION,
-                      beta=SECONDARY_BETA, contact_friction=SECONDARY_CONTACT_FRICTION)
+    spec = specs[min(k - 2, len(specs) - 1)] if specs else ImpactSpec(law=SECONDARY_LAW)
+    ks = spec.law == "kudlich-slibar"
+    return replace(
+        spec, restitution=SECONDARY_RESTITUTION if spec.restitution is None
+        else spec.restitution,
+        beta=None if ks else SECONDARY_BETA if spec.beta is None else spec.beta,
+        contact_friction=None if spec.law == "brach" else SECONDARY_CONTACT_FRICTION
+        if spec.contact_friction is None else spec.contact_friction)
 
 
 def _outline_row(vehicle: Vehicle, where: str) -> tuple:
