@@ -11,15 +11,20 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from dataclasses import replace
+
 import numpy as np
 
 import pim
 from comparisons.report.render import markdown_table
 from comparisons.report.tables import Num, Table
 from comparisons.report.write import write_block
+from pim.analysis.event import event_vehicle
+from pim.model.evidence import Evidence, VehicleEvidence
 from pim.model.tyres import STANDARD_GRAVITY
 
 __all__ = ["COMMAND", "BEGIN", "END", "PAGE", "side_slap_case", "slide_case", "scenes",
+           "with_rest_evidence",
            "impact_table", "block", "regenerate"]
 
 COMMAND = "python -m comparisons.docs event"
@@ -41,6 +46,23 @@ def side_slap_case() -> pim.Case:
                      width=width)
     return pim.Case(v1, v2, pim.Impact((along, -width / 2 + crush / 2), -math.pi / 2,
                                        restitution=0.2, beta=1.0), name="side slap")
+
+
+def with_rest_evidence(case: pim.Case, *, position_sigma: float = 0.05,
+                       heading_sigma: float = math.radians(1.0)) -> pim.Case:
+    """``case`` with ``[evidence]`` for both vehicles: the rest states of its own analytic
+    event (default tyres, :func:`pim.analysis.event.event_vehicle`'s geometry) measured
+    with the given sigmas [m, rad]: rest evidence reached through the event at known
+    post-impact motion (PIM's)."""
+    ev = pim.event(case)
+    vehicles = []
+    for i in (1, 2):
+        rv = event_vehicle(getattr(case, f"vehicle{i}"), None, None, f"vehicle{i}")
+        vehicles.append(VehicleEvidence(ev.rest_position[i - 1], float(ev.rest_heading[i - 1]),
+                                        rv.wheelbase, rv.track, rv.cg_to_front_axle,
+                                        rv.friction, position_sigma=position_sigma,
+                                        heading_sigma=heading_sigma))
+    return replace(case, evidence=Evidence(*vehicles))
 
 
 def slide_case() -> pim.Case:

@@ -26,11 +26,15 @@ from ..model.numbers import InputError
 from .event import event_rest_many
 from .least_squares_batch import least_squares_batch, with_forward_differences
 
-__all__ = ["EventFit", "fit_through_event", "event_residuals", "START_SCALES"]
+__all__ = ["EventFit", "fit_through_event", "fit_through_event_many", "event_residuals",
+           "START_SCALES", "MAX_ITERATIONS"]
 
 #: The starts of :func:`fit_through_event`: the single-impact fit's speeds scaled by these
 #: factors (its directions and yaw rates kept), solved together and merged.
 START_SCALES = (1.0, 0.8, 1.25, 0.6, 1.5)
+#: Iteration limit of each fit (the event's rest states are piecewise smooth in the motion:
+#: a fit that straddles a change of its impact sequence stops there, unconverged).
+MAX_ITERATIONS = 40
 
 
 @dataclass(frozen=True)
@@ -79,22 +83,81 @@ def _targets(case: Case) -> list:
     return out
 
 
-def event_residuals(case: Case, x: np.ndarray, *, tyre_friction=None) -> np.ndarray:
+def event_residuals(case: Case, x: np.ndarray, *, tyre_friction=None,
+                    targets=None) -> np.ndarray:
     """Residuals (..., 3 per vehicle with evidence) of post-impact motions ``x`` (..., 6):
     (v1x, v1y, w1, v2x, v2y, w2) [m/s, rad/s], the event's rest position and heading minus
-    the evidence's, in its standard deviations; NaN where the event did not end at rest."""
+    the evidence's, in its standard deviations; NaN where the event did not end at rest.
+    ``targets`` (rest positions (..., 2, 2), rest headings (..., 2)), broadcasting against
+    ``x``'s leading axes, replace the evidence's measured rest states (the Monte Carlo's
+    drawn ones)."""
     x = np.asarray(x, float)
     flat = x.reshape(-1, 6)
     velocity = np.stack([flat[:, 0:2], flat[:, 3:5]], axis=1)
     rest = event_rest_many(case, velocity, flat[:, [2, 5]], tyre_friction=tyre_friction)
+    lead = x.shape[:-1]
     cols = []
     for v, position, heading, sp, sh in _targets(case):
+        if targets is not None:
+            position = np.broadcast_to(targets[0][..., v, :], lead + (2,)).reshape(-1, 2).T
+            heading = np.broadcast_to(targets[1][..., v], lead).reshape(-1)
         cols += [(rest.rest_position[:, v, 0] - position[0]) / sp,
                  (rest.rest_position[:, v, 1] - position[1]) / sp,
                  (rest.rest_heading[:, v] - heading) / sh]
     r = np.stack(cols, axis=-1)
     r[~(rest.ok & rest.stopped.all(axis=1))] = np.nan
-    return r.reshape(x.shape[:-1] + (r.shape[-1],))
+    return r.reshape(lead + (r.shape[-1],))
+
+
+def _unknowns(case: Case) -> np.ndarray:
+    """The indices of (v1x, v1y, w1, v2x, v2y, w2) fitted (vehicle 1's only against a fixed
+    obstacle), after checking the evidence."""
+    fixed = bool(case.vehicle2.fixed)
+    if len(_targets(case)) < (1 if fixed else 2):
+        raise InputError("evidence: a fit through the event needs both vehicles' rest "
+                         "positions ([evidence.vehicle1] and [evidence.vehicle2])")
+    return np.arange(3) if fixed else np.arange(6)
+
+
+def fit_through_event_many(case: Case, start, targets, *, speed_bound: float = 60.0,
+                           yaw_rate_bound: float = 15.0, tyre_friction=None, groups=None):
+    """:func:`fit_through_event` for m problems at once (the Monte Carlo's samples).
+
+    Parameters
+    ----------
+    case : Case
+        As :func:`fit_through_event`.
+    start : array_like (m, 6)
+        Starting motions (v1x, v1y, w1, v2x, v2y, w2) [m/s, rad/s].
+    targets : (ndarray (m, 2, 2), ndarray (m, 2))
+        Each problem's rest positions [m] and headings [rad] (per vehicle).
+    groups : array_like (m,), optional
+        Problems that are one problem from several starts (merged within a group).
+
+    Returns
+    -------
+    (x (m, 6), BatchFit)
+        The fitted motions and the engine's answer (cost, convergence per problem).
+    """
+    free = _unknowns(case)
+    start = np.atleast_2d(np.asarray(start, float))
+    bound = np.array([speed_bound, speed_bound, yaw_rate_bound] * 2)[free]
+    rest_position, rest_heading = (np.asarray(t, float) for t in targets)
+
+    def residuals(points, index):
+        full = np.repeat(start[index][:, None, :], points.shape[1], axis=1)
+        full[..., free] = points
+        return event_residuals(case, full, tyre_friction=tyre_friction,
+                               targets=(rest_position[index][:, None],
+                                        rest_heading[index][:, None]))
+
+    fit = least_squares_batch(with_forward_differences(residuals, -bound, bound, step=1e-4),
+                              np.clip(start[:, free], -bound, bound), -bound, bound,
+                              max_iter=MAX_ITERATIONS, ftol=1e-10, xtol=1e-9,
+                              merge=None if groups is None else 1e-6, groups=groups)
+    x = start.copy()
+    x[:, free] = fit.x
+    return x, fit
 
 
 def fit_through_event(case: Case, velocity, yaw_rate, *, speed_bound: float = 60.0,
@@ -120,35 +183,24 @@ def fit_through_event(case: Case, velocity, yaw_rate, *, speed_bound: float = 60
     -------
     EventFit
     """
-    fixed = bool(case.vehicle2.fixed)
     targets = _targets(case)
-    if len(targets) < (1 if fixed else 2):
-        raise InputError("evidence: a fit through the event needs both vehicles' rest "
-                         "positions ([evidence.vehicle1] and [evidence.vehicle2])")
-    x0 = np.concatenate([np.asarray(velocity, float)[0], [float(yaw_rate[0])],
-                         np.asarray(velocity, float)[1], [float(yaw_rate[1])]])
-    bound = np.array([speed_bound, speed_bound, yaw_rate_bound] * 2)
-    free = np.arange(3) if fixed else np.arange(6)
-    lower, upper = -bound[free], bound[free]
-
-    def residuals(points, index):
-        full = np.broadcast_to(x0, points.shape[:-1] + (6,)).copy()
-        full[..., free] = points
-        return event_residuals(case, full, tyre_friction=tyre_friction)
-
-    starts = np.array([_scaled(x0, s) for s in START_SCALES])[:, free]
-    fit = least_squares_batch(with_forward_differences(residuals, lower, upper, step=1e-4),
-                              np.clip(starts, lower, upper), lower, upper, max_iter=60,
-                              merge=1e-6)
+    velocity = np.asarray(velocity, float)
+    x0 = np.array([*velocity[0], float(yaw_rate[0]), *velocity[1], float(yaw_rate[1])])
+    rest = np.zeros((len(START_SCALES), 2, 2))
+    heading = np.zeros((len(START_SCALES), 2))
+    for v, position, angle, _, _ in targets:
+        rest[:, v], heading[:, v] = position, angle
+    x, fit = fit_through_event_many(
+        case, np.array([_scaled(x0, s) for s in START_SCALES]), (rest, heading),
+        speed_bound=speed_bound, yaw_rate_bound=yaw_rate_bound, tyre_friction=tyre_friction,
+        groups=np.zeros(len(START_SCALES), int))
     best = int(np.argmin(fit.cost))
-    x = x0.copy()
-    x[free] = fit.x[best]
-    rest = event_rest_many(case, np.stack([x[0:2], x[3:5]])[None], x[[2, 5]][None],
-                           tyre_friction=tyre_friction)
+    end = event_rest_many(case, np.stack([x[best, 0:2], x[best, 3:5]])[None],
+                          x[best, [2, 5]][None], tyre_friction=tyre_friction)
     agree = int(np.sum(fit.cost <= fit.cost[best] * (1 + 1e-6) + 1e-9))
-    return EventFit(np.stack([x[0:2], x[3:5]]), x[[2, 5]], float(fit.cost[best]),
-                    int(rest.impacts[0]), float(rest.first_time[0]),
-                    bool(fit.converged[best]), agree, len(starts))
+    return EventFit(np.stack([x[best, 0:2], x[best, 3:5]]), x[best, [2, 5]],
+                    float(fit.cost[best]), int(end.impacts[0]), float(end.first_time[0]),
+                    bool(fit.converged[best]), agree, len(START_SCALES))
 
 
 def _scaled(x0: np.ndarray, scale: float) -> np.ndarray:

@@ -33,7 +33,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit, prange
+from numba import get_num_threads, njit, prange, set_num_threads
 
 from . import event_formula, formula, runout_formula, runout_kernel, tyres
 from .numba_cache import compile_module, stamped_cache
@@ -51,6 +51,8 @@ from .runout_kernel import one_signature, rk4_stages
 __all__ = ["EventScene", "EventRun", "run_event", "STATUS", "IMPACT_COLUMNS",
            "RECORD_COLUMNS"]
 
+#: Fewer samples than this run on one thread (a single event: waking the pool costs more).
+SERIAL_BELOW = 8
 #: What ended each sample's run (the kernel's status codes, in order).
 STATUS = ("rest", "time", "contact", "impacts", "energy", "record")
 #: Columns of an in-kernel impact's record.
@@ -366,13 +368,19 @@ def run_event(scene: EventScene, start, *, start_time=0.0, allowed=None, solve=T
     impacts = np.zeros((n, MAX_IMPACTS, len(IMPACT_COLUMNS)))
     rec = np.empty((int(record), 13))
     settings = np.array([step, max_time, stop_speed, tolerance, 1.0 if solve else 0.0])
-    _run(*one_signature(start, np.broadcast_to(np.asarray(start_time, float), (n,)),
-                        np.asarray(allowed, float)),
-         one_signature(*_columns(scene.data1)), one_signature(*_columns(data2)),
-         *one_signature(outlines, rad, reach, inv,
-                        np.broadcast_to(np.asarray(scene.coefficients, float),
-                                        (n, MAX_IMPACTS, 3)), settings, out, tail, impacts,
-                        rec))
+    threads = get_num_threads()
+    if n < SERIAL_BELOW:     # a single event: waking the thread pool costs more than it is
+        set_num_threads(1)
+    try:
+        _run(*one_signature(start, np.broadcast_to(np.asarray(start_time, float), (n,)),
+                            np.asarray(allowed, float)),
+             one_signature(*_columns(scene.data1)), one_signature(*_columns(data2)),
+             *one_signature(outlines, rad, reach, inv,
+                            np.broadcast_to(np.asarray(scene.coefficients, float),
+                                            (n, MAX_IMPACTS, 3)), settings, out, tail,
+                            impacts, rec))
+    finally:
+        set_num_threads(threads)
     status = np.asarray(STATUS)[tail[:, 1].astype(int)]
     return EventRun(final=out, time=tail[:, 0].copy(), status=status,
                     count=tail[:, 2].astype(int), allowed=tail[:, 3].copy(),
