@@ -23,10 +23,12 @@ Phases, as the pymunk run steps them (fixed step ``settings.dt``; t = 0 is the f
 
 Which contacts count (the rule, and why). PIM's outlines overlap at the first impact (its
 crush, or illustrative outlines at its configuration), so the overlap left by an impact is
-no new contact. After each impact the outline contact is *armed* again once the outlines
+no new contact. After the first impact the outline contact is *armed* once the outlines
 come apart, or once their overlap area grows by :data:`sim.secondary.DEFAULT_TOLERANCE` of
-the smaller outline's area above its smallest value since that impact (the rule of
-:func:`sim.secondary.find_secondary_impact`). An armed contact is processed in a step while
+the smaller outline's area above its smallest value since the impact (the rule of
+:func:`sim.secondary.find_secondary_impact`), and stays armed (an overlap a later impact
+leaves is at most a step's closing, and the contact must keep the outlines from passing
+through each other). An armed contact is processed in a step while
 some of its points approach (relative normal velocity below -1e-9 x the speed scale, the
 rigid scene's rule); an impact is the run of consecutive steps in which it is processed,
 recorded as an :class:`pim.model.event.ImpactRecord` (``source="simulation"``): its time
@@ -193,13 +195,12 @@ def _first_impact(run: EventRun, case: pim.Case, law: str, coefficients: dict) -
     then the point contact leaves the Space."""
     scene = run.scene
     v1, v2 = case.vehicle1, case.vehicle2
-    before = body_state(0.0, scene)
     states = []
     out = run_impact(scene, replace(run.settings, record=False), states)
     after = states[-1]
     pre = [np.asarray(v.velocity, float).reshape(2) for v in (v1, v2)]
     pre_w = [float(v.yaw_rate) for v in (v1, v2)]
-    before = before[:7] + (*pre[0], pre_w[0], *pre[1], pre_w[1])
+    before = after[:7] + (*pre[0], pre_w[0], *pre[1], pre_w[1])
     run.rows += [before, after]
     post = np.stack([out.velocity1, out.velocity2])
     post_w = np.array([out.yaw_rate1, out.yaw_rate2])
@@ -309,7 +310,6 @@ def _end_contact(run: EventRun, open_contact: dict, law: SecondaryLaw) -> None:
         pdof=_pdofs(mon.impulse, open_contact["headings"], b[1].body_type != pymunk.Body.DYNAMIC),
         source="simulation"))
     mon.clear()
-    mon.disarm()
 
 
 def _check_gain(run: EventRun, before: float, after: float, what: str) -> None:
@@ -332,11 +332,14 @@ def _contact_step(run: EventRun, open_contact, t: float, forces, before, step: i
     if open_contact is None and closing > IMPACT_SPEED:
         open_contact = _start_contact(run, t, before)
     elif open_contact is not None and closing <= 0.1 * IMPACT_SPEED:
+        open_contact["tyre"] += forces      # the velocities now include this step's tyres
         _end_contact(run, open_contact, run.secondary)
         return None
     elif mon.accepted and open_contact is None:
         run.pressing += settings.dt
-    if open_contact is not None:
+    if open_contact is None:
+        mon.clear()                         # a pressing step's impulse is no impact's
+    else:
         open_contact["tyre"] += forces
         mon.steps += 1
         if mon.steps * settings.dt > settings.max_contact_time + 0.5 * settings.dt:
@@ -401,13 +404,14 @@ def _setup(case: pim.Case, settings: Settings, eps, beta, tyre_friction,
 
 
 def _add_outlines(run: EventRun, case: pim.Case, law: SecondaryLaw) -> None:
-    """The outlines join the Space after the first impact (armed when already apart)."""
+    """The outlines join the Space after the first impact (armed when they overlap by less
+    than the growth tolerance: touching at C, no crush)."""
     space = run.scene.space
     space.add(*outline_shapes(case, *run.bodies, law))
     space.iterations = (run.settings.iterations if run.settings.iterations is not None
                         else SECONDARY_ITERATIONS)
     space.collision_slop = 1e6      # no position correction: contacts act on velocities only
-    run.contacts.armed = run.contacts.overlap() <= 0.0
+    run.contacts.armed = run.contacts.overlap() <= run.contacts.threshold   # touching at C
     attach_outline_contacts(space, run.contacts)
 
 

@@ -58,11 +58,6 @@ class OutlineContacts:
         self.normal = np.zeros(2)
         self.steps = 0
 
-    def disarm(self) -> None:
-        """An impact has ended: the overlap it leaves is no new contact."""
-        self.armed = False
-        self.lowest = np.inf
-
     def overlap(self) -> float:
         """Overlap area of the outlines now [m^2] (0 with a barrier face)."""
         if any(o is None for o in self.outlines):
