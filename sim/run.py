@@ -234,9 +234,10 @@ def run_impact(scene: Scene, settings: Settings, states: list) -> ImpactSteps:
     energy_after = _kinetic(b1) + _kinetic(b2)
     _check_energy(scene, settings, energy_after,
                   np.r_[velocity1, velocity2, yaw_rate1, yaw_rate2], step)
-    return ImpactSteps(step, contact_steps, impact_index, np.array(mon.impulse),
-                       mon.max_points, velocity1, velocity2, yaw_rate1, yaw_rate2,
-                       energy_after)
+    return ImpactSteps(steps=step, contact_steps=contact_steps, index=impact_index,
+                       impulse=np.array(mon.impulse), contact_points=mon.max_points,
+                       velocity1=velocity1, velocity2=velocity2, yaw_rate1=yaw_rate1,
+                       yaw_rate2=yaw_rate2, energy_after=energy_after)
 
 
 def _step_impact(scene: Scene, settings: Settings, mon: _Monitor, states: list) -> tuple:
