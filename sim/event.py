@@ -21,22 +21,24 @@ Phases, as the pymunk run steps them (fixed step ``settings.dt``; t = 0 is the f
   :data:`pim.model.event.REST_SPEED` is stopped (its velocities zeroed, its tyres idle)
   until something hits it; the event ends when both rest, or at ``max_time``.
 
-Which contacts count (the rule, and why). PIM's outlines overlap at the first impact (its
-crush, or illustrative outlines at its configuration), so the overlap left by an impact is
-no new contact. After the first impact the outline contact is *armed* once the outlines
-come apart, or once their overlap area grows by :data:`sim.secondary.DEFAULT_TOLERANCE` of
-the smaller outline's area above its smallest value since the impact (the rule of
-:func:`sim.secondary.find_secondary_impact`), and stays armed (an overlap a later impact
-leaves is at most a step's closing, and the contact must keep the outlines from passing
-through each other). An armed contact is processed in a step while
-some of its points approach (relative normal velocity below -1e-9 x the speed scale, the
-rigid scene's rule); an impact is the run of consecutive steps in which it is processed,
-recorded as an :class:`pim.model.event.ImpactRecord` (``source="simulation"``): its time
-(the first step's), the impulse summed over its steps, the contact point (the
-impulse-weighted mean of the arbiter's points) and normal (the impulse-weighted mean of the
-arbiter's, turned to point from vehicle 2 to vehicle 1, PIM's n), the velocities just
-before and just after with the tyres' share over its steps taken out (the contact's own
-delta-V: momentum is conserved through it to round-off), the energy it took and the PDOFs.
+Which contacts count (the rule, and why): the analytic event's (:mod:`pim.model.event_formula`).
+PIM's outlines may overlap at the first impact (its crush, or illustrative outlines at its
+configuration), so the overlap an impact leaves is no new contact: the outline contact is
+*armed* once the outlines' overlap depth (the separating-axis test,
+:func:`pim.model.geometry.outline_penetration`) grows by ``tolerance``
+(:data:`pim.model.event_formula.CONTACT_TOLERANCE`, 1 cm) above its least value since the
+last impact. An armed contact is processed in a step while some of its points approach
+(relative normal velocity below -1e-9 x the speed scale, the rigid scene's rule), under
+impact k's law (:func:`sim.event_scene.secondary_law`). An impact is a run of consecutive
+processed steps that starts closing faster than :data:`IMPACT_SPEED` (slower contact steps
+are the vehicles pressed together by their tyres: processed, so the outlines do not pass
+through each other, but no impact), recorded as an :class:`pim.model.event.ImpactRecord`
+(``source="simulation"``): its time (the first step's), the impulse summed over its steps,
+the contact point (the impulse-weighted mean of the arbiter's points) and normal (the
+impulse-weighted mean of the arbiter's, turned to point from vehicle 2 to vehicle 1, PIM's
+n), the velocities just before and just after with the tyres' share over its steps taken
+out (the contact's own delta-V: momentum is conserved through it to round-off), the energy
+it took and the PDOFs. The contact is disarmed after each impact.
 
 A run is refused (:class:`sim.SimulationError`, never returned): "energy_gained" when an
 impact or a step gains kinetic energy beyond ``settings.energy_tolerance`` of the event's
@@ -47,13 +49,14 @@ initial energy, "never_separated" when a contact still pushes after
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import pymunk
 
 import pim
 from pim.model.case import checked_case
+from pim.analysis.event import FREE_MOTION_TIME, sliding_flags
 from pim.model.event import (
     DEFAULT_APPROACH,
     REST_SPEED,
@@ -62,9 +65,11 @@ from pim.model.event import (
     Track,
     phase_labels,
 )
+from pim.model.event_formula import CONTACT_TOLERANCE
 from pim.model.geometry import kinetic_energy
 from pim.model.numbers import InputError, check_type
 from pim.model.pdof import pdof
+from pim.model.runout import MAX_TIME
 
 from .contact_law import check_positive
 from .event_contacts import OutlineContacts, attach_outline_contacts
@@ -72,19 +77,16 @@ from .event_scene import (
     SecondaryLaw,
     event_tyres,
     outline_shapes,
+    secondary_law,
     tyre_friction_source,
-    wheel_sliding,
 )
 from .failures import SimulationError
 from .run import body_state, run_impact
 from .scene import build_scene, outline_corners
 from .settings import Settings
 
-__all__ = ["simulate_event", "MAX_EVENT_TIME", "SECONDARY_ITERATIONS", "EventRun",
-           "IMPACT_SPEED"]
+__all__ = ["simulate_event", "SECONDARY_ITERATIONS", "EventRun", "IMPACT_SPEED"]
 
-#: Longest event after the first impact [s] (a vehicle still moving then is not at rest).
-MAX_EVENT_TIME = 30.0
 #: Solver iterations per step of the outline contacts when ``settings.iterations`` is None
 #: (docs: 30 sweeps reached round-off in the contact tests of /work/shared/spec).
 SECONDARY_ITERATIONS = 30
@@ -102,6 +104,7 @@ class EventRun:
     ----------
     scene : sim.Scene
         The rigid scene of the first impact (its Space, bodies).
+    case : pim.Case
     settings : Settings
     tyres : list
         Each vehicle's :class:`sim.event_scene.EventTyres` or None.
@@ -114,13 +117,19 @@ class EventRun:
         Each vehicle at rest now.
     energy0 : float
         Kinetic energy at the start [J].
-    secondary : SecondaryLaw
-        The law of the contacts after the first impact.
+    secondary : SecondaryLaw or None
+        The law of every contact after the first impact (None: impact k's from the case,
+        :func:`sim.event_scene.secondary_law`).
     pressing : float
         Time the outlines spent in contact without an impact (pressed together) [s].
+    law_name : str
+        The name of the next impact's law (:func:`sim.event_scene.secondary_law`).
+    notes : list of str
+        Remarks for the event's notes.
     """
 
     scene: object
+    case: pim.Case
     settings: Settings
     tyres: list
     contacts: OutlineContacts
@@ -128,8 +137,10 @@ class EventRun:
     impacts: list
     resting: list
     energy0: float
-    secondary: SecondaryLaw
+    secondary: SecondaryLaw | None
     pressing: float = 0.0
+    law_name: str = "brach-capped"
+    notes: list = field(default_factory=list)
 
     @property
     def bodies(self) -> tuple[pymunk.Body, pymunk.Body]:
@@ -278,7 +289,7 @@ def _start_contact(run: EventRun, t: float, before: tuple) -> dict:
             "headings": (row[3], row[6]), "energy": run.energy()}
 
 
-def _end_contact(run: EventRun, open_contact: dict, law: SecondaryLaw) -> None:
+def _end_contact(run: EventRun, open_contact: dict) -> None:
     """The contact ``open_contact`` ended: record it as an impact (module notes) and check
     that it took no energy."""
     mon, dt = run.contacts, run.settings.dt
@@ -302,14 +313,16 @@ def _end_contact(run: EventRun, open_contact: dict, law: SecondaryLaw) -> None:
     normal = mon.normal / max(float(np.hypot(*mon.normal)), 1e-300)
     run.impacts.append(ImpactRecord(
         time=open_contact["time"], point=mon.point / weight,
-        normal_angle=float(np.arctan2(normal[1], normal[0])), law="brach-capped",
-        coefficients=law.coefficients, impulse=mon.impulse.copy(),
+        normal_angle=float(np.arctan2(normal[1], normal[0])), law=run.law_name,
+        coefficients=mon.law.coefficients, impulse=mon.impulse.copy(),
         velocity_before=before_v, velocity_after=np.stack(after_v),
         yaw_rate_before=before_w, yaw_rate_after=np.array(after_w),
         energy_loss=energies[0] - energies[1],
         pdof=_pdofs(mon.impulse, open_contact["headings"], b[1].body_type != pymunk.Body.DYNAMIC),
         source="simulation"))
     mon.clear()
+    mon.disarm()
+    _next_law(run)
 
 
 def _check_gain(run: EventRun, before: float, after: float, what: str) -> None:
@@ -333,7 +346,7 @@ def _contact_step(run: EventRun, open_contact, t: float, forces, before, step: i
         open_contact = _start_contact(run, t, before)
     elif open_contact is not None and closing <= 0.1 * IMPACT_SPEED:
         open_contact["tyre"] += forces      # the velocities now include this step's tyres
-        _end_contact(run, open_contact, run.secondary)
+        _end_contact(run, open_contact)
         return None
     elif mon.accepted and open_contact is None:
         run.pressing += settings.dt
@@ -367,85 +380,117 @@ def _free_motion(run: EventRun, max_time: float) -> float | None:
         if all(run.resting) and open_contact is None:
             return t
     if open_contact is not None:
-        _end_contact(run, open_contact, run.secondary)
+        _end_contact(run, open_contact)
     return None
 
 
-def _check_options(settings, approach, max_time) -> tuple[Settings, float, float]:
+def _next_law(run: EventRun) -> None:
+    """Set the law of the next impact (number ``len(run.impacts) + 1``) on the contacts."""
+    law, name, note = secondary_law(run.case, len(run.impacts) + 1, run.secondary)
+    run.contacts.law, run.law_name = law, name
+    if note and note not in run.notes:
+        run.notes.append(note)
+
+
+def _check_options(settings, approach, max_time, tyre_friction) -> tuple[Settings, float,
+                                                                          float]:
     settings = check_type(settings, "settings", Settings, "a sim.Settings (e.g. "
                           "sim.Settings(dt=1e-3))", none=True) or Settings()
     approach = check_positive(approach, "approach", "s", allow_zero=True)
+    if max_time is None:
+        free = tyre_friction is not None and tyre_friction == 0
+        max_time = FREE_MOTION_TIME if free else MAX_TIME
     max_time = check_positive(max_time, "max_time", "s")
     settings = replace(settings, contact="point", start="exact", duration=0.0, record=False,
                        tyre_friction=False)
     return settings, approach, max_time
 
 
-def _setup(case: pim.Case, settings: Settings, eps, beta, tyre_friction,
-           secondary: SecondaryLaw) -> tuple[EventRun, str, dict, str]:
-    """The rigid scene of the first impact, the tyres and the run's state; the law, its
+def _setup(case: pim.Case, settings: Settings, first: tuple, tyre_friction, options: tuple
+           ) -> tuple[EventRun, str, dict, str]:
+    """The rigid scene of the first impact (``first``: eps, beta), the tyres and the run's
+    state (``options``: the secondary law or None, the contact tolerance [m]); the law, its
     coefficients and the tyre friction's source in words."""
-    e, b, law, coefficients = _first_law(case, eps, beta)
-    scene = build_scene(case, e, b, settings, analytic=pim.solve(case, e, 1.0, law="brach"))
-    mu, source = tyre_friction_source(case, tyre_friction)
-    tyres = [event_tyres(case, i, mu) for i in (1, 2)]
+    e, b, law, coefficients = _first_law(case, *first)
     if case.vehicle1.length is None or case.vehicle1.width is None or (
             not case.vehicle2.fixed and (case.vehicle2.length is None
                                          or case.vehicle2.width is None)):
         raise InputError("the event needs each vehicle's length and width (the outlines "
                          "that collide after the first impact)")
+    scene = build_scene(case, e, b, settings, analytic=pim.solve(case, e, 1.0, law="brach"))
+    mu, source = tyre_friction_source(case, tyre_friction)
+    tyres = [event_tyres(case, i, mu) for i in (1, 2)]
     contacts = OutlineContacts((scene.body1, scene.body2),
                                (outline_corners(case.vehicle1), outline_corners(case.vehicle2)),
-                               scene.speed_scale, armed=False)
+                               scene.speed_scale, options[1], SecondaryLaw())
     run = EventRun(scene=scene, settings=settings, tyres=tyres, contacts=contacts, rows=[],
                    impacts=[], resting=[False, False], energy0=scene.energy_before,
-                   secondary=secondary)
+                   secondary=options[0], case=case)
     return run, law, coefficients, source
 
 
-def _add_outlines(run: EventRun, case: pim.Case, law: SecondaryLaw) -> None:
-    """The outlines join the Space after the first impact (armed when they overlap by less
-    than the growth tolerance: touching at C, no crush)."""
+def _add_outlines(run: EventRun) -> None:
+    """The outlines join the Space after the first impact, the contact disarmed (the depth
+    there is the least so far)."""
     space = run.scene.space
-    space.add(*outline_shapes(case, *run.bodies, law))
+    _next_law(run)
+    space.add(*outline_shapes(run.case, *run.bodies, run.contacts.law))
     space.iterations = (run.settings.iterations if run.settings.iterations is not None
                         else SECONDARY_ITERATIONS)
     space.collision_slop = 1e6      # no position correction: contacts act on velocities only
-    run.contacts.armed = run.contacts.overlap() <= run.contacts.threshold   # touching at C
+    run.contacts.disarm()
     attach_outline_contacts(space, run.contacts)
 
 
-def _event_of(run: EventRun, case: pim.Case, rest_time, notes: list) -> Event:
-    """The recorded rows as an :class:`pim.model.event.Event` (sliding flags computed from
-    the states; none in the approach)."""
+def _event_of(run: EventRun, rest_time, notes: list) -> Event:
+    """The recorded rows as an :class:`pim.model.event.Event` (sliding flags as the analytic
+    event's, :func:`pim.analysis.event.sliding_flags`; none in the approach)."""
     rows = np.array(run.rows, dtype=float)
     time = rows[:, 0]
     tracks = []
-    for i, (cols, vel, yaw) in enumerate(((slice(1, 3), slice(7, 9), 9),
-                                          (slice(4, 6), slice(10, 12), 12))):
-        vehicle = (case.vehicle1, case.vehicle2)[i]
-        heading = rows[:, 3 * i + 3]
-        sliding = wheel_sliding(run.tyres[i], heading, rows[:, vel], rows[:, yaw])
-        if sliding is not None:
-            sliding[time < 0] = False
-        tracks.append(Track(rows[:, cols], heading, rows[:, vel], rows[:, yaw], sliding,
-                            outline_corners(vehicle), bool(vehicle.fixed)))
+    for i, vehicle in enumerate((run.case.vehicle1, run.case.vehicle2)):
+        states = rows[:, [1 + 3 * i, 2 + 3 * i, 3 + 3 * i, 7 + 3 * i, 8 + 3 * i, 9 + 3 * i]]
+        tyres = run.tyres[i]
+        sliding = sliding_flags(states, None if tyres is None else tyres.vehicle)
+        sliding[time < 0] = False
+        tracks.append(Track(states[:, :2], states[:, 2], states[:, 3:5], states[:, 5],
+                            sliding, outline_corners(vehicle), bool(vehicle.fixed)))
     phase = phase_labels(time, [imp.time for imp in run.impacts], rest_time)
     return Event(time=time, vehicle1=tracks[0], vehicle2=tracks[1], phase=phase,
                  impacts=tuple(run.impacts), source="simulated",
                  stopped=(bool(run.resting[0]), bool(run.resting[1])), notes=tuple(notes))
 
 
+def _notes(run: EventRun, steps: int, source: str, rest_time, max_time: float) -> list:
+    notes = [f"approach {steps * run.settings.dt:.4g} s of the pre-impact motion held back "
+             f"(constant velocity and yaw rate)", source,
+             f"pymunk: dt = {run.settings.dt:g} s"]
+    ev = run.case.evidence
+    if ev is not None and any(getattr(getattr(ev, f"vehicle{i}"), "pre_impact", None)
+                              is not None for i in (1, 2) if getattr(ev, f"vehicle{i}")):
+        notes.append("the case's pre-impact tyre marks are not simulated: the approach is "
+                     "free motion")
+    notes += run.notes
+    if run.pressing > 0:
+        notes.append(f"the outlines pressed together without an impact (closing slower than "
+                     f"{IMPACT_SPEED:g} m/s) for {run.pressing:.3g} s")
+    if rest_time is None:
+        notes.append(f"not at rest {max_time:g} s after the first impact (the time limit)")
+    return notes
+
+
 def simulate_event(case: pim.Case, *, tyre_friction=None, approach=DEFAULT_APPROACH,
                    settings: Settings | None = None, eps=None, beta=None,
-                   secondary: SecondaryLaw | None = None,
-                   max_time: float = MAX_EVENT_TIME) -> Event:
+                   secondary: SecondaryLaw | None = None, max_time: float | None = None,
+                   tolerance: float = CONTACT_TOLERANCE) -> Event:
     """The whole event in pymunk: approach, every impact, run-out to rest (module notes).
 
     Parameters
     ----------
     case : pim.Case
-        A single case with both vehicles' length and width (a fixed obstacle may have none).
+        A single case with both vehicles' length and width (a fixed obstacle may have none:
+        a straight face through C); its ``impacts`` (``[[impacts]]``) set the further
+        impacts' laws.
     tyre_friction : float, optional
         Tyre-road friction [-] >= 0 of both vehicles (0: no tyre forces, free motion to
         ``max_time``); default the case's evidence, else
@@ -460,9 +505,13 @@ def simulate_event(case: pim.Case, *, tyre_friction=None, approach=DEFAULT_APPRO
     eps, beta : float, optional
         The first impact's coefficients [-] (default: the case's, under its law).
     secondary : SecondaryLaw, optional
-        The law of the contacts after the first impact (default eps_2 = 0.1, mu_c = 0.5).
-    max_time : float
-        Longest time after the first impact [s] > 0.
+        One law for every contact after the first impact (default: the case's
+        ``[[impacts]]``, else eps_2 = 0.1 and a cap mu_c = 0.5, as ``pim.event``).
+    max_time : float, optional
+        Longest time after the first impact [s] > 0; default 60 s with tyres, 3 s without
+        (``pim.event``'s).
+    tolerance : float
+        Growth of the outlines' overlap depth [m] that makes a new contact (module notes).
 
     Returns
     -------
@@ -477,21 +526,15 @@ def simulate_event(case: pim.Case, *, tyre_friction=None, approach=DEFAULT_APPRO
         The run broke physics (energy gained) or a contact never ended.
     """
     case = checked_case(case)
-    settings, approach, max_time = _check_options(settings, approach, max_time)
+    settings, approach, max_time = _check_options(settings, approach, max_time, tyre_friction)
     secondary = check_type(secondary, "secondary", SecondaryLaw, "a sim.SecondaryLaw",
-                           none=True) or SecondaryLaw()
-    run, law, coefficients, source = _setup(case, settings, eps, beta, tyre_friction,
-                                           secondary)
+                           none=True)
+    tolerance = check_positive(tolerance, "tolerance", "m", allow_zero=True)
+    run, law, coefficients, source = _setup(case, settings, (eps, beta), tyre_friction,
+                                           (secondary, tolerance))
     steps = max(1, int(round(approach / settings.dt)))
     _approach(run, steps)
     _first_impact(run, case, law, coefficients)
-    _add_outlines(run, case, secondary)
+    _add_outlines(run)
     rest_time = _free_motion(run, max_time)
-    notes = [f"approach {steps * settings.dt:.4g} s of the pre-impact motion held back "
-             f"(constant velocity and yaw rate)", source, f"pymunk: dt = {settings.dt:g} s"]
-    if run.pressing > 0:
-        notes.append(f"the outlines pressed together without an impact (closing slower than "
-                     f"{IMPACT_SPEED:g} m/s) for {run.pressing:.3g} s")
-    if rest_time is None:
-        notes.append(f"not at rest {max_time:g} s after the first impact (the time limit)")
-    return _event_of(run, case, rest_time, notes)
+    return _event_of(run, rest_time, _notes(run, steps, source, rest_time, max_time))

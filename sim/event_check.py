@@ -19,11 +19,20 @@ from pim.model.event import Event, EventDifference
 from pim.model.pdof import wrap_angle
 
 __all__ = ["ImpactDifference", "EventCheck", "event_crosscheck", "side_slap_case",
-           "SIDE_SLAP_OFFSETS"]
+           "SIDE_SLAPS", "AGREEMENT"]
 
-#: Impact points along the struck car's side of the generated suite [m from its CG]: near
-#: the front corner (the bullet car's front swings into the struck car's front again).
-SIDE_SLAP_OFFSETS = (1.2, 1.6)
+#: The generated suite of side slaps: (offset [m] of C ahead of the struck car's CG,
+#: restitution [-], beta [-]) of :func:`side_slap_case`; toward the front corner the struck
+#: car's side slaps the bullet car's front twice more, toward the rear once.
+SIDE_SLAPS = ((1.6, 0.1, 1.0), (1.6, 0.3, 0.5), (1.9, 0.1, 1.0), (1.9, 0.3, 0.5),
+              (-1.6, 0.1, 1.0))
+#: How closely the analytic and simulated events of the suite agree (the pymunk step 1 ms,
+#: the analytic event's contact bisection 1 us): each impact's time [s], the delta-V
+#: difference relative to the impact's largest |delta-V| [-], the PDOF [rad], the rest
+#: position [m] and heading [rad]. About twice the largest difference measured on the suite
+#: (1 ms, 1.5 %, 1 cm, 0.4 deg).
+AGREEMENT = {"time": 0.002, "delta_v": 0.03, "pdof": float(np.radians(3.0)),
+             "rest_position": 0.03, "rest_heading": float(np.radians(1.0))}
 
 
 @dataclass(frozen=True)

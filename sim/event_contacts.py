@@ -2,7 +2,8 @@
 did (the collision callbacks of :mod:`sim.event`; the rule is stated there).
 
 :class:`OutlineContacts` is the callbacks' bookkeeping: whether the contact is armed (the
-outlines came apart, or their overlap grew by the tolerance since the last impact),
+outlines' overlap depth grew by the tolerance above its least value since the last impact),
+the law of the next impact (its restitution and friction cap, set on the contact),
 whether it was processed in the current step and its closing speed then (the largest
 approach speed of its points before the step), and the sums over the current impact's steps
 (impulse, impulse-weighted contact point and normal, the tyres' impulse and angular
@@ -14,10 +15,11 @@ from __future__ import annotations
 import numpy as np
 import pymunk
 
-from .event_scene import OUTLINE1, OUTLINE2
+from pim.model.geometry import outline_penetration
+
+from .event_scene import OUTLINE1, OUTLINE2, SecondaryLaw
 from .overlap import overlap_area, place
 from .run import APPROACH_TOLERANCE
-from .secondary import DEFAULT_TOLERANCE
 
 __all__ = ["OutlineContacts", "attach_outline_contacts"]
 
@@ -30,20 +32,28 @@ class OutlineContacts:
     bodies : tuple of pymunk.Body
         Vehicle 1's and vehicle 2's bodies.
     outlines : tuple of ndarray (4, 2) or None
-        Body-frame corners of each outline (None: a barrier face, never overlapping by area).
+        Body-frame corners of each outline (None: a barrier face, no overlap depth: the
+        contact is always armed).
     speed_scale : float
         [m/s] for the approach tolerance.
-    armed : bool
-        Whether the contact counts from the start (the outlines are apart).
+    tolerance : float
+        Growth of the overlap depth [m] above its least value since the last impact that
+        arms the contact.
+    law : SecondaryLaw
+        The law of the next impact.
     """
 
-    def __init__(self, bodies, outlines, speed_scale: float, armed: bool) -> None:
+    def __init__(self, bodies, outlines, speed_scale: float, tolerance: float,
+                 law: SecondaryLaw) -> None:
         self.bodies = bodies
         self.outlines = outlines
         self.tol = APPROACH_TOLERANCE * speed_scale
-        areas = [float(np.prod(np.ptp(o, axis=0))) for o in outlines if o is not None]
-        self.threshold = DEFAULT_TOLERANCE * min(areas) if areas else 0.0
-        self.armed = armed
+        self.tolerance = tolerance
+        self.law = law
+        self.boxes = None if any(o is None for o in outlines) else [
+            (float(np.ptp(o[:, 0])), float(np.ptp(o[:, 1])), float(np.max(o[:, 0])))
+            for o in outlines]
+        self.armed = self.boxes is None
         self.lowest = np.inf
         self.accepted = False
         self.closing = 0.0
@@ -57,6 +67,21 @@ class OutlineContacts:
         self.point = np.zeros(2)
         self.normal = np.zeros(2)
         self.steps = 0
+
+    def disarm(self) -> None:
+        """An impact has ended: the depth it leaves is the new least value."""
+        if self.boxes is not None:
+            self.armed = False
+            self.lowest = self.depth()
+
+    def depth(self) -> float:
+        """Overlap depth of the outlines now [m] (the separating-axis test,
+        :func:`pim.model.geometry.outline_penetration`; <= 0 apart; -inf with a barrier
+        face)."""
+        if self.boxes is None:
+            return -np.inf
+        return float(outline_penetration(*[(tuple(b.position), b.angle, *box) for b, box in
+                                           zip(self.bodies, self.boxes, strict=True)]))
 
     def overlap(self) -> float:
         """Overlap area of the outlines now [m^2] (0 with a barrier face)."""
@@ -75,9 +100,9 @@ class OutlineContacts:
 def _pre_solve(arbiter, space, mon: OutlineContacts) -> None:
     points = arbiter.contact_point_set.points
     if not mon.armed:
-        area = mon.overlap()
-        mon.lowest = min(mon.lowest, area)
-        if area > mon.lowest + mon.threshold:
+        depth = mon.depth()
+        mon.lowest = min(mon.lowest, depth)
+        if depth > mon.lowest + mon.tolerance:
             mon.armed = True
         else:
             arbiter.process_collision = False
@@ -88,6 +113,8 @@ def _pre_solve(arbiter, space, mon: OutlineContacts) -> None:
         arbiter.process_collision = False
         return
     arbiter.process_collision = True     # a rejection would otherwise persist to separation
+    arbiter.restitution = mon.law.restitution
+    arbiter.friction = min(mon.law.friction, 1e9)
     mon.accepted = True
     mon.closing = max(mon.closing, closing)
     mon.points = max(mon.points, len(points))
@@ -109,7 +136,8 @@ def _post_solve(arbiter, space, mon: OutlineContacts) -> None:
 
 
 def _separate(arbiter, space, mon: OutlineContacts) -> None:
-    mon.armed = True                               # the outlines came apart
+    if not mon.armed:
+        mon.lowest = min(mon.lowest, 0.0)          # apart: the depth went through 0
 
 
 def attach_outline_contacts(space: pymunk.Space, mon: OutlineContacts) -> None:

@@ -2,13 +2,11 @@
 impact: each vehicle's tyres (the run-out's one right-hand side) and the outlines that
 collide after it, with the secondary-impact law's coefficients.
 
-Tyres (:func:`event_tyres`): the case's evidence where it gives wheelbase, track, axle
-position, braking and friction (:meth:`pim.model.evidence.VehicleEvidence.runout_vehicle`);
-otherwise the four-tyre layout of the contact scenes, wheelbase and track fixed fractions of
-the outline (:func:`sim.contact_tyres.wheels_from_outline`: 0.6 L and 0.86 W, the axles
-centred on the outline), locked wheels (the run-out's default) and the tyre friction
-``tyre_friction`` if given, else the evidence's, else
-:data:`pim.model.event.DEFAULT_TYRE_FRICTION`. The forces are those of
+Tyres (:func:`event_tyres`): the analytic event's vehicles exactly
+(:func:`pim.analysis.event.event_vehicle`: the case's evidence where it gives wheelbase,
+track, axle position, braking and friction; otherwise wheelbase and track fixed fractions of
+the outline, four locked wheels and the tyre friction ``tyre_friction`` if given, else the
+evidence's, else :data:`pim.model.event.DEFAULT_TYRE_FRICTION`). The forces are those of
 :class:`pim.model.runout.TimedRhs` (:mod:`pim.model.runout_formula`, the tyre law of
 :mod:`pim.model.tyres`), applied at the CG with their yaw moment every step, as
 :mod:`sim.runout_check` does.
@@ -18,36 +16,34 @@ polygon (a fixed obstacle without dimensions: a straight face through C along th
 elasticity eps_2 on vehicle 1 and 1 on vehicle 2 (Chipmunk multiplies them: Newton's
 restitution eps_2 at the contact), friction mu_c and 1 (a Coulomb cap |P_t| <= mu_c P_n):
 the friction-capped Brach law ("brach-capped") at beta = 1, which is what Chipmunk's polygon
-contact does.
+contact does. Impact k's coefficients are the case's ``[[impacts]]`` entry for it
+(:func:`pim.analysis.event.impact_spec`) or the analytic event's defaults
+(:data:`pim.model.event_formula.SECONDARY_RESTITUTION`,
+:data:`~pim.model.event_formula.SECONDARY_CONTACT_FRICTION`), set on the contact each step
+(:func:`secondary_law`).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 import pymunk
 
 import pim
+from pim.analysis.event import event_vehicle, impact_spec
 from pim.model.event import DEFAULT_TYRE_FRICTION
+from pim.model.event_formula import SECONDARY_CONTACT_FRICTION, SECONDARY_RESTITUTION
 from pim.model.numbers import InputError
 from pim.model.runout import RunoutVehicle, TimedRhs
 
 from .contact_law import check_fraction, check_positive
-from .contact_tyres import wheels_from_outline
 from .scene import outline_corners
 
-__all__ = ["SecondaryLaw", "EventTyres", "event_tyres", "outline_shapes", "wheel_sliding",
-           "SECONDARY_RESTITUTION", "SECONDARY_FRICTION", "OUTLINE1", "OUTLINE2",
-           "tyre_friction_source"]
+__all__ = ["SecondaryLaw", "EventTyres", "event_tyres", "outline_shapes", "secondary_law",
+           "OUTLINE1", "OUTLINE2", "tyre_friction_source"]
 
-#: Restitution eps_2 [-] of a contact the event finds (nobody measures one): low, as for
-#: the side slaps and secondary contacts of the staged tests (RICSAC's 0.1-0.3).
-SECONDARY_RESTITUTION = 0.1
-#: Coulomb cap mu_c [-] of the friction between the vehicles in a contact the event finds
-#: (sheet metal on sheet metal; the assumptions ladder's typical 0.5).
-SECONDARY_FRICTION = 0.5
 #: Collision types of the outlines (the rigid scene's point contact uses 1 and 2).
 OUTLINE1, OUTLINE2 = 3, 4
 
@@ -61,17 +57,19 @@ class SecondaryLaw:
     restitution : float
         Newton's restitution eps_2 [-] in [0, 1].
     friction : float
-        Coulomb cap mu_c [-] >= 0 on the impulse ratio |P_t| / P_n.
+        Coulomb cap mu_c [-] >= 0 on the impulse ratio |P_t| / P_n (inf: no cap, the
+        contact sticks: Brach's law at beta = 1).
     """
 
     restitution: float = SECONDARY_RESTITUTION
-    friction: float = SECONDARY_FRICTION
+    friction: float = SECONDARY_CONTACT_FRICTION
 
     def __post_init__(self):
         object.__setattr__(self, "restitution",
                            check_fraction(self.restitution, "secondary restitution"))
-        object.__setattr__(self, "friction", check_positive(
-            self.friction, "secondary contact friction", "-", allow_zero=True))
+        if not (isinstance(self.friction, int | float) and self.friction == math.inf):
+            object.__setattr__(self, "friction", check_positive(
+                self.friction, "secondary contact friction", "-", allow_zero=True))
 
     @property
     def coefficients(self) -> dict:
@@ -124,50 +122,34 @@ def event_tyres(case: pim.Case, index: int, friction: float | None) -> EventTyre
     """Vehicle ``index``'s (1 or 2) tyres (module notes); None for a fixed obstacle or a
     friction of 0 (no tyre forces). ``friction`` None: the evidence's, else the default."""
     vehicle = getattr(case, f"vehicle{index}")
-    if vehicle.fixed:
+    if vehicle.fixed or friction == 0:
         return None
     ev = getattr(case.evidence, f"vehicle{index}", None) if case.evidence is not None else None
-    mass, inertia = float(vehicle.mass), float(vehicle.yaw_inertia)
-    if ev is not None:
-        runout = ev.runout_vehicle(mass, inertia)
-        if friction is not None:
-            if friction == 0:
-                return None
-            runout = replace(runout, friction=friction)
-    else:
-        mu = DEFAULT_TYRE_FRICTION if friction is None else friction
-        if mu == 0:
-            return None
-        wheels = wheels_from_outline(vehicle.length, vehicle.width, math.sqrt(inertia / mass),
-                                     vehicle.cg_to_front)
-        runout = RunoutVehicle(mass, inertia, float(wheels[0, 0] - wheels[2, 0]),
-                               float(wheels[0, 1] - wheels[1, 1]), float(wheels[0, 0]), mu)
+    runout = event_vehicle(vehicle, ev, friction, f"vehicle{index}")
     positions = runout.positions
     return EventTyres(runout, TimedRhs(runout), float(np.max(np.hypot(*positions.T))))
 
 
-def wheel_sliding(tyres: EventTyres | None, heading, velocity, yaw_rate):
-    """Each wheel sliding (tyre marks) at N states (N, 4), or None without tyres.
+def secondary_law(case: pim.Case, k: int, override: SecondaryLaw | None = None
+                  ) -> tuple[SecondaryLaw, str, str]:
+    """The law pymunk's contact runs for the event's impact number ``k`` (2, 3, ...), its
+    name and a note ("" when pymunk's contact is the law itself).
 
-    A wheel slides where its slip speed (:func:`pim.model.tyres.wheel_force`'s slip: the
-    whole ground velocity for its braking share, the lateral component for the rolling
-    share) exceeds the law's regularisation speed v_r.
+    ``override`` when given; else the case's ``[[impacts]]`` entry for it
+    (:func:`pim.analysis.event.impact_spec`, the analytic event's defaults without one):
+    its restitution and its cap (Brach's law: no cap, sticking). A beta below 1 or the
+    Kudlich-Slibar law is not pymunk's contact: its restitution and cap are run, and said.
     """
-    if tyres is None:
-        return None
-    rv = tyres.vehicle
-    heading, yaw_rate = np.asarray(heading, float), np.asarray(yaw_rate, float)
-    velocity = np.asarray(velocity, float)
-    c, s = np.cos(heading)[:, None], np.sin(heading)[:, None]
-    p = rv.positions
-    ax, ay = c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1]
-    sx = velocity[:, :1] - yaw_rate[:, None] * ay
-    sy = velocity[:, 1:] + yaw_rate[:, None] * ax
-    wheel = heading[:, None] + np.asarray(rv.steer, float)
-    lateral = np.abs(-np.sin(wheel) * sx + np.cos(wheel) * sy)
-    braking = np.asarray(rv.braking, float)
-    vr = rv.regularisation
-    return ((braking > 0) & (np.hypot(sx, sy) > vr)) | ((braking < 1) & (lateral > vr))
+    if override is not None:
+        return override, "brach-capped", ""
+    spec = impact_spec(case, k)
+    eps = SECONDARY_RESTITUTION if spec.restitution is None else float(spec.restitution)
+    cap = math.inf if spec.contact_friction is None else float(spec.contact_friction)
+    note = ""
+    if spec.law == "kudlich-slibar" or (spec.beta is not None and spec.beta < 1):
+        note = (f"impact {k}'s law {spec.law} (beta {spec.beta}) is run as pymunk's contact "
+                f"at restitution {eps:g} and friction cap {cap:g}")
+    return SecondaryLaw(eps, cap), spec.law, note
 
 
 def outline_shapes(case: pim.Case, body1: pymunk.Body, body2: pymunk.Body,
@@ -189,7 +171,7 @@ def outline_shapes(case: pim.Case, body1: pymunk.Body, body2: pymunk.Body,
         first = kind == OUTLINE1
         shape.collision_type = kind
         shape.elasticity = law.restitution if first else 1.0
-        shape.friction = law.friction if first else 1.0
+        shape.friction = min(law.friction, 1e9) if first else 1.0
         shapes.append(shape)
     return shapes
 

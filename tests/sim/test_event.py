@@ -11,12 +11,11 @@ import pim
 import sim
 from pim.model.geometry import outline_penetration
 from pim.model.tyres import STANDARD_GRAVITY
-from sim.event_check import SIDE_SLAP_OFFSETS, side_slap_case
+from sim.event_check import SIDE_SLAPS, side_slap_case
 
-# the generated side slaps: offsets toward the struck car's front corner, two restitutions,
+# the generated side slaps: offsets toward the struck car's corners, two restitutions,
 # sticking and sliding first impacts
-SLAPS = [(off, eps, beta) for off in SIDE_SLAP_OFFSETS for eps, beta in ((0.1, 1.0),
-                                                                         (0.3, 0.5))]
+SLAPS = list(SIDE_SLAPS)
 
 
 @pytest.fixture(scope="module")

@@ -3,9 +3,10 @@
 import numpy as np
 import pytest
 
+import pim
 import sim
 from pim.model.geometry import outline_penetration
-from sim.event_check import event_crosscheck, side_slap_case
+from sim.event_check import AGREEMENT, SIDE_SLAPS, event_crosscheck, side_slap_case
 
 
 @pytest.fixture(scope="module")
@@ -41,3 +42,27 @@ def test_side_slap_outlines_touch_at_c():
     boxes = [(v.cg, v.heading, 4.5, 1.8, None) for v in (case.vehicle1, case.vehicle2)]
     assert float(outline_penetration(*boxes)) == pytest.approx(0.0, abs=1e-12)
     assert case.impact.point == pytest.approx([1.2, -0.9])
+
+
+@pytest.mark.parametrize("slap", SIDE_SLAPS)
+def test_analytic_and_simulated_side_slaps_agree(slap):
+    # the generated suite: both events find the same impacts, at the same times,
+    # with the same delta-V and PDOF, and rest at the same place (tolerances: AGREEMENT)
+    case = side_slap_case(slap[0], eps=slap[1], beta=slap[2])
+    check = event_crosscheck(pim.event(case), sim.simulate_event(case))
+    assert check.same_impacts and check.impact_count[0] >= 2
+    for d in check.impacts:
+        assert abs(d.time) <= AGREEMENT["time"]
+        assert d.delta_v_relative <= AGREEMENT["delta_v"]
+        assert np.all(np.abs(d.pdof) <= AGREEMENT["pdof"])
+    assert np.all(check.rest_position <= AGREEMENT["rest_position"])
+    assert np.all(np.abs(check.rest_heading) <= AGREEMENT["rest_heading"])
+
+
+def test_ricsac9_secondary_contact_in_free_motion_agrees():
+    case = pim.load_case("ricsac9")
+    check = event_crosscheck(pim.event(case, tyre_friction=0.0),
+                             sim.simulate_event(case, tyre_friction=0.0))
+    assert check.impact_count == (2, 2)
+    assert abs(check.impacts[1].time) <= AGREEMENT["time"]
+    assert check.impacts[1].delta_v_relative <= AGREEMENT["delta_v"]

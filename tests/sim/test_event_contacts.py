@@ -6,7 +6,7 @@ import pymunk
 import pytest
 
 from sim.event_contacts import OutlineContacts, attach_outline_contacts
-from sim.event_scene import OUTLINE1, OUTLINE2
+from sim.event_scene import OUTLINE1, OUTLINE2, SecondaryLaw
 
 BOX = np.array([[1.0, 0.5], [-1.0, 0.5], [-1.0, -0.5], [1.0, -0.5]])   # 2 m x 1 m
 
@@ -27,17 +27,18 @@ def _space(x2: float, v1: float):
     return space, bodies
 
 
-def test_overlap_area_and_growth_threshold():
+def test_overlap_depth_and_area():
     space, bodies = _space(1.5, 0.0)                       # 0.5 m x 1 m overlap
-    mon = OutlineContacts(bodies, (BOX, BOX), 10.0, armed=False)
-    assert mon.overlap() == pytest.approx(0.5)
-    assert mon.threshold == pytest.approx(0.005 * 2.0)     # of the smaller outline's area
-    assert OutlineContacts(bodies, (BOX, None), 10.0, armed=True).overlap() == 0.0
+    mon = OutlineContacts(bodies, (BOX, BOX), 10.0, 0.01, SecondaryLaw())
+    assert mon.overlap() == pytest.approx(0.5) and mon.depth() == pytest.approx(0.5)
+    barrier = OutlineContacts(bodies, (BOX, None), 10.0, 0.01, SecondaryLaw())
+    assert barrier.overlap() == 0.0 and barrier.armed     # a barrier face: always armed
 
 
-def test_an_armed_closing_contact_is_an_elastic_impulse():
+def test_an_armed_closing_contact_is_an_impulse_under_its_law():
     space, bodies = _space(2.001, 5.0)                     # 1 mm apart, closing at 5 m/s
-    mon = OutlineContacts(bodies, (BOX, BOX), 5.0, armed=True)
+    mon = OutlineContacts(bodies, (BOX, BOX), 5.0, 0.01, SecondaryLaw(1.0, 0.0))
+    mon.armed = True
     attach_outline_contacts(space, mon)
     space.step(1e-3)
     assert mon.accepted and mon.closing == pytest.approx(5.0)
@@ -48,12 +49,14 @@ def test_an_armed_closing_contact_is_an_elastic_impulse():
     assert bodies[1].velocity.x == pytest.approx(5.0, rel=1e-6)
 
 
-def test_a_disarmed_contact_is_ignored_until_the_overlap_grows():
+def test_a_disarmed_contact_is_ignored_until_the_depth_grows():
     space, bodies = _space(1.5, 1.0)                       # deep overlap (a crush)
-    mon = OutlineContacts(bodies, (BOX, BOX), 1.0, armed=False)
+    mon = OutlineContacts(bodies, (BOX, BOX), 1.0, 0.01, SecondaryLaw())
+    mon.disarm()
     attach_outline_contacts(space, mon)
-    space.step(1e-3)                                       # 1 mm deeper: 0.001 m^2 < 0.01
-    assert not mon.accepted and bodies[0].velocity.x == 1.0
-    for _ in range(15):                                    # 15 mm deeper: armed
+    for _ in range(9):                                     # 9 mm deeper: not yet
         space.step(1e-3)
-    assert mon.armed and mon.accepted
+    assert not mon.armed and bodies[0].velocity.x == 1.0
+    for _ in range(3):                                     # past 1 cm: armed, processed
+        space.step(1e-3)
+    assert mon.armed and mon.accepted and bodies[0].velocity.x < 1.0
