@@ -26,12 +26,13 @@ __all__ = ["ImpactDifference", "EventCheck", "event_crosscheck", "side_slap_case
 #: car's side slaps the bullet car's front twice more, toward the rear once.
 SIDE_SLAPS = ((1.6, 0.1, 1.0), (1.6, 0.3, 0.5), (1.9, 0.1, 1.0), (1.9, 0.3, 0.5),
               (-1.6, 0.1, 1.0))
-#: How closely the analytic and simulated events of the suite agree (the pymunk step 1 ms,
-#: the analytic event's contact bisection 1 us): each impact's time [s], the delta-V
-#: difference relative to the impact's largest |delta-V| [-], the PDOF [rad], the rest
-#: position [m] and heading [rad]. About twice the largest difference measured on the suite
-#: (1 ms, 1.5 %, 1 cm, 0.4 deg).
-AGREEMENT = {"time": 0.002, "delta_v": 0.03, "pdof": float(np.radians(3.0)),
+#: How closely the analytic and simulated events of the suite agree: each impact's time [s],
+#: the delta-V difference relative to the impact's largest |delta-V| [-], the PDOF [rad], the
+#: rest position [m] and heading [rad]. Measured on the suite: at pymunk's default 1 ms step
+#: at most 1.1 ms, 1.4 %, 0.3 deg, 1 cm and 0.4 deg; against pymunk converged
+#: (dt = 1e-4 s) one late slap differs by 4.9 ms and 3.6 % (the polygon contact's two points against PIM's single point at the
+#: penetrating corner move the slap before it by 2 %, and the run-out carries that on).
+AGREEMENT = {"time": 0.006, "delta_v": 0.05, "pdof": float(np.radians(3.0)),
              "rest_position": 0.03, "rest_heading": float(np.radians(1.0))}
 
 

@@ -42,8 +42,8 @@ from .result import SimResult, Trajectory
 from .scene import TYPE1, TYPE2, Scene, build_scene, resolve_coefficients
 from .settings import Settings
 
-__all__ = ["simulate", "run_scene", "run_impact", "ImpactSteps", "continue_after_impact", "trajectory_of", "body_state",
-           "APPROACH_TOLERANCE"]
+__all__ = ["simulate", "run_scene", "run_impact", "ImpactSteps", "continue_after_impact",
+           "trajectory_of", "body_state", "APPROACH_TOLERANCE"]
 
 #: A contact point approaches when its relative normal velocity is below -this x speed scale.
 APPROACH_TOLERANCE = 1e-9
