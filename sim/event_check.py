@@ -30,8 +30,9 @@ SIDE_SLAPS = ((1.6, 0.1, 1.0), (1.6, 0.3, 0.5), (1.9, 0.1, 1.0), (1.9, 0.3, 0.5)
 #: the delta-V difference relative to the impact's largest |delta-V| [-], the PDOF [rad], the
 #: rest position [m] and heading [rad]. Measured on the suite: at pymunk's default 1 ms step
 #: at most 1.1 ms, 1.4 %, 0.3 deg, 1 cm and 0.4 deg; against pymunk converged
-#: (dt = 1e-4 s) one late slap differs by 4.9 ms and 3.6 % (the polygon contact's two points against PIM's single point at the
-#: penetrating corner move the slap before it by 2 %, and the run-out carries that on).
+#: (dt = 1e-4 s) one late slap differs by 4.9 ms and 3.6 % (the polygon contact's two
+#: points against PIM's single point at the penetrating corner move the slap before it by
+#: 2 %, and the run-out carries that on).
 AGREEMENT = {"time": 0.006, "delta_v": 0.05, "pdof": float(np.radians(3.0)),
              "rest_position": 0.03, "rest_heading": float(np.radians(1.0))}
 
