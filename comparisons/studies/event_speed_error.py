@@ -175,7 +175,8 @@ def _point(engine, step, its, run, reference, repeats) -> EventPoint:
 
 def event_sweep(case: pim.Case, *, tyre_friction=None, dts=EVENT_DTS,
                 iterations=EVENT_ITERATIONS, analytic_steps=ANALYTIC_STEPS,
-                repeats: int = 1, progress: bool | None = None) -> EventSpeedStudy:
+                repeats: int = 1, progress: bool | None = None,
+                reference: dict | None = None) -> EventSpeedStudy:
     """Run both events over their settings and measure error and time (module notes).
 
     Parameters
@@ -190,6 +191,8 @@ def event_sweep(case: pim.Case, *, tyre_friction=None, dts=EVENT_DTS,
         Runs per setting (the best wall time is kept).
     progress : bool or None
         tqdm bar on stderr (None: only on a terminal).
+    reference : dict, optional
+        The reference's ``sim.Settings`` fields (default :data:`REFERENCE`).
 
     Raises
     ------
@@ -200,7 +203,8 @@ def event_sweep(case: pim.Case, *, tyre_friction=None, dts=EVENT_DTS,
 
     kw = {} if tyre_friction is None else {"tyre_friction": tyre_friction}
     t0 = time.perf_counter()
-    reference = sim.simulate_event(case, settings=sim.Settings(**REFERENCE), **kw)
+    reference = sim.simulate_event(case, settings=sim.Settings(**(reference or REFERENCE)),
+                                   **kw)
     reference_time = time.perf_counter() - t0
     pim.event(case, **kw)               # compiles or loads the analytic kernel: not timed
     runs = [("pymunk", dt, its) for dt in dts for its in iterations]
