@@ -355,7 +355,7 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, engine, 
         names += [c for c, _ in list_cases() if c.startswith("hard-")] if n == "hard" else [n]
     folder = Path(out) if out else Path("out") / "speed-error"
     opts = _SpeedErrorOptions(out, eps, beta, repeats, coarse, engine if compliant else None,
-                              progress, as_json, event)
+                              progress, as_json, event=event)
     wall, cpu = time.perf_counter(), time.process_time()
     with output_folder(folder, command="pim speed-error", merge=True) as tmp, \
             contextlib.ExitStack() as stack:

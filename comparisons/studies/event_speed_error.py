@@ -161,14 +161,14 @@ def _timed(run, repeats: int):
 
 
 def _point(engine, step, its, run, reference, repeats) -> EventPoint:
+    failed = {"impacts": 0, "error": math.nan, "rest_error": math.nan,
+              "wall_time": math.nan}
     try:
         event, wall = _timed(run, repeats)
     except sim.SimulationError as exc:
-        return EventPoint(engine, step, its, 0, math.nan, math.nan, math.nan, exc.kind,
-                          str(exc))
+        return EventPoint(engine, step, its, **failed, failure=exc.kind, message=str(exc))
     except pim.InputError as exc:        # the analytic event's refusals
-        return EventPoint(engine, step, its, 0, math.nan, math.nan, math.nan, "refused",
-                          str(exc))
+        return EventPoint(engine, step, its, **failed, failure="refused", message=str(exc))
     error, rest = event_error(event, reference)
     return EventPoint(engine, step, its, len(event.impacts), error, rest, wall)
 

@@ -57,5 +57,5 @@ def test_tables_and_figure(study):
     assert event_pareto_table(study).rows[0][0].startswith("reference")
     fig = plot_event_speed_error(study)
     assert fig.axes[0].get_xscale() == "log"
-    failed = EventPoint("pymunk", 1e-2, 3, 0, np.nan, np.nan, np.nan, "not_converged")
+    failed = EventPoint("pymunk", 1e-2, 3, 0, np.nan, np.nan, np.nan, failure="not_converged")
     assert not failed.ok and failed.label == "pymunk dt=0.01 it=3"
