@@ -70,6 +70,16 @@ def _findings(study: SpeedErrorStudy) -> list[str]:
     return lines
 
 
+def _write_study(document: Document, figure, out_dir) -> list[Path]:
+    """Write a study's ``document`` through the pipeline and its ``figure`` as
+    ``NAME.png`` (NAME the document's): the Markdown first, then the other files, the PNG
+    last."""
+    out = Path(out_dir)
+    png = save_figure(figure, out / f"{document.name}.png")
+    written = write_document(document, out)
+    return [written[-1], *written[:-1], png]
+
+
 def speed_error_document(study: SpeedErrorStudy, stem: str, command: str = "") -> Document:
     """The sweep as a report: method, recommendation, plot, Pareto front, every run."""
     rec = study.recommended()
@@ -102,10 +112,8 @@ def write_speed_error(study: SpeedErrorStudy, out_dir, stem: str,
                       command: str = "") -> list[Path]:
     """Write ``speed-error-STEM.md`` (first in the list), ``.html``, ``.csv`` (every run),
     ``-pareto.csv`` and ``.png`` into ``out_dir``."""
-    out = Path(out_dir)
-    png = save_figure(plot_speed_error(study), out / f"speed-error-{stem}.png")
-    written = write_document(speed_error_document(study, stem, command), out)
-    return [written[-1], *written[:-1], png]
+    return _write_study(speed_error_document(study, stem, command), plot_speed_error(study),
+                        out_dir)
 
 
 def _compliant_lines(study: CompliantSpeedStudy) -> tuple[list[str], list[str]]:
@@ -155,11 +163,8 @@ def compliant_document(study: CompliantSpeedStudy, stem: str, command: str = "")
 def write_compliant(study: CompliantSpeedStudy, out_dir, stem: str,
                     command: str = "") -> list[Path]:
     """Write ``speed-error-compliant-STEM.md`` (first), ``.html``, ``.csv`` and ``.png``."""
-    out = Path(out_dir)
-    png = save_figure(plot_compliant_speed_error(study),
-                      out / f"speed-error-compliant-{stem}.png")
-    written = write_document(compliant_document(study, stem, command), out)
-    return [written[-1], *written[:-1], png]
+    return _write_study(compliant_document(study, stem, command),
+                        plot_compliant_speed_error(study), out_dir)
 
 
 def speed_error_json(study: SpeedErrorStudy, stem: str) -> dict:
@@ -260,10 +265,8 @@ def write_event_speed(study: EventSpeedStudy, out_dir, stem: str,
                       command: str = "") -> list[Path]:
     """Write ``speed-error-event-STEM.md`` (first in the list), ``.html``, ``.csv``,
     ``-pareto.csv`` and ``.png`` into ``out_dir``."""
-    out = Path(out_dir)
-    png = save_figure(plot_event_speed_error(study), out / f"speed-error-event-{stem}.png")
-    written = write_document(event_speed_document(study, stem, command), out)
-    return [written[-1], *written[:-1], png]
+    return _write_study(event_speed_document(study, stem, command),
+                        plot_event_speed_error(study), out_dir)
 
 
 def event_speed_json(study: EventSpeedStudy) -> dict:
