@@ -22,6 +22,7 @@ from .compliant_batch import CompliantBatch
 from .compliant_setup import DEFAULT_STIFFNESS, CompliantResult, CompliantSettings, ContactHistory
 from .crosscheck import CrossCheck, crosscheck
 from .event import simulate_event
+from .event_check import EventCheck, event_crosscheck
 from .event_scene import SecondaryLaw
 from .failures import FAILURE_KINDS, SimulationError
 from .limits import limitations
@@ -37,4 +38,4 @@ __all__ = ["Settings", "simulate", "simulate_many", "SimResult", "Trajectory", "
            "Scene", "build_scene", "case_element", "simulate_compliant", "reference_compliant",
            "CompliantSettings", "CompliantResult", "CompliantBatch", "ContactHistory",
            "DEFAULT_STIFFNESS", "find_secondary_impact", "SecondaryImpact", "watch_after_impact",
-           "simulate_event", "SecondaryLaw"]
+           "simulate_event", "SecondaryLaw", "event_crosscheck", "EventCheck"]

@@ -65,7 +65,7 @@ from pim.model.event import (
     Track,
     phase_labels,
 )
-from pim.model.event_formula import CONTACT_TOLERANCE
+from pim.model.event_formula import CONTACT_TOLERANCE, TUNNEL_FRACTION
 from pim.model.geometry import kinetic_energy
 from pim.model.numbers import InputError, check_type
 from pim.model.pdof import pdof
@@ -419,6 +419,21 @@ def _check_options(settings, approach, max_time, tyre_friction) -> tuple[Setting
     return settings, approach, max_time
 
 
+def _check_tunnelling(case: pim.Case, scene, dt: float) -> None:
+    """Refuse a step at which the outlines could pass through each other: twice the
+    scene's largest speed times ``dt`` above :data:`pim.model.event_formula.TUNNEL_FRACTION`
+    of the smallest outline dimension (the analytic event's bound)."""
+    sizes = [float(x) for v in (case.vehicle1, case.vehicle2) if v.length is not None
+             for x in (v.length, v.width)]
+    travel = 2.0 * scene.speed_scale * dt
+    if sizes and travel > TUNNEL_FRACTION * min(sizes):
+        raise SimulationError(
+            "tunnelled", f"settings.dt = {dt:g} s lets the outlines close {travel:.3g} m in "
+            f"one step, more than {TUNNEL_FRACTION:g} of their smallest dimension "
+            f"({min(sizes):.3g} m): a contact could be missed; use dt <= "
+            f"{TUNNEL_FRACTION * min(sizes) / (2.0 * scene.speed_scale):.2g} s")
+
+
 def _setup(case: pim.Case, settings: Settings, first: tuple, tyre_friction, options: tuple
            ) -> tuple[EventRun, str, dict, str]:
     """The rigid scene of the first impact (``first``: eps, beta), the tyres and the run's
@@ -431,6 +446,7 @@ def _setup(case: pim.Case, settings: Settings, first: tuple, tyre_friction, opti
         raise InputError("the event needs each vehicle's length and width (the outlines "
                          "that collide after the first impact)")
     scene = build_scene(case, e, b, settings, analytic=pim.solve(case, e, 1.0, law="brach"))
+    _check_tunnelling(case, scene, settings.dt)
     mu, source = tyre_friction_source(case, tyre_friction)
     tyres = [event_tyres(case, i, mu) for i in (1, 2)]
     contacts = OutlineContacts((scene.body1, scene.body2),

@@ -178,3 +178,11 @@ def test_outlines_are_required():
                        velocity=[0.0, 13.9], heading=math.pi / 2)
     with pytest.raises(pim.InputError, match="length and width"):
         sim.simulate_event(pim.Case(bare, case.vehicle2, case.impact))
+
+
+def test_a_step_that_could_tunnel_is_refused():
+    # 50 km/h into 10 km/h: 2 x 13.9 m/s x 0.05 s = 1.4 m per step, beyond a quarter of
+    # the 1.8 m width
+    with pytest.raises(sim.SimulationError) as err:
+        sim.simulate_event(side_slap_case(1.6), settings=sim.Settings(dt=0.05))
+    assert err.value.kind == "tunnelled" and "dt <=" in str(err.value)
