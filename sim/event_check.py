@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import pim
+from pim.io.units import convert, display_units
 from pim.model.event import Event, EventDifference
 from pim.model.pdof import wrap_angle
 
@@ -106,16 +107,27 @@ class EventCheck:
         """Rest-heading difference of each vehicle [rad] (2,)."""
         return self.trajectory.rest_heading
 
-    def to_dict(self) -> dict:
-        """Plain SI values for JSON."""
-        return {"sources": list(self.sources), "impact_count": list(self.impact_count),
-                "impacts": [{"index": d.index, "time": d.time, "delta_v": d.delta_v.tolist(),
+    def to_dict(self, units="si") -> dict:
+        """The differences for JSON in the display ``units`` (a system "si"/"us" or a
+        :class:`pim.io.units.DisplayUnits`: speeds in its speed unit, lengths in its length
+        unit, angles in degrees; times in s; relative delta-V unit-free), the units named
+        under ``"units"``."""
+        shown = display_units(units) if isinstance(units, str) else units
+
+        def conv(value, kind):
+            return convert(np.asarray(value, float), kind, shown)[0].tolist()
+
+        return {"units": shown.to_json(), "sources": list(self.sources),
+                "impact_count": list(self.impact_count),
+                "impacts": [{"index": d.index, "time": d.time,
+                             "delta_v": conv(d.delta_v, "velocity"),
                              "delta_v_relative": d.delta_v_relative,
-                             "pdof": d.pdof.tolist()} for d in self.impacts],
-                "rest_position": self.rest_position.tolist(),
-                "rest_heading": self.rest_heading.tolist(),
-                "rest_speed": self.rest_speed.tolist(),
-                "largest_position": float(np.max(self.trajectory.position, initial=0.0))}
+                             "pdof": conv(d.pdof, "angle")} for d in self.impacts],
+                "rest_position": conv(self.rest_position, "length"),
+                "rest_heading": conv(self.rest_heading, "angle"),
+                "rest_speed": conv(self.rest_speed, "velocity"),
+                "largest_position": conv(np.max(self.trajectory.position, initial=0.0),
+                                         "length")}
 
 
 def _impact_difference(k: int, a, b) -> ImpactDifference:

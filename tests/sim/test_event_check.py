@@ -24,6 +24,15 @@ def test_an_event_against_itself_differs_by_nothing(events):
     assert check.to_dict()["largest_position"] == 0
 
 
+def test_the_json_speaks_the_users_units(events):
+    check = event_crosscheck(events[0], events[1])
+    si, us = check.to_dict("si"), check.to_dict("us")
+    assert si["units"]["speed"] == "km/h" and us["units"]["length"] == "ft"
+    assert us["rest_position"][0] == pytest.approx(si["rest_position"][0] / 0.3048)
+    assert si["rest_speed"][0] == pytest.approx(3.6 * float(check.rest_speed[0]))
+    assert si["rest_heading"][0] == pytest.approx(np.degrees(check.rest_heading[0]))
+
+
 def test_less_tyre_friction_moves_the_rest_positions(events):
     check = event_crosscheck(events[0], events[1])
     assert np.all(check.rest_position > 0.1)
