@@ -6,6 +6,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import pim
 import sim
@@ -186,3 +188,22 @@ def test_a_step_that_could_tunnel_is_refused():
     with pytest.raises(sim.SimulationError) as err:
         sim.simulate_event(side_slap_case(1.6), settings=sim.Settings(dt=0.05))
     assert err.value.kind == "tunnelled" and "dt <=" in str(err.value)
+
+
+@settings(max_examples=8, deadline=None, derandomize=True)
+@given(offset=st.floats(-2.2, 2.2), speed1=st.floats(5.0, 20.0), speed2=st.floats(0.0, 8.0),
+       eps=st.floats(0.0, 0.5), beta=st.floats(0.3, 1.0))
+def test_random_side_slaps_keep_momentum_energy_and_outlines(offset, speed1, speed2, eps,
+                                                             beta):
+    case = side_slap_case(offset, speed1=speed1, speed2=speed2, eps=eps, beta=beta)
+    event = sim.simulate_event(case)                 # refuses any step that gains energy
+    m = np.array([float(case.vehicle1.mass), float(case.vehicle2.mass)])
+    for imp in event.impacts:
+        p = m[:, None] * imp.delta_v
+        assert np.all(np.abs(p[0] + p[1]) <= 1e-9 * (np.max(np.abs(p)) + 1e-12))
+        assert imp.energy_loss >= -1e-6 * _energy(case, event)[0]
+    depth = outline_penetration(*[(t.position, t.heading, 4.5, 1.8, None)
+                                  for t in event.tracks])
+    # the contact rule lets the outlines in by 1 cm, plus a step's closing (<= 28 mm)
+    assert np.max(depth[event.time >= 0]) < 0.04
+    assert event.stopped == (True, True)
