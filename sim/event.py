@@ -30,9 +30,10 @@ configuration), so the overlap an impact leaves is no new contact: the outline c
 last impact. An armed contact is processed in a step while some of its points approach
 (relative normal velocity below -1e-9 x the speed scale, the rigid scene's rule), under
 impact k's law (:func:`sim.event_scene.secondary_law`). An impact is a run of consecutive
-processed steps that starts closing faster than :data:`IMPACT_SPEED` (slower contact steps
-are the vehicles pressed together by their tyres: processed, so the outlines do not pass
-through each other, but no impact), recorded as an :class:`pim.model.event.ImpactRecord`
+processed steps that starts closing faster than :data:`IMPACT_SPEED` (and than twice what
+the tyres alone close in a step) and ends at the first step closing no faster than the
+tyres alone (slower contact steps are the vehicles pressed together by their tyres:
+processed, so the outlines do not pass through each other, but no impact), recorded as an :class:`pim.model.event.ImpactRecord`
 (``source="simulation"``): its time (the first step's), the impulse summed over its steps,
 the contact point (the impulse-weighted mean of the arbiter's points) and normal (the
 impulse-weighted mean of the arbiter's, turned to point from vehicle 2 to vehicle 1, PIM's
@@ -85,15 +86,24 @@ from .run import body_state, run_impact
 from .scene import build_scene, outline_corners
 from .settings import Settings
 
-__all__ = ["simulate_event", "SECONDARY_ITERATIONS", "EventRun", "IMPACT_SPEED"]
+__all__ = ["simulate_event", "SECONDARY_ITERATIONS", "EventRun", "IMPACT_SPEED",
+           "TYRE_CLOSING"]
 
 #: Solver iterations per step of the outline contacts when ``settings.iterations`` is None
 #: (docs: 30 sweeps reached round-off in the contact tests of /work/shared/spec).
 SECONDARY_ITERATIONS = 30
 #: A contact after the first impact is an impact when its points close faster than this
-#: [m/s] (1.1 km/h); slower contact steps are the vehicles pressed together by their tyres
-#: (processed, so the outlines never pass through each other, but no impact).
+#: [m/s] (1.1 km/h) and than twice the pressing speed of a step (below); slower contact
+#: steps are the vehicles pressed together by their tyres (processed, so the outlines never
+#: pass through each other, but no impact). Lower, a pressing contact becomes a saw-tooth
+#: of impacts 1 cm of overlap apart (the contact rule's re-arming) and the outlines creep
+#: into each other (6 cm seen at 0.05 m/s).
 IMPACT_SPEED = 0.3
+#: The most the tyres can close a contact in a step, per (mu g dt) [-]: each vehicle's CG
+#: decelerates at mu g and its yaw adds about as much at the outline (m r^2 / I ~ 1): an
+#: impact ends at the first step closing slower than this times mu g dt (and than a tenth
+#: of IMPACT_SPEED), the speed that pressing alone gives.
+TYRE_CLOSING = 4.0
 
 
 @dataclass(eq=False)
@@ -124,6 +134,9 @@ class EventRun:
         Time the outlines spent in contact without an impact (pressed together) [s].
     law_name : str
         The name of the next impact's law (:func:`sim.event_scene.secondary_law`).
+    press_speed : float
+        The closing speed the tyres alone give a contact in a step [m/s]:
+        max(IMPACT_SPEED / 10, TYRE_CLOSING mu g dt), mu the larger tyre friction.
     notes : list of str
         Remarks for the event's notes.
     """
@@ -140,6 +153,7 @@ class EventRun:
     secondary: SecondaryLaw | None
     pressing: float = 0.0
     law_name: str = "brach-capped"
+    press_speed: float = 0.0
     notes: list = field(default_factory=list)
 
     @property
@@ -336,15 +350,16 @@ def _check_gain(run: EventRun, before: float, after: float, what: str) -> None:
 
 def _contact_step(run: EventRun, open_contact, t: float, forces, before, step: int):
     """Book the step that ended at ``t`` (:func:`_free_motion`): an impact starts at a
-    contact step closing faster than :data:`IMPACT_SPEED`, continues over the contact steps
-    closing faster than a tenth of it, and ends at the first other step; the slower contact
-    steps press (the tyres push the vehicles together) and are no impact. Returns the open
-    impact's bookkeeping or None."""
+    contact step closing faster than :data:`IMPACT_SPEED` and twice the pressing speed
+    (:attr:`EventRun.press_speed`), continues over the contact steps closing faster than
+    the pressing speed, and ends at the first other step; the slower contact steps press
+    (the tyres push the vehicles together) and are no impact. Returns the open impact's
+    bookkeeping or None."""
     mon, settings = run.contacts, run.settings
     closing = mon.closing if mon.accepted else 0.0
-    if open_contact is None and closing > IMPACT_SPEED:
+    if open_contact is None and closing > max(IMPACT_SPEED, 2.0 * run.press_speed):
         open_contact = _start_contact(run, t, before)
-    elif open_contact is not None and closing <= 0.1 * IMPACT_SPEED:
+    elif open_contact is not None and closing <= run.press_speed:
         open_contact["tyre"] += forces      # the velocities now include this step's tyres
         _end_contact(run, open_contact)
         return None
@@ -452,9 +467,13 @@ def _setup(case: pim.Case, settings: Settings, first: tuple, tyre_friction, opti
     contacts = OutlineContacts((scene.body1, scene.body2),
                                (outline_corners(case.vehicle1), outline_corners(case.vehicle2)),
                                scene.speed_scale, options[1], SecondaryLaw())
+    mu_max = max([float(np.max(t.vehicle.friction)) for t in tyres if t is not None],
+                 default=0.0)
     run = EventRun(scene=scene, settings=settings, tyres=tyres, contacts=contacts, rows=[],
                    impacts=[], resting=[False, False], energy0=scene.energy_before,
-                   secondary=options[0], case=case)
+                   secondary=options[0], case=case, press_speed=max(
+                       0.1 * IMPACT_SPEED, TYRE_CLOSING * mu_max * settings.gravity
+                       * settings.dt))
     return run, law, coefficients, source
 
 
@@ -502,7 +521,8 @@ def _notes(run: EventRun, steps: int, source: str, rest_time, max_time: float) -
     notes += run.notes
     if run.pressing > 0:
         notes.append(f"the outlines pressed together without an impact (closing slower than "
-                     f"{IMPACT_SPEED:g} m/s) for {run.pressing:.3g} s")
+                     f"{max(IMPACT_SPEED, 2 * run.press_speed):.3g} m/s) for "
+                     f"{run.pressing:.3g} s")
     if rest_time is None:
         notes.append(f"not at rest {max_time:g} s after the first impact (the time limit)")
     return notes
