@@ -49,6 +49,7 @@ from comparisons.studies.assumption_configs import (
 )
 from comparisons.studies.assumption_legacy import legacy_sweeps
 from comparisons.studies.coefficients import coefficients
+from comparisons.studies.one_impact import OneImpactRung, one_impact_rung
 from pim.model.numbers import InputError
 from sim.compliant_batch import STATUS_MESSAGES
 from sim.compliant_setup import build_problem, rotate
@@ -624,6 +625,9 @@ class AssumptionStudy:
     outline_note : str
         Why the outline rung is missing at some or all contact times ("" when it ran at
         every one).
+    one_impact : OneImpactRung or None
+        The "one impact" rung: the whole event against PIM's single impact
+        (:mod:`comparisons.studies.one_impact`; None without both outlines).
     """
 
     case: pim.Case
@@ -640,6 +644,7 @@ class AssumptionStudy:
     seconds: float
     animation_result: object = field(default=None, repr=False)
     outline_note: str = ""
+    one_impact: OneImpactRung | None = None
 
     @property
     def durations(self) -> np.ndarray:
@@ -934,7 +939,8 @@ def run_assumptions(case: pim.Case, eps: float | None = None, beta: float | None
         range_durations=the_plan.range_durations, tyre_curves=_tyre_curves(out, the_plan),
         friction_points=_friction_points(out, the_plan), input_shift=_input_shift(out),
         stiffness_typical=k_typical, engine=engine, seconds=time.perf_counter() - start,
-        animation_result=anim, outline_note=outline_note(failed, has_outlines(case)))
+        animation_result=anim, outline_note=outline_note(failed, has_outlines(case)),
+        one_impact=one_impact_rung(case, eps, beta_pim) if has_outlines(case) else None)
 
 
 def _animation(case, eps, k, has_outline, settings, after):

@@ -110,12 +110,21 @@ def event_vehicle(vehicle: Vehicle, evidence, tyre_friction, where: str) -> Runo
 
 def impact_spec(case: Case, k: int) -> ImpactSpec:
     """The law and coefficients of the event's impact number ``k`` (2, 3, ...): the case's
-    ``[[impacts]]`` entry k - 1, else the last entry, else the stated defaults."""
+    ``[[impacts]]`` entry k - 2, else its last entry, else the stated defaults (law
+    :data:`~pim.model.event_formula.SECONDARY_LAW`); an entry's missing coefficients take
+    the defaults too (restitution :data:`~pim.model.event_formula.SECONDARY_RESTITUTION`,
+    beta :data:`~pim.model.event_formula.SECONDARY_BETA`, contact friction
+    :data:`~pim.model.event_formula.SECONDARY_CONTACT_FRICTION` for the laws that take
+    one)."""
     specs = tuple(getattr(case, "impacts", ()) or ())
-    if specs:
-        return specs[min(k - 2, len(specs) - 1)]
-    return ImpactSpec(law=SECONDARY_LAW, restitution=SECONDARY_RESTITUTION,
-                      beta=SECONDARY_BETA, contact_friction=SECONDARY_CONTACT_FRICTION)
+    spec = specs[min(k - 2, len(specs) - 1)] if specs else ImpactSpec(law=SECONDARY_LAW)
+    ks = spec.law == "kudlich-slibar"
+    return replace(
+        spec, restitution=SECONDARY_RESTITUTION if spec.restitution is None
+        else spec.restitution,
+        beta=None if ks else SECONDARY_BETA if spec.beta is None else spec.beta,
+        contact_friction=None if spec.law == "brach" else SECONDARY_CONTACT_FRICTION
+        if spec.contact_friction is None else spec.contact_friction)
 
 
 def _outline_row(vehicle: Vehicle, where: str) -> tuple:
@@ -165,16 +174,19 @@ def _coefficients(case: Case) -> np.ndarray:
 
 
 def _state(case: Case, result) -> np.ndarray:
-    """Both vehicles' (x, y, psi, v_x, v_y, omega) just after the first impact (2, 6)."""
+    """Both vehicles' (x, y, psi, v_x, v_y, omega) just after the first impact (..., 2, 6)
+    (the leading axes of the result's samples)."""
     rows = []
     for i in (1, 2):
         v = getattr(case, f"vehicle{i}")
-        vel = np.asarray(getattr(result, f"velocity{i}"), float).reshape(2)
-        w = float(np.asarray(getattr(result, f"yaw_rate{i}")))
+        w = np.asarray(getattr(result, f"yaw_rate{i}"), float)
+        vel = np.broadcast_to(np.asarray(getattr(result, f"velocity{i}"), float), w.shape + (2,))
         if bool(v.fixed):
-            vel, w = np.zeros(2), 0.0
-        rows.append([*np.asarray(v.cg, float).reshape(2), float(v.heading), *vel, w])
-    return np.array(rows)
+            vel, w = np.zeros_like(vel), np.zeros_like(w)
+        pose = np.broadcast_to(np.append(np.asarray(v.cg, float).reshape(2), float(v.heading)),
+                               w.shape + (3,))
+        rows.append(np.concatenate([pose, vel, w[..., None]], axis=-1))
+    return np.stack(rows, axis=-2)
 
 
 def approach_motion(vehicle: Vehicle, marks, times) -> tuple:
@@ -335,7 +347,7 @@ def _run_out(case: Case, scene, state: np.ndarray, watch: _Watch) -> _Run:
                              f"vehicles stay in contact: a contact without end is refused)")
         spec = impact_spec(case, len(impacts) + 2)
         impact_case = _contact_case(case, state, run.contact[0], spec)
-        result = solve(impact_case)
+        impact_case, result = _solved(impact_case)
         if not bool(np.asarray(result.approaching)):
             rows[-1] = rows[-1][:-1]            # C does not close under the law's test
             continue
@@ -345,6 +357,18 @@ def _run_out(case: Case, scene, state: np.ndarray, watch: _Watch) -> _Run:
         impacts.append(impact_record(impact_case, result, t, spec, "outlines"))
         state = _post_state(state, impact_case, result)
         allowed = np.array([max(float(run.contact[0, 0]), 0.0)])
+
+
+def _solved(impact_case: Case) -> tuple:
+    """``(case, pim.solve(case))`` of a further impact; under Brach's laws an answer that
+    gains energy is solved again frictionless (beta 0), the rule of
+    :func:`pim.model.event_formula.capped_impact` (Kane and Levinson's paradox)."""
+    result = solve(impact_case)
+    if impact_case.impact.law != "kudlich-slibar" and float(
+            np.asarray(result.energy_loss)) < 0.0:
+        impact_case = replace(impact_case, impact=replace(impact_case.impact, beta=0.0))
+        result = solve(impact_case)
+    return impact_case, result
 
 
 def _energy(case: Case) -> float:
@@ -391,7 +415,7 @@ def event(case: Case, *, tyre_friction=None, approach: float = DEFAULT_APPROACH,
     >>> import pim
     >>> ev = pim.event(pim.load_case("ricsac9"), tyre_friction=0.0)
     >>> [round(i.time, 2) for i in ev.impacts]
-    [0.0, 0.44]
+    [0.0, 0.42]
     """
     if not (np.isfinite(approach) and approach >= 0):
         raise InputError(f"approach must be a finite time >= 0 [s], got {approach!r}")
@@ -443,3 +467,109 @@ def _assemble(case: Case, impacts: tuple, run: _Run, approach: float, tyres: tup
                                                            rest),
                  impacts=tuple(impacts), source="analytic", stopped=stopped,
                  notes=tuple(notes))
+
+
+@dataclass(frozen=True)
+class EventRest:
+    """The ends of N events (SI): what :func:`event_rest_many` computes.
+
+    Attributes
+    ----------
+    rest_position : ndarray (n, 2, 2)
+        Each vehicle's CG at rest (or at the time limit) [m] (axis 1: vehicle).
+    rest_heading : ndarray (n, 2)
+        Each vehicle's heading then [rad].
+    stopped : ndarray of bool (n, 2)
+        Which vehicles came to rest.
+    impacts : ndarray of int (n,)
+        Further impacts after the first.
+    first_time : ndarray (n,)
+        Time of the first further impact [s] (NaN without).
+    time : ndarray (n,)
+        Time of the end [s].
+    ok : ndarray of bool (n,)
+        The run ended at rest or at the time limit (not refused: too many impacts, energy
+        gained).
+    """
+
+    rest_position: np.ndarray
+    rest_heading: np.ndarray
+    stopped: np.ndarray
+    impacts: np.ndarray
+    first_time: np.ndarray
+    time: np.ndarray
+    ok: np.ndarray
+
+
+def event_rest_many(case: Case, velocity, yaw_rate, *, tyre_friction=None, max_time=None,
+                    single_impact: bool = False, step: float = EVENT_STEP,
+                    tolerance: float = CONTACT_TOLERANCE) -> EventRest:
+    """The rest states of N events from N post-impact motions of one case (compiled, parallel).
+
+    The run-out, the outline watch and every further impact of :func:`event`, the further
+    impacts solved in the kernel (:func:`pim.model.event_formula.capped_impact`: Brach's
+    laws, the case's ``[[impacts]]`` or the defaults), no timeline kept.
+
+    Parameters
+    ----------
+    case : Case
+        The impact configuration (positions, headings, outlines, masses), scalar.
+    velocity : array_like (n, 2, 2)
+        Both vehicles' CG velocities just after the first impact [m/s] (axis 1: vehicle).
+    yaw_rate : array_like (n, 2)
+        Their yaw rates [rad/s].
+    tyre_friction : float or array_like (n,), optional
+        As :func:`event` (per sample when an array; 0 not allowed per sample).
+    max_time, single_impact, step, tolerance
+        As :func:`event`.
+    """
+    from ..model.event_kernel import EventScene, run_event  # compiled: numba on first use
+
+    velocity = np.asarray(velocity, float).reshape(-1, 2, 2)
+    n = velocity.shape[0]
+    per_sample = tyre_friction is not None and np.ndim(tyre_friction) > 0
+    data1, data2, outlines, inverse, _ = scene_data(
+        case, 1.0 if per_sample else tyre_friction, n)
+    if per_sample:
+        mu = np.broadcast_to(np.asarray(tyre_friction, float), (n,)).copy()
+        data1 = replace(data1, friction=mu)
+        data2 = None if data2 is None else replace(data2, friction=mu)
+    free = not per_sample and tyre_friction is not None and float(tyre_friction) == 0.0
+    start = np.broadcast_to(_state(case, _Motion(velocity, yaw_rate)), (n, 2, 6)).copy()
+    if bool(case.vehicle2.fixed):
+        start[:, 1, 3:] = 0.0
+    scene = EventScene(data1, data2, outlines[None], inverse[None], _coefficients(case)[None])
+    run = run_event(scene, start, solve=True,
+                    max_time=(FREE_MOTION_TIME if free else MAX_TIME) if max_time is None
+                    else float(max_time), step=step, stop_speed=REST_SPEED,
+                    tolerance=np.inf if single_impact else tolerance)
+    first = np.where(run.count > 0, run.impacts[:, 0, 0], np.nan)
+    return EventRest(rest_position=run.final[:, :, :2].copy(),
+                     rest_heading=run.final[:, :, 2].copy(), stopped=~run.moving,
+                     impacts=run.count, first_time=first, time=run.time,
+                     ok=np.isin(run.status, ("rest", "time")))
+
+
+@dataclass(frozen=True)
+class _Motion:
+    """Post-impact motion of n samples in :func:`_state`'s reading (velocity (n, 2, 2),
+    yaw rate (n, 2))."""
+
+    velocity: np.ndarray
+    yaw_rate: np.ndarray
+
+    @property
+    def velocity1(self):
+        return self.velocity[:, 0]
+
+    @property
+    def velocity2(self):
+        return self.velocity[:, 1]
+
+    @property
+    def yaw_rate1(self):
+        return np.asarray(self.yaw_rate, float).reshape(-1, 2)[:, 0]
+
+    @property
+    def yaw_rate2(self):
+        return np.asarray(self.yaw_rate, float).reshape(-1, 2)[:, 1]

@@ -37,6 +37,8 @@ from ..model.tyres import STANDARD_GRAVITY
 from .fitting import FitResult
 from .free_inputs import approach_direction, check_free
 from .inverse_pim import check_evidence, inverse_pim, under_determined
+from .event import event_rest_many
+from .event_fit import EventFit, fit_through_event
 from .momentum import MomentumSpeeds, momentum_speeds
 from .reconstruction_mc import (
     ReconstructionSamples,
@@ -68,6 +70,13 @@ class PostImpact:
     yaw_rate_sigma : dict vehicle number -> standard deviation of the yaw rate [rad/s]
     momentum : MomentumSpeeds or None (needs both vehicles' evidence)
     messages : list of plain-language warnings (unreachable rest, no stop, several minima)
+    event_fit : EventFit or None
+        The fit through the event (:func:`pim.analysis.event_fit.fit_through_event`), made
+        when the single-impact run-outs' event has further impacts; its motion is then the
+        case's ``measured`` motion
+    single_event_impacts : int
+        Further impacts of the event of the single-impact run-outs' motion (0: none, or not
+        checked without both outlines)
     """
 
     case: Case
@@ -76,6 +85,8 @@ class PostImpact:
     yaw_rate_sigma: dict
     momentum: MomentumSpeeds | None
     messages: list
+    event_fit: EventFit | None = None
+    single_event_impacts: int = 0
 
     @property
     def velocity_sigma(self) -> dict:
@@ -159,7 +170,8 @@ def check_reachable(ev, vehicle, speed_bounds, yaw_rate_bounds, where: str) -> N
 
 
 def post_impact_motion(case: Case, *, speed_bounds=(0.0, 60.0),
-                       yaw_rate_bounds=(-15.0, 15.0), **fit_options) -> PostImpact:
+                       yaw_rate_bounds=(-15.0, 15.0), through_event: bool = True,
+                       **fit_options) -> PostImpact:
     """Fit each vehicle's post-impact motion to its rest evidence (step 1 of the chain).
 
     Parameters
@@ -168,6 +180,11 @@ def post_impact_motion(case: Case, *, speed_bounds=(0.0, 60.0),
         With ``evidence`` (the ``[evidence]`` table) for one or both vehicles.
     speed_bounds, yaw_rate_bounds : (float, float)
         [m/s], [rad/s] bounds of the post-impact motion searched.
+    through_event : bool
+        When the fitted single-impact run-outs run the outlines into each other again
+        (their event, :func:`pim.analysis.event.event_rest_many`, has further impacts), fit
+        the post-impact motion through the event instead
+        (:func:`pim.analysis.event_fit.fit_through_event`; reconstruction through the event).
     **fit_options
         Passed to :func:`pim.analysis.runout_fit.fit_runout`.
 
@@ -209,8 +226,44 @@ def post_impact_motion(case: Case, *, speed_bounds=(0.0, 60.0),
                                    runouts[2].velocity, vel_cov[1], vel_cov[2])
         if momentum.message:
             messages.append(f"linear momentum: {momentum.message}")
-    return PostImpact(replace(case, measured=_with_motion(case.measured, measured)), runouts,
+    post = PostImpact(replace(case, measured=_with_motion(case.measured, measured)), runouts,
                       vel_cov, yaw_sigma, momentum, messages)
+    return _through_event(post) if through_event else post
+
+
+def _through_event(post: PostImpact) -> PostImpact:
+    """``post`` refitted through the event when the single-impact run-outs' motion runs the
+    outlines into each other again (module notes of :mod:`pim.analysis.event_fit`); the
+    messages name the impacts and how far the speeds move."""
+    case = post.case
+    if 1 not in post.runouts or (2 not in post.runouts and not bool(case.vehicle2.fixed)):
+        return post
+    if any(getattr(case, f"vehicle{i}").length is None or getattr(
+            case, f"vehicle{i}").width is None for i in (1, 2)):
+        return post
+    velocity = np.stack([post.runouts[i].velocity if i in post.runouts else np.zeros(2)
+                         for i in (1, 2)])
+    yaw = np.array([post.runouts[i].yaw_rate if i in post.runouts else 0.0 for i in (1, 2)])
+    single = event_rest_many(case, velocity[None], yaw[None])
+    if int(single.impacts[0]) == 0:
+        return post
+    fit = fit_through_event(case, velocity, yaw)
+    moved = [abs(float(np.hypot(*fit.velocity[i - 1])) - float(np.hypot(*velocity[i - 1])))
+             for i in post.runouts]
+    text = (f"the single-impact run-outs re-contact at t = {float(single.first_time[0]):.3g} s "
+            f"after the impact ({int(single.impacts[0])} further impact(s)): the post-impact "
+            f"motion is fitted through the event ({fit.impacts} further impact(s), "
+            f"{fit.starts_agreeing} of {fit.starts} starts agree); the post-impact speeds "
+            "move by " + ", ".join(f"{speed_text(m, '.3g')} (vehicle {i})"
+                                  for i, m in zip(post.runouts, moved, strict=True)))
+    measured = {f"velocity{i}": fit.velocity[i - 1] for i in post.runouts}
+    measured.update({f"yaw_rate{i}": float(fit.yaw_rate[i - 1]) for i in post.runouts})
+    kept = {k: getattr(case.measured, k) for k in ("velocity1_sigma", "velocity2_sigma",
+                                                   "yaw_rate1_sigma", "yaw_rate2_sigma")}
+    new_case = replace(case, measured=_with_motion(case.measured, {**measured, **{
+        k: v for k, v in kept.items() if v is not None}}))
+    return replace(post, case=new_case, messages=post.messages + [text], event_fit=fit,
+                   single_event_impacts=int(single.impacts[0]))
 
 
 def _with_motion(measured: Measured | None, motion: dict) -> Measured:

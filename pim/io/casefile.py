@@ -66,7 +66,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model.case import Case, Impact, Vehicle
+from ..model.case import Case, Impact, ImpactSpec, Vehicle
 from ..model.distributions import Distribution, UncertaintyTable
 from ..model.numbers import InputError
 from ..model.plausibility import bare_angle_warning
@@ -79,10 +79,11 @@ from .tyre_table import attach_tyres
 from .uncertainty_table import parse_uncertainty
 from .units import LIMITS, SPEED_UNITS, UNIT_SYSTEMS, parse, registry, unit_system_of
 
-__all__ = ["load_case", "list_cases", "parse_case"]
+__all__ = ["load_case", "list_cases", "parse_case", "parse_impacts", "MAX_FURTHER"]
 
 _TOP = {"name", "description", "source", "convention", "vehicle1", "vehicle2", "impact",
-        "measured", "uncertainty", "evidence", "unknown", "tyres", "driver", "units"}
+        "measured", "uncertainty", "evidence", "unknown", "tyres", "driver", "units",
+        "impacts"}
 _VEHICLE = {"mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
             "length", "width", "cg_to_front", "fixed", "cg", "heading", "theta", "phi", "d",
             "wheelbase", "cg_to_front_axle", "body", "reversing"}
@@ -98,6 +99,10 @@ MAX_DEPTH = 8
 MAX_TEXT = {"name": 200, "description": 10_000, "source": 10_000}
 _IMPACT = {"point", "normal_angle", "contact_plane_angle", "restitution", "beta", "law",
            "contact_friction"}
+#: The keys of an ``[[impacts]]`` entry (an event's further impact, :class:`ImpactSpec`).
+_FURTHER = {"law", "restitution", "beta", "contact_friction", "point", "normal_angle"}
+#: Most ``[[impacts]]`` entries (the event's further impacts, MAX_IMPACTS).
+MAX_FURTHER = 12
 
 
 def _require(table: dict, key: str, where: str, *, file: bool = False):
@@ -334,10 +339,41 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
                 evidence=attach_tyres(parse_evidence(data.get("evidence"), {
                     i + 1: (v.length, v.width) for i, v in enumerate(vehicles)}),
                     data.get("tyres"), data.get("driver")),
-                unknown=parse_unknown(data.get("unknown")), estimates=estimates)
+                unknown=parse_unknown(data.get("unknown")), estimates=estimates,
+                impacts=parse_impacts(data.get("impacts")))
     for line in estimate_notes(case, case.units):
         _LOG.warning(f"note: {source}: {line}")
     return case
+
+
+def parse_impacts(entries) -> tuple:
+    """The ``[[impacts]]`` list: the law and coefficients of the event's further impacts in
+    order (entry k is the event's impact k + 2; the last also any later one), each an
+    :class:`ImpactSpec` (``law``, ``restitution``, ``beta``, ``contact_friction``, and
+    optionally ``point`` and ``normal_angle`` instead of the outlines' contact geometry);
+    () when absent."""
+    if entries is None:
+        return ()
+    if not isinstance(entries, list) or not entries:
+        raise InputError("impacts must be a list of tables ([[impacts]] entries)")
+    if len(entries) > MAX_FURTHER:
+        raise InputError(f"impacts has {len(entries)} entries; an event takes at most "
+                         f"{MAX_FURTHER} further impacts")
+    specs = []
+    for k, entry in enumerate(entries):
+        where = f"impacts[{k}]"
+        table = check_keys(entry, _FURTHER, where)
+        law = table.get("law", "brach-capped")
+        if not isinstance(law, str):
+            raise InputError(f"{where}.law must be a string, got {law!r}")
+        point = _pair(table["point"], "length", f"{where}.point") if "point" in table else None
+        specs.append(ImpactSpec(
+            law=law, restitution=_optional(table, "restitution", "dimensionless", where),
+            beta=_optional(table, "beta", "dimensionless", where),
+            contact_friction=_optional(table, "contact_friction", "dimensionless", where),
+            point=point, normal_angle=_optional(table, "normal_angle", "angle", where),
+            where=where))
+    return tuple(specs)
 
 
 def _with_estimates(table, estimates) -> UncertaintyTable | None:

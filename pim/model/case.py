@@ -419,7 +419,10 @@ class ImpactSpec:
         Fraction of mu0 [-] >= 0 (Brach's laws; default 1).
     contact_friction : float, optional
         mu_c [-] >= 0: the cap of "brach-capped", the contact friction of
-        "kudlich-slibar" (required by them).
+        "kudlich-slibar".
+
+    A coefficient left out takes the event's stated default
+    (:func:`pim.analysis.event.impact_spec`).
     point : array_like (2,), optional
         C [m], global frame, instead of the outlines' contact point.
     normal_angle : float, optional
@@ -450,8 +453,6 @@ class ImpactSpec:
         mu_c = self.contact_friction
         if mu_c is not None and not float(mu_c) >= 0.0:
             raise InputError(f"{w}.contact_friction must be >= 0, got {mu_c!r}")
-        if self.law in FRICTION_LAWS and mu_c is None:
-            raise InputError(f"{w}.contact_friction is required for law {self.law!r}")
         if self.law == "brach" and mu_c is not None:
             raise InputError(f"{w}.contact_friction needs law 'brach-capped' or "
                              f"'kudlich-slibar'")

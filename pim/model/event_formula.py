@@ -19,14 +19,16 @@ separating-axis test with a reference face, as Box2D and pymunk's polygon contac
   edge normals (the separating-axis test, :func:`pim.model.geometry.outline_penetration`);
 - Gamma is the normal of the penetrated edge: the edge normal of least overlap, pointing
   from vehicle 2 toward vehicle 1 (PIM's convention);
-- C is the centroid of the corners of either outline that lie inside the other: the
+- C is the centroid of the corners of either outline that lie inside the other and close
+  along the normal (their velocity on vehicle 1 relative to vehicle 2, ``u . n < 0``): the
   penetrating corner in the usual corner-into-edge contact, the middle of the shared
-  stretch when two edges meet flat (a side slap of parallel sides); the deepest corner along
+  stretch when two edges meet flat (a side slap of parallel sides); corners of an earlier
+  overlap (the crush of the first impact) that part do not count; the deepest corner along
   the normal when no corner lies inside (two edges crossing).
 
 The contact is new when the depth grows by more than a tolerance above its least value
 since the last impact (the outlines of a case may overlap at PIM's impact configuration by
-the crush, and part), and it is solved when C closes (``u_n < 0``).
+the crush, and part), and it is solved when a corner inside closes.
 
 **The secondary impact** (:func:`capped_impact`): PIM's formula (:mod:`pim.model.formula`)
 at C and Gamma with restitution ``eps`` and ``mu = sign(mu0) min(beta |mu0|, cap)``: the
@@ -73,7 +75,8 @@ SECONDARY_CONTACT_FRICTION = 0.5
 __all__ = ["EVENT_STEP", "MAX_IMPACTS", "CONTACT_TOLERANCE", "TUNNEL_FRACTION",
            "BISECTION_STEP", "SECONDARY_LAW", "SECONDARY_RESTITUTION", "SECONDARY_BETA",
            "SECONDARY_CONTACT_FRICTION", "box", "axis_overlap", "inside_depth",
-           "contact_geometry", "capped_impact", "closing_speed", "bound_radius"]
+           "contact_geometry", "capped_impact", "closing_speed", "bound_radius",
+           "energy_change"]
 
 
 def box(x, y, psi, front, length, width):
@@ -110,15 +113,21 @@ def inside_depth(px, py, b):
     return max(qx, qy)
 
 
-def contact_geometry(b1, b2):
+def contact_geometry(b1, b2, s1, s2):
     """The contact of two boxes (module notes: the rule and why).
+
+    Parameters
+    ----------
+    b1, b2 : box tuples (:func:`box`)
+    s1, s2 : the vehicles' states ``(x, y, psi, v_x, v_y, omega)`` [SI]
 
     Returns
     -------
-    depth, cx, cy, nx, ny
-        The overlap depth [m] (<= 0: apart), the impact point C [m] and the unit normal of
-        the penetrated edge ``(cos Gamma, sin Gamma)``, pointing from vehicle 2 toward
-        vehicle 1.
+    depth, cx, cy, nx, ny, closing
+        The overlap depth [m] (<= 0: apart), the impact point C [m], the unit normal of the
+        penetrated edge ``(cos Gamma, sin Gamma)`` pointing from vehicle 2 toward vehicle
+        1, and how many corners inside the other outline close along it (a float; 0: none,
+        C is then the centroid of all inside corners, or the deepest corner).
     """
     depth, nx, ny = np.inf, 1.0, 0.0
     for k in range(4):
@@ -128,8 +137,8 @@ def contact_geometry(b1, b2):
         if overlap < depth:
             sign = 1.0 if d >= 0.0 else -1.0
             depth, nx, ny = overlap, sign * ux, sign * uy
-    sx = sy = 0.0
-    count = 0
+    sx = sy = ax = ay = 0.0
+    count = closing = 0
     deepest, dx, dy = np.inf, 0.0, 0.0
     for k in range(8):
         own, other = (b1, b2) if k < 4 else (b2, b1)
@@ -139,14 +148,18 @@ def contact_geometry(b1, b2):
         px = own[0] + ex * own[4] * own[2] - ey * own[5] * own[3]
         py = own[1] + ex * own[4] * own[3] + ey * own[5] * own[2]
         if inside_depth(px, py, other) < 0.0:
-            sx, sy, count = sx + px, sy + py, count + 1
+            ax, ay, count = ax + px, ay + py, count + 1
+            if closing_speed(px, py, nx, ny, s1, s2) < 0.0:
+                sx, sy, closing = sx + px, sy + py, closing + 1
         # how far the corner reaches toward the other body along the normal
         reach = (px * nx + py * ny) * (1.0 if k < 4 else -1.0)
         if reach < deepest:
             deepest, dx, dy = reach, px, py
+    if closing > 0:
+        return depth, sx / closing, sy / closing, nx, ny, 1.0 * closing
     if count > 0:
-        return depth, sx / count, sy / count, nx, ny
-    return depth, dx, dy, nx, ny
+        return depth, ax / count, ay / count, nx, ny, 0.0
+    return depth, dx, dy, nx, ny, 1.0 if closing_speed(dx, dy, nx, ny, s1, s2) < 0.0 else 0.0
 
 
 def closing_speed(cx, cy, nx, ny, s1, s2):
@@ -185,8 +198,37 @@ def capped_impact(cx, cy, nx, ny, s1, s2, inverse, coefficients, tolerances):
     -----
     Brach & Brach (2011) eqs. 6.45-6.62 (:mod:`pim.model.formula`), with beta replaced by
     ``min(beta, cap / |mu0|)`` (:func:`pim.model.friction_cap.capped_beta`), mu0 =
-    Pt0 / Pn0 the critical impulse ratio at ``eps``.
+    Pt0 / Pn0 the critical impulse ratio at ``eps``. Where that answer gains energy
+    (Newton's restitution with a tangential impulse on a grazing contact: Kane and
+    Levinson's paradox, Stronge, *Impact Mechanics*, 2000, sec. 4.4), the impact is solved
+    frictionless (beta = 0: the normal impulse alone, which loses
+    ``(1 - eps^2) m_eff u_n^2 / 2 >= 0``). :func:`pim.analysis.event.event` applies the
+    same rule to :func:`pim.solve`'s answer.
     """
+    out = _capped(cx, cy, nx, ny, s1, s2, inverse, coefficients, tolerances)
+    if energy_change(inverse, s1, s2, out) > 0.0:
+        out = _capped(cx, cy, nx, ny, s1, s2, inverse, (coefficients[0], 0.0, coefficients[2]),
+                      tolerances)
+    return out
+
+
+def energy_change(inverse, s1, s2, out):
+    """Kinetic energy after minus before [J] of an impact's answer ``out``
+    (:func:`capped_impact`'s) on the states ``s1``, ``s2``; a fixed obstacle (inverse mass
+    0) counts nothing."""
+    change = 0.0
+    for v in range(2):
+        a, b = inverse[2 * v], inverse[2 * v + 1]
+        s = s1 if v == 0 else s2
+        if a > 0.0:
+            vx, vy, w = out[2 + 3 * v], out[3 + 3 * v], out[4 + 3 * v]
+            change += 0.5 * ((vx * vx + vy * vy - s[3] * s[3] - s[4] * s[4]) / a
+                             + (w * w - s[5] * s[5]) / b)
+    return change
+
+
+def _capped(cx, cy, nx, ny, s1, s2, inverse, coefficients, tolerances):
+    """:func:`capped_impact` without its energy check."""
     a1, b1, a2, b2 = inverse
     eps, beta, cap = coefficients
     r1x, r1y, r2x, r2y = cx - s1[0], cy - s1[1], cx - s2[0], cy - s2[1]

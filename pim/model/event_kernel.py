@@ -64,7 +64,7 @@ _PIM = compile_module(formula)
 _GEO = compile_module(event_formula, {"contact": _PIM.contact,
                                       "post_impact": _PIM.post_impact})
 _box, _contact_geometry = _GEO.box, _GEO.contact_geometry
-_closing_speed, _capped_impact = _GEO.closing_speed, _GEO.capped_impact
+_capped_impact = _GEO.capped_impact
 _cached = stamped_cache(event_formula, formula, runout_formula, tyres, runout_kernel)
 
 
@@ -90,7 +90,9 @@ def _step(st, moving, t, h, veh1, veh2, new):  # pragma: no cover - compiled
 def _contact(st, geo):  # pragma: no cover - compiled
     b1 = _box(st[0, 0], st[0, 1], st[0, 2], geo[0, 0], geo[0, 1], geo[0, 2])
     b2 = _box(st[1, 0], st[1, 1], st[1, 2], geo[1, 0], geo[1, 1], geo[1, 2])
-    return _contact_geometry(b1, b2)
+    s1 = (st[0, 0], st[0, 1], st[0, 2], st[0, 3], st[0, 4], st[0, 5])
+    s2 = (st[1, 0], st[1, 1], st[1, 2], st[1, 3], st[1, 4], st[1, 5])
+    return _contact_geometry(b1, b2, s1, s2)
 
 
 @njit(error_model="numpy")
@@ -202,7 +204,7 @@ def _sample(i, st, t, allowed, veh1, veh2, geo, rad, reach, inv, coef, settings,
                 cg = _contact(new, geo)
                 for j in range(5):
                     c[j] = cg[j]
-                closing = _closing_speed(c[1], c[2], c[3], c[4], new[0], new[1]) < 0.0
+                closing = cg[5] > 0
                 hit = closing
                 if closing and solve:
                     if count == impacts.shape[1]:
@@ -372,13 +374,14 @@ def run_event(scene: EventScene, start, *, start_time=0.0, allowed=None, solve=T
                                         (n, MAX_IMPACTS, 3)), settings, out, tail, impacts,
                         rec))
     status = np.asarray(STATUS)[tail[:, 1].astype(int)]
-    return EventRun(out, tail[:, 0].copy(), status, tail[:, 2].astype(int), tail[:, 3].copy(),
-                    tail[:, 4:6] > 0, tail[:, 6:11].copy(), impacts,
-                    rec[:int(tail[0, 11])] if record else None)
+    return EventRun(final=out, time=tail[:, 0].copy(), status=status,
+                    count=tail[:, 2].astype(int), allowed=tail[:, 3].copy(),
+                    moving=tail[:, 4:6] > 0, contact=tail[:, 6:11].copy(), impacts=impacts,
+                    record=rec[:int(tail[0, 11])] if record else None)
 
 
 def _start_depth(state, outlines) -> float:
     """The outlines' overlap depth [m] of one sample's state (2, 6)."""
     boxes = [event_formula.box(state[v, 0], state[v, 1], state[v, 2], *outlines[v])
              for v in range(2)]
-    return float(event_formula.contact_geometry(*boxes)[0])
+    return float(event_formula.contact_geometry(*boxes, tuple(state[0]), tuple(state[1]))[0])

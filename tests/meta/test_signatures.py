@@ -293,7 +293,8 @@ def test_the_compiled_kernels_are_found():
     assert {("pim/model/formula.py", "contact"), ("pim/model/formula.py", "post_impact"),
             ("pim/model/tyres.py", "wheel_force"),
             ("pim/model/tyres.py", "field_wheel_force")} <= INDEX.kernels
-    assert INDEX.compiled_modules == {"sim/compliant_formula.py", "pim/model/runout_formula.py"}
+    assert INDEX.compiled_modules == {"sim/compliant_formula.py", "pim/model/runout_formula.py",
+                                      "pim/model/formula.py", "pim/model/event_formula.py"}
     # the formula's point_contact is compiled; sim.compliant_setup's of the same name is not
     assert ("sim/compliant_formula.py", "point_contact") in INDEX.exempt
     assert ("sim/compliant_setup.py", "point_contact") not in INDEX.exempt

@@ -385,3 +385,35 @@ def test_every_unknown_name_of_a_case_file_gets_the_closest_known_one(tmp_path, 
     with pytest.raises(ValueError) as info:
         pim.load_case(path)
     assert str(info.value).startswith(words), str(info.value)
+
+
+IMPACTS = '[[impacts]]\nlaw = "brach"\nrestitution = 0.3\nbeta = 0.5\n'
+
+
+def test_impacts_list_sets_the_further_impacts(tmp_path):
+    path = variant(tmp_path, "[measured]", IMPACTS + '[[impacts]]\nlaw = "brach-capped"\n'
+                   'contact_friction = 0.4\n\n[measured]')
+    case = pim.load_case(path)
+    assert [s.law for s in case.impacts] == ["brach", "brach-capped"]
+    assert (case.impacts[0].restitution, case.impacts[0].beta) == (0.3, 0.5)
+    assert case.impacts[1].contact_friction == 0.4
+    assert pim.load_case("ricsac9").impacts == ()
+
+
+@pytest.mark.parametrize("new, words", [
+    (IMPACTS.replace("beta", "betta"), ["impacts[0]", "unknown key 'betta'", "beta"]),
+    (IMPACTS.replace("0.3", "1.5"), ["impacts[0].restitution", "[0, 1]"]),
+    (IMPACTS.replace('"brach"', '"pc-crash"'), ["impacts[0].law", "brach-capped"]),
+    ('[[impacts]]\nlaw = "brach"\ncontact_friction = 0.4\n',
+     ["impacts[0].contact_friction", "brach-capped"]),
+    ('[[impacts]]\npoint = ["1 ft"]\n', ["impacts[0].point", "two values"]),
+])
+def test_impacts_entries_name_the_field(tmp_path, capsys, new, words):
+    path = variant(tmp_path, "[measured]", new + "\n[measured]")
+    with pytest.raises(pim.InputError) as info:
+        pim.load_case(path)
+    for w in words:
+        assert w in str(info.value)
+    assert main(["solve", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "impacts[0]" in err

@@ -1,0 +1,97 @@
+"""The figures of docs/event.md, written by ``python -m comparisons.docs event``: the analytic
+event's impacts and rest positions on RICSAC 9 (without tyres and with the default ones), on
+a T-bone whose struck car slaps the bullet car's side, and on a straight slide checked by
+hand. The table sits between :data:`BEGIN` and :data:`END` in docs/event.md (the rest of
+the page is prose), a :class:`~comparisons.report.tables.Table` rendered by the one Markdown
+renderer; a test fails when the page differs from what the code gives.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+import pim
+from comparisons.report.render import markdown_table
+from comparisons.report.tables import Num, Table
+from comparisons.report.write import write_block
+from pim.model.tyres import STANDARD_GRAVITY
+
+__all__ = ["COMMAND", "BEGIN", "END", "PAGE", "side_slap_case", "slide_case", "scenes",
+           "impact_table", "block", "regenerate"]
+
+COMMAND = "python -m comparisons.docs event"
+BEGIN = (f"<!-- event: begin (written by `{COMMAND}`; edit comparisons/docs/event.py, not "
+         "this table) -->")
+END = "<!-- event: end -->"
+#: The page of docs/ that holds the table.
+PAGE = "event.md"
+
+
+def side_slap_case() -> pim.Case:
+    """A T-bone: vehicle 1 (1500 kg, heading +y, 50 km/h) into the right side of vehicle 2
+    (1400 kg, heading +x, 10 km/h) 0.8 m behind its CG, outlines 4.5 x 1.8 m overlapping by
+    0.3 m at PIM's configuration; eps 0.2, beta 1."""
+    length, width, crush, along = 4.5, 1.8, 0.3, -0.8
+    v1 = pim.Vehicle(1500.0, 2500.0, (along, -width / 2 - length / 2 + crush),
+                     (0.0, 50 / 3.6), 0.0, math.pi / 2, length=length, width=width)
+    v2 = pim.Vehicle(1400.0, 2300.0, (0.0, 0.0), (10 / 3.6, 0.0), 0.0, 0.0, length=length,
+                     width=width)
+    return pim.Case(v1, v2, pim.Impact((along, -width / 2 + crush / 2), -math.pi / 2,
+                                       restitution=0.2, beta=1.0), name="side slap")
+
+
+def slide_case() -> pim.Case:
+    """A car (10 m/s) square into a barrier, its CG on the line of C: PIM (eps 0.5, beta 1)
+    returns it straight back at 5 m/s."""
+    car = pim.Vehicle(1500.0, 2500.0, (0.0, 0.0), (10.0, 0.0), 0.0, 0.0, length=4.5,
+                      width=1.8)
+    wall = pim.Vehicle.obstacle(cg=(2.7, 0.0), length=1.0, width=20.0)
+    return pim.Case(car, wall, pim.Impact((2.25, 0.0), math.pi, restitution=0.5, beta=1.0),
+                    name="slide")
+
+
+def scenes() -> list:
+    """(label, case, tyre friction) of the table."""
+    ricsac = pim.load_case("ricsac9")
+    return [("RICSAC 9, no tyres", ricsac, 0.0), ("RICSAC 9, tyres 0.7", ricsac, None),
+            ("side slap, tyres 0.7", side_slap_case(), None),
+            ("barrier slide, tyres 0.7", slide_case(), 0.7)]
+
+
+def impact_table() -> Table:
+    """Per scene and impact: time, C, Gamma, law, each vehicle's |delta-V| and the energy
+    lost; then the rest positions (SI; the slide's hand value in the last column)."""
+    rows = []
+    for label, case, mu in scenes():
+        ev = pim.event(case, tyre_friction=mu)
+        for k, imp in enumerate(ev.impacts, start=1):
+            dv = imp.delta_v_magnitude
+            rows.append((label, k, Num(imp.time, 3), f"({imp.point[0]:.2f}, {imp.point[1]:.2f})",
+                         Num(math.degrees(imp.normal_angle), 1), imp.law,
+                         Num(dv[0] * 3.6, 1), Num(dv[1] * 3.6, 1) if np.isfinite(
+                             imp.pdof[1]) else "-", Num(imp.energy_loss / 1000, 2)))
+        rest = ev.rest_position
+        rows.append((label, "rest", Num(ev.end_time, 2),
+                     f"({rest[0, 0]:.2f}, {rest[0, 1]:.2f}) / ({rest[1, 0]:.2f}, "
+                     f"{rest[1, 1]:.2f})", "", "stopped" if all(ev.stopped) else "moving",
+                     "", "", ""))
+    hand = 25.0 / (2 * 0.7 * STANDARD_GRAVITY)
+    rows.append(("barrier slide, by hand", "rest", "", f"({-hand:.2f}, 0.00)", "",
+                 "(eps v)^2 / (2 mu g)", "", "", ""))
+    return Table("event", "The analytic event's impacts and rest positions",
+                 ("scene", "impact", "time [s]", "C [m] / rest CGs [m]", "Gamma [deg]", "law",
+                  "|dV1| [km/h]", "|dV2| [km/h]", "energy lost [kJ]"), tuple(rows),
+                 csv=False)
+
+
+def block() -> str:
+    """The generated block of docs/event.md, markers included."""
+    return "\n".join([BEGIN, "", markdown_table(impact_table()), "", END])
+
+
+def regenerate(docs_dir) -> list[Path]:
+    """Rewrite the table of ``docs_dir/event.md`` (between its markers)."""
+    return [write_block(Path(docs_dir) / PAGE, BEGIN, END, block())]

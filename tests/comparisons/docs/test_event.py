@@ -1,0 +1,35 @@
+"""The table of docs/event.md is what the code gives (comparisons.docs.event)."""
+
+from pathlib import Path
+
+import pytest
+
+from comparisons.docs import event as D
+from comparisons.docs.__main__ import main
+from pim.model.tyres import STANDARD_GRAVITY
+
+DOCS = Path(__file__).resolve().parents[3] / "docs"
+
+
+def test_the_committed_page_holds_the_table_the_code_gives():
+    assert D.block() in (DOCS / D.PAGE).read_text(encoding="utf-8")
+
+
+def test_the_slide_row_agrees_with_the_hand_value():
+    table = D.impact_table()
+    rows = {(r[0], r[1]): r for r in table.rows}
+    slide = rows[("barrier slide, tyres 0.7", "rest")][3]
+    hand = 25.0 / (2 * 0.7 * STANDARD_GRAVITY)
+    assert slide.startswith(f"({-hand:.2f}, 0.00)")
+    assert rows[("side slap, tyres 0.7", 2)][5] == "brach-capped"
+
+
+def test_regeneration_rewrites_only_the_block(tmp_path, capsys):
+    page = tmp_path / D.PAGE
+    page.write_text(f"prose before\n{D.BEGIN}\n| old |\n{D.END}\nprose after\n")
+    assert main(["event", "--docs", str(tmp_path)]) == 0
+    assert capsys.readouterr().out.strip() == f"wrote {page}"
+    assert page.read_text() == f"prose before\n{D.block()}\nprose after\n"
+    with pytest.raises(ValueError, match="markers"):
+        page.write_text("no markers\n")
+        D.regenerate(tmp_path)
