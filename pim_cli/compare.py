@@ -324,10 +324,13 @@ def _check_suffix(path, option: str, suffix: str) -> None:
 @click.option("--engine", type=click.Choice(["numba", "pymunk"]), default="numba",
               show_default=True, help="The finite-duration scene's fixed-step integrator: "
                                       "compiled, or pymunk (the cross-check).")
+@click.option("--event", "event", is_flag=True,
+              help="Also the whole event: pymunk over dt and iterations and the analytic "
+                   "event over its step, against a tight pymunk event.")
 @progress_option
 @json_option
-def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, engine, progress,
-                as_json):
+def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, engine, event,
+                progress, as_json):
     """Sweep the simulator's dt, iterations, contact start and geometry for each CASE.
 
     Writes, per case, speed-error-CASE.md and .html (table of the Pareto front and every
@@ -336,7 +339,10 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, engine, 
     With --compliant (default) also speed-error-compliant-CASE.md/.html/.csv/.png: the
     finite-duration contact stepped over dt (compiled, or by pymunk with --engine pymunk)
     and integrated by solve_ivp over rtol, against a tight solve_ivp reference, its two
-    scenes on two worker processes. "hard" stands for every bundled hard case.
+    scenes on two worker processes. With --event also speed-error-event-CASE.md/.html/
+    .csv/.png: the whole event (approach, every impact, run-out to rest), pymunk over dt and
+    iterations and the analytic event over its step, against pymunk at dt = 1e-4 s.
+    "hard" stands for every bundled hard case.
     """
     from pim.io.casefile import list_cases
     from pim.io.output import output_folder, rebase
@@ -349,7 +355,7 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, engine, 
         names += [c for c, _ in list_cases() if c.startswith("hard-")] if n == "hard" else [n]
     folder = Path(out) if out else Path("out") / "speed-error"
     opts = _SpeedErrorOptions(out, eps, beta, repeats, coarse, engine if compliant else None,
-                              progress, as_json)
+                              progress, as_json, event=event)
     wall, cpu = time.perf_counter(), time.process_time()
     with output_folder(folder, command="pim speed-error", merge=True) as tmp, \
             contextlib.ExitStack() as stack:
@@ -380,9 +386,11 @@ class _SpeedErrorOptions:
     engine: str | None
     progress: bool | None
     as_json: bool
+    event: bool = False
 
     def command(self, name: str) -> str:
-        return _command(name, self.coarse, self.repeats, self.out)
+        return _command(name, self.coarse, self.repeats, self.out) + (
+            " --event" if self.event else "")
 
 
 def _speed_error_case(name: str, folder, opts: _SpeedErrorOptions, pool) -> dict:
@@ -409,6 +417,8 @@ def _speed_error_case(name: str, folder, opts: _SpeedErrorOptions, pool) -> dict
         if written is None else written.result()
     result["files"] = [str(f) for f in files] + result["files"]
     result["lines"].append(speed_error_line(study, stem))
+    if opts.event:
+        _event_result(case, stem, folder, opts, result)
     if opts.as_json:
         result.pop("lines")
     return result
@@ -433,6 +443,24 @@ def _compliant_result(cstudy, stem: str, folder, opts: _SpeedErrorOptions,
     result["files"] += [str(f) for f in cfiles]
     result.update(compliant_json(cstudy))
     result["lines"] += compliant_summary(cstudy, stem)
+
+
+def _event_result(case, stem: str, folder, opts: _SpeedErrorOptions, result: dict) -> None:
+    """The whole event's sweep of one case, written; its files, JSON and line into
+    ``result``."""
+    from comparisons.report.speed_error import (
+        event_speed_json,
+        event_speed_line,
+        write_event_speed,
+    )
+    from comparisons.studies.event_speed_error import EVENT_COARSE, event_sweep
+
+    grid = dict(EVENT_COARSE) if opts.coarse else {}
+    study = event_sweep(case, progress=opts.progress, repeats=opts.repeats, **grid)
+    files = write_event_speed(study, folder, stem, command=opts.command(stem))
+    result["files"] += [str(f) for f in files]
+    result.update(event_speed_json(study))
+    result["lines"].append(event_speed_line(study, stem))
 
 
 def _command(name: str, coarse: bool, repeats: int, out) -> str:

@@ -12,6 +12,13 @@ from pathlib import Path
 from comparisons.report.document import Bullets, Code, Document, Figure, Paragraph, Section
 from comparisons.report.number_format import format_number
 from comparisons.report.write import write_document
+from comparisons.studies.event_speed_error import (
+    REFERENCE,
+    EventSpeedStudy,
+    event_pareto_table,
+    event_study_table,
+    plot_event_speed_error,
+)
 from comparisons.studies.speed_error import (
     SpeedErrorStudy,
     pareto_table,
@@ -30,7 +37,8 @@ from pim.io.files import save_figure
 
 __all__ = ["speed_error_document", "write_speed_error", "compliant_document",
            "write_compliant", "speed_error_json", "speed_error_line", "compliant_json",
-           "compliant_summary"]
+           "compliant_summary", "event_speed_document", "write_event_speed",
+           "event_speed_json", "event_speed_line"]
 
 
 def _method(study: SpeedErrorStudy) -> str:
@@ -60,6 +68,16 @@ def _findings(study: SpeedErrorStudy) -> list[str]:
     if fails:
         lines.append("failed runs: " + ", ".join(f"{k} x {v}" for k, v in fails.items()))
     return lines
+
+
+def _write_study(document: Document, figure, out_dir) -> list[Path]:
+    """Write a study's ``document`` through the pipeline and its ``figure`` as
+    ``NAME.png`` (NAME the document's): the Markdown first, then the other files, the PNG
+    last."""
+    out = Path(out_dir)
+    png = save_figure(figure, out / f"{document.name}.png")
+    written = write_document(document, out)
+    return [written[-1], *written[:-1], png]
 
 
 def speed_error_document(study: SpeedErrorStudy, stem: str, command: str = "") -> Document:
@@ -94,10 +112,8 @@ def write_speed_error(study: SpeedErrorStudy, out_dir, stem: str,
                       command: str = "") -> list[Path]:
     """Write ``speed-error-STEM.md`` (first in the list), ``.html``, ``.csv`` (every run),
     ``-pareto.csv`` and ``.png`` into ``out_dir``."""
-    out = Path(out_dir)
-    png = save_figure(plot_speed_error(study), out / f"speed-error-{stem}.png")
-    written = write_document(speed_error_document(study, stem, command), out)
-    return [written[-1], *written[:-1], png]
+    return _write_study(speed_error_document(study, stem, command), plot_speed_error(study),
+                        out_dir)
 
 
 def _compliant_lines(study: CompliantSpeedStudy) -> tuple[list[str], list[str]]:
@@ -147,11 +163,8 @@ def compliant_document(study: CompliantSpeedStudy, stem: str, command: str = "")
 def write_compliant(study: CompliantSpeedStudy, out_dir, stem: str,
                     command: str = "") -> list[Path]:
     """Write ``speed-error-compliant-STEM.md`` (first), ``.html``, ``.csv`` and ``.png``."""
-    out = Path(out_dir)
-    png = save_figure(plot_compliant_speed_error(study),
-                      out / f"speed-error-compliant-{stem}.png")
-    written = write_document(compliant_document(study, stem, command), out)
-    return [written[-1], *written[:-1], png]
+    return _write_study(compliant_document(study, stem, command),
+                        plot_compliant_speed_error(study), out_dir)
 
 
 def speed_error_json(study: SpeedErrorStudy, stem: str) -> dict:
@@ -204,3 +217,78 @@ def compliant_summary(study: CompliantSpeedStudy, stem: str) -> list[str]:
         "no run reaches 1e-3" if rec is None else
         f"recommended {rec.label}: error {rec.error:.1e}, {rec.wall_time * 1e3:.3g} ms/impact")
         for scene, rec in _recommended(study).items()]
+
+
+def _event_verdict(study: EventSpeedStudy) -> str:
+    """The fastest run of each engine reaching the target, in words."""
+    parts = []
+    for engine in ("pymunk", "analytic"):
+        rec = study.recommended(engine)
+        parts.append(f"{engine}: " + ("no run reaches it" if rec is None else
+                                      f"**{rec.label}**, error {rec.error:.2e} in "
+                                      f"{format_number(rec.wall_time * 1e3, sig=3)} ms"))
+    return (f"Fastest run reaching the target error {study.target:g}, per engine: "
+            + "; ".join(parts) + ".")
+
+
+def event_speed_document(study: EventSpeedStudy, stem: str, command: str = "") -> Document:
+    """The whole event's sweep as a report: method, verdict, plot, Pareto front, every run."""
+    fails = {}
+    for p in study.points:
+        if not p.ok:
+            fails[p.failure] = fails.get(p.failure, 0) + 1
+    method = (f"The reference: the pymunk event at dt = {REFERENCE['dt']:g} s and "
+              f"{REFERENCE['iterations']} solver iterations "
+              f"({len(study.reference.impacts)} impacts, "
+              f"{format_number(study.reference_time, sig=3)} s). Against it: the pymunk event "
+              f"over its step (also its contact test's step) and iterations, and the analytic "
+              f"event (pim.event) over its run-out step (its contact test's step; it bisects "
+              f"a contact to 1 us). Error: the largest of each impact's delta-V difference "
+              f"relative to its largest |delta-V| and each vehicle's rest-position distance "
+              f"relative to its run-out travel; infinite when the impact count differs. Wall "
+              f"time: one event, best of the repeats, on the machine that ran the command.")
+    blocks = ([Paragraph("Regenerate with:"), Code(command)] if command else []) + [
+        Paragraph(method), Paragraph(_event_verdict(study)),
+        Bullets(tuple(f"failed runs: {k} x {v}" for k, v in fails.items())),
+        Figure(f"speed-error-event-{stem}.png", alt="the event's speed against error")]
+    return Document(f"Speed against error of the whole event: {study.case_name}",
+                    "pim speed-error --event", (
+                        Section("study", "The study", tuple(blocks), keep=True),
+                        Section("pareto", "Pareto front",
+                                (event_pareto_table(study, f"speed-error-event-{stem}-pareto"),)),
+                        Section("every-run", "Every run",
+                                (event_study_table(study, f"speed-error-event-{stem}"),))),
+                    name=f"speed-error-event-{stem}")
+
+
+def write_event_speed(study: EventSpeedStudy, out_dir, stem: str,
+                      command: str = "") -> list[Path]:
+    """Write ``speed-error-event-STEM.md`` (first in the list), ``.html``, ``.csv``,
+    ``-pareto.csv`` and ``.png`` into ``out_dir``."""
+    return _write_study(event_speed_document(study, stem, command),
+                        plot_event_speed_error(study), out_dir)
+
+
+def event_speed_json(study: EventSpeedStudy) -> dict:
+    """The event study's part of ``pim speed-error --json``: per engine the fastest run
+    reaching the target (None: none), and the reference's impacts and time [s]."""
+    def run(p):
+        return None if p is None else {"step": p.step, "iterations": p.iterations,
+                                       "error": p.error, "rest_error": p.rest_error,
+                                       "wall_time": p.wall_time, "impacts": p.impacts}
+
+    return {"event": {"target": study.target, "reference": dict(REFERENCE),
+                      "reference_impacts": len(study.reference.impacts),
+                      "reference_time": study.reference_time,
+                      "recommended": {e: run(study.recommended(e))
+                                      for e in ("pymunk", "analytic")}}}
+
+
+def event_speed_line(study: EventSpeedStudy, stem: str) -> str:
+    """One line: each engine's fastest run reaching the target."""
+    parts = []
+    for engine in ("pymunk", "analytic"):
+        rec = study.recommended(engine)
+        parts.append(f"{engine} none reaches {study.target:g}" if rec is None else
+                     f"{rec.label}: error {rec.error:.2e}, {rec.wall_time * 1e3:.3g} ms/event")
+    return f"{stem} (whole event): " + "; ".join(parts)

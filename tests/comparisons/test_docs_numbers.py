@@ -101,3 +101,12 @@ def test_the_whole_regeneration_matches_the_committed_documents(tmp_path):
     text = page.read_text()
     assert text.startswith("head\n") and text.endswith("\ntail\n")
     assert D.contact_model_block(study) in text
+
+
+@pytest.mark.slow
+def test_the_event_crosscheck_block_of_sim_md_holds_what_the_code_gives():
+    # eight analytic and eight pymunk events, about 10-20 s
+    text = (D.DOCS / "sim.md").read_text()
+    committed = text.split(D.EVENT_BEGIN, 1)[1].split(D.END, 1)[0]
+    generated = D.event_crosscheck_block().split(D.EVENT_BEGIN, 1)[1].split(D.END, 1)[0]
+    assert D.drift(committed, generated) == []

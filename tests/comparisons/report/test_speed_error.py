@@ -72,3 +72,29 @@ def test_the_json_and_lines_of_the_finite_duration_sweep():
     assert line == ("ricsac9 finite-duration (frictionless): no run reaches 1e-3" if rec is None
                     else f"ricsac9 finite-duration (frictionless): recommended {rec.label}: "
                          f"error {rec.error:.1e}, {rec.wall_time * 1e3:.3g} ms/impact")
+
+
+def test_the_whole_events_study_is_written_through_the_pipeline(tmp_path):
+    from comparisons.report.speed_error import (
+        event_speed_document,
+        event_speed_json,
+        event_speed_line,
+        write_event_speed,
+    )
+    from comparisons.studies.event_speed_error import event_sweep
+    from sim.event_check import side_slap_case
+
+    study = event_sweep(side_slap_case(1.6, eps=0.3, beta=0.5), dts=(1e-3,),
+                        iterations=(30,), analytic_steps=(0.004,), progress=False,
+                        reference={"dt": 5e-4, "iterations": 30})
+    text = render_markdown(event_speed_document(study, "slap", "pim speed-error x --event"))
+    assert "Fastest run reaching the target error" in text and "## Every run" in text
+    files = write_event_speed(study, tmp_path, "slap")
+    assert [f.name for f in files] == ["speed-error-event-slap.md",
+                                       "speed-error-event-slap-pareto.csv",
+                                       "speed-error-event-slap.csv",
+                                       "speed-error-event-slap.html",
+                                       "speed-error-event-slap.png"]
+    data = event_speed_json(study)["event"]
+    assert data["recommended"]["analytic"]["step"] == 0.004
+    assert "analytic step=0.004" in event_speed_line(study, "slap")
