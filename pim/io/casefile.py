@@ -70,6 +70,7 @@ from ..model.case import Case, Impact, Vehicle
 from ..model.distributions import Distribution, UncertaintyTable
 from ..model.numbers import InputError
 from ..model.plausibility import bare_angle_warning
+from ..model.tyres import STANDARD_GRAVITY
 from .brach import cg_from_brach, heading_from_theta
 from .evidence_table import AXLE_KEY, OLD_AXLE_KEY, parse_evidence, parse_unknown
 from .inertia_data import estimate_notes, estimate_yaw_inertia
@@ -77,7 +78,7 @@ from .measured_table import parse_measured
 from .toml_tables import check_keys
 from .tyre_table import attach_tyres
 from .uncertainty_table import parse_uncertainty
-from .units import LIMITS, SPEED_UNITS, UNIT_SYSTEMS, parse, registry, unit_system_of
+from .units import LIMITS, SPEED_UNITS, UNIT_SYSTEMS, parse, unit_system_of
 
 __all__ = ["load_case", "list_cases", "parse_case"]
 
@@ -207,7 +208,7 @@ def _mass(table, where: str) -> float:
     weight = parse(table["weight"], "force", f"{where}.weight")
     if weight <= 0:
         raise InputError(f"{where}.weight must be > 0, got {table['weight']!r}")
-    return weight / registry().Quantity(1, "standard_gravity").to("m/s**2").magnitude
+    return weight / STANDARD_GRAVITY
 
 
 def _inertia(table, mass: float, where: str, evidence) -> tuple[float, object]:
