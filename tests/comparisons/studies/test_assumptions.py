@@ -3,6 +3,7 @@ PIM, in % and in physical terms; where C is beside the ladder; the legacy view."
 
 import math
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -11,6 +12,7 @@ import pim
 import sim
 from comparisons.studies import assumptions as A
 from comparisons.studies.assumption_configs import (
+    DURATIONS,
     RANGE_DURATIONS,
     RUNGS,
     changed_assumptions,
@@ -244,3 +246,21 @@ def test_a_failure_beyond_the_verdicts_range_is_not_named_beside_it():
     assert A.outline_note({0.2: "tunnelled: x"}, True) == ""
     note = A.outline_note({0.1: "tunnelled: a", 0.2: "tunnelled: b"}, True)
     assert "100" in note and "200" not in note and note.endswith("tunnelled: a")
+
+
+def test_no_rung_of_a_sideswipe_passes_through_an_outline_at_any_swept_contact_time():
+    """Issue 33 point 8: on an opposite-direction sideswipe (beta 0.18) the ladder run at
+    beta 0 -- the nearer of 0 and 1 -- had the frictionless outlines slide through each
+    other at the longer contacts; at the case's own beta every rung, the outline rung
+    among them, holds at every contact time of the sweep."""
+    case = pim.load_case(str(Path(__file__).resolve().parents[2] / "data"
+                             / "sideswipe-opposite.toml"))
+    study = A.run_assumptions(case, executor="serial", progress=False, animation_after=None,
+                              sweeps=True, settings=COARSE)
+    assert study.beta_pim == pytest.approx(0.18)
+    assert [lad.duration for lad in study.ladders] == list(DURATIONS)
+    for ladder in study.ladders:
+        assert [r.key for r in ladder.rungs] == KEYS, ladder.duration
+        for rung in ladder.rungs:
+            assert rung.run.failure is None, (ladder.duration, rung.key, rung.run.failure)
+    assert study.outline_note == ""
