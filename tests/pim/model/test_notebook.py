@@ -175,3 +175,10 @@ def test_to_frame_without_pandas_says_what_to_install(monkeypatch):
     monkeypatch.setitem(sys.modules, "pandas", None)
     with pytest.raises(ImportError, match="pip install pandas"):
         frame(Table("t", ("a", "b"), (("x", 1.0),)))
+
+
+def test_the_readme_quotes_the_repr_the_code_gives(ricsac9):
+    readme = (ROOT / "README.md").read_text()
+    shown = re.search(r"`(Result\('ricsac9'.*?\))`", readme.replace("\n", " "), re.S)
+    assert shown is not None
+    assert shown.group(1) == repr(pim.solve(ricsac9, eps=0.355, beta=1.0))
