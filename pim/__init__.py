@@ -15,9 +15,9 @@ array([-1.867,  3.898])
 """
 
 # Everything here needs only numpy; scipy, numba and matplotlib load on first use, and the
-# analyses and the bundled datasets when first named (``pim.fit``; :func:`__getattr__`), so
-# that ``import pim`` and ``pim solve`` pay for what they use (issue 33 point 9).
-from .io.casefile import list_cases, load_case
+# case files' reader, the analyses and the bundled datasets when first named (``pim.fit``;
+# :func:`__getattr__`), so that ``import pim`` and ``pim solve`` pay for what they use
+# (issue 33 point 9).
 from .model.case import Case, Impact, Measured, Vehicle
 from .model.friction_cap import solve_capped
 from .model.impact_laws import solve_kudlich_slibar
@@ -33,9 +33,12 @@ __version__ = "0.1.0"
 
 
 def __getattr__(name: str):
-    """The public names of the analyses and of the bundled datasets, loaded on first use
-    (PEP 562): fit, FitResult, sensitivity, uncertainty, UncertaintyResult,
-    post_impact_motion, load_dataset."""
+    """The public names of the case files' reader, the analyses and the bundled datasets,
+    loaded on first use (PEP 562): load_case, list_cases, fit, FitResult, sensitivity,
+    uncertainty, UncertaintyResult, post_impact_motion, load_dataset."""
+    if name in ("load_case", "list_cases"):
+        from .io.casefile import list_cases, load_case
+        return {"load_case": load_case, "list_cases": list_cases}[name]
     if name in ("fit", "FitResult"):
         from .analysis.fitting import FitResult, fit
         return {"fit": fit, "FitResult": FitResult}[name]
