@@ -14,14 +14,10 @@ named after what they do; the modules that hold them after what they compute
 array([-1.867,  3.898])
 """
 
-# Everything here needs only numpy; scipy, numba and matplotlib load on first use.
-from .analysis.event import event
-from .analysis.fitting import FitResult, fit
-from .analysis.montecarlo import UncertaintyResult, uncertainty
-from .analysis.reconstruction import post_impact_motion
-from .analysis.sensitivity import sensitivity
-from .io.casefile import list_cases, load_case
-from .io.datasets import load_dataset
+# Everything here needs only numpy; scipy, numba and matplotlib load on first use, and the
+# case files' reader, the analyses and the bundled datasets when first named (``pim.fit``;
+# :func:`__getattr__`), so that ``import pim`` and ``pim solve`` pay for what they use
+# (issue 33 point 9).
 from .model.case import Case, Impact, Measured, Vehicle
 from .model.friction_cap import solve_capped
 from .model.impact_laws import solve_kudlich_slibar
@@ -34,3 +30,35 @@ __all__ = ["Case", "Impact", "Measured", "Vehicle", "Result", "solve", "load_cas
            "UncertaintyResult", "solve_capped", "post_impact_motion", "load_dataset",
            "solve_kudlich_slibar", "resolve_law", "LAW_NAMES", "InputError", "event"]
 __version__ = "0.1.0"
+
+
+def __getattr__(name: str):
+    """The public names of the case files' reader, the analyses and the bundled datasets,
+    loaded on first use (PEP 562): load_case, list_cases, fit, FitResult, sensitivity,
+    uncertainty, UncertaintyResult, post_impact_motion, load_dataset, event."""
+    if name in ("load_case", "list_cases"):
+        from .io.casefile import list_cases, load_case
+        return {"load_case": load_case, "list_cases": list_cases}[name]
+    if name in ("fit", "FitResult"):
+        from .analysis.fitting import FitResult, fit
+        return {"fit": fit, "FitResult": FitResult}[name]
+    if name in ("uncertainty", "UncertaintyResult"):
+        from .analysis.montecarlo import UncertaintyResult, uncertainty
+        return {"uncertainty": uncertainty, "UncertaintyResult": UncertaintyResult}[name]
+    if name == "sensitivity":
+        from .analysis.sensitivity import sensitivity
+        return sensitivity
+    if name == "post_impact_motion":
+        from .analysis.reconstruction import post_impact_motion
+        return post_impact_motion
+    if name == "event":
+        from .analysis.event import event
+        return event
+    if name == "load_dataset":
+        from .io.datasets import load_dataset
+        return load_dataset
+    raise AttributeError(f"module 'pim' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

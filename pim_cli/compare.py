@@ -353,6 +353,7 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, engine, 
     names = []
     for n in case_names:
         names += [c for c, _ in list_cases() if c.startswith("hard-")] if n == "hard" else [n]
+    cases = [load_case_for("speed-error", name) for name in names]     # before the lock
     folder = Path(out) if out else Path("out") / "speed-error"
     opts = _SpeedErrorOptions(out, eps, beta, repeats, coarse, engine if compliant else None,
                               progress, as_json, event=event)
@@ -360,7 +361,8 @@ def speed_error(case_names, out, eps, beta, repeats, coarse, compliant, engine, 
     with output_folder(folder, command="pim speed-error", merge=True) as tmp, \
             contextlib.ExitStack() as stack:
         pool = stack.enter_context(worker_pool(2)) if compliant else None
-        results = [_speed_error_case(name, tmp, opts, pool) for name in names]
+        results = [_speed_error_case(name, case, tmp, opts, pool)
+                   for name, case in zip(names, cases)]
     for r in results:
         r["files"] = [str(p) for p in rebase(r["files"], tmp, folder)]
     if as_json:
@@ -393,14 +395,14 @@ class _SpeedErrorOptions:
             " --event" if self.event else "")
 
 
-def _speed_error_case(name: str, folder, opts: _SpeedErrorOptions, pool) -> dict:
-    """Sweep one case and write its files into ``folder``: a JSON-ready dict (with the
-    lines to print under ``"lines"``)."""
+def _speed_error_case(name: str, case, folder, opts: _SpeedErrorOptions, pool) -> dict:
+    """Sweep one case (``case``, loaded from ``name`` before the output lock was taken) and
+    write its files into ``folder``: a JSON-ready dict (with the lines to print under
+    ``"lines"``)."""
     from comparisons.report.speed_error import speed_error_json, speed_error_line
     from comparisons.report.speed_error import write_speed_error as write_study
     from comparisons.studies.speed_error import COARSE, sweep
 
-    case = load_case_for("speed-error", name)
     grid = dict(COARSE) if opts.coarse else {}
     study = sweep(case, opts.eps, opts.beta, progress=opts.progress,
                   **{**grid, "repeats": opts.repeats})

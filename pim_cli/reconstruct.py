@@ -28,7 +28,7 @@ from pathlib import Path
 import click
 
 from comparisons.report.document import Figure, Video
-from comparisons.report.number_format import duration_text
+from pim.model.number_format import duration_text
 from comparisons.report.pre_impact import pre_impact_rows
 from comparisons.report.reconstruct import (
     reconstruction_document,

@@ -64,7 +64,7 @@ def solve(case_name, eps, beta, friction_limit, cap_friction, law, k, mu_c, unit
     """
     from comparisons.report.pre_impact import pre_impact_json, pre_impact_lines, pre_impact_rows
     from pim.analysis.pre_impact_speeds import case_pre_impact
-    from pim.plotting.tables import format_table, rows_to_json, summarize, table_title
+    from pim.model.result_table import format_table, rows_to_json, summarize, table_title
 
     case = load_case_for("solve", case_name, law)
     units = output_units(case, units, speed_unit)

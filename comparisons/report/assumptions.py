@@ -41,7 +41,7 @@ from comparisons.studies.assumption_configs import (
     TYPICAL,
     RungConfig,
 )
-from comparisons.studies.assumptions import AssumptionStudy, Change, EffectRange
+from comparisons.studies.assumptions import AssumptionStudy, Change, EffectRange, pim_friction
 from pim.io import units as pim_units
 from pim.io.files import save_figure
 from sim.contact_law import tangential_recovery_default
@@ -108,8 +108,9 @@ def _physical(c: Change, units) -> str:
     return f"delta-V {dv:.2g} {label}, yaw rate {_yaw(c.yaw_rate, units):.2g} deg/s"
 
 
-def _range_words(er: EffectRange, units, over: str) -> str:
-    """"negligible to moderate over 50-150 ms: 2.8-15.2 % against ..., delta-V ..."."""
+def _range_words(er: EffectRange, units, over: str, against: str = "its baseline") -> str:
+    """"negligible to moderate over 50-150 ms: 2.8-15.2 % of the largest velocity change
+    of its baseline ..., delta-V ..."."""
     lo, hi = er.extremes("marginal")
     if not math.isfinite(hi):
         return "not assessed (a simulation failed)"
@@ -118,7 +119,7 @@ def _range_words(er: EffectRange, units, over: str) -> str:
     w_lo, w_hi = (_yaw(x, units) for x in er.extremes("yaw_rate"))
     if er.missing:
         over += f" (not at {', '.join(er.missing)}: no outline scene there)"
-    return (f"{_sizes(lo, hi)} over {over}: {_pct_span(lo, hi)} against its baseline "
+    return (f"{_sizes(lo, hi)} over {over}: {_pct_span(lo, hi)} {_of(against)} "
             f"(largest at {er.setting_of('marginal')}); delta-V moves by "
             f"{_span(dv_lo, dv_hi, lambda x: f'{x:.2g}')} {label}, the yaw rate by "
             f"{_span(w_lo, w_hi, lambda x: f'{x:.2g}')} deg/s")
@@ -130,8 +131,20 @@ def _contact_words(study: AssumptionStudy) -> str:
 
 
 def _tangential(study: AssumptionStudy) -> str:
-    return ("no friction between the vehicles (PIM's beta = 0)" if study.beta_pim == 0 else
-            "a sticking, plastic friction spring (PIM's beta = 1)")
+    """PIM's tangential law at the case's own beta, as the "law" rung's contact law."""
+    beta = study.beta_pim
+    if beta <= 0:
+        return "no friction between the vehicles (PIM's beta = 0, the case's)"
+    if beta >= 1:
+        return f"a sticking, plastic friction spring (PIM's beta = {beta:.3g}, the case's)"
+    mu = pim_friction(study.case, study.eps, beta)
+    return (f"a plastic friction spring sliding at |mu| = beta |mu0| = {mu:.3g} (PIM's "
+            f"beta = {beta:.3g}, the case's)")
+
+
+def _of(whose: str) -> str:
+    """What an effect in % is a share of (:data:`sim.error_measure.ERROR_DEFINITION`)."""
+    return f"of the largest velocity change of {whose}"
 
 
 def _rung_subjects(study: AssumptionStudy) -> dict:
@@ -161,8 +174,9 @@ def _typical_words(study: AssumptionStudy, key: str, units) -> str:
     rung = study.typical.rung(key)
     ms = f"{1e3 * study.typical.duration:g} ms"
     at = f"at {ms}" + (" and r = eps^2" if key == "friction" else "")
-    return (f"{at}: {_pct(rung.marginal)} ({_physical(rung.change, units)}); PIM is "
-            f"{_pct(rung.cumulative)} off this scene (cumulative, "
+    return (f"{at}: {_pct(rung.marginal)} {_of('its baseline')} "
+            f"({_physical(rung.change, units)}); PIM misses this scene by "
+            f"{_pct(rung.cumulative)} {_of('the scene')} (cumulative, "
             f"{_physical(rung.pim_change, units)})")
 
 
@@ -174,7 +188,8 @@ def _friction_map_words(study: AssumptionStudy) -> str:
         return ""
     values = [p.marginal for p in pts]
     return (f"; over mu_c {mus[0]:g}-{mus[-1]:g} and every r at {1e3 * d:g} ms: "
-            f"{_pct_span(float(np.nanmin(values)), float(np.nanmax(values)))}")
+            f"{_pct_span(float(np.nanmin(values)), float(np.nanmax(values)))} "
+            f"{_of('its baseline')}")
 
 
 def _rung_sentence(study: AssumptionStudy, key: str, subject: str, units) -> str:
@@ -182,8 +197,9 @@ def _rung_sentence(study: AssumptionStudy, key: str, subject: str, units) -> str
     if key == "law":
         if rung.run.failure:
             return f"{subject}: not assessed ({rung.run.failure})."
-        return (f"{subject}: {_size(rung.marginal)}, {_pct(rung.marginal)} against PIM "
-                f"({_physical(rung.change, units)}), whatever the contact time.")
+        return (f"{subject}: {_size(rung.marginal)}, {_pct(rung.marginal)} "
+                f"{_of('PIM')} ({_physical(rung.change, units)}), whatever the "
+                f"contact time.")
     if key == "friction":
         er, over = study.friction_over(), f"every r and {_contact_words(study)}"
     else:
@@ -222,13 +238,14 @@ def input_shift_words(study: AssumptionStudy, units=None) -> str:
     units = shown_units(study.case, units)
     length, label = pim_units.convert(shift.distance, "length", units)
     scene = ("" if er is None else
-             f"; the crush scene moves {_range_words(er, units, _contact_words(study))}"
-             .replace(" against its baseline", " against the scene at C"))
+             f"; the crush scene moves "
+             f"{_range_words(er, units, _contact_words(study), 'the scene at C')}")
     return (f"Where C is (input uncertainty, not an assumption of PIM): the case's outlines "
             f"put the impulse {float(length):.2f} {label} from the sheet's C on vehicle 1 and "
             f"{round(shift.turn) + 0:+d} deg from Gamma; moving C and Gamma there (the bodies "
             f"where "
             f"the outlines first touch) moves PIM's own answer by {_pct(shift.pim_error)} "
+            f"{_of('its answer at C')} "
             f"({_physical(shift.pim_change, units)}){scene}. The outlines are illustrative: "
             f"settle C from the crush profile before reading the ladder's outline rung.")
 

@@ -30,7 +30,7 @@ from comparisons.report.document import (
     Section,
     Video,
 )
-from comparisons.report.number_format import format_number
+from pim.model.number_format import format_number
 from comparisons.report.write import document_files
 from pim.io.inertia_data import estimate_notes
 from pim.io.units import convert, display_units

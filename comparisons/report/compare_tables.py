@@ -5,8 +5,8 @@ yaw rates and the energy, each with its 5-95 % interval when the case has an
 ``[uncertainty]`` table) is computed once and shown twice: as the cards the report opens with
 (:func:`answer_cards`) and as the results table (:func:`results_table`). Every value shows
 the digits its interval allows (two significant digits of the half-width,
-:func:`comparisons.report.number_format.interval_decimals`; a component borrows its
-magnitude's), round-off is 0 (:func:`comparisons.report.number_format.round_off`, against the
+:func:`pim.model.number_format.interval_decimals`; a component borrows its
+magnitude's), round-off is 0 (:func:`pim.model.number_format.round_off`, against the
 scale of its quantity: the closing speed, the kinetic energy before the impact), and the CSV
 keeps full precision. Then the fit's misfit (:func:`misfit_table`, :func:`misfit_sentence`),
 the coefficients (:func:`fit_table`), the inputs (:func:`inputs_table`) and the speeds
@@ -23,7 +23,7 @@ import numpy as np
 
 import pim
 from comparisons.report.document import Card, Cards
-from comparisons.report.number_format import format_number, interval_decimals, round_off
+from pim.model.number_format import format_number, interval_decimals, round_off
 from comparisons.report.pre_impact import TITLE as PRE_IMPACT_TITLE
 from comparisons.report.pre_impact import pre_impact_rows
 from comparisons.report.tables import Num, Table
@@ -31,7 +31,7 @@ from pim.analysis.misfit import NOMINAL_SIGMAS, POOR, Misfit
 from pim.analysis.pre_impact_speeds import case_pre_impact
 from pim.io.units import convert, display_units
 from pim.model.geometry import radius_of_gyration
-from pim.plotting.tables import summarize
+from pim.model.result_table import summarize
 
 __all__ = ["Estimate", "estimates", "answer_cards", "results_table", "inputs_table",
            "fit_table", "pre_impact_table", "misfit_table",
@@ -42,7 +42,7 @@ def _f(x) -> float:
     return float(np.asarray(x, float).reshape(()))
 
 
-#: Rows of the results table: (key of :func:`pim.plotting.tables.summarize`, unit kind,
+#: Rows of the results table: (key of :func:`pim.model.result_table.summarize`, unit kind,
 #: Monte Carlo output per vehicle or None, key of the row whose interval sets the digits).
 RESULT_ROWS = (
     ("delta_v", "speed", ("delta_v1_magnitude", "delta_v2_magnitude"), None),
@@ -73,7 +73,7 @@ class Estimate:
     low, high : float
         The 5 % and 95 % points (NaN without a Monte Carlo).
     decimals : int or None
-        Decimal places shown (None: :data:`comparisons.report.number_format.SIGNIFICANT`
+        Decimal places shown (None: :data:`pim.model.number_format.SIGNIFICANT`
         significant digits).
     unit : str
         Display unit.

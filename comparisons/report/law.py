@@ -47,7 +47,7 @@ from comparisons.report.document import (
     Section,
     Video,
 )
-from comparisons.report.number_format import format_number
+from pim.model.number_format import format_number
 from comparisons.report.tables import Table
 from comparisons.report.write import document_files, write_document
 from comparisons.studies.law_runs import LawSetup, simulate_law

@@ -11,7 +11,7 @@ import math
 from dataclasses import dataclass
 
 from comparisons.report.document import Paragraph, Section
-from comparisons.report.number_format import interval_decimals
+from pim.model.number_format import interval_decimals
 from comparisons.report.tables import Num, Table
 from pim.analysis.pre_impact_speeds import PreImpactSpeed
 from pim.io.units import convert

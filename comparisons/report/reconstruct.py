@@ -24,7 +24,7 @@ from comparisons.report.document import (
     Paragraph,
     Section,
 )
-from comparisons.report.number_format import format_interval, format_number, interval_decimals
+from pim.model.number_format import format_interval, format_number, interval_decimals
 from comparisons.report.pre_impact import pre_impact_json, pre_impact_lines, pre_impact_section
 from comparisons.report.tables import Num, Table
 from pim.analysis.reconstruction import Reconstruction

@@ -10,7 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from comparisons.report.document import Bullets, Code, Document, Figure, Paragraph, Section
-from comparisons.report.number_format import format_number
+from pim.model.number_format import format_number
 from comparisons.report.write import write_document
 from comparisons.studies.event_speed_error import (
     REFERENCE,

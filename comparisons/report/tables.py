@@ -1,7 +1,7 @@
 """Tables of the reports as data: raw values, written at full precision in the CSV and
 formatted for reading by the renderers (:mod:`comparisons.report.render`,
 :mod:`comparisons.report.html`) in the one number format
-(:mod:`comparisons.report.number_format`).
+(:mod:`pim.model.number_format`).
 
 A cell is a float, an int, a bool, a string, None (empty) or a :class:`Num` (a number that
 states how many digits it shows, e.g. those its interval allows).
@@ -13,7 +13,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from comparisons.report.number_format import SIGNIFICANT, format_number
+from pim.model.number_format import SIGNIFICANT, format_number
 
 __all__ = ["Table", "Num", "fmt_value", "fmt_error", "cell_text", "raw_value", "is_numeric"]
 
@@ -27,7 +27,7 @@ class Num:
     value : float
         The value, at full precision (what the CSV holds).
     decimals : int or None
-        Decimal places shown (:func:`comparisons.report.number_format.interval_decimals`),
+        Decimal places shown (:func:`pim.model.number_format.interval_decimals`),
         or None for ``sig`` significant digits.
     sig : int
         Significant digits when ``decimals`` is None.

@@ -39,6 +39,7 @@ import numpy as np
 import pim
 import sim
 from comparisons.studies.assumption_configs import (
+    CONTACT_RANGE,
     STICKING,
     STIFF_LIMIT,
     TYPICAL,
@@ -59,7 +60,7 @@ from sim.sweep import sweep
 
 __all__ = ["ConfigRun", "Change", "Rung", "Ladder", "InputShift", "EffectRange",
            "FrictionPoint", "AssumptionStudy", "ENGINES", "run_assumptions", "change",
-           "contact_case", "simulate_config"]
+           "contact_case", "simulate_config", "pim_friction"]
 
 #: The integrators a study runs on: the compiled crush scene, or pymunk (the cross-check).
 ENGINES = ("numba", "pymunk")
@@ -248,7 +249,8 @@ class Context:
     eps : float
         Restitution of the crush [-].
     beta_pim : float
-        0 or 1: PIM's tangential law the "pim" friction emulates.
+        The case's own beta (given, fitted or the case file's): PIM's tangential law the
+        "pim" friction emulates (:func:`pim_friction`).
     settings : sim.CompliantSettings
         Numerics of every run.
     """
@@ -302,10 +304,20 @@ def simulation_inputs(context: Context, config: RungConfig,
     if config.friction == "coulomb":
         settings = replace(settings, tangential_recovery=config.recovery)
     elif context.beta_pim > 0:
-        mu = STICKING["friction"]
+        mu = pim_friction(where, eps, context.beta_pim)
         settings = replace(settings, tangential_recovery=STICKING["recovery"],
                            tangential_stiffness=STICKING["stiffness_ratio"] * k)
     return SimulationInputs(case if config.distributed else where, k, mu, settings)
+
+
+def pim_friction(case: pim.Case, eps: float, beta: float) -> float:
+    """The friction between the vehicles [-] of PIM's tangential law as a contact law: a
+    stiff, plastic friction spring that sticks (beta >= 1: :data:`STICKING`'s friction, which
+    no impact exhausts) or slides at PIM's impulse ratio |mu| = beta |mu0| (0 < beta < 1: the
+    case's own beta, not the nearer of 0 and 1)."""
+    if beta >= 1.0:
+        return STICKING["friction"]
+    return float(beta * abs(float(pim.solve(case, eps, 1.0).mu0)))
 
 
 def _unplaced(config: RungConfig, probe: ConfigRun | None) -> ConfigRun | None:
@@ -602,7 +614,8 @@ class AssumptionStudy:
     eps, beta : float
         The case's coefficients (beta as the case uses it).
     beta_pim : float
-        0 or 1: the beta PIM is evaluated at and the "law" rung emulates.
+        The beta PIM is evaluated at and the "law" rung emulates: the case's own (``beta``,
+        given, fitted to the measured motion or the case file's; :func:`pim_friction`).
     ladders : tuple of Ladder
         One per contact time, shortest first.
     range_durations : tuple of float
@@ -857,9 +870,13 @@ def _probes(context: Context, durations, run) -> tuple:
 
 
 def outline_note(failed: dict, has_outline: bool) -> str:
-    """Why the outline rung is missing at some contact times ("" when it ran at all)."""
+    """Why the outline rung is missing at some contact times of the verdicts' range
+    (:data:`CONTACT_RANGE`; "" when it ran at every one: a failure beyond the range, which
+    only the plots over contact time show, is not the verdicts' business)."""
     if not has_outline:
         return "the case gives no outlines: vehicle length and width"
+    low, high = CONTACT_RANGE
+    failed = {d: why for d, why in failed.items() if low <= d <= high}
     if not failed:
         return ""
     at = ", ".join(f"{1e3 * d:g}" for d in sorted(failed))
@@ -895,7 +912,9 @@ def run_assumptions(case: pim.Case, eps: float | None = None, beta: float | None
         Physical restitution [-] of the crush (default: the fit to the case's measured
         motion, else ``case.impact.restitution``).
     beta : float, optional
-        PIM's beta as the case uses it; PIM is compared at 0 or 1, whichever is nearer.
+        PIM's beta (default: the fit to the case's measured motion, else
+        ``case.impact.beta``, else 1); PIM is compared at it, and the "law" rung emulates it
+        (:func:`pim_friction`).
     executor : None, "process", "serial", dask Client or Executor
         Where the pymunk scenes run (:func:`sim.sweep.sweep`).
     progress : bool or None
@@ -917,7 +936,7 @@ def run_assumptions(case: pim.Case, eps: float | None = None, beta: float | None
     eps, beta, _ = coefficients(case, eps, beta)
     if not 0.0 <= eps <= 1.0:
         raise InputError(f"eps must be in [0, 1], got {eps}")
-    beta_pim = 0.0 if beta < 0.5 else 1.0
+    beta_pim = beta                     # the case's own, never rounded to 0 or 1
     settings = replace(settings or sim.CompliantSettings(), record=False, duration=0.0)
     context, the_plan = Context(case, eps, beta_pim, settings), plan(eps, sweeps)
     def run(ctx, configs, probes):

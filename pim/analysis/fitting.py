@@ -44,11 +44,14 @@ from functools import cached_property
 import numpy as np
 
 from ..model.case import BETA_RANGE_TEXT, Case, checked_case
+from ..model.display import convert, display_units
 from ..model.evidence_terms import as_residual_terms, split_terms
 from ..model.impact_laws import check_contact_friction, law_of
 from ..model.law import solve as solve_under_law
 from ..model.motion import Term
+from ..model.notebook import Notebook, Table, short
 from ..model.numbers import InputError, check_counts, check_numbers, checked_count
+from ..model.quantities import OUTPUTS
 from ..model.result import Result
 from ..model.solver import solve
 from .free_fit import (
@@ -62,7 +65,7 @@ from .free_fit import (
     identifiability,
     variance_shares,
 )
-from .free_inputs import MU_C_BOUNDS, case_state, friction_floor
+from .free_inputs import MU_C_BOUNDS, case_state, free_kind, free_label, friction_floor
 from .residuals import (
     GoodnessOfFit,
     goodness_of_fit,
@@ -90,8 +93,12 @@ SHORT_NAMES = {"impact.restitution": "eps", "impact.beta": "beta", "impact.k": "
 
 
 @dataclass(frozen=True, eq=False)
-class FitResult:
+class FitResult(Notebook):
     """Outcome of :func:`fit`.
+
+    In a notebook it shows as a table in the case's units (:meth:`display_table`: each fitted
+    parameter with its standard error, each measured quantity against the fit);
+    :meth:`to_dict` is its JSON summary in SI, ``to_frame()`` the table's numbers (pandas).
 
     Attributes
     ----------
@@ -233,8 +240,45 @@ class FitResult:
                                None if self.law == "kudlich-slibar" else self.beta,
                                law=self.law, mu_c=self.contact_friction)
 
+    def __repr__(self) -> str:
+        speed, unit = convert(self.rms, "velocity", display_units(case=self.case))
+        fitted = ", ".join(f"{SHORT_NAMES.get(k, k)}={short(v)}" + (
+            f" +- {short(self.standard_errors[k])}" if k in self.standard_errors else "")
+            for k, v in self.values.items())
+        fit = "chi-square" if self.chi_square else "least squares"
+        name = self.case.name or "(unnamed)"
+        return (f"FitResult({name!r}, {self.law}: {fitted or 'nothing fitted'}; {fit} over {len(self.residuals)} terms, rms {short(speed, unit)}"
+                + (f", p = {short(self.goodness.p_value)}" if self.goodness is not None else "")
+                + f"; {len(self.minima)} local minim{'um' if len(self.minima) == 1 else 'a'})")
+
+    def display_table(self, units=None) -> Table:
+        """The fit in ``units`` (default the case's): each parameter (fitted, with its
+        standard error, or fixed), then each measured quantity, measured against fitted."""
+        shown = display_units(units, case=self.case)
+        rows = [(f"{name} (fixed)", None, value, None, None, "-") for name, value in
+                (("epsilon", self.eps), ("beta", self.beta)) if name[:3] in self.fixed]
+        for key, value in self.values.items():
+            (v, se), unit = convert([value, self.standard_errors.get(key, np.nan)],
+                                    free_kind(key), shown)
+            rows.append((free_label(key), None, float(v), None, float(se), unit))
+        for row in self.residual_table:
+            values, unit = convert([row["measured"], row["fitted"], row["error"]],
+                                   row["kind"], shown)
+            label = OUTPUTS[row["name"]].label if row["name"] in OUTPUTS else row["name"]
+            rows.append((label, *map(float, values), None, unit))
+        notes = [f"{shown}; angles in deg, yaw rates in deg/s", f"impact law: {self.law}"]
+        if self.goodness is not None:
+            notes.append(f"chi-square {short(self.goodness.chi_square)} on "
+                         f"{self.goodness.dof} degrees of freedom, p = "
+                         f"{short(self.goodness.p_value)}")
+        notes += [f"{k} on its {side} bound" for k, side in self.on_bound.items()]
+        return Table(f"fit of {self.case.name or 'case'}",
+                     ("quantity", "measured", "fitted", "fitted - measured", "standard error",
+                      "unit"), tuple(rows), tuple(notes))
+
     def to_dict(self) -> dict:
-        """JSON-ready summary (SI units)."""
+        """JSON-ready summary (SI units; :meth:`display_table` and ``to_frame()`` are in the case's
+        units)."""
         return {
             "case": self.case.name, "law": self.law, "eps": self.eps, "beta": self.beta,
             "contact_friction": self.contact_friction, "lower_bounds": dict(self.lower_bounds),

@@ -43,7 +43,7 @@ from ..model.numbers import InputError
 from ..model.pdof import wrap_angle
 from ..model.quantities import INPUTS
 
-__all__ = ["FREE_KEYS", "EXTRA_KEYS", "free_kind", "STATE", "check_free", "check_free_for_case",
+__all__ = ["FREE_KEYS", "EXTRA_KEYS", "free_kind", "free_label", "STATE", "check_free", "check_free_for_case",
            "fields_set_by",
            "case_state", "free_inputs", "set_inputs", "current_value",
            "approach_direction", "unit_or_heading", "law_values", "state_law", "state_motion",
@@ -85,6 +85,16 @@ _CLASHES = tuple((f"vehicle{i}.{a}", f"vehicle{i}.{b}") for i in (1, 2) for a, b
     ("radius_of_gyration", "yaw_inertia"),
     ("phi", "cg_x"), ("phi", "cg_y"), ("d", "cg_x"), ("d", "cg_y"))) + (
     ("impact.k", "impact.restitution"),)
+
+
+def free_label(key: str) -> str:
+    """A free key in words for tables: the input's label (:data:`INPUTS`), else the meaning
+    of :data:`EXTRA_KEYS` without its unit, with the vehicle it is of ("pre-impact speed of
+    vehicle 1" for ``vehicle1.speed``)."""
+    if key in INPUTS:
+        return INPUTS[key].label
+    text = EXTRA_KEYS[key].split(" [")[0]
+    return text + (f" of vehicle {key[7]}" if key.startswith("vehicle") else "")
 
 
 def free_kind(key: str) -> str:

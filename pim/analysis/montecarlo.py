@@ -30,8 +30,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..model.case import Case, Impact, Vehicle
+from ..model.display import DisplayUnits, convert, display_units
 from ..model.distributions import UncertaintyTable, nominal_values, sample_inputs
+from ..model.notebook import Notebook, Table
+from ..model.number_format import format_interval
 from ..model.numbers import InputError, check_numbers, checked_count
+from ..model.quantities import OUTPUTS as OUTPUT_QUANTITIES
 from ..model.solver import solve
 from .streaming import StreamingIndices, StreamingPercentiles
 
@@ -75,8 +79,12 @@ class OutputStats:
 
 
 @dataclass(frozen=True, eq=False)
-class UncertaintyResult:
+class UncertaintyResult(Notebook):
     """Result of :func:`uncertainty`.
+
+    In a notebook it shows as a table in the case's units (:meth:`display_table`: each output's
+    nominal value and 5-50-95 % percentiles); :meth:`to_dict` and ``to_frame()`` (pandas)
+    give its numbers.
 
     Attributes
     ----------
@@ -98,6 +106,8 @@ class UncertaintyResult:
     samples : dict
         Output name -> admissible samples [SI], for histograms: all of them when n is at most
         the chunk size, else those of the first chunk.
+    units : DisplayUnits
+        The case's display units (what :meth:`display_table` and :meth:`to_dict` show by default).
     """
 
     case_name: str
@@ -109,6 +119,51 @@ class UncertaintyResult:
     sensitivity: dict
     varying: tuple
     samples: dict = field(repr=False)
+    units: DisplayUnits = field(default_factory=DisplayUnits, repr=False)
+
+    def __repr__(self) -> str:
+        stats = self.stats.get("delta_v1_magnitude")
+        spread = ""
+        if stats is not None and self.n_admissible:
+            (p50, p5, p95), unit = convert([stats.p50, stats.p5, stats.p95], "speed",
+                                           self.units)
+            spread = f": |delta-V| of vehicle 1 {format_interval(p50, p5, p95)} {unit}"
+        return (f"UncertaintyResult({self.case_name or '(unnamed)'!r}, {self.n} samples, "
+                f"{self.n_admissible} admissible, seed={self.seed}{spread})")
+
+    def _row(self, name: str, shown) -> tuple:
+        s = self.stats[name]
+        quantity = OUTPUT_QUANTITIES[name]
+        values, unit = convert([s.nominal, s.p5, s.p50, s.p95], quantity.kind, shown)
+        return (quantity.label, *map(float, values), unit)
+
+    def display_table(self, units=None) -> Table:
+        """Each output's nominal value and 5th, 50th and 95th percentiles in ``units``
+        (default the case's), the inputs that drive it most in the notes."""
+        shown = display_units(units or self.units)
+        notes = [f"{shown}; angles in deg, yaw rates in deg/s",
+                 f"{self.n_admissible} of {self.n} samples admissible (seed {self.seed})"]
+        notes += [f"inadmissible samples: {p}" for p in self.problems]
+        return Table(f"uncertainty of {self.case_name or 'case'}",
+                     ("quantity", "nominal", "5 %", "50 %", "95 %", "unit"),
+                     tuple(self._row(name, shown) for name in self.stats), tuple(notes))
+
+    def to_dict(self, units=None) -> dict:
+        """JSON-ready: the statistics of each output in ``units`` (default the case's), the
+        first-order sensitivity indices, the sample counts."""
+        shown = display_units(units or self.units)
+        outputs = {}
+        for name, s in self.stats.items():
+            values, unit = convert([s.nominal, s.p5, s.p50, s.p95, s.mean, s.sd],
+                                   OUTPUT_QUANTITIES[name].kind, shown)
+            outputs[name] = dict(zip(("nominal", "p5", "p50", "p95", "mean", "sd"),
+                                     map(float, values), strict=True)) | {"unit": unit}
+        return {"case": self.case_name, "units": {"system": shown.system,
+                                                  "speed": shown.speed},
+                "n": self.n, "seed": self.seed, "n_admissible": self.n_admissible,
+                "problems": list(self.problems), "outputs": outputs,
+                "sensitivity": {k: [[name, float(v)] for name, v in pairs]
+                                for k, pairs in self.sensitivity.items()}}
 
 
 def _bin_indices(uniforms: dict, bins: int) -> dict:
@@ -325,7 +380,8 @@ def _in_memory(setup: _Setup, progress) -> UncertaintyResult:
 def _result(setup, n_ok, problems, stats, sens, varying, samples) -> UncertaintyResult:
     return UncertaintyResult(case_name=setup.case.name, n=setup.n, seed=setup.seed.entropy,
                              n_admissible=n_ok, problems=problems, stats=stats,
-                             sensitivity=sens, varying=varying, samples=samples)
+                             sensitivity=sens, varying=varying, samples=samples,
+                             units=display_units(case=setup.case))
 
 
 def _streamed(setup: _Setup, progress) -> UncertaintyResult:

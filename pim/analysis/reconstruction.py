@@ -28,14 +28,16 @@ import numpy as np
 
 from ..model.case import Case, Measured, checked_case
 from ..model.crush import crush_delta_v, effective_mass, equivalent_energy_speed, moment_arm
+from ..model.display import convert, display_units
 from ..model.event import Event, Track, phase_labels
 from ..model.evidence_terms import result_quantities
 from ..model.geometry import vehicle_outline
 from ..model.motion import Term
+from ..model.notebook import Notebook, Table, short
 from ..model.numbers import ArgumentTypeError, InputError, check_counts, checked_count, speed_text
 from ..model.tyres import STANDARD_GRAVITY
 from .fitting import FitResult
-from .free_inputs import approach_direction, check_free
+from .free_inputs import approach_direction, check_free, free_kind, free_label
 from .inverse_pim import check_evidence, inverse_pim, under_determined
 from .event import event_rest_many
 from .event_fit import EventFit, fit_through_event
@@ -345,8 +347,12 @@ def crush_outputs(case: Case, fitted: FitResult) -> tuple[CrushOutput, ...]:
 
 
 @dataclass(frozen=True, kw_only=True)
-class Reconstruction:
+class Reconstruction(Notebook):
     """Outcome of :func:`reconstruct` (SI); built by keyword.
+
+    In a notebook it shows as a table in the case's units (:meth:`display_table`: each unknown's
+    value and its 5-50-95 % percentiles); :meth:`to_dict` and ``to_frame()`` (pandas) give
+    its numbers.
 
     Attributes
     ----------
@@ -408,6 +414,50 @@ class Reconstruction:
                          "p95": st.p95 if st else float("nan"),
                          "drivers": st.drivers if st else []})
         return rows
+
+    def __repr__(self) -> str:
+        if not self.determined:
+            return f"Reconstruction({self.case.name or '(unnamed)'!r}: under-determined)"
+        shown = display_units(case=self.case)
+        values = []
+        for key, value in self.values.items():
+            v, unit = convert(value, free_kind(key), shown)
+            values.append(f"{key}={short(v, '' if unit == '-' else unit)}")
+        samples = f", {self.samples.n} Monte Carlo samples" if self.samples else ""
+        return f"Reconstruction({self.case.name or '(unnamed)'!r}: {', '.join(values)}{samples})"
+
+    def display_table(self, units=None) -> Table:
+        """Each unknown's solved value and, with a Monte Carlo, its 5th, 50th and 95th
+        percentiles, in ``units`` (default the case's); the messages in the notes."""
+        shown = display_units(units, case=self.case)
+        rows = []
+        for row in self.table():
+            values, unit = convert([row["value"], row["p5"], row["p50"], row["p95"]],
+                                   free_kind(row["name"]), shown)
+            rows.append((free_label(row["name"]), *map(float, values), unit))
+        notes = [f"{shown}; angles in deg, yaw rates in deg/s", *self.messages]
+        if not self.determined:
+            notes.insert(0, f"under-determined: {self.undetermined_reason}")
+        return Table(f"reconstruction of {self.case.name or 'case'}",
+                     ("unknown", "value", "5 %", "50 %", "95 %", "unit"), tuple(rows),
+                     tuple(notes))
+
+    def to_dict(self, units=None) -> dict:
+        """JSON-ready: each unknown's value and percentiles in ``units`` (default the
+        case's), whether the data decide them, the messages, the chi-square test."""
+        shown = display_units(units, case=self.case)
+        unknowns = {}
+        for row in self.table():
+            values, unit = convert([row["value"], row["p5"], row["p50"], row["p95"]],
+                                   free_kind(row["name"]), shown)
+            unknowns[row["name"]] = dict(zip(("value", "p5", "p50", "p95"),
+                                             map(float, values), strict=True)) | {"unit": unit}
+        return {"case": self.case.name,
+                "units": {"system": shown.system, "speed": shown.speed},
+                "determined": self.determined, "unknowns": unknowns,
+                "messages": list(self.messages),
+                "goodness_of_fit": None if self.goodness is None else self.goodness.to_dict(),
+                "crush": [c.to_dict() for c in self.crush]}
 
     @property
     def undetermined_reason(self) -> str:

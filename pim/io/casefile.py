@@ -73,6 +73,7 @@ import numpy as np
 from ..model.case import Case, Impact, ImpactSpec, Vehicle
 from ..model.distributions import Distribution, UncertaintyTable
 from ..model.numbers import InputError
+from ..model.tyres import STANDARD_GRAVITY
 from .brach import cg_from_brach, heading_from_theta
 from .evidence_table import AXLE_KEY, OLD_AXLE_KEY, parse_evidence, parse_unknown
 from .inertia_data import estimate_notes, estimate_yaw_inertia, estimate_yaw_inertia_from_mass
@@ -80,7 +81,7 @@ from .measured_table import parse_measured
 from .toml_tables import check_keys
 from .tyre_table import attach_tyres
 from .uncertainty_table import parse_uncertainty
-from .units import LIMITS, SPEED_UNITS, UNIT_SYSTEMS, parse, registry, unit_system_of
+from .units import LIMITS, SPEED_UNITS, UNIT_SYSTEMS, parse, unit_system_of
 
 __all__ = ["load_case", "list_cases", "parse_case", "parse_impacts", "MAX_FURTHER"]
 
@@ -216,7 +217,7 @@ def _mass(table, where: str) -> float:
     weight = parse(table["weight"], "force", f"{where}.weight")
     if weight <= 0:
         raise InputError(f"{where}.weight must be > 0, got {table['weight']!r}")
-    return weight / registry().Quantity(1, "standard_gravity").to("m/s**2").magnitude
+    return weight / STANDARD_GRAVITY
 
 
 def _inertia(table, mass: float, where: str, evidence) -> tuple[float, object]:

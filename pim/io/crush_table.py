@@ -33,7 +33,7 @@ from ..model.crush import SIDES, CrushProfile
 from ..model.numbers import InputError
 from .datasets import data_path, source_lines
 from .toml_tables import check_keys
-from .units import parse, registry
+from .units import parse, quantity_in
 
 __all__ = ["parse_crush", "CRUSH_KEYS", "StiffnessClass", "load_stiffness_classes",
            "STIFFNESS_CLASS_FILE"]
@@ -103,7 +103,7 @@ def _class_row(name: str, line: int, fields: list[str]) -> StiffnessClass:
         if not math.isfinite(value) or value < 0 or (value == 0 and not optional):
             raise InputError(f"{where} column {column!r}: {row[column]!r} must be a finite "
                              f"number {'>= 0' if optional else '> 0'}")
-        numbers[column] = float(registry().Quantity(value, unit).to(si).magnitude)
+        numbers[column] = quantity_in(f"{value!r} {unit}", si)
     return StiffnessClass(row["class"].lower(), row["side"], numbers["A_lbf_per_in"],
                           numbers["B_lbf_per_in2"],
                           numbers["G_lbf"] if row["G_lbf"] else None,

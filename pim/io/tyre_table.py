@@ -30,7 +30,7 @@ from ..model.evidence import Evidence
 from ..model.numbers import InputError
 from ..model.tyres import SEDAN_TYRE, TyreData
 from .toml_tables import check_keys
-from .units import parse, registry
+from .units import parse, quantity_in
 
 __all__ = ["parse_tyres", "parse_driver", "attach_tyres"]
 
@@ -44,7 +44,7 @@ def _quantity(value, unit: str, field: str) -> float:
     if not isinstance(value, str):
         return float(value)
     try:
-        return float(registry().Quantity(value).to(unit).magnitude)
+        return quantity_in(value, unit)
     except Exception:
         raise InputError(f"{field}: {value!r} is not a quantity in {unit} "
                          f"(e.g. '1 {unit}')") from None

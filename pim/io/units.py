@@ -2,7 +2,10 @@
 
 Nothing inside the model knows about units; it works in SI. This module is the only place
 that converts, and it delegates every conversion factor to pint's registry. pint is imported
-on first use so that ``import pim`` stays fast.
+on first use so that ``import pim`` stays fast, and the common units (those case files are
+written in and every display unit) are read from :mod:`pim.model.unit_table`, pint's
+factors checked against pint by a test, so that ``pim solve`` never imports pint (0.2-0.5 s);
+any other unit, and every error message, is pint's.
 
 Results are presented in a :class:`DisplayUnits`: a unit system ("si" or "us": lengths,
 masses, forces, energies) and a speed unit for every speed, velocity component and delta-V.
@@ -16,18 +19,30 @@ from __future__ import annotations
 import difflib
 import re
 from contextlib import contextmanager
-from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
 
 from ..model.case import SPEED_UNITS
 from ..model.numbers import InputError, speeds_in
+from ..model.display import (
+    DISPLAY_UNITS,
+    SI_UNITS,
+    SPEED_KINDS,
+    UNIT_SYSTEMS,
+    DisplayUnits,
+    convert,
+    display_factor,
+    display_units,
+    label,
+    unit_scale,
+)
+from ..model.unit_table import unit_factor
 
 __all__ = ["registry", "parse", "convert", "DISPLAY_UNITS", "UNIT_SYSTEMS", "LIMITS",
            "unit_system_of", "DisplayUnits", "display_units", "SPEED_UNITS", "SPEED_KINDS",
            "messages_in", "quantity_text", "unit_scale", "bare_number_error",
-           "BARE_NUMBER_UNITS"]
+           "BARE_NUMBER_UNITS", "quantity_in"]
 
 #: SI unit of each kind of input quantity (its dimension is the expected one).
 DIMENSIONS = {
@@ -66,33 +81,6 @@ LIMITS = {
 #: Units that mark a case file as written in US customary units (pint's names).
 US_UNIT_NAMES = frozenset({"foot", "inch", "yard", "mile", "mile_per_hour", "force_pound",
                            "pound", "slug", "foot_per_second"})
-
-#: Display units of each output kind, per unit system, by default: speeds, velocity
-#: components and delta-V (:data:`SPEED_KINDS`) as the field reports them, km/h and mph
-#: (a :class:`DisplayUnits` may choose another speed unit).
-DISPLAY_UNITS = {
-    "si": {"velocity": "km/h", "speed": "km/h", "angular_velocity": "deg/s", "impulse": "N*s",
-           "energy": "kJ", "length": "m", "mass": "kg", "inertia": "kg*m**2", "angle": "deg",
-           "force": "N", "impact_speed": "km/h", "force_per_length": "kN/m",
-           "force_per_area": "kN/m**2", "dimensionless": "dimensionless",
-           "percent": "percent"},
-    "us": {"velocity": "mph", "speed": "mph", "angular_velocity": "deg/s", "impulse": "lbf*s",
-           "energy": "ft*lbf", "length": "ft", "mass": "slug", "inertia": "slug*ft**2",
-           "angle": "deg", "force": "lbf", "impact_speed": "mph",
-           "force_per_length": "lbf/inch", "force_per_area": "lbf/inch**2",
-           "dimensionless": "dimensionless", "percent": "percent"},
-}
-UNIT_SYSTEMS = tuple(DISPLAY_UNITS)
-
-#: Output kinds shown in the speed unit of a :class:`DisplayUnits`.
-SPEED_KINDS = frozenset({"velocity", "speed", "impact_speed"})
-
-#: SI unit of each output kind.
-SI_UNITS = {"velocity": "m/s", "speed": "m/s", "angular_velocity": "rad/s", "impulse": "N*s",
-            "energy": "J", "length": "m", "mass": "kg", "inertia": "kg*m**2", "angle": "rad",
-            "force": "N", "impact_speed": "m/s", "force_per_length": "N/m",
-            "force_per_area": "N/m**2", "dimensionless": "dimensionless", "percent": "percent"}
-
 
 @lru_cache(maxsize=1)
 def registry():
@@ -222,6 +210,9 @@ def unit_system_of(value) -> str | None:
         _, unit = _split(value, "")
         if not unit:
             return None
+        known = unit_factor(unit)
+        if known is not None:
+            return "us" if known.us else "si"
         parsed, _ = _unit(unit)
     except Exception:
         return None
@@ -283,12 +274,16 @@ def _dimension(parsed, root) -> str:
 
 
 def _parse_string(value: str, kind: str, field: str, unit: str) -> float:
-    """A quantity string for :func:`parse`: its magnitude in ``unit``, the kind's SI unit."""
+    """A quantity string for :func:`parse`: its magnitude in ``unit``, the kind's SI unit
+    (a unit of :mod:`pim.model.unit_table` of the kind's dimension without pint)."""
     magnitude, text = _split(value, field)
     if not text:
         if kind != "dimensionless" and magnitude != 0 and np.isfinite(magnitude):
             raise bare_number_error(field, value, kind)
         return magnitude
+    known, wanted = unit_factor(text), unit_factor(unit or "dimensionless")
+    if known is not None and wanted is not None and known.dimension == wanted.dimension:
+        return magnitude * known.factor * wanted.inverse
     try:
         parsed, root = _unit(text) if text else (None, None)
     except Exception as exc:
@@ -358,117 +353,19 @@ def parse(value, kind: str, field: str) -> float:
     return number
 
 
-@dataclass(frozen=True)
-class DisplayUnits:
-    """The units results are presented in: a unit system and a speed unit.
-
-    Parameters
-    ----------
-    system : {"si", "us"}
-        Units of lengths, masses, forces, impulses, energies (:data:`DISPLAY_UNITS`);
-        angles are in deg and yaw rates in deg/s in both.
-    speed : {"km/h", "mph", "m/s", "ft/s"}, optional
-        Unit of every speed, velocity component, delta-V and impact speed
-        (:data:`SPEED_KINDS`); default the system's field unit, km/h for "si" and mph for
-        "us".
-    """
-
-    system: str = "si"
-    speed: str | None = None
-
-    def __post_init__(self) -> None:
-        if self.system not in DISPLAY_UNITS:
-            raise InputError(f"units must be one of {', '.join(UNIT_SYSTEMS)}, "
-                             f"got {self.system!r}")
-        if self.speed is None:
-            object.__setattr__(self, "speed", DISPLAY_UNITS[self.system]["speed"])
-        elif self.speed not in SPEED_UNITS:
-            raise InputError(f"speed unit must be one of {', '.join(SPEED_UNITS)}, "
-                             f"got {self.speed!r}")
-
-    def unit(self, kind: str) -> str:
-        """The pint unit of an output ``kind`` (a key of :data:`SI_UNITS`)."""
-        return self.speed if kind in SPEED_KINDS else DISPLAY_UNITS[self.system][kind]
-
-    def label(self, kind: str) -> str:
-        """The unit symbol printed beside a value of ``kind`` ("-" when dimensionless)."""
-        return _label(self.unit(kind))
-
-    def to_json(self) -> dict:
-        """The ``units`` entry of ``--json``: the system, the speed unit and the unit of
-        each output kind (the units every number of the output is in)."""
-        return {"system": self.system, "speed": self.speed,
-                **{kind: self.label(kind) for kind in SI_UNITS}}
-
-    def __str__(self) -> str:
-        return f"{self.system.upper()} units, speeds in {self.speed}"
-
-
-def display_units(units=None, speed: str | None = None, case=None) -> DisplayUnits:
-    """The :class:`DisplayUnits` of an output.
-
-    Parameters
-    ----------
-    units : {"si", "us"} or DisplayUnits, optional
-        The unit system asked for (``--units``), or the display units themselves; default
-        the case's own system (``case.units``), else "si".
-    speed : {"km/h", "mph", "m/s", "ft/s"}, optional
-        The speed unit asked for (``--speed-unit``). Default: that of ``units`` when it is
-        a DisplayUnits, else the case file's choice (``case.speed_unit``, its
-        ``[units] speed``), else the system's field unit (km/h for "si", mph for "us").
-    case : pim.Case, optional
-        The case presented.
-    """
-    if isinstance(units, DisplayUnits):
-        return units if speed is None else DisplayUnits(units.system, speed)
-    system = units or getattr(case, "units", None) or "si"
-    return DisplayUnits(system, speed or getattr(case, "speed_unit", None))
-
-
-def _label(unit: str) -> str:
-    return {"dimensionless": "-", "percent": "%"}.get(
-        unit, unit.replace("**", "^").replace("*", " "))
-
-
-@lru_cache(maxsize=64)
-def _factor(kind: str, unit: str) -> float:
-    """SI value of ``kind`` -> ``unit``: pint's factor."""
-    return float(registry().Quantity(1.0, SI_UNITS[kind]).to(unit).magnitude)
-
-
-def convert(value, kind: str, units):
-    """Convert SI values of an output ``kind`` to their display unit.
-
-    Parameters
-    ----------
-    value : float or array_like
-        Values in the SI unit of ``kind`` (:data:`SI_UNITS`).
-    kind : str
-        A key of :data:`SI_UNITS`.
-    units : {"si", "us"} or DisplayUnits
-        The display units; a bare system presents speeds in its field unit (km/h, mph).
-
-    Returns
-    -------
-    tuple
-        The converted values (same shape, an array) and the unit label.
-    """
-    shown = units if isinstance(units, DisplayUnits) else DisplayUnits(units)
-    target = shown.unit(kind)
-    return np.asarray(value) * _factor(kind, target), _label(target)
-
-
-def unit_scale(kind: str, units) -> tuple[float, str]:
-    """The factor that takes SI values of ``kind`` into ``units`` and the unit's label
-    (:func:`convert` of 1), for a number a message or a table scales itself.
-
-    Examples
-    --------
-    >>> unit_scale("velocity", "si")
-    (3.6, 'km/h')
-    """
-    factor, label = convert(1.0, kind, units)
-    return float(factor), label
+def quantity_in(value, unit: str) -> float:
+    """A quantity string (``"80 kN/deg"``) or a pint quantity in ``unit`` (pint's
+    conversion; a unit of :mod:`pim.model.unit_table` without pint); pint's error when it
+    is not one of ``unit``'s dimension."""
+    if isinstance(value, str):
+        try:
+            magnitude, text = _split(value, "")
+        except InputError:
+            text = None
+        known, target = (unit_factor(text) if text else None), unit_factor(unit)
+        if known is not None and target is not None and known.dimension == target.dimension:
+            return magnitude * known.factor * target.inverse
+    return float(registry().Quantity(value).to(unit).magnitude)
 
 
 @contextmanager
@@ -476,8 +373,7 @@ def messages_in(units):
     """Within the block, speeds in the model's messages (:func:`pim.model.numbers.speed_text`)
     are printed in the speed unit of ``units`` (a :class:`DisplayUnits` or a system)."""
     shown = units if isinstance(units, DisplayUnits) else display_units(units)
-    factor, label = _factor("speed", shown.speed), _label(shown.speed)
-    with speeds_in(factor, label):
+    with speeds_in(display_factor("speed", shown.speed), label(shown.speed)):
         yield shown
 
 

@@ -20,9 +20,13 @@ from functools import cached_property
 import numpy as np
 
 from .admissibility import Admissibility
+from .display import convert, display_units
 from .energy import EnergyOutputs
 from .geometry import contact_velocity, dot
+from .notebook import Notebook, Table, short
 from .pdof import DirectionOutputs
+from .quantities import OUTPUTS
+from .result_table import rows_to_json, summarize, table_title
 from .sheet_notation import SheetNotation
 
 __all__ = ["Result", "CORE_FIELDS", "VECTOR_FIELDS", "output_values"]
@@ -38,12 +42,21 @@ VECTOR_FIELDS = frozenset(("velocity1", "velocity2", "impulse", "normal", "tange
 _READY = frozenset(("case", "eps", "beta") + CORE_FIELDS)
 
 
-class Result(SheetNotation, EnergyOutputs, DirectionOutputs, Admissibility):
+#: The outputs a batch of results shows in a notebook (min, median and max of each).
+BATCH_OUTPUTS = ("speed1", "speed2", "delta_v1_magnitude", "delta_v2_magnitude", "yaw_rate1",
+                 "yaw_rate2", "pdof1", "pdof2", "energy_loss")
+
+
+class Result(SheetNotation, EnergyOutputs, DirectionOutputs, Admissibility, Notebook):
     """The outcome of :func:`pim.solve`: post-impact motion and everything derived from it.
 
     Every array broadcasts over the inputs (vectors carry a trailing axis of 2). The core
     fields are computed by :func:`pim.solve`; the other properties are computed on first
     access and cached. Units: m/s, rad/s, N s, J, rad.
+
+    In a notebook a result shows as a table in the case's units (speeds in km/h or mph as
+    the case file's system; :meth:`display_table`, ``_repr_html_``); :meth:`to_dict` and
+    ``to_frame()`` (pandas) give its numbers.
 
     Parameters
     ----------
@@ -134,7 +147,56 @@ class Result(SheetNotation, EnergyOutputs, DirectionOutputs, Admissibility):
 
     def __repr__(self) -> str:
         shape = np.shape(self.yaw_rate1)
-        return f"Result(case={self.case.name or '(unnamed)'!r}, shape={shape})"
+        name = self.case.name or "(unnamed)"
+        if shape:
+            return f"Result({name!r}, {int(np.prod(shape))} impacts, shape={shape})"
+        dv, unit = convert([self.delta_v1_magnitude, self.delta_v2_magnitude], "speed",
+                           display_units(case=self.case))
+        return (f"Result({name!r}, eps={short(self.eps)}, beta={short(self.beta)}: "
+                f"|delta-V| {short(dv[0], unit)} and {short(dv[1], unit)}, "
+                f"{'admissible' if bool(self.admissible) else 'inadmissible'})")
+
+    def display_table(self, units=None) -> Table:
+        """What the result shows in a notebook, in ``units`` (a
+        :class:`pim.model.display.DisplayUnits` or "si"/"us"; default the case's): one
+        impact's quantities per vehicle (:func:`pim.model.result_table.summarize`), or for
+        a batch the smallest, median and largest of its main outputs."""
+        shown = display_units(units, case=self.case)
+        notes = (f"{shown}; angles in deg, yaw rates in deg/s",)
+        if np.shape(self.yaw_rate1):
+            return Table(f"{self.case.name or 'case'}: {np.size(self.yaw_rate1)} impacts",
+                         ("quantity", "min", "median", "max", "unit"),
+                         tuple(self._spread(name, shown) for name in BATCH_OUTPUTS), notes)
+        notes += tuple(f"inadmissible: {p}" for p in self.problems())
+        rows = tuple((r.label, r.vehicle1, None if r.single else r.vehicle2, r.unit)
+                     for r in summarize(self, shown))
+        return Table(table_title(self.case.name or "case", self),
+                     ("quantity", "vehicle 1", "vehicle 2", "unit"), rows, notes)
+
+    def _spread(self, name: str, shown) -> tuple:
+        """(label, min, median, max, unit) of output ``name`` over a batch (NaN ignored)."""
+        values, unit = convert(getattr(self, name), OUTPUTS[name].kind, shown)
+        finite = values[np.isfinite(values)]
+        low, mid, high = (np.percentile(finite, (0, 50, 100)) if finite.size
+                          else (np.nan,) * 3)
+        return OUTPUTS[name].label, float(low), float(mid), float(high), unit
+
+    def to_dict(self, units=None) -> dict:
+        """The result's numbers in ``units`` (default the case's), JSON-ready: one impact's
+        table as ``pim solve --json`` gives it (key -> vehicle1, vehicle2 or value, unit),
+        or a batch's main outputs as lists."""
+        shown = display_units(units, case=self.case)
+        head = {"case": self.case.name, "units": {"system": shown.system,
+                                                  "speed": shown.speed}}
+        if np.shape(self.yaw_rate1):
+            out = {}
+            for name in BATCH_OUTPUTS:
+                values, unit = convert(getattr(self, name), OUTPUTS[name].kind, shown)
+                out[name] = {"values": values.tolist(), "unit": unit}
+            return head | {"shape": list(np.shape(self.yaw_rate1)), "outputs": out}
+        return head | {"eps": float(self.eps), "beta": float(self.beta),
+                       "admissible": bool(self.admissible), "problems": self.problems(),
+                       "outputs": rows_to_json(summarize(self, shown))}
 
     @cached_property
     def delta_v1(self) -> np.ndarray:

@@ -28,7 +28,12 @@ LAZY = {("pim.model.solver", "pim.model.kernel"),
         ("pim.analysis.event", "pim.model.event_kernel"),
         ("sim.compliant_batch", "sim.compliant_kernel"),
         # the pytest plugin loads in every pytest run where the project is installed
-        ("comparisons.regression.plugin", "comparisons.regression.baseline")}
+        ("comparisons.regression.plugin", "comparisons.regression.baseline"),
+        # pim's analyses and datasets load when first named, so that `import pim` and
+        # `pim solve` stay fast (issue 33 point 9; pim.__getattr__)
+        ("pim", "pim.analysis.fitting"), ("pim", "pim.analysis.montecarlo"),
+        ("pim", "pim.analysis.sensitivity"), ("pim", "pim.analysis.reconstruction"),
+        ("pim", "pim.io.datasets"), ("pim", "pim.io.casefile")}
 
 
 def _modules():

@@ -37,7 +37,9 @@ def arguments(command: str, case: str, tmp_path) -> list[str]:
              "compare": ["--out", str(tmp_path / "c"), "--no-animation", "--no-speed-error",
                          "--no-assumptions", "--no-progress"],
              "animate": ["--out", str(tmp_path / "a.mp4"), "--no-progress"],
-             "reconstruct": ["--samples", "0"]}
+             "reconstruct": ["--samples", "0"],
+             "speed-error": ["--out", str(tmp_path / "s")],
+             "assumptions": ["--out", str(tmp_path / "as")]}
     return [command, case, *extra.get(command, [])]
 
 

@@ -1,6 +1,7 @@
 """`pim sim` and the simulator's batch APIs (issue 12, defects 8 and 9, units)."""
 
 from dataclasses import replace
+from importlib import resources
 from pathlib import Path
 
 import numpy as np
@@ -46,7 +47,7 @@ def test_defect8_no_impulse_is_no_contact(monkeypatch):
 
 
 def test_defect8_cli_exit_code(tmp_path):
-    text = (pim.io.casefile.resources.files("pim.io") / "cases" / "hard-eps0.toml").read_text()
+    text = (resources.files("pim.io") / "cases" / "hard-eps0.toml").read_text()
     path = tmp_path / "c.toml"
     path.write_text(text.replace('velocity = ["15 m/s", "0 m/s"]',
                                  'velocity = ["16 m/s", "0 m/s"]')

@@ -165,3 +165,20 @@ def test_cli_writes_the_whole_study(tmp_path, capsys):
     assert (tmp_path / "assumptions.mp4").stat().st_size > 10_000
     sweeps = (tmp_path / "assumption_sweeps.csv").read_text()
     assert "tyre effect" in sweeps and "friction effect" in sweeps and "where C is" in sweeps
+
+
+def test_every_percentage_states_what_it_is_a_share_of(ricsac9):
+    """Issue 33 point 8: "PIM is 147 % off" said nothing of what; each % in the verdicts
+    and beside them is "of the largest velocity change of" its reference."""
+    texts = R.verdicts(ricsac9) + [R.input_shift_words(ricsac9)]
+    found = 0
+    for text in texts:
+        for match in re.finditer(r"\d %", text):
+            found += 1
+            after = text[match.end():match.end() + 60]
+            assert after.startswith(" of the largest velocity change of "), (after, text)
+    assert found >= 10
+    assert not any(" off this scene" in text for text in texts)
+    law = R.verdicts(ricsac9)[0]
+    assert "of the largest velocity change of PIM" in law
+    assert "the case's" in law and f"beta = {ricsac9.beta_pim:.3g}" in law

@@ -3,6 +3,7 @@ PIM, in % and in physical terms; where C is beside the ladder; the legacy view."
 
 import math
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -11,6 +12,7 @@ import pim
 import sim
 from comparisons.studies import assumptions as A
 from comparisons.studies.assumption_configs import (
+    DURATIONS,
     RANGE_DURATIONS,
     RUNGS,
     changed_assumptions,
@@ -219,3 +221,46 @@ def test_the_compiled_and_the_pymunk_scene_agree_on_every_point_configuration(be
         for x, y in ((a.velocity1, b.velocity1), (a.velocity2, b.velocity2)):
             assert np.max(np.abs(x - y)) < 1e-12 * scale, c
         assert abs(a.yaw_rate1 - b.yaw_rate1) < 1e-12 and a.stick_fraction == b.stick_fraction
+
+
+def test_the_ladder_starts_from_the_cases_own_beta():
+    """Issue 33 point 8: PIM is compared at the case's beta (here 0.4), not the nearer of 0
+    and 1, and the "law" rung emulates it: a stiff friction spring sliding at beta |mu0|,
+    which at a nearly instantaneous contact is PIM at that beta."""
+    case = pim.load_case("ricsac9")
+    study = A.run_assumptions(case, 0.355, 0.4, executor="serial", progress=False,
+                              animation_after=None, sweeps=False, settings=COARSE)
+    assert study.beta == study.beta_pim == 0.4
+    pim_rung = study.typical.rung("pim").run
+    expected = pim.solve(case, 0.355, 0.4)
+    assert pim_rung.velocity1 == pytest.approx(np.asarray(expected.velocity1), abs=1e-12)
+    mu0 = abs(float(expected.mu0))
+    context = A.Context(case, 0.355, 0.4, COARSE)
+    law = study.typical.rung("law")
+    assert A.simulation_inputs(context, law.config, None).friction == pytest.approx(0.4 * mu0)
+    assert law.marginal < 0.02                # the emulation is PIM's law at beta 0.4
+    assert law.beta_eff == pytest.approx(0.4, abs=0.03)
+
+
+def test_a_failure_beyond_the_verdicts_range_is_not_named_beside_it():
+    assert A.outline_note({0.2: "tunnelled: x"}, True) == ""
+    note = A.outline_note({0.1: "tunnelled: a", 0.2: "tunnelled: b"}, True)
+    assert "100" in note and "200" not in note and note.endswith("tunnelled: a")
+
+
+def test_no_rung_of_a_sideswipe_passes_through_an_outline_at_any_swept_contact_time():
+    """Issue 33 point 8: on an opposite-direction sideswipe (beta 0.18) the ladder run at
+    beta 0 -- the nearer of 0 and 1 -- had the frictionless outlines slide through each
+    other at the longer contacts; at the case's own beta every rung, the outline rung
+    among them, holds at every contact time of the sweep."""
+    case = pim.load_case(str(Path(__file__).resolve().parents[2] / "data"
+                             / "sideswipe-opposite.toml"))
+    study = A.run_assumptions(case, executor="serial", progress=False, animation_after=None,
+                              sweeps=True, settings=COARSE)
+    assert study.beta_pim == pytest.approx(0.18)
+    assert [lad.duration for lad in study.ladders] == list(DURATIONS)
+    for ladder in study.ladders:
+        assert [r.key for r in ladder.rungs] == KEYS, ladder.duration
+        for rung in ladder.rungs:
+            assert rung.run.failure is None, (ladder.duration, rung.key, rung.run.failure)
+    assert study.outline_note == ""

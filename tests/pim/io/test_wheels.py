@@ -54,12 +54,12 @@ def test_a_quoted_fraction_is_the_fraction_for_every_command():
     reconstruct` ran past 60 s. One parser reads it for every command: 0.3 on all four
     wheels, the same as the number 0.3 (the time was the run-outs' Monte Carlo, not the
     string: pim reconstruct now measures it first, tests/pim_cli/test_reconstruct.py)."""
-    import pim
+    from pim.io.casefile import parse_case
 
     text = (resources.files("pim.io") / "cases" / "synthetic-runout.toml").read_text()
     old = 'wheels = ["locked", "locked", 0.3, 0.3]'
     assert text.count(old) == 2
-    quoted = pim.io.casefile.parse_case(tomllib.loads(text.replace(old, "wheels = '0.3'")))
-    number = pim.io.casefile.parse_case(tomllib.loads(text.replace(old, "wheels = 0.3")))
+    quoted = parse_case(tomllib.loads(text.replace(old, "wheels = '0.3'")))
+    number = parse_case(tomllib.loads(text.replace(old, "wheels = 0.3")))
     for case in (quoted, number):
         assert case.evidence.vehicle1.braking == case.evidence.vehicle2.braking == (0.3,) * 4

@@ -1,4 +1,5 @@
-"""Tabulate a scalar :class:`pim.Result` in display units, for tables, JSON and reports."""
+"""Tabulate a scalar :class:`pim.Result` in display units, for tables, JSON, reports and
+notebooks (:meth:`pim.Result._repr_html_`)."""
 
 from __future__ import annotations
 
@@ -6,9 +7,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..io.units import convert
-from ..model.numbers import InputError
-from ..model.result import Result
+from typing import TYPE_CHECKING
+
+from .display import convert
+from .numbers import InputError
+
+if TYPE_CHECKING:
+    from .result import Result
 
 __all__ = ["Row", "summarize", "format_table", "rows_to_json", "table_title"]
 

@@ -1,9 +1,9 @@
-"""pim/plotting/tables.py: the result table of `pim solve`, in SI and US units."""
+"""pim/model/result_table.py: the result table of `pim solve`, in SI and US units."""
 
 import pytest
 
 import pim
-from pim.plotting.tables import format_table, rows_to_json, summarize
+from pim.model.result_table import format_table, rows_to_json, summarize
 
 
 def test_rows_convert_with_exact_factors():
@@ -38,7 +38,7 @@ def test_the_impulse_rows_say_whose_impulse_they_are():
 
 
 def test_table_title_names_the_law_and_its_parameters():
-    from pim.plotting.tables import table_title
+    from pim.model.result_table import table_title
 
     case = pim.load_case("ricsac9")
     brach = pim.solve(case, 0.5, 0.25)

@@ -1,4 +1,4 @@
-"""The one number format of the reports (comparisons.report.number_format), issue 28 item 4:
+"""The one number format of the reports (pim.model.number_format), issue 28 item 4:
 digits matched to the uncertainty, one format for a value and its interval, round-off as 0,
 never ``0.0000``.
 
@@ -12,7 +12,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from comparisons.report.number_format import (
+from pim.model.number_format import (
     ROUND_OFF,
     format_interval,
     format_number,
@@ -95,7 +95,7 @@ def test_every_finite_float_reads_back(x):
 
 
 def test_duration_text_picks_seconds_minutes_or_hours():
-    from comparisons.report.number_format import duration_text
+    from pim.model.number_format import duration_text
 
     assert duration_text(119) == "119 s"
     assert duration_text(120) == "2 min"
