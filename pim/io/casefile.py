@@ -489,10 +489,12 @@ def _is_file(key: str) -> bool:
 
 
 def _shown(key: str, limit: int = 80) -> str:
-    """``key`` quoted for a message, cut to ``limit`` characters (with its length)."""
+    """``key`` quoted for a message, cut to about ``limit`` characters (with its length):
+    its start and its end, where a path names the file."""
     if len(key) <= limit:
         return repr(key)
-    return f"{key[:limit]!r}... ({len(key)} characters)"
+    head = limit // 3
+    return f"{key[:head]!r}...{key[head - limit:]!r} ({len(key)} characters)"
 
 
 def load_case(name_or_path) -> Case:

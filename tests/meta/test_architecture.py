@@ -33,7 +33,7 @@ LAZY = {("pim.model.solver", "pim.model.kernel"),
         # `pim solve` stay fast (issue 33 point 9; pim.__getattr__)
         ("pim", "pim.analysis.fitting"), ("pim", "pim.analysis.montecarlo"),
         ("pim", "pim.analysis.sensitivity"), ("pim", "pim.analysis.reconstruction"),
-        ("pim", "pim.io.datasets"), ("pim", "pim.io.casefile")}
+        ("pim", "pim.io.datasets"), ("pim", "pim.io.casefile"), ("pim", "pim.analysis.event")}
 
 
 def _modules():
