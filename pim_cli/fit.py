@@ -25,8 +25,10 @@ from pim_cli.main import (
 __all__ = ["fit", "sensitivity", "plot"]
 
 include_yaw_option = click.option(
-    "--include-yaw", is_flag=True,
-    help="Also fit the measured yaw rates, weighted by each vehicle's radius of gyration.")
+    "--include-yaw/--no-yaw", "include_yaw", default=None,
+    help="Fit every measured yaw rate (--include-yaw) or none (--no-yaw), each weighted by "
+         "its vehicle's radius of gyration. Default: those with a yaw_rate_sigma in "
+         "[measured], as every measured quantity with a sigma is fitted.")
 fixed_eps_option = click.option("--eps", type=FiniteFloat(), default=None,
                                 help="Hold epsilon fixed at this value and fit beta only.")
 fixed_beta_option = click.option("--beta", type=Beta(), default=None,
@@ -139,7 +141,8 @@ def fit(case_name, include_yaw, eps, beta, k, mu_c, eps_range, beta_range, free,
     finish_answer(found, allow_inadmissible)
 
 
-def _parse_sigma(items) -> dict:
+def _parse_sigma(items):
+    """``--sigma KEY=VALUE`` options -> (TypicalUncertainty, the keys given)."""
     from pim.analysis.sensitivity import TYPICAL_KINDS as kinds
     from pim.analysis.sensitivity import TypicalUncertainty
     from pim.io.units import parse
@@ -148,7 +151,7 @@ def _parse_sigma(items) -> dict:
     for item in items:
         key, value = _key_value(item, kinds, "--sigma", "KEY=VALUE")
         out[key] = parse(value.strip(), kinds[key], f"--sigma {key}")
-    return TypicalUncertainty(**out)
+    return TypicalUncertainty(**out), tuple(out)
 
 
 @click.command()
@@ -159,10 +162,10 @@ def _parse_sigma(items) -> dict:
 @click.option("--beta", type=Beta(), default=None,
               help="Evaluate delta-V at this beta instead of fitting.")
 @click.option("--sigma", "sigmas", multiple=True, metavar="KEY=VALUE",
-              help="Override a typical uncertainty, e.g. --sigma point='0.2 m' "
-                   "--sigma normal_angle='3 deg' --sigma mass_fraction=0.05. Keys: point, "
-                   "normal_angle, mass_fraction, inertia_fraction, velocity, yaw_rate, "
-                   "measured_velocity, measured_yaw_rate.")
+              help="Set an uncertainty for this run, over the case's own, e.g. --sigma "
+                   "point='0.2 m' --sigma normal_angle='3 deg' --sigma mass_fraction=0.05. "
+                   "Keys: point, normal_angle, mass_fraction, inertia_fraction, velocity, "
+                   "yaw_rate, measured_velocity, measured_yaw_rate.")
 @click.option("--top", type=click.IntRange(min=1), default=None,
               help="Show only the N largest effects.")
 @units_option
@@ -173,9 +176,11 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, speed_uni
     """Rank CASE's uncertain inputs by how much they move the fitted (epsilon, beta) and
     delta-V.
 
-    For each answer, the inputs are ranked by the change that one typical uncertainty
-    (sigma) of the input causes; the derivative per unit is shown too. Exit code 1 after
-    the output when the answer at (epsilon, beta) is inadmissible (the reasons first;
+    For each answer, the inputs are ranked by the change that one uncertainty (sigma) of
+    the input causes; the derivative per unit is shown too. Each sigma is the case's own
+    where it states one ([uncertainty], [measured] sigmas, an estimate's scatter), else a
+    typical value; the source column says which (--sigma sets one over both). Exit code 1
+    after the output when the answer at (epsilon, beta) is inadmissible (the reasons first;
     --allow-inadmissible: exit 0).
     """
     from comparisons.report.sensitivity import sensitivity_json, sensitivity_lines
@@ -184,8 +189,9 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, speed_uni
 
     case = load_case_for("sensitivity", case_name)
     units = output_units(case, units, speed_unit)
-    sens = compute(case, eps=eps, beta=beta, uncertainty=_parse_sigma(sigmas),
-                   include_yaw=include_yaw)
+    typical, given = _parse_sigma(sigmas)
+    sens = compute(case, eps=eps, beta=beta, uncertainty=typical, include_yaw=include_yaw,
+                   prefer=given)
     found = check_answer(case, solve(case, sens.eps, sens.beta), units,
                          allow=allow_inadmissible, as_json=as_json)
     if as_json:

@@ -52,15 +52,15 @@ def random_cases(n: int, seed: int = 0, fixed: bool = False) -> pim.Case:
 #: an [impact] table of their own (the impact-law tests).
 TWO_CARS_TOML = """
 [vehicle1]
-mass = 1500
-yaw_inertia = 2500
-cg = [1.5, 0.4]
+mass = "1500 kg"
+yaw_inertia = "2500 kg*m**2"
+cg = ["1.5 m", "0.4 m"]
 heading = "180 deg"
-velocity = [-12, 0]
+velocity = ["-12 m/s", 0]
 [vehicle2]
-mass = 1200
-yaw_inertia = 1800
-cg = [-0.5, -1.6]
+mass = "1200 kg"
+yaw_inertia = "1800 kg*m**2"
+cg = ["-0.5 m", "-1.6 m"]
 heading = "90 deg"
-velocity = [0, 8]
+velocity = [0, "8 m/s"]
 """

@@ -15,40 +15,15 @@ one step before impact, so these frames are the same rigid motion for both). Aft
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
 import pim
+from pim.model.event import Event, Track, phase_labels
+from pim.model.geometry import vehicle_outline
 from pim.model.tyres import STANDARD_GRAVITY
 from sim.scene import footprint_lever
 
-__all__ = ["Motion", "free_motion", "analytic_motion", "simulated_motion"]
-
-
-@dataclass(frozen=True, eq=False)
-class Motion:
-    """Poses over the frame times (SI, global frame).
-
-    Attributes
-    ----------
-    time : ndarray (F,)
-        Frame times [s], 0 at impact.
-    position1, position2 : ndarray (F, 2)
-        CG positions [m].
-    angle1, angle2 : ndarray (F,)
-        Headings [rad].
-    velocity1, velocity2 : ndarray (F, 2)
-        CG velocities [m/s].
-    """
-
-    time: np.ndarray
-    position1: np.ndarray
-    angle1: np.ndarray
-    velocity1: np.ndarray
-    position2: np.ndarray
-    angle2: np.ndarray
-    velocity2: np.ndarray
+__all__ = ["free_motion", "analytic_motion", "simulated_motion"]
 
 
 def _vec(x) -> np.ndarray:
@@ -104,8 +79,18 @@ def free_motion(vehicle: pim.Vehicle, velocity, yaw_rate, time, tyre: float = 0.
     return cg + disp, heading + turn, vel
 
 
+def motion_event(case: pim.Case, time, poses, source: str) -> Event:
+    """An :class:`pim.model.event.Event` of ``poses`` ((position, heading, velocity,
+    yaw_rate) per vehicle) at ``time``, with the case's single impact at t = 0 (phases
+    only: the impact's record is the solver's :class:`pim.Result`)."""
+    tracks = [Track(p, a, v, w, outline=vehicle_outline(veh), fixed=bool(veh.fixed))
+              for (p, a, v, w), veh in zip(poses, (case.vehicle1, case.vehicle2),
+                                           strict=True)]
+    return Event(time, tracks[0], tracks[1], phase_labels(time, [0.0]), source=source)
+
+
 def analytic_motion(case: pim.Case, result: pim.Result, time, tyre: float = 0.0,
-                    gravity: float = STANDARD_GRAVITY) -> Motion:
+                    gravity: float = STANDARD_GRAVITY) -> Event:
     """The ghost: pre-impact motion of the case, then PIM's post-impact motion."""
     time = np.asarray(time, float)
     out = []
@@ -115,13 +100,22 @@ def analytic_motion(case: pim.Case, result: pim.Result, time, tyre: float = 0.0,
         post_p, post_a, post_v = free_motion(vehicle, after, float(np.asarray(w_after)),
                                              time, tyre, gravity)
         b = time < 0
+        w = np.where(b, float(np.asarray(vehicle.yaw_rate)), _yaw_rate(post_a, time, w_after))
         out.append((np.where(b[:, None], pre_p, post_p), np.where(b, pre_a, post_a),
-                    np.where(b[:, None], pre_v, post_v)))
-    (p1, a1, v1), (p2, a2, v2) = out
-    return Motion(time, p1, a1, v1, p2, a2, v2)
+                    np.where(b[:, None], pre_v, post_v), w))
+    return motion_event(case, time, out, "pim")
 
 
-def simulated_motion(case: pim.Case, trajectory, time) -> Motion:
+def _yaw_rate(heading: np.ndarray, time: np.ndarray, w_after) -> np.ndarray:
+    """Yaw rates along a decelerated heading: its slope (the post-impact value at t = 0)."""
+    w = np.full(time.shape, float(np.asarray(w_after)))
+    if len(time) > 1:
+        slope = np.gradient(heading, time)
+        w[1:] = slope[1:]
+    return w
+
+
+def simulated_motion(case: pim.Case, trajectory, time) -> Event:
     """The simulated vehicles: the case's pre-impact motion, then the recorded trajectory.
 
     Frames after the end of the recording hold its last state (vehicles at rest with tyre
@@ -131,16 +125,17 @@ def simulated_motion(case: pim.Case, trajectory, time) -> Motion:
     tr = trajectory
     t0 = float(tr.time[0])
     out = []
-    for vehicle, pos, ang, vel in ((case.vehicle1, tr.position1, tr.angle1, tr.velocity1),
-                                   (case.vehicle2, tr.position2, tr.angle2, tr.velocity2)):
+    for vehicle, pos, ang, vel, yaw in (
+            (case.vehicle1, tr.position1, tr.angle1, tr.velocity1, tr.yaw_rate1),
+            (case.vehicle2, tr.position2, tr.angle2, tr.velocity2, tr.yaw_rate2)):
         pre_p, pre_a, pre_v = free_motion(vehicle, vehicle.velocity, vehicle.yaw_rate, time)
         p = np.stack([np.interp(time, tr.time, pos[:, i]) for i in range(2)], -1)
         a = np.interp(time, tr.time, ang)
         # velocities are piecewise constant over a step: take the state at the step's end
         idx = np.clip(np.searchsorted(tr.time, time, side="left"), 0, len(tr.time) - 1)
-        v = vel[idx]
+        v, w = vel[idx], np.asarray(yaw, float)[idx]
         early = time < t0
         p[early], a[early], v[early] = pre_p[early], pre_a[early], pre_v[early]
-        out.append((p, a, v))
-    (p1, a1, v1), (p2, a2, v2) = out
-    return Motion(time, p1, a1, v1, p2, a2, v2)
+        w[early] = float(np.asarray(vehicle.yaw_rate))
+        out.append((p, a, v, w))
+    return motion_event(case, time, out, "simulated")

@@ -27,7 +27,8 @@ from PIL import Image, ImageDraw, ImageFont
 
 import pim
 import sim
-from comparisons.animation.motion import Motion, analytic_motion, simulated_motion
+from comparisons.animation.motion import analytic_motion, simulated_motion
+from pim.model.event import Event
 from pim.io.files import atomic_paths
 from pim.io.units import convert
 from pim.model.geometry import outline_corners
@@ -194,9 +195,9 @@ class Renderer:
         The single case.
     result : pim.Result
         PIM's answer (for the ghost's label values and the impulse arrow).
-    simulated : Motion
-        The simulated poses at the frame times.
-    ghost : Motion or None
+    simulated : pim.model.event.Event
+        The simulated event at the frame times.
+    ghost : pim.model.event.Event or None
         The analytic poses at the same times (None: no ghost).
     impulse : array_like (2,)
         Impulse on vehicle 1 to draw at C [N s] (the simulator's).
@@ -210,8 +211,8 @@ class Renderer:
 
     TOP, BOTTOM, MARGIN = 54, 46, 24
 
-    def __init__(self, case: pim.Case, result: pim.Result, simulated: Motion,
-                 ghost: Motion | None, impulse, *, size=DEFAULT_SIZE, title: str = "",
+    def __init__(self, case: pim.Case, result: pim.Result, simulated: Event,
+                 ghost: Event | None, impulse, *, size=DEFAULT_SIZE, title: str = "",
                  units: str = "si", secondary=None) -> None:
         width, height = (int(s) for s in size)
         if width % 2 or height % 2 or width < 160 or height < 160:
@@ -234,25 +235,26 @@ class Renderer:
         self._world = {}
         motions = [("sim", simulated)] + ([("ghost", ghost)] if ghost is not None else [])
         for tag, m in motions:
-            for i, (pos, ang) in enumerate(((m.position1, m.angle1), (m.position2, m.angle2))):
+            for i, track in enumerate(m.tracks):
                 if self.corners[i] is not None:
-                    self._world[tag, i] = _place(self.corners[i], pos, ang)
+                    self._world[tag, i] = _place(self.corners[i], track.position,
+                                                 track.heading)
         self._fit_view()
         self.font = _font(15)
         self.small = _font(12)
         self._background = self._draw_background()
         self._px = {key: self.to_px(val) for key, val in self._world.items()}
-        self._cg = {(tag, i): self.to_px(getattr(m, f"position{i + 1}"))
+        self._cg = {(tag, i): self.to_px(m.tracks[i].position)
                     for tag, m in motions for i in range(2)}
-        self._heading = {(tag, i): getattr(m, f"angle{i + 1}") for tag, m in motions
+        self._heading = {(tag, i): m.tracks[i].heading for tag, m in motions
                          for i in range(2)}
-        self._vel = {(tag, i): getattr(m, f"velocity{i + 1}") for tag, m in motions
+        self._vel = {(tag, i): m.tracks[i].velocity for tag, m in motions
                      for i in range(2)}
 
     # ---- geometry ------------------------------------------------------------------------
     def _fit_view(self) -> None:
         pts = [w.reshape(-1, 2) for w in self._world.values()]
-        pts += [self.sim.position1, self.sim.position2, self.point[None]]
+        pts += [self.sim.vehicle1.position, self.sim.vehicle2.position, self.point[None]]
         pts = np.concatenate(pts)
         lo, hi = pts.min(0), pts.max(0)
         span = np.maximum(hi - lo, 1.0)
@@ -263,7 +265,7 @@ class Renderer:
         centre = (lo + hi) / 2
         self.origin = np.array([width / 2, self.TOP + self.MARGIN + avail_h / 2])
         self.centre = centre
-        speeds = np.concatenate([np.hypot(*self.sim.velocity1.T), np.hypot(*self.sim.velocity2.T)])
+        speeds = np.concatenate([self.sim.vehicle1.speed, self.sim.vehicle2.speed])
         vmax = max(float(speeds.max()), 1e-9)
         self.arrow_px_per_mps = 0.12 * min(width, height) / vmax
         p = float(np.hypot(*self.impulse))

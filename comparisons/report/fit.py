@@ -11,12 +11,13 @@ table) are written once for the command line and any other output.
 
 from __future__ import annotations
 
-from pim.analysis.fitting import FitResult
+from pim.analysis.fitting import SHORT_NAMES, FitResult
 from pim.analysis.free_inputs import free_kind
 from pim.io.units import convert, display_units, unit_scale
 
 __all__ = ["quantity_factor", "shown_value", "fit_json", "fit_values_json", "bound_notes",
-           "cost_lines", "coefficient_lines", "residual_lines", "fit_lines"]
+           "cost_lines", "coefficient_lines", "residual_lines", "fit_lines", "error_lines",
+           "errors_json"]
 
 KS = "kudlich-slibar"
 #: The law's own coefficients among a fit's values (shown as coefficients, not as inputs).
@@ -96,8 +97,50 @@ def fit_json(result: FitResult, units: str) -> dict:
     out["residuals"] = {name: value * quantity_factor(kinds[name], units)[0]
                         for name, value in data.get("residuals", {}).items()}
     out["residual_units"] = {name: quantity_factor(kinds[name], units)[1] for name in kinds}
+    out.update(errors_json(result, units))
     out["units"] = display_units(units).to_json()
     return out
+
+
+#: The short names of the law's coefficients in the standard-error lines.
+_SHORT = {"impact.restitution": "epsilon", "impact.beta": "beta", "impact.k": "k",
+          "impact.mu_c": "mu_c"}
+
+
+def errors_json(result: FitResult, units: str) -> dict:
+    """``standard_errors`` (each fitted key's value, standard error and unit, in ``units``),
+    ``correlation`` and ``error_basis`` of ``pim fit --json``."""
+    errors = {}
+    for key, sd in result.standard_errors.items():
+        value, unit = convert([result.values[key], sd], free_kind(key), units)
+        errors[key] = {"value": float(value[0]), "standard_error": float(value[1]),
+                       "unit": unit, "on_bound": result.on_bound.get(_short_key(key))}
+    return {"standard_errors": errors, "error_basis": result.error_basis,
+            "correlation": [{"a": a, "b": b, "r": r} for (a, b), r in
+                            result.correlation.items()]}
+
+
+def _short_key(key: str) -> str:
+    """A fitted key as ``on_bound`` names it ("eps", "beta", "k", "mu_c" or the key)."""
+    return SHORT_NAMES.get(key, key)
+
+
+def error_lines(result: FitResult, units: str) -> list[str]:
+    """Each fitted parameter's value and standard error in ``units``, flagged where it sits on
+    a bound (one-sided), their correlations, and the basis of both; or why there are none."""
+    if not result.standard_errors:
+        return [f"  {result.error_basis}"] if result.error_basis else []
+    lines = [f"  {result.error_basis}:"]
+    width = max(len(_SHORT.get(key, key)) for key in result.standard_errors)
+    for key, sd in result.standard_errors.items():
+        (value, error), unit = convert([result.values[key], sd], free_kind(key), units)
+        side = result.on_bound.get(_short_key(key))
+        lines.append(f"    {_SHORT.get(key, key):<{width}} = {value:.6g} +- {error:.3g}"
+                     + ("" if unit == "-" else f" {unit}")
+                     + (f"   (on its {side} bound: the interval is one-sided)" if side else ""))
+    lines += [f"    correlation r({_SHORT.get(a, a)}, {_SHORT.get(b, b)}) = {r:+.3f}"
+              for (a, b), r in result.correlation.items()]
+    return lines
 
 
 def _shows_values(result: FitResult, free: bool) -> bool:
@@ -246,6 +289,15 @@ def fit_lines(name: str, result: FitResult, units: str, free: bool = False) -> l
         the notes on bounds, the other minima, a blank line and the residual table.
     """
     return ([_title(name, result), *coefficient_lines(result), *cost_lines(result, units),
-             *_value_lines(result, units, free)]
+             *_value_lines(result, units, free), *error_lines(result, units)]
             + [f"  note: {line}" for line in bound_notes(result, units)]
+            + [f"  note: {line}" for line in _left_out_notes(result)]
             + _minima_line(result, units) + ["", *residual_lines(result, units)])
+
+
+def _left_out_notes(result: FitResult) -> list[str]:
+    """Which measured yaw rates the fit left out, and how to fit them."""
+    if not result.left_out:
+        return []
+    return [f"measured {', '.join(result.left_out)} not fitted (no yaw_rate_sigma in "
+            f"[measured]; give one, or --include-yaw to fit every measured yaw rate)"]

@@ -101,6 +101,19 @@ def _heading(name: str, sens: Sensitivity) -> str:
             f"({how})")
 
 
+#: What each source of a sigma means, for the line under the heading.
+SOURCE_WORDS = {"case": "the case file's [uncertainty] or [measured] sigma",
+                "estimate": "the scatter of an estimated input",
+                "typical": "a typical value (pim.analysis.sensitivity.TypicalUncertainty)",
+                "option": "--sigma"}
+
+
+def _sources_line(sens: Sensitivity) -> str:
+    """Which sources the sigmas come from, in words (source column of the tables)."""
+    used = [s for s in SOURCE_WORDS if s in (sens.sources or ("typical",))]
+    return "  sigma source: " + "; ".join(f"{s} = {SOURCE_WORDS[s]}" for s in used)
+
+
 def _table(sens: Sensitivity, k: int, top: int | None, units: str) -> list[str]:
     """The ranked inputs of output ``k``: sigma, derivative per unit and per sigma."""
     fo, uo = quantity_factor(SENSITIVITY_OUTPUTS[sens.outputs[k]].kind, units)
@@ -110,11 +123,12 @@ def _table(sens: Sensitivity, k: int, top: int | None, units: str) -> list[str]:
         fi, ui = quantity_factor(INPUTS[sens.inputs[i]].kind, units)
         per_unit = f"{derivative[i] * fo / fi:+.4g}" if derivative[i] else "0"
         rows.append((INPUTS[sens.inputs[i]].label, f"{sens.sigma[i] * fi:.4g} {ui}",
+                     sens.sources[i] if sens.sources else "typical",
                      per_unit, ratio_unit(uo, ui),
                      f"{abs(derivative[i]) * sens.sigma[i] * fo:.4g}"))
-    head = ("input", "sigma", "per unit", "unit", f"per sigma [{uo}]")
-    widths = [max(len(r[c]) for r in [head, *rows]) for c in range(5)]
-    fmt = "  " + "  ".join(f"{{:{a}{w}}}" for a, w in zip("<>><>", widths, strict=True))
+    head = ("input", "sigma", "source", "per unit", "unit", f"per sigma [{uo}]")
+    widths = [max(len(r[c]) for r in [head, *rows]) for c in range(6)]
+    fmt = "  " + "  ".join(f"{{:{a}{w}}}" for a, w in zip("<><><>", widths, strict=True))
     return [fmt.format(*head), "  " + "  ".join("-" * w for w in widths),
             *(fmt.format(*r) for r in rows)]
 
@@ -140,7 +154,7 @@ def sensitivity_lines(name: str, sens: Sensitivity, units: str,
         The heading, the inputs held on an active bound, then per answer a blank line, its
         value and the table of its inputs ranked by the effect of one sigma.
     """
-    lines = [_heading(name, sens)]
+    lines = [_heading(name, sens), _sources_line(sens)]
     if sens.active_bounds:
         lines.append(f"  {', '.join(sens.active_bounds)} on an active bound: held there "
                      "(derivative 0)")

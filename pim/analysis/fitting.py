@@ -4,13 +4,22 @@ The cost is the design sheet's sum of squared post-impact velocity errors,
 
     S(eps, beta) = sum_i (V_i(eps, beta) - V_i,measured)^2            [m^2/s^2],
 
-over the measured components of V1 and V2 (x and y). With ``include_yaw`` the yaw rates
-join as velocities, each weighted by its vehicle's radius of gyration k_i = sqrt(I_i / m_i):
-the residual is k_i (Omega_i - Omega_i,measured) [m/s], the speed that spin gives a point at
-distance k_i from the CG. Only measured quantities enter; a case with nothing measured is an
-error. With the ``[measured]`` standard deviations each residual is divided by its sigma:
+over the measured components of V1 and V2 (x and y). The yaw rates join as velocities, each
+weighted by its vehicle's radius of gyration k_i = sqrt(I_i / m_i): the residual is
+k_i (Omega_i - Omega_i,measured) [m/s], the speed that spin gives a point at distance k_i
+from the CG; by default a measured yaw rate enters when it has a standard deviation (every
+measured quantity with a sigma is fitted), ``include_yaw=True`` fits every measured one and
+``include_yaw=False`` none. Only measured quantities enter; a case with nothing measured is
+an error. With the ``[measured]`` standard deviations each residual is divided by its sigma:
 the cost is then the chi-square [-], and the result carries its degrees of freedom and
 p-value (:class:`pim.analysis.residuals.GoodnessOfFit`).
+
+Standard errors and correlations of the fitted parameters come from the Jacobian J of the
+residuals at the optimum (:func:`parameter_errors`): with sigmas, C = (J^T W J)^-1, W the
+inverse variances, the sigmas taken as stated (not rescaled by chi-square / dof: the
+chi-square test says whether they hold); without sigmas, C = s^2 (J^T J)^-1 with the residual
+variance s^2 = S / (m - n) of m measured values and n parameters (none when m <= n). A
+parameter on a bound keeps its linearised standard error, flagged: its interval is one-sided.
 
 Constraints as in the sheet: eps >= 0 (and <= 1, the solver's range) and beta <= 1, with
 beta >= 0 unless the caller widens the bounds. The result records which bound it sits on.
@@ -64,8 +73,8 @@ from .residuals import (
     residual_terms,
 )
 
-__all__ = ["fit", "FitResult", "FREE_KEYS", "DEFAULT_BOUNDS", "DEFAULT_GRID", "MAX_STARTS",
-           "SAMPLES", "SHORT_NAMES"]
+__all__ = ["fit", "FitResult", "parameter_errors", "FREE_KEYS", "DEFAULT_BOUNDS",
+           "DEFAULT_GRID", "MAX_STARTS", "SAMPLES", "SHORT_NAMES"]
 
 #: Default search box ((eps_min, eps_max), (beta_min, beta_max)) [-], the sheet's constraints.
 DEFAULT_BOUNDS = ((0.0, 1.0), (0.0, 1.0))
@@ -99,7 +108,7 @@ class FitResult:
     residual_names : tuple of str
         Which measured term each residual is (the names of ``terms``).
     include_yaw : bool
-        Whether the yaw rates were fitted.
+        Whether any measured yaw rate was fitted.
     bounds : ((float, float), (float, float))
         The search box of (eps, beta); of (k, mu_c) under "kudlich-slibar".
     fixed : tuple of str
@@ -141,8 +150,17 @@ class FitResult:
         the contact does not reach it: any mu_c >= the value gives the same answer; the
         value stands in ``values``).
     standard_errors : dict
-        Fitted key -> its standard error from (J^T J)^-1 of the weighted Jacobian [SI]
-        (empty without standard deviations or when the data do not decide the parameters).
+        Fitted key -> its standard error [SI] (:func:`parameter_errors`: (J^T W J)^-1 with
+        the stated sigmas, else s^2 (J^T J)^-1 from the residual scatter); empty when the data
+        do not decide the parameters or leave no scatter (as many values as parameters). A
+        parameter with only a lower bound (``lower_bounds``) has none.
+    correlation : dict
+        (key a, key b) -> the correlation of the two fitted parameters [-], from the same
+        covariance as ``standard_errors`` (empty where those are).
+    error_basis : str
+        How the standard errors were found, or why there are none, in words.
+    left_out : tuple of str
+        Measured quantities not fitted (a yaw rate without a sigma, by default).
     evidence_shares : dict
         Fitted key -> {evidence group: share of its variance [-]}
         (:func:`pim.analysis.free_fit.variance_shares`): which evidence drove it.
@@ -172,6 +190,9 @@ class FitResult:
     lower_bounds: dict = field(default_factory=dict)
     standard_errors: dict = field(default_factory=dict, repr=False)
     evidence_shares: dict = field(default_factory=dict, repr=False)
+    error_basis: str = ""
+    left_out: tuple = ()
+    correlation: dict = field(default_factory=dict, repr=False)
 
     @property
     def residual_table(self) -> list[dict]:
@@ -231,6 +252,8 @@ class FitResult:
             "values": dict(self.values),
             "goodness_of_fit": None if self.goodness is None else self.goodness.to_dict(),
             "standard_errors": dict(self.standard_errors),
+            "correlation": [{"a": a, "b": b, "r": r} for (a, b), r in self.correlation.items()],
+            "error_basis": self.error_basis, "left_out": list(self.left_out),
             "evidence_shares": {k: dict(v) for k, v in self.evidence_shares.items()},
             "admissible": bool(self.result.admissible), "problems": self.result.problems(),
         }
@@ -297,7 +320,7 @@ def _box(bounds, eps, beta, free: dict) -> dict:
     return {**box, **free}
 
 
-def _fit_result(raw: FreeFit, terms, *, include_yaw, bounds, fixed, eps, beta, weights,
+def _fit_result(raw: FreeFit, terms, *, left_out, bounds, fixed, eps, beta, weights,
                 law: str = "brach", mu_c=None, lower: dict | None = None) -> FitResult:
     """Wrap the engine's outcome into a :class:`FitResult` (one bound detection: ``side``);
     the keywords are what :func:`fit` was asked (``eps``, ``beta``: the fixed values)."""
@@ -319,28 +342,63 @@ def _fit_result(raw: FreeFit, terms, *, include_yaw, bounds, fixed, eps, beta, w
     minima_values = tuple((dict(zip(raw.keys, map(float, x), strict=True)), c)
                           for x, c in raw.minima)
     r = raw.residuals / (1.0 if weights is None else weights)
-    sd, shares = ({}, {}) if weights is None or raw.jacobian is None else _drivers(raw, terms)
+    sd, corr, basis = parameter_errors(raw, weights is not None, skip=tuple(lower or ()))
+    shares = {} if weights is None or not sd or lower else _shares(raw, terms)
     goodness = None if weights is None else goodness_of_fit(
         raw.cost, len(terms), len(raw.keys), raw.residuals, [t.name for t in terms])
     return FitResult(
         case=raw.case, eps=float(e_opt), beta=float(b_opt), cost=raw.cost, residuals=r,
-        residual_names=tuple(t.name for t in terms), include_yaw=bool(include_yaw),
+        residual_names=tuple(t.name for t in terms),
+        include_yaw=any(isinstance(t, Term) and not t.is_velocity for t in terms),
         bounds=bounds, fixed=fixed, on_bound=on_bound,
         gradient=np.array([grad.get("impact.restitution", 0.0), grad.get("impact.beta", 0.0)]),
         minima=tuple((*pair(v), c) for v, c in minima_values), nfev=raw.nfev + 1,
         values={k: float(v) for k, v in values.items()}, identifiability=raw.identifiability,
         minima_values=minima_values, weights=weights, terms=tuple(terms), goodness=goodness,
         law=law, contact_friction=None if mu_c is None else float(mu_c),
-        lower_bounds=dict(lower or {}), standard_errors=sd, evidence_shares=shares)
+        lower_bounds=dict(lower or {}), standard_errors=sd, evidence_shares=shares,
+        error_basis=basis, left_out=left_out, correlation=corr)
 
 
-def _drivers(raw: FreeFit, terms) -> tuple[dict, dict]:
-    """Standard errors and evidence shares of the fitted keys (:func:`variance_shares`)."""
-    sd, shares = variance_shares(raw.jacobian, [t.group for t in terms])
-    if not shares:
-        return {}, {}
-    return ({k: float(s) for k, s in zip(raw.keys, sd, strict=True)},
-            {k: {g: float(v[j]) for g, v in shares.items()} for j, k in enumerate(raw.keys)})
+def _shares(raw: FreeFit, terms) -> dict:
+    """The evidence shares of the fitted keys' variances (:func:`variance_shares`)."""
+    _, shares = variance_shares(raw.jacobian, [t.group for t in terms])
+    return {k: {g: float(v[j]) for g, v in shares.items()} for j, k in enumerate(raw.keys)}
+
+
+def parameter_errors(raw: FreeFit, weighted: bool, skip=()) -> tuple[dict, dict, str]:
+    """Standard errors [SI] and correlations [-] of the fitted keys (those in ``skip``, which
+    only have a lower bound, left out), and the basis they rest on, in words.
+
+    With the ``[measured]`` sigmas (``weighted``: J is the Jacobian of the standardised
+    residuals) C = (J^T J)^-1 = (J^T W J)^-1 of the raw residuals, the sigmas as stated;
+    without, C = s^2 (J^T J)^-1 with s^2 = S / (m - n), the residual variance of m values
+    and n parameters. Empty, with the reason, when J is rank deficient or m <= n unweighted.
+    """
+    if raw.jacobian is None:
+        return {}, {}, "no standard errors: no Jacobian at the optimum"
+    keep = [i for i, k in enumerate(raw.keys) if k not in skip]
+    keys, jac = [raw.keys[i] for i in keep], raw.jacobian[:, keep]
+    m, n = jac.shape
+    if n == 0 or m < n or np.linalg.matrix_rank(jac) < n:
+        return {}, {}, ("no standard errors: the measured values do not decide every fitted "
+                        "parameter (rank-deficient Jacobian; see the identifiability)")
+    if not weighted and m == n:
+        return {}, {}, (f"no standard errors: {m} measured values for {n} fitted parameters "
+                        f"leave no residual scatter to estimate them from; give the "
+                        f"[measured] sigmas")
+    scale = 1.0 if weighted else raw.cost / (m - n)
+    cov = np.linalg.inv(jac.T @ jac)            # the correlations do not depend on the scale
+    unit = np.sqrt(np.diag(cov))
+    corr = {(a, b): float(cov[i, j] / (unit[i] * unit[j])) for i, a in enumerate(keys)
+            for j, b in enumerate(keys) if i < j}
+    sd = unit * np.sqrt(scale)
+    basis = ("standard errors from (J^T W J)^-1 at the optimum, W = 1/sigma^2 of the stated "
+             "sigmas (not rescaled by chi-square/dof)" if weighted else
+             f"standard errors from s^2 (J^T J)^-1 at the optimum, s^2 = S/(m - n) = residual "
+             f"variance of {m} measured values and {n} parameter{'s' if n > 1 else ''} (no "
+             f"sigmas given)")
+    return dict(zip(keys, map(float, sd), strict=True)), corr, basis
 
 
 def _law_box(law: str, box_eb, eps, beta, mu_c, free_box: dict) -> tuple:
@@ -372,7 +430,8 @@ def _check_approach(case: Case, eps0: float, beta0: float, free_box: dict) -> No
                          "(u_n >= 0): there is no impact to fit")
 
 
-def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=None, beta=None,
+def fit(case: Case, *, include_yaw: bool | None = None, bounds=DEFAULT_BOUNDS, eps=None,
+        beta=None,
         grid=DEFAULT_GRID, max_starts: int = MAX_STARTS, free=None,
         samples: int = SAMPLES, seed: int = 0, law: str | None = None,
         mu_c=None) -> FitResult:
@@ -383,8 +442,8 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
     ----------
     case : Case
         A single (scalar) case with ``case.measured`` set.
-    include_yaw : bool
-        Also fit the measured yaw rates, weighted by the radius of gyration k_i [m].
+    include_yaw : bool, optional
+        Which measured yaw rates to fit: default those with a sigma; True all, False none.
     bounds : ((float, float), (float, float))
         Search box ((eps_min, eps_max), (beta_min, beta_max)); default ((0, 1), (0, 1)),
         the sheet's eps >= 0, beta <= 1 with beta >= 0. eps must stay within [0, 1]; beta
@@ -394,8 +453,7 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
         Hold that parameter fixed at the given value and fit only the other one (under
         "kudlich-slibar" ``eps`` fixes k; ``beta`` does not apply).
     grid : (int, int)
-        No longer used (the coarse search is the Sobol sample); validated, and a
-        DeprecationWarning when not the default.
+        No longer used (a DeprecationWarning when not the default).
     max_starts : int
         How many of the best coarse-search points are refined locally.
     free : dict, optional
@@ -449,9 +507,16 @@ def fit(case: Case, *, include_yaw: bool = False, bounds=DEFAULT_BOUNDS, eps=Non
                    seed=seed)
     raw, lower = _floor(case, raw, terms, case_state(case, eps0, beta0))
     fixed, box_eb = _fixed_and_searched(law, box, box_eb, eps_fixed, beta_fixed, mu_c)
-    return _fit_result(raw, terms, include_yaw=include_yaw, bounds=box_eb, fixed=fixed,
+    return _fit_result(raw, terms, left_out=_left_out(case, terms), bounds=box_eb, fixed=fixed,
                        eps=eps_fixed, beta=beta_fixed, weights=weights, law=law,
                        mu_c=case.impact.contact_friction, lower=lower)
+
+
+def _left_out(case: Case, terms) -> tuple[str, ...]:
+    """The measured yaw rates that are not among the fitted ``terms``."""
+    m, fitted = case.measured, {t.name for t in terms}
+    return tuple(f"yaw_rate{i}" for i in (1, 2) if m is not None
+                 and getattr(m, f"yaw_rate{i}") is not None and f"yaw_rate{i}" not in fitted)
 
 
 def _law_case(case: Case, law: str, mu_c) -> Case:

@@ -440,10 +440,18 @@ def _starts(u: np.ndarray, costs: np.ndarray, max_starts: int) -> list[int]:
     return starts
 
 
+#: Costs this close to the best [-] (weighted, dimensionless) are ties of round-off: an exact
+#: fit (cost 0 to 1e-30) with several minima picks by start order, not by the last bit
+#: (which differs between processors).
+TIE_COST = 1e-16
+
+
 def _distinct(x: np.ndarray, cost: np.ndarray, width: np.ndarray) -> list[int]:
-    """Indices of the distinct minima (box-scaled distance > :data:`MERGE`), best first."""
+    """Indices of the distinct minima (box-scaled distance > :data:`MERGE`), best first;
+    costs within :data:`TIE_COST` of the best keep their start order."""
     kept: list[int] = []
-    for k in np.argsort(cost, kind="stable"):
+    tied = np.where(cost <= np.min(cost) + TIE_COST, -np.inf, cost)
+    for k in np.lexsort((np.arange(len(cost)), tied)):
         if all(np.max(np.abs(x[k] - x[j]) / width) > MERGE for j in kept):
             kept.append(int(k))
     return kept

@@ -28,7 +28,9 @@ import numpy as np
 
 from ..model.case import Case, Measured, checked_case
 from ..model.crush import crush_delta_v, effective_mass, equivalent_energy_speed, moment_arm
+from ..model.event import Event, Track, phase_labels
 from ..model.evidence_terms import result_quantities
+from ..model.geometry import vehicle_outline
 from ..model.motion import Term
 from ..model.numbers import ArgumentTypeError, InputError, check_counts, checked_count, speed_text
 from ..model.tyres import STANDARD_GRAVITY
@@ -79,6 +81,34 @@ class PostImpact:
     def velocity_sigma(self) -> dict:
         """Former name of :attr:`velocity_covariance` (it always held covariances)."""
         return self.velocity_covariance
+
+    def event(self, times=None) -> Event:
+        """The fitted run-outs as an :class:`pim.model.event.Event` from the impact (t = 0)
+        to the later vehicle's rest, at ``times`` [s] (default: every time either run-out
+        stored). A vehicle without a run-out stays at its impact pose (a note says so)."""
+        if not self.runouts:
+            raise InputError("the reconstruction has no run-out (no [evidence])")
+        if times is None:
+            times = np.unique(np.concatenate([f.runout.time for f in self.runouts.values()]))
+        times = np.asarray(times, float)
+        tracks, notes = [], []
+        for i in (1, 2):
+            vehicle = getattr(self.case, f"vehicle{i}")
+            outline = vehicle_outline(vehicle)
+            if i in self.runouts:
+                tracks.append(self.runouts[i].runout.track(times, outline))
+                continue
+            n = len(times)
+            tracks.append(Track(np.broadcast_to(np.asarray(vehicle.cg, float), (n, 2)).copy(),
+                                np.full(n, float(vehicle.heading)), np.zeros((n, 2)),
+                                np.zeros(n), outline=outline, fixed=bool(vehicle.fixed)))
+            notes.append(f"vehicle {i} has no run-out evidence: held at its impact pose")
+        stopped = tuple(bool(self.runouts[i].stopped) if i in self.runouts else True
+                        for i in (1, 2))
+        rest = max(float(f.runout.stop_time) for f in self.runouts.values())
+        return Event(times, tracks[0], tracks[1],
+                     phase_labels(times, [0.0], rest if all(stopped) else None),
+                     source="reconstruction", stopped=stopped, notes=tuple(notes))
 
 
 def _velocity_covariance(fit: RunoutFit) -> tuple[np.ndarray, float]:
@@ -305,6 +335,14 @@ class Reconstruction:
     def goodness(self) -> GoodnessOfFit | None:
         """Chi-square test of the inverse PIM (None without standard deviations or a fit)."""
         return None if self.fit is None else self.fit.goodness
+
+    @property
+    def contradiction(self) -> str | None:
+        """Why the answer is refused when the evidence contradicts itself beyond
+        :data:`pim.analysis.residuals.P_CONTRADICTED` (:meth:`GoodnessOfFit.refusal`), else
+        None."""
+        g = self.goodness
+        return g.refusal() if g is not None and g.contradicted else None
 
     def table(self) -> list[dict]:
         """Per unknown: name, value, p5, p50, p95 [SI] (percentiles NaN without samples)."""

@@ -33,20 +33,43 @@ from ..model.motion import Term
 from ..model.numbers import InputError
 from ..model.result import Result
 
-__all__ = ["measured_terms", "has_measured_terms", "residuals", "residual_terms",
-           "model_value", "measured_value", "crush_terms",
+__all__ = ["measured_terms", "has_measured_terms", "fitted_yaw_rates", "residuals",
+           "residual_terms", "model_value", "measured_value", "crush_terms",
            "measured_weights", "GoodnessOfFit", "goodness_of_fit", "P_INCONSISTENT",
-           "cost_label"]
+           "P_CONTRADICTED", "cost_label"]
 
-#: p-value below which the measurements are called inconsistent with PIM at their sigmas.
+#: p-value below which the measurements are called inconsistent with PIM at their sigmas
+#: (a warning).
 P_INCONSISTENT = 0.01
 
+#: p-value below which the evidence contradicts itself and a command refuses the answer
+#: (``pim reconstruct`` exits 1 after its output unless told to accept it). One in a
+#: thousand: evidence that is right, with the right sigmas, under a model that holds,
+#: crosses it once in 1000 cases (one degree of freedom: a residual beyond 3.3 sigma), ten
+#: times more rarely than the warning at :data:`P_INCONSISTENT`, because an exit code stops
+#: a script and a false alarm costs more there; the sigmas of a run-out fit are linearised,
+#: so the refusal leaves them that margin. Evidence in real conflict is far below it (a
+#: recorded delta-V 20 km/h off the rest positions' at 1 km/h: p = 1e-173).
+P_CONTRADICTED = 1e-3
 
-def measured_terms(case: Case,
-                   include_yaw: bool) -> tuple[Term | EvidenceTerm | CrushEnergyTerm, ...]:
-    """The terms ``case.measured`` holds: velocities (yaw rates with ``include_yaw``), then
-    the evidence terms (recorded delta-V and pre-crash speed, energy loss), then the crush
-    energy of the case's crush profiles.
+
+def fitted_yaw_rates(measured, include_yaw: bool | None) -> tuple[int, ...]:
+    """The vehicles whose measured yaw rate is fitted: every measured one with
+    ``include_yaw`` True, none with False, and with None (the default of :func:`pim.fit`)
+    those given a standard deviation (``yaw_rate_sigma``): every measured quantity that has
+    a sigma enters the fit."""
+    if measured is None or include_yaw is False:
+        return ()
+    return tuple(i for i in (1, 2) if getattr(measured, f"yaw_rate{i}") is not None and (
+        include_yaw or getattr(measured, f"yaw_rate{i}_sigma") is not None))
+
+
+def measured_terms(case: Case, include_yaw: bool | None
+                   ) -> tuple[Term | EvidenceTerm | CrushEnergyTerm, ...]:
+    """The terms ``case.measured`` holds: velocities, the yaw rates of
+    :func:`fitted_yaw_rates` (``include_yaw``: True every measured one, False none, None
+    those with a sigma), then the evidence terms (recorded delta-V and pre-crash speed,
+    energy loss), then the crush energy of the case's crush profiles.
 
     Raises
     ------
@@ -59,15 +82,13 @@ def measured_terms(case: Case,
         for i in (1, 2):
             if getattr(m, f"velocity{i}") is not None:
                 terms += [Term(i, "vx"), Term(i, "vy")]
-        for i in (1, 2) if include_yaw else ():
-            if getattr(m, f"yaw_rate{i}") is not None:
-                terms.append(Term(i, "omega"))
+        terms += [Term(i, "omega") for i in fitted_yaw_rates(m, include_yaw)]
         terms += evidence_terms_of(m)
     terms += crush_terms(case)
     if not terms:
         has_yaw = m is not None and (m.yaw_rate1 is not None or m.yaw_rate2 is not None)
-        hint = (" (only yaw rates are measured: use include_yaw=True / --include-yaw)"
-                if has_yaw and not include_yaw else "")
+        hint = (" (only yaw rates are measured, without a sigma: give yaw_rate_sigma, or "
+                "include_yaw=True / --include-yaw)" if has_yaw and not include_yaw else "")
         raise InputError(
             f"case {case.name or '(unnamed)'}: nothing to fit; case.measured needs a "
             f"post-impact velocity1 or velocity2 [m/s], a recorded delta_v or "
@@ -176,9 +197,9 @@ def residuals(result: Result, terms, *, weighted: bool = False) -> np.ndarray:
     return (values - target) * scale
 
 
-def has_measured_terms(case: Case, include_yaw: bool = False) -> bool:
-    """Whether the case has anything to fit: a measured post-impact velocity (or, with
-    ``include_yaw``, a measured yaw rate)."""
+def has_measured_terms(case: Case, include_yaw: bool | None = None) -> bool:
+    """Whether the case has anything to fit: a measured post-impact velocity, evidence, or
+    a fitted yaw rate (:func:`fitted_yaw_rates`)."""
     m = case.measured
     if crush_terms(case):
         return True
@@ -186,7 +207,7 @@ def has_measured_terms(case: Case, include_yaw: bool = False) -> bool:
         return False
     if m.velocity1 is not None or m.velocity2 is not None or evidence_terms_of(m):
         return True
-    return include_yaw and (m.yaw_rate1 is not None or m.yaw_rate2 is not None)
+    return bool(fitted_yaw_rates(m, include_yaw))
 
 
 @dataclass(frozen=True)
@@ -219,6 +240,20 @@ class GoodnessOfFit:
             return None
         return bool(self.p_value >= P_INCONSISTENT)
 
+    @property
+    def contradicted(self) -> bool:
+        """True when p < :data:`P_CONTRADICTED`: the evidence contradicts itself beyond the
+        refusal threshold (never with no degree of freedom)."""
+        return bool(np.isfinite(self.p_value) and self.p_value < P_CONTRADICTED)
+
+    def refusal(self) -> str:
+        """Why the answer is refused, one line (meaningful when :attr:`contradicted`)."""
+        worst = ", ".join(f"{name} {z:+.2g} sigma" for name, z in self.largest)
+        return (f"the evidence contradicts itself: chi-square = {self.chi_square:.4g} with "
+                f"{self.dof} degrees of freedom, p = {self.p_value:.2g} < {P_CONTRADICTED:g} "
+                f"(the refusal threshold): the measurements, their sigmas or the model are "
+                f"wrong" + (f"; the evidence in conflict: {worst}" if worst else ""))
+
     def verdict(self) -> str:
         """One plain sentence on whether the measurements fit PIM at their sigmas."""
         if self.consistent is None:
@@ -242,7 +277,8 @@ class GoodnessOfFit:
     def to_dict(self) -> dict:
         return {"chi_square": self.chi_square, "dof": self.dof,
                 "p_value": None if not np.isfinite(self.p_value) else self.p_value,
-                "consistent": self.consistent, "verdict": self.verdict(),
+                "consistent": self.consistent, "contradicted": self.contradicted,
+                "refusal_p": P_CONTRADICTED, "verdict": self.verdict(),
                 "largest_standardised_residuals": dict(self.largest)}
 
 

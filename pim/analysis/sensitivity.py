@@ -6,6 +6,13 @@ each input the derivative of the fitted (epsilon, beta) follows from the implici
 theorem at the optimum of :func:`pim.fit` (a bound that is active stays active: its
 parameter does not move), and delta-V is differentiated both at fixed (epsilon, beta) and
 with the refit. All perturbed cases are evaluated in one broadcast call of the solver.
+
+Each input's sigma comes from the case where it states one (:data:`SOURCES`): its
+``[uncertainty]`` distribution (its standard deviation, :meth:`Distribution.sd`: a normal's
+sd, a uniform's width / sqrt(12), +- b as b / sqrt(3), 0 for a fixed value), the scatter of
+an estimated input (a yaw inertia from the wheelbase), the ``[measured]`` sigma of a measured
+value; the typical uncertainties (:class:`TypicalUncertainty`) fill in the rest, and those
+named in ``prefer`` (the command line's ``--sigma``) take precedence over the case.
 """
 
 from __future__ import annotations
@@ -30,7 +37,11 @@ from .free_inputs import STATE, case_state
 from .residuals import has_measured_terms, measured_value, residual_terms
 
 __all__ = ["sensitivity", "Sensitivity", "TypicalUncertainty", "TYPICAL_KINDS", "INPUTS",
-           "SENSITIVITY_OUTPUTS"]
+           "SENSITIVITY_OUTPUTS", "SOURCES"]
+
+#: Where an input's sigma comes from: the case file ([uncertainty] or [measured]), the
+#: scatter of an input the program estimated, the typical value, or an option (--sigma).
+SOURCES = ("case", "estimate", "typical", "option")
 
 #: The unit kind of each field of :class:`TypicalUncertainty` (for parsing an override).
 TYPICAL_KINDS = {"point": "length", "normal_angle": "angle", "mass_fraction": "dimensionless",
@@ -135,6 +146,8 @@ class Sensitivity:
         d |delta-V_i| / d input at fixed (eps, beta) [SI].
     active_bounds : tuple of str
         Parameters held on an active bound (they do not move: derivative 0).
+    sources : tuple of str
+        Where each input's sigma comes from, one of :data:`SOURCES` (module notes).
     """
 
     case: Case
@@ -149,6 +162,7 @@ class Sensitivity:
     derivative: np.ndarray
     partial_delta_v: np.ndarray
     active_bounds: tuple[str, ...] = ()
+    sources: tuple[str, ...] = ()
 
     @property
     def effect(self) -> np.ndarray:
@@ -167,6 +181,7 @@ class Sensitivity:
             out[name] = {
                 "value": float(self.values[k]),
                 "inputs": [{"input": self.inputs[i], "sigma": float(self.sigma[i]),
+                            "source": self.sources[i] if self.sources else "typical",
                             "per_unit": float(self.derivative[k, i]),
                             "per_sigma": float(self.effect[k, i])} for i in self.ranked(name)],
             }
@@ -202,31 +217,58 @@ def _perturbed_case(case: Case, keys, steps) -> Case:
                    impact=impact)
 
 
-def _nominal_and_sigma(case: Case, unc: TypicalUncertainty, terms) -> tuple[list, list, list]:
-    """Input keys, nominal values and sigmas [SI]: the measured terms take their stated
-    ``[measured]`` standard deviation where given, else the typical one."""
+def _typical_rows(case: Case, unc: TypicalUncertainty, terms) -> list[tuple]:
+    """(input key, nominal [SI], typical sigma [SI], its field of TypicalUncertainty, the
+    case's stated sigma [SI] or None, its source) of every input, fixed bodies left out."""
     v1, v2, imp, m = case.vehicle1, case.vehicle2, case.impact, case.measured
-    rows = [("impact.point_x", imp.point[0], unc.point),
-            ("impact.point_y", imp.point[1], unc.point),
-            ("impact.normal_angle", imp.normal_angle, unc.normal_angle)]
-    for i, v in ((1, v1), (2, v2)):
-        if v.fixed.all():
-            continue
-        rows += [(f"vehicle{i}.mass", v.mass, unc.mass_fraction * v.mass),
-                 (f"vehicle{i}.yaw_inertia", v.yaw_inertia, unc.inertia_fraction * v.yaw_inertia)]
-    for i, v in ((1, v1), (2, v2)):
-        if v.fixed.all():
-            continue
-        rows += [(f"vehicle{i}.velocity_x", v.velocity[0], unc.velocity),
-                 (f"vehicle{i}.velocity_y", v.velocity[1], unc.velocity),
-                 (f"vehicle{i}.yaw_rate", v.yaw_rate, unc.yaw_rate)]
+    rows = [("impact.point_x", imp.point[0], unc.point, "point"),
+            ("impact.point_y", imp.point[1], unc.point, "point"),
+            ("impact.normal_angle", imp.normal_angle, unc.normal_angle, "normal_angle")]
+    moving = [(i, v) for i, v in ((1, v1), (2, v2)) if not v.fixed.all()]
+    for i, v in moving:
+        rows += [(f"vehicle{i}.mass", v.mass, unc.mass_fraction * v.mass, "mass_fraction"),
+                 (f"vehicle{i}.yaw_inertia", v.yaw_inertia, unc.inertia_fraction * v.yaw_inertia,
+                  "inertia_fraction")]
+    for i, v in moving:
+        rows += [(f"vehicle{i}.velocity_x", v.velocity[0], unc.velocity, "velocity"),
+                 (f"vehicle{i}.velocity_y", v.velocity[1], unc.velocity, "velocity"),
+                 (f"vehicle{i}.yaw_rate", v.yaw_rate, unc.yaw_rate, "yaw_rate")]
+    table = case.uncertainty.inputs if case.uncertainty is not None else {}
+    estimated = {e.name for e in case.estimates}
+    out = []
+    for key, nominal, typical, name in rows:
+        dist = table.get(key)
+        stated = None if dist is None else dist.sd(float(nominal))
+        out.append((key, float(nominal), float(typical), name, stated,
+                    "estimate" if key in estimated else "case"))
     for term in terms:
-        stated = term.sigma_of(m)
-        typical = unc.measured_velocity if term.is_velocity else unc.measured_yaw_rate
-        rows.append((f"measured.{term.name}", measured_value(m, term),
-                     typical if stated is None else stated))
-    keys = [r[0] for r in rows]
-    return keys, [float(r[1]) for r in rows], [float(r[2]) for r in rows]
+        name = "measured_velocity" if term.is_velocity else "measured_yaw_rate"
+        out.append((f"measured.{term.name}", measured_value(m, term), getattr(unc, name), name,
+                    term.sigma_of(m), "case"))
+    return out
+
+
+def _nominal_and_sigma(case: Case, unc: TypicalUncertainty, terms,
+                       prefer=()) -> tuple[list, list, list, list, list]:
+    """Input keys, nominal values [SI], sigmas [SI], their sources (:data:`SOURCES`) and the
+    scale of each finite-difference step [SI]: the case's stated sigma where it gives one
+    (``[uncertainty]``, an estimate's scatter, a ``[measured]`` sigma), else the typical
+    one; a field of TypicalUncertainty named in ``prefer`` wins over the case. The step
+    scale is the sigma, or the typical one where the case fixes the input (sigma 0)."""
+    unknown = sorted(set(prefer) - set(TYPICAL_KINDS))
+    if unknown:
+        raise InputError(f"prefer: {unknown[0]!r} is no typical uncertainty (allowed: "
+                         f"{', '.join(TYPICAL_KINDS)})")
+    keys, nominal, sigma, sources, scale = [], [], [], [], []
+    for key, value, typical, name, stated, source in _typical_rows(case, unc, terms):
+        if name in prefer or stated is None:
+            stated, source = typical, ("option" if name in prefer else "typical")
+        keys.append(key)
+        nominal.append(value)
+        sigma.append(float(stated))
+        sources.append(source)
+        scale.append(float(stated) if stated > 0 else typical)
+    return keys, nominal, sigma, sources, scale
 
 
 _EPS_BETA = ("impact.restitution", "impact.beta")
@@ -272,7 +314,7 @@ def _delta_v_by_parameters(case: Case, eps: float, beta: float) -> tuple:
 
 
 def sensitivity(case: Case, fit_result=None, *, eps=None, beta=None, uncertainty=None,
-                include_yaw: bool = False) -> Sensitivity:
+                include_yaw: bool | None = None, prefer=()) -> Sensitivity:
     """Sensitivity of the fitted (epsilon, beta) and of delta-V to the uncertain inputs.
 
     Parameters
@@ -285,9 +327,11 @@ def sensitivity(case: Case, fit_result=None, *, eps=None, beta=None, uncertainty
     eps, beta : float, optional
         Evaluate delta-V at these parameters instead of fitting (defaults: the case's).
     uncertainty : TypicalUncertainty, optional
-        Typical uncertainties; default :class:`TypicalUncertainty()`.
-    include_yaw : bool
-        Passed to :func:`pim.fit` when the fit is made here.
+        Typical uncertainties, for the inputs the case gives no sigma (module notes).
+    include_yaw : bool, optional
+        Passed to :func:`pim.fit` when the fit is made here (default as its).
+    prefer : iterable of str
+        Fields of ``uncertainty`` that win over the case's own sigmas (``--sigma``).
 
     Returns
     -------
@@ -323,9 +367,9 @@ def sensitivity(case: Case, fit_result=None, *, eps=None, beta=None, uncertainty
         eps, beta = defaults(case, eps, beta)
     eps, beta = float(eps), float(beta)
 
-    keys, nominal, sigma = _nominal_and_sigma(case, unc, terms)
+    keys, nominal, sigma, sources, scale = _nominal_and_sigma(case, unc, terms, prefer)
     n_model = sum(not k.startswith("measured.") for k in keys)
-    steps = INPUT_STEP * np.array(sigma[:n_model])
+    steps = INPUT_STEP * np.array(scale[:n_model])
     # one broadcast solve over all +/- perturbations of the model inputs
     moved = _perturbed_case(case, keys[:n_model], steps)
     batch = solve(moved, eps, beta)
@@ -348,7 +392,7 @@ def sensitivity(case: Case, fit_result=None, *, eps=None, beta=None, uncertainty
     return Sensitivity(case=case, eps=eps, beta=beta, fit=fit_result, inputs=tuple(keys),
                        nominal=np.array(nominal), sigma=np.array(sigma), outputs=outputs,
                        values=np.array(values), derivative=derivative,
-                       partial_delta_v=partial, active_bounds=active)
+                       partial_delta_v=partial, active_bounds=active, sources=tuple(sources))
 
 
 def _parameter_derivative(case: Case, moved: Case, terms, keys, steps, eps: float,

@@ -1,8 +1,10 @@
 """Case files: TOML descriptions of an impact, with units, in global or Brach form.
 
 A case file names each quantity with units (``"31.09 ft/s"``, ``"2255.4 lbf"``, ``"90 deg"``,
-``"976 slug*ft**2"``) with nothing after the unit, or as a bare SI number (a bare angle is
-radians: refused beyond 2 pi, where degrees were surely meant, and warned about within it).
+``"976 slug*ft**2"``) with nothing after the unit. A bare number is read only for a
+dimensionless input (restitution, beta, friction) and for 0 of any kind; any other bare
+number (``velocity = [50, 0]``: 50 m/s, km/h or mph?) is refused with the units it could mean
+(:func:`pim.io.units.parse`).
 Unknown keys are errors, so a typo is never silently ignored; every error is a
 :class:`pim.InputError` naming the field. Layout (global form; see ``pim/io/cases/ricsac9.toml``)::
 
@@ -13,13 +15,15 @@ Unknown keys are errors, so a typo is never silently ignored; every error is a
     yaw_inertia = "..."             # or radius_of_gyration = "... ft"; or neither, with
     wheelbase = "2.7 m"             #   wheelbase (and optionally cg_to_front_axle = "1.2 m",
     body = "car"                    #   body = "car" / "suv" / "pickup" / "van"): estimated
+                                    #   (without a wheelbase: from the mass alone)
     cg = ["4.774 ft", "0.502 ft"]
     heading = "180 deg"
-    velocity = ["-31.09 ft/s", 0]
+    velocity = ["-31.09 ft/s", 0]     # 0 needs no unit
     yaw_rate = "0 deg/s"
     length = "4.1 m"                # optional, with width: outline for drawing
     cg_to_front = "1.9 m"           # optional: CG to front bumper (default length / 2)
     reversing = true                # optional: it moves backwards (silences that warning)
+    sliding = true                  # optional: it slides sideways (silences that warning)
     [impact]
     point = [0, 0]
     normal_angle = "0 deg"          # Gamma: n points from vehicle 2 toward vehicle 1
@@ -69,10 +73,9 @@ import numpy as np
 from ..model.case import Case, Impact, Vehicle
 from ..model.distributions import Distribution, UncertaintyTable
 from ..model.numbers import InputError
-from ..model.plausibility import bare_angle_warning
 from .brach import cg_from_brach, heading_from_theta
 from .evidence_table import AXLE_KEY, OLD_AXLE_KEY, parse_evidence, parse_unknown
-from .inertia_data import estimate_notes, estimate_yaw_inertia
+from .inertia_data import estimate_notes, estimate_yaw_inertia, estimate_yaw_inertia_from_mass
 from .measured_table import parse_measured
 from .toml_tables import check_keys
 from .tyre_table import attach_tyres
@@ -85,10 +88,10 @@ _TOP = {"name", "description", "source", "convention", "vehicle1", "vehicle2", "
         "measured", "uncertainty", "evidence", "unknown", "tyres", "driver", "units"}
 _VEHICLE = {"mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
             "length", "width", "cg_to_front", "fixed", "cg", "heading", "theta", "phi", "d",
-            "wheelbase", "cg_to_front_axle", "body", "reversing"}
+            "wheelbase", "cg_to_front_axle", "body", "reversing", "sliding"}
 #: Keys of a moving vehicle that a fixed obstacle must not have.
 _MOVING = ("mass", "weight", "yaw_inertia", "radius_of_gyration", "velocity", "yaw_rate",
-           "wheelbase", "cg_to_front_axle", "body", "reversing")
+           "wheelbase", "cg_to_front_axle", "body", "reversing", "sliding")
 _LOG = logging.getLogger(__name__)
 
 #: Deepest nesting of tables and lists a case file may have: the deepest legitimate value,
@@ -163,10 +166,11 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int,
     if stray:
         raise InputError(f"{where}: key {stray[0]!r} does not belong to the {convention!r} "
                          f"convention (use {', '.join(placement)})")
-    fixed, reversing = table.get("fixed", False), table.get("reversing", False)
-    for key, value in (("fixed", fixed), ("reversing", reversing)):
+    flags = {key: table.get(key, False) for key in ("fixed", "reversing", "sliding")}
+    for key, value in flags.items():
         if not isinstance(value, bool):
             raise InputError(f"{where}.{key} must be true or false, got {value!r}")
+    fixed = flags.pop("fixed")
     if convention == "global" and fixed:
         cg = _pair(table["cg"], "length", f"{where}.cg") if "cg" in table else point
         heading = parse(table.get("heading", 0.0), "angle", f"{where}.heading")
@@ -197,7 +201,7 @@ def _vehicle(table, where: str, convention: str, point: np.ndarray, number: int,
     velocity = _pair(_require(table, "velocity", where), "velocity", f"{where}.velocity")
     yaw_rate = parse(table.get("yaw_rate", 0.0), "angular_velocity", f"{where}.yaw_rate")
     return _wrap(where, Vehicle, mass=mass, yaw_inertia=inertia, cg=cg, velocity=velocity,
-                 yaw_rate=yaw_rate, heading=heading, reversing=reversing, **outline), estimate
+                 yaw_rate=yaw_rate, heading=heading, **flags, **outline), estimate
 
 
 def _mass(table, where: str) -> float:
@@ -237,15 +241,15 @@ def _inertia(table, mass: float, where: str, evidence) -> tuple[float, object]:
 def _estimated_inertia(table, mass: float, where: str, evidence) -> tuple[float, object]:
     """The yaw dynamic index's estimate (:func:`pim.io.inertia_data.estimate_yaw_inertia`)
     from the wheelbase and CG-to-front-axle distance of ``[vehicleN]`` or
-    ``[evidence.vehicleN]``; an error naming what is missing when there is no wheelbase."""
+    ``[evidence.vehicleN]``; without a wheelbase, the mass-only line of NHTSA's measured
+    vehicles (:func:`pim.io.inertia_data.estimate_yaw_inertia_from_mass`; an error naming
+    what to give when the mass lies outside its vehicles')."""
     wheelbase = _dimension(table, evidence, ("wheelbase",), where)
-    if wheelbase is None:
-        raise InputError(f"{where}: no yaw_inertia (or radius_of_gyration) given, and no "
-                         f"wheelbase to estimate it from: give {where}.yaw_inertia, or "
-                         f"{where}.wheelbase (with cg_to_front_axle and body, optional) for "
-                         f"an estimate by the yaw dynamic index of NHTSA's measured vehicles")
-    axle = _dimension(table, evidence, (AXLE_KEY, OLD_AXLE_KEY), where)
     body = table.get("body", "car")
+    if wheelbase is None:
+        estimate = estimate_yaw_inertia_from_mass(mass, body, where)
+        return estimate.value, estimate
+    axle = _dimension(table, evidence, (AXLE_KEY, OLD_AXLE_KEY), where)
     estimate = estimate_yaw_inertia(mass, wheelbase, axle, body, where)
     return estimate.value, estimate
 
@@ -330,14 +334,29 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
     case = Case(vehicle1=vehicles[0], vehicle2=vehicles[1], impact=impact,
                 measured=parse_measured(data.get("measured")), name=name, description=description,
                 uncertainty=_with_estimates(_uncertainty(data.get("uncertainty")), estimates),
-                notes=_angle_notes(data), **_presentation(data),
+                **_presentation(data),
                 evidence=attach_tyres(parse_evidence(data.get("evidence"), {
-                    i + 1: (v.length, v.width) for i, v in enumerate(vehicles)}),
-                    data.get("tyres"), data.get("driver")),
+                    i + 1: (v.length, v.width) for i, v in enumerate(vehicles)},
+                    _front_shares(data)), data.get("tyres"), data.get("driver")),
                 unknown=parse_unknown(data.get("unknown")), estimates=estimates)
     for line in estimate_notes(case, case.units):
         _LOG.warning(f"note: {source}: {line}")
     return case
+
+
+def _front_shares(data: dict) -> dict:
+    """Vehicle number -> the front axle's static weight share 1 - a / L [-] from
+    ``[vehicleN]`` wheelbase and cg_to_front_axle (where both are given), for the per-wheel
+    braking of marks before the impact without run-out evidence."""
+    shares = {}
+    for i in (1, 2):
+        table = data.get(f"vehicle{i}")
+        if isinstance(table, dict) and "wheelbase" in table and AXLE_KEY in table:
+            length = parse(table["wheelbase"], "length", f"vehicle{i}.wheelbase")
+            a = parse(table[AXLE_KEY], "length", f"vehicle{i}.{AXLE_KEY}")
+            if 0 <= a <= length and length > 0:
+                shares[i] = 1.0 - a / length
+    return shares
 
 
 def _with_estimates(table, estimates) -> UncertaintyTable | None:
@@ -378,18 +397,6 @@ def _check_depth(data, source: str) -> None:
             stack.extend((v, depth + 1) for v in value.values())
         elif isinstance(value, list):
             stack.extend((v, depth + 1) for v in value)
-
-
-def _angle_notes(data) -> tuple[str, ...]:
-    """Warnings for bare numbers above 2 pi given for angles (degrees without a unit?)."""
-    notes = []
-    for table in ("vehicle1", "vehicle2", "impact"):
-        for key in ("heading", "theta", "phi", "normal_angle", "contact_plane_angle"):
-            value = data.get(table, {}).get(key)
-            note = bare_angle_warning(f"{table}.{key}", value)
-            if note:
-                notes.append(note)
-    return tuple(notes)
 
 
 #: Keys of the ``[units]`` table: the units results are presented in.
@@ -437,6 +444,22 @@ def list_cases() -> list[tuple[str, str]]:
     return out
 
 
+def _is_file(key: str) -> bool:
+    """Whether ``key`` names a readable regular file; False for a name the file system
+    refuses to look up (too long, a NUL byte, a denied folder on the way)."""
+    try:
+        return Path(key).is_file()
+    except (OSError, ValueError):
+        return False
+
+
+def _shown(key: str, limit: int = 80) -> str:
+    """``key`` quoted for a message, cut to ``limit`` characters (with its length)."""
+    if len(key) <= limit:
+        return repr(key)
+    return f"{key[:limit]!r}... ({len(key)} characters)"
+
+
 def load_case(name_or_path) -> Case:
     """Load a case by bundled name (``"ricsac9"``) or from a TOML file path.
 
@@ -447,13 +470,14 @@ def load_case(name_or_path) -> Case:
     """
     bundled = _bundled()
     key = str(name_or_path)
-    if key in bundled and not Path(key).is_file():
+    if key in bundled and not _is_file(key):
         text, source = bundled[key].read_text(encoding="utf-8"), f"{key}.toml"
     else:
         path = Path(key)
-        if not path.is_file():
+        if not _is_file(key):
             names = ", ".join(sorted(bundled))
-            raise InputError(f"case {key!r} is neither a file nor a bundled case ({names})")
+            raise InputError(f"case {_shown(key)} is neither a file nor a bundled case "
+                             f"({names})")
         try:
             text, source = path.read_text(encoding="utf-8"), str(path)
         except (OSError, UnicodeDecodeError) as exc:

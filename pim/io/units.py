@@ -26,7 +26,8 @@ from ..model.numbers import InputError, speeds_in
 
 __all__ = ["registry", "parse", "convert", "DISPLAY_UNITS", "UNIT_SYSTEMS", "LIMITS",
            "unit_system_of", "DisplayUnits", "display_units", "SPEED_UNITS", "SPEED_KINDS",
-           "messages_in", "quantity_text", "unit_scale"]
+           "messages_in", "quantity_text", "unit_scale", "bare_number_error",
+           "BARE_NUMBER_UNITS"]
 
 #: SI unit of each kind of input quantity (its dimension is the expected one).
 DIMENSIONS = {
@@ -192,11 +193,18 @@ def _split(value: str, field: str) -> tuple[float, str]:
     return float(number), unit
 
 
+#: The force unit of the weight of one mass unit, for the suggestion to a weight written in
+#: a mass unit (``weight = "1500 kg"``: mass = '1500 kg', or '1500 kgf').
+FORCE_OF_MASS_UNIT = {"kg": "kgf", "kilogram": "kgf", "g": "gf", "gram": "gf", "lb": "lbf",
+                      "lbs": "lbf", "pound": "lbf", "t": "tf", "tonne": "tf"}
+
+
 def _suggestion(magnitude: float, text: str, kind: str, dimension: str) -> str:
     """" (did you mean ...?)" for a unit of the wrong kind or an unknown one, else ""."""
     if kind == "force" and dimension == "[mass]":
-        return (f"; {text!r} is a mass: a weight needs a force unit, e.g. '{magnitude:g} lbf' "
-                f"or '{magnitude:g} kgf' (or give mass = '{magnitude:g} lb')")
+        twin = FORCE_OF_MASS_UNIT.get(text.strip(), "N")
+        return (f"; {text!r} is a mass: give mass = '{magnitude:g} {text.strip()}', or a "
+                f"weight in a force unit, e.g. '{magnitude:g} {twin}'")
     if kind == "mass" and dimension == "[mass] * [length] / [time] ** 2":
         return (f"; {text!r} is a force: give weight = '{magnitude:g} {text}' or a mass unit "
                 f"such as '{magnitude:g} lb'")
@@ -221,16 +229,43 @@ def unit_system_of(value) -> str | None:
     return "us" if set(names) & US_UNIT_NAMES else "si"
 
 
+#: Units a bare number of each dimensional kind could mean, named when it is refused
+#: (:func:`bare_number_error`).
+BARE_NUMBER_UNITS = {
+    "length": ("m", "ft", "cm", "inch"),
+    "mass": ("kg", "lb", "slug"),
+    "force": ("N", "lbf", "kgf"),
+    "inertia": ("kg*m**2", "slug*ft**2", "lb*ft**2"),
+    "velocity": ("m/s", "km/h", "mph", "ft/s"),
+    "angle": ("deg", "rad"),
+    "angular_velocity": ("deg/s", "rad/s", "rpm"),
+    "energy": ("J", "kJ", "ft*lbf"),
+    "force_per_length": ("N/m", "kN/m", "lbf/inch"),
+    "force_per_area": ("N/m**2", "kN/m**2", "lbf/inch**2"),
+}
+
+
+def bare_number_error(field: str, value, kind: str) -> InputError:
+    """The error for a non-zero number without a unit given for a dimensional ``kind``: it
+    names the field, the number and the units it could mean (a km/h user's ``50`` is not
+    the 50 m/s it would be read as)."""
+    number = f"{float(value):g}" if isinstance(value, int | float) else str(value).strip()
+    meanings = [f"'{number} {u}'" for u in BARE_NUMBER_UNITS[kind]]
+    what = kind.replace("_", " ")
+    return InputError(f"{field} = {value!r} has no unit: write the {what} with its unit, "
+                      f"e.g. {', '.join(meanings[:-1])} or {meanings[-1]} (a bare number "
+                      f"is read only for 0 and for dimensionless inputs)")
+
+
 def _parse_number(value, kind: str, field: str) -> float:
-    """A bare number for :func:`parse`: SI, and a bare angle within [-2 pi, 2 pi]."""
+    """A bare number for :func:`parse`: a dimensionless input, or 0 of any kind (0 is 0 in
+    every unit); any other bare number of a dimensional kind is refused."""
     try:
         number = float(value)
     except OverflowError:
         raise InputError(f"{field}: {str(value)[:20]}... is too large a number") from None
-    if kind == "angle" and abs(number) > 2 * np.pi:
-        raise InputError(f"{field} = {value!r} has no unit; a bare angle is read in "
-                         f"radians and must lie within [-2 pi, 2 pi]: write "
-                         f"'{value} deg' (or '{value} rad' if radians are meant)")
+    if kind != "dimensionless" and number != 0 and np.isfinite(number):
+        raise bare_number_error(field, value, kind)
     return number
 
 
@@ -251,10 +286,9 @@ def _parse_string(value: str, kind: str, field: str, unit: str) -> float:
     """A quantity string for :func:`parse`: its magnitude in ``unit``, the kind's SI unit."""
     magnitude, text = _split(value, field)
     if not text:
-        if kind in ("angle", "angular_velocity"):
-            raise InputError(f"{field}: {value!r} has no unit; write e.g. "
-                             f"'{value.strip()} {'deg' if kind == 'angle' else 'deg/s'}'")
-        text = ""
+        if kind != "dimensionless" and magnitude != 0 and np.isfinite(magnitude):
+            raise bare_number_error(field, value, kind)
+        return magnitude
     try:
         parsed, root = _unit(text) if text else (None, None)
     except Exception as exc:
@@ -283,11 +317,9 @@ def parse(value, kind: str, field: str) -> float:
     ----------
     value : str or float
         A quantity with units (``"31.09 ft/s"``, ``"90 deg"``): exactly one number and one
-        unit; or a bare number, taken as SI. An angle or angular velocity written as a
-        string needs its unit (``"180"`` is refused: degrees or radians?); a bare number
-        for an angle is radians and must lie within [-2 pi, 2 pi] (``-90`` is refused:
-        degrees were meant; :func:`pim.model.plausibility.bare_angle_warning` warns about
-        the others).
+        unit. A number without a unit (``50`` or ``"50"``) is read only where it cannot be
+        misread: for a dimensionless kind, and 0 of any kind (0 is 0 in every unit); any
+        other is refused with the units it could mean (50 m/s, km/h, mph or ft/s?).
     kind : str
         Key of :data:`DIMENSIONS` naming the expected physical dimension. The unit must
         reduce to the kind's base units exactly, so ``"1 Hz"`` is no yaw rate and ``"1 sr"``

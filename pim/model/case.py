@@ -206,6 +206,11 @@ class Vehicle:
         The vehicle is known to move backwards (velocity more than 90 deg from the heading):
         silences the plausibility warning that asks whether it is (default False). Never
         used by the impact equations.
+    sliding : bool
+        The vehicle is known to slide sideways into the impact (its velocity more than
+        :data:`pim.model.plausibility.SLIDING_ANGLE` off its fore-aft axis): silences the
+        plausibility warning that asks whether it is (default False). Never used by the
+        impact equations.
     """
 
     mass: np.ndarray
@@ -218,13 +223,15 @@ class Vehicle:
     width: float | None = None
     cg_to_front: float | None = None
     reversing: bool = False
+    sliding: bool = False
 
     def __post_init__(self) -> None:
         if not self._set_plain():
             self._set_checked()
         self._check_outline()
-        if type(self.reversing) is not bool:
-            raise InputError(f"reversing must be true or false, got {self.reversing!r}")
+        for name in ("reversing", "sliding"):
+            if type(getattr(self, name)) is not bool:
+                raise InputError(f"{name} must be true or false, got {getattr(self, name)!r}")
 
     def _set_plain(self) -> bool:
         """The single moving body given as plain Python floats (or ints): every check of
@@ -546,8 +553,8 @@ class Case:
         default the system's field unit, km/h for "si" and mph for "us"
         (:class:`pim.io.units.DisplayUnits`).
     notes : tuple of str
-        Plausibility warnings about the inputs found while reading the case file (e.g. a
-        bare number above 2 pi given for an angle).
+        Warnings about the inputs that whoever built the case wants printed with its
+        findings (:func:`pim.model.plausibility.findings`), before the checks' own.
     evidence : pim.model.evidence.Evidence, optional
         Rest positions, wheel states, friction (the ``[evidence]`` table), for
         :mod:`pim.analysis.reconstruction`.

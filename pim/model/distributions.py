@@ -15,8 +15,9 @@ Each uncertain input of a case is named by its dotted path and given one distrib
 Inputs (and their unit kind): ``vehicle1.`` / ``vehicle2.`` + ``mass``, ``yaw_inertia``,
 ``cg_x``, ``cg_y``, ``velocity_x``, ``velocity_y``, ``yaw_rate``, ``heading``; ``impact.`` +
 ``point_x``, ``point_y``, ``normal_angle``, ``restitution`` (eps), ``beta``. Values are unit
-strings or bare SI numbers, parsed by :mod:`pim.io.uncertainty_table`; unknown inputs, unknown
-distribution keys and bad bounds are errors. Inputs not listed keep their nominal value.
+strings (bare numbers only for the dimensionless inputs and 0), parsed by
+:mod:`pim.io.uncertainty_table`; unknown inputs, unknown distribution keys and bad bounds are
+errors. Inputs not listed keep their nominal value.
 
 Admissible ranges: eps in [0, 1], beta >= 0 (:data:`pim.model.case.BETA_RANGE_TEXT`), mass
 and yaw inertia > 0. A normal distribution on such an input is *truncated* to the range
@@ -93,6 +94,20 @@ class Distribution:
         if self.kind == "plusminus":
             return nominal - self.b, nominal + self.b
         return self.a, self.b
+
+    def sd(self, nominal: float) -> float:
+        """The standard deviation [SI unit of the input] of this distribution about
+        ``nominal``: a normal's sd (before any truncation to the admissible range), a
+        uniform's width / sqrt(12) (+- b: b / sqrt(3)), 0 for a fixed value, a prior's
+        sample standard deviation (ddof 1)."""
+        if self.kind == "fixed":
+            return 0.0
+        if self.kind == "prior":
+            return float(np.std(self.values, ddof=1))
+        if self.kind == "normal":
+            return float(self.b)
+        low, high = self.bounds(nominal)
+        return float((high - low) / np.sqrt(12.0))
 
     def sample(self, nominal: float, u: np.ndarray, name: str) -> np.ndarray:
         """Values [SI] from uniform variates ``u`` in (0, 1) by inverse CDF.

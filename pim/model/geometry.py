@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["outline_distance", "cross", "dot", "perp", "vec", "rotate", "rotate_by",
+__all__ = ["outline_distance", "vehicle_outline", "cross", "dot", "perp", "vec", "rotate", "rotate_by",
            "contact_velocity", "kinetic_energy", "radius_of_gyration", "outline_corners",
            "outline_world", "point_outline_distance", "outline_penetration",
            "heading_velocity_angle"]
@@ -113,6 +113,15 @@ def outline_corners(length, width, cg_to_front=None) -> np.ndarray:
     front = float(length) / 2.0 if cg_to_front is None else float(cg_to_front)
     rear = front - float(length)
     return np.array([[front, hw], [rear, hw], [rear, -hw], [front, -hw]])
+
+
+def vehicle_outline(vehicle) -> np.ndarray | None:
+    """A :class:`pim.Vehicle`'s outline corners in its body frame [m] (4, 2)
+    (:func:`outline_corners`), or None without length and width."""
+    if vehicle.length is None or vehicle.width is None:
+        return None
+    return outline_corners(float(vehicle.length), float(vehicle.width),
+                           None if vehicle.cg_to_front is None else float(vehicle.cg_to_front))
 
 
 def outline_world(length, width, cg, heading, cg_to_front=None) -> np.ndarray:

@@ -23,10 +23,15 @@ thresholds, each in the message:
   mm instead of m puts C millimetres from the CG);
 * the velocity more than 90 deg from the heading: the vehicle is reversing, said unless the
   case states it (``reversing = true`` in ``[vehicleN]``); and the reverse contradiction;
+* the velocity more than :data:`SLIDING_ANGLE` off the fore-aft axis (ahead or, reversing,
+  behind): the vehicle slides sideways into the impact, said unless the case states it
+  (``sliding = true``), as a heading or velocity mistyped does it too;
+* a pre-impact yaw rate above :data:`PLAUSIBLE_YAW_RATE`, more than a car reaches before an
+  impact: rad/s written for deg/s?
 * the two outlines overlapping at the impact by more than both plausible crushes together.
 
 Every number reaches the message through ``show(value [SI], kind) -> str`` (kinds
-"length", "velocity", "impulse", "energy", "angle"), so that the edge prints it in the
+"length", "velocity", "impulse", "energy", "angle", "angular_velocity"), so that the edge prints it in the
 case's units (:func:`pim.io.units.quantity_text`); the default :func:`si_text` prints SI.
 """
 
@@ -46,12 +51,12 @@ from .geometry import (
 )
 from .result import Result
 
-__all__ = ["plausibility_warnings", "no_impact_message", "bare_angle_warning", "warnings_of",
+__all__ = ["plausibility_warnings", "no_impact_message", "warnings_of",
            "Findings", "findings", "inadmissible_reasons", "geometry_checks",
            "geometry_findings", "geometry_warnings", "si_text", "IMPOSSIBLE_CHECKS",
            "reference_length", "crush_limit", "C_OUTSIDE_TOLERANCE", "FAR_FROM_CG", "NEAR_CG",
            "PLAUSIBLE_CRUSH", "CRUSH_MARGIN", "GYRATION_PER_LENGTH", "secondary_contact",
-           "SECONDARY_DEPTH"]
+           "SECONDARY_DEPTH", "SLIDING_ANGLE", "PLAUSIBLE_YAW_RATE"]
 
 #: How far [m] C may lie outside a vehicle's outline: the outline is a rectangle, the real
 #: body rounded, and C is read off a scene drawing; beyond this the vehicles cannot touch at C.
@@ -68,6 +73,13 @@ PLAUSIBLE_CRUSH = 0.75
 #: Margin [m] over a measured crush profile's deepest crush (C and the outline are placed by
 #: hand).
 CRUSH_MARGIN = 0.15
+#: Largest angle [rad] between a vehicle's velocity and its fore-aft axis (30 deg) taken as
+#: rolling on its wheels: beyond it the vehicle slides or yaws sideways into the impact.
+SLIDING_ANGLE = float(np.radians(30.0))
+#: Largest |yaw rate| [rad/s] before the impact taken as plausible (one turn a second,
+#: 360 deg/s): cars spinning out before a crash turn a fraction of that, and a yaw rate
+#: written in rad/s where deg/s was meant is 57 times too large (45 "rad/s": 2578 deg/s).
+PLAUSIBLE_YAW_RATE = float(2 * np.pi)
 #: Radius of gyration over length, k / L, of a car (RICSAC 9's vehicles: 0.287 and 0.291;
 #: a uniform 4.5 x 1.8 m box: 0.311): the length estimated for a vehicle without an outline.
 GYRATION_PER_LENGTH = 0.29
@@ -88,21 +100,13 @@ def si_text(value: float, kind: str) -> str:
     ``show`` of the messages."""
     if kind == "angle":
         return f"{np.degrees(value):.4g} deg"
+    if kind == "angular_velocity":
+        return f"{np.degrees(value):.4g} deg/s"
     return f"{value:.4g} {_SI_LABELS[kind]}"
 
 #: Largest |mu0| at beta = 1 taken as plausible: above it the sticking impulse would need a
 #: tangential impulse larger than the normal one, a friction coefficient above 1.
 PLAUSIBLE_MU0 = 1.0
-
-
-def bare_angle_warning(field: str, value) -> str | None:
-    """A warning when a non-zero bare number is given for an angle: it reads as radians,
-    which a reader may not expect (the case file refuses bare angles beyond 2 pi)."""
-    if isinstance(value, bool) or not isinstance(value, int | float) or value == 0:
-        return None
-    return (f"{field} = {value} has no unit and is read as {value} rad "
-            f"({np.degrees(value):.4g} deg); write \"{np.degrees(value):.4g} deg\" or "
-            f"\"{value} rad\" to say so")
 
 
 def no_impact_message(result: Result, speed_unit: str = "m/s",
@@ -289,12 +293,26 @@ def _vehicle_checks(case, i: int) -> dict:
         crush = crush_limit(case, i)[0]
         out[f"outside{i}"] = (distance > C_OUTSIDE_TOLERANCE, distance, C_OUTSIDE_TOLERANCE)
         out[f"deep{i}"] = (moving & (-distance > crush), -distance, crush)
+    return {**out, **_motion_checks(v, i, moving)}
+
+
+def _motion_checks(v, i: int, moving) -> dict:
+    """The checks of vehicle ``i``'s motion as {key: (flag, value, limit)}: reversing (or
+    said to and not), sliding sideways (unless said to, or reversing unsaid, which its own
+    check tells), and a yaw rate beyond :data:`PLAUSIBLE_YAW_RATE`."""
     angle = heading_velocity_angle(v.heading, v.velocity)
     with np.errstate(invalid="ignore"):
         backwards, forwards = angle > np.pi / 2, angle <= np.pi / 2
-    out[f"reversing{i}"] = (moving & backwards & (not v.reversing), angle, np.pi / 2)
-    out[f"forward{i}"] = (moving & forwards & v.reversing, angle, np.pi / 2)
-    return out
+        off_axis = np.minimum(angle, np.pi - angle)
+        sideways = np.round(off_axis, 9) > SLIDING_ANGLE
+    reversing = moving & backwards & (not v.reversing)
+    forward = moving & forwards & v.reversing
+    spin = np.abs(np.asarray(v.yaw_rate, dtype=float))
+    return {f"reversing{i}": (reversing, angle, np.pi / 2),
+            f"forward{i}": (forward, angle, np.pi / 2),
+            f"sliding{i}": (moving & sideways & ~reversing & ~forward & (not v.sliding),
+                            off_axis, SLIDING_ANGLE),
+            f"spin{i}": (moving & (spin > PLAUSIBLE_YAW_RATE), spin, PLAUSIBLE_YAW_RATE)}
 
 
 def geometry_checks(case) -> dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]]:
@@ -312,7 +330,9 @@ def geometry_checks(case) -> dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]
         ``far{i}`` (without an outline) or ``outside{i}`` and ``deep{i}`` (with one):
         |C - CG| or C's signed distance to the outline [m] and the limit [m];
         ``reversing{i}`` and ``forward{i}``: the angle between heading and velocity [rad]
-        and pi / 2; ``overlap`` (both outlines, vehicle 2 moving): the outlines' overlap
+        and pi / 2; ``sliding{i}``: the velocity's angle off the fore-aft axis [rad] and
+        :data:`SLIDING_ANGLE`; ``spin{i}``: |yaw rate| [rad/s] and
+        :data:`PLAUSIBLE_YAW_RATE`; ``overlap`` (both outlines, vehicle 2 moving): the outlines' overlap
         depth [m] and the sum of both crush limits. ``flag`` is True where the case is
         implausible (module notes).
     """
@@ -388,7 +408,12 @@ def _message(case, key: str, value: float, limit: float, show: Show, index) -> s
                 f"vehicles' plausible crush together ({show(limit, length)}: vehicle 1 "
                 f"{_crush_text(case, 1, show)}, vehicle 2 {_crush_text(case, 2, show)}): "
                 f"check the CGs, headings and outlines")
-    heading, moving = _direction((case.vehicle1, case.vehicle2)[i - 1], index)
+    if key.startswith("spin"):
+        return _spin_message(name, value, limit, show)
+    v = (case.vehicle1, case.vehicle2)[i - 1]
+    if key.startswith("sliding"):
+        return _sliding_message(v, name, value, limit, show, index)
+    heading, moving = _direction(v, index)
     value = round(value, 9)         # round-off of arctan2 is no angle: 0 deg, not 3.5e-15
     angles = (f"{show(value, 'angle')} from its heading (heading {show(heading, 'angle')}, "
               f"moving toward {show(moving, 'angle')})")
@@ -397,6 +422,27 @@ def _message(case, key: str, value: float, limit: float, show: Show, index) -> s
     return (f"{name} is reversing: its velocity points {angles}, so its PDOF and clock "
             f"position read the impact as if the nose led. If it is reversing, say so with "
             f"reversing = true in [{name}]; else check {name}.heading")
+
+
+def _spin_message(name: str, value: float, limit: float, show: Show) -> str:
+    """The sentence of a yaw rate beyond :data:`PLAUSIBLE_YAW_RATE` (``value`` [rad/s])."""
+    return (f"{name} turns at {show(value, 'angular_velocity')} before the impact "
+            f"({value:.4g} rad/s), more than {show(limit, 'angular_velocity')} (one turn a "
+            f"second), beyond what a car reaches: rad/s written for deg/s? (check "
+            f"{name}.yaw_rate: '{value:.4g} deg/s' would be {np.radians(value):.4g} rad/s)")
+
+
+def _sliding_message(v, name: str, value: float, limit: float, show: Show, index) -> str:
+    """The sentence of a velocity more than :data:`SLIDING_ANGLE` (``limit``) off the
+    fore-aft axis (``value`` [rad])."""
+    heading, moving = _direction(v, index)
+    angle = abs(((moving - heading + np.pi) % (2 * np.pi)) - np.pi)
+    return (f"{name} slides sideways into the impact: its velocity points "
+            f"{show(angle, 'angle')} from its heading (heading {show(heading, 'angle')}, "
+            f"moving toward {show(moving, 'angle')}), {show(value, 'angle')} off its "
+            f"fore-aft axis, more than {show(limit, 'angle')}. If it slides or yaws "
+            f"sideways, say so with sliding = true in [{name}]; else check {name}.heading "
+            f"and {name}.velocity")
 
 
 def geometry_findings(case, show: Show = si_text) -> tuple[list[str], list[str]]:

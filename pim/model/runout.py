@@ -34,6 +34,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .driver import DriverInputs, wheel_tables
+from .event import Track
 from .numbers import InputError, real_array
 from .runout_formula import derivative
 from .tyres import (
@@ -390,6 +391,14 @@ class Runout:
     def distance(self) -> float:
         """Straight-line distance from the start to rest [m]."""
         return float(np.hypot(*(self.rest_position - self.states[0, :2])))
+
+    def track(self, times, outline=None) -> Track:
+        """The run-out as an event's :class:`pim.model.event.Track` at ``times`` [s] after
+        the impact: states interpolated linearly, the rest state held after its end."""
+        t = np.minimum(np.asarray(times, float), self.time[-1])
+        states = np.stack([np.interp(t, self.time, self.states[:, k]) for k in range(6)], -1)
+        return Track(states[:, :2], states[:, 2], states[:, 3:5], states[:, 5],
+                     outline=outline)
 
 
 @dataclass(frozen=True)

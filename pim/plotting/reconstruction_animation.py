@@ -62,12 +62,9 @@ def frame_states(post: PostImpact, fps: int = DEFAULT_FPS,
         raise InputError("the reconstruction has no run-out to animate (no [evidence])")
     end = max(float(f.runout.time[-1]) for f in post.runouts.values())
     times = np.arange(int(np.ceil((end + hold) * fps)) + 1) / fps
-    states = {}
-    for i, fit in post.runouts.items():
-        run = fit.runout
-        t = np.minimum(times, run.time[-1])
-        states[i] = np.stack([np.interp(t, run.time, run.states[:, k]) for k in range(3)],
-                             axis=-1)
+    event = post.event(times)
+    states = {i: np.column_stack([event.tracks[i - 1].position, event.tracks[i - 1].heading])
+              for i in post.runouts}
     return FrameStates(times=times, states=states)
 
 

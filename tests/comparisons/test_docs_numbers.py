@@ -62,6 +62,16 @@ def test_the_contact_model_block_holds_what_the_code_gives(verdict_study):
     assert D.drift(committed, D.contact_model_block(verdict_study)) == []
 
 
+def test_the_fit_block_holds_what_the_code_gives():
+    """docs/fit.md quotes pim fit's standard errors and pim sensitivity's sources (issue 33)
+    as the commands print them."""
+    text = (D.DOCS / "fit.md").read_text()
+    committed = D.FIT_BEGIN + text.split(D.FIT_BEGIN, 1)[1].split(D.END, 1)[0] + D.END
+    generated = D.fit_block()
+    assert D.drift(committed, generated) == []
+    assert "+- " in generated and "source" in generated
+
+
 def test_the_contact_model_rungs_are_a_typed_table_rendered_by_the_renderer(verdict_study):
     """The block's table was built by hand (issue 27): now its rows hold the numbers [%]
     and the one Markdown renderer writes it."""

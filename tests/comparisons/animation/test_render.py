@@ -40,8 +40,8 @@ def test_ghost_is_independent_free_motion_and_matches_the_simulation(renderer):
     t = renderer.times
     after = t > 0
     expected = np.asarray(CASE.vehicle1.cg) + t[after, None] * result.velocity1
-    np.testing.assert_allclose(renderer.sim.position1[after], expected, atol=1e-9)
-    np.testing.assert_allclose(renderer.ghost.position1[after], expected, atol=1e-12)
+    np.testing.assert_allclose(renderer.sim.vehicle1.position[after], expected, atol=1e-9)
+    np.testing.assert_allclose(renderer.ghost.vehicle1.position[after], expected, atol=1e-12)
     assert renderer.ghost_offset_px() < 1e-6
 
 
@@ -78,7 +78,7 @@ def test_tyre_friction_ghost_uses_the_same_deceleration():
     r = build_renderer(CASE, 0.355, 1.0, tyre=0.7, after=3.0)
     # both decelerate (the ghost moves less than free motion) and stay within a pixel
     free = build_renderer(CASE, 0.355, 1.0, after=3.0)
-    assert np.hypot(*(r.ghost.position2[-1] - free.ghost.position2[-1])) > 1.0
+    assert np.hypot(*(r.ghost.vehicle2.position[-1] - free.ghost.vehicle2.position[-1])) > 1.0
     assert r.ghost_offset_px() < 1.0
 
 

@@ -267,7 +267,9 @@ def test_goodness_of_fit_with_sigmas(ricsac9):
     x = g.chi_square
     assert g.p_value == pytest.approx(np.exp(-x / 2) * (1 + x / 2), rel=1e-10)
     # velocities only, beta fixed: 4 - 1 = 3 dof
-    assert fit(_with_sigmas(ricsac9), beta=1.0).goodness.dof == 3
+    assert fit(_with_sigmas(ricsac9), beta=1.0, include_yaw=False).goodness.dof == 3
+    # issue 33: by default every measured quantity with a sigma is fitted, the yaw rates too
+    assert fit(_with_sigmas(ricsac9), beta=1.0).goodness.dof == 6 - 1
     # without sigmas there is no chi-square
     assert fit(ricsac9).goodness is None and fit(ricsac9).to_dict()["cost_unit"] == "m^2/s^2"
 
@@ -461,3 +463,145 @@ def test_fit_names_the_argument_given_a_string():
     with pytest.raises(pim.InputError, match=r"^grid must be two integers >= 3 \(points per "
                                              r"axis: eps, beta\), got \('a', 5\)$"):
         fit(case, grid=("a", 5))
+
+
+# --- Issue 33: every measured quantity with a sigma, and the parameters' standard errors ---
+
+
+def _interior(ricsac9, sigma=None, seed=7):
+    """RICSAC 9's inputs with measured velocities made at (eps, beta) = (0.4, 0.6), plus
+    normal noise (sd 0.3 m/s, seeded): an interior optimum with residuals; with ``sigma``
+    the [measured] sigmas [m/s] are stated."""
+    r = pim.solve(ricsac9, 0.4, 0.6)
+    rng = np.random.default_rng(seed)
+    sig = {} if sigma is None else {"velocity1_sigma": [sigma] * 2,
+                                   "velocity2_sigma": [sigma] * 2}
+    return replace(ricsac9, measured=pim.Measured(
+        r.velocity1 + rng.normal(0, 0.3, 2), r.velocity2 + rng.normal(0, 0.3, 2), **sig))
+
+
+def test_measured_yaw_rates_with_a_sigma_are_fitted_by_default(ricsac9, capsys, tmp_path):
+    """Issue 33: yaw rates were left out unless --include-yaw, even with their sigmas given;
+    now every measured quantity with a sigma is fitted, and one without is named as left
+    out. --no-yaw leaves them out, --include-yaw fits them all."""
+    with_sigmas = fit(_with_sigmas(ricsac9))
+    assert {"yaw_rate1", "yaw_rate2"} <= set(with_sigmas.residual_names)
+    assert with_sigmas.include_yaw and with_sigmas.left_out == ()
+    plain = fit(ricsac9)                      # no sigmas: the sheet's velocities only
+    assert "yaw_rate1" not in plain.residual_names
+    assert plain.left_out == ("yaw_rate1", "yaw_rate2")
+    assert fit(_with_sigmas(ricsac9), include_yaw=False).left_out == ("yaw_rate1", "yaw_rate2")
+    text = (files("pim.io") / "cases" / "ricsac9.toml").read_text().replace(
+        'vehicle1.yaw_rate = "-180 deg/s"',
+        'vehicle1.yaw_rate = "-180 deg/s"\nvehicle1.yaw_rate_sigma = "10 deg/s"', 1)
+    path = tmp_path / "one-sigma.toml"
+    path.write_text(text)        # a yaw rate's sigma without the velocities': no partial chi2
+    assert main(["fit", str(path)]) == 2
+    assert "not for velocity1_x, velocity1_y" in capsys.readouterr().err
+    path.write_text(text.replace('vehicle1.yaw_rate_sigma = "10 deg/s"',
+                                 'vehicle1.yaw_rate_sigma = "10 deg/s"\n'
+                                 'vehicle1.velocity_sigma = "1 ft/s"\n'
+                                 'vehicle2.velocity_sigma = "1 ft/s"'))
+    assert main(["fit", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "velocities and yaw rates" in out.splitlines()[0]
+    assert "note: measured yaw_rate2 not fitted (no yaw_rate_sigma in [measured]" in out
+    assert main(["fit", str(path), "--no-yaw"]) == 0
+    assert "yaw_rate1" not in capsys.readouterr().out.split("term")[1]
+
+
+def test_standard_errors_without_sigmas_come_from_the_residual_scatter(ricsac9):
+    """Issue 33: no standard errors of epsilon and beta were given. Without sigmas,
+    cov = s^2 (J^T J)^-1 with s^2 = S / (m - n): J here by central differences of pim.solve
+    (independent of the fit's dual numbers), S the residual sum of squares."""
+    case = _interior(ricsac9)
+    result = fit(case)
+    assert not result.on_bound and "s^2 (J^T J)^-1" in result.error_basis
+
+    def velocities(e, b):
+        r = pim.solve(case, e, b)
+        return np.concatenate([r.velocity1, r.velocity2])
+
+    h = 1e-6
+    jac = np.stack([(velocities(result.eps + h, result.beta) -
+                     velocities(result.eps - h, result.beta)) / (2 * h),
+                    (velocities(result.eps, result.beta + h) -
+                     velocities(result.eps, result.beta - h)) / (2 * h)], axis=1)
+    measured = np.concatenate([case.measured.velocity1, case.measured.velocity2])
+    s2 = np.sum((velocities(result.eps, result.beta) - measured) ** 2) / (4 - 2)
+    cov = s2 * np.linalg.inv(jac.T @ jac)
+    sd = np.sqrt(np.diag(cov))
+    assert result.standard_errors["impact.restitution"] == pytest.approx(sd[0], rel=1e-5)
+    assert result.standard_errors["impact.beta"] == pytest.approx(sd[1], rel=1e-5)
+    r = result.correlation[("impact.restitution", "impact.beta")]
+    assert r == pytest.approx(cov[0, 1] / (sd[0] * sd[1]), rel=1e-5, abs=1e-7)
+    data = json.loads(json.dumps(result.to_dict()))
+    assert data["standard_errors"]["impact.beta"] == pytest.approx(sd[1], rel=1e-5)
+    assert data["correlation"][0]["r"] == pytest.approx(r)
+
+
+def test_standard_errors_with_sigmas_match_the_scatter_of_refits(ricsac9):
+    """With stated sigmas, cov = (J^T W J)^-1. Checked against the scatter of 200 refits of
+    data drawn at those sigmas around (0.4, 0.6): the sample sd of a normal estimate has a
+    relative standard error of 1/sqrt(2 (n - 1)) = 5 % at n = 200, so 15 % is 3 of them;
+    the sample correlation's standard error is about (1 - r^2)/sqrt(n) < 0.071 (0.2 allowed)."""
+    case = _interior(ricsac9, sigma=0.3)
+    truth = pim.solve(ricsac9, 0.4, 0.6)
+    nominal = fit(replace(case, measured=replace(
+        case.measured, velocity1=truth.velocity1, velocity2=truth.velocity2)))
+    assert "(J^T W J)^-1" in nominal.error_basis and not nominal.on_bound
+    rng = np.random.default_rng(2033)
+    refits = []
+    for _ in range(200):
+        noisy = replace(case.measured, velocity1=truth.velocity1 + rng.normal(0, 0.3, 2),
+                        velocity2=truth.velocity2 + rng.normal(0, 0.3, 2))
+        f = fit(replace(case, measured=noisy), samples=64, max_starts=2)
+        refits.append((f.eps, f.beta))
+    refits = np.array(refits)
+    sd = refits.std(axis=0, ddof=1)
+    se = [nominal.standard_errors[k] for k in ("impact.restitution", "impact.beta")]
+    np.testing.assert_allclose(sd, se, rtol=0.15)
+    r = nominal.correlation[("impact.restitution", "impact.beta")]
+    assert np.corrcoef(refits.T)[0, 1] == pytest.approx(r, abs=0.2)
+
+
+def test_fit_prints_standard_errors_in_the_user_s_units(ricsac9, capsys):
+    """pim fit's text and JSON give each fitted parameter with its standard error, their
+    correlation and the basis; a freed speed's error in the case's speed unit (ricsac9:
+    mph, 1 mph = 0.44704 m/s exactly)."""
+    assert main(["fit", "ricsac9", "--free", 'vehicle1.speed="10 mph,40 mph"', "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    speed = data["standard_errors"]["vehicle1.speed"]
+    assert speed["unit"] == "mph" and speed["standard_error"] > 0
+    result = fit(ricsac9, free={"vehicle1.speed": (10 * 0.44704, 40 * 0.44704)})
+    assert speed["standard_error"] == pytest.approx(
+        result.standard_errors["vehicle1.speed"] / 0.44704, rel=1e-6)
+    assert data["error_basis"].startswith("standard errors from s^2 (J^T J)^-1")
+    assert {(c["a"], c["b"]) for c in data["correlation"]} == {
+        ("impact.restitution", "impact.beta"), ("impact.restitution", "vehicle1.speed"),
+        ("impact.beta", "vehicle1.speed")}
+    assert main(["fit", "ricsac9"]) == 0
+    out = capsys.readouterr().out
+    assert "  standard errors from s^2 (J^T J)^-1 at the optimum" in out
+    assert "    epsilon = 0.354817 +- " in out
+    assert "(on its upper bound: the interval is one-sided)" in out
+    assert "    correlation r(epsilon, beta) = " in out
+
+
+def test_no_standard_errors_without_scatter_say_why(ricsac9):
+    """As many measured values as parameters and no sigmas: no residual scatter, no error
+    (said, not a NaN)."""
+    one = replace(ricsac9, measured=pim.Measured(velocity1=ricsac9.measured.velocity1))
+    result = fit(one)
+    assert result.standard_errors == {} and result.correlation == {}
+    assert "2 measured values for 2 fitted parameters" in result.error_basis
+
+
+def test_a_contact_friction_with_only_a_lower_bound_gets_no_standard_error():
+    """ricsac9-pccrash sticks: mu_c only has a lower bound (no standard error, no
+    correlation); k gets its own from the residual scatter of 4 values and 1 parameter."""
+    result = fit(pim.load_case("ricsac9-pccrash"))
+    assert "impact.mu_c" in result.lower_bounds
+    assert set(result.standard_errors) == {"impact.k"} and result.correlation == {}
+    assert result.standard_errors["impact.k"] > 0
+    assert "4 measured values and 1 parameter (no sigmas given)" in result.error_basis

@@ -64,7 +64,7 @@ def test_linear_case_matches_analytic_percentiles():
 def test_two_inputs_analytic_variance_and_first_order_indices():
     """Y = c (1 + eps) w, eps ~ U(0.1, 0.5), w = v1x - v2x ~ N(20, 1.5): independent inputs."""
     lo, hi, sd = 0.1, 0.5, 1.5
-    case = collinear({"vehicle1": {"velocity_x": {"normal": sd}},
+    case = collinear({"vehicle1": {"velocity_x": {"normal": f"{sd} m/s"}},
                       "impact": {"restitution": {"uniform": [lo, hi]}}})
     result = pim.uncertainty(case, n=400_000, seed=2)
     c, w = M2 / (M1 + M2), V1 - V2
@@ -162,7 +162,7 @@ def test_chunked_statistics_agree_within_their_sampling_error():
     agree within 4 standard errors of a quantile, sqrt(p (1 - p) / n) / f(x_p) (f the density;
     normal outputs: f(x_p) = phi(z_p) / sd), combined for two independent runs."""
     lo, hi, sd = 0.1, 0.5, 1.5
-    case = collinear({"vehicle1": {"velocity_x": {"normal": sd}},
+    case = collinear({"vehicle1": {"velocity_x": {"normal": f"{sd} m/s"}},
                       "impact": {"restitution": {"uniform": [lo, hi]}}})
     n = 40_000
     a = pim.uncertainty(case, n=n, seed=7)

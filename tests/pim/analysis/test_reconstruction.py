@@ -110,8 +110,8 @@ def test_goodness_of_fit_is_reported_and_inconsistency_said():
     assert rec.goodness.consistent is False
     assert any("inconsistent with PIM at the stated sigmas" in m for m in rec.messages)
 @pytest.mark.parametrize("old, new, words", [
-    ("rest_position = [0.44940861599726445, 2.804097342912324]",
-     "rest_position = [1000.0, 2.8]", ["evidence.vehicle1.rest_position", "beyond any run-out"]),
+    ('rest_position = ["0.44940861599726445 m", "2.804097342912324 m"]',
+     'rest_position = ["1000.0 m", "2.8 m"]', ["evidence.vehicle1.rest_position", "beyond any run-out"]),
     ('wheels = ["locked", "locked", 0.3, 0.3]', 'wheels = "free"',
      ["evidence.vehicle1.wheels", "free-rolling"]),
 ])

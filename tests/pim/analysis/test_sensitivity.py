@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from dataclasses import replace
 
 import numpy as np
@@ -11,6 +12,9 @@ import pim
 from pim import fit
 from pim.analysis.sensitivity import INPUTS, TypicalUncertainty, sensitivity
 from pim_cli.main import main
+
+#: 1 slug [kg] by exact definitions (1 lb = 0.45359237 kg, g0 = 9.80665 m/s^2, 1 ft = 0.3048 m).
+SLUG = 0.45359237 * 9.80665 / 0.3048
 
 
 @pytest.fixture(scope="module")
@@ -107,7 +111,7 @@ def test_partial_delta_v_matches_finite_differences(spinning):
 
 def test_inputs_sigmas_and_ranking(ricsac9):
     unc = TypicalUncertainty(point=0.3, mass_fraction=0.05)
-    sens = sensitivity(ricsac9, uncertainty=unc)
+    sens = sensitivity(replace(ricsac9, uncertainty=None), uncertainty=unc)  # typical only
     assert set(sens.inputs) <= set(INPUTS)
     k = sens.inputs.index("vehicle1.mass")
     assert sens.sigma[k] == pytest.approx(0.05 * float(ricsac9.vehicle1.mass))
@@ -116,8 +120,13 @@ def test_inputs_sigmas_and_ranking(ricsac9):
     order = sens.ranked("delta_v1_magnitude")
     effects = sens.effect[sens.outputs.index("delta_v1_magnitude")][order]
     assert np.all(np.diff(effects) <= 0)
-    assert "measured.yaw_rate1" not in sens.inputs  # yaw not fitted
+    assert "measured.yaw_rate1" not in sens.inputs  # yaw not fitted (no sigma)
     assert "measured.yaw_rate1" in sensitivity(ricsac9, include_yaw=True).inputs
+    # issue 33: the case's own [uncertainty] wins over the typical values, unless preferred
+    own = sensitivity(ricsac9, uncertainty=unc)
+    assert own.sigma[k] == pytest.approx(1.4 * SLUG) and own.sources[k] == "case"
+    assert sensitivity(ricsac9, uncertainty=unc, prefer=("mass_fraction",)).sigma[k] == \
+        pytest.approx(0.05 * float(ricsac9.vehicle1.mass))
 
 
 def test_bad_uncertainty_and_missing_eps(ricsac9):
@@ -200,3 +209,62 @@ def test_typical_kinds_cover_every_typical_uncertainty():
 
     assert set(TYPICAL_KINDS) == {f.name for f in dataclasses.fields(TypicalUncertainty)}
     assert TYPICAL_KINDS["point"] == "length" and TYPICAL_KINDS["yaw_rate"] == "angular_velocity"
+
+
+# --- Issue 33: the case's own uncertainties -------------------------------------------------
+
+FT = 0.3048
+
+
+def test_the_case_s_uncertainty_table_sets_the_sigmas_and_says_so(ricsac9):
+    """Issue 33: pim sensitivity used its typical sigmas where [uncertainty] stated others.
+    ricsac9.toml: vehicle2.mass normal 3 slug, vehicle1.velocity_x normal 1 ft/s,
+    impact.point_x +- 0.5 ft (uniform: sd 0.5 ft / sqrt(3)), impact.normal_angle +- 5 deg;
+    the rest typical."""
+    sens = sensitivity(ricsac9)
+    sigma = dict(zip(sens.inputs, sens.sigma, strict=True))
+    source = dict(zip(sens.inputs, sens.sources, strict=True))
+    assert sigma["vehicle2.mass"] == pytest.approx(3 * SLUG, rel=1e-12)
+    assert sigma["vehicle1.velocity_x"] == pytest.approx(FT, rel=1e-12)
+    assert sigma["impact.point_x"] == pytest.approx(0.5 * FT / np.sqrt(3), rel=1e-12)
+    assert sigma["impact.normal_angle"] == pytest.approx(np.radians(5) / np.sqrt(3), rel=1e-12)
+    assert {k for k, v in source.items() if v == "case"} == {
+        "vehicle1.mass", "vehicle2.mass", "vehicle1.velocity_x", "vehicle2.velocity_y",
+        "impact.point_x", "impact.point_y", "impact.normal_angle"}
+    typical = TypicalUncertainty()
+    assert source["vehicle2.yaw_inertia"] == "typical"
+    assert sigma["vehicle2.yaw_inertia"] == pytest.approx(
+        typical.inertia_fraction * float(ricsac9.vehicle2.yaw_inertia))
+    row = sens.to_dict()["outputs"]["eps"]["inputs"]
+    assert {r["input"]: r["source"] for r in row} == source
+
+
+def test_an_estimate_s_scatter_and_a_fixed_input(tmp_path):
+    """An estimated yaw inertia takes its estimate's sd ("estimate"); an input the table
+    fixes has sigma 0 and no effect, its derivative still finite."""
+    from pathlib import Path
+
+    text = (Path(__file__).parents[2] / "data" / "no-yaw-inertia.toml").read_text()
+    path = tmp_path / "case.toml"
+    path.write_text(text + '\n[uncertainty]\nvehicle2.mass = {fixed = "1700 kg"}\n')
+    case = pim.load_case(path)
+    sens = sensitivity(case, eps=0.2, beta=1.0)
+    k = sens.inputs.index("vehicle1.yaw_inertia")
+    assert sens.sources[k] == "estimate" and sens.sigma[k] == pytest.approx(case.estimates[0].sd)
+    m = sens.inputs.index("vehicle2.mass")
+    assert sens.sources[m] == "case" and sens.sigma[m] == 0.0
+    assert np.all(sens.effect[:, m] == 0) and np.all(np.isfinite(sens.derivative[:, m]))
+    assert np.any(sens.derivative[:, m] != 0)
+
+
+def test_the_command_line_shows_the_source_and_sigma_wins_over_the_case(capsys):
+    assert main(["sensitivity", "ricsac9"]) == 0
+    out = capsys.readouterr().out
+    assert "sigma source: case = the case file's [uncertainty] or [measured] sigma" in out
+    row = next(x for x in out.splitlines() if x.strip().startswith("mass of vehicle 2"))
+    assert row.split()[4:7] == ["3", "slug", "case"], row
+    assert main(["sensitivity", "ricsac9", "--sigma", "mass_fraction=0.05", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    rows = {r["input"]: r for r in data["outputs"]["eps"]["inputs"]}
+    assert rows["vehicle2.mass"]["source"] == "option"
+    assert rows["impact.point_x"]["source"] == "case"

@@ -136,21 +136,21 @@ normal_angle = "{g} deg"
 SI_CASE = """
 name = "units"
 [vehicle1]
-mass = {m1}
-yaw_inertia = {I1}
-cg = [{x1}, {y1}]
-heading = {h1}
-velocity = [{vx1}, {vy1}]
-yaw_rate = {w}
+mass = "{m1} kg"
+yaw_inertia = "{I1} kg*m**2"
+cg = ["{x1} m", "{y1} m"]
+heading = "{h1} rad"
+velocity = ["{vx1} m/s", "{vy1} m/s"]
+yaw_rate = "{w} rad/s"
 [vehicle2]
-mass = {m2}
-yaw_inertia = {I2}
-cg = [{x2}, {y2}]
-heading = {h2}
-velocity = [{vx2}, {vy2}]
+mass = "{m2} kg"
+yaw_inertia = "{I2} kg*m**2"
+cg = ["{x2} m", "{y2} m"]
+heading = "{h2} rad"
+velocity = ["{vx2} m/s", "{vy2} m/s"]
 [impact]
-point = [{cx}, {cy}]
-normal_angle = {g}
+point = ["{cx} m", "{cy} m"]
+normal_angle = "{g} rad"
 """
 
 # Exact definitions (NIST SP 811): 1 ft = 0.3048 m, 1 lb = 0.45359237 kg, g0 = 9.80665 m/s^2,
@@ -385,3 +385,96 @@ def test_every_unknown_name_of_a_case_file_gets_the_closest_known_one(tmp_path, 
     with pytest.raises(ValueError) as info:
         pim.load_case(path)
     assert str(info.value).startswith(words), str(info.value)
+
+
+def test_a_case_name_too_long_for_a_file_is_an_input_error():
+    """pim.load_case('x' * 5000) raised OSError ("File name too long") from the file
+    system's look-up (issue 33 point 11): an input error naming the case, cut short."""
+    from pim.model.numbers import InputError
+
+    for name in ("x" * 5000, "a\x00b"):
+        with pytest.raises(InputError, match="is neither a file nor a bundled case") as info:
+            pim.load_case(name)
+        assert len(str(info.value)) < 1000
+    assert "... (5000 characters)" in str(pytest.raises(InputError, pim.load_case,
+                                                        "x" * 5000).value)
+# --- Issue 33: no silent unit -------------------------------------------------------------
+
+KMH_CASE = (resources.files("pim.io") / "cases" / "ricsac9.toml").read_text().replace(
+    'velocity = ["-31.09 ft/s", "0 ft/s"]', "velocity = [-50, 0]", 1)
+
+
+def test_a_bare_velocity_is_refused_in_one_line_with_the_units_it_could_mean(tmp_path, capsys):
+    """Issue 33: velocity = [50, 0] was read as 50 m/s, 180 km/h to a km/h user, and solved
+    (exit 0) with a 90 km/h delta-V and no word. The 0 beside it needs no unit."""
+    path = tmp_path / "kmh.toml"
+    path.write_text(KMH_CASE)
+    assert main(["solve", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err
+    assert err.startswith("error: vehicle1.velocity[0] = -50 has no unit: write the velocity "
+                          "with its unit, e.g. '-50 m/s', '-50 km/h', '-50 mph' or '-50 ft/s'")
+    path.write_text(KMH_CASE.replace("velocity = [-50, 0]", 'velocity = ["-50 km/h", 0]'))
+    case = pim.load_case(path)
+    assert case.vehicle1.velocity.tolist() == pytest.approx([-50 / 3.6, 0.0], rel=1e-15)
+
+
+@pytest.mark.parametrize("table, old, new, field", [
+    ("ricsac9", 'point = ["0 ft", "0 ft"]', "point = [0.5, 0]", "impact.point[0] = 0.5"),
+    ("ricsac9", 'yaw_rate = "-180 deg/s"', "yaw_rate = -3", "measured.vehicle1.yaw_rate = -3"),
+    ("ricsac9", 'vehicle1.mass = {normal = "1.4 slug"}', "vehicle1.mass = {normal = 30}",
+     "uncertainty.vehicle1.mass.normal = 30"),
+    ("ricsac9-reconstruct", 'vehicle1.speed = {bounds = ["0 mph", "80 mph"]}',
+     "vehicle1.speed = {bounds = [0, 30]}", "unknown.vehicle1.speed.bounds[1] = 30"),
+    ("synthetic-runout", 'wheelbase = "2.6 m"', "wheelbase = 2.6",
+     "evidence.vehicle1.wheelbase = 2.6"),
+    ("synthetic-runout", 'rest_heading = "2.035182437343366 rad"', "rest_heading = 2.03",
+     "evidence.vehicle1.rest_heading = 2.03"),
+    ("synthetic-crush", 'stiffness_a', None, None),
+])
+def test_every_table_refuses_a_bare_dimensional_number(tmp_path, table, old, new, field):
+    """The same refusal in every table that reads quantities (vehicles, impact, measured,
+    uncertainty, unknown, evidence, crush)."""
+    text = (resources.files("pim.io") / "cases" / f"{table}.toml").read_text()
+    if new is None:       # the first crush stiffness, whatever its value, written bare
+        line = next(x for x in text.splitlines() if x.startswith(old))
+        number = line.split('"')[1].split()[0]
+        old, new, field = line, f"{old} = {number}", f"{old} = {number}"
+    assert old in text, old
+    path = tmp_path / "case.toml"
+    path.write_text(text.replace(old, new, 1))
+    with pytest.raises(pim.InputError) as info:
+        pim.load_case(path)
+    assert field in str(info.value) and "has no unit" in str(info.value), str(info.value)
+
+
+@pytest.mark.parametrize("written, suggested", [
+    ("1500 kg", ["mass = '1500 kg'", "'1500 kgf'"]),
+    ("3300 lb", ["mass = '3300 lb'", "'3300 lbf'"]),
+])
+def test_a_weight_in_a_mass_unit_is_answered_in_the_unit_written(tmp_path, written, suggested):
+    """Issue 33: weight = "1500 kg" was answered "(or give mass = '1500 lb')"."""
+    path = variant(tmp_path, 'weight = "2255.4 lbf"', f'weight = "{written}"')
+    with pytest.raises(pim.InputError) as info:
+        pim.load_case(path)
+    text = str(info.value)
+    assert text.startswith("vehicle1.weight:") and all(s in text for s in suggested), text
+    assert "mass = '1500 lb'" not in text          # the old answer, in another unit
+
+
+def test_case_files_md_quotes_the_messages_the_code_gives():
+    """docs/case-files.md quotes the refusal and the sliding threshold; both come from the
+    code (a change of either fails here)."""
+    from pathlib import Path
+
+    from pim.io.units import parse
+    from pim.model.plausibility import SLIDING_ANGLE
+
+    doc = " ".join((Path(__file__).parents[3] / "docs" / "case-files.md").read_text().split())
+    with pytest.raises(pim.InputError) as info:
+        parse(50, "velocity", "vehicle1.velocity[0]")
+    assert str(info.value).split(" (")[0] in doc
+    assert f"more than {np.degrees(SLIDING_ANGLE):g} deg off the vehicle's fore-aft" in doc
+    with pytest.raises(pim.InputError) as info:
+        parse("1500 kg", "force", "vehicle1.weight")
+    assert str(info.value).split(": ")[-1] in doc

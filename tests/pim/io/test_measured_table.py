@@ -15,7 +15,7 @@ def test_sigmas_in_units():
     m = parse_measured({"vehicle1": {"velocity": ["1 m/s", "2 m/s"],
                                      "velocity_sigma": ["1 ft/s", "0.3 m/s"],
                                      "yaw_rate": "10 deg/s", "yaw_rate_sigma": "5 deg/s"},
-                        "vehicle2": {"velocity": [0, 1], "velocity_sigma": "0.5 m/s"}})
+                        "vehicle2": {"velocity": [0, "1 m/s"], "velocity_sigma": "0.5 m/s"}})
     np.testing.assert_allclose(m.velocity1_sigma, [FT, 0.3])
     np.testing.assert_allclose(m.velocity2_sigma, [0.5, 0.5])
     assert m.yaw_rate1_sigma == pytest.approx(np.radians(5))
@@ -24,11 +24,11 @@ def test_sigmas_in_units():
 
 @pytest.mark.parametrize("table, words", [
     ({"vehicle1": {"velocity_sigma": "1 m/s"}}, ["velocity1_sigma", "not measured"]),
-    ({"vehicle1": {"velocity": [1, 2], "velocity_sigma": "0 m/s"}},
+    ({"vehicle1": {"velocity": ["1 m/s", "2 m/s"], "velocity_sigma": "0 m/s"}},
      ["measured.vehicle1.velocity_sigma", "> 0", "'0 m/s'"]),
-    ({"vehicle1": {"yaw_rate": 1, "yaw_rate_sigma": "-1 deg/s"}},     # as written, not rad/s
+    ({"vehicle1": {"yaw_rate": "1 rad/s", "yaw_rate_sigma": "-1 deg/s"}},     # as written, not rad/s
      ["measured.vehicle1.yaw_rate_sigma", "> 0", "'-1 deg/s'"]),
-    ({"vehicle1": {"velocity": [1, 2], "velocity_sigma": ["1 m/s"]}},
+    ({"vehicle1": {"velocity": ["1 m/s", "2 m/s"], "velocity_sigma": ["1 m/s"]}},
      ["measured.vehicle1.velocity_sigma", "two values"]),
     ({"vehicle1": {"speed_sigma": 1}}, ["measured.vehicle1", "speed_sigma", "allowed"]),
 ])

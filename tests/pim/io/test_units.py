@@ -13,7 +13,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import pim
-from pim.io.units import MAX_QUANTITY_LENGTH, convert, parse
+from pim.io.units import BARE_NUMBER_UNITS, MAX_QUANTITY_LENGTH, convert, parse
 from pim.model.numbers import InputError
 
 
@@ -23,7 +23,9 @@ from pim.model.numbers import InputError
     ("2255.4 lbf", "force", 2255.4 * 0.45359237 * 9.80665),
     ("90 deg", "angle", math.pi / 2),
     ("976 slug*ft**2", "inertia", 976 * 0.45359237 * 9.80665 / 0.3048 * 0.3048 ** 2),
-    (12.5, "length", 12.5),
+    (12.5, "dimensionless", 12.5),
+    (0, "velocity", 0.0),                       # 0 is 0 in every unit: no unit needed
+    ("0", "angle", 0.0),
 ])
 def test_parse_to_si(text, kind, si):
     assert parse(text, kind, "x") == pytest.approx(si, rel=1e-12)
@@ -102,11 +104,37 @@ def test_wrong_units_get_a_suggestion(text, kind, hint):
     assert hint in str(info.value)
 
 
-def test_bare_angles_beyond_two_pi_are_refused_and_others_read_as_radians():
-    with pytest.raises(InputError, match="impact.normal_angle.*'-90 deg'"):
-        parse(-90, "angle", "impact.normal_angle")
-    assert parse(-1.5, "angle", "impact.normal_angle") == -1.5
-    assert parse(6.0, "angle", "h") == 6.0
+@pytest.mark.parametrize("value, kind, units", [
+    (50, "velocity", ["'50 m/s'", "'50 km/h'", "'50 mph'"]),
+    ("50", "velocity", ["'50 m/s'", "'50 km/h'"]),
+    (-90, "angle", ["'-90 deg'", "'-90 rad'"]),
+    (1.5, "angle", ["'1.5 deg'", "'1.5 rad'"]),      # before issue 33: read as radians
+    (1500, "mass", ["'1500 kg'", "'1500 lb'"]),
+    (2.6, "length", ["'2.6 m'", "'2.6 ft'"]),
+    (45, "angular_velocity", ["'45 deg/s'", "'45 rad/s'"]),
+    (976, "inertia", ["'976 kg*m**2'", "'976 slug*ft**2'"]),
+    (1e4, "force", ["'10000 N'", "'10000 lbf'"]),
+    (95000, "energy", ["'95000 J'", "'95000 kJ'"]),
+])
+def test_a_bare_number_of_a_dimensional_kind_is_refused_with_the_units_it_could_mean(
+        value, kind, units):
+    """Issue 33: velocity = [50, 0] was read as 50 m/s (180 km/h to a km/h user), silently;
+    every dimensional kind now refuses a bare non-zero number, naming the field, the number
+    and the units it could mean, in one line."""
+    with pytest.raises(InputError) as info:
+        parse(value, kind, "vehicle1.velocity[0]")
+    text = str(info.value)
+    assert "\n" not in text and text.startswith(f"vehicle1.velocity[0] = {value!r} has no unit")
+    for unit in units:
+        assert unit in text
+
+
+def test_bare_numbers_stay_for_dimensionless_inputs_and_zero():
+    assert parse(0.355, "dimensionless", "impact.restitution") == 0.355
+    for kind in BARE_NUMBER_UNITS:
+        assert parse(0, kind, "x") == 0.0 and parse(0.0, kind, "x") == 0.0
+    with pytest.raises(InputError, match="finite"):
+        parse(float("nan"), "length", "x")
 
 
 # --- Issue 28: speeds in the units the field reports ------------------------------------

@@ -39,7 +39,7 @@ def test_bad_states_name_the_field(value, words):
 def test_both_tables_read_the_same_states():
     """The run-out's ``wheels`` and the marks' ``braking`` were parsed by two copies of the
     word table; a word one of them knew the other refused ('free-rolling' as braking)."""
-    table = {"vehicle1": {"rest_position": [1, 1], "rest_heading": 0, "wheelbase": "2.7 m",
+    table = {"vehicle1": {"rest_position": ["1 m", "1 m"], "rest_heading": 0, "wheelbase": "2.7 m",
                           "track": "1.5 m", "friction": 0.7,
                           "wheels": ["free-rolling", "locked", "0.5", 0.5],
                           "pre_impact": {"skid_length": "10 m", "friction": 0.7,

@@ -53,16 +53,17 @@ def test_defect2_only_the_fields_dimension(text, kind):
 def test_defect2_angles_with_units_still_read():
     assert parse("180 deg", "angle", "h") == pytest.approx(np.pi)
     assert parse("-180 deg/s", "angular_velocity", "w") == pytest.approx(-np.pi)
-    assert parse(3.0, "angle", "h") == 3.0      # a bare TOML number is SI (radians)
+    with pytest.raises(ValueError, match="'3 deg' or '3 rad'"):    # issue 33: no longer
+        parse(3.0, "angle", "h")                                    # read as radians
 
 
 @pytest.mark.parametrize("old, new, field", [
-    ('weight = "2255.4 lbf"', "mass = 1e-300", "vehicle1.mass"),
-    ('point = ["0 ft", "0 ft"]', "point = [1e300, 0]", "impact.point[0]"),
+    ('weight = "2255.4 lbf"', "mass = '1e-300 kg'", "vehicle1.mass"),
+    ('point = ["0 ft", "0 ft"]', "point = ['1e300 m', 0]", "impact.point[0]"),
     ('velocity = ["-31.09 ft/s", "0 ft/s"]', 'velocity = ["-1e200 m/s", "0 ft/s"]',
      "vehicle1.velocity[0]"),
     ('weight = "2255.4 lbf"', "mass = " + "9" * 400, "vehicle1.mass"),
-    ('radius_of_gyration = "3.7313536 ft"', "radius_of_gyration = 1e200",
+    ('radius_of_gyration = "3.7313536 ft"', "radius_of_gyration = '1e200 m'",
      "vehicle1.radius_of_gyration"),
 ])
 def test_defect3_overflow_is_refused_naming_the_input(tmp_path, old, new, field):
@@ -88,7 +89,7 @@ def test_defect4_energy_loss_at_extreme_mass_ratios():
 
 
 @pytest.mark.parametrize("old, new, words", [
-    ('radius_of_gyration = "3.7313536 ft"', "radius_of_gyration = -1.1",
+    ('radius_of_gyration = "3.7313536 ft"', "radius_of_gyration = '-1.1 m'",
      ["vehicle1.radius_of_gyration", "> 0"]),
     ('source = "Brach', 'source = 5\n_x = "', ["source", "string"]),
     ('weight = "2255.4 lbf"', 'weight = "-3300 lbf"', ["vehicle1.weight", "> 0"]),

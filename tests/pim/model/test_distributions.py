@@ -27,3 +27,10 @@ def test_moments_of_each_kind(dist, nominal, mean, sd):
     x = dist.sample(nominal, u, "vehicle1.velocity_x")
     assert x.mean() == pytest.approx(mean, abs=1e-3 * max(sd, 1))
     assert x.std() == pytest.approx(sd, rel=1e-3)
+    assert dist.sd(nominal) == pytest.approx(x.std(), rel=1e-3)     # issue 33: the sd it states
+
+
+def test_sd_of_a_fixed_value_and_of_a_prior():
+    assert Distribution("fixed", 3.0).sd(3.0) == 0.0
+    prior = Distribution("prior", values=(0.1, 0.2, 0.4), label="p")
+    assert prior.sd(0.2) == pytest.approx(np.std([0.1, 0.2, 0.4], ddof=1), rel=1e-15)

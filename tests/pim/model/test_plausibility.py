@@ -31,23 +31,85 @@ def test_bare_angle_above_two_pi_is_refused(tmp_path, capsys):
     assert "heading" not in capsys.readouterr().err
 
 
-def test_bare_angle_within_two_pi_warns_before_the_table(tmp_path):
-    """Issue 22: the warning comes before the table (before: after a 33-line table)."""
+def test_bare_angle_within_two_pi_is_refused_too(tmp_path):
+    """Issue 33: a bare angle within 2 pi was read as radians with a warning, unlike every
+    other kind; now refused like any bare dimensional number: one line, exit 2."""
     path = tmp_path / "case.toml"
     path.write_text(RICSAC.replace('heading = "180 deg"', "heading = 3.14159", 1))
-    run = subprocess.run([sys.executable, "-c", "import sys; from pim_cli.main import main; "
-                          f"sys.exit(main(['solve', {str(path)!r}]))"],
-                         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                         check=False, env={**os.environ, "PYTHONUNBUFFERED": "1"})
-    assert run.returncode == 0, run.stdout
-    warning = run.stdout.index("vehicle1.heading = 3.14159 has no unit")
-    assert "180 deg" in run.stdout and warning < run.stdout.index("epsilon =")
+    run = subprocess.run([sys.executable, "-m", "pim_cli", "solve", str(path)],
+                         capture_output=True, text=True, check=False)
+    assert run.returncode == 2 and run.stdout == "", run
+    assert run.stderr.count("\n") == 1 and "Traceback" not in run.stderr
+    assert "vehicle1.heading = 3.14159 has no unit" in run.stderr
+    assert "'3.14159 deg' or '3.14159 rad'" in run.stderr
 
 
+def _sedan(heading: str = "0 deg", velocity: str = '["30 km/h", "0 km/h"]',
+           extra: str = "", yaw_rate: str | None = None):
+    """suv-into-sedan with the sedan's heading, velocity, yaw rate and flags changed."""
+    text = SUV.replace('heading = "0 deg"', f'heading = "{heading}"' + extra, 1)
+    text = text.replace('velocity = ["30 km/h", "0 km/h"]', f"velocity = {velocity}", 1)
+    if yaw_rate is not None:
+        text = text.replace('length = "4.6 m"', f'yaw_rate = "{yaw_rate}"\nlength = "4.6 m"', 1)
+    return _findings(text).warnings
 
 
+def test_a_yaw_rate_beyond_a_turn_a_second_asks_for_rad_s_written_for_deg_s():
+    """Issue 33: yaw_rate = "45 rad/s" (45 deg/s meant) gave 2578 deg/s before the impact with
+    no word but an indirect |mu0| > 1. 45 rad/s = 45 * 180 / pi = 2578.3 deg/s; the limit is
+    one turn a second, 360 deg/s."""
+    from pim.model.plausibility import PLAUSIBLE_YAW_RATE
+
+    assert PLAUSIBLE_YAW_RATE == pytest.approx(np.radians(360))
+    spin = [w for w in _sedan(yaw_rate="45 rad/s") if "turns at" in w]
+    assert spin == ["vehicle1 turns at 2578 deg/s before the impact (45 rad/s), more than "
+                    "360 deg/s (one turn a second), beyond what a car reaches: rad/s written "
+                    "for deg/s? (check vehicle1.yaw_rate: '45 deg/s' would be 0.7854 rad/s)"]
+    assert [w for w in _sedan(yaw_rate="-370 deg/s") if "turns at" in w]
+    assert not [w for w in _sedan(yaw_rate="-350 deg/s") if "turns at" in w]
+    assert not [w for w in _sedan(yaw_rate="45 deg/s") if "turns at" in w]
 
 
+@pytest.mark.parametrize("heading, velocity, extra, warned", [
+    ("60 deg", '["30 km/h", "0 km/h"]', "", "sliding"),       # 60 deg apart: before, no word
+    ("35 deg", '["30 km/h", "0 km/h"]', "", "sliding"),
+    ("25 deg", '["30 km/h", "0 km/h"]', "", None),
+    ("60 deg", '["30 km/h", "0 km/h"]', "\nsliding = true", None),     # the case says so
+    ("120 deg", '["30 km/h", "0 km/h"]', "", "reversing"),    # one warning, the reversing one
+    ("170 deg", '["30 km/h", "0 km/h"]', "\nreversing = true", None),  # straight back, said
+    ("120 deg", '["30 km/h", "0 km/h"]', "\nreversing = true", "sliding"),    # 60 deg off
+    ("120 deg", '["30 km/h", "0 km/h"]', "\nreversing = true\nsliding = true", None),
+])
+def test_heading_and_velocity_more_than_30_deg_apart_warn_unless_stated(heading, velocity,
+                                                                         extra, warned):
+    """Issue 33: a heading 60 deg off the velocity got no word (the check started at 90 deg,
+    reversing); now more than 30 deg off the fore-aft axis is sliding, said unless
+    ``sliding = true``."""
+    from pim.model.plausibility import SLIDING_ANGLE
+
+    assert SLIDING_ANGLE == pytest.approx(np.radians(30))
+    said = [w for w in _sedan(heading, velocity, extra)
+            if "slides sideways" in w or "is reversing" in w]
+    if warned is None:
+        assert said == []
+    else:
+        assert len(said) == 1 and ("slides" if warned == "sliding" else "reversing") in said[0]
+    if warned == "sliding" and heading == "60 deg":
+        assert said == ["vehicle1 slides sideways into the impact: its velocity points 60 deg "
+                        "from its heading (heading 60 deg, moving toward 0 deg), 60 deg off its "
+                        "fore-aft axis, more than 30 deg. If it slides or yaws sideways, say so "
+                        "with sliding = true in [vehicle1]; else check vehicle1.heading and "
+                        "vehicle1.velocity"]
+
+
+def test_the_bundled_sliding_pole_case_says_it_slides():
+    from pim.model.plausibility import geometry_warnings
+
+    case = pim.load_case("hard-pole")
+    assert case.vehicle1.sliding is True
+    assert not any("slides" in w for w in geometry_warnings(case))
+    assert any("slides" in w for w in geometry_warnings(
+        replace(case, vehicle1=replace(case.vehicle1, sliding=False))))
 
 
 def test_sliding_reverses_only_when_it_does():
@@ -87,12 +149,9 @@ def test_barrier_has_no_pdof(capsys):
     assert pdof and all(line.split()[-2] == "-" for line in pdof), pdof
 
 
-def test_bare_angle_and_no_impact_messages():
-    from pim.model.plausibility import bare_angle_warning, no_impact_message
+def test_no_impact_messages():
+    from pim.model.plausibility import no_impact_message
 
-    assert bare_angle_warning("impact.normal_angle", 0) is None       # 0 is 0 in any unit
-    assert "1.5 rad" in bare_angle_warning("impact.normal_angle", 1.5)  # read as radians, said
-    assert "impact.normal_angle" in bare_angle_warning("impact.normal_angle", 90)
     case = pim.load_case("ricsac9")
     assert no_impact_message(pim.solve(case, 0.355, 1.0)) is None
     apart = pim.Case(case.vehicle1, case.vehicle2,
@@ -260,5 +319,7 @@ def test_readme_states_the_thresholds_the_code_uses():
                  f"C farther than {p.FAR_FROM_CG:g} x the vehicle's length",
                  f"radius of gyration / {p.GYRATION_PER_LENGTH:g})",
                  f"nearer a moving vehicle's CG than {p.NEAR_CG:g} x its length",
+                 f"more than {np.degrees(p.SLIDING_ANGLE):g} deg off its fore-aft axis",
+                 f"above {np.degrees(p.PLAUSIBLE_YAW_RATE):g} deg/s (one turn a second",
                  "--allow-inadmissible"):
         assert text in readme, text

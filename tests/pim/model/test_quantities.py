@@ -12,9 +12,9 @@ from pim.model.result import output_values
 
 def test_fields_are_the_case_types_fields():
     for group, kind in (("vehicle1", pim.Vehicle), ("vehicle2", pim.Vehicle)):
-        # the outline and the reversing statement are never inputs of the formula
+        # the outline and the reversing and sliding statements are never inputs of the formula
         names = {f.name for f in dataclasses.fields(kind)} - {"length", "width", "cg_to_front",
-                                                               "reversing"}
+                                                               "reversing", "sliding"}
         assert {k.split(".")[1] for k in FIELDS if k.startswith(group)} == names
     # the impact law (a choice, not a number) and its contact friction (not an input of
     # Brach's formula, which the kernel, the derivatives and the Monte Carlo evaluate)
