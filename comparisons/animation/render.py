@@ -439,13 +439,20 @@ class Renderer:
                    f"{self.impulse_unit[1]}", fill=COLORS["impulse"],
                    font=self.font)
         phase = "before impact" if t < 0 else ("impact" if t == 0 else "after impact")
-        d.text((10, self.size[1] - self.BOTTOM + 10), f"t = {t:+.3f} s   {phase}",
-               fill=COLORS["text"], font=self.font)
+        self._clock(d, f"t = {t:+.3f} s   {phase}")
         if self.secondary is not None and t >= self.secondary.time:
-            d.text((10, self.size[1] - self.BOTTOM + 26),
+            d.text((10, self.TOP + 2),            # above the scene: controls cover the bottom
                    f"SECONDARY IMPACT at t = {self.secondary.time:.3f} s: the outlines overlap "
                    f"again; PIM models one impact", fill=COLORS["warning"], font=self.font)
         return img
+
+    def _clock(self, d, text: str) -> None:
+        """The clock in the caption band at the top, right-aligned on the title's line (on
+        the legend's when the title is long): a page's video controls cover the bottom."""
+        x = self.size[0] - 10 - d.textlength(text, font=self.font)
+        title_end = 10 + d.textlength(self.title, font=self.font)
+        d.text((x, 6 if x > title_end + 20 else 28), text, fill=COLORS["text"],
+               font=self.font)
 
     def array(self, index: int) -> np.ndarray:
         """Frame ``index`` as a (height, width, 3) uint8 array."""

@@ -31,6 +31,7 @@ from comparisons.report.document import (
     Section,
     Video,
 )
+from comparisons.report.number_format import format_number
 from comparisons.report.tables import Table, fmt_error
 from comparisons.report.write import write_document
 from comparisons.studies.assumption_configs import (
@@ -90,12 +91,21 @@ def _sizes(lo: float, hi: float) -> str:
     return a if a == b else f"{a} to {b}"
 
 
-def _span(lo: float, hi: float, fmt) -> str:
+def _num(x: float) -> str:
+    """A physical change in the reports' number format, two significant digits ("26",
+    "100", "0.087"; never "1e+02")."""
+    return format_number(x, sig=2)
+
+
+def _span(lo: float, hi: float, fmt=_num) -> str:
     return fmt(lo) if fmt(lo) == fmt(hi) else f"{fmt(lo)}-{fmt(hi)}"
 
 
 def _pct_span(lo: float, hi: float) -> str:
-    """"5.4-14.9 %" (one value when both round alike)."""
+    """"5.4-14.9 %" (one value when both round alike; "not assessed" when neither is a
+    number)."""
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        return "not assessed (a simulation failed)"
     a, b = (f"{100 * x:.1f}" for x in (lo, hi))
     return f"{a} %" if a == b else f"{a}-{b} %"
 
@@ -105,7 +115,7 @@ def _physical(c: Change, units) -> str:
     if not math.isfinite(c.delta_v):
         return "no physical difference measured"
     dv, label = _speed(c.delta_v, units)
-    return f"delta-V {dv:.2g} {label}, yaw rate {_yaw(c.yaw_rate, units):.2g} deg/s"
+    return f"delta-V {_num(dv)} {label}, yaw rate {_num(_yaw(c.yaw_rate, units))} deg/s"
 
 
 def _range_words(er: EffectRange, units, over: str, against: str = "its baseline") -> str:
@@ -121,8 +131,7 @@ def _range_words(er: EffectRange, units, over: str, against: str = "its baseline
         over += f" (not at {', '.join(er.missing)}: no outline scene there)"
     return (f"{_sizes(lo, hi)} over {over}: {_pct_span(lo, hi)} {_of(against)} "
             f"(largest at {er.setting_of('marginal')}); delta-V moves by "
-            f"{_span(dv_lo, dv_hi, lambda x: f'{x:.2g}')} {label}, the yaw rate by "
-            f"{_span(w_lo, w_hi, lambda x: f'{x:.2g}')} deg/s")
+            f"{_span(dv_lo, dv_hi)} {label}, the yaw rate by {_span(w_lo, w_hi)} deg/s")
 
 
 def _contact_words(study: AssumptionStudy) -> str:
@@ -186,10 +195,10 @@ def _friction_map_words(study: AssumptionStudy) -> str:
     mus = sorted({p.mu_c for p in pts})
     if len(mus) < 2:
         return ""
-    values = [p.marginal for p in pts]
-    return (f"; over mu_c {mus[0]:g}-{mus[-1]:g} and every r at {1e3 * d:g} ms: "
-            f"{_pct_span(float(np.nanmin(values)), float(np.nanmax(values)))} "
-            f"{_of('its baseline')}")
+    values = [p.marginal for p in pts if math.isfinite(p.marginal)]
+    span = _pct_span(min(values), max(values)) if values else _pct_span(math.nan, math.nan)
+    return (f"; over mu_c {mus[0]:g}-{mus[-1]:g} and every r at {1e3 * d:g} ms: {span}"
+            + (f" {_of('its baseline')}" if values else ""))
 
 
 def _rung_sentence(study: AssumptionStudy, key: str, subject: str, units) -> str:

@@ -15,8 +15,9 @@ from pim.model.number_format import interval_decimals
 from comparisons.report.tables import Num, Table
 from pim.analysis.pre_impact_speeds import PreImpactSpeed
 from pim.io.units import convert
+from pim.model.quantities import label_of
 
-__all__ = ["PreImpactRow", "pre_impact_rows", "pre_impact_lines", "pre_impact_json",
+__all__ = ["PreImpactRow", "driver_label", "pre_impact_rows", "pre_impact_lines", "pre_impact_json",
            "pre_impact_section", "pre_impact_spread_table", "TITLE", "NOTE"]
 
 TITLE = "Speeds before the impact"
@@ -65,6 +66,19 @@ class PreImpactRow:
         """Whether the percentiles were computed."""
         return not math.isnan(self.p5)
 
+    @property
+    def label(self) -> str:
+        """Its plain-language name ("speed of vehicle 1 where its marks start")."""
+        vehicle = self.name.split(".")[0].replace("vehicle", "vehicle ")
+        return (f"speed of {vehicle} where its marks start" if self.source == "marks"
+                else f"speed of {vehicle} where its driver table starts")
+
+
+def driver_label(key: str) -> str:
+    """An input driving a spread, named as a reader says it ("vehicle1.speed (impact)" ->
+    "impact speed of vehicle 1")."""
+    return label_of(key.removesuffix(" (impact)"))
+
 
 def _what(s: PreImpactSpeed, units: str) -> str:
     """Where the speed holds and from what, in ``units``."""
@@ -101,13 +115,13 @@ def _spread(row: PreImpactRow) -> str:
 
 def _main_driver(row: PreImpactRow) -> str:
     top = [(k, x) for k, x in row.drivers[:1] if x > 0.005]
-    return "".join(f"; main driver of the spread {k} ({x:.2f})" for k, x in top)
+    return "".join(f"; main driver of the spread {driver_label(k)} ({x:.2f})" for k, x in top)
 
 
 def pre_impact_lines(rows) -> list[str]:
     """Text lines: each speed with its 5/50/95 % (when computed), where it holds and the
     main driver of its spread."""
-    return [f"{r.name:32s} {r.value:10.4g} {r.unit}{_spread(r)}  ({r.what}; "
+    return [f"{r.label:32s} {r.value:10.4g} {r.unit}{_spread(r)}  ({r.what}; "
             f"impact speed {r.impact:.4g} {r.unit}{_main_driver(r)})" for r in rows]
 
 
@@ -128,12 +142,12 @@ NOTE = ("Marks: v_start = sqrt(v_impact^2 + 2 g L (f mu cos(theta) + sin(theta))
 
 def _cells(r: PreImpactRow) -> tuple:
     digits = interval_decimals(r.p5, r.p95)
-    drivers = ", ".join(f"{k} {x:.2f}" for k, x in r.drivers[:3] if x > 0.005)
+    drivers = ", ".join(f"{driver_label(k)} {x:.2f}" for k, x in r.drivers[:3] if x > 0.005)
 
     def cell(x):
         return None if math.isnan(x) else Num(x, digits)
 
-    return (r.name, cell(r.value), cell(r.p5), cell(r.p50), cell(r.p95), r.unit,
+    return (r.label, cell(r.value), cell(r.p5), cell(r.p50), cell(r.p95), r.unit,
             Num(r.impact), r.what, drivers)
 
 

@@ -12,6 +12,7 @@ evidence drove each unknown, the goodness of fit and the scene with its animatio
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 
 from comparisons.report.compare_tables import answer_cards
@@ -33,6 +34,7 @@ from pim.io.units import convert, display_units
 from pim.model.evidence import UNKNOWN_KINDS
 from pim.model.law import LAW_NAMES, LAW_PARAMETERS
 from pim.model.plausibility import secondary_contact
+from pim.model.quantities import label_of
 from pim.plotting.reconstruction_animation import frame_states
 
 __all__ = ["UnknownRow", "MomentumRow", "ReconstructionRows", "reconstruction_rows",
@@ -73,6 +75,11 @@ class UnknownRow:
     driver: str
     driver_index: float
     lower_bound: bool = False
+
+    @property
+    def label(self) -> str:
+        """Its plain-language name ("impact speed of vehicle 1")."""
+        return label_of(self.name)
 
     @property
     def has_spread(self) -> bool:
@@ -116,6 +123,11 @@ class MomentumRow:
     def name(self) -> str:
         """The unknown it checks (``vehicle1.speed``)."""
         return f"vehicle{self.vehicle}.speed"
+
+    @property
+    def label(self) -> str:
+        """Its plain-language name ("impact speed of vehicle 1")."""
+        return label_of(self.name)
 
 
 @dataclass(frozen=True)
@@ -198,11 +210,18 @@ def evidence_drivers(rec: Reconstruction, units: str) -> dict:
     return out
 
 
+def _spaced(text: str) -> str:
+    """An evidence group's name as a reader writes it: "vehicle1 ..." -> "vehicle 1 ..."."""
+    return re.sub(r"\bvehicle(\d)\b", r"vehicle \1", text)
+
+
 def driver_lines(drivers: dict) -> list[str]:
-    """One line per unknown: its standard error and the evidence shares, largest first."""
-    return [f"{key} (1 sd = {d['sd']:.3g} {d['unit']}): " + ", ".join(
-        f"{g} {100 * v:.0f} %" for g, v in d["shares"].items() if v >= 0.005)
-        for key, d in drivers.items()]
+    """One line per unknown (by its label): its standard error and the evidence shares,
+    largest first."""
+    return [f"{label_of(key)} (1 sd = {format_number(d['sd'], sig=3)} {d['unit']}): "
+            + ", ".join(f"{_spaced(g)} {100 * v:.0f} %" for g, v in d["shares"].items()
+                        if v >= 0.005)
+            for key, d in drivers.items()]
 
 
 def crush_lines(rec: Reconstruction, units: str) -> list[str]:
@@ -222,11 +241,12 @@ def crush_lines(rec: Reconstruction, units: str) -> list[str]:
 
 
 def spread_driver_lines(rec: Reconstruction) -> list[str]:
-    """One line per unknown: the inputs that drive its spread, with their indices."""
+    """One line per unknown (by its label): the inputs that drive its spread, with their
+    indices."""
     lines = []
     for r in rec.table():
-        top = ", ".join(f"{k} {v:.2f}" for k, v in r["drivers"][:4] if v > 0.005)
-        lines.append(f"{r['name']}: {top or 'no single input dominates'}")
+        top = ", ".join(f"{label_of(k)} {v:.2f}" for k, v in r["drivers"][:4] if v > 0.005)
+        lines.append(f"{label_of(r['name'])}: {top or 'no single input dominates'}")
     return lines
 
 
@@ -237,15 +257,15 @@ def _unknown_cells(r: UnknownRow) -> tuple:
         return None if math.isnan(x) else Num(x, d)
 
     value = r.value_text() if r.lower_bound else Num(r.value, d)
-    driver = f"{r.driver} ({r.driver_index:.2f})" if r.driver else ""
-    return (r.name, r.unit, value, cell(r.p5), cell(r.p50), cell(r.p95), driver)
+    driver = f"{label_of(r.driver)} ({r.driver_index:.2f})" if r.driver else ""
+    return (r.label, r.unit, value, cell(r.p5), cell(r.p50), cell(r.p95), driver)
 
 
 def reconstruction_table(rows: ReconstructionRows) -> Table:
     """Every unknown with its 5/50/95 % and the main driver of its spread, and the
     momentum check's speeds with their standard deviation (``reconstruction.csv``)."""
     body = [_unknown_cells(r) for r in rows.unknowns]
-    body += [(f"momentum check: {m.name}", m.unit, Num(m.value, interval_decimals(
+    body += [(f"momentum check: {m.label}", m.unit, Num(m.value, interval_decimals(
         m.value - m.sd, m.value + m.sd)), None, None, None,
         f"1 sd = {format_number(m.sd, sig=2)} {m.unit}") for m in rows.momentum]
     return Table("reconstruction", "Reconstructed unknowns",
@@ -260,7 +280,7 @@ def _unknown_cards(rows: ReconstructionRows) -> Cards:
     for r in order:
         _, low, high = format_interval(r.value, r.p5, r.p95)
         unit = "" if r.unit in ("-", "") else f" {r.unit}"
-        cards.append(Card(r.name, r.value_text() + unit,
+        cards.append(Card(r.label, r.value_text() + unit,
                           f"5-95 %: {low} to {high}" if low else ""))
     return Cards(tuple(cards))
 
@@ -346,16 +366,21 @@ def spread_text(row: UnknownRow, samples: int, sep: str = ", ") -> str:
         return "(5/50/95 %: not computed, --samples 0)"
     if not row.has_spread:
         return "(5/50/95 %: no usable Monte Carlo sample)"
-    return f"[{row.p5:.4g}{sep}{row.p50:.4g}{sep}{row.p95:.4g}]"
+    return "[" + sep.join(format_number(x) for x in (row.p5, row.p50, row.p95)) + "]"
 
 
 def table_lines(rows: ReconstructionRows, samples: int) -> list[str]:
     """The table as text lines: each unknown with its 5/50/95 % (``samples``: how many the
     Monte Carlo drew), then the momentum check with its standard deviation."""
-    lines = [f"{r.name:32s} {(('>= ' if r.lower_bound else '') + f'{r.value:.4g}'):>10s} "
+    names = [r.label for r in rows.unknowns] + [f"momentum check: {m.label}"
+                                                 for m in rows.momentum]
+    width = max(map(len, names), default=0)
+    lines = [f"{r.label:{width}s} "
+             f"{(('>= ' if r.lower_bound else '') + format_number(r.value)):>10s} "
              f"{r.unit}  {spread_text(r, samples)}" for r in rows.unknowns]
-    lines += [f"{'momentum check: ' + m.name:32s} {m.value:>10.4g} {m.unit}  "
-              f"(1 sd = {m.sd:.3g} {m.unit})" for m in rows.momentum]
+    lines += [f"{'momentum check: ' + m.label:{width}s} {format_number(m.value):>10s} "
+              f"{m.unit}  (1 sd = {format_number(m.sd, sig=3)} {m.unit})"
+              for m in rows.momentum]
     return lines
 
 

@@ -5,15 +5,45 @@ Every answer's value, every input's typical uncertainty (sigma), the derivative 
 the effect of one sigma are converted through :func:`pim.io.units.convert` into a
 :class:`pim.io.units.DisplayUnits`; the unit of a derivative is the ratio of the two
 (:func:`ratio_unit`).
+
+What is not an effect is not shown as one: a derivative below the resolution of the finite
+differences it comes from (:func:`resolved_derivative`) is 0, and the delta-V of a fixed
+barrier (0 whatever the inputs) is one line saying so, not a table of zeros.
 """
 
 from __future__ import annotations
 
+import numpy as np
+
 from comparisons.report.fit import quantity_factor
-from pim.analysis.sensitivity import INPUTS, SENSITIVITY_OUTPUTS, Sensitivity
+from pim.analysis.sensitivity import INPUT_STEP, INPUTS, SENSITIVITY_OUTPUTS, Sensitivity
 from pim.io.units import display_units
 
-__all__ = ["ratio_unit", "sensitivity_json", "sensitivity_lines"]
+__all__ = ["ratio_unit", "sensitivity_json", "sensitivity_lines", "resolved_derivative",
+           "fixed_vehicle", "RESOLUTION"]
+
+#: An effect below this fraction of its answer's scale (the larger of its value and its
+#: largest effect) is what the central differences leave where the derivative is 0: their
+#: truncation error is about INPUT_STEP**2 of the effects' scale (an exact 0 comes out as
+#: 1.6e-9 of 0.40 m/s at INPUT_STEP = 1e-4, and 100 times that at 1e-3), their round-off
+#: about 1e-16 / INPUT_STEP = 1e-12 of the value (6e-11 km/h beside 33 km/h).
+RESOLUTION = 10 * INPUT_STEP ** 2
+
+
+def resolved_derivative(sens: Sensitivity) -> np.ndarray:
+    """:attr:`Sensitivity.derivative` with what lies below the finite differences'
+    resolution (:data:`RESOLUTION` of the answer's scale) set to 0 [SI]."""
+    effect = sens.effect
+    scale = np.maximum(np.abs(np.asarray(sens.values, float)), effect.max(axis=1))
+    return np.where(effect < RESOLUTION * scale[:, None], 0.0, sens.derivative)
+
+
+def fixed_vehicle(sens: Sensitivity, output: str) -> int | None:
+    """The number of the fixed barrier whose delta-V ``output`` is (None otherwise)."""
+    for i in (1, 2):
+        if output == f"delta_v{i}_magnitude" and np.all(getattr(sens.case, f"vehicle{i}").fixed):
+            return i
+    return None
 
 
 def ratio_unit(out_unit: str, in_unit: str) -> str:
@@ -42,15 +72,21 @@ def sensitivity_json(sens: Sensitivity, units: str) -> dict:
     """:meth:`Sensitivity.to_dict` with every value, sigma and derivative in ``units``, each
     with its unit, and ``units`` naming the unit of each kind of quantity."""
     data = sens.to_dict()
+    derivative = resolved_derivative(sens)
     for name, entry in data["outputs"].items():
         fo, uo = quantity_factor(SENSITIVITY_OUTPUTS[name].kind, units)
+        k = sens.outputs.index(name)
         entry["value"] *= fo
         entry["unit"] = uo
+        if fixed_vehicle(sens, name):
+            entry.update(inputs=[], note=f"vehicle {fixed_vehicle(sens, name)} is a fixed "
+                                         "barrier: its delta-V is 0 whatever the inputs")
         for row in entry["inputs"]:
             fi, ui = quantity_factor(INPUTS[row["input"]].kind, units)
+            d = float(derivative[k, sens.inputs.index(row["input"])])
             row.update(sigma=row["sigma"] * fi, sigma_unit=ui,
-                       per_unit=row["per_unit"] * fo / fi, per_unit_unit=ratio_unit(uo, ui),
-                       per_sigma=row["per_sigma"] * fo)
+                       per_unit=d * fo / fi, per_unit_unit=ratio_unit(uo, ui),
+                       per_sigma=abs(d) * row["sigma"] * fo)
     data["units"] = display_units(units).to_json()
     return data
 
@@ -81,13 +117,15 @@ def _sources_line(sens: Sensitivity) -> str:
 def _table(sens: Sensitivity, k: int, top: int | None, units: str) -> list[str]:
     """The ranked inputs of output ``k``: sigma, derivative per unit and per sigma."""
     fo, uo = quantity_factor(SENSITIVITY_OUTPUTS[sens.outputs[k]].kind, units)
+    derivative = resolved_derivative(sens)[k]
     rows = []
     for i in sens.ranked(sens.outputs[k])[:top]:
         fi, ui = quantity_factor(INPUTS[sens.inputs[i]].kind, units)
+        per_unit = f"{derivative[i] * fo / fi:+.4g}" if derivative[i] else "0"
         rows.append((INPUTS[sens.inputs[i]].label, f"{sens.sigma[i] * fi:.4g} {ui}",
                      sens.sources[i] if sens.sources else "typical",
-                     f"{sens.derivative[k, i] * fo / fi:+.4g}", ratio_unit(uo, ui),
-                     f"{sens.effect[k, i] * fo:.4g}"))
+                     per_unit, ratio_unit(uo, ui),
+                     f"{abs(derivative[i]) * sens.sigma[i] * fo:.4g}"))
     head = ("input", "sigma", "source", "per unit", "unit", f"per sigma [{uo}]")
     widths = [max(len(r[c]) for r in [head, *rows]) for c in range(6)]
     fmt = "  " + "  ".join(f"{{:{a}{w}}}" for a, w in zip("<><><>", widths, strict=True))
@@ -128,6 +166,10 @@ def sensitivity_lines(name: str, sens: Sensitivity, units: str,
                      if out.startswith("delta") and sens.fit is not None else "")]
         if out in sens.active_bounds:
             lines.append("  held on an active bound: small input changes do not move it")
+            continue
+        if fixed_vehicle(sens, out):
+            lines.append(f"  vehicle {fixed_vehicle(sens, out)} is a fixed barrier: its "
+                         "delta-V is 0 whatever the inputs")
             continue
         lines += _table(sens, k, top, units)
     return lines

@@ -12,6 +12,7 @@ from pim.io.inertia_data import estimate_records
 from pim.io.units import convert
 from pim.model.case import Case
 from pim.model.quantities import OUTPUTS as QUANTITIES
+from pim.model.quantities import label_of
 
 __all__ = ["UncertaintyRow", "uncertainty_rows", "uncertainty_json", "uncertainty_lines",
            "inadmissible_note", "no_admissible_error", "BARRIER_OUTPUTS"]
@@ -88,13 +89,14 @@ def uncertainty_json(case: Case, result: UncertaintyResult, rows, units, *, seed
 def uncertainty_lines(name: str, result: UncertaintyResult, rows, *, seed: int,
                       top: int = 3) -> list[str]:
     """``pim uncertainty``'s table: a heading (samples, seed, admissible), then per output
-    its unit, nominal value, 5/50/95 % and the ``top`` inputs that drive its spread."""
+    its unit, nominal value, 5/50/95 % and the ``top`` inputs that drive its spread (by
+    their labels, separated by semicolons: a label may hold a comma)."""
     lines = [f"{name}: {result.n:,} samples (seed {seed}), {result.n_admissible:,} admissible"]
     width = max(len(r.label) for r in rows)
     lines.append(f"{'output':<{width}}  {'unit':>6}  {'nominal':>10}  {'5 %':>10}  "
                  f"{'50 %':>10}  {'95 %':>10}  main contributions (first-order index)")
     for r in rows:
-        contrib = ", ".join(f"{k} {round(v, 4):.2f}" for k, v in r.sensitivity[:top])
+        contrib = "; ".join(f"{label_of(k)} {round(v, 4):.2f}" for k, v in r.sensitivity[:top])
         lines.append(f"{r.label:<{width}}  {r.unit:>6}  {r.nominal:>10.4g}  {r.p5:>10.4g}  "
                      f"{r.p50:>10.4g}  {r.p95:>10.4g}  {contrib}")
     return lines

@@ -15,22 +15,16 @@ from .crush import CrushProfile, compared_energy
 from .driver import DriverInputs
 from .numbers import InputError
 from .pre_impact import PreImpactMarks
+from .quantities import UNKNOWNS
 from .runout import RunoutVehicle
 from .tyres import TyreData
 
 __all__ = ["VehicleEvidence", "Evidence", "UNKNOWN_KINDS"]
 
 #: Dotted keys an ``[unknown]`` table may name, with the physical kind of their bounds
-#: (the keys of /work/notes/fit-api.md's ``free``).
-UNKNOWN_KINDS = {
-    **{f"vehicle{i}.{key}": kind for i in (1, 2) for key, kind in (
-        ("speed", "velocity"), ("velocity_x", "velocity"), ("velocity_y", "velocity"),
-        ("yaw_rate", "angular_velocity"), ("phi", "angle"), ("d", "length"),
-        ("radius_of_gyration", "length"), ("yaw_inertia", "inertia"))},
-    "impact.restitution": "dimensionless", "impact.beta": "dimensionless",
-    "impact.normal_angle": "angle", "impact.point_x": "length", "impact.point_y": "length",
-    "impact.point_along": "length", "impact.k": "dimensionless", "impact.mu_c": "dimensionless",
-}
+#: (the keys of /work/notes/fit-api.md's ``free``; labels in
+#: :data:`pim.model.quantities.UNKNOWNS`).
+UNKNOWN_KINDS = {name: q.kind for name, q in UNKNOWNS.items()}
 
 
 @dataclass(frozen=True)

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from .numbers import InputError
 
 __all__ = ["Quantity", "FIELDS", "INPUTS", "EVIDENCE_INPUTS", "MEASURED_INPUTS", "UNCERTAIN",
-           "MEASURED", "OUTPUTS", "VECTOR_FIELDS", "field_of"]
+           "MEASURED", "OUTPUTS", "VECTOR_FIELDS", "UNKNOWNS", "field_of", "label_of"]
 
 
 @dataclass(frozen=True)
@@ -119,6 +119,45 @@ MEASURED: dict[str, Quantity] = {
     "measured.energy_loss": Quantity("energy", "measured energy loss"),
     "measured.crush_energy": Quantity("energy", "energy loss minus the crush energies"),
 }
+
+
+def _unknowns() -> dict[str, Quantity]:
+    out: dict[str, Quantity] = {}
+    for i in (1, 2):
+        v, p = f"vehicle {i}", f"vehicle{i}."
+        out.update({
+            p + "speed": Quantity("velocity", f"impact speed of {v}"),
+            **{p + k: INPUTS[p + k] for k in ("velocity_x", "velocity_y", "yaw_rate")},
+            p + "phi": Quantity("angle", f"angle of the arm CG-C of {v} from its heading "
+                                         "(Brach's phi)"),
+            p + "d": Quantity("length", f"length of the arm CG-C of {v} (Brach's d)"),
+            p + "radius_of_gyration": Quantity("length", f"radius of gyration of {v}"),
+            p + "yaw_inertia": INPUTS[p + "yaw_inertia"],
+        })
+    out.update({k: INPUTS[k] for k in ("impact.restitution", "impact.beta",
+                                       "impact.normal_angle", "impact.point_x",
+                                       "impact.point_y")})
+    out.update({
+        "impact.point_along": Quantity("length", "impact point C along the crush edge"),
+        "impact.k": Quantity("dimensionless", "restitution k (Kudlich-Slibar)"),
+        "impact.mu_c": Quantity("dimensionless", "friction mu_c between the vehicles"),
+    })
+    return out
+
+
+#: Dotted keys an ``[unknown]`` table may name (what a reconstruction solves for), with the
+#: physical kind of their bounds and their label.
+UNKNOWNS: dict[str, Quantity] = _unknowns()
+
+
+def label_of(name: str) -> str:
+    """The plain-language label of a named unknown, input, measured term or output
+    (``"vehicle1.speed"`` -> "impact speed of vehicle 1"); the name itself when it has
+    none."""
+    for table in (UNKNOWNS, UNCERTAIN, MEASURED, OUTPUTS):
+        if name in table:
+            return table[name].label
+    return name
 
 
 def field_of(name: str) -> tuple[str, int | None]:

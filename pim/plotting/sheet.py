@@ -37,7 +37,8 @@ from ..model.solver import defaults, solve
 
 __all__ = ["EpsilonSweep", "CostMap", "sweep_epsilon", "cost_map", "write_plots", "PLOTS",
            "plot_velocity_error", "plot_impulse_ratio", "plot_impulse_vehicle2", "plot_pdof",
-           "plot_energy_loss", "plot_velocities", "plot_cost_map", "save_figure"]
+           "plot_energy_loss", "plot_velocities", "plot_cost_map", "colour_limits",
+           "save_figure"]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -343,6 +344,38 @@ def plot_velocities(sweep: EpsilonSweep, fit_result: FitResult | None = None,
     return fig
 
 
+def colour_limits(cost, span: float = 1e6, top: float = 99.0) -> tuple[float, float]:
+    """Limits of a logarithmic colour scale for a cost map, lower strictly below upper.
+
+    The upper limit is the ``top`` percentile of the positive finite values, so that a few
+    huge values near a singular q (the cost reaches 1e15 where A - mu B vanishes) do not
+    wash out the map; the lower limit is their smallest value, but at most ``span`` below
+    the upper one (a log scale over more decades shows nothing). With no positive finite
+    value (a cost of zero everywhere) the scale is [1, 10].
+
+    Parameters
+    ----------
+    cost : array_like
+        The cost at each grid point [any unit]; NaN where q is singular.
+    span : float
+        Largest ratio of upper to lower limit [-].
+    top : float
+        Percentile of the values at the upper limit [%].
+
+    Returns
+    -------
+    (float, float)
+        Lower and upper limit, 0 < lower < upper.
+    """
+    cost = np.asarray(cost, dtype=float)
+    finite = cost[np.isfinite(cost) & (cost > 0)]
+    if not finite.size:
+        return 1.0, 10.0
+    hi = float(np.percentile(finite, top))
+    lo = max(float(finite.min()), hi / span)
+    return lo, max(hi, 1.01 * lo)
+
+
 def plot_cost_map(cmap: CostMap, units: str = "si"):
     """Filled contours of the cost over (epsilon, beta), optimum and bounds marked."""
     from matplotlib.colors import LogNorm
@@ -352,10 +385,8 @@ def plot_cost_map(cmap: CostMap, units: str = "si"):
     f2, cost_label = _cost_axis(fit_result, units)
     cost = cmap.cost * f2
     fig, ax = _figure(size=(7.5, 5.6))
-    finite = cost[np.isfinite(cost) & (cost > 0)]
-    lo = max(finite.min(), 1e-6 * finite.max())
-    hi = np.percentile(finite, 99)
-    levels = np.geomspace(lo, max(hi, 1.01 * lo), 25)
+    lo, hi = colour_limits(cost)
+    levels = np.geomspace(lo, hi, 25)
     shown = np.clip(np.where(np.isfinite(cost), cost, hi), lo, hi)
     filled = ax.contourf(cmap.eps, cmap.beta, shown, levels=levels, norm=LogNorm(lo, hi),
                          cmap="viridis_r")

@@ -47,10 +47,11 @@ def test_ricsac9_turned_around_covers_the_staged_speeds(tmp_path, capsys):
     assert {p.name for p in tmp_path.iterdir()} == {"report.md", "report.html",
                                                     "reconstruction.csv", MARKER}
     csv = (tmp_path / "reconstruction.csv").read_text()
-    assert "vehicle1.speed,mph," in csv          # US case: mph in, mph out
+    assert "impact speed of vehicle 1,mph," in csv     # US case: mph in, mph out
     page = (tmp_path / "report.html").read_text()
     table = page.split('id="table-reconstruction"')[1].split("</table>")[0]
-    assert "<td>vehicle1.speed</td>" in table and "<td>mph</td>" in table
+    assert "<td>impact speed of vehicle 1</td>" in table and "<td>mph</td>" in table
+    assert "vehicle1.speed" not in page.split("<script")[0]     # issue 33: no raw key
     assert "momentum check" in table and "nan" not in table     # no percentiles: empty
     assert "<video" not in page and "https://" not in page
 
@@ -91,7 +92,7 @@ def test_synthetic_case_report_and_json(tmp_path, capsys):
                                                     "report.html", MARKER}
     page = (tmp_path / "report.html").read_text()
     assert page.count("data:image/png;base64,") >= 2 and "data:video/mp4;base64," in page
-    assert "vehicle1.speed" in (tmp_path / "report.md").read_text()
+    assert "impact speed of vehicle 1" in (tmp_path / "report.md").read_text()
 
 
 def test_no_monte_carlo_prints_no_nan_and_json_speaks_the_case_units(capsys):
@@ -157,7 +158,8 @@ def test_recorder_evidence_says_which_evidence_drove_each_speed(capsys):
     the text names the driving evidence per speed in the case's units, the JSON too."""
     assert main(["reconstruct", "synthetic-edr", "--samples", "0", "--units", "si"]) == 0
     out = capsys.readouterr().out
-    assert "evidence: vehicle1.speed (1 sd = " in out and "km/h): vehicle1 recorded delta-V" in out
+    assert "evidence: impact speed of vehicle 1 (1 sd = " in out
+    assert "km/h): vehicle 1 recorded delta-V" in out
     assert main(["reconstruct", "synthetic-edr", "--samples", "0", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["unknowns"]["vehicle1.speed"]["value"] == pytest.approx(9.5 / 0.44704, abs=0.01)
@@ -203,12 +205,12 @@ def test_a_kudlich_slibar_case_is_reconstructed_under_its_law(tmp_path, capsys):
     assert data["unknowns"]["impact.mu_c"]["lower_bound"] is True
     assert any("mu_c only has a lower bound" in m for m in data["messages"])
     report = (tmp_path / "report.md").read_text()
-    assert "Impact law: Kudlich-Slibar" in report and "| impact.mu_c | - | >= " in report
+    assert "Impact law: Kudlich-Slibar" in report and "| friction mu_c between the vehicles | - | >= " in report
     assert main(["reconstruct", "ricsac9-pccrash-reconstruct", "--samples", "0",
                  "--units", "si"]) == 0
     out = capsys.readouterr().out
     assert out.startswith("Impact law: Kudlich-Slibar") and "km/h" in out and "mph" not in out
-    assert ">= " in next(line for line in out.splitlines() if line.startswith("impact.mu_c"))
+    assert ">= " in next(line for line in out.splitlines() if line.startswith("friction mu_c"))
 
 
 def test_help_of_out_promises_what_a_case_without_evidence_writes(tmp_path, capsys):
@@ -298,7 +300,7 @@ def test_contradictory_evidence_exits_1_after_the_output_with_the_reason_first(
     assert f"< {P_CONTRADICTED:g} (the refusal threshold)" in err[0]
     assert "pre_crash_speed2" in err[0] or "delta_v1" in err[0]
     assert "--allow-inconsistent" in err[-1]
-    assert "vehicle1.speed" in captured.out                 # the answer is still printed
+    assert "impact speed of vehicle 1" in captured.out      # the answer is still printed
     assert (out_dir / "report.md").is_file()
     for flag in ("--allow-inconsistent", "--allow-inadmissible"):
         assert main(["reconstruct", case, "--samples", "0", flag]) == 0

@@ -190,10 +190,10 @@ def test_reconstruct_gives_impact_speeds_in_the_field_unit(capsys, tmp_path, met
     folder = tmp_path / "out"
     code, out, _ = run(capsys, "reconstruct", path, "--samples", "0", *options, "--out", folder)
     assert code == 0
-    line = next(line for line in out.splitlines() if line.startswith("vehicle1.speed"))
-    assert line.split()[1:3] == [f"{expected['vehicle1.speed'] * f:.4g}", speed]
+    line = next(line for line in out.splitlines() if line.startswith("impact speed of vehicle 1"))
+    assert line.split()[5:7] == [f"{expected['vehicle1.speed'] * f:.4g}", speed]
     csv = (folder / "reconstruction.csv").read_text().splitlines()
-    row = next(r.split(",") for r in csv if r.startswith("vehicle2.speed,"))
+    row = next(r.split(",") for r in csv if r.startswith("impact speed of vehicle 2,"))
     assert row[1] == speed and float(row[2]) == pytest.approx(expected["vehicle2.speed"] * f,
                                                               rel=1e-5)
     assert f"| {speed} |" in (folder / "report.md").read_text()

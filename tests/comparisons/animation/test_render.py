@@ -182,3 +182,22 @@ def test_the_framing_is_one_object_or_its_fields_by_name():
                        after=0.3, size=(320, 240))
     assert r.times[-1] == pytest.approx(0.3) and r.times[0] == pytest.approx(-0.1)
     assert len(r.times) == 5 and r.size == (320, 240)        # 10 frames per second
+
+
+@pytest.mark.parametrize("name", ["ricsac9", "sideswipe"])
+def test_the_clock_stays_clear_of_the_video_controls(renderer, name):
+    """issue 33, point 7: in report.html the browser's video controls cover the bottom of the
+    frame, where the clock (and a secondary impact's warning) was drawn. Nothing that changes
+    with time is drawn in the bottom band now; the clock is in the caption band at the top."""
+    from pathlib import Path
+
+    if name == "sideswipe":       # an opposite-direction sideswipe: a secondary contact
+        path = Path(__file__).resolve().parents[2] / "data" / "sideswipe-opposite.toml"
+        renderer = build_renderer(pim.load_case(path), 0.05, 0.18)
+        assert renderer.secondary is not None
+    before, after = (np.asarray(renderer.frame(int(np.searchsorted(renderer.times, t))))
+                     for t in (-0.2, 0.4))
+    changed = np.abs(before.astype(int) - after.astype(int)).sum(-1) > 0
+    height = before.shape[0]
+    assert not changed[height - renderer.BOTTOM:].any()
+    assert changed[:renderer.TOP].any()             # the clock, in the caption band

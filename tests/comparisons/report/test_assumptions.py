@@ -182,3 +182,38 @@ def test_every_percentage_states_what_it_is_a_share_of(ricsac9):
     law = R.verdicts(ricsac9)[0]
     assert "of the largest velocity change of PIM" in law
     assert "the case's" in law and f"beta = {ricsac9.beta_pim:.3g}" in law
+def _friction_points(study, **changes):
+    """The study with every friction point changed by ``changes(point)`` -> fields."""
+    from dataclasses import replace
+
+    return replace(study, friction_points=tuple(replace(p, **{k: f(p) for k, f in changes.items()})
+                                                for p in study.friction_points))
+
+
+def test_friction_scenes_that_all_failed_are_not_assessed_not_nan(ricsac9):
+    """issue 33, point 6: with every friction scene failed the verdict read "every r at 100
+    ms: nan %" after numpy's "RuntimeWarning: All-NaN axis encountered"."""
+    import warnings
+
+    from comparisons.studies.assumptions import NAN_CHANGE
+
+    failed = _friction_points(ricsac9, marginal=lambda p: math.nan,
+                              cumulative=lambda p: math.nan, change=lambda p: NAN_CHANGE)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        text = R.verdicts(failed)[-1]
+    assert text.startswith("PIM's tangential law") and not re.search(r"\bnan\b", text), text
+    assert "every r at 100 ms: not assessed" in text
+
+
+def test_ranges_are_in_the_number_format_of_their_values(ricsac9):
+    """issue 33, point 6: a yaw-rate range of 26 to 130 deg/s read "26-1.3e+02 deg/s"."""
+    from comparisons.studies.assumptions import Change
+
+    deg = math.pi / 180
+    first = ricsac9.friction_points[0]
+    wide = _friction_points(ricsac9, change=lambda p: Change(
+        0.5, 0.5, (26 if p is first else 130) * deg, 0.0))
+    text = R.verdicts(wide)[-1]
+    assert "the yaw rate by 26-130 deg/s" in text, text
+    assert not re.search(r"\de[+-]\d", text), text

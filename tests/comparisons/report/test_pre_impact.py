@@ -2,6 +2,7 @@
 text, JSON and the report files, in the user's units."""
 
 import json
+import re
 from dataclasses import replace
 
 import pytest
@@ -28,7 +29,8 @@ from tests.pim.analysis.test_pre_impact_speeds import (
 def test_pim_solve_prints_the_speed_at_the_start_of_the_marks(capsys):
     assert main(["solve", "pre-impact-skids"]) == 0
     out = capsys.readouterr().out
-    line = next(x for x in out.splitlines() if x.startswith("vehicle1.speed_at_marks_start"))
+    line = next(x for x in out.splitlines()
+                if x.startswith("speed of vehicle 1 where its marks start"))
     assert f"{by_hand_mph(31.09, 30, 1.0):.4g} mph" in line and "30 ft of marks" in line
     assert main(["solve", "pre-impact-skids", "--json", "--units", "si"]) == 0
     data = json.loads(capsys.readouterr().out)["pre_impact"]
@@ -96,23 +98,29 @@ def test_pim_reconstruct_shows_the_speeds_before_the_impact(fast_reconstruction,
     assert main(["reconstruct", "ricsac9-reconstruct", "--samples", "400", "--out",
                  str(out)]) == 0
     text = capsys.readouterr().out
-    assert "vehicle1.speed_at_marks_start" in text and "nan" not in text.lower()
+    assert "speed of vehicle 1 where its marks start" in text and "nan" not in text.lower()
+    # issue 33, point 6: readable names, no dotted keys, in the text
+    assert "main driver of the spread impact speed of vehicle 1" in text
+    assert not re.search(r"\b(vehicle\d|evidence|impact|measured)\.\w", text), text
     assert {p.name for p in out.iterdir()} == {"report.md", "report.html",
                                                "reconstruction.csv", "pre_impact.csv", MARKER}
     md = (out / "report.md").read_text()
-    assert "## Speeds before the impact" in md and "vehicle1.speed_at_marks_start" in md
+    assert "## Speeds before the impact" in md
+    assert "speed of vehicle 1 where its marks start" in md and ".speed_at" not in md
     page = (out / "report.html").read_text()
     table = page.split('id="table-pre_impact"')[1].split("</table>")[0]
-    assert "<td>vehicle1.speed_at_marks_start</td>" in table and "<td>mph</td>" in table
+    assert "<td>speed of vehicle 1 where its marks start</td>" in table
+    assert "<td>mph</td>" in table
     assert 'href="#pre-impact"' in page
     assert (out / "pre_impact.csv").read_text().splitlines()[1].startswith(
-        "vehicle1.speed_at_marks_start,")
+        "speed of vehicle 1 where its marks start,")
 
 
 def test_without_samples_no_interval_is_printed(fast_reconstruction, capsys):
     assert main(["reconstruct", "ricsac9-reconstruct", "--samples", "0"]) == 0
     out = capsys.readouterr().out
-    line = next(x for x in out.splitlines() if x.startswith("vehicle1.speed_at_marks_start"))
+    line = next(x for x in out.splitlines()
+                if x.startswith("speed of vehicle 1 where its marks start"))
     assert "[" not in line.split("mph")[1].split("(")[0] and "nan" not in out.lower()
 
 

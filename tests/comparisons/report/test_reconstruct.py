@@ -4,11 +4,13 @@ momentum check are told apart by their type, not by a name prefix), digits from 
 unknown's interval, the impact speeds first among the cards, the document's sections."""
 
 import math
+import re
 
 import pytest
 
 import pim
 from comparisons.report.document import Cards
+from comparisons.report.number_format import format_number
 from comparisons.report.reconstruct import (
     MomentumRow,
     UnknownRow,
@@ -43,10 +45,10 @@ def test_the_table_shows_the_digits_the_interval_allows(rec):
     speed = next(r for r in rows.unknowns if r.name == "vehicle2.speed")
     decimals = speed.decimals
     assert decimals is not None
-    shown = cells["vehicle2.speed"][2]
+    shown = cells["impact speed of vehicle 2"][2]
     assert shown == (f"{speed.value:.{decimals}f}" if decimals > 0 else shown)
-    assert cells["momentum check: vehicle1.speed"][3:6] == ["", "", ""]
-    assert cells["momentum check: vehicle1.speed"][6].startswith("1 sd = ")
+    assert cells["momentum check: impact speed of vehicle 1"][3:6] == ["", "", ""]
+    assert cells["momentum check: impact speed of vehicle 1"][6].startswith("1 sd = ")
     assert table.column("value")[0] == rows.unknowns[0].value        # CSV: full precision
 
 
@@ -55,7 +57,11 @@ def test_the_document_leads_with_the_impact_speeds(rec):
     doc = reconstruction_document(rec, rows, "us")
     cards = doc.sections[0].blocks[0]
     assert isinstance(cards, Cards)
-    assert [c.label for c in cards.cards][:2] == ["vehicle1.speed", "vehicle2.speed"]
+    # issue 33, point 6: cards titled by what they are, not by their keys ("VEHICLE1.SPEED"
+    # in the page's capitals)
+    assert [c.label for c in cards.cards] == ["impact speed of vehicle 1",
+                                              "impact speed of vehicle 2", "beta = mu / mu0",
+                                              "restitution epsilon"]
     assert cards.cards[0].value.endswith(" mph") and cards.cards[0].note.startswith("5-95 %")
     text = render_markdown(doc)
     assert "delta-V, vehicle 1" in text and "Impact law: Brach's PIM" in text
@@ -74,7 +80,8 @@ def test_spread_text_never_prints_nan(rec):
 
     row = reconstruction_rows(rec, "us").unknowns[0]
     assert spread_text(row, 0) == "(5/50/95 %: not computed, --samples 0)"
-    assert spread_text(row, 200) == f"[{row.p5:.4g}, {row.p50:.4g}, {row.p95:.4g}]"
+    assert spread_text(row, 200) == "[" + ", ".join(format_number(x) for x in (
+        row.p5, row.p50, row.p95)) + "]"
     empty = UnknownRow("vehicle1.speed", "mph", 20.0, *[math.nan] * 3, driver="",
                        driver_index=math.nan)
     assert spread_text(empty, 200) == "(5/50/95 %: no usable Monte Carlo sample)"
@@ -90,9 +97,11 @@ def test_text_lines_say_the_law_then_the_warnings_then_the_table(rec):
     assert len(table) == len(rows.unknowns) + len(rows.momentum)
     assert lines.index(table[0]) > max(i for i, x in enumerate(lines)
                                        if x.startswith("warning: "))
-    speed = next(x for x in table if x.startswith("vehicle1.speed "))
+    speed = next(x for x in table if x.startswith("impact speed of vehicle 1 "))
     assert " mph  [" in speed
-    assert table[-1].startswith("momentum check: vehicle2.speed") and "(1 sd = " in table[-1]
+    assert table[-1].startswith("momentum check: impact speed of vehicle 2")
+    assert "(1 sd = " in table[-1]
+    assert not any(re.search(r"\b(vehicle\d|impact|measured)\.", x) for x in lines), lines
 
 
 def test_json_holds_each_unknown_in_the_users_units_and_the_findings_in_place(rec):

@@ -47,3 +47,55 @@ def test_lines_rank_and_cut_at_top(sens):
         assert 1 <= len(rows) <= 2
         effects = [float(r.split()[-1]) for r in rows]
         assert effects == sorted(effects, reverse=True)
+
+
+def _per_sigma(lines):
+    """The per-sigma column of every table row."""
+    return [float(line.split()[-1]) for line in lines
+            if line.startswith("  ") and line.split()[-1][-1].isdigit()
+            and not line.strip().startswith(("input", "-"))]
+
+
+@pytest.mark.parametrize("name", ["hard-beta0", "hard-eps0"])
+def test_round_off_is_shown_as_zero(name):
+    """issue 33, point 6: at beta = 0 the velocities along y and C's x do not move delta-V
+    (its derivative is 0), and the central differences printed 6.4e-11 km/h per sigma; at
+    epsilon = 0, Gamma's 3.2e-11. What lies below the differences' resolution is 0."""
+    sens = sensitivity(pim.load_case(name))
+    lines = sensitivity_lines(name, sens, "si")
+    values = _per_sigma(lines)
+    assert values and 0.0 in values, lines
+    assert all(v == 0 or v > 1e-4 for v in values), lines
+    data = sensitivity_json(sens, "si")
+    rows = [r for e in data["outputs"].values() for r in e["inputs"]]
+    assert all(r["per_sigma"] == 0 or r["per_sigma"] > 1e-4 for r in rows)
+    assert all(r["per_unit"] == 0 for r in rows if r["per_sigma"] == 0)
+
+
+def test_a_real_small_effect_is_kept(sens):
+    """The resolution is relative to the answer's scale: effects of 1 and 1e-5 m/s on a
+    value of 10 m/s stay, 1e-9 m/s (below 1e-7 of it) is 0, whatever the sign."""
+    from dataclasses import replace
+
+    import numpy as np
+
+    from comparisons.report.sensitivity import resolved_derivative
+
+    effect = np.zeros_like(sens.derivative)
+    effect[:, :3] = [1.0, -1e-5, 1e-9]
+    values = np.full(len(sens.outputs), 10.0)
+    moved = replace(sens, derivative=effect / sens.sigma, values=values)
+    np.testing.assert_array_equal(resolved_derivative(moved)[:, :3] * sens.sigma[:3],
+                                  np.tile([1.0, -1e-5, 0.0], (len(sens.outputs), 1)))
+
+
+def test_a_fixed_barrier_has_no_table_of_zeros():
+    """issue 33, point 6: a barrier's delta-V (0 whatever the inputs) was a table of zeros."""
+    sens = sensitivity(pim.load_case("hard-barrier"))
+    lines = sensitivity_lines("hard-barrier", sens, "si")
+    at = next(i for i, line in enumerate(lines) if line.startswith("|delta-V| of vehicle 2"))
+    assert lines[at + 1:] == ["  vehicle 2 is a fixed barrier: its delta-V is 0 whatever the "
+                              "inputs"]
+    entry = sensitivity_json(sens, "si")["outputs"]["delta_v2_magnitude"]
+    assert entry["inputs"] == [] and "fixed barrier" in entry["note"] and entry["value"] == 0
+    assert all(v > 0 for v in _per_sigma(lines))        # vehicle 1's table: effects only

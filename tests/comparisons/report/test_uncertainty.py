@@ -3,6 +3,7 @@ units (1 mph = 0.44704 m/s exactly), a fixed obstacle without its own outputs, t
 the table, and the words about inadmissible samples."""
 
 import dataclasses
+import re
 
 import pytest
 
@@ -64,7 +65,11 @@ def test_json_and_lines(case, result):
     lines = uncertainty_lines(case.name, result, rows, seed=1, top=1)
     assert lines[0] == f"ricsac9: 500 samples (seed 1), {result.n_admissible} admissible"
     assert len(lines) == 2 + len(rows)
-    assert all(line.count(", ") == 0 for line in lines[2:])      # one contribution each
+    assert all(line.count("; ") == 0 for line in lines[2:])      # one contribution each
+    # issue 33, point 6: the inputs by their labels, not their keys
+    assert not any(re.search(r"\b(vehicle\d|impact|measured)\.\w", x) for x in lines), lines
+    lines = uncertainty_lines(case.name, result, rows, seed=1, top=3)
+    assert all(line.count("; ") == 2 for line in lines[2:])
 
 
 def test_inadmissible_samples_are_said_with_their_share(case, result):

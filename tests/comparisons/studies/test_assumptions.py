@@ -254,7 +254,7 @@ def test_no_rung_of_a_sideswipe_passes_through_an_outline_at_any_swept_contact_t
     other at the longer contacts; at the case's own beta every rung, the outline rung
     among them, holds at every contact time of the sweep."""
     case = pim.load_case(str(Path(__file__).resolve().parents[2] / "data"
-                             / "sideswipe-opposite.toml"))
+                             / "sideswipe-ladder.toml"))
     study = A.run_assumptions(case, executor="serial", progress=False, animation_after=None,
                               sweeps=True, settings=COARSE)
     assert study.beta_pim == pytest.approx(0.18)

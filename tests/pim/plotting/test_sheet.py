@@ -5,6 +5,7 @@ from __future__ import annotations
 import subprocess
 import sys
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -127,3 +128,41 @@ def test_cost_map_with_sigmas_is_the_chi_square_in_every_unit_system(ricsac9):
         assert "chi-square" in plot_velocity_error(sweep, f, units).axes[0].get_ylabel()
     assert labels["si"] == labels["us"] and "chi-square" in labels["si"]
     assert "ft" not in labels["us"] and "m/s" not in labels["si"]
+
+
+SIDESWIPE = Path(__file__).resolve().parents[2] / "data" / "sideswipe-opposite.toml"
+
+
+def test_cost_map_near_a_singular_q_keeps_its_colour_scale():
+    """issue 33, point 1: an opposite-direction sideswipe (restitution 0.05, beta 0.18, measured
+    motion) whose cost map crosses A - mu B = 0 reaches 6e15 (km/h)^2; the lower colour limit
+    was 1e-6 of that maximum, above the 99th percentile, and plot_cost_map raised "vmin must be
+    less or equal to vmax". The scale now spans at most 6 decades below the 99th percentile."""
+    from pim.plotting.sheet import colour_limits, plot_cost_map
+
+    f = fit(pim.load_case(SIDESWIPE))
+    cmap = cost_map(f)
+    finite = cmap.cost[np.isfinite(cmap.cost)]
+    assert finite.max() > 1e6 * np.percentile(finite, 99)     # the case is what it claims
+    lo, hi = colour_limits(cmap.cost)
+    hi_expected = np.percentile(finite, 99)
+    assert hi == pytest.approx(hi_expected) and lo == pytest.approx(max(finite.min(), hi / 1e6))
+    fig = plot_cost_map(cmap, "si")
+    fig.canvas.draw()                                          # the colour bar is laid out
+    bar = fig.axes[1]
+    kmh2 = 3.6 ** 2                                            # the scale in (km/h)^2
+    assert bar.get_ylim() == pytest.approx((lo * kmh2, hi * kmh2))
+
+
+@pytest.mark.parametrize(("values", "expected"), [
+    ([1e15] + [2.0] * 200, (2.0, 2.02)),              # one huge value: not the upper limit
+    ([1e-20, 1.0, 1.0, 1.0], (1e-6, 1.0)),            # at most 6 decades below the upper limit
+    ([5.0, 5.0, np.nan], (5.0, 5.05)),                # a flat map still has lower < upper
+    ([0.0, np.nan, np.inf], (1.0, 10.0)),             # nothing positive: a neutral scale
+])
+def test_colour_limits(values, expected):
+    from pim.plotting.sheet import colour_limits
+
+    lo, hi = colour_limits(np.array(values))
+    assert 0 < lo < hi
+    assert (lo, hi) == pytest.approx(expected)
