@@ -182,6 +182,8 @@ def test_every_percentage_states_what_it_is_a_share_of(ricsac9):
     law = R.verdicts(ricsac9)[0]
     assert "of the largest velocity change of PIM" in law
     assert "the case's" in law and f"beta = {ricsac9.beta_pim:.3g}" in law
+
+
 def _friction_points(study, **changes):
     """The study with every friction point changed by ``changes(point)`` -> fields."""
     from dataclasses import replace
