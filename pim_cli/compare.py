@@ -12,7 +12,7 @@ from pathlib import Path
 import click
 
 import pim
-from comparisons.animation.render import MAX_SHOWN
+from comparisons.animation.collision import MAX_SHOWN
 from pim.model.numbers import InputError
 from pim_cli.main import (
     Beta,
@@ -70,9 +70,10 @@ compare_beta_option = click.option(
 @click.option("--no-speed-error", is_flag=True, help="Skip the coarse speed-error sweep.")
 @click.option("--no-assumptions", is_flag=True,
               help="Skip PIM's assumptions at typical values (finite-duration scene).")
-@click.option("--tyre-friction", "tyre", type=FiniteFloat(), default=0.0, show_default=True,
+@click.option("--tyre-friction", "tyre", type=FiniteFloat(0.0, 5.0, "-"), default=None,
               help="Tyre/ground friction coefficient after impact in the animation (the "
-                   "ghost decelerates alike); 0 = free motion.")
+                   "ghost decelerates alike; default: the case's [evidence] friction, else "
+                   "0.7, dry asphalt); 0 = free motion.")
 @law_options
 @progress_option
 @allow_inadmissible_option
@@ -107,8 +108,6 @@ def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, n
     """
     from comparisons.report.compare import compare_case
 
-    if tyre < 0:
-        raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
     case = load_case_for("compare", case_name, law)
     units = output_units(case, units, speed_unit)
     folder = _out(out, case.name, "case")
@@ -225,14 +224,18 @@ def _compare_law(case, folder, choice, units, *, as_json, allow, **kwargs):
               help="Also write an animated GIF (half size) here.")
 @click.option("--fps", type=int, default=30, show_default=True, help="Frames per second.")
 @click.option("--before", type=FiniteFloat(0.0, MAX_SHOWN, "s"), default=None,
-              help=f"Seconds shown before the impact, at most {MAX_SHOWN:g} (default: about "
-                   "1.2 vehicle lengths).")
-@click.option("--after", type=FiniteFloat(0.0, MAX_SHOWN, "s"), default=2.0, show_default=True,
-              help=f"Seconds shown after the impact, at most {MAX_SHOWN:g}.")
-@click.option("--size", type=(int, int), default=(960, 720), show_default=True,
-              help="Frame width and height [px], even numbers.")
-@click.option("--tyre-friction", "tyre", type=FiniteFloat(), default=0.0, show_default=True,
-              help="Tyre/ground friction coefficient after the impact (ghost alike).")
+              help=f"Seconds shown before the impact, at most {MAX_SHOWN:g} (default: the "
+                   "1 s approach).")
+@click.option("--after", type=FiniteFloat(0.0, MAX_SHOWN, "s"), default=None,
+              help=f"Seconds shown after the impact, at most {MAX_SHOWN:g} (default: until "
+                   "both vehicles are at rest; 2 s of free motion without tyre friction).")
+@click.option("--size", type=(int, int), default=None,
+              help="Frame width and height [px], even numbers (default: 960 wide, the "
+                   "height fitted to the motion).")
+@click.option("--tyre-friction", "tyre", type=FiniteFloat(0.0, 5.0, "-"), default=None,
+              help="Tyre/ground friction coefficient after the impact, ghost alike "
+                   "(default: the case's [evidence] friction, else 0.7, dry asphalt; "
+                   "0: free motion).")
 @click.option("--no-ghost", is_flag=True, help="Do not draw PIM's answer as a ghost.")
 @law_options
 @units_option
@@ -252,15 +255,13 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
     the analytic answer is inadmissible (the reasons first; --allow-inadmissible: exit 0).
     """
     import sim
-    from comparisons.animation.render import animate_case, animation_settings
+    from comparisons.animation.collision import animate_case, animation_plan
     from comparisons.studies.law_runs import law_setup, simulate_law
 
     _check_suffix(out, "--out", ".mp4")
     _check_suffix(gif, "--gif", ".gif")
     case = load_case_for("animate", case_name, law)
     units = output_units(case, units, speed_unit)
-    if tyre < 0:
-        raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
     path = Path(out) if out else Path("out") / f"{case.name or 'case'}-animation.mp4"
     kwargs = dict(gif=gif, progress=progress, fps=fps, before=before, after=after, size=size,
                   tyre=tyre, ghost=not no_ghost, units=units)
@@ -278,7 +279,8 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
         if setup is not None:
             kwargs.update(result=setup.result, title=f"{case.name or 'case'}: {setup.describe()}",
                           simulated=simulate_law(case, setup,
-                                                 animation_settings(after, tyre)))
+                                                 animation_plan(case, setup.result,
+                                                                tyre, after)))
         info = animate_case(case, eps_, beta_, path, **kwargs)
     except sim.SimulationError as exc:
         click.echo(f"simulation failed ({exc.kind}): {exc}", err=True)

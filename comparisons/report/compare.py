@@ -45,7 +45,8 @@ import numpy as np
 
 import pim
 import sim
-from comparisons.animation.render import build_renderer, write_animation
+from comparisons.animation.collision import build_renderer
+from comparisons.animation.render import write_animation
 from comparisons.report.assumptions import assumption_table
 from comparisons.report.compare_document import REPORT_NAME, compare_document
 from comparisons.report.compare_tables import (
@@ -176,8 +177,9 @@ class CompareOptions:
         Also write animation.gif.
     animation, speed_error : bool
         Include the animation and the coarse speed-error sweep.
-    tyre : float
-        Tyre friction coefficient [-] after the impact in the animation (0: none).
+    tyre : float or None
+        Tyre friction coefficient [-] after the impact in the animation (0: none; None:
+        the case's [evidence] friction, else :data:`pim.model.event.DEFAULT_TYRE_FRICTION`).
     assumptions : bool
         Include PIM's assumptions at typical values (the full study: ``pim assumptions``).
     progress : bool or None
@@ -203,7 +205,7 @@ class CompareOptions:
     gif: bool = False
     animation: bool = True
     speed_error: bool = True
-    tyre: float = 0.0
+    tyre: float | None = None
     assumptions: bool = True
     progress: bool | None = None
     units: str | None = None
