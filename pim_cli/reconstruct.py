@@ -27,6 +27,7 @@ from pathlib import Path
 
 import click
 
+from comparisons.animation.reconstruction import write_reconstruction_video
 from comparisons.report.document import Figure, Video
 from comparisons.report.number_format import duration_text
 from comparisons.report.pre_impact import pre_impact_rows
@@ -45,7 +46,6 @@ from pim.io.files import save_figure
 from pim.io.output import output_folder
 from pim.io.process import worker_pool
 from pim.model.numbers import InputError
-from pim.plotting.reconstruction_animation import write_reconstruction_mp4
 from pim.plotting.reconstruction_scene import reconstruction_figure
 from pim_cli.main import (
     SEED,
@@ -199,6 +199,7 @@ def _write_folder(directory: Path, rec, rows, units: str, video: bool, pre=()) -
         save_figure(reconstruction_figure(rec.post, units), directory / "scene.png")
         media.append(Figure("scene.png", alt="scene", caption="The reconstructed scene."))
         if video:
-            write_reconstruction_mp4(rec.post, directory / "reconstruction.mp4", units=units)
+            write_reconstruction_video(rec.post, rec.fit.result, directory / "reconstruction.mp4",
+                                       units=units, progress=False)
             media.append(Video("reconstruction.mp4", "From the impact to rest."))
     write_document(reconstruction_document(rec, rows, units, pre, tuple(media)), directory)
