@@ -6,6 +6,9 @@
 >>> result.velocity1.round(2)           # m/s, shape (2,): PIM's (-1.867, 3.898)
 array([-1.87,  3.9 ])
 
+``sim.simulate_event`` runs the whole event (approach, every impact, run-out to rest) and
+returns the project's timeline, :class:`pim.model.event.Event`.
+
 ``sim.simulate_compliant`` relaxes PIM's assumptions instead: a finite-duration crush
 contact (docs/contact-model.md), checked by ``sim.reference_compliant`` (solve_ivp).
 
@@ -18,6 +21,8 @@ from .compliant import simulate_compliant
 from .compliant_batch import CompliantBatch
 from .compliant_setup import DEFAULT_STIFFNESS, CompliantResult, CompliantSettings, ContactHistory
 from .crosscheck import CrossCheck, crosscheck
+from .event import simulate_event
+from .event_scene import SecondaryLaw
 from .failures import FAILURE_KINDS, SimulationError
 from .limits import limitations
 from .reference import reference_compliant
@@ -31,4 +36,5 @@ __all__ = ["Settings", "simulate", "simulate_many", "SimResult", "Trajectory", "
            "SimulationError", "FAILURE_KINDS", "limitations", "crosscheck", "CrossCheck",
            "Scene", "build_scene", "case_element", "simulate_compliant", "reference_compliant",
            "CompliantSettings", "CompliantResult", "CompliantBatch", "ContactHistory",
-           "DEFAULT_STIFFNESS", "find_secondary_impact", "SecondaryImpact", "watch_after_impact"]
+           "DEFAULT_STIFFNESS", "find_secondary_impact", "SecondaryImpact", "watch_after_impact",
+           "simulate_event", "SecondaryLaw"]

@@ -27,6 +27,7 @@ scene allows, or when kinetic energy rises.
 from __future__ import annotations
 
 import time
+from dataclasses import dataclass
 
 import numpy as np
 import pymunk
@@ -41,7 +42,7 @@ from .result import SimResult, Trajectory
 from .scene import TYPE1, TYPE2, Scene, build_scene, resolve_coefficients
 from .settings import Settings
 
-__all__ = ["simulate", "run_scene", "continue_after_impact", "trajectory_of", "body_state",
+__all__ = ["simulate", "run_scene", "run_impact", "ImpactSteps", "continue_after_impact", "trajectory_of", "body_state",
            "APPROACH_TOLERANCE"]
 
 #: A contact point approaches when its relative normal velocity is below -this x speed scale.
@@ -162,31 +163,80 @@ def run_scene(scene: Scene, settings: Settings) -> dict:
     Returns a dict of the SimResult fields except ``wall_time``, ``settings`` and the
     coefficients. Raises :class:`sim.SimulationError` on a failed run.
     """
-    space, b1, b2 = scene.space, scene.body1, scene.body2
+    b1, b2 = scene.body1, scene.body2
     dt = settings.dt
-    mon = _Monitor(scene, settings)
-    space.on_collision(TYPE1, TYPE2, pre_solve=_pre_solve, post_solve=_post_solve, data=mon)
-
     states = [_state(scene.start_time, b1, b2)]
+    impact = run_impact(scene, settings, states)
+    step = continue_after_impact(scene, settings, impact.steps, states)
+    trajectory = trajectory_of(scene, states, impact.index)
+    return dict(iterations=scene.iterations, contraction_rate=scene.contraction_rate,
+        velocity1=impact.velocity1, velocity2=impact.velocity2, yaw_rate1=impact.yaw_rate1,
+        yaw_rate2=impact.yaw_rate2, impulse=impact.impulse,
+        contact_duration=impact.contact_steps * dt, contact_steps=impact.contact_steps,
+        contact_points=impact.contact_points, steps=step, energy_before=scene.energy_before,
+        energy_after=impact.energy_after, trajectory=trajectory,
+        final_velocity1=np.array(b1.velocity), final_velocity2=np.array(b2.velocity),
+        final_yaw_rate1=float(b1.angular_velocity), final_yaw_rate2=float(b2.angular_velocity))
+
+
+@dataclass(frozen=True)
+class ImpactSteps:
+    """What :func:`run_impact` did: the engine's impact of a rigid scene.
+
+    Attributes
+    ----------
+    steps : int
+        Steps taken from the scene's start until the contact ended [-].
+    contact_steps : int
+        Steps in which the contact was processed [-].
+    index : int
+        Index in the recorded states of the first state after the contact was processed.
+    impulse : ndarray (2,)
+        Impulse the engine applied to vehicle 1 [N s].
+    contact_points : int
+        Most contact points in one step [-].
+    velocity1, velocity2 : ndarray (2,)
+        CG velocities at separation [m/s].
+    yaw_rate1, yaw_rate2 : float
+        Yaw rates at separation [rad/s].
+    energy_after : float
+        Kinetic energy at separation [J].
+    """
+
+    steps: int
+    contact_steps: int
+    index: int
+    impulse: np.ndarray
+    contact_points: int
+    velocity1: np.ndarray
+    velocity2: np.ndarray
+    yaw_rate1: float
+    yaw_rate2: float
+    energy_after: float
+
+
+def run_impact(scene: Scene, settings: Settings, states: list) -> ImpactSteps:
+    """Step a built rigid scene from its start until its one impact has ended, under the
+    scene's contact law (module notes), appending the recorded states to ``states``.
+
+    The collision handler of the scene's contact shapes is added here. Raises
+    :class:`sim.SimulationError` when no contact is processed, when it never separates,
+    when a step has more contact points than allowed, or when the impact gains energy.
+    """
+    b1, b2 = scene.body1, scene.body2
+    mon = _Monitor(scene, settings)
+    scene.space.on_collision(TYPE1, TYPE2, pre_solve=_pre_solve, post_solve=_post_solve,
+                             data=mon)
     step, contact_steps, impact_index = _step_impact(scene, settings, mon, states)
     _check_impulse(mon, contact_steps, step)
-    velocity1 = np.array(b1.velocity)
-    velocity2 = np.array(b2.velocity)
-    yaw_rate1, yaw_rate2 = b1.angular_velocity, b2.angular_velocity
+    velocity1, velocity2 = np.array(b1.velocity), np.array(b2.velocity)
+    yaw_rate1, yaw_rate2 = float(b1.angular_velocity), float(b2.angular_velocity)
     energy_after = _kinetic(b1) + _kinetic(b2)
     _check_energy(scene, settings, energy_after,
                   np.r_[velocity1, velocity2, yaw_rate1, yaw_rate2], step)
-
-    step = continue_after_impact(scene, settings, step, states)
-    trajectory = trajectory_of(scene, states, impact_index)
-    return dict(iterations=scene.iterations, contraction_rate=scene.contraction_rate,
-        velocity1=velocity1, velocity2=velocity2, yaw_rate1=float(yaw_rate1),
-        yaw_rate2=float(yaw_rate2), impulse=np.array(mon.impulse),
-        contact_duration=contact_steps * dt, contact_steps=contact_steps,
-        contact_points=mon.max_points, steps=step, energy_before=scene.energy_before,
-        energy_after=energy_after, trajectory=trajectory,
-        final_velocity1=np.array(b1.velocity), final_velocity2=np.array(b2.velocity),
-        final_yaw_rate1=float(b1.angular_velocity), final_yaw_rate2=float(b2.angular_velocity))
+    return ImpactSteps(step, contact_steps, impact_index, np.array(mon.impulse),
+                       mon.max_points, velocity1, velocity2, yaw_rate1, yaw_rate2,
+                       energy_after)
 
 
 def _step_impact(scene: Scene, settings: Settings, mon: _Monitor, states: list) -> tuple:
