@@ -428,8 +428,9 @@ def _event_of(run: EventRun, case: pim.Case, rest_time, notes: list) -> Event:
         sliding = wheel_sliding(run.tyres[i], heading, rows[:, vel], rows[:, yaw])
         if sliding is not None:
             sliding[time < 0] = False
+        wheels = None if run.tyres[i] is None else run.tyres[i].vehicle.positions
         tracks.append(Track(rows[:, cols], heading, rows[:, vel], rows[:, yaw], sliding,
-                            outline_corners(vehicle), bool(vehicle.fixed)))
+                            outline_corners(vehicle), bool(vehicle.fixed), wheels=wheels))
     phase = phase_labels(time, [imp.time for imp in run.impacts], rest_time)
     return Event(time=time, vehicle1=tracks[0], vehicle2=tracks[1], phase=phase,
                  impacts=tuple(run.impacts), source="simulated",
