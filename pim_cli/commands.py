@@ -64,6 +64,9 @@ COMMANDS = (
     Command("compare", "pim_cli.compare:compare", RECONSTRUCT,
             "Write CASE's reconstruction report to a folder: PIM's answer, its plots and "
             "animation, and a pymunk cross-check."),
+    Command("event", "pim_cli.event:event", RECONSTRUCT,
+            "Write CASE's whole event, from the approach to rest, to a folder: every impact, "
+            "the run-out, its video and plan view."),
     Command("draw", "pim_cli.solve:draw", RECONSTRUCT,
             "Draw CASE's geometry and sign conventions to an image file."),
     Command("plot", "pim_cli.fit:plot", RECONSTRUCT,
