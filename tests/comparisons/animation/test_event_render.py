@@ -1,0 +1,113 @@
+"""The one renderer on events built by hand (no simulation: fast): tyre marks where a wheel
+slides and nowhere else, the frame fitted to the motion, the clock above the scene (not under
+a video player's controls), speeds in the user's unit, every impact marked, the measured rest
+drawn, and the plan view (issue 32 item 4)."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from comparisons.animation.plan import plan_interval, plan_view
+from comparisons.animation.render import COLORS, Look, Renderer
+from pim.model.event import Event, ImpactRecord, Track, phase_labels
+
+OUTLINE = np.array([[2.0, 0.9], [-2.5, 0.9], [-2.5, -0.9], [2.0, -0.9]])
+
+
+def slide(n=31, slide_from=15):
+    """Vehicle 1 runs along +x at 10 m/s, slides from sample ``slide_from`` (t = 1.5 s,
+    sliding flags set there) to rest at 2.5 s; vehicle 2 stands 6 m to its left; an impact
+    at t = 0.5 s."""
+    t = np.linspace(0.0, 3.0, n)
+    s = np.clip(t - 1.5, 0.0, 1.0)
+    x = 10 * np.minimum(t, 1.5) + 10 * s - 5 * s ** 2
+    v = np.where(t < 1.5, 10.0, 10 - 10 * s)
+    sliding = np.zeros((n, 4), bool)
+    sliding[slide_from:] = True
+    one = Track(np.column_stack([x, np.zeros(n)]), np.zeros(n),
+                np.column_stack([v, np.zeros(n)]), np.zeros(n), sliding=sliding,
+                outline=OUTLINE)
+    two = Track(np.tile([15.0, 6.0], (n, 1)), np.full(n, np.pi / 2), np.zeros((n, 2)),
+                np.zeros(n), outline=OUTLINE)
+    impact = ImpactRecord(0.5, np.array([5.0, 3.0]), 0.3, "brach", {"eps": 0.1, "beta": 1.0},
+                          np.array([1000.0, 0.0]), np.zeros((2, 2)), np.zeros((2, 2)),
+                          np.zeros(2), np.zeros(2), 10.0, np.zeros(2))
+    return Event(t, one, two, phase_labels(t, [0.5], 2.9), impacts=(impact,))
+
+
+def near(img, color, tol=0):
+    return np.abs(np.asarray(img).astype(int) - np.array(color)).sum(-1) <= tol
+
+
+def test_tyre_marks_where_the_wheels_slide_and_nowhere_else():
+    ev = slide()
+    r = Renderer(ev, look=Look(size=(640, 360)))
+    marks = near(r.frame(len(ev) - 1), COLORS["marks"])
+    marks[: r.TOP] = False                  # the panel's anti-aliased text
+    assert marks.sum() > 100
+    rows, cols = np.nonzero(marks)
+    start = r.to_px([ev.vehicle1.position[15, 0] + OUTLINE[:, 0].min(), 0])[0]
+    assert cols.min() >= start - 3          # none behind the rear wheels where it slid first
+    early = Renderer(ev, look=Look(size=(640, 360)))
+    assert near(early.frame(10), COLORS["marks"])[r.TOP:].sum() == 0    # not yet sliding
+    rolling = replace(ev.vehicle1, sliding=np.zeros((len(ev), 4), bool))
+    unsliding = Renderer(replace(ev, vehicle1=rolling), look=Look(size=(640, 360)))
+    assert near(unsliding.frame(len(ev) - 1), COLORS["marks"])[r.TOP:].sum() == 0
+
+
+def test_the_frame_is_fitted_to_the_motion():
+    """The outlines over the whole event fill the scene area both ways (the size taken from
+    the motion's aspect); the old fixed 4:3 frame left a long slide in a strip."""
+    r = Renderer(slide())
+    pts = np.concatenate([r.outline_px(k, v) for k in range(len(r)) for v in (1, 2)])
+    left, top, right, bottom = r.scene_box()
+    fill_w = np.ptp(pts[:, 0]) / (right - left)
+    fill_h = np.ptp(pts[:, 1]) / (bottom - top)
+    assert max(fill_w, fill_h) >= 0.9
+    assert r.size[1] < 720 and r.size[0] == 960      # a wide, low frame for a long slide
+    assert min(pts[:, 0]) >= 0 and max(pts[:, 0]) <= r.size[0] and min(pts[:, 1]) >= top
+
+
+def test_the_clock_is_above_the_scene_not_under_the_video_controls():
+    """Two frames at rest differ only in the clock: every differing pixel is in the panel
+    at the top (a video player's controls cover the bottom 40 px or so)."""
+    ev = slide()
+    r = Renderer(ev, look=Look(size=(640, 480)))
+    a = np.asarray(r.frame(len(ev) - 2)).astype(int)
+    b = np.asarray(r.frame(len(ev) - 1)).astype(int)
+    rows = np.nonzero(np.abs(a - b).sum(-1).sum(1))[0]
+    assert len(rows) and rows.max() < r.TOP and rows.max() < 0.25 * r.size[1]
+
+
+def test_speeds_and_phase_in_the_users_units():
+    ev = slide()
+    si = Renderer(ev, look=Look(units="si", size=(640, 360)))
+    us = Renderer(ev, look=Look(units="us", size=(640, 360)))
+    k = 5
+    v = ev.vehicle1.speed[k]
+    assert f"vehicle 1: {v * 3.6:.3g} km/h" in si.status(k)
+    assert f"vehicle 1: {v / 0.44704:.3g} mph" in us.status(k)
+    assert si.phase(0) == "approach" or si.phase(0).startswith("after") is False
+    assert si.phase(len(ev) - 1) == "at rest"
+    assert "after impact 1" in si.status(10)
+
+
+def test_each_impact_is_marked_at_its_c():
+    ev = slide()
+    r = Renderer(ev, look=Look(size=(640, 360)))
+    green = near(r.frame(0), COLORS["contact"])
+    c = r.to_px(ev.impacts[0].point)
+    rows, cols = np.nonzero(green[r.TOP:])
+    assert np.min(np.hypot(cols - c[0], rows + r.TOP - c[1])) < 6
+
+
+def test_the_plan_view_draws_every_outline_interval_and_impact(tmp_path):
+    ev = slide()
+    assert plan_interval(ev) == pytest.approx(0.25)
+    fig = plan_view(ev, units="us", measured_rest=((ev.vehicle1.position[-1] + 1, 0.1), None),
+                    title="slide")
+    ax = fig.axes[0]
+    texts = [t.get_text() for t in ax.texts]
+    assert "0.5 s" in texts and "3 s" in texts and any(t.startswith("impact 1") for t in texts)
+    assert "outlines every 0.25 s" in ax.get_title() and ax.get_xlabel() == "x [ft]"
