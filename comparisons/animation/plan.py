@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from comparisons.animation.render import COLORS, _outline, _pose, wheel_estimate
+from comparisons.animation.render import COLORS, outline_of, pose_points, wheel_estimate
 from comparisons.report.number_format import format_number
 from pim.io.units import unit_scale
 from pim.model.event import Event
@@ -49,7 +49,7 @@ def _snapshots(event: Event, interval: float) -> np.ndarray:
 def _track_layer(ax, event: Event, i: int, scale: float, interval: float) -> None:
     """Vehicle ``i``'s path, tyre marks, outlines with times and its final outline."""
     track = event.tracks[i]
-    body = _outline(track)
+    body = outline_of(track)
     edge, fill = _rgb(f"edge{i + 1}"), _rgb(f"fill{i + 1}")
     if track.fixed:
         if body is not None:
@@ -113,9 +113,9 @@ def plan_view(event: Event, *, units="si", interval: float | None = None,
     for i in (0, 1):
         _track_layer(ax, event, i, scale, interval)
     for i, rest in enumerate(measured_rest):
-        body = _outline(event.tracks[i])
+        body = outline_of(event.tracks[i])
         if rest is not None and body is not None:
-            pts = _pose(body, rest) * scale
+            pts = pose_points(body, rest) * scale
             ax.plot(*np.vstack([pts, pts[:1]]).T, ":", color="k", lw=1.4,
                     label="measured rest" if i == 0 or measured_rest[0] is None else None)
     _impacts(ax, event, scale)

@@ -46,7 +46,7 @@ from pim.model.geometry import outline_corners
 from pim.model.numbers import InputError
 
 __all__ = ["AnimationInfo", "Renderer", "Look", "write_animation", "fitted_size",
-           "wheel_estimate", "COLORS", "DEFAULT_SIZE", "DEFAULT_FPS", "DEFAULT_OUTLINE",
+           "wheel_estimate", "outline_of", "pose_points", "GlyphText", "COLORS", "DEFAULT_SIZE", "DEFAULT_FPS", "DEFAULT_OUTLINE",
            "IMPULSE_SHOWN"]
 
 #: Largest frame by default [px]: the width, and the height a square-ish motion gets.
@@ -172,7 +172,7 @@ def wheel_estimate(outline: np.ndarray) -> np.ndarray:
     return np.column_stack([x, [half, -half, half, -half]])
 
 
-def _outline(track: Track) -> np.ndarray | None:
+def outline_of(track: Track) -> np.ndarray | None:
     """The body-frame outline drawn for a track: its own, a car's default for a moving
     vehicle without one, None for a fixed obstacle without one (a wall)."""
     if track.outline is not None:
@@ -186,13 +186,13 @@ def _extent(events, measured_rest) -> tuple[np.ndarray, np.ndarray]:
     pts = []
     for ev in events:
         for track in ev.tracks:
-            body = _outline(track)
+            body = outline_of(track)
             pts.append(track.position if body is None else track.placed(body).reshape(-1, 2))
         pts += [np.asarray(i.point, float).reshape(1, 2) for i in ev.impacts]
     for track, rest in zip(events[0].tracks, measured_rest, strict=True):
-        body = _outline(track)
+        body = outline_of(track)
         if rest is not None and body is not None:
-            pts.append(_pose(body, rest))
+            pts.append(pose_points(body, rest))
     pts = np.concatenate(pts)
     return pts.min(0), pts.max(0)
 
@@ -228,7 +228,7 @@ class GlyphText:
         return x + line.shape[1]
 
 
-def _pose(body: np.ndarray, pose) -> np.ndarray:
+def pose_points(body: np.ndarray, pose) -> np.ndarray:
     """Body-frame points (K, 2) at one pose ``(position, heading)`` -> world (K, 2) [m]."""
     position, heading = pose
     c, s = math.cos(float(heading)), math.sin(float(heading))
@@ -282,7 +282,7 @@ class Renderer:
         self.units = look.units if isinstance(look.units, DisplayUnits) \
             else DisplayUnits(look.units)
         self.times = event.time
-        self.bodies = tuple(_outline(t) for t in event.tracks)
+        self.bodies = tuple(outline_of(t) for t in event.tracks)
         self._fit_view(shown)
         self.font, self.small = _font(15), _font(12)
         self.glyphs, self.small_glyphs = GlyphText(self.font), GlyphText(self.small)
@@ -398,7 +398,7 @@ class Renderer:
         for i, rest in enumerate(self.look.measured_rest):
             if rest is None or self.bodies[i] is None:
                 continue
-            pts = self.to_px(_pose(self.bodies[i], rest))
+            pts = self.to_px(pose_points(self.bodies[i], rest))
             _dashed(d, [*pts, pts[0]], COLORS["rest"], 2, dash=3.0, gap=4.0)
 
     def _impact(self, d, impact, k: int) -> None:

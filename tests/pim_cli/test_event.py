@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import pim
+from pim_cli.event import event
 from pim_cli.main import main
 
 
@@ -68,3 +69,8 @@ def test_bad_input_writes_nothing(tmp_path, capsys):
     assert not out.exists()
     assert main(["event", "no-such-case", "--out", str(out)]) == 2
     assert not out.exists()
+
+
+def test_the_command_says_what_it_writes():
+    for name in ("event.mp4", "plan.png", "timeline.csv", "report.html", "--json"):
+        assert name in event.help
