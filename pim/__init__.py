@@ -15,6 +15,7 @@ array([-1.867,  3.898])
 """
 
 # Everything here needs only numpy; scipy, numba and matplotlib load on first use.
+from .analysis.event import event
 from .analysis.fitting import FitResult, fit
 from .analysis.montecarlo import UncertaintyResult, uncertainty
 from .analysis.reconstruction import post_impact_motion
@@ -31,5 +32,5 @@ from .model.result import Result
 __all__ = ["Case", "Impact", "Measured", "Vehicle", "Result", "solve", "load_case",
            "list_cases", "fit", "FitResult", "sensitivity", "uncertainty",
            "UncertaintyResult", "solve_capped", "post_impact_motion", "load_dataset",
-           "solve_kudlich_slibar", "resolve_law", "LAW_NAMES", "InputError"]
+           "solve_kudlich_slibar", "resolve_law", "LAW_NAMES", "InputError", "event"]
 __version__ = "0.1.0"

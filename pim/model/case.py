@@ -19,7 +19,7 @@ from .geometry import rotate
 from .inertia import InputEstimate
 from .numbers import InputError, check_type, real_array
 
-__all__ = ["Vehicle", "Impact", "Case", "Measured", "LAWS", "MASS_RANGE", "INERTIA_RANGE",
+__all__ = ["Vehicle", "Impact", "ImpactSpec", "Case", "Measured", "LAWS", "MASS_RANGE", "INERTIA_RANGE",
            "MAX_ARM_RATIO", "SPEED_UNITS", "checked_case", "BETA_RANGE_TEXT"]
 
 #: The impact laws a case may name (``impact.law``); see :mod:`pim.model.impact_laws`.
@@ -406,6 +406,62 @@ class Impact:
 
 
 @dataclass(frozen=True, eq=False)
+class ImpactSpec:
+    """The law and coefficients of one of an event's further impacts (a ``[[impacts]]``
+    entry of a case file; :func:`pim.event`).
+
+    Parameters
+    ----------
+    law : {"brach", "brach-capped", "kudlich-slibar"}
+    restitution : float, optional
+        eps (Brach's laws) or k (Kudlich-Slibar) [-] in [0, 1].
+    beta : float, optional
+        Fraction of mu0 [-] >= 0 (Brach's laws; default 1).
+    contact_friction : float, optional
+        mu_c [-] >= 0: the cap of "brach-capped", the contact friction of
+        "kudlich-slibar" (required by them).
+    point : array_like (2,), optional
+        C [m], global frame, instead of the outlines' contact point.
+    normal_angle : float, optional
+        Gamma [rad] instead of the penetrated edge's normal.
+    where : str
+        The table named in error messages (e.g. ``impacts[0]``).
+    """
+
+    law: str = "brach"
+    restitution: float | None = None
+    beta: float | None = None
+    contact_friction: float | None = None
+    point: np.ndarray | None = None
+    normal_angle: float | None = None
+    where: str = "impacts"
+
+    def __post_init__(self) -> None:
+        w = self.where
+        if self.law not in LAWS:
+            raise InputError(f"{w}.law must be one of {', '.join(map(repr, LAWS))}, got "
+                             f"{self.law!r}")
+        if self.restitution is not None and not 0.0 <= float(self.restitution) <= 1.0:
+            raise InputError(f"{w}.restitution must be in [0, 1], got {self.restitution!r}")
+        if self.beta is not None and not (math.isfinite(self.beta) and self.beta >= 0):
+            raise InputError(f"{w}.beta {BETA_RANGE_TEXT}, got {self.beta!r}")
+        if self.law == "kudlich-slibar" and self.beta is not None:
+            raise InputError(f"{w}.beta does not apply to law 'kudlich-slibar'")
+        mu_c = self.contact_friction
+        if mu_c is not None and not float(mu_c) >= 0.0:
+            raise InputError(f"{w}.contact_friction must be >= 0, got {mu_c!r}")
+        if self.law in FRICTION_LAWS and mu_c is None:
+            raise InputError(f"{w}.contact_friction is required for law {self.law!r}")
+        if self.law == "brach" and mu_c is not None:
+            raise InputError(f"{w}.contact_friction needs law 'brach-capped' or "
+                             f"'kudlich-slibar'")
+        if self.point is not None:
+            object.__setattr__(self, "point", _vector(self.point, f"{w}.point", "m"))
+        if self.normal_angle is not None and not math.isfinite(self.normal_angle):
+            raise InputError(f"{w}.normal_angle must be a finite angle [rad]")
+
+
+@dataclass(frozen=True, eq=False)
 class Measured:
     """Measured post-impact motion (the target of :func:`pim.fit`). Any field may be None.
 
@@ -556,6 +612,10 @@ class Case:
     estimates : tuple of pim.model.inertia.InputEstimate
         Inputs the case file left out and the program estimated (e.g. a yaw inertia from
         mass and wheelbase), with their scatter and source, for notes and reports.
+    impacts : tuple of ImpactSpec
+        The law and coefficients of the event's further impacts, in order (the case file's
+        ``[[impacts]]``; entry k is the event's impact k + 2, the last entry also any
+        later one), for :func:`pim.event`; empty: the stated defaults.
     """
 
     vehicle1: Vehicle
@@ -571,6 +631,7 @@ class Case:
     unknown: dict | None = None  # dotted key -> (low, high) SI bounds, the [unknown] table
     estimates: tuple = ()  # pim.model.inertia.InputEstimate: inputs the program estimated
     speed_unit: str | None = None   # one of SPEED_UNITS; None: the system's field unit
+    impacts: tuple = ()    # ImpactSpec per further impact of the event ([[impacts]])
 
     def __post_init__(self) -> None:
         if not (type(self.vehicle1) is Vehicle and type(self.vehicle2) is Vehicle
@@ -584,6 +645,9 @@ class Case:
         if self.estimates and not (isinstance(self.estimates, tuple) and all(
                 isinstance(e, InputEstimate) for e in self.estimates)):
             raise InputError("estimates must be a tuple of pim.model.inertia.InputEstimate")
+        if self.impacts and not (isinstance(self.impacts, tuple) and all(
+                isinstance(i, ImpactSpec) for i in self.impacts)):
+            raise InputError("impacts must be a tuple of pim.model.case.ImpactSpec")
         if self.speed_unit is not None and self.speed_unit not in SPEED_UNITS:
             raise InputError(f"speed_unit must be one of {', '.join(SPEED_UNITS)}, got "
                              f"{self.speed_unit!r}")

@@ -30,7 +30,8 @@ from .numba_cache import compile_module, stamped_cache
 from .numbers import InputError
 from .runout import MAX_TIME, RhsData, RunoutVehicle
 
-__all__ = ["integrate_many", "one_signature", "RUNOUT_STEP", "CompiledRhs"]
+__all__ = ["integrate_many", "one_signature", "RUNOUT_STEP", "CompiledRhs", "rk4_stages",
+           "STABLE_STEP"]
 
 #: Default fixed step [s] (as :func:`pim.model.runout.runout_many`).
 RUNOUT_STEP = 0.004
@@ -94,6 +95,10 @@ def _rk4_stages(t, dt, motion, vehicle, ks):  # pragma: no cover - compiled
         for j in range(6):
             ks[stage, j] = d[j]
 
+
+#: The four stage derivatives of one RK4 step (compiled, inlined where called): the event
+#: kernel (:mod:`pim.model.event_kernel`) steps each vehicle with it too.
+rk4_stages = _rk4_stages
 
 #: RK4's stability limit on a real eigenvalue is h |lambda| < 2.785; the step near rest keeps
 #: h lambda below this (margin for the yaw-sideslip coupling).

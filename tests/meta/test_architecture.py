@@ -25,6 +25,7 @@ RANK = {"pim.model": 0, "pim.io": 1, "pim.analysis": 2, "pim.plotting": 3, "pim"
 LAZY = {("pim.model.solver", "pim.model.kernel"),
         ("pim.analysis.reconstruction", "pim.analysis.runout_fit_batch"),
         ("pim.analysis.runout_fit", "pim.model.runout_kernel"),
+        ("pim.analysis.event", "pim.model.event_kernel"),
         ("sim.compliant_batch", "sim.compliant_kernel"),
         # the pytest plugin loads in every pytest run where the project is installed
         ("comparisons.regression.plugin", "comparisons.regression.baseline")}

@@ -1,0 +1,384 @@
+"""Compiled run-out of both vehicles with the outlines watched: the event after its first impact.
+
+Each sample's two vehicles are stepped together by the run-out's fixed-step classical RK4 on
+the run-out's right-hand side (:mod:`pim.model.runout_formula`, compiled through
+:data:`pim.model.runout_kernel.rk4_stages`: the same tyres, the same equations, either tyre
+law); a stopped vehicle is held (and woken by an impact), a fixed obstacle never moves.
+After every step the outlines are watched (:mod:`pim.model.event_formula`):
+
+- **no contact test while the vehicles are far apart**: only when the circles about the CGs
+  that hold the outlines overlap is the separating-axis test run;
+- **no tunnelling**: while they overlap, the step is at most :data:`TUNNEL_FRACTION` of the
+  smallest outline dimension over a bound of the closing speed of any two outline points
+  (``|v_1 - v_2| + |omega_1| R_1 + |omega_2| R_2``), so no corner crosses a quarter of a
+  vehicle's width in one step;
+- **a new contact** is an overlap depth more than ``tolerance`` above its least value since
+  the last impact; the step is then bisected down to 1 microsecond to the time the depth
+  first passes that level, so no sample penetrates by much more than ``tolerance``; if C
+  closes there, the secondary impact (:func:`pim.model.event_formula.capped_impact`) is
+  solved in the kernel (``solve``) or the run stops and returns the contact for the caller
+  to solve (a single event: :func:`pim.analysis.event.event` solves it with
+  :func:`pim.solve` under any law).
+
+Samples run in parallel (``prange``), each to rest (every vehicle's ``|v| + |omega| r_max``
+below ``stop_speed``), to ``max_time`` or to a contact. Sample 0's every step can be
+recorded (the single event's timeline).
+
+numba is imported only when this module is; the kernel is cached on disk under a key that
+covers this file and the formulas it compiles.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit, prange
+
+from . import event_formula, formula, runout_formula, runout_kernel, tyres
+from .numba_cache import compile_module, stamped_cache
+from .numbers import InputError
+from .runout import RhsData
+from .event_formula import (
+    BISECTION_STEP,
+    CONTACT_TOLERANCE,
+    EVENT_STEP,
+    MAX_IMPACTS,
+    TUNNEL_FRACTION,
+)
+from .runout_kernel import one_signature, rk4_stages
+
+__all__ = ["EventScene", "EventRun", "run_event", "STATUS", "IMPACT_COLUMNS",
+           "RECORD_COLUMNS"]
+
+#: What ended each sample's run (the kernel's status codes, in order).
+STATUS = ("rest", "time", "contact", "impacts", "energy", "record")
+#: Columns of an in-kernel impact's record.
+IMPACT_COLUMNS = ("time", "cx", "cy", "nx", "ny", "px", "py", "depth", "vx1", "vy1", "w1",
+                  "vx2", "vy2", "w2", "energy_loss")
+#: Columns of a recorded step: time and both vehicles' (x, y, psi, v_x, v_y, omega).
+RECORD_COLUMNS = ("time",) + tuple(f"{q}{i}" for i in (1, 2)
+                                   for q in ("x", "y", "psi", "vx", "vy", "omega"))
+
+_PIM = compile_module(formula)
+_GEO = compile_module(event_formula, {"contact": _PIM.contact,
+                                      "post_impact": _PIM.post_impact})
+_box, _contact_geometry = _GEO.box, _GEO.contact_geometry
+_closing_speed, _capped_impact = _GEO.closing_speed, _GEO.capped_impact
+_cached = stamped_cache(event_formula, formula, runout_formula, tyres, runout_kernel)
+
+
+@njit(error_model="numpy")
+def _step(st, moving, t, h, veh1, veh2, new):  # pragma: no cover - compiled
+    """Both vehicles' states ``st`` (2, 6) advanced by one RK4 step of ``h`` [s] into
+    ``new`` (the held ones copied). One function (not inlined), called by the step and the
+    bisection, so numba compiles the right-hand side once."""
+    ks = np.empty((4, 6))
+    for v in range(2):
+        for j in range(6):
+            new[v, j] = st[v, j]
+        if not moving[v]:
+            continue
+        veh = veh1 if v == 0 else veh2
+        rk4_stages(t, h, (st[v, 2], st[v, 3], st[v, 4], st[v, 5]), veh, ks)
+        w = h / 6.0
+        for j in range(6):
+            new[v, j] = st[v, j] + w * (ks[0, j] + 2.0 * ks[1, j] + 2.0 * ks[2, j] + ks[3, j])
+
+
+@njit(error_model="numpy")
+def _contact(st, geo):  # pragma: no cover - compiled
+    b1 = _box(st[0, 0], st[0, 1], st[0, 2], geo[0, 0], geo[0, 1], geo[0, 2])
+    b2 = _box(st[1, 0], st[1, 1], st[1, 2], geo[1, 0], geo[1, 1], geo[1, 2])
+    return _contact_geometry(b1, b2)
+
+
+@njit(error_model="numpy")
+def _bisect(st, moving, t, h, veh1, veh2, new, geo, level):  # pragma: no cover - compiled
+    """The shortest step in (0, h] [s] (to :data:`BISECTION_STEP`) after which the overlap
+    depth exceeds ``level`` [m]; ``new`` holds the state after it."""
+    lo, hi = 0.0, h
+    while hi - lo > BISECTION_STEP:
+        mid = 0.5 * (lo + hi)
+        _step(st, moving, t, mid, veh1, veh2, new)
+        if _contact(new, geo)[0] > level:
+            hi = mid
+        else:
+            lo = mid
+    _step(st, moving, t, hi, veh1, veh2, new)
+    return hi
+
+
+@njit(inline="always", error_model="numpy")
+def _energy(st, inv):  # pragma: no cover - compiled
+    e = 0.0
+    for v in range(2):
+        if inv[2 * v] > 0.0:
+            e += 0.5 * ((st[v, 3] ** 2 + st[v, 4] ** 2) / inv[2 * v]
+                        + st[v, 5] ** 2 / inv[2 * v + 1])
+    return e
+
+
+@njit(inline="always", error_model="numpy")
+def _time_step(st, dt, rad, small):  # pragma: no cover - compiled
+    """The step [s]: ``dt``, or less while the bounding circles overlap (no tunnelling);
+    and whether they overlap."""
+    gap = np.hypot(st[0, 0] - st[1, 0], st[0, 1] - st[1, 1])
+    near = gap < rad[0] + rad[1]
+    h = dt
+    if near:
+        closing = (np.hypot(st[0, 3] - st[1, 3], st[0, 4] - st[1, 4])
+                   + abs(st[0, 5]) * rad[0] + abs(st[1, 5]) * rad[1])
+        if closing * h > TUNNEL_FRACTION * small:
+            h = TUNNEL_FRACTION * small / closing
+    return h, near
+
+
+@njit(error_model="numpy")
+def _impact(st, c, inv, coef, rec):  # pragma: no cover - compiled
+    """Solve the impact at contact ``c`` (depth, cx, cy, nx, ny) on the states ``st`` in
+    place, its record into ``rec`` (:data:`IMPACT_COLUMNS` from "px"); False when C does
+    not close under the law's tolerance (no impulse)."""
+    s1 = (st[0, 0], st[0, 1], st[0, 2], st[0, 3], st[0, 4], st[0, 5])
+    s2 = (st[1, 0], st[1, 1], st[1, 2], st[1, 3], st[1, 4], st[1, 5])
+    before = _energy(st, inv)
+    out = _capped_impact(c[1], c[2], c[3], c[4], s1, s2,
+                             (inv[0], inv[1], inv[2], inv[3]),
+                             (coef[0], coef[1], coef[2]), (1e-12, 1e-12))
+    if out[0] == 0.0 and out[1] == 0.0:
+        return False
+    rec[0], rec[1], rec[2] = out[0], out[1], c[0]
+    st[0, 3], st[0, 4], st[0, 5] = out[2], out[3], out[4]
+    st[1, 3], st[1, 4], st[1, 5] = out[5], out[6], out[7]
+    for j in range(6):
+        rec[3 + j] = st[j // 3, 3 + j % 3]
+    rec[9] = before - _energy(st, inv)
+    return True
+
+
+@_cached
+@njit(parallel=True, cache=True, error_model="numpy")
+def _run(y0, t0, allowed0, data1, data2, geo, rad, reach, inv, coef, settings, out, tail,
+         impacts, record):  # pragma: no cover - compiled
+    n = y0.shape[0]
+    dt, max_time, stop_speed, tol, solve = (settings[0], settings[1], settings[2],
+                                            settings[3], settings[4] > 0.0)
+    for i in prange(n):
+        veh1 = (data1[0][i], data1[1][i], data1[2][i], data1[3][i], data1[4][i], data1[5][i],
+                data1[6], data1[7], data1[8][i], data1[9][i], data1[10][i])
+        veh2 = (data2[0][i], data2[1][i], data2[2][i], data2[3][i], data2[4][i], data2[5][i],
+                data2[6], data2[7], data2[8][i], data2[9][i], data2[10][i])
+        _sample(i, y0[i].copy(), t0[i], allowed0[i], veh1, veh2, geo[i], rad[i], reach[i],
+                inv[i], coef[i], (dt, max_time, stop_speed, tol, solve), out, tail, impacts,
+                record)
+
+
+@njit(error_model="numpy")
+def _sample(i, st, t, allowed, veh1, veh2, geo, rad, reach, inv, coef, settings, out, tail,
+            impacts, record):  # pragma: no cover - compiled
+    dt, max_time, stop_speed, tol, solve = settings
+    new = np.empty((2, 6))
+    moving = np.zeros(2, dtype=np.bool_)
+    for v in range(2):
+        moving[v] = inv[2 * v] > 0.0 and (np.hypot(st[v, 3], st[v, 4]) + abs(st[v, 5])
+                                          * reach[v] >= stop_speed)
+    small = min(geo[0, 1], geo[0, 2], geo[1, 1], geo[1, 2])
+    status, count, rows = 1, 0, 0
+    c = np.zeros(5)
+    if record.shape[0] > 0 and i == 0:
+        rows = _write(record, rows, t, st)
+    while t < max_time:
+        if not moving[0] and not moving[1]:
+            status = 0
+            break
+        h, near = _time_step(st, dt, rad, small)
+        h = min(h, max_time - t)
+        _step(st, moving, t, h, veh1, veh2, new)
+        hit = False
+        if near or np.hypot(new[0, 0] - new[1, 0], new[0, 1] - new[1, 1]) < rad[0] + rad[1]:
+            depth = _contact(new, geo)[0]
+            if depth > allowed + tol:
+                h = _bisect(st, moving, t, h, veh1, veh2, new, geo, allowed + tol)
+                cg = _contact(new, geo)
+                for j in range(5):
+                    c[j] = cg[j]
+                closing = _closing_speed(c[1], c[2], c[3], c[4], new[0], new[1]) < 0.0
+                hit = closing
+                if closing and solve:
+                    if count == impacts.shape[1]:
+                        status = 3
+                    elif _impact(new, c, inv, coef[count], impacts[i, count, 5:]):
+                        impacts[i, count, 0] = t + h
+                        for j in range(1, 5):
+                            impacts[i, count, j] = c[j]
+                        if impacts[i, count, 14] < -1e-9 * (1.0 + _energy(new, inv)):
+                            status = 4
+                        count += 1
+                        for v in range(2):
+                            moving[v] = inv[2 * v] > 0.0
+                    else:
+                        hit = False
+                allowed = max(c[0], 0.0)
+            else:
+                allowed = min(allowed, max(depth, 0.0))
+        else:
+            allowed = 0.0
+        for v in range(2):
+            for j in range(6):
+                st[v, j] = new[v, j]
+        t += h
+        if record.shape[0] > 0 and i == 0:
+            if rows == record.shape[0]:
+                status = 5
+                break
+            rows = _write(record, rows, t, st)
+        if status >= 3 or (hit and not solve):
+            status = 2 if status < 3 else status
+            break
+        for v in range(2):
+            if moving[v] and np.hypot(st[v, 3], st[v, 4]) + abs(st[v, 5]) * reach[v] < stop_speed:
+                moving[v] = False
+    for v in range(2):
+        for j in range(6):
+            out[i, v, j] = st[v, j]
+    tail[i, 0], tail[i, 1], tail[i, 2], tail[i, 3] = t, status, count, allowed
+    tail[i, 4], tail[i, 5] = moving[0], moving[1]
+    tail[i, 6:11] = c
+    if i == 0:
+        tail[i, 11] = rows
+
+
+@njit(inline="always", error_model="numpy")
+def _write(record, rows, t, st):  # pragma: no cover - compiled
+    record[rows, 0] = t
+    for v in range(2):
+        for j in range(6):
+            record[rows, 1 + 6 * v + j] = st[v, j]
+    return rows + 1
+
+
+@dataclass(frozen=True)
+class EventScene:
+    """What the event kernel needs of n samples' two vehicles (SI).
+
+    Attributes
+    ----------
+    data1, data2 : RhsData
+        Each vehicle's run-out data for n samples (:meth:`pim.model.runout.RhsData.of`;
+        ``friction`` 0 for free motion); ``data2`` None for a fixed obstacle.
+    outlines : ndarray (n, 2, 3)
+        Each vehicle's outline: CG to its front, length, width [m].
+    inverse : ndarray (n, 4)
+        1/m1, 1/I1, 1/m2, 1/I2 [1/kg, 1/(kg m^2)] (0 for a fixed obstacle).
+    coefficients : ndarray (n, MAX_IMPACTS, 3)
+        Each further impact's restitution [-], fraction of mu0 [-] and friction cap [-]
+        (inf: Brach's law), for the in-kernel impacts.
+    """
+
+    data1: RhsData
+    data2: RhsData | None
+    outlines: np.ndarray
+    inverse: np.ndarray
+    coefficients: np.ndarray
+
+
+@dataclass(frozen=True)
+class EventRun:
+    """The kernel's answer for n samples (SI; see :func:`run_event`).
+
+    Attributes
+    ----------
+    final : ndarray (n, 2, 6)
+        Each vehicle's last state (x, y, psi, v_x, v_y, omega).
+    time : ndarray (n,)
+        Time of the last state [s].
+    status : ndarray of str (n,)
+        What ended the run (:data:`STATUS`).
+    count : ndarray of int (n,)
+        Impacts solved in the kernel.
+    allowed : ndarray (n,)
+        The least overlap depth since the last impact [m] (to continue a run).
+    moving : ndarray of bool (n, 2)
+        Which vehicles still move.
+    contact : ndarray (n, 5)
+        The last contact found: depth [m], C [m], normal (2,) [-].
+    impacts : ndarray (n, MAX_IMPACTS, len(IMPACT_COLUMNS))
+        The in-kernel impacts (:data:`IMPACT_COLUMNS`), the first ``count`` rows valid.
+    record : ndarray (m, 13) or None
+        Sample 0's every step (:data:`RECORD_COLUMNS`).
+    """
+
+    final: np.ndarray
+    time: np.ndarray
+    status: np.ndarray
+    count: np.ndarray
+    allowed: np.ndarray
+    moving: np.ndarray
+    contact: np.ndarray
+    impacts: np.ndarray
+    record: np.ndarray | None
+
+
+def _columns(data: RhsData) -> tuple:
+    return (data.mass, data.yaw_inertia, data.wheel_x, data.wheel_y, data.load,
+            data.friction, float(data.regularisation), data.times, data.steer, data.brake,
+            data.tyre)
+
+
+def run_event(scene: EventScene, start, *, start_time=0.0, allowed=None, solve=True,
+              record=0, step=EVENT_STEP, max_time=60.0, stop_speed=0.05,
+              tolerance=CONTACT_TOLERANCE) -> EventRun:
+    """Run n samples' two vehicles from ``start`` until rest, ``max_time`` or a contact.
+
+    Parameters
+    ----------
+    scene : EventScene
+    start : array_like (n, 2, 6)
+        Each vehicle's state (x, y, psi, v_x, v_y, omega) at ``start_time`` [SI].
+    start_time : float or (n,) [s]
+    allowed : (n,), optional
+        The overlap depth [m] that counts as no new contact (default: the depth at the
+        start, e.g. the outlines' overlap at PIM's impact configuration).
+    solve : bool
+        Solve each further impact in the kernel (the Monte Carlo); False: stop at the first
+        closing contact (status "contact") for the caller to solve.
+    record : int
+        Rows of sample 0's recording (0: none).
+    step, max_time, stop_speed, tolerance
+        [s], [s], [m/s], [m]: the fixed step, the time limit, the rest threshold of
+        ``|v| + |omega| r_max``, the contact tolerance (module notes).
+    """
+    start = np.ascontiguousarray(np.asarray(start, dtype=float).reshape(-1, 2, 6))
+    n = start.shape[0]
+    if not np.all(np.isfinite(start)):
+        raise InputError("event: the start states must be finite")
+    data2 = scene.data2 if scene.data2 is not None else scene.data1
+    outlines = np.broadcast_to(np.asarray(scene.outlines, float), (n, 2, 3))
+    rad = np.stack([event_formula.bound_radius(*np.moveaxis(outlines[:, v], -1, 0))
+                    for v in range(2)], -1)
+    reach = np.stack([scene.data1.reach, data2.reach], -1)
+    inv = np.broadcast_to(np.asarray(scene.inverse, float), (n, 4))
+    if allowed is None:
+        allowed = np.array([max(_start_depth(start[i], outlines[i]), 0.0) for i in range(n)])
+    out, tail = np.empty((n, 2, 6)), np.zeros((n, 12))
+    impacts = np.zeros((n, MAX_IMPACTS, len(IMPACT_COLUMNS)))
+    rec = np.empty((int(record), 13))
+    settings = np.array([step, max_time, stop_speed, tolerance, 1.0 if solve else 0.0])
+    _run(*one_signature(start, np.broadcast_to(np.asarray(start_time, float), (n,)),
+                        np.asarray(allowed, float)),
+         one_signature(*_columns(scene.data1)), one_signature(*_columns(data2)),
+         *one_signature(outlines, rad, reach, inv,
+                        np.broadcast_to(np.asarray(scene.coefficients, float),
+                                        (n, MAX_IMPACTS, 3)), settings, out, tail, impacts,
+                        rec))
+    status = np.asarray(STATUS)[tail[:, 1].astype(int)]
+    return EventRun(out, tail[:, 0].copy(), status, tail[:, 2].astype(int), tail[:, 3].copy(),
+                    tail[:, 4:6] > 0, tail[:, 6:11].copy(), impacts,
+                    rec[:int(tail[0, 11])] if record else None)
+
+
+def _start_depth(state, outlines) -> float:
+    """The outlines' overlap depth [m] of one sample's state (2, 6)."""
+    boxes = [event_formula.box(state[v, 0], state[v, 1], state[v, 2], *outlines[v])
+             for v in range(2)]
+    return float(event_formula.contact_geometry(*boxes)[0])
