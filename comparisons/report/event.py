@@ -1,7 +1,7 @@
 """``pim event``'s report: the whole event from the approach to rest, answer first.
 
 :func:`run_event` computes the event and its cross-check: the analytic event
-(``pim.event``, where the library has it) with the pymunk event (:func:`sim.simulate_event`)
+(:func:`pim.event`) with the pymunk event (:func:`sim.simulate_event`)
 as its cross-check, or, with ``single_impact``, PIM's single impact and its decelerated
 run-out against the rigid scene's simulation of that one impact (the collision's animation
 until now). :func:`write_event` writes the folder's files through the one report pipeline:
@@ -35,7 +35,7 @@ from pim.model.event import DEFAULT_APPROACH, Event
 from sim.event_scene import tyre_friction_source
 
 __all__ = ["EventRun", "run_event", "event_json", "event_document", "timeline_table",
-           "impacts_table", "write_event", "event_lines"]
+           "impacts_table", "write_event", "event_lines", "measured_rest"]
 
 
 @dataclass(frozen=True)
@@ -47,8 +47,7 @@ class EventRun:
     case : pim.Case
         The case.
     event : Event
-        The answer: the analytic event (or the simulated one where the library has no
-        analytic event), sampled as its producer stored it.
+        The answer: the analytic event (:func:`pim.event`), sampled as it was stored.
     check : Event or None
         The cross-check (the other producer's event).
     tyre : str
@@ -68,23 +67,25 @@ class EventRun:
 
 
 def _whole(case, tyre, approach, units, fps) -> EventRun:
-    """The whole event: pymunk's, and the analytic one where ``pim.event`` exists."""
+    """The whole event: the analytic one, pymunk's as its cross-check."""
+    analytic = pim.event(case, tyre_friction=tyre, approach=approach)
     simulated = sim.simulate_event(case, tyre_friction=tyre, approach=approach)
-    analytic_event = getattr(pim, "event", None)
-    analytic = None if analytic_event is None else analytic_event(
-        case, tyre_friction=tyre, approach=approach)
-    main = analytic if analytic is not None else simulated
-    check = simulated if analytic is not None else None
-    times = frame_times(approach, max(e.end_time for e in (main, check) if e is not None),
-                        fps)
+    times = frame_times(approach, max(analytic.end_time, simulated.end_time), fps)
     text = tyre_friction_source(case, tyre)[1]
     look = Look(title=f"{case.name or 'case'}: the whole event, approach to rest",
-                note=text, units=units,
-                labels=("pymunk event", "analytic event (ghost)") if check is not None
-                else ("pymunk event", ""))
-    shown = (check or main).at(times)
-    ghost = main.at(times) if check is not None else None
-    return EventRun(case, main, check, text, False, Renderer(shown, ghost, look=look))
+                note=text, units=units, labels=("pymunk event", "analytic event (ghost)"),
+                measured_rest=measured_rest(case))
+    return EventRun(case, analytic, simulated, text, False,
+                    Renderer(simulated.at(times), analytic.at(times), look=look))
+
+
+def measured_rest(case: pim.Case) -> tuple:
+    """Each vehicle's measured rest pose (position [m], heading [rad]) from the case's
+    ``[evidence]``, or None."""
+    ev = case.evidence
+    return tuple(None if ev is None or getattr(ev, f"vehicle{i}") is None
+                 else (getattr(ev, f"vehicle{i}").rest_position,
+                       getattr(ev, f"vehicle{i}").rest_heading) for i in (1, 2))
 
 
 def _single(case, tyre, approach, units, fps) -> EventRun:
@@ -214,7 +215,7 @@ def event_document(run: EventRun, units, media=()) -> Document:
     what = ("PIM's single impact and its run-out (--single-impact)" if run.single_impact
             else "the whole event: approach, every impact, run-out to rest")
     check = _differences(run, units)
-    check_text = "No cross-check: the library has no analytic event." if check is None else (
+    check_text = "No cross-check." if check is None else (
         f"Cross-check ({run.check.source} against {run.event.source}): rest positions "
         f"differ by {', '.join(format_number(v) for v in check['rest_position'])} "
         f"{check['units']['length']}, rest headings by "
@@ -236,10 +237,7 @@ def write_event(run: EventRun, folder, units, progress=None) -> list[Path]:
     """event.mp4, plan.png and the report (through the one pipeline) into ``folder``."""
     folder = Path(folder)
     info = write_animation(run.renderer, folder / "event.mp4", progress=progress)
-    measured = tuple(None if e is None else (e.rest_position, e.rest_heading)
-                     for e in (getattr(run.case.evidence, "vehicle1", None),
-                               getattr(run.case.evidence, "vehicle2", None)))
-    save_figure(plan_view(run.event, units=units, measured_rest=measured,
+    save_figure(plan_view(run.event, units=units, measured_rest=measured_rest(run.case),
                           title=f"{run.case.name or 'case'}: {run.event.source} event"),
                 folder / "plan.png")
     media = (Figure("plan.png", "plan view", "The event in plan view."),
