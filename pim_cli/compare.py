@@ -237,17 +237,25 @@ def _compare_law(case, folder, choice, units, *, as_json, allow, **kwargs):
                    "(default: the case's [evidence] friction, else 0.7, dry asphalt; "
                    "0: free motion).")
 @click.option("--no-ghost", is_flag=True, help="Do not draw PIM's answer as a ghost.")
+@click.option("--single-impact", is_flag=True,
+              help="PIM's single impact and its run-out against the rigid scene's simulation "
+                   "of that impact, not the whole event.")
 @law_options
 @units_option
 @progress_option
 @allow_inadmissible_option
 @json_option
-def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_ghost, law, k,
-            mu_c, units, speed_unit, progress, allow_inadmissible, as_json):
-    """Animate CASE: the pymunk simulation solid, the analytic post-impact motion as a ghost
-    (MP4).
+def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_ghost,
+            single_impact, law, k, mu_c, units, speed_unit, progress, allow_inadmissible,
+            as_json):
+    """Animate CASE's whole event, from the approach to rest: the pymunk event solid, the
+    analytic event (pim event) as a ghost (MP4).
 
-    Under the case's impact law (or --law): Brach's PIM and friction-capped Brach play the
+    The tyre friction is the case's [evidence]'s, else 0.7 (dry asphalt), stated in the
+    caption; every impact is drawn at its C with its contact plane, tyre marks where the
+    wheels slide. With --single-impact, or under another impact law than Brach's (the case's
+    impact.law or --law), PIM's single impact and its run-out against the pymunk run of
+    that impact: Brach's PIM and friction-capped Brach play the
     rigid scene at (eps, effective beta); the Kudlich-Slibar law plays its two-phase run
     (compression by the engine at mu_c, then k times its impulse) and continues after
     separation (docs/impact-laws.md). A secondary contact of the outlines after the impact
@@ -275,6 +283,10 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
         eps_, beta_ = setup.restitution, setup.beta
     found = check_answer(case, setup.result if setup else pim.solve(case, eps_, beta_),
                          kwargs["units"], allow=allow_inadmissible, as_json=as_json)
+    if setup is None and not single_impact:
+        _animate_event(case, path, kwargs, (eps, beta), found, as_json)
+        finish_answer(found, allow_inadmissible)
+        return
     try:
         if setup is not None:
             kwargs.update(result=setup.result, title=f"{case.name or 'case'}: {setup.describe()}",
@@ -303,6 +315,29 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
                      f"{info.render_fps:.0f} frames/s, encoded in {info.write_seconds:.2f} s; "
                      f"ghost offset after impact {info.max_ghost_offset_px:.2g} px")
     finish_answer(found, allow_inadmissible)
+
+
+def _animate_event(case, path, kwargs, coefficients, found, as_json) -> None:
+    """``pim animate``'s whole event (the analytic event over the pymunk event)."""
+    import sim
+    from comparisons.animation.collision import animate_event
+
+    eps, beta = coefficients
+    try:
+        info = animate_event(case, path, eps=eps, beta=beta, **kwargs)
+    except sim.SimulationError as exc:
+        click.echo(f"simulation failed ({exc.kind}): {exc}", err=True)
+        sys.exit(1)
+    if as_json:
+        echo_json({"path": str(info.path), "gif": str(info.gif) if info.gif else None,
+                   "frames": info.frames, "fps": info.fps, "size": list(info.size),
+                   "render_fps": info.render_fps, "write_seconds": info.write_seconds,
+                   "max_ghost_offset_px": info.max_ghost_offset_px, "whole_event": True,
+                   "impacts": len(info.event.impacts), **findings_json(found)})
+        return
+    click.echo(f"wrote {info.path}" + (f" and {info.gif}" if info.gif else "")
+               + f": the whole event, {len(info.event.impacts)} impact(s), {info.frames} "
+                 f"frames at {info.fps} fps, rendered at {info.render_fps:.0f} frames/s")
 
 
 def _check_suffix(path, option: str, suffix: str) -> None:

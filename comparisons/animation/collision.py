@@ -30,10 +30,12 @@ from comparisons.report.number_format import format_number
 from pim.model.event import DEFAULT_APPROACH, DEFAULT_TYRE_FRICTION, Event
 from pim.model.numbers import InputError, checked_number
 from pim.model.tyres import STANDARD_GRAVITY
+from sim.event_scene import tyre_friction_source
 from sim.scene import footprint_lever
 
 __all__ = ["Framing", "TyreChoice", "tyre_choice", "frame_times", "build_renderer",
-           "animate_case", "simulate_for_animation", "animation_settings", "animation_plan", "DEFAULT_AFTER",
+           "animate_case", "event_renderer", "animate_event", "measured_rest",
+           "simulate_for_animation", "animation_settings", "animation_plan", "DEFAULT_AFTER",
            "MAX_SHOWN", "REST_HOLD"]
 
 #: Seconds shown after the impact of a motion that never comes to rest (no tyre friction).
@@ -236,6 +238,54 @@ def build_renderer(case: pim.Case, eps: float, beta: float, *,
     look = Look(title=title, note=choice.text(), units=units, size=framing.size,
                 labels=("pymunk simulation", "PIM analytic (ghost)"), warnings=warnings)
     return Renderer(event, analytic if ghost else None, look=look, secondary=secondary)
+
+
+def event_renderer(case: pim.Case, *, framing: Framing | None = None, tyre=None,
+                   units="si", ghost: bool = True, eps=None, beta=None):
+    """The whole event's frames: the pymunk event (:func:`sim.simulate_event`) solid, the
+    analytic event (:func:`pim.event`) as a ghost, from ``framing.before`` (the approach,
+    default :data:`pim.model.event.DEFAULT_APPROACH`) to rest plus :data:`REST_HOLD` (or
+    ``framing.after`` seconds after the first impact).
+
+    Returns
+    -------
+    (Renderer, Event, Event)
+        The renderer, the analytic event and the simulated one (as stored).
+    """
+    framing = _checked_framing(framing or Framing())
+    analytic = pim.event(case, tyre_friction=tyre, approach=framing.before, eps=eps,
+                         beta=beta)
+    simulated = sim.simulate_event(case, tyre_friction=tyre, approach=framing.before,
+                                   eps=eps, beta=beta)
+    after = framing.after if framing.after is not None else \
+        max(analytic.end_time, simulated.end_time) + REST_HOLD
+    times = frame_times(framing.before, after, framing.fps)
+    look = Look(title=f"{case.name or 'case'}: the whole event, approach to rest",
+                note=tyre_friction_source(case, tyre)[1], units=units, size=framing.size,
+                labels=("pymunk event", "analytic event (ghost)"),
+                measured_rest=measured_rest(case))
+    renderer = Renderer(simulated.at(times), analytic.at(times) if ghost else None, look=look)
+    return renderer, analytic, simulated
+
+
+def measured_rest(case: pim.Case) -> tuple:
+    """Each vehicle's measured rest pose (position [m], heading [rad]) from the case's
+    ``[evidence]``, or None."""
+    ev = case.evidence
+    return tuple(None if ev is None or getattr(ev, f"vehicle{i}") is None
+                 else (getattr(ev, f"vehicle{i}").rest_position,
+                       getattr(ev, f"vehicle{i}").rest_heading) for i in (1, 2))
+
+
+def animate_event(case: pim.Case, out, *, gif=None, progress: bool | None = None,
+                  **kwargs) -> AnimationInfo:
+    """Write the whole event's animation (:func:`event_renderer`; ``kwargs``: its options
+    and :class:`Framing`'s fields by name) to ``out`` (MP4)."""
+    options = {k: kwargs.pop(k) for k in ("tyre", "units", "ghost", "eps", "beta")
+               if k in kwargs}
+    renderer = event_renderer(case, framing=_framing(None, kwargs), **options)[0]
+    return write_animation(renderer, out, fps=kwargs.get("fps", DEFAULT_FPS), gif=gif,
+                           progress=progress)
 
 
 def _framing(framing: Framing | None, options: dict) -> Framing:

@@ -45,7 +45,8 @@ import numpy as np
 
 import pim
 import sim
-from comparisons.animation.collision import build_renderer
+from comparisons.animation.collision import build_renderer, event_renderer, measured_rest
+from comparisons.animation.plan import plan_view
 from comparisons.animation.render import write_animation
 from comparisons.report.assumptions import assumption_table
 from comparisons.report.compare_document import REPORT_NAME, compare_document
@@ -336,10 +337,18 @@ def _gather_crosscheck(data: ReportData) -> None:
 
 
 def _gather_animation(data: ReportData, folder: Path, options: CompareOptions) -> None:
-    """animation.mp4 (and .gif): the simulation with PIM's ghost."""
+    """animation.mp4 (and .gif) and plan.png: the whole event (the pymunk event with the
+    analytic event as a ghost, :func:`comparisons.animation.collision.event_renderer`), or,
+    for a case the event cannot run (no outlines), the single impact's simulation with
+    PIM's ghost."""
+    case = data.case
     try:
-        renderer = build_renderer(data.case, data.eps, data.beta, result=data.result,
-                                  tyre=options.tyre, units=data.units)
+        try:
+            renderer, analytic, _ = event_renderer(case, tyre=options.tyre, units=data.units,
+                                                   eps=data.eps, beta=data.beta)
+        except InputError:
+            renderer, analytic = build_renderer(case, data.eps, data.beta, result=data.result,
+                                                tyre=options.tyre, units=data.units), None
         data.animation = write_animation(renderer, folder / "animation.mp4",
                                          gif=folder / "animation.gif" if options.gif else None,
                                          progress=options.progress)
@@ -347,6 +356,12 @@ def _gather_animation(data: ReportData, folder: Path, options: CompareOptions) -
         data.animation_error = exc
         return
     data.files += ["animation.mp4"] + (["animation.gif"] if options.gif else [])
+    if analytic is not None:
+        save_figure(plan_view(analytic, units=data.units, measured_rest=measured_rest(case),
+                              title=f"{case.name or 'case'}: the analytic event"),
+                    folder / "plan.png")
+        data.plan = "plan.png"
+        data.files.append("plan.png")
 
 
 def _gather_speed_error(data: ReportData, folder: Path, options: CompareOptions) -> None:

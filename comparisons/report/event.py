@@ -21,9 +21,10 @@ import numpy as np
 
 import pim
 import sim
-from comparisons.animation.collision import Framing, build_renderer, frame_times
+from comparisons.animation.collision import Framing, build_renderer, event_renderer, \
+    measured_rest
 from comparisons.animation.plan import plan_view
-from comparisons.animation.render import Look, Renderer, write_animation
+from comparisons.animation.render import Renderer, write_animation
 from comparisons.report.document import Cards, Card, Document, Figure, Paragraph, Section, \
     Video
 from comparisons.report.number_format import format_number
@@ -32,10 +33,9 @@ from comparisons.report.write import write_document
 from pim.io.files import save_figure
 from pim.io.units import DisplayUnits, convert, unit_scale
 from pim.model.event import DEFAULT_APPROACH, Event
-from sim.event_scene import tyre_friction_source
 
 __all__ = ["EventRun", "run_event", "event_json", "event_document", "timeline_table",
-           "impacts_table", "write_event", "event_lines", "measured_rest"]
+           "impacts_table", "write_event", "event_lines"]
 
 
 @dataclass(frozen=True)
@@ -68,24 +68,9 @@ class EventRun:
 
 def _whole(case, tyre, approach, units, fps) -> EventRun:
     """The whole event: the analytic one, pymunk's as its cross-check."""
-    analytic = pim.event(case, tyre_friction=tyre, approach=approach)
-    simulated = sim.simulate_event(case, tyre_friction=tyre, approach=approach)
-    times = frame_times(approach, max(analytic.end_time, simulated.end_time), fps)
-    text = tyre_friction_source(case, tyre)[1]
-    look = Look(title=f"{case.name or 'case'}: the whole event, approach to rest",
-                note=text, units=units, labels=("pymunk event", "analytic event (ghost)"),
-                measured_rest=measured_rest(case))
-    return EventRun(case, analytic, simulated, text, False,
-                    Renderer(simulated.at(times), analytic.at(times), look=look))
-
-
-def measured_rest(case: pim.Case) -> tuple:
-    """Each vehicle's measured rest pose (position [m], heading [rad]) from the case's
-    ``[evidence]``, or None."""
-    ev = case.evidence
-    return tuple(None if ev is None or getattr(ev, f"vehicle{i}") is None
-                 else (getattr(ev, f"vehicle{i}").rest_position,
-                       getattr(ev, f"vehicle{i}").rest_heading) for i in (1, 2))
+    renderer, analytic, simulated = event_renderer(
+        case, framing=Framing(before=approach, fps=fps), tyre=tyre, units=units)
+    return EventRun(case, analytic, simulated, renderer.look.note, False, renderer)
 
 
 def _single(case, tyre, approach, units, fps) -> EventRun:
