@@ -88,7 +88,7 @@ def _side(track, k: int, i: int) -> np.ndarray:
 
 
 def plan_view(event: Event, *, units="si", interval: float | None = None,
-              measured_rest=(None, None), title: str = ""):
+              measured_rest=(None, None), title: str = "", points=()):
     """A matplotlib Figure of ``event`` in plan view (module notes).
 
     Parameters
@@ -103,6 +103,9 @@ def plan_view(event: Event, *, units="si", interval: float | None = None,
         Per vehicle, the measured rest pose ``(position [m], heading [rad])`` or None.
     title : str
         First line of the title (the interval is stated after it).
+    points : sequence of ndarray (k, 2)
+        Measured points the CGs passed through [m] (a reconstruction's ``path_points``),
+        drawn as black crosses.
     """
     from matplotlib.figure import Figure
 
@@ -118,6 +121,10 @@ def plan_view(event: Event, *, units="si", interval: float | None = None,
             pts = pose_points(body, rest) * scale
             ax.plot(*np.vstack([pts, pts[:1]]).T, ":", color="k", lw=1.4,
                     label="measured rest" if i == 0 or measured_rest[0] is None else None)
+    shown = [np.asarray(p, float).reshape(-1, 2) for p in points if len(p)]
+    if shown:
+        pts = np.concatenate(shown) * scale
+        ax.plot(*pts.T, "+", color="k", ms=9, label="measured path points")
     _impacts(ax, event, scale)
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel(f"x [{unit}]")

@@ -11,6 +11,7 @@ from dataclasses import replace
 import numpy as np
 
 from comparisons.animation.motion import case_impact
+from comparisons.animation.plan import plan_view
 from comparisons.animation.render import DEFAULT_FPS, AnimationInfo, Look, Renderer, \
     write_animation
 from comparisons.report.number_format import format_number
@@ -20,7 +21,7 @@ from pim.model.numbers import InputError
 from pim.model.tyres import wheel_positions
 
 __all__ = ["reconstruction_event", "reconstruction_renderer", "write_reconstruction_video",
-           "DEFAULT_HOLD"]
+           "reconstruction_plan", "DEFAULT_HOLD"]
 
 #: Seconds the rest poses are held at the end of the reconstruction's animation.
 DEFAULT_HOLD = 1.0
@@ -83,3 +84,13 @@ def write_reconstruction_video(post: PostImpact, result, path, *, units="si",
     """Write the reconstruction's animation (MP4) to ``path``, atomically."""
     renderer = reconstruction_renderer(post, result, units=units, fps=fps, size=size)
     return write_animation(renderer, path, fps=fps, progress=progress)
+
+
+def reconstruction_plan(post: PostImpact, result, units="si"):
+    """The reconstruction in plan view (:func:`comparisons.animation.plan.plan_view` of
+    :func:`reconstruction_event`): the fitted run-outs' outlines at a stated interval with
+    their times, the CG paths, the impact, the measured rest positions and path points."""
+    points = [getattr(post.case.evidence, f"vehicle{i}").path_points for i in post.runouts]
+    return plan_view(reconstruction_event(post, result, hold=0.0), units=units,
+                     measured_rest=_measured_rest(post), points=points,
+                     title=f"{post.case.name or 'case'}: the reconstruction's fitted run-outs")

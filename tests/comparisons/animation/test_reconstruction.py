@@ -77,3 +77,16 @@ def test_the_mp4_has_every_frame(post, tmp_path):
 def test_bad_settings_are_named(post, kwargs, words):
     with pytest.raises(ValueError, match=words):
         reconstruction_event(post, TRUTH, **kwargs)
+
+
+def test_the_plan_view_draws_the_fitted_paths_in_the_chosen_units(post):
+    from comparisons.animation.reconstruction import reconstruction_plan
+
+    fig_si = reconstruction_plan(post, TRUTH, "si")
+    fig_us = reconstruction_plan(post, TRUTH, "us")
+    line_si = fig_si.axes[0].lines[0].get_xydata()
+    line_us = fig_us.axes[0].lines[0].get_xydata()
+    np.testing.assert_allclose(line_si[-1], post.runouts[1].rest_position, atol=1e-9)
+    np.testing.assert_allclose(line_us, line_si / 0.3048)
+    assert fig_us.axes[0].get_xlabel() == "x [ft]"
+    assert "outlines every" in fig_si.axes[0].get_title()
