@@ -43,7 +43,19 @@ def _snapshots(event: Event, interval: float) -> np.ndarray:
     times = np.arange(math.ceil(event.time[0] / interval) * interval, event.time[-1],
                       interval)
     times = np.concatenate([times, [i.time for i in event.impacts], [event.time[-1]]])
-    return np.unique(np.clip(np.searchsorted(event.time, times), 0, len(event) - 1))
+    after = np.clip(np.searchsorted(event.time, times), 1, len(event) - 1)
+    nearer = np.abs(event.time[after - 1] - times) <= np.abs(event.time[after] - times)
+    return np.unique(np.where(nearer, after - 1, after))
+
+
+def _moved(track, kept: list, k: int) -> bool:
+    """Sample ``k`` is 10 cm or 1 degree away from the last kept outline (a vehicle at rest
+    gets one outline, not one per interval)."""
+    if not kept:
+        return True
+    j = kept[-1]
+    return bool(np.hypot(*(track.position[k] - track.position[j])) > 0.1
+                or abs(track.heading[k] - track.heading[j]) > math.radians(1.0))
 
 
 def _track_layer(ax, event: Event, i: int, scale: float, interval: float) -> None:
@@ -65,16 +77,22 @@ def _track_layer(ax, event: Event, i: int, scale: float, interval: float) -> Non
             ax.plot(*xy.T, "-", color=_rgb("marks"), lw=1.6, solid_capstyle="butt")
     if body is None:
         return
+    kept, last_index = [], len(event) - 1
     for k in _snapshots(event, interval):
+        moved = _moved(track, kept, k)
+        if not moved and k != last_index:
+            continue
+        kept.append(k)
         pts = track.placed(body)[k] * scale
-        last = k == len(event) - 1
+        last = k == last_index
         closed = np.vstack([pts, pts[:1]])
         ax.fill(*pts.T, color=fill, alpha=0.55 if last else 0.12, lw=0)
         ax.plot(*closed.T, "-", color=edge, lw=1.4 if last else 0.6)
         label = f"{format_number(float(event.time[k]), sig=3)} s"
         away = pts.mean(0) + _side(track, k, i) * float(np.ptp(body[:, 0])) * scale
-        ax.annotate(label, pts.mean(0), xytext=away, fontsize=6.5, color=edge,
-                    arrowprops=dict(arrowstyle="-", color=edge, lw=0.4, alpha=0.6))
+        if moved:
+            ax.annotate(label, pts.mean(0), xytext=away, fontsize=6.5, color=edge,
+                        arrowprops=dict(arrowstyle="-", color=edge, lw=0.4, alpha=0.6))
 
 
 def _side(track, k: int, i: int) -> np.ndarray:
