@@ -262,7 +262,7 @@ def event_renderer(case: pim.Case, *, framing: Framing | None = None, tyre=None,
     times = frame_times(framing.before, after, framing.fps)
     look = Look(title=f"{case.name or 'case'}: the whole event, approach to rest",
                 note=tyre_friction_source(case, tyre)[1], units=units, size=framing.size,
-                labels=("pymunk event", "analytic event (ghost)"),
+                labels=("pymunk event", "analytic event"),
                 measured_rest=measured_rest(case))
     renderer = Renderer(simulated.at(times), analytic.at(times) if ghost else None, look=look)
     return renderer, analytic, simulated

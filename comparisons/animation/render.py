@@ -427,7 +427,7 @@ class Renderer:
         if any(t.sliding is not None for t in self.sim.tracks):
             legend.append(("grey: tyre marks", COLORS["marks"]))
         if self.sim.impacts:
-            legend.append(("green: each impact's C and plane", COLORS["contact"]))
+            legend.append(("green: impacts' C, plane", COLORS["contact"]))
         if any(r is not None for r in self.look.measured_rest):
             legend.append(("dotted: measured rest", COLORS["rest"]))
         for text, color in legend:
@@ -589,8 +589,9 @@ def _pixels(img: Image.Image) -> np.ndarray:
 
 
 def write_animation(renderer: Renderer, path, fps: int = DEFAULT_FPS, gif=None,
-                    progress: bool | None = None) -> AnimationInfo:
-    """Draw every frame and write the MP4 (and optionally a GIF at half size), atomically.
+                    progress: bool | None = None, gif_scale: float = 0.5) -> AnimationInfo:
+    """Draw every frame and write the MP4 (and optionally a GIF, at ``gif_scale`` of the
+    frame size), atomically.
 
     Parameters
     ----------
@@ -604,6 +605,8 @@ def write_animation(renderer: Renderer, path, fps: int = DEFAULT_FPS, gif=None,
         Also write an animated GIF (half size) there.
     progress : bool or None
         Show a tqdm bar on stderr (None: only on a terminal).
+    gif_scale : float
+        Size of the GIF's frames relative to the video's (default half: a smaller file).
     """
     import imageio.v2 as imageio
     from tqdm import tqdm
@@ -626,8 +629,9 @@ def write_animation(renderer: Renderer, path, fps: int = DEFAULT_FPS, gif=None,
                 render += _time.perf_counter() - t0
                 writer.append_data(_pixels(img))
                 if gif_path is not None:
-                    thumbs.append(img.resize((img.width // 2, img.height // 2),
-                                             Image.Resampling.BILINEAR))
+                    thumbs.append(img if gif_scale == 1 else img.resize(
+                        (round(img.width * gif_scale), round(img.height * gif_scale)),
+                        Image.Resampling.BILINEAR))
         finally:
             writer.close()
         if gif_path is not None:

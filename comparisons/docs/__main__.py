@@ -11,6 +11,7 @@ from pathlib import Path
 PARTS = {
     "validate-models": "comparisons.docs.validate_models",
     "inertia-estimate": "comparisons.docs.inertia_estimate",
+    "readme-animation": "comparisons.docs.readme_animation",
 }
 
 

@@ -14,5 +14,7 @@ def test_the_plan_view_draws_every_outline_interval_and_impact(tmp_path):
                     title="slide")
     ax = fig.axes[0]
     texts = [t.get_text() for t in ax.texts]
-    assert "0.5 s" in texts and "3 s" in texts and any(t.startswith("impact 1") for t in texts)
+    assert "0.5 s" in texts and "2.5 s" in texts and any(t.startswith("impact 1") for t in texts)
+    assert "3 s" not in texts                 # at rest from 2.5 s: one outline, not three
+    assert texts.count("0 s") == 2            # each vehicle's first outline
     assert "outlines every 0.25 s" in ax.get_title() and ax.get_xlabel() == "x [ft]"
