@@ -72,8 +72,8 @@ COMMANDS = (
     Command("plot", "pim_cli.fit:plot", RECONSTRUCT,
             "Draw the design sheet's graphs for CASE into --out (PNG and SVG)."),
     Command("animate", "pim_cli.compare:animate", RECONSTRUCT,
-            "Animate CASE: the pymunk simulation solid, the analytic post-impact motion as a "
-            "ghost (MP4)."),
+            "Animate CASE's whole event, from the approach to rest: the pymunk event solid, "
+            "the analytic event (pim event) as a ghost (MP4)."),
     Command("validate", "pim_cli.validate:validate", MODEL,
             "Validate PIM on the bundled published crash tests (DATASET: all by default)."),
     Command("validate-models", "pim_cli.models:validate_models", MODEL,
