@@ -20,6 +20,8 @@ from dataclasses import replace
 import numpy as np
 
 import pim
+from pim.analysis.event import impact_record
+from pim.model.case import ImpactSpec
 from pim.model.event import REST_SPEED, Event, ImpactRecord, Track, phase_labels
 from pim.model.geometry import vehicle_outline
 from pim.model.tyres import STANDARD_GRAVITY
@@ -122,26 +124,12 @@ def rest_time(time, tracks) -> float | None:
 def case_impact(case: pim.Case, result: pim.Result, impulse=None,
                 source: str = "case") -> ImpactRecord:
     """The case's single impact at t = 0 as an :class:`pim.model.event.ImpactRecord`, from
-    PIM's answer ``result`` (``impulse`` [N s] on vehicle 1: another producer's, e.g. the
-    simulator's, for its event)."""
-    def pair(a, b):
-        return np.stack([np.asarray(a, float).reshape(2), np.asarray(b, float).reshape(2)])
-
-    return ImpactRecord(
-        time=0.0, point=np.asarray(case.impact.point, float).reshape(2),
-        normal_angle=float(case.impact.normal_angle), law="brach",
-        coefficients={"eps": float(np.asarray(result.eps)),
-                      "beta": float(np.asarray(result.beta))},
-        impulse=np.asarray(result.impulse if impulse is None else impulse, float).reshape(2),
-        velocity_before=pair(case.vehicle1.velocity, case.vehicle2.velocity),
-        velocity_after=pair(result.velocity1, result.velocity2),
-        yaw_rate_before=np.array([float(np.asarray(case.vehicle1.yaw_rate)),
-                                  float(np.asarray(case.vehicle2.yaw_rate))]),
-        yaw_rate_after=np.array([float(np.asarray(result.yaw_rate1)),
-                                 float(np.asarray(result.yaw_rate2))]),
-        energy_loss=float(np.asarray(result.energy_loss)),
-        pdof=np.array([float(np.asarray(result.pdof1)), float(np.asarray(result.pdof2))]),
-        source=source)
+    PIM's answer ``result`` (:func:`pim.analysis.event.impact_record`; ``impulse`` [N s] on
+    vehicle 1: another producer's, e.g. the simulator's, for its event)."""
+    record = impact_record(case, result, 0.0, ImpactSpec(law="brach"), source)
+    if impulse is None:
+        return record
+    return replace(record, impulse=np.asarray(impulse, float).reshape(2))
 
 
 def analytic_motion(case: pim.Case, result: pim.Result, time, tyre: float = 0.0,
