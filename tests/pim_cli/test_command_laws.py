@@ -37,6 +37,7 @@ def arguments(command: str, case: str, tmp_path) -> list[str]:
              "compare": ["--out", str(tmp_path / "c"), "--no-animation", "--no-speed-error",
                          "--no-assumptions", "--no-progress"],
              "animate": ["--out", str(tmp_path / "a.mp4"), "--no-progress"],
+             "event": ["--out", str(tmp_path / "e"), "--no-progress", "--before", "0.2"],
              "reconstruct": ["--samples", "0"]}
     return [command, case, *extra.get(command, [])]
 
