@@ -105,7 +105,8 @@ def _impact_rows(event: Event, units) -> list[dict]:
                      "coefficients": {n: float(v) for n, v in imp.coefficients.items()},
                      "delta_v": [[float(v) for v in row] for row in dv],
                      "delta_v_magnitude": [float(v) for v in dvm],
-                     "pdof": [float(np.degrees(p)) for p in imp.pdof],
+                     "pdof": [None if np.isnan(p) else float(np.degrees(p))
+                              for p in imp.pdof],         # None: a fixed obstacle
                      "energy_loss": float(energy), "source": imp.source,
                      "units": {"length": length, "speed": speed, "energy": e_unit,
                                "angle": "deg", "time": "s"}})
@@ -239,7 +240,7 @@ def event_lines(run: EventRun, units) -> list[str]:
         dv = ", ".join(f"vehicle {i + 1} {format_number(v)} {r['units']['speed']} "
                        f"(PDOF {format_number(p)} deg)"
                        for i, (v, p) in enumerate(zip(r["delta_v_magnitude"], r["pdof"],
-                                                      strict=True)))
+                                                      strict=True)) if p is not None)
         lines.append(f"impact {r['number']} at t = {format_number(r['time'], sig=3)} s: "
                      f"delta-V {dv}")
     for r in _rest_rows(run.event, units):

@@ -49,7 +49,10 @@ def test_json_fields_in_the_case_units(run):
     assert first["law"] and first["coefficients"]
     assert [r["vehicle"] for r in data["rest"]] == [1, 2]
     assert data["rest"][0]["units"] == {"length": "ft", "angle": "deg"}
-    assert "crosscheck" in data
+    check = data["crosscheck"]                   # the pymunk event against the analytic
+    assert check["units"] == {"length": "ft", "speed": "mph", "angle": "deg"}
+    assert len(check["rest_position"]) == 2 and check["impacts"] == 0
+    assert max(check["rest_position"]) < 3.0      # ft: the two producers agree at rest
 
 
 def test_timeline_csv_speaks_the_case_units(run):
