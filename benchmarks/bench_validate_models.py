@@ -1,4 +1,4 @@
-"""Figures of ``pim validate-models`` (issue 26), printed, not asserted.
+"""Figures of ``pim validate-models`` (issues 26 and 34), printed, not asserted.
 
 Run:  python benchmarks/bench_validate_models.py [--skip-command] [--warm-too]
 
@@ -7,7 +7,11 @@ Prints
    non-sideswipe class, Coulomb scene): scenes per CPU second, against the pymunk scene
    stepping the same scenes one at a time in the same run (the baseline: the machine is
    shared, compare the ratio);
-2. ``pim validate-models`` end to end in a subprocess with an empty numba cache (as from a
+2. what issue 34 added, in CPU seconds against the Coulomb scene's class fit and
+   leave-one-out refits of the same class in the same run (the baseline): the scene held to
+   the physical ranges (its class fit and refits), the profile over the contact time, the
+   mechanisms switched off one at a time (non-sideswipe class);
+3. ``pim validate-models`` end to end in a subprocess with an empty numba cache (as from a
    clean checkout: the compiled scene is compiled first): wall time, CPU time and the wall
    time against the goal of 120 s on 2 cores; with ``--warm-too`` the same command again
    with the cache the first run filled (the baseline: what compiling costs).
@@ -27,6 +31,7 @@ from pathlib import Path
 import numpy as np
 
 import sim
+from comparisons.studies import contact_time as C
 from comparisons.studies import crash_records as R
 from comparisons.studies import tuned_scene as T
 
@@ -61,6 +66,27 @@ def throughput() -> None:
           f"({base * 1e3:.1f} ms each): {rate * base:,.0f}x")
 
 
+def _cpu(work) -> float:
+    cpu = time.process_time()
+    work()
+    return time.process_time() - cpu
+
+
+def added_pieces() -> None:
+    radii = R.fitted_radii()
+    records = R.crash_classes(radii=radii)[R.NON_SIDESWIPE]
+    variant = R.input_variants(records, radii)[0]
+    base = _cpu(lambda: T.fit_class(T.SCENE_MODEL, records, variant))
+    phys = _cpu(lambda: T.fit_class(T.SCENE_PHYSICAL_MODEL, records, variant))
+    prof = _cpu(lambda: C.profile_contact_time(records, variant))
+    mech = _cpu(lambda: C.mechanism_study(records, variant))
+    print(f"2. non-sideswipe class, CPU s: the Coulomb scene's class fit + leave-one-out "
+          f"{base:.1f} (baseline); the physical scene's {phys:.1f} ({phys / base:.1f}x) per "
+          f"input variant; the profile over {len(C.PROFILE_TIMES)} contact times "
+          f"{prof:.1f} ({prof / base:.1f}x); the {len(C.MECHANISMS)} mechanisms "
+          f"{mech:.1f} ({mech / base:.1f}x)")
+
+
 def _run(env: dict, out: Path) -> tuple[float, float]:
     """(wall, CPU) seconds of ``pim validate-models`` in a fresh process."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -79,7 +105,7 @@ def command(warm: bool) -> None:
             [str(root), *filter(None, [os.environ.get("PYTHONPATH")])]))
         load = os.getloadavg()[0]
         wall, cpu = _run(env, Path(out) / "cold")
-        print(f"2. pim validate-models, empty numba cache: {wall:.1f} s wall, {cpu:.1f} s CPU "
+        print(f"3. pim validate-models, empty numba cache: {wall:.1f} s wall, {cpu:.1f} s CPU "
               f"(load {load:.1f} before, {os.getloadavg()[0]:.1f} after); goal {GOAL:.0f} s "
               f"on 2 cores: {wall / GOAL:.2f} of it by wall time, {cpu / GOAL:.2f} by CPU "
               f"time (the command's CPU time bounds its wall time on 2 idle cores from "
@@ -99,6 +125,7 @@ def main() -> None:
     args = parser.parse_args()
     np.seterr(all="ignore")
     throughput()
+    added_pieces()
     if not args.skip_command:
         command(args.warm_too)
 

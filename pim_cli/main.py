@@ -33,7 +33,8 @@ __all__ = ["main", "cli", "FiniteFloat", "Beta", "SEED",
            "json_option", "echo_json", "friction_limit_option", "cap_friction_option",
            "solve_with_options", "NO_IMPACT_EXIT_CODE", "law_options",
            "load_case_for", "OPTION_NAMES", "resolve_options", "solve_choice",
-           "allow_inadmissible_option", "INADMISSIBLE_EXIT_CODE",
+           "allow_inadmissible_option", "INADMISSIBLE_EXIT_CODE", "allow_inconsistent_option",
+           "say_contradiction", "finish_evidence",
            "check_answer", "say_findings", "finish_answer", "findings_json"]
 
 
@@ -311,6 +312,31 @@ allow_inadmissible_option = click.option(
          "is gained, beta outside [0, 1] under Brach's law, C farther from a CG than the "
          "vehicle is long); the reasons are still printed first. Default: exit 1 after the "
          "answer.")
+
+
+allow_inconsistent_option = click.option(
+    "--allow-inconsistent", "allow_inconsistent", is_flag=True,
+    help="Exit 0 even when the evidence contradicts itself (its chi-square's p below 0.001: "
+         "the measurements, their sigmas or the model are wrong); the reason is still "
+         "printed first. Default: exit 1 after the answer (--allow-inadmissible accepts it "
+         "too).")
+
+
+def say_contradiction(reason: str | None, allow: bool = False) -> None:
+    """Before the answer: the evidence's contradiction ``reason`` (None: none) as an error on
+    stderr, unless ``allow`` (the output's own warning says it then)."""
+    if reason and not allow:
+        click.echo(f"error: {reason}", err=True)
+
+
+def finish_evidence(reason: str | None, allow: bool = False) -> None:
+    """After the answer: exit :data:`INADMISSIBLE_EXIT_CODE` when the evidence contradicts
+    itself (``reason`` not None), unless ``allow`` (--allow-inconsistent or
+    --allow-inadmissible)."""
+    if reason and not allow:
+        click.echo("error: the evidence contradicts itself (the reason above); "
+                   "--allow-inconsistent accepts it", err=True)
+        raise click.exceptions.Exit(INADMISSIBLE_EXIT_CODE)
 
 
 def say_findings(found: Findings, allow: bool = False, as_json: bool = False) -> None:

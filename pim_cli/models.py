@@ -12,10 +12,11 @@ from tqdm.auto import tqdm
 
 from comparisons.report.pulses import pulse_table, write_pulses
 from comparisons.report.render import markdown_table
-from comparisons.report.tuned import study_json, verdict_sentence, write_tuned_study
+from comparisons.report.tuned import conclusion, study_json, verdict_sentence, write_tuned_study
 from comparisons.studies.crash_records import CLASS_KEYS
 from comparisons.studies.pulses import compare_pulses
-from comparisons.studies.tuned_scene import COARSE_STEPS, study_all
+from comparisons.studies.contact_time import study_classes
+from comparisons.studies.tuned_scene import COARSE_STEPS
 from pim.io.files import writable_folder
 from pim.io.output import output_folder, rebase
 from pim_cli.main import echo_json, json_option, output_units, units_option
@@ -55,8 +56,12 @@ def validate_models(out, max_tests, classes, steps, units, speed_unit, progress,
     Per crash class (IIHS barrier non-sideswipe and sideswipe, RICSAC, NHTSA car-to-car) and
     input variant: multi-start class fits and converged leave-one-out refits of PIM and of
     the compiled scene under two tangential laws, then a paired signed-rank test of the
-    held-out errors and one verdict. Writes tuned-scene.md and .html, the summary, verdict
-    and prediction tables (CSV) and tuned-scene.png; prints the verdicts and the wall time.
+    held-out errors and one verdict, for the scene fitted freely and held to the physical
+    ranges; the class fit's profile over the contact time (20-250 ms) with its
+    likelihood-ratio threshold, and on the non-sideswipe class the scene with one mechanism
+    switched off at a time. Writes tuned-scene.md and .html (the conclusion first), the
+    summary, verdict, profile, mechanism and prediction tables (CSV), tuned-scene.png and
+    tuned-scene-profile.png; prints the conclusion, the verdicts and the wall time.
     """
     wall = time.perf_counter()
     shown = output_units(None, units, speed_unit)
@@ -69,12 +74,15 @@ def validate_models(out, max_tests, classes, steps, units, speed_unit, progress,
     with output_folder(folder, command="pim validate-models") as tmp:
         with tqdm(desc="validate-models", unit=" scenes", unit_scale=True,
                   disable=None if progress is None else not progress) as bar:
-            studies = study_all(max_tests, steps=steps, classes=classes or None, bar=bar)
+            studies = study_classes(max_tests, steps=steps, classes=classes or None,
+                                    bar=bar)
         files = rebase(write_tuned_study(studies, tmp, shown, command), tmp, folder)
     wall = time.perf_counter() - wall
     if as_json:
         echo_json(study_json(studies, shown, wall) | {"files": [str(f) for f in files]})
         return
+    for paragraph in conclusion(studies, shown):
+        click.echo(paragraph.replace("**", "") + "\n")
     for st in studies:
         for v in st.variants:
             click.echo(verdict_sentence(st, v, shown))

@@ -50,14 +50,17 @@ from pim_cli.main import (
     SEED,
     FiniteFloat,
     allow_inadmissible_option,
+    allow_inconsistent_option,
     case_argument,
     check_answer,
     echo_json,
     findings_json,
     finish_answer,
+    finish_evidence,
     json_option,
     load_case_for,
     output_units,
+    say_contradiction,
     units_option,
 )
 
@@ -93,9 +96,10 @@ DEFAULT_MAX_MINUTES = 30.0
                    "fits) when over this.")
 @units_option
 @allow_inadmissible_option
+@allow_inconsistent_option
 @json_option
 def reconstruct(case_name, out, samples, seed, workers, video, progress, max_minutes, units,
-                speed_unit, allow_inadmissible, as_json):
+                speed_unit, allow_inadmissible, allow_inconsistent, as_json):
     """Reconstruct CASE's unknowns, such as the impact speeds, from its evidence.
 
     With --out DIR: DIR/report.md, DIR/report.html and DIR/reconstruction.csv; a case
@@ -105,7 +109,9 @@ def reconstruct(case_name, out, samples, seed, workers, video, progress, max_min
     With --out the folder is written whole at the end (or not at all: an error or an
     interrupt leaves an earlier run there as it was); its lock is taken before the work.
     Exit code 1 after the output when the reconstructed answer is inadmissible (the
-    reasons first; --allow-inadmissible: exit 0).
+    reasons first; --allow-inadmissible: exit 0), and when the evidence contradicts itself,
+    its chi-square's p below 0.001 (the reason first; --allow-inconsistent or
+    --allow-inadmissible: exit 0).
     """
     case = load_case_for("reconstruct", case_name)
     units = output_units(case, units, speed_unit)
@@ -114,12 +120,14 @@ def reconstruct(case_name, out, samples, seed, workers, video, progress, max_min
         with _stages(case, samples, workers, progress) as say:
             rec, rows, pre, found = _reconstruct(
                 case, samples, seed, workers, units, as_json, say=say,
-                estimate=budget(samples, workers, max_minutes), allow=allow_inadmissible)
+                estimate=budget(samples, workers, max_minutes), allow=allow_inadmissible,
+                accept=allow_inadmissible or allow_inconsistent)
         if tmp is not None:
             _write_folder(tmp, rec, rows, units, video, pre)
     if out and not as_json:
         click.echo(f"wrote {Path(out) / 'report.html'} (and report.md)")
     finish_answer(found, allow_inadmissible)
+    finish_evidence(rec.contradiction, allow_inadmissible or allow_inconsistent)
 
 
 @contextlib.contextmanager
@@ -159,9 +167,10 @@ def budget(samples: int, workers: int, max_minutes: float):
 
 
 def _reconstruct(case, samples, seed, workers, units, as_json, *, say=None, estimate=None,
-                 allow=False):
+                 allow=False, accept=False):
     """Run the reconstruction and print its table (or JSON) after what is wrong or doubtful
-    about its answer; return it, its rows, the rows of the speeds before the impact
+    about its answer (evidence that contradicts itself as an error unless ``accept``);
+    return it, its rows, the rows of the speeds before the impact
     (:mod:`comparisons.report.pre_impact`) and those findings."""
     if workers > 1:
         with worker_pool(workers) as pool:
@@ -175,6 +184,7 @@ def _reconstruct(case, samples, seed, workers, units, as_json, *, say=None, esti
         raise InputError(rec.undetermined_reason)
     rows = reconstruction_rows(rec, units)
     pre = pre_impact_rows(reconstruction_pre_impact(rec, seed), units)
+    say_contradiction(rec.contradiction, accept)
     found = check_answer(rec.fit.case, rec.fit.result, units, allow=allow, as_json=as_json)
     contact = runout_contact(rec, units)
     if contact is not None and not as_json:

@@ -54,13 +54,18 @@ from .compliant_formula import (
 from .compliant_setup import (
     CompliantProblem,
     CompliantResult,
+    ESTIMATE_MARGIN,
     CompliantSettings,
     ContactHistory,
     build_problem,
     contact_step_limit,
+    endless_contact,
+    kinetic_energy,
     parameter_rows,
+    physics_refusal,
     point_contact,
     problem_arrays,
+    refuse_frozen,
     result_from_row,
 )
 from .contact_law import check_fraction, check_positive, stiffness_for_duration
@@ -84,6 +89,14 @@ def step_size(problem: CompliantProblem) -> float:
         "tunnelled": fewer than ``settings.min_steps`` steps per estimated contact time.
     """
     s = problem.settings
+    if endless_contact(problem.duration_estimate, s):
+        raise SimulationError(
+            "never_separated",
+            f"stiffness = {problem.stiffness:.3g} N/m gives an estimated contact of "
+            f"{problem.duration_estimate:.3g} s (pi (1 + eps) / (2 sqrt(k K_nn))), beyond "
+            f"{ESTIMATE_MARGIN:g} x settings.max_contact_time = {s.max_contact_time:g} s: a "
+            f"contact without end, "
+            f"refused before any step (a car's crush stiffness is about 7.5e5 N/m)", 0)
     dt = s.dt if s.dt is not None else problem.duration_estimate / s.steps_per_contact
     steps = problem.duration_estimate / dt
     if steps < s.min_steps:
@@ -341,7 +354,7 @@ def problem_law(problem: CompliantProblem, dt: float, start: float) -> dict:
                 tyre_friction=problem.tyre_friction,
                 braking=1.0 if problem.tyre_mode == "locked" else 0.0, dt=dt, start=start,
                 max_steps=contact_step_limit(problem.settings, dt),
-                outline=1.0 if problem.geometry == "outline" else 0.0)
+                outline=1.0 if problem.geometry == "outline" else 0.0, frozen=0.0)
 
 
 def simulate_pymunk(problem: CompliantProblem) -> CompliantResult:
@@ -372,6 +385,7 @@ def simulate_pymunk(problem: CompliantProblem) -> CompliantResult:
     post = post_velocities(par, stepper.state(), stepper.lo, start + steps * dt, t_end)
     out = np.zeros(f.N_OUT)
     write_outputs(par, mem, stepper.tal, out, steps, t_end, post)
+    _check_physics(problem, out)
     separation_index = len(rows) - 1 if rows is not None else 0
     mem[f.M_ON] = 0.0                     # free motion; tyres still act
     for _ in range(free):
@@ -383,6 +397,20 @@ def simulate_pymunk(problem: CompliantProblem) -> CompliantResult:
     if rows is not None:
         records = _records(problem, rows, stepper, separation_index)
     return result_from_row(out, problem, records, time.perf_counter() - wall)
+
+
+def _check_physics(problem: CompliantProblem, out) -> None:
+    """SimulationError when the stepped contact gained energy or outlasted
+    ``settings.max_contact_time`` (:func:`sim.compliant_setup.physics_refusal`)."""
+    after = (kinetic_energy(problem.mass1, problem.inertia1, out[f.O_V1:f.O_V1 + 2],
+                            out[f.O_W1])
+             + kinetic_energy(problem.mass2, problem.inertia2, out[f.O_V2:f.O_V2 + 2],
+                              out[f.O_W2]))
+    with np.errstate(invalid="ignore", over="ignore"):
+        refused = physics_refusal(problem.energy_before, float(after), float(out[f.O_DURATION]),
+                                  problem.settings)
+    if refused is not None:
+        raise SimulationError(refused[0], refused[1], int(out[f.O_STEPS]))
 
 
 def simulate_compliant(case: pim.Case, eps, stiffness=None, friction=0.0, geometry="point",
@@ -464,6 +492,7 @@ def _one_problem(case, eps, stiffness, friction, geometry, tyre_friction, settin
     """The single scene of ``engine="pymunk"``: the settings with the given contact inputs
     (``extra``), the stiffness from ``contact_time`` when that is given."""
     settings = settings or CompliantSettings()
+    refuse_frozen(settings, "the pymunk engine")
     overrides = {k: v for k, v in extra.items() if v is not None}
     if overrides:
         settings = replace(settings, **overrides)

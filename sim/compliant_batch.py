@@ -31,7 +31,10 @@ from .compliant_setup import (
     build_problem,
     case_rows,
     contact_step_limit,
+    endless_contact,
     parameter_rows,
+    physics_status,
+    refuse_frozen,
     result_from_row,
     setup_arrays,
 )
@@ -52,9 +55,13 @@ STATUS_MESSAGES = {
     "no_contact": "no contact: the vehicles do not approach at C (u_n >= 0), or never "
                   "touched within settings.max_contact_time",
     "never_separated": "the contact still pushed after settings.max_contact_time (or "
-                       "settings.max_fixed_steps steps)",
+                       "settings.max_fixed_steps steps), lasted longer, or its estimated "
+                       "duration pi (1 + eps) / (2 sqrt(k K_nn)) already exceeded it ten "
+                       "times (a stiffness far too low: refused before any step)",
     "tunnelled": "settings.dt resolves the estimated contact time in fewer than "
                  "settings.min_steps steps: reduce dt (or leave it None)",
+    "energy_gained": "the kinetic energy at separation exceeds the start's by more than "
+                     "sim.compliant_setup.ENERGY_TOLERANCE: the contact only loses energy",
 }
 
 
@@ -335,10 +342,13 @@ def _law(inputs: dict, arrays: dict, shape: tuple, settings: CompliantSettings) 
           else estimate / settings.steps_per_contact)
     status = np.where(estimate / dt < settings.min_steps, f.STATUS_TUNNELLED,
                       f.STATUS_OK).astype(np.int8)
+    status[endless_contact(estimate, settings) & (status == f.STATUS_OK)] = \
+        f.STATUS_NEVER_SEPARATED
     kt = (np.full(k_nn.shape, settings.tangential_stiffness)
           if settings.tangential_stiffness is not None else flat["stiffness"])
     flat.update(tangential_stiffness=kt, dt=dt, start=0.0,
-                max_steps=contact_step_limit(settings, dt), outline=0.0)
+                max_steps=contact_step_limit(settings, dt), outline=0.0,
+                frozen=0.0 if settings.geometry_change else 1.0)
     return flat, status
 
 
@@ -424,6 +434,8 @@ def simulate_batch(case: pim.Case, eps, stiffness=None, friction=0.0, geometry="
     if not isinstance(case, pim.Case):
         raise InputError(f"case must be a pim.Case, got {type(case).__name__}")
     _check_geometry(case, geometry)
+    if geometry != "point":
+        refuse_frozen(settings, "the outline contact")
     inputs = contact_inputs(eps, stiffness, friction, tyre_friction, settings,
                             tyre_mode=tyre_mode, preload=preload,
                             tangential_recovery=tangential_recovery, contact_time=contact_time)
@@ -440,8 +452,27 @@ def simulate_batch(case: pim.Case, eps, stiffness=None, friction=0.0, geometry="
     scenes = dict(law)
     scenes.update({k: arrays[k] for k in ("mass1", "inertia1", "mass2", "inertia2", "k_nn",
                                           "energy_before")})
-    return CompliantBatch(rows=rows, status=status.reshape(shape), scenes=scenes, case=case,
-                          geometry=geometry, settings=settings,
-                          wall_time=time.perf_counter() - wall)
+    batch = CompliantBatch(rows=rows, status=status.reshape(shape), scenes=scenes, case=case,
+                           geometry=geometry, settings=settings,
+                           wall_time=time.perf_counter() - wall)
+    return _keep_physics(batch)
+
+
+def _keep_physics(batch: CompliantBatch) -> CompliantBatch:
+    """``batch`` with every stepped scene that gained energy or whose contact outlasted
+    ``settings.max_contact_time`` refused (:func:`sim.compliant_setup.physics_status`): its
+    status set, its outputs NaN. Never an ok result that breaks physics."""
+    ran = batch.status.reshape(-1) == f.STATUS_OK
+    if not ran.any():
+        return batch
+    with np.errstate(invalid="ignore", over="ignore"):
+        after = np.where(batch.ok, batch.energy_after, 0.0)
+        found = physics_status(batch.energy_before, after, batch.contact_duration,
+                               batch.settings).reshape(-1)
+    bad = ran & (found != f.STATUS_OK)
+    if bad.any():
+        batch.status.reshape(-1)[bad] = found[bad]
+        batch.rows[bad] = np.nan
+    return batch
 
 

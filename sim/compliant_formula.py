@@ -45,6 +45,7 @@ __all__ = ["loading_force", "loading_work", "unloading_slope", "permanent_crush"
            "point_contact", "point_geometry", "place_corners", "clip_polygon",
            "area_centroid", "separating_axis", "outline_overlap", "place_outlines",
            "outline_geometry", "outlines_touch", "outline_start", "free_state",
+           "freeze_point", "frozen_point",
            "vehicle_tyre_force", "tyre_loads", "ahead",
            "contact_loads", "total_loads", "half_kick", "drift", "kick", "separation_time",
            "post_velocities", "slip_reversed", "write_outputs", "N_PAR", "N_MEM", "N_TAL",
@@ -52,8 +53,11 @@ __all__ = ["loading_force", "loading_work", "unloading_slope", "permanent_crush"
 
 # ---- status of a scene ------------------------------------------------------------------------
 #: Status by code: 0 "ok", then the :class:`sim.SimulationError` kinds a stepped scene ends in.
-STATUS_NAMES = ("ok", "no_contact", "never_separated", "tunnelled")
+#: "energy_gained" is set after the stepping (:func:`sim.compliant_setup.physics_status`),
+#: never by the stepped scene itself.
+STATUS_NAMES = ("ok", "no_contact", "never_separated", "tunnelled", "energy_gained")
 STATUS_OK, STATUS_NO_CONTACT, STATUS_NEVER_SEPARATED, STATUS_TUNNELLED = 0, 1, 2, 3
+STATUS_ENERGY_GAINED = 4
 
 # ---- par: the scene's parameters ---------------------------------------------------------------
 P_M1, P_I1, P_M2, P_I2, P_FIXED2 = 0, 1, 2, 3, 4     # [kg], [kg m^2]; fixed2 1.0 or 0.0
@@ -73,7 +77,10 @@ P_OUTLINE1 = 49     # vehicle 1's outline corners in its body frame (8) [m]
 P_OUTLINE2 = 57     # vehicle 2's (8), or a fixed obstacle's world corners (P_OBSTACLE)
 P_OBSTACLE = 65     # 1.0: P_OUTLINE2 holds world corners (a bare barrier's block)
 P_INVERSE = 66      # 1 / m1, 1 / I1, 1 / m2, 1 / I2 (Chipmunk's m_inv, i_inv) [1/kg, 1/(kg m^2)]
-N_PAR = 70
+P_FROZEN = 70       # 1.0: the point contact's geometry frozen at its start (freeze_point)
+P_FROZEN_ARMS = 71  # world-frame P - CG1, Q - CG2 and the normal at the start (6) [m, -]
+P_FROZEN_HEADINGS = 77  # both headings at the start (2) [rad]
+N_PAR = 79
 
 # ---- wk: scratch of the outline contact --------------------------------------------------------
 W_POLY1, W_POLY2 = 0, 8     # both outlines' world corners (4 x, y pairs each)
@@ -274,6 +281,46 @@ def _point(par, x1, y1, c1, s1, vx1, vy1, w1, x2, y2, c2, s2, vx2, vy2, w2):
                          y2, c2, s2, vx2, vy2, w2)
 
 
+def freeze_point(par, st):
+    """Store the point contact's geometry at the start ``st`` in ``par`` (the study switch
+    "no geometry change during contact", ``par[P_FROZEN]`` = 1): the world-frame arms
+    P - CG1 and Q - CG2, the normal and both headings (:func:`frozen_point` uses them)."""
+    c1, s1, c2, s2 = angles(st)
+    a = P_FROZEN_ARMS
+    par[a] = c1 * par[P_ARM1] - s1 * par[P_ARM1 + 1]
+    par[a + 1] = s1 * par[P_ARM1] + c1 * par[P_ARM1 + 1]
+    par[a + 2] = c2 * par[P_ARM2] - s2 * par[P_ARM2 + 1]
+    par[a + 3] = s2 * par[P_ARM2] + c2 * par[P_ARM2 + 1]
+    par[a + 4] = c2 * par[P_NORMAL2] - s2 * par[P_NORMAL2 + 1]
+    par[a + 5] = s2 * par[P_NORMAL2] + c2 * par[P_NORMAL2 + 1]
+    par[P_FROZEN_HEADINGS] = st[2]
+    par[P_FROZEN_HEADINGS + 1] = st[8]
+
+
+def frozen_point(par, st):
+    """The point contact with its geometry frozen at the start (:func:`freeze_point`): the
+    arms r1 = P - CG1, r2 = Q - CG2 and the normal n stay as they were, the crush follows
+    the displacement of both points to first order, delta = -((dx1 + dtheta1 z x r1) -
+    (dx2 + dtheta2 z x r2)) . n (so d delta / dt = -slip_n exactly), and the slip is the
+    relative velocity v1 + w1 z x r1 - v2 - w2 z x r2 along n and t. The rigid-body
+    impact's geometry (Brach's, PIM's) held through a finite contact: what the contact's
+    duration changes then is only what acts besides it (the tyres).
+
+    Returns (px, py, nx, ny, delta, slip_n, slip_t), P = CG1 + r1.
+    """
+    a = P_FROZEN_ARMS
+    r1x, r1y, r2x, r2y, nx, ny = par[a], par[a + 1], par[a + 2], par[a + 3], par[a + 4], \
+        par[a + 5]
+    d1 = st[2] - par[P_FROZEN_HEADINGS]
+    d2 = st[8] - par[P_FROZEN_HEADINGS + 1]
+    gx = (st[0] + r1x - d1 * r1y) - (st[6] + r2x - d2 * r2y)
+    gy = (st[1] + r1y + d1 * r1x) - (st[7] + r2y + d2 * r2x)
+    relx = st[3] - st[5] * r1y - st[9] + st[11] * r2y
+    rely = st[4] + st[5] * r1x - st[10] - st[11] * r2x
+    return (st[0] + r1x, st[1] + r1y, nx, ny, -(gx * nx + gy * ny), relx * nx + rely * ny,
+            -relx * ny + rely * nx)
+
+
 def point_geometry(par, st, trig, dt):
     """The point contact at the end of the step, its tangential slip at the middle.
 
@@ -283,8 +330,11 @@ def point_geometry(par, st, trig, dt):
     second-order slip; docs/contact-model.md, "Integration"). ``trig``: :func:`angles` of
     ``st``.
 
-    Returns (px, py, nx, ny, delta, slip_n, slip_t).
+    Returns (px, py, nx, ny, delta, slip_n, slip_t); :func:`frozen_point` when
+    ``par[P_FROZEN]`` is set.
     """
+    if par[P_FROZEN] != 0.0:
+        return frozen_point(par, st)
     px, py, nx, ny, delta, slip_n, slip_t = _point(
         par, st[0], st[1], trig[0], trig[1], st[3], st[4], st[5], st[6], st[7], trig[2],
         trig[3], st[9], st[10], st[11])
@@ -464,6 +514,9 @@ def contact_loads(par, mem, tal, st, trig, dt, px, py, nx, ny, delta, slip_n, sl
     _tally(par, tal, st, trig, px, py, nx, ny, fx, fy, sticking, z, dt)
     d1x, d1y = px - st[0], py - st[1]
     d2x, d2y = px - st[6], py - st[7]
+    if par[P_FROZEN] != 0.0:                # the arms of the frozen geometry
+        d1x, d1y = par[P_FROZEN_ARMS], par[P_FROZEN_ARMS + 1]
+        d2x, d2y = par[P_FROZEN_ARMS + 2], par[P_FROZEN_ARMS + 3]
     return (True, fx, fy, d1x * fy - d1y * fx, -(d2x * fy - d2y * fx), fn, ft, sticking)
 
 

@@ -68,7 +68,7 @@ _f = compile_module(compliant_formula, SEPARATE)
 _drift, _kick, _half_kick, _angles = _f.drift, _f.kick, _f.half_kick, _f.angles
 _advance_angles = _f.advance_angles
 _outline_start, _outline_geometry = _f.outline_start, _f.outline_geometry
-_free_state = _f.free_state
+_free_state, _freeze_point = _f.free_state, _f.freeze_point
 _point_geometry, _contact_loads, _total_loads = _f.point_geometry, _f.contact_loads, _f.total_loads
 _permanent_crush, _separation_time = _f.permanent_crush, _f.separation_time
 _post_velocities, _write_outputs = _f.post_velocities, _f.write_outputs
@@ -80,6 +80,7 @@ P_EPS, P_PRELOAD, P_STIFFNESS, P_TYRE = _F.P_EPS, _F.P_PRELOAD, _F.P_STIFFNESS, 
 STATUS_OK, STATUS_NO_CONTACT, STATUS_NEVER_SEPARATED, STATUS_TUNNELLED = (
     _F.STATUS_OK, _F.STATUS_NO_CONTACT, _F.STATUS_NEVER_SEPARATED, _F.STATUS_TUNNELLED)
 P_OUTLINE, P_SPEED, T_LAST_SLIP_N, N_WORK = _F.P_OUTLINE, _F.P_SPEED, _F.T_LAST_SLIP_N, _F.N_WORK
+P_FROZEN = _F.P_FROZEN
 
 _cached = stamped_cache(compliant_formula, tyres)
 
@@ -92,6 +93,8 @@ def _start(par, state0, st, wk):  # pragma: no cover - compiled
     if par[P_OUTLINE] == 0.0:
         for j in range(12):
             st[j] = state0[j]
+        if par[P_FROZEN] != 0.0:
+            _freeze_point(par, st)
         if not _point_geometry(par, st, _angles(st), 0.0)[5] < 0.0:
             return STATUS_NO_CONTACT              # the vehicles do not approach at C
         return STATUS_OK

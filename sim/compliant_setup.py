@@ -45,11 +45,24 @@ from .scene import outline_corners
 
 __all__ = ["CompliantSettings", "CompliantProblem", "CompliantResult", "ContactHistory",
            "build_problem", "point_contact", "rotate", "GEOMETRIES", "DEFAULT_STIFFNESS",
-           "kinetic_energy", "placed_outlines", "reversal"]
+           "kinetic_energy", "placed_outlines", "reversal", "refuse_frozen",
+           "ENERGY_TOLERANCE", "ESTIMATE_MARGIN", "physics_status", "physics_refusal",
+           "endless_contact"]
 
 GEOMETRIES = ("point", "outline")
 #: Default linear crush stiffness of a car [N/m] (NHTSA test 10146: 750-780 kN/m).
 DEFAULT_STIFFNESS = 7.5e5
+#: Kinetic energy a contact may end with above its start, relative [-], before the result
+#: is refused ("energy_gained"): the contact only loses energy (hysteresis, friction, tyres),
+#: and the fixed step's own error stays far below this (an elastic eps = 1 contact on every
+#: bundled case at 1e4-1e8 N/m, with and without friction: at most 3.3e-5 gained).
+ENERGY_TOLERANCE = 1e-3
+#: A scene whose estimated contact duration exceeds ``settings.max_contact_time`` this many
+#: times is refused before any step ("never_separated"). The estimate is the frictionless
+#: point contact's; tyres and friction shorten a real one (RICSAC 9 at 1e3 N/m: 1.5 s
+#: estimated, 0.78 s stepped), so the margin keeps such scenes for the stepping, whose
+#: duration then meets the bound itself, and refuses only the absurd (1e-6 N/m: 4.7e4 s).
+ESTIMATE_MARGIN = 10.0
 
 
 @dataclass(frozen=True)
@@ -108,6 +121,12 @@ class CompliantSettings:
         Keep the contact history (force, crush, slip per step) and the trajectory.
     gravity : float
         g [m/s^2] for the tyres' static load, > 0.
+    geometry_change : bool
+        True (the physics): the point contact's arms and normal turn and move with the
+        bodies during the contact. False, a study switch of the compiled engine only (the
+        point contact; issue 34): they stay as at the start
+        (:func:`sim.compliant_formula.frozen_point`), the rigid impact's geometry held
+        through a finite contact.
     """
 
     dt: float | None = None
@@ -126,6 +145,7 @@ class CompliantSettings:
     duration: float = 0.0
     record: bool = True
     gravity: float = STANDARD_GRAVITY
+    geometry_change: bool = True
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
@@ -164,8 +184,10 @@ class CompliantSettings:
                                                       "settings.max_contact_time", "s"))
         set_(self, "duration", check_positive(self.duration, "settings.duration", "s",
                                               allow_zero=True))
-        if not isinstance(self.record, bool):
-            raise InputError(f"settings.record must be True or False, got {self.record!r}")
+        for name in ("record", "geometry_change"):
+            if not isinstance(getattr(self, name), bool):
+                raise InputError(f"settings.{name} must be True or False, got "
+                                 f"{getattr(self, name)!r}")
         set_(self, "gravity", check_positive(self.gravity, "settings.gravity", "m/s^2"))
 
     def as_dict(self) -> dict:
@@ -290,6 +312,14 @@ def _scalar(case: pim.Case) -> None:
             or np.shape(case.vehicle2.cg) != (2,) or np.size(case.impact.normal_angle) != 1:
         raise InputError("the finite-duration contact needs a single case (scalar fields), "
                          "not a batch of cases")
+
+
+def refuse_frozen(settings: CompliantSettings | None, engine: str) -> None:
+    """ValueError unless ``settings`` keep the geometry change (``geometry_change``: the
+    frozen geometry is a study switch of the compiled engine's point contact only)."""
+    if settings is not None and not settings.geometry_change:
+        raise InputError(f"settings.geometry_change=False (the frozen contact geometry) runs "
+                         f"on the compiled engine's point contact only, not on {engine}")
 
 
 def build_problem(case: pim.Case, eps, stiffness, friction=0.0, geometry="point",
@@ -474,7 +504,7 @@ def problem_arrays(problem: CompliantProblem) -> dict:
 #: The contact law's inputs of :func:`parameter_rows`, one value or one per scene.
 LAW_INPUTS = ("eps", "preload", "stiffness", "friction", "tangential_stiffness",
               "tangential_recovery", "tyre_friction", "braking", "dt", "start", "max_steps",
-              "outline")
+              "outline", "frozen")
 
 
 def case_rows(arrays: dict) -> np.ndarray:
@@ -507,7 +537,7 @@ LAW_COLUMNS = dict(eps=formula.P_EPS, preload=formula.P_PRELOAD,
                    tangential_stiffness=formula.P_KT, tangential_recovery=formula.P_RECOVERY,
                    tyre_friction=formula.P_TYRE, braking=formula.P_BRAKING, dt=formula.P_DT,
                    start=formula.P_START, max_steps=formula.P_MAX_STEPS,
-                   outline=formula.P_OUTLINE)
+                   outline=formula.P_OUTLINE, frozen=formula.P_FROZEN)
 
 
 def parameter_rows(arrays: dict, law: dict, rows: np.ndarray | None = None) -> np.ndarray:
@@ -521,7 +551,8 @@ def parameter_rows(arrays: dict, law: dict, rows: np.ndarray | None = None) -> n
         :data:`LAW_INPUTS`, each a number or an array (n,): eps [-], preload a [N],
         stiffness b [N/m], friction mu_c [-], tangential_stiffness k_t [N/m],
         tangential_recovery r [-], tyre_friction [-], braking (0 rolling, 1 locked), dt [s],
-        start [s], max_steps (of the contact), outline (1 for the outline contact).
+        start [s], max_steps (of the contact), outline (1 for the outline contact), frozen
+        (1: the point contact's geometry frozen at its start).
     rows : ndarray, optional
         :func:`case_rows` of ``arrays`` made already (copied, not changed).
     """
@@ -777,3 +808,45 @@ def placed_outlines(problem: CompliantProblem, state) -> tuple[np.ndarray, np.nd
     poly2 = None if problem.outline2 is None else place(problem.outline2, state[6:8], state[8])
     return poly1, poly2
 
+
+
+def endless_contact(estimate, settings: CompliantSettings):
+    """True where the estimated contact duration ``estimate`` [s]
+    (:func:`sim.contact_law.contact_duration_estimate`, pi (1 + eps) / (2 sqrt(k K_nn)))
+    exceeds :data:`ESTIMATE_MARGIN` times ``settings.max_contact_time``: a contact without
+    end (a stiffness far too low), refused before any step."""
+    bound = ESTIMATE_MARGIN * settings.max_contact_time
+    return ~(np.asarray(estimate, dtype=float) <= bound)
+
+
+def physics_status(energy_before, energy_after, duration, settings: CompliantSettings):
+    """The status of stepped scenes by the physics they must keep (arrays broadcast):
+    "energy_gained" where the kinetic energy at separation exceeds the start's by more than
+    :data:`ENERGY_TOLERANCE` (or is not finite), "never_separated" where the contact lasted
+    longer than ``settings.max_contact_time``, else "ok" (codes of
+    :data:`sim.compliant_formula.STATUS_NAMES`)."""
+    before = np.asarray(energy_before, dtype=float)
+    after = np.asarray(energy_after, dtype=float)
+    gained = ~(after <= before * (1.0 + ENERGY_TOLERANCE) + 1e-12)
+    endless = ~(np.asarray(duration, dtype=float) <= settings.max_contact_time)
+    return np.where(gained, formula.STATUS_ENERGY_GAINED,
+                    np.where(endless, formula.STATUS_NEVER_SEPARATED,
+                             formula.STATUS_OK)).astype(np.int8)
+
+
+def physics_refusal(energy_before: float, energy_after: float, duration: float,
+                    settings: CompliantSettings) -> tuple[str, str] | None:
+    """One stepped scene's refusal by :func:`physics_status`: (kind, message with its
+    numbers), or None when it keeps its physics."""
+    code = int(physics_status(energy_before, energy_after, duration, settings))
+    if code == formula.STATUS_ENERGY_GAINED:
+        gain = energy_after - energy_before
+        return ("energy_gained",
+                f"kinetic energy rose from {energy_before:.6g} J to {energy_after:.6g} J in the "
+                f"contact (+{gain:.3g} J, beyond the {ENERGY_TOLERANCE:g} tolerance): the "
+                f"contact only loses energy; refused")
+    if code == formula.STATUS_NEVER_SEPARATED:
+        return ("never_separated",
+                f"the contact lasted {duration:.3g} s, beyond settings.max_contact_time = "
+                f"{settings.max_contact_time:g} s; refused")
+    return None

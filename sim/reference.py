@@ -42,6 +42,7 @@ from .compliant_setup import (
     ContactHistory,
     build_problem,
     kinetic_energy,
+    refuse_frozen,
     point_contact,
     reversal,
 )
@@ -360,6 +361,7 @@ def reference_compliant(case: pim.Case, eps, stiffness, friction=0.0, geometry="
     if geometry != "point":
         raise InputError(f"reference_compliant integrates the point contact only, "
                          f"got geometry={geometry!r}")
+    refuse_frozen(settings, "the solve_ivp reference")
     problem = build_problem(case, eps, stiffness, friction, geometry, tyre_friction, settings)
     model = _Model(problem)
     y = np.r_[problem.state0, 0.0]

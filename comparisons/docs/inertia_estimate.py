@@ -1,10 +1,12 @@
 """The tables of docs/inertia-estimate.md, written by ``python -m comparisons.docs
 inertia-estimate``: each body class's yaw dynamic index, its scatter and the held-out check
-(NHTSA's measured yaw inertias, :mod:`pim.io.inertia_data`), and each class's CG position
-a / L with the same checks (NHTSA's NCAP 2004 measurements, :mod:`pim.io.axle_data`).
+(NHTSA's measured yaw inertias, :mod:`pim.io.inertia_data`), the mass-only line of each
+group with the same checks, and each class's CG position a / L with the same checks
+(NHTSA's NCAP 2004 measurements, :mod:`pim.io.axle_data`).
 
-Each table sits between its markers in docs/inertia-estimate.md (:data:`BEGIN` / :data:`END`
-and :data:`AXLE_BEGIN` / :data:`AXLE_END`; the rest of the page is prose); each is a
+Each table sits between its markers in docs/inertia-estimate.md (:data:`BEGIN` / :data:`END`,
+:data:`MASS_BEGIN` / :data:`MASS_END` and :data:`AXLE_BEGIN` / :data:`AXLE_END`; the rest
+of the page is prose); each is a
 :class:`~comparisons.report.tables.Table` rendered by the one Markdown renderer and written
 by :func:`comparisons.report.write.write_block`. A test fails when the page differs from
 what the code gives.
@@ -19,10 +21,17 @@ from comparisons.report.tables import Num, Table
 from comparisons.report.write import write_block
 from pim.io.axle_data import axle_fractions
 from pim.io.axle_data import held_out as axle_held_out
-from pim.io.inertia_data import dynamic_indices, held_out
+from pim.io.inertia_data import (
+    REGRESSION_GROUPS,
+    dynamic_indices,
+    held_out,
+    mass_held_out,
+    mass_regressions,
+)
 
-__all__ = ["COMMAND", "BEGIN", "END", "AXLE_BEGIN", "AXLE_END", "PAGE", "index_table",
-           "axle_table", "block", "axle_block", "regenerate"]
+__all__ = ["COMMAND", "BEGIN", "END", "AXLE_BEGIN", "AXLE_END", "MASS_BEGIN", "MASS_END",
+           "PAGE", "index_table", "axle_table", "mass_table", "block", "axle_block",
+           "mass_block", "regenerate"]
 
 COMMAND = "python -m comparisons.docs inertia-estimate"
 BEGIN = (f"<!-- inertia-estimate: begin (written by `{COMMAND}`; edit "
@@ -31,6 +40,9 @@ END = "<!-- inertia-estimate: end -->"
 AXLE_BEGIN = (f"<!-- cg-position: begin (written by `{COMMAND}`; edit "
               "comparisons/docs/inertia_estimate.py, not this table) -->")
 AXLE_END = "<!-- cg-position: end -->"
+MASS_BEGIN = (f"<!-- mass-line: begin (written by `{COMMAND}`; edit "
+              "comparisons/docs/inertia_estimate.py, not this table) -->")
+MASS_END = "<!-- mass-line: end -->"
 #: The page of docs/ that holds the table.
 PAGE = "inertia-estimate.md"
 
@@ -68,6 +80,30 @@ def axle_table() -> Table:
                   "held out: within [%]", "sd of held-out z [-]"), tuple(rows), csv=False)
 
 
+def mass_table() -> Table:
+    """Per group of the mass-only line (:data:`pim.io.inertia_data.REGRESSION_GROUPS`): its
+    bodies, vehicles, slope, intercept, R^2, relative residual sd, measured masses, and how
+    many held-out vehicles lie within 1.96 predictive sd
+    (:func:`pim.io.inertia_data.mass_held_out`) with the sd of their standardised errors."""
+    rows = []
+    for group, line in mass_regressions().items():
+        inside, n, z_sd = mass_held_out(group)
+        low, high = line.mass_range
+        rows.append((group, ", ".join(REGRESSION_GROUPS[group]), n, Num(line.slope, 3),
+                     Num(line.intercept, 1), Num(line.r_squared, 3),
+                     Num(100 * line.relative_sd, 1), f"{low:.0f}-{high:.0f}", inside,
+                     Num(100 * inside / n, 0), Num(z_sd, 2)))
+    return Table("mass-line", "The yaw inertia's least-squares line on mass per group",
+                 ("group", "body", "vehicles", "slope [m^2]", "intercept [kg m^2]", "R^2 [-]",
+                  "relative residual sd [%]", "masses [kg]", "held out: within 1.96 sd",
+                  "held out: within [%]", "sd of held-out z [-]"), tuple(rows), csv=False)
+
+
+def mass_block() -> str:
+    """The generated mass-line block of docs/inertia-estimate.md, markers included."""
+    return "\n".join([MASS_BEGIN, "", markdown_table(mass_table()), "", MASS_END])
+
+
 def axle_block() -> str:
     """The generated CG-position block of docs/inertia-estimate.md, markers included."""
     return "\n".join([AXLE_BEGIN, "", markdown_table(axle_table()), "", AXLE_END])
@@ -82,4 +118,5 @@ def regenerate(docs_dir) -> list[Path]:
     """Rewrite the tables of ``docs_dir/inertia-estimate.md`` (each between its markers)."""
     page = Path(docs_dir) / PAGE
     write_block(page, BEGIN, END, block())
+    write_block(page, MASS_BEGIN, MASS_END, mass_block())
     return [write_block(page, AXLE_BEGIN, AXLE_END, axle_block())]

@@ -15,7 +15,14 @@ fitted):
   - mu_c = b |mu0|, b in [0, :data:`B_MAX`], with mu0 PIM's critical impulse ratio of the
     test (:func:`pim.solve` on the test's own inputs at the scene's epsilon; never its
     outcome) (:data:`SCENE_MU0_MODEL`): PIM's mu = beta mu0 follows mu0 from test to test,
-    which one Coulomb mu_c cannot.
+    which one Coulomb mu_c cannot;
+
+* **the scene in physical ranges** (:data:`SCENE_PHYSICAL_MODEL`): the Coulomb scene with its
+  parameters boxed to :data:`PHYSICAL_RANGES` (T, mu_c, mu_tyre) and its outputs held inside
+  them (the contact's duration and its peak crush, :data:`OUTPUT_RANGES`: every
+  :data:`PENALTY_STEP` outside a range adds one to a fitted test's residuals, so a fit leaves
+  a range only where the data outweigh that) -- the scene as the crash tests could be, not
+  as the fit would make it (issue 34).
 
 **Fits.** Least squares of the residuals of every observed value scaled by 1 mph and
 10 deg/s, on the project's one engine (:func:`pim.analysis.least_squares_batch.least_squares_batch`,
@@ -64,10 +71,13 @@ from .crash_records import (
 )
 from .paired_verdict import PairedComparison, compare_paired
 
-__all__ = ["Model", "PIM_MODEL", "SCENE_MODEL", "SCENE_MU0_MODEL", "MODELS", "SCENE_MODELS",
+__all__ = ["Model", "PIM_MODEL", "SCENE_MODEL", "SCENE_MU0_MODEL", "SCENE_PHYSICAL_MODEL",
+           "MODELS", "SCENE_MODELS", "UNCONSTRAINED_MODELS", "OUTPUT_RANGES", "PENALTY_STEP",
+           "fit_held",
            "Motion", "run_model", "MultiStartFit", "Prediction", "predict", "VariantStudy",
            "ClassStudy", "fit_class", "study_class", "study_all", "loo_comparisons",
-           "coarse_check", "scene_settings", "sobol_starts", "COARSE_STEPS", "FINE_STEPS",
+           "coarse_check", "scene_settings", "output_penalty", "sobol_starts", "COARSE_STEPS",
+           "FINE_STEPS",
            "MU_MAX", "B_MAX", "T_BOUNDS",
            "TYRE_MAX", "FAILED_RESIDUAL", "SCREEN", "CLASS_STARTS", "LOO_STARTS", "AGREEMENT",
            "SOBOL_SEED", "MAX_ITERATIONS", "PHYSICAL_RANGES", "MEASURES"]
@@ -85,8 +95,8 @@ FAILED_RESIDUAL = 50.0
 SCREEN = 128
 #: Starts refined of a class fit and of each leave-one-out refit, per model: the best
 #: points of the screen.
-CLASS_STARTS = {"pim": 8, "scene": 16, "scene-mu0": 16}
-LOO_STARTS = {"pim": 4, "scene": 8, "scene-mu0": 8}
+CLASS_STARTS = {"pim": 8, "scene": 16, "scene-mu0": 16, "scene-physical": 16}
+LOO_STARTS = {"pim": 4, "scene": 8, "scene-mu0": 8, "scene-physical": 8}
 #: A start reached the best when its rms is within this fraction of the best rms.
 AGREEMENT = 0.01
 SOBOL_SEED = 26
@@ -107,6 +117,12 @@ PHYSICAL_RANGES = {
                                 "barrier is below 1; more is snagging, not friction"),
     "tyre friction": (0.1, 1.0, "-", "dry asphalt peaks at about 0.8-1.0"),
 }
+#: Outputs of the physical scene held inside :data:`PHYSICAL_RANGES`: Motion attribute ->
+#: range name.
+OUTPUT_RANGES = (("contact_time", "contact time"), ("peak_crush", "peak crush"))
+#: How far outside its range an output of the physical scene goes per unit of added residual
+#: (Motion attribute -> [its unit]): 1 ms of contact time, 1 mm of crush weigh as 1 mph.
+PENALTY_STEP = {"contact_time": 1e-3, "peak_crush": 1e-3}
 #: Per-test error measures of the statistics: name -> Prediction attribute.
 MEASURES = {"score": "score", "velocity": "velocity_error", "yaw": "yaw_error"}
 
@@ -129,6 +145,12 @@ class Model:
         Its tangential law.
     step : float
         Forward-difference step in box-scaled parameters.
+    outputs : tuple
+        Outputs held inside their physical ranges while fitting (:data:`OUTPUT_RANGES`
+        rows; empty: none).
+    options : tuple of (str, object)
+        :class:`sim.CompliantSettings` fields the scene runs with changed (a switched-off
+        mechanism of :mod:`comparisons.studies.contact_time`; empty: none).
     """
 
     name: str
@@ -138,6 +160,8 @@ class Model:
     upper: tuple[float, ...]
     law: str
     step: float
+    outputs: tuple = ()
+    options: tuple = ()
 
 
 PIM_MODEL = Model("pim", "PIM", ("epsilon", "beta"), (0.0, 0.0), (1.0, 1.0),
@@ -148,8 +172,18 @@ SCENE_MODEL = Model("scene", "the scene (Coulomb mu_c)", ("epsilon", "mu_c", "T 
 SCENE_MU0_MODEL = Model("scene-mu0", "the scene (mu_c = b |mu0|)",
                         ("epsilon", "b", "T [s]", "mu_tyre"), (0.0, 0.0, T_BOUNDS[0], 0.0),
                         (1.0, B_MAX, T_BOUNDS[1], TYRE_MAX), "mu_c = b |mu0|", 1e-3)
-MODELS = (PIM_MODEL, SCENE_MODEL, SCENE_MU0_MODEL)
-SCENE_MODELS = (SCENE_MODEL, SCENE_MU0_MODEL)
+_RANGE = {name: PHYSICAL_RANGES[label][:2] for name, label in
+          (("T", "contact time"), ("mu", "friction"), ("tyre", "tyre friction"))}
+SCENE_PHYSICAL_MODEL = Model(
+    "scene-physical", "the scene in physical ranges (Coulomb mu_c)",
+    ("epsilon", "mu_c", "T [s]", "mu_tyre"),
+    (0.0, _RANGE["mu"][0], _RANGE["T"][0], _RANGE["tyre"][0]),
+    (1.0, _RANGE["mu"][1], _RANGE["T"][1], _RANGE["tyre"][1]), "Coulomb mu_c", 1e-3,
+    outputs=OUTPUT_RANGES)
+MODELS = (PIM_MODEL, SCENE_MODEL, SCENE_MU0_MODEL, SCENE_PHYSICAL_MODEL)
+#: The scenes compared with PIM; the first two are fitted in their wide boxes.
+SCENE_MODELS = (SCENE_MODEL, SCENE_MU0_MODEL, SCENE_PHYSICAL_MODEL)
+UNCONSTRAINED_MODELS = (SCENE_MODEL, SCENE_MU0_MODEL)
 
 
 def scene_settings(steps: int = COARSE_STEPS) -> sim.CompliantSettings:
@@ -202,10 +236,12 @@ def run_model(model: Model, case: pim.Case, x, steps: int = COARSE_STEPS) -> Mot
         return Motion(r.velocity1, r.yaw_rate1, r.velocity2, r.yaw_rate2,
                       np.isfinite(r.yaw_rate1), nan, nan, x[..., 1] * np.abs(r.mu0))
     eps = x[..., 0]
-    mu = x[..., 1] if model.name == "scene" else x[..., 1] * np.abs(_mu0(case, eps))
+    mu = x[..., 1] if model.law == SCENE_MODEL.law else x[..., 1] * np.abs(_mu0(case, eps))
+    settings = scene_settings(steps)
+    if model.options:
+        settings = replace(settings, **dict(model.options))
     b = sim.simulate_compliant(case, eps, friction=mu, tyre_friction=x[..., 3],
-                               contact_time=x[..., 2], settings=scene_settings(steps),
-                               engine="numba")
+                               contact_time=x[..., 2], settings=settings, engine="numba")
     return Motion(b.velocity1, b.yaw_rate1, b.velocity2, b.yaw_rate2, b.ok,
                   b.contact_duration, b.peak_crush, np.broadcast_to(mu, b.status.shape))
 
@@ -216,11 +252,32 @@ def _failed(r: np.ndarray, ok) -> np.ndarray:
     return np.where(bad, FAILED_RESIDUAL, r)
 
 
-def _residuals(record: CrashRecord, case: pim.Case, motion: Motion) -> np.ndarray:
-    """Scaled residuals (..., k) of a record; :data:`FAILED_RESIDUAL` where the model failed."""
+def output_penalty(model: Model, motion: Motion) -> np.ndarray:
+    """The residuals (..., j) that hold ``model``'s outputs inside their physical ranges:
+    per output of ``model.outputs``, its distance outside the range [low, high] of
+    :data:`PHYSICAL_RANGES` over :data:`PENALTY_STEP` (0 inside; 0 where the scene failed,
+    which :data:`FAILED_RESIDUAL` charges already)."""
+    parts = []
+    for attr, name in model.outputs:
+        low, high = PHYSICAL_RANGES[name][:2]
+        v = np.asarray(getattr(motion, attr), dtype=float)
+        out = np.maximum(low - v, 0.0) + np.maximum(v - high, 0.0)
+        parts.append(np.where(np.isfinite(out) & np.asarray(motion.ok, bool), out, 0.0)
+                     / PENALTY_STEP[attr])
+    shape = np.shape(motion.ok)
+    return np.stack(parts, axis=-1) if parts else np.zeros(shape + (0,))
+
+
+def _residuals(record: CrashRecord, case: pim.Case, motion: Motion,
+               model: Model | None = None) -> np.ndarray:
+    """Scaled residuals (..., k) of a record; :data:`FAILED_RESIDUAL` where the model failed;
+    with ``model``, its :func:`output_penalty` after them."""
     obs = record.observe(case, motion.velocity1, motion.yaw_rate1, motion.velocity2,
                          motion.yaw_rate2)
-    return _failed((obs - record.observed) / record.scale, motion.ok)
+    r = _failed((obs - record.observed) / record.scale, motion.ok)
+    if model is None or not model.outputs:
+        return r
+    return np.concatenate([r, output_penalty(model, motion)], axis=-1)
 
 
 def sobol_starts(model: Model, count: int, seed: int = SOBOL_SEED) -> np.ndarray:
@@ -258,8 +315,9 @@ class MultiStartFit:
     on_bound: tuple
 
 
-def _summaries(model, fit, folds, residual_counts) -> dict:
-    """fold -> :class:`MultiStartFit` of the rows of ``fit`` in that fold."""
+def _summaries(names, fit, folds, residual_counts) -> dict:
+    """fold -> :class:`MultiStartFit` of the rows of ``fit`` in that fold (``names``: the
+    parameters' names)."""
     out = {}
     for f in np.unique(folds):
         rows = np.flatnonzero(folds == f)
@@ -269,7 +327,7 @@ def _summaries(model, fit, folds, residual_counts) -> dict:
             tuple(float(v) for v in fit.x[best]), float(rms.min()), int(rows.size),
             int(np.sum(rms <= rms.min() * (1.0 + AGREEMENT) + 1e-12)),
             int(fit.converged[rows].sum()),
-            tuple(p for p, b in zip(model.parameters, fit.on_bound[best], strict=True) if b))
+            tuple(p for p, b in zip(names, fit.on_bound[best], strict=True) if b))
     return out
 
 
@@ -315,13 +373,14 @@ def _fold_residuals(model, records, variant, steps, bar):
         cases = [variant.case(t, rec, folds[:, None]) for t, rec in enumerate(records)]
         stacked = _stacked(cases, (len(folds), 1))
         if stacked is None:
-            r = np.stack([_residuals(rec, case, run_model(model, case, x, steps))
+            r = np.stack([_residuals(rec, case, run_model(model, case, x, steps), model)
                           for rec, case in zip(records, cases, strict=True)])
         else:
             m = run_model(model, stacked, x[None], steps)
             obs = records[0].observe(stacked, m.velocity1, m.yaw_rate1, m.velocity2,
                                      m.yaw_rate2)
-            r = _failed((obs - observed) / scale, m.ok)
+            r = np.concatenate([_failed((obs - observed) / scale, m.ok),
+                                output_penalty(model, m)], axis=-1)
         r = r * (folds[None, :] != np.arange(n)[:, None])[:, :, None, None]
         if bar is not None:
             bar.update(x.shape[0] * x.shape[1] * n)
@@ -361,7 +420,56 @@ def fit_class(model: Model, records: list, variant: InputVariant, *, loo: bool =
     fit = least_squares_batch(fun, starts, lo, hi, max_iter=MAX_ITERATIONS, ftol=FTOL,
                               xtol=XTOL, merge=MERGE, groups=folds)
     k = len(records[0].observed)
-    return _summaries(model, fit, folds, {f: k * (n - 1) for f in range(n)} | {n: k * n})
+    return _summaries(model.parameters, fit, folds,
+                      {f: k * (n - 1) for f in range(n)} | {n: k * n})
+
+
+def _with_held(x, held: dict, groups, n: int) -> np.ndarray:
+    """The free parameters ``x`` (p, q, f) completed with the held ones (index -> values per
+    group) into (p, q, n), row i taking the values of group ``groups[i]``."""
+    out = np.empty(x.shape[:-1] + (n,))
+    free = [i for i in range(n) if i not in held]
+    out[..., free] = x
+    for i, values in held.items():
+        out[..., i] = np.asarray(values, dtype=float)[groups][:, None]
+    return out
+
+
+def fit_held(model: Model, records: list, variant: InputVariant, held: dict, *,
+             starts: int = 4, screen: int = 64, steps: int = COARSE_STEPS,
+             bar=None) -> list[MultiStartFit]:
+    """Class fits of ``model`` with parameters held: ``held`` maps a parameter's index to its
+    values, one per fit (every entry of one length g; empty: one fit, nothing held);
+    returns the g fits in that order.
+
+    Each fit screens the same ``screen``-point Sobol sample of the free parameters' box and
+    refines its best ``starts`` on the batched engine, every fit in one batch (the class
+    fit's inputs, fold n of ``variant``); the profile of a parameter is the held fits over
+    a grid of its values.
+    """
+    n, n_par = len(records), len(model.parameters)
+    g = len(next(iter(held.values()))) if held else 1
+    residuals = _fold_residuals(model, records, variant, steps, bar)
+    free = [i for i in range(n_par) if i not in held]
+    lo, hi = np.array(model.lower)[free], np.array(model.upper)[free]
+
+    def fun(x, groups):
+        return residuals(_with_held(x, held, groups, n_par), np.full(len(groups), n))
+
+    sample = lo + qmc.Sobol(len(free), scramble=True, seed=SOBOL_SEED).random(screen) * (hi - lo)
+    cost = np.sum(fun(np.broadcast_to(sample, (g,) + sample.shape), np.arange(g)) ** 2, -1)
+    best = np.argsort(cost, axis=1, kind="stable")[:, :starts]
+    groups = np.repeat(np.arange(g), best.shape[1])
+    fit = least_squares_batch(
+        with_forward_differences(lambda x, idx: fun(x, groups[idx]), lo, hi, model.step),
+        sample[best.reshape(-1)], lo, hi, max_iter=MAX_ITERATIONS, ftol=FTOL, xtol=XTOL,
+        merge=MERGE, groups=groups)
+    full = _with_held(fit.x[:, None, :], held, groups, n_par)[:, 0, :]
+    bound = np.zeros(full.shape, dtype=fit.on_bound.dtype)
+    bound[:, free] = fit.on_bound
+    fits = _summaries(model.parameters, replace(fit, x=full, on_bound=bound), groups,
+                      dict.fromkeys(range(g), len(records[0].observed) * n))
+    return [fits[j] for j in range(g)]
 
 
 @dataclass(frozen=True)
@@ -527,6 +635,13 @@ class ClassStudy:
         (first variant, Coulomb scene, first three tests): (speed [m/s], yaw rate [rad/s]).
     wall_time : float
         Wall time of the study [s].
+    profile : object
+        The class fit over held contact times
+        (:class:`comparisons.studies.contact_time.Profile`, first variant), or None.
+    mechanisms : tuple
+        :class:`comparisons.studies.contact_time.MechanismResult` of each mechanism
+        switched off (the class :func:`comparisons.studies.contact_time.study_classes`
+        studies them on; empty for the others).
     """
 
     crash_class: str
@@ -537,6 +652,8 @@ class ClassStudy:
     variants: tuple
     coarse_check: tuple
     wall_time: float
+    profile: object = None
+    mechanisms: tuple = ()
 
 
 def loo_comparisons(predictions, n_parameters: int) -> dict:

@@ -84,12 +84,11 @@ def _sources(case):
     out = []
     evidence = case.evidence
     for i in (1, 2):
-        ev = None if evidence is None else getattr(evidence, f"vehicle{i}")
-        if ev is None:
+        if evidence is None:
             continue
-        marks = getattr(ev, "pre_impact", None)
+        ev, marks = getattr(evidence, f"vehicle{i}"), evidence.pre_impact(i)
         start = None
-        if ev.driver is not None and float(ev.driver.time[0]) < 0:
+        if ev is not None and ev.driver is not None and float(ev.driver.time[0]) < 0:
             start = float(ev.driver.time[0])
         if marks is not None or start is not None:
             out.append((i, ev, marks, start))

@@ -336,6 +336,14 @@ class Reconstruction:
         """Chi-square test of the inverse PIM (None without standard deviations or a fit)."""
         return None if self.fit is None else self.fit.goodness
 
+    @property
+    def contradiction(self) -> str | None:
+        """Why the answer is refused when the evidence contradicts itself beyond
+        :data:`pim.analysis.residuals.P_CONTRADICTED` (:meth:`GoodnessOfFit.refusal`), else
+        None."""
+        g = self.goodness
+        return g.refusal() if g is not None and g.contradicted else None
+
     def table(self) -> list[dict]:
         """Per unknown: name, value, p5, p50, p95 [SI] (percentiles NaN without samples)."""
         rows = []

@@ -36,10 +36,21 @@ from ..model.result import Result
 __all__ = ["measured_terms", "has_measured_terms", "residuals", "residual_terms",
            "model_value", "measured_value", "crush_terms",
            "measured_weights", "GoodnessOfFit", "goodness_of_fit", "P_INCONSISTENT",
-           "cost_label"]
+           "P_CONTRADICTED", "cost_label"]
 
-#: p-value below which the measurements are called inconsistent with PIM at their sigmas.
+#: p-value below which the measurements are called inconsistent with PIM at their sigmas
+#: (a warning).
 P_INCONSISTENT = 0.01
+
+#: p-value below which the evidence contradicts itself and a command refuses the answer
+#: (``pim reconstruct`` exits 1 after its output unless told to accept it). One in a
+#: thousand: evidence that is right, with the right sigmas, under a model that holds,
+#: crosses it once in 1000 cases (one degree of freedom: a residual beyond 3.3 sigma), ten
+#: times more rarely than the warning at :data:`P_INCONSISTENT`, because an exit code stops
+#: a script and a false alarm costs more there; the sigmas of a run-out fit are linearised,
+#: so the refusal leaves them that margin. Evidence in real conflict is far below it (a
+#: recorded delta-V 20 km/h off the rest positions' at 1 km/h: p = 1e-173).
+P_CONTRADICTED = 1e-3
 
 
 def measured_terms(case: Case,
@@ -219,6 +230,20 @@ class GoodnessOfFit:
             return None
         return bool(self.p_value >= P_INCONSISTENT)
 
+    @property
+    def contradicted(self) -> bool:
+        """True when p < :data:`P_CONTRADICTED`: the evidence contradicts itself beyond the
+        refusal threshold (never with no degree of freedom)."""
+        return bool(np.isfinite(self.p_value) and self.p_value < P_CONTRADICTED)
+
+    def refusal(self) -> str:
+        """Why the answer is refused, one line (meaningful when :attr:`contradicted`)."""
+        worst = ", ".join(f"{name} {z:+.2g} sigma" for name, z in self.largest)
+        return (f"the evidence contradicts itself: chi-square = {self.chi_square:.4g} with "
+                f"{self.dof} degrees of freedom, p = {self.p_value:.2g} < {P_CONTRADICTED:g} "
+                f"(the refusal threshold): the measurements, their sigmas or the model are "
+                f"wrong" + (f"; the evidence in conflict: {worst}" if worst else ""))
+
     def verdict(self) -> str:
         """One plain sentence on whether the measurements fit PIM at their sigmas."""
         if self.consistent is None:
@@ -242,7 +267,8 @@ class GoodnessOfFit:
     def to_dict(self) -> dict:
         return {"chi_square": self.chi_square, "dof": self.dof,
                 "p_value": None if not np.isfinite(self.p_value) else self.p_value,
-                "consistent": self.consistent, "verdict": self.verdict(),
+                "consistent": self.consistent, "contradicted": self.contradicted,
+                "refusal_p": P_CONTRADICTED, "verdict": self.verdict(),
                 "largest_standardised_residuals": dict(self.largest)}
 
 

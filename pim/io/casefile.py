@@ -13,6 +13,7 @@ Unknown keys are errors, so a typo is never silently ignored; every error is a
     yaw_inertia = "..."             # or radius_of_gyration = "... ft"; or neither, with
     wheelbase = "2.7 m"             #   wheelbase (and optionally cg_to_front_axle = "1.2 m",
     body = "car"                    #   body = "car" / "suv" / "pickup" / "van"): estimated
+                                    #   (without a wheelbase: from the mass alone)
     cg = ["4.774 ft", "0.502 ft"]
     heading = "180 deg"
     velocity = ["-31.09 ft/s", 0]
@@ -72,7 +73,7 @@ from ..model.numbers import InputError
 from ..model.plausibility import bare_angle_warning
 from .brach import cg_from_brach, heading_from_theta
 from .evidence_table import AXLE_KEY, OLD_AXLE_KEY, parse_evidence, parse_unknown
-from .inertia_data import estimate_notes, estimate_yaw_inertia
+from .inertia_data import estimate_notes, estimate_yaw_inertia, estimate_yaw_inertia_from_mass
 from .measured_table import parse_measured
 from .toml_tables import check_keys
 from .tyre_table import attach_tyres
@@ -237,15 +238,15 @@ def _inertia(table, mass: float, where: str, evidence) -> tuple[float, object]:
 def _estimated_inertia(table, mass: float, where: str, evidence) -> tuple[float, object]:
     """The yaw dynamic index's estimate (:func:`pim.io.inertia_data.estimate_yaw_inertia`)
     from the wheelbase and CG-to-front-axle distance of ``[vehicleN]`` or
-    ``[evidence.vehicleN]``; an error naming what is missing when there is no wheelbase."""
+    ``[evidence.vehicleN]``; without a wheelbase, the mass-only line of NHTSA's measured
+    vehicles (:func:`pim.io.inertia_data.estimate_yaw_inertia_from_mass`; an error naming
+    what to give when the mass lies outside its vehicles')."""
     wheelbase = _dimension(table, evidence, ("wheelbase",), where)
-    if wheelbase is None:
-        raise InputError(f"{where}: no yaw_inertia (or radius_of_gyration) given, and no "
-                         f"wheelbase to estimate it from: give {where}.yaw_inertia, or "
-                         f"{where}.wheelbase (with cg_to_front_axle and body, optional) for "
-                         f"an estimate by the yaw dynamic index of NHTSA's measured vehicles")
-    axle = _dimension(table, evidence, (AXLE_KEY, OLD_AXLE_KEY), where)
     body = table.get("body", "car")
+    if wheelbase is None:
+        estimate = estimate_yaw_inertia_from_mass(mass, body, where)
+        return estimate.value, estimate
+    axle = _dimension(table, evidence, (AXLE_KEY, OLD_AXLE_KEY), where)
     estimate = estimate_yaw_inertia(mass, wheelbase, axle, body, where)
     return estimate.value, estimate
 
@@ -332,12 +333,27 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
                 uncertainty=_with_estimates(_uncertainty(data.get("uncertainty")), estimates),
                 notes=_angle_notes(data), **_presentation(data),
                 evidence=attach_tyres(parse_evidence(data.get("evidence"), {
-                    i + 1: (v.length, v.width) for i, v in enumerate(vehicles)}),
-                    data.get("tyres"), data.get("driver")),
+                    i + 1: (v.length, v.width) for i, v in enumerate(vehicles)},
+                    _front_shares(data)), data.get("tyres"), data.get("driver")),
                 unknown=parse_unknown(data.get("unknown")), estimates=estimates)
     for line in estimate_notes(case, case.units):
         _LOG.warning(f"note: {source}: {line}")
     return case
+
+
+def _front_shares(data: dict) -> dict:
+    """Vehicle number -> the front axle's static weight share 1 - a / L [-] from
+    ``[vehicleN]`` wheelbase and cg_to_front_axle (where both are given), for the per-wheel
+    braking of marks before the impact without run-out evidence."""
+    shares = {}
+    for i in (1, 2):
+        table = data.get(f"vehicle{i}")
+        if isinstance(table, dict) and "wheelbase" in table and AXLE_KEY in table:
+            length = parse(table["wheelbase"], "length", f"vehicle{i}.wheelbase")
+            a = parse(table[AXLE_KEY], "length", f"vehicle{i}.{AXLE_KEY}")
+            if 0 <= a <= length and length > 0:
+                shares[i] = 1.0 - a / length
+    return shares
 
 
 def _with_estimates(table, estimates) -> UncertaintyTable | None:
@@ -437,6 +453,22 @@ def list_cases() -> list[tuple[str, str]]:
     return out
 
 
+def _is_file(key: str) -> bool:
+    """Whether ``key`` names a readable regular file; False for a name the file system
+    refuses to look up (too long, a NUL byte, a denied folder on the way)."""
+    try:
+        return Path(key).is_file()
+    except (OSError, ValueError):
+        return False
+
+
+def _shown(key: str, limit: int = 80) -> str:
+    """``key`` quoted for a message, cut to ``limit`` characters (with its length)."""
+    if len(key) <= limit:
+        return repr(key)
+    return f"{key[:limit]!r}... ({len(key)} characters)"
+
+
 def load_case(name_or_path) -> Case:
     """Load a case by bundled name (``"ricsac9"``) or from a TOML file path.
 
@@ -447,13 +479,14 @@ def load_case(name_or_path) -> Case:
     """
     bundled = _bundled()
     key = str(name_or_path)
-    if key in bundled and not Path(key).is_file():
+    if key in bundled and not _is_file(key):
         text, source = bundled[key].read_text(encoding="utf-8"), f"{key}.toml"
     else:
         path = Path(key)
-        if not path.is_file():
+        if not _is_file(key):
             names = ", ".join(sorted(bundled))
-            raise InputError(f"case {key!r} is neither a file nor a bundled case ({names})")
+            raise InputError(f"case {_shown(key)} is neither a file nor a bundled case "
+                             f"({names})")
         try:
             text, source = path.read_text(encoding="utf-8"), str(path)
         except (OSError, UnicodeDecodeError) as exc:

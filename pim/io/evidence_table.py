@@ -14,8 +14,9 @@ steer = "0 deg"              # optional: one angle (front wheels) or four
 position_sigma = "0.3 ft"    # optional
 heading_sigma = "2 deg"      # optional
 path_points = [["10 ft", "3 ft"]]   # optional
-# the run-out keys above may all be left out when the vehicle has only a crush sub-table
-# (:data:`SUBTABLES`; not with pre_impact, which needs the run-out): then it has no run-out
+# the run-out keys above may all be left out when the vehicle has only sub-tables
+# (:data:`SUBTABLES`: crush, pre_impact): then it has no run-out, and its speed at the
+# impact comes from the other evidence ([measured] motion, the other vehicle's run-out, ...)
 
 [evidence.vehicle1.pre_impact]   # optional: marks before the impact (pim.io.pre_impact_table)
 skid_length = "42 ft"
@@ -98,18 +99,29 @@ def _say_old_axle_key() -> None:
                  f"to the outline's front)")
 
 
+def _marks_alone(table, where, front_share: float):
+    """The ``pre_impact`` marks of an ``[evidence.vehicleN]`` table without run-out keys
+    (None without marks); per-wheel braking weighs by ``front_share``."""
+    if "pre_impact" not in table:
+        return None
+    return parse_pre_impact(table["pre_impact"], f"{where}.pre_impact",
+                            front_share=front_share)
+
+
 def _vehicle(table, where) -> VehicleEvidence | None:
     """The run-out evidence of ``[evidence.vehicleN]``, or None when the table holds only
-    sub-tables of other evidence (:data:`SUBTABLES`)."""
+    sub-tables of other evidence (:data:`SUBTABLES`: crush, marks before the impact)."""
     check_keys(table, _EVIDENCE | set(SUBTABLES), where)
+    if not table:
+        raise InputError(f"[{where}] is empty: give the run-out's rest_position, "
+                         f"rest_heading, wheelbase, track and friction, or a "
+                         f"[{where}.crush] or [{where}.pre_impact] sub-table, or leave the "
+                         f"table out")
     for key in set(SUBTABLES) - set(_PARSED):
         if key in table:
             raise InputError(f"{where}.{key}: {SUBTABLES[key]} is not supported by this "
                              f"version")
     if not set(table) - set(SUBTABLES):
-        if "pre_impact" in table:
-            raise InputError(f"{where}.pre_impact needs the vehicle's run-out evidence "
-                             f"(rest_position, rest_heading, wheelbase, track, friction)")
         return None
     for key in ("rest_position", "rest_heading", "wheelbase", "track", "friction"):
         if key not in table:
@@ -149,7 +161,7 @@ def _vehicle(table, where) -> VehicleEvidence | None:
         path_points=path.reshape(-1, 2), where=where, **kwargs)
 
 
-def parse_evidence(table, dimensions=None) -> Evidence | None:
+def parse_evidence(table, dimensions=None, front_shares=None) -> Evidence | None:
     """Parse the ``[evidence]`` table (already read by tomllib), or None when absent.
 
     Parameters
@@ -158,6 +170,11 @@ def parse_evidence(table, dimensions=None) -> Evidence | None:
     dimensions : dict, optional
         Vehicle number -> (length, width) [m] (None where unknown): a crush profile must fit
         on its vehicle (:func:`pim.io.crush_table.parse_crush`).
+    front_shares : dict, optional
+        Vehicle number -> the front axle's static share of the weight [-], for the per-wheel
+        braking of marks before the impact of a vehicle without run-out evidence (from
+        ``[vehicleN]`` wheelbase and cg_to_front_axle; default 0.5, as the run-out's
+        default axle position gives).
 
     Raises
     ------
@@ -185,8 +202,11 @@ def parse_evidence(table, dimensions=None) -> Evidence | None:
                          f"({', '.join(f'{w}.partition = {p!r}' for w, p in partitions.items())}"
                          f"); the comparison is of both vehicles' energies together")
     partition = next(iter(partitions.values()), "total")
-    return Evidence(**{k: _vehicle(v, f"evidence.{k}") for k, v in table.items()}, **crush,
-                    crush_partition=partition)
+    runouts = {k: _vehicle(v, f"evidence.{k}") for k, v in table.items()}
+    marks = {f"marks{k[-1]}": _marks_alone(v, f"evidence.{k}",
+                                           (front_shares or {}).get(int(k[-1]), 0.5))
+             for k, v in table.items() if runouts[k] is None}
+    return Evidence(**runouts, **crush, crush_partition=partition, **marks)
 
 
 def parse_unknown(table) -> dict[str, tuple[float, float]] | None:

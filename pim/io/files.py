@@ -47,18 +47,36 @@ def atomic_paths(*paths) -> Iterator[tuple[Path, ...]]:
                                        dir=path.parent)
             os.close(fd)
             temps.append(Path(tmp))
-        yield tuple(temps)
-        for tmp, path in zip(temps, paths, strict=True):
-            check_complete(tmp, path)
-        mask = os.umask(0)
-        os.umask(mask)
-        for tmp, path in zip(temps, paths, strict=True):
-            os.chmod(tmp, 0o666 & ~mask)
-            os.replace(tmp, path)
+        try:
+            yield tuple(temps)
+            for tmp, path in zip(temps, paths, strict=True):
+                check_complete(tmp, path)
+            mask = os.umask(0)
+            os.umask(mask)
+            for tmp, path in zip(temps, paths, strict=True):
+                os.chmod(tmp, 0o666 & ~mask)
+                os.replace(tmp, path)
+        except OSError as exc:
+            named = _named(exc, temps, paths)
+            if named is exc:
+                raise
+            raise named from exc
     finally:
         for tmp in temps:
             if tmp.exists():
                 tmp.unlink()
+
+
+def _named(exc: OSError, temps: list, paths: list) -> OSError:
+    """``exc`` naming the file it failed to write as the user knows it: a temporary file's
+    target, or with no file name (a full disk on a write) the targets; ``exc`` itself when
+    it names another file."""
+    name = exc.filename
+    if name is not None and Path(name) not in temps:
+        return exc
+    where = (str(paths[temps.index(Path(name))]) if name is not None
+             else ", ".join(map(str, paths)))
+    return OSError(exc.errno, exc.strerror or str(exc), where)
 
 
 @contextlib.contextmanager

@@ -16,7 +16,16 @@ from functools import cache
 
 import numpy as np
 
-from ..model.inertia import BODIES, DynamicIndex, InputEstimate, dynamic_index, yaw_inertia_estimate
+from ..model.inertia import (
+    BODIES,
+    DynamicIndex,
+    InputEstimate,
+    MassRegression,
+    dynamic_index,
+    mass_regression,
+    yaw_inertia_estimate,
+    yaw_inertia_from_mass,
+)
 from ..model.numbers import InputError
 from ..model.quantities import UNCERTAIN
 from .axle_data import SOURCE as AXLE_SOURCE
@@ -25,11 +34,19 @@ from .datasets import bundled_rows
 from .units import convert
 
 __all__ = ["InertiaRecord", "DATA_FILE", "SOURCE", "load_inertia_records", "dynamic_indices",
-           "estimate_yaw_inertia", "estimate_notes", "estimate_records", "held_out"]
+           "estimate_yaw_inertia", "estimate_notes", "estimate_records", "held_out",
+           "REGRESSION_GROUPS", "REGRESSION_SOURCE", "mass_regressions", "regression_group",
+           "estimate_yaw_inertia_from_mass", "mass_held_out"]
 
 DATA_FILE = "nhtsa_lvipd_yaw_dynamic_index.csv"
 #: Short citation of the data, for notes and reports.
 SOURCE = "NHTSA's measured vehicles, Heydinger et al. 1999"
+#: The groups of the mass-only line, as K. Tse (2020) published it: the cars, and the light
+#: trucks (SUVs, pickups and vans) together; body class -> its group.
+REGRESSION_GROUPS = {"car": ("car",), "truck": ("suv", "pickup", "van")}
+#: Short citation of the mass-only line: the measurements and who published the line.
+REGRESSION_SOURCE = ("NHTSA's measured vehicles, Heydinger et al. 1999; the line of I_z on "
+                     "mass as K. Tse 2020 published it")
 _COLUMNS = ("year", "make", "model", "body", "mass_kg", "yaw_inertia_kg_m2",
             "yaw_dynamic_index")
 
@@ -102,16 +119,76 @@ def dynamic_indices() -> dict[str, DynamicIndex]:
                                 SOURCE) for body, codes in BODIES.items()}
 
 
+def regression_group(body: str) -> str:
+    """The group of :data:`REGRESSION_GROUPS` a body class belongs to."""
+    return next(group for group, bodies in REGRESSION_GROUPS.items() if body in bodies)
+
+
+def _group_rows(group: str) -> list[InertiaRecord]:
+    codes = {c for body in REGRESSION_GROUPS[group] for c in BODIES[body]}
+    return [r for r in load_inertia_records() if r.body in codes]
+
+
+@cache
+def mass_regressions() -> dict[str, MassRegression]:
+    """Group (a key of :data:`REGRESSION_GROUPS`) -> its least-squares line of yaw inertia on
+    mass over the bundled vehicles (:func:`pim.model.inertia.mass_regression`)."""
+    return {group: mass_regression([r.mass for r in _group_rows(group)],
+                                   [r.yaw_inertia for r in _group_rows(group)], group,
+                                   REGRESSION_SOURCE) for group in REGRESSION_GROUPS}
+
+
+def estimate_yaw_inertia_from_mass(mass: float, body: str, where: str) -> InputEstimate:
+    """The yaw inertia of ``where`` (e.g. "vehicle1") estimated from its mass [kg] alone by
+    the line of its body class's group (:func:`mass_regressions`), with its provenance:
+    the estimate without a wheelbase."""
+    _check_body(body, where)
+    line = mass_regressions()[regression_group(body)]
+    try:
+        inertia, sd = yaw_inertia_from_mass(mass, line)
+    except InputError as exc:
+        raise InputError(f"{where}: no yaw_inertia (or radius_of_gyration) and no wheelbase "
+                         f"given, and the {exc}; give {where}.yaw_inertia, "
+                         f"{where}.wheelbase (the yaw dynamic index's estimate) or its body "
+                         f"class ({where}.body: {', '.join(map(repr, BODIES))})") from None
+    method = (f"I_z = {line.slope:.3f} m {'-' if line.intercept < 0 else '+'} "
+              f"{abs(line.intercept):.0f} kg m^2 without a wheelbase, the least-squares line "
+              f"of the {line.count} measured {line.group}s (R^2 = {line.r_squared:.3f})")
+    return InputEstimate(f"{where}.yaw_inertia", float(inertia), float(sd), method,
+                         REGRESSION_SOURCE, (("mass m", float(mass), "mass"),))
+
+
+def mass_held_out(group: str) -> tuple[int, int, float]:
+    """How the mass-only line does on the group's measured vehicles it did not see: each
+    left out in turn, the others' line estimates its yaw inertia from its mass. Returns
+    (vehicles within 1.96 predictive sd of their measured value, vehicles, sd of the
+    standardised errors (measured - estimate) / sd [-])."""
+    rows = _group_rows(group)
+    z = []
+    for i, r in enumerate(rows):
+        others = rows[:i] + rows[i + 1:]
+        line = mass_regression([o.mass for o in others], [o.yaw_inertia for o in others],
+                               group, REGRESSION_SOURCE)
+        fit = line.slope * r.mass + line.intercept
+        z.append((r.yaw_inertia - fit) / (float(line.predictive_sd(r.mass)) * fit))
+    z = np.array(z)
+    return int(np.sum(np.abs(z) <= 1.96)), len(rows), float(z.std(ddof=1))
+
+
+def _check_body(body: str, where: str) -> None:
+    if body not in BODIES:
+        raise InputError(f"{where}.body must be one of {', '.join(map(repr, BODIES))} (the "
+                         f"class whose yaw dynamic index estimates the yaw inertia), got "
+                         f"{body!r}")
+
+
 def estimate_yaw_inertia(mass: float, wheelbase: float, cg_to_front_axle: float | None,
                          body: str, where: str) -> InputEstimate:
     """The yaw inertia of ``where`` (e.g. "vehicle1") estimated from its mass [kg], wheelbase
     [m] and CG-to-front-axle distance [m] by its body class's yaw dynamic index, with its
     provenance. Without the axle distance (None), the class's CG position a / L measured by
     NHTSA (:func:`pim.io.axle_data.axle_fractions`) stands in, its scatter in the sd."""
-    if body not in BODIES:
-        raise InputError(f"{where}.body must be one of {', '.join(map(repr, BODIES))} (the "
-                         f"class whose yaw dynamic index estimates the yaw inertia), got "
-                         f"{body!r}")
+    _check_body(body, where)
     index = dynamic_indices()[body]
     inputs = (("mass m", float(mass), "mass"), ("wheelbase L", float(wheelbase), "length"))
     method = f"D m a (L - a), D = {index.mean:.3f} the yaw dynamic index of a {body}"

@@ -83,9 +83,34 @@ def _target(path, option: str) -> Path:
     except OSError as exc:
         raise OutputError(f"{option} {path}: cannot create the folder ({exc.strerror})") \
             from None
-    if not os.access(path.parent, os.W_OK | os.X_OK):
-        raise OutputError(f"{option} {path}: the folder is not writable")
+    for folder in (path.parent, path) if path.is_dir() else (path.parent,):
+        why = _unwritable(folder)
+        if why:
+            raise OutputError(f"{option} {path}: the folder {folder} {why}")
     return path
+
+
+def _unwritable(folder: Path) -> str | None:
+    """Why files cannot be written in ``folder`` (a read-only file system, no permission),
+    or None."""
+    try:
+        if os.statvfs(folder).f_flag & os.ST_RDONLY:
+            return "is on a read-only file system (not writable)"
+    except OSError:
+        pass
+    if not os.access(folder, os.W_OK | os.X_OK):
+        return "is not writable (no permission)"
+    return None
+
+
+def _check_not_a_mount(path: Path, option: str) -> None:
+    """A run is swapped in by renaming folders beside ``path``: a mount point cannot be
+    renamed (the kernel answers "Device or resource busy"), so it is refused up front."""
+    if path.is_dir() and os.path.ismount(path):
+        raise OutputError(f"{option} {path}: a mount point; pim writes a run beside the "
+                          f"output folder and renames it into place, which a mount point "
+                          f"cannot take: give a folder inside it (e.g. {option} "
+                          f"{path / 'run'})")
 
 
 def _lock(path: Path, option: str) -> int:
@@ -343,6 +368,7 @@ def output_folder(path, option: str = "--out", *, command: str = "pim",
             if path.exists() and not path.is_dir():
                 raise OutputError(f"{option} {path}: not a folder")
         else:
+            _check_not_a_mount(path, option)
             _check_replaceable(path, option)
         tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.pim-tmp-", dir=path.parent))
         try:
@@ -359,12 +385,37 @@ def output_folder(path, option: str = "--out", *, command: str = "pim",
             if kept:
                 (say or _note)(f"{option} {path}: kept {_names(kept)} (pim did not write "
                                f"{'it' if len(kept) == 1 else 'them'})")
+        except OSError as exc:
+            with held_signals():
+                shutil.rmtree(tmp, ignore_errors=True)
+            failure = _write_failure(exc, option, path, tmp)
+            if failure is None:
+                raise
+            raise failure from exc
         except BaseException:
             with held_signals():
                 shutil.rmtree(tmp, ignore_errors=True)
             raise
     finally:
         _unlock(path, fd)
+
+
+def _write_failure(exc: OSError, option: str, path: Path, tmp: Path) -> OutputError | None:
+    """An OSError while a run was written or swapped in, as an :class:`OutputError` naming
+    the output folder and, where known, the file (its name inside the folder, not the
+    temporary one); None for an OSError about a file outside the folder (an input), which
+    stays as it is."""
+    name = Path(exc.filename) if exc.filename else None
+    if name is not None:
+        for root in (tmp, path):
+            with contextlib.suppress(ValueError):
+                name = path / Path(os.path.abspath(name)).relative_to(root)
+                break
+        else:
+            return None
+    what = f"cannot write {name}" if name is not None and name != path else "cannot write"
+    return OutputError(f"{option} {path}: {what} ({exc.strerror or exc}); nothing was "
+                       f"written (an earlier run there is as it was)")
 
 
 def _note(line: str) -> None:

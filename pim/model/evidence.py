@@ -118,6 +118,10 @@ class Evidence:
     crush_partition : str
         Which PIM energy the crush energies are compared with
         (:func:`pim.model.crush.compared_energy`): "total" or "normal".
+    marks1, marks2 : PreImpactMarks or None
+        Tyre marks before the impact of a vehicle without run-out evidence (the skid
+        formula needs none of it: the speed at the impact comes from any other evidence);
+        a vehicle with run-out evidence keeps its marks in :attr:`VehicleEvidence.pre_impact`.
     """
 
     vehicle1: VehicleEvidence | None = None
@@ -125,6 +129,8 @@ class Evidence:
     crush1: CrushProfile | None = None
     crush2: CrushProfile | None = None
     crush_partition: str = "total"
+    marks1: PreImpactMarks | None = None
+    marks2: PreImpactMarks | None = None
 
     def __post_init__(self):
         compared_energy(self.crush_partition)      # a clear error for an unknown one
@@ -138,3 +144,9 @@ class Evidence:
     def crush(self) -> dict:
         """Vehicle number -> its CrushProfile (only the vehicles with one)."""
         return {i: p for i, p in ((1, self.crush1), (2, self.crush2)) if p is not None}
+
+    def pre_impact(self, i: int) -> PreImpactMarks | None:
+        """Vehicle ``i``'s tyre marks before the impact (with its run-out evidence or
+        without), or None."""
+        ev = getattr(self, f"vehicle{i}")
+        return ev.pre_impact if ev is not None else getattr(self, f"marks{i}")

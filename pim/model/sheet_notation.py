@@ -67,12 +67,22 @@ class SheetNotation:
 
         T_L = (1/2) m_c q v_rn^2 (1 + eps) [2 + 2 mu r - (1 + eps) q (A - 2 mu B + mu^2 (1 + C))]
         (the sheet's T_L with the m_c d_e^2, d_f^2 sum expanded), written with
-        v_rn^2 r = u_n u_t so that it stays finite as u_n -> 0.
+        v_rn^2 r = u_n u_t so that it stays finite as u_n -> 0, and with q taken into the
+        bracket as q and q mu,
+
+        T_L = (1/2) m_c (1 + eps) [2 q u_n^2 + 2 (q mu) u_n u_t
+              - (1 + eps) u_n^2 (q^2 A - 2 q (q mu) B + (q mu)^2 (1 + C))],
+
+        so that it stays finite for any finite beta (q mu -> -1/B as mu grows, where mu^2
+        alone overflows beyond mu ~ 1e154).
         """
-        mu, q = self.mu, self.q
-        u_n, u_t = self.approach_n, self.approach_t
-        e1 = 1.0 + self.eps
-        bracket = (2.0 * u_n * u_n + 2.0 * mu * u_n * u_t
-                   - e1 * q * u_n * u_n * (self.A - 2.0 * mu * self.B + mu * mu * (1.0 + self.C)))
-        loss = 0.5 * self.reduced_mass * q * e1 * bracket
+        q = self.q
+        with np.errstate(over="ignore", invalid="ignore"):    # a singular q: NaN, flagged
+            qmu = q * self.mu
+            u_n, u_t = self.approach_n, self.approach_t
+            e1 = 1.0 + self.eps
+            bracket = (2.0 * q * u_n * u_n + 2.0 * qmu * u_n * u_t
+                       - e1 * u_n * u_n * (q * q * self.A - 2.0 * q * qmu * self.B
+                                           + qmu * qmu * (1.0 + self.C)))
+            loss = 0.5 * self.reduced_mass * e1 * bracket
         return np.where(self.approaching, loss, 0.0)

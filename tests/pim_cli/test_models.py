@@ -66,12 +66,20 @@ def test_validate_models_json_reports_verdicts_p_values_and_medians(tmp_path, ca
                 assert m["loo_velocity_median"] > 0 and m["loo_yaw_median"] > 0
                 assert 1 <= m["class_fit"]["agreeing"] <= m["class_fit"]["starts"]
                 assert len(m["loo_starts"]["agreeing"]) == len(cls["tests"])
+        phys, prof = cls["physical"], cls["profile"]                   # issue 34
+        assert phys["verdict"] == "too few tests to decide" and len(phys["interval"]) == 2
+        assert phys["class_fit"]["x"]["T [s]"] >= 0.05
+        assert prof["T"][0] == 0.02 and prof["T"][-1] == 0.25         # seconds
+        assert len(prof["score"]) == len(prof["parameters"]) == len(prof["T"])
+        assert prof["threshold"] > prof["best_score"] > 0
+        assert cls["conclusion"].startswith(f"**{cls['name']}**")
     assert data["classes"]["car-to-car"]["outcome_origin"] == "PIM analysis output"
     assert {p.split("/")[-1] for p in data["files"]} >= {"tuned-scene.md", "tuned-scene.html"}
     assert "--class ricsac" in (out / "tuned-scene.md").read_text()
     page = (out / "tuned-scene.html").read_text()                 # issue 27: the pipeline's
-    assert page.index('<section id="verdicts"') < page.index("too few tests to decide") \
-        < page.index('<section id="method"')
+    first = page.index('<section id="verdicts"')                    # after the conclusion
+    assert page.index('<section id="conclusion"') < first
+    assert first < page.index("too few tests to decide", first) < page.index('<section id="method"')
 
 
 def test_validate_models_prints_the_wall_time(tmp_path):
@@ -79,3 +87,5 @@ def test_validate_models_prints_the_wall_time(tmp_path):
                                           str(tmp_path / "one")])
     assert res.exit_code == 0, res.output
     assert "too few tests to decide" in res.output and "wall time" in res.output
+    assert res.output.startswith("RICSAC 9, design sheet (1 test, published inputs). A class "
+                                 "of one")                    # the conclusion first

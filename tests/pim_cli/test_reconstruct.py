@@ -270,3 +270,86 @@ def test_a_quoted_wheel_fraction_reconstructs_within_the_stated_budget(tmp_path,
     err = capsys.readouterr().err.strip()
     assert err.startswith("error: --max-minutes 0.01: the Monte Carlo of 10000 samples refits "
                           "the run-outs of each sample, about ") and "\n" not in err, err
+
+
+def _edr_conflict(tmp_path, pre_crash_speed: str):
+    """synthetic-edr with vehicle 2's recorded pre-crash speed replaced (the truth: 28.8
+    km/h at 1 km/h): 45 km/h is the conflict of docs/reconstruction.md (p = 2.4e-4)."""
+    text = (resources.files("pim.io") / "cases" / "synthetic-edr.toml").read_text()
+    path = tmp_path / "conflict.toml"
+    path.write_text(text.replace('pre_crash_speed = "28.8 km/h"',
+                                 f'pre_crash_speed = "{pre_crash_speed}"'))
+    return str(path)
+
+
+def test_contradictory_evidence_exits_1_after_the_output_with_the_reason_first(
+        tmp_path, capsys):
+    """Evidence whose chi-square p lies below P_CONTRADICTED (0.001) is refused: the reason
+    on stderr before the table, the table, then exit 1 (issue 33 point 3); the report is
+    still written; --allow-inconsistent and --allow-inadmissible accept it (exit 0)."""
+    from pim.analysis.residuals import P_CONTRADICTED
+
+    case = _edr_conflict(tmp_path, "45 km/h")
+    out_dir = tmp_path / "out"
+    assert main(["reconstruct", case, "--samples", "0", "--out", str(out_dir)]) == 1
+    captured = capsys.readouterr()
+    err = captured.err.strip().splitlines()
+    assert err[0].startswith("error: the evidence contradicts itself: chi-square = 13.5")
+    assert f"< {P_CONTRADICTED:g} (the refusal threshold)" in err[0]
+    assert "pre_crash_speed2" in err[0] or "delta_v1" in err[0]
+    assert "--allow-inconsistent" in err[-1]
+    assert "vehicle1.speed" in captured.out                 # the answer is still printed
+    assert (out_dir / "report.md").is_file()
+    for flag in ("--allow-inconsistent", "--allow-inadmissible"):
+        assert main(["reconstruct", case, "--samples", "0", flag]) == 0
+        assert "error:" not in capsys.readouterr().err
+    assert main(["reconstruct", case, "--samples", "0", "--json",
+                 "--allow-inconsistent"]) == 0
+    good = json.loads(capsys.readouterr().out)["goodness_of_fit"]
+    assert good["contradicted"] is True and good["refusal_p"] == P_CONTRADICTED
+    assert good["p_value"] < P_CONTRADICTED
+
+
+def test_doubtful_evidence_warns_and_exits_0(tmp_path, capsys):
+    """Between the warning (p < 0.01) and the refusal (p < 0.001): a warning, exit 0; the
+    consistent case: neither."""
+    assert main(["reconstruct", _edr_conflict(tmp_path, "40.5 km/h"), "--samples", "0",
+                 "--json"]) == 0
+    good = json.loads(capsys.readouterr().out)["goodness_of_fit"]
+    assert 1e-3 < good["p_value"] < 1e-2 and good["contradicted"] is False
+    assert main(["reconstruct", "synthetic-edr", "--samples", "0"]) == 0
+    assert "error" not in capsys.readouterr().err
+
+
+SKIDS = '''
+[evidence.vehicle1.pre_impact]
+skid_length = "30 ft"
+friction = 0.7
+braking = 1.0
+
+[evidence.vehicle2.pre_impact]
+skid_length = "20 ft"
+friction = 0.7
+braking = ["locked", "locked", "free", "free"]
+'''
+
+
+def test_a_pre_impact_skid_combines_with_measured_post_impact_motion(tmp_path, capsys):
+    """Marks before the impact with measured post-impact motion and no run-out were refused
+    ("needs the vehicle's run-out evidence", issue 33 point 4): the skid formula needs none
+    of it. The speed at the start of the marks against the formula by hand, from the
+    reconstructed impact speed: v0 = sqrt(v^2 + 2 g L f mu), f = 1 (all four locked) and
+    0.5 (the fronts locked, the default even axle loads)."""
+    text = (resources.files("pim.io") / "cases" / "ricsac9-reconstruct.toml").read_text()
+    path = tmp_path / "skids.toml"
+    path.write_text(text.replace("\n[uncertainty]\n", SKIDS + "\n[uncertainty]\n", 1))
+    assert main(["reconstruct", str(path), "--samples", "0", "--json", "--units", "si",
+                 "--speed-unit", "m/s"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    g, ft = 9.80665, 0.3048
+    for i, length, drag in ((1, 30 * ft, 1.0), (2, 20 * ft, 0.5)):
+        v = data["unknowns"][f"vehicle{i}.speed"]["value"]
+        row = data["pre_impact"][f"vehicle{i}.speed_at_marks_start"]
+        assert row["unit"] == "m/s" and row["impact"] == pytest.approx(v, rel=1e-9)
+        assert row["value"] == pytest.approx((v * v + 2 * g * length * drag * 0.7) ** 0.5,
+                                             rel=1e-9)

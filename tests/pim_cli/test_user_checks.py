@@ -222,7 +222,9 @@ def test_reconstruction_notes_run_outs_that_run_into_each_other():
     import numpy as np
 
     from comparisons.report.reconstruct import runout_contact
+    from pim.analysis.reconstruction import PostImpact
     from pim.io.casefile import parse_case
+    from pim.model.runout import Runout
 
     case = parse_case(__import__("tomllib").loads(SUV))
     t = np.linspace(0.0, 2.0, 41)
@@ -230,9 +232,12 @@ def test_reconstruction_notes_run_outs_that_run_into_each_other():
     suv = np.c_[np.zeros_like(t), -2.2 - 1.5 * t + 1.5 * t**2, np.full_like(t, np.pi / 2)]
 
     def fit(states):
-        return SimpleNamespace(runout=SimpleNamespace(time=t, states=states))
+        full = np.c_[states, np.zeros((len(t), 3))]      # velocities unused by the check
+        run = Runout(t, full, full[-1, :2], float(full[-1, 2]), float(t[-1]), True)
+        return SimpleNamespace(runout=run, stopped=True)
 
-    rec = SimpleNamespace(case=case, post=SimpleNamespace(runouts={1: fit(sedan), 2: fit(suv)}))
+    post = PostImpact(case, {1: fit(sedan), 2: fit(suv)}, {}, {}, None, [])
+    rec = SimpleNamespace(case=case, post=post)
     contact = runout_contact(rec, "us")
     assert contact["time"] == pytest.approx(0.85) and contact["length_unit"] == "ft"
     assert contact["message"].startswith("secondary impact at t = 0.85 s after the impact at "

@@ -370,3 +370,112 @@ def test_a_case_is_set_up_once_for_repeated_calls():
     assert np.array_equal(first.rows, again.rows, equal_nan=True)
     sim.simulate_compliant(replace(case), 0.3, 2e6)
     assert compliant_batch._kept_setup.cache_info().misses == 2
+
+
+# ---- the frozen contact geometry (settings.geometry_change=False; issue 34) ---------------
+def _frozen(steps=400):
+    return sim.CompliantSettings(record=False, steps_per_contact=steps,
+                                 geometry_change=False)
+
+
+@pytest.mark.parametrize("name", ["ricsac9", "hard-barrier"])
+def test_the_frozen_frictionless_contact_is_pims_frictionless_impact(name):
+    """Frozen geometry, no friction, no tyres: the contact is one degree of freedom along a
+    fixed normal, and the crush hysteresis returns eps of the normal relative velocity at C
+    exactly (docs/contact-model.md), so the outcome is Newton's frictionless impact, PIM
+    with beta = 0 (pim.solve, an independent computation), to the integrator's second-order
+    error (2e-5 m/s at 400 steps per contact), at any contact time. With the geometry
+    turning and moving (the physics) a 0.25 s contact is not that impact."""
+    case = pim.load_case(name)
+    rigid = pim.solve(case, 0.3, 0.0)
+    b = sim.simulate_compliant(case, 0.3, contact_time=np.array([0.01, 0.25]),
+                               settings=_frozen())
+    assert np.all(b.ok)
+    for got, want in ((b.velocity1, rigid.velocity1), (b.velocity2, rigid.velocity2)):
+        np.testing.assert_allclose(got, np.broadcast_to(want, got.shape), atol=1e-4)
+    np.testing.assert_allclose(b.yaw_rate1, float(rigid.yaw_rate1), atol=2e-5)
+    moving = sim.simulate_compliant(case, 0.3, contact_time=0.25,
+                                    settings=replace(_frozen(), geometry_change=True))
+    assert np.max(np.abs(moving.velocity1 - rigid.velocity1)) > 1e-2
+
+
+def test_without_tyres_the_frozen_contact_does_not_depend_on_its_duration():
+    """Frozen geometry and no external force: time scales out of the contact (every force
+    scales with the stiffness, the steps with the duration), so friction, recovery and
+    restitution give one outcome at 2 ms and at 250 ms; tyres (a force that does not scale)
+    make it depend on the duration again."""
+    case = pim.load_case("ricsac9")
+    times = np.array([0.002, 0.05, 0.25])
+    b = sim.simulate_compliant(case, 0.2, friction=0.8, contact_time=times,
+                               settings=_frozen(20))
+    np.testing.assert_allclose(b.velocity1, np.broadcast_to(b.velocity1[0], (3, 2)),
+                               atol=1e-9)
+    np.testing.assert_allclose(b.yaw_rate2, b.yaw_rate2[0], atol=1e-9)
+    tyres = sim.simulate_compliant(case, 0.2, friction=0.8, tyre_friction=0.8,
+                                   contact_time=times, settings=_frozen(20))
+    assert abs(tyres.velocity1[2, 0] - tyres.velocity1[0, 0]) > 0.1
+
+
+def test_the_frozen_geometry_is_refused_where_it_is_not_built():
+    case = pim.load_case("ricsac9")
+    with pytest.raises(ValueError, match="geometry_change"):
+        sim.simulate_compliant(case, 0.2, contact_time=0.1, settings=_frozen(),
+                               engine="pymunk")
+    with pytest.raises(ValueError, match="geometry_change"):
+        sim.reference_compliant(case, 0.2, 7.5e5, settings=_frozen())
+    with pytest.raises(ValueError, match="geometry_change must be True or False"):
+        sim.CompliantSettings(geometry_change=0)
+# ---- physics kept: no ok result gains energy or lasts without end (issue 33 point 11) ----
+
+def test_an_absurdly_soft_contact_is_refused_before_any_step():
+    """stiffness 1e-300 N/m returned ok with 2e294 J gained and a 1.2e149 s contact, 1e-6
+    N/m ok with 123 s of contact (the fault harness): both are refused up front, by the
+    estimated duration, on both engines, with the reason."""
+    from sim.compliant_setup import ESTIMATE_MARGIN
+    from sim.failures import SimulationError
+
+    case = pim.load_case("ricsac9")
+    for k in (1e-300, 1e-6):
+        batch = sim.simulate_compliant(case, 0.3, stiffness=k)
+        assert not batch.ok and batch.status_name == "never_separated"
+        assert np.isnan(batch.contact_duration) and np.isnan(batch.velocity1).all()
+        with pytest.raises(SimulationError, match="never_separated|still pushed|estimated"):
+            batch.result()
+        with pytest.raises(SimulationError) as info:
+            sim.simulate_compliant(case, 0.3, stiffness=k, engine="pymunk")
+        assert info.value.kind == "never_separated"
+        assert f"beyond {ESTIMATE_MARGIN:g} x settings.max_contact_time" in str(info.value)
+    # a soft contact whose estimate lies within the margin still runs, and ends in time
+    soft = sim.simulate_compliant(case, 0.3, stiffness=1e3)
+    assert soft.ok and soft.contact_duration < soft.settings.max_contact_time
+
+
+def test_a_contact_that_gains_energy_is_refused_never_ok():
+    """An elastic contact stepped at 10 steps per contact gains energy on the step's error
+    (old code: ok): refused as "energy_gained", NaN outputs, on both engines; the default
+    step keeps it (within ENERGY_TOLERANCE)."""
+    from sim.compliant_setup import ENERGY_TOLERANCE, CompliantSettings
+    from sim.failures import SimulationError
+
+    case = pim.load_case("ricsac9-brach")
+    coarse = CompliantSettings(steps_per_contact=10)
+    batch = sim.simulate_compliant(case, 1.0, stiffness=7.5e5, settings=coarse)
+    assert batch.status_name == "energy_gained" and np.isnan(batch.velocity1).all()
+    assert batch.failures() == {"energy_gained": 1}
+    with pytest.raises(SimulationError) as info:
+        sim.simulate_compliant(case, 1.0, stiffness=7.5e5, settings=coarse, engine="pymunk")
+    assert info.value.kind == "energy_gained" and "kinetic energy rose" in str(info.value)
+    fine = sim.simulate_compliant(case, 1.0, stiffness=7.5e5)
+    assert fine.ok
+    assert fine.energy_after <= fine.energy_before * (1 + ENERGY_TOLERANCE)
+
+
+def test_physics_status_refuses_gain_and_overlong_contacts():
+    from sim.compliant_setup import CompliantSettings, physics_status
+
+    s = CompliantSettings()
+    got = physics_status([100.0, 100.0, 100.0, 100.0], [99.0, 100.05, 101.0, np.nan],
+                         [0.1, 0.1, 0.1, 0.1], s)
+    assert [STATUS_NAMES[c] for c in got] == ["ok", "ok", "energy_gained", "energy_gained"]
+    got = physics_status(100.0, 90.0, [0.5, 1.5, np.inf], s)
+    assert [STATUS_NAMES[c] for c in got] == ["ok", "never_separated", "never_separated"]

@@ -30,10 +30,12 @@ def test_the_table_is_typed_and_states_the_published_counts():
 def test_regeneration_rewrites_only_the_block(tmp_path, capsys):
     page = tmp_path / D.PAGE
     page.write_text(f"prose before\n{D.BEGIN}\n| old | table |\n{D.END}\nprose between\n"
+                    f"{D.MASS_BEGIN}\n| old |\n{D.MASS_END}\nmore prose\n"
                     f"{D.AXLE_BEGIN}\n| old |\n{D.AXLE_END}\nprose after\n")
     assert main(["inertia-estimate", "--docs", str(tmp_path)]) == 0
     assert capsys.readouterr().out.strip() == f"wrote {page}"
     assert page.read_text() == (f"prose before\n{D.block()}\nprose between\n"
+                                f"{D.mass_block()}\nmore prose\n"
                                 f"{D.axle_block()}\nprose after\n")
     page.write_text("no markers\n")
     with pytest.raises(ValueError, match="markers"):
@@ -53,3 +55,16 @@ def test_the_cg_position_table_is_typed_and_counts_the_52_vehicles():
     assert rows["van"]["a / L used"] == "all pooled" and rows["van"]["its vehicles"] == 52
     assert rows["car"]["a / L used"] == "its own"
     assert 0.35 < rows["car"]["mean a / L [-]"].value < rows["suv"]["mean a / L [-]"].value
+
+
+def test_the_committed_page_holds_the_mass_line_table_the_code_gives():
+    assert D.mass_block() in (DOCS / D.PAGE).read_text(encoding="utf-8")
+
+
+def test_the_mass_line_table_states_the_published_lines():
+    """Tse 2020's cars: I_z = 3.176 m - 1754.164, R^2 0.920, 73 vehicles; trucks: 131."""
+    table = D.mass_table()
+    rows = {row[0]: dict(zip(table.columns, row, strict=True)) for row in table.rows}
+    assert rows["car"]["vehicles"] == 73 and rows["truck"]["vehicles"] == 131
+    assert rows["car"]["slope [m^2]"].value == pytest.approx(3.176, abs=1e-3)
+    assert rows["car"]["R^2 [-]"].value == pytest.approx(0.920, abs=5e-4)

@@ -10,16 +10,6 @@ from comparisons.studies import crash_records as R
 from pim.io.datasets import FITTED_BY_PIM, MEASURED, PIM_OUTPUT
 
 
-@pytest.fixture(scope="module")
-def radii():
-    return R.fitted_radii()
-
-
-@pytest.fixture(scope="module")
-def classes(radii):
-    return R.crash_classes(radii=radii)
-
-
 def test_classes_cover_the_datasets_both_models_run(classes):
     assert {k: len(v) for k, v in classes.items()} == {
         R.NON_SIDESWIPE: 16, R.SIDESWIPE: 24, R.RICSAC: 3, R.RICSAC9: 1, R.CAR_TO_CAR: 4}

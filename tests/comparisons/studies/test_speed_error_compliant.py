@@ -117,11 +117,12 @@ def test_two_scenes_on_a_process_pool_give_the_serial_errors(study):
 
 
 def test_a_reference_rung_over_the_budget_is_abandoned_at_it():
-    """hard-near-singular-q's frictionless reference (eps 0.1) takes 122 steps at rtol 1e-9
-    and 1 089 at 1e-10: with a budget of 600 the second rung starts (122 < 600 / 4) and
+    """hard-near-singular-q's frictionless reference (eps 0.1) takes about 120 steps at rtol
+    1e-9 (122 on one processor, 120 on another: the adaptive steps follow round-off) and
+    1 089 at 1e-10: with a budget of 600 the second rung starts (122 < 600 / 4) and
     is stopped at 600 steps (settings.max_steps) instead of running on; the first is the
     reference. Before the cap the 1e-10 rung ran to the end and was taken."""
     case = pim.load_case("hard-near-singular-q")
     ref = S.reference_within_budget(case, 0.1, 7.5e5, 0.0, rtols=(1e-9, 1e-10), budget=600)
-    assert ref.rtol == 1e-9 and ref.result.steps == 122
+    assert ref.rtol == 1e-9 and 100 <= ref.result.steps < 600 / 4
     assert math.isnan(ref.spread)

@@ -9,37 +9,20 @@ import numpy as np
 import pytest
 
 import pim
-import sim
 from comparisons.studies import crash_records as R
 from comparisons.studies import tuned_scene as T
-from sim.contact_law import stiffness_for_duration
-
-
-@pytest.fixture(scope="module")
-def radii():
-    return R.fitted_radii()
-
-
-@pytest.fixture(scope="module")
-def classes(radii):
-    return R.crash_classes(radii=radii)
 
 
 @pytest.mark.parametrize("model", [T.SCENE_MODEL, T.SCENE_MU0_MODEL])
-def test_the_multistart_fit_recovers_a_synthetic_crash(classes, model):
+def test_the_multistart_fit_recovers_a_synthetic_crash(classes, synthetic, model):
     """Truth: RICSAC 9 integrated by sim.reference_compliant (solve_ivp, independent of the
     compiled stepper) at known (eps, friction, T, mu_tyre); the fit sees only its
     post-impact motion, from a Sobol screen of the whole box."""
-    record = classes[R.RICSAC9][0]
-    case = record.case
+    case = classes[R.RICSAC9][0].case
     eps, duration, tyre = 0.3, 0.12, 0.7
     law = 0.6 if model is T.SCENE_MODEL else 0.8       # mu_c, or b with mu_c = b |mu0|
     mu = law if model is T.SCENE_MODEL else law * abs(float(pim.solve(case, eps).mu0))
-    k = float(stiffness_for_duration(duration, float(pim.solve(case, eps).k_nn), eps))
-    r = sim.reference_compliant(case, eps, k, friction=mu, tyre_friction=tyre,
-                                settings=sim.CompliantSettings(record=False, rtol=1e-9))
-    truth = dataclasses.replace(record, observed=np.r_[r.velocity1, r.yaw_rate1,
-                                                       r.velocity2, r.yaw_rate2])
+    truth = synthetic(eps, mu, duration, tyre)
     variant = R.input_variants([truth])[0]
     fit = T.fit_class(model, [truth], variant, loo=False, steps=200)[1]
     np.testing.assert_allclose(fit.x, [eps, law, duration, tyre], rtol=0.03, atol=0.01)
@@ -124,7 +107,7 @@ def test_a_study_of_a_small_class(classes, radii):
             for kind in ("class fit", "leave-one-out"):
                 assert [r.test for r in v.rows(m.name, kind)] == [r.name for r in records]
         assert v.verdict.verdict == "too few tests to decide" and v.verdict.p_value is None
-        assert set(v.comparisons) == {"scene", "scene-mu0"}
+        assert set(v.comparisons) == {"scene", "scene-mu0", "scene-physical"}
     scene = st.variants[0].rows("scene", "class fit")[0]
     assert scene.contact_time > 0 and scene.peak_crush > 0
     assert all(f in T.PHYSICAL_RANGES for r in st.variants[0].predictions for f in r.flags)

@@ -385,3 +385,16 @@ def test_every_unknown_name_of_a_case_file_gets_the_closest_known_one(tmp_path, 
     with pytest.raises(ValueError) as info:
         pim.load_case(path)
     assert str(info.value).startswith(words), str(info.value)
+
+
+def test_a_case_name_too_long_for_a_file_is_an_input_error():
+    """pim.load_case('x' * 5000) raised OSError ("File name too long") from the file
+    system's look-up (issue 33 point 11): an input error naming the case, cut short."""
+    from pim.model.numbers import InputError
+
+    for name in ("x" * 5000, "a\x00b"):
+        with pytest.raises(InputError, match="is neither a file nor a bundled case") as info:
+            pim.load_case(name)
+        assert len(str(info.value)) < 1000
+    assert "... (5000 characters)" in str(pytest.raises(InputError, pim.load_case,
+                                                        "x" * 5000).value)

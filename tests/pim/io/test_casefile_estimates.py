@@ -63,9 +63,26 @@ def test_axle_position_and_body_class_change_the_estimate():
         parse_case(_data(body="bus"))
 
 
-def test_without_wheelbase_the_error_names_what_is_missing():
+def test_without_wheelbase_the_mass_alone_estimates_it():
+    """No wheelbase (refused before issue 33 point 4): the mass-only line of the body's
+    group, as an estimate with its wider scatter, drawn in the Monte Carlo; a mass outside
+    the line's vehicles is refused naming what to give."""
+    from pim.io.inertia_data import mass_regressions
+
+    case = parse_case(_data(wheelbase=None))
+    (estimate,) = case.estimates
+    line = mass_regressions()["car"]
+    assert float(case.vehicle1.yaw_inertia) == pytest.approx(line.slope * 1500
+                                                             + line.intercept)
+    assert estimate.value == float(case.vehicle1.yaw_inertia)
+    assert 0.10 < estimate.relative_sd < 0.13 and "without a wheelbase" in estimate.method
+    dist = case.uncertainty.inputs["vehicle1.yaw_inertia"]
+    assert (dist.kind, dist.b) == ("normal", estimate.sd)
+    values, _ = sample_inputs(case.uncertainty, nominal_values(case), 20_000,
+                              np.random.default_rng(2))
+    assert values["vehicle1.yaw_inertia"].std() == pytest.approx(estimate.sd, rel=0.03)
     with pytest.raises(InputError) as info:
-        parse_case(_data(wheelbase=None))
+        parse_case(_data(wheelbase=None, mass="3000 kg"))
     text = str(info.value)
     assert "vehicle1" in text and "yaw_inertia" in text and "wheelbase" in text
     with pytest.raises(InputError, match="exactly one of 'yaw_inertia' or 'radius_of"):
@@ -148,5 +165,13 @@ def test_docs_example_note_is_what_the_code_prints():
     from pim.io.inertia_data import estimate_notes
 
     (line,) = estimate_notes(pim.load_case(CASE), "si")
+    docs = Path(__file__).resolve().parents[3] / "docs" / "inertia-estimate.md"
+    assert f"\n{line}\n" in docs.read_text()
+
+
+def test_docs_example_note_without_a_wheelbase_is_what_the_code_prints():
+    from pim.io.inertia_data import estimate_notes
+
+    (line,) = estimate_notes(parse_case(_data(wheelbase=None)), "si")
     docs = Path(__file__).resolve().parents[3] / "docs" / "inertia-estimate.md"
     assert f"\n{line}\n" in docs.read_text()

@@ -65,14 +65,29 @@ def test_bad_unknown_names_the_key(table, match):
         parse_unknown(table)
 
 
-def test_run_out_keys_are_optional_but_pre_impact_needs_them():
-    """A vehicle may have evidence other than a run-out (issue 19): no run-out keys -> no
-    run-out evidence; marks before the impact without the run-out are refused by name."""
-    ev = parse_evidence({"vehicle1": {}})
-    assert ev.vehicle1 is None and ev.vehicle2 is None
-    with pytest.raises(ValueError, match=r"evidence.vehicle2.pre_impact needs the vehicle's "
-                                         r"run-out evidence"):
-        parse_evidence({"vehicle2": {"pre_impact": {}}})
+def test_an_empty_vehicle_table_is_refused_by_name():
+    """An empty [evidence.vehicle1] was accepted without a word (issue 33 point 11): now an
+    error naming the table and what it may hold."""
+    with pytest.raises(ValueError, match=r"\[evidence.vehicle1\] is empty: give the "
+                                         r"run-out's rest_position"):
+        parse_evidence({"vehicle1": {}})
+
+
+def test_marks_before_the_impact_need_no_run_out():
+    """A vehicle may have evidence other than a run-out (issue 19), and marks before the
+    impact need none of the run-out's keys (issue 33 point 4): they are kept as the
+    vehicle's marks, their per-wheel braking weighed by the given front share (else 0.5)."""
+    marks = {"skid_length": "30 ft", "friction": 0.7,
+             "braking": ["locked", "locked", "free", "free"]}
+    ev = parse_evidence({"vehicle2": {"pre_impact": marks}}, front_shares={2: 0.6})
+    assert ev.vehicle2 is None and not ev.has_runout
+    assert ev.pre_impact(2).skid_length == pytest.approx(30 * 0.3048)
+    assert ev.pre_impact(2).drag == pytest.approx(0.6)
+    assert ev.pre_impact(1) is None
+    assert parse_evidence({"vehicle2": {"pre_impact": marks}}).pre_impact(2).drag \
+        == pytest.approx(0.5)
+    with pytest.raises(ValueError, match=r"evidence.vehicle2.pre_impact: missing friction"):
+        parse_evidence({"vehicle2": {"pre_impact": {"skid_length": "3 m"}}})
 
 
 CRUSH = {"side": "front", "width": "1.2 m", "depths": ["0.2 m", "0.3 m"],

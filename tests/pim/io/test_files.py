@@ -82,3 +82,21 @@ def test_a_set_of_files_is_renamed_only_when_every_one_is_complete(tmp_path):
         t_b.write_text("b")
     assert md.read_text() == "new" and (tmp_path / "b.txt").read_text() == "b"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.md", "b.txt"]
+
+
+def test_a_full_disk_names_the_file_as_the_user_knows_it(tmp_path, capsys):
+    """An OSError without a file name (a full disk on a write) or about the temporary file
+    names the target: "error: cannot write No space left on device" named nothing."""
+    import errno
+
+    target = tmp_path / "scene.png"
+    with pytest.raises(OSError) as info, atomic_path(target):
+        raise OSError(errno.ENOSPC, "No space left on device")
+    assert info.value.filename == str(target) and info.value.errno == errno.ENOSPC
+    with pytest.raises(OSError) as info, atomic_paths(target, tmp_path / "a.gif") as (tmp, _):
+        raise OSError(errno.ENOSPC, "No space left on device", str(tmp))
+    assert info.value.filename == str(target)
+    with pytest.raises(FileNotFoundError) as info, atomic_path(target):
+        open(tmp_path / "missing.toml")                      # another file: as it was
+    assert info.value.filename == str(tmp_path / "missing.toml")
+    assert list(tmp_path.iterdir()) == []

@@ -9,8 +9,11 @@ from scipy.stats import binom
 from pim.io.inertia_data import (
     dynamic_indices,
     estimate_yaw_inertia,
+    estimate_yaw_inertia_from_mass,
     held_out,
     load_inertia_records,
+    mass_held_out,
+    mass_regressions,
 )
 from pim.model.inertia import BODIES, dynamic_index, yaw_inertia_estimate
 from pim.model.numbers import InputError
@@ -121,3 +124,40 @@ def test_estimate_yaw_inertia_records_its_provenance():
     with pytest.raises(InputError, match=r"vehicle1\.body must be one of"):
         estimate_yaw_inertia(1500.0, 2.7, None, "truck", "vehicle1")
 
+
+
+@pytest.mark.parametrize("group, published", [("car", "cars"), ("truck", "trucks")])
+def test_the_mass_only_line_is_the_published_one(group, published):
+    """The line the estimate without a wheelbase uses is the one K. Tse (2020) published for
+    its group (PUBLISHED_FIT: slope and R^2 to 3 decimals, the intercept to the rows'
+    0.1 kg m^2), from the same vehicles."""
+    _, slope, intercept, r2 = PUBLISHED_FIT[published]
+    line = mass_regressions()[group]
+    assert line.slope == pytest.approx(slope, abs=1e-3)
+    assert line.intercept == pytest.approx(intercept, abs=1.0)
+    assert line.r_squared == pytest.approx(r2, abs=5e-4)
+    assert line.count == {"car": 73, "truck": 131}[group]
+
+
+@pytest.mark.parametrize("group", ["car", "truck"])
+def test_the_mass_only_line_covers_held_out_vehicles(group):
+    """Each measured vehicle left out in turn, the others' line and relative scatter: the
+    measured inertia within 1.96 predictive sd as often as a 95 % interval promises
+    (binomial, one-sided, 1 %), the standardised errors' sd near 1."""
+    inside, n, z_sd = mass_held_out(group)
+    assert n == mass_regressions()[group].count
+    assert binom.cdf(inside, n, 0.95) > 0.01, (inside, n)
+    assert 0.8 < z_sd < 1.25
+
+
+def test_the_mass_only_estimate_records_its_provenance():
+    e = estimate_yaw_inertia_from_mass(1500.0, "pickup", "vehicle2")
+    line = mass_regressions()["truck"]
+    assert e.name == "vehicle2.yaw_inertia" and e.inputs == (("mass m", 1500.0, "mass"),)
+    assert e.value == pytest.approx(line.slope * 1500 + line.intercept)
+    assert e.sd == pytest.approx(float(line.predictive_sd(1500.0)) * e.value)
+    assert "131 measured trucks" in e.method and "Tse 2020" in e.source
+    assert 0.15 < e.relative_sd < 0.2            # wider than the dynamic index's 7 %
+    with pytest.raises(InputError, match=r"vehicle2: no yaw_inertia .* and no wheelbase.* "
+                                         r"within the 815-1978 kg of the 73 measured cars"):
+        estimate_yaw_inertia_from_mass(2500.0, "car", "vehicle2")

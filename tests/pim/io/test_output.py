@@ -41,9 +41,10 @@ def test_a_run_replaces_the_folder_whole(tmp_path):
 
 @pytest.mark.parametrize("error", [KeyboardInterrupt, OSError, RuntimeError])
 def test_an_error_keeps_the_old_run_and_leaves_no_litter(tmp_path, error):
+    """(An OSError while the run is written becomes an OutputError naming the folder.)"""
     out = write_run(tmp_path / "out", {"a.csv": "1"})
     before = tree(out)
-    with pytest.raises(error), output_folder(out) as tmp:
+    with pytest.raises(OutputError if error is OSError else error), output_folder(out) as tmp:
         (tmp / "a.csv").write_text("half")
         (tmp / "new.png").write_text("x")
         raise error()
@@ -264,3 +265,51 @@ def test_a_folder_whose_marker_lists_no_files_keeps_all_the_new_run_does_not_wri
         (tmp / "a.csv").write_text("new")
     assert (out / "a.csv").read_text() == "new" and (out / "notes.txt").read_text() == "my notes"
     assert said == [f"--out {out}: kept notes.txt (pim did not write it)"]
+
+
+def test_a_full_disk_names_the_output_folder_and_file(tmp_path, capsys):
+    """"error: cannot write No space left on device" named no output (issue 33 point 11):
+    an OSError without a file name names the folder; one about a temporary file names the
+    file as it would be in the folder."""
+    import errno
+
+    out = tmp_path / "out"
+    with pytest.raises(OutputError) as info, output_folder(out) as tmp:
+        raise OSError(errno.ENOSPC, "No space left on device")
+    text = str(info.value)
+    assert text.startswith(f"--out {out}: cannot write (No space left on device)")
+    assert "nothing was written" in text
+    with pytest.raises(OutputError) as info, output_folder(out) as tmp:
+        raise OSError(errno.ENOSPC, "No space left on device", str(tmp / "plots" / "x.png"))
+    assert f"cannot write {out / 'plots' / 'x.png'} (No space left on device)" in \
+        str(info.value)
+    assert litter(tmp_path) == []
+    outside = tmp_path / "input.toml"                # an input's error stays as it is
+    with pytest.raises(FileNotFoundError), output_folder(out):
+        outside.read_text()
+
+
+def test_a_read_only_folder_or_mount_point_is_said_before_the_work(tmp_path, monkeypatch):
+    """A read-only mount as the output folder was reported as "Device or resource busy"
+    after the work (the swap's rename): refused before it, naming the folder and why."""
+    import os
+
+    out = tmp_path / "ro"
+    out.mkdir()
+    real = os.statvfs
+
+    class ReadOnly:
+        def __init__(self, st):
+            self.f_flag = st.f_flag | os.ST_RDONLY
+
+    monkeypatch.setattr(os, "statvfs", lambda p: ReadOnly(real(p)) if str(p) == str(out)
+                        else real(p))
+    with pytest.raises(OutputError, match=rf"--out {out}: the folder {out} is on a read-only "
+                                          r"file system \(not writable\)"):
+        with output_folder(out):
+            pass
+    monkeypatch.setattr(os, "statvfs", real)
+    monkeypatch.setattr(os.path, "ismount", lambda p: str(p) == str(out))
+    with pytest.raises(OutputError, match=r"a mount point; .* give a folder inside it"):
+        with output_folder(out):
+            pass

@@ -14,7 +14,9 @@ from pim.model.inertia import (
     InputEstimate,
     axle_fraction,
     dynamic_index,
+    mass_regression,
     yaw_inertia_estimate,
+    yaw_inertia_from_mass,
 )
 from pim.model.numbers import InputError
 
@@ -126,3 +128,36 @@ def test_axle_fraction_refuses_impossible_positions():
     with pytest.raises(InputError, match="at least 2 finite"):
         axle_fraction([0.4], "car", "x")
     assert axle_fraction([0.38, 0.42], "car", "x").mean == pytest.approx(0.4)
+
+
+def test_mass_regression_is_the_least_squares_line_with_its_relative_scatter():
+    """On points a known line times (1 + e): slope and intercept of the line through them
+    (independently: the normal equations by hand), R^2, and the relative scatter
+    sqrt(sum(e_rel^2) / (n - 2)); the predictive sd grows away from the mean mass."""
+    m = np.array([1000.0, 1200.0, 1400.0, 1600.0, 1800.0])
+    izz = (3.0 * m - 1500.0) * np.array([1.05, 0.95, 1.0, 1.04, 0.96])
+    line = mass_regression(m, izz, "car", "test data")
+    n, sx, sy = m.size, m.sum(), izz.sum()
+    slope = (n * (m * izz).sum() - sx * sy) / (n * (m * m).sum() - sx * sx)
+    assert line.slope == pytest.approx(slope, rel=1e-12)
+    assert line.intercept == pytest.approx((sy - slope * sx) / n, rel=1e-9)
+    fit = line.slope * m + line.intercept
+    assert line.r_squared == pytest.approx(1 - ((izz - fit) ** 2).sum()
+                                           / ((izz - izz.mean()) ** 2).sum())
+    assert line.relative_sd == pytest.approx(np.sqrt((((izz - fit) / fit) ** 2).sum() / 3))
+    assert line.mass_range == (1000.0, 1800.0) and line.count == 5
+    centre, edge = line.predictive_sd([1400.0, 1800.0])
+    assert centre == pytest.approx(line.relative_sd * math.sqrt(1 + 1 / 5))
+    assert edge > centre
+    inertia, sd = yaw_inertia_from_mass([1400.0, 1800.0], line)
+    assert inertia == pytest.approx(line.slope * np.array([1400, 1800]) + line.intercept)
+    assert sd == pytest.approx(line.predictive_sd([1400.0, 1800.0]) * inertia)
+
+
+def test_the_mass_only_line_refuses_masses_outside_its_vehicles():
+    line = mass_regression([1000.0, 1500.0, 2000.0], [1500.0, 3000.0, 4400.0], "car", "t")
+    for bad in (999.0, 2000.5, float("nan")):
+        with pytest.raises(InputError, match=r"within the 1000-2000 kg of the 3 measured cars"):
+            yaw_inertia_from_mass([1500.0, bad], line)
+    with pytest.raises(InputError, match="at least 3"):
+        mass_regression([1000.0, 1000.0, 1000.0], [1.0, 2.0, 3.0], "car", "t")

@@ -35,3 +35,32 @@ def test_mu0_is_the_critical_impulse_ratio():
     assert isinstance(r, SheetNotation)
     assert float(r.mu0) == pytest.approx(float(r.critical_impulse_t / r.critical_impulse_n),
                                          rel=1e-15)
+
+
+@pytest.mark.parametrize("beta", [1e308, 1e200, 1e154, 5.0])
+def test_total_loss_stays_finite_for_any_finite_beta(beta):
+    """`pim solve ricsac9 --beta 1e308` printed "Brach T_L -inf" with numpy's overflow
+    warnings (issue 33 point 11): mu^2 overflowed although q mu stays finite. T_L equals the
+    kinetic energy lost (from the velocities, another route) and warns of nothing."""
+    import warnings
+
+    import numpy as np
+
+    case = pim.load_case("ricsac9")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        r = pim.solve(case, 0.355, beta)
+        loss = float(r.total_loss_brach)
+    assert np.isfinite(loss)
+    assert loss == pytest.approx(float(r.energy_loss), rel=1e-9)
+    assert not r.admissible or beta <= 1
+
+
+def test_solve_with_a_huge_beta_prints_no_numpy_warning(capsys):
+    from pim_cli.main import main
+
+    assert main(["solve", "ricsac9", "--beta", "1e308"]) == 1       # inadmissible
+    captured = capsys.readouterr()
+    assert "RuntimeWarning" not in captured.err and "sheet_notation" not in captured.err
+    (line,) = [x for x in captured.out.splitlines() if x.startswith("Brach T_L")]
+    assert "inf" not in line and "nan" not in line
