@@ -241,31 +241,40 @@ def build_renderer(case: pim.Case, eps: float, beta: float, *,
 
 
 def event_renderer(case: pim.Case, *, framing: Framing | None = None, tyre=None,
-                   units="si", ghost: bool = True, eps=None, beta=None):
+                   units="si", ghost: bool = True, eps=None, beta=None, strict: bool = True):
     """The whole event's frames: the pymunk event (:func:`sim.simulate_event`) solid, the
     analytic event (:func:`pim.event`) as a ghost, from ``framing.before`` (the approach,
     default :data:`pim.model.event.DEFAULT_APPROACH`) to rest plus :data:`REST_HOLD` (or
     ``framing.after`` seconds after the first impact).
 
+    With ``strict`` False an analytic event that :func:`pim.event` refuses (an impact that
+    gains energy ...) is left out: the pymunk event is drawn alone, the frames say why.
+
     Returns
     -------
-    (Renderer, Event, Event)
-        The renderer, the analytic event and the simulated one (as stored).
+    (Renderer, Event or None, Event)
+        The renderer, the analytic event (None: refused) and the simulated one (as stored).
     """
     framing = _checked_framing(framing or Framing())
-    analytic = pim.event(case, tyre_friction=tyre, approach=framing.before, eps=eps,
-                         beta=beta)
+    warnings = ()
+    try:
+        analytic = pim.event(case, tyre_friction=tyre, approach=framing.before, eps=eps,
+                             beta=beta)
+    except InputError as exc:
+        if strict:
+            raise
+        analytic, warnings = None, ((-math.inf, f"no analytic event: {exc}"),)
     simulated = sim.simulate_event(case, tyre_friction=tyre, approach=framing.before,
                                    eps=eps, beta=beta)
     after = framing.after if framing.after is not None else \
-        max(analytic.end_time, simulated.end_time) + REST_HOLD
+        max(e.end_time for e in (analytic, simulated) if e is not None) + REST_HOLD
     times = frame_times(framing.before, after, framing.fps)
     look = Look(title=f"{case.name or 'case'}: the whole event, approach to rest",
                 note=tyre_friction_source(case, tyre)[1], units=units, size=framing.size,
                 labels=("pymunk event", "analytic event"),
-                measured_rest=measured_rest(case))
-    renderer = Renderer(simulated.at(times), analytic.at(times) if ghost else None, look=look)
-    return renderer, analytic, simulated
+                measured_rest=measured_rest(case), warnings=warnings)
+    shown = analytic.at(times) if ghost and analytic is not None else None
+    return Renderer(simulated.at(times), shown, look=look), analytic, simulated
 
 
 def measured_rest(case: pim.Case) -> tuple:
@@ -283,7 +292,8 @@ def animate_event(case: pim.Case, out, *, gif=None, progress: bool | None = None
     and :class:`Framing`'s fields by name) to ``out`` (MP4)."""
     options = {k: kwargs.pop(k) for k in ("tyre", "units", "ghost", "eps", "beta")
                if k in kwargs}
-    renderer = event_renderer(case, framing=_framing(None, kwargs), **options)[0]
+    renderer = event_renderer(case, framing=_framing(None, kwargs), strict=False,
+                              **options)[0]
     return write_animation(renderer, out, fps=kwargs.get("fps", DEFAULT_FPS), gif=gif,
                            progress=progress)
 

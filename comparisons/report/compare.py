@@ -344,8 +344,10 @@ def _gather_animation(data: ReportData, folder: Path, options: CompareOptions) -
     case = data.case
     try:
         try:
-            renderer, analytic, _ = event_renderer(case, tyre=options.tyre, units=data.units,
-                                                   eps=data.eps, beta=data.beta)
+            renderer, analytic, simulated = event_renderer(
+                case, tyre=options.tyre, units=data.units, eps=data.eps, beta=data.beta,
+                strict=False)
+            analytic = simulated if analytic is None else analytic
         except InputError:
             renderer, analytic = build_renderer(case, data.eps, data.beta, result=data.result,
                                                 tyre=options.tyre, units=data.units), None
@@ -358,7 +360,7 @@ def _gather_animation(data: ReportData, folder: Path, options: CompareOptions) -
     data.files += ["animation.mp4"] + (["animation.gif"] if options.gif else [])
     if analytic is not None:
         save_figure(plan_view(analytic, units=data.units, measured_rest=measured_rest(case),
-                              title=f"{case.name or 'case'}: the analytic event"),
+                              title=f"{case.name or 'case'}: the {analytic.source} event"),
                     folder / "plan.png")
         data.plan = "plan.png"
         data.files.append("plan.png")
