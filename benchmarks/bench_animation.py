@@ -80,6 +80,8 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         old_render = old_module("comparisons/animation/render.py", "old_render", tmp)
+        old_module("pim/plotting/reconstruction_scene.py",        # its colours (removed)
+                   "pim.plotting.reconstruction_scene", tmp)
         old_rec = old_module("pim/plotting/reconstruction_animation.py",
                              "pim.plotting.old_reconstruction_animation", tmp)
         old = old_render.build_renderer(case, 0.355, 1.0)
