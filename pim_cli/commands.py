@@ -64,13 +64,16 @@ COMMANDS = (
     Command("compare", "pim_cli.compare:compare", RECONSTRUCT,
             "Write CASE's reconstruction report to a folder: PIM's answer, its plots and "
             "animation, and a pymunk cross-check."),
+    Command("event", "pim_cli.event:event", RECONSTRUCT,
+            "Write CASE's whole event, from the approach to rest, to a folder: every impact, "
+            "the run-out, its video and plan view."),
     Command("draw", "pim_cli.solve:draw", RECONSTRUCT,
             "Draw CASE's geometry and sign conventions to an image file."),
     Command("plot", "pim_cli.fit:plot", RECONSTRUCT,
             "Draw the design sheet's graphs for CASE into --out (PNG and SVG)."),
     Command("animate", "pim_cli.compare:animate", RECONSTRUCT,
-            "Animate CASE: the pymunk simulation solid, the analytic post-impact motion as a "
-            "ghost (MP4)."),
+            "Animate CASE's whole event, from the approach to rest: the pymunk event solid, "
+            "the analytic event (pim event) as a ghost (MP4)."),
     Command("validate", "pim_cli.validate:validate", MODEL,
             "Validate PIM on the bundled published crash tests (DATASET: all by default)."),
     Command("validate-models", "pim_cli.models:validate_models", MODEL,

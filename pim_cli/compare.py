@@ -12,7 +12,7 @@ from pathlib import Path
 import click
 
 import pim
-from comparisons.animation.render import MAX_SHOWN
+from comparisons.animation.collision import MAX_SHOWN
 from pim.model.numbers import InputError
 from pim_cli.main import (
     Beta,
@@ -70,9 +70,10 @@ compare_beta_option = click.option(
 @click.option("--no-speed-error", is_flag=True, help="Skip the coarse speed-error sweep.")
 @click.option("--no-assumptions", is_flag=True,
               help="Skip PIM's assumptions at typical values (finite-duration scene).")
-@click.option("--tyre-friction", "tyre", type=FiniteFloat(), default=0.0, show_default=True,
+@click.option("--tyre-friction", "tyre", type=FiniteFloat(0.0, 5.0, "-"), default=None,
               help="Tyre/ground friction coefficient after impact in the animation (the "
-                   "ghost decelerates alike); 0 = free motion.")
+                   "ghost decelerates alike; default: the case's [evidence] friction, else "
+                   "0.7, dry asphalt); 0 = free motion.")
 @law_options
 @progress_option
 @allow_inadmissible_option
@@ -107,8 +108,6 @@ def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, n
     """
     from comparisons.report.compare import compare_case
 
-    if tyre < 0:
-        raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
     case = load_case_for("compare", case_name, law)
     units = output_units(case, units, speed_unit)
     folder = _out(out, case.name, "case")
@@ -225,26 +224,38 @@ def _compare_law(case, folder, choice, units, *, as_json, allow, **kwargs):
               help="Also write an animated GIF (half size) here.")
 @click.option("--fps", type=int, default=30, show_default=True, help="Frames per second.")
 @click.option("--before", type=FiniteFloat(0.0, MAX_SHOWN, "s"), default=None,
-              help=f"Seconds shown before the impact, at most {MAX_SHOWN:g} (default: about "
-                   "1.2 vehicle lengths).")
-@click.option("--after", type=FiniteFloat(0.0, MAX_SHOWN, "s"), default=2.0, show_default=True,
-              help=f"Seconds shown after the impact, at most {MAX_SHOWN:g}.")
-@click.option("--size", type=(int, int), default=(960, 720), show_default=True,
-              help="Frame width and height [px], even numbers.")
-@click.option("--tyre-friction", "tyre", type=FiniteFloat(), default=0.0, show_default=True,
-              help="Tyre/ground friction coefficient after the impact (ghost alike).")
+              help=f"Seconds shown before the impact, at most {MAX_SHOWN:g} (default: the "
+                   "1 s approach).")
+@click.option("--after", type=FiniteFloat(0.0, MAX_SHOWN, "s"), default=None,
+              help=f"Seconds shown after the impact, at most {MAX_SHOWN:g} (default: until "
+                   "both vehicles are at rest; 2 s of free motion without tyre friction).")
+@click.option("--size", type=(int, int), default=None,
+              help="Frame width and height [px], even numbers (default: 960 wide, the "
+                   "height fitted to the motion).")
+@click.option("--tyre-friction", "tyre", type=FiniteFloat(0.0, 5.0, "-"), default=None,
+              help="Tyre/ground friction coefficient after the impact, ghost alike "
+                   "(default: the case's [evidence] friction, else 0.7, dry asphalt; "
+                   "0: free motion).")
 @click.option("--no-ghost", is_flag=True, help="Do not draw PIM's answer as a ghost.")
+@click.option("--single-impact", is_flag=True,
+              help="PIM's single impact and its run-out against the rigid scene's simulation "
+                   "of that impact, not the whole event.")
 @law_options
 @units_option
 @progress_option
 @allow_inadmissible_option
 @json_option
-def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_ghost, law, k,
-            mu_c, units, speed_unit, progress, allow_inadmissible, as_json):
-    """Animate CASE: the pymunk simulation solid, the analytic post-impact motion as a ghost
-    (MP4).
+def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_ghost,
+            single_impact, law, k, mu_c, units, speed_unit, progress, allow_inadmissible,
+            as_json):
+    """Animate CASE's whole event, from the approach to rest: the pymunk event solid, the
+    analytic event (pim event) as a ghost (MP4).
 
-    Under the case's impact law (or --law): Brach's PIM and friction-capped Brach play the
+    The tyre friction is the case's [evidence]'s, else 0.7 (dry asphalt), stated in the
+    caption; every impact is drawn at its C with its contact plane, tyre marks where the
+    wheels slide. With --single-impact, or under another impact law than Brach's (the case's
+    impact.law or --law), PIM's single impact and its run-out against the pymunk run of
+    that impact: Brach's PIM and friction-capped Brach play the
     rigid scene at (eps, effective beta); the Kudlich-Slibar law plays its two-phase run
     (compression by the engine at mu_c, then k times its impulse) and continues after
     separation (docs/impact-laws.md). A secondary contact of the outlines after the impact
@@ -252,15 +263,13 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
     the analytic answer is inadmissible (the reasons first; --allow-inadmissible: exit 0).
     """
     import sim
-    from comparisons.animation.render import animate_case, animation_settings
+    from comparisons.animation.collision import animate_case, animation_plan
     from comparisons.studies.law_runs import law_setup, simulate_law
 
     _check_suffix(out, "--out", ".mp4")
     _check_suffix(gif, "--gif", ".gif")
     case = load_case_for("animate", case_name, law)
     units = output_units(case, units, speed_unit)
-    if tyre < 0:
-        raise InputError(f"--tyre-friction must be >= 0, got {tyre}")
     path = Path(out) if out else Path("out") / f"{case.name or 'case'}-animation.mp4"
     kwargs = dict(gif=gif, progress=progress, fps=fps, before=before, after=after, size=size,
                   tyre=tyre, ghost=not no_ghost, units=units)
@@ -274,11 +283,16 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
         eps_, beta_ = setup.restitution, setup.beta
     found = check_answer(case, setup.result if setup else pim.solve(case, eps_, beta_),
                          kwargs["units"], allow=allow_inadmissible, as_json=as_json)
+    if setup is None and not single_impact:
+        _animate_event(case, path, kwargs, (eps, beta), found, as_json)
+        finish_answer(found, allow_inadmissible)
+        return
     try:
         if setup is not None:
             kwargs.update(result=setup.result, title=f"{case.name or 'case'}: {setup.describe()}",
                           simulated=simulate_law(case, setup,
-                                                 animation_settings(after, tyre)))
+                                                 animation_plan(case, setup.result,
+                                                                tyre, after)))
         info = animate_case(case, eps_, beta_, path, **kwargs)
     except sim.SimulationError as exc:
         click.echo(f"simulation failed ({exc.kind}): {exc}", err=True)
@@ -301,6 +315,29 @@ def animate(case_name, out, eps, beta, gif, fps, before, after, size, tyre, no_g
                      f"{info.render_fps:.0f} frames/s, encoded in {info.write_seconds:.2f} s; "
                      f"ghost offset after impact {info.max_ghost_offset_px:.2g} px")
     finish_answer(found, allow_inadmissible)
+
+
+def _animate_event(case, path, kwargs, coefficients, found, as_json) -> None:
+    """``pim animate``'s whole event (the analytic event over the pymunk event)."""
+    import sim
+    from comparisons.animation.collision import animate_event
+
+    eps, beta = coefficients
+    try:
+        info = animate_event(case, path, eps=eps, beta=beta, **kwargs)
+    except sim.SimulationError as exc:
+        click.echo(f"simulation failed ({exc.kind}): {exc}", err=True)
+        sys.exit(1)
+    if as_json:
+        echo_json({"path": str(info.path), "gif": str(info.gif) if info.gif else None,
+                   "frames": info.frames, "fps": info.fps, "size": list(info.size),
+                   "render_fps": info.render_fps, "write_seconds": info.write_seconds,
+                   "max_ghost_offset_px": info.max_ghost_offset_px, "whole_event": True,
+                   "impacts": len(info.event.impacts), **findings_json(found)})
+        return
+    click.echo(f"wrote {info.path}" + (f" and {info.gif}" if info.gif else "")
+               + f": the whole event, {len(info.event.impacts)} impact(s), {info.frames} "
+                 f"frames at {info.fps} fps, rendered at {info.render_fps:.0f} frames/s")
 
 
 def _check_suffix(path, option: str, suffix: str) -> None:

@@ -27,6 +27,7 @@ from pathlib import Path
 
 import click
 
+from comparisons.animation.reconstruction import reconstruction_plan, write_reconstruction_video
 from comparisons.report.document import Figure, Video
 from pim.model.number_format import duration_text
 from comparisons.report.pre_impact import pre_impact_rows
@@ -45,8 +46,6 @@ from pim.io.files import save_figure
 from pim.io.output import output_folder
 from pim.io.process import worker_pool
 from pim.model.numbers import InputError
-from pim.plotting.reconstruction_animation import write_reconstruction_mp4
-from pim.plotting.reconstruction_scene import reconstruction_figure
 from pim_cli.main import (
     SEED,
     FiniteFloat,
@@ -206,9 +205,13 @@ def _write_folder(directory: Path, rec, rows, units: str, video: bool, pre=()) -
     (through the one report pipeline) into ``directory``."""
     media = []
     if rec.post is not None:
-        save_figure(reconstruction_figure(rec.post, units), directory / "scene.png")
-        media.append(Figure("scene.png", alt="scene", caption="The reconstructed scene."))
+        save_figure(reconstruction_plan(rec.post, rec.fit.result, units),
+                    directory / "scene.png")
+        media.append(Figure("scene.png", alt="scene", caption="The reconstructed scene in "
+                            "plan view: the fitted run-outs' outlines at the stated interval "
+                            "with their times, the impact, the measured rest positions."))
         if video:
-            write_reconstruction_mp4(rec.post, directory / "reconstruction.mp4", units=units)
+            write_reconstruction_video(rec.post, rec.fit.result, directory / "reconstruction.mp4",
+                                       units=units, progress=False)
             media.append(Video("reconstruction.mp4", "From the impact to rest."))
     write_document(reconstruction_document(rec, rows, units, pre, tuple(media)), directory)

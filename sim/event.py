@@ -502,7 +502,8 @@ def _event_of(run: EventRun, rest_time, notes: list) -> Event:
         sliding = sliding_flags(states, None if tyres is None else tyres.vehicle)
         sliding[time < 0] = False
         tracks.append(Track(states[:, :2], states[:, 2], states[:, 3:5], states[:, 5],
-                            sliding, outline_corners(vehicle), bool(vehicle.fixed)))
+                            sliding, outline_corners(vehicle), bool(vehicle.fixed),
+                            wheels=None if tyres is None else tyres.vehicle.positions))
     phase = phase_labels(time, [imp.time for imp in run.impacts], rest_time)
     return Event(time=time, vehicle1=tracks[0], vehicle2=tracks[1], phase=phase,
                  impacts=tuple(run.impacts), source="simulated",

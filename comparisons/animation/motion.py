@@ -15,15 +15,20 @@ one step before impact, so these frames are the same rigid motion for both). Aft
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 import pim
-from pim.model.event import Event, Track, phase_labels
+from pim.analysis.event import impact_record
+from pim.model.case import ImpactSpec
+from pim.model.event import REST_SPEED, Event, ImpactRecord, Track, phase_labels
 from pim.model.geometry import vehicle_outline
 from pim.model.tyres import STANDARD_GRAVITY
 from sim.scene import footprint_lever
 
-__all__ = ["free_motion", "analytic_motion", "simulated_motion"]
+__all__ = ["free_motion", "analytic_motion", "simulated_motion", "motion_event",
+           "case_impact", "rest_time"]
 
 
 def _vec(x) -> np.ndarray:
@@ -79,19 +84,58 @@ def free_motion(vehicle: pim.Vehicle, velocity, yaw_rate, time, tyre: float = 0.
     return cg + disp, heading + turn, vel
 
 
-def motion_event(case: pim.Case, time, poses, source: str) -> Event:
+def motion_event(case: pim.Case, time, poses, source: str, *, tyre: float = 0.0,
+                 impact: ImpactRecord | None = None) -> Event:
     """An :class:`pim.model.event.Event` of ``poses`` ((position, heading, velocity,
-    yaw_rate) per vehicle) at ``time``, with the case's single impact at t = 0 (phases
-    only: the impact's record is the solver's :class:`pim.Result`)."""
-    tracks = [Track(p, a, v, w, outline=vehicle_outline(veh), fixed=bool(veh.fixed))
-              for (p, a, v, w), veh in zip(poses, (case.vehicle1, case.vehicle2),
-                                           strict=True)]
-    return Event(time, tracks[0], tracks[1], phase_labels(time, [0.0]), source=source)
+    yaw_rate) per vehicle) at ``time``, with the case's single impact at t = 0 (``impact``
+    its record, if given) and the rest phase from :func:`rest_time` on. With tyre friction
+    (``tyre`` > 0) every wheel slides after the impact while the vehicle moves (the sliding
+    footprint of the simulator's tyre model and of the ghost's deceleration)."""
+    time = np.asarray(time, float)
+    tracks = []
+    for (p, a, v, w), veh in zip(poses, (case.vehicle1, case.vehicle2), strict=True):
+        track = Track(p, a, v, w, outline=vehicle_outline(veh), fixed=bool(veh.fixed))
+        if tyre > 0:
+            track = replace(track, sliding=np.repeat(((time > 0) & _moving(track))[:, None],
+                                                     4, 1))
+        tracks.append(track)
+    rest = rest_time(time, tracks)
+    return Event(time, tracks[0], tracks[1], phase_labels(time, [0.0], rest),
+                 impacts=() if impact is None else (impact,), source=source,
+                 stopped=(rest is not None,) * 2)
+
+
+def _moving(track: Track) -> np.ndarray:
+    """CG speed plus yaw rate times the outline's farthest corner from the CG at or above
+    :data:`pim.model.event.REST_SPEED` (the run-out's stop test) at each sample."""
+    reach = 2.5 if track.outline is None else float(np.hypot(*track.outline.T).max())
+    return track.speed + np.abs(track.yaw_rate) * reach >= REST_SPEED
+
+
+def rest_time(time, tracks) -> float | None:
+    """The first time after the impact from which every track is at rest (None: never)."""
+    time = np.asarray(time, float)
+    moving = (time <= 0) | np.any([_moving(t) for t in tracks], axis=0)
+    last = np.flatnonzero(moving)
+    first = last[-1] + 1 if len(last) else 0
+    return float(time[first]) if first < len(time) else None
+
+
+def case_impact(case: pim.Case, result: pim.Result, impulse=None,
+                source: str = "case") -> ImpactRecord:
+    """The case's single impact at t = 0 as an :class:`pim.model.event.ImpactRecord`, from
+    PIM's answer ``result`` (:func:`pim.analysis.event.impact_record`; ``impulse`` [N s] on
+    vehicle 1: another producer's, e.g. the simulator's, for its event)."""
+    record = impact_record(case, result, 0.0, ImpactSpec(law="brach"), source)
+    if impulse is None:
+        return record
+    return replace(record, impulse=np.asarray(impulse, float).reshape(2))
 
 
 def analytic_motion(case: pim.Case, result: pim.Result, time, tyre: float = 0.0,
                     gravity: float = STANDARD_GRAVITY) -> Event:
-    """The ghost: pre-impact motion of the case, then PIM's post-impact motion."""
+    """The ghost: pre-impact motion of the case, then PIM's post-impact motion (with its
+    impact's record)."""
     time = np.asarray(time, float)
     out = []
     for vehicle, after, w_after in ((case.vehicle1, result.velocity1, result.yaw_rate1),
@@ -103,7 +147,7 @@ def analytic_motion(case: pim.Case, result: pim.Result, time, tyre: float = 0.0,
         w = np.where(b, float(np.asarray(vehicle.yaw_rate)), _yaw_rate(post_a, time, w_after))
         out.append((np.where(b[:, None], pre_p, post_p), np.where(b, pre_a, post_a),
                     np.where(b[:, None], pre_v, post_v), w))
-    return motion_event(case, time, out, "pim")
+    return motion_event(case, time, out, "pim", tyre=tyre, impact=case_impact(case, result))
 
 
 def _yaw_rate(heading: np.ndarray, time: np.ndarray, w_after) -> np.ndarray:
@@ -115,8 +159,10 @@ def _yaw_rate(heading: np.ndarray, time: np.ndarray, w_after) -> np.ndarray:
     return w
 
 
-def simulated_motion(case: pim.Case, trajectory, time) -> Event:
-    """The simulated vehicles: the case's pre-impact motion, then the recorded trajectory.
+def simulated_motion(case: pim.Case, trajectory, time, *, tyre: float = 0.0,
+                     impact: ImpactRecord | None = None) -> Event:
+    """The simulated vehicles: the case's pre-impact motion, then the recorded trajectory
+    (``tyre`` [-]: its tyre friction after the impact; ``impact``: the impact's record).
 
     Frames after the end of the recording hold its last state (vehicles at rest with tyre
     friction).
@@ -138,4 +184,4 @@ def simulated_motion(case: pim.Case, trajectory, time) -> Event:
         p[early], a[early], v[early] = pre_p[early], pre_a[early], pre_v[early]
         w[early] = float(np.asarray(vehicle.yaw_rate))
         out.append((p, a, v, w))
-    return motion_event(case, time, out, "simulated")
+    return motion_event(case, time, out, "simulated", tyre=tyre, impact=impact)

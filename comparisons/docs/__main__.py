@@ -12,6 +12,7 @@ PARTS = {
     "validate-models": "comparisons.docs.validate_models",
     "inertia-estimate": "comparisons.docs.inertia_estimate",
     "event": "comparisons.docs.event",
+    "readme-animation": "comparisons.docs.readme_animation",
 }
 
 

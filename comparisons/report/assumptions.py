@@ -20,7 +20,8 @@ from pathlib import Path
 import numpy as np
 
 import pim
-from comparisons.animation.render import build_renderer, write_animation
+from comparisons.animation.collision import build_renderer
+from comparisons.animation.render import write_animation
 from comparisons.report.document import (
     Bullets,
     Callout,
@@ -504,7 +505,7 @@ def _write_animation(study: AssumptionStudy, out: Path, progress):
         return None
     ghost = pim.solve(study.case, study.eps, study.beta_pim)
     renderer = build_renderer(
-        study.case, study.eps, study.beta_pim, result=ghost, simulated=r,
+        study.case, study.eps, study.beta_pim, result=ghost, simulated=r, tyre=0.0,
         after=max(0.1, float(r.trajectory.time[-1]) - 0.05),
         title=f"{study.case.name or 'case'}: finite-duration crush ({r.geometry}, "
               f"{1e3 * r.contact_duration:.0f} ms), PIM ghost eps = {study.eps:.3g}, "

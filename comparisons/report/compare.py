@@ -45,7 +45,9 @@ import numpy as np
 
 import pim
 import sim
-from comparisons.animation.render import build_renderer, write_animation
+from comparisons.animation.collision import build_renderer, event_renderer, measured_rest
+from comparisons.animation.plan import plan_view
+from comparisons.animation.render import write_animation
 from comparisons.report.assumptions import assumption_table
 from comparisons.report.compare_document import REPORT_NAME, compare_document
 from comparisons.report.compare_tables import (
@@ -176,8 +178,9 @@ class CompareOptions:
         Also write animation.gif.
     animation, speed_error : bool
         Include the animation and the coarse speed-error sweep.
-    tyre : float
-        Tyre friction coefficient [-] after the impact in the animation (0: none).
+    tyre : float or None
+        Tyre friction coefficient [-] after the impact in the animation (0: none; None:
+        the case's [evidence] friction, else :data:`pim.model.event.DEFAULT_TYRE_FRICTION`).
     assumptions : bool
         Include PIM's assumptions at typical values (the full study: ``pim assumptions``).
     progress : bool or None
@@ -203,7 +206,7 @@ class CompareOptions:
     gif: bool = False
     animation: bool = True
     speed_error: bool = True
-    tyre: float = 0.0
+    tyre: float | None = None
     assumptions: bool = True
     progress: bool | None = None
     units: str | None = None
@@ -334,10 +337,20 @@ def _gather_crosscheck(data: ReportData) -> None:
 
 
 def _gather_animation(data: ReportData, folder: Path, options: CompareOptions) -> None:
-    """animation.mp4 (and .gif): the simulation with PIM's ghost."""
+    """animation.mp4 (and .gif) and plan.png: the whole event (the pymunk event with the
+    analytic event as a ghost, :func:`comparisons.animation.collision.event_renderer`), or,
+    for a case the event cannot run (no outlines), the single impact's simulation with
+    PIM's ghost."""
+    case = data.case
     try:
-        renderer = build_renderer(data.case, data.eps, data.beta, result=data.result,
-                                  tyre=options.tyre, units=data.units)
+        try:
+            renderer, analytic, simulated = event_renderer(
+                case, tyre=options.tyre, units=data.units, eps=data.eps, beta=data.beta,
+                strict=False)
+            analytic = simulated if analytic is None else analytic
+        except InputError:
+            renderer, analytic = build_renderer(case, data.eps, data.beta, result=data.result,
+                                                tyre=options.tyre, units=data.units), None
         data.animation = write_animation(renderer, folder / "animation.mp4",
                                          gif=folder / "animation.gif" if options.gif else None,
                                          progress=options.progress)
@@ -345,6 +358,12 @@ def _gather_animation(data: ReportData, folder: Path, options: CompareOptions) -
         data.animation_error = exc
         return
     data.files += ["animation.mp4"] + (["animation.gif"] if options.gif else [])
+    if analytic is not None:
+        save_figure(plan_view(analytic, units=data.units, measured_rest=measured_rest(case),
+                              title=f"{case.name or 'case'}: the {analytic.source} event"),
+                    folder / "plan.png")
+        data.plan = "plan.png"
+        data.files.append("plan.png")
 
 
 def _gather_speed_error(data: ReportData, folder: Path, options: CompareOptions) -> None:

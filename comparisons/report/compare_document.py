@@ -42,10 +42,11 @@ REPORT_NAME = "report.md"
 
 #: What the animation shows.
 ANIMATION_CAPTION = (
-    "Filled outlines: the pymunk simulation; dashed magenta outlines: PIM's post-impact "
-    "motion (free rigid motion from the impact configuration with PIM's velocities and yaw "
-    "rates); red: the impulse on vehicle 1 at C; green: C, the contact plane and the normal "
-    "n.")
+    "The whole event, from the approach to rest (pim event): filled outlines, the pymunk "
+    "event; dashed magenta outlines, the analytic event (PIM's impacts and the run-out with "
+    "the tyres); grey: tyre marks where the wheels slide; red: the impulse on vehicle 1 at "
+    "C; green: each impact's C, contact plane and normal n. The tyre friction and its "
+    "source are in the caption.")
 
 
 def _command(data: ReportData, name: str) -> str:
@@ -175,6 +176,11 @@ def _animation(data: ReportData) -> Section:
     caption = (f"{ANIMATION_CAPTION} Largest offset between ghost and simulation after the "
                f"impact: {format_number(info.max_ghost_offset_px, sig=2)} px.")
     blocks = [Video("animation.mp4", caption, info.frames, info.fps, tuple(info.size), 0.6)]
+    if data.plan:
+        blocks.append(Figure(data.plan, "plan view of the event",
+                             "The analytic event in plan view: outlines at the stated "
+                             "interval with their times, the CG paths, the tyre marks, each "
+                             "impact, the rest positions."))
     if info.gif:
         blocks.append(Paragraph("Also as a GIF: [animation.gif](animation.gif)."))
     if info.secondary_impact is not None:

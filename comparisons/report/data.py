@@ -78,6 +78,8 @@ class ReportData:
         Why no animation could be simulated.
     animation_requested : bool
         False with ``--no-animation``.
+    plan : str or None
+        The plan view of the whole event (``plan.png``), if drawn.
     study : comparisons.studies.speed_error.SpeedErrorStudy or None
         The coarse speed-against-error sweep.
     assumptions : comparisons.studies.assumptions.AssumptionStudy or None
@@ -110,6 +112,7 @@ class ReportData:
     animation: object = None
     animation_error: object = None
     animation_requested: bool = True
+    plan: str | None = None
     study: object = None
     assumptions: object = None
     files: list = field(default_factory=list)

@@ -28,7 +28,8 @@ from pathlib import Path
 
 import pim
 import sim
-from comparisons.animation.render import animation_settings, build_renderer, write_animation
+from comparisons.animation.collision import animation_plan, build_renderer
+from comparisons.animation.render import write_animation
 from comparisons.report.compare import Report, crosscheck_table
 from comparisons.report.compare_tables import (
     answer_cards,
@@ -135,7 +136,7 @@ def _crosscheck(case, setup, units):
 def _write_animation(case, setup, out, gif, tyre, units, progress):
     """The animation (AnimationInfo) or the simulation error that prevented it."""
     try:
-        simulated = simulate_law(case, setup, animation_settings(2.0, tyre))
+        simulated = simulate_law(case, setup, animation_plan(case, setup.result, tyre))
         renderer = build_renderer(case, setup.restitution, setup.beta, result=setup.result,
                                   simulated=simulated, tyre=tyre, units=units,
                                   title=f"{case.name or 'case'}: {setup.describe()}")
@@ -146,7 +147,7 @@ def _write_animation(case, setup, out, gif, tyre, units, progress):
 
 
 def compare_law_case(case: pim.Case, out_dir, setup: LawSetup, *, gif: bool = False,
-                     animation: bool = True, tyre: float = 0.0, progress: bool | None = None,
+                     animation: bool = True, tyre: float | None = None, progress: bool | None = None,
                      units: str | None = None) -> Report:
     """Write the comparison report of ``case`` under ``setup``'s law to ``out_dir``.
 
@@ -160,8 +161,9 @@ def compare_law_case(case: pim.Case, out_dir, setup: LawSetup, *, gif: bool = Fa
         The law, its parameters and its answer (:func:`comparisons.studies.law_runs.law_setup`).
     gif, animation : bool
         Also write animation.gif; write the animation at all.
-    tyre : float
-        Tyre friction coefficient after the impact in the animation (0: none).
+    tyre : float or None
+        Tyre friction coefficient after the impact in the animation (0: none; None: the
+        case's [evidence] friction, else :data:`pim.model.event.DEFAULT_TYRE_FRICTION`).
     progress : bool or None
         tqdm bar of the animation (None: only on a terminal).
     units : {"si", "us"} or pim.io.units.DisplayUnits, optional

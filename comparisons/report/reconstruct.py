@@ -15,6 +15,8 @@ import math
 import re
 from dataclasses import dataclass
 
+import numpy as np
+
 from comparisons.report.compare_tables import answer_cards
 from comparisons.report.document import (
     Bullets,
@@ -35,7 +37,6 @@ from pim.model.evidence import UNKNOWN_KINDS
 from pim.model.law import LAW_NAMES, LAW_PARAMETERS
 from pim.model.plausibility import secondary_contact
 from pim.model.quantities import label_of
-from pim.plotting.reconstruction_animation import frame_states
 
 __all__ = ["UnknownRow", "MomentumRow", "ReconstructionRows", "reconstruction_rows",
            "law_line", "tyre_models_line", "crush_lines", "evidence_drivers", "driver_lines",
@@ -438,9 +439,11 @@ def runout_contact(rec: Reconstruction, units: str) -> dict | None:
     post = rec.post
     if post is None or set(post.runouts) != {1, 2}:
         return None
-    frames = frame_states(post, fps=100, hold=0.0)
-    hit = secondary_contact(frames.times, frames.states[1], frames.states[2],
-                            rec.case.vehicle1, rec.case.vehicle2)
+    end = max(float(f.runout.time[-1]) for f in post.runouts.values())
+    event = post.event(np.arange(int(np.ceil(end * 100)) + 1) / 100)      # 100 per second
+    states = [np.column_stack([t.position, t.heading]) for t in event.tracks]
+    hit = secondary_contact(event.time, states[0], states[1], rec.case.vehicle1,
+                            rec.case.vehicle2)
     if hit is None:
         return None
     time, point = hit

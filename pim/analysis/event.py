@@ -454,9 +454,10 @@ def _assemble(case: Case, impacts: tuple, run: _Run, approach: float, tyres: tup
         states = np.concatenate([np.column_stack([pre[0], pre[1], pre[2], pre[3]]), cols])
         sliding = sliding_flags(states, tyres[0][i - 1], tyres[1])
         sliding[:len(before) + 1] = False
+        wheels = None if tyres[0][i - 1] is None else tyres[0][i - 1].positions
         tracks.append(Track(states[:, :2], states[:, 2], states[:, 3:5], states[:, 5],
                             sliding=sliding, outline=vehicle_outline(vehicle),
-                            fixed=bool(vehicle.fixed)))
+                            fixed=bool(vehicle.fixed), wheels=wheels))
     time = np.concatenate([before, [0.0], run.rows[:, 0]])
     stopped = tuple(bool(s) for s in run.stopped)
     rest = float(time[-1]) if all(stopped) else None

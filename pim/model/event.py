@@ -80,6 +80,10 @@ class Track:
         dimensions.
     fixed : bool
         A fixed obstacle (never moves).
+    wheels : ndarray (4, 2) or None
+        The tyres' contact points in the body frame [m] (front-left, front-right, rear-left,
+        rear-right, :func:`pim.model.tyres.wheel_positions`), where the tyre marks of
+        ``sliding`` are drawn; None where the producer knows no axles.
     """
 
     position: np.ndarray
@@ -89,6 +93,7 @@ class Track:
     sliding: np.ndarray | None = None
     outline: np.ndarray | None = None
     fixed: bool = False
+    wheels: np.ndarray | None = None
 
     def __post_init__(self):
         n = np.shape(self.heading)[0] if np.ndim(self.heading) else None
@@ -116,10 +121,19 @@ class Track:
 
     def corners(self) -> np.ndarray | None:
         """The outline's corners in the global frame [m] (N, 4, 2), or None."""
-        if self.outline is None:
-            return None
+        return None if self.outline is None else self.placed(self.outline)
+
+    def wheel_points(self) -> np.ndarray | None:
+        """The wheels' contact points in the global frame [m] (N, 4, 2), or None without
+        :attr:`wheels`."""
+        return None if self.wheels is None else self.placed(self.wheels)
+
+    def placed(self, body) -> np.ndarray:
+        """Body-frame points ``body`` (K, 2) [m] in the global frame at every sample
+        (N, K, 2) [m]."""
+        body = np.asarray(body, float)
         c, s = np.cos(self.heading)[:, None], np.sin(self.heading)[:, None]
-        x, y = self.outline[:, 0][None], self.outline[:, 1][None]
+        x, y = body[:, 0][None], body[:, 1][None]
         return self.position[:, None, :] + np.stack([c * x - s * y, s * x + c * y], -1)
 
     @classmethod

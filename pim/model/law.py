@@ -264,7 +264,7 @@ _BRACH = ("brach",)
 #: not listed takes no case (its inputs name no impact law).
 COMMAND_LAWS = {
     "solve": _ALL, "draw": _ALL, "sim": _ALL, "fit": _ALL, "compare": _ALL, "animate": _ALL,
-    "baseline": _ALL, "reconstruct": _ALL,
+    "baseline": _ALL, "reconstruct": _ALL, "event": _ALL,
     "uncertainty": _BRACH, "sensitivity": _BRACH, "plot": _BRACH, "speed-error": _BRACH,
     "assumptions": _BRACH,
 }

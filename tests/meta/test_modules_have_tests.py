@@ -30,7 +30,8 @@ EXCEPTIONS = {
     "sim/settings.py": "sim/test_sim.py",
     "sim/limits.py": "sim/test_sim.py",
     "sim/compliant_setup.py": "sim/test_compliant.py",
-    "comparisons/animation/motion.py": "comparisons/animation/test_render.py",
+    "comparisons/animation/motion.py": "comparisons/animation/test_collision.py",
+    "pim_cli/event.py": "pim_cli/test_event.py",
     "pim/plotting/validation.py": "pim/analysis/test_validation.py",
     "sim/compliant_kernel.py": "sim/test_compliant_batch.py",   # the engine behind it
 }

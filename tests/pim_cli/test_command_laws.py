@@ -39,7 +39,8 @@ def arguments(command: str, case: str, tmp_path) -> list[str]:
              "animate": ["--out", str(tmp_path / "a.mp4"), "--no-progress"],
              "reconstruct": ["--samples", "0"],
              "speed-error": ["--out", str(tmp_path / "s")],
-             "assumptions": ["--out", str(tmp_path / "as")]}
+             "assumptions": ["--out", str(tmp_path / "as")],
+             "event": ["--out", str(tmp_path / "e"), "--no-progress", "--before", "0.2"]}
     return [command, case, *extra.get(command, [])]
 
 

@@ -1,203 +1,101 @@
-"""The animation: simulated vehicles solid, PIM's motion as a ghost that coincides with them
-when the cross-check agrees, and visibly does not when it should not (issue 5)."""
+"""The one renderer on events built by hand (no simulation: fast): tyre marks where a wheel
+slides and nowhere else, the frame fitted to the motion, the clock above the scene (not under
+a video player's controls), speeds in the user's unit, every impact marked, the measured rest
+drawn (issue 32 item 4)."""
 
-import imageio.v3 as iio
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
-import pim
-from comparisons.animation.motion import analytic_motion
-from comparisons.animation.render import COLORS, build_renderer, write_animation
-from pim_cli.main import main
+from comparisons.animation.render import COLORS, Look, Renderer
+from pim.model.event import Event, ImpactRecord, Track, phase_labels
 
-CASE = pim.load_case("ricsac9")
+OUTLINE = np.array([[2.0, 0.9], [-2.5, 0.9], [-2.5, -0.9], [2.0, -0.9]])
 
 
-@pytest.fixture(scope="module")
-def renderer():
-    return build_renderer(CASE, 0.355, 1.0)
+def slide(n=31, slide_from=15):
+    """Vehicle 1 runs along +x at 10 m/s, slides from sample ``slide_from`` (t = 1.5 s,
+    sliding flags set there) to rest at 2.5 s; vehicle 2 stands 6 m to its left; an impact
+    at t = 0.5 s."""
+    t = np.linspace(0.0, 3.0, n)
+    s = np.clip(t - 1.5, 0.0, 1.0)
+    x = 10 * np.minimum(t, 1.5) + 10 * s - 5 * s ** 2
+    v = np.where(t < 1.5, 10.0, 10 - 10 * s)
+    sliding = np.zeros((n, 4), bool)
+    sliding[slide_from:] = True
+    one = Track(np.column_stack([x, np.zeros(n)]), np.zeros(n),
+                np.column_stack([v, np.zeros(n)]), np.zeros(n), sliding=sliding,
+                outline=OUTLINE)
+    two = Track(np.tile([15.0, 6.0], (n, 1)), np.full(n, np.pi / 2), np.zeros((n, 2)),
+                np.zeros(n), outline=OUTLINE)
+    impact = ImpactRecord(0.5, np.array([5.0, 3.0]), 0.3, "brach", {"eps": 0.1, "beta": 1.0},
+                          np.array([1000.0, 0.0]), np.zeros((2, 2)), np.zeros((2, 2)),
+                          np.zeros(2), np.zeros(2), 10.0, np.zeros(2))
+    return Event(t, one, two, phase_labels(t, [0.5], 2.9), impacts=(impact,))
 
 
-def ghost_pixels(img):
-    a = np.asarray(img).astype(int)
-    return np.argwhere(np.abs(a - np.array(COLORS["ghost"])).sum(-1) == 0)
+def near(img, color, tol=0):
+    return np.abs(np.asarray(img).astype(int) - np.array(color)).sum(-1) <= tol
 
 
-def distance_to_polygon_edges(points, poly):
-    """Distance [px] of each (row, col) point to the closed polygon's edges (x, y)."""
-    xy = points[:, ::-1].astype(float)
-    best = np.full(len(xy), np.inf)
-    for a, b in zip(poly, np.roll(poly, -1, axis=0), strict=True):
-        d = b - a
-        t = np.clip(((xy - a) @ d) / (d @ d), 0, 1)
-        best = np.minimum(best, np.hypot(*(xy - (a + t[:, None] * d)).T))
-    return best
+def test_tyre_marks_where_the_wheels_slide_and_nowhere_else():
+    ev = slide()
+    r = Renderer(ev, look=Look(size=(640, 360)))
+    marks = near(r.frame(len(ev) - 1), COLORS["marks"])
+    marks[: r.TOP] = False                  # the panel's anti-aliased text
+    assert marks.sum() > 100
+    rows, cols = np.nonzero(marks)
+    start = r.to_px([ev.vehicle1.position[15, 0] + OUTLINE[:, 0].min(), 0])[0]
+    assert cols.min() >= start - 3          # none behind the rear wheels where it slid first
+    early = Renderer(ev, look=Look(size=(640, 360)))
+    assert near(early.frame(10), COLORS["marks"])[r.TOP:].sum() == 0    # not yet sliding
+    rolling = replace(ev.vehicle1, sliding=np.zeros((len(ev), 4), bool))
+    unsliding = Renderer(replace(ev, vehicle1=rolling), look=Look(size=(640, 360)))
+    assert near(unsliding.frame(len(ev) - 1), COLORS["marks"])[r.TOP:].sum() == 0
 
 
-def test_ghost_is_independent_free_motion_and_matches_the_simulation(renderer):
-    # ghost: x(t) = x_C + V t, closed form from pim.solve; sim: pymunk's recorded trajectory
-    result = pim.solve(CASE, 0.355, 1.0)
-    t = renderer.times
-    after = t > 0
-    expected = np.asarray(CASE.vehicle1.cg) + t[after, None] * result.velocity1
-    np.testing.assert_allclose(renderer.sim.vehicle1.position[after], expected, atol=1e-9)
-    np.testing.assert_allclose(renderer.ghost.vehicle1.position[after], expected, atol=1e-12)
-    assert renderer.ghost_offset_px() < 1e-6
+def test_the_frame_is_fitted_to_the_motion():
+    """The outlines over the whole event fill the scene area both ways (the size taken from
+    the motion's aspect); the old fixed 4:3 frame left a long slide in a strip."""
+    r = Renderer(slide())
+    pts = np.concatenate([r.outline_px(k, v) for k in range(len(r)) for v in (1, 2)])
+    left, top, right, bottom = r.scene_box()
+    fill_w = np.ptp(pts[:, 0]) / (right - left)
+    fill_h = np.ptp(pts[:, 1]) / (bottom - top)
+    assert max(fill_w, fill_h) >= 0.9
+    assert r.size[1] < 720 and r.size[0] == 960      # a wide, low frame for a long slide
+    assert min(pts[:, 0]) >= 0 and max(pts[:, 0]) <= r.size[0] and min(pts[:, 1]) >= top
 
 
-def test_ghost_pixels_lie_on_the_simulated_outline_after_impact(renderer):
-    frame = int(np.searchsorted(renderer.times, 1.0))
-    pix = ghost_pixels(renderer.frame(frame))
-    assert len(pix) > 50                    # the ghost is drawn
-    on_sim = np.zeros(len(pix), bool)
-    for vehicle in (1, 2):
-        poly = renderer.outline_px(frame, vehicle)
-        on_sim |= distance_to_polygon_edges(pix, poly) < 3.0
-    # every ghost pixel not on an outline belongs to the ghost CG marks / velocity arrows,
-    # which sit on the simulated CGs and arrows: most pixels are on the outline
-    assert on_sim.mean() > 0.6
+def test_the_clock_is_above_the_scene_not_under_the_video_controls():
+    """Two frames at rest differ only in the clock: every differing pixel is in the panel
+    at the top (a video player's controls cover the bottom 40 px or so)."""
+    ev = slide()
+    r = Renderer(ev, look=Look(size=(640, 480)))
+    a = np.asarray(r.frame(len(ev) - 2)).astype(int)
+    b = np.asarray(r.frame(len(ev) - 1)).astype(int)
+    rows = np.nonzero(np.abs(a - b).sum(-1).sum(1))[0]
+    assert len(rows) and rows.max() < r.TOP and rows.max() < 0.25 * r.size[1]
 
 
-def test_a_wrong_answer_shows_as_an_offset_ghost():
-    wrong = pim.solve(CASE, 0.355, 0.5)         # not what pymunk simulated (beta = 1)
-    good = build_renderer(CASE, 0.355, 1.0)
-    bad_ghost = analytic_motion(CASE, wrong, good.times)
-    from comparisons.animation.render import Renderer
-
-    bad = Renderer(CASE, wrong, good.sim, bad_ghost, wrong.impulse)
-    assert bad.ghost_offset_px() > 10
-    frame = int(np.searchsorted(bad.times, 1.5))
-    pix = ghost_pixels(bad.frame(frame))
-    far = np.ones(len(pix), bool)
-    for vehicle in (1, 2):
-        far &= distance_to_polygon_edges(pix, bad.outline_px(frame, vehicle)) > 3.0
-    assert far.sum() > 100                  # many ghost pixels away from the vehicles
+def test_speeds_and_phase_in_the_users_units():
+    ev = slide()
+    si = Renderer(ev, look=Look(units="si", size=(640, 360)))
+    us = Renderer(ev, look=Look(units="us", size=(640, 360)))
+    k = 5
+    v = ev.vehicle1.speed[k]
+    assert f"vehicle 1: {v * 3.6:.3g} km/h" in si.status(k)
+    assert f"vehicle 1: {v / 0.44704:.3g} mph" in us.status(k)
+    assert si.phase(0) == "approach" or si.phase(0).startswith("after") is False
+    assert si.phase(len(ev) - 1) == "at rest"
+    assert "after impact 1" in si.status(10)
 
 
-def test_tyre_friction_ghost_uses_the_same_deceleration():
-    r = build_renderer(CASE, 0.355, 1.0, tyre=0.7, after=3.0)
-    # both decelerate (the ghost moves less than free motion) and stay within a pixel
-    free = build_renderer(CASE, 0.355, 1.0, after=3.0)
-    assert np.hypot(*(r.ghost.vehicle2.position[-1] - free.ghost.vehicle2.position[-1])) > 1.0
-    assert r.ghost_offset_px() < 1.0
-
-
-def test_frames_before_and_after_impact_differ_and_show_the_impulse(renderer):
-    t = renderer.times
-    i0 = int(np.argmin(np.abs(t)))
-    red = np.array(COLORS["impulse"])
-    def n_red(i):
-        return int((np.abs(np.asarray(renderer.frame(i)).astype(int) - red).sum(-1) == 0).sum())
-    assert n_red(i0) > 100                 # impulse arrow at the moment of impact
-    assert n_red(len(t) - 1) < 20          # and gone later (only the legend text)
-
-
-def test_animate_command_writes_a_readable_mp4(tmp_path):
-    out = tmp_path / "a.mp4"
-    assert main(["animate", "hard-pole", "--out", str(out), "--before", "0.2", "--after",
-                 "2", "--no-progress", "--gif", str(tmp_path / "a.gif")]) == 0
-    frames = list(iio.imiter(out))
-    assert len(frames) == 6 + 60 + 1
-    assert frames[0].shape == (720, 960, 3)
-    assert (tmp_path / "a.gif").stat().st_size > 1000
-
-
-def test_a_failed_gif_leaves_no_mp4_either(tmp_path, capsys, monkeypatch):
-    """A GIF that could not be written left the MP4 of the same run behind (the two files
-    were renamed one after the other): now neither is written, exit 2, one line."""
-    from PIL import Image
-
-    def full_disk(self, *args, **kwargs):
-        raise OSError(28, "No space left on device")
-
-    monkeypatch.setattr(Image.Image, "save", full_disk)
-    assert main(["animate", "hard-pole", "--out", str(tmp_path / "a.mp4"), "--after", "0.1",
-                 "--no-progress", "--gif", str(tmp_path / "a.gif")]) == 2
-    err = capsys.readouterr().err.strip()
-    assert len(err.splitlines()) == 1 and "No space left" in err, err
-    assert list(tmp_path.iterdir()) == []
-
-
-def test_render_rate_is_reported(tmp_path, renderer):
-    info = write_animation(renderer, tmp_path / "x.mp4", progress=False)
-    assert info.frames == len(renderer)
-    assert info.render_fps == pytest.approx(info.frames / info.render_seconds)
-    assert 0 < info.render_seconds < 60 and info.max_ghost_offset_px < 1e-6
-
-
-def test_impulse_label_speaks_the_case_units():
-    """Issue 22: a US case's animation labelled its impulse in N s."""
-    us = build_renderer(CASE, 0.355, 1.0, units="us", after=0.2)
-    si = build_renderer(CASE, 0.355, 1.0, units="si", after=0.2)
-    assert us.impulse_unit[1] == "lbf s" and si.impulse_unit[1] == "N s"
-    assert us.impulse_unit[0] == pytest.approx(1 / (0.45359237 * 9.80665))
-@pytest.mark.parametrize("option, name", [("--out", "film.txt"), ("--gif", "small.png")])
-def test_animate_to_a_wrong_suffix_is_one_line_and_exit_2(tmp_path, capsys, option, name):
-    """Issue 22: `pim animate --out file.txt` gave a RuntimeError traceback from imageio."""
-    args = ["animate", "hard-pole", "--no-progress", "--after", "0.1"]
-    args += ["--out", str(tmp_path / "a.mp4")] if option == "--gif" else []
-    assert main(args + [option, str(tmp_path / name)]) == 2
-    err = capsys.readouterr().err.strip()
-    assert err.startswith(f"error: {option}") and len(err.splitlines()) == 1, err
-    assert list(tmp_path.iterdir()) == []
-
-
-def test_a_failed_trailer_is_an_error_with_nothing_written(tmp_path, capsys, monkeypatch):
-    """Issue 22: a full disk (ffmpeg's "Error writing trailer") gave exit 0 and a truncated
-    MP4; the encoder's result is now checked: exit 2, one line, no file, no litter."""
-    import os
-
-    import imageio.v2
-
-    real = imageio.v2.get_writer
-
-    def truncating(path, *args, **kwargs):
-        writer = real(path, *args, **kwargs)
-        close = writer.close
-
-        def close_and_cut():
-            close()
-            os.truncate(path, os.path.getsize(path) * 2 // 3)
-        writer.close = close_and_cut
-        return writer
-
-    monkeypatch.setattr(imageio.v2, "get_writer", truncating)
-    out = tmp_path / "a.mp4"
-    assert main(["animate", "hard-pole", "--out", str(out), "--before", "0.1", "--after",
-                 "0.3", "--no-progress"]) == 2
-    err = capsys.readouterr().err.strip()
-    assert "incomplete" in err and len(err.splitlines()) == 1, err
-    assert list(tmp_path.iterdir()) == []
-
-
-def test_the_framing_is_one_object_or_its_fields_by_name():
-    """Issue 27 point 7: build_renderer takes a Framing, or its fields by name (overriding
-    it); an unknown option is refused naming the allowed ones."""
-    from comparisons.animation.render import Framing
-
-    with pytest.raises(ValueError, match=r"unknown option\(s\) seconds; allowed: .*before, "
-                                         r"after, fps, size"):
-        build_renderer(CASE, 0.355, 1.0, seconds=2.0)
-    r = build_renderer(CASE, 0.355, 1.0, framing=Framing(before=0.1, after=0.2, fps=10),
-                       after=0.3, size=(320, 240))
-    assert r.times[-1] == pytest.approx(0.3) and r.times[0] == pytest.approx(-0.1)
-    assert len(r.times) == 5 and r.size == (320, 240)        # 10 frames per second
-
-
-@pytest.mark.parametrize("name", ["ricsac9", "sideswipe"])
-def test_the_clock_stays_clear_of_the_video_controls(renderer, name):
-    """issue 33, point 7: in report.html the browser's video controls cover the bottom of the
-    frame, where the clock (and a secondary impact's warning) was drawn. Nothing that changes
-    with time is drawn in the bottom band now; the clock is in the caption band at the top."""
-    from pathlib import Path
-
-    if name == "sideswipe":       # an opposite-direction sideswipe: a secondary contact
-        path = Path(__file__).resolve().parents[2] / "data" / "sideswipe-opposite.toml"
-        renderer = build_renderer(pim.load_case(path), 0.05, 0.18)
-        assert renderer.secondary is not None
-    before, after = (np.asarray(renderer.frame(int(np.searchsorted(renderer.times, t))))
-                     for t in (-0.2, 0.4))
-    changed = np.abs(before.astype(int) - after.astype(int)).sum(-1) > 0
-    height = before.shape[0]
-    assert not changed[height - renderer.BOTTOM:].any()
-    assert changed[:renderer.TOP].any()             # the clock, in the caption band
+def test_each_impact_is_marked_at_its_c():
+    ev = slide()
+    r = Renderer(ev, look=Look(size=(640, 360)))
+    green = near(r.frame(0), COLORS["contact"])
+    c = r.to_px(ev.impacts[0].point)
+    rows, cols = np.nonzero(green[r.TOP:])
+    assert np.min(np.hypot(cols - c[0], rows + r.TOP - c[1])) < 6

@@ -72,7 +72,7 @@ def test_animate_command_plays_the_two_phase_run_with_the_analytic_ghost(tmp_pat
     out = tmp_path / "a.mp4"
     assert main(["animate", "ricsac9", "--law", "kudlich-slibar", "--k", "0.1", "--mu-c",
                  "0.6", "--out", str(out), "--after", "0.3", "--size", "320", "240",
-                 "--no-progress", "--json"]) == 0
+                 "--tyre-friction", "0", "--no-progress", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["law"] == "kudlich-slibar" and data["contact_friction"] == 0.6
     r = pim.solve(pim.load_case("ricsac9"), law="kudlich-slibar", k=0.1, mu_c=0.6)

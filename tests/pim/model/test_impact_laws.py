@@ -338,7 +338,7 @@ def test_commands_that_cannot_use_the_law_yet_say_so(tmp_path, capsys, command):
     assert main([command, str(path)]) == 2
     err = capsys.readouterr().err
     assert f"pim {command} cannot use impact law 'kudlich-slibar' yet" in err
-    assert "`pim reconstruct` apply the law itself" in err
+    assert "`pim reconstruct` and `pim event` apply the law itself" in err
     # the Brach equivalent of this case, by the mapping
     eps, beta = kudlich_slibar_as_brach(pim.load_case(str(path)), 0.1, 0.6)
     assert f"restitution = {float(eps):.6g}, beta = {float(beta):.6g}" in err

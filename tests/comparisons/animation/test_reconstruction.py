@@ -1,0 +1,92 @@
+"""comparisons/animation/reconstruction.py: the reconstruction's video drawn by the one
+renderer: the frames run from the impact pose to the fitted rest (against the run-outs they
+come from), the measured rest positions are drawn, the MP4 reads back."""
+
+import numpy as np
+import pytest
+
+import pim
+from comparisons.animation.reconstruction import (
+    reconstruction_event,
+    reconstruction_renderer,
+    write_reconstruction_video,
+)
+from comparisons.animation.render import COLORS
+from pim.analysis.reconstruction import PostImpact
+from pim.analysis.runout_fit import RunoutFit
+from pim.model.runout import runout
+
+TRUTH = pim.solve(pim.load_case("ricsac9"), 0.355, 1.0)
+
+
+@pytest.fixture(scope="module")
+def post():
+    """The synthetic case's post-impact motion, run forward from the known truth (what the
+    run-out inverse gives back, without its 20 s of fitting)."""
+    case = pim.load_case("synthetic-runout")
+    fits = {}
+    for i in (1, 2):
+        v, ev = getattr(case, f"vehicle{i}"), getattr(case.evidence, f"vehicle{i}")
+        vel, w = getattr(TRUTH, f"velocity{i}"), float(getattr(TRUTH, f"yaw_rate{i}"))
+        run = runout(ev.runout_vehicle(float(v.mass), float(v.yaw_inertia)), v.cg,
+                     float(v.heading), vel, w)
+        fits[i] = RunoutFit(vel, w, float(np.hypot(*vel)), float(np.arctan2(vel[1], vel[0])),
+                            run, run.rest_position, run.rest_heading, (), np.zeros(0), 0.0,
+                            np.zeros((3, 3)), True, True, (), [], "")
+    return PostImpact(case, fits, {}, {}, None, [])
+
+
+def test_frames_run_from_the_impact_pose_to_rest(post):
+    event = reconstruction_event(post, TRUTH, fps=20, hold=0.5)
+    longest = max(f.runout.time[-1] for f in post.runouts.values())
+    assert event.time[0] == 0.0 and event.time[-1] >= longest + 0.5 - 0.05
+    for i, fit in post.runouts.items():
+        vehicle, track = getattr(post.case, f"vehicle{i}"), event.tracks[i - 1]
+        np.testing.assert_allclose(track.position[0], vehicle.cg, atol=1e-12)
+        assert track.heading[0] == pytest.approx(float(vehicle.heading))
+        np.testing.assert_allclose(track.position[-1], fit.rest_position, atol=1e-12)
+        assert track.heading[-1] == pytest.approx(fit.rest_heading)
+        assert track.wheels is not None          # the evidence's axles, for tyre marks
+    assert event.phase[-1] == "rest" and len(event.impacts) == 1
+
+
+def test_measured_rest_positions_are_drawn(post):
+    r = reconstruction_renderer(post, TRUTH, fps=5, size=(480, 400))
+    img = np.asarray(r.frame(0)).astype(int)
+    black = (np.abs(img - np.array(COLORS["rest"])).sum(-1) == 0)[r.TOP:]
+    assert black.sum() > 40                          # the dotted outlines
+    ev = post.case.evidence.vehicle1
+    c = r.to_px(ev.rest_position) - np.array([0, r.TOP])
+    rows, cols = np.nonzero(black)
+    assert np.min(np.hypot(cols - c[0], rows - c[1])) < 3.5 * r.scale   # around its rest CG
+
+
+def test_the_mp4_has_every_frame(post, tmp_path):
+    import imageio.v3 as iio
+
+    info = write_reconstruction_video(post, TRUTH, tmp_path / "crash.mp4", units="us", fps=10,
+                                      size=(320, 240), progress=False)
+    frames = iio.imread(info.path)
+    assert frames.shape[0] == len(reconstruction_event(post, TRUTH, 10).time)
+    assert frames.shape[1:] == (240, 320, 3)
+    assert not list(tmp_path.glob(".*tmp*"))          # atomic: no temporary file left
+
+
+@pytest.mark.parametrize("kwargs, words", [({"fps": 0}, "fps"), ({"fps": 2.5}, "fps"),
+                                           ({"hold": -1.0}, "hold")])
+def test_bad_settings_are_named(post, kwargs, words):
+    with pytest.raises(ValueError, match=words):
+        reconstruction_event(post, TRUTH, **kwargs)
+
+
+def test_the_plan_view_draws_the_fitted_paths_in_the_chosen_units(post):
+    from comparisons.animation.reconstruction import reconstruction_plan
+
+    fig_si = reconstruction_plan(post, TRUTH, "si")
+    fig_us = reconstruction_plan(post, TRUTH, "us")
+    line_si = fig_si.axes[0].lines[0].get_xydata()
+    line_us = fig_us.axes[0].lines[0].get_xydata()
+    np.testing.assert_allclose(line_si[-1], post.runouts[1].rest_position, atol=1e-9)
+    np.testing.assert_allclose(line_us, line_si / 0.3048)
+    assert fig_us.axes[0].get_xlabel() == "x [ft]"
+    assert "outlines every" in fig_si.axes[0].get_title()
