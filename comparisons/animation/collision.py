@@ -26,7 +26,7 @@ from comparisons.animation.render import (
     Renderer,
     write_animation,
 )
-from comparisons.report.number_format import format_number
+from pim.model.number_format import format_number
 from pim.model.event import DEFAULT_APPROACH, DEFAULT_TYRE_FRICTION, Event
 from pim.model.numbers import InputError, checked_number
 from pim.model.tyres import STANDARD_GRAVITY

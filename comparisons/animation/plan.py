@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from comparisons.animation.render import COLORS, outline_of, pose_points, wheel_estimate
-from comparisons.report.number_format import format_number
+from pim.model.number_format import format_number
 from pim.io.units import unit_scale
 from pim.model.event import Event
 

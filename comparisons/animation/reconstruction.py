@@ -14,7 +14,7 @@ from comparisons.animation.motion import case_impact
 from comparisons.animation.plan import plan_view
 from comparisons.animation.render import DEFAULT_FPS, AnimationInfo, Look, Renderer, \
     write_animation
-from comparisons.report.number_format import format_number
+from pim.model.number_format import format_number
 from pim.analysis.reconstruction import PostImpact
 from pim.model.event import Event
 from pim.model.numbers import InputError

@@ -13,7 +13,7 @@ them; the CG paths faintly. All the text stands in the panel above the scene, ne
 vehicle and never under a video player's controls (which cover the bottom of a frame): the
 title and the tyre friction with its source, the legend, and the clock with the phase and
 each vehicle's speed in the user's speed unit, numbers in the reports' format
-(:mod:`comparisons.report.number_format`).
+(:mod:`pim.model.number_format`).
 
 The view is fitted to the motion: the union of every outline drawn (event, ghost, measured
 rest, each C) fills the scene area in its binding direction, and without a stated frame
@@ -38,7 +38,7 @@ from pathlib import Path
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
-from comparisons.report.number_format import format_number
+from pim.model.number_format import format_number
 from pim.io.files import atomic_paths
 from pim.io.units import DisplayUnits, unit_scale
 from pim.model.event import Event, Track

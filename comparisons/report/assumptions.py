@@ -32,7 +32,7 @@ from comparisons.report.document import (
     Section,
     Video,
 )
-from comparisons.report.number_format import format_number
+from pim.model.number_format import format_number
 from comparisons.report.tables import Table, fmt_error
 from comparisons.report.write import write_document
 from comparisons.studies.assumption_configs import (

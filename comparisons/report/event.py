@@ -27,7 +27,7 @@ from comparisons.animation.plan import plan_view
 from comparisons.animation.render import Renderer, write_animation
 from comparisons.report.document import Cards, Card, Document, Figure, Paragraph, Section, \
     Video
-from comparisons.report.number_format import format_number
+from pim.model.number_format import format_number
 from comparisons.report.tables import Table
 from comparisons.report.write import write_document
 from pim.io.files import save_figure

@@ -45,6 +45,9 @@ class OneImpactRung:
         The same of the yaw rates [rad/s].
     tyre_friction : float or None
         The tyre friction both runs used (None: the case's evidence or the default).
+    refused : str
+        Why the event was refused (a contact without end, an impact that would gain
+        energy), the other fields then NaN; empty when it ran.
     """
 
     impacts: int
@@ -54,6 +57,7 @@ class OneImpactRung:
     post_delta_v: np.ndarray
     post_yaw_rate: np.ndarray
     tyre_friction: float | None
+    refused: str = ""
 
     @property
     def holds(self) -> bool:
@@ -74,7 +78,13 @@ def one_impact_rung(case: pim.Case, eps: float | None = None, beta: float | None
     tyre_friction : float, optional
         As :func:`pim.event`.
     """
-    whole = pim.event(case, eps=eps, beta=beta, tyre_friction=tyre_friction, approach=0.0)
+    try:
+        whole = pim.event(case, eps=eps, beta=beta, tyre_friction=tyre_friction, approach=0.0)
+    except pim.InputError as exc:       # the event refused: the rung is not assessed
+        nan = np.full(2, math.nan)
+        return OneImpactRung(impacts=0, further_time=math.nan, rest_position=nan,
+                             rest_heading=nan, post_delta_v=nan, post_yaw_rate=nan,
+                             tyre_friction=tyre_friction, refused=str(exc))
     single = pim.event(case, eps=eps, beta=beta, tyre_friction=tyre_friction, approach=0.0,
                        single_impact=True)
     fixed = bool(case.vehicle2.fixed)

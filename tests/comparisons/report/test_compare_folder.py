@@ -99,7 +99,9 @@ def test_mp4_reads_back_with_expected_frames_that_change(folder):
     assert min(diffs) > 0.05          # the vehicles move in every third of a second
     still = np.abs(frames[-1].astype(int) - frames[-2].astype(int)).sum(-1)
     rows = np.nonzero(still > 60)[0]  # beyond the encoder's noise
-    assert len(rows) == 0 or rows.max() < 0.2 * frames.shape[1]
+    # below the caption panel at most a few isolated pixels (the encoder's blocks around
+    # a tyre mark's end); a vehicle still moving changes hundreds
+    assert (rows >= 0.2 * frames.shape[1]).sum() <= 4, rows
 
 
 def test_interrupted_run_leaves_no_report_and_no_temp_files(tmp_path, monkeypatch):

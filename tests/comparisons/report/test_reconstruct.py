@@ -10,7 +10,7 @@ import pytest
 
 import pim
 from comparisons.report.document import Cards
-from comparisons.report.number_format import format_number
+from pim.model.number_format import format_number
 from comparisons.report.reconstruct import (
     MomentumRow,
     UnknownRow,

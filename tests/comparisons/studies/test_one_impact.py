@@ -24,3 +24,14 @@ def test_a_case_with_one_impact_holds_with_zeros():
     assert rung.holds and math.isnan(rung.further_time)
     assert rung.rest_position == pytest.approx([0.0, 0.0], abs=1e-9)
     assert rung.post_delta_v == pytest.approx([0.0, 0.0])
+
+
+def test_an_event_refused_leaves_the_rung_not_assessed_and_the_ladder_running():
+    """The sideswipe of tests/data/sideswipe-ladder.toml stays in contact (more than 12
+    further impacts): pim.event refuses it, and the ladder that called the rung crashed."""
+    from pathlib import Path
+
+    case = pim.load_case(Path(__file__).resolve().parents[2] / "data" / "sideswipe-ladder.toml")
+    rung = one_impact_rung(case)
+    assert "impacts after the first" in rung.refused and not rung.holds
+    assert np.isnan(rung.rest_position).all()
