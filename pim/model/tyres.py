@@ -341,8 +341,11 @@ def field_wheel_force(c, s, vx, vy, omega, px, py, cw, sw, load, mu, braking, vr
     slide_x = locked * u + (1.0 - locked) * u * sigma_x / (1.0 + sigma_x)
     kx, ky = c_long * slide_x, c_lat * w       # stiffness-weighted slip (times V_r)
     weighted = np.sqrt(kx * kx + ky * ky)
-    psi = weighted / np.maximum(np.maximum(weighted, 3.0 * grip * v_roll), 1e-12)
-    adhesion = 3.0 * grip * psi * (1.0 - psi) ** 2 / np.maximum(weighted, 1e-12)
+    # the floor only keeps 0 / 0 away: a locked wheel (v_roll = 0) slides at any slip
+    # (psi = 1); a floor near the slips themselves (1e-12 did) made a locked wheel creeping
+    # at 1e-18 m/s stick with hundreds of newtons
+    psi = weighted / np.maximum(np.maximum(weighted, 3.0 * grip * v_roll), 1e-300)
+    adhesion = 3.0 * grip * psi * (1.0 - psi) ** 2 / np.maximum(weighted, 1e-300)
     vr2 = vr * vr                              # Coulomb's regularisation, faded out with
     fade = vr2 / (vr2 + v_roll * v_roll)       # the rolling speed
     sliding = grip * psi * psi * (3.0 - 2.0 * psi) / np.sqrt(
