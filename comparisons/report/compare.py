@@ -74,7 +74,7 @@ from pim.analysis.misfit import misfit
 from pim.analysis.residuals import has_measured_terms
 from pim.io.files import save_figure
 from pim.io.output import output_folder, rebase
-from pim.io.process import ignore_interrupts, stop_workers
+from pim.io.process import started_pool, stop_workers
 from pim.io.units import convert, display_units, quantity_text
 from pim.model.numbers import InputError
 from pim.model.plausibility import findings
@@ -259,10 +259,8 @@ class _PlotWorker:
         self.pool, self.future, self.args = None, None, None
         if parallel:
             try:
-                self.pool = ProcessPoolExecutor(
-                    1, mp_context=multiprocessing.get_context("forkserver"),
-                    initializer=ignore_interrupts)
-                self.pool.submit(_warm_up)
+                self.pool = started_pool(1, multiprocessing.get_context("forkserver"),
+                                         _warm_up)
             except (ValueError, OSError):
                 self.pool = None
 

@@ -27,13 +27,16 @@ import sys
 import threading
 from collections.abc import Iterator
 
-__all__ = ["Interrupts", "Terminated", "signal_received", "held_signals", "ignore_interrupts",
+__all__ = ["started_pool", "STARTUP_SIGNALS", "Interrupts", "Terminated", "signal_received", "held_signals", "ignore_interrupts",
            "worker_pool", "stop_workers", "INTERRUPT_EXIT_CODES", "in_callback",
            "CALLBACK_PATHS", "CALLBACK_NAMES"]
 
 #: Exit code of a run ended by each signal (128 + its number, as a shell reports it).
 INTERRUPT_EXIT_CODES = {signal.SIGINT: 130, signal.SIGTERM: 143}
 _HANDLED = (signal.SIGINT, signal.SIGTERM)
+#: Signals blocked while a pool's processes start (:func:`started_pool`): Ctrl-C only, so
+#: that :func:`stop_workers`' SIGTERM still ends a worker that is starting, without a word.
+STARTUP_SIGNALS = frozenset({signal.SIGINT})
 
 
 class Terminated(KeyboardInterrupt):
@@ -155,6 +158,9 @@ def ignore_interrupts() -> None:
     """
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    # a worker starts with Ctrl-C blocked as the parent started the pool
+    # (:func:`started_pool`): now that it is ignored, unblock it
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, STARTUP_SIGNALS)
 
 
 def stop_workers(pool) -> None:
@@ -167,6 +173,38 @@ def stop_workers(pool) -> None:
         process.terminate()
 
 
+def started_pool(max_workers: int | None, mp_context, first, *args):
+    """A ProcessPoolExecutor whose workers ignore Ctrl-C and run, with ``first(*args)``
+    submitted.
+
+    The pool is built and its processes (a resource tracker, a forkserver, the workers) and
+    threads started with Ctrl-C blocked: they inherit the blocked mask, so a Ctrl-C to the
+    terminal's process group while a new interpreter imports its site module (before any
+    handler exists) waits instead of killing it with "Fatal Python error" or a
+    KeyboardInterrupt traceback on stderr; the parent takes it when its mask is restored,
+    and each worker ignores it once :func:`ignore_interrupts` has run.
+    """
+    from concurrent.futures import ProcessPoolExecutor
+
+    if mp_context is not None and mp_context.get_start_method() != "fork":
+        # multiprocessing starts its resource tracker with SIGINT and SIGTERM blocked and
+        # then UNBLOCKS them (resource_tracker.ensure_running): start it before the mask
+        from multiprocessing import resource_tracker
+
+        resource_tracker.ensure_running()
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, STARTUP_SIGNALS)
+    try:
+        pool = ProcessPoolExecutor(max_workers, mp_context=mp_context,
+                                   initializer=ignore_interrupts)
+        # wait until a worker runs: one still reading its start-up data when the parent,
+        # interrupted, removes the pool's semaphores prints a FileNotFoundError traceback
+        pool.submit(os.getpid).result()
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+    pool.submit(first, *args)
+    return pool
+
+
 @contextlib.contextmanager
 def worker_pool(max_workers: int | None = None, mp_context=None):
     """A ProcessPoolExecutor whose workers ignore Ctrl-C and end with an error or interrupt.
@@ -174,10 +212,7 @@ def worker_pool(max_workers: int | None = None, mp_context=None):
     On leaving the block normally the pool shuts down as usual; on an exception (Ctrl-C,
     SIGTERM, an error) its workers are ended first and pending tasks are cancelled.
     """
-    from concurrent.futures import ProcessPoolExecutor
-
-    pool = ProcessPoolExecutor(max_workers, mp_context=mp_context,
-                               initializer=ignore_interrupts)
+    pool = started_pool(max_workers, mp_context, os.getpid)
     try:
         yield pool
     except BaseException:

@@ -134,3 +134,29 @@ def test_pool_workers_print_nothing_and_end_with_the_parent(tmp_path, signum):
     _, err = proc.communicate(timeout=60)
     assert proc.returncode == 130 and err == "", err
     assert time.time() - start < 10                  # ended, not waited for (30 s)
+
+
+def _worker_signals():
+    import signal
+
+    return (signal.getsignal(signal.SIGINT) == signal.SIG_IGN,
+            signal.SIGINT in signal.pthread_sigmask(signal.SIG_BLOCK, []))
+
+
+def test_a_started_pool_ignores_ctrl_c_in_its_workers_and_restores_the_parents_mask():
+    """Workers start with Ctrl-C blocked (a Ctrl-C while a new interpreter imports its site
+    module printed "Fatal Python error: init_import_site"), then ignore it and unblock it;
+    the parent's mask is as it was."""
+    import multiprocessing
+    import signal
+
+    from pim.io.process import started_pool
+
+    before = signal.pthread_sigmask(signal.SIG_BLOCK, [])
+    pool = started_pool(1, multiprocessing.get_context("forkserver"), int)
+    try:
+        ignored, blocked = pool.submit(_worker_signals).result()
+    finally:
+        pool.shutdown()
+    assert ignored and not blocked
+    assert signal.pthread_sigmask(signal.SIG_BLOCK, []) == before
