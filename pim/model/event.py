@@ -33,6 +33,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from .geometry import rotate
 from .numbers import InputError
 
 __all__ = ["Track", "ImpactRecord", "Event", "EventDifference", "PHASES", "impact_phase",
@@ -131,10 +132,8 @@ class Track:
     def placed(self, body) -> np.ndarray:
         """Body-frame points ``body`` (K, 2) [m] in the global frame at every sample
         (N, K, 2) [m]."""
-        body = np.asarray(body, float)
-        c, s = np.cos(self.heading)[:, None], np.sin(self.heading)[:, None]
-        x, y = body[:, 0][None], body[:, 1][None]
-        return self.position[:, None, :] + np.stack([c * x - s * y, s * x + c * y], -1)
+        body = np.asarray(body, float)[None]
+        return self.position[:, None, :] + rotate(body, self.heading[:, None])
 
     @classmethod
     def concatenate(cls, tracks) -> Track:
