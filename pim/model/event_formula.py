@@ -30,11 +30,17 @@ The contact is new when the depth grows by more than a tolerance above its least
 since the last impact (the outlines of a case may overlap at PIM's impact configuration by
 the crush, and part), and it is solved when a corner inside closes.
 
-**The secondary impact** (:func:`capped_impact`): PIM's formula (:mod:`pim.model.formula`)
-at C and Gamma with restitution ``eps`` and ``mu = sign(mu0) min(beta |mu0|, cap)``: the
-friction-capped Brach law of :mod:`pim.model.friction_cap` ("brach-capped"; ``cap = inf``
-is Brach's own law), which carries the same two coefficients (restitution and a Coulomb
-cap on the inter-vehicle friction) as pymunk's polygon contact.
+**The secondary impact** (:func:`further_impact`), under any law a case may give it
+(:data:`pim.model.impact_laws.LAW_CODES`), each PIM's formula (:mod:`pim.model.formula`) at
+C and Gamma with the law's impulse ratio (docs/impact-laws.md):
+
+- :func:`capped_impact`: restitution ``eps`` and ``mu = sign(mu0) min(beta |mu0|, cap)``,
+  the friction-capped Brach law of :mod:`pim.model.friction_cap` ("brach-capped"; ``cap =
+  inf`` is Brach's own law, "brach"), which carries the same two coefficients (restitution
+  and a Coulomb cap on the inter-vehicle friction) as pymunk's polygon contact;
+- :func:`kudlich_slibar_impact`: the Kudlich-Slibar law of
+  :mod:`pim.model.impact_laws` ("kudlich-slibar"), PIM at ``eps = k`` with the ratio of
+  the compression impulse (sticking, or sliding at ``mu_c``).
 """
 
 from __future__ import annotations
@@ -42,6 +48,7 @@ from __future__ import annotations
 import numpy as np
 
 from .formula import contact, post_impact
+from .impact_laws import LAW_CODES
 
 #: Fixed step of the event's run-out [s] (the run-out's,
 #: :data:`pim.model.runout_kernel.RUNOUT_STEP`).
@@ -75,8 +82,13 @@ SECONDARY_CONTACT_FRICTION = 0.5
 __all__ = ["EVENT_STEP", "MAX_IMPACTS", "CONTACT_TOLERANCE", "TUNNEL_FRACTION",
            "BISECTION_STEP", "SECONDARY_LAW", "SECONDARY_RESTITUTION", "SECONDARY_BETA",
            "SECONDARY_CONTACT_FRICTION", "box", "axis_overlap", "inside_depth",
-           "contact_geometry", "capped_impact", "closing_speed", "bound_radius",
-           "energy_change"]
+           "contact_geometry", "capped_impact", "kudlich_slibar_impact", "further_impact",
+           "closing_speed", "bound_radius", "energy_change", "KUDLICH_SLIBAR"]
+
+#: The law code of "kudlich-slibar" in :func:`further_impact`'s coefficients
+#: (:data:`pim.model.impact_laws.LAW_CODES`; "brach" and "brach-capped" are both
+#: :func:`capped_impact`, Brach's own law at an infinite cap).
+KUDLICH_SLIBAR = LAW_CODES["kudlich-slibar"]
 
 
 def box(x, y, psi, front, length, width):
@@ -190,9 +202,10 @@ def capped_impact(cx, cy, nx, ny, s1, s2, inverse, coefficients, tolerances):
 
     Returns
     -------
-    px, py, vx1, vy1, w1, vx2, vy2, w2
-        The impulse on vehicle 1 [N s] and the post-impact velocities [m/s] and yaw rates
-        [rad/s] (the pre-impact ones with no impulse when C does not close).
+    px, py, vx1, vy1, w1, vx2, vy2, w2, beta
+        The impulse on vehicle 1 [N s], the post-impact velocities [m/s] and yaw rates
+        [rad/s] (the pre-impact ones with no impulse when C does not close), and the
+        effective fraction of mu0 [-] (``result.beta`` of :func:`pim.solve`).
 
     Notes
     -----
@@ -245,4 +258,78 @@ def _capped(cx, cy, nx, ny, s1, s2, inverse, coefficients, tolerances):
     scale = drive / denom if approaching and denom != 0.0 else 0.0
     res = post_impact(scale, out[7], out[8], beta, nx, ny, a1, b1, r1x, r1y, v1x, v1y, w1,
                       a2, b2, r2x, r2y, v2x, v2y, w2)
-    return res[2], res[3], res[4], res[5], res[8], res[6], res[7], res[9]
+    return res[2], res[3], res[4], res[5], res[8], res[6], res[7], res[9], beta
+
+
+def kudlich_slibar_impact(cx, cy, nx, ny, s1, s2, inverse, coefficients, tolerances):
+    """A secondary impact at C with normal n under the Kudlich-Slibar law.
+
+    Parameters
+    ----------
+    cx, cy, nx, ny, s1, s2, inverse, tolerances
+        As :func:`capped_impact`.
+    coefficients : (k, mu_c)
+        Restitution k [-] and contact friction mu_c [-] (inf: always stick).
+
+    Returns
+    -------
+    px, py, vx1, vy1, w1, vx2, vy2, w2, mu
+        As :func:`capped_impact`, the last the impulse ratio Pt / Pn [-].
+
+    Notes
+    -----
+    :func:`pim.model.impact_laws.solve_kudlich_slibar`'s law as PIM (the mapping of
+    :mod:`pim.model.impact_laws`): ``eps = k`` and the impulse ratio ``mu`` of the
+    compression impulse, the critical impulse at ``eps = 0`` ``(Pn0(0), Pt0(0))`` (``K P_c =
+    -u``): it sticks, ``mu = Pt0(0) / Pn0(0)``, where it pushes (``Pn0(0) > 0``) within the
+    cap (``|Pt0(0)| <= mu_c Pn0(0)``), else it slides at the cap, ``mu = sigma mu_c``,
+    ``sigma = sign(Pt0(0))``; the normal row ``K_nn Pn + K_nt Pt = -(1 + k) u_n`` with
+    ``Pt = mu Pn`` gives ``Pn = s Pn0(k)``, ``s = drive / (drive + K_nt (mu Pn0(k) -
+    Pt0(k)))`` (Kudlich 1966; Steffan & Moser, SAE 960886; Brach & Brach 2011, eqs.
+    6.55-6.62). No impulse where C does not close.
+    """
+    a1, b1, a2, b2 = inverse
+    k, mu_c = coefficients
+    r1x, r1y, r2x, r2y = cx - s1[0], cy - s1[1], cx - s2[0], cy - s2[1]
+    v1x, v1y, w1, v2x, v2y, w2 = s1[3], s1[4], s1[5], s2[3], s2[4], s2[5]
+    stick = contact(nx, ny, a1, b1, r1x, r1y, v1x, v1y, w1, a2, b2, r2x, r2y, v2x, v2y, w2,
+                    0.0, 1.0, tolerances[0], tolerances[1])
+    pn_c, pt_c = stick[7], stick[8]
+    if pn_c > 0.0 and abs(pt_c) <= mu_c * pn_c:
+        mu = pt_c / pn_c
+    else:
+        mu = mu_c if pt_c > 0.0 else -mu_c if pt_c < 0.0 else 0.0
+    out = contact(nx, ny, a1, b1, r1x, r1y, v1x, v1y, w1, a2, b2, r2x, r2y, v2x, v2y, w2,
+                  k, 1.0, tolerances[0], tolerances[1])
+    tangential = mu * out[7]
+    denom = out[9] + out[5] * (tangential - out[8])
+    scale = out[9] / denom if out[11] and denom != 0.0 else 0.0
+    res = post_impact(scale, out[7], tangential, 1.0, nx, ny, a1, b1, r1x, r1y, v1x, v1y,
+                      w1, a2, b2, r2x, r2y, v2x, v2y, w2)
+    return res[2], res[3], res[4], res[5], res[8], res[6], res[7], res[9], mu
+
+
+def further_impact(cx, cy, nx, ny, s1, s2, inverse, coefficients, tolerances):
+    """A secondary impact at C with normal n under the law its coefficients name.
+
+    Parameters
+    ----------
+    cx, cy, nx, ny, s1, s2, inverse, tolerances
+        As :func:`capped_impact`.
+    coefficients : (restitution, beta, cap, law)
+        Restitution (eps, or k) [-], fraction of mu0 [-] (Brach's laws), the cap on |mu|
+        or the contact friction mu_c [-] (inf: Brach's law, or always stick), and the law's
+        code (:data:`pim.model.impact_laws.LAW_CODES`).
+
+    Returns
+    -------
+    tuple
+        :func:`capped_impact`'s ("brach", "brach-capped": with its frictionless answer
+        where the capped one gains energy) or :func:`kudlich_slibar_impact`'s
+        ("kudlich-slibar", as :func:`pim.solve` gives it).
+    """
+    if coefficients[3] == KUDLICH_SLIBAR:
+        return kudlich_slibar_impact(cx, cy, nx, ny, s1, s2, inverse,
+                                     (coefficients[0], coefficients[2]), tolerances)
+    return capped_impact(cx, cy, nx, ny, s1, s2, inverse,
+                         (coefficients[0], coefficients[1], coefficients[2]), tolerances)

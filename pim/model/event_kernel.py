@@ -15,10 +15,11 @@ After every step the outlines are watched (:mod:`pim.model.event_formula`):
 - **a new contact** is an overlap depth more than ``tolerance`` above its least value since
   the last impact; the step is then bisected down to 1 microsecond to the time the depth
   first passes that level, so no sample penetrates by much more than ``tolerance``; if C
-  closes there, the secondary impact (:func:`pim.model.event_formula.capped_impact`) is
-  solved in the kernel (``solve``) or the run stops and returns the contact for the caller
-  to solve (a single event: :func:`pim.analysis.event.event` solves it with
-  :func:`pim.solve` under any law).
+  closes there, the secondary impact (:func:`pim.model.event_formula.further_impact`, under
+  the law and coefficients of :data:`COEFFICIENT_COLUMNS`, at C and Gamma of the contact
+  unless they are given) is solved in the kernel (``solve``; a recorded sample gets a row
+  just before and one just after it, at the same time) or the run stops and returns the
+  contact for the caller to solve.
 
 Samples run in parallel (``prange``), each to rest (every vehicle's ``|v| + |omega| r_max``
 below ``stop_speed``), to ``max_time`` or to a contact. Sample 0's every step can be
@@ -48,16 +49,26 @@ from .event_formula import (
 )
 from .runout_kernel import one_signature, rk4_stages
 
-__all__ = ["EventScene", "EventRun", "run_event", "STATUS", "IMPACT_COLUMNS",
-           "RECORD_COLUMNS"]
+__all__ = ["EventScene", "EventRun", "KernelScene", "kernel_scene", "run_event", "STATUS", "IMPACT_COLUMNS",
+           "RECORD_COLUMNS", "COEFFICIENT_COLUMNS"]
 
 #: Fewer samples than this run on one thread (a single event: waking the pool costs more).
 SERIAL_BELOW = 8
 #: What ended each sample's run (the kernel's status codes, in order).
 STATUS = ("rest", "time", "contact", "impacts", "energy", "record")
-#: Columns of an in-kernel impact's record.
+#: Columns of an in-kernel impact's record: its time, C and n, the impulse on vehicle 1, the
+#: contact's depth, both vehicles' velocities and yaw rates after, the energy lost, their
+#: velocities and yaw rates before, their headings, and the law's ratio
+#: (:func:`pim.model.event_formula.further_impact`: the effective beta of Brach's laws, mu
+#: of Kudlich-Slibar's).
 IMPACT_COLUMNS = ("time", "cx", "cy", "nx", "ny", "px", "py", "depth", "vx1", "vy1", "w1",
-                  "vx2", "vy2", "w2", "energy_loss")
+                  "vx2", "vy2", "w2", "energy_loss", "vx1_before", "vy1_before", "w1_before",
+                  "vx2_before", "vy2_before", "w2_before", "psi1", "psi2", "ratio")
+#: Columns of each further impact's law: restitution (eps, or k) [-], fraction of mu0 [-],
+#: the cap or contact friction [-] (inf: none), the law's code
+#: (:data:`pim.model.impact_laws.LAW_CODES`), and C [m] and Gamma [rad] where the case
+#: gives them (NaN: the outlines' contact).
+COEFFICIENT_COLUMNS = ("restitution", "beta", "cap", "law", "cx", "cy", "gamma")
 #: Columns of a recorded step: time and both vehicles' (x, y, psi, v_x, v_y, omega).
 RECORD_COLUMNS = ("time",) + tuple(f"{q}{i}" for i in (1, 2)
                                    for q in ("x", "y", "psi", "vx", "vy", "omega"))
@@ -66,7 +77,7 @@ _PIM = compile_module(formula)
 _GEO = compile_module(event_formula, {"contact": _PIM.contact,
                                       "post_impact": _PIM.post_impact})
 _box, _contact_geometry = _GEO.box, _GEO.contact_geometry
-_capped_impact = _GEO.capped_impact
+_further_impact = _GEO.further_impact
 _cached = stamped_cache(event_formula, formula, runout_formula, tyres, runout_kernel)
 
 
@@ -141,23 +152,32 @@ def _time_step(st, dt, rad, small):  # pragma: no cover - compiled
 @njit(error_model="numpy")
 def _impact(st, c, inv, coef, rec):  # pragma: no cover - compiled
     """Solve the impact at contact ``c`` (depth, cx, cy, nx, ny) on the states ``st`` in
-    place, its record into ``rec`` (:data:`IMPACT_COLUMNS` from "px"); False when C does
-    not close under the law's tolerance (no impulse)."""
+    place under the law ``coef`` (:data:`COEFFICIENT_COLUMNS`), its record into ``rec``
+    (:data:`IMPACT_COLUMNS` from "cx"). 0: C does not close under the law's tolerance (no
+    impulse, nothing changed); 1: solved; 2: solved, and it gains energy."""
+    cx, cy, nx, ny = c[1], c[2], c[3], c[4]
+    if not np.isnan(coef[4]):
+        cx, cy = coef[4], coef[5]
+    if not np.isnan(coef[6]):
+        nx, ny = np.cos(coef[6]), np.sin(coef[6])
     s1 = (st[0, 0], st[0, 1], st[0, 2], st[0, 3], st[0, 4], st[0, 5])
     s2 = (st[1, 0], st[1, 1], st[1, 2], st[1, 3], st[1, 4], st[1, 5])
     before = _energy(st, inv)
-    out = _capped_impact(c[1], c[2], c[3], c[4], s1, s2,
-                             (inv[0], inv[1], inv[2], inv[3]),
-                             (coef[0], coef[1], coef[2]), (1e-12, 1e-12))
+    out = _further_impact(cx, cy, nx, ny, s1, s2, (inv[0], inv[1], inv[2], inv[3]),
+                          (coef[0], coef[1], coef[2], coef[3]), (1e-12, 1e-12))
     if out[0] == 0.0 and out[1] == 0.0:
-        return False
-    rec[0], rec[1], rec[2] = out[0], out[1], c[0]
+        return 0
+    rec[0], rec[1], rec[2], rec[3] = cx, cy, nx, ny
+    rec[4], rec[5], rec[6] = out[0], out[1], c[0]
+    for j in range(6):
+        rec[14 + j] = st[j // 3, 3 + j % 3]
+    rec[20], rec[21], rec[22] = st[0, 2], st[1, 2], out[8]
     st[0, 3], st[0, 4], st[0, 5] = out[2], out[3], out[4]
     st[1, 3], st[1, 4], st[1, 5] = out[5], out[6], out[7]
     for j in range(6):
-        rec[3 + j] = st[j // 3, 3 + j % 3]
-    rec[9] = before - _energy(st, inv)
-    return True
+        rec[7 + j] = st[j // 3, 3 + j % 3]
+    rec[13] = before - _energy(st, inv)
+    return 2 if rec[13] < -1e-9 * (1.0 + before) else 1
 
 
 @_cached
@@ -187,9 +207,12 @@ def _sample(i, st, t, allowed, veh1, veh2, geo, rad, reach, inv, coef, settings,
         moving[v] = inv[2 * v] > 0.0 and (np.hypot(st[v, 3], st[v, 4]) + abs(st[v, 5])
                                           * reach[v] >= stop_speed)
     small = min(geo[0, 1], geo[0, 2], geo[1, 1], geo[1, 2])
+    if np.isnan(allowed):     # the outlines' overlap at the start is no contact
+        allowed = max(_contact(st, geo)[0], 0.0)
     status, count, rows = 1, 0, 0
     c = np.zeros(5)
-    if record.shape[0] > 0 and i == 0:
+    keep = record.shape[0] > 0 and i == 0
+    if keep:
         rows = _write(record, rows, t, st)
     while t < max_time:
         if not moving[0] and not moving[1]:
@@ -211,17 +234,22 @@ def _sample(i, st, t, allowed, veh1, veh2, geo, rad, reach, inv, coef, settings,
                 if closing and solve:
                     if count == impacts.shape[1]:
                         status = 3
-                    elif _impact(new, c, inv, coef[count], impacts[i, count, 5:]):
-                        impacts[i, count, 0] = t + h
-                        for j in range(1, 5):
-                            impacts[i, count, j] = c[j]
-                        if impacts[i, count, 14] < -1e-9 * (1.0 + _energy(new, inv)):
-                            status = 4
-                        count += 1
-                        for v in range(2):
-                            moving[v] = inv[2 * v] > 0.0
+                    elif keep and rows == record.shape[0]:
+                        status = 5
+                        break
                     else:
-                        hit = False
+                        if keep:        # the row just before the impact
+                            rows = _write(record, rows, t + h, new)
+                        kind = _impact(new, c, inv, coef[count], impacts[i, count, 1:])
+                        if kind > 0:
+                            impacts[i, count, 0] = t + h
+                            status = 4 if kind == 2 else status
+                            count += 1
+                            for v in range(2):
+                                moving[v] = inv[2 * v] > 0.0
+                        else:
+                            hit = False
+                            rows -= 1 if keep else 0
                 allowed = max(c[0], 0.0)
             else:
                 allowed = min(allowed, max(depth, 0.0))
@@ -231,7 +259,7 @@ def _sample(i, st, t, allowed, veh1, veh2, geo, rad, reach, inv, coef, settings,
             for j in range(6):
                 st[v, j] = new[v, j]
         t += h
-        if record.shape[0] > 0 and i == 0:
+        if keep:
             if rows == record.shape[0]:
                 status = 5
                 break
@@ -274,9 +302,9 @@ class EventScene:
         Each vehicle's outline: CG to its front, length, width [m].
     inverse : ndarray (n, 4)
         1/m1, 1/I1, 1/m2, 1/I2 [1/kg, 1/(kg m^2)] (0 for a fixed obstacle).
-    coefficients : ndarray (n, MAX_IMPACTS, 3)
-        Each further impact's restitution [-], fraction of mu0 [-] and friction cap [-]
-        (inf: Brach's law), for the in-kernel impacts.
+    coefficients : ndarray (n, MAX_IMPACTS, len(COEFFICIENT_COLUMNS))
+        Each further impact's law, coefficients and given C and Gamma
+        (:data:`COEFFICIENT_COLUMNS`), for the in-kernel impacts.
     """
 
     data1: RhsData
@@ -329,14 +357,51 @@ def _columns(data: RhsData) -> tuple:
             data.tyre)
 
 
-def run_event(scene: EventScene, start, *, start_time=0.0, allowed=None, solve=True,
-              record=0, step=EVENT_STEP, max_time=60.0, stop_speed=0.05,
+@dataclass(frozen=True)
+class KernelScene:
+    """An :class:`EventScene` of n samples in the kernel's own layout (:func:`kernel_scene`):
+    built once, run from any start (:func:`run_event`).
+
+    Attributes
+    ----------
+    n : int
+        Samples.
+    vehicles : tuple
+        Each vehicle's run-out data columns (:class:`pim.model.runout.RhsData`'s).
+    arrays : tuple
+        Outlines (n, 2, 3), bounding radii (n, 2), tyre reach (n, 2), inverse masses and
+        inertias (n, 4) and the further impacts' laws (n, MAX_IMPACTS, 7).
+    """
+
+    n: int
+    vehicles: tuple
+    arrays: tuple
+
+
+def kernel_scene(scene: EventScene, n: int) -> KernelScene:
+    """``scene``'s arrays for n samples as the kernel takes them (broadcast, C-contiguous)."""
+    data2 = scene.data2 if scene.data2 is not None else scene.data1
+    outlines = np.broadcast_to(np.asarray(scene.outlines, float), (n, 2, 3))
+    rad = np.stack([event_formula.bound_radius(*np.moveaxis(outlines[:, v], -1, 0))
+                    for v in range(2)], -1)
+    reach = np.stack([scene.data1.reach, data2.reach], -1)
+    inv = np.broadcast_to(np.asarray(scene.inverse, float), (n, 4))
+    coefficients = np.broadcast_to(np.asarray(scene.coefficients, float),
+                                   (n, MAX_IMPACTS, len(COEFFICIENT_COLUMNS)))
+    return KernelScene(n, (one_signature(*_columns(scene.data1)),
+                           one_signature(*_columns(data2))),
+                       one_signature(outlines, rad, reach, inv, coefficients))
+
+
+def run_event(scene, start, *, start_time=0.0, allowed=None, solve=True, record=0,
+              step=EVENT_STEP, max_time=60.0, stop_speed=0.05,
               tolerance=CONTACT_TOLERANCE) -> EventRun:
     """Run n samples' two vehicles from ``start`` until rest, ``max_time`` or a contact.
 
     Parameters
     ----------
-    scene : EventScene
+    scene : EventScene or KernelScene
+        The vehicles (a :class:`KernelScene` of the same n: no arrays rebuilt).
     start : array_like (n, 2, 6)
         Each vehicle's state (x, y, psi, v_x, v_y, omega) at ``start_time`` [SI].
     start_time : float or (n,) [s]
@@ -344,8 +409,8 @@ def run_event(scene: EventScene, start, *, start_time=0.0, allowed=None, solve=T
         The overlap depth [m] that counts as no new contact (default: the depth at the
         start, e.g. the outlines' overlap at PIM's impact configuration).
     solve : bool
-        Solve each further impact in the kernel (the Monte Carlo); False: stop at the first
-        closing contact (status "contact") for the caller to solve.
+        Solve each further impact in the kernel (the Monte Carlo, the single event); False:
+        stop at the first closing contact (status "contact") for the caller to solve.
     record : int
         Rows of sample 0's recording (0: none).
     step, max_time, stop_speed, tolerance
@@ -356,14 +421,10 @@ def run_event(scene: EventScene, start, *, start_time=0.0, allowed=None, solve=T
     n = start.shape[0]
     if not np.all(np.isfinite(start)):
         raise InputError("event: the start states must be finite")
-    data2 = scene.data2 if scene.data2 is not None else scene.data1
-    outlines = np.broadcast_to(np.asarray(scene.outlines, float), (n, 2, 3))
-    rad = np.stack([event_formula.bound_radius(*np.moveaxis(outlines[:, v], -1, 0))
-                    for v in range(2)], -1)
-    reach = np.stack([scene.data1.reach, data2.reach], -1)
-    inv = np.broadcast_to(np.asarray(scene.inverse, float), (n, 4))
-    if allowed is None:
-        allowed = np.array([max(_start_depth(start[i], outlines[i]), 0.0) for i in range(n)])
+    if not isinstance(scene, KernelScene):
+        scene = kernel_scene(scene, n)
+    if allowed is None:       # NaN: the kernel takes the depth at the start
+        allowed = np.full(n, np.nan)
     out, tail = np.empty((n, 2, 6)), np.zeros((n, 12))
     impacts = np.zeros((n, MAX_IMPACTS, len(IMPACT_COLUMNS)))
     rec = np.empty((int(record), 13))
@@ -374,11 +435,7 @@ def run_event(scene: EventScene, start, *, start_time=0.0, allowed=None, solve=T
     try:
         _run(*one_signature(start, np.broadcast_to(np.asarray(start_time, float), (n,)),
                             np.asarray(allowed, float)),
-             one_signature(*_columns(scene.data1)), one_signature(*_columns(data2)),
-             *one_signature(outlines, rad, reach, inv,
-                            np.broadcast_to(np.asarray(scene.coefficients, float),
-                                            (n, MAX_IMPACTS, 3)), settings, out, tail,
-                            impacts, rec))
+             *scene.vehicles, *scene.arrays, settings, out, tail, impacts, rec)
     finally:
         set_num_threads(threads)
     status = np.asarray(STATUS)[tail[:, 1].astype(int)]
@@ -386,10 +443,3 @@ def run_event(scene: EventScene, start, *, start_time=0.0, allowed=None, solve=T
                     count=tail[:, 2].astype(int), allowed=tail[:, 3].copy(),
                     moving=tail[:, 4:6] > 0, contact=tail[:, 6:11].copy(), impacts=impacts,
                     record=rec[:int(tail[0, 11])] if record else None)
-
-
-def _start_depth(state, outlines) -> float:
-    """The outlines' overlap depth [m] of one sample's state (2, 6)."""
-    boxes = [event_formula.box(state[v, 0], state[v, 1], state[v, 2], *outlines[v])
-             for v in range(2)]
-    return float(event_formula.contact_geometry(*boxes, tuple(state[0]), tuple(state[1]))[0])
