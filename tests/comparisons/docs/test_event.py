@@ -1,4 +1,5 @@
-"""The table of docs/event.md is what the code gives (comparisons.docs.event)."""
+"""The tables of docs/event.md are what the code gives (comparisons.docs.event), and the
+energy figures' claims hold."""
 
 from pathlib import Path
 
@@ -15,6 +16,19 @@ def test_the_committed_page_holds_the_table_the_code_gives():
     assert D.block() in (DOCS / D.PAGE).read_text(encoding="utf-8")
 
 
+def test_the_committed_page_holds_the_energy_table_the_code_gives():
+    assert D.energy_block() in (DOCS / D.PAGE).read_text(encoding="utf-8")
+
+
+def test_a_further_impact_gains_energy_only_where_its_sticking_impulse_pulls():
+    """The page's claim on a sample of the generated side slaps: none is refused for energy,
+    some further impacts are solved frictionless (their capped answer gains energy), and
+    each of those has a sticking impulse that pulls (Pn0 < 0)."""
+    counts = D.energy_counts(D.generated_side_slaps(40, seed=1))
+    assert counts["energy"] == 0
+    assert counts["frictionless"] > 0 and counts["pulling"] == counts["frictionless"]
+
+
 def test_the_slide_row_agrees_with_the_hand_value():
     table = D.impact_table()
     rows = {(r[0], r[1]): r for r in table.rows}
@@ -26,10 +40,12 @@ def test_the_slide_row_agrees_with_the_hand_value():
 
 def test_regeneration_rewrites_only_the_block(tmp_path, capsys):
     page = tmp_path / D.PAGE
-    page.write_text(f"prose before\n{D.BEGIN}\n| old |\n{D.END}\nprose after\n")
+    page.write_text(f"prose before\n{D.BEGIN}\n| old |\n{D.END}\nbetween\n"
+                    f"{D.ENERGY_BEGIN}\n| old |\n{D.ENERGY_END}\nprose after\n")
     assert main(["event", "--docs", str(tmp_path)]) == 0
     assert capsys.readouterr().out.strip() == f"wrote {page}"
-    assert page.read_text() == f"prose before\n{D.block()}\nprose after\n"
+    assert page.read_text() == (f"prose before\n{D.block()}\nbetween\n{D.energy_block()}"
+                                f"\nprose after\n")
     with pytest.raises(ValueError, match="markers"):
         page.write_text("no markers\n")
         D.regenerate(tmp_path)
