@@ -57,6 +57,7 @@ from ..model.event_formula import (
     SECONDARY_CONTACT_FRICTION,
     SECONDARY_LAW,
     SECONDARY_RESTITUTION,
+    slip_speed,
 )
 from ..model.geometry import vehicle_outline
 from ..model.impact_laws import LAW_CODES
@@ -184,14 +185,15 @@ def _coefficients(case: Case) -> np.ndarray:
     return np.array(rows)
 
 
-def _state(case: Case, result) -> np.ndarray:
+def _state(case: Case, result, fixed: bool) -> np.ndarray:
     """Both vehicles' (x, y, psi, v_x, v_y, omega) just after the first impact (..., 2, 6)
-    (the leading axes of the result's samples; a fixed obstacle's motion 0)."""
+    (the leading axes of the result's samples; ``fixed``: vehicle 2 is a fixed obstacle,
+    its motion 0)."""
     out = np.empty(np.shape(result.yaw_rate1) + (2, 6))
     for i, v in enumerate((case.vehicle1, case.vehicle2)):
         out[..., i, :2] = np.asarray(v.cg, float).reshape(2)
         out[..., i, 2] = float(v.heading)
-        if i == 1 and bool(v.fixed):
+        if i == 1 and fixed:
             out[..., i, 3:] = 0.0
         else:
             out[..., i, 3:5] = getattr(result, f"velocity{i + 1}")
@@ -254,21 +256,14 @@ def _wheels(vehicle: RunoutVehicle) -> tuple:
 def _sliding(states: np.ndarray, pos: np.ndarray, braking: np.ndarray,
              steer: np.ndarray) -> np.ndarray:
     """:func:`sliding_flags` of V vehicles at once: states (V, N, 6), their wheels'
-    positions (V, 4, 2), braking (V, 4) and steer (V, 4); (V, N, 4). Locked wheels
-    (``f = 1``) skip the lateral term they weight by 0, wheels without steer the angle sum
-    (the same numbers)."""
+    positions (V, 4, 2), braking (V, 4) and steer (V, 4); (V, N, 4)
+    (:func:`pim.model.event_formula.slip_speed` on arrays)."""
     psi = states[..., 2:3]
-    c, s = np.cos(psi), np.sin(psi)
-    px, py = pos[:, None, :, 0], pos[:, None, :, 1]
-    ax, ay = c * px - s * py, s * px + c * py
-    sx, sy = states[..., 3:4] - states[..., 5:6] * ay, states[..., 4:5] + states[..., 5:6] * ax
-    speed = np.hypot(sx, sy)
-    if np.any(braking != 1.0):
-        if np.any(steer != 0.0):
-            heading = psi + steer[:, None]
-            c, s = np.cos(heading), np.sin(heading)
-        f = braking[:, None]
-        speed = f * speed + (1 - f) * np.abs(-s * sx + c * sy)
+    heading = psi + steer[:, None]
+    f = braking[:, None]
+    speed = slip_speed(np.cos(psi), np.sin(psi), states[..., 3:4], states[..., 4:5],
+                       states[..., 5:6], pos[:, None, :, 0], pos[:, None, :, 1],
+                       np.cos(heading), np.sin(heading), f)
     return speed > SLIDE_SPEED
 
 
@@ -355,12 +350,15 @@ class _Watch:
 
 @dataclass(frozen=True)
 class _Scene:
-    """A case's scene for its single events (:func:`_scene`): the kernel's arrays, each
-    vehicle's wheels (:func:`_wheels`; None: a fixed obstacle), the further impacts' laws,
-    and whether vehicle 2 is fixed."""
+    """A case's scene for its single events (:func:`_scene`): the kernel's arrays, the
+    vehicles with tyres (indices: not a fixed obstacle), their wheels (:func:`_wheels`,
+    stacked on a first axis for the kernel) and the wheels' positions (read-only, the
+    tracks'), the further impacts' laws, and whether vehicle 2 is fixed."""
 
     kernel: object
+    tyred: tuple
     wheels: tuple
+    positions: tuple
     specs: tuple
     fixed: bool
 
@@ -377,8 +375,10 @@ def _kept_scene(case: Case, tyre_friction) -> _Scene:
 
     data1, data2, outlines, inverse, vehicles = scene_data(case, tyre_friction)
     scene = EventScene(data1, data2, outlines[None], inverse[None], _coefficients(case)[None])
-    return _Scene(kernel_scene(scene, 1),
-                  tuple(None if v is None else _wheels(v) for v in vehicles),
+    tyred = tuple(i for i, v in enumerate(vehicles) if v is not None)
+    wheels = [_wheels(vehicles[i]) for i in tyred]
+    stacked = tuple(np.stack([w[j] for w in wheels]) for j in range(3))   # (the kernel's)
+    return _Scene(kernel_scene(scene, 1), tyred, stacked, tuple(w[0] for w in wheels),
                   tuple(impact_spec(case, k) for k in range(2, MAX_IMPACTS + 2)),
                   bool(case.vehicle2.fixed))
 
@@ -461,7 +461,7 @@ def event(case: Case, *, tyre_friction=None, approach: float = DEFAULT_APPROACH,
     choice = resolve_law(case, eps, beta)
     first_spec = ImpactSpec(law=choice.law, contact_friction=choice.contact_friction)
     first = impact_record(case, result, 0.0, first_spec, "case")
-    run = _run_out(scene, _state(case, result),
+    run = _run_out(scene, _state(case, result, scene.fixed),
                    _Watch(step, limit, np.inf if single_impact else tolerance))
     return _assemble(case, (first, *run.impacts), run, approach, scene, free)
 
@@ -469,32 +469,32 @@ def event(case: Case, *, tyre_friction=None, approach: float = DEFAULT_APPROACH,
 def _assemble(case: Case, impacts: tuple, run: _Run, approach: float, scene: _Scene,
               free: bool) -> Event:
     """The event's samples: the approach, the state just before the first impact, and the
-    run-out's rows (the first is the state just after it); the wheels that slide (of the
-    vehicles with tyres, all at once)."""
+    run-out's rows (the first is the state just after it); the wheels that slide in the
+    run-out (of the vehicles with tyres, all at once)."""
     before = np.arange(-approach, 0.0, APPROACH_SAMPLE) if approach > 0 else np.zeros(0)
+    start = len(before) + 1
+    states = np.empty((2, start + len(run.rows), 6))
     ev = case.evidence
-    states = []
-    for i in (1, 2):
-        marks = None if ev is None or getattr(ev, f"vehicle{i}") is None else getattr(
-            ev, f"vehicle{i}").pre_impact
-        pre = approach_motion(getattr(case, f"vehicle{i}"), marks, np.append(before, 0.0))
-        rows = np.empty((len(before) + 1 + len(run.rows), 6))
-        rows[:len(before) + 1, :2], rows[:len(before) + 1, 2] = pre[0], pre[1]
-        rows[:len(before) + 1, 3:5], rows[:len(before) + 1, 5] = pre[2], pre[3]
-        rows[len(before) + 1:] = run.rows[:, 1 + 6 * (i - 1):7 + 6 * (i - 1)]
-        states.append(rows)
-    sliding = [np.zeros((len(states[0]), 4), bool) for _ in (1, 2)]
-    tyred = [] if free else [i for i in (0, 1) if scene.wheels[i] is not None]
-    if tyred:
-        flags = _sliding(np.stack([states[i] for i in tyred]),
-                         *(np.stack([scene.wheels[i][j] for i in tyred]) for j in range(3)))
-        for k, i in enumerate(tyred):
-            sliding[i][len(before) + 1:] = flags[k, len(before) + 1:]
-    tracks = [Track(st[:, :2], st[:, 2], st[:, 3:5], st[:, 5], sliding=sl,
-                    outline=vehicle_outline(v), fixed=bool(v.fixed),
-                    wheels=None if w is None else w[0])
-              for st, sl, v, w in zip(states, sliding, (case.vehicle1, case.vehicle2),
-                                      scene.wheels, strict=True)]
+    for i, vehicle in enumerate((case.vehicle1, case.vehicle2)):
+        marks = None if ev is None or getattr(ev, f"vehicle{i + 1}") is None else getattr(
+            ev, f"vehicle{i + 1}").pre_impact
+        pre = approach_motion(vehicle, marks, np.append(before, 0.0))
+        states[i, :start, :2], states[i, :start, 2] = pre[0], pre[1]
+        states[i, :start, 3:5], states[i, :start, 5] = pre[2], pre[3]
+        states[i, start:] = run.rows[:, 1 + 6 * i:7 + 6 * i]
+    sliding = np.zeros((2, len(states[0]), 4), bool)
+    if scene.tyred and not free:
+        from ..model.event_kernel import sliding_rows  # compiled event: numba
+
+        tyred = list(scene.tyred)
+        sliding[tyred, start:] = sliding_rows(states[tyred, start:], *scene.wheels,
+                                              SLIDE_SPEED)
+    tracks = [Track(states[i, :, :2], states[i, :, 2], states[i, :, 3:5], states[i, :, 5],
+                    sliding=sliding[i], outline=vehicle_outline(v),
+                    fixed=i == 1 and scene.fixed,
+                    wheels=scene.positions[scene.tyred.index(i)] if i in scene.tyred
+                    else None)
+              for i, v in enumerate((case.vehicle1, case.vehicle2))]
     time = np.concatenate([before, [0.0], run.rows[:, 0]])
     stopped = tuple(bool(s) for s in run.stopped)
     rest = float(time[-1]) if all(stopped) else None
@@ -573,9 +573,8 @@ def event_rest_many(case: Case, velocity, yaw_rate, *, tyre_friction=None, max_t
         data1 = replace(data1, friction=mu)
         data2 = None if data2 is None else replace(data2, friction=mu)
     free = not per_sample and tyre_friction is not None and float(tyre_friction) == 0.0
-    start = np.broadcast_to(_state(case, _Motion(velocity, yaw_rate)), (n, 2, 6)).copy()
-    if bool(case.vehicle2.fixed):
-        start[:, 1, 3:] = 0.0
+    start = np.broadcast_to(_state(case, _Motion(velocity, yaw_rate),
+                                   bool(case.vehicle2.fixed)), (n, 2, 6)).copy()
     scene = EventScene(data1, data2, outlines[None], inverse[None], _coefficients(case)[None])
     run = run_event(scene, start, solve=True,
                     max_time=(FREE_MOTION_TIME if free else MAX_TIME) if max_time is None

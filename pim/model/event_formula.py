@@ -82,8 +82,8 @@ SECONDARY_CONTACT_FRICTION = 0.5
 __all__ = ["EVENT_STEP", "MAX_IMPACTS", "CONTACT_TOLERANCE", "TUNNEL_FRACTION",
            "BISECTION_STEP", "SECONDARY_LAW", "SECONDARY_RESTITUTION", "SECONDARY_BETA",
            "SECONDARY_CONTACT_FRICTION", "box", "axis_overlap", "inside_depth",
-           "contact_geometry", "capped_impact", "kudlich_slibar_impact", "further_impact",
-           "closing_speed", "bound_radius", "energy_change", "KUDLICH_SLIBAR"]
+           "contact_geometry", "separating_axis", "capped_impact", "kudlich_slibar_impact", "further_impact",
+           "closing_speed", "bound_radius", "energy_change", "KUDLICH_SLIBAR", "slip_speed"]
 
 #: The law code of "kudlich-slibar" in :func:`further_impact`'s coefficients
 #: (:data:`pim.model.impact_laws.LAW_CODES`; "brach" and "brach-capped" are both
@@ -141,14 +141,7 @@ def contact_geometry(b1, b2, s1, s2):
         1, and how many corners inside the other outline close along it (a float; 0: none,
         C is then the centroid of all inside corners, or the deepest corner).
     """
-    depth, nx, ny = np.inf, 1.0, 0.0
-    for k in range(4):
-        b = b1 if k < 2 else b2
-        ux, uy = (b[2], b[3]) if k % 2 == 0 else (-b[3], b[2])
-        overlap, d = axis_overlap(b1, b2, ux, uy)
-        if overlap < depth:
-            sign = 1.0 if d >= 0.0 else -1.0
-            depth, nx, ny = overlap, sign * ux, sign * uy
+    depth, nx, ny = separating_axis(b1, b2)
     sx = sy = ax = ay = 0.0
     count = closing = 0
     deepest, dx, dy = np.inf, 0.0, 0.0
@@ -172,6 +165,22 @@ def contact_geometry(b1, b2, s1, s2):
     if count > 0:
         return depth, ax / count, ay / count, nx, ny, 0.0
     return depth, dx, dy, nx, ny, 1.0 if closing_speed(dx, dy, nx, ny, s1, s2) < 0.0 else 0.0
+
+
+def separating_axis(b1, b2):
+    """The overlap depth [m] of two boxes (<= 0: apart) and the unit normal ``(nx, ny)`` of
+    the penetrated edge from box 2 toward box 1: the least overlap of their projections
+    over their four edge normals (the separating-axis test; :func:`contact_geometry`'s
+    first part, all the outline watch needs between contacts)."""
+    depth, nx, ny = np.inf, 1.0, 0.0
+    for k in range(4):
+        b = b1 if k < 2 else b2
+        ux, uy = (b[2], b[3]) if k % 2 == 0 else (-b[3], b[2])
+        overlap, d = axis_overlap(b1, b2, ux, uy)
+        if overlap < depth:
+            sign = 1.0 if d >= 0.0 else -1.0
+            depth, nx, ny = overlap, sign * ux, sign * uy
+    return depth, nx, ny
 
 
 def closing_speed(cx, cy, nx, ny, s1, s2):
@@ -333,3 +342,22 @@ def further_impact(cx, cy, nx, ny, s1, s2, inverse, coefficients, tolerances):
                                      (coefficients[0], coefficients[2]), tolerances)
     return capped_impact(cx, cy, nx, ny, s1, s2, inverse,
                          (coefficients[0], coefficients[1], coefficients[2]), tolerances)
+
+
+def slip_speed(c, s, vx, vy, omega, px, py, cw, sw, braking):
+    """The slip speed a tyre resists [m/s]: ``f |s| + (1 - f) |s . e_t|``, the weights of
+    :func:`pim.model.tyres.wheel_force` (``f`` the braking fraction, ``s`` the contact
+    point's slip velocity, ``e_t = (-sw, cw)`` the wheel's lateral unit vector); where it
+    passes :data:`pim.analysis.event.SLIDE_SPEED` the wheel slides (leaves marks).
+
+    Parameters as :func:`pim.model.tyres.wheel_force` (numbers or broadcasting arrays); a
+    locked wheel given as the number 1.0 skips the lateral term it weights by 0 (the same
+    number)."""
+    ax = c * px - s * py
+    ay = s * px + c * py
+    sx = vx - omega * ay
+    sy = vy + omega * ax
+    full = np.hypot(sx, sy)
+    if isinstance(braking, float) and braking == 1.0:
+        return full
+    return braking * full + (1.0 - braking) * np.abs(-sw * sx + cw * sy)

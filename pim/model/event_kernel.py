@@ -49,7 +49,7 @@ from .event_formula import (
 )
 from .runout_kernel import one_signature, rk4_stages
 
-__all__ = ["EventScene", "EventRun", "KernelScene", "kernel_scene", "run_event", "STATUS", "IMPACT_COLUMNS",
+__all__ = ["EventScene", "EventRun", "KernelScene", "kernel_scene", "run_event", "sliding_rows", "STATUS", "IMPACT_COLUMNS",
            "RECORD_COLUMNS", "COEFFICIENT_COLUMNS"]
 
 #: Fewer samples than this run on one thread (a single event: waking the pool costs more).
@@ -76,17 +76,19 @@ RECORD_COLUMNS = ("time",) + tuple(f"{q}{i}" for i in (1, 2)
 _PIM = compile_module(formula)
 _GEO = compile_module(event_formula, {"contact": _PIM.contact,
                                       "post_impact": _PIM.post_impact})
-_box, _contact_geometry = _GEO.box, _GEO.contact_geometry
+_box, _contact_geometry, _separating_axis = (_GEO.box, _GEO.contact_geometry,
+                                             _GEO.separating_axis)
 _further_impact = _GEO.further_impact
+_slip_speed = _GEO.slip_speed
 _cached = stamped_cache(event_formula, formula, runout_formula, tyres, runout_kernel)
 
 
 @njit(error_model="numpy")
-def _step(st, moving, t, h, veh1, veh2, new):  # pragma: no cover - compiled
+def _step(st, moving, t, h, veh1, veh2, new, ks):  # pragma: no cover - compiled
     """Both vehicles' states ``st`` (2, 6) advanced by one RK4 step of ``h`` [s] into
-    ``new`` (the held ones copied). One function (not inlined), called by the step and the
-    bisection, so numba compiles the right-hand side once."""
-    ks = np.empty((4, 6))
+    ``new`` (the held ones copied; ``ks`` (4, 6) the stages' work space). One function (not
+    inlined), called by the step and the bisection, so numba compiles the right-hand side
+    once."""
     for v in range(2):
         for j in range(6):
             new[v, j] = st[v, j]
@@ -109,18 +111,26 @@ def _contact(st, geo):  # pragma: no cover - compiled
 
 
 @njit(error_model="numpy")
-def _bisect(st, moving, t, h, veh1, veh2, new, geo, level):  # pragma: no cover - compiled
+def _depth(st, geo):  # pragma: no cover - compiled
+    """The outlines' overlap depth [m] at the states ``st`` (:func:`_contact`'s first)."""
+    b1 = _box(st[0, 0], st[0, 1], st[0, 2], geo[0, 0], geo[0, 1], geo[0, 2])
+    b2 = _box(st[1, 0], st[1, 1], st[1, 2], geo[1, 0], geo[1, 1], geo[1, 2])
+    return _separating_axis(b1, b2)[0]
+
+
+@njit(error_model="numpy")
+def _bisect(st, moving, t, h, veh1, veh2, new, geo, level, ks):  # pragma: no cover
     """The shortest step in (0, h] [s] (to :data:`BISECTION_STEP`) after which the overlap
     depth exceeds ``level`` [m]; ``new`` holds the state after it."""
     lo, hi = 0.0, h
     while hi - lo > BISECTION_STEP:
         mid = 0.5 * (lo + hi)
-        _step(st, moving, t, mid, veh1, veh2, new)
-        if _contact(new, geo)[0] > level:
+        _step(st, moving, t, mid, veh1, veh2, new, ks)
+        if _depth(new, geo) > level:
             hi = mid
         else:
             lo = mid
-    _step(st, moving, t, hi, veh1, veh2, new)
+    _step(st, moving, t, hi, veh1, veh2, new, ks)
     return hi
 
 
@@ -201,14 +211,14 @@ def _run(y0, t0, allowed0, data1, data2, geo, rad, reach, inv, coef, settings, o
 def _sample(i, st, t, allowed, veh1, veh2, geo, rad, reach, inv, coef, settings, out, tail,
             impacts, record):  # pragma: no cover - compiled
     dt, max_time, stop_speed, tol, solve = settings
-    new = np.empty((2, 6))
+    new, ks = np.empty((2, 6)), np.empty((4, 6))
     moving = np.zeros(2, dtype=np.bool_)
     for v in range(2):
         moving[v] = inv[2 * v] > 0.0 and (np.hypot(st[v, 3], st[v, 4]) + abs(st[v, 5])
                                           * reach[v] >= stop_speed)
     small = min(geo[0, 1], geo[0, 2], geo[1, 1], geo[1, 2])
     if np.isnan(allowed):     # the outlines' overlap at the start is no contact
-        allowed = max(_contact(st, geo)[0], 0.0)
+        allowed = max(_depth(st, geo), 0.0)
     status, count, rows = 1, 0, 0
     c = np.zeros(5)
     keep = record.shape[0] > 0 and i == 0
@@ -220,12 +230,12 @@ def _sample(i, st, t, allowed, veh1, veh2, geo, rad, reach, inv, coef, settings,
             break
         h, near = _time_step(st, dt, rad, small)
         h = min(h, max_time - t)
-        _step(st, moving, t, h, veh1, veh2, new)
+        _step(st, moving, t, h, veh1, veh2, new, ks)
         hit = False
         if near or np.hypot(new[0, 0] - new[1, 0], new[0, 1] - new[1, 1]) < rad[0] + rad[1]:
-            depth = _contact(new, geo)[0]
+            depth = _depth(new, geo)
             if depth > allowed + tol:
-                h = _bisect(st, moving, t, h, veh1, veh2, new, geo, allowed + tol)
+                h = _bisect(st, moving, t, h, veh1, veh2, new, geo, allowed + tol, ks)
                 cg = _contact(new, geo)
                 for j in range(5):
                     c[j] = cg[j]
@@ -278,6 +288,35 @@ def _sample(i, st, t, allowed, veh1, veh2, geo, rad, reach, inv, coef, settings,
     tail[i, 6:11] = c
     if i == 0:
         tail[i, 11] = rows
+
+
+@_cached
+@njit(cache=True, error_model="numpy")
+def _sliding(states, pos, braking, steer, threshold, out):  # pragma: no cover - compiled
+    """``out[v, i, w]``: wheel w of vehicle v slides at ``states[v, i]`` (x, y, psi, v_x,
+    v_y, omega): its :func:`pim.model.event_formula.slip_speed` above ``threshold``, with
+    the wheels at ``pos`` (V, 4, 2) [m], ``braking`` (V, 4) [-] and ``steer`` (V, 4) [rad]."""
+    for v in range(states.shape[0]):
+        for i in range(states.shape[1]):
+            psi = states[v, i, 2]
+            c, s = np.cos(psi), np.sin(psi)
+            for w in range(4):
+                cw, sw = c, s
+                if steer[v, w] != 0.0:
+                    cw, sw = np.cos(psi + steer[v, w]), np.sin(psi + steer[v, w])
+                out[v, i, w] = _slip_speed(c, s, states[v, i, 3], states[v, i, 4],
+                                           states[v, i, 5], pos[v, w, 0], pos[v, w, 1], cw,
+                                           sw, braking[v, w]) > threshold
+
+
+def sliding_rows(states, pos, braking, steer, threshold) -> np.ndarray:
+    """Which wheels slide (V, N, 4) along V vehicles' states (V, N, 6) (compiled; see
+    :func:`pim.analysis.event.sliding_flags`)."""
+    states = np.ascontiguousarray(states, dtype=float)
+    out = np.empty(states.shape[:2] + (4,), dtype=np.bool_)
+    _sliding(states, *one_signature(np.asarray(pos, float), np.asarray(braking, float),
+                                    np.asarray(steer, float)), float(threshold), out)
+    return out
 
 
 @njit(inline="always", error_model="numpy")
