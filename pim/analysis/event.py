@@ -57,6 +57,7 @@ from ..model.event_formula import (
     SECONDARY_CONTACT_FRICTION,
     SECONDARY_LAW,
     SECONDARY_RESTITUTION,
+    energy_loss,
     slip_speed,
 )
 from ..model.geometry import vehicle_outline
@@ -278,25 +279,32 @@ def _coefficients_of(spec: ImpactSpec, result) -> dict:
 
 def impact_record(impact_case: Case, result, time: float, spec: ImpactSpec,
                   source: str) -> ImpactRecord:
-    """The :class:`pim.model.event.ImpactRecord` of an impact solved by :func:`pim.solve`."""
+    """The :class:`pim.model.event.ImpactRecord` of an impact solved by :func:`pim.solve`
+    (its energy lost by :func:`pim.model.event_formula.energy_loss`, the formula of
+    ``result.energy_loss``, on numbers)."""
     v1, v2 = impact_case.vehicle1, impact_case.vehicle2
+    fixed = bool(v2.fixed)
     impulse = np.asarray(result.impulse, float).reshape(2)
     before = np.array([np.asarray(v.velocity, float).reshape(2) for v in (v1, v2)])
     after = np.array([np.asarray(result.velocity1, float).reshape(2),
-                      np.zeros(2) if bool(v2.fixed)
-                      else np.asarray(result.velocity2, float).reshape(2)])
+                      np.zeros(2) if fixed else np.asarray(result.velocity2, float).reshape(2)])
+    w_before = np.array([float(np.asarray(v.yaw_rate)) for v in (v1, v2)])
     w_after = np.array([float(np.asarray(result.yaw_rate1)),
-                        0.0 if bool(v2.fixed) else float(np.asarray(result.yaw_rate2))])
-    pd = np.array([float(pdof(impulse, float(v1.heading))),
-                   np.nan if bool(v2.fixed) else float(pdof(-impulse, float(v2.heading)))])
+                        0.0 if fixed else float(np.asarray(result.yaw_rate2))])
+    headings = np.array([float(v1.heading), float(v2.heading)])
+    pd = pdof(np.stack([impulse, -impulse]), headings)
+    if fixed:
+        pd[1] = np.nan
+    point = np.asarray(impact_case.impact.point, float).reshape(2)
+    states = [(*np.asarray(v.cg, float).reshape(2), 0.0, *before[i], w_before[i])
+              for i, v in enumerate((v1, v2))]
+    loss = energy_loss(point[0], point[1], *states,
+                       (*impulse, *after[0], w_after[0], *after[1], w_after[1]))
     return ImpactRecord(
-        time=float(time), point=np.asarray(impact_case.impact.point, float).reshape(2),
-        normal_angle=float(impact_case.impact.normal_angle), law=spec.law,
-        coefficients=_coefficients_of(spec, result), impulse=impulse, velocity_before=before,
-        velocity_after=after,
-        yaw_rate_before=np.array([float(np.asarray(v.yaw_rate)) for v in (v1, v2)]),
-        yaw_rate_after=w_after, energy_loss=float(np.asarray(result.energy_loss)),
-        pdof=pd, source=source)
+        time=float(time), point=point, normal_angle=float(impact_case.impact.normal_angle),
+        law=spec.law, coefficients=_coefficients_of(spec, result), impulse=impulse,
+        velocity_before=before, velocity_after=after, yaw_rate_before=w_before,
+        yaw_rate_after=w_after, energy_loss=float(loss), pdof=pd, source=source)
 
 
 def kernel_impact_records(rows: np.ndarray, specs, fixed: bool,

@@ -47,6 +47,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .evidence_terms import impulse_work
 from .formula import contact, post_impact
 from .impact_laws import LAW_CODES
 
@@ -83,7 +84,8 @@ __all__ = ["EVENT_STEP", "MAX_IMPACTS", "CONTACT_TOLERANCE", "TUNNEL_FRACTION",
            "BISECTION_STEP", "SECONDARY_LAW", "SECONDARY_RESTITUTION", "SECONDARY_BETA",
            "SECONDARY_CONTACT_FRICTION", "box", "axis_overlap", "inside_depth",
            "contact_geometry", "separating_axis", "capped_impact", "kudlich_slibar_impact", "further_impact",
-           "closing_speed", "bound_radius", "energy_change", "KUDLICH_SLIBAR", "slip_speed"]
+           "closing_speed", "bound_radius", "energy_change", "KUDLICH_SLIBAR", "slip_speed",
+           "relative_velocity", "energy_loss"]
 
 #: The law code of "kudlich-slibar" in :func:`further_impact`'s coefficients
 #: (:data:`pim.model.impact_laws.LAW_CODES`; "brach" and "brach-capped" are both
@@ -183,12 +185,33 @@ def separating_axis(b1, b2):
     return depth, nx, ny
 
 
+def relative_velocity(cx, cy, s1, s2):
+    """The velocity of C on vehicle 1 relative to vehicle 2, ``u = (v_1 + w_1 k x r_1) -
+    (v_2 + w_2 k x r_2)`` [m/s] (``r_i = C - G_i``; Brach & Brach 2011, eq. 6.45), of the
+    states ``s = (x, y, psi, v_x, v_y, omega)``."""
+    ux = (s1[3] - s1[5] * (cy - s1[1])) - (s2[3] - s2[5] * (cy - s2[1]))
+    uy = (s1[4] + s1[5] * (cx - s1[0])) - (s2[4] + s2[5] * (cx - s2[0]))
+    return ux, uy
+
+
 def closing_speed(cx, cy, nx, ny, s1, s2):
     """The normal velocity of C on vehicle 1 relative to vehicle 2, ``u . n`` [m/s]
     (< 0: closing), of the states ``s = (x, y, psi, v_x, v_y, omega)``."""
-    ux = (s1[3] - s1[5] * (cy - s1[1])) - (s2[3] - s2[5] * (cy - s2[1]))
-    uy = (s1[4] + s1[5] * (cx - s1[0])) - (s2[4] + s2[5] * (cx - s2[0]))
+    ux, uy = relative_velocity(cx, cy, s1, s2)
     return ux * nx + uy * ny
+
+
+def energy_loss(cx, cy, s1, s2, out):
+    """Kinetic energy lost [J] in an impact at C whose answer is ``out``
+    (:func:`capped_impact`'s: the impulse on vehicle 1, then both vehicles' velocities and
+    yaw rates after) on the states ``s1``, ``s2`` before: ``-P . (u + U) / 2``
+    (:func:`pim.model.evidence_terms.impulse_work`, the formula of
+    :attr:`pim.Result.energy_loss`, exact where a kinetic-energy difference loses the
+    loss to round-off)."""
+    ux, uy = relative_velocity(cx, cy, s1, s2)
+    bx, by = relative_velocity(cx, cy, (s1[0], s1[1], s1[2], out[2], out[3], out[4]),
+                               (s2[0], s2[1], s2[2], out[5], out[6], out[7]))
+    return impulse_work(out[0], out[1], ux, uy, bx, by)
 
 
 def capped_impact(cx, cy, nx, ny, s1, s2, inverse, coefficients, tolerances):

@@ -36,7 +36,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import get_num_threads, njit, prange, set_num_threads
 
-from . import event_formula, formula, runout_formula, runout_kernel, tyres
+from . import event_formula, evidence_terms, formula, runout_formula, runout_kernel, tyres
 from .numba_cache import compile_module, stamped_cache
 from .numbers import InputError
 from .runout import RhsData
@@ -74,13 +74,15 @@ RECORD_COLUMNS = ("time",) + tuple(f"{q}{i}" for i in (1, 2)
                                    for q in ("x", "y", "psi", "vx", "vy", "omega"))
 
 _PIM = compile_module(formula)
-_GEO = compile_module(event_formula, {"contact": _PIM.contact,
-                                      "post_impact": _PIM.post_impact})
+_GEO = compile_module(event_formula, {
+    "contact": _PIM.contact, "post_impact": _PIM.post_impact,
+    "impulse_work": njit(inline="always", error_model="numpy")(evidence_terms.impulse_work)})
 _box, _contact_geometry, _separating_axis = (_GEO.box, _GEO.contact_geometry,
                                              _GEO.separating_axis)
-_further_impact = _GEO.further_impact
+_further_impact, _energy_loss = _GEO.further_impact, _GEO.energy_loss
 _slip_speed = _GEO.slip_speed
-_cached = stamped_cache(event_formula, formula, runout_formula, tyres, runout_kernel)
+_cached = stamped_cache(event_formula, formula, runout_formula, tyres, runout_kernel,
+                        evidence_terms)
 
 
 @njit(error_model="numpy")
@@ -186,7 +188,7 @@ def _impact(st, c, inv, coef, rec):  # pragma: no cover - compiled
     st[1, 3], st[1, 4], st[1, 5] = out[5], out[6], out[7]
     for j in range(6):
         rec[7 + j] = st[j // 3, 3 + j % 3]
-    rec[13] = before - _energy(st, inv)
+    rec[13] = _energy_loss(cx, cy, s1, s2, out)
     return 2 if rec[13] < -1e-9 * (1.0 + before) else 1
 
 
