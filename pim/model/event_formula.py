@@ -274,23 +274,33 @@ def energy_change(inverse, s1, s2, out):
 
 def _capped(cx, cy, nx, ny, s1, s2, inverse, coefficients, tolerances):
     """:func:`capped_impact` without its energy check."""
-    a1, b1, a2, b2 = inverse
     eps, beta, cap = coefficients
-    r1x, r1y, r2x, r2y = cx - s1[0], cy - s1[1], cx - s2[0], cy - s2[1]
-    v1x, v1y, w1, v2x, v2y, w2 = s1[3], s1[4], s1[5], s2[3], s2[4], s2[5]
-    first = contact(nx, ny, a1, b1, r1x, r1y, v1x, v1y, w1, a2, b2, r2x, r2y, v2x, v2y, w2,
-                    eps, 1.0, tolerances[0], tolerances[1])
+    first = _contact_at(cx, cy, nx, ny, s1, s2, inverse, eps, 1.0, tolerances)
     pn0, pt0 = first[7], first[8]
     mu0 = abs(pt0 / pn0) if pn0 != 0.0 else 0.0
     if beta * mu0 > cap:
         beta = cap / mu0
-    out = contact(nx, ny, a1, b1, r1x, r1y, v1x, v1y, w1, a2, b2, r2x, r2y, v2x, v2y, w2,
-                  eps, beta, tolerances[0], tolerances[1])
+    out = _contact_at(cx, cy, nx, ny, s1, s2, inverse, eps, beta, tolerances)
     drive, denom, approaching = out[9], out[10], out[11]
     scale = drive / denom if approaching and denom != 0.0 else 0.0
-    res = post_impact(scale, out[7], out[8], beta, nx, ny, a1, b1, r1x, r1y, v1x, v1y, w1,
-                      a2, b2, r2x, r2y, v2x, v2y, w2)
-    return res[2], res[3], res[4], res[5], res[8], res[6], res[7], res[9], beta
+    return _answer(scale, out[7], out[8], beta, cx, cy, nx, ny, s1, s2, inverse, beta)
+
+
+def _contact_at(cx, cy, nx, ny, s1, s2, inverse, restitution, beta, tolerances):
+    """:func:`pim.model.formula.contact` of the states ``s1``, ``s2`` at C with normal n."""
+    a1, b1, a2, b2 = inverse
+    return contact(nx, ny, a1, b1, cx - s1[0], cy - s1[1], s1[3], s1[4], s1[5], a2, b2,
+                   cx - s2[0], cy - s2[1], s2[3], s2[4], s2[5], restitution, beta,
+                   tolerances[0], tolerances[1])
+
+
+def _answer(scale, pn0, pt0, beta, cx, cy, nx, ny, s1, s2, inverse, ratio):
+    """The impulse ``s (Pn0 n + beta Pt0 t)`` at C (:func:`pim.model.formula.post_impact`)
+    and the motion after it, in :func:`capped_impact`'s order, ``ratio`` last."""
+    a1, b1, a2, b2 = inverse
+    res = post_impact(scale, pn0, pt0, beta, nx, ny, a1, b1, cx - s1[0], cy - s1[1], s1[3],
+                      s1[4], s1[5], a2, b2, cx - s2[0], cy - s2[1], s2[3], s2[4], s2[5])
+    return res[2], res[3], res[4], res[5], res[8], res[6], res[7], res[9], ratio
 
 
 def kudlich_slibar_impact(cx, cy, nx, ny, s1, s2, inverse, coefficients, tolerances):
@@ -320,25 +330,18 @@ def kudlich_slibar_impact(cx, cy, nx, ny, s1, s2, inverse, coefficients, toleran
     Pt0(k)))`` (Kudlich 1966; Steffan & Moser, SAE 960886; Brach & Brach 2011, eqs.
     6.55-6.62). No impulse where C does not close.
     """
-    a1, b1, a2, b2 = inverse
     k, mu_c = coefficients
-    r1x, r1y, r2x, r2y = cx - s1[0], cy - s1[1], cx - s2[0], cy - s2[1]
-    v1x, v1y, w1, v2x, v2y, w2 = s1[3], s1[4], s1[5], s2[3], s2[4], s2[5]
-    stick = contact(nx, ny, a1, b1, r1x, r1y, v1x, v1y, w1, a2, b2, r2x, r2y, v2x, v2y, w2,
-                    0.0, 1.0, tolerances[0], tolerances[1])
+    stick = _contact_at(cx, cy, nx, ny, s1, s2, inverse, 0.0, 1.0, tolerances)
     pn_c, pt_c = stick[7], stick[8]
     if pn_c > 0.0 and abs(pt_c) <= mu_c * pn_c:
         mu = pt_c / pn_c
     else:
         mu = mu_c if pt_c > 0.0 else -mu_c if pt_c < 0.0 else 0.0
-    out = contact(nx, ny, a1, b1, r1x, r1y, v1x, v1y, w1, a2, b2, r2x, r2y, v2x, v2y, w2,
-                  k, 1.0, tolerances[0], tolerances[1])
+    out = _contact_at(cx, cy, nx, ny, s1, s2, inverse, k, 1.0, tolerances)
     tangential = mu * out[7]
     denom = out[9] + out[5] * (tangential - out[8])
     scale = out[9] / denom if out[11] and denom != 0.0 else 0.0
-    res = post_impact(scale, out[7], tangential, 1.0, nx, ny, a1, b1, r1x, r1y, v1x, v1y,
-                      w1, a2, b2, r2x, r2y, v2x, v2y, w2)
-    return res[2], res[3], res[4], res[5], res[8], res[6], res[7], res[9], mu
+    return _answer(scale, out[7], tangential, 1.0, cx, cy, nx, ny, s1, s2, inverse, mu)
 
 
 def further_impact(cx, cy, nx, ny, s1, s2, inverse, coefficients, tolerances):
