@@ -228,12 +228,50 @@ def test_one_kernel_call_and_one_solve_per_event(monkeypatch):
     assert calls == {"kernel": 1, "solve": 1}
 
 
+def test_a_record_too_short_is_run_again_longer(monkeypatch):
+    """Steps shrunk near contact may fill the kernel's record: the event runs again with a
+    longer one and is the same event."""
+    from pim.model import event_kernel
+
+    case = t_bone(along=-0.8)
+    expected = pim.event(case)
+    real, sizes = event_kernel.run_event, []
+
+    def short_first(*args, **kwargs):
+        sizes.append(kwargs["record"])
+        if len(sizes) == 1:
+            kwargs["record"] = 20
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(event_kernel, "run_event", short_first)
+    ev = pim.event(case)
+    assert len(sizes) == 2 and sizes[1] > sizes[0]
+    assert np.array_equal(ev.time, expected.time)
+    assert np.array_equal(ev.vehicle2.position, expected.vehicle2.position)
+    assert [i.time for i in ev.impacts] == [i.time for i in expected.impacts]
+
+
 def test_given_c_and_gamma_of_a_further_impact_are_used():
     spec = ImpactSpec(law="brach", restitution=0.2, beta=0.5, point=(-0.5, 1.0),
                       normal_angle=3.0)
     second = pim.event(t_bone(along=-0.8, impacts=[spec])).impacts[1]
     assert second.point == pytest.approx([-0.5, 1.0]) and second.normal_angle == 3.0
     assert second.coefficients == {"eps": 0.2, "beta": 0.5}
+
+
+def test_a_contact_without_end_is_refused_by_both():
+    """A generated side slap near the struck car's front corner, slow (6.1 m/s into
+    6.3 m/s): the cars stay in contact, impact after impact; pim.event refuses it, naming
+    why, and the Monte Carlo's kernel marks the same sample not ok after as many."""
+    from sim.event_check import side_slap_case
+
+    case = side_slap_case(2.07, speed1=6.07, speed2=6.25, eps=0.238, beta=0.391)
+    with pytest.raises(pim.InputError, match="more than 12 impacts after the first"):
+        pim.event(case)
+    res = pim.solve(case)
+    many = event_rest_many(case, np.stack([res.velocity1, res.velocity2])[None],
+                           [[float(res.yaw_rate1), float(res.yaw_rate2)]])
+    assert not many.ok[0] and many.impacts[0] == 12
 
 
 def test_impacts_table_sets_the_further_impacts_law():

@@ -76,3 +76,11 @@ def test_far_apart_vehicles_run_to_rest_without_contact():
     assert run.status[0] == "rest" and run.count[0] == 0
     # four locked wheels: 25 / (2 0.7 g) = 1.82 m
     assert run.final[0, 0, 0] == pytest.approx(25 / (2 * 0.7 * 9.80665), abs=5e-3)
+
+
+def test_a_full_record_stops_the_run():
+    """A record too short for the run stops it (status "record") with the rows it holds;
+    pim.event then runs again with a longer one."""
+    run = run_event(scene(), side_on(10.0), solve=True, record=10)
+    assert run.status[0] == "record" and run.record.shape == (10, len(RECORD_COLUMNS))
+    assert np.all(np.diff(run.record[:, 0]) > 0)
