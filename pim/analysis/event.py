@@ -170,13 +170,20 @@ def scene_data(case: Case, tyre_friction, n: int = 1) -> tuple:
     return data[0], data[1], outlines, inverse, vehicles
 
 
-def _coefficients(case: Case) -> np.ndarray:
-    """(MAX_IMPACTS, 7): each further impact's law for the kernel
-    (:data:`pim.model.event_kernel.COEFFICIENT_COLUMNS`: restitution, beta, cap, law code,
-    C and Gamma where the case's ``[[impacts]]`` give them, else NaN)."""
+def _further_specs(case: Case) -> tuple:
+    """:func:`impact_spec` of the impacts 2 to MAX_IMPACTS + 1, each distinct one built
+    once (the last ``[[impacts]]`` entry, or the defaults, stands for all after it)."""
+    given = len(tuple(getattr(case, "impacts", ()) or ()))
+    distinct = [impact_spec(case, k) for k in range(2, min(max(given, 1), MAX_IMPACTS) + 2)]
+    return tuple(distinct[min(k, len(distinct) - 1)] for k in range(MAX_IMPACTS))
+
+
+def _coefficients(specs: tuple) -> np.ndarray:
+    """(MAX_IMPACTS, 7): the further impacts' laws (``specs``, :func:`_further_specs`) for
+    the kernel (:data:`pim.model.event_kernel.COEFFICIENT_COLUMNS`: restitution, beta, cap,
+    law code, C and Gamma where the case's ``[[impacts]]`` give them, else NaN)."""
     rows = []
-    for k in range(2, MAX_IMPACTS + 2):
-        spec = impact_spec(case, k)
+    for spec in specs:
         cap = np.inf if spec.law == "brach" else float(spec.contact_friction)
         point = ((np.nan, np.nan) if spec.point is None
                  else np.asarray(spec.point, float).reshape(2))
@@ -382,12 +389,12 @@ def _kept_scene(case: Case, tyre_friction) -> _Scene:
     from ..model.event_kernel import EventScene, kernel_scene  # compiled: numba
 
     data1, data2, outlines, inverse, vehicles = scene_data(case, tyre_friction)
-    scene = EventScene(data1, data2, outlines[None], inverse[None], _coefficients(case)[None])
+    specs = _further_specs(case)
+    scene = EventScene(data1, data2, outlines[None], inverse[None], _coefficients(specs)[None])
     tyred = tuple(i for i, v in enumerate(vehicles) if v is not None)
     wheels = [_wheels(vehicles[i]) for i in tyred]
     stacked = tuple(np.stack([w[j] for w in wheels]) for j in range(3))   # (the kernel's)
-    return _Scene(kernel_scene(scene, 1), tyred, stacked, tuple(w[0] for w in wheels),
-                  tuple(impact_spec(case, k) for k in range(2, MAX_IMPACTS + 2)),
+    return _Scene(kernel_scene(scene, 1), tyred, stacked, tuple(w[0] for w in wheels), specs,
                   bool(case.vehicle2.fixed))
 
 
@@ -583,7 +590,8 @@ def event_rest_many(case: Case, velocity, yaw_rate, *, tyre_friction=None, max_t
     free = not per_sample and tyre_friction is not None and float(tyre_friction) == 0.0
     start = np.broadcast_to(_state(case, _Motion(velocity, yaw_rate),
                                    bool(case.vehicle2.fixed)), (n, 2, 6)).copy()
-    scene = EventScene(data1, data2, outlines[None], inverse[None], _coefficients(case)[None])
+    scene = EventScene(data1, data2, outlines[None], inverse[None],
+                       _coefficients(_further_specs(case))[None])
     run = run_event(scene, start, solve=True,
                     max_time=(FREE_MOTION_TIME if free else MAX_TIME) if max_time is None
                     else float(max_time), step=step, stop_speed=REST_SPEED,
