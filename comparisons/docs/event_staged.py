@@ -1,0 +1,123 @@
+"""The staged-test block of docs/event.md: RICSAC 10 through the event against its published
+rest positions, written by ``python -m comparisons.docs event`` (with the page's first table).
+
+No public source found gives a staged test with a secondary impact in numbers (the search:
+docs/event.md, "Staged tests with secondary impacts"). The closest is RICSAC 10 (Honda CVCC
+into the side of a Ford Torino at 14.9 m/s): its masses, yaw inertias, speeds, contact
+plane, angles phi and measured post-impact motion are bundled (``ricsac`` dataset), its
+rest positions too (:mod:`pim.io.staged_rest`), but not its CG-to-impact distances or its
+outlines. Those are RICSAC 9's (the same two cars in the same front-to-side configuration,
+Brach's geometry in ``ricsac9.toml``), and restitution and beta are fitted to test 10's
+measured motion by :func:`pim.fit`. Its event runs, analytic and in pymunk, at the tyre
+drag its published rest ranges imply, at the default tyres and without tyres.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import cache
+
+import numpy as np
+
+import pim
+import sim
+from comparisons.report.render import markdown_table
+from comparisons.report.tables import Num, Table
+from pim.io.datasets import load_ricsac
+from pim.io.staged_rest import SOURCE, StagedRest, staged_rest
+from pim.model.tyres import STANDARD_GRAVITY
+
+__all__ = ["BEGIN", "END", "RICSAC", "FT", "ricsac10_case", "implied_drag", "frictions",
+           "staged_table", "block"]
+
+BEGIN = ("<!-- event-staged: begin (written by `python -m comparisons.docs event`; edit "
+         "comparisons/docs/event_staged.py, not this table) -->")
+END = "<!-- event-staged: end -->"
+#: The RICSAC collision reproduced.
+RICSAC = 10
+#: m per ft: the table speaks the published data's unit.
+FT = 0.3048
+
+
+@cache
+def ricsac10_case() -> pim.Case:
+    """RICSAC 10 as a case: the bundled test's masses, yaw inertias, impact velocities and
+    angles phi (Vossou & Koulocheris) at C = (0, 0), Gamma = 0; RICSAC 9's CG-to-C distances
+    and outlines (``ricsac9.toml``); restitution and beta fitted to test 10's measured
+    post-impact motion (:func:`pim.fit`, Brach's law)."""
+    test = {t.number: t for t in load_ricsac()}[RICSAC]
+    r9 = pim.load_case("ricsac9")
+    vehicles = []
+    for i, heading in ((1, math.pi), (2, math.pi / 2)):
+        like = getattr(r9, f"vehicle{i}")
+        d, phi = math.hypot(*like.cg), getattr(test, f"phi{i}")
+        cg = (-d * math.cos(heading + phi), -d * math.sin(heading + phi))
+        vehicles.append(pim.Vehicle(getattr(test, f"mass{i}"), getattr(test, f"yaw_inertia{i}"),
+                                    cg, getattr(test, f"velocity{i}_pre"), 0.0, heading,
+                                    length=like.length, width=like.width))
+    measured = pim.Measured(velocity1=test.velocity1_post, yaw_rate1=test.yaw_rate1_post,
+                            velocity2=test.velocity2_post, yaw_rate2=test.yaw_rate2_post)
+    trial = pim.Case(*vehicles, pim.Impact((0.0, 0.0), float(test.normal_angle),
+                                           restitution=0.5, beta=1.0),
+                     measured=measured, name=f"ricsac{RICSAC}")
+    fit = pim.fit(trial)
+    return pim.Case(*vehicles, pim.Impact((0.0, 0.0), float(test.normal_angle),
+                                          restitution=float(fit.eps), beta=float(fit.beta)),
+                    measured=measured, name=f"ricsac{RICSAC}")
+
+
+def implied_drag(published: StagedRest) -> np.ndarray:
+    """Each vehicle's mean drag factor [-] from its measured post-impact speed and published
+    rest range: ``v^2 / (2 g range)`` (a straight slide; a spinning car's path is longer)."""
+    test = {t.number: t for t in load_ricsac()}[published.ricsac]
+    speed = np.hypot(*np.array([test.velocity1_post, test.velocity2_post]).T)
+    return speed ** 2 / (2 * STANDARD_GRAVITY * published.rest_range)
+
+
+def frictions() -> tuple:
+    """(label, tyre friction) of the runs: the mean implied drag, the default tyres, none."""
+    mu = round(float(np.mean(implied_drag(staged_rest(RICSAC)))), 2)
+    return ((f"tyres {mu:g} (the implied drag)", mu), ("default tyres 0.7", None),
+            ("no tyres (3 s)", 0.0))
+
+
+def _row(label: str, run: str, event) -> tuple:
+    case = ricsac10_case()
+    start = np.array([case.vehicle1.cg, case.vehicle2.cg])
+    reach = np.hypot(*(event.rest_position - start).T) / FT
+    turn = np.degrees(event.rest_heading - [case.vehicle1.heading, case.vehicle2.heading])
+    second = Num(event.impacts[1].time, 3) if len(event.impacts) > 1 else "-"
+    return (label, run, len(event.impacts), second, Num(reach[0], 1), Num(reach[1], 1),
+            Num(turn[0], 0), Num(turn[1], 0), Num(event.end_time, 2))
+
+
+@cache
+def staged_table() -> Table:
+    """RICSAC 10's event (analytic and pymunk) at each friction of :func:`frictions`: its
+    impacts, each vehicle's range from impact to rest [ft] and turn [deg]; then the
+    published ranges and headings."""
+    case = ricsac10_case()
+    rows = []
+    for label, mu in frictions():
+        rows.append(_row(label, "pim.event", pim.event(case, tyre_friction=mu)))
+        rows.append(_row(label, "sim.simulate_event", sim.simulate_event(case, tyre_friction=mu)))
+    pub = staged_rest(RICSAC)
+    reach, heading = pub.rest_range / FT, np.degrees(pub.heading)
+    rows.append(("published", SOURCE, "not stated", "", Num(reach[0], 1), Num(reach[1], 1),
+                 f"{heading[0]:g} (at rest)", f"{heading[1]:g} (at rest)", ""))
+    return Table("event-staged", f"RICSAC {RICSAC} through the event against its published "
+                 f"rest positions (eps {case.impact.restitution:.3f}, beta "
+                 f"{case.impact.beta:.3f} fitted to its measured motion)",
+                 ("scene", "run", "impacts", "2nd impact [s]", "range 1 [ft]", "range 2 [ft]",
+                  "turn 1 [deg]", "turn 2 [deg]", "end [s]"), tuple(rows), csv=False)
+
+
+def block() -> str:
+    """The generated block, markers included: the fitted coefficients, the implied drag
+    and the table."""
+    case, drag = ricsac10_case(), implied_drag(staged_rest(RICSAC))
+    lead = (f"RICSAC {RICSAC} as a case: restitution {case.impact.restitution:.3f} and beta "
+            f"{case.impact.beta:.3f} fitted to its measured post-impact motion; the drag its "
+            f"published rest ranges imply (v^2 / (2 g range)): {drag[0]:.2f} (Honda), "
+            f"{drag[1]:.2f} (Torino).")
+    return "\n".join([BEGIN, "", lead, "", markdown_table(staged_table()), "", END])
