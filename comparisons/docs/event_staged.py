@@ -15,6 +15,7 @@ drag its published rest ranges imply, at the default tyres and without tyres.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from functools import cache
 
 import numpy as np
@@ -27,8 +28,8 @@ from pim.io.datasets import load_ricsac
 from pim.io.staged_rest import SOURCE, StagedRest, staged_rest
 from pim.model.tyres import STANDARD_GRAVITY
 
-__all__ = ["BEGIN", "END", "RICSAC", "FT", "ricsac10_case", "implied_drag", "frictions",
-           "staged_table", "block"]
+__all__ = ["BEGIN", "END", "RICSAC", "FT", "ricsac10_fit", "ricsac10_case", "implied_drag",
+           "frictions", "staged_table", "variations", "sensitivity_table", "block"]
 
 BEGIN = ("<!-- event-staged: begin (written by `python -m comparisons.docs event`; edit "
          "comparisons/docs/event_staged.py, not this table) -->")
@@ -40,11 +41,9 @@ FT = 0.3048
 
 
 @cache
-def ricsac10_case() -> pim.Case:
-    """RICSAC 10 as a case: the bundled test's masses, yaw inertias, impact velocities and
-    angles phi (Vossou & Koulocheris) at C = (0, 0), Gamma = 0; RICSAC 9's CG-to-C distances
-    and outlines (``ricsac9.toml``); restitution and beta fitted to test 10's measured
-    post-impact motion (:func:`pim.fit`, Brach's law)."""
+def ricsac10_fit():
+    """:func:`pim.fit` of Brach's law to RICSAC 10's measured post-impact motion, on the case
+    of :func:`ricsac10_case` (its restitution and beta the fit's start only)."""
     test = {t.number: t for t in load_ricsac()}[RICSAC]
     r9 = pim.load_case("ricsac9")
     vehicles = []
@@ -57,13 +56,20 @@ def ricsac10_case() -> pim.Case:
                                     length=like.length, width=like.width))
     measured = pim.Measured(velocity1=test.velocity1_post, yaw_rate1=test.yaw_rate1_post,
                             velocity2=test.velocity2_post, yaw_rate2=test.yaw_rate2_post)
-    trial = pim.Case(*vehicles, pim.Impact((0.0, 0.0), float(test.normal_angle),
-                                           restitution=0.5, beta=1.0),
-                     measured=measured, name=f"ricsac{RICSAC}")
-    fit = pim.fit(trial)
-    return pim.Case(*vehicles, pim.Impact((0.0, 0.0), float(test.normal_angle),
-                                          restitution=float(fit.eps), beta=float(fit.beta)),
-                    measured=measured, name=f"ricsac{RICSAC}")
+    return pim.fit(pim.Case(*vehicles, pim.Impact((0.0, 0.0), float(test.normal_angle),
+                                                  restitution=0.5, beta=1.0),
+                            measured=measured, name=f"ricsac{RICSAC}"))
+
+
+@cache
+def ricsac10_case() -> pim.Case:
+    """RICSAC 10 as a case: the bundled test's masses, yaw inertias, impact velocities and
+    angles phi (Vossou & Koulocheris) at C = (0, 0), Gamma = 0; RICSAC 9's CG-to-C distances
+    and outlines (``ricsac9.toml``); restitution and beta fitted to test 10's measured
+    post-impact motion (:func:`ricsac10_fit`)."""
+    fit = ricsac10_fit()
+    return replace(fit.case, impact=replace(fit.case.impact, restitution=float(fit.eps),
+                                            beta=float(fit.beta)))
 
 
 def implied_drag(published: StagedRest) -> np.ndarray:
@@ -112,6 +118,40 @@ def staged_table() -> Table:
                   "turn 1 [deg]", "turn 2 [deg]", "end [s]"), tuple(rows), csv=False)
 
 
+def variations() -> list:
+    """(restitution, C shift [m]) of the inputs the data leave open: the fit's restitution
+    and one standard error either side (clipped to [0, 1]) by C moved 0 or by the
+    ``impact.point_x`` / ``point_y`` half-range of ``ricsac9.toml``'s ``[uncertainty]`` in
+    each direction (the CG-to-C distances borrowed from RICSAC 9 are that uncertain)."""
+    fit, table = ricsac10_fit(), pim.load_case("ricsac9").uncertainty.inputs
+    se = fit.standard_errors.get("impact.restitution", 0.0)
+    eps = [min(max(fit.eps + k * se, 0.0), 1.0) for k in (-1, 0, 1)]
+    half = (table["impact.point_x"].b, table["impact.point_y"].b)
+    shifts = [(i * half[0], j * half[1]) for i in (-1, 0, 1) for j in (-1, 0, 1)]
+    return [(e, shift) for e in eps for shift in shifts]
+
+
+@cache
+def sensitivity_table() -> Table:
+    """Per restitution of :func:`variations`: in how many of the nine C positions the
+    event at the implied drag has a further impact, and the earliest and latest."""
+    case, mu = ricsac10_case(), frictions()[0][1]
+    found = {}
+    for eps, (dx, dy) in variations():
+        trial = replace(case, impact=replace(case.impact, restitution=eps, point=(dx, dy)))
+        times = [i.time for i in pim.event(trial, tyre_friction=mu).impacts[1:]]
+        found.setdefault(eps, []).append(times[0] if times else None)
+    rows = []
+    for eps, firsts in found.items():
+        hit = [t for t in firsts if t is not None]
+        rows.append((Num(eps, 3), f"{len(hit)} of {len(firsts)}",
+                     Num(min(hit), 3) if hit else "-", Num(max(hit), 3) if hit else "-"))
+    return Table("event-staged-sensitivity", f"RICSAC {RICSAC}'s further impact at tyres "
+                 f"{mu:g} over the inputs the data leave open",
+                 ("restitution", "C positions with a further impact", "earliest [s]",
+                  "latest [s]"), tuple(rows), csv=False)
+
+
 def block() -> str:
     """The generated block, markers included: the fitted coefficients, the implied drag
     and the table."""
@@ -120,4 +160,5 @@ def block() -> str:
             f"{case.impact.beta:.3f} fitted to its measured post-impact motion; the drag its "
             f"published rest ranges imply (v^2 / (2 g range)): {drag[0]:.2f} (Honda), "
             f"{drag[1]:.2f} (Torino).")
-    return "\n".join([BEGIN, "", lead, "", markdown_table(staged_table()), "", END])
+    return "\n".join([BEGIN, "", lead, "", markdown_table(staged_table()), "",
+                      markdown_table(sensitivity_table()), "", END])

@@ -53,3 +53,24 @@ def test_analytic_and_pymunk_events_agree_on_the_side_slap_and_rest():
         assert all(abs(a[k].value - s[k].value) <= 0.5 for k in (4, 5))
         assert all(abs(a[k].value - s[k].value) <= 5 for k in (6, 7))
     assert [r[2] for r in runs[::2]] == [2, 1, 2]
+
+
+def test_variations_span_the_fits_error_and_ricsac9s_point_uncertainty():
+    """Three restitutions (the fit's, one standard error either side, within [0, 1]) by nine
+    C positions (0 or +-0.5 ft, ricsac9.toml's impact.point half-range, in x and y)."""
+    fit = D.ricsac10_fit()
+    runs = D.variations()
+    assert len(runs) == 27
+    eps = sorted({e for e, _ in runs})
+    se = fit.standard_errors["impact.restitution"]
+    assert eps == pytest.approx([fit.eps - se, fit.eps, min(fit.eps + se, 1.0)])
+    shifts = {s for _, s in runs}
+    assert max(abs(x) for x, _ in shifts) == pytest.approx(0.5 * 0.3048)
+    assert len(shifts) == 9
+
+
+def test_sensitivity_rows_count_nine_positions_each():
+    table = D.sensitivity_table()
+    assert [r[1].endswith("of 9") for r in table.rows] == [True] * 3
+    hits = [int(r[1].split()[0]) for r in table.rows]
+    assert hits[1] >= 1  # the fitted case at the nominal C: the main table's side slap
