@@ -24,12 +24,14 @@ import pim
 import sim
 from comparisons.report.render import markdown_table
 from comparisons.report.tables import Num, Table
+from pim.analysis.event import event_rest_many
 from pim.io.datasets import load_ricsac
 from pim.io.staged_rest import SOURCE, StagedRest, staged_rest
 from pim.model.tyres import STANDARD_GRAVITY
 
 __all__ = ["BEGIN", "END", "RICSAC", "FT", "ricsac10_fit", "ricsac10_case", "implied_drag",
-           "frictions", "staged_table", "variations", "sensitivity_table", "block"]
+           "frictions", "staged_table", "variations", "sensitivity_table", "measured_start",
+           "block"]
 
 BEGIN = ("<!-- event-staged: begin (written by `python -m comparisons.docs event`; edit "
          "comparisons/docs/event_staged.py, not this table) -->")
@@ -152,6 +154,19 @@ def sensitivity_table() -> Table:
                   "latest [s]"), tuple(rows), csv=False)
 
 
+@cache
+def measured_start() -> tuple:
+    """RICSAC 9's event without tyres started from its published measured post-impact motion
+    (the sheet's table, ``ricsac9.toml`` ``[measured]``) at PIM's configuration:
+    ``(further impacts, time of the first [s])`` (:func:`pim.analysis.event.event_rest_many`).
+    """
+    case = pim.load_case("ricsac9")
+    m = case.measured
+    rest = event_rest_many(case, np.array([[m.velocity1, m.velocity2]]),
+                           np.array([[m.yaw_rate1, m.yaw_rate2]]), tyre_friction=0.0)
+    return int(rest.impacts[0]), float(rest.first_time[0])
+
+
 def block() -> str:
     """The generated block, markers included: the fitted coefficients, the implied drag
     and the table."""
@@ -160,5 +175,9 @@ def block() -> str:
             f"{case.impact.beta:.3f} fitted to its measured post-impact motion; the drag its "
             f"published rest ranges imply (v^2 / (2 g range)): {drag[0]:.2f} (Honda), "
             f"{drag[1]:.2f} (Torino).")
+    count, first = measured_start()
+    lead += (f" RICSAC 9 started from its published measured post-impact motion at PIM's "
+             f"configuration (no tyres): {count} further impacts, the first after "
+             f"{first * 1000:.0f} ms.")
     return "\n".join([BEGIN, "", lead, "", markdown_table(staged_table()), "",
                       markdown_table(sensitivity_table()), "", END])
