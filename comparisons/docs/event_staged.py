@@ -22,16 +22,17 @@ import numpy as np
 
 import pim
 import sim
+from sim.secondary import part_of
 from comparisons.report.render import markdown_table
 from comparisons.report.tables import Num, Table
 from pim.analysis.event import event_rest_many
 from pim.io.datasets import load_ricsac
-from pim.io.staged_rest import SOURCE, StagedRest, staged_rest
+from pim.io.staged_rest import SOURCE, StagedRest, load_staged_rest, staged_rest
 from pim.model.tyres import STANDARD_GRAVITY
 
 __all__ = ["BEGIN", "END", "RICSAC", "FT", "ricsac10_fit", "ricsac10_case", "implied_drag",
            "frictions", "staged_table", "variations", "sensitivity_table", "measured_start",
-           "block"]
+           "side_slap_parts", "speed_checks", "block"]
 
 BEGIN = ("<!-- event-staged: begin (written by `python -m comparisons.docs event`; edit "
          "comparisons/docs/event_staged.py, not this table) -->")
@@ -167,17 +168,52 @@ def measured_start() -> tuple:
     return int(rest.impacts[0]), float(rest.first_time[0])
 
 
-def block() -> str:
-    """The generated block, markers included: the fitted coefficients, the implied drag
-    and the table."""
+def side_slap_parts() -> tuple:
+    """At the implied drag: the parts of the two outlines that meet in the further impact
+    (:func:`sim.secondary.part_of`) and each vehicle's turn since the impact [rad]."""
+    case = ricsac10_case()
+    ev = pim.event(case, tyre_friction=frictions()[0][1])
+    impact = ev.impacts[1]
+    k = int(np.searchsorted(ev.time, impact.time))
+    parts, turns = [], []
+    for track, vehicle in zip(ev.tracks, (case.vehicle1, case.vehicle2), strict=True):
+        parts.append(part_of(track.outline, track.position[k], float(track.heading[k]),
+                             impact.point))
+        turns.append(float(track.heading[k] - vehicle.heading))
+    return tuple(parts), tuple(turns)
+
+
+def speed_checks() -> list:
+    """(RICSAC number, Day's impact speed minus Neades' measured speed of vehicle 1 [m/s])
+    of each identified row of the transcript."""
+    ricsac = {t.number: t for t in load_ricsac()}
+    return [(r.ricsac, float(r.speed[0] - ricsac[r.ricsac].speed1_measured))
+            for r in load_staged_rest() if r.ricsac is not None]
+
+
+def _lead() -> str:
     case, drag = ricsac10_case(), implied_drag(staged_rest(RICSAC))
-    lead = (f"RICSAC {RICSAC} as a case: restitution {case.impact.restitution:.3f} and beta "
+    tests = {t.number: t for t in load_ricsac()}
+    (part1, part2), (turn1, turn2) = side_slap_parts()
+    count, first = measured_start()
+    dphi = [math.degrees(abs(getattr(tests[10], f"phi{i}") - getattr(tests[9], f"phi{i}")))
+            for i in (1, 2)]
+    checks = ", ".join(f"RICSAC {n}: {round(d, 2) + 0.0:+.2f}" for n, d in sorted(speed_checks()))
+    return (f"RICSAC {RICSAC} at {tests[10].speed1_measured:g} m/s (RICSAC 9: "
+            f"{tests[9].speed1_measured:g} m/s), phi {dphi[0]:.1f} and {dphi[1]:.1f} deg from "
+            f"RICSAC 9's. Restitution {case.impact.restitution:.3f} and beta "
             f"{case.impact.beta:.3f} fitted to its measured post-impact motion; the drag its "
             f"published rest ranges imply (v^2 / (2 g range)): {drag[0]:.2f} (Honda), "
-            f"{drag[1]:.2f} (Torino).")
-    count, first = measured_start()
-    lead += (f" RICSAC 9 started from its published measured post-impact motion at PIM's "
-             f"configuration (no tyres): {count} further impacts, the first after "
-             f"{first * 1000:.0f} ms.")
-    return "\n".join([BEGIN, "", lead, "", markdown_table(staged_table()), "",
+            f"{drag[1]:.2f} (Torino). At the implied drag the further impact is the Honda's "
+            f"{part1} against the Torino's {part2}, the Honda turned {math.degrees(turn1):.0f} "
+            f"deg and the Torino {math.degrees(turn2):.0f} deg since the impact. RICSAC 9 "
+            f"started from its published measured post-impact motion at PIM's configuration "
+            f"(no tyres): {count} further impacts, the first after {first * 1000:.0f} ms. "
+            f"Day's impact speed minus Neades' measured one [m/s]: {checks}.")
+
+
+def block() -> str:
+    """The generated block, markers included: the case and its checks in words, the table
+    and the sensitivity table."""
+    return "\n".join([BEGIN, "", _lead(), "", markdown_table(staged_table()), "",
                       markdown_table(sensitivity_table()), "", END])

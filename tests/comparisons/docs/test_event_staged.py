@@ -99,3 +99,11 @@ def test_measured_start_recontacts_when_the_crush_overlap_deepens_by_1_cm():
     assert count >= 1 and growth.max() >= CONTACT_TOLERANCE
     assert first == pytest.approx(by_hand, abs=2e-4)
     assert first < 0.02
+
+
+def test_the_side_slap_is_the_spinning_hondas_side_against_the_torinos_rear_corner():
+    """What docs/event.md says of it: the Honda has turned (clockwise) by more than 45 deg,
+    its side meets a rear corner of the Torino."""
+    (part1, part2), (turn1, _) = D.side_slap_parts()
+    assert part1.endswith("side") and part2.startswith("rear ")
+    assert turn1 < -math.radians(45)
