@@ -18,6 +18,7 @@ import numpy as np
 import pim
 from comparisons.report.render import markdown_table
 from comparisons.report.tables import Num, Table
+from comparisons.docs import event_staged
 from comparisons.report.write import write_block
 from pim.analysis.event import event_vehicle
 from pim.model.evidence import Evidence, VehicleEvidence
@@ -115,5 +116,8 @@ def block() -> str:
 
 
 def regenerate(docs_dir) -> list[Path]:
-    """Rewrite the table of ``docs_dir/event.md`` (between its markers)."""
-    return [write_block(Path(docs_dir) / PAGE, BEGIN, END, block())]
+    """Rewrite the tables of ``docs_dir/event.md`` (between their markers): this module's
+    and the staged test's (:mod:`comparisons.docs.event_staged`)."""
+    page = Path(docs_dir) / PAGE
+    write_block(page, BEGIN, END, block())
+    return [write_block(page, event_staged.BEGIN, event_staged.END, event_staged.block())]
