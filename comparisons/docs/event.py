@@ -3,8 +3,8 @@ event's impacts and rest positions on RICSAC 9 (without tyres and with the defau
 a T-bone whose struck car slaps the bullet car's side, and on a straight slide checked by
 hand (between :data:`BEGIN` and :data:`END`); and how often a further impact of generated
 side slaps gains energy under the default law and is solved frictionless, and why
-(:func:`energy_table`, between :data:`ENERGY_BEGIN` and :data:`ENERGY_END`). The rest of
-the page is prose. Each table is a :class:`~comparisons.report.tables.Table` rendered by the
+(:func:`energy_table`, between :data:`ENERGY_BEGIN` and :data:`ENERGY_END`); the staged
+test's block is :mod:`comparisons.docs.event_staged`'s. The rest of the page is prose. Each table is a :class:`~comparisons.report.tables.Table` rendered by the
 one Markdown renderer; a test fails when the page differs from what the code gives.
 """
 
@@ -21,6 +21,7 @@ import pim
 from sim.event_check import side_slap_case as generated_side_slap
 from comparisons.report.render import markdown_table
 from comparisons.report.tables import Num, Table
+from comparisons.docs import event_staged
 from comparisons.report.write import write_block
 from pim.analysis.event import event_vehicle
 from pim.model.event_formula import MAX_IMPACTS, box, contact_geometry
@@ -216,7 +217,9 @@ def energy_block() -> str:
 
 
 def regenerate(docs_dir) -> list[Path]:
-    """Rewrite the tables of ``docs_dir/event.md`` (between their markers)."""
-    path = Path(docs_dir) / PAGE
-    write_block(path, BEGIN, END, block())
-    return [write_block(path, ENERGY_BEGIN, ENERGY_END, energy_block())]
+    """Rewrite the tables of ``docs_dir/event.md`` (between their markers): this module's
+    and the staged test's (:mod:`comparisons.docs.event_staged`)."""
+    page = Path(docs_dir) / PAGE
+    write_block(page, BEGIN, END, block())
+    write_block(page, ENERGY_BEGIN, ENERGY_END, energy_block())
+    return [write_block(page, event_staged.BEGIN, event_staged.END, event_staged.block())]

@@ -6,6 +6,7 @@ from pathlib import Path
 import pytest
 
 from comparisons.docs import event as D
+from comparisons.docs import event_staged as S
 from comparisons.docs.__main__ import main
 from pim.model.tyres import STANDARD_GRAVITY
 
@@ -41,11 +42,12 @@ def test_the_slide_row_agrees_with_the_hand_value():
 def test_regeneration_rewrites_only_the_block(tmp_path, capsys):
     page = tmp_path / D.PAGE
     page.write_text(f"prose before\n{D.BEGIN}\n| old |\n{D.END}\nbetween\n"
-                    f"{D.ENERGY_BEGIN}\n| old |\n{D.ENERGY_END}\nprose after\n")
+                    f"{D.ENERGY_BEGIN}\n| old |\n{D.ENERGY_END}\nand\n{S.BEGIN}\nold\n"
+                    f"{S.END}\nprose after\n")
     assert main(["event", "--docs", str(tmp_path)]) == 0
     assert capsys.readouterr().out.strip() == f"wrote {page}"
     assert page.read_text() == (f"prose before\n{D.block()}\nbetween\n{D.energy_block()}"
-                                f"\nprose after\n")
+                                f"\nand\n{S.block()}\nprose after\n")
     with pytest.raises(ValueError, match="markers"):
         page.write_text("no markers\n")
         D.regenerate(tmp_path)
