@@ -63,7 +63,7 @@ from ..model.event_formula import (
 from ..model.geometry import vehicle_outline
 from ..model.impact_laws import LAW_CODES
 from ..model.law import resolve_law, solve
-from ..model.numbers import InputError
+from ..model.numbers import InputError, checked_number
 from ..model.pdof import pdof
 from ..model.pre_impact import mark_deceleration
 from ..model.runout import MAX_TIME, RhsData, RunoutVehicle
@@ -463,14 +463,12 @@ def event(case: Case, *, tyre_friction=None, approach: float = DEFAULT_APPROACH,
     >>> [round(i.time, 2) for i in ev.impacts]
     [0.0, 0.42]
     """
-    if not (np.isfinite(approach) and approach >= 0):
-        raise InputError(f"approach must be a finite time >= 0 [s], got {approach!r}")
-    free = tyre_friction is not None and float(tyre_friction) == 0.0
-    if tyre_friction is not None and not (np.isfinite(tyre_friction) and tyre_friction >= 0):
-        raise InputError(f"tyre_friction must be a finite number >= 0, got {tyre_friction!r}")
-    limit = (FREE_MOTION_TIME if free else MAX_TIME) if max_time is None else float(max_time)
-    if not limit > 0:
-        raise InputError(f"max_time must be > 0 [s], got {max_time!r}")
+    approach = checked_number(approach, "approach", low=0.0, unit="s")
+    if tyre_friction is not None:
+        tyre_friction = checked_number(tyre_friction, "tyre_friction", low=0.0)
+    free = tyre_friction == 0.0
+    limit = (FREE_MOTION_TIME if free else MAX_TIME) if max_time is None else checked_number(
+        max_time, "max_time", low=0.0, low_open=True, unit="s")
     scene = _scene(case, tyre_friction)
     result = solve(case, eps, beta)
     choice = resolve_law(case, eps, beta)

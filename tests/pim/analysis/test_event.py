@@ -311,7 +311,11 @@ def test_sliding_flags_follow_the_slip():
 
 @pytest.mark.parametrize("kwargs, match", [({"approach": -1.0}, "approach"),
                                            ({"tyre_friction": -0.1}, "tyre_friction"),
-                                           ({"max_time": 0.0}, "max_time")])
+                                           ({"max_time": 0.0}, "max_time"),
+                                           ({"tyre_friction": "0.7"}, "tyre_friction"),
+                                           ({"tyre_friction": [0.7]}, "tyre_friction"),
+                                           ({"approach": "1 s"}, "approach"),
+                                           ({"max_time": True}, "max_time")])
 def test_bad_options_name_the_field(kwargs, match):
     with pytest.raises(pim.InputError, match=match):
         pim.event(t_bone(), **kwargs)
