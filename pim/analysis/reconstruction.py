@@ -49,7 +49,7 @@ from .reconstruction_mc import (
     solve_samples,
     summarise,
 )
-from .residuals import GoodnessOfFit, crush_terms, measured_terms
+from .residuals import GoodnessOfFit, contradiction, crush_terms, measured_terms
 from .runout_fit import RunoutFit, fit_runout
 
 __all__ = ["PostImpact", "post_impact_motion", "check_reachable", "approach_direction",
@@ -400,8 +400,7 @@ class Reconstruction(Notebook):
         """Why the answer is refused when the evidence contradicts itself beyond
         :data:`pim.analysis.residuals.P_CONTRADICTED` (:meth:`GoodnessOfFit.refusal`), else
         None."""
-        g = self.goodness
-        return g.refusal() if g is not None and g.contradicted else None
+        return contradiction(self.goodness)
 
     def table(self) -> list[dict]:
         """Per unknown: name, value, p5, p50, p95 [SI] (percentiles NaN without samples)."""

@@ -36,7 +36,7 @@ from ..model.result import Result
 __all__ = ["measured_terms", "has_measured_terms", "fitted_yaw_rates", "residuals",
            "residual_terms", "model_value", "measured_value", "crush_terms",
            "measured_weights", "GoodnessOfFit", "goodness_of_fit", "P_INCONSISTENT",
-           "P_CONTRADICTED", "cost_label"]
+           "P_CONTRADICTED", "cost_label", "contradiction"]
 
 #: p-value below which the measurements are called inconsistent with PIM at their sigmas
 #: (a warning).
@@ -280,6 +280,13 @@ class GoodnessOfFit:
                 "consistent": self.consistent, "contradicted": self.contradicted,
                 "refusal_p": P_CONTRADICTED, "verdict": self.verdict(),
                 "largest_standardised_residuals": dict(self.largest)}
+
+
+def contradiction(goodness: GoodnessOfFit | None) -> str | None:
+    """Why an answer fitted to evidence is refused: :meth:`GoodnessOfFit.refusal` when the
+    evidence contradicts itself beyond :data:`P_CONTRADICTED`, else None (also for no test:
+    no sigmas, or no degree of freedom)."""
+    return goodness.refusal() if goodness is not None and goodness.contradicted else None
 
 
 #: How many terms :class:`GoodnessOfFit` names as the largest standardised residuals.
