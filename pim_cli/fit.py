@@ -222,13 +222,16 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, speed_uni
 @beta_range_option
 @units_option
 @allow_inadmissible_option
+@allow_inconsistent_option
 def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units, speed_unit,
-         allow_inadmissible):
+         allow_inadmissible, allow_inconsistent):
     """Draw the design sheet's graphs for CASE into --out (PNG and SVG).
 
     Cost vs epsilon, impulse ratio, impulse on vehicle 2, PDOF, energy loss, post-impact
     velocities with the measured values, and the cost map over (epsilon, beta). Exit code 1
     after writing when the fitted answer is inadmissible (the reasons first;
+    --allow-inadmissible: exit 0), and when the measured evidence contradicts itself, its
+    chi-square's p below 0.001 (the reason first; --allow-inconsistent or
     --allow-inadmissible: exit 0).
     """
     from pim.analysis.residuals import has_measured_terms
@@ -242,6 +245,9 @@ def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units,
     else:
         result = None
         click.echo("note: nothing measured; plotting without the fit", err=True)
+    reason = result.contradiction if result else None
+    accept = allow_inadmissible or allow_inconsistent
+    say_contradiction(reason, accept)
     found = check_answer(result.case if result else case, result.result if result else None,
                          units, allow=allow_inadmissible)
     with output_folder(out_dir, command="pim plot") as tmp:
@@ -249,3 +255,4 @@ def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units,
     for path in rebase(files, tmp, out_dir):
         click.echo(str(path))
     finish_answer(found, allow_inadmissible)
+    finish_evidence(reason, accept)

@@ -1,5 +1,5 @@
 """Evidence that contradicts itself beyond P_CONTRADICTED (chi-square p < 0.001) ends
-``pim fit`` and ``pim compare`` with exit 1 after their output, the reason first, as it ends
+``pim fit``, ``pim compare`` and ``pim plot`` with exit 1 after their output, the reason first, as it ends
 ``pim reconstruct`` (issue 33 point 3; tests/pim_cli/test_reconstruct.py has reconstruct's)."""
 
 from __future__ import annotations
@@ -89,7 +89,16 @@ def test_compare_exits_1_after_its_report_when_the_evidence_contradicts_itself(
     assert json.loads(capsys.readouterr().out)["goodness_of_fit"]["contradicted"] is True
 
 
-@pytest.mark.parametrize("command", ["fit", "compare"])
+def test_plot_exits_1_after_writing_its_figures(tmp_path, capsys):
+    out = tmp_path / "plots"
+    assert main(["plot", _edr(tmp_path, "45 km/h"), "--out", str(out), "--format",
+                 "png"]) == 1
+    captured = capsys.readouterr()
+    assert captured.err.startswith(REASON) and sorted(out.glob("*.png"))
+    assert str(out) in captured.out
+
+
+@pytest.mark.parametrize("command", ["fit", "compare", "plot"])
 def test_the_option_is_documented(command, capsys):
     assert main([command, "--help"]) == 0
     assert "--allow-inconsistent" in capsys.readouterr().out
