@@ -289,6 +289,10 @@ def contradiction(goodness: GoodnessOfFit | None) -> str | None:
     return goodness.refusal() if goodness is not None and goodness.contradicted else None
 
 
+#: Standardised residuals below this [-] are the fit's round-off (a term it meets exactly,
+#: e.g. 3e-11 sigma): not named among the evidence in conflict.
+ROUND_OFF_SIGMA = 1e-6
+
 #: How many terms :class:`GoodnessOfFit` names as the largest standardised residuals.
 LARGEST = 3
 
@@ -306,7 +310,8 @@ def goodness_of_fit(chi_square: float, n_data: int, n_parameters: int,
     if standardised is not None and len(names):
         z = np.asarray(standardised, dtype=float)
         largest = tuple((str(names[j]), float(z[j]))
-                        for j in np.argsort(-np.abs(z), kind="stable")[:LARGEST])
+                        for j in np.argsort(-np.abs(z), kind="stable")[:LARGEST]
+                        if not abs(z[j]) < ROUND_OFF_SIGMA)
     return GoodnessOfFit(float(chi_square), dof, p, largest)
 
 
