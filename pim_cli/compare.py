@@ -18,6 +18,7 @@ from pim_cli.main import (
     Beta,
     FiniteFloat,
     allow_inadmissible_option,
+    allow_inconsistent_option,
     beta_option,
     case_argument,
     check_answer,
@@ -25,12 +26,14 @@ from pim_cli.main import (
     eps_option,
     findings_json,
     finish_answer,
+    finish_evidence,
     friction_limit_option,
     json_option,
     law_options,
     load_case_for,
     output_units,
     resolve_options,
+    say_contradiction,
     solve_choice,
     solve_with_options,
     units_option,
@@ -77,10 +80,11 @@ compare_beta_option = click.option(
 @law_options
 @progress_option
 @allow_inadmissible_option
+@allow_inconsistent_option
 @json_option
 def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, no_animation,
             no_speed_error, no_assumptions, tyre, law, k, mu_c, progress, allow_inadmissible,
-            as_json):
+            allow_inconsistent, as_json):
     """Write CASE's reconstruction report to a folder: PIM's answer, its plots and
     animation, and a pymunk cross-check.
 
@@ -99,7 +103,10 @@ def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, n
     is fitted). Exit code 1 with one line when the vehicles do not approach at C, and
     after the report is written when its answer is inadmissible (the reasons first, and at
     the top of the report; --allow-inadmissible: exit 0). A secondary contact of the
-    outlines after the impact is a note with its time and place.
+    outlines after the impact is a note with its time and place. Exit code 1 too after the
+    report when the measured evidence the fit uses contradicts itself, its chi-square's p
+    below 0.001 (the reason first, and at the top of the report; --allow-inconsistent or
+    --allow-inadmissible: exit 0).
 
     Under another impact law (the case's impact.law or --law: kudlich-slibar with --k and
     --mu-c, brach-capped) the report is that law's answer, its pymunk run (two phases for
@@ -124,12 +131,14 @@ def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, n
                        assumptions=not no_assumptions, progress=progress,
                        units=units, friction_limit=friction_limit, case_path=case_name)
     units = units or case.units
+    reason = rep.data.fit.contradiction if rep.data.fit is not None else None
+    say_contradiction(reason, allow_inadmissible or allow_inconsistent)
     found = check_answer(case, pim.solve(case, rep.eps, rep.beta), units, friction_limit,
                          allow_inadmissible, as_json)
     secondary = _secondary_note(rep.animation, units, as_json)
     if as_json:
         echo_json({"case": case.name, "units": units.to_json(), "out": str(folder),
-                   "eps": rep.eps, "beta": rep.beta,
+                   "eps": rep.eps, "beta": rep.beta, "goodness_of_fit": _goodness(rep),
                    "error": rep.error, "seconds": rep.seconds, **findings_json(found),
                    "secondary_impact": secondary,
                    "files": sorted(str(p) for p in rep.files)})
@@ -145,6 +154,13 @@ def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, n
         _poor_fit(rep.data.result, rep.data.units, rep.data.fit)
         _wrote(rep, started)
     finish_answer(found, allow_inadmissible)
+    finish_evidence(reason, allow_inadmissible or allow_inconsistent)
+
+
+def _goodness(rep) -> dict | None:
+    """The chi-square test of the fit the report used (None: no fit, or no sigmas)."""
+    fit = rep.data.fit
+    return None if fit is None or fit.goodness is None else fit.goodness.to_dict()
 
 
 def _answer(result, units, spread=None) -> None:

@@ -11,14 +11,17 @@ from pim_cli.main import (
     Beta,
     FiniteFloat,
     allow_inadmissible_option,
+    allow_inconsistent_option,
     case_argument,
     check_answer,
     echo_json,
     findings_json,
     finish_answer,
+    finish_evidence,
     json_option,
     load_case_for,
     output_units,
+    say_contradiction,
     units_option,
 )
 
@@ -105,9 +108,10 @@ def _fit(case, include_yaw, eps, beta, eps_range, beta_range, free=None, mu_c=No
 @free_option
 @units_option
 @allow_inadmissible_option
+@allow_inconsistent_option
 @json_option
 def fit(case_name, include_yaw, eps, beta, k, mu_c, eps_range, beta_range, free, units,
-        speed_unit, allow_inadmissible, as_json):
+        speed_unit, allow_inadmissible, allow_inconsistent, as_json):
     """Fit the impact law's parameters (Brach's epsilon and beta, or k and mu_c) to CASE's
     measured post-impact motion.
 
@@ -119,7 +123,9 @@ def fit(case_name, include_yaw, eps, beta, k, mu_c, eps_range, beta_range, free,
     --free adds any other input, and the output then says whether the data determine them
     all (rank, families of equally good fits, under-determined, a mu_c that only has a
     lower bound). Exit code 1 after the output when the fitted answer is inadmissible (the
-    reasons first; --allow-inadmissible: exit 0), e.g. beta > 1 with a --beta-range beyond 1.
+    reasons first; --allow-inadmissible: exit 0), e.g. beta > 1 with a --beta-range beyond 1,
+    and when the measured evidence contradicts itself, its chi-square's p below 0.001 (the
+    reason first; --allow-inconsistent or --allow-inadmissible: exit 0).
     """
 
     from comparisons.report.fit import fit_json, fit_lines, fit_values_json
@@ -130,6 +136,8 @@ def fit(case_name, include_yaw, eps, beta, k, mu_c, eps_range, beta_range, free,
     restitution = fit_restitution(case, eps, k, names=OPTION_NAMES)
     result = _fit(case, include_yaw, restitution, beta, eps_range, beta_range,
                   parse_free(free), mu_c)
+    accept = allow_inadmissible or allow_inconsistent
+    say_contradiction(result.contradiction, accept)
     found = check_answer(result.case, result.result, units, allow=allow_inadmissible,
                          as_json=as_json)
     if as_json:
@@ -139,6 +147,7 @@ def fit(case_name, include_yaw, eps, beta, k, mu_c, eps_range, beta_range, free,
         for line in fit_lines(case.name, result, units, bool(free)):
             click.echo(line)
     finish_answer(found, allow_inadmissible)
+    finish_evidence(result.contradiction, accept)
 
 
 def _parse_sigma(items):
@@ -213,13 +222,16 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, speed_uni
 @beta_range_option
 @units_option
 @allow_inadmissible_option
+@allow_inconsistent_option
 def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units, speed_unit,
-         allow_inadmissible):
+         allow_inadmissible, allow_inconsistent):
     """Draw the design sheet's graphs for CASE into --out (PNG and SVG).
 
     Cost vs epsilon, impulse ratio, impulse on vehicle 2, PDOF, energy loss, post-impact
     velocities with the measured values, and the cost map over (epsilon, beta). Exit code 1
     after writing when the fitted answer is inadmissible (the reasons first;
+    --allow-inadmissible: exit 0), and when the measured evidence contradicts itself, its
+    chi-square's p below 0.001 (the reason first; --allow-inconsistent or
     --allow-inadmissible: exit 0).
     """
     from pim.analysis.residuals import has_measured_terms
@@ -233,6 +245,9 @@ def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units,
     else:
         result = None
         click.echo("note: nothing measured; plotting without the fit", err=True)
+    reason = result.contradiction if result else None
+    accept = allow_inadmissible or allow_inconsistent
+    say_contradiction(reason, accept)
     found = check_answer(result.case if result else case, result.result if result else None,
                          units, allow=allow_inadmissible)
     with output_folder(out_dir, command="pim plot") as tmp:
@@ -240,3 +255,4 @@ def plot(case_name, out_dir, formats, include_yaw, eps_range, beta_range, units,
     for path in rebase(files, tmp, out_dir):
         click.echo(str(path))
     finish_answer(found, allow_inadmissible)
+    finish_evidence(reason, accept)

@@ -121,6 +121,11 @@ def _results(data: ReportData) -> Section:
     if data.errors:
         blocks.insert(0, Callout("Inadmissible answer (the numbers below are not physically "
                                  "possible)", tuple(data.errors)))
+    reason = data.fit.contradiction if data.fit is not None else None
+    if reason:
+        blocks.insert(0, Callout("The evidence contradicts itself (the answer below is the "
+                                 "best fit to measurements that cannot all be right)",
+                                 (reason,)))
     warnings = _warnings(data)
     if warnings:
         blocks.append(Callout("Warnings", tuple(warnings)))

@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..model.numbers import InputError
+from ..model.numbers import InputError, unit_text
 
 __all__ = ["MomentumCheck", "CrashTestVehicle", "momentum_check", "check_ricsac",
            "DEFAULT_TOLERANCE", "DEFAULT_MAX_ARM"]
@@ -127,8 +127,9 @@ class MomentumCheck:
                        f"{100 * self.linear_imbalance:.1f} %")
         for i, arm in ((1, self.arm1), (2, self.arm2)):
             if arm is not None and arm > self.max_arm:
-                out.append(f"angular balance puts the impulse {arm:.2f} m from CG{i} "
-                           f"(> {self.max_arm:g} m)")
+                out.append(f"angular balance puts the impulse "
+                           f"{unit_text(arm, 'length', '.3g')} from CG{i} "
+                           f"(> {unit_text(self.max_arm, 'length', '.3g')})")
         return out
 
     @property

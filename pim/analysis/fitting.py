@@ -68,6 +68,7 @@ from .free_fit import (
 from .free_inputs import MU_C_BOUNDS, case_state, free_kind, free_label, friction_floor
 from .residuals import (
     GoodnessOfFit,
+    contradiction,
     goodness_of_fit,
     measured_terms,
     measured_value,
@@ -239,6 +240,14 @@ class FitResult(Notebook):
         return solve_under_law(self.case, self.eps,
                                None if self.law == "kudlich-slibar" else self.beta,
                                law=self.law, mu_c=self.contact_friction)
+
+    @property
+    def contradiction(self) -> str | None:
+        """Why the fit's answer is refused when the measured evidence contradicts itself
+        beyond :data:`pim.analysis.residuals.P_CONTRADICTED` (the chi-square's p below it;
+        :meth:`GoodnessOfFit.refusal`), else None (also without sigmas or degrees of
+        freedom)."""
+        return contradiction(self.goodness)
 
     def __repr__(self) -> str:
         speed, unit = convert(self.rms, "velocity", display_units(case=self.case))

@@ -34,7 +34,16 @@ from ..model.evidence_terms import result_quantities
 from ..model.geometry import vehicle_outline
 from ..model.motion import Term
 from ..model.notebook import Notebook, Table, short
-from ..model.numbers import ArgumentTypeError, InputError, check_counts, checked_count, speed_text
+from ..model.numbers import (
+    ArgumentTypeError,
+    InputError,
+    check_counts,
+    checked_count,
+    message_units,
+    speed_text,
+    unit_text,
+    units_in,
+)
 from ..model.tyres import STANDARD_GRAVITY
 from .fitting import FitResult
 from .free_inputs import approach_direction, check_free, free_kind, free_label
@@ -49,7 +58,7 @@ from .reconstruction_mc import (
     solve_samples,
     summarise,
 )
-from .residuals import GoodnessOfFit, crush_terms, measured_terms
+from .residuals import GoodnessOfFit, contradiction, crush_terms, measured_terms
 from .runout_fit import RunoutFit, fit_runout
 
 __all__ = ["PostImpact", "post_impact_motion", "check_reachable", "approach_direction",
@@ -164,11 +173,12 @@ def check_reachable(ev, vehicle, speed_bounds, yaw_rate_bounds, where: str) -> N
                                                                 * STANDARD_GRAVITY)
     distance = float(np.hypot(*(np.asarray(ev.rest_position) - np.asarray(vehicle.cg))))
     if distance > reach + REACH_SLACK + 3 * ev.position_sigma:
-        raise InputError(f"{where}.rest_position is {distance:.4g} m from the CG at impact, "
-                         f"beyond any run-out within the speed bound "
-                         f"{speed_text(speed_bounds[1], 'g')} and yaw-rate bound "
-                         f"{w_max:g} rad/s (at most {reach:.4g} m with "
-                         f"friction {ev.friction:g} and braking {f:g} on every wheel)")
+        raise InputError(f"{where}.rest_position is {unit_text(distance, 'length')} from the CG "
+                         f"at impact, beyond any run-out within the speed bound "
+                         f"{speed_text(speed_bounds[1], '.4g')} and yaw-rate bound "
+                         f"{unit_text(w_max, 'angular_velocity', '.4g')} (at most "
+                         f"{unit_text(reach, 'length')} with friction {ev.friction:g} and "
+                         f"braking {f:g} on every wheel)")
 
 
 def post_impact_motion(case: Case, *, speed_bounds=(0.0, 60.0),
@@ -400,8 +410,7 @@ class Reconstruction(Notebook):
         """Why the answer is refused when the evidence contradicts itself beyond
         :data:`pim.analysis.residuals.P_CONTRADICTED` (:meth:`GoodnessOfFit.refusal`), else
         None."""
-        g = self.goodness
-        return g.refusal() if g is not None and g.contradicted else None
+        return contradiction(self.goodness)
 
     def table(self) -> list[dict]:
         """Per unknown: name, value, p5, p50, p95 [SI] (percentiles NaN without samples)."""
@@ -652,7 +661,8 @@ def _monte_carlo(case: Case, rec: Reconstruction, *, samples, seed, include_yaw,
     sizes = [len(part) for part in np.array_split(np.arange(samples), k) if len(part)]
     seeds = np.random.SeedSequence(seed).spawn(len(sizes))
     pool = executor.get_executor() if hasattr(executor, "get_executor") else executor
-    jobs = [(solved, fitted, unknown, size, sq, include_yaw, case, post)
+    shown = message_units()             # the workers' messages in the user's units too
+    jobs = [(solved, fitted, unknown, size, sq, include_yaw, case, post, shown)
             for size, sq in zip(sizes, seeds, strict=True)]
     done = []
     for block in pool.map(sample_block, jobs):      # in order: the pooled result repeats
@@ -754,13 +764,16 @@ def evidence_nominal(case: Case, post: PostImpact) -> dict:
 def sample_block(job):
     """One block of a reconstruction's Monte Carlo (a top-level function, so that a process
     pool or a Dask cluster can run it): ``job`` = (solved case, nominal fit, unknowns, block
-    size, SeedSequence, include_yaw, input case, PostImpact or None)."""
-    solved, fitted, unknown, size, seed_sequence, include_yaw, case, post = job
+    size, SeedSequence, include_yaw, input case, PostImpact or None[, the units of the
+    messages, :func:`pim.model.numbers.message_units`, which a process does not inherit])."""
+    solved, fitted, unknown, size, seed_sequence, include_yaw, case, post, *shown = job
     sampler, extra = None, {}
     if post is not None:
         sampler, extra = evidence_sampler(case, post, include_yaw), evidence_nominal(case, post)
-    return solve_samples(solved, fitted, unknown, size, np.random.default_rng(seed_sequence),
-                         include_yaw=include_yaw, post_impact=sampler, extra_nominal=extra)
+    with units_in(shown[0] if shown else {}):
+        return solve_samples(solved, fitted, unknown, size,
+                             np.random.default_rng(seed_sequence), include_yaw=include_yaw,
+                             post_impact=sampler, extra_nominal=extra)
 
 
 #: Blocks of Monte Carlo samples per worker process (:func:`reconstruct`'s ``blocks``).

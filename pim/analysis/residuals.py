@@ -36,7 +36,7 @@ from ..model.result import Result
 __all__ = ["measured_terms", "has_measured_terms", "fitted_yaw_rates", "residuals",
            "residual_terms", "model_value", "measured_value", "crush_terms",
            "measured_weights", "GoodnessOfFit", "goodness_of_fit", "P_INCONSISTENT",
-           "P_CONTRADICTED", "cost_label"]
+           "P_CONTRADICTED", "cost_label", "contradiction"]
 
 #: p-value below which the measurements are called inconsistent with PIM at their sigmas
 #: (a warning).
@@ -282,6 +282,17 @@ class GoodnessOfFit:
                 "largest_standardised_residuals": dict(self.largest)}
 
 
+def contradiction(goodness: GoodnessOfFit | None) -> str | None:
+    """Why an answer fitted to evidence is refused: :meth:`GoodnessOfFit.refusal` when the
+    evidence contradicts itself beyond :data:`P_CONTRADICTED`, else None (also for no test:
+    no sigmas, or no degree of freedom)."""
+    return goodness.refusal() if goodness is not None and goodness.contradicted else None
+
+
+#: Standardised residuals below this [-] are the fit's round-off (a term it meets exactly,
+#: e.g. 3e-11 sigma): not named among the evidence in conflict.
+ROUND_OFF_SIGMA = 1e-6
+
 #: How many terms :class:`GoodnessOfFit` names as the largest standardised residuals.
 LARGEST = 3
 
@@ -299,7 +310,8 @@ def goodness_of_fit(chi_square: float, n_data: int, n_parameters: int,
     if standardised is not None and len(names):
         z = np.asarray(standardised, dtype=float)
         largest = tuple((str(names[j]), float(z[j]))
-                        for j in np.argsort(-np.abs(z), kind="stable")[:LARGEST])
+                        for j in np.argsort(-np.abs(z), kind="stable")[:LARGEST]
+                        if not abs(z[j]) < ROUND_OFF_SIGMA)
     return GoodnessOfFit(float(chi_square), dof, p, largest)
 
 

@@ -27,7 +27,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..model.numbers import InputError, real_array, speed_text
+from ..model.numbers import InputError, real_array, speed_text, unit_text
 from ..model.pdof import wrap_angle
 from ..model.runout import MAX_TIME, Runout, RunoutVehicle, runout
 from .least_squares_batch import least_squares_batch, with_forward_differences
@@ -294,6 +294,11 @@ def _distinct_minima(minima: list) -> tuple[list, list]:
     return distinct, [m for m in distinct[1:] if m[0] <= tie]
 
 
+def _point(xy) -> str:
+    """A point [m] as a message prints it, in the user's length unit: "12.35 m, -3.2 m"."""
+    return f"{unit_text(xy[0], 'length', '.5g')}, {unit_text(xy[1], 'length', '.5g')}"
+
+
 def _messages(problem: _Problem, run: Runout, reachable: bool, miss: float,
               heading_miss: float, distinct: list, equally_good: list) -> str:
     """Plain-language warnings: unreachable rest, no stop, several equally good motions."""
@@ -303,21 +308,24 @@ def _messages(problem: _Problem, run: Runout, reachable: bool, miss: float,
     messages = []
     if not reachable:
         messages.append(
-            f"the rest state ({rest[0]:.3f} m, {rest[1]:.3f} m, heading "
-            f"{np.degrees(rest_heading):.2f} deg) is not reached by any post-impact motion "
-            f"with speed from {speed_text(lo_v, 'g')} to {speed_text(hi_v, 'g')} and yaw rate "
-            f"in [{lo_w:g}, {hi_w:g}] rad/s; the closest reachable rest is "
-            f"({run.rest_position[0]:.3f} m, {run.rest_position[1]:.3f} m, heading "
+            f"the rest state ({_point(rest)}, heading {np.degrees(rest_heading):.2f} deg) is "
+            f"not reached by any post-impact motion with speed from {speed_text(lo_v, '.4g')} "
+            f"to {speed_text(hi_v, '.4g')} and yaw rate from "
+            f"{unit_text(lo_w, 'angular_velocity', '.4g')} to "
+            f"{unit_text(hi_w, 'angular_velocity', '.4g')}; the closest reachable rest is "
+            f"({_point(run.rest_position)}, heading "
             f"{np.degrees(wrap_angle(run.rest_heading)):.2f} deg), "
-            f"missing by {miss:.3f} m and {np.degrees(heading_miss):.2f} deg")
+            f"missing by {unit_text(miss, 'length', '.4g')} and "
+            f"{np.degrees(heading_miss):.2f} deg")
     if not run.stopped:
         messages.append(f"the fitted motion has not stopped after {s.max_time:g} s of "
                         f"simulated time (free-rolling wheels?)")
     if equally_good:
         messages.append(f"{len(equally_good) + 1} distinct motions fit the evidence equally "
                         f"well (yaw rates "
-                        + ", ".join(f"{m[3]:.3f}" for m in distinct[:len(equally_good) + 1])
-                        + " rad/s); the least rotation is reported, a path point (tyre mark) "
+                        + ", ".join(unit_text(m[3], "angular_velocity", ".4g")
+                                    for m in distinct[:len(equally_good) + 1])
+                        + "); the least rotation is reported, a path point (tyre mark) "
                         "decides")
     return "; ".join(messages)
 

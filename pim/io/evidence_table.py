@@ -237,11 +237,13 @@ def parse_unknown(table) -> dict[str, tuple[float, float]] | None:
                 raise InputError(f"unknown.{name} must be {{bounds = [low, high]}}")
             low, high = (parse(v, UNKNOWN_KINDS[name], f"unknown.{name}.bounds[{i}]")
                          for i, v in enumerate(spec["bounds"]))
+            written = [str(v) for v in spec["bounds"]]
             if low > high:
-                raise InputError(f"unknown.{name}.bounds: low {low:g} must be <= high {high:g}")
+                raise InputError(f"unknown.{name}.bounds: low {written[0]} must be <= high "
+                                 f"{written[1]}")
             if key == "speed" and low < 0:
-                raise InputError(f"unknown.{name}.bounds must be >= 0 m/s (a speed along the "
-                                 f"case's direction), got low = {low:g}")
+                raise InputError(f"unknown.{name}.bounds must be >= 0 (a speed along the "
+                                 f"case's direction), got low = {written[0]}")
             if key in ("restitution", "beta") and not 0 <= low <= high <= 1:
                 raise InputError(f"unknown.{name}.bounds must lie in [0, 1]")
             flat[name] = (low, high)

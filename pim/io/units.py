@@ -24,7 +24,7 @@ from functools import lru_cache
 import numpy as np
 
 from ..model.case import SPEED_UNITS
-from ..model.numbers import InputError, speeds_in
+from ..model.numbers import MESSAGE_KINDS, InputError, units_in
 from ..model.display import (
     DISPLAY_UNITS,
     SI_UNITS,
@@ -370,10 +370,13 @@ def quantity_in(value, unit: str) -> float:
 
 @contextmanager
 def messages_in(units):
-    """Within the block, speeds in the model's messages (:func:`pim.model.numbers.speed_text`)
-    are printed in the speed unit of ``units`` (a :class:`DisplayUnits` or a system)."""
+    """Within the block, speeds, lengths and yaw rates in the model's messages
+    (:func:`pim.model.numbers.unit_text`, :func:`~pim.model.numbers.speed_text`) are
+    printed in ``units`` (a :class:`DisplayUnits` or a system; yaw rates in deg/s)."""
     shown = units if isinstance(units, DisplayUnits) else display_units(units)
-    with speeds_in(display_factor("speed", shown.speed), label(shown.speed)):
+    table = {kind: (float(display_factor(kind, shown.unit(kind))), label(shown.unit(kind)))
+             for kind in MESSAGE_KINDS}
+    with units_in(table):
         yield shown
 
 

@@ -1,6 +1,6 @@
 """Input checks shared by the model's types and functions: real numbers, never strings,
 booleans, complex numbers or None read as numbers; and the one way a message prints a
-speed (:func:`speed_text`)."""
+speed, a length or a yaw rate in the user's units (:func:`unit_text`, :func:`speed_text`)."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import numpy as np
 
 __all__ = ["InputError", "ArgumentTypeError", "check_type", "did_you_mean", "real_array",
            "checked_number", "checked_count", "check_counts", "check_numbers", "speed_text",
-           "speeds_in"]
+           "speeds_in", "unit_text", "units_in", "message_units", "MESSAGE_KINDS"]
 
 
 class InputError(ValueError):
@@ -144,26 +144,48 @@ def check_numbers(**values) -> None:
             raise InputError(f"{name} must be finite, got {value!r}")
 
 
-#: (factor per m/s, unit label) of the speeds in messages; the edge sets it (speeds_in).
-_SPEED_UNIT: ContextVar[tuple[float, str]] = ContextVar("speed_unit", default=(1.0, "m/s"))
+#: Kinds of quantity a message prints in the user's units, with their SI (factor 1, label)
+#: outside a :func:`units_in` block: speeds, lengths, yaw rates.
+MESSAGE_KINDS = {"speed": (1.0, "m/s"), "length": (1.0, "m"), "angular_velocity": (1.0, "rad/s")}
+
+_MESSAGE_UNITS: ContextVar[dict] = ContextVar("message_units", default=MESSAGE_KINDS)
 
 
-def speed_text(value, spec: str = ".4g") -> str:
-    """A speed [m/s] as a message prints it: in the user's speed unit with its symbol.
+def unit_text(value, kind: str, spec: str = ".4g") -> str:
+    """A quantity [SI] of ``kind`` (a key of :data:`MESSAGE_KINDS`) as a message prints it:
+    in the user's unit of that kind with its symbol.
 
-    The model works in SI and does not convert; the command line chooses the unit for the
-    run with :func:`pim.io.units.messages_in` (the factor comes from pint there). Outside
-    such a block speeds are printed in m/s.
+    The model works in SI and does not convert; the command line chooses the units for the
+    run with :func:`pim.io.units.messages_in` (the factors come from pint there). Outside
+    such a block the quantity is printed in its SI unit.
     """
-    factor, unit = _SPEED_UNIT.get()
+    factor, unit = _MESSAGE_UNITS.get()[kind]
     return f"{float(value) * factor:{spec}} {unit}"
 
 
+def message_units() -> dict:
+    """The units messages print now ({kind: (factor per SI unit, label)}, every kind of
+    :data:`MESSAGE_KINDS`): what a worker process is handed to enter :func:`units_in` with,
+    since a process does not inherit the block it was started from."""
+    return dict(_MESSAGE_UNITS.get())
+
+
+def speed_text(value, spec: str = ".4g") -> str:
+    """A speed [m/s] as a message prints it (:func:`unit_text` of kind "speed")."""
+    return unit_text(value, "speed", spec)
+
+
 @contextmanager
-def speeds_in(factor: float, unit: str):
-    """Within the block, :func:`speed_text` prints ``value * factor`` followed by ``unit``."""
-    token = _SPEED_UNIT.set((float(factor), unit))
+def units_in(table: dict):
+    """Within the block, :func:`unit_text` prints each kind of ``table`` ({kind: (factor per
+    SI unit, label)}) as ``value * factor`` followed by the label; other kinds as before."""
+    token = _MESSAGE_UNITS.set({**_MESSAGE_UNITS.get(), **table})
     try:
         yield
     finally:
-        _SPEED_UNIT.reset(token)
+        _MESSAGE_UNITS.reset(token)
+
+
+def speeds_in(factor: float, unit: str):
+    """Within the block, :func:`speed_text` prints ``value * factor`` followed by ``unit``."""
+    return units_in({"speed": (float(factor), unit)})
