@@ -132,6 +132,7 @@ def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, n
                    "eps": rep.eps, "beta": rep.beta,
                    "error": rep.error, "seconds": rep.seconds, **findings_json(found),
                    "secondary_impact": secondary,
+                   "event_crosscheck": _event_check_json(rep, units),
                    "files": sorted(str(p) for p in rep.files)})
     else:
         error = ("simulation failed" if rep.error != rep.error
@@ -145,6 +146,13 @@ def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, n
         _poor_fit(rep.data.result, rep.data.units, rep.data.fit)
         _wrote(rep, started)
     finish_answer(found, allow_inadmissible)
+
+
+def _event_check_json(rep, units) -> dict | None:
+    """The analytic event against the pymunk event at each impact and at rest, in
+    ``units`` (None without the whole event's animation)."""
+    check = None if rep.data is None else rep.data.event_check
+    return None if check is None else check.to_dict(units)
 
 
 def _answer(result, units, spread=None) -> None:

@@ -49,10 +49,20 @@ def test_json_fields_in_the_case_units(run):
     assert first["law"] and first["coefficients"]
     assert [r["vehicle"] for r in data["rest"]] == [1, 2]
     assert data["rest"][0]["units"] == {"length": "ft", "angle": "deg"}
-    check = data["crosscheck"]                   # the pymunk event against the analytic
-    assert check["units"] == {"length": "ft", "speed": "mph", "angle": "deg"}
-    assert len(check["rest_position"]) == 2 and check["impacts"] == 0
+    check = data["crosscheck"]                   # the analytic event against pymunk's
+    assert (check["units"]["length"], check["units"]["speed"]) == ("ft", "mph")
+    assert check["sources"] == ["analytic", "simulated"]
+    assert len(check["rest_position"]) == 2 and check["same_impacts"]
     assert max(check["rest_position"]) < 3.0      # ft: the two producers agree at rest
+    # each impact compared (issue 32 item 3: the difference at each impact), in ft and mph
+    assert len(check["impacts"]) == check["impact_count"][0] >= 1
+    first = check["impacts"][0]
+    assert first["index"] == 1 and first["times"] == pytest.approx([0.0, 0.0], abs=1e-9)
+    for key in ("C", "Gamma", "delta_v", "pdof", "position", "heading", "speed_before",
+                "speed_after"):
+        assert key in first
+    assert first["C"] == pytest.approx(0.0, abs=1e-9)   # both solve the case's own C
+    assert max(first["speed_before"]) < 0.5              # mph: the same approach
 
 
 def test_timeline_csv_speaks_the_case_units(run):
