@@ -24,8 +24,8 @@ from pim.model.number_format import format_number
 from pim.model.event import Event, EventDifference
 from pim.model.pdof import wrap_angle
 
-__all__ = ["ImpactDifference", "UnmatchedImpact", "EventCheck", "event_crosscheck", "side_slap_case",
-           "SIDE_SLAPS", "AGREEMENT"]
+__all__ = ["ImpactDifference", "UnmatchedImpact", "EventCheck", "event_crosscheck",
+           "side_slap_case", "SIDE_SLAPS", "AGREEMENT"]
 
 #: The generated suite of side slaps: (offset [m] of C ahead of the struck car's CG,
 #: restitution [-], beta [-]) of :func:`side_slap_case`; toward the front corner the struck

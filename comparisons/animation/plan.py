@@ -2,8 +2,8 @@
 
 Each vehicle's outline every :func:`plan_interval` seconds with its time beside it (off the
 outline, on a leader line; where two labels would overlap, as near an impact, the later one
-is left out: :func:`thin_labels`), the CG paths, the tyre marks where a wheel slides, each impact at
-its C with its contact plane and its number, the final (rest) outlines drawn solid and the
+is left out: :func:`thin_labels`), the CG paths, the tyre marks where a wheel slides, each
+impact at its C with its contact plane and its number, the final (rest) outlines drawn solid and the
 measured rest positions dotted where the case gives them; lengths in the user's unit, the
 interval stated in the title. The compare, reconstruct and event reports show it
 (matplotlib, written by :func:`pim.io.files.save_figure`).
@@ -107,11 +107,11 @@ IMPACT_OFFSETS = ((6, 6), (6, -16), (-70, 6), (-70, -16), (6, 20), (6, -30), (-7
                   (-70, -30))
 
 
-def thin_labels(fig, labels, offsets=()) -> list:
+def thin_labels(fig, labels, offsets=None) -> list:
     """Leave out every label of ``labels`` (matplotlib texts, the most wanted first) whose
-    text's box on the drawn figure overlaps one kept before it; a label in ``offsets`` (a dict:
-    label -> its offsets from its point [points], an annotation's ``xyann``) is tried at
-    each before it is left out. Returns the labels left out."""
+    text's box on the drawn figure overlaps one kept before it; a label in ``offsets`` (a
+    dict: label -> its offsets from its point [points], an annotation's ``xyann``) is tried
+    at each before it is left out. Returns the labels left out."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.text import Text
 
@@ -120,7 +120,7 @@ def thin_labels(fig, labels, offsets=()) -> list:
     renderer = canvas.get_renderer()
     kept, dropped = [], []
     for text in labels:
-        for offset in offsets.get(text, (None,)) if offsets else (None,):
+        for offset in (offsets or {}).get(text, (None,)):
             if offset is not None:
                 text.xyann = offset
             box = Text.get_window_extent(text, renderer)    # the text, not its leader
