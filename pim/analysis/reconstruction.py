@@ -126,11 +126,14 @@ class PostImpact:
                      source="reconstruction", stopped=stopped, notes=tuple(notes))
 
     def _runout_track(self, i: int, times: np.ndarray, outline) -> Track:
-        """Vehicle ``i``'s fitted run-out at ``times`` with its wheels and sliding flags."""
+        """Vehicle ``i``'s fitted run-out at ``times`` with its wheels and sliding flags
+        (none where the case keeps no ``[evidence]`` of its tyres)."""
         vehicle = getattr(self.case, f"vehicle{i}")
-        tyres = getattr(self.case.evidence, f"vehicle{i}").runout_vehicle(
-            float(vehicle.mass), float(vehicle.yaw_inertia))
         track = self.runouts[i].runout.track(times, outline)
+        evidence = getattr(self.case.evidence, f"vehicle{i}", None)
+        if evidence is None:
+            return track
+        tyres = evidence.runout_vehicle(float(vehicle.mass), float(vehicle.yaw_inertia))
         states = np.column_stack([track.position, track.heading, track.velocity,
                                   track.yaw_rate])
         return replace(track, sliding=sliding_flags(states, tyres), wheels=tyres.positions)
