@@ -87,3 +87,21 @@ def test_bad_input_writes_nothing(tmp_path, capsys):
 def test_the_command_says_what_it_writes():
     for name in ("event.mp4", "plan.png", "timeline.csv", "report.html", "--json"):
         assert name in event.help
+
+
+def test_compare_json_holds_the_event_crosscheck_at_each_impact(tmp_path):
+    """`pim compare --json` shows the whole event: its cross-check at each impact and at
+    rest, in the case's units (RICSAC 9: ft, mph), as `pim event --json` does."""
+    import io
+    from contextlib import redirect_stdout
+
+    buf = io.StringIO()
+    with redirect_stdout(buf):
+        assert main(["compare", "ricsac9", "--out", str(tmp_path / "c"), "--json",
+                     "--no-speed-error", "--no-assumptions", "--no-progress"]) == 0
+    check = json.loads(buf.getvalue())["event_crosscheck"]
+    assert (check["units"]["length"], check["units"]["speed"]) == ("ft", "mph")
+    assert check["sources"] == ["analytic", "simulated"] and check["same_impacts"]
+    assert len(check["impacts"]) == check["impact_count"][0] >= 1
+    assert check["impacts"][0]["index"] == 1 and len(check["impacts"][0]["position"]) == 2
+    assert max(check["rest_position"]) < 3.0                   # ft
