@@ -141,6 +141,7 @@ def compare(case_name, out, eps, beta, gif, units, speed_unit, friction_limit, n
                    "eps": rep.eps, "beta": rep.beta, "goodness_of_fit": _goodness(rep),
                    "error": rep.error, "seconds": rep.seconds, **findings_json(found),
                    "secondary_impact": secondary,
+                   "event_crosscheck": _event_check_json(rep, units),
                    "files": sorted(str(p) for p in rep.files)})
     else:
         error = ("simulation failed" if rep.error != rep.error
@@ -161,6 +162,13 @@ def _goodness(rep) -> dict | None:
     """The chi-square test of the fit the report used (None: no fit, or no sigmas)."""
     fit = rep.data.fit
     return None if fit is None or fit.goodness is None else fit.goodness.to_dict()
+
+
+def _event_check_json(rep, units) -> dict | None:
+    """The analytic event against the pymunk event at each impact and at rest, in
+    ``units`` (None without the whole event's animation)."""
+    check = None if rep.data is None else rep.data.event_check
+    return None if check is None else check.to_dict(units)
 
 
 def _answer(result, units, spread=None) -> None:

@@ -18,7 +18,6 @@ from pim.model.number_format import format_number
 from pim.analysis.reconstruction import PostImpact
 from pim.model.event import Event
 from pim.model.numbers import InputError
-from pim.model.tyres import wheel_positions
 
 __all__ = ["reconstruction_event", "reconstruction_renderer", "write_reconstruction_video",
            "reconstruction_plan", "DEFAULT_HOLD"]
@@ -32,7 +31,8 @@ def reconstruction_event(post: PostImpact, result, fps: int = DEFAULT_FPS,
     """The fitted run-outs at ``fps`` frames per second from the impact (t = 0) until the
     later vehicle is at rest, then ``hold`` seconds of the rest poses; the impact's record
     from the reconstruction's answer ``result`` (a :class:`pim.Result`), each vehicle's
-    wheels from its ``[evidence]`` axles."""
+    wheels from its ``[evidence]`` axles and the tyre marks where they slide
+    (:meth:`pim.analysis.reconstruction.PostImpact.event`)."""
     if not (isinstance(fps, int | np.integer) and fps >= 1):
         raise InputError(f"fps must be a positive integer, got {fps!r}")
     if not (np.isfinite(hold) and hold >= 0):
@@ -41,16 +41,7 @@ def reconstruction_event(post: PostImpact, result, fps: int = DEFAULT_FPS,
         raise InputError("the reconstruction has no run-out to animate (no [evidence])")
     end = max(float(f.runout.time[-1]) for f in post.runouts.values())
     times = np.arange(int(np.ceil((end + hold) * fps)) + 1) / fps
-    event = post.event(times)
-    tracks = []
-    for i, track in enumerate(event.tracks, start=1):
-        evidence = getattr(post.case.evidence, f"vehicle{i}")
-        if evidence is not None:
-            track = replace(track, wheels=wheel_positions(evidence.wheelbase, evidence.track,
-                                                          evidence.cg_to_front_axle))
-        tracks.append(track)
-    return replace(event, vehicle1=tracks[0], vehicle2=tracks[1],
-                   impacts=(case_impact(post.case, result),))
+    return replace(post.event(times), impacts=(case_impact(post.case, result),))
 
 
 def _measured_rest(post: PostImpact) -> tuple:

@@ -24,8 +24,10 @@ Frames are drawn on a pre-rendered background (grid, scale bar, paths, impacts, 
 rest, legend) onto which the tyre marks are laid as the frames advance: several hundred
 frames per second (``benchmarks/bench_animation.py`` prints the rate against the previous
 renderers measured in the same run). The MP4 is written with imageio's ffmpeg plugin
-(libx264, yuv420p, even frame size), the optional GIF with Pillow; both to temporary files
-in the output folder, then renamed.
+(libx264, yuv420p, even frame size), the optional GIF with Pillow (its frame times in whole
+hundredths of a second that keep real time: :func:`gif_durations`); both to temporary files
+in the output folder, then renamed. A warning too long for the frame's width is wrapped
+within it, the text panel growing to hold its lines.
 """
 
 from __future__ import annotations
@@ -46,8 +48,8 @@ from pim.model.geometry import outline_corners
 from pim.model.numbers import InputError
 
 __all__ = ["AnimationInfo", "Renderer", "Look", "write_animation", "fitted_size",
-           "wheel_estimate", "outline_of", "pose_points", "GlyphText", "COLORS", "DEFAULT_SIZE", "DEFAULT_FPS", "DEFAULT_OUTLINE",
-           "IMPULSE_SHOWN"]
+           "wheel_estimate", "outline_of", "pose_points", "GlyphText", "gif_durations",
+           "COLORS", "DEFAULT_SIZE", "DEFAULT_FPS", "DEFAULT_OUTLINE", "IMPULSE_SHOWN"]
 
 #: Largest frame by default [px]: the width, and the height a square-ish motion gets.
 DEFAULT_SIZE = (960, 720)
@@ -217,6 +219,36 @@ class GlyphText:
             glyph = self._glyphs[ch] = np.asarray(mask)
         return glyph
 
+    def width(self, text: str) -> int:
+        """The width of ``text`` as :meth:`draw` writes it [px]."""
+        return int(sum(self._glyph(ch).shape[1] for ch in text))
+
+    def _fitting(self, text: str, width: float) -> int:
+        """How many leading characters of ``text`` fit in ``width`` [px] (at least one)."""
+        ends = np.cumsum([self._glyph(ch).shape[1] for ch in text])
+        return max(int(np.searchsorted(ends, width, side="right")), 1)
+
+    def wrap(self, text: str, first: float, width: float) -> list[str]:
+        """``text`` broken at spaces into lines of at most ``first`` px (the first line,
+        which may start after other text; empty when not even a word fits there) and
+        ``width`` px (the others); a word longer than a line is broken at characters."""
+        lines, line, limit = [], "", first
+        for word in text.split():
+            trial = f"{line} {word}" if line else word
+            if self.width(trial) <= limit:
+                line = trial
+                continue
+            if line or limit < width:
+                lines.append(line)
+                limit = width
+            line = word
+            while self.width(line) > limit:
+                cut = self._fitting(line, limit)
+                lines.append(line[:cut])
+                line = line[cut:]
+        lines.append(line)
+        return lines
+
     def draw(self, img: Image.Image, xy, text: str, color) -> float:
         """Write ``text`` on ``img`` at ``xy`` [px]; return the x just after it."""
         if not text:
@@ -283,9 +315,16 @@ class Renderer:
             else DisplayUnits(look.units)
         self.times = event.time
         self.bodies = tuple(outline_of(t) for t in event.tracks)
-        self._fit_view(shown)
         self.font, self.small = _font(15), _font(12)
         self.glyphs, self.small_glyphs = GlyphText(self.font), GlyphText(self.small)
+        self._wrapped = {}
+        extra = self._warning_rows() * self.small_glyphs.height
+        if extra:            # the panel grows to hold a long warning's lines
+            extra += extra % 2
+            self.TOP = type(self).TOP + extra
+            if look.size is None:
+                self.size = (width, height + extra)
+        self._fit_view(shown)
         self._px, self._cg, self._vel, self._wheels = {}, {}, {}, {}
         for tag, ev in [("sim", event)] + ([("ghost", ghost)] if ghost is not None else []):
             for i, track in enumerate(ev.tracks):
@@ -301,6 +340,33 @@ class Renderer:
         self._speed = [unit_scale("speed", self.units)[0] * t.speed for t in event.tracks]
         self._background = self._draw_background()
         self._marks, self._marks_upto = self._background.copy(), 0
+
+    # ---- the warnings, wrapped within the frame --------------------------------------------
+    def warning_lines(self, text: str, x: float) -> list[str]:
+        """Warning ``text`` in the lines it is drawn in: the first from ``x`` [px] (after
+        the impulse's label), the others from the left edge, none past the frame's right
+        edge (less a 10 px margin)."""
+        key = (text, int(x))
+        lines = self._wrapped.get(key)
+        if lines is None:
+            width = self.size[0]
+            lines = self._wrapped[key] = self.small_glyphs.wrap(text, width - 10 - x,
+                                                                width - 20)
+        return lines
+
+    def _warning_x(self, impulse: str) -> float:
+        """Where a warning starts on the panel's last row [px]: after the impulse's label."""
+        return 10 + self.small_glyphs.width(impulse) + 18 if impulse else 10
+
+    def _warning_rows(self) -> int:
+        """The rows the longest wrapped warning needs beyond the panel's last one."""
+        rows = 0
+        for t in self.times if self.look.warnings else ():
+            warned = [text for when, text in self.look.warnings if t >= when]
+            if warned:
+                x = self._warning_x(self.impulse_text(float(t)))
+                rows = max(rows, len(self.warning_lines(warned[-1], x)) - 1)
+        return rows
 
     # ---- geometry ------------------------------------------------------------------------
     def _fit_view(self, shown) -> None:
@@ -545,11 +611,14 @@ class Renderer:
                 self._ghost(d, index, i)
         impulse = self._impulses(d, t)
         self.glyphs.draw(img, (10, 56), self.status(index), COLORS["text"])
-        x = self.small_glyphs.draw(img, (10, 76), impulse, COLORS["impulse"])
+        self.small_glyphs.draw(img, (10, 76), impulse, COLORS["impulse"])
         warned = [text for when, text in self.look.warnings if t >= when]
         if warned:
-            self.small_glyphs.draw(img, (x + 18 if impulse else 10, 76), warned[-1],
-                                   COLORS["warning"])
+            x = self._warning_x(impulse)
+            for row, line in enumerate(self.warning_lines(warned[-1], x)):
+                self.small_glyphs.draw(img, (x if row == 0 else 10,
+                                             76 + row * self.small_glyphs.height), line,
+                                       COLORS["warning"])
         return img
 
     def _clock(self, d, text: str) -> None:
@@ -589,6 +658,18 @@ def _dashed(draw, points, color, width, dash=9.0, gap=6.0) -> None:
         ends = np.minimum(starts + dash, length)
         for s, e in zip(starts, ends, strict=True):
             draw.line([tuple(a + s * u), tuple(a + e * u)], fill=color, width=width)
+
+
+def gif_durations(frames: int, fps: float) -> list[int]:
+    """Each of ``frames`` frames' duration [ms] in a GIF at ``fps`` frames per second.
+
+    A GIF counts a frame's time in whole hundredths of a second, so 30 fps (33.3 ms) would
+    be stored as 3 of them and play 10 % fast; here frame k lasts from ``round(100 k /
+    fps)`` to ``round(100 (k + 1) / fps)`` hundredths (30 fps: 30, 30, 40 ms ...), so the
+    clock never drifts more than half a hundredth from real time.
+    """
+    edges = np.round(np.arange(frames + 1) * 100.0 / float(fps)).astype(int)
+    return (10 * np.diff(edges)).tolist()
 
 
 def _pixels(img: Image.Image) -> np.ndarray:
@@ -644,7 +725,7 @@ def write_animation(renderer: Renderer, path, fps: int = DEFAULT_FPS, gif=None,
             writer.close()
         if gif_path is not None:
             thumbs[0].save(temps[1], format="GIF", save_all=True, append_images=thumbs[1:],
-                           duration=round(1000 / fps), loop=0, optimize=False)
+                           duration=gif_durations(len(thumbs), fps), loop=0, optimize=False)
     total = _time.perf_counter() - start
     return AnimationInfo(path=path, gif=gif_path, frames=len(renderer), fps=int(fps),
                          size=renderer.size, render_seconds=render,

@@ -22,7 +22,8 @@ __all__ = ["regenerate", "GIF", "PLAN", "FPS", "SIZE"]
 #: The files written, relative to docs/.
 GIF, PLAN = "images/ricsac9-event.gif", "images/ricsac9-event-plan.png"
 #: Frames per second of the README's GIF (a GIF counts its frame time in hundredths of a
-#: second: 20 fps is exactly 5 of them, 30 fps would play 10 % fast).
+#: second: 20 fps is exactly 5 of them; other rates keep real time by alternating durations,
+#: :func:`comparisons.animation.render.gif_durations`, and 20 keeps the file small).
 FPS = 20
 #: Frame size of the README's GIF [px] (full size: the caption's text readable).
 SIZE = (600, 600)

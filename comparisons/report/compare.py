@@ -58,6 +58,7 @@ from comparisons.report.compare_tables import (
     results_table,
 )
 from comparisons.report.data import ReportData
+from comparisons.report.event import crosscheck_table as event_crosscheck_table
 from comparisons.report.html import HTML_NAME
 from comparisons.report.tables import Num, Table, fmt_error
 from comparisons.report.write import write_document
@@ -336,9 +337,10 @@ def _gather_crosscheck(data: ReportData) -> None:
 
 def _gather_animation(data: ReportData, folder: Path, options: CompareOptions) -> None:
     """animation.mp4 (and .gif) and plan.png: the whole event (the pymunk event with the
-    analytic event as a ghost, :func:`comparisons.animation.collision.event_renderer`), or,
-    for a case the event cannot run (no outlines), the single impact's simulation with
-    PIM's ghost."""
+    analytic event as a ghost, :func:`comparisons.animation.collision.event_renderer`) and
+    the analytic event against the pymunk event at each impact and at rest
+    (:func:`sim.event_crosscheck`), or, for a case the event cannot run (no outlines), the
+    single impact's simulation with PIM's ghost."""
     case = data.case
     try:
         try:
@@ -347,6 +349,7 @@ def _gather_animation(data: ReportData, folder: Path, options: CompareOptions) -
                 strict=False)
             analytic = simulated if analytic is None else analytic
         except InputError:
+            simulated = None
             renderer, analytic = build_renderer(case, data.eps, data.beta, result=data.result,
                                                 tyre=options.tyre, units=data.units), None
         data.animation = write_animation(renderer, folder / "animation.mp4",
@@ -356,6 +359,9 @@ def _gather_animation(data: ReportData, folder: Path, options: CompareOptions) -
         data.animation_error = exc
         return
     data.files += ["animation.mp4"] + (["animation.gif"] if options.gif else [])
+    if analytic is not None and analytic is not simulated:
+        data.event_check = sim.event_crosscheck(analytic, simulated)
+        data.add_table(event_crosscheck_table(data.event_check, data.units))
     if analytic is not None:
         save_figure(plan_view(analytic, units=data.units, measured_rest=measured_rest(case),
                               title=f"{case.name or 'case'}: the {analytic.source} event"),

@@ -206,6 +206,11 @@ def _crosscheck(data: ReportData) -> Section:
     else:
         e = data.sim_error
         blocks.append(Paragraph(f"The simulation failed ({e.kind}): {e}"))
+    if data.event_check is not None:
+        blocks += [Paragraph(
+            f"The whole event (`pim event`), the analytic event against the pymunk event at "
+            f"each impact and at rest: {data.event_check.count_text()}."),
+            data.tables["event_crosscheck"]]
     if data.limits:
         blocks += [Paragraph("Where the simulator cannot reproduce PIM here:"),
                    Bullets(tuple(data.limits))]

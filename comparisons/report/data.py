@@ -80,6 +80,9 @@ class ReportData:
         False with ``--no-animation``.
     plan : str or None
         The plan view of the whole event (``plan.png``), if drawn.
+    event_check : sim.EventCheck or None
+        The analytic event against the pymunk event at each impact and at rest
+        (:func:`sim.event_crosscheck`), when both were computed.
     study : comparisons.studies.speed_error.SpeedErrorStudy or None
         The coarse speed-against-error sweep.
     assumptions : comparisons.studies.assumptions.AssumptionStudy or None
@@ -113,6 +116,7 @@ class ReportData:
     animation_error: object = None
     animation_requested: bool = True
     plan: str | None = None
+    event_check: object = None
     study: object = None
     assumptions: object = None
     files: list = field(default_factory=list)

@@ -35,7 +35,8 @@ from pim.io.units import DisplayUnits, convert, unit_scale
 from pim.model.event import DEFAULT_APPROACH, Event
 
 __all__ = ["EventRun", "run_event", "event_json", "event_document", "timeline_table",
-           "impacts_table", "write_event", "event_lines"]
+           "impacts_table", "write_event", "event_lines", "crosscheck_table",
+           "CROSSCHECK_GROUPS"]
 
 
 @dataclass(frozen=True)
@@ -56,6 +57,9 @@ class EventRun:
         PIM's single impact (``--single-impact``) rather than the whole event.
     renderer : Renderer
         The animation's frames (the cross-check solid, the answer as a ghost).
+    crosscheck : sim.EventCheck or None
+        ``event`` against ``check`` (:func:`sim.event_crosscheck`) at each impact and at
+        rest; None without a cross-check.
     """
 
     case: pim.Case
@@ -64,13 +68,15 @@ class EventRun:
     tyre: str
     single_impact: bool
     renderer: Renderer
+    crosscheck: object = None
 
 
 def _whole(case, tyre, approach, units, fps) -> EventRun:
     """The whole event: the analytic one, pymunk's as its cross-check."""
     renderer, analytic, simulated = event_renderer(
         case, framing=Framing(before=approach, fps=fps), tyre=tyre, units=units)
-    return EventRun(case, analytic, simulated, renderer.look.note, False, renderer)
+    return EventRun(case, analytic, simulated, renderer.look.note, False, renderer,
+                    sim.event_crosscheck(analytic, simulated))
 
 
 def _single(case, tyre, approach, units, fps) -> EventRun:
@@ -78,7 +84,8 @@ def _single(case, tyre, approach, units, fps) -> EventRun:
     eps, beta = sim.scene.resolve_coefficients(case, None, None)
     renderer = build_renderer(case, eps, beta, tyre=tyre, units=units,
                               framing=Framing(before=approach, fps=fps))
-    return EventRun(case, renderer.ghost, renderer.sim, renderer.look.note, True, renderer)
+    return EventRun(case, renderer.ghost, renderer.sim, renderer.look.note, True, renderer,
+                    sim.event_crosscheck(renderer.ghost, renderer.sim))
 
 
 def run_event(case: pim.Case, *, tyre: float | None = None,
@@ -122,18 +129,59 @@ def _rest_rows(event: Event, units) -> list[dict]:
 
 
 def _differences(run: EventRun, units) -> dict | None:
-    """The cross-check's differences at each impact and at rest, in the user's units."""
-    if run.check is None:
-        return None
-    d = run.event.difference(run.check)
-    rest_pos, length = convert(d.rest_position, "length", units)
-    speed, s_unit = convert(np.abs(d.speed).max(0), "velocity", units)
-    return {"impacts": d.impacts, "rest_position": [float(v) for v in rest_pos],
-            "rest_heading": [float(v) for v in np.degrees(d.rest_heading)],
-            "largest_position": [float(v) for v in
-                                 convert(d.position.max(0), "length", units)[0]],
-            "largest_speed": [float(v) for v in speed],
-            "units": {"length": length, "speed": s_unit, "angle": "deg"}}
+    """The cross-check's differences at each impact and at rest, in the user's units
+    (:meth:`sim.event_check.EventCheck.to_dict`)."""
+    return None if run.crosscheck is None else run.crosscheck.to_dict(units)
+
+
+#: How the cross-check's table splits on a screen (the impact, then each vehicle).
+CROSSCHECK_GROUPS = (("The impact", ("time", "time difference", "C apart",
+                                     "Gamma difference")),
+                     ("Each vehicle", ("delta-V difference", "PDOF difference", "CG apart",
+                                       "heading difference", "speed difference before",
+                                       "speed difference after")))
+
+
+def _check_rows(check, units) -> list[tuple]:
+    """Rows of :func:`crosscheck_table`: each pair of impacts per vehicle, each impact
+    without a partner, each vehicle at rest."""
+    length, speed = unit_scale("length", units)[0], unit_scale("velocity", units)[0]
+    deg = math.degrees(1.0)
+    rows = []
+    for d in check.impacts:
+        for i in (0, 1):
+            rows.append((f"impact {d.index}, vehicle {i + 1}", float(d.times[0]), d.time,
+                         d.point * length, d.normal_angle * deg, d.delta_v[i] * speed,
+                         d.pdof[i] * deg, d.position[i] * length, d.heading[i] * deg,
+                         d.speed_before[i] * speed, d.speed_after[i] * speed))
+    for u in check.unmatched:
+        rows.append((f"impact {u.index} ({u.event} only)", u.time) + (None,) * 9)
+    end = float(check.trajectory.time[-1]) if len(check.trajectory.time) else None
+    for i in (0, 1):
+        rows.append((f"rest, vehicle {i + 1}", end, None, None, None, None, None,
+                     check.rest_position[i] * length, check.rest_heading[i] * deg, None,
+                     check.rest_speed[i] * speed))
+    return rows
+
+
+def crosscheck_table(check, units) -> Table:
+    """The cross-check (:func:`sim.event_crosscheck`, ``a - b``) at each impact and at
+    rest in ``units``: the impact's time, C and Gamma, each vehicle's delta-V, PDOF, CG,
+    heading and speeds at it, the impacts without a partner, the rest."""
+    a, b = check.sources
+    length, speed = unit_scale("length", units)[1], unit_scale("velocity", units)[1]
+    columns = ("at", "time [s]", "time difference [s]", f"C apart [{length}]",
+               "Gamma difference [deg]", f"delta-V difference [{speed}]",
+               "PDOF difference [deg]", f"CG apart [{length}]", "heading difference [deg]",
+               f"speed difference before [{speed}]", f"speed difference after [{speed}]")
+    note = (f"The {a} event minus the {b} event; {check.count_text()}. Time: the {a} "
+            f"event's. delta-V difference: the length of the difference of the delta-V "
+            f"vectors; CG apart: the distance between the CGs at each event's own impact "
+            f"(at rest: the rest positions); speeds just before and after the impact (at "
+            f"rest: the last sample's).")
+    return Table("event_crosscheck", f"The {a} event against the {b} event, at each impact "
+                 f"and at rest", columns, tuple(_check_rows(check, units)), note=note,
+                 groups=CROSSCHECK_GROUPS)
 
 
 def event_json(run: EventRun, units: DisplayUnits) -> dict:
@@ -201,15 +249,16 @@ def event_document(run: EventRun, units, media=()) -> Document:
     what = ("PIM's single impact and its run-out (--single-impact)" if run.single_impact
             else "the whole event: approach, every impact, run-out to rest")
     check = _differences(run, units)
-    check_text = "No cross-check." if check is None else (
-        f"Cross-check ({run.check.source} against {run.event.source}): rest positions "
-        f"differ by {', '.join(format_number(v) for v in check['rest_position'])} "
-        f"{check['units']['length']}, rest headings by "
-        f"{', '.join(format_number(v) for v in check['rest_heading'])} deg; impacts "
-        f"found: {len(run.event.impacts)} against {len(run.check.impacts)}.")
+    check_blocks = (Paragraph(f"{run.tyre}. No cross-check."),) if check is None else (
+        Paragraph(f"{run.tyre}. Cross-check ({run.event.source} against "
+                  f"{run.check.source}): rest positions differ by "
+                  f"{', '.join(format_number(v) for v in check['rest_position'])} "
+                  f"{check['units']['length']}, rest headings by "
+                  f"{', '.join(format_number(v) for v in check['rest_heading'])} deg; "
+                  f"{check['counts']}."), crosscheck_table(run.crosscheck, units))
     sections = (
         Section("answer", "Answer", (_answer(run, units), impacts_table(run.event, units))),
-        Section("event", "The event", (*media, Paragraph(f"{run.tyre}. {check_text}"))),
+        Section("event", "The event", (*media, *check_blocks)),
         Section("timeline", "Timeline", (timeline_table(run.event, units),
                                          Paragraph("timeline.csv: every sample."))),
     )

@@ -48,7 +48,7 @@ from ..model.tyres import STANDARD_GRAVITY
 from .fitting import FitResult
 from .free_inputs import approach_direction, check_free, free_kind, free_label
 from .inverse_pim import check_evidence, inverse_pim, under_determined
-from .event import event_rest_many
+from .event import event_rest_many, sliding_flags
 from .event_fit import EventFit, fit_through_event
 from .momentum import MomentumSpeeds, momentum_speeds
 from .reconstruction_mc import (
@@ -107,7 +107,9 @@ class PostImpact:
     def event(self, times=None) -> Event:
         """The fitted run-outs as an :class:`pim.model.event.Event` from the impact (t = 0)
         to the later vehicle's rest, at ``times`` [s] (default: every time either run-out
-        stored). A vehicle without a run-out stays at its impact pose (a note says so)."""
+        stored), each run-out's track with its wheels (the evidence's axles) and which of
+        them slide (:func:`pim.analysis.event.sliding_flags`: the tyre marks). A vehicle
+        without a run-out stays at its impact pose (a note says so)."""
         if not self.runouts:
             raise InputError("the reconstruction has no run-out (no [evidence])")
         if times is None:
@@ -118,7 +120,7 @@ class PostImpact:
             vehicle = getattr(self.case, f"vehicle{i}")
             outline = vehicle_outline(vehicle)
             if i in self.runouts:
-                tracks.append(self.runouts[i].runout.track(times, outline))
+                tracks.append(self._runout_track(i, times, outline))
                 continue
             n = len(times)
             tracks.append(Track(np.broadcast_to(np.asarray(vehicle.cg, float), (n, 2)).copy(),
@@ -131,6 +133,19 @@ class PostImpact:
         return Event(times, tracks[0], tracks[1],
                      phase_labels(times, [0.0], rest if all(stopped) else None),
                      source="reconstruction", stopped=stopped, notes=tuple(notes))
+
+    def _runout_track(self, i: int, times: np.ndarray, outline) -> Track:
+        """Vehicle ``i``'s fitted run-out at ``times`` with its wheels and sliding flags
+        (none where the case keeps no ``[evidence]`` of its tyres)."""
+        vehicle = getattr(self.case, f"vehicle{i}")
+        track = self.runouts[i].runout.track(times, outline)
+        evidence = getattr(self.case.evidence, f"vehicle{i}", None)
+        if evidence is None:
+            return track
+        tyres = evidence.runout_vehicle(float(vehicle.mass), float(vehicle.yaw_inertia))
+        states = np.column_stack([track.position, track.heading, track.velocity,
+                                  track.yaw_rate])
+        return replace(track, sliding=sliding_flags(states, tyres), wheels=tyres.positions)
 
 
 def _velocity_covariance(fit: RunoutFit) -> tuple[np.ndarray, float]:

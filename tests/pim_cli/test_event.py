@@ -49,10 +49,20 @@ def test_json_fields_in_the_case_units(run):
     assert first["law"] and first["coefficients"]
     assert [r["vehicle"] for r in data["rest"]] == [1, 2]
     assert data["rest"][0]["units"] == {"length": "ft", "angle": "deg"}
-    check = data["crosscheck"]                   # the pymunk event against the analytic
-    assert check["units"] == {"length": "ft", "speed": "mph", "angle": "deg"}
-    assert len(check["rest_position"]) == 2 and check["impacts"] == 0
+    check = data["crosscheck"]                   # the analytic event against pymunk's
+    assert (check["units"]["length"], check["units"]["speed"]) == ("ft", "mph")
+    assert check["sources"] == ["analytic", "simulated"]
+    assert len(check["rest_position"]) == 2 and check["same_impacts"]
     assert max(check["rest_position"]) < 3.0      # ft: the two producers agree at rest
+    # each impact compared (issue 32 item 3: the difference at each impact), in ft and mph
+    assert len(check["impacts"]) == check["impact_count"][0] >= 1
+    first = check["impacts"][0]
+    assert first["index"] == 1 and first["times"] == pytest.approx([0.0, 0.0], abs=1e-9)
+    for key in ("C", "Gamma", "delta_v", "pdof", "position", "heading", "speed_before",
+                "speed_after"):
+        assert key in first
+    assert first["C"] == pytest.approx(0.0, abs=1e-9)   # both solve the case's own C
+    assert max(first["speed_before"]) < 0.5              # mph: the same approach
 
 
 def test_timeline_csv_speaks_the_case_units(run):
@@ -77,3 +87,21 @@ def test_bad_input_writes_nothing(tmp_path, capsys):
 def test_the_command_says_what_it_writes():
     for name in ("event.mp4", "plan.png", "timeline.csv", "report.html", "--json"):
         assert name in event.help
+
+
+def test_compare_json_holds_the_event_crosscheck_at_each_impact(tmp_path):
+    """`pim compare --json` shows the whole event: its cross-check at each impact and at
+    rest, in the case's units (RICSAC 9: ft, mph), as `pim event --json` does."""
+    import io
+    from contextlib import redirect_stdout
+
+    buf = io.StringIO()
+    with redirect_stdout(buf):
+        assert main(["compare", "ricsac9", "--out", str(tmp_path / "c"), "--json",
+                     "--no-speed-error", "--no-assumptions", "--no-progress"]) == 0
+    check = json.loads(buf.getvalue())["event_crosscheck"]
+    assert (check["units"]["length"], check["units"]["speed"]) == ("ft", "mph")
+    assert check["sources"] == ["analytic", "simulated"] and check["same_impacts"]
+    assert len(check["impacts"]) == check["impact_count"][0] >= 1
+    assert check["impacts"][0]["index"] == 1 and len(check["impacts"][0]["position"]) == 2
+    assert max(check["rest_position"]) < 3.0                   # ft

@@ -90,3 +90,26 @@ def test_the_plan_view_draws_the_fitted_paths_in_the_chosen_units(post):
     np.testing.assert_allclose(line_us, line_si / 0.3048)
     assert fig_us.axes[0].get_xlabel() == "x [ft]"
     assert "outlines every" in fig_si.axes[0].get_title()
+
+
+def test_the_run_outs_lay_tyre_marks(post):
+    # the fitted run-outs slide after the impact (RICSAC 9's separation speeds, locked
+    # wheels) and stop: their tracks carry sliding flags, the video and plan view draw marks
+    event = reconstruction_event(post, TRUTH, fps=10, hold=0.5)
+    for track in event.tracks:
+        assert track.sliding is not None and track.sliding[1].all()   # sliding just after
+        assert not track.sliding[-1].any()                              # not at rest
+    r = reconstruction_renderer(post, TRUTH, fps=10, size=(480, 400))
+    last = np.asarray(r.frame(len(event) - 1)).astype(int)
+    marks = (np.abs(last - np.array(COLORS["marks"])).sum(-1) == 0)[r.TOP:]
+    assert marks.sum() > 200                        # each wheel's mark, a few px wide
+    first = np.asarray(r.frame(0)).astype(int)
+    assert (np.abs(first - np.array(COLORS["marks"])).sum(-1) == 0)[r.TOP:].sum() == 0
+    from comparisons.animation.reconstruction import reconstruction_plan
+    from comparisons.animation.render import COLORS as C
+
+    grey = tuple(c / 255 for c in C["marks"])
+    lines = [ln for ln in reconstruction_plan(post, TRUTH).axes[0].lines
+             if ln.get_color() == grey]
+    assert len(lines) == 8                          # four wheels of each vehicle
+    assert all(np.isfinite(ln.get_xydata()).all(axis=1).sum() > 5 for ln in lines)

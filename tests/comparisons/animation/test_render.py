@@ -99,3 +99,50 @@ def test_each_impact_is_marked_at_its_c():
     c = r.to_px(ev.impacts[0].point)
     rows, cols = np.nonzero(green[r.TOP:])
     assert np.min(np.hypot(cols - c[0], rows + r.TOP - c[1])) < 6
+
+
+def test_a_long_warning_is_wrapped_within_the_frame():
+    """A warning longer than the frame is wide: every word is drawn (in lines), none past
+    the right edge, all of it in the panel above the scene (it ran off the edge before)."""
+    words = " ".join(f"word{k}" for k in range(40))
+    ev = slide()
+    r = Renderer(ev, look=Look(size=(640, 360), warnings=((0.0, "SECONDARY " + words),)))
+    img = r.frame(len(ev) - 1)
+    red = near(img, COLORS["warning"], tol=60)
+    rows, cols = np.nonzero(red)
+    assert len(rows) > 200 and cols.max() <= r.size[0] - 10
+    assert rows.max() < r.TOP - 2                       # in the panel, above the scene
+    lines = r.warning_lines("SECONDARY " + words, 10)
+    assert len(lines) >= 3 and " ".join(lines) == "SECONDARY " + words
+    assert r.TOP >= Renderer.TOP + (len(lines) - 1) * r.small_glyphs.height
+    assert len({int(y) for y in rows // r.small_glyphs.height}) >= len(lines)
+    fitted = Renderer(ev, look=Look(warnings=((0.0, words),)))       # the frame grows
+    assert fitted.size[1] - fitted.TOP == Renderer(ev).size[1] - Renderer.TOP
+
+
+def test_a_word_longer_than_the_frame_is_broken_within_it():
+    r = Renderer(slide(), look=Look(size=(320, 240), warnings=((0.0, "x" * 200),)))
+    lines = r.warning_lines("x" * 200, 10)
+    assert "".join(lines) == "x" * 200
+    assert all(r.small_glyphs.width(line) <= r.size[0] - 20 for line in lines)
+
+
+@pytest.mark.parametrize("fps", [20, 24, 25, 30, 60])
+def test_the_gif_keeps_real_time(tmp_path, fps):
+    """A GIF counts frame times in hundredths of a second: 30 fps stored as 3 of them
+    played 10 % fast. The GIF's total duration matches the event's frames within 1 %."""
+    from PIL import Image
+
+    from comparisons.animation.render import gif_durations, write_animation
+
+    n = 3 * fps + 1                                     # 3 s of frames at fps
+    ev = slide(n=n, slide_from=n // 2)
+    info = write_animation(Renderer(ev, look=Look(size=(320, 240))), tmp_path / "a.mp4",
+                           fps=fps, gif=tmp_path / "a.gif", progress=False, gif_scale=0.5)
+    total = 0
+    with Image.open(info.gif) as gif:
+        for k in range(gif.n_frames):
+            gif.seek(k)
+            total += gif.info["duration"]
+    assert total / 1000 == pytest.approx(n / fps, rel=0.01)
+    assert sum(gif_durations(n, fps)) == round(100 * n / fps) * 10

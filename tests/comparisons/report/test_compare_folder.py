@@ -122,3 +122,15 @@ def test_bad_input_is_a_one_line_error(tmp_path, capsys):
                  "--beta", "1", "--no-progress"]) == 2
     err = capsys.readouterr().err
     assert err.startswith("error:") and "eps" in err
+
+
+def test_the_event_crosscheck_has_each_impact_in_the_case_units(folder):
+    # issue 32 item 3: the analytic event against the pymunk event at each impact and at
+    # rest (RICSAC 9 is written in ft: lengths in ft, speeds in mph)
+    rows = read_csv(folder / "event_crosscheck.csv")
+    at = [r["at"] for r in rows]
+    assert at[:2] == ["impact 1, vehicle 1", "impact 1, vehicle 2"]
+    assert at[-2:] == ["rest, vehicle 1", "rest, vehicle 2"]
+    assert "delta-V difference [mph]" in rows[0] and "CG apart [ft]" in rows[0]
+    assert float(rows[0]["time difference [s]"]) == pytest.approx(0.0, abs=1e-9)
+    assert "at each impact and at rest" in (folder / "report.md").read_text()
