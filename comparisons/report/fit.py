@@ -223,9 +223,14 @@ def residual_lines(result: FitResult, units: str) -> list[str]:
     for row in result.residual_table:
         f, unit = quantity_factor(row["kind"], units)
         model, meas = row["fitted"] * f, row["measured"] * f
-        lines.append(f"  {row['name']:<14} {model:10.4f} {meas:10.4f} {model - meas:10.4f}  "
+        lines.append(f"  {row['name']:<14} {_cell(model)} {_cell(meas)} {_cell(model - meas)}  "
                      f"{unit}")
     return lines
+
+
+def _cell(value: float) -> str:
+    """A table number to 4 decimals, a value that rounds to zero as 0.0000 (not -0.0000)."""
+    return f"{round(value, 4) + 0.0:10.4f}"
 
 
 def _title(name: str, result: FitResult) -> str:

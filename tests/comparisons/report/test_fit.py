@@ -102,3 +102,14 @@ def test_the_text_opens_with_the_case_and_what_was_fitted(brach):
     lines = fit_lines("ricsac9", brach, "us")
     assert lines[0] == "ricsac9: least-squares fit of the post-impact velocities"
     assert "" in lines
+
+
+def test_a_residual_that_rounds_to_zero_prints_without_a_sign(brach):
+    """A term the fit meets to within the table's 4 decimals printed "-0.0000"."""
+    from types import SimpleNamespace
+
+    row = dict(brach.residual_table[0])
+    row["fitted"] = row["measured"] - 1e-7
+    exact = SimpleNamespace(residual_table=(row,))
+    fields = residual_lines(exact, "si")[2].split()
+    assert fields[3] == "0.0000"
