@@ -179,9 +179,10 @@ def _parse_sigma(items):
               help="Show only the N largest effects.")
 @units_option
 @allow_inadmissible_option
+@allow_inconsistent_option
 @json_option
 def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, speed_unit,
-                allow_inadmissible, as_json):
+                allow_inadmissible, allow_inconsistent, as_json):
     """Rank CASE's uncertain inputs by how much they move the fitted (epsilon, beta) and
     delta-V.
 
@@ -190,7 +191,9 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, speed_uni
     where it states one ([uncertainty], [measured] sigmas, an estimate's scatter), else a
     typical value; the source column says which (--sigma sets one over both). Exit code 1
     after the output when the answer at (epsilon, beta) is inadmissible (the reasons first;
-    --allow-inadmissible: exit 0).
+    --allow-inadmissible: exit 0), and when the measured evidence the fit uses
+    contradicts itself, its chi-square's p below 0.001 (the reason first;
+    --allow-inconsistent or --allow-inadmissible: exit 0).
     """
     from comparisons.report.sensitivity import sensitivity_json, sensitivity_lines
     from pim.analysis.sensitivity import sensitivity as compute
@@ -201,6 +204,9 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, speed_uni
     typical, given = _parse_sigma(sigmas)
     sens = compute(case, eps=eps, beta=beta, uncertainty=typical, include_yaw=include_yaw,
                    prefer=given)
+    accept = allow_inadmissible or allow_inconsistent
+    reason = sens.fit.contradiction if sens.fit is not None else None
+    say_contradiction(reason, accept)
     found = check_answer(case, solve(case, sens.eps, sens.beta), units,
                          allow=allow_inadmissible, as_json=as_json)
     if as_json:
@@ -209,6 +215,7 @@ def sensitivity(case_name, include_yaw, eps, beta, sigmas, top, units, speed_uni
         for line in sensitivity_lines(case.name, sens, units, top):
             click.echo(line)
     finish_answer(found, allow_inadmissible)
+    finish_evidence(reason, accept)
 
 
 @click.command()

@@ -1,5 +1,5 @@
 """Evidence that contradicts itself beyond P_CONTRADICTED (chi-square p < 0.001) ends
-``pim fit``, ``pim compare`` and ``pim plot`` with exit 1 after their output, the reason first, as it ends
+``pim fit``, ``pim compare``, ``pim plot`` and ``pim sensitivity`` with exit 1 after their output, the reason first, as it ends
 ``pim reconstruct`` (issue 33 point 3; tests/pim_cli/test_reconstruct.py has reconstruct's)."""
 
 from __future__ import annotations
@@ -103,3 +103,16 @@ def test_plot_exits_1_after_writing_its_figures(tmp_path, capsys):
 def test_the_option_is_documented(command, capsys):
     assert main([command, "--help"]) == 0
     assert "--allow-inconsistent" in capsys.readouterr().out
+
+
+def test_sensitivity_exits_1_after_its_table_when_the_evidence_contradicts_itself(
+        tmp_path, capsys):
+    """pim sensitivity differentiates the fit's optimum: the fit's evidence is checked as
+    pim fit checks it."""
+    case = _edr(tmp_path, "45 km/h")
+    assert main(["sensitivity", case]) == 1
+    captured = capsys.readouterr()
+    assert captured.err.startswith(REASON)
+    assert captured.out.strip()                      # the table is still printed
+    assert main(["sensitivity", case, "--allow-inconsistent"]) == 0
+    assert main(["sensitivity", "synthetic-edr"]) == 0
