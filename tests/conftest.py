@@ -45,16 +45,29 @@ def _signal_state() -> tuple:
             tuple(s in blocked for s in handled))
 
 
+#: The signal state the worker's first test started with, and the last test that ended with it.
+_SESSION_SIGNALS = {"start": None, "last": "(none yet)"}
+
+
 @pytest.fixture(autouse=True)
-def signals_left_as_found():
+def signals_left_as_found(request):
     """Fail a test that leaves Ctrl-C or SIGTERM ignored, replaced or blocked in the test
     process (and put them back): every later test of its xdist worker, and every process it
     starts, would inherit that (a SIGINT sent to a child was lost and the child waited out
-    its sleep), so the failure would show far from its cause."""
+    its sleep), so the failure would show far from its cause. A test that starts with
+    another state than the run's (changed outside any test: a module's fixture, an import)
+    fails too, naming the last test that ended with the run's state."""
     before = _signal_state()
+    _SESSION_SIGNALS["start"] = _SESSION_SIGNALS["start"] or before
+    if before != _SESSION_SIGNALS["start"]:
+        pytest.fail(f"the process's signal handling changed outside a test, after "
+                    f"{_SESSION_SIGNALS['last']}: {_SESSION_SIGNALS['start']} -> {before}",
+                    pytrace=False)
     yield
     after = _signal_state()
-    if after != before:
+    if after == before:
+        _SESSION_SIGNALS["last"] = request.node.nodeid
+    else:
         for signum, handler in zip((signal.SIGINT, signal.SIGTERM), before[0]):
             signal.signal(signum, handler)
         signal.pthread_sigmask(signal.SIG_UNBLOCK, [s for s, b in zip(
