@@ -446,7 +446,8 @@ class Reconstruction(Notebook):
 
     def to_dict(self, units=None) -> dict:
         """JSON-ready: each unknown's value and percentiles in ``units`` (default the
-        case's), whether the data decide them, the messages, the chi-square test."""
+        case's), whether the data decide them, the messages, the chi-square test, the Monte
+        Carlo's counts (:meth:`ReconstructionSamples.to_dict`)."""
         shown = display_units(units, case=self.case)
         unknowns = {}
         for row in self.table():
@@ -459,7 +460,8 @@ class Reconstruction(Notebook):
                 "determined": self.determined, "unknowns": unknowns,
                 "messages": list(self.messages),
                 "goodness_of_fit": None if self.goodness is None else self.goodness.to_dict(),
-                "crush": [c.to_dict() for c in self.crush]}
+                "crush": [c.to_dict() for c in self.crush],
+                "monte_carlo": None if self.samples is None else self.samples.to_dict()}
 
     @property
     def undetermined_reason(self) -> str:

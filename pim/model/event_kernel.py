@@ -362,8 +362,11 @@ def run_event(scene: EventScene, start, *, start_time=0.0, allowed=None, solve=T
                     for v in range(2)], -1)
     reach = np.stack([scene.data1.reach, data2.reach], -1)
     inv = np.broadcast_to(np.asarray(scene.inverse, float), (n, 4))
-    if allowed is None:
-        allowed = np.array([max(_start_depth(start[i], outlines[i]), 0.0) for i in range(n)])
+    if allowed is None:     # once per distinct start (a Monte Carlo's samples share theirs)
+        poses = np.concatenate([start[:, :, :3].reshape(n, -1), outlines.reshape(n, -1)], 1)
+        rows, which = np.unique(poses, axis=0, return_index=True, return_inverse=True)[1:]
+        allowed = np.array([max(_start_depth(start[i], outlines[i]), 0.0)
+                            for i in rows])[np.reshape(which, -1)]
     out, tail = np.empty((n, 2, 6)), np.zeros((n, 12))
     impacts = np.zeros((n, MAX_IMPACTS, len(IMPACT_COLUMNS)))
     rec = np.empty((int(record), 13))
