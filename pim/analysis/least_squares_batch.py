@@ -95,8 +95,7 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
     max_iter : int
         Iteration limit per problem (accepted and refused steps both count).
     ftol, xtol, gtol, atol : float
-        Stopping tolerances (module notes); ``xtol`` and ``gtol`` in box-scaled variables,
-        ``atol`` (optional) in the residuals' units.
+        Stopping tolerances (module notes): ``xtol``, ``gtol`` box-scaled, ``atol`` optional.
     lam0 : float
         Initial damping.
     merge : float, optional
