@@ -1,10 +1,12 @@
 """Test configuration: hypothesis runs derandomized on CI and without its example database
 (a local database replays examples an earlier run found, which a clean CI clone never sees),
 so a red CI is reproducible;
+no test leaves the process's Ctrl-C and SIGTERM handling changed (:func:`signals_left_as_found`);
 no test writes into the checkout (:func:`checkout_stays_clean`, every run);
 fixtures shared by several test files (a file may define its own of the same name)."""
 
 import os
+import signal
 from dataclasses import replace
 from pathlib import Path
 
@@ -33,6 +35,32 @@ def checkout_stays_clean():
         pytest.fail(f"the test run wrote into the checkout {ROOT}: {', '.join(new[:10])}"
                     f"{' ...' if len(new) > 10 else ''} (write into tmp_path, or give "
                     f"the command --out)", pytrace=False)
+
+
+def _signal_state() -> tuple:
+    """The main thread's SIGINT and SIGTERM handlers and which of the two it blocks."""
+    handled = (signal.SIGINT, signal.SIGTERM)
+    blocked = signal.pthread_sigmask(signal.SIG_BLOCK, [])
+    return (tuple(signal.getsignal(s) for s in handled),
+            tuple(s in blocked for s in handled))
+
+
+@pytest.fixture(autouse=True)
+def signals_left_as_found():
+    """Fail a test that leaves Ctrl-C or SIGTERM ignored, replaced or blocked in the test
+    process (and put them back): every later test of its xdist worker, and every process it
+    starts, would inherit that (a SIGINT sent to a child was lost and the child waited out
+    its sleep), so the failure would show far from its cause."""
+    before = _signal_state()
+    yield
+    after = _signal_state()
+    if after != before:
+        for signum, handler in zip((signal.SIGINT, signal.SIGTERM), before[0]):
+            signal.signal(signum, handler)
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, [s for s, b in zip(
+            (signal.SIGINT, signal.SIGTERM), before[1]) if not b])
+        pytest.fail(f"the test changed the process's signal handling: {before} -> {after}",
+                    pytrace=False)
 
 
 @pytest.fixture(scope="session")

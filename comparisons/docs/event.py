@@ -21,6 +21,7 @@ import numpy as np
 import pim
 from comparisons.report.render import markdown_table
 from comparisons.report.tables import Num, Table
+from comparisons.docs import event_staged
 from comparisons.report.write import write_block
 from pim.analysis.event import event_vehicle
 from pim.analysis.event_fit import fit_through_event_many
@@ -189,7 +190,10 @@ def monte_carlo_block(table: Table | None = None) -> str:
 
 
 def regenerate(docs_dir) -> list[Path]:
-    """Rewrite the tables of ``docs_dir/event.md`` (between their markers)."""
+    """Rewrite the tables of ``docs_dir/event.md`` (between their markers): this module's
+    (the impacts, the Monte Carlo through the event) and the staged test's
+    (:mod:`comparisons.docs.event_staged`)."""
     page = Path(docs_dir) / PAGE
     write_block(page, BEGIN, END, block())
-    return [write_block(page, MC_BEGIN, MC_END, monte_carlo_block())]
+    write_block(page, MC_BEGIN, MC_END, monte_carlo_block())
+    return [write_block(page, event_staged.BEGIN, event_staged.END, event_staged.block())]

@@ -5,6 +5,7 @@ from pathlib import Path
 import pytest
 
 from comparisons.docs import event as D
+from comparisons.docs import event_staged as S
 from comparisons.docs.__main__ import main
 from pim.model.tyres import STANDARD_GRAVITY
 
@@ -45,11 +46,13 @@ def test_regeneration_rewrites_only_the_blocks(tmp_path, capsys, monkeypatch):
                         lambda table=None: f"{D.MC_BEGIN}\n| mc |\n{D.MC_END}")
     page = tmp_path / D.PAGE
     page.write_text(f"prose before\n{D.BEGIN}\n| old |\n{D.END}\nmiddle\n"
-                    f"{D.MC_BEGIN}\n| old |\n{D.MC_END}\nprose after\n")
+                    f"{D.MC_BEGIN}\n| old |\n{D.MC_END}\nbetween\n{S.BEGIN}\nold\n"
+                    f"{S.END}\nprose after\n")
     assert main(["event", "--docs", str(tmp_path)]) == 0
     assert capsys.readouterr().out.strip() == f"wrote {page}"
     assert page.read_text() == (f"prose before\n{D.block()}\nmiddle\n"
-                                f"{D.MC_BEGIN}\n| mc |\n{D.MC_END}\nprose after\n")
+                                f"{D.MC_BEGIN}\n| mc |\n{D.MC_END}\nbetween\n{S.block()}\n"
+                                f"prose after\n")
     with pytest.raises(ValueError, match="markers"):
         page.write_text("no markers\n")
         D.regenerate(tmp_path)
