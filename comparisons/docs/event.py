@@ -1,12 +1,15 @@
 """The figures of docs/event.md, written by ``python -m comparisons.docs event``: the analytic
 event's impacts and rest positions on RICSAC 9 (without tyres and with the default ones), on
 a T-bone whose struck car slaps the bullet car's side, and on a straight slide checked by
-hand; and the Monte Carlo of a reconstruction through the event on that side slap (its
-intervals through the event against the single-impact run-outs', and the fast route against
-the full fit on a subset of draws). The tables sit between :data:`BEGIN` and :data:`END`
-and between :data:`MC_BEGIN` and :data:`MC_END` in docs/event.md (the rest of the page is
-prose), each a :class:`~comparisons.report.tables.Table` rendered by the one Markdown
-renderer; a test fails when the page differs from what the code gives.
+hand (between :data:`BEGIN` and :data:`END`); and how often a further impact of generated
+side slaps gains energy under the default law and is solved frictionless, and why
+(:func:`energy_table`, between :data:`ENERGY_BEGIN` and :data:`ENERGY_END`); the staged
+test's block is :mod:`comparisons.docs.event_staged`'s; and the Monte Carlo of a reconstruction
+through the event on that side slap (:func:`monte_carlo_table`: its intervals through the
+event against the single-impact run-outs', the fast route against the full fit on a subset of
+draws; between :data:`MC_BEGIN` and :data:`MC_END`). The rest of the page is prose. Each
+table is a :class:`~comparisons.report.tables.Table` rendered by the one Markdown renderer; a
+test fails when the page differs from what the code gives.
 """
 
 from __future__ import annotations
@@ -19,6 +22,7 @@ from dataclasses import replace
 import numpy as np
 
 import pim
+from sim.event_check import side_slap_case as generated_side_slap
 from comparisons.report.render import markdown_table
 from comparisons.report.tables import Num, Table
 from comparisons.docs import event_staged
@@ -28,18 +32,25 @@ from pim.analysis.event_fit import fit_through_event_many
 from pim.analysis.event_samples import fit_event_samples
 from pim.analysis.reconstruction import evidence_nominal, evidence_sampler, reconstruct
 from pim.analysis.reconstruction_mc import reconstruction_samples, rest_draws
+from pim.model.event_formula import MAX_IMPACTS, box, contact_geometry
 from pim.model.evidence import Evidence, VehicleEvidence
 from pim.model.tyres import STANDARD_GRAVITY
 
-__all__ = ["COMMAND", "BEGIN", "END", "MC_BEGIN", "MC_END", "PAGE", "side_slap_case",
-           "slide_case", "scenes", "with_rest_evidence", "impact_table", "block",
-           "monte_carlo_table", "monte_carlo_block", "regenerate", "MC_SAMPLES", "MC_SUBSET",
-           "MC_UNKNOWN"]
+__all__ = ["COMMAND", "BEGIN", "END", "PAGE", "side_slap_case", "slide_case", "scenes",
+           "with_rest_evidence", "impact_table", "block", "regenerate", "ENERGY_BEGIN",
+           "ENERGY_END", "GENERATED_SCENES", "generated_side_slaps", "energy_counts",
+           "energy_table", "energy_block", "MC_BEGIN", "MC_END", "MC_SAMPLES", "MC_SUBSET",
+           "MC_UNKNOWN", "monte_carlo_table", "monte_carlo_block"]
 
 COMMAND = "python -m comparisons.docs event"
 BEGIN = (f"<!-- event: begin (written by `{COMMAND}`; edit comparisons/docs/event.py, not "
          "this table) -->")
 END = "<!-- event: end -->"
+ENERGY_BEGIN = (f"<!-- event-energy: begin (written by `{COMMAND}`; edit "
+                "comparisons/docs/event.py, not this table) -->")
+ENERGY_END = "<!-- event-energy: end -->"
+#: How many side slaps :func:`generated_side_slaps` draws (seed 0).
+GENERATED_SCENES = 300
 MC_BEGIN = (f"<!-- event-mc: begin (written by `{COMMAND}`; edit comparisons/docs/event.py, "
             "not this table) -->")
 MC_END = "<!-- event-mc: end -->"
@@ -131,6 +142,97 @@ def block() -> str:
     return "\n".join([BEGIN, "", markdown_table(impact_table()), "", END])
 
 
+def generated_side_slaps(count: int = GENERATED_SCENES, seed: int = 0) -> list:
+    """``count`` side slaps (:func:`sim.event_check.side_slap_case`) drawn uniformly from
+    the ranges of the simulated event's random side slaps (tests/sim/test_event.py): C
+    -2.2 to 2.2 m along the struck car, 5-20 m/s into 0-8 m/s, eps 0-0.5, beta 0.3-1."""
+    rng = np.random.default_rng(seed)
+    draws = rng.uniform([-2.2, 5.0, 0.0, 0.0, 0.3], [2.2, 20.0, 8.0, 0.5, 1.0], (count, 5))
+    return [generated_side_slap(off, speed1=s1, speed2=s2, eps=eps, beta=beta)
+            for off, s1, s2, eps, beta in draws]
+
+
+def _before(case: pim.Case, ev, imp) -> list:
+    """Both vehicles of ``case`` as the event ``ev`` has them just before its impact
+    ``imp`` (its row before the impulse)."""
+    k = int(np.flatnonzero(ev.time == imp.time)[0])
+    return [replace(v, cg=t.position[k], heading=float(t.heading[k]),
+                    velocity=imp.velocity_before[i], yaw_rate=imp.yaw_rate_before[i])
+            for i, (v, t) in enumerate(zip((case.vehicle1, case.vehicle2), ev.tracks))]
+
+
+def _pulling(vehicles: list, imp) -> bool:
+    """Whether the sticking impulse of a further impact at eps (PIM's critical impulse,
+    beta 1, of the ``vehicles`` just before it) pulls: Pn0 < 0."""
+    impact = pim.Impact(imp.point, imp.normal_angle, restitution=imp.coefficients["eps"])
+    return bool(pim.solve(pim.Case(*vehicles, impact), beta=1.0).critical_impulse_n < 0)
+
+
+def _one_corner(vehicles: list) -> bool:
+    """Whether the contact rule found one closing corner inside the other outline (a corner
+    into a side: C that corner), not two (sides meeting flat: C between them)."""
+    states = [(*v.cg, float(v.heading), *v.velocity, float(v.yaw_rate)) for v in vehicles]
+    boxes = [box(s[0], s[1], s[2], v.length / 2 if v.cg_to_front is None else v.cg_to_front,
+                 v.length, v.width) for s, v in zip(states, vehicles)]
+    return contact_geometry(*boxes, *states)[5] == 1.0
+
+
+def energy_counts(cases) -> dict:
+    """Of the analytic events of ``cases`` (default tyres): scenes, scenes refused and why,
+    further impacts, those whose friction-capped answer gains energy (solved frictionless:
+    their effective beta is 0), those of them whose sticking impulse pulls
+    (:func:`_pulling`) and those at one corner into a side (:func:`_one_corner`), and the
+    scenes with at least one."""
+    out = dict(scenes=0, energy=0, impacts_refused=0, further=0, frictionless=0, pulling=0,
+               corner=0, scenes_frictionless=0)
+    for case in cases:
+        out["scenes"] += 1
+        try:
+            ev = pim.event(case)
+        except pim.InputError as exc:
+            out["energy" if "gains energy" in str(exc) else "impacts_refused"] += 1
+            continue
+        gained = [i for i in ev.impacts[1:] if i.law == "brach-capped"
+                  and i.coefficients["beta"] == 0.0]
+        out["further"] += len(ev.impacts) - 1
+        out["frictionless"] += len(gained)
+        before = [_before(case, ev, i) for i in gained]
+        out["pulling"] += sum(_pulling(v, i) for v, i in zip(before, gained))
+        out["corner"] += sum(_one_corner(v) for v in before)
+        out["scenes_frictionless"] += bool(gained)
+    return out
+
+
+def energy_table() -> Table:
+    """:func:`energy_counts` of :func:`generated_side_slaps`: counts and shares."""
+    c = energy_counts(generated_side_slaps())
+
+    def share(part, whole):
+        return Num(100.0 * part / whole, 1) if whole else "-"
+
+    rows = (("generated side slaps", c["scenes"], ""),
+            ("refused: an impact gains energy", c["energy"], share(c["energy"], c["scenes"])),
+            (f"refused: more than {MAX_IMPACTS} impacts after the first",
+             c["impacts_refused"], share(c["impacts_refused"], c["scenes"])),
+            ("with a further impact solved frictionless", c["scenes_frictionless"],
+             share(c["scenes_frictionless"], c["scenes"])),
+            ("further impacts", c["further"], ""),
+            ("further impacts whose capped answer gains energy (solved frictionless)",
+             c["frictionless"], share(c["frictionless"], c["further"])),
+            ("of these, the sticking impulse pulls (Pn0 < 0)", c["pulling"],
+             share(c["pulling"], c["frictionless"])),
+            ("of these, at one corner into a side (else two sides flat)", c["corner"],
+             share(c["corner"], c["frictionless"])))
+    return Table("event_energy", "Further impacts that gain energy under brach-capped",
+                 ("generated side slaps (default law and tyres)", "count", "share [%]"),
+                 rows, csv=False)
+
+
+def energy_block() -> str:
+    """The generated energy block of docs/event.md, markers included."""
+    return "\n".join([ENERGY_BEGIN, "", markdown_table(energy_table()), "", ENERGY_END])
+
+
 def monte_carlo_table() -> Table:
     """The side slap's impact speeds reconstructed from its own event's rest positions
     (sigmas 5 cm, 1 deg), with :data:`MC_SAMPLES` Monte Carlo samples (seed 0): the truth,
@@ -191,9 +293,10 @@ def monte_carlo_block(table: Table | None = None) -> str:
 
 def regenerate(docs_dir) -> list[Path]:
     """Rewrite the tables of ``docs_dir/event.md`` (between their markers): this module's
-    (the impacts, the Monte Carlo through the event) and the staged test's
-    (:mod:`comparisons.docs.event_staged`)."""
+    (the impacts, the energy figures, the Monte Carlo through the event) and the staged
+    test's (:mod:`comparisons.docs.event_staged`)."""
     page = Path(docs_dir) / PAGE
     write_block(page, BEGIN, END, block())
+    write_block(page, ENERGY_BEGIN, ENERGY_END, energy_block())
     write_block(page, MC_BEGIN, MC_END, monte_carlo_block())
     return [write_block(page, event_staged.BEGIN, event_staged.END, event_staged.block())]

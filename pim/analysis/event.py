@@ -18,18 +18,24 @@
    ``[[impacts]]`` entry for it (:class:`pim.model.case.ImpactSpec`) or the stated
    defaults (the friction-capped Brach law, restitution
    :data:`~pim.model.event_formula.SECONDARY_RESTITUTION`, beta 1, cap
-   :data:`~pim.model.event_formula.SECONDARY_CONTACT_FRICTION`), solved by :func:`pim.solve`;
+   :data:`~pim.model.event_formula.SECONDARY_CONTACT_FRICTION`), solved in the kernel by
+   :func:`pim.model.event_formula.further_impact` (any of :func:`pim.solve`'s laws, the
+   same formula) and recorded from its states before and after;
 5. **on to rest**: every vehicle's ``|v| + |omega| r_max`` below
    :data:`pim.model.event.REST_SPEED`, or ``max_time``.
 
+Steps 3-5 are one call of the compiled kernel; the scene's arrays are built once per case
+and tyre friction (the last 8 kept: a case is frozen).
+
 :func:`event_rest_many` runs step 3-5 for N samples of post-impact motion at once (the
-kernel solves the further impacts itself, Brach's laws): the rest states and an impact
+same kernel, the same further impacts under every law): the rest states and an impact
 summary, for the Monte Carlo and the reconstruction through the event.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import lru_cache
 
 import numpy as np
 
@@ -51,8 +57,11 @@ from ..model.event_formula import (
     SECONDARY_CONTACT_FRICTION,
     SECONDARY_LAW,
     SECONDARY_RESTITUTION,
+    energy_loss,
+    slip_speed,
 )
-from ..model.geometry import kinetic_energy, vehicle_outline
+from ..model.geometry import vehicle_outline
+from ..model.impact_laws import LAW_CODES
 from ..model.law import resolve_law, solve
 from ..model.numbers import InputError
 from ..model.pdof import pdof
@@ -61,6 +70,7 @@ from ..model.runout import MAX_TIME, RhsData, RunoutVehicle
 from ..model.tyres import DEFAULT_REGULARISATION, STANDARD_GRAVITY
 
 __all__ = ["event", "event_rest_many", "EventRest", "event_vehicle", "impact_spec",
+           "kernel_impact_records",
            "WHEELBASE_PER_LENGTH", "TRACK_PER_WIDTH", "FREE_MOTION_TIME", "SLIDE_SPEED",
            "APPROACH_SAMPLE"]
 
@@ -160,33 +170,43 @@ def scene_data(case: Case, tyre_friction, n: int = 1) -> tuple:
     return data[0], data[1], outlines, inverse, vehicles
 
 
-def _coefficients(case: Case) -> np.ndarray:
-    """(MAX_IMPACTS, 3): each further impact's eps, beta and cap for the kernel."""
+def _further_specs(case: Case) -> tuple:
+    """:func:`impact_spec` of the impacts 2 to MAX_IMPACTS + 1, each distinct one built
+    once (the last ``[[impacts]]`` entry, or the defaults, stands for all after it)."""
+    given = len(tuple(getattr(case, "impacts", ()) or ()))
+    distinct = [impact_spec(case, k) for k in range(2, min(max(given, 1), MAX_IMPACTS) + 2)]
+    return tuple(distinct[min(k, len(distinct) - 1)] for k in range(MAX_IMPACTS))
+
+
+def _coefficients(specs: tuple) -> np.ndarray:
+    """(MAX_IMPACTS, 7): the further impacts' laws (``specs``, :func:`_further_specs`) for
+    the kernel (:data:`pim.model.event_kernel.COEFFICIENT_COLUMNS`: restitution, beta, cap,
+    law code, C and Gamma where the case's ``[[impacts]]`` give them, else NaN)."""
     rows = []
-    for k in range(2, MAX_IMPACTS + 2):
-        spec = impact_spec(case, k)
-        if spec.law == "kudlich-slibar":
-            raise InputError(f"impacts[{k - 2}].law: the Monte Carlo's event solves further "
-                             f"impacts under Brach's laws only (brach, brach-capped)")
+    for spec in specs:
         cap = np.inf if spec.law == "brach" else float(spec.contact_friction)
-        rows.append((float(spec.restitution), float(spec.beta), cap))
+        point = ((np.nan, np.nan) if spec.point is None
+                 else np.asarray(spec.point, float).reshape(2))
+        rows.append((float(spec.restitution), 1.0 if spec.beta is None else float(spec.beta),
+                     cap, LAW_CODES[spec.law], *point,
+                     np.nan if spec.normal_angle is None else float(spec.normal_angle)))
     return np.array(rows)
 
 
-def _state(case: Case, result) -> np.ndarray:
+def _state(case: Case, result, fixed: bool) -> np.ndarray:
     """Both vehicles' (x, y, psi, v_x, v_y, omega) just after the first impact (..., 2, 6)
-    (the leading axes of the result's samples)."""
-    rows = []
-    for i in (1, 2):
-        v = getattr(case, f"vehicle{i}")
-        w = np.asarray(getattr(result, f"yaw_rate{i}"), float)
-        vel = np.broadcast_to(np.asarray(getattr(result, f"velocity{i}"), float), w.shape + (2,))
-        if bool(v.fixed):
-            vel, w = np.zeros_like(vel), np.zeros_like(w)
-        pose = np.broadcast_to(np.append(np.asarray(v.cg, float).reshape(2), float(v.heading)),
-                               w.shape + (3,))
-        rows.append(np.concatenate([pose, vel, w[..., None]], axis=-1))
-    return np.stack(rows, axis=-2)
+    (the leading axes of the result's samples; ``fixed``: vehicle 2 is a fixed obstacle,
+    its motion 0)."""
+    out = np.empty(np.shape(result.yaw_rate1) + (2, 6))
+    for i, v in enumerate((case.vehicle1, case.vehicle2)):
+        out[..., i, :2] = np.asarray(v.cg, float).reshape(2)
+        out[..., i, 2] = float(v.heading)
+        if i == 1 and fixed:
+            out[..., i, 3:] = 0.0
+        else:
+            out[..., i, 3:5] = getattr(result, f"velocity{i + 1}")
+            out[..., i, 5] = getattr(result, f"yaw_rate{i + 1}")
+    return out
 
 
 def approach_motion(vehicle: Vehicle, marks, times) -> tuple:
@@ -228,15 +248,30 @@ def sliding_flags(states: np.ndarray, vehicle: RunoutVehicle | None,
     n = states.shape[0]
     if vehicle is None or friction == 0.0:
         return np.zeros((n, 4), bool)
-    pos = np.asarray(vehicle.positions, float)
-    braking = np.asarray(vehicle.braking, float)
-    steer = np.broadcast_to(np.asarray(vehicle.steer, float), (4,))
-    psi = states[:, 2:3]
-    c, s = np.cos(psi), np.sin(psi)
-    ax, ay = c * pos[:, 0] - s * pos[:, 1], s * pos[:, 0] + c * pos[:, 1]
-    sx, sy = states[:, 3:4] - states[:, 5:6] * ay, states[:, 4:5] + states[:, 5:6] * ax
-    lat = -np.sin(psi + steer) * sx + np.cos(psi + steer) * sy
-    speed = braking * np.hypot(sx, sy) + (1 - braking) * np.abs(lat)
+    return _sliding(np.asarray(states, float)[None], *(w[None] for w in _wheels(vehicle)))[0]
+
+
+def _wheels(vehicle: RunoutVehicle) -> tuple:
+    """``(positions (4, 2) [m], braking (4,) [-], steer (4,) [rad])`` of a run-out vehicle,
+    read-only (shared by the events of a scene)."""
+    out = (np.array(vehicle.positions, float), np.array(vehicle.braking, float),
+           np.array(np.broadcast_to(np.asarray(vehicle.steer, float), (4,))))
+    for a in out:
+        a.setflags(write=False)
+    return out
+
+
+def _sliding(states: np.ndarray, pos: np.ndarray, braking: np.ndarray,
+             steer: np.ndarray) -> np.ndarray:
+    """:func:`sliding_flags` of V vehicles at once: states (V, N, 6), their wheels'
+    positions (V, 4, 2), braking (V, 4) and steer (V, 4); (V, N, 4)
+    (:func:`pim.model.event_formula.slip_speed` on arrays)."""
+    psi = states[..., 2:3]
+    heading = psi + steer[:, None]
+    f = braking[:, None]
+    speed = slip_speed(np.cos(psi), np.sin(psi), states[..., 3:4], states[..., 4:5],
+                       states[..., 5:6], pos[:, None, :, 0], pos[:, None, :, 1],
+                       np.cos(heading), np.sin(heading), f)
     return speed > SLIDE_SPEED
 
 
@@ -251,57 +286,62 @@ def _coefficients_of(spec: ImpactSpec, result) -> dict:
 
 def impact_record(impact_case: Case, result, time: float, spec: ImpactSpec,
                   source: str) -> ImpactRecord:
-    """The :class:`pim.model.event.ImpactRecord` of an impact solved by :func:`pim.solve`."""
+    """The :class:`pim.model.event.ImpactRecord` of an impact solved by :func:`pim.solve`
+    (its energy lost by :func:`pim.model.event_formula.energy_loss`, the formula of
+    ``result.energy_loss``, on numbers)."""
     v1, v2 = impact_case.vehicle1, impact_case.vehicle2
+    fixed = bool(v2.fixed)
     impulse = np.asarray(result.impulse, float).reshape(2)
     before = np.array([np.asarray(v.velocity, float).reshape(2) for v in (v1, v2)])
     after = np.array([np.asarray(result.velocity1, float).reshape(2),
-                      np.zeros(2) if bool(v2.fixed)
-                      else np.asarray(result.velocity2, float).reshape(2)])
+                      np.zeros(2) if fixed else np.asarray(result.velocity2, float).reshape(2)])
+    w_before = np.array([float(np.asarray(v.yaw_rate)) for v in (v1, v2)])
     w_after = np.array([float(np.asarray(result.yaw_rate1)),
-                        0.0 if bool(v2.fixed) else float(np.asarray(result.yaw_rate2))])
-    pd = np.array([float(pdof(impulse, float(v1.heading))),
-                   np.nan if bool(v2.fixed) else float(pdof(-impulse, float(v2.heading)))])
+                        0.0 if fixed else float(np.asarray(result.yaw_rate2))])
+    headings = np.array([float(v1.heading), float(v2.heading)])
+    pd = pdof(np.stack([impulse, -impulse]), headings)
+    if fixed:
+        pd[1] = np.nan
+    point = np.asarray(impact_case.impact.point, float).reshape(2)
+    states = [(*np.asarray(v.cg, float).reshape(2), 0.0, *before[i], w_before[i])
+              for i, v in enumerate((v1, v2))]
+    loss = energy_loss(point[0], point[1], *states,
+                       (*impulse, *after[0], w_after[0], *after[1], w_after[1]))
     return ImpactRecord(
-        time=float(time), point=np.asarray(impact_case.impact.point, float).reshape(2),
-        normal_angle=float(impact_case.impact.normal_angle), law=spec.law,
-        coefficients=_coefficients_of(spec, result), impulse=impulse, velocity_before=before,
-        velocity_after=after,
-        yaw_rate_before=np.array([float(np.asarray(v.yaw_rate)) for v in (v1, v2)]),
-        yaw_rate_after=w_after, energy_loss=float(np.asarray(result.energy_loss)),
-        pdof=pd, source=source)
+        time=float(time), point=point, normal_angle=float(impact_case.impact.normal_angle),
+        law=spec.law, coefficients=_coefficients_of(spec, result), impulse=impulse,
+        velocity_before=before, velocity_after=after, yaw_rate_before=w_before,
+        yaw_rate_after=w_after, energy_loss=float(loss), pdof=pd, source=source)
 
 
-def _contact_case(case: Case, state: np.ndarray, contact: np.ndarray,
-                  spec: ImpactSpec) -> Case:
-    """The impact case of a further contact: both vehicles at ``state`` (2, 6), C and
-    Gamma from the outlines (``contact``: depth, C, n) unless ``spec`` states them."""
-    vehicles = []
-    for i in (1, 2):
-        v = getattr(case, f"vehicle{i}")
-        if not bool(v.fixed):
-            row = state[i - 1]
-            v = replace(v, cg=row[:2].copy(), heading=float(row[2]), velocity=row[3:5].copy(),
-                        yaw_rate=float(row[5]))
-        vehicles.append(v)
-    point = contact[1:3] if spec.point is None else np.asarray(spec.point, float)
-    gamma = (float(np.arctan2(contact[4], contact[3])) if spec.normal_angle is None
-             else float(spec.normal_angle))
-    impact = Impact(point.copy(), gamma, restitution=spec.restitution,
-                    beta=None if spec.law == "kudlich-slibar" else spec.beta, law=spec.law,
-                    contact_friction=None if spec.law == "brach" else spec.contact_friction)
-    return Case(vehicles[0], vehicles[1], impact, name=case.name)
+def kernel_impact_records(rows: np.ndarray, specs, fixed: bool,
+                          source: str = "outlines") -> list:
+    """The :class:`pim.model.event.ImpactRecord` of each impact the event kernel solved,
+    from its rows (k, :data:`pim.model.event_kernel.IMPACT_COLUMNS`: the states before and
+    after, the impulse, C and n) and the laws they were solved under (``specs``, k
+    :func:`impact_spec`'s at least); ``fixed``: vehicle 2 is a fixed obstacle (no PDOF)."""
+    impulse = rows[:, 5:7]
+    pd = np.stack([pdof(impulse, rows[:, 21]),
+                   np.full(len(rows), np.nan) if fixed else pdof(-impulse, rows[:, 22])], -1)
+    return [_kernel_record(row, spec, p, source) for row, spec, p in zip(rows, specs, pd)]
 
 
-def _post_state(state: np.ndarray, impact_case: Case, result) -> np.ndarray:
-    """``state`` (2, 6) with the impact's post-impact velocities and yaw rates."""
-    out = state.copy()
-    out[0, 3:5] = np.asarray(result.velocity1, float).reshape(2)
-    out[0, 5] = float(np.asarray(result.yaw_rate1))
-    if not bool(impact_case.vehicle2.fixed):
-        out[1, 3:5] = np.asarray(result.velocity2, float).reshape(2)
-        out[1, 5] = float(np.asarray(result.yaw_rate2))
-    return out
+def _kernel_record(row: np.ndarray, spec: ImpactSpec, pd: np.ndarray,
+                   source: str) -> ImpactRecord:
+    """One row of :func:`kernel_impact_records` (its PDOFs ``pd`` computed)."""
+    if spec.law == "kudlich-slibar":
+        coefficients = {"k": float(spec.restitution), "mu_c": float(spec.contact_friction)}
+    else:
+        coefficients = {"eps": float(spec.restitution), "beta": float(row[23])}
+        if spec.law == "brach-capped":
+            coefficients["mu_c"] = float(spec.contact_friction)
+    return ImpactRecord(
+        time=float(row[0]), point=row[1:3].copy(),
+        normal_angle=float(np.arctan2(row[4], row[3])) if spec.normal_angle is None
+        else float(spec.normal_angle), law=spec.law, coefficients=coefficients,
+        impulse=row[5:7].copy(), velocity_before=row[[15, 16, 18, 19]].reshape(2, 2),
+        velocity_after=row[[8, 9, 11, 12]].reshape(2, 2), yaw_rate_before=row[[17, 20]],
+        yaw_rate_after=row[[10, 13]], energy_loss=float(row[14]), pdof=pd, source=source)
 
 
 @dataclass(frozen=True)
@@ -323,57 +363,63 @@ class _Watch:
     tolerance: float
 
 
-def _run_out(case: Case, scene, state: np.ndarray, watch: _Watch) -> _Run:
-    """Steps 3-5 of one event (module notes): the kernel runs to a contact, :func:`pim.solve`
-    solves it, the kernel goes on, until rest or the time limit."""
+@dataclass(frozen=True)
+class _Scene:
+    """A case's scene for its single events (:func:`_scene`): the kernel's arrays, the
+    vehicles with tyres (indices: not a fixed obstacle), their wheels (:func:`_wheels`,
+    stacked on a first axis for the kernel) and the wheels' positions (read-only, the
+    tracks'), the further impacts' laws, and whether vehicle 2 is fixed."""
+
+    kernel: object
+    tyred: tuple
+    wheels: tuple
+    positions: tuple
+    specs: tuple
+    fixed: bool
+
+
+def _scene(case: Case, tyre_friction) -> _Scene:
+    """The case's :class:`_Scene` at ``tyre_friction``, built once for the last 8 (case,
+    tyre friction) pairs (:func:`_kept_scene`; a case is frozen and hashes by identity)."""
+    return _kept_scene(case, None if tyre_friction is None else float(tyre_friction))
+
+
+@lru_cache(maxsize=8)
+def _kept_scene(case: Case, tyre_friction) -> _Scene:
+    from ..model.event_kernel import EventScene, kernel_scene  # compiled: numba
+
+    data1, data2, outlines, inverse, vehicles = scene_data(case, tyre_friction)
+    specs = _further_specs(case)
+    scene = EventScene(data1, data2, outlines[None], inverse[None], _coefficients(specs)[None])
+    tyred = tuple(i for i, v in enumerate(vehicles) if v is not None)
+    wheels = [_wheels(vehicles[i]) for i in tyred]
+    stacked = tuple(np.stack([w[j] for w in wheels]) for j in range(3))   # (the kernel's)
+    return _Scene(kernel_scene(scene, 1), tyred, stacked, tuple(w[0] for w in wheels), specs,
+                  bool(case.vehicle2.fixed))
+
+
+def _run_out(scene: _Scene, state: np.ndarray, watch: _Watch) -> _Run:
+    """Steps 3-5 of one event (module notes) in one call of the compiled kernel, which
+    solves every further impact; the records from its rows."""
     from ..model.event_kernel import run_event  # compiled event: numba on first use
 
-    t, allowed, rows, impacts = 0.0, None, [], []
+    size = int(watch.max_time / watch.step) + 64 + 2 * MAX_IMPACTS
     while True:
-        size = int((watch.max_time - t) / watch.step) + 64
-        run = run_event(scene, state[None], start_time=t, allowed=allowed, solve=False,
-                        record=size, step=watch.step, max_time=watch.max_time,
-                        stop_speed=REST_SPEED, tolerance=watch.tolerance)
-        rows.append(run.record)
-        status, t, state = run.status[0], float(run.time[0]), run.final[0]
-        allowed = run.allowed
-        if status == "record":
-            rows[-1] = rows[-1][:-1]            # the next part starts with this state
-            continue
-        if status != "contact":
-            return _Run(np.concatenate(rows), impacts, tuple(~run.moving[0]), status)
-        if len(impacts) == MAX_IMPACTS:
-            raise InputError(f"event: more than {MAX_IMPACTS} impacts after the first (the "
-                             f"vehicles stay in contact: a contact without end is refused)")
-        spec = impact_spec(case, len(impacts) + 2)
-        impact_case = _contact_case(case, state, run.contact[0], spec)
-        impact_case, result = _solved(impact_case)
-        if not bool(np.asarray(result.approaching)):
-            rows[-1] = rows[-1][:-1]            # C does not close under the law's test
-            continue
-        if float(np.asarray(result.energy_loss)) < -1e-9 * (1 + _energy(impact_case)):
-            raise InputError(f"event: the impact at t = {t:.4g} s gains energy under law "
-                             f"{spec.law} (refused)")
-        impacts.append(impact_record(impact_case, result, t, spec, "outlines"))
-        state = _post_state(state, impact_case, result)
-        allowed = np.array([max(float(run.contact[0, 0]), 0.0)])
-
-
-def _solved(impact_case: Case) -> tuple:
-    """``(case, pim.solve(case))`` of a further impact; under Brach's laws an answer that
-    gains energy is solved again frictionless (beta 0), the rule of
-    :func:`pim.model.event_formula.capped_impact` (Kane and Levinson's paradox)."""
-    result = solve(impact_case)
-    if impact_case.impact.law != "kudlich-slibar" and float(
-            np.asarray(result.energy_loss)) < 0.0:
-        impact_case = replace(impact_case, impact=replace(impact_case.impact, beta=0.0))
-        result = solve(impact_case)
-    return impact_case, result
-
-
-def _energy(case: Case) -> float:
-    return float(sum(kinetic_energy(v.mass, v.yaw_inertia, v.velocity, v.yaw_rate)
-                     for v in (case.vehicle1, case.vehicle2)))
+        run = run_event(scene.kernel, state[None], solve=True, record=size, step=watch.step,
+                        max_time=watch.max_time, stop_speed=REST_SPEED,
+                        tolerance=watch.tolerance)
+        if run.status[0] != "record":       # (steps shrunk near contact: more rows)
+            break
+        size *= 4
+    status, count = run.status[0], int(run.count[0])
+    if status == "impacts":
+        raise InputError(f"event: more than {MAX_IMPACTS} impacts after the first (the "
+                         f"vehicles stay in contact: a contact without end is refused)")
+    impacts = kernel_impact_records(run.impacts[0, :count], scene.specs, scene.fixed)
+    if status == "energy":
+        raise InputError(f"event: the impact at t = {impacts[-1].time:.4g} s gains energy "
+                         f"under law {impacts[-1].law} (refused)")
+    return _Run(run.record, impacts, tuple(~run.moving[0]), status)
 
 
 def event(case: Case, *, tyre_friction=None, approach: float = DEFAULT_APPROACH,
@@ -425,39 +471,45 @@ def event(case: Case, *, tyre_friction=None, approach: float = DEFAULT_APPROACH,
     limit = (FREE_MOTION_TIME if free else MAX_TIME) if max_time is None else float(max_time)
     if not limit > 0:
         raise InputError(f"max_time must be > 0 [s], got {max_time!r}")
-    data1, data2, outlines, inverse, vehicles = scene_data(case, tyre_friction)
-    from ..model.event_kernel import EventScene  # compiled event: numba on first use
-
-    scene = EventScene(data1, data2, outlines[None], inverse[None], np.zeros((1, 1, 3)))
+    scene = _scene(case, tyre_friction)
     result = solve(case, eps, beta)
     choice = resolve_law(case, eps, beta)
     first_spec = ImpactSpec(law=choice.law, contact_friction=choice.contact_friction)
     first = impact_record(case, result, 0.0, first_spec, "case")
-    run = _run_out(case, scene, _state(case, result),
+    run = _run_out(scene, _state(case, result, scene.fixed),
                    _Watch(step, limit, np.inf if single_impact else tolerance))
-    return _assemble(case, (first, *run.impacts), run, approach,
-                     (vehicles, 0.0 if free else 1.0))
+    return _assemble(case, (first, *run.impacts), run, approach, scene, free)
 
 
-def _assemble(case: Case, impacts: tuple, run: _Run, approach: float, tyres: tuple) -> Event:
+def _assemble(case: Case, impacts: tuple, run: _Run, approach: float, scene: _Scene,
+              free: bool) -> Event:
     """The event's samples: the approach, the state just before the first impact, and the
-    run-out's rows (the first is the state just after it)."""
+    run-out's rows (the first is the state just after it); the wheels that slide in the
+    run-out (of the vehicles with tyres, all at once)."""
     before = np.arange(-approach, 0.0, APPROACH_SAMPLE) if approach > 0 else np.zeros(0)
+    start = len(before) + 1
+    states = np.empty((2, start + len(run.rows), 6))
     ev = case.evidence
-    tracks = []
-    for i in (1, 2):
-        vehicle = getattr(case, f"vehicle{i}")
-        marks = None if ev is None or getattr(ev, f"vehicle{i}") is None else getattr(
-            ev, f"vehicle{i}").pre_impact
+    for i, vehicle in enumerate((case.vehicle1, case.vehicle2)):
+        marks = None if ev is None or getattr(ev, f"vehicle{i + 1}") is None else getattr(
+            ev, f"vehicle{i + 1}").pre_impact
         pre = approach_motion(vehicle, marks, np.append(before, 0.0))
-        cols = run.rows[:, 1 + 6 * (i - 1):7 + 6 * (i - 1)]
-        states = np.concatenate([np.column_stack([pre[0], pre[1], pre[2], pre[3]]), cols])
-        sliding = sliding_flags(states, tyres[0][i - 1], tyres[1])
-        sliding[:len(before) + 1] = False
-        wheels = None if tyres[0][i - 1] is None else tyres[0][i - 1].positions
-        tracks.append(Track(states[:, :2], states[:, 2], states[:, 3:5], states[:, 5],
-                            sliding=sliding, outline=vehicle_outline(vehicle),
-                            fixed=bool(vehicle.fixed), wheels=wheels))
+        states[i, :start, :2], states[i, :start, 2] = pre[0], pre[1]
+        states[i, :start, 3:5], states[i, :start, 5] = pre[2], pre[3]
+        states[i, start:] = run.rows[:, 1 + 6 * i:7 + 6 * i]
+    sliding = np.zeros((2, len(states[0]), 4), bool)
+    if scene.tyred and not free:
+        from ..model.event_kernel import sliding_rows  # compiled event: numba
+
+        tyred = list(scene.tyred)
+        sliding[tyred, start:] = sliding_rows(states[tyred, start:], *scene.wheels,
+                                              SLIDE_SPEED)
+    tracks = [Track(states[i, :, :2], states[i, :, 2], states[i, :, 3:5], states[i, :, 5],
+                    sliding=sliding[i], outline=vehicle_outline(v),
+                    fixed=i == 1 and scene.fixed,
+                    wheels=scene.positions[scene.tyred.index(i)] if i in scene.tyred
+                    else None)
+              for i, v in enumerate((case.vehicle1, case.vehicle2))]
     time = np.concatenate([before, [0.0], run.rows[:, 0]])
     stopped = tuple(bool(s) for s in run.stopped)
     rest = float(time[-1]) if all(stopped) else None
@@ -508,9 +560,9 @@ def event_rest_many(case: Case, velocity, yaw_rate, *, tyre_friction=None, max_t
                     poses=None) -> EventRest:
     """The rest states of N events from N post-impact motions of one case (compiled, parallel).
 
-    The run-out, the outline watch and every further impact of :func:`event`, the further
-    impacts solved in the kernel (:func:`pim.model.event_formula.capped_impact`: Brach's
-    laws, the case's ``[[impacts]]`` or the defaults), no timeline kept.
+    The run-out, the outline watch and every further impact of :func:`event` (the same
+    kernel: :func:`pim.model.event_formula.further_impact` under the case's ``[[impacts]]``
+    laws or the defaults, every law :func:`pim.solve` takes), no timeline kept.
 
     Parameters
     ----------
@@ -545,13 +597,12 @@ def event_rest_many(case: Case, velocity, yaw_rate, *, tyre_friction=None, max_t
     free = not per_sample and tyre_friction is not None and float(tyre_friction) == 0.0
     if vehicles is not None:
         data1, data2, inverse = _sampled_vehicles(vehicles, n)
-    start = np.broadcast_to(_state(case, _Motion(velocity, yaw_rate)), (n, 2, 6)).copy()
+    start = np.broadcast_to(_state(case, _Motion(velocity, yaw_rate),
+                                   bool(case.vehicle2.fixed)), (n, 2, 6)).copy()
     if poses is not None:
         start[:, :, :3] = poses
-    if bool(case.vehicle2.fixed):
-        start[:, 1, 3:] = 0.0
     scene = EventScene(data1, data2, outlines[None], np.reshape(inverse, (-1, 4)),
-                       _coefficients(case)[None])
+                       _coefficients(_further_specs(case))[None])
     run = run_event(scene, start, solve=True,
                     max_time=(FREE_MOTION_TIME if free else MAX_TIME) if max_time is None
                     else float(max_time), step=step, stop_speed=REST_SPEED,

@@ -30,18 +30,26 @@ The contact is new when the depth grows by more than a tolerance above its least
 since the last impact (the outlines of a case may overlap at PIM's impact configuration by
 the crush, and part), and it is solved when a corner inside closes.
 
-**The secondary impact** (:func:`capped_impact`): PIM's formula (:mod:`pim.model.formula`)
-at C and Gamma with restitution ``eps`` and ``mu = sign(mu0) min(beta |mu0|, cap)``: the
-friction-capped Brach law of :mod:`pim.model.friction_cap` ("brach-capped"; ``cap = inf``
-is Brach's own law), which carries the same two coefficients (restitution and a Coulomb
-cap on the inter-vehicle friction) as pymunk's polygon contact.
+**The secondary impact** (:func:`further_impact`), under any law a case may give it
+(:data:`pim.model.impact_laws.LAW_CODES`), each PIM's formula (:mod:`pim.model.formula`) at
+C and Gamma with the law's impulse ratio (docs/impact-laws.md):
+
+- :func:`capped_impact`: restitution ``eps`` and ``mu = sign(mu0) min(beta |mu0|, cap)``,
+  the friction-capped Brach law of :mod:`pim.model.friction_cap` ("brach-capped"; ``cap =
+  inf`` is Brach's own law, "brach"), which carries the same two coefficients (restitution
+  and a Coulomb cap on the inter-vehicle friction) as pymunk's polygon contact;
+- :func:`kudlich_slibar_impact`: the Kudlich-Slibar law of
+  :mod:`pim.model.impact_laws` ("kudlich-slibar"), PIM at ``eps = k`` with the ratio of
+  the compression impulse (sticking, or sliding at ``mu_c``).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from .evidence_terms import impulse_work
 from .formula import contact, post_impact
+from .impact_laws import LAW_CODES
 
 #: Fixed step of the event's run-out [s] (the run-out's,
 #: :data:`pim.model.runout_kernel.RUNOUT_STEP`).
@@ -75,8 +83,14 @@ SECONDARY_CONTACT_FRICTION = 0.5
 __all__ = ["EVENT_STEP", "MAX_IMPACTS", "CONTACT_TOLERANCE", "TUNNEL_FRACTION",
            "BISECTION_STEP", "SECONDARY_LAW", "SECONDARY_RESTITUTION", "SECONDARY_BETA",
            "SECONDARY_CONTACT_FRICTION", "box", "axis_overlap", "inside_depth",
-           "contact_geometry", "capped_impact", "closing_speed", "bound_radius",
-           "energy_change"]
+           "contact_geometry", "separating_axis", "capped_impact", "kudlich_slibar_impact", "further_impact",
+           "closing_speed", "bound_radius", "energy_change", "KUDLICH_SLIBAR", "slip_speed",
+           "relative_velocity", "energy_loss"]
+
+#: The law code of "kudlich-slibar" in :func:`further_impact`'s coefficients
+#: (:data:`pim.model.impact_laws.LAW_CODES`; "brach" and "brach-capped" are both
+#: :func:`capped_impact`, Brach's own law at an infinite cap).
+KUDLICH_SLIBAR = LAW_CODES["kudlich-slibar"]
 
 
 def box(x, y, psi, front, length, width):
@@ -129,14 +143,7 @@ def contact_geometry(b1, b2, s1, s2):
         1, and how many corners inside the other outline close along it (a float; 0: none,
         C is then the centroid of all inside corners, or the deepest corner).
     """
-    depth, nx, ny = np.inf, 1.0, 0.0
-    for k in range(4):
-        b = b1 if k < 2 else b2
-        ux, uy = (b[2], b[3]) if k % 2 == 0 else (-b[3], b[2])
-        overlap, d = axis_overlap(b1, b2, ux, uy)
-        if overlap < depth:
-            sign = 1.0 if d >= 0.0 else -1.0
-            depth, nx, ny = overlap, sign * ux, sign * uy
+    depth, nx, ny = separating_axis(b1, b2)
     sx = sy = ax = ay = 0.0
     count = closing = 0
     deepest, dx, dy = np.inf, 0.0, 0.0
@@ -162,12 +169,49 @@ def contact_geometry(b1, b2, s1, s2):
     return depth, dx, dy, nx, ny, 1.0 if closing_speed(dx, dy, nx, ny, s1, s2) < 0.0 else 0.0
 
 
+def separating_axis(b1, b2):
+    """The overlap depth [m] of two boxes (<= 0: apart) and the unit normal ``(nx, ny)`` of
+    the penetrated edge from box 2 toward box 1: the least overlap of their projections
+    over their four edge normals (the separating-axis test; :func:`contact_geometry`'s
+    first part, all the outline watch needs between contacts)."""
+    depth, nx, ny = np.inf, 1.0, 0.0
+    for k in range(4):
+        b = b1 if k < 2 else b2
+        ux, uy = (b[2], b[3]) if k % 2 == 0 else (-b[3], b[2])
+        overlap, d = axis_overlap(b1, b2, ux, uy)
+        if overlap < depth:
+            sign = 1.0 if d >= 0.0 else -1.0
+            depth, nx, ny = overlap, sign * ux, sign * uy
+    return depth, nx, ny
+
+
+def relative_velocity(cx, cy, s1, s2):
+    """The velocity of C on vehicle 1 relative to vehicle 2, ``u = (v_1 + w_1 k x r_1) -
+    (v_2 + w_2 k x r_2)`` [m/s] (``r_i = C - G_i``; Brach & Brach 2011, eq. 6.45), of the
+    states ``s = (x, y, psi, v_x, v_y, omega)``."""
+    ux = (s1[3] - s1[5] * (cy - s1[1])) - (s2[3] - s2[5] * (cy - s2[1]))
+    uy = (s1[4] + s1[5] * (cx - s1[0])) - (s2[4] + s2[5] * (cx - s2[0]))
+    return ux, uy
+
+
 def closing_speed(cx, cy, nx, ny, s1, s2):
     """The normal velocity of C on vehicle 1 relative to vehicle 2, ``u . n`` [m/s]
     (< 0: closing), of the states ``s = (x, y, psi, v_x, v_y, omega)``."""
-    ux = (s1[3] - s1[5] * (cy - s1[1])) - (s2[3] - s2[5] * (cy - s2[1]))
-    uy = (s1[4] + s1[5] * (cx - s1[0])) - (s2[4] + s2[5] * (cx - s2[0]))
+    ux, uy = relative_velocity(cx, cy, s1, s2)
     return ux * nx + uy * ny
+
+
+def energy_loss(cx, cy, s1, s2, out):
+    """Kinetic energy lost [J] in an impact at C whose answer is ``out``
+    (:func:`capped_impact`'s: the impulse on vehicle 1, then both vehicles' velocities and
+    yaw rates after) on the states ``s1``, ``s2`` before: ``-P . (u + U) / 2``
+    (:func:`pim.model.evidence_terms.impulse_work`, the formula of
+    :attr:`pim.Result.energy_loss`, exact where a kinetic-energy difference loses the
+    loss to round-off)."""
+    ux, uy = relative_velocity(cx, cy, s1, s2)
+    bx, by = relative_velocity(cx, cy, (s1[0], s1[1], s1[2], out[2], out[3], out[4]),
+                               (s2[0], s2[1], s2[2], out[5], out[6], out[7]))
+    return impulse_work(out[0], out[1], ux, uy, bx, by)
 
 
 def capped_impact(cx, cy, nx, ny, s1, s2, inverse, coefficients, tolerances):
@@ -190,9 +234,10 @@ def capped_impact(cx, cy, nx, ny, s1, s2, inverse, coefficients, tolerances):
 
     Returns
     -------
-    px, py, vx1, vy1, w1, vx2, vy2, w2
-        The impulse on vehicle 1 [N s] and the post-impact velocities [m/s] and yaw rates
-        [rad/s] (the pre-impact ones with no impulse when C does not close).
+    px, py, vx1, vy1, w1, vx2, vy2, w2, beta
+        The impulse on vehicle 1 [N s], the post-impact velocities [m/s] and yaw rates
+        [rad/s] (the pre-impact ones with no impulse when C does not close), and the
+        effective fraction of mu0 [-] (``result.beta`` of :func:`pim.solve`).
 
     Notes
     -----
@@ -229,20 +274,116 @@ def energy_change(inverse, s1, s2, out):
 
 def _capped(cx, cy, nx, ny, s1, s2, inverse, coefficients, tolerances):
     """:func:`capped_impact` without its energy check."""
-    a1, b1, a2, b2 = inverse
     eps, beta, cap = coefficients
-    r1x, r1y, r2x, r2y = cx - s1[0], cy - s1[1], cx - s2[0], cy - s2[1]
-    v1x, v1y, w1, v2x, v2y, w2 = s1[3], s1[4], s1[5], s2[3], s2[4], s2[5]
-    first = contact(nx, ny, a1, b1, r1x, r1y, v1x, v1y, w1, a2, b2, r2x, r2y, v2x, v2y, w2,
-                    eps, 1.0, tolerances[0], tolerances[1])
+    first = _contact_at(cx, cy, nx, ny, s1, s2, inverse, eps, 1.0, tolerances)
     pn0, pt0 = first[7], first[8]
     mu0 = abs(pt0 / pn0) if pn0 != 0.0 else 0.0
     if beta * mu0 > cap:
         beta = cap / mu0
-    out = contact(nx, ny, a1, b1, r1x, r1y, v1x, v1y, w1, a2, b2, r2x, r2y, v2x, v2y, w2,
-                  eps, beta, tolerances[0], tolerances[1])
+    out = _contact_at(cx, cy, nx, ny, s1, s2, inverse, eps, beta, tolerances)
     drive, denom, approaching = out[9], out[10], out[11]
     scale = drive / denom if approaching and denom != 0.0 else 0.0
-    res = post_impact(scale, out[7], out[8], beta, nx, ny, a1, b1, r1x, r1y, v1x, v1y, w1,
-                      a2, b2, r2x, r2y, v2x, v2y, w2)
-    return res[2], res[3], res[4], res[5], res[8], res[6], res[7], res[9]
+    return _answer(scale, out[7], out[8], beta, cx, cy, nx, ny, s1, s2, inverse, beta)
+
+
+def _contact_at(cx, cy, nx, ny, s1, s2, inverse, restitution, beta, tolerances):
+    """:func:`pim.model.formula.contact` of the states ``s1``, ``s2`` at C with normal n."""
+    a1, b1, a2, b2 = inverse
+    return contact(nx, ny, a1, b1, cx - s1[0], cy - s1[1], s1[3], s1[4], s1[5], a2, b2,
+                   cx - s2[0], cy - s2[1], s2[3], s2[4], s2[5], restitution, beta,
+                   tolerances[0], tolerances[1])
+
+
+def _answer(scale, pn0, pt0, beta, cx, cy, nx, ny, s1, s2, inverse, ratio):
+    """The impulse ``s (Pn0 n + beta Pt0 t)`` at C (:func:`pim.model.formula.post_impact`)
+    and the motion after it, in :func:`capped_impact`'s order, ``ratio`` last."""
+    a1, b1, a2, b2 = inverse
+    res = post_impact(scale, pn0, pt0, beta, nx, ny, a1, b1, cx - s1[0], cy - s1[1], s1[3],
+                      s1[4], s1[5], a2, b2, cx - s2[0], cy - s2[1], s2[3], s2[4], s2[5])
+    return res[2], res[3], res[4], res[5], res[8], res[6], res[7], res[9], ratio
+
+
+def kudlich_slibar_impact(cx, cy, nx, ny, s1, s2, inverse, coefficients, tolerances):
+    """A secondary impact at C with normal n under the Kudlich-Slibar law.
+
+    Parameters
+    ----------
+    cx, cy, nx, ny, s1, s2, inverse, tolerances
+        As :func:`capped_impact`.
+    coefficients : (k, mu_c)
+        Restitution k [-] and contact friction mu_c [-] (inf: always stick).
+
+    Returns
+    -------
+    px, py, vx1, vy1, w1, vx2, vy2, w2, mu
+        As :func:`capped_impact`, the last the impulse ratio Pt / Pn [-].
+
+    Notes
+    -----
+    :func:`pim.model.impact_laws.solve_kudlich_slibar`'s law as PIM (the mapping of
+    :mod:`pim.model.impact_laws`): ``eps = k`` and the impulse ratio ``mu`` of the
+    compression impulse, the critical impulse at ``eps = 0`` ``(Pn0(0), Pt0(0))`` (``K P_c =
+    -u``): it sticks, ``mu = Pt0(0) / Pn0(0)``, where it pushes (``Pn0(0) > 0``) within the
+    cap (``|Pt0(0)| <= mu_c Pn0(0)``), else it slides at the cap, ``mu = sigma mu_c``,
+    ``sigma = sign(Pt0(0))``; the normal row ``K_nn Pn + K_nt Pt = -(1 + k) u_n`` with
+    ``Pt = mu Pn`` gives ``Pn = s Pn0(k)``, ``s = drive / (drive + K_nt (mu Pn0(k) -
+    Pt0(k)))`` (Kudlich 1966; Steffan & Moser, SAE 960886; Brach & Brach 2011, eqs.
+    6.55-6.62). No impulse where C does not close.
+    """
+    k, mu_c = coefficients
+    stick = _contact_at(cx, cy, nx, ny, s1, s2, inverse, 0.0, 1.0, tolerances)
+    pn_c, pt_c = stick[7], stick[8]
+    if pn_c > 0.0 and abs(pt_c) <= mu_c * pn_c:
+        mu = pt_c / pn_c
+    else:
+        mu = mu_c if pt_c > 0.0 else -mu_c if pt_c < 0.0 else 0.0
+    out = _contact_at(cx, cy, nx, ny, s1, s2, inverse, k, 1.0, tolerances)
+    tangential = mu * out[7]
+    denom = out[9] + out[5] * (tangential - out[8])
+    scale = out[9] / denom if out[11] and denom != 0.0 else 0.0
+    return _answer(scale, out[7], tangential, 1.0, cx, cy, nx, ny, s1, s2, inverse, mu)
+
+
+def further_impact(cx, cy, nx, ny, s1, s2, inverse, coefficients, tolerances):
+    """A secondary impact at C with normal n under the law its coefficients name.
+
+    Parameters
+    ----------
+    cx, cy, nx, ny, s1, s2, inverse, tolerances
+        As :func:`capped_impact`.
+    coefficients : (restitution, beta, cap, law)
+        Restitution (eps, or k) [-], fraction of mu0 [-] (Brach's laws), the cap on |mu|
+        or the contact friction mu_c [-] (inf: Brach's law, or always stick), and the law's
+        code (:data:`pim.model.impact_laws.LAW_CODES`).
+
+    Returns
+    -------
+    tuple
+        :func:`capped_impact`'s ("brach", "brach-capped": with its frictionless answer
+        where the capped one gains energy) or :func:`kudlich_slibar_impact`'s
+        ("kudlich-slibar", as :func:`pim.solve` gives it).
+    """
+    if coefficients[3] == KUDLICH_SLIBAR:
+        return kudlich_slibar_impact(cx, cy, nx, ny, s1, s2, inverse,
+                                     (coefficients[0], coefficients[2]), tolerances)
+    return capped_impact(cx, cy, nx, ny, s1, s2, inverse,
+                         (coefficients[0], coefficients[1], coefficients[2]), tolerances)
+
+
+def slip_speed(c, s, vx, vy, omega, px, py, cw, sw, braking):
+    """The slip speed a tyre resists [m/s]: ``f |s| + (1 - f) |s . e_t|``, the weights of
+    :func:`pim.model.tyres.wheel_force` (``f`` the braking fraction, ``s`` the contact
+    point's slip velocity, ``e_t = (-sw, cw)`` the wheel's lateral unit vector); where it
+    passes :data:`pim.analysis.event.SLIDE_SPEED` the wheel slides (leaves marks).
+
+    Parameters as :func:`pim.model.tyres.wheel_force` (numbers or broadcasting arrays); a
+    locked wheel given as the number 1.0 skips the lateral term it weights by 0 (the same
+    number)."""
+    ax = c * px - s * py
+    ay = s * px + c * py
+    sx = vx - omega * ay
+    sy = vy + omega * ax
+    full = np.hypot(sx, sy)
+    if isinstance(braking, float) and braking == 1.0:
+        return full
+    return braking * full + (1.0 - braking) * np.abs(-sw * sx + cw * sy)

@@ -15,10 +15,11 @@ After every step the outlines are watched (:mod:`pim.model.event_formula`):
 - **a new contact** is an overlap depth more than ``tolerance`` above its least value since
   the last impact; the step is then bisected down to 1 microsecond to the time the depth
   first passes that level, so no sample penetrates by much more than ``tolerance``; if C
-  closes there, the secondary impact (:func:`pim.model.event_formula.capped_impact`) is
-  solved in the kernel (``solve``) or the run stops and returns the contact for the caller
-  to solve (a single event: :func:`pim.analysis.event.event` solves it with
-  :func:`pim.solve` under any law).
+  closes there, the secondary impact (:func:`pim.model.event_formula.further_impact`, under
+  the law and coefficients of :data:`COEFFICIENT_COLUMNS`, at C and Gamma of the contact
+  unless they are given) is solved in the kernel (``solve``; a recorded sample gets a row
+  just before and one just after it, at the same time) or the run stops and returns the
+  contact for the caller to solve.
 
 Samples run in parallel (``prange``), each to rest (every vehicle's ``|v| + |omega| r_max``
 below ``stop_speed``), to ``max_time`` or to a contact. Sample 0's every step can be
@@ -35,7 +36,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import get_num_threads, njit, prange, set_num_threads
 
-from . import event_formula, formula, runout_formula, runout_kernel, tyres
+from . import event_formula, evidence_terms, formula, runout_formula, runout_kernel, tyres
 from .numba_cache import compile_module, stamped_cache
 from .numbers import InputError
 from .runout import RhsData
@@ -48,34 +49,48 @@ from .event_formula import (
 )
 from .runout_kernel import one_signature, rk4_stages
 
-__all__ = ["EventScene", "EventRun", "run_event", "STATUS", "IMPACT_COLUMNS",
-           "RECORD_COLUMNS"]
+__all__ = ["EventScene", "EventRun", "KernelScene", "kernel_scene", "run_event", "sliding_rows", "STATUS", "IMPACT_COLUMNS",
+           "RECORD_COLUMNS", "COEFFICIENT_COLUMNS"]
 
 #: Fewer samples than this run on one thread (a single event: waking the pool costs more).
 SERIAL_BELOW = 8
 #: What ended each sample's run (the kernel's status codes, in order).
 STATUS = ("rest", "time", "contact", "impacts", "energy", "record")
-#: Columns of an in-kernel impact's record.
+#: Columns of an in-kernel impact's record: its time, C and n, the impulse on vehicle 1, the
+#: contact's depth, both vehicles' velocities and yaw rates after, the energy lost, their
+#: velocities and yaw rates before, their headings, and the law's ratio
+#: (:func:`pim.model.event_formula.further_impact`: the effective beta of Brach's laws, mu
+#: of Kudlich-Slibar's).
 IMPACT_COLUMNS = ("time", "cx", "cy", "nx", "ny", "px", "py", "depth", "vx1", "vy1", "w1",
-                  "vx2", "vy2", "w2", "energy_loss")
+                  "vx2", "vy2", "w2", "energy_loss", "vx1_before", "vy1_before", "w1_before",
+                  "vx2_before", "vy2_before", "w2_before", "psi1", "psi2", "ratio")
+#: Columns of each further impact's law: restitution (eps, or k) [-], fraction of mu0 [-],
+#: the cap or contact friction [-] (inf: none), the law's code
+#: (:data:`pim.model.impact_laws.LAW_CODES`), and C [m] and Gamma [rad] where the case
+#: gives them (NaN: the outlines' contact).
+COEFFICIENT_COLUMNS = ("restitution", "beta", "cap", "law", "cx", "cy", "gamma")
 #: Columns of a recorded step: time and both vehicles' (x, y, psi, v_x, v_y, omega).
 RECORD_COLUMNS = ("time",) + tuple(f"{q}{i}" for i in (1, 2)
                                    for q in ("x", "y", "psi", "vx", "vy", "omega"))
 
 _PIM = compile_module(formula)
-_GEO = compile_module(event_formula, {"contact": _PIM.contact,
-                                      "post_impact": _PIM.post_impact})
-_box, _contact_geometry = _GEO.box, _GEO.contact_geometry
-_capped_impact = _GEO.capped_impact
-_cached = stamped_cache(event_formula, formula, runout_formula, tyres, runout_kernel)
+_GEO = compile_module(event_formula, {
+    "contact": _PIM.contact, "post_impact": _PIM.post_impact,
+    "impulse_work": njit(inline="always", error_model="numpy")(evidence_terms.impulse_work)})
+_box, _contact_geometry, _separating_axis = (_GEO.box, _GEO.contact_geometry,
+                                             _GEO.separating_axis)
+_further_impact, _energy_loss = _GEO.further_impact, _GEO.energy_loss
+_slip_speed = _GEO.slip_speed
+_cached = stamped_cache(event_formula, formula, runout_formula, tyres, runout_kernel,
+                        evidence_terms)
 
 
 @njit(error_model="numpy")
-def _step(st, moving, t, h, veh1, veh2, new):  # pragma: no cover - compiled
+def _step(st, moving, t, h, veh1, veh2, new, ks):  # pragma: no cover - compiled
     """Both vehicles' states ``st`` (2, 6) advanced by one RK4 step of ``h`` [s] into
-    ``new`` (the held ones copied). One function (not inlined), called by the step and the
-    bisection, so numba compiles the right-hand side once."""
-    ks = np.empty((4, 6))
+    ``new`` (the held ones copied; ``ks`` (4, 6) the stages' work space). One function (not
+    inlined), called by the step and the bisection, so numba compiles the right-hand side
+    once."""
     for v in range(2):
         for j in range(6):
             new[v, j] = st[v, j]
@@ -98,18 +113,26 @@ def _contact(st, geo):  # pragma: no cover - compiled
 
 
 @njit(error_model="numpy")
-def _bisect(st, moving, t, h, veh1, veh2, new, geo, level):  # pragma: no cover - compiled
+def _depth(st, geo):  # pragma: no cover - compiled
+    """The outlines' overlap depth [m] at the states ``st`` (:func:`_contact`'s first)."""
+    b1 = _box(st[0, 0], st[0, 1], st[0, 2], geo[0, 0], geo[0, 1], geo[0, 2])
+    b2 = _box(st[1, 0], st[1, 1], st[1, 2], geo[1, 0], geo[1, 1], geo[1, 2])
+    return _separating_axis(b1, b2)[0]
+
+
+@njit(error_model="numpy")
+def _bisect(st, moving, t, h, veh1, veh2, new, geo, level, ks):  # pragma: no cover
     """The shortest step in (0, h] [s] (to :data:`BISECTION_STEP`) after which the overlap
     depth exceeds ``level`` [m]; ``new`` holds the state after it."""
     lo, hi = 0.0, h
     while hi - lo > BISECTION_STEP:
         mid = 0.5 * (lo + hi)
-        _step(st, moving, t, mid, veh1, veh2, new)
-        if _contact(new, geo)[0] > level:
+        _step(st, moving, t, mid, veh1, veh2, new, ks)
+        if _depth(new, geo) > level:
             hi = mid
         else:
             lo = mid
-    _step(st, moving, t, hi, veh1, veh2, new)
+    _step(st, moving, t, hi, veh1, veh2, new, ks)
     return hi
 
 
@@ -141,23 +164,32 @@ def _time_step(st, dt, rad, small):  # pragma: no cover - compiled
 @njit(error_model="numpy")
 def _impact(st, c, inv, coef, rec):  # pragma: no cover - compiled
     """Solve the impact at contact ``c`` (depth, cx, cy, nx, ny) on the states ``st`` in
-    place, its record into ``rec`` (:data:`IMPACT_COLUMNS` from "px"); False when C does
-    not close under the law's tolerance (no impulse)."""
+    place under the law ``coef`` (:data:`COEFFICIENT_COLUMNS`), its record into ``rec``
+    (:data:`IMPACT_COLUMNS` from "cx"). 0: C does not close under the law's tolerance (no
+    impulse, nothing changed); 1: solved; 2: solved, and it gains energy."""
+    cx, cy, nx, ny = c[1], c[2], c[3], c[4]
+    if not np.isnan(coef[4]):
+        cx, cy = coef[4], coef[5]
+    if not np.isnan(coef[6]):
+        nx, ny = np.cos(coef[6]), np.sin(coef[6])
     s1 = (st[0, 0], st[0, 1], st[0, 2], st[0, 3], st[0, 4], st[0, 5])
     s2 = (st[1, 0], st[1, 1], st[1, 2], st[1, 3], st[1, 4], st[1, 5])
     before = _energy(st, inv)
-    out = _capped_impact(c[1], c[2], c[3], c[4], s1, s2,
-                             (inv[0], inv[1], inv[2], inv[3]),
-                             (coef[0], coef[1], coef[2]), (1e-12, 1e-12))
+    out = _further_impact(cx, cy, nx, ny, s1, s2, (inv[0], inv[1], inv[2], inv[3]),
+                          (coef[0], coef[1], coef[2], coef[3]), (1e-12, 1e-12))
     if out[0] == 0.0 and out[1] == 0.0:
-        return False
-    rec[0], rec[1], rec[2] = out[0], out[1], c[0]
+        return 0
+    rec[0], rec[1], rec[2], rec[3] = cx, cy, nx, ny
+    rec[4], rec[5], rec[6] = out[0], out[1], c[0]
+    for j in range(6):
+        rec[14 + j] = st[j // 3, 3 + j % 3]
+    rec[20], rec[21], rec[22] = st[0, 2], st[1, 2], out[8]
     st[0, 3], st[0, 4], st[0, 5] = out[2], out[3], out[4]
     st[1, 3], st[1, 4], st[1, 5] = out[5], out[6], out[7]
     for j in range(6):
-        rec[3 + j] = st[j // 3, 3 + j % 3]
-    rec[9] = before - _energy(st, inv)
-    return True
+        rec[7 + j] = st[j // 3, 3 + j % 3]
+    rec[13] = _energy_loss(cx, cy, s1, s2, out)
+    return 2 if rec[13] < -1e-9 * (1.0 + before) else 1
 
 
 @_cached
@@ -181,15 +213,18 @@ def _run(y0, t0, allowed0, data1, data2, geo, rad, reach, inv, coef, settings, o
 def _sample(i, st, t, allowed, veh1, veh2, geo, rad, reach, inv, coef, settings, out, tail,
             impacts, record):  # pragma: no cover - compiled
     dt, max_time, stop_speed, tol, solve = settings
-    new = np.empty((2, 6))
+    new, ks = np.empty((2, 6)), np.empty((4, 6))
     moving = np.zeros(2, dtype=np.bool_)
     for v in range(2):
         moving[v] = inv[2 * v] > 0.0 and (np.hypot(st[v, 3], st[v, 4]) + abs(st[v, 5])
                                           * reach[v] >= stop_speed)
     small = min(geo[0, 1], geo[0, 2], geo[1, 1], geo[1, 2])
+    if np.isnan(allowed):     # the outlines' overlap at the start is no contact
+        allowed = max(_depth(st, geo), 0.0)
     status, count, rows = 1, 0, 0
     c = np.zeros(5)
-    if record.shape[0] > 0 and i == 0:
+    keep = record.shape[0] > 0 and i == 0
+    if keep:
         rows = _write(record, rows, t, st)
     while t < max_time:
         if not moving[0] and not moving[1]:
@@ -197,12 +232,12 @@ def _sample(i, st, t, allowed, veh1, veh2, geo, rad, reach, inv, coef, settings,
             break
         h, near = _time_step(st, dt, rad, small)
         h = min(h, max_time - t)
-        _step(st, moving, t, h, veh1, veh2, new)
+        _step(st, moving, t, h, veh1, veh2, new, ks)
         hit = False
         if near or np.hypot(new[0, 0] - new[1, 0], new[0, 1] - new[1, 1]) < rad[0] + rad[1]:
-            depth = _contact(new, geo)[0]
+            depth = _depth(new, geo)
             if depth > allowed + tol:
-                h = _bisect(st, moving, t, h, veh1, veh2, new, geo, allowed + tol)
+                h = _bisect(st, moving, t, h, veh1, veh2, new, geo, allowed + tol, ks)
                 cg = _contact(new, geo)
                 for j in range(5):
                     c[j] = cg[j]
@@ -211,17 +246,22 @@ def _sample(i, st, t, allowed, veh1, veh2, geo, rad, reach, inv, coef, settings,
                 if closing and solve:
                     if count == impacts.shape[1]:
                         status = 3
-                    elif _impact(new, c, inv, coef[count], impacts[i, count, 5:]):
-                        impacts[i, count, 0] = t + h
-                        for j in range(1, 5):
-                            impacts[i, count, j] = c[j]
-                        if impacts[i, count, 14] < -1e-9 * (1.0 + _energy(new, inv)):
-                            status = 4
-                        count += 1
-                        for v in range(2):
-                            moving[v] = inv[2 * v] > 0.0
+                    elif keep and rows == record.shape[0]:
+                        status = 5
+                        break
                     else:
-                        hit = False
+                        if keep:        # the row just before the impact
+                            rows = _write(record, rows, t + h, new)
+                        kind = _impact(new, c, inv, coef[count], impacts[i, count, 1:])
+                        if kind > 0:
+                            impacts[i, count, 0] = t + h
+                            status = 4 if kind == 2 else status
+                            count += 1
+                            for v in range(2):
+                                moving[v] = inv[2 * v] > 0.0
+                        else:
+                            hit = False
+                            rows -= 1 if keep else 0
                 allowed = max(c[0], 0.0)
             else:
                 allowed = min(allowed, max(depth, 0.0))
@@ -231,7 +271,7 @@ def _sample(i, st, t, allowed, veh1, veh2, geo, rad, reach, inv, coef, settings,
             for j in range(6):
                 st[v, j] = new[v, j]
         t += h
-        if record.shape[0] > 0 and i == 0:
+        if keep:
             if rows == record.shape[0]:
                 status = 5
                 break
@@ -250,6 +290,35 @@ def _sample(i, st, t, allowed, veh1, veh2, geo, rad, reach, inv, coef, settings,
     tail[i, 6:11] = c
     if i == 0:
         tail[i, 11] = rows
+
+
+@_cached
+@njit(cache=True, error_model="numpy")
+def _sliding(states, pos, braking, steer, threshold, out):  # pragma: no cover - compiled
+    """``out[v, i, w]``: wheel w of vehicle v slides at ``states[v, i]`` (x, y, psi, v_x,
+    v_y, omega): its :func:`pim.model.event_formula.slip_speed` above ``threshold``, with
+    the wheels at ``pos`` (V, 4, 2) [m], ``braking`` (V, 4) [-] and ``steer`` (V, 4) [rad]."""
+    for v in range(states.shape[0]):
+        for i in range(states.shape[1]):
+            psi = states[v, i, 2]
+            c, s = np.cos(psi), np.sin(psi)
+            for w in range(4):
+                cw, sw = c, s
+                if steer[v, w] != 0.0:
+                    cw, sw = np.cos(psi + steer[v, w]), np.sin(psi + steer[v, w])
+                out[v, i, w] = _slip_speed(c, s, states[v, i, 3], states[v, i, 4],
+                                           states[v, i, 5], pos[v, w, 0], pos[v, w, 1], cw,
+                                           sw, braking[v, w]) > threshold
+
+
+def sliding_rows(states, pos, braking, steer, threshold) -> np.ndarray:
+    """Which wheels slide (V, N, 4) along V vehicles' states (V, N, 6) (compiled; see
+    :func:`pim.analysis.event.sliding_flags`)."""
+    states = np.ascontiguousarray(states, dtype=float)
+    out = np.empty(states.shape[:2] + (4,), dtype=np.bool_)
+    _sliding(states, *one_signature(np.asarray(pos, float), np.asarray(braking, float),
+                                    np.asarray(steer, float)), float(threshold), out)
+    return out
 
 
 @njit(inline="always", error_model="numpy")
@@ -274,9 +343,9 @@ class EventScene:
         Each vehicle's outline: CG to its front, length, width [m].
     inverse : ndarray (n, 4)
         1/m1, 1/I1, 1/m2, 1/I2 [1/kg, 1/(kg m^2)] (0 for a fixed obstacle).
-    coefficients : ndarray (n, MAX_IMPACTS, 3)
-        Each further impact's restitution [-], fraction of mu0 [-] and friction cap [-]
-        (inf: Brach's law), for the in-kernel impacts.
+    coefficients : ndarray (n, MAX_IMPACTS, len(COEFFICIENT_COLUMNS))
+        Each further impact's law, coefficients and given C and Gamma
+        (:data:`COEFFICIENT_COLUMNS`), for the in-kernel impacts.
     """
 
     data1: RhsData
@@ -329,14 +398,51 @@ def _columns(data: RhsData) -> tuple:
             data.tyre)
 
 
-def run_event(scene: EventScene, start, *, start_time=0.0, allowed=None, solve=True,
-              record=0, step=EVENT_STEP, max_time=60.0, stop_speed=0.05,
+@dataclass(frozen=True)
+class KernelScene:
+    """An :class:`EventScene` of n samples in the kernel's own layout (:func:`kernel_scene`):
+    built once, run from any start (:func:`run_event`).
+
+    Attributes
+    ----------
+    n : int
+        Samples.
+    vehicles : tuple
+        Each vehicle's run-out data columns (:class:`pim.model.runout.RhsData`'s).
+    arrays : tuple
+        Outlines (n, 2, 3), bounding radii (n, 2), tyre reach (n, 2), inverse masses and
+        inertias (n, 4) and the further impacts' laws (n, MAX_IMPACTS, 7).
+    """
+
+    n: int
+    vehicles: tuple
+    arrays: tuple
+
+
+def kernel_scene(scene: EventScene, n: int) -> KernelScene:
+    """``scene``'s arrays for n samples as the kernel takes them (broadcast, C-contiguous)."""
+    data2 = scene.data2 if scene.data2 is not None else scene.data1
+    outlines = np.broadcast_to(np.asarray(scene.outlines, float), (n, 2, 3))
+    rad = np.stack([event_formula.bound_radius(*np.moveaxis(outlines[:, v], -1, 0))
+                    for v in range(2)], -1)
+    reach = np.stack([scene.data1.reach, data2.reach], -1)
+    inv = np.broadcast_to(np.asarray(scene.inverse, float), (n, 4))
+    coefficients = np.broadcast_to(np.asarray(scene.coefficients, float),
+                                   (n, MAX_IMPACTS, len(COEFFICIENT_COLUMNS)))
+    return KernelScene(n, (one_signature(*_columns(scene.data1)),
+                           one_signature(*_columns(data2))),
+                       one_signature(outlines, rad, reach, inv, coefficients))
+
+
+def run_event(scene, start, *, start_time=0.0, allowed=None, solve=True, record=0,
+              step=EVENT_STEP, max_time=60.0, stop_speed=0.05,
               tolerance=CONTACT_TOLERANCE) -> EventRun:
     """Run n samples' two vehicles from ``start`` until rest, ``max_time`` or a contact.
 
     Parameters
     ----------
-    scene : EventScene
+    scene : EventScene or KernelScene
+        The vehicles (a :class:`KernelScene` of the same n: no arrays rebuilt).
     start : array_like (n, 2, 6)
         Each vehicle's state (x, y, psi, v_x, v_y, omega) at ``start_time`` [SI].
     start_time : float or (n,) [s]
@@ -344,8 +450,8 @@ def run_event(scene: EventScene, start, *, start_time=0.0, allowed=None, solve=T
         The overlap depth [m] that counts as no new contact (default: the depth at the
         start, e.g. the outlines' overlap at PIM's impact configuration).
     solve : bool
-        Solve each further impact in the kernel (the Monte Carlo); False: stop at the first
-        closing contact (status "contact") for the caller to solve.
+        Solve each further impact in the kernel (the Monte Carlo, the single event); False:
+        stop at the first closing contact (status "contact") for the caller to solve.
     record : int
         Rows of sample 0's recording (0: none).
     step, max_time, stop_speed, tolerance
@@ -356,17 +462,10 @@ def run_event(scene: EventScene, start, *, start_time=0.0, allowed=None, solve=T
     n = start.shape[0]
     if not np.all(np.isfinite(start)):
         raise InputError("event: the start states must be finite")
-    data2 = scene.data2 if scene.data2 is not None else scene.data1
-    outlines = np.broadcast_to(np.asarray(scene.outlines, float), (n, 2, 3))
-    rad = np.stack([event_formula.bound_radius(*np.moveaxis(outlines[:, v], -1, 0))
-                    for v in range(2)], -1)
-    reach = np.stack([scene.data1.reach, data2.reach], -1)
-    inv = np.broadcast_to(np.asarray(scene.inverse, float), (n, 4))
-    if allowed is None:     # once per distinct start (a Monte Carlo's samples share theirs)
-        poses = np.concatenate([start[:, :, :3].reshape(n, -1), outlines.reshape(n, -1)], 1)
-        rows, which = np.unique(poses, axis=0, return_index=True, return_inverse=True)[1:]
-        allowed = np.array([max(_start_depth(start[i], outlines[i]), 0.0)
-                            for i in rows])[np.reshape(which, -1)]
+    if not isinstance(scene, KernelScene):
+        scene = kernel_scene(scene, n)
+    if allowed is None:       # NaN: the kernel takes the depth at the start
+        allowed = np.full(n, np.nan)
     out, tail = np.empty((n, 2, 6)), np.zeros((n, 12))
     impacts = np.zeros((n, MAX_IMPACTS, len(IMPACT_COLUMNS)))
     rec = np.empty((int(record), 13))
@@ -377,11 +476,7 @@ def run_event(scene: EventScene, start, *, start_time=0.0, allowed=None, solve=T
     try:
         _run(*one_signature(start, np.broadcast_to(np.asarray(start_time, float), (n,)),
                             np.asarray(allowed, float)),
-             one_signature(*_columns(scene.data1)), one_signature(*_columns(data2)),
-             *one_signature(outlines, rad, reach, inv,
-                            np.broadcast_to(np.asarray(scene.coefficients, float),
-                                            (n, MAX_IMPACTS, 3)), settings, out, tail,
-                            impacts, rec))
+             *scene.vehicles, *scene.arrays, settings, out, tail, impacts, rec)
     finally:
         set_num_threads(threads)
     status = np.asarray(STATUS)[tail[:, 1].astype(int)]
@@ -389,10 +484,3 @@ def run_event(scene: EventScene, start, *, start_time=0.0, allowed=None, solve=T
                     count=tail[:, 2].astype(int), allowed=tail[:, 3].copy(),
                     moving=tail[:, 4:6] > 0, contact=tail[:, 6:11].copy(), impacts=impacts,
                     record=rec[:int(tail[0, 11])] if record else None)
-
-
-def _start_depth(state, outlines) -> float:
-    """The outlines' overlap depth [m] of one sample's state (2, 6)."""
-    boxes = [event_formula.box(state[v, 0], state[v, 1], state[v, 2], *outlines[v])
-             for v in range(2)]
-    return float(event_formula.contact_geometry(*boxes, tuple(state[0]), tuple(state[1]))[0])

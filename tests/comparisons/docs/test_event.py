@@ -1,4 +1,5 @@
-"""The table of docs/event.md is what the code gives (comparisons.docs.event)."""
+"""The tables of docs/event.md are what the code gives (comparisons.docs.event), and the
+energy figures' claims hold."""
 
 from pathlib import Path
 
@@ -14,6 +15,19 @@ DOCS = Path(__file__).resolve().parents[3] / "docs"
 
 def test_the_committed_page_holds_the_table_the_code_gives():
     assert D.block() in (DOCS / D.PAGE).read_text(encoding="utf-8")
+
+
+def test_the_committed_page_holds_the_energy_table_the_code_gives():
+    assert D.energy_block() in (DOCS / D.PAGE).read_text(encoding="utf-8")
+
+
+def test_a_further_impact_gains_energy_only_where_its_sticking_impulse_pulls():
+    """The page's claim on a sample of the generated side slaps: none is refused for energy,
+    some further impacts are solved frictionless (their capped answer gains energy), and
+    each of those has a sticking impulse that pulls (Pn0 < 0)."""
+    counts = D.energy_counts(D.generated_side_slaps(40, seed=1))
+    assert counts["energy"] == 0
+    assert counts["frictionless"] > 0 and counts["pulling"] == counts["frictionless"]
 
 
 def test_the_slide_row_agrees_with_the_hand_value():
@@ -45,14 +59,14 @@ def test_regeneration_rewrites_only_the_blocks(tmp_path, capsys, monkeypatch):
     monkeypatch.setattr(D, "monte_carlo_block",
                         lambda table=None: f"{D.MC_BEGIN}\n| mc |\n{D.MC_END}")
     page = tmp_path / D.PAGE
-    page.write_text(f"prose before\n{D.BEGIN}\n| old |\n{D.END}\nmiddle\n"
-                    f"{D.MC_BEGIN}\n| old |\n{D.MC_END}\nbetween\n{S.BEGIN}\nold\n"
-                    f"{S.END}\nprose after\n")
+    page.write_text(f"prose before\n{D.BEGIN}\n| old |\n{D.END}\nbetween\n"
+                    f"{D.ENERGY_BEGIN}\n| old |\n{D.ENERGY_END}\nand\n{S.BEGIN}\nold\n"
+                    f"{S.END}\nthen\n{D.MC_BEGIN}\n| old |\n{D.MC_END}\nprose after\n")
     assert main(["event", "--docs", str(tmp_path)]) == 0
     assert capsys.readouterr().out.strip() == f"wrote {page}"
-    assert page.read_text() == (f"prose before\n{D.block()}\nmiddle\n"
-                                f"{D.MC_BEGIN}\n| mc |\n{D.MC_END}\nbetween\n{S.block()}\n"
-                                f"prose after\n")
+    assert page.read_text() == (f"prose before\n{D.block()}\nbetween\n{D.energy_block()}"
+                                f"\nand\n{S.block()}\nthen\n{D.MC_BEGIN}\n| mc |\n"
+                                f"{D.MC_END}\nprose after\n")
     with pytest.raises(ValueError, match="markers"):
         page.write_text("no markers\n")
         D.regenerate(tmp_path)

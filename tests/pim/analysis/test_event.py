@@ -3,6 +3,7 @@ slide checked by hand, outlines that never pass through each other, RICSAC 9's s
 contact, side slaps, the Monte Carlo's rest states against the single event."""
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -152,6 +153,125 @@ def test_monte_carlo_rest_states_are_the_single_events():
         assert (many.impacts == len(ev.impacts) - 1).all() and many.ok.all()
         assert many.rest_position[0] == pytest.approx(ev.rest_position, abs=1e-6)
         assert many.first_time[0] == pytest.approx(ev.impacts[1].time, abs=1e-9)
+
+
+LAWS = {"brach": ImpactSpec(law="brach", restitution=0.3, beta=0.6),
+        "brach-capped": ImpactSpec(law="brach-capped", restitution=0.2, beta=1.0,
+                                   contact_friction=0.3),
+        "kudlich-slibar": ImpactSpec(law="kudlich-slibar", restitution=0.2,
+                                     contact_friction=0.4)}
+
+
+@pytest.mark.parametrize("law", sorted(LAWS))
+def test_monte_carlo_and_single_event_agree_under_each_law(law):
+    """event_rest_many (the Monte Carlo's kernel) and pim.event give the same further
+    impacts under every law [[impacts]] may name, Kudlich-Slibar's included: their count,
+    the first one's time and the rest states they lead to."""
+    case = t_bone(along=-0.8, impacts=[LAWS[law]])
+    ev = pim.event(case)
+    assert len(ev.impacts) >= 2 and {i.law for i in ev.impacts[1:]} == {law}
+    res = pim.solve(case)
+    many = event_rest_many(case, np.stack([res.velocity1, res.velocity2])[None],
+                           [[float(res.yaw_rate1), float(res.yaw_rate2)]])
+    assert many.ok.all() and many.impacts[0] == len(ev.impacts) - 1
+    assert many.first_time[0] == ev.impacts[1].time
+    assert many.rest_position[0] == pytest.approx(ev.rest_position, abs=1e-9)
+    assert many.rest_heading[0] == pytest.approx(ev.rest_heading, abs=1e-9)
+
+
+@pytest.mark.parametrize("law", sorted(LAWS))
+def test_each_further_impact_is_pim_solve_at_its_contact(law):
+    """The records the kernel's rows give are pim.solve's answer (the library's law, its own
+    arithmetic) for the case of both vehicles as the event has them just before the impact,
+    at its C and Gamma; the first impact is pim.solve(case) itself."""
+    case = t_bone(along=-0.8, impacts=[LAWS[law]])
+    ev = pim.event(case)
+    assert ev.impacts[0].impulse == pytest.approx(np.asarray(pim.solve(case).impulse))
+    spec = LAWS[law]
+    for imp in ev.impacts[1:]:
+        k = int(np.flatnonzero(ev.time == imp.time)[0])      # the row just before it
+        vehicles = [replace(v, cg=t.position[k], heading=float(t.heading[k]),
+                            velocity=imp.velocity_before[i], yaw_rate=imp.yaw_rate_before[i])
+                    for i, (v, t) in enumerate(zip((case.vehicle1, case.vehicle2), ev.tracks))]
+        assert vehicles[0].velocity == pytest.approx(ev.vehicle1.velocity[k])
+        impact = pim.Impact(imp.point, imp.normal_angle, restitution=spec.restitution,
+                            beta=spec.beta, law=law, contact_friction=spec.contact_friction)
+        ref = pim.solve(pim.Case(*vehicles, impact))
+        if law != "kudlich-slibar" and float(ref.energy_loss) < 0:   # solved frictionless
+            ref = pim.solve(pim.Case(*vehicles, replace(impact, beta=0.0)))
+        scale = 1e-9 * (1 + float(np.hypot(*ref.impulse)))
+        assert imp.impulse == pytest.approx(np.asarray(ref.impulse), abs=scale)
+        assert imp.velocity_after == pytest.approx(
+            np.stack([ref.velocity1, ref.velocity2]), abs=1e-9)
+        assert imp.energy_loss == pytest.approx(float(ref.energy_loss), rel=1e-9, abs=1e-6)
+        assert ev.vehicle1.velocity[k + 1] == pytest.approx(imp.velocity_after[0])
+
+
+def test_one_kernel_call_and_one_solve_per_event(monkeypatch):
+    """The whole run-out, every further impact included, is one call of the compiled
+    kernel; pim.solve runs once (the first impact), never per further impact."""
+    from pim.analysis import event as module
+    from pim.model import event_kernel
+
+    calls = {"kernel": 0, "solve": 0}
+
+    def counted(name, function):
+        def run(*args, **kwargs):
+            calls[name] += 1
+            return function(*args, **kwargs)
+        return run
+
+    monkeypatch.setattr(event_kernel, "run_event", counted("kernel", event_kernel.run_event))
+    monkeypatch.setattr(module, "solve", counted("solve", module.solve))
+    ev = pim.event(t_bone(along=-0.8, impacts=[LAWS["kudlich-slibar"]]))
+    assert len(ev.impacts) >= 2
+    assert calls == {"kernel": 1, "solve": 1}
+
+
+def test_a_record_too_short_is_run_again_longer(monkeypatch):
+    """Steps shrunk near contact may fill the kernel's record: the event runs again with a
+    longer one and is the same event."""
+    from pim.model import event_kernel
+
+    case = t_bone(along=-0.8)
+    expected = pim.event(case)
+    real, sizes = event_kernel.run_event, []
+
+    def short_first(*args, **kwargs):
+        sizes.append(kwargs["record"])
+        if len(sizes) == 1:
+            kwargs["record"] = 20
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(event_kernel, "run_event", short_first)
+    ev = pim.event(case)
+    assert len(sizes) == 2 and sizes[1] > sizes[0]
+    assert np.array_equal(ev.time, expected.time)
+    assert np.array_equal(ev.vehicle2.position, expected.vehicle2.position)
+    assert [i.time for i in ev.impacts] == [i.time for i in expected.impacts]
+
+
+def test_given_c_and_gamma_of_a_further_impact_are_used():
+    spec = ImpactSpec(law="brach", restitution=0.2, beta=0.5, point=(-0.5, 1.0),
+                      normal_angle=3.0)
+    second = pim.event(t_bone(along=-0.8, impacts=[spec])).impacts[1]
+    assert second.point == pytest.approx([-0.5, 1.0]) and second.normal_angle == 3.0
+    assert second.coefficients == {"eps": 0.2, "beta": 0.5}
+
+
+def test_a_contact_without_end_is_refused_by_both():
+    """A generated side slap near the struck car's front corner, slow (6.1 m/s into
+    6.3 m/s): the cars stay in contact, impact after impact; pim.event refuses it, naming
+    why, and the Monte Carlo's kernel marks the same sample not ok after as many."""
+    from sim.event_check import side_slap_case
+
+    case = side_slap_case(2.07, speed1=6.07, speed2=6.25, eps=0.238, beta=0.391)
+    with pytest.raises(pim.InputError, match="more than 12 impacts after the first"):
+        pim.event(case)
+    res = pim.solve(case)
+    many = event_rest_many(case, np.stack([res.velocity1, res.velocity2])[None],
+                           [[float(res.yaw_rate1), float(res.yaw_rate2)]])
+    assert not many.ok[0] and many.impacts[0] == 12
 
 
 def test_impacts_table_sets_the_further_impacts_law():

@@ -1,5 +1,6 @@
 """The event's contact geometry and secondary impact (pim.model.event_formula): configurations
-checked by hand, and the capped impact against pim.solve_capped (the library's law)."""
+checked by hand, and the further impact under each law against pim.solve (the library's
+laws)."""
 
 import math
 
@@ -92,6 +93,51 @@ def test_capped_impact_is_pim_solve_capped(eps, beta, cap, gamma, vx, vy, w):
     assert out[2:4] == pytest.approx(tuple(ref.velocity1), abs=1e-9 * (1 + abs(vx) + abs(vy)))
     assert out[5:7] == pytest.approx(tuple(ref.velocity2), abs=1e-9 * (1 + abs(vx) + abs(vy)))
     assert out[4] == pytest.approx(float(ref.yaw_rate1), abs=1e-9 * (1 + abs(w)))
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.floats(0.0, 1.0), st.floats(0.0, 3.0), st.floats(-math.pi, math.pi),
+       st.floats(-20, 20), st.floats(-20, 20), st.floats(-2, 2), st.floats(-1.5, 1.5))
+def test_kudlich_slibar_impact_is_pim_solve(k, mu_c, gamma, vx, vy, w, cy):
+    """The kernel's Kudlich-Slibar impact (PIM at eps = k with the compression impulse's
+    ratio) against pim.solve's law (the compression impulse's own vector formula,
+    pim.model.impact_laws.solve_kudlich_slibar): the same impulse and motion."""
+    s1 = (0.0, 0.0, 0.3, vx, vy, w)
+    s2 = (3.0, 1.0, -0.2, 0.5, -0.3, 0.1)
+    c = (1.4, cy)
+    n = (math.cos(gamma), math.sin(gamma))
+    inverse = (1 / 1500, 1 / 2500, 1 / 1200, 1 / 2000)
+    out = ef.further_impact(c[0], c[1], n[0], n[1], s1, s2, inverse,
+                            (k, 0.7, mu_c, ef.KUDLICH_SLIBAR), (1e-12, 1e-12))
+    case = pim.Case(pim.Vehicle(1500.0, 2500.0, (0.0, 0.0), (vx, vy), w, 0.3),
+                    pim.Vehicle(1200.0, 2000.0, (3.0, 1.0), (0.5, -0.3), 0.1, -0.2),
+                    pim.Impact(c, gamma))
+    ref = pim.solve(case, law="kudlich-slibar", k=k, mu_c=mu_c)
+    assume(not bool(ref.q_singular))
+    if not bool(ref.approaching):
+        assert out[0] == 0.0 and out[1] == 0.0
+        return
+    scale = 1 + float(np.hypot(*ref.impulse))
+    speed = 1 + abs(vx) + abs(vy)
+    assert out[:2] == pytest.approx(tuple(ref.impulse), abs=1e-9 * scale)
+    assert out[2:4] == pytest.approx(tuple(ref.velocity1), abs=1e-9 * speed)
+    assert out[5:7] == pytest.approx(tuple(ref.velocity2), abs=1e-9 * speed)
+    assert (out[4], out[7]) == pytest.approx((float(ref.yaw_rate1), float(ref.yaw_rate2)),
+                                             abs=1e-9 * (1 + abs(w)))
+
+
+def test_further_impact_dispatches_on_the_law():
+    """Law codes 0 and 1 are the capped Brach impact (an infinite cap: Brach's own),
+    code 2 Kudlich-Slibar's: at a sliding contact they differ."""
+    s1, s2 = (0.0, 0.0, 0.0, 0.0, -5.0, 0.0), (0.0, -3.0, 0.0, 3.0, 0.0, 0.0)
+    args = (0.5, -1.0, 0.0, 1.0, s1, s2, (1 / 1500, 1 / 2500, 1 / 1500, 1 / 2500))
+    brach = ef.further_impact(*args, (0.2, 1.0, np.inf, 0.0), (1e-12, 1e-12))
+    capped = ef.further_impact(*args, (0.2, 1.0, 0.1, 1.0), (1e-12, 1e-12))
+    ks = ef.further_impact(*args, (0.2, 1.0, 0.1, ef.KUDLICH_SLIBAR), (1e-12, 1e-12))
+    assert brach == ef.capped_impact(*args, (0.2, 1.0, np.inf), (1e-12, 1e-12))
+    assert capped == ef.capped_impact(*args, (0.2, 1.0, 0.1), (1e-12, 1e-12))
+    assert abs(ks[0] / ks[1]) == pytest.approx(0.1) and ks[8] == pytest.approx(-0.1)
+    assert ks[:8] != capped[:8]
 
 
 def test_closing_speed_sign():

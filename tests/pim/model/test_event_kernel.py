@@ -18,7 +18,8 @@ def scene(n=1, friction=0.7):
         data = replace(data, friction=np.zeros(n))
     outlines = np.array([[[2.25, 4.5, 1.8], [2.25, 4.5, 1.8]]])
     inverse = np.array([[1 / 1500, 1 / 2500, 1 / 1500, 1 / 2500]])
-    coefficients = np.tile([0.1, 1.0, 0.5], (1, MAX_IMPACTS, 1))
+    # brach-capped (law 1), eps 0.1, beta 1, cap 0.5, C and Gamma from the outlines
+    coefficients = np.tile([0.1, 1.0, 0.5, 1.0, np.nan, np.nan, np.nan], (1, MAX_IMPACTS, 1))
     return EventScene(data, data, outlines, inverse, coefficients)
 
 
@@ -58,8 +59,16 @@ def test_the_record_starts_at_the_start_state():
     run = run_event(scene(), start, solve=True, record=5000)
     assert run.record.shape[1] == len(RECORD_COLUMNS)
     assert run.record[0, 1:7] == pytest.approx(start[0, 0])
-    assert np.all(np.diff(run.record[:, 0]) > 0)
     assert run.record[-1, 0] == pytest.approx(run.time[0])
+    # time increases but at each impact: a row just before it and one just after it
+    step = np.diff(run.record[:, 0])
+    same = np.flatnonzero(step == 0)
+    assert np.all(step >= 0) and len(same) == run.count[0] >= 1
+    assert run.record[same, 0] == pytest.approx(run.impacts[0, :run.count[0], 0])
+    before, after = run.record[same], run.record[same + 1]
+    assert before[:, 1:4] == pytest.approx(after[:, 1:4])         # the same place
+    assert before[:, 4:6] == pytest.approx(run.impacts[0, :run.count[0], 15:17])
+    assert after[:, 4:6] == pytest.approx(run.impacts[0, :run.count[0], 8:10])
 
 
 def test_far_apart_vehicles_run_to_rest_without_contact():
@@ -67,3 +76,11 @@ def test_far_apart_vehicles_run_to_rest_without_contact():
     assert run.status[0] == "rest" and run.count[0] == 0
     # four locked wheels: 25 / (2 0.7 g) = 1.82 m
     assert run.final[0, 0, 0] == pytest.approx(25 / (2 * 0.7 * 9.80665), abs=5e-3)
+
+
+def test_a_full_record_stops_the_run():
+    """A record too short for the run stops it (status "record") with the rows it holds;
+    pim.event then runs again with a longer one."""
+    run = run_event(scene(), side_on(10.0), solve=True, record=10)
+    assert run.status[0] == "record" and run.record.shape == (10, len(RECORD_COLUMNS))
+    assert np.all(np.diff(run.record[:, 0]) > 0)
