@@ -136,7 +136,7 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
         better = ct < cost[idx]
         acc = idx[better]
         moved = np.max(np.abs(trial - ua), axis=1)
-        drop = cost[idx] - ct
+        drop = np.subtract(cost[idx], ct, where=better, out=np.zeros_like(ct))  # inf - inf
         u[acc] = trial[better]
         r[acc] = rt[better]
         j[acc] = np.asarray(jt, dtype=float)[better] * width[acc][:, None, :]

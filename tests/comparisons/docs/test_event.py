@@ -39,12 +39,11 @@ def test_the_slide_row_agrees_with_the_hand_value():
     assert rows[("side slap, tyres 0.7", 2)][5] == "brach-capped"
 
 
-@pytest.mark.slow
 def test_the_committed_page_holds_the_monte_carlo_the_code_gives():
     """The Monte Carlo through the event's table (a reconstruction of 200 samples, its
-    single-impact counterpart and 30 draws fitted both ways: about 10 s on idle cores, a
-    minute and more on busy ones), and what it shows: the true speeds inside the 5-95 %
-    through the event, outside the single-impact samples'."""
+    single-impact counterpart and 30 draws fitted both ways: the suite's slower tests), and
+    what it shows: the true speeds inside the 5-95 % through the event, outside the
+    single-impact samples'."""
     table = D.monte_carlo_table()
     assert D.monte_carlo_block(table) in (DOCS / D.PAGE).read_text(encoding="utf-8")
     for row in table.rows:
