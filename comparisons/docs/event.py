@@ -4,8 +4,12 @@ a T-bone whose struck car slaps the bullet car's side, and on a straight slide c
 hand (between :data:`BEGIN` and :data:`END`); and how often a further impact of generated
 side slaps gains energy under the default law and is solved frictionless, and why
 (:func:`energy_table`, between :data:`ENERGY_BEGIN` and :data:`ENERGY_END`); the staged
-test's block is :mod:`comparisons.docs.event_staged`'s. The rest of the page is prose. Each table is a :class:`~comparisons.report.tables.Table` rendered by the
-one Markdown renderer; a test fails when the page differs from what the code gives.
+test's block is :mod:`comparisons.docs.event_staged`'s; and the Monte Carlo of a reconstruction
+through the event on that side slap (:func:`monte_carlo_table`: its intervals through the
+event against the single-impact run-outs', the fast route against the full fit on a subset of
+draws; between :data:`MC_BEGIN` and :data:`MC_END`). The rest of the page is prose. Each
+table is a :class:`~comparisons.report.tables.Table` rendered by the one Markdown renderer; a
+test fails when the page differs from what the code gives.
 """
 
 from __future__ import annotations
@@ -24,6 +28,10 @@ from comparisons.report.tables import Num, Table
 from comparisons.docs import event_staged
 from comparisons.report.write import write_block
 from pim.analysis.event import event_vehicle
+from pim.analysis.event_fit import fit_through_event_many
+from pim.analysis.event_samples import fit_event_samples
+from pim.analysis.reconstruction import evidence_nominal, evidence_sampler, reconstruct
+from pim.analysis.reconstruction_mc import reconstruction_samples, rest_draws
 from pim.model.event_formula import MAX_IMPACTS, box, contact_geometry
 from pim.model.evidence import Evidence, VehicleEvidence
 from pim.model.tyres import STANDARD_GRAVITY
@@ -31,7 +39,8 @@ from pim.model.tyres import STANDARD_GRAVITY
 __all__ = ["COMMAND", "BEGIN", "END", "PAGE", "side_slap_case", "slide_case", "scenes",
            "with_rest_evidence", "impact_table", "block", "regenerate", "ENERGY_BEGIN",
            "ENERGY_END", "GENERATED_SCENES", "generated_side_slaps", "energy_counts",
-           "energy_table", "energy_block"]
+           "energy_table", "energy_block", "MC_BEGIN", "MC_END", "MC_SAMPLES", "MC_SUBSET",
+           "MC_UNKNOWN", "monte_carlo_table", "monte_carlo_block"]
 
 COMMAND = "python -m comparisons.docs event"
 BEGIN = (f"<!-- event: begin (written by `{COMMAND}`; edit comparisons/docs/event.py, not "
@@ -42,6 +51,14 @@ ENERGY_BEGIN = (f"<!-- event-energy: begin (written by `{COMMAND}`; edit "
 ENERGY_END = "<!-- event-energy: end -->"
 #: How many side slaps :func:`generated_side_slaps` draws (seed 0).
 GENERATED_SCENES = 300
+MC_BEGIN = (f"<!-- event-mc: begin (written by `{COMMAND}`; edit comparisons/docs/event.py, "
+            "not this table) -->")
+MC_END = "<!-- event-mc: end -->"
+#: Monte Carlo samples of the reconstruction through the event, and the draws its fast route
+#: and the full fit both fit.
+MC_SAMPLES, MC_SUBSET = 200, 30
+#: The reconstruction's unknowns (the side slap's impact speeds) [m/s].
+MC_UNKNOWN = {"vehicle1.speed": (0.0, 40.0), "vehicle2.speed": (0.0, 40.0)}
 #: The page of docs/ that holds the table.
 PAGE = "event.md"
 
@@ -216,10 +233,70 @@ def energy_block() -> str:
     return "\n".join([ENERGY_BEGIN, "", markdown_table(energy_table()), "", ENERGY_END])
 
 
+def monte_carlo_table() -> Table:
+    """The side slap's impact speeds reconstructed from its own event's rest positions
+    (sigmas 5 cm, 1 deg), with :data:`MC_SAMPLES` Monte Carlo samples (seed 0): the truth,
+    the nominal fit through the event, the 5/50/95 % with every sample fitted through the
+    event, and with the samples' single-impact run-outs (the route before); the note gives
+    the fits' counts and the fast route against the full fit on :data:`MC_SUBSET` draws."""
+    case = with_rest_evidence(side_slap_case())
+    event = reconstruct(case, unknown=MC_UNKNOWN, samples=MC_SAMPLES)
+    single = reconstruction_samples(     # the samples' single-impact run-outs (the route before)
+        event.case, event.fit, MC_UNKNOWN, n=MC_SAMPLES,
+        post_impact=evidence_sampler(case, replace(event.post, event_fit=None)),
+        extra_nominal=evidence_nominal(case, event.post))
+    truth = {"vehicle1.speed": 50.0, "vehicle2.speed": 10.0}
+    rows = []
+    for key, label in (("vehicle1.speed", "vehicle 1"), ("vehicle2.speed", "vehicle 2")):
+        a, b = event.samples.stats[key], single.stats[key]
+        rows.append((label, Num(truth[key], 1), Num(event.values[key] * 3.6, 2),
+                     *(Num(v * 3.6, 2) for v in (a.p5, a.p50, a.p95, b.p5, b.p50, b.p95))))
+    c = event.samples.through_event
+    fast, full, diff = _against_full_fit(case, event.post)
+    note = (f"{MC_SAMPLES} samples through the event: {c['converged']} fits converged "
+            f"({c['fast']} by secant steps, {c['refitted']} by the full fit), "
+            f"{c['unconverged']} left out; {event.samples.n_used} samples used. On "
+            f"{MC_SUBSET} draws of the rest evidence the fast route converged on {fast}, the "
+            f"full fit from the nominal motion on {full}; where both did, their post-impact "
+            f"speeds differ by at most {diff:.3f} km/h")
+    return Table("event_mc", "Impact speeds [km/h] through the event's Monte Carlo",
+                 ("vehicle", "true", "nominal", "5 %", "50 %", "95 %",
+                  "5 % single-impact", "50 % single-impact", "95 % single-impact"),
+                 tuple(rows), note=note, csv=False)
+
+
+def _against_full_fit(case: pim.Case, post) -> tuple:
+    """(fast route converged, full fit converged, largest post-impact speed difference
+    [km/h] where both did) on :data:`MC_SUBSET` draws of the rest evidence (seed 1)."""
+    rng = np.random.default_rng(1)
+    rest, heading = np.zeros((MC_SUBSET, 2, 2)), np.zeros((MC_SUBSET, 2))
+    for i in (1, 2):
+        rest[:, i - 1], heading[:, i - 1], _ = rest_draws(
+            getattr(case.evidence, f"vehicle{i}"), i, rng, MC_SUBSET)
+    fit = post.event_fit
+    x0 = np.array([*fit.velocity[0], fit.yaw_rate[0], *fit.velocity[1], fit.yaw_rate[1]])
+    fast = fit_event_samples(post.case, x0, (rest, heading))
+    x, full = fit_through_event_many(post.case, np.repeat(x0[None], MC_SUBSET, 0),
+                                     (rest, heading))
+    both = fast.converged & full.converged
+    speeds = [3.6 * np.hypot(m[:, [0, 3]], m[:, [1, 4]]) for m in (fast.x, x)]
+    return (int(fast.converged.sum()), int(full.converged.sum()),
+            float(np.max(np.abs(speeds[0] - speeds[1])[both])))
+
+
+def monte_carlo_block(table: Table | None = None) -> str:
+    """The generated Monte Carlo block of docs/event.md, markers included (of ``table``,
+    default :func:`monte_carlo_table`)."""
+    table = monte_carlo_table() if table is None else table
+    return "\n".join([MC_BEGIN, "", markdown_table(table), "", table.note + ".", "", MC_END])
+
+
 def regenerate(docs_dir) -> list[Path]:
     """Rewrite the tables of ``docs_dir/event.md`` (between their markers): this module's
-    and the staged test's (:mod:`comparisons.docs.event_staged`)."""
+    (the impacts, the energy figures, the Monte Carlo through the event) and the staged
+    test's (:mod:`comparisons.docs.event_staged`)."""
     page = Path(docs_dir) / PAGE
     write_block(page, BEGIN, END, block())
     write_block(page, ENERGY_BEGIN, ENERGY_END, energy_block())
+    write_block(page, MC_BEGIN, MC_END, monte_carlo_block())
     return [write_block(page, event_staged.BEGIN, event_staged.END, event_staged.block())]

@@ -293,8 +293,20 @@ def _method(rec: Reconstruction) -> str:
     return (f"Post-impact motion from {source}; unknowns by the inverse PIM (least squares "
             f"over the measured velocities and yaw rates, exact derivatives); "
             + (f"5/50/95 % from a Monte Carlo of {n} samples over the stated uncertainties "
-               f"({rec.samples.n_used} used)." if n else "no Monte Carlo (--samples 0).")
+               f"({rec.samples.n_used} used{_through_event(rec.samples)})." if n
+               else "no Monte Carlo (--samples 0).")
             + f" {law_line(rec)}")
+
+
+def _through_event(samples) -> str:
+    """How the Monte Carlo's post-impact motions went through the event ("" when they did
+    not)."""
+    c = samples.through_event
+    if not c:
+        return ""
+    return (f"; each sample's post-impact motion fitted through the event, its further impacts "
+            f"included: {c['converged']} of {c['samples']} fits converged, "
+            f"{c['unconverged']} left out")
 
 
 def _results(rec: Reconstruction, rows: ReconstructionRows, units: str) -> Section:
@@ -492,13 +504,15 @@ def reconstruction_json(rec: Reconstruction, rows: ReconstructionRows, units: st
     Returns
     -------
     dict
-        The case, units, samples, messages, estimated inputs, each unknown by its dotted name
-        (value, percentiles, unit, lower bound), the momentum check, the findings, the
+        The case, units, samples, messages, the Monte Carlo's counts (samples used and,
+        through the event, how many fits converged), estimated inputs, each unknown by its
+        dotted name (value, percentiles, unit, lower bound), the momentum check, the findings, the
         secondary impact, the speeds before the impact, the run-outs' tyre models, the
         goodness of fit, the evidence behind each unknown, the crush outputs and the law.
     """
     return {"case": rec.case.name, "units": display_units(units).to_json(),
             "samples": samples, "messages": rec.messages,
+            "monte_carlo": rec.samples.to_dict() if rec.samples else None,
             "estimates": estimate_records(rec.case, units),
             "unknowns": {r.name: {"unit": r.unit, "value": r.value, "p5": r.p5,
                                   "p50": r.p50, "p95": r.p95, "lower_bound": r.lower_bound}

@@ -554,7 +554,8 @@ class EventRest:
 
 def event_rest_many(case: Case, velocity, yaw_rate, *, tyre_friction=None, max_time=None,
                     single_impact: bool = False, step: float = EVENT_STEP,
-                    tolerance: float = CONTACT_TOLERANCE) -> EventRest:
+                    tolerance: float = CONTACT_TOLERANCE, vehicles=None,
+                    poses=None) -> EventRest:
     """The rest states of N events from N post-impact motions of one case (compiled, parallel).
 
     The run-out, the outline watch and every further impact of :func:`event` (the same
@@ -573,6 +574,12 @@ def event_rest_many(case: Case, velocity, yaw_rate, *, tyre_friction=None, max_t
         As :func:`event` (per sample when an array; 0 not allowed per sample).
     max_time, single_impact, step, tolerance
         As :func:`event`.
+    vehicles : (RunoutVehicle, RunoutVehicle or None), optional
+        Per-sample run-out vehicles (arrays of n: masses, yaw inertias, friction) in place
+        of the case's (None for a fixed obstacle): the Monte Carlo's sampled inputs
+        (``tyre_friction`` then unused).
+    poses : array_like (n, 2, 3), optional
+        Each sample's CGs [m] and headings [rad] at the impact in place of the case's.
     """
     from ..model.event_kernel import EventScene, run_event  # compiled: numba on first use
 
@@ -586,9 +593,13 @@ def event_rest_many(case: Case, velocity, yaw_rate, *, tyre_friction=None, max_t
         data1 = replace(data1, friction=mu)
         data2 = None if data2 is None else replace(data2, friction=mu)
     free = not per_sample and tyre_friction is not None and float(tyre_friction) == 0.0
+    if vehicles is not None:
+        data1, data2, inverse = _sampled_vehicles(vehicles, n)
     start = np.broadcast_to(_state(case, _Motion(velocity, yaw_rate),
                                    bool(case.vehicle2.fixed)), (n, 2, 6)).copy()
-    scene = EventScene(data1, data2, outlines[None], inverse[None],
+    if poses is not None:
+        start[:, :, :3] = poses
+    scene = EventScene(data1, data2, outlines[None], np.reshape(inverse, (-1, 4)),
                        _coefficients(_further_specs(case))[None])
     run = run_event(scene, start, solve=True,
                     max_time=(FREE_MOTION_TIME if free else MAX_TIME) if max_time is None
@@ -599,6 +610,17 @@ def event_rest_many(case: Case, velocity, yaw_rate, *, tyre_friction=None, max_t
                      rest_heading=run.final[:, :, 2].copy(), stopped=~run.moving,
                      impacts=run.count, first_time=first, time=run.time,
                      ok=np.isin(run.status, ("rest", "time")))
+
+
+def _sampled_vehicles(vehicles, n: int) -> tuple:
+    """``(data1, data2 or None, inverse (n, 4))`` of n samples' run-out vehicles (vehicle 2
+    None: a fixed obstacle, its inverse mass and inertia 0)."""
+    data = [None if v is None else RhsData.of(v, n) for v in vehicles]
+    inverse = np.zeros((n, 4))
+    for k, d in enumerate(data):
+        if d is not None:
+            inverse[:, 2 * k], inverse[:, 2 * k + 1] = 1.0 / d.mass, 1.0 / d.yaw_inertia
+    return data[0], data[1], inverse
 
 
 @dataclass(frozen=True)

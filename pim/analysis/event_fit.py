@@ -17,7 +17,7 @@ differences computed in one call of the compiled, parallel event kernel; several
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -26,7 +26,8 @@ from ..model.numbers import InputError
 from .event import event_rest_many
 from .least_squares_batch import least_squares_batch, with_forward_differences
 
-__all__ = ["EventFit", "fit_through_event", "fit_through_event_many", "event_residuals",
+__all__ = ["EventFit", "SampleInputs", "fit_through_event", "fit_through_event_many",
+           "event_residuals", "rest_residuals", "sample_residuals", "fitted_unknowns", "unknown_bounds",
            "START_SCALES", "MAX_ITERATIONS"]
 
 #: The starts of :func:`fit_through_event`: the single-impact fit's speeds scaled by these
@@ -70,6 +71,45 @@ class EventFit:
     starts: int
 
 
+@dataclass(frozen=True)
+class SampleInputs:
+    """Per-sample inputs of n events (the Monte Carlo's sampled values, SI).
+
+    Attributes
+    ----------
+    mass, yaw_inertia : ndarray (n, 2)
+        Each vehicle's mass [kg] and yaw inertia [kg m^2] (column i: vehicle i + 1).
+    friction : ndarray (n, 2)
+        Each vehicle's tyre-road friction [-] (its run-out evidence's, sampled).
+    poses : ndarray (n, 2, 3)
+        Each vehicle's CG (x, y) [m] and heading [rad] at the impact.
+    """
+
+    mass: np.ndarray
+    yaw_inertia: np.ndarray
+    friction: np.ndarray
+    poses: np.ndarray
+
+    def take(self, index) -> SampleInputs:
+        """The samples ``index`` (an index array)."""
+        return SampleInputs(self.mass[index], self.yaw_inertia[index], self.friction[index],
+                            self.poses[index])
+
+    def event_options(self, case: Case) -> dict:
+        """The ``vehicles`` and ``poses`` of :func:`pim.analysis.event.event_rest_many`: each
+        vehicle's run-out evidence at these masses, inertias and friction (None for a fixed
+        obstacle)."""
+        vehicles = []
+        for i in (1, 2):
+            ev = getattr(case.evidence, f"vehicle{i}")
+            if i == 2 and bool(case.vehicle2.fixed):
+                vehicles.append(None)
+                continue
+            rv = ev.runout_vehicle(self.mass[:, i - 1], self.yaw_inertia[:, i - 1])
+            vehicles.append(replace(rv, friction=self.friction[:, i - 1]))
+        return {"vehicles": tuple(vehicles), "poses": self.poses}
+
+
 def _targets(case: Case) -> list:
     """(vehicle index, rest position, rest heading, position sigma, heading sigma) of each
     vehicle with evidence."""
@@ -84,18 +124,27 @@ def _targets(case: Case) -> list:
 
 
 def event_residuals(case: Case, x: np.ndarray, *, tyre_friction=None,
-                    targets=None) -> np.ndarray:
+                    targets=None, inputs: SampleInputs | None = None) -> np.ndarray:
     """Residuals (..., 3 per vehicle with evidence) of post-impact motions ``x`` (..., 6):
     (v1x, v1y, w1, v2x, v2y, w2) [m/s, rad/s], the event's rest position and heading minus
     the evidence's, in its standard deviations; NaN where the event did not end at rest.
     ``targets`` (rest positions (..., 2, 2), rest headings (..., 2)), broadcasting against
     ``x``'s leading axes, replace the evidence's measured rest states (the Monte Carlo's
-    drawn ones)."""
+    drawn ones); ``inputs``, one row per motion, replace the case's masses, inertias,
+    friction and poses."""
     x = np.asarray(x, float)
     flat = x.reshape(-1, 6)
     velocity = np.stack([flat[:, 0:2], flat[:, 3:5]], axis=1)
-    rest = event_rest_many(case, velocity, flat[:, [2, 5]], tyre_friction=tyre_friction)
-    lead = x.shape[:-1]
+    rest = event_rest_many(case, velocity, flat[:, [2, 5]], tyre_friction=tyre_friction,
+                           **({} if inputs is None else inputs.event_options(case)))
+    return rest_residuals(case, rest, targets, x.shape[:-1])
+
+
+def rest_residuals(case: Case, rest, targets=None, lead=None) -> np.ndarray:
+    """:func:`event_residuals` of events already run: ``rest`` an
+    :class:`pim.analysis.event.EventRest` of n events, ``lead`` the leading shape (product n,
+    default (n,)) the residuals take and ``targets`` broadcast against."""
+    lead = rest.ok.shape if lead is None else tuple(lead)
     cols = []
     for v, position, heading, sp, sh in _targets(case):
         if targets is not None:
@@ -109,7 +158,7 @@ def event_residuals(case: Case, x: np.ndarray, *, tyre_friction=None,
     return r.reshape(lead + (r.shape[-1],))
 
 
-def _unknowns(case: Case) -> np.ndarray:
+def fitted_unknowns(case: Case) -> np.ndarray:
     """The indices of (v1x, v1y, w1, v2x, v2y, w2) fitted (vehicle 1's only against a fixed
     obstacle), after checking the evidence."""
     fixed = bool(case.vehicle2.fixed)
@@ -120,7 +169,8 @@ def _unknowns(case: Case) -> np.ndarray:
 
 
 def fit_through_event_many(case: Case, start, targets, *, speed_bound: float = 60.0,
-                           yaw_rate_bound: float = 15.0, tyre_friction=None, groups=None):
+                           yaw_rate_bound: float = 15.0, tyre_friction=None, groups=None,
+                           inputs: SampleInputs | None = None, atol: float | None = None):
     """:func:`fit_through_event` for m problems at once (the Monte Carlo's samples).
 
     Parameters
@@ -133,31 +183,61 @@ def fit_through_event_many(case: Case, start, targets, *, speed_bound: float = 6
         Each problem's rest positions [m] and headings [rad] (per vehicle).
     groups : array_like (m,), optional
         Problems that are one problem from several starts (merged within a group).
+    inputs : SampleInputs, optional
+        Each problem's masses, inertias, friction and poses (default the case's).
+    atol : float, optional
+        Also stop a problem when every residual is within ``atol`` standard deviations
+        (:func:`pim.analysis.least_squares_batch.least_squares_batch`).
 
     Returns
     -------
     (x (m, 6), BatchFit)
         The fitted motions and the engine's answer (cost, convergence per problem).
     """
-    free = _unknowns(case)
+    free = fitted_unknowns(case)
     start = np.atleast_2d(np.asarray(start, float))
-    bound = np.array([speed_bound, speed_bound, yaw_rate_bound] * 2)[free]
-    rest_position, rest_heading = (np.asarray(t, float) for t in targets)
-
-    def residuals(points, index):
-        full = np.repeat(start[index][:, None, :], points.shape[1], axis=1)
-        full[..., free] = points
-        return event_residuals(case, full, tyre_friction=tyre_friction,
-                               targets=(rest_position[index][:, None],
-                                        rest_heading[index][:, None]))
-
+    bound = unknown_bounds(free, speed_bound, yaw_rate_bound)
+    residuals = sample_residuals(case, start, targets, tyre_friction=tyre_friction,
+                                 inputs=inputs)
     fit = least_squares_batch(with_forward_differences(residuals, -bound, bound, step=1e-4),
                               np.clip(start[:, free], -bound, bound), -bound, bound,
                               max_iter=MAX_ITERATIONS, ftol=1e-10, xtol=1e-9,
-                              merge=None if groups is None else 1e-6, groups=groups)
+                              merge=None if groups is None else 1e-6, groups=groups,
+                              atol=atol)
     x = start.copy()
     x[:, free] = fit.x
     return x, fit
+
+
+def unknown_bounds(free: np.ndarray, speed_bound: float, yaw_rate_bound: float) -> np.ndarray:
+    """The bound [m/s or rad/s] of each fitted unknown ``free`` (indices into (v1x, v1y, w1,
+    v2x, v2y, w2)): each velocity component within +- ``speed_bound``, each yaw rate within
+    +- ``yaw_rate_bound``."""
+    return np.array([speed_bound, speed_bound, yaw_rate_bound] * 2, float)[free]
+
+
+def sample_residuals(case: Case, start, targets, *, tyre_friction=None,
+                     inputs: SampleInputs | None = None):
+    """``residuals(points (p, q, len(free)), index (p,)) -> (p, q, k)``: the event residuals
+    (:func:`event_residuals`) of problem ``index``'s fitted unknowns ``points``
+    (:func:`fitted_unknowns`; the others from its ``start`` row (m, 6)) against its rest
+    ``targets`` (rest positions (m, 2, 2) [m], headings (m, 2) [rad]), with its ``inputs``
+    row; the residual function of :func:`with_forward_differences`."""
+    free = fitted_unknowns(case)
+    start = np.atleast_2d(np.asarray(start, float))
+    rest_position, rest_heading = (np.asarray(t, float) for t in targets)
+
+    def residuals(points, index):
+        q = points.shape[1]
+        full = np.repeat(start[index][:, None, :], q, axis=1)
+        full[..., free] = points
+        return event_residuals(case, full, tyre_friction=tyre_friction,
+                               targets=(rest_position[index][:, None],
+                                        rest_heading[index][:, None]),
+                               inputs=None if inputs is None
+                               else inputs.take(np.repeat(index, q)))
+
+    return residuals
 
 
 def fit_through_event(case: Case, velocity, yaw_rate, *, speed_bound: float = 60.0,

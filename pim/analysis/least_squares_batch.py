@@ -17,7 +17,10 @@ in Mathematics 630, 1978, with Marquardt's diagonal scaling):
   trial point is clipped into the box;
 - accept the step when the cost falls (then lambda /= 3), else lambda *= 4 and retry;
 - stop a problem when the relative cost decrease of an accepted step is below ``ftol``, its
-  step below ``xtol`` (in scaled variables), its projected gradient below ``gtol``, a refused
+  step below ``xtol`` (in scaled variables), its projected gradient below ``gtol``, every
+  residual (at the start or after an accepted step) within ``atol`` (a root-finding use: square systems whose
+  solution has r = 0, e.g. with a frozen Jacobian, where the cost's round-off floor would
+  otherwise cost further steps to find), a refused
   step was promised a decrease below 1e-14 of the cost by the linear model (round-off), or
   lambda has grown past 1e12 (no descent left at round-off).
 
@@ -75,7 +78,8 @@ class BatchFit:
 
 def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: float = 0.0,
                         xtol: float = 1e-13, gtol: float = 1e-14,
-                        lam0: float = 1e-3, merge: float | None = None, groups=None) -> BatchFit:
+                        lam0: float = 1e-3, merge: float | None = None, groups=None,
+                        atol: float | None = None) -> BatchFit:
     """Minimise ``sum r(x)^2`` for m problems at once, each x in the box [lower, upper].
 
     Parameters
@@ -90,8 +94,8 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
         Finite bounds with lower < upper.
     max_iter : int
         Iteration limit per problem (accepted and refused steps both count).
-    ftol, xtol, gtol : float
-        Stopping tolerances (module notes); ``xtol`` and ``gtol`` in box-scaled variables.
+    ftol, xtol, gtol, atol : float
+        Stopping tolerances (module notes): ``xtol``, ``gtol`` box-scaled, ``atol`` optional.
     lam0 : float
         Initial damping.
     merge : float, optional
@@ -111,13 +115,12 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
     lo, width = _box(lower, upper, (m, n))
     u = np.clip((x0 - lo) / width, 0.0, 1.0)
     r, j = fun(lo + u * width, np.arange(m))
-    nfev = 1
-    r = np.array(r, dtype=float)
+    nfev, r = 1, np.array(r, dtype=float)
     j = np.array(j, dtype=float) * width[:, None, :]      # d r / d u
     cost = _cost(r)
     lam, group = np.full(m, float(lam0)), _groups(groups, m)
-    running, converged = np.ones(m, dtype=bool), np.zeros(m, dtype=bool)
-    iterations = np.zeros(m, dtype=int)
+    converged = _within(r, atol)
+    running, iterations = ~converged, np.zeros(m, dtype=int)
     for _ in range(int(max_iter)):
         idx = np.flatnonzero(running)
         if idx.size == 0:
@@ -133,7 +136,7 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
         better = ct < cost[idx]
         acc = idx[better]
         moved = np.max(np.abs(trial - ua), axis=1)
-        drop = cost[idx] - ct
+        drop = np.subtract(cost[idx], ct, where=better, out=np.zeros_like(ct))  # inf - inf
         u[acc] = trial[better]
         r[acc] = rt[better]
         j[acc] = np.asarray(jt, dtype=float)[better] * width[acc][:, None, :]
@@ -142,7 +145,7 @@ def least_squares_batch(fun, x0, lower, upper, *, max_iter: int = 200, ftol: flo
         lam[idx[~better]] *= 4.0
         flat = _flat(jf, gfree, step, cost[idx])
         done = (small_grad
-                | (better & ((drop <= ftol * ct) | (moved <= xtol)))
+                | (better & ((drop <= ftol * ct) | (moved <= xtol) | _within(rt, atol)))
                 | (~better & ((moved <= xtol) | flat))
                 | (lam[idx] > 1e12))
         converged[idx[done]] = True
@@ -217,6 +220,13 @@ def _merge_duplicates(u, r, j, cost, state, merge: float) -> None:
         u[p_], r[p_], j[p_], cost[p_] = u[q_], r[q_], j[q_], cost[q_]
     converged[live[dup]] = True
     running[live[dup]] = False
+
+
+def _within(r: np.ndarray, atol: float | None) -> np.ndarray:
+    """Whether every residual of each row is within ``atol`` (all False without one)."""
+    if atol is None:
+        return np.zeros(r.shape[0], dtype=bool)
+    return np.all(np.abs(r) <= atol, axis=-1)
 
 
 def _cost(r: np.ndarray) -> np.ndarray:

@@ -50,11 +50,13 @@ from .free_inputs import approach_direction, check_free, free_kind, free_label
 from .inverse_pim import check_evidence, inverse_pim, under_determined
 from .event import event_rest_many, sliding_flags
 from .event_fit import EventFit, fit_through_event
+from .event_samples import event_sampler
 from .momentum import MomentumSpeeds, momentum_speeds
 from .reconstruction_mc import (
     ReconstructionSamples,
     reconstruction_samples,
     residual_standard_error,
+    rest_draws,
     solve_samples,
     summarise,
 )
@@ -468,7 +470,8 @@ class Reconstruction(Notebook):
 
     def to_dict(self, units=None) -> dict:
         """JSON-ready: each unknown's value and percentiles in ``units`` (default the
-        case's), whether the data decide them, the messages, the chi-square test."""
+        case's), whether the data decide them, the messages, the chi-square test, the Monte
+        Carlo's counts (:meth:`ReconstructionSamples.to_dict`)."""
         shown = display_units(units, case=self.case)
         unknowns = {}
         for row in self.table():
@@ -481,7 +484,8 @@ class Reconstruction(Notebook):
                 "determined": self.determined, "unknowns": unknowns,
                 "messages": list(self.messages),
                 "goodness_of_fit": None if self.goodness is None else self.goodness.to_dict(),
-                "crush": [c.to_dict() for c in self.crush]}
+                "crush": [c.to_dict() for c in self.crush],
+                "monte_carlo": None if self.samples is None else self.samples.to_dict()}
 
     @property
     def undetermined_reason(self) -> str:
@@ -717,10 +721,17 @@ def evidence_sampler(case: Case, post: PostImpact, include_yaw: bool = True):
     ``values``; all samples' run-out inverses solved at once
     (:func:`pim.analysis.runout_fit_batch.fit_runout_many`, started from the nominal fit).
     ``ok`` drops the samples whose run-out fit did not converge or whose motion does not stop.
+
+    When the nominal post-impact motion was fitted through the event (``post.event_fit``:
+    the single-impact run-outs re-contact), each sample's is too
+    (:func:`pim.analysis.event_samples.event_sampler`, which also returns the fits' counts).
     """
     from scipy.special import ndtri
 
     from .runout_fit_batch import fit_runout_many  # compiled run-out: numba on first use
+
+    if post.event_fit is not None:
+        return event_sampler(case, post, include_yaw)
 
     terms = measured_terms(post.case, include_yaw)
 
@@ -734,15 +745,8 @@ def evidence_sampler(case: Case, post: PostImpact, include_yaw: bool = True):
         for i, nominal in post.runouts.items():
             ev = getattr(case.evidence, f"vehicle{i}")
             p = f"vehicle{i}."
-            u = {key: rng.random(n) + 2.0**-54 for key in
-                 (f"evidence.vehicle{i}.rest_position_x", f"evidence.vehicle{i}.rest_position_y",
-                  f"evidence.vehicle{i}.rest_heading")}
+            rest, rest_heading, u = rest_draws(ev, i, rng, n)
             extra.update(u)
-            keys = list(u)
-            rest = np.stack([ev.rest_position[0] + ev.position_sigma * ndtri(u[keys[0]]),
-                             ev.rest_position[1] + ev.position_sigma * ndtri(u[keys[1]])],
-                            axis=-1)
-            rest_heading = ev.rest_heading + ev.heading_sigma * ndtri(u[keys[2]])
             points = None
             if len(ev.path_points):      # the tyre-mark points carry the same position error
                 points = np.empty((n,) + ev.path_points.shape)

@@ -48,7 +48,7 @@ from .residuals import measured_terms, residual_terms
 
 __all__ = ["UnknownStats", "ReconstructionSamples", "reconstruction_samples",
            "residual_standard_error", "SampleBlock", "solve_samples", "summarise",
-           "admissible_samples"]
+           "admissible_samples", "rest_draws", "through_event_counts"]
 
 
 @dataclass(frozen=True)
@@ -100,6 +100,11 @@ class ReconstructionSamples:
     measured_sigma_source : str
         "stated" or "residual standard error".
     messages : list of str
+    through_event : dict or None
+        When each sample's post-impact motion was fitted through the event
+        (:func:`pim.analysis.event_samples.event_sampler`): how many samples were fitted,
+        ``converged`` (``fast``: by secant steps from the nominal fit, ``refitted``: by the
+        full fit) and ``unconverged`` (left out); None otherwise.
     """
 
     n: int
@@ -109,6 +114,14 @@ class ReconstructionSamples:
     varying: tuple
     measured_sigma_source: str
     messages: list
+    through_event: dict | None = None
+
+    def to_dict(self) -> dict:
+        """JSON-ready: samples drawn and used, where the measured values' sigmas come from,
+        and the fits through the event's counts (None without)."""
+        return {"samples": self.n, "used": self.n_used,
+                "sigma_source": self.measured_sigma_source,
+                "through_event": self.through_event}
 
 
 def residual_standard_error(fit_result: FitResult) -> float:
@@ -158,7 +171,8 @@ def reconstruction_samples(case, fit_result: FitResult, unknown: dict, n: int = 
         ``post_impact(values, uniforms, rng, n) -> (targets (n, k), ok (n,), uniforms)``:
         the post-impact motion per sample from the evidence (the run-out inverse,
         :func:`pim.analysis.reconstruction.evidence_sampler`); default: the measured motion
-        drawn with its sigmas.
+        drawn with its sigmas. A fourth item, when returned, is a dict of counts (the fits
+        through the event's, :attr:`SampleBlock.counts`).
     extra_nominal : dict, optional
         Nominal values of the evidence inputs (``evidence.vehicleN.friction``) that the
         ``[uncertainty]`` table may vary.
@@ -197,6 +211,9 @@ class SampleBlock:
         (:meth:`pim.Result.problem_counts`) -> how many (a sample may fail several).
     n_inadmissible : int
         How many solved samples were left out as inadmissible impacts.
+    counts : dict of str to int
+        The post-impact model's counts (the fits through the event's:
+        :attr:`pim.analysis.event_samples.EventSamples.counts`); empty without.
     """
 
     x: np.ndarray
@@ -207,6 +224,7 @@ class SampleBlock:
     floored: np.ndarray | None = None
     inadmissible: dict = field(default_factory=dict)
     n_inadmissible: int = 0
+    counts: dict = field(default_factory=dict)
 
 
 def solve_samples(case, fit_result: FitResult, unknown: dict, n: int, rng, *,
@@ -233,13 +251,14 @@ def solve_samples(case, fit_result: FitResult, unknown: dict, n: int, rng, *,
     names = tuple(crush_sampled(t, case, values, rng, n) if isinstance(t, CrushEnergyTerm)
                   else t for t in names)
     evidence = split_terms(names)[1]
-    messages = []
+    messages, counts = [], {}
     if post_impact is None:
         targets, source = _draw_measured(case, names, fit_result, target, rng, uniforms, n,
                                          messages)
         ok_post = np.ones(n, dtype=bool)
     else:
-        targets, ok_post, extra = post_impact(values, uniforms, rng, n)
+        targets, ok_post, extra, *more = post_impact(values, uniforms, rng, n)
+        counts = dict(more[0]) if more else {}
         uniforms.update(extra)
         first = len(names) - len(evidence)        # the evidence terms beside the run-outs
         targets[:, first:] = _draw_measured(case, evidence, fit_result, target[first:], rng,
@@ -254,12 +273,13 @@ def solve_samples(case, fit_result: FitResult, unknown: dict, n: int, rng, *,
     ok = out.converged & ok_post & np.all(np.isfinite(out.x), axis=1)
     x, floored = friction_floor(base, keys, out.x)     # an unreached mu_c: its lower bound
     solved = np.flatnonzero(ok)
-    admissible, counts = admissible_samples(case, free_inputs(base[solved], keys, x[solved])[0],
-                                            fit_result.law)
+    admissible, reasons = admissible_samples(case, free_inputs(base[solved], keys, x[solved])[0],
+                                             fit_result.law)
     ok[solved[~admissible]] = False
     return SampleBlock(x, ok, uniforms, source, messages, floored,
-                       {text: bad for text, bad, _ in counts}, int(np.size(admissible)
-                                                                   - np.count_nonzero(admissible)))
+                       {text: bad for text, bad, _ in reasons}, int(np.size(admissible)
+                                                                    - np.count_nonzero(admissible)),
+                       counts=counts)
 
 
 def admissible_samples(case, state, law: str) -> tuple[np.ndarray, list]:
@@ -291,6 +311,21 @@ def admissible_samples(case, state, law: str) -> tuple[np.ndarray, list]:
     result = solve_under_law(sampled_case(case, v), v["impact.restitution"], beta, law=law,
                              mu_c=friction)
     return np.broadcast_to(result.admissible, (len(state),)), result.problem_counts()
+
+
+def rest_draws(ev, i: int, rng, n: int) -> tuple:
+    """Vehicle ``i``'s rest position (n, 2) [m] and heading (n,) [rad] drawn normal about its
+    evidence ``ev`` (:class:`pim.model.evidence.VehicleEvidence`) with its sigmas, by inverse
+    CDF from one uniform variate each (for the driver attribution); returns them and the
+    variates by name (``evidence.vehicleN.rest_position_x``, ``_y``, ``rest_heading``)."""
+    from scipy.special import ndtri
+
+    u = {f"evidence.vehicle{i}.{key}": rng.random(n) + 2.0**-54
+         for key in ("rest_position_x", "rest_position_y", "rest_heading")}
+    x, y, h = u.values()
+    rest = np.stack([ev.rest_position[0] + ev.position_sigma * ndtri(x),
+                     ev.rest_position[1] + ev.position_sigma * ndtri(y)], axis=-1)
+    return rest, ev.rest_heading + ev.heading_sigma * ndtri(h), u
 
 
 def _draw_measured(case, names, fit_result, target, rng, uniforms, n, messages):
@@ -378,6 +413,23 @@ def _recorder_scale(names, targets, factor, values, n) -> tuple:
     return targets, factor
 
 
+def through_event_counts(blocks, messages: list) -> dict | None:
+    """The fits through the event's counts summed over ``blocks`` (None when no block's
+    samples went through the event), and what they say appended to ``messages``."""
+    counts = [b.counts for b in blocks if b.counts]
+    if not counts:
+        return None
+    total = {k: sum(int(c.get(k, 0)) for c in counts) for k in counts[0]}
+    n = total["samples"]
+    messages.append(
+        f"Monte Carlo through the event: each sample's post-impact motion was fitted so that "
+        f"its event, further impacts included, ends at its own draw of the rest evidence; "
+        f"{total['converged']} of {n} fits converged ({total['fast']} by secant steps from "
+        f"the nominal fit, {total['refitted']} by the full fit), "
+        f"{total['unconverged']} did not and are left out of the percentiles")
+    return total
+
+
 def summarise(fit_result: FitResult, blocks) -> ReconstructionSamples:
     """Percentiles and drivers of each unknown over the pooled ``blocks`` (SampleBlock)."""
     keys = tuple(fit_result.values)
@@ -388,6 +440,7 @@ def summarise(fit_result: FitResult, blocks) -> ReconstructionSamples:
     messages = list(dict.fromkeys(m for b in blocks for m in b.messages))
     n = len(ok)
     n_used = int(ok.sum())
+    through = through_event_counts(blocks, messages)
     bad = sum(b.n_inadmissible for b in blocks)
     if n_used + bad < n:
         messages.append(f"{n - n_used - bad} of {n} samples left out (fit not converged or no "
@@ -420,4 +473,4 @@ def summarise(fit_result: FitResult, blocks) -> ReconstructionSamples:
             stats[key] = UnknownStats(key, float(x0[j]), *([np.nan] * 5), [])
     return ReconstructionSamples(n=n, n_used=n_used, stats=stats, samples=samples,
                                  varying=tuple(uniforms), measured_sigma_source=blocks[0].source,
-                                 messages=messages)
+                                 messages=messages, through_event=through)

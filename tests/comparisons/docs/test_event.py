@@ -39,15 +39,33 @@ def test_the_slide_row_agrees_with_the_hand_value():
     assert rows[("side slap, tyres 0.7", 2)][5] == "brach-capped"
 
 
-def test_regeneration_rewrites_only_the_block(tmp_path, capsys):
+def test_the_committed_page_holds_the_monte_carlo_the_code_gives():
+    """The Monte Carlo through the event's table (a reconstruction of 200 samples, its
+    single-impact counterpart and 30 draws fitted both ways: the suite's slower tests), and
+    what it shows: the true speeds inside the 5-95 % through the event, outside the
+    single-impact samples'."""
+    table = D.monte_carlo_table()
+    assert D.monte_carlo_block(table) in (DOCS / D.PAGE).read_text(encoding="utf-8")
+    for row in table.rows:
+        true, low, high = (cell.value for cell in (row[1], row[6], row[8]))
+        assert not low < true < high, row[0]
+    for row in table.rows:
+        true, low, high = (cell.value for cell in (row[1], row[3], row[5]))
+        assert low < true < high, row[0]
+
+
+def test_regeneration_rewrites_only_the_blocks(tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr(D, "monte_carlo_block",
+                        lambda table=None: f"{D.MC_BEGIN}\n| mc |\n{D.MC_END}")
     page = tmp_path / D.PAGE
     page.write_text(f"prose before\n{D.BEGIN}\n| old |\n{D.END}\nbetween\n"
                     f"{D.ENERGY_BEGIN}\n| old |\n{D.ENERGY_END}\nand\n{S.BEGIN}\nold\n"
-                    f"{S.END}\nprose after\n")
+                    f"{S.END}\nthen\n{D.MC_BEGIN}\n| old |\n{D.MC_END}\nprose after\n")
     assert main(["event", "--docs", str(tmp_path)]) == 0
     assert capsys.readouterr().out.strip() == f"wrote {page}"
     assert page.read_text() == (f"prose before\n{D.block()}\nbetween\n{D.energy_block()}"
-                                f"\nand\n{S.block()}\nprose after\n")
+                                f"\nand\n{S.block()}\nthen\n{D.MC_BEGIN}\n| mc |\n"
+                                f"{D.MC_END}\nprose after\n")
     with pytest.raises(ValueError, match="markers"):
         page.write_text("no markers\n")
         D.regenerate(tmp_path)
