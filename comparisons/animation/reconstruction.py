@@ -32,16 +32,25 @@ def reconstruction_event(post: PostImpact, result, fps: int = DEFAULT_FPS,
     later vehicle is at rest, then ``hold`` seconds of the rest poses; the impact's record
     from the reconstruction's answer ``result`` (a :class:`pim.Result`), each vehicle's
     wheels from its ``[evidence]`` axles and the tyre marks where they slide
-    (:meth:`pim.analysis.reconstruction.PostImpact.event`)."""
+    (:meth:`pim.analysis.reconstruction.PostImpact.event`). A motion fitted through the
+    event is shown through its further impacts, each marked at its C."""
     if not (isinstance(fps, int | np.integer) and fps >= 1):
         raise InputError(f"fps must be a positive integer, got {fps!r}")
     if not (np.isfinite(hold) and hold >= 0):
         raise InputError(f"hold must be >= 0 [s], got {hold!r}")
     if not post.runouts:
         raise InputError("the reconstruction has no run-out to animate (no [evidence])")
+    first = case_impact(post.case, result)
+    if post.event_fit is not None:      # fitted through the event: its further impacts too
+        full = post.event(first=first)
+        return full.at(_frame_times(float(full.time[-1]), fps, hold))
     end = max(float(f.runout.time[-1]) for f in post.runouts.values())
-    times = np.arange(int(np.ceil((end + hold) * fps)) + 1) / fps
-    return replace(post.event(times), impacts=(case_impact(post.case, result),))
+    return replace(post.event(_frame_times(end, fps, hold)), impacts=(first,))
+
+
+def _frame_times(end: float, fps: int, hold: float) -> np.ndarray:
+    """Frame times [s] from the impact to ``end`` and ``hold`` seconds more."""
+    return np.arange(int(np.ceil((end + hold) * fps)) + 1) / fps
 
 
 def _measured_rest(post: PostImpact) -> tuple:

@@ -449,8 +449,8 @@ def runout_contact(rec: Reconstruction, units: str) -> dict | None:
         without both run-outs and outlines, or when they do not meet.
     """
     post = rec.post
-    if post is None or set(post.runouts) != {1, 2}:
-        return None
+    if post is None or set(post.runouts) != {1, 2} or post.event_fit is not None:
+        return None         # (fitted through the event: its messages name the impacts)
     end = max(float(f.runout.time[-1]) for f in post.runouts.values())
     event = post.event(np.arange(int(np.ceil(end * 100)) + 1) / 100)      # 100 per second
     states = [np.column_stack([t.position, t.heading]) for t in event.tracks]

@@ -36,6 +36,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 from functools import lru_cache
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -63,13 +64,13 @@ from ..model.event_formula import (
 from ..model.geometry import vehicle_outline
 from ..model.impact_laws import LAW_CODES
 from ..model.law import resolve_law, solve
-from ..model.numbers import InputError, checked_number
+from ..model.numbers import InputError, checked_number, real_array
 from ..model.pdof import pdof
 from ..model.pre_impact import mark_deceleration
 from ..model.runout import MAX_TIME, RhsData, RunoutVehicle
 from ..model.tyres import DEFAULT_REGULARISATION, STANDARD_GRAVITY
 
-__all__ = ["event", "event_rest_many", "EventRest", "event_vehicle", "impact_spec",
+__all__ = ["event", "event_after", "event_rest_many", "EventRest", "event_vehicle", "impact_spec",
            "kernel_impact_records",
            "WHEELBASE_PER_LENGTH", "TRACK_PER_WIDTH", "FREE_MOTION_TIME", "SLIDE_SPEED",
            "APPROACH_SAMPLE"]
@@ -482,8 +483,7 @@ def event(case: Case, *, tyre_friction=None, approach: float = DEFAULT_APPROACH,
 def _assemble(case: Case, impacts: tuple, run: _Run, approach: float, scene: _Scene,
               free: bool) -> Event:
     """The event's samples: the approach, the state just before the first impact, and the
-    run-out's rows (the first is the state just after it); the wheels that slide in the
-    run-out (of the vehicles with tyres, all at once)."""
+    run-out's rows (the first is the state just after it)."""
     before = np.arange(-approach, 0.0, APPROACH_SAMPLE) if approach > 0 else np.zeros(0)
     start = len(before) + 1
     states = np.empty((2, start + len(run.rows), 6))
@@ -495,6 +495,15 @@ def _assemble(case: Case, impacts: tuple, run: _Run, approach: float, scene: _Sc
         states[i, :start, :2], states[i, :start, 2] = pre[0], pre[1]
         states[i, :start, 3:5], states[i, :start, 5] = pre[2], pre[3]
         states[i, start:] = run.rows[:, 1 + 6 * i:7 + 6 * i]
+    time = np.concatenate([before, [0.0], run.rows[:, 0]])
+    return _event_of(case, time, states, run, scene, start=start, free=free,
+                     impact_times=[i.time for i in impacts], impacts=tuple(impacts))
+
+
+def _event_of(case: Case, time: np.ndarray, states: np.ndarray, run: _Run, scene: _Scene, *,
+              start: int, free: bool, impact_times: list, impacts: tuple) -> Event:
+    """The Event of both vehicles' ``states`` (2, N, 6) at ``time``: the wheels that slide
+    from sample ``start`` on (the run-out; of the vehicles with tyres, all at once)."""
     sliding = np.zeros((2, len(states[0]), 4), bool)
     if scene.tyred and not free:
         from ..model.event_kernel import sliding_rows  # compiled event: numba
@@ -508,16 +517,67 @@ def _assemble(case: Case, impacts: tuple, run: _Run, approach: float, scene: _Sc
                     wheels=scene.positions[scene.tyred.index(i)] if i in scene.tyred
                     else None)
               for i, v in enumerate((case.vehicle1, case.vehicle2))]
-    time = np.concatenate([before, [0.0], run.rows[:, 0]])
     stopped = tuple(bool(s) for s in run.stopped)
     rest = float(time[-1]) if all(stopped) else None
     notes = []
     if not all(stopped):
         notes.append(f"still moving at the time limit ({time[-1]:.3g} s after the impact)")
-    return Event(time, tracks[0], tracks[1], phase_labels(time, [i.time for i in impacts],
-                                                           rest),
-                 impacts=tuple(impacts), source="analytic", stopped=stopped,
-                 notes=tuple(notes))
+    return Event(time, tracks[0], tracks[1], phase_labels(time, impact_times, rest),
+                 impacts=impacts, source="analytic", stopped=stopped, notes=tuple(notes))
+
+
+def event_after(case: Case, velocity, yaw_rate, *, first: ImpactRecord | None = None,
+                tyre_friction=None, max_time=None, step: float = EVENT_STEP,
+                tolerance: float = CONTACT_TOLERANCE) -> Event:
+    """The event from the first impact (t = 0) on, its post-impact motion given: the
+    run-out with the outline watch and every further impact, to rest (steps 3-5 of the
+    module notes), as :func:`event_rest_many` computes its ends.
+
+    What a reconstruction through the event animates: its fitted post-impact motion
+    (:func:`pim.analysis.event_fit.fit_through_event`) carried through the further impacts
+    that fit assumed.
+
+    Parameters
+    ----------
+    case : Case
+        One case with both outlines; its poses are the vehicles' at the impact, its
+        ``impacts`` set the further impacts' laws, its evidence the tyres.
+    velocity : array_like (2, 2)
+        Each vehicle's velocity just after the first impact [m/s] (vehicle 2's ignored when
+        it is a fixed obstacle).
+    yaw_rate : array_like (2,)
+        Each vehicle's yaw rate just after the first impact [rad/s].
+    first : ImpactRecord, optional
+        The first impact's record (the motion was given, not solved here: the caller's
+        answer, e.g. a reconstruction's); without it ``impacts`` holds the further impacts
+        only, and :meth:`Event.at` cannot place the first.
+    tyre_friction, max_time, step, tolerance
+        As :func:`event`.
+
+    Returns
+    -------
+    Event
+        ``source`` "analytic", from t = 0 (the state just after the first impact, phase
+        "impact 1") to rest; ``impacts`` ``first`` (when given) and every further impact.
+    """
+    if tyre_friction is not None:
+        tyre_friction = checked_number(tyre_friction, "tyre_friction", low=0.0)
+    free = tyre_friction == 0.0
+    limit = (FREE_MOTION_TIME if free else MAX_TIME) if max_time is None else checked_number(
+        max_time, "max_time", low=0.0, low_open=True, unit="s")
+    velocity = real_array(velocity, "velocity", "m/s")
+    yaw_rate = real_array(yaw_rate, "yaw_rate", "rad/s")
+    if velocity.shape != (2, 2) or yaw_rate.shape != (2,):
+        raise InputError(f"event_after: velocity must be (2, 2) [m/s] and yaw_rate (2,) "
+                         f"[rad/s], got {velocity.shape} and {yaw_rate.shape}")
+    scene = _scene(case, tyre_friction)
+    motion = SimpleNamespace(velocity1=velocity[0], velocity2=velocity[1],
+                             yaw_rate1=yaw_rate[0], yaw_rate2=yaw_rate[1])
+    run = _run_out(scene, _state(case, motion, scene.fixed), _Watch(step, limit, tolerance))
+    states = np.stack([run.rows[:, 1 + 6 * i:7 + 6 * i] for i in (0, 1)])
+    return _event_of(case, run.rows[:, 0], states, run, scene, start=0, free=free,
+                     impact_times=[0.0, *(i.time for i in run.impacts)],
+                     impacts=run.impacts if first is None else (first, *run.impacts))
 
 
 @dataclass(frozen=True)

@@ -48,7 +48,7 @@ from ..model.tyres import STANDARD_GRAVITY
 from .fitting import FitResult
 from .free_inputs import approach_direction, check_free, free_kind, free_label
 from .inverse_pim import check_evidence, inverse_pim, under_determined
-from .event import event_rest_many, sliding_flags
+from .event import event_after, event_rest_many, sliding_flags
 from .event_fit import EventFit, fit_through_event
 from .event_samples import event_sampler
 from .momentum import MomentumSpeeds, momentum_speeds
@@ -106,14 +106,24 @@ class PostImpact:
         """Former name of :attr:`velocity_covariance` (it always held covariances)."""
         return self.velocity_covariance
 
-    def event(self, times=None) -> Event:
+    def event(self, times=None, first=None) -> Event:
         """The fitted run-outs as an :class:`pim.model.event.Event` from the impact (t = 0)
         to the later vehicle's rest, at ``times`` [s] (default: every time either run-out
         stored), each run-out's track with its wheels (the evidence's axles) and which of
         them slide (:func:`pim.analysis.event.sliding_flags`: the tyre marks). A vehicle
-        without a run-out stays at its impact pose (a note says so)."""
+        without a run-out stays at its impact pose (a note says so).
+
+        When the motion was fitted through the event (``event_fit``), the event that fit
+        assumed instead: its post-impact motion carried through every further impact to
+        rest (:func:`pim.analysis.event.event_after`; ``first`` the first impact's
+        :class:`pim.model.event.ImpactRecord`), at its own times by default.
+        """
         if not self.runouts:
             raise InputError("the reconstruction has no run-out (no [evidence])")
+        if self.event_fit is not None:
+            fit = self.event_fit
+            full = event_after(self.case, fit.velocity, fit.yaw_rate, first=first)
+            return full if times is None else full.at(np.asarray(times, float))
         if times is None:
             times = np.unique(np.concatenate([f.runout.time for f in self.runouts.values()]))
         times = np.asarray(times, float)

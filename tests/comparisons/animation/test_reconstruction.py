@@ -113,3 +113,52 @@ def test_the_run_outs_lay_tyre_marks(post):
              if ln.get_color() == grey]
     assert len(lines) == 8                          # four wheels of each vehicle
     assert all(np.isfinite(ln.get_xydata()).all(axis=1).sum() > 5 for ln in lines)
+
+
+def test_a_motion_fitted_through_the_event_is_animated_through_its_further_impacts():
+    """Rest positions reached through a side slap: the reconstruction fits the post-impact
+    motion through the event, and its animation (and plan view) shows that event: its
+    further impacts marked, no outline entering the other once they came apart, the
+    vehicles ending where the evidence rests them (the animation showed the single-impact
+    run-outs, with the first impact only). The run-outs' secondary contact note ("not
+    reliable") is not given: the fit solved that contact."""
+    from comparisons.docs.event import side_slap_case, with_rest_evidence
+    from comparisons.report.reconstruct import runout_contact
+    from pim.analysis.reconstruction import post_impact_motion, reconstruct
+
+    case = with_rest_evidence(side_slap_case())
+    rec = reconstruct(case, unknown={"vehicle1.speed": (0.0, 40.0),
+                                     "vehicle2.speed": (0.0, 40.0)}, samples=0)
+    post = rec.post
+    assert post.event_fit is not None and post.event_fit.impacts >= 1
+    event = reconstruction_event(post, rec.fit.result, fps=25, hold=0.5)
+    assert len(event.impacts) == 1 + post.event_fit.impacts
+    assert event.impacts[0].time == 0.0 and event.impacts[1].time > 0.0
+    assert any(str(p).startswith("impact 2") for p in event.phase)
+    for i, track in enumerate(event.tracks, start=1):
+        rest = getattr(case.evidence, f"vehicle{i}").rest_position
+        assert np.hypot(*(track.position[-1] - rest)) < 0.05, i
+    assert _deepest_corner(event.at(np.arange(0.005, event.time[-1], 0.002))) < 0.05
+    single = post_impact_motion(case, through_event=False)
+    assert single.event_fit is None and single.event().impacts == ()
+    assert runout_contact(rec, "si") is None
+
+
+def _deepest_corner(event) -> float:
+    """How deep [m] any outline corner goes into the other outline once the two have come
+    apart after the impact (its crush overlap), over the event's samples (convex outlines:
+    a corner's depth is its least distance inside the other's edges)."""
+    corners = [t.placed(t.outline) for t in event.tracks]
+    depth = np.full(len(event.time), -np.inf)
+    for a, b in ((0, 1), (1, 0)):
+        edge = np.roll(corners[b], -1, axis=1) - corners[b]                   # (N, K, 2)
+        normal = np.stack([edge[..., 1], -edge[..., 0]], -1)
+        normal /= np.hypot(normal[..., 0], normal[..., 1])[..., None]
+        inward = -np.sign(np.einsum("nkj,nkj->nk", normal, corners[b].mean(1, keepdims=True)
+                                    - corners[b]))[..., None] * normal       # (N, K, 2)
+        rel = corners[a][:, :, None, :] - corners[b][:, None, :, :]            # (N, P, K, 2)
+        inside = np.einsum("npkj,nkj->npk", rel, -inward).min(-1)             # (N, P)
+        depth = np.maximum(depth, inside.max(-1))
+    apart = np.flatnonzero(depth <= 0.0)
+    assert len(apart), "the outlines never come apart"
+    return float(depth[apart[0]:].max())

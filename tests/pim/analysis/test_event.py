@@ -363,3 +363,27 @@ def test_a_reconstruction_through_the_event_recovers_the_speeds():
     assert post.single_event_impacts >= 1
     assert any("fitted through the event" in m for m in post.messages)
     assert post.case.measured.velocity1 == pytest.approx(fit.velocity[0])
+
+
+def test_the_event_after_a_given_motion_is_the_events_run_out():
+    """event_after (a reconstruction's fitted motion carried through the further impacts)
+    given PIM's post-impact motion is pim.event from the impact on: the same samples, the
+    same further impacts; without a first record its impacts are the further ones."""
+    from pim.analysis.event import event_after
+
+    case = pim.load_case("ricsac9")
+    r = pim.solve(case)
+    full = pim.event(case, tyre_friction=0.0, approach=0.0)
+    after = event_after(case, [r.velocity1, r.velocity2], [r.yaw_rate1, r.yaw_rate2],
+                        tyre_friction=0.0, first=full.impacts[0])
+    assert len(after.impacts) == len(full.impacts) == 2
+    assert after.impacts[1].time == full.impacts[1].time
+    np.testing.assert_array_equal(after.time, full.time[1:])
+    for a, b in zip(after.tracks, full.tracks, strict=True):
+        np.testing.assert_array_equal(a.position, b.position[1:])
+    assert list(after.phase) == list(full.phase[1:])
+    bare = event_after(case, [r.velocity1, r.velocity2], [r.yaw_rate1, r.yaw_rate2],
+                       tyre_friction=0.0)
+    assert [i.time for i in bare.impacts] == [full.impacts[1].time]
+    with pytest.raises(pim.InputError, match="velocity must be"):
+        event_after(case, [1.0, 2.0], [0.0, 0.0])
