@@ -90,7 +90,8 @@ DEFAULT_MAX_MINUTES = 30.0
               help="Progress of the stages on stderr (default: only on a terminal).")
 @click.option("--max-minutes", type=FiniteFloat(0.0, None, "min"), default=DEFAULT_MAX_MINUTES,
               show_default=True,
-              help="With run-out evidence every Monte Carlo sample refits the run-outs: the "
+              help="With run-out evidence every Monte Carlo sample refits the run-outs (through "
+                   "the event when they re-contact): the "
                    "Monte Carlo's time is measured on a pilot before it starts, said on "
                    "stderr when over 10 s, and refused (exit 2, with the sample count that "
                    "fits) when over this.")
