@@ -28,9 +28,10 @@ import sys
 import threading
 from collections.abc import Iterator
 
-__all__ = ["started_pool", "STARTUP_SIGNALS", "Interrupts", "Terminated", "signal_received", "held_signals", "ignore_interrupts",
-           "worker_pool", "stop_workers", "end_pool", "starting_processes", "INTERRUPT_EXIT_CODES", "in_callback",
-           "CALLBACK_PATHS", "CALLBACK_NAMES"]
+__all__ = ["started_pool", "STARTUP_SIGNALS", "Interrupts", "Terminated", "signal_received",
+           "held_signals", "ignore_interrupts", "worker_pool", "stop_workers", "end_pool",
+           "starting_processes", "INTERRUPT_EXIT_CODES", "in_callback", "CALLBACK_PATHS",
+           "CALLBACK_NAMES"]
 
 #: Exit code of a run ended by each signal (128 + its number, as a shell reports it).
 INTERRUPT_EXIT_CODES = {signal.SIGINT: 130, signal.SIGTERM: 143}
