@@ -42,6 +42,7 @@ from PIL import Image, ImageDraw, ImageFont
 
 from pim.model.number_format import format_number
 from pim.io.files import atomic_paths
+from pim.io.process import held_signals
 from pim.io.units import DisplayUnits, unit_scale
 from pim.model.event import Event, Track
 from pim.model.geometry import outline_corners
@@ -716,13 +717,15 @@ def write_animation(renderer: Renderer, path, fps: int = DEFAULT_FPS, gif=None,
                 t0 = _time.perf_counter()
                 img = renderer.frame(i)
                 render += _time.perf_counter() - t0
-                writer.append_data(_pixels(img))
+                with held_signals():        # ffmpeg never gets part of a frame
+                    writer.append_data(_pixels(img))
                 if gif_path is not None:
                     thumbs.append(img if gif_scale == 1 else img.resize(
                         (round(img.width * gif_scale), round(img.height * gif_scale)),
                         Image.Resampling.BILINEAR))
         finally:
-            writer.close()
+            with held_signals():            # ffmpeg ends, and is waited for, at a frame
+                writer.close()
         if gif_path is not None:
             thumbs[0].save(temps[1], format="GIF", save_all=True, append_images=thumbs[1:],
                            duration=gif_durations(len(thumbs), fps), loop=0, optimize=False)

@@ -11,8 +11,9 @@ is never swapped in. The record lives in the handler the run installed, not in t
 a new run starts with a new handler and nothing to forget.
 
 :func:`held_signals` holds the two signals back for the few steps that must not be cut in
-two (swapping a folder in); :func:`worker_pool` is a process pool whose workers ignore
-Ctrl-C (the parent handles it) and are ended with an error or an interrupt.
+two (swapping a folder in, starting a process: :func:`starting_processes`);
+:func:`worker_pool` is a process pool whose workers ignore Ctrl-C (the parent handles it)
+and are ended, and waited for, with an error or an interrupt.
 
 Output folders stay in :mod:`pim.io.output` (file-system transactions); this module is the
 process's side, which they use. Nothing here imports numpy.
@@ -27,15 +28,18 @@ import sys
 import threading
 from collections.abc import Iterator
 
-__all__ = ["started_pool", "STARTUP_SIGNALS", "Interrupts", "Terminated", "signal_received", "held_signals", "ignore_interrupts",
-           "worker_pool", "stop_workers", "INTERRUPT_EXIT_CODES", "in_callback",
-           "CALLBACK_PATHS", "CALLBACK_NAMES"]
+__all__ = ["started_pool", "STARTUP_SIGNALS", "Interrupts", "Terminated", "signal_received",
+           "held_signals", "ignore_interrupts", "worker_pool", "stop_workers", "end_pool",
+           "starting_processes", "INTERRUPT_EXIT_CODES", "in_callback", "CALLBACK_PATHS",
+           "CALLBACK_NAMES"]
 
 #: Exit code of a run ended by each signal (128 + its number, as a shell reports it).
 INTERRUPT_EXIT_CODES = {signal.SIGINT: 130, signal.SIGTERM: 143}
 _HANDLED = (signal.SIGINT, signal.SIGTERM)
-#: Signals blocked while a pool's processes start (:func:`started_pool`): Ctrl-C only, so
-#: that :func:`stop_workers`' SIGTERM still ends a worker that is starting, without a word.
+#: Signals blocked while a pool's processes start (:func:`starting_processes`): Ctrl-C, which
+#: reaches every process of the terminal's group. A SIGTERM to the group ends a starting
+#: worker without a word (its default action; a forked one inherits the parent's held
+#: handler, which only records it).
 STARTUP_SIGNALS = frozenset({signal.SIGINT})
 
 
@@ -44,9 +48,11 @@ class Terminated(KeyboardInterrupt):
 
 
 #: Code run from C with its exceptions printed and dropped ("Exception ignored from callback
-#: for ffi.gc"): pymunk's collision callbacks and object destructors, at-fork hooks,
-#: finalizers. A signal handled there is raised at the first moment outside it.
-CALLBACK_PATHS = (f"{os.sep}pymunk{os.sep}", f"{os.sep}cffi{os.sep}")
+#: for ffi.gc", "Exception ignored on calling ctypes callback function"): pymunk's collision
+#: callbacks and object destructors, llvmlite's object-cache callbacks (numba compiling),
+#: at-fork hooks, finalizers. A signal handled there is raised at the first moment outside.
+CALLBACK_PATHS = tuple(f"{os.sep}{package}{os.sep}" for package in ("pymunk", "cffi",
+                                                                    "llvmlite"))
 CALLBACK_NAMES = frozenset({"__del__", "_releaseLock", "_acquireLock",
                             "_after_at_fork_child_reinit_locks", "_after_fork"})
 
@@ -164,13 +170,66 @@ def ignore_interrupts() -> None:
 
 
 def stop_workers(pool) -> None:
-    """End the worker processes of ``pool`` (a ProcessPoolExecutor) at once.
+    """End the worker processes of ``pool`` (a ProcessPoolExecutor) at once and wait for
+    them to be gone.
 
     ``ProcessPoolExecutor.shutdown`` waits for running tasks; after an interrupt they must
-    not run on (nor write into a folder that is being removed).
+    not run on (nor write into a folder that is being removed). SIGKILL ends a worker at any
+    stage, one still starting too (its Ctrl-C and SIGTERM may be blocked or held then,
+    :func:`starting_processes`); the join makes sure none is left reading its start-up data
+    when the pool's semaphores are removed (it would print a FileNotFoundError traceback).
     """
-    for process in list((getattr(pool, "_processes", None) or {}).values()):
-        process.terminate()
+    processes = list((getattr(pool, "_processes", None) or {}).values())
+    for process in processes:
+        process.kill()
+    for process in processes:
+        process.join()
+
+
+def end_pool(pool) -> None:
+    """End ``pool`` after an error or an interrupt: its workers at once
+    (:func:`stop_workers`), its pending tasks cancelled, its threads joined."""
+    stop_workers(pool)
+    pool.shutdown(wait=True, cancel_futures=True)
+
+
+@contextlib.contextmanager
+def starting_processes() -> Iterator[None]:
+    """Start processes in the block: Ctrl-C blocked (:data:`STARTUP_SIGNALS`) and SIGINT and
+    SIGTERM held back (:func:`held_signals`; raised when the block ends).
+
+    A process started here inherits the blocked mask, so a Ctrl-C to the terminal's process
+    group while a new interpreter imports its site module (before any handler exists) waits
+    instead of killing it with "Fatal Python error"; the worker unblocks it once it ignores
+    it (:func:`ignore_interrupts`). Holding the handlers too keeps an interrupt from cutting
+    a start in two: the mask is the main thread's alone, and a signal taken by another
+    thread (numpy's BLAS threads) still runs the handler in the main thread at its next
+    step, which could leave a process started but unknown to its pool (or the pool unknown
+    to its caller) -- never stopped, still reading its start-up data when the interrupted
+    parent removes the pool's semaphores, printing a FileNotFoundError traceback.
+    """
+    with held_signals():
+        old = signal.pthread_sigmask(signal.SIG_BLOCK, STARTUP_SIGNALS)
+        try:
+            yield
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
+def _pool_class():
+    """ProcessPoolExecutor whose ``submit`` (which starts a new worker when none is idle,
+    on forkserver and spawn) runs under :func:`starting_processes`; built when a pool is
+    (importing concurrent.futures.process costs every command a few milliseconds)."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    class StartingPool(ProcessPoolExecutor):
+        """A ProcessPoolExecutor that starts its workers whole (:func:`starting_processes`)."""
+
+        def submit(self, fn, /, *args, **kwargs):
+            with starting_processes():
+                return super().submit(fn, *args, **kwargs)
+
+    return StartingPool
 
 
 def started_pool(max_workers: int | None, mp_context, first, *args):
@@ -178,30 +237,29 @@ def started_pool(max_workers: int | None, mp_context, first, *args):
     submitted.
 
     The pool is built and its processes (a resource tracker, a forkserver, the workers) and
-    threads started with Ctrl-C blocked: they inherit the blocked mask, so a Ctrl-C to the
-    terminal's process group while a new interpreter imports its site module (before any
-    handler exists) waits instead of killing it with "Fatal Python error" or a
-    KeyboardInterrupt traceback on stderr; the parent takes it when its mask is restored,
-    and each worker ignores it once :func:`ignore_interrupts` has run.
+    threads started under :func:`starting_processes`, and so is every worker it starts
+    later (on forkserver and spawn, a task submitted while no worker is idle starts one).
+    A signal received meanwhile is raised once the first worker runs; the pool is then
+    ended (:func:`end_pool`) before the interrupt goes on, so that no worker outlives it.
     """
-    from concurrent.futures import ProcessPoolExecutor
-
     if mp_context is not None and mp_context.get_start_method() != "fork":
         # multiprocessing starts its resource tracker with SIGINT and SIGTERM blocked and
         # then UNBLOCKS them (resource_tracker.ensure_running): start it before the mask
         from multiprocessing import resource_tracker
 
         resource_tracker.ensure_running()
-    old = signal.pthread_sigmask(signal.SIG_BLOCK, STARTUP_SIGNALS)
+    pool = None
     try:
-        pool = ProcessPoolExecutor(max_workers, mp_context=mp_context,
-                                   initializer=ignore_interrupts)
-        # wait until a worker runs: one still reading its start-up data when the parent,
-        # interrupted, removes the pool's semaphores prints a FileNotFoundError traceback
-        pool.submit(os.getpid).result()
-    finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, old)
-    pool.submit(first, *args)
+        with starting_processes():
+            pool = _pool_class()(max_workers, mp_context=mp_context,
+                                 initializer=ignore_interrupts)
+            # wait until a worker runs (it has read its start-up data)
+            pool.submit(os.getpid).result()
+        pool.submit(first, *args)
+    except BaseException:
+        if pool is not None:
+            end_pool(pool)
+        raise
     return pool
 
 
@@ -216,7 +274,6 @@ def worker_pool(max_workers: int | None = None, mp_context=None):
     try:
         yield pool
     except BaseException:
-        stop_workers(pool)
+        end_pool(pool)
         raise
-    finally:
-        pool.shutdown(wait=True, cancel_futures=True)
+    pool.shutdown(wait=True, cancel_futures=True)

@@ -1,14 +1,16 @@
 """The one renderer on events built by hand (no simulation: fast): tyre marks where a wheel
 slides and nowhere else, the frame fitted to the motion, the clock above the scene (not under
 a video player's controls), speeds in the user's unit, every impact marked, the measured rest
-drawn (issue 32 item 4)."""
+drawn (issue 32 item 4); an interrupt reaches the MP4 writer between frames (issue 33)."""
 
+import os
+import signal
 from dataclasses import replace
 
 import numpy as np
 import pytest
 
-from comparisons.animation.render import COLORS, Look, Renderer
+from comparisons.animation.render import COLORS, Look, Renderer, write_animation
 from pim.model.event import Event, ImpactRecord, Track, phase_labels
 
 OUTLINE = np.array([[2.0, 0.9], [-2.5, 0.9], [-2.5, -0.9], [2.0, -0.9]])
@@ -146,3 +148,40 @@ def test_the_gif_keeps_real_time(tmp_path, fps):
             total += gif.info["duration"]
     assert total / 1000 == pytest.approx(n / fps, rel=0.01)
     assert sum(gif_durations(n, fps)) == round(100 * n / fps) * 10
+
+
+@pytest.mark.parametrize("at", ["frame", "close"])
+def test_an_interrupt_waits_for_the_frame_and_for_the_encoder(tmp_path, monkeypatch, at):
+    """A SIGTERM while a frame went down ffmpeg's pipe left ffmpeg part of a frame, and it
+    printed its own error under pim's one line; now the interrupt is raised once the frame
+    is whole, after the encoder was closed and waited for, and nothing is left behind."""
+    import imageio.v2
+
+    from pim.io.process import Interrupts, Terminated
+
+    seen = []
+
+    class Encoder:
+        def __init__(self, path, *args, **kwargs):
+            open(path, "wb").close()
+
+        def append_data(self, frame):
+            seen.append("frame")
+            if at == "frame" and seen.count("frame") == 2:
+                os.kill(os.getpid(), signal.SIGTERM)
+            seen.append("whole")
+
+        def close(self):
+            seen.append("closing")
+            if at == "close":
+                os.kill(os.getpid(), signal.SIGTERM)
+            seen.append("closed")
+
+    monkeypatch.setattr(imageio.v2, "get_writer", Encoder)
+    renderer = Renderer(slide(n=4), look=Look(size=(320, 180)))
+    with Interrupts().installed() as interrupts, pytest.raises(Terminated):
+        write_animation(renderer, tmp_path / "a.mp4", progress=False)
+    frames = 2 if at == "frame" else len(renderer)
+    assert seen == ["frame", "whole"] * frames + ["closing", "closed"]
+    assert interrupts.received == [signal.SIGTERM]
+    assert list(tmp_path.iterdir()) == []

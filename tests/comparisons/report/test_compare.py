@@ -200,14 +200,14 @@ def interrupt_at(parent, signum, seconds):
     return proc.returncode, err
 
 
-# The two early ones race with process start-up (a forkserver worker still unpickling its
-# start-up data when the interrupted parent removes the pool's semaphores prints a
-# FileNotFoundError traceback; ffmpeg terminated mid-frame prints its own error): about 1 run
-# in 10 on 2 cores, so they run under -m slow until that race is closed (see the closing
-# note of this change); the start-up fatal errors themselves are fixed (started_pool).
+# The early ones raced with process start-up (an interrupt taken while a forkserver worker
+# started lost the pool: the worker, still unpickling its start-up data when the parent's
+# semaphores were removed, printed a FileNotFoundError traceback), with ffmpeg (given part of
+# a frame, it printed its own error) and with numba compiling (llvmlite's callback printed the
+# Terminated it dropped): about 1 run in 10 on 2 cores; pim.io.process.starting_processes,
+# the animation writer's whole frames and in_callback close them.
 @pytest.mark.parametrize("signum, seconds", [
-    pytest.param(signal.SIGINT, 0.5, marks=pytest.mark.slow),
-    pytest.param(signal.SIGTERM, "writing", marks=pytest.mark.slow),
+    (signal.SIGINT, 0.5), (signal.SIGTERM, "writing"),
     pytest.param(signal.SIGINT, "writing", marks=pytest.mark.slow),
     pytest.param(signal.SIGTERM, 2.0, marks=pytest.mark.slow),
     pytest.param(signal.SIGINT, 2.0, marks=pytest.mark.slow),
