@@ -18,6 +18,13 @@ from tests.checkout import gained, listing
 
 ROOT = Path(__file__).resolve().parents[1]
 
+# A shell without job control starts a background job (`pytest &`, `nohup pytest &`, a CI
+# script's) with Ctrl-C ignored, and Python keeps it ignored, in the xdist workers and every
+# child too: the tests that interrupt a run or a child would see the interrupt lost. Run as
+# from a terminal.
+if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+
 settings.register_profile("ci", derandomize=True, database=None, print_blob=True)
 if os.environ.get("CI"):
     settings.load_profile("ci")
