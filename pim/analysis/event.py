@@ -182,22 +182,34 @@ def _further_specs(case: Case) -> tuple:
     """:func:`impact_spec` of the impacts 2 to MAX_IMPACTS + 1, each distinct one built
     once (the last ``[[impacts]]`` entry, or the defaults, stands for all after it)."""
     given = len(tuple(getattr(case, "impacts", ()) or ()))
-    distinct = [impact_spec(case, k) for k in range(2, min(max(given, 1), MAX_IMPACTS) + 2)]
+    distinct = [impact_spec(case, k) for k in range(2, min(given, MAX_IMPACTS) + 2)
+                ] if given else [_default_spec()]
     return tuple(distinct[min(k, len(distinct) - 1)] for k in range(MAX_IMPACTS))
+
+
+@lru_cache(maxsize=1)
+def _default_spec() -> ImpactSpec:
+    """:func:`impact_spec` of a case without ``[[impacts]]`` (the stated defaults: one
+    frozen constant)."""
+    return impact_spec(None, 2)
 
 
 def _coefficients(specs: tuple) -> np.ndarray:
     """(MAX_IMPACTS, 7): the further impacts' laws (``specs``, :func:`_further_specs`) for
     the kernel (:data:`pim.model.event_kernel.COEFFICIENT_COLUMNS`: restitution, beta, cap,
     law code, C and Gamma where the case's ``[[impacts]]`` give them, else NaN)."""
-    rows = []
+    rows, done = [], {}
     for spec in specs:
+        if id(spec) in done:            # (the last spec repeats to MAX_IMPACTS)
+            rows.append(done[id(spec)])
+            continue
         cap = np.inf if spec.law == "brach" else float(spec.contact_friction)
         point = ((np.nan, np.nan) if spec.point is None
                  else np.asarray(spec.point, float).reshape(2))
         rows.append((float(spec.restitution), 1.0 if spec.beta is None else float(spec.beta),
                      cap, LAW_CODES[spec.law], *point,
                      np.nan if spec.normal_angle is None else float(spec.normal_angle)))
+        done[id(spec)] = rows[-1]
     return np.array(rows)
 
 
@@ -259,16 +271,10 @@ def sliding_flags(states: np.ndarray, vehicle: RunoutVehicle | None,
     return _sliding(np.asarray(states, float)[None], *(w[None] for w in _wheels(vehicle)))[0]
 
 
-def _wheels(vehicle: RunoutVehicle, data: RhsData | None = None) -> tuple:
+def _wheels(vehicle: RunoutVehicle) -> tuple:
     """``(positions (4, 2) [m], braking (4,) [-], steer (4,) [rad])`` of a run-out vehicle,
-    read-only (shared by the events of a scene); the positions from its one-sample
-    ``data`` (:class:`pim.model.runout.RhsData`) when given, else computed."""
-    if data is None:
-        positions = np.array(vehicle.positions, float)
-    else:
-        positions = np.empty((4, 2))
-        positions[:, 0], positions[:, 1] = data.wheel_x[0], data.wheel_y[0]
-    out = (positions, np.array(vehicle.braking, float),
+    read-only (shared by the events of a scene)."""
+    out = (np.array(vehicle.positions, float), np.array(vehicle.braking, float),
            np.array(np.broadcast_to(np.asarray(vehicle.steer, float), (4,))))
     for a in out:
         a.setflags(write=False)
@@ -429,11 +435,29 @@ def single_scene(case: Case, tyre_friction=None, *, generic: bool = False) -> Si
     specs = _further_specs(case)
     scene = EventScene(data1, data2, outlines[None], inverse[None], _coefficients(specs)[None])
     tyred = tuple(i for i, v in enumerate(vehicles) if v is not None)
-    data = (data1, data2)
-    wheels = [_wheels(vehicles[i], None if generic else data[i]) for i in tyred]
-    stacked = tuple(np.stack([w[j] for w in wheels]) for j in range(3))   # (the kernel's)
-    return SingleScene(kernel_scene(scene, 1), tyred, stacked, tuple(w[0] for w in wheels),
-                       specs, bool(case.vehicle2.fixed))
+    tyres = [vehicles[i] for i in tyred]
+    if generic or not all(v.plain for v in tyres):
+        wheels = [_wheels(v) for v in tyres]
+        stacked = tuple(np.stack([w[j] for w in wheels]) for j in range(3))   # (the kernel's)
+    else:
+        stacked = _stacked_wheels(tyres, [(data1, data2)[i] for i in tyred])
+    positions = tuple(p.view() for p in stacked[0])
+    for p in positions:
+        p.setflags(write=False)
+    return SingleScene(kernel_scene(scene, 1), tyred, stacked, positions, specs,
+                       bool(case.vehicle2.fixed))
+
+
+def _stacked_wheels(vehicles: list, data: list) -> tuple:
+    """:func:`_wheels` of V vehicles with :attr:`~pim.model.runout.RunoutVehicle.plain`
+    fields stacked on a first axis as the kernel takes them (positions (V, 4, 2), braking
+    (V, 4), steer (V, 4)), the positions from their one-sample ``data``, without a stack
+    per array."""
+    positions, steer = np.empty((len(vehicles), 4, 2)), np.empty((len(vehicles), 4))
+    for i, (v, d) in enumerate(zip(vehicles, data)):
+        positions[i, :, 0], positions[i, :, 1] = d.wheel_x[0], d.wheel_y[0]
+        steer[i] = v.steer
+    return positions, np.array([v.braking for v in vehicles], float), steer
 
 
 def _run_out(scene: SingleScene, state: np.ndarray, watch: _Watch) -> _Run:

@@ -433,10 +433,14 @@ def kernel_scene(scene: EventScene, n: int) -> KernelScene:
 
 
 def _shaped(value, shape: tuple) -> np.ndarray:
-    """``value`` as floats broadcast to ``shape``: itself when it has that shape already
-    (no read-only view for :func:`one_signature` to copy)."""
+    """``value`` as floats broadcast to ``shape`` in a writable array (no read-only view
+    for :func:`one_signature` to copy): itself when it has that shape already."""
     a = np.asarray(value, float)
-    return a if a.shape == shape else np.broadcast_to(a, shape)
+    if a.shape == shape:
+        return a
+    out = np.empty(shape)       # (writable: no copy by one_signature)
+    out[...] = a
+    return out
 
 
 def run_event(scene, start, *, start_time=0.0, allowed=None, solve=True, record=0,
@@ -479,8 +483,7 @@ def run_event(scene, start, *, start_time=0.0, allowed=None, solve=True, record=
     if n < SERIAL_BELOW:     # a single event: waking the thread pool costs more than it is
         set_num_threads(1)
     try:
-        _run(*one_signature(start, np.broadcast_to(np.asarray(start_time, float), (n,)),
-                            np.asarray(allowed, float)),
+        _run(*one_signature(start, _shaped(start_time, (n,)), np.asarray(allowed, float)),
              *scene.vehicles, *scene.arrays, settings, out, tail, impacts, rec)
     finally:
         set_num_threads(threads)
