@@ -112,6 +112,7 @@ class RunoutVehicle:
         return self.tyre is not None or self.driver is not None
 
     def __post_init__(self):
+        object.__setattr__(self, "_plain", _plain_fields(self))    # (read by .plain)
         if not _plain_valid(self):      # arrays, numpy scalars, or a field out of range
             self._check_fields()
 
@@ -144,9 +145,7 @@ class RunoutVehicle:
     def plain(self) -> bool:
         """True when the fields are Python numbers (one vehicle, no per-sample arrays):
         the one-sample paths (:meth:`RhsData.one`) apply."""
-        return all(type(getattr(self, name)) in _PLAIN for name in _POSITIVE + (
-            "cg_to_front_axle",)) and _plain_four(self.braking) and (
-            type(self.steer) in _PLAIN or _plain_four(self.steer))
+        return self._plain
 
     @property
     def positions(self) -> np.ndarray:
@@ -163,6 +162,13 @@ class RunoutVehicle:
 _POSITIVE = ("mass", "yaw_inertia", "wheelbase", "track", "friction")
 #: Python numbers (``bool`` excluded: :func:`pim.model.numbers.real_array` refuses it).
 _PLAIN = (float, int)
+
+
+def _plain_fields(vehicle: RunoutVehicle) -> bool:
+    """:attr:`RunoutVehicle.plain` of ``vehicle`` (worked out once, when it is made)."""
+    return all(type(getattr(vehicle, name)) in _PLAIN for name in _POSITIVE + (
+        "cg_to_front_axle",)) and _plain_four(vehicle.braking) and (
+        type(vehicle.steer) in _PLAIN or _plain_four(vehicle.steer))
 
 
 def _plain_four(value) -> bool:
