@@ -71,6 +71,7 @@ from ..model.runout import MAX_TIME, RhsData, RunoutVehicle
 from ..model.tyres import DEFAULT_REGULARISATION, STANDARD_GRAVITY
 
 __all__ = ["event", "event_after", "event_rest_many", "EventRest", "event_vehicle", "impact_spec",
+           "single_scene", "SingleScene",
            "kernel_impact_records",
            "WHEELBASE_PER_LENGTH", "TRACK_PER_WIDTH", "FREE_MOTION_TIME", "SLIDE_SPEED",
            "APPROACH_SAMPLE"]
@@ -146,9 +147,15 @@ def _outline_row(vehicle: Vehicle, where: str) -> tuple:
     return front, length, float(vehicle.width)
 
 
-def scene_data(case: Case, tyre_friction, n: int = 1) -> tuple:
+def scene_data(case: Case, tyre_friction, n: int = 1, *, generic: bool = False) -> tuple:
     """``(data1, data2 or None, outlines (2, 3), inverse (4,), runout vehicles)`` of the
-    case's two vehicles for n samples (friction 0 where ``tyre_friction`` is 0)."""
+    case's two vehicles for n samples (friction 0 where ``tyre_friction`` is 0).
+
+    One sample (a single event's scene) takes :meth:`pim.model.runout.RhsData.one`, the
+    arrays of :meth:`~pim.model.runout.RhsData.of` without its broadcasting; ``generic``
+    True takes ``of`` even then (the reference the one-sample path is tested against).
+    """
+    build = RhsData.one if n == 1 and not generic else (lambda v: RhsData.of(v, n))
     ev = case.evidence
     vehicles, data = [], []
     for i in (1, 2):
@@ -159,7 +166,7 @@ def scene_data(case: Case, tyre_friction, n: int = 1) -> tuple:
             continue
         rv = event_vehicle(vehicle, None if ev is None else getattr(ev, f"vehicle{i}"),
                            tyre_friction, f"vehicle{i}")
-        d = RhsData.of(rv, n)
+        d = build(rv)
         if tyre_friction is not None and float(tyre_friction) == 0.0:
             d = replace(d, friction=np.zeros(n))
         vehicles.append(rv)
@@ -175,22 +182,34 @@ def _further_specs(case: Case) -> tuple:
     """:func:`impact_spec` of the impacts 2 to MAX_IMPACTS + 1, each distinct one built
     once (the last ``[[impacts]]`` entry, or the defaults, stands for all after it)."""
     given = len(tuple(getattr(case, "impacts", ()) or ()))
-    distinct = [impact_spec(case, k) for k in range(2, min(max(given, 1), MAX_IMPACTS) + 2)]
+    distinct = [impact_spec(case, k) for k in range(2, min(given, MAX_IMPACTS) + 2)
+                ] if given else [_default_spec()]
     return tuple(distinct[min(k, len(distinct) - 1)] for k in range(MAX_IMPACTS))
+
+
+@lru_cache(maxsize=1)
+def _default_spec() -> ImpactSpec:
+    """:func:`impact_spec` of a case without ``[[impacts]]`` (the stated defaults: one
+    frozen constant)."""
+    return impact_spec(None, 2)
 
 
 def _coefficients(specs: tuple) -> np.ndarray:
     """(MAX_IMPACTS, 7): the further impacts' laws (``specs``, :func:`_further_specs`) for
     the kernel (:data:`pim.model.event_kernel.COEFFICIENT_COLUMNS`: restitution, beta, cap,
     law code, C and Gamma where the case's ``[[impacts]]`` give them, else NaN)."""
-    rows = []
+    rows, done = [], {}
     for spec in specs:
+        if id(spec) in done:            # (the last spec repeats to MAX_IMPACTS)
+            rows.append(done[id(spec)])
+            continue
         cap = np.inf if spec.law == "brach" else float(spec.contact_friction)
         point = ((np.nan, np.nan) if spec.point is None
                  else np.asarray(spec.point, float).reshape(2))
         rows.append((float(spec.restitution), 1.0 if spec.beta is None else float(spec.beta),
                      cap, LAW_CODES[spec.law], *point,
                      np.nan if spec.normal_angle is None else float(spec.normal_angle)))
+        done[id(spec)] = rows[-1]
     return np.array(rows)
 
 
@@ -365,11 +384,25 @@ class _Watch:
 
 
 @dataclass(frozen=True)
-class _Scene:
-    """A case's scene for its single events (:func:`_scene`): the kernel's arrays, the
-    vehicles with tyres (indices: not a fixed obstacle), their wheels (:func:`_wheels`,
-    stacked on a first axis for the kernel) and the wheels' positions (read-only, the
-    tracks'), the further impacts' laws, and whether vehicle 2 is fixed."""
+class SingleScene:
+    """A case's scene for its single events (:func:`single_scene`).
+
+    Attributes
+    ----------
+    kernel : pim.model.event_kernel.KernelScene
+        The event kernel's arrays (one sample).
+    tyred : tuple of int
+        The vehicles with tyres (indices: not a fixed obstacle).
+    wheels : tuple
+        Their wheels' positions (V, 4, 2) [m], braking (V, 4) [-] and steer (V, 4) [rad]
+        (stacked on a first axis for the kernel).
+    positions : tuple
+        Each tyred vehicle's wheel positions (4, 2) [m] (read-only, the tracks').
+    specs : tuple
+        The further impacts' laws (:func:`impact_spec`).
+    fixed : bool
+        Vehicle 2 is a fixed obstacle.
+    """
 
     kernel: object
     tyred: tuple
@@ -379,27 +412,55 @@ class _Scene:
     fixed: bool
 
 
-def _scene(case: Case, tyre_friction) -> _Scene:
-    """The case's :class:`_Scene` at ``tyre_friction``, built once for the last 8 (case,
+def _scene(case: Case, tyre_friction) -> SingleScene:
+    """The case's :class:`SingleScene` at ``tyre_friction``, built once for the last 8 (case,
     tyre friction) pairs (:func:`_kept_scene`; a case is frozen and hashes by identity)."""
     return _kept_scene(case, None if tyre_friction is None else float(tyre_friction))
 
 
 @lru_cache(maxsize=8)
-def _kept_scene(case: Case, tyre_friction) -> _Scene:
+def _kept_scene(case: Case, tyre_friction) -> SingleScene:
+    return single_scene(case, tyre_friction)
+
+
+def single_scene(case: Case, tyre_friction=None, *, generic: bool = False) -> SingleScene:
+    """The :class:`SingleScene` of a case's single events at ``tyre_friction`` (as
+    :func:`event`), built anew (:func:`event` keeps the last 8). ``generic`` True: by
+    the n-sample path (:func:`scene_data`'s ``generic``, the wheels' positions computed
+    again), the reference the one-sample path is tested against (the same arrays)."""
     from ..model.event_kernel import EventScene, kernel_scene  # compiled: numba
 
-    data1, data2, outlines, inverse, vehicles = scene_data(case, tyre_friction)
+    data1, data2, outlines, inverse, vehicles = scene_data(case, tyre_friction,
+                                                           generic=generic)
     specs = _further_specs(case)
     scene = EventScene(data1, data2, outlines[None], inverse[None], _coefficients(specs)[None])
     tyred = tuple(i for i, v in enumerate(vehicles) if v is not None)
-    wheels = [_wheels(vehicles[i]) for i in tyred]
-    stacked = tuple(np.stack([w[j] for w in wheels]) for j in range(3))   # (the kernel's)
-    return _Scene(kernel_scene(scene, 1), tyred, stacked, tuple(w[0] for w in wheels), specs,
-                  bool(case.vehicle2.fixed))
+    tyres = [vehicles[i] for i in tyred]
+    if generic or not all(v.plain for v in tyres):
+        wheels = [_wheels(v) for v in tyres]
+        stacked = tuple(np.stack([w[j] for w in wheels]) for j in range(3))   # (the kernel's)
+    else:
+        stacked = _stacked_wheels(tyres, [(data1, data2)[i] for i in tyred])
+    positions = tuple(p.view() for p in stacked[0])
+    for p in positions:
+        p.setflags(write=False)
+    return SingleScene(kernel_scene(scene, 1), tyred, stacked, positions, specs,
+                       bool(case.vehicle2.fixed))
 
 
-def _run_out(scene: _Scene, state: np.ndarray, watch: _Watch) -> _Run:
+def _stacked_wheels(vehicles: list, data: list) -> tuple:
+    """:func:`_wheels` of V vehicles with :attr:`~pim.model.runout.RunoutVehicle.plain`
+    fields stacked on a first axis as the kernel takes them (positions (V, 4, 2), braking
+    (V, 4), steer (V, 4)), the positions from their one-sample ``data``, without a stack
+    per array."""
+    positions, steer = np.empty((len(vehicles), 4, 2)), np.empty((len(vehicles), 4))
+    for i, (v, d) in enumerate(zip(vehicles, data)):
+        positions[i, :, 0], positions[i, :, 1] = d.wheel_x[0], d.wheel_y[0]
+        steer[i] = v.steer
+    return positions, np.array([v.braking for v in vehicles], float), steer
+
+
+def _run_out(scene: SingleScene, state: np.ndarray, watch: _Watch) -> _Run:
     """Steps 3-5 of one event (module notes) in one call of the compiled kernel, which
     solves every further impact; the records from its rows."""
     from ..model.event_kernel import run_event  # compiled event: numba on first use
@@ -480,7 +541,7 @@ def event(case: Case, *, tyre_friction=None, approach: float = DEFAULT_APPROACH,
     return _assemble(case, (first, *run.impacts), run, approach, scene, free)
 
 
-def _assemble(case: Case, impacts: tuple, run: _Run, approach: float, scene: _Scene,
+def _assemble(case: Case, impacts: tuple, run: _Run, approach: float, scene: SingleScene,
               free: bool) -> Event:
     """The event's samples: the approach, the state just before the first impact, and the
     run-out's rows (the first is the state just after it)."""
@@ -500,8 +561,9 @@ def _assemble(case: Case, impacts: tuple, run: _Run, approach: float, scene: _Sc
                      impact_times=[i.time for i in impacts], impacts=tuple(impacts))
 
 
-def _event_of(case: Case, time: np.ndarray, states: np.ndarray, run: _Run, scene: _Scene, *,
-              start: int, free: bool, impact_times: list, impacts: tuple) -> Event:
+def _event_of(case: Case, time: np.ndarray, states: np.ndarray, run: _Run,
+              scene: SingleScene, *, start: int, free: bool, impact_times: list,
+              impacts: tuple) -> Event:
     """The Event of both vehicles' ``states`` (2, N, 6) at ``time``: the wheels that slide
     from sample ``start`` on (the run-out; of the vehicles with tyres, all at once)."""
     sliding = np.zeros((2, len(states[0]), 4), bool)

@@ -422,16 +422,25 @@ class KernelScene:
 def kernel_scene(scene: EventScene, n: int) -> KernelScene:
     """``scene``'s arrays for n samples as the kernel takes them (broadcast, C-contiguous)."""
     data2 = scene.data2 if scene.data2 is not None else scene.data1
-    outlines = np.broadcast_to(np.asarray(scene.outlines, float), (n, 2, 3))
-    rad = np.stack([event_formula.bound_radius(*np.moveaxis(outlines[:, v], -1, 0))
-                    for v in range(2)], -1)
+    outlines = _shaped(scene.outlines, (n, 2, 3))
+    rad = event_formula.bound_radius(outlines[..., 0], outlines[..., 1], outlines[..., 2])
     reach = np.stack([scene.data1.reach, data2.reach], -1)
-    inv = np.broadcast_to(np.asarray(scene.inverse, float), (n, 4))
-    coefficients = np.broadcast_to(np.asarray(scene.coefficients, float),
-                                   (n, MAX_IMPACTS, len(COEFFICIENT_COLUMNS)))
+    inv = _shaped(scene.inverse, (n, 4))
+    coefficients = _shaped(scene.coefficients, (n, MAX_IMPACTS, len(COEFFICIENT_COLUMNS)))
     return KernelScene(n, (one_signature(*_columns(scene.data1)),
                            one_signature(*_columns(data2))),
                        one_signature(outlines, rad, reach, inv, coefficients))
+
+
+def _shaped(value, shape: tuple) -> np.ndarray:
+    """``value`` as floats broadcast to ``shape`` in a writable array (no read-only view
+    for :func:`one_signature` to copy): itself when it has that shape already."""
+    a = np.asarray(value, float)
+    if a.shape == shape:
+        return a
+    out = np.empty(shape)       # (writable: no copy by one_signature)
+    out[...] = a
+    return out
 
 
 def run_event(scene, start, *, start_time=0.0, allowed=None, solve=True, record=0,
@@ -474,8 +483,7 @@ def run_event(scene, start, *, start_time=0.0, allowed=None, solve=True, record=
     if n < SERIAL_BELOW:     # a single event: waking the thread pool costs more than it is
         set_num_threads(1)
     try:
-        _run(*one_signature(start, np.broadcast_to(np.asarray(start_time, float), (n,)),
-                            np.asarray(allowed, float)),
+        _run(*one_signature(start, _shaped(start_time, (n,)), np.asarray(allowed, float)),
              *scene.vehicles, *scene.arrays, settings, out, tail, impacts, rec)
     finally:
         set_num_threads(threads)

@@ -29,6 +29,7 @@ arm); one that has not stopped after ``max_time`` (60 s by default) is flagged
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -111,6 +112,12 @@ class RunoutVehicle:
         return self.tyre is not None or self.driver is not None
 
     def __post_init__(self):
+        object.__setattr__(self, "_plain", _plain_fields(self))    # (read by .plain)
+        if not _plain_valid(self):      # arrays, numpy scalars, or a field out of range
+            self._check_fields()
+
+    def _check_fields(self):
+        """The fields' checks on arrays: an :class:`InputError` naming the first bad one."""
         for name, unit in (("mass", "kg"), ("yaw_inertia", "kg m^2"), ("wheelbase", "m"),
                            ("track", "m"), ("friction", "-")):
             value = real_array(getattr(self, name), f"runout.{name}", unit)
@@ -135,6 +142,12 @@ class RunoutVehicle:
                              f"got {self.regularisation!r}")
 
     @property
+    def plain(self) -> bool:
+        """True when the fields are Python numbers (one vehicle, no per-sample arrays):
+        the one-sample paths (:meth:`RhsData.one`) apply."""
+        return self._plain
+
+    @property
     def positions(self) -> np.ndarray:
         """Tyre positions in the body frame [m], shape (..., 4, 2)."""
         return wheel_positions(self.wheelbase, self.track, self.cg_to_front_axle)
@@ -143,6 +156,45 @@ class RunoutVehicle:
     def loads(self) -> np.ndarray:
         """Static tyre loads [N], shape (..., 4)."""
         return static_loads(self.mass, self.wheelbase, self.cg_to_front_axle, self.gravity)
+
+
+#: The fields :class:`RunoutVehicle` requires finite and > 0.
+_POSITIVE = ("mass", "yaw_inertia", "wheelbase", "track", "friction")
+#: Python numbers (``bool`` excluded: :func:`pim.model.numbers.real_array` refuses it).
+_PLAIN = (float, int)
+
+
+def _plain_fields(vehicle: RunoutVehicle) -> bool:
+    """:attr:`RunoutVehicle.plain` of ``vehicle`` (worked out once, when it is made)."""
+    return all(type(getattr(vehicle, name)) in _PLAIN for name in _POSITIVE + (
+        "cg_to_front_axle",)) and _plain_four(vehicle.braking) and (
+        type(vehicle.steer) in _PLAIN or _plain_four(vehicle.steer))
+
+
+def _plain_four(value) -> bool:
+    """``value`` is a tuple or list of four Python numbers."""
+    return type(value) in (tuple, list) and len(value) == 4 and all(
+        type(v) in _PLAIN for v in value)
+
+
+def _plain_valid(vehicle: RunoutVehicle) -> bool:
+    """True when every checked field of ``vehicle`` is a Python number (a tuple of four
+    for braking and steer) within its range: the checks of
+    :meth:`RunoutVehicle._check_fields` on numbers, without numpy's small-array cost. False
+    leaves the decision (and the error) to those checks."""
+    if not vehicle.plain:
+        return False
+    steer = vehicle.steer
+    try:
+        v = [float(getattr(vehicle, name)) for name in _POSITIVE]
+        a = float(vehicle.cg_to_front_axle)
+        return (all(math.isfinite(x) and x > 0 for x in v) and math.isfinite(a)
+                and 0 <= a <= v[2] and all(0 <= float(b) <= 1 for b in vehicle.braking)
+                and all(math.isfinite(float(x)) for x in (
+                    (steer,) if type(steer) in _PLAIN else steer))
+                and vehicle.regularisation > 0)
+    except OverflowError:           # an int beyond float's range
+        return False
 
 
 @dataclass(frozen=True)
@@ -198,6 +250,26 @@ class RhsData:
                    friction=per_sample(vehicle.friction, (n,)),
                    regularisation=float(vehicle.regularisation), times=times, steer=steer,
                    brake=brake, tyre=_tyre_rows(vehicle, n))
+
+    @classmethod
+    def one(cls, vehicle: RunoutVehicle, positions=None) -> RhsData:
+        """:meth:`of` for one sample (n = 1), the same arrays, without its broadcasting
+        (a single event's scene): for a vehicle with :attr:`RunoutVehicle.plain` fields
+        and no driver, else :meth:`of`. ``positions``: ``vehicle.positions`` when the
+        caller has them."""
+        if vehicle.driver is not None or not vehicle.plain:
+            return cls.of(vehicle, 1)
+        pos = vehicle.positions if positions is None else positions
+        steer = np.empty(4)
+        steer[:] = vehicle.steer
+        return cls(mass=np.array([float(vehicle.mass)]),
+                   yaw_inertia=np.array([float(vehicle.yaw_inertia)]),
+                   wheel_x=pos[None, :, 0].copy(), wheel_y=pos[None, :, 1].copy(),
+                   load=vehicle.loads[None], friction=np.array([float(vehicle.friction)]),
+                   regularisation=float(vehicle.regularisation), times=np.zeros(1),
+                   steer=np.array([[np.cos(steer), np.sin(steer)]]),
+                   brake=np.array([[vehicle.braking]], dtype=float),
+                   tyre=_tyre_rows(vehicle, 1))
 
     @property
     def reach(self) -> np.ndarray:

@@ -199,8 +199,15 @@ def one_signature(*args) -> tuple:
     vehicle data, a driver table or not, the field tyre or Coulomb, all share one compiled
     version. Only the arrays' memory layout changes, never a value.
     """
-    return tuple(np.require(a, requirements="CW") if isinstance(a, np.ndarray)
+    return tuple(_contiguous(a) if isinstance(a, np.ndarray)
                  else int(a) if isinstance(a, (int, np.integer)) else float(a) for a in args)
+
+
+def _contiguous(a: np.ndarray) -> np.ndarray:
+    """``a`` C-contiguous and writable: itself when it is (``np.require``'s answer then,
+    without its cost), else a copy."""
+    flags = a.flags
+    return a if flags.c_contiguous and flags.writeable else np.require(a, requirements="CW")
 
 
 def integrate_many(vehicle: RunoutVehicle, position, heading, velocity, yaw_rate, *,

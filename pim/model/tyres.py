@@ -65,11 +65,20 @@ def wheel_positions(wheelbase, track, cg_to_front) -> np.ndarray:
     ndarray, shape (..., 4, 2)
         [m], wheels in the order of ``WHEELS``.
     """
-    length, track, a = np.broadcast_arrays(*(np.asarray(v, dtype=float)
-                                            for v in (wheelbase, track, cg_to_front)))
-    x = np.stack([a, a, a - length, a - length], axis=-1)
-    y = np.stack([track / 2, -track / 2, track / 2, -track / 2], axis=-1)
-    return np.stack([x, y], axis=-1)
+    plain, (length, track, a) = _operands(wheelbase, track, cg_to_front)
+    x = [a, a, a - length, a - length]
+    y = [track / 2, -track / 2, track / 2, -track / 2]
+    return np.array(list(zip(x, y))) if plain else np.stack(
+        [np.stack(x, axis=-1), np.stack(y, axis=-1)], axis=-1)
+
+
+def _operands(*values) -> tuple:
+    """``(plain, operands)``: Python floats when every value is a Python number (one
+    vehicle: its formula on floats, the same IEEE arithmetic as numpy's, without numpy's
+    small-array cost), else the values as float arrays broadcast together."""
+    if all(type(v) in (float, int) for v in values):
+        return True, tuple(float(v) for v in values)
+    return False, tuple(np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values)))
 
 
 def static_loads(mass, wheelbase, cg_to_front, gravity=STANDARD_GRAVITY) -> np.ndarray:
@@ -91,11 +100,11 @@ def static_loads(mass, wheelbase, cg_to_front, gravity=STANDARD_GRAVITY) -> np.n
     ndarray, shape (..., 4)
         [N], summing to ``m g``.
     """
-    mass, length, a, g = np.broadcast_arrays(*(np.asarray(v, dtype=float)
-                                              for v in (mass, wheelbase, cg_to_front, gravity)))
+    plain, (mass, length, a, g) = _operands(mass, wheelbase, cg_to_front, gravity)
     front = mass * g * (length - a) / (2 * length)
     rear = mass * g * a / (2 * length)
-    return np.stack([front, front, rear, rear], axis=-1)
+    return np.array([front, front, rear, rear]) if plain else np.stack(
+        [front, front, rear, rear], axis=-1)
 
 
 def tyre_forces(velocity, yaw_rate, heading, positions, loads, friction, braking,

@@ -387,3 +387,53 @@ def test_the_event_after_a_given_motion_is_the_events_run_out():
     assert [i.time for i in bare.impacts] == [full.impacts[1].time]
     with pytest.raises(pim.InputError, match="velocity must be"):
         event_after(case, [1.0, 2.0], [0.0, 0.0])
+
+
+def _same_bits(a, b) -> bool:
+    """``a`` and ``b`` (arrays or numbers) bitwise equal: shape, dtype and bytes (NaN too)."""
+    if not isinstance(a, np.ndarray):
+        return type(a) is type(b) and np.asarray(a).tobytes() == np.asarray(b).tobytes()
+    return (isinstance(b, np.ndarray) and a.shape == b.shape and a.dtype == b.dtype
+            and a.flags.c_contiguous == b.flags.c_contiguous and a.tobytes() == b.tobytes())
+
+
+@pytest.mark.parametrize("name", ["ricsac9", "side-slap", "hard-barrier", "hard-pole",
+                                  "synthetic-runout"])
+@pytest.mark.parametrize("mu", [None, 0.0, 0.55])
+def test_single_event_scene_is_the_generic_scene_bit_for_bit(name, mu):
+    """The one-sample scene of a single event (pim.event's, RhsData.one, no broadcasting)
+    holds the same arrays as the n-sample path's (RhsData.of) for one sample: RICSAC 9,
+    the side slap, fixed obstacles, run-out evidence."""
+    from sim.event_check import side_slap_case
+
+    from pim.analysis.event import single_scene
+
+    case = side_slap_case(1.6) if name == "side-slap" else pim.load_case(name)
+    fast, generic = single_scene(case, mu), single_scene(case, mu, generic=True)
+    fast_arrays = (*fast.kernel.vehicles[0], *fast.kernel.vehicles[1], *fast.kernel.arrays,
+                   *fast.wheels, *fast.positions)
+    generic_arrays = (*generic.kernel.vehicles[0], *generic.kernel.vehicles[1],
+                      *generic.kernel.arrays, *generic.wheels, *generic.positions)
+    assert len(fast_arrays) == len(generic_arrays) > 30
+    bad = [k for k, (a, b) in enumerate(zip(fast_arrays, generic_arrays))
+           if not _same_bits(a, b)]
+    assert not bad, f"{name}: arrays {bad} differ"
+    assert (fast.tyred, repr(fast.specs), fast.fixed) == (generic.tyred, repr(generic.specs),
+                                                          generic.fixed)
+
+
+def test_a_new_case_object_gets_a_new_scene(monkeypatch):
+    """The scene is kept per case object (a case is frozen), never looked up by content: an
+    equal new case object's is built anew."""
+    import pim.analysis.event as module
+
+    built = []
+    original = module.single_scene
+    monkeypatch.setattr(module, "single_scene",
+                        lambda *a, **k: built.append(a[0]) or original(*a, **k))
+    case = replace(pim.load_case("ricsac9"), name="kept scene")
+    other = replace(case)
+    pim.event(case)
+    pim.event(case)
+    pim.event(other)
+    assert [c is case for c in built] == [True, False] and built[1] is other

@@ -117,6 +117,70 @@ def test_bad_vehicle_names_the_field(field, value):
         RunoutVehicle(**kwargs)
 
 
+_BAD_VALUES = [0.0, -0.2, float("nan"), float("inf"), "2.7", True, None, 10 ** 400, 3.0]
+
+
+@pytest.mark.parametrize("field", ["mass", "yaw_inertia", "wheelbase", "track", "friction",
+                                   "cg_to_front_axle", "regularisation"])
+@pytest.mark.parametrize("value", _BAD_VALUES)
+def test_plain_numbers_are_checked_as_arrays_are(field, value):
+    """A vehicle of Python numbers (the one-sample fast check) is refused exactly when the
+    same values as numpy arrays are, with the same message."""
+    def outcome(kwargs):
+        try:
+            RunoutVehicle(**kwargs)
+        except (ValueError, TypeError, OverflowError) as exc:
+            return type(exc), str(exc).split(", got")[0]   # (the value's repr differs)
+        return None
+
+    kwargs = dict(mass=1500.0, yaw_inertia=2500.0, wheelbase=2.7, track=1.5,
+                  cg_to_front_axle=1.2, friction=0.8, regularisation=0.05)
+    kwargs[field] = value
+    arrays = {k: np.asarray(v) if k != "regularisation" and isinstance(v, float) else v
+              for k, v in kwargs.items()}
+    assert outcome(kwargs) == outcome(arrays)
+
+
+@pytest.mark.parametrize("braking, steer", [((1.0, 0.5, 2.0, 1.0), 0.0),
+                                            ((1.0, -0.1, 1.0, 1.0), 0.0),
+                                            ((1.0, 1.0, 1.0), 0.0),
+                                            ((1, 1, 0, 0), (0.1, 0.1, float("nan"), 0.0)),
+                                            ((1, 1, 0, 0), (0.1, 0.1)),
+                                            ((1, 1, 0, 0), float("inf"))])
+def test_bad_wheels_are_refused_as_arrays_are(braking, steer):
+    def outcome(b, s):
+        try:
+            RunoutVehicle(1500.0, 2500.0, 2.7, 1.5, 1.2, 0.8, braking=b, steer=s)
+        except ValueError as exc:
+            return str(exc).split(", got")[0]      # (the value's repr differs)
+        return None
+
+    message = outcome(braking, steer)
+    assert message is not None and message == outcome(np.asarray(braking, float),
+                                                      np.asarray(steer, float))
+
+
+@pytest.mark.parametrize("vehicle", [
+    RunoutVehicle(1500.0, 2500.0, 2.7, 1.5, 1.2, 0.8),
+    RunoutVehicle(1312, 2100.5, 2.61, 1.49, 0.97, 0.7, braking=(1, 1, 0.2, 0.2),
+                  steer=(0.21, 0.19, 0.0, 0.0)),
+    RunoutVehicle(1500.0, 2500.0, 2.7, 1.5, 2.7, 0.9, steer=-0.3,
+                  tyre=TyreData(cg_height=0.55, rolling_resistance=0.012)),
+    RunoutVehicle(np.float64(1500.0), 2500.0, 2.7, 1.5, 1.2, 0.8)])
+def test_one_sample_data_is_the_broadcast_data_bit_for_bit(vehicle):
+    """RhsData.one (one sample, no broadcasting) holds RhsData.of(vehicle, 1)'s arrays,
+    bitwise: Coulomb and field tyres, braking, steer, Python ints, a numpy scalar."""
+    from pim.model.runout import RhsData
+
+    one, of = RhsData.one(vehicle), RhsData.of(vehicle, 1)
+    for name in ("mass", "yaw_inertia", "wheel_x", "wheel_y", "load", "friction", "times",
+                 "steer", "brake", "tyre"):
+        a, b = getattr(one, name), getattr(of, name)
+        assert a.shape == b.shape and a.dtype == b.dtype and a.tobytes() == b.tobytes(), name
+        assert a.flags.c_contiguous, name
+    assert one.regularisation == of.regularisation
+
+
 def test_nan_state_names_the_field():
     with pytest.raises(ValueError, match="runout.velocity"):
         runout(CAR, [0, 0], 0.0, [np.nan, 1.0], 0.0)
