@@ -526,11 +526,7 @@ def event(case: Case, *, tyre_friction=None, approach: float = DEFAULT_APPROACH,
     [0.0, 0.42]
     """
     approach = checked_number(approach, "approach", low=0.0, unit="s")
-    if tyre_friction is not None:
-        tyre_friction = checked_number(tyre_friction, "tyre_friction", low=0.0)
-    free = tyre_friction == 0.0
-    limit = (FREE_MOTION_TIME if free else MAX_TIME) if max_time is None else checked_number(
-        max_time, "max_time", low=0.0, low_open=True, unit="s")
+    tyre_friction, free, limit = _run_options(tyre_friction, max_time)
     scene = _scene(case, tyre_friction)
     result = solve(case, eps, beta)
     choice = resolve_law(case, eps, beta)
@@ -588,6 +584,18 @@ def _event_of(case: Case, time: np.ndarray, states: np.ndarray, run: _Run,
                  impacts=impacts, source="analytic", stopped=stopped, notes=tuple(notes))
 
 
+def _run_options(tyre_friction, max_time) -> tuple:
+    """``(tyre_friction, free, limit)``: the checked friction (None: the case's), whether
+    the run-out is free motion (friction 0), and its time limit [s] (``max_time``, else
+    :data:`FREE_MOTION_TIME` without tyres and :data:`MAX_TIME` with them)."""
+    if tyre_friction is not None:
+        tyre_friction = checked_number(tyre_friction, "tyre_friction", low=0.0)
+    free = tyre_friction == 0.0
+    limit = (FREE_MOTION_TIME if free else MAX_TIME) if max_time is None else checked_number(
+        max_time, "max_time", low=0.0, low_open=True, unit="s")
+    return tyre_friction, free, limit
+
+
 def event_after(case: Case, velocity, yaw_rate, *, first: ImpactRecord | None = None,
                 tyre_friction=None, max_time=None, step: float = EVENT_STEP,
                 tolerance: float = CONTACT_TOLERANCE) -> Event:
@@ -622,11 +630,7 @@ def event_after(case: Case, velocity, yaw_rate, *, first: ImpactRecord | None = 
         ``source`` "analytic", from t = 0 (the state just after the first impact, phase
         "impact 1") to rest; ``impacts`` ``first`` (when given) and every further impact.
     """
-    if tyre_friction is not None:
-        tyre_friction = checked_number(tyre_friction, "tyre_friction", low=0.0)
-    free = tyre_friction == 0.0
-    limit = (FREE_MOTION_TIME if free else MAX_TIME) if max_time is None else checked_number(
-        max_time, "max_time", low=0.0, low_open=True, unit="s")
+    tyre_friction, free, limit = _run_options(tyre_friction, max_time)
     velocity = real_array(velocity, "velocity", "m/s")
     yaw_rate = real_array(yaw_rate, "yaw_rate", "rad/s")
     if velocity.shape != (2, 2) or yaw_rate.shape != (2,):
