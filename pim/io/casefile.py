@@ -72,7 +72,7 @@ import numpy as np
 
 from ..model.case import Case, Impact, ImpactSpec, Vehicle
 from ..model.distributions import Distribution, UncertaintyTable
-from ..model.numbers import InputError
+from ..model.numbers import InputError, unit_text
 from ..model.tyres import STANDARD_GRAVITY
 from .brach import cg_from_brach, heading_from_theta
 from .evidence_table import AXLE_KEY, OLD_AXLE_KEY, parse_evidence, parse_unknown
@@ -81,7 +81,8 @@ from .measured_table import parse_measured
 from .toml_tables import check_keys
 from .tyre_table import attach_tyres
 from .uncertainty_table import parse_uncertainty
-from .units import LIMITS, SPEED_UNITS, UNIT_SYSTEMS, parse, unit_system_of
+from .units import (LIMITS, SPEED_UNITS, UNIT_SYSTEMS, DisplayUnits, messages_in, parse,
+                    unit_system_of)
 
 __all__ = ["load_case", "list_cases", "parse_case", "parse_impacts", "MAX_FURTHER"]
 
@@ -239,8 +240,9 @@ def _inertia(table, mass: float, where: str, evidence) -> tuple[float, object]:
     low, high = LIMITS["inertia"]
     if mass > 0 and not low <= inertia <= high:
         raise InputError(f"{where}.radius_of_gyration = {table['radius_of_gyration']!r} "
-                         f"gives a yaw inertia m k^2 = {inertia:.3g} kg m^2 outside "
-                         f"[{low:g}, {high:g}] kg m^2")
+                         f"gives a yaw inertia m k^2 = {unit_text(inertia, 'inertia', '.3g')} "
+                         f"outside [{unit_text(low, 'inertia', '.3g')}, "
+                         f"{unit_text(high, 'inertia', '.3g')}]")
     return inertia, None
 
 
@@ -300,6 +302,14 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
     """
     _check_depth(data, source)
     data = check_keys(data, _TOP, source)
+    presentation = _presentation(data)
+    with messages_in(DisplayUnits(presentation["units"], presentation["speed_unit"])):
+        return _parsed_case(data, source, presentation)
+
+
+def _parsed_case(data: dict, source: str, presentation: dict) -> Case:
+    """:func:`parse_case` of a checked document, its messages in the case's units
+    (``presentation``: :func:`_presentation`'s)."""
     convention = data.get("convention", "global")
     if convention not in ("global", "brach"):
         raise InputError(f"convention must be 'global' or 'brach', got {convention!r}")
@@ -340,7 +350,7 @@ def parse_case(data: dict, source: str = "<case>") -> Case:
     case = Case(vehicle1=vehicles[0], vehicle2=vehicles[1], impact=impact,
                 measured=parse_measured(data.get("measured")), name=name, description=description,
                 uncertainty=_with_estimates(_uncertainty(data.get("uncertainty")), estimates),
-                **_presentation(data),
+                **presentation,
                 evidence=attach_tyres(parse_evidence(data.get("evidence"), {
                     i + 1: (v.length, v.width) for i, v in enumerate(vehicles)},
                     _front_shares(data)), data.get("tyres"), data.get("driver")),

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 from ..model.crush import SIDES, CrushProfile
-from ..model.numbers import InputError
+from ..model.numbers import InputError, unit_text
 from .datasets import data_path, source_lines
 from .toml_tables import check_keys
 from .units import parse, quantity_in
@@ -210,22 +210,27 @@ def _check_extent(profile: CrushProfile, where: str, vehicle_length, vehicle_wid
     dimension = "length" if along_x else "width"
     if side_length is not None:
         if profile.width > side_length:
-            raise InputError(f"{where}.width = {profile.width:.3g} m is longer than the "
+            raise InputError(f"{where}.width = {_length(profile.width)} is longer than the "
                              f"damaged {profile.side} side (the vehicle's {dimension}, "
-                             f"{side_length:.3g} m); allowed: (0, {side_length:.3g}] m")
+                             f"{_length(side_length)}); allowed: (0, {_length(side_length)}]")
         reach = abs(profile.offset) + profile.width / 2
         if reach > side_length / 2 * (1 + 1e-9):
-            raise InputError(f"{where}.offset = {profile.offset:.3g} m puts the damage "
-                             f"({profile.width:.3g} m wide) beyond the end of the "
+            raise InputError(f"{where}.offset = {_length(profile.offset)} puts the damage "
+                             f"({_length(profile.width)} wide) beyond the end of the "
                              f"{profile.side} side; allowed: |offset| + width/2 <= "
-                             f"{side_length / 2:.3g} m")
+                             f"{_length(side_length / 2)}")
     if depth_limit is not None:
         deepest = max(profile.depths)
         other = "width" if along_x else "length"
         if deepest > depth_limit:
-            raise InputError(f"{where}.depths: a crush of {deepest:.3g} m is deeper than the "
-                             f"vehicle ({other} {depth_limit:.3g} m); allowed: [0, "
-                             f"{depth_limit:.3g}] m")
+            raise InputError(f"{where}.depths: a crush of {_length(deepest)} is deeper than "
+                             f"the vehicle ({other} {_length(depth_limit)}); allowed: [0, "
+                             f"{_length(depth_limit)}]")
+
+
+def _length(value: float) -> str:
+    """A length [m] as a message prints it (in the case's units while one loads)."""
+    return unit_text(value, "length", ".3g")
 
 
 def parse_crush(table, where: str, vehicle_length=None, vehicle_width=None,

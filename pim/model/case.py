@@ -17,7 +17,7 @@ import numpy as np
 
 from .geometry import rotate
 from .inertia import InputEstimate
-from .numbers import InputError, check_type, real_array
+from .numbers import InputError, check_type, real_array, unit_text
 
 __all__ = ["Vehicle", "Impact", "ImpactSpec", "Case", "Measured", "LAWS", "MASS_RANGE", "INERTIA_RANGE",
            "MAX_ARM_RATIO", "SPEED_UNITS", "checked_case", "BETA_RANGE_TEXT"]
@@ -170,10 +170,12 @@ def _check_conditioning(case, single: bool = False) -> None:
         k = float(np.ravel(np.broadcast_to(np.sqrt(v.yaw_inertia / v.mass),
                                            np.shape(ratio)))[worst])
         raise InputError(
-            f"vehicle{i}.yaw_inertia: the radius of gyration sqrt(I/m) = {k:.3g} m is too "
-            f"small for the arm |C - CG| = {r:.3g} m (m arm^2 / I = {r * r / (k * k):.3g} > "
+            f"vehicle{i}.yaw_inertia: the radius of gyration sqrt(I/m) = "
+            f"{unit_text(k, 'length', '.3g')} is too small for the arm |C - CG| = "
+            f"{unit_text(r, 'length', '.3g')} (m arm^2 / I = {r * r / (k * k):.3g} > "
             f"{MAX_ARM_RATIO:g}): the impulse would lose more than 10 significant digits; "
-            f"the radius of gyration must be at least {r / math.sqrt(MAX_ARM_RATIO):.3g} m")
+            f"the radius of gyration must be at least "
+            f"{unit_text(r / math.sqrt(MAX_ARM_RATIO), 'length', '.3g')}")
 
 
 @dataclass(frozen=True, eq=False)

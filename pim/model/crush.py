@@ -31,7 +31,7 @@ import numpy as np
 
 from .dual import Dual, cos_sin, hypot
 from .dual import sqrt as sqrt_of  # re-exported: the square root on duals lives in dual
-from .numbers import InputError
+from .numbers import InputError, unit_text
 
 __all__ = ["CrushProfile", "SIDES", "SIDE_NORMALS", "crush_energy", "force_balance_factor",
            "FORCE_BALANCE_CAP", "equivalent_energy_speed", "effective_mass", "moment_arm",
@@ -308,7 +308,8 @@ def _check_positive(value, name: str, unit: str, allow_zero: bool = False) -> fl
     number = float(value)
     if not np.isfinite(number) or number < 0 or (number == 0 and not allow_zero):
         relation = ">= 0" if allow_zero else "> 0"
-        raise InputError(f"{name} = {number:g} {unit} must be finite and {relation}")
+        shown = unit_text(number, "length", "g") if unit == "m" else f"{number:g} {unit}"
+        raise InputError(f"{name} = {shown} must be finite and {relation}")
     return number
 
 
@@ -367,8 +368,8 @@ class CrushProfile:
                              f"(C1..Cn equally spaced over the damage width)")
         for i, c in enumerate(depths):
             if not np.isfinite(c) or c < 0:
-                raise InputError(f"{w}.depths[{i}] = {c:g} m: a crush depth must be finite "
-                                 f"and >= 0")
+                raise InputError(f"{w}.depths[{i}] = {unit_text(c, 'length', 'g')}: a crush "
+                                 f"depth must be finite and >= 0")
         object.__setattr__(self, "depths", depths)
         _check_positive(self.width, f"{w}.width", "m")
         _check_positive(self.stiffness_a, f"{w}.stiffness_a", "N/m")

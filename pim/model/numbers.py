@@ -145,8 +145,9 @@ def check_numbers(**values) -> None:
 
 
 #: Kinds of quantity a message prints in the user's units, with their SI (factor 1, label)
-#: outside a :func:`units_in` block: speeds, lengths, yaw rates.
-MESSAGE_KINDS = {"speed": (1.0, "m/s"), "length": (1.0, "m"), "angular_velocity": (1.0, "rad/s")}
+#: outside a :func:`units_in` block: speeds, lengths, yaw rates, yaw inertias.
+MESSAGE_KINDS = {"speed": (1.0, "m/s"), "length": (1.0, "m"), "angular_velocity": (1.0, "rad/s"),
+                 "inertia": (1.0, "kg m^2")}
 
 _MESSAGE_UNITS: ContextVar[dict] = ContextVar("message_units", default=MESSAGE_KINDS)
 

@@ -6,6 +6,7 @@ not inherit the command's units."""
 from __future__ import annotations
 
 import contextvars
+import re
 from importlib import resources
 
 import pytest
@@ -101,3 +102,39 @@ def test_unknown_speed_bounds_are_quoted_as_written(bounds, said):
     with pytest.raises(pim.InputError) as err:
         parse_unknown({"vehicle1": {"speed": {"bounds": bounds}}})
     assert said in str(err.value)
+
+
+def _bundled_with(tmp_path, name: str, old: str, new: str) -> str:
+    """A bundled case (written in ft and lbf: US units) with ``old`` replaced by ``new``."""
+    text = (resources.files("pim.io") / "cases" / f"{name}.toml").read_text()
+    assert old in text
+    path = tmp_path / f"{name}-changed.toml"
+    path.write_text(text.replace(old, new, 1))
+    return str(path)
+
+
+@pytest.mark.parametrize("name, old, new, said", [
+    ("synthetic-crush", 'width = "1.2 m"', 'width = "20 ft"',
+     "evidence.vehicle1.crush.width = 20 ft is longer than the damaged front side (the "
+     "vehicle's width, 5.3 ft); allowed: (0, 5.3 ft]"),
+    ("synthetic-crush", 'depths = ["0.25 m", "0.25 m", "0.25 m"]',
+     'depths = ["1 ft", "15 ft", "1 ft"]',
+     "evidence.vehicle1.crush.depths: a crush of 15 ft is deeper than the vehicle (length "
+     "13 ft); allowed: [0, 13 ft]"),
+    ("ricsac9", 'radius_of_gyration = "3.7313536 ft"', 'radius_of_gyration = "0.0004 ft"',
+     "the radius of gyration sqrt(I/m) = 0.0004 ft is too small for the arm |C - CG| = "
+     "4.8 ft"),
+    ("ricsac9", 'radius_of_gyration = "3.7313536 ft"', 'radius_of_gyration = "0.00001 ft"',
+     "gives a yaw inertia m k^2 = 7.01e-09 slug ft^2 outside [7.38e-07 slug ft^2, "
+     "7.38e+11 slug ft^2]"),
+])
+def test_a_case_files_input_errors_speak_its_units(tmp_path, capsys, name, old, new, said):
+    """Errors found while a case file loads printed their lengths in m and inertias in
+    kg m^2 whatever the file's units (e.g. "width = 6.1 m is longer than ... 1.62 m");
+    a file written in ft and lbf now hears ft and slug ft^2 (20 ft, 5.3 ft = the case's
+    width; 0.00001 ft on a 2255.4 lbf car: m k^2 = 70.1 slug * 1e-10 ft^2)."""
+    path = _bundled_with(tmp_path, name, old, new)
+    assert main(["solve", path]) == 2
+    err = capsys.readouterr().err
+    assert said in err, err
+    assert not re.search(r"\d m\b|kg m\^2", err), err

@@ -121,14 +121,14 @@ def test_stiffness_must_be_given_one_way():
 def test_damage_must_fit_on_the_vehicle():
     msg = _error(US, vehicle_length=4.5, vehicle_width=1.4)
     assert msg == (f"{WHERE}.width = 1.52 m is longer than the damaged front side (the "
-                   f"vehicle's width, 1.4 m); allowed: (0, 1.4] m")
+                   f"vehicle's width, 1.4 m); allowed: (0, 1.4 m]")
     side = dict(US, side="right", width="200 in")
     assert "longer than the damaged right side (the vehicle's length, 4.5 m)" in _error(
         side, vehicle_length=4.5)
     deep = dict(US, side="left", width="50 in", depths=["10 in", "80 in"])
     assert _error(deep, vehicle_width=1.8) == (
         f"{WHERE}.depths: a crush of 2.03 m is deeper than the vehicle (width 1.8 m); "
-        f"allowed: [0, 1.8] m")
+        f"allowed: [0, 1.8 m]")
     front_deep = dict(US, depths=["10 in", "200 in"])
     assert "deeper than the vehicle (length 4.5 m)" in _error(front_deep, vehicle_length=4.5)
     shifted = dict(US, offset="20 in")
