@@ -1,11 +1,13 @@
 """The tables of docs/inertia-estimate.md, written by ``python -m comparisons.docs
 inertia-estimate``: each body class's yaw dynamic index, its scatter and the held-out check
 (NHTSA's measured yaw inertias, :mod:`pim.io.inertia_data`), the mass-only line of each
-group with the same checks, and each class's CG position a / L with the same checks
-(NHTSA's NCAP 2004 measurements, :mod:`pim.io.axle_data`).
+group with the same checks, each class's CG position a / L with the same checks
+(NHTSA's NCAP 2004 measurements, :mod:`pim.io.axle_data`), and each class's line of the
+wheelbase on the overall length (Lock's 1993 cars, :mod:`pim.io.length_data`).
 
 Each table sits between its markers in docs/inertia-estimate.md (:data:`BEGIN` / :data:`END`,
-:data:`MASS_BEGIN` / :data:`MASS_END` and :data:`AXLE_BEGIN` / :data:`AXLE_END`; the rest
+:data:`MASS_BEGIN` / :data:`MASS_END`, :data:`LENGTH_BEGIN` / :data:`LENGTH_END` and
+:data:`AXLE_BEGIN` / :data:`AXLE_END`; the rest
 of the page is prose); each is a
 :class:`~comparisons.report.tables.Table` rendered by the one Markdown renderer and written
 by :func:`comparisons.report.write.write_block`. A test fails when the page differs from
@@ -28,10 +30,12 @@ from pim.io.inertia_data import (
     mass_held_out,
     mass_regressions,
 )
+from pim.io.length_data import held_out as length_held_out
+from pim.io.length_data import slope_p_value, usable_lines, wheelbase_lines
 
 __all__ = ["COMMAND", "BEGIN", "END", "AXLE_BEGIN", "AXLE_END", "MASS_BEGIN", "MASS_END",
-           "PAGE", "index_table", "axle_table", "mass_table", "block", "axle_block",
-           "mass_block", "regenerate"]
+           "LENGTH_BEGIN", "LENGTH_END", "PAGE", "index_table", "axle_table", "mass_table",
+           "length_table", "block", "axle_block", "mass_block", "length_block", "regenerate"]
 
 COMMAND = "python -m comparisons.docs inertia-estimate"
 BEGIN = (f"<!-- inertia-estimate: begin (written by `{COMMAND}`; edit "
@@ -43,6 +47,9 @@ AXLE_END = "<!-- cg-position: end -->"
 MASS_BEGIN = (f"<!-- mass-line: begin (written by `{COMMAND}`; edit "
               "comparisons/docs/inertia_estimate.py, not this table) -->")
 MASS_END = "<!-- mass-line: end -->"
+LENGTH_BEGIN = (f"<!-- wheelbase-line: begin (written by `{COMMAND}`; edit "
+                "comparisons/docs/inertia_estimate.py, not this table) -->")
+LENGTH_END = "<!-- wheelbase-line: end -->"
 #: The page of docs/ that holds the table.
 PAGE = "inertia-estimate.md"
 
@@ -99,6 +106,32 @@ def mass_table() -> Table:
                   "held out: within [%]", "sd of held-out z [-]"), tuple(rows), csv=False)
 
 
+def length_table() -> Table:
+    """Per body class of the Cars93 data (:mod:`pim.io.length_data`): vehicles, the line of
+    wheelbase on overall length (slope, intercept, R^2, residual sd), its lengths, the
+    slope's p-value and whether the line is used, and how many held-out vehicles lie within
+    1.96 predictive sd (:func:`pim.io.length_data.held_out`) with the sd of their
+    standardised errors."""
+    rows = []
+    for body, line in wheelbase_lines().items():
+        inside, n, z_sd = length_held_out(body)
+        low, high = line.length_range
+        rows.append((body, n, Num(line.slope, 4), Num(line.intercept, 4),
+                     Num(line.r_squared, 3), Num(100 * line.sd, 2), f"{low:.2f}-{high:.2f}",
+                     f"{slope_p_value(line):.2g}", "yes" if body in usable_lines() else "no",
+                     inside, Num(100 * inside / n, 0), Num(z_sd, 2)))
+    return Table("wheelbase-line", "The wheelbase's least-squares line on overall length",
+                 ("body", "vehicles", "slope [-]", "intercept [m]", "R^2 [-]",
+                  "residual sd [cm]", "lengths [m]", "p of the slope", "used",
+                  "held out: within 1.96 sd", "held out: within [%]", "sd of held-out z [-]"),
+                 tuple(rows), csv=False)
+
+
+def length_block() -> str:
+    """The generated wheelbase-line block of docs/inertia-estimate.md, markers included."""
+    return "\n".join([LENGTH_BEGIN, "", markdown_table(length_table()), "", LENGTH_END])
+
+
 def mass_block() -> str:
     """The generated mass-line block of docs/inertia-estimate.md, markers included."""
     return "\n".join([MASS_BEGIN, "", markdown_table(mass_table()), "", MASS_END])
@@ -119,4 +152,5 @@ def regenerate(docs_dir) -> list[Path]:
     page = Path(docs_dir) / PAGE
     write_block(page, BEGIN, END, block())
     write_block(page, MASS_BEGIN, MASS_END, mass_block())
+    write_block(page, LENGTH_BEGIN, LENGTH_END, length_block())
     return [write_block(page, AXLE_BEGIN, AXLE_END, axle_block())]

@@ -23,7 +23,7 @@ import numpy as np
 
 from ..model.inertia import BODIES, AxleFraction, axle_fraction
 from ..model.numbers import InputError
-from .datasets import bundled_rows
+from .datasets import body_class, bundled_rows
 
 __all__ = ["CgRecord", "DATA_FILE", "SOURCE", "MIN_COUNT", "TYPES", "load_cg_records",
            "axle_fractions", "held_out"]
@@ -79,13 +79,6 @@ class CgRecord:
         return self.cg_to_front_axle / self.wheelbase
 
 
-def _body(style: str, where: str) -> str:
-    for body, styles in TYPES.items():
-        if style in styles:
-            return body
-    raise InputError(f"{where}: unknown body style {style!r}")
-
-
 def _record(row: dict, line: int) -> CgRecord:
     where = f"{DATA_FILE} line {line}"
     try:
@@ -96,7 +89,7 @@ def _record(row: dict, line: int) -> CgRecord:
     if not (wheelbase > 0 and weight > 0 and 0 < a < wheelbase and 0 < share < 1):
         raise InputError(f"{where}: wheelbase and weight must be > 0, the CG between the axles")
     return CgRecord(model_year=year, make=row["make"], model=row["model"], drive=row["drive"],
-                    body=_body(row["type"], where), wheelbase=wheelbase * _INCH,
+                    body=body_class(row["type"], TYPES, where), wheelbase=wheelbase * _INCH,
                     mass=weight * _POUND, cg_to_front_axle=a * _INCH, front_share=share)
 
 

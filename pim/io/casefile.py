@@ -15,7 +15,8 @@ Unknown keys are errors, so a typo is never silently ignored; every error is a
     yaw_inertia = "..."             # or radius_of_gyration = "... ft"; or neither, with
     wheelbase = "2.7 m"             #   wheelbase (and optionally cg_to_front_axle = "1.2 m",
     body = "car"                    #   body = "car" / "suv" / "pickup" / "van"): estimated
-                                    #   (without a wheelbase: from the mass alone)
+                                    #   (without a wheelbase: a car's length gives it,
+                                    #   else from the mass alone)
     cg = ["4.774 ft", "0.502 ft"]
     heading = "180 deg"
     velocity = ["-31.09 ft/s", 0]     # 0 needs no unit
@@ -48,6 +49,8 @@ vehicles, :mod:`pim.model.inertia`; docs/inertia-estimate.md): the case records 
 ``vehicleN.yaw_inertia`` a distribution, and loading the file writes one line on stderr
 naming the vehicle, the value and the method. The wheelbase and CG-to-front-axle distance
 may come from ``[evidence.vehicleN]`` instead (they must agree where both give them).
+Without a wheelbase, a car's overall ``length`` gives one (the wheelbase line of Lock's 1993
+cars, :mod:`pim.io.length_data`, its scatter added); else the mass alone estimates it.
 
 ``fixed = true`` in ``[vehicle2]`` makes it a barrier or pole (no mass, inertia, velocity;
 ``cg`` defaults to the impact point and ``heading`` to 0, as neither changes the answer).
@@ -76,7 +79,12 @@ from ..model.numbers import InputError, unit_text
 from ..model.tyres import STANDARD_GRAVITY
 from .brach import cg_from_brach, heading_from_theta
 from .evidence_table import AXLE_KEY, OLD_AXLE_KEY, parse_evidence, parse_unknown
-from .inertia_data import estimate_notes, estimate_yaw_inertia, estimate_yaw_inertia_from_mass
+from .inertia_data import (
+    estimate_notes,
+    estimate_yaw_inertia,
+    estimate_yaw_inertia_from_length,
+    estimate_yaw_inertia_from_mass,
+)
 from .measured_table import parse_measured
 from .toml_tables import check_keys
 from .tyre_table import attach_tyres
@@ -249,13 +257,17 @@ def _inertia(table, mass: float, where: str, evidence) -> tuple[float, object]:
 def _estimated_inertia(table, mass: float, where: str, evidence) -> tuple[float, object]:
     """The yaw dynamic index's estimate (:func:`pim.io.inertia_data.estimate_yaw_inertia`)
     from the wheelbase and CG-to-front-axle distance of ``[vehicleN]`` or
-    ``[evidence.vehicleN]``; without a wheelbase, the mass-only line of NHTSA's measured
-    vehicles (:func:`pim.io.inertia_data.estimate_yaw_inertia_from_mass`; an error naming
-    what to give when the mass lies outside its vehicles')."""
+    ``[evidence.vehicleN]``; without a wheelbase, from the mass and the outline's overall
+    ``length`` (:func:`pim.io.inertia_data.estimate_yaw_inertia_from_length`: the wheelbase
+    from the length), else the mass-only line of NHTSA's measured vehicles
+    (:func:`pim.io.inertia_data.estimate_yaw_inertia_from_mass`; an error naming what to give
+    when the mass lies outside its vehicles')."""
     wheelbase = _dimension(table, evidence, ("wheelbase",), where)
     body = table.get("body", "car")
     if wheelbase is None:
-        estimate = estimate_yaw_inertia_from_mass(mass, body, where)
+        estimate = (estimate_yaw_inertia_from_mass(mass, body, where) if "length" not in table
+                    else estimate_yaw_inertia_from_length(
+                        mass, parse(table["length"], "length", f"{where}.length"), body, where))
         return estimate.value, estimate
     axle = _dimension(table, evidence, (AXLE_KEY, OLD_AXLE_KEY), where)
     estimate = estimate_yaw_inertia(mass, wheelbase, axle, body, where)

@@ -41,7 +41,7 @@ from ..model.numbers import InputError
 
 __all__ = ["BarrierTest", "CarToCarVehicle", "RicsacTest", "NhtsaCarToCarTest", "DATASETS",
            "load_barrier", "load_car_to_car", "load_ricsac", "load_nhtsa_car_to_car",
-           "load_dataset", "data_path", "bundled_rows", "source_lines", "MEASURED",
+           "load_dataset", "data_path", "bundled_rows", "body_class", "source_lines", "MEASURED",
            "PUBLISHED_GEOMETRY",
            "FITTED_BY_PIM", "VEHICLE_DATA", "ESTIMATED", "ANALYSIS_INPUT", "PIM_OUTPUT",
            "ORIGIN_KINDS",
@@ -420,6 +420,15 @@ def bundled_rows(name: str, columns: tuple[str, ...]) -> list[tuple[int, dict]]:
     if tuple(reader.fieldnames or ()) != tuple(columns):
         raise InputError(f"{name}: columns must be {', '.join(columns)}")
     return [(first + 2 + i, row) for i, row in enumerate(reader)]
+
+
+def body_class(style: str, types: dict, where: str) -> str:
+    """The body class (a key of ``types``: class -> the data's body styles in it) of a
+    bundled row's body ``style``; an error naming the row (``where``) for an unknown one."""
+    for body, styles in types.items():
+        if style in styles:
+            return body
+    raise InputError(f"{where}: unknown body style {style!r}")
 
 
 def source_lines(path) -> list[str]:

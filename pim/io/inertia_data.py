@@ -11,7 +11,7 @@ docs/inertia-estimate.md from them (a test keeps the two equal).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cache
 
 import numpy as np
@@ -24,19 +24,22 @@ from ..model.inertia import (
     dynamic_index,
     mass_regression,
     yaw_inertia_estimate,
+    yaw_inertia_from_length,
     yaw_inertia_from_mass,
 )
-from ..model.numbers import InputError
+from ..model.numbers import InputError, unit_text
 from ..model.quantities import UNCERTAIN
 from .axle_data import SOURCE as AXLE_SOURCE
 from .axle_data import axle_fractions
 from .datasets import bundled_rows
+from .length_data import SOURCE as LENGTH_SOURCE
+from .length_data import usable_lines
 from .units import convert
 
 __all__ = ["InertiaRecord", "DATA_FILE", "SOURCE", "load_inertia_records", "dynamic_indices",
            "estimate_yaw_inertia", "estimate_notes", "estimate_records", "held_out",
            "REGRESSION_GROUPS", "REGRESSION_SOURCE", "mass_regressions", "regression_group",
-           "estimate_yaw_inertia_from_mass", "mass_held_out"]
+           "estimate_yaw_inertia_from_mass", "mass_held_out", "estimate_yaw_inertia_from_length"]
 
 DATA_FILE = "nhtsa_lvipd_yaw_dynamic_index.csv"
 #: Short citation of the data, for notes and reports.
@@ -156,6 +159,40 @@ def estimate_yaw_inertia_from_mass(mass: float, body: str, where: str) -> InputE
               f"of the {line.count} measured {line.group}s (R^2 = {line.r_squared:.3f})")
     return InputEstimate(f"{where}.yaw_inertia", float(inertia), float(sd), method,
                          REGRESSION_SOURCE, (("mass m", float(mass), "mass"),))
+
+
+def estimate_yaw_inertia_from_length(mass: float, length: float, body: str,
+                                     where: str) -> InputEstimate:
+    """The yaw inertia of ``where`` (e.g. "vehicle1") estimated from its mass [kg] and
+    overall length [m] without a wheelbase: the yaw dynamic index's estimate with the
+    wheelbase from the length (:func:`pim.io.length_data.usable_lines`,
+    :func:`pim.model.inertia.yaw_inertia_from_length`) and the class's CG position. A class
+    without a usable line, or a length outside its line's, takes the mass-only line
+    (:func:`estimate_yaw_inertia_from_mass`; its method says why the length was not used)."""
+    _check_body(body, where)
+    line = usable_lines().get(body)
+    low, high = line.length_range if line is not None else (np.inf, -np.inf)
+    if not low <= length <= high:
+        estimate = estimate_yaw_inertia_from_mass(mass, body, where)
+        why = (f"the overall length lies outside the lengths of the {line.count} {body}s of "
+               f"the wheelbase line" if line is not None
+               else f"no line of the wheelbase on the overall length for a {body}")
+        return replace(estimate, method=f"{estimate.method}; {why}")
+    index, f = dynamic_indices()[body], axle_fractions()[body]
+    inertia, sd = yaw_inertia_from_length(mass, length, line, index, f)
+    vehicles = f"{f.count} {body}s" if f.body == body else f"all {f.count} vehicles"
+    assumed = (f"L = {line.slope:.3f} l {'-' if line.intercept < 0 else '+'} "
+               f"{unit_text(abs(line.intercept), 'length', '.3g')} ± "
+               f"{unit_text(line.sd, 'length', '.2g')} (1 sd, the line of the wheelbase L on "
+               f"the length l of the {line.count} 1993 {body}s of {LENGTH_SOURCE})",
+               f"a = {f.mean:.3f} L ± {f.predictive_sd:.3f} L (1 sd, the CG position of "
+               f"{vehicles} in {AXLE_SOURCE})")
+    method = (f"D m L^2 E[f (1 - f)], f = a / L, L from the overall length l, "
+              f"D = {index.mean:.3f} the yaw dynamic index of a {body}")
+    return InputEstimate(f"{where}.yaw_inertia", float(inertia), float(sd), method,
+                         f"{SOURCE}; {AXLE_SOURCE}; {LENGTH_SOURCE}",
+                         (("mass m", float(mass), "mass"), ("length l", float(length),
+                                                            "length")), assumed)
 
 
 def mass_held_out(group: str) -> tuple[int, int, float]:

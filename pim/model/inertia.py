@@ -41,6 +41,13 @@ fitted value, n - 2 degrees of freedom) as a predictive one,
 line is not used (an error says so). It is wider than the dynamic index's estimate
 (docs/inertia-estimate.md has both): give the wheelbase where it is known.
 
+With the overall length l but no wheelbase, the wheelbase comes from the length by the
+least-squares line of measured vehicles' wheelbase on their length (:class:`WheelbaseLine`,
+fitted on Lock's 1993 cars, :mod:`pim.io.length_data`), taken as normal about the line with
+its predictive sd, and :func:`yaw_inertia_from_length` carries its scatter with D's and
+f's: the three factors are independent, so the estimate's variance is that of their
+product.
+
 Everything here is pure and vectorised: masses, wheelbases and axle positions broadcast.
 """
 
@@ -55,7 +62,8 @@ from .numbers import InputError, real_array
 
 __all__ = ["ClassSample", "DynamicIndex", "AxleFraction", "InputEstimate", "BODIES",
            "dynamic_index", "MassRegression", "mass_regression", "yaw_inertia_from_mass",
-           "axle_fraction", "yaw_inertia_estimate"]
+           "axle_fraction", "yaw_inertia_estimate", "WheelbaseLine", "wheelbase_line",
+           "yaw_inertia_from_length"]
 
 #: Body classes with their own yaw dynamic index, and the NHTSA database's type codes in each
 #: (:mod:`pim.io.inertia_data`): cars (sedans, coupes, hatchbacks, wagons), SUVs
@@ -369,6 +377,143 @@ def yaw_inertia_from_mass(mass, regression: MassRegression):
                          f"yaw-inertia estimate is fitted on, got {bad:.6g} kg")
     inertia = regression.slope * m + regression.intercept
     return inertia, regression.predictive_sd(m) * inertia
+
+
+@dataclass(frozen=True)
+class WheelbaseLine:
+    """The least-squares line L = slope l + intercept of vehicles' wheelbase L on their
+    overall length l, with the scatter about it: what stands in for the wheelbase of a
+    vehicle whose case gives its length but not its wheelbase.
+
+    Attributes
+    ----------
+    group : str
+        The vehicles it is fitted on (e.g. "car").
+    slope : float
+        [m / m] = [-].
+    intercept : float
+        [m].
+    r_squared : float
+        Share of the wheelbases' variance the line explains [-].
+    sd : float
+        Sample sd of the residuals, n - 2 degrees of freedom [m].
+    count : int
+        Number of vehicles, >= 3.
+    length_mean : float
+        Mean of their lengths [m].
+    length_ss : float
+        Sum of their lengths' squared deviations from the mean, S_ll [m^2], > 0.
+    length_range : tuple of float
+        Shortest and longest length [m]: the line is used only between them.
+    source : str
+        Short citation of the data, for notes and reports.
+    """
+
+    group: str
+    slope: float
+    intercept: float
+    r_squared: float
+    sd: float
+    count: int
+    length_mean: float
+    length_ss: float
+    length_range: tuple
+    source: str
+
+    def wheelbase(self, length):
+        """The line's wheelbase [m] at overall ``length`` [m]."""
+        return self.slope * np.asarray(length, dtype=float) + self.intercept
+
+    def predictive_sd(self, length):
+        """Sd of one more vehicle's wheelbase at ``length`` [m] [m]:
+        s sqrt(1 + 1/n + (l - mean l)^2 / S_ll)."""
+        dl = np.asarray(length, dtype=float) - self.length_mean
+        return self.sd * np.sqrt(1.0 + 1.0 / self.count + dl * dl / self.length_ss)
+
+
+def wheelbase_line(lengths, wheelbases, group: str, source: str) -> WheelbaseLine:
+    """The :class:`WheelbaseLine` of vehicles of known overall length and wheelbase.
+
+    Parameters
+    ----------
+    lengths : array_like
+        Their overall lengths l [m], at least 3, not all equal.
+    wheelbases : array_like
+        Their wheelbases L [m], as many.
+    group : str
+        What the vehicles are (for messages).
+    source : str
+        Short citation.
+    """
+    x = real_array(lengths, f"lengths of {group!r}", "m").ravel()
+    y = real_array(wheelbases, f"wheelbases of {group!r}", "m").ravel()
+    if x.size != y.size or x.size < 3 or not (np.isfinite(x).all() and np.isfinite(y).all()) \
+            or np.ptp(x) == 0:
+        raise InputError(f"wheelbase line of {group!r} needs at least 3 finite (length, "
+                         f"wheelbase) pairs with different lengths")
+    slope, intercept = np.polyfit(x, y, 1)
+    residual = y - (slope * x + intercept)
+    ss = float(residual @ residual)
+    return WheelbaseLine(group=group, slope=float(slope), intercept=float(intercept),
+                         r_squared=1.0 - ss / float(((y - y.mean()) ** 2).sum()),
+                         sd=math.sqrt(ss / (x.size - 2)), count=int(x.size),
+                         length_mean=float(x.mean()),
+                         length_ss=float(((x - x.mean()) ** 2).sum()),
+                         length_range=(float(x.min()), float(x.max())), source=source)
+
+
+def yaw_inertia_from_length(mass, length, line: WheelbaseLine, index: DynamicIndex,
+                            fraction: AxleFraction):
+    """Yaw moment of inertia about the CG from mass and overall length, the wheelbase from
+    the length: I_z = D m L^2 f (1 - f), L = slope l + intercept.
+
+    The three factors are independent: the yaw dynamic index D (``index``), f (1 - f) of
+    the class's CG position (``fraction``, :meth:`AxleFraction.axle_product`) and L^2, L
+    normal about the line's wheelbase ``mu`` with its predictive sd ``s``
+    (:class:`WheelbaseLine`), so E[L^2] = mu^2 + s^2 and var L^2 = 4 mu^2 s^2 + 2 s^4. The
+    estimate is their product's mean, m E[D] E[f (1 - f)] E[L^2], and its variance that of
+    a product of independent factors, m^2 (E[D^2] E[g^2] E[L^4] - (E[D] E[g] E[L^2])^2).
+
+    Parameters
+    ----------
+    mass : array_like
+        Vehicle mass m [kg], > 0.
+    length : array_like
+        Overall length l [m], within ``line.length_range``.
+    line : WheelbaseLine
+        The wheelbase line of the vehicle's class (:func:`wheelbase_line`).
+    index : DynamicIndex
+        The class's yaw dynamic index D.
+    fraction : AxleFraction
+        The class's CG position f = a / L.
+
+    Returns
+    -------
+    inertia : ndarray
+        The estimate [kg m^2].
+    sd : ndarray
+        Its standard deviation [kg m^2] (mass and length taken as exact).
+
+    Raises
+    ------
+    InputError
+        A mass not > 0, or a length that is not finite or outside the line's lengths.
+    """
+    m = real_array(mass, "mass", "kg")
+    x = real_array(length, "length", "m")
+    if not (np.isfinite(m).all() and (m > 0).all()):
+        raise InputError("mass must be finite and > 0 [kg] to estimate the yaw inertia")
+    low, high = line.length_range
+    if not (np.isfinite(x).all() and ((x >= low) & (x <= high)).all()):
+        raise InputError(f"length must lie within the {low:.2f}-{high:.2f} m of the "
+                         f"{line.count} {line.group}s of the wheelbase line")
+    mu, s = line.wheelbase(x), line.predictive_sd(x)
+    w2, w2_var = mu * mu + s * s, 4 * mu * mu * s * s + 2 * s ** 4
+    g, g_sd = fraction.axle_product()
+    d, d_sd = index.mean, index.predictive_sd
+    mean = d * g * w2
+    second = (d * d + d_sd * d_sd) * (g * g + g_sd * g_sd) * (w2 * w2 + w2_var)
+    return m * mean, m * np.sqrt(np.maximum(second - mean * mean, 0.0))
 
 
 @dataclass(frozen=True)

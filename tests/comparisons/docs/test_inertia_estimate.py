@@ -31,11 +31,13 @@ def test_regeneration_rewrites_only_the_block(tmp_path, capsys):
     page = tmp_path / D.PAGE
     page.write_text(f"prose before\n{D.BEGIN}\n| old | table |\n{D.END}\nprose between\n"
                     f"{D.MASS_BEGIN}\n| old |\n{D.MASS_END}\nmore prose\n"
+                    f"{D.LENGTH_BEGIN}\n| old |\n{D.LENGTH_END}\nlength prose\n"
                     f"{D.AXLE_BEGIN}\n| old |\n{D.AXLE_END}\nprose after\n")
     assert main(["inertia-estimate", "--docs", str(tmp_path)]) == 0
     assert capsys.readouterr().out.strip() == f"wrote {page}"
     assert page.read_text() == (f"prose before\n{D.block()}\nprose between\n"
                                 f"{D.mass_block()}\nmore prose\n"
+                                f"{D.length_block()}\nlength prose\n"
                                 f"{D.axle_block()}\nprose after\n")
     page.write_text("no markers\n")
     with pytest.raises(ValueError, match="markers"):
@@ -68,3 +70,18 @@ def test_the_mass_line_table_states_the_published_lines():
     assert rows["car"]["vehicles"] == 73 and rows["truck"]["vehicles"] == 131
     assert rows["car"]["slope [m^2]"].value == pytest.approx(3.176, abs=1e-3)
     assert rows["car"]["R^2 [-]"].value == pytest.approx(0.920, abs=5e-4)
+
+
+def test_the_committed_page_holds_the_wheelbase_line_table_the_code_gives():
+    assert D.length_block() in (DOCS / D.PAGE).read_text(encoding="utf-8")
+
+
+def test_the_wheelbase_line_table_counts_lock_1993s_cars_and_vans():
+    """Lock's 1993 data: 84 cars and 9 vans (R's table(MASS::Cars93$Type): 16 compact, 11
+    large, 22 midsize, 21 small, 14 sporty, 9 van); the cars' line is used, the vans'
+    (no significant slope) is not."""
+    table = D.length_table()
+    rows = {row[0]: dict(zip(table.columns, row, strict=True)) for row in table.rows}
+    assert (rows["car"]["vehicles"], rows["van"]["vehicles"]) == (84, 9)
+    assert (rows["car"]["used"], rows["van"]["used"]) == ("yes", "no")
+    assert 0.3 < rows["car"]["slope [-]"].value < 0.5

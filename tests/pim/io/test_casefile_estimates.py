@@ -89,6 +89,49 @@ def test_without_wheelbase_the_mass_alone_estimates_it():
         parse_case(_data(yaw_inertia="2500 kg*m**2", radius_of_gyration="1.3 m"))
 
 
+def test_without_wheelbase_a_cars_length_estimates_it_through_the_wheelbase():
+    """Mass and overall length, no wheelbase (issue 33 point 4: the length was ignored and
+    the mass-only line used): the index's estimate with the wheelbase from Lock's 1993 cars'
+    line, narrower than the mass-only line's, its scatter in the Monte Carlo. Expected value
+    from the published index and the NCAP table's own column (tests/published_cg.py) and
+    an independent least-squares fit of the bundled Cars93 rows."""
+    from scipy.stats import linregress
+
+    from pim.io.inertia_data import mass_regressions
+    from tests.pim.io.test_length_data import _raw
+
+    cars = [r for r in _raw() if r["type"] != "Van"]
+    fit = linregress([float(r["length_in"]) * 0.0254 for r in cars],
+                     [float(r["wheelbase_in"]) * 0.0254 for r in cars])
+    wheelbase = fit.slope * 4.6 + fit.intercept
+    case = parse_case(_data(wheelbase=None, length="4.6 m", width="1.8 m"))
+    (estimate,) = case.estimates
+    # E[L^2] = mu^2 + s^2 (s ~ 7 cm: 0.07 % of the estimate); the rest as with a wheelbase
+    assert float(case.vehicle1.yaw_inertia) == pytest.approx(
+        car_estimate(wheelbase=wheelbase), rel=2e-3)
+    assert "L from the overall length l" in estimate.method
+    assert any("line of the wheelbase L on the length l" in a for a in estimate.assumptions)
+    mass_only = mass_regressions()["car"].predictive_sd(1500.0)
+    assert 0.075 < estimate.relative_sd < mass_only
+    dist = case.uncertainty.inputs["vehicle1.yaw_inertia"]
+    assert (dist.kind, dist.b) == ("normal", estimate.sd)
+
+
+@pytest.mark.parametrize("change, why", [
+    ({"body": "suv"}, "no line of the wheelbase on the overall length for a suv"),
+    ({"length": "6.5 m"}, "the overall length lies outside the lengths of the 84 cars"),
+])
+def test_a_length_the_wheelbase_line_cannot_use_falls_back_to_the_mass_line(change, why):
+    from pim.io.inertia_data import mass_regressions, regression_group
+
+    case = parse_case(_data(**{"wheelbase": None, "length": "4.6 m", "width": "1.8 m",
+                               **change}))
+    (estimate,) = case.estimates
+    line = mass_regressions()[regression_group(change.get("body", "car"))]
+    assert estimate.value == pytest.approx(line.slope * 1500 + line.intercept)
+    assert "without a wheelbase" in estimate.method and why in estimate.method
+
+
 def test_given_inertia_is_not_estimated():
     case = parse_case(_data(yaw_inertia="2500 kg*m**2"))
     assert case.estimates == () and float(case.vehicle1.yaw_inertia) == 2500.0
@@ -173,5 +216,13 @@ def test_docs_example_note_without_a_wheelbase_is_what_the_code_prints():
     from pim.io.inertia_data import estimate_notes
 
     (line,) = estimate_notes(parse_case(_data(wheelbase=None)), "si")
+    docs = Path(__file__).resolve().parents[3] / "docs" / "inertia-estimate.md"
+    assert f"\n{line}\n" in docs.read_text()
+
+
+def test_docs_example_note_with_the_length_is_what_the_code_prints():
+    from pim.io.inertia_data import estimate_notes
+
+    (line,) = estimate_notes(parse_case(_data(wheelbase=None, length="4.6 m")), "si")
     docs = Path(__file__).resolve().parents[3] / "docs" / "inertia-estimate.md"
     assert f"\n{line}\n" in docs.read_text()
