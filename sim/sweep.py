@@ -5,7 +5,8 @@ spread over processes. :func:`sweep` maps a picklable top-level function over it
 on any executor and returns the results in input order, with a tqdm progress bar:
 
 - ``executor=None`` or ``"process"``: a local ``ProcessPoolExecutor`` (created and shut down
-  here), one worker per core by default;
+  here, :func:`pim.io.process.worker_pool`: its workers ignore Ctrl-C and are ended at once
+  on an interrupt or error), one worker per core by default;
 - ``"serial"``: in this process, no executor (for debugging and as the reference);
 - a ``dask.distributed.Client``: its ``get_executor()``, i.e. the cluster's workers (the same
   API and the same results; dask is never imported here);
@@ -21,8 +22,9 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Callable, Iterable
-from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
+from concurrent.futures import Executor, as_completed
 
+from pim.io.process import worker_pool
 from pim.model.numbers import InputError, check_counts
 
 __all__ = ["sweep"]
@@ -88,7 +90,7 @@ def sweep(func: Callable, items: Iterable, executor=None, chunksize: int | None 
             return out
         if executor is None or (isinstance(executor, str) and executor == "process"):
             workers = max_workers or os.cpu_count() or 1
-            with ProcessPoolExecutor(max_workers=workers) as pool:
+            with worker_pool(workers) as pool:      # Ctrl-C ends its workers at once
                 return _map(pool, func, items, chunksize, workers, bar)
         if isinstance(executor, str):
             raise InputError(f"executor must be None, 'process', 'serial', a dask Client or a "

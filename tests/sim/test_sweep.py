@@ -66,3 +66,44 @@ def test_simulate_many_rejects_nan_strings_and_wrong_shapes(bad):
     """NaN is not "the case's default" (None is): issue 12, defect 9."""
     with pytest.raises(ValueError, match="eps|beta"):
         simulate_many(scenes(2), **bad)
+
+
+def test_ctrl_c_in_a_default_process_sweep_ends_it_without_worker_tracebacks(tmp_path):
+    """executor=None made a plain ProcessPoolExecutor: a Ctrl-C reached every worker, each
+    printed its own KeyboardInterrupt traceback, and the pool waited for their tasks. The
+    sweep's pool is now :func:`pim.io.process.worker_pool`'s: workers ignore Ctrl-C and are
+    ended at once; one traceback (the parent's) remains."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import textwrap
+    import time
+
+    script = tmp_path / "run.py"
+    ready = tmp_path / "ready"
+    script.write_text(textwrap.dedent(f"""
+        import pathlib, signal, time
+        from sim.sweep import sweep
+
+        def slow(i):
+            pathlib.Path({str(ready)!r}).touch()
+            time.sleep(20)
+            return i
+
+        if __name__ == "__main__":
+            signal.signal(signal.SIGINT, signal.default_int_handler)
+            sweep(slow, list(range(4)), max_workers=2, progress=False)
+    """))
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
+    proc = subprocess.Popen([sys.executable, str(script)], stderr=subprocess.PIPE, text=True,
+                            env=env, start_new_session=True)
+    deadline = time.time() + 60
+    while not ready.exists() and time.time() < deadline:
+        time.sleep(0.05)
+    time.sleep(0.3)
+    start = time.time()
+    os.killpg(proc.pid, signal.SIGINT)           # as a terminal's Ctrl-C: the whole group
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode != 0 and time.time() - start < 10, err      # not 20 s of tasks
+    assert err.count("Traceback") == 1 and "KeyboardInterrupt" in err, err
