@@ -40,6 +40,7 @@ from comparisons.report.reconstruct import (
 )
 from comparisons.report.write import write_document
 from pim.analysis.pre_impact_speeds import reconstruction_pre_impact
+from pim.analysis.progress import reporting
 from pim.analysis.reconstruction import MonteCarloBudget, progress_stages, worker_blocks
 from pim.analysis.reconstruction import reconstruct as run_reconstruction
 from pim.io.files import save_figure
@@ -144,7 +145,11 @@ def _stages(case, samples: int, workers: int, progress):
             if bar.n < bar.total:
                 bar.update(1)
             bar.set_postfix_str(stage)
-        yield say
+
+        def within(done: int, total: int, what: str) -> None:    # inside the Monte Carlo
+            bar.set_postfix_str(f"Monte Carlo: {done}/{total} {what}")
+        with reporting(within):
+            yield say
 
 
 def budget(samples: int, workers: int, max_minutes: float):

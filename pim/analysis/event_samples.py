@@ -59,6 +59,7 @@ from .event_fit import (
     unknown_bounds,
 )
 from .least_squares_batch import least_squares_batch
+from .progress import report
 from .reconstruction_mc import rest_draws
 from .residuals import measured_terms
 
@@ -79,8 +80,10 @@ SECANT_STEPS = 80
 #: a tighter rule (the full fit's 1e-10) buys steps, not speed that matters (the benchmark
 #: prints the agreement with the full fit).
 SECANT_FTOL = 1e-3
-#: Samples fitted together (memory: the kernel's arrays and the full fit's differences).
-CHUNK = 5000
+#: Samples fitted together (memory: the kernel's arrays and the full fit's differences; the
+#: progress is reported after each chunk, :func:`pim.analysis.progress.report`). The results
+#: do not depend on it: each sample's steps are its own.
+CHUNK = 1000
 #: Central-difference step of the nominal Jacobian [m/s, rad/s].
 DIFFERENCE_STEP = 1e-3
 #: Shortest step [m/s, rad/s] whose secant updates a Jacobian: the kernel's round-off in the
@@ -183,6 +186,7 @@ def fit_event_samples(case: Case, x0, targets, *, jacobian=None,
         parts.append(_fit_chunk(case, x0, (targets[0][part], targets[1][part]), jacobian,
                                 None if inputs is None else inputs.take(
                                     np.arange(n)[part]), nominal, refit))
+        report(part.stop, n, "samples fitted through the event")
     return EventSamples.joined(parts)
 
 
