@@ -34,6 +34,7 @@ summary, for the Monte Carlo and the reconstruction through the event.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 from functools import lru_cache
 from types import SimpleNamespace
@@ -229,9 +230,9 @@ def _state(case: Case, result, fixed: bool) -> np.ndarray:
     return out
 
 
-def approach_motion(vehicle: Vehicle, marks, times) -> tuple:
-    """One vehicle's approach at ``times`` [s] < 0 (before the impact at 0): ``(position
-    (n, 2), heading (n,), velocity (n, 2), yaw rate (n,))``.
+def approach_motion(vehicle: Vehicle, marks, times, out=None) -> np.ndarray:
+    """One vehicle's approach at ``times`` [s] <= 0 (before the impact at 0): its states
+    (n, 6) (x, y, psi, v_x, v_y, omega), written into ``out`` when given.
 
     Free motion at the case's velocity and yaw rate; with tyre marks before the impact
     (:class:`pim.model.pre_impact.PreImpactMarks`) the CG slides straight along its
@@ -241,23 +242,31 @@ def approach_motion(vehicle: Vehicle, marks, times) -> tuple:
     to the impact ``v_0 tau + a tau^2 / 2`` up to ``tau_L`` where it reaches ``L``.
     """
     tau = -np.asarray(times, float)
-    cg = np.asarray(vehicle.cg, float).reshape(2)
-    vel = np.asarray(vehicle.velocity, float).reshape(2)
+    out = np.empty((len(tau), 6)) if out is None else out
+    cx, cy = (float(c) for c in np.asarray(vehicle.cg, float).reshape(2))
+    vx, vy = (float(c) for c in np.asarray(vehicle.velocity, float).reshape(2))
     w, heading = float(np.asarray(vehicle.yaw_rate)), float(vehicle.heading)
-    n = len(tau)
-    speed = float(np.hypot(*vel))
+    speed = math.hypot(vx, vy)
+    np.multiply(w, tau, out=out[:, 2])
+    np.subtract(heading, out[:, 2], out=out[:, 2])          # heading - w tau
+    out[:, 5] = w
     if marks is None or speed == 0.0 or marks.skid_length == 0.0:
-        return (cg - tau[:, None] * vel, heading - w * tau, np.broadcast_to(vel, (n, 2)).copy(),
-                np.full(n, w))
+        for k, (c, v) in enumerate(((cx, vx), (cy, vy))):
+            np.multiply(tau, v, out=out[:, k])
+            np.subtract(c, out[:, k], out=out[:, k])         # cg - tau v
+            out[:, 3 + k] = v
+        return out
     a = float(mark_deceleration(marks.friction, marks.drag, marks.grade, STANDARD_GRAVITY))
     length = float(marks.skid_length)
     tau_l = (np.sqrt(speed ** 2 + 2 * a * length) - speed) / a if a > 0 else length / speed
     within = np.minimum(tau, tau_l)
     along = speed * within + 0.5 * a * within ** 2 + (speed + a * tau_l) * np.maximum(
         tau - tau_l, 0.0)
-    unit = vel / speed
+    unit = np.array([vx, vy]) / speed
     now = speed + a * within
-    return (cg - along[:, None] * unit, heading - w * tau, now[:, None] * unit, np.full(n, w))
+    out[:, :2] = np.array([cx, cy]) - along[:, None] * unit
+    out[:, 3:5] = now[:, None] * unit
+    return out
 
 
 def sliding_flags(states: np.ndarray, vehicle: RunoutVehicle | None,
@@ -402,6 +411,9 @@ class SingleScene:
         The further impacts' laws (:func:`impact_spec`).
     fixed : bool
         Vehicle 2 is a fixed obstacle.
+    outlines : tuple
+        Each vehicle's outline corners in its body frame (4, 2) [m]
+        (:func:`pim.model.geometry.vehicle_outline`; read-only, the tracks').
     """
 
     kernel: object
@@ -410,6 +422,7 @@ class SingleScene:
     positions: tuple
     specs: tuple
     fixed: bool
+    outlines: tuple
 
 
 def _scene(case: Case, tyre_friction) -> SingleScene:
@@ -442,10 +455,11 @@ def single_scene(case: Case, tyre_friction=None, *, generic: bool = False) -> Si
     else:
         stacked = _stacked_wheels(tyres, [(data1, data2)[i] for i in tyred])
     positions = tuple(p.view() for p in stacked[0])
-    for p in positions:
+    outlines = tuple(vehicle_outline(v) for v in (case.vehicle1, case.vehicle2))
+    for p in positions + outlines:
         p.setflags(write=False)
     return SingleScene(kernel_scene(scene, 1), tyred, stacked, positions, specs,
-                       bool(case.vehicle2.fixed))
+                       bool(case.vehicle2.fixed), outlines)
 
 
 def _stacked_wheels(vehicles: list, data: list) -> tuple:
@@ -543,38 +557,38 @@ def _assemble(case: Case, impacts: tuple, run: _Run, approach: float, scene: Sin
     run-out's rows (the first is the state just after it)."""
     before = np.arange(-approach, 0.0, APPROACH_SAMPLE) if approach > 0 else np.zeros(0)
     start = len(before) + 1
-    states = np.empty((2, start + len(run.rows), 6))
+    rows = run.rows
+    time = np.empty(start + len(rows))
+    time[:start - 1], time[start - 1], time[start:] = before, 0.0, rows[:, 0]
+    states = np.empty((2, len(time), 6))
+    states[:, start:] = rows[:, 1:].reshape(-1, 2, 6).transpose(1, 0, 2)
     ev = case.evidence
     for i, vehicle in enumerate((case.vehicle1, case.vehicle2)):
-        marks = None if ev is None or getattr(ev, f"vehicle{i + 1}") is None else getattr(
-            ev, f"vehicle{i + 1}").pre_impact
-        pre = approach_motion(vehicle, marks, np.append(before, 0.0))
-        states[i, :start, :2], states[i, :start, 2] = pre[0], pre[1]
-        states[i, :start, 3:5], states[i, :start, 5] = pre[2], pre[3]
-        states[i, start:] = run.rows[:, 1 + 6 * i:7 + 6 * i]
-    time = np.concatenate([before, [0.0], run.rows[:, 0]])
-    return _event_of(case, time, states, run, scene, start=start, free=free,
+        evidence = None if ev is None else getattr(ev, f"vehicle{i + 1}")
+        approach_motion(vehicle, None if evidence is None else evidence.pre_impact,
+                        time[:start], out=states[i, :start])
+    return _event_of(time, states, run, scene, start=start, free=free,
                      impact_times=[i.time for i in impacts], impacts=tuple(impacts))
 
 
-def _event_of(case: Case, time: np.ndarray, states: np.ndarray, run: _Run,
-              scene: SingleScene, *, start: int, free: bool, impact_times: list,
-              impacts: tuple) -> Event:
-    """The Event of both vehicles' ``states`` (2, N, 6) at ``time``: the wheels that slide
-    from sample ``start`` on (the run-out; of the vehicles with tyres, all at once)."""
-    sliding = np.zeros((2, len(states[0]), 4), bool)
+def _event_of(time: np.ndarray, states: np.ndarray, run: _Run, scene: SingleScene, *,
+              start: int, free: bool, impact_times: list, impacts: tuple) -> Event:
+    """The Event of both vehicles' ``states`` (2, N, 6) (C-contiguous) at ``time``: the
+    wheels that slide from sample ``start`` on (the run-out; of the vehicles with tyres,
+    all at once)."""
     if scene.tyred and not free:
         from ..model.event_kernel import sliding_rows  # compiled event: numba
 
-        tyred = list(scene.tyred)
-        sliding[tyred, start:] = sliding_rows(states[tyred, start:], *scene.wheels,
-                                              SLIDE_SPEED)
+        sliding = sliding_rows(states, *scene.wheels, SLIDE_SPEED, vehicles=scene.tyred,
+                               first=start)
+    else:
+        sliding = np.zeros((2, len(time), 4), bool)
     tracks = [Track(states[i, :, :2], states[i, :, 2], states[i, :, 3:5], states[i, :, 5],
-                    sliding=sliding[i], outline=vehicle_outline(v),
+                    sliding=sliding[i], outline=scene.outlines[i],
                     fixed=i == 1 and scene.fixed,
                     wheels=scene.positions[scene.tyred.index(i)] if i in scene.tyred
                     else None)
-              for i, v in enumerate((case.vehicle1, case.vehicle2))]
+              for i in (0, 1)]
     stopped = tuple(bool(s) for s in run.stopped)
     rest = float(time[-1]) if all(stopped) else None
     notes = []
@@ -640,8 +654,8 @@ def event_after(case: Case, velocity, yaw_rate, *, first: ImpactRecord | None = 
     motion = SimpleNamespace(velocity1=velocity[0], velocity2=velocity[1],
                              yaw_rate1=yaw_rate[0], yaw_rate2=yaw_rate[1])
     run = _run_out(scene, _state(case, motion, scene.fixed), _Watch(step, limit, tolerance))
-    states = np.stack([run.rows[:, 1 + 6 * i:7 + 6 * i] for i in (0, 1)])
-    return _event_of(case, run.rows[:, 0], states, run, scene, start=0, free=free,
+    states = np.ascontiguousarray(run.rows[:, 1:].reshape(-1, 2, 6).transpose(1, 0, 2))
+    return _event_of(run.rows[:, 0].copy(), states, run, scene, start=0, free=free,
                      impact_times=[0.0, *(i.time for i in run.impacts)],
                      impacts=run.impacts if first is None else (first, *run.impacts))
 

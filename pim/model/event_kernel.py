@@ -294,30 +294,40 @@ def _sample(i, st, t, allowed, veh1, veh2, geo, rad, reach, inv, coef, settings,
 
 @_cached
 @njit(cache=True, error_model="numpy")
-def _sliding(states, pos, braking, steer, threshold, out):  # pragma: no cover - compiled
-    """``out[v, i, w]``: wheel w of vehicle v slides at ``states[v, i]`` (x, y, psi, v_x,
-    v_y, omega): its :func:`pim.model.event_formula.slip_speed` above ``threshold``, with
-    the wheels at ``pos`` (V, 4, 2) [m], ``braking`` (V, 4) [-] and ``steer`` (V, 4) [rad]."""
-    for v in range(states.shape[0]):
-        for i in range(states.shape[1]):
+def _sliding(states, vehicles, first, pos, braking, steer, threshold,
+             out):  # pragma: no cover - compiled
+    """``out[v, i, w]``: wheel w of vehicle ``v = vehicles[k]`` slides at ``states[v, i]``
+    (x, y, psi, v_x, v_y, omega), ``i >= first``: its
+    :func:`pim.model.event_formula.slip_speed` above ``threshold``, with the wheels at
+    ``pos[k]`` (4, 2) [m], ``braking[k]`` (4,) [-] and ``steer[k]`` (4,) [rad]."""
+    for k in range(vehicles.shape[0]):
+        v = vehicles[k]
+        for i in range(first, states.shape[1]):
             psi = states[v, i, 2]
             c, s = np.cos(psi), np.sin(psi)
             for w in range(4):
                 cw, sw = c, s
-                if steer[v, w] != 0.0:
-                    cw, sw = np.cos(psi + steer[v, w]), np.sin(psi + steer[v, w])
+                if steer[k, w] != 0.0:
+                    cw, sw = np.cos(psi + steer[k, w]), np.sin(psi + steer[k, w])
                 out[v, i, w] = _slip_speed(c, s, states[v, i, 3], states[v, i, 4],
-                                           states[v, i, 5], pos[v, w, 0], pos[v, w, 1], cw,
-                                           sw, braking[v, w]) > threshold
+                                           states[v, i, 5], pos[k, w, 0], pos[k, w, 1], cw,
+                                           sw, braking[k, w]) > threshold
 
 
-def sliding_rows(states, pos, braking, steer, threshold) -> np.ndarray:
+def sliding_rows(states, pos, braking, steer, threshold, *, vehicles=None,
+                 first: int = 0) -> np.ndarray:
     """Which wheels slide (V, N, 4) along V vehicles' states (V, N, 6) (compiled; see
-    :func:`pim.analysis.event.sliding_flags`)."""
+    :func:`pim.analysis.event.sliding_flags`): of the vehicles ``vehicles`` (indices on the
+    first axis, default all; ``pos`` (K, 4, 2), ``braking`` and ``steer`` (K, 4) theirs in
+    that order) from sample ``first`` on, False elsewhere (the states are read in place,
+    not copied, when they are C-contiguous floats)."""
     states = np.ascontiguousarray(states, dtype=float)
-    out = np.empty(states.shape[:2] + (4,), dtype=np.bool_)
-    _sliding(states, *one_signature(np.asarray(pos, float), np.asarray(braking, float),
-                                    np.asarray(steer, float)), float(threshold), out)
+    out = np.zeros(states.shape[:2] + (4,), dtype=np.bool_)
+    index = np.arange(states.shape[0]) if vehicles is None else np.asarray(vehicles,
+                                                                           dtype=np.int64)
+    _sliding(states, index, int(first), *one_signature(
+        np.asarray(pos, float), np.asarray(braking, float), np.asarray(steer, float)),
+             float(threshold), out)
     return out
 
 
