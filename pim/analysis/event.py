@@ -320,27 +320,30 @@ def impact_record(impact_case: Case, result, time: float, spec: ImpactSpec,
     ``result.energy_loss``, on numbers)."""
     v1, v2 = impact_case.vehicle1, impact_case.vehicle2
     fixed = bool(v2.fixed)
-    impulse = np.asarray(result.impulse, float).reshape(2)
-    before = np.array([np.asarray(v.velocity, float).reshape(2) for v in (v1, v2)])
-    after = np.array([np.asarray(result.velocity1, float).reshape(2),
-                      np.zeros(2) if fixed else np.asarray(result.velocity2, float).reshape(2)])
-    w_before = np.array([float(np.asarray(v.yaw_rate)) for v in (v1, v2)])
-    w_after = np.array([float(np.asarray(result.yaw_rate1)),
-                        0.0 if fixed else float(np.asarray(result.yaw_rate2))])
+    numbers = np.empty(15)          # impulse, CGs, velocities and yaw rates before, after
+    numbers[0:2] = np.reshape(result.impulse, 2)
+    numbers[2:4], numbers[4:6] = np.reshape(v1.cg, 2), np.reshape(v2.cg, 2)
+    numbers[6:8], numbers[8:10] = np.reshape(v1.velocity, 2), np.reshape(v2.velocity, 2)
+    numbers[10:12] = v1.yaw_rate, v2.yaw_rate
+    numbers[12:14] = np.reshape(result.velocity1, 2)
+    numbers[14] = result.yaw_rate1
+    px, py, x1, y1, x2, y2, u1, w1, u2, w2, r1, r2, a1, b1, s1 = numbers.tolist()
+    a2, b2, s2 = (0.0, 0.0, 0.0) if fixed else (*np.reshape(result.velocity2, 2).tolist(),
+                                                   float(result.yaw_rate2))
+    point = np.asarray(impact_case.impact.point, float).reshape(2)
+    cx, cy = point.tolist()
     headings = np.array([float(v1.heading), float(v2.heading)])
-    pd = pdof(np.stack([impulse, -impulse]), headings)
+    pd = pdof(np.array([[px, py], [-px, -py]]), headings)
     if fixed:
         pd[1] = np.nan
-    point = np.asarray(impact_case.impact.point, float).reshape(2)
-    states = [(*np.asarray(v.cg, float).reshape(2), 0.0, *before[i], w_before[i])
-              for i, v in enumerate((v1, v2))]
-    loss = energy_loss(point[0], point[1], *states,
-                       (*impulse, *after[0], w_after[0], *after[1], w_after[1]))
+    loss = energy_loss(cx, cy, (x1, y1, 0.0, u1, w1, r1), (x2, y2, 0.0, u2, w2, r2),
+                       (px, py, a1, b1, s1, a2, b2, s2))
     return ImpactRecord(
         time=float(time), point=point, normal_angle=float(impact_case.impact.normal_angle),
-        law=spec.law, coefficients=_coefficients_of(spec, result), impulse=impulse,
-        velocity_before=before, velocity_after=after, yaw_rate_before=w_before,
-        yaw_rate_after=w_after, energy_loss=float(loss), pdof=pd, source=source)
+        law=spec.law, coefficients=_coefficients_of(spec, result),
+        impulse=numbers[0:2].copy(), velocity_before=numbers[6:10].reshape(2, 2),
+        velocity_after=np.array([[a1, b1], [a2, b2]]), yaw_rate_before=numbers[10:12],
+        yaw_rate_after=np.array([s1, s2]), energy_loss=float(loss), pdof=pd, source=source)
 
 
 def kernel_impact_records(rows: np.ndarray, specs, fixed: bool,
@@ -348,29 +351,53 @@ def kernel_impact_records(rows: np.ndarray, specs, fixed: bool,
     """The :class:`pim.model.event.ImpactRecord` of each impact the event kernel solved,
     from its rows (k, :data:`pim.model.event_kernel.IMPACT_COLUMNS`: the states before and
     after, the impulse, C and n) and the laws they were solved under (``specs``, k
-    :func:`impact_spec`'s at least); ``fixed``: vehicle 2 is a fixed obstacle (no PDOF)."""
-    impulse = rows[:, 5:7]
-    pd = np.stack([pdof(impulse, rows[:, 21]),
-                   np.full(len(rows), np.nan) if fixed else pdof(-impulse, rows[:, 22])], -1)
-    return [_kernel_record(row, spec, p, source) for row, spec, p in zip(rows, specs, pd)]
+    :func:`impact_spec`'s at least); ``fixed``: vehicle 2 is a fixed obstacle (no PDOF).
+    Each column is taken out of the rows once for all of them (each record's arrays are
+    its own rows of those)."""
+    if not len(rows):
+        return []
+    k = len(rows)
+    g = rows[:, _RECORD_GATHER]            # (one gather: each record's arrays are views)
+    impulse, both = g[:, 2:4], g[:, 2:6].reshape(k, 2, 2)
+    np.negative(both[:, 1], out=both[:, 1])
+    pd = pdof(both, rows[:, 21:23])
+    if fixed:
+        pd[:, 1] = np.nan
+    columns = (g[:, 0:2], impulse, g[:, 6:10].reshape(k, 2, 2), g[:, 10:14].reshape(k, 2, 2),
+               g[:, 14:16], g[:, 16:18], pd)
+    normal = np.arctan2(rows[:, 4], rows[:, 3]).tolist()
+    numbers = g[:, 18:21].tolist()
+    return [_kernel_record(numbers[i], normal[i], [c[i] for c in columns], spec, source)
+            for i, spec in zip(range(k), specs)]
 
 
-def _kernel_record(row: np.ndarray, spec: ImpactSpec, pd: np.ndarray,
+#: The columns of the kernel's impact rows (:data:`pim.model.event_kernel.IMPACT_COLUMNS`)
+#: an :class:`ImpactRecord` takes, in :func:`kernel_impact_records`' order: C, the impulse,
+#: minus the impulse (vehicle 2's, for its PDOF), the velocities before and after, the yaw
+#: rates before and after, then time, energy lost and the law's ratio.
+_RECORD_GATHER = np.array([1, 2, 5, 6, 5, 6, 15, 16, 18, 19, 8, 9, 11, 12, 17, 20, 10, 13,
+                           0, 14, 23])
+
+
+def _kernel_record(numbers: list, normal: float, arrays: list, spec: ImpactSpec,
                    source: str) -> ImpactRecord:
-    """One row of :func:`kernel_impact_records` (its PDOFs ``pd`` computed)."""
+    """One record of :func:`kernel_impact_records`: its time, energy lost and ratio
+    (``numbers``), the normal's angle from its row, and its C, impulse, velocities and yaw
+    rates before and after and PDOFs (``arrays``)."""
+    time, loss, ratio = numbers
     if spec.law == "kudlich-slibar":
         coefficients = {"k": float(spec.restitution), "mu_c": float(spec.contact_friction)}
     else:
-        coefficients = {"eps": float(spec.restitution), "beta": float(row[23])}
+        coefficients = {"eps": float(spec.restitution), "beta": ratio}
         if spec.law == "brach-capped":
             coefficients["mu_c"] = float(spec.contact_friction)
+    point, impulse, v_before, v_after, w_before, w_after, pd = arrays
     return ImpactRecord(
-        time=float(row[0]), point=row[1:3].copy(),
-        normal_angle=float(np.arctan2(row[4], row[3])) if spec.normal_angle is None
-        else float(spec.normal_angle), law=spec.law, coefficients=coefficients,
-        impulse=row[5:7].copy(), velocity_before=row[[15, 16, 18, 19]].reshape(2, 2),
-        velocity_after=row[[8, 9, 11, 12]].reshape(2, 2), yaw_rate_before=row[[17, 20]],
-        yaw_rate_after=row[[10, 13]], energy_loss=float(row[14]), pdof=pd, source=source)
+        time=time, point=point,
+        normal_angle=normal if spec.normal_angle is None else float(spec.normal_angle),
+        law=spec.law, coefficients=coefficients, impulse=impulse, velocity_before=v_before,
+        velocity_after=v_after, yaw_rate_before=w_before, yaw_rate_after=w_after,
+        energy_loss=loss, pdof=pd, source=source)
 
 
 @dataclass(frozen=True)
