@@ -183,16 +183,31 @@ def _further_specs(case: Case) -> tuple:
     """:func:`impact_spec` of the impacts 2 to MAX_IMPACTS + 1, each distinct one built
     once (the last ``[[impacts]]`` entry, or the defaults, stands for all after it)."""
     given = len(tuple(getattr(case, "impacts", ()) or ()))
-    distinct = [impact_spec(case, k) for k in range(2, min(given, MAX_IMPACTS) + 2)
-                ] if given else [_default_spec()]
+    if not given:
+        return _default_specs()
+    distinct = [impact_spec(case, k) for k in range(2, min(given, MAX_IMPACTS) + 2)]
     return tuple(distinct[min(k, len(distinct) - 1)] for k in range(MAX_IMPACTS))
 
 
 @lru_cache(maxsize=1)
-def _default_spec() -> ImpactSpec:
-    """:func:`impact_spec` of a case without ``[[impacts]]`` (the stated defaults: one
-    frozen constant)."""
-    return impact_spec(None, 2)
+def _default_specs() -> tuple:
+    """:func:`_further_specs` of a case without ``[[impacts]]``: the stated defaults
+    (:func:`impact_spec`) for every further impact (one frozen constant)."""
+    return (impact_spec(None, 2),) * MAX_IMPACTS
+
+
+def _further_coefficients(specs: tuple) -> np.ndarray:
+    """:func:`_coefficients` of ``specs``; the defaults' (:func:`_default_specs`) are one
+    read-only constant (:func:`_default_coefficients`)."""
+    return _default_coefficients() if specs is _default_specs() else _coefficients(specs)
+
+
+@lru_cache(maxsize=1)
+def _default_coefficients() -> np.ndarray:
+    """:func:`_coefficients` of :func:`_default_specs` (read-only)."""
+    out = _coefficients(_default_specs())
+    out.setflags(write=False)
+    return out
 
 
 def _coefficients(specs: tuple) -> np.ndarray:
@@ -321,15 +336,13 @@ def impact_record(impact_case: Case, result, time: float, spec: ImpactSpec,
     v1, v2 = impact_case.vehicle1, impact_case.vehicle2
     fixed = bool(v2.fixed)
     numbers = np.empty(15)          # impulse, CGs, velocities and yaw rates before, after
-    numbers[0:2] = np.reshape(result.impulse, 2)
-    numbers[2:4], numbers[4:6] = np.reshape(v1.cg, 2), np.reshape(v2.cg, 2)
-    numbers[6:8], numbers[8:10] = np.reshape(v1.velocity, 2), np.reshape(v2.velocity, 2)
+    numbers[0:2], numbers[2:4], numbers[4:6] = result.impulse, v1.cg, v2.cg
+    numbers[6:8], numbers[8:10] = v1.velocity, v2.velocity
     numbers[10:12] = v1.yaw_rate, v2.yaw_rate
-    numbers[12:14] = np.reshape(result.velocity1, 2)
-    numbers[14] = result.yaw_rate1
+    numbers[12:14], numbers[14] = result.velocity1, result.yaw_rate1
     px, py, x1, y1, x2, y2, u1, w1, u2, w2, r1, r2, a1, b1, s1 = numbers.tolist()
-    a2, b2, s2 = (0.0, 0.0, 0.0) if fixed else (*np.reshape(result.velocity2, 2).tolist(),
-                                                   float(result.yaw_rate2))
+    a2, b2, s2 = (0.0, 0.0, 0.0) if fixed else (*np.asarray(result.velocity2, float).reshape(
+        2).tolist(), float(result.yaw_rate2))
     point = np.asarray(impact_case.impact.point, float).reshape(2)
     cx, cy = point.tolist()
     headings = np.array([float(v1.heading), float(v2.heading)])
@@ -473,7 +486,8 @@ def single_scene(case: Case, tyre_friction=None, *, generic: bool = False) -> Si
     data1, data2, outlines, inverse, vehicles = scene_data(case, tyre_friction,
                                                            generic=generic)
     specs = _further_specs(case)
-    scene = EventScene(data1, data2, outlines[None], inverse[None], _coefficients(specs)[None])
+    scene = EventScene(data1, data2, outlines[None], inverse[None],
+                       _further_coefficients(specs)[None])
     tyred = tuple(i for i, v in enumerate(vehicles) if v is not None)
     tyres = [vehicles[i] for i in tyred]
     if generic or not all(v.plain for v in tyres):

@@ -467,7 +467,8 @@ def kernel_scene(scene: EventScene, n: int) -> KernelScene:
     data2 = scene.data2 if scene.data2 is not None else scene.data1
     outlines = _shaped(scene.outlines, (n, 2, 3))
     rad = event_formula.bound_radius(outlines[..., 0], outlines[..., 1], outlines[..., 2])
-    reach = np.stack([scene.data1.reach, data2.reach], -1)
+    reach = np.empty((n, 2))
+    reach[:, 0], reach[:, 1] = scene.data1.reach, data2.reach
     inv = _shaped(scene.inverse, (n, 4))
     coefficients = _shaped(scene.coefficients, (n, MAX_IMPACTS, len(COEFFICIENT_COLUMNS)))
     return KernelScene(n, (one_signature(*_columns(scene.data1)),
