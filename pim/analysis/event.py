@@ -34,7 +34,6 @@ summary, for the Monte Carlo and the reconstruction through the event.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
 from functools import lru_cache
 from types import SimpleNamespace
@@ -258,18 +257,16 @@ def approach_motion(vehicle: Vehicle, marks, times, out=None) -> np.ndarray:
     """
     tau = -np.asarray(times, float)
     out = np.empty((len(tau), 6)) if out is None else out
-    cx, cy = (float(c) for c in np.asarray(vehicle.cg, float).reshape(2))
-    vx, vy = (float(c) for c in np.asarray(vehicle.velocity, float).reshape(2))
+    cg, vel = np.array([vehicle.cg, vehicle.velocity], float).reshape(2, 2)
     w, heading = float(np.asarray(vehicle.yaw_rate)), float(vehicle.heading)
-    speed = math.hypot(vx, vy)
+    speed = float(np.hypot(*vel))
     np.multiply(w, tau, out=out[:, 2])
     np.subtract(heading, out[:, 2], out=out[:, 2])          # heading - w tau
     out[:, 5] = w
     if marks is None or speed == 0.0 or marks.skid_length == 0.0:
-        for k, (c, v) in enumerate(((cx, vx), (cy, vy))):
-            np.multiply(tau, v, out=out[:, k])
-            np.subtract(c, out[:, k], out=out[:, k])         # cg - tau v
-            out[:, 3 + k] = v
+        np.multiply(tau[:, None], vel, out=out[:, :2])
+        np.subtract(cg, out[:, :2], out=out[:, :2])          # cg - tau v
+        out[:, 3:5] = vel
         return out
     a = float(mark_deceleration(marks.friction, marks.drag, marks.grade, STANDARD_GRAVITY))
     length = float(marks.skid_length)
@@ -277,9 +274,9 @@ def approach_motion(vehicle: Vehicle, marks, times, out=None) -> np.ndarray:
     within = np.minimum(tau, tau_l)
     along = speed * within + 0.5 * a * within ** 2 + (speed + a * tau_l) * np.maximum(
         tau - tau_l, 0.0)
-    unit = np.array([vx, vy]) / speed
+    unit = vel / speed
     now = speed + a * within
-    out[:, :2] = np.array([cx, cy]) - along[:, None] * unit
+    out[:, :2] = cg - along[:, None] * unit
     out[:, 3:5] = now[:, None] * unit
     return out
 
