@@ -478,10 +478,11 @@ def kernel_scene(scene: EventScene, n: int) -> KernelScene:
 
 def _shaped(value, shape: tuple) -> np.ndarray:
     """``value`` as floats broadcast to ``shape`` in a writable array (no read-only view
-    for :func:`one_signature` to copy): itself when it has that shape already."""
+    for :func:`one_signature` to copy): itself when it has that shape already (a copy of
+    a read-only one)."""
     a = np.asarray(value, float)
     if a.shape == shape:
-        return a
+        return a if a.flags.writeable else a.copy()
     out = np.empty(shape)       # (writable: no copy by one_signature)
     out[...] = a
     return out

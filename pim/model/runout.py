@@ -166,15 +166,25 @@ _PLAIN = (float, int)
 
 def _plain_fields(vehicle: RunoutVehicle) -> bool:
     """:attr:`RunoutVehicle.plain` of ``vehicle`` (worked out once, when it is made)."""
-    return all(type(getattr(vehicle, name)) in _PLAIN for name in _POSITIVE + (
-        "cg_to_front_axle",)) and _plain_four(vehicle.braking) and (
-        type(vehicle.steer) in _PLAIN or _plain_four(vehicle.steer))
+    for name in _PLAIN_FIELDS:
+        if type(getattr(vehicle, name)) not in _PLAIN:
+            return False
+    return _plain_four(vehicle.braking) and (type(vehicle.steer) in _PLAIN
+                                             or _plain_four(vehicle.steer))
+
+
+#: The fields :func:`_plain_fields` requires as Python numbers.
+_PLAIN_FIELDS = _POSITIVE + ("cg_to_front_axle",)
 
 
 def _plain_four(value) -> bool:
     """``value`` is a tuple or list of four Python numbers."""
-    return type(value) in (tuple, list) and len(value) == 4 and all(
-        type(v) in _PLAIN for v in value)
+    if type(value) not in (tuple, list) or len(value) != 4:
+        return False
+    for v in value:
+        if type(v) not in _PLAIN:
+            return False
+    return True
 
 
 def _plain_valid(vehicle: RunoutVehicle) -> bool:
@@ -188,11 +198,18 @@ def _plain_valid(vehicle: RunoutVehicle) -> bool:
     try:
         v = [float(getattr(vehicle, name)) for name in _POSITIVE]
         a = float(vehicle.cg_to_front_axle)
-        return (all(math.isfinite(x) and x > 0 for x in v) and math.isfinite(a)
-                and 0 <= a <= v[2] and all(0 <= float(b) <= 1 for b in vehicle.braking)
-                and all(math.isfinite(float(x)) for x in (
-                    (steer,) if type(steer) in _PLAIN else steer))
-                and vehicle.regularisation > 0)
+        for x in v:
+            if not (math.isfinite(x) and x > 0):
+                return False
+        if not (math.isfinite(a) and 0 <= a <= v[2]):
+            return False
+        for b in vehicle.braking:
+            if not 0 <= float(b) <= 1:
+                return False
+        for x in (steer,) if type(steer) in _PLAIN else steer:
+            if not math.isfinite(float(x)):
+                return False
+        return vehicle.regularisation > 0
     except OverflowError:           # an int beyond float's range
         return False
 
