@@ -238,13 +238,13 @@ def phase_labels(time, impact_times, rest_time=None) -> np.ndarray:
         out[time < impact_times[0]] = "approach"
     else:
         out[:] = "approach"
-    for k, t in enumerate(impact_times, start=1):
-        at = int(np.searchsorted(time, t, side="left"))
+    # the first sample at or after each impact time; two samples may share it (before,
+    # after): the later one is after, the last of the samples at that time
+    first = np.searchsorted(time, impact_times, side="left").tolist()
+    last = np.searchsorted(time, impact_times, side="right").tolist()
+    for k, (at, end) in enumerate(zip(first, last), start=1):
         if at < len(time):
-            # two samples may share the impact time (before, after): the later one is after
-            while at + 1 < len(time) and time[at + 1] == t:
-                at += 1
-            out[at] = impact_phase(k)
+            out[end - 1 if end > at else at] = impact_phase(k)
     if rest_time is not None:
         out[time >= rest_time] = "rest"
     return out
