@@ -259,10 +259,10 @@ def approach_motion(vehicle: Vehicle, marks, times, out=None) -> np.ndarray:
     out = np.empty((len(tau), 6)) if out is None else out
     cg, vel = np.array([vehicle.cg, vehicle.velocity], float).reshape(2, 2)
     w, heading = float(np.asarray(vehicle.yaw_rate)), float(vehicle.heading)
-    speed = float(np.hypot(*vel))
     np.multiply(w, tau, out=out[:, 2])
     np.subtract(heading, out[:, 2], out=out[:, 2])          # heading - w tau
     out[:, 5] = w
+    speed = None if marks is None else float(np.hypot(*vel))
     if marks is None or speed == 0.0 or marks.skid_length == 0.0:
         np.multiply(tau[:, None], vel, out=out[:, :2])
         np.subtract(cg, out[:, :2], out=out[:, :2])          # cg - tau v
