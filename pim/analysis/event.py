@@ -244,30 +244,44 @@ def _state(case: Case, result, fixed: bool) -> np.ndarray:
     return out
 
 
-def approach_motion(vehicle: Vehicle, marks, times, out=None) -> np.ndarray:
-    """One vehicle's approach at ``times`` [s] <= 0 (before the impact at 0): its states
-    (n, 6) (x, y, psi, v_x, v_y, omega), written into ``out`` when given.
+def approach_motion(vehicles, marks, times, out=None) -> np.ndarray:
+    """The vehicles' approach at ``times`` [s] <= 0 (before the impact at 0): their states
+    (V, n, 6) (x, y, psi, v_x, v_y, omega), written into ``out`` when given.
 
-    Free motion at the case's velocity and yaw rate; with tyre marks before the impact
-    (:class:`pim.model.pre_impact.PreImpactMarks`) the CG slides straight along its
-    impact velocity at the marks' constant deceleration ``a`` over their length ``L``
+    ``vehicles`` (V :class:`pim.Vehicle`) and ``marks`` (V, each
+    :class:`pim.model.pre_impact.PreImpactMarks` or None). Free motion at the case's
+    velocity and yaw rate; with tyre marks before the impact the CG slides straight along
+    its impact velocity at the marks' constant deceleration ``a`` over their length ``L``
     (:func:`pim.model.pre_impact.mark_deceleration`, eq. 1), and moves freely at the speed
     at the marks' start before them: at ``tau = -t``, ``v = v_0 + a tau`` and the distance
-    to the impact ``v_0 tau + a tau^2 / 2`` up to ``tau_L`` where it reaches ``L``.
+    to the impact ``v_0 tau + a tau^2 / 2`` up to ``tau_L`` where it reaches ``L``. The
+    heading turns at the yaw rate either way (``psi_0 - omega tau``).
     """
     tau = -np.asarray(times, float)
-    out = np.empty((len(tau), 6)) if out is None else out
-    cg, vel = np.array([vehicle.cg, vehicle.velocity], float).reshape(2, 2)
-    w, heading = float(np.asarray(vehicle.yaw_rate)), float(vehicle.heading)
-    np.multiply(w, tau, out=out[:, 2])
-    np.subtract(heading, out[:, 2], out=out[:, 2])          # heading - w tau
-    out[:, 5] = w
-    speed = None if marks is None else float(np.hypot(*vel))
-    if marks is None or speed == 0.0 or marks.skid_length == 0.0:
-        np.multiply(tau[:, None], vel, out=out[:, :2])
-        np.subtract(cg, out[:, :2], out=out[:, :2])          # cg - tau v
-        out[:, 3:5] = vel
-        return out
+    out = np.empty((len(vehicles), len(tau), 6)) if out is None else out
+    cg_vel = np.array([(v.cg, v.velocity) for v in vehicles], float).reshape(-1, 2, 2)
+    cg, vel = cg_vel[:, 0], cg_vel[:, 1]
+    turn = np.array([(float(np.asarray(v.yaw_rate)), float(v.heading)) for v in vehicles])
+    w, heading = turn[:, 0], turn[:, 1]
+    np.multiply(w[:, None], tau, out=out[:, :, 2])
+    np.subtract(heading[:, None], out[:, :, 2], out=out[:, :, 2])    # heading - w tau
+    out[:, :, 5] = w[:, None]
+    np.multiply(tau[:, None], vel[:, None], out=out[:, :, :2])
+    np.subtract(cg[:, None], out[:, :, :2], out=out[:, :, :2])       # cg - tau v
+    out[:, :, 3:5] = vel[:, None]
+    for i, m in enumerate(marks):
+        if m is not None:
+            _marks_approach(m, cg[i], vel[i], tau, out[i])
+    return out
+
+
+def _marks_approach(marks, cg: np.ndarray, vel: np.ndarray, tau: np.ndarray,
+                    out: np.ndarray) -> None:
+    """The CG's position and velocity in ``out`` (n, 6) of a vehicle that slid along its
+    marks before the impact (:func:`approach_motion`), at ``tau`` [s] before it."""
+    speed = float(np.hypot(*vel))
+    if speed == 0.0 or marks.skid_length == 0.0:
+        return
     a = float(mark_deceleration(marks.friction, marks.drag, marks.grade, STANDARD_GRAVITY))
     length = float(marks.skid_length)
     tau_l = (np.sqrt(speed ** 2 + 2 * a * length) - speed) / a if a > 0 else length / speed
@@ -278,7 +292,6 @@ def approach_motion(vehicle: Vehicle, marks, times, out=None) -> np.ndarray:
     now = speed + a * within
     out[:, :2] = cg - along[:, None] * unit
     out[:, 3:5] = now[:, None] * unit
-    return out
 
 
 def sliding_flags(states: np.ndarray, vehicle: RunoutVehicle | None,
@@ -601,10 +614,10 @@ def _assemble(case: Case, impacts: tuple, run: _Run, approach: float, scene: Sin
     states = np.empty((2, len(time), 6))
     states[:, start:] = rows[:, 1:].reshape(-1, 2, 6).transpose(1, 0, 2)
     ev = case.evidence
-    for i, vehicle in enumerate((case.vehicle1, case.vehicle2)):
-        evidence = None if ev is None else getattr(ev, f"vehicle{i + 1}")
-        approach_motion(vehicle, None if evidence is None else evidence.pre_impact,
-                        time[:start], out=states[i, :start])
+    evidence = (None, None) if ev is None else (ev.vehicle1, ev.vehicle2)
+    approach_motion((case.vehicle1, case.vehicle2),
+                    [None if e is None else e.pre_impact for e in evidence], time[:start],
+                    out=states[:, :start])
     return _event_of(time, states, run, scene, start=start, free=free,
                      impact_times=[i.time for i in impacts], impacts=tuple(impacts))
 
