@@ -277,21 +277,23 @@ class RhsData:
         if vehicle.driver is not None or not vehicle.plain:
             return cls.of(vehicle, 1)
         pos = vehicle.positions if positions is None else positions
-        steer = np.empty(4)
+        steer, turn = np.empty(4), np.empty((1, 2, 4))
         steer[:] = vehicle.steer
+        np.cos(steer, out=turn[0, 0])
+        np.sin(steer, out=turn[0, 1])
+        wheels = np.ascontiguousarray(pos.T)[:, None]          # (2, 1, 4): x, y
         return cls(mass=np.array([float(vehicle.mass)]),
                    yaw_inertia=np.array([float(vehicle.yaw_inertia)]),
-                   wheel_x=pos[None, :, 0].copy(), wheel_y=pos[None, :, 1].copy(),
+                   wheel_x=wheels[0], wheel_y=wheels[1],
                    load=vehicle.loads[None], friction=np.array([float(vehicle.friction)]),
                    regularisation=float(vehicle.regularisation), times=np.zeros(1),
-                   steer=np.array([[np.cos(steer), np.sin(steer)]]),
-                   brake=np.array([[vehicle.braking]], dtype=float),
+                   steer=turn, brake=np.array([[vehicle.braking]], dtype=float),
                    tyre=_tyre_rows(vehicle, 1))
 
     @property
     def reach(self) -> np.ndarray:
         """The largest tyre arm of each sample [m] (n,)."""
-        return np.max(np.hypot(self.wheel_x, self.wheel_y), axis=-1)
+        return np.hypot(self.wheel_x, self.wheel_y).max(axis=-1)
 
     def take(self, index) -> RhsData:
         """The samples ``index`` (an index array)."""
