@@ -182,16 +182,31 @@ def _further_specs(case: Case) -> tuple:
     """:func:`impact_spec` of the impacts 2 to MAX_IMPACTS + 1, each distinct one built
     once (the last ``[[impacts]]`` entry, or the defaults, stands for all after it)."""
     given = len(tuple(getattr(case, "impacts", ()) or ()))
-    distinct = [impact_spec(case, k) for k in range(2, min(given, MAX_IMPACTS) + 2)
-                ] if given else [_default_spec()]
+    if not given:
+        return _default_specs()
+    distinct = [impact_spec(case, k) for k in range(2, min(given, MAX_IMPACTS) + 2)]
     return tuple(distinct[min(k, len(distinct) - 1)] for k in range(MAX_IMPACTS))
 
 
 @lru_cache(maxsize=1)
-def _default_spec() -> ImpactSpec:
-    """:func:`impact_spec` of a case without ``[[impacts]]`` (the stated defaults: one
-    frozen constant)."""
-    return impact_spec(None, 2)
+def _default_specs() -> tuple:
+    """:func:`_further_specs` of a case without ``[[impacts]]``: the stated defaults
+    (:func:`impact_spec`) for every further impact (one frozen constant)."""
+    return (impact_spec(None, 2),) * MAX_IMPACTS
+
+
+def _further_coefficients(specs: tuple) -> np.ndarray:
+    """:func:`_coefficients` of ``specs``; the defaults' (:func:`_default_specs`) are one
+    read-only constant (:func:`_default_coefficients`)."""
+    return _default_coefficients() if specs is _default_specs() else _coefficients(specs)
+
+
+@lru_cache(maxsize=1)
+def _default_coefficients() -> np.ndarray:
+    """:func:`_coefficients` of :func:`_default_specs` (read-only)."""
+    out = _coefficients(_default_specs())
+    out.setflags(write=False)
+    return out
 
 
 def _coefficients(specs: tuple) -> np.ndarray:
@@ -229,26 +244,44 @@ def _state(case: Case, result, fixed: bool) -> np.ndarray:
     return out
 
 
-def approach_motion(vehicle: Vehicle, marks, times) -> tuple:
-    """One vehicle's approach at ``times`` [s] < 0 (before the impact at 0): ``(position
-    (n, 2), heading (n,), velocity (n, 2), yaw rate (n,))``.
+def approach_motion(vehicles, marks, times, out=None) -> np.ndarray:
+    """The vehicles' approach at ``times`` [s] <= 0 (before the impact at 0): their states
+    (V, n, 6) (x, y, psi, v_x, v_y, omega), written into ``out`` when given.
 
-    Free motion at the case's velocity and yaw rate; with tyre marks before the impact
-    (:class:`pim.model.pre_impact.PreImpactMarks`) the CG slides straight along its
-    impact velocity at the marks' constant deceleration ``a`` over their length ``L``
+    ``vehicles`` (V :class:`pim.Vehicle`) and ``marks`` (V, each
+    :class:`pim.model.pre_impact.PreImpactMarks` or None). Free motion at the case's
+    velocity and yaw rate; with tyre marks before the impact the CG slides straight along
+    its impact velocity at the marks' constant deceleration ``a`` over their length ``L``
     (:func:`pim.model.pre_impact.mark_deceleration`, eq. 1), and moves freely at the speed
     at the marks' start before them: at ``tau = -t``, ``v = v_0 + a tau`` and the distance
-    to the impact ``v_0 tau + a tau^2 / 2`` up to ``tau_L`` where it reaches ``L``.
+    to the impact ``v_0 tau + a tau^2 / 2`` up to ``tau_L`` where it reaches ``L``. The
+    heading turns at the yaw rate either way (``psi_0 - omega tau``).
     """
     tau = -np.asarray(times, float)
-    cg = np.asarray(vehicle.cg, float).reshape(2)
-    vel = np.asarray(vehicle.velocity, float).reshape(2)
-    w, heading = float(np.asarray(vehicle.yaw_rate)), float(vehicle.heading)
-    n = len(tau)
+    out = np.empty((len(vehicles), len(tau), 6)) if out is None else out
+    cg_vel = np.array([(v.cg, v.velocity) for v in vehicles], float).reshape(-1, 2, 2)
+    cg, vel = cg_vel[:, 0], cg_vel[:, 1]
+    turn = np.array([(float(np.asarray(v.yaw_rate)), float(v.heading)) for v in vehicles])
+    w, heading = turn[:, 0], turn[:, 1]
+    np.multiply(w[:, None], tau, out=out[:, :, 2])
+    np.subtract(heading[:, None], out[:, :, 2], out=out[:, :, 2])    # heading - w tau
+    out[:, :, 5] = w[:, None]
+    np.multiply(tau[:, None], vel[:, None], out=out[:, :, :2])
+    np.subtract(cg[:, None], out[:, :, :2], out=out[:, :, :2])       # cg - tau v
+    out[:, :, 3:5] = vel[:, None]
+    for i, m in enumerate(marks):
+        if m is not None:
+            _marks_approach(m, cg[i], vel[i], tau, out[i])
+    return out
+
+
+def _marks_approach(marks, cg: np.ndarray, vel: np.ndarray, tau: np.ndarray,
+                    out: np.ndarray) -> None:
+    """The CG's position and velocity in ``out`` (n, 6) of a vehicle that slid along its
+    marks before the impact (:func:`approach_motion`), at ``tau`` [s] before it."""
     speed = float(np.hypot(*vel))
-    if marks is None or speed == 0.0 or marks.skid_length == 0.0:
-        return (cg - tau[:, None] * vel, heading - w * tau, np.broadcast_to(vel, (n, 2)).copy(),
-                np.full(n, w))
+    if speed == 0.0 or marks.skid_length == 0.0:
+        return
     a = float(mark_deceleration(marks.friction, marks.drag, marks.grade, STANDARD_GRAVITY))
     length = float(marks.skid_length)
     tau_l = (np.sqrt(speed ** 2 + 2 * a * length) - speed) / a if a > 0 else length / speed
@@ -257,7 +290,8 @@ def approach_motion(vehicle: Vehicle, marks, times) -> tuple:
         tau - tau_l, 0.0)
     unit = vel / speed
     now = speed + a * within
-    return (cg - along[:, None] * unit, heading - w * tau, now[:, None] * unit, np.full(n, w))
+    out[:, :2] = cg - along[:, None] * unit
+    out[:, 3:5] = now[:, None] * unit
 
 
 def sliding_flags(states: np.ndarray, vehicle: RunoutVehicle | None,
@@ -311,27 +345,28 @@ def impact_record(impact_case: Case, result, time: float, spec: ImpactSpec,
     ``result.energy_loss``, on numbers)."""
     v1, v2 = impact_case.vehicle1, impact_case.vehicle2
     fixed = bool(v2.fixed)
-    impulse = np.asarray(result.impulse, float).reshape(2)
-    before = np.array([np.asarray(v.velocity, float).reshape(2) for v in (v1, v2)])
-    after = np.array([np.asarray(result.velocity1, float).reshape(2),
-                      np.zeros(2) if fixed else np.asarray(result.velocity2, float).reshape(2)])
-    w_before = np.array([float(np.asarray(v.yaw_rate)) for v in (v1, v2)])
-    w_after = np.array([float(np.asarray(result.yaw_rate1)),
-                        0.0 if fixed else float(np.asarray(result.yaw_rate2))])
+    numbers = np.empty(15)          # impulse, CGs, velocities and yaw rates before, after
+    numbers[0:2], numbers[2:4], numbers[4:6] = result.impulse, v1.cg, v2.cg
+    numbers[6:8], numbers[8:10] = v1.velocity, v2.velocity
+    numbers[10:12] = v1.yaw_rate, v2.yaw_rate
+    numbers[12:14], numbers[14] = result.velocity1, result.yaw_rate1
+    px, py, x1, y1, x2, y2, u1, w1, u2, w2, r1, r2, a1, b1, s1 = numbers.tolist()
+    a2, b2, s2 = (0.0, 0.0, 0.0) if fixed else (*np.asarray(result.velocity2, float).reshape(
+        2).tolist(), float(result.yaw_rate2))
+    point = np.asarray(impact_case.impact.point, float).reshape(2)
+    cx, cy = point.tolist()
     headings = np.array([float(v1.heading), float(v2.heading)])
-    pd = pdof(np.stack([impulse, -impulse]), headings)
+    pd = pdof(np.array([[px, py], [-px, -py]]), headings)
     if fixed:
         pd[1] = np.nan
-    point = np.asarray(impact_case.impact.point, float).reshape(2)
-    states = [(*np.asarray(v.cg, float).reshape(2), 0.0, *before[i], w_before[i])
-              for i, v in enumerate((v1, v2))]
-    loss = energy_loss(point[0], point[1], *states,
-                       (*impulse, *after[0], w_after[0], *after[1], w_after[1]))
+    loss = energy_loss(cx, cy, (x1, y1, 0.0, u1, w1, r1), (x2, y2, 0.0, u2, w2, r2),
+                       (px, py, a1, b1, s1, a2, b2, s2))
     return ImpactRecord(
         time=float(time), point=point, normal_angle=float(impact_case.impact.normal_angle),
-        law=spec.law, coefficients=_coefficients_of(spec, result), impulse=impulse,
-        velocity_before=before, velocity_after=after, yaw_rate_before=w_before,
-        yaw_rate_after=w_after, energy_loss=float(loss), pdof=pd, source=source)
+        law=spec.law, coefficients=_coefficients_of(spec, result),
+        impulse=numbers[0:2].copy(), velocity_before=numbers[6:10].reshape(2, 2),
+        velocity_after=np.array([[a1, b1], [a2, b2]]), yaw_rate_before=numbers[10:12],
+        yaw_rate_after=np.array([s1, s2]), energy_loss=float(loss), pdof=pd, source=source)
 
 
 def kernel_impact_records(rows: np.ndarray, specs, fixed: bool,
@@ -339,29 +374,53 @@ def kernel_impact_records(rows: np.ndarray, specs, fixed: bool,
     """The :class:`pim.model.event.ImpactRecord` of each impact the event kernel solved,
     from its rows (k, :data:`pim.model.event_kernel.IMPACT_COLUMNS`: the states before and
     after, the impulse, C and n) and the laws they were solved under (``specs``, k
-    :func:`impact_spec`'s at least); ``fixed``: vehicle 2 is a fixed obstacle (no PDOF)."""
-    impulse = rows[:, 5:7]
-    pd = np.stack([pdof(impulse, rows[:, 21]),
-                   np.full(len(rows), np.nan) if fixed else pdof(-impulse, rows[:, 22])], -1)
-    return [_kernel_record(row, spec, p, source) for row, spec, p in zip(rows, specs, pd)]
+    :func:`impact_spec`'s at least); ``fixed``: vehicle 2 is a fixed obstacle (no PDOF).
+    Each column is taken out of the rows once for all of them (each record's arrays are
+    its own rows of those)."""
+    if not len(rows):
+        return []
+    k = len(rows)
+    g = rows[:, _RECORD_GATHER]            # (one gather: each record's arrays are views)
+    impulse, both = g[:, 2:4], g[:, 2:6].reshape(k, 2, 2)
+    np.negative(both[:, 1], out=both[:, 1])
+    pd = pdof(both, rows[:, 21:23])
+    if fixed:
+        pd[:, 1] = np.nan
+    columns = (g[:, 0:2], impulse, g[:, 6:10].reshape(k, 2, 2), g[:, 10:14].reshape(k, 2, 2),
+               g[:, 14:16], g[:, 16:18], pd)
+    normal = np.arctan2(rows[:, 4], rows[:, 3]).tolist()
+    numbers = g[:, 18:21].tolist()
+    return [_kernel_record(numbers[i], normal[i], [c[i] for c in columns], spec, source)
+            for i, spec in zip(range(k), specs)]
 
 
-def _kernel_record(row: np.ndarray, spec: ImpactSpec, pd: np.ndarray,
+#: The columns of the kernel's impact rows (:data:`pim.model.event_kernel.IMPACT_COLUMNS`)
+#: an :class:`ImpactRecord` takes, in :func:`kernel_impact_records`' order: C, the impulse,
+#: minus the impulse (vehicle 2's, for its PDOF), the velocities before and after, the yaw
+#: rates before and after, then time, energy lost and the law's ratio.
+_RECORD_GATHER = np.array([1, 2, 5, 6, 5, 6, 15, 16, 18, 19, 8, 9, 11, 12, 17, 20, 10, 13,
+                           0, 14, 23])
+
+
+def _kernel_record(numbers: list, normal: float, arrays: list, spec: ImpactSpec,
                    source: str) -> ImpactRecord:
-    """One row of :func:`kernel_impact_records` (its PDOFs ``pd`` computed)."""
+    """One record of :func:`kernel_impact_records`: its time, energy lost and ratio
+    (``numbers``), the normal's angle from its row, and its C, impulse, velocities and yaw
+    rates before and after and PDOFs (``arrays``)."""
+    time, loss, ratio = numbers
     if spec.law == "kudlich-slibar":
         coefficients = {"k": float(spec.restitution), "mu_c": float(spec.contact_friction)}
     else:
-        coefficients = {"eps": float(spec.restitution), "beta": float(row[23])}
+        coefficients = {"eps": float(spec.restitution), "beta": ratio}
         if spec.law == "brach-capped":
             coefficients["mu_c"] = float(spec.contact_friction)
+    point, impulse, v_before, v_after, w_before, w_after, pd = arrays
     return ImpactRecord(
-        time=float(row[0]), point=row[1:3].copy(),
-        normal_angle=float(np.arctan2(row[4], row[3])) if spec.normal_angle is None
-        else float(spec.normal_angle), law=spec.law, coefficients=coefficients,
-        impulse=row[5:7].copy(), velocity_before=row[[15, 16, 18, 19]].reshape(2, 2),
-        velocity_after=row[[8, 9, 11, 12]].reshape(2, 2), yaw_rate_before=row[[17, 20]],
-        yaw_rate_after=row[[10, 13]], energy_loss=float(row[14]), pdof=pd, source=source)
+        time=time, point=point,
+        normal_angle=normal if spec.normal_angle is None else float(spec.normal_angle),
+        law=spec.law, coefficients=coefficients, impulse=impulse, velocity_before=v_before,
+        velocity_after=v_after, yaw_rate_before=w_before, yaw_rate_after=w_after,
+        energy_loss=loss, pdof=pd, source=source)
 
 
 @dataclass(frozen=True)
@@ -402,6 +461,9 @@ class SingleScene:
         The further impacts' laws (:func:`impact_spec`).
     fixed : bool
         Vehicle 2 is a fixed obstacle.
+    outlines : tuple
+        Each vehicle's outline corners in its body frame (4, 2) [m]
+        (:func:`pim.model.geometry.vehicle_outline`; read-only, the tracks').
     """
 
     kernel: object
@@ -410,6 +472,7 @@ class SingleScene:
     positions: tuple
     specs: tuple
     fixed: bool
+    outlines: tuple
 
 
 def _scene(case: Case, tyre_friction) -> SingleScene:
@@ -433,7 +496,8 @@ def single_scene(case: Case, tyre_friction=None, *, generic: bool = False) -> Si
     data1, data2, outlines, inverse, vehicles = scene_data(case, tyre_friction,
                                                            generic=generic)
     specs = _further_specs(case)
-    scene = EventScene(data1, data2, outlines[None], inverse[None], _coefficients(specs)[None])
+    scene = EventScene(data1, data2, outlines[None], inverse[None],
+                       _further_coefficients(specs)[None])
     tyred = tuple(i for i, v in enumerate(vehicles) if v is not None)
     tyres = [vehicles[i] for i in tyred]
     if generic or not all(v.plain for v in tyres):
@@ -442,10 +506,11 @@ def single_scene(case: Case, tyre_friction=None, *, generic: bool = False) -> Si
     else:
         stacked = _stacked_wheels(tyres, [(data1, data2)[i] for i in tyred])
     positions = tuple(p.view() for p in stacked[0])
-    for p in positions:
+    outlines = tuple(vehicle_outline(v) for v in (case.vehicle1, case.vehicle2))
+    for p in positions + outlines:
         p.setflags(write=False)
     return SingleScene(kernel_scene(scene, 1), tyred, stacked, positions, specs,
-                       bool(case.vehicle2.fixed))
+                       bool(case.vehicle2.fixed), outlines)
 
 
 def _stacked_wheels(vehicles: list, data: list) -> tuple:
@@ -543,38 +608,38 @@ def _assemble(case: Case, impacts: tuple, run: _Run, approach: float, scene: Sin
     run-out's rows (the first is the state just after it)."""
     before = np.arange(-approach, 0.0, APPROACH_SAMPLE) if approach > 0 else np.zeros(0)
     start = len(before) + 1
-    states = np.empty((2, start + len(run.rows), 6))
+    rows = run.rows
+    time = np.empty(start + len(rows))
+    time[:start - 1], time[start - 1], time[start:] = before, 0.0, rows[:, 0]
+    states = np.empty((2, len(time), 6))
+    states[:, start:] = rows[:, 1:].reshape(-1, 2, 6).transpose(1, 0, 2)
     ev = case.evidence
-    for i, vehicle in enumerate((case.vehicle1, case.vehicle2)):
-        marks = None if ev is None or getattr(ev, f"vehicle{i + 1}") is None else getattr(
-            ev, f"vehicle{i + 1}").pre_impact
-        pre = approach_motion(vehicle, marks, np.append(before, 0.0))
-        states[i, :start, :2], states[i, :start, 2] = pre[0], pre[1]
-        states[i, :start, 3:5], states[i, :start, 5] = pre[2], pre[3]
-        states[i, start:] = run.rows[:, 1 + 6 * i:7 + 6 * i]
-    time = np.concatenate([before, [0.0], run.rows[:, 0]])
-    return _event_of(case, time, states, run, scene, start=start, free=free,
+    evidence = (None, None) if ev is None else (ev.vehicle1, ev.vehicle2)
+    approach_motion((case.vehicle1, case.vehicle2),
+                    [None if e is None else e.pre_impact for e in evidence], time[:start],
+                    out=states[:, :start])
+    return _event_of(time, states, run, scene, start=start, free=free,
                      impact_times=[i.time for i in impacts], impacts=tuple(impacts))
 
 
-def _event_of(case: Case, time: np.ndarray, states: np.ndarray, run: _Run,
-              scene: SingleScene, *, start: int, free: bool, impact_times: list,
-              impacts: tuple) -> Event:
-    """The Event of both vehicles' ``states`` (2, N, 6) at ``time``: the wheels that slide
-    from sample ``start`` on (the run-out; of the vehicles with tyres, all at once)."""
-    sliding = np.zeros((2, len(states[0]), 4), bool)
+def _event_of(time: np.ndarray, states: np.ndarray, run: _Run, scene: SingleScene, *,
+              start: int, free: bool, impact_times: list, impacts: tuple) -> Event:
+    """The Event of both vehicles' ``states`` (2, N, 6) (C-contiguous) at ``time``: the
+    wheels that slide from sample ``start`` on (the run-out; of the vehicles with tyres,
+    all at once)."""
     if scene.tyred and not free:
         from ..model.event_kernel import sliding_rows  # compiled event: numba
 
-        tyred = list(scene.tyred)
-        sliding[tyred, start:] = sliding_rows(states[tyred, start:], *scene.wheels,
-                                              SLIDE_SPEED)
+        sliding = sliding_rows(states, *scene.wheels, SLIDE_SPEED, vehicles=scene.tyred,
+                               first=start)
+    else:
+        sliding = np.zeros((2, len(time), 4), bool)
     tracks = [Track(states[i, :, :2], states[i, :, 2], states[i, :, 3:5], states[i, :, 5],
-                    sliding=sliding[i], outline=vehicle_outline(v),
+                    sliding=sliding[i], outline=scene.outlines[i],
                     fixed=i == 1 and scene.fixed,
                     wheels=scene.positions[scene.tyred.index(i)] if i in scene.tyred
                     else None)
-              for i, v in enumerate((case.vehicle1, case.vehicle2))]
+              for i in (0, 1)]
     stopped = tuple(bool(s) for s in run.stopped)
     rest = float(time[-1]) if all(stopped) else None
     notes = []
@@ -640,8 +705,8 @@ def event_after(case: Case, velocity, yaw_rate, *, first: ImpactRecord | None = 
     motion = SimpleNamespace(velocity1=velocity[0], velocity2=velocity[1],
                              yaw_rate1=yaw_rate[0], yaw_rate2=yaw_rate[1])
     run = _run_out(scene, _state(case, motion, scene.fixed), _Watch(step, limit, tolerance))
-    states = np.stack([run.rows[:, 1 + 6 * i:7 + 6 * i] for i in (0, 1)])
-    return _event_of(case, run.rows[:, 0], states, run, scene, start=0, free=free,
+    states = np.ascontiguousarray(run.rows[:, 1:].reshape(-1, 2, 6).transpose(1, 0, 2))
+    return _event_of(run.rows[:, 0].copy(), states, run, scene, start=0, free=free,
                      impact_times=[0.0, *(i.time for i in run.impacts)],
                      impacts=run.impacts if first is None else (first, *run.impacts))
 

@@ -58,6 +58,11 @@ def impact_phase(k: int) -> str:
     return f"impact {int(k)}"
 
 
+#: The per-sample fields of a :class:`Track` and their width (None: one number a sample).
+_TRACK_SHAPES = (("position", 2), ("heading", None), ("velocity", 2), ("yaw_rate", None),
+                 ("sliding", 4))
+
+
 @dataclass(frozen=True, eq=False)
 class Track:
     """One vehicle's motion over an event's samples (SI, global frame).
@@ -97,14 +102,18 @@ class Track:
     wheels: np.ndarray | None = None
 
     def __post_init__(self):
-        n = np.shape(self.heading)[0] if np.ndim(self.heading) else None
-        shapes = {"position": (n, 2), "heading": (n,), "velocity": (n, 2), "yaw_rate": (n,)}
-        if self.sliding is not None:
-            shapes["sliding"] = (n, 4)
-        for name, shape in shapes.items():
-            if n is None or np.shape(getattr(self, name)) != shape:
-                raise InputError(f"Track.{name} must have shape {shape} (N samples), got "
-                                 f"{np.shape(getattr(self, name))}")
+        heading = self.heading
+        n = (heading.shape[0] if heading.ndim else None) if isinstance(
+            heading, np.ndarray) else np.shape(heading)[0] if np.ndim(heading) else None
+        for name, width in _TRACK_SHAPES:
+            value = getattr(self, name)
+            if value is None and name == "sliding":
+                continue
+            shape = value.shape if isinstance(value, np.ndarray) else np.shape(value)
+            if n is None or shape != ((n,) if width is None else (n, width)):
+                expected = (n,) if width is None else (n, width)
+                raise InputError(f"Track.{name} must have shape {expected} (N samples), got "
+                                 f"{shape}")
 
     def __len__(self) -> int:
         return len(self.heading)
@@ -229,13 +238,13 @@ def phase_labels(time, impact_times, rest_time=None) -> np.ndarray:
         out[time < impact_times[0]] = "approach"
     else:
         out[:] = "approach"
-    for k, t in enumerate(impact_times, start=1):
-        at = int(np.searchsorted(time, t, side="left"))
+    # the first sample at or after each impact time; two samples may share it (before,
+    # after): the later one is after, the last of the samples at that time
+    first = np.searchsorted(time, impact_times, side="left").tolist()
+    last = np.searchsorted(time, impact_times, side="right").tolist()
+    for k, (at, end) in enumerate(zip(first, last), start=1):
         if at < len(time):
-            # two samples may share the impact time (before, after): the later one is after
-            while at + 1 < len(time) and time[at + 1] == t:
-                at += 1
-            out[at] = impact_phase(k)
+            out[end - 1 if end > at else at] = impact_phase(k)
     if rest_time is not None:
         out[time >= rest_time] = "rest"
     return out
@@ -308,7 +317,7 @@ class Event:
 
     def __post_init__(self):
         time = np.asarray(self.time, float)
-        if time.ndim != 1 or len(time) < 1 or np.any(np.diff(time) < 0):
+        if time.ndim != 1 or len(time) < 1 or (time[1:] < time[:-1]).any():
             raise InputError("Event.time must be a non-empty, non-decreasing 1-D array [s]")
         for name in ("vehicle1", "vehicle2"):
             if len(getattr(self, name)) != len(time):

@@ -34,7 +34,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from numba import get_num_threads, njit, prange, set_num_threads
+from numba import carray, get_num_threads, njit, prange, set_num_threads
+from numba.core import types
+from numba.extending import intrinsic
 
 from . import event_formula, evidence_terms, formula, runout_formula, runout_kernel, tyres
 from .numba_cache import compile_module, stamped_cache
@@ -85,6 +87,36 @@ _cached = stamped_cache(event_formula, formula, runout_formula, tyres, runout_ke
                         evidence_terms)
 
 
+@intrinsic
+def _data_pointer(typingctx, array):  # pragma: no cover - compiled
+    """The pointer to a C-contiguous array's first element (for :func:`numba.carray`)."""
+    def codegen(context, builder, signature, args):
+        return context.make_array(signature.args[0])(context, builder, args[0]).data
+
+    return types.CPointer(array.dtype)(array), codegen
+
+
+@njit(inline="always")
+def _borrowed(a):  # pragma: no cover - compiled
+    """``a`` (C-contiguous) as an array that owns no reference (:func:`numba.carray` over
+    its data: the same memory, shape and values)."""
+    return carray(_data_pointer(a), a.shape)
+
+
+@njit(inline="always")
+def _borrowed_vehicle(veh):  # pragma: no cover - compiled
+    """A run-out vehicle tuple (:mod:`pim.model.runout_formula`) with its arrays (C-contiguous,
+    :func:`one_signature`'s) :func:`_borrowed`: the same numbers. numba counts references
+    to every array a function binds, and the right-hand side, inlined, binds the vehicle's
+    arrays several times per wheel: a call per binding and the floating-point registers
+    spilled around it, tens of times per evaluation. With arrays known to own nothing LLVM
+    drops that counting from the step (``python benchmarks/bench_event.py``: the kernel
+    about twice as fast); the step only reads them while its caller holds the originals."""
+    return (veh[0], veh[1], _borrowed(veh[2]), _borrowed(veh[3]), _borrowed(veh[4]), veh[5],
+            veh[6], _borrowed(veh[7]), _borrowed(veh[8]), _borrowed(veh[9]),
+            _borrowed(veh[10]))
+
+
 @njit(error_model="numpy")
 def _step(st, moving, t, h, veh1, veh2, new, ks):  # pragma: no cover - compiled
     """Both vehicles' states ``st`` (2, 6) advanced by one RK4 step of ``h`` [s] into
@@ -97,7 +129,8 @@ def _step(st, moving, t, h, veh1, veh2, new, ks):  # pragma: no cover - compiled
         if not moving[v]:
             continue
         veh = veh1 if v == 0 else veh2
-        rk4_stages(t, h, (st[v, 2], st[v, 3], st[v, 4], st[v, 5]), veh, ks)
+        rk4_stages(t, h, (st[v, 2], st[v, 3], st[v, 4], st[v, 5]),
+                   _borrowed_vehicle(veh), ks)
         w = h / 6.0
         for j in range(6):
             new[v, j] = st[v, j] + w * (ks[0, j] + 2.0 * ks[1, j] + 2.0 * ks[2, j] + ks[3, j])
@@ -294,30 +327,40 @@ def _sample(i, st, t, allowed, veh1, veh2, geo, rad, reach, inv, coef, settings,
 
 @_cached
 @njit(cache=True, error_model="numpy")
-def _sliding(states, pos, braking, steer, threshold, out):  # pragma: no cover - compiled
-    """``out[v, i, w]``: wheel w of vehicle v slides at ``states[v, i]`` (x, y, psi, v_x,
-    v_y, omega): its :func:`pim.model.event_formula.slip_speed` above ``threshold``, with
-    the wheels at ``pos`` (V, 4, 2) [m], ``braking`` (V, 4) [-] and ``steer`` (V, 4) [rad]."""
-    for v in range(states.shape[0]):
-        for i in range(states.shape[1]):
+def _sliding(states, vehicles, first, pos, braking, steer, threshold,
+             out):  # pragma: no cover - compiled
+    """``out[v, i, w]``: wheel w of vehicle ``v = vehicles[k]`` slides at ``states[v, i]``
+    (x, y, psi, v_x, v_y, omega), ``i >= first``: its
+    :func:`pim.model.event_formula.slip_speed` above ``threshold``, with the wheels at
+    ``pos[k]`` (4, 2) [m], ``braking[k]`` (4,) [-] and ``steer[k]`` (4,) [rad]."""
+    for k in range(vehicles.shape[0]):
+        v = vehicles[k]
+        for i in range(first, states.shape[1]):
             psi = states[v, i, 2]
             c, s = np.cos(psi), np.sin(psi)
             for w in range(4):
                 cw, sw = c, s
-                if steer[v, w] != 0.0:
-                    cw, sw = np.cos(psi + steer[v, w]), np.sin(psi + steer[v, w])
+                if steer[k, w] != 0.0:
+                    cw, sw = np.cos(psi + steer[k, w]), np.sin(psi + steer[k, w])
                 out[v, i, w] = _slip_speed(c, s, states[v, i, 3], states[v, i, 4],
-                                           states[v, i, 5], pos[v, w, 0], pos[v, w, 1], cw,
-                                           sw, braking[v, w]) > threshold
+                                           states[v, i, 5], pos[k, w, 0], pos[k, w, 1], cw,
+                                           sw, braking[k, w]) > threshold
 
 
-def sliding_rows(states, pos, braking, steer, threshold) -> np.ndarray:
+def sliding_rows(states, pos, braking, steer, threshold, *, vehicles=None,
+                 first: int = 0) -> np.ndarray:
     """Which wheels slide (V, N, 4) along V vehicles' states (V, N, 6) (compiled; see
-    :func:`pim.analysis.event.sliding_flags`)."""
+    :func:`pim.analysis.event.sliding_flags`): of the vehicles ``vehicles`` (indices on the
+    first axis, default all; ``pos`` (K, 4, 2), ``braking`` and ``steer`` (K, 4) theirs in
+    that order) from sample ``first`` on, False elsewhere (the states are read in place,
+    not copied, when they are C-contiguous floats)."""
     states = np.ascontiguousarray(states, dtype=float)
-    out = np.empty(states.shape[:2] + (4,), dtype=np.bool_)
-    _sliding(states, *one_signature(np.asarray(pos, float), np.asarray(braking, float),
-                                    np.asarray(steer, float)), float(threshold), out)
+    out = np.zeros(states.shape[:2] + (4,), dtype=np.bool_)
+    index = np.arange(states.shape[0]) if vehicles is None else np.asarray(vehicles,
+                                                                           dtype=np.int64)
+    _sliding(states, index, int(first), *one_signature(
+        np.asarray(pos, float), np.asarray(braking, float), np.asarray(steer, float)),
+             float(threshold), out)
     return out
 
 
@@ -424,7 +467,8 @@ def kernel_scene(scene: EventScene, n: int) -> KernelScene:
     data2 = scene.data2 if scene.data2 is not None else scene.data1
     outlines = _shaped(scene.outlines, (n, 2, 3))
     rad = event_formula.bound_radius(outlines[..., 0], outlines[..., 1], outlines[..., 2])
-    reach = np.stack([scene.data1.reach, data2.reach], -1)
+    reach = np.empty((n, 2))
+    reach[:, 0], reach[:, 1] = scene.data1.reach, data2.reach
     inv = _shaped(scene.inverse, (n, 4))
     coefficients = _shaped(scene.coefficients, (n, MAX_IMPACTS, len(COEFFICIENT_COLUMNS)))
     return KernelScene(n, (one_signature(*_columns(scene.data1)),
@@ -434,10 +478,11 @@ def kernel_scene(scene: EventScene, n: int) -> KernelScene:
 
 def _shaped(value, shape: tuple) -> np.ndarray:
     """``value`` as floats broadcast to ``shape`` in a writable array (no read-only view
-    for :func:`one_signature` to copy): itself when it has that shape already."""
+    for :func:`one_signature` to copy): itself when it has that shape already (a copy of
+    a read-only one)."""
     a = np.asarray(value, float)
     if a.shape == shape:
-        return a
+        return a if a.flags.writeable else a.copy()
     out = np.empty(shape)       # (writable: no copy by one_signature)
     out[...] = a
     return out
@@ -469,7 +514,7 @@ def run_event(scene, start, *, start_time=0.0, allowed=None, solve=True, record=
     """
     start = np.ascontiguousarray(np.asarray(start, dtype=float).reshape(-1, 2, 6))
     n = start.shape[0]
-    if not np.all(np.isfinite(start)):
+    if not np.isfinite(start).all():
         raise InputError("event: the start states must be finite")
     if not isinstance(scene, KernelScene):
         scene = kernel_scene(scene, n)
@@ -480,15 +525,21 @@ def run_event(scene, start, *, start_time=0.0, allowed=None, solve=True, record=
     rec = np.empty((int(record), 13))
     settings = np.array([step, max_time, stop_speed, tolerance, 1.0 if solve else 0.0])
     threads = get_num_threads()
-    if n < SERIAL_BELOW:     # a single event: waking the thread pool costs more than it is
+    serial = n < SERIAL_BELOW and threads > 1    # a single event: waking the thread pool
+    if serial:                                    # costs more than it is
         set_num_threads(1)
     try:
         _run(*one_signature(start, _shaped(start_time, (n,)), np.asarray(allowed, float)),
              *scene.vehicles, *scene.arrays, settings, out, tail, impacts, rec)
     finally:
-        set_num_threads(threads)
-    status = np.asarray(STATUS)[tail[:, 1].astype(int)]
-    return EventRun(final=out, time=tail[:, 0].copy(), status=status,
-                    count=tail[:, 2].astype(int), allowed=tail[:, 3].copy(),
-                    moving=tail[:, 4:6] > 0, contact=tail[:, 6:11].copy(), impacts=impacts,
+        if serial:
+            set_num_threads(threads)
+    return EventRun(final=out, time=tail[:, 0], status=_STATUS[tail[:, 1].astype(int)],
+                    count=tail[:, 2].astype(int), allowed=tail[:, 3],
+                    moving=tail[:, 4:6] > 0, contact=tail[:, 6:11], impacts=impacts,
                     record=rec[:int(tail[0, 11])] if record else None)
+
+
+#: :data:`STATUS` as a read-only array (the kernel's codes to their names).
+_STATUS = np.array(STATUS)
+_STATUS.setflags(write=False)

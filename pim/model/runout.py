@@ -166,15 +166,25 @@ _PLAIN = (float, int)
 
 def _plain_fields(vehicle: RunoutVehicle) -> bool:
     """:attr:`RunoutVehicle.plain` of ``vehicle`` (worked out once, when it is made)."""
-    return all(type(getattr(vehicle, name)) in _PLAIN for name in _POSITIVE + (
-        "cg_to_front_axle",)) and _plain_four(vehicle.braking) and (
-        type(vehicle.steer) in _PLAIN or _plain_four(vehicle.steer))
+    for name in _PLAIN_FIELDS:
+        if type(getattr(vehicle, name)) not in _PLAIN:
+            return False
+    return _plain_four(vehicle.braking) and (type(vehicle.steer) in _PLAIN
+                                             or _plain_four(vehicle.steer))
+
+
+#: The fields :func:`_plain_fields` requires as Python numbers.
+_PLAIN_FIELDS = _POSITIVE + ("cg_to_front_axle",)
 
 
 def _plain_four(value) -> bool:
     """``value`` is a tuple or list of four Python numbers."""
-    return type(value) in (tuple, list) and len(value) == 4 and all(
-        type(v) in _PLAIN for v in value)
+    if type(value) not in (tuple, list) or len(value) != 4:
+        return False
+    for v in value:
+        if type(v) not in _PLAIN:
+            return False
+    return True
 
 
 def _plain_valid(vehicle: RunoutVehicle) -> bool:
@@ -188,11 +198,18 @@ def _plain_valid(vehicle: RunoutVehicle) -> bool:
     try:
         v = [float(getattr(vehicle, name)) for name in _POSITIVE]
         a = float(vehicle.cg_to_front_axle)
-        return (all(math.isfinite(x) and x > 0 for x in v) and math.isfinite(a)
-                and 0 <= a <= v[2] and all(0 <= float(b) <= 1 for b in vehicle.braking)
-                and all(math.isfinite(float(x)) for x in (
-                    (steer,) if type(steer) in _PLAIN else steer))
-                and vehicle.regularisation > 0)
+        for x in v:
+            if not (math.isfinite(x) and x > 0):
+                return False
+        if not (math.isfinite(a) and 0 <= a <= v[2]):
+            return False
+        for b in vehicle.braking:
+            if not 0 <= float(b) <= 1:
+                return False
+        for x in (steer,) if type(steer) in _PLAIN else steer:
+            if not math.isfinite(float(x)):
+                return False
+        return vehicle.regularisation > 0
     except OverflowError:           # an int beyond float's range
         return False
 
@@ -260,21 +277,23 @@ class RhsData:
         if vehicle.driver is not None or not vehicle.plain:
             return cls.of(vehicle, 1)
         pos = vehicle.positions if positions is None else positions
-        steer = np.empty(4)
+        steer, turn = np.empty(4), np.empty((1, 2, 4))
         steer[:] = vehicle.steer
+        np.cos(steer, out=turn[0, 0])
+        np.sin(steer, out=turn[0, 1])
+        wheels = np.ascontiguousarray(pos.T)[:, None]          # (2, 1, 4): x, y
         return cls(mass=np.array([float(vehicle.mass)]),
                    yaw_inertia=np.array([float(vehicle.yaw_inertia)]),
-                   wheel_x=pos[None, :, 0].copy(), wheel_y=pos[None, :, 1].copy(),
+                   wheel_x=wheels[0], wheel_y=wheels[1],
                    load=vehicle.loads[None], friction=np.array([float(vehicle.friction)]),
                    regularisation=float(vehicle.regularisation), times=np.zeros(1),
-                   steer=np.array([[np.cos(steer), np.sin(steer)]]),
-                   brake=np.array([[vehicle.braking]], dtype=float),
+                   steer=turn, brake=np.array([[vehicle.braking]], dtype=float),
                    tyre=_tyre_rows(vehicle, 1))
 
     @property
     def reach(self) -> np.ndarray:
         """The largest tyre arm of each sample [m] (n,)."""
-        return np.max(np.hypot(self.wheel_x, self.wheel_y), axis=-1)
+        return np.hypot(self.wheel_x, self.wheel_y).max(axis=-1)
 
     def take(self, index) -> RhsData:
         """The samples ``index`` (an index array)."""

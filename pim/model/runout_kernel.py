@@ -199,8 +199,8 @@ def one_signature(*args) -> tuple:
     vehicle data, a driver table or not, the field tyre or Coulomb, all share one compiled
     version. Only the arrays' memory layout changes, never a value.
     """
-    return tuple(_contiguous(a) if isinstance(a, np.ndarray)
-                 else int(a) if isinstance(a, (int, np.integer)) else float(a) for a in args)
+    return tuple([_contiguous(a) if isinstance(a, np.ndarray)
+                  else int(a) if isinstance(a, (int, np.integer)) else float(a) for a in args])
 
 
 def _contiguous(a: np.ndarray) -> np.ndarray:

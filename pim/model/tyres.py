@@ -76,8 +76,11 @@ def _operands(*values) -> tuple:
     """``(plain, operands)``: Python floats when every value is a Python number (one
     vehicle: its formula on floats, the same IEEE arithmetic as numpy's, without numpy's
     small-array cost), else the values as float arrays broadcast together."""
-    if all(type(v) in (float, int) for v in values):
-        return True, tuple(float(v) for v in values)
+    for v in values:
+        if type(v) not in (float, int):
+            break
+    else:
+        return True, tuple([float(v) for v in values])
     return False, tuple(np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values)))
 
 

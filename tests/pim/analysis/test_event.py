@@ -309,6 +309,32 @@ def test_sliding_flags_follow_the_slip():
     assert not sliding_flags(states, rv, friction=0.0).any()
 
 
+@pytest.mark.parametrize("name", ["side-slap", "hard-barrier", "synthetic-runout"])
+def test_an_events_sliding_flags_are_the_slip_formula_on_its_states(name):
+    """pim.event's wheels' flags (compiled, from the run-out's first sample on) are
+    sliding_flags' (numpy, the same formula) on the event's own states: none in the
+    approach, none for a fixed obstacle, and on a side slap both some and not all."""
+    from sim.event_check import side_slap_case
+
+    case = side_slap_case(1.6) if name == "side-slap" else pim.load_case(name)
+    ev = pim.event(case)
+    start = int(np.searchsorted(ev.time, 0.0)) + 1    # the run-out's first row (after t=0's)
+    ev_data = case.evidence
+    for i, (vehicle, track) in enumerate(zip((case.vehicle1, case.vehicle2), ev.tracks)):
+        assert not track.sliding[:start].any()
+        if vehicle.fixed:
+            assert not track.sliding.any()
+            continue
+        rv = event_vehicle(vehicle, None if ev_data is None else getattr(
+            ev_data, f"vehicle{i + 1}"), None, f"vehicle{i + 1}")
+        states = np.column_stack([track.position, track.heading, track.velocity,
+                                  track.yaw_rate])[start:]
+        assert np.array_equal(track.sliding[start:], sliding_flags(states, rv))
+    if name == "side-slap":
+        flags = ev.vehicle1.sliding[start:]
+        assert flags.any() and not flags.all()
+
+
 @pytest.mark.parametrize("kwargs, match", [({"approach": -1.0}, "approach"),
                                            ({"tyre_friction": -0.1}, "tyre_friction"),
                                            ({"max_time": 0.0}, "max_time"),

@@ -33,8 +33,17 @@ def make(time, v1=(10.0, 0.0), v2=(0.0, 5.0)):
 def test_track_checks_shapes_and_names_the_field():
     with pytest.raises(InputError, match="Track.velocity"):
         Track(np.zeros((3, 2)), np.zeros(3), np.zeros((2, 2)), np.zeros(3))
+    with pytest.raises(InputError, match=r"Track.sliding must have shape \(3, 4\)"):
+        Track(np.zeros((3, 2)), np.zeros(3), np.zeros((3, 2)), np.zeros(3),
+              sliding=np.zeros((3, 2), bool))
+    with pytest.raises(InputError, match="Track.position"):
+        Track(np.zeros(2), 0.0, np.zeros(2), 0.0)           # one state, not a sample axis
+    track = Track([[0.0, 0.0]] * 3, [0.0] * 3, [[1.0, 0.0]] * 3, [0.0] * 3)   # lists
+    assert len(track) == 3 and track.sliding is None
     with pytest.raises(InputError, match="Event.time"):
         make([0.0, 1.0, 0.5])
+    with pytest.raises(InputError, match="Event.time"):
+        make([0.0, np.nan, 0.5, 0.4])
 
 
 def test_phases_mark_approach_each_impact_and_rest():
