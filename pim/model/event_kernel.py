@@ -89,7 +89,12 @@ _cached = stamped_cache(event_formula, formula, runout_formula, tyres, runout_ke
 
 @intrinsic
 def _data_pointer(typingctx, array):  # pragma: no cover - compiled
-    """The pointer to a C-contiguous array's first element (for :func:`numba.carray`)."""
+    """The pointer to a C-contiguous array's first element (for :func:`numba.carray`). Any
+    other layout does not compile (no signature: a typing error), since :func:`numba.carray`
+    over a strided array's data would read other numbers."""
+    if not isinstance(array, types.Array) or array.layout != "C":
+        return None
+
     def codegen(context, builder, signature, args):
         return context.make_array(signature.args[0])(context, builder, args[0]).data
 

@@ -84,3 +84,28 @@ def test_a_full_record_stops_the_run():
     run = run_event(scene(), side_on(10.0), solve=True, record=10)
     assert run.status[0] == "record" and run.record.shape == (10, len(RECORD_COLUMNS))
     assert np.all(np.diff(run.record[:, 0]) > 0)
+
+
+def test_reference_free_views_take_only_c_contiguous_arrays():
+    """The event's step reads the vehicles' arrays through views over their data
+    (_borrowed, numba.carray): the same numbers for a C-contiguous array; a strided one
+    (whose data a C-ordered view would misread) does not compile."""
+    from numba import njit
+    from numba.core.errors import TypingError
+
+    from pim.model import event_kernel
+
+    borrowed = event_kernel._borrowed
+
+    @njit
+    def row_sum(a, i):
+        return borrowed(a[i]).sum()
+
+    @njit
+    def column_sum(a, j):
+        return borrowed(a[:, j]).sum()
+
+    x = np.arange(12.0).reshape(4, 3)
+    assert row_sum(x, 2) == x[2].sum()
+    with pytest.raises(TypingError):
+        column_sum(x, 1)
