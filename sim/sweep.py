@@ -91,7 +91,7 @@ def sweep(func: Callable, items: Iterable, executor=None, chunksize: int | None 
         if executor is None or (isinstance(executor, str) and executor == "process"):
             workers = max_workers or os.cpu_count() or 1
             with worker_pool(workers) as pool:      # Ctrl-C ends its workers at once
-                return _map(pool, func, items, chunksize, workers, bar)
+                return _map(pool, func, items, chunksize, workers, bar, cancel=False)
         if isinstance(executor, str):
             raise InputError(f"executor must be None, 'process', 'serial', a dask Client or a "
                              f"concurrent.futures.Executor, got {executor!r}")
@@ -106,7 +106,12 @@ def sweep(func: Callable, items: Iterable, executor=None, chunksize: int | None 
         bar.close()
 
 
-def _map(executor, func, items, chunksize, workers, bar) -> list:
+def _map(executor, func, items, chunksize, workers, bar, cancel: bool = True) -> list:
+    """``func`` over ``items`` in chunks on ``executor``, in input order. On an error or
+    interrupt the pending chunks are cancelled (``cancel``), except on a pool this module
+    ends itself (:func:`pim.io.process.worker_pool` ends its workers and cancels them: a
+    task cancelled before its killed pool's manager thread fails the pending ones made
+    Python 3.11's manager die with "Exception in thread ... InvalidStateError")."""
     n = len(items)
     if n == 0:
         return []
@@ -120,7 +125,7 @@ def _map(executor, func, items, chunksize, workers, bar) -> list:
             results[start:start + length] = future.result()
             bar.update(length)
     except BaseException:
-        for future in futures:
+        for future in futures if cancel else ():
             future.cancel()
         raise
     return results

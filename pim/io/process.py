@@ -188,17 +188,7 @@ def stop_workers(pool) -> None:
 
 def end_pool(pool) -> None:
     """End ``pool`` after an error or an interrupt: its workers at once
-    (:func:`stop_workers`), its pending tasks cancelled, its threads joined.
-
-    Tasks the caller cancelled itself (``Future.cancel``, as ``Executor.map``'s iterator and
-    :func:`sim.sweep.sweep` do on an interrupt) are dropped from the pool's pending work
-    first: the pool's manager thread, seeing its workers killed, sets an exception on every
-    pending task, and on Python 3.11 one already cancelled makes it print "Exception in
-    thread ... InvalidStateError" beside the interrupt (seen in 1 of 4 suite runs)."""
-    pending = getattr(pool, "_pending_work_items", None) or {}
-    for key, item in list(pending.items()):
-        if item.future.cancelled():
-            pending.pop(key, None)
+    (:func:`stop_workers`), its pending tasks cancelled, its threads joined."""
     stop_workers(pool)
     pool.shutdown(wait=True, cancel_futures=True)
 

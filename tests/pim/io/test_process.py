@@ -243,27 +243,3 @@ def test_an_interrupted_pool_start_prints_nothing(tmp_path, signum):
                           timeout=30)
     assert proc.returncode == 3 and proc.stderr == "", proc.stderr
 
-
-def test_ending_a_pool_after_its_caller_cancelled_tasks_prints_nothing(monkeypatch):
-    """On an interrupt a caller cancels its pending tasks (Executor.map's iterator and
-    sim.sweep do) before the pool is ended; the pool's manager thread, seeing the killed
-    workers, then set an exception on the cancelled futures and died with InvalidStateError
-    (Python 3.11: "Exception in thread ..." on stderr, 1 in 4 suite runs). end_pool drops
-    them first: the thread ends cleanly."""
-    import threading
-    import time
-
-    from pim.io.process import end_pool, worker_pool
-
-    died = []
-    monkeypatch.setattr(threading, "excepthook", lambda args: died.append(args.exc_type))
-    with worker_pool(1) as pool:
-        running = pool.submit(time.sleep, 30)
-        pending = [pool.submit(time.sleep, 30) for _ in range(3)]
-        assert all(f.cancel() for f in pending)
-        manager = pool._executor_manager_thread
-        end_pool(pool)
-        manager.join(10)
-        assert not manager.is_alive()
-        assert running.done() and all(f.cancelled() for f in pending)
-    assert died == []
