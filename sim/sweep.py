@@ -108,10 +108,8 @@ def sweep(func: Callable, items: Iterable, executor=None, chunksize: int | None 
 
 def _map(executor, func, items, chunksize, workers, bar, cancel: bool = True) -> list:
     """``func`` over ``items`` in chunks on ``executor``, in input order. On an error or
-    interrupt the pending chunks are cancelled (``cancel``), except on a pool this module
-    ends itself (:func:`pim.io.process.worker_pool` ends its workers and cancels them: a
-    task cancelled before its killed pool's manager thread fails the pending ones made
-    Python 3.11's manager die with "Exception in thread ... InvalidStateError")."""
+    interrupt the pending chunks are cancelled (``cancel``); a pool this module ends itself
+    (:func:`pim.io.process.worker_pool`) cancels them as it ends."""
     n = len(items)
     if n == 0:
         return []

@@ -26,6 +26,7 @@ import os
 import signal
 import sys
 import threading
+import time
 from collections.abc import Iterator
 
 __all__ = ["started_pool", "STARTUP_SIGNALS", "Interrupts", "Terminated", "signal_received",
@@ -179,18 +180,39 @@ def stop_workers(pool) -> None:
     :func:`starting_processes`); the join makes sure none is left reading its start-up data
     when the pool's semaphores are removed (it would print a FileNotFoundError traceback).
     """
-    processes = list((getattr(pool, "_processes", None) or {}).values())
+    _kill(list((getattr(pool, "_processes", None) or {}).values()))
+
+
+def _kill(processes: list) -> None:
     for process in processes:
         process.kill()
     for process in processes:
         process.join()
 
 
+#: Longest wait [s] for a pool's manager thread to drop its cancelled tasks, and to end.
+MANAGER_WAIT = 10.0
+
+
 def end_pool(pool) -> None:
-    """End ``pool`` after an error or an interrupt: its workers at once
-    (:func:`stop_workers`), its pending tasks cancelled, its threads joined."""
-    stop_workers(pool)
-    pool.shutdown(wait=True, cancel_futures=True)
+    """End ``pool`` after an error or an interrupt: its pending tasks cancelled, its workers
+    ended at once (as :func:`stop_workers`), its threads joined.
+
+    The pool is shut down (tasks cancelled) first and its manager thread let drop every
+    cancelled task before the workers are killed: seeing them killed, the manager sets an
+    exception on each pending task, and on Python 3.11 a task its caller had cancelled
+    (``Executor.map``'s iterator and :func:`sim.sweep.sweep` cancel theirs on an interrupt)
+    made it die with "Exception in thread ... InvalidStateError" beside the interrupt."""
+    processes = list((getattr(pool, "_processes", None) or {}).values())
+    manager = getattr(pool, "_executor_manager_thread", None)
+    pool.shutdown(wait=False, cancel_futures=True)
+    deadline = time.monotonic() + MANAGER_WAIT
+    while (getattr(pool, "_cancel_pending_futures", False) and manager is not None
+           and manager.is_alive() and time.monotonic() < deadline):
+        time.sleep(0.001)                  # the manager clears the flag once it dropped them
+    _kill(processes)
+    if manager is not None:
+        manager.join(MANAGER_WAIT)
 
 
 @contextlib.contextmanager

@@ -243,3 +243,38 @@ def test_an_interrupted_pool_start_prints_nothing(tmp_path, signum):
                           timeout=30)
     assert proc.returncode == 3 and proc.stderr == "", proc.stderr
 
+
+
+def test_ending_a_pool_after_its_caller_cancelled_tasks_prints_nothing(monkeypatch):
+    """On an interrupt a caller cancels its pending tasks (Executor.map's iterator as the
+    exception leaves its loop, sim.sweep) before the pool is ended; the pool's manager
+    thread, seeing the killed workers, then set an exception on the cancelled futures and
+    died with InvalidStateError (Python 3.11: "Exception in thread ..." on stderr). end_pool
+    lets the manager drop them first: it ends cleanly, the running task failed, the
+    cancelled ones cancelled, the workers gone."""
+    import threading
+    import time
+    from concurrent.futures.process import BrokenProcessPool
+
+    from pim.io.process import end_pool, worker_pool
+
+    died = []
+    monkeypatch.setattr(threading, "excepthook", lambda args: died.append(args.exc_type))
+    with worker_pool(1) as pool:
+        running = pool.submit(time.sleep, 30)
+        pending = [pool.submit(time.sleep, 30) for _ in range(3)]
+        while not running.running():
+            time.sleep(0.01)
+        cancelled = [f for f in pending if f.cancel()]     # not the one already queued
+        assert cancelled
+        workers = list(pool._processes.values())
+        manager = pool._executor_manager_thread
+        start = time.monotonic()
+        end_pool(pool)
+        assert not manager.is_alive() and time.monotonic() - start < 5
+        for future in [running, *pending]:
+            assert future.cancelled() == (future in cancelled)
+            if future not in cancelled:
+                assert isinstance(future.exception(timeout=1), BrokenProcessPool)
+        assert not any(w.is_alive() for w in workers)
+    assert died == []
