@@ -213,18 +213,14 @@ def _coefficients(specs: tuple) -> np.ndarray:
     """(MAX_IMPACTS, 7): the further impacts' laws (``specs``, :func:`_further_specs`) for
     the kernel (:data:`pim.model.event_kernel.COEFFICIENT_COLUMNS`: restitution, beta, cap,
     law code, C and Gamma where the case's ``[[impacts]]`` give them, else NaN)."""
-    rows, done = [], {}
+    rows = []
     for spec in specs:
-        if id(spec) in done:            # (the last spec repeats to MAX_IMPACTS)
-            rows.append(done[id(spec)])
-            continue
         cap = np.inf if spec.law == "brach" else float(spec.contact_friction)
         point = ((np.nan, np.nan) if spec.point is None
                  else np.asarray(spec.point, float).reshape(2))
         rows.append((float(spec.restitution), 1.0 if spec.beta is None else float(spec.beta),
                      cap, LAW_CODES[spec.law], *point,
                      np.nan if spec.normal_angle is None else float(spec.normal_angle)))
-        done[id(spec)] = rows[-1]
     return np.array(rows)
 
 

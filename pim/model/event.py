@@ -58,6 +58,11 @@ def impact_phase(k: int) -> str:
     return f"impact {int(k)}"
 
 
+def _shape(value) -> tuple:
+    """``value``'s shape (an array's read directly, without numpy's conversion)."""
+    return value.shape if isinstance(value, np.ndarray) else np.shape(value)
+
+
 #: The per-sample fields of a :class:`Track` and their width (None: one number a sample).
 _TRACK_SHAPES = (("position", 2), ("heading", None), ("velocity", 2), ("yaw_rate", None),
                  ("sliding", 4))
@@ -102,16 +107,14 @@ class Track:
     wheels: np.ndarray | None = None
 
     def __post_init__(self):
-        heading = self.heading
-        n = (heading.shape[0] if heading.ndim else None) if isinstance(
-            heading, np.ndarray) else np.shape(heading)[0] if np.ndim(heading) else None
+        heading = _shape(self.heading)
+        n = heading[0] if heading else None
         for name, width in _TRACK_SHAPES:
             value = getattr(self, name)
             if value is None and name == "sliding":
                 continue
-            shape = value.shape if isinstance(value, np.ndarray) else np.shape(value)
-            if n is None or shape != ((n,) if width is None else (n, width)):
-                expected = (n,) if width is None else (n, width)
+            expected, shape = (n,) if width is None else (n, width), _shape(value)
+            if n is None or shape != expected:
                 raise InputError(f"Track.{name} must have shape {expected} (N samples), got "
                                  f"{shape}")
 

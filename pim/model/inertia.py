@@ -63,7 +63,7 @@ from .numbers import InputError, real_array
 __all__ = ["ClassSample", "DynamicIndex", "AxleFraction", "InputEstimate", "BODIES",
            "dynamic_index", "MassRegression", "mass_regression", "yaw_inertia_from_mass",
            "axle_fraction", "yaw_inertia_estimate", "WheelbaseLine", "wheelbase_line",
-           "yaw_inertia_from_length"]
+           "yaw_inertia_from_length", "independent_product"]
 
 #: Body classes with their own yaw dynamic index, and the NHTSA database's type codes in each
 #: (:mod:`pim.io.inertia_data`): cars (sedans, coupes, hatchbacks, wagons), SUVs
@@ -254,11 +254,10 @@ def yaw_inertia_estimate(mass, wheelbase, index: DynamicIndex, cg_to_front_axle=
         raise InputError("cg_to_front_axle must lie strictly between 0 and the wheelbase [m] "
                          "to estimate the yaw inertia (the CG between the axles)")
     if cg_to_front_axle is None and fraction is not None:
-        g, g_sd = fraction.axle_product()
-        d, d_sd = index.mean, index.predictive_sd
+        mean, sd = independent_product((index.mean, index.predictive_sd),
+                                       fraction.axle_product())
         scale = m * length * length
-        return d * g * scale, np.sqrt((d_sd * g_sd) ** 2 + (d_sd * g) ** 2
-                                      + (g_sd * d) ** 2) * scale
+        return mean * scale, sd * scale
     scale = m * a * (length - a)
     return index.mean * scale, index.predictive_sd * scale
 
@@ -508,12 +507,20 @@ def yaw_inertia_from_length(mass, length, line: WheelbaseLine, index: DynamicInd
         raise InputError(f"length must lie within the {low:.2f}-{high:.2f} m of the "
                          f"{line.count} {line.group}s of the wheelbase line")
     mu, s = line.wheelbase(x), line.predictive_sd(x)
-    w2, w2_var = mu * mu + s * s, 4 * mu * mu * s * s + 2 * s ** 4
-    g, g_sd = fraction.axle_product()
-    d, d_sd = index.mean, index.predictive_sd
-    mean = d * g * w2
-    second = (d * d + d_sd * d_sd) * (g * g + g_sd * g_sd) * (w2 * w2 + w2_var)
-    return m * mean, m * np.sqrt(np.maximum(second - mean * mean, 0.0))
+    square = (mu * mu + s * s, np.sqrt(4 * mu * mu * s * s + 2 * s ** 4))    # L^2
+    mean, sd = independent_product((index.mean, index.predictive_sd),
+                                   fraction.axle_product(), square)
+    return m * mean, m * sd
+
+
+def independent_product(*factors):
+    """Mean and sd of a product of independent factors, each given as (mean, sd):
+    ``prod mu_i`` and ``sqrt(prod (mu_i^2 + s_i^2) - prod mu_i^2)`` (exact for any
+    distributions with those moments)."""
+    mean, second = 1.0, 1.0
+    for mu, s in factors:
+        mean, second = mean * mu, second * (mu * mu + s * s)
+    return mean, np.sqrt(np.maximum(second - mean * mean, 0.0))
 
 
 @dataclass(frozen=True)
